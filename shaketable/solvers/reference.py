@@ -1,0 +1,188 @@
+"""High-accuracy reference solver: SciPy's DOP853 with event location.
+
+An implementation independent of :mod:`shaketable.solvers.engine` (different
+integrator, different root finder: SciPy's ``solve_ivp`` events and Brent's
+method) used as the yardstick for the other methods and in the tests. It shares
+only the physics (:mod:`shaketable.dynamics`) and the event rules.
+
+It integrates each input interval separately (the ground acceleration is linear
+inside one, so the right-hand side is smooth) with ``rtol`` and an absolute
+tolerance scaled by alpha, and is slow: one ``solve_ivp`` call per interval.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..constants import G
+from ..dynamics import HOLD_DOWN, angular_acceleration, cascade_rest_time
+from .engine import (INFO_CASCADES, INFO_EVALUATIONS, INFO_MAX_ABS_THETA, INFO_N_IMPACTS,
+                     INFO_N_OUTPUT, INFO_OVERTURN_DIRECTION, INFO_REJECTED, INFO_STATUS,
+                     INFO_STEPS, INFO_T_AIRBORNE, INFO_T_END, INFO_T_MAX, INFO_T_OVERTURN,
+                     INFO_T_REST, INFO_T_START, INFO_T_UNSTABLE, INFO_THETA_AT_MAX,
+                     INFO_THETA_DOT_END, INFO_THETA_END, INFO_UNSTABLE_DIRECTION, N_INFO,
+                     STATUS_AIRBORNE, STATUS_COMPLETED, STATUS_OVERTURNED)
+
+
+def integrate_reference(t_grid, ug, vg, parameters, alpha, p, cor, theta0, omega0, rtol,
+                        rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+                        impact_velocities, info):
+    """Same contract as :func:`shaketable.solvers.engine.integrate` (METHOD_FAST)."""
+    atol = np.array([rtol * alpha, rtol * alpha * p]) * 1e-2
+    if rest_tolerance < 0:
+        rest_tolerance = 1e-6 / p
+    velocity_floor = 1e3 * atol[1]
+    hold_down = parameters[HOLD_DOWN]
+    info[:] = math.nan
+    info[INFO_MAX_ABS_THETA] = abs(theta0)
+    info[INFO_T_MAX] = t_grid[0]
+    info[INFO_THETA_AT_MAX] = theta0
+    counts = {"steps": 0, "evaluations": 0, "impacts": 0, "cascades": 0}
+    status = STATUS_COMPLETED
+    theta, omega = float(theta0), float(omega0)
+    resting = theta == 0.0 and omega == 0.0
+    side = -1.0 if theta < 0.0 or (theta == 0.0 and omega < 0.0) else 1.0
+    if not resting:
+        info[INFO_T_START] = t_grid[0]
+    if abs(theta) > alpha:
+        info[INFO_T_UNSTABLE] = t_grid[0]
+        info[INFO_UNSTABLE_DIRECTION] = side
+    t = float(t_grid[0])
+    rest_until = t
+    out_theta[0], out_omega[0] = theta, omega
+    out_acceleration[0] = 0.0 if resting else angular_acceleration(theta, side, ug[0], vg[0],
+                                                                   parameters)
+    filled = 1
+    max_recorded = len(impact_times)
+
+    for k in range(len(t_grid) - 1):
+        t0, t1 = float(t_grid[k]), float(t_grid[k + 1])
+        u0, u1, v0, v1 = ug[k], ug[k + 1], vg[k], vg[k + 1]
+
+        def ground(time):
+            fraction = (time - t0) / (t1 - t0)
+            return u0 + (u1 - u0) * fraction, v0 + (v1 - v0) * fraction
+
+        support_0, support_1 = G + v0 + hold_down, G + v1 + hold_down
+        t_end, airborne = t1, False
+        if support_0 <= 0:
+            t_end, airborne = t0, True
+        elif support_1 <= 0:
+            t_end, airborne = t0 + (t1 - t0) * support_0 / (support_0 - support_1), True
+
+        while t < t_end:
+            if resting:
+                if rest_until >= t_end:
+                    t = t_end
+                    break
+                t = max(t, rest_until)
+                start, start_side = math.inf, 0.0
+                for s in (1.0, -1.0):
+                    margin_a = s * angular_acceleration(0.0, s, *ground(t), parameters)
+                    margin_b = s * angular_acceleration(0.0, s, *ground(t_end), parameters)
+                    if margin_a > 0:
+                        candidate = t
+                    elif margin_b > 0:
+                        candidate = t + (t_end - t) * (-margin_a) / (margin_b - margin_a)
+                    else:
+                        continue
+                    if candidate < start:
+                        start, start_side = candidate, s
+                if start_side == 0.0:
+                    t = t_end
+                    break
+                t, side, theta, omega, resting = start, start_side, 0.0, 0.0, False
+                if math.isnan(info[INFO_T_START]):
+                    info[INFO_T_START] = t
+                continue
+
+            active_side = side
+            t_segment = t
+            from_zero = theta == 0.0
+
+            def rhs(time, y):
+                return [y[1], angular_acceleration(y[0], active_side, *ground(time), parameters)]
+
+            def impact(time, y):
+                if from_zero:
+                    elapsed = time - t_segment
+                    return active_side * y[1] if elapsed <= 0 else active_side * y[0] / elapsed
+                return active_side * y[0]
+            impact.terminal, impact.direction = True, -1
+
+            def overturn(time, y):
+                return 0.5 * math.pi - active_side * y[0]
+            overturn.terminal, overturn.direction = True, -1
+
+            def peak(time, y):
+                return y[1]
+            peak.terminal, peak.direction = False, 0
+
+            def unstable(time, y):
+                return alpha - abs(y[0])
+            unstable.terminal, unstable.direction = False, -1
+
+            solution = solve_ivp(rhs, (t, t_end), [theta, omega], method="DOP853", rtol=rtol,
+                                 atol=atol, events=[impact, overturn, peak, unstable],
+                                 first_step=None)
+            counts["steps"] += len(solution.t) - 1
+            counts["evaluations"] += solution.nfev
+            for time, y in zip(solution.t_events[2], solution.y_events[2]):
+                if abs(y[0]) > info[INFO_MAX_ABS_THETA]:
+                    info[INFO_MAX_ABS_THETA], info[INFO_T_MAX], info[INFO_THETA_AT_MAX] = \
+                        abs(y[0]), time, y[0]
+            if math.isnan(info[INFO_T_UNSTABLE]) and len(solution.t_events[3]):
+                info[INFO_T_UNSTABLE] = solution.t_events[3][0]
+                info[INFO_UNSTABLE_DIRECTION] = active_side
+            t = float(solution.t[-1])
+            theta, omega = float(solution.y[0, -1]), float(solution.y[1, -1])
+            if abs(theta) > info[INFO_MAX_ABS_THETA]:
+                info[INFO_MAX_ABS_THETA], info[INFO_T_MAX], info[INFO_THETA_AT_MAX] = \
+                    abs(theta), t, theta
+            if solution.status == 1:  # a terminal event
+                if len(solution.t_events[1]):
+                    status = STATUS_OVERTURNED
+                    info[INFO_T_OVERTURN] = t
+                    info[INFO_OVERTURN_DIRECTION] = active_side
+                    theta = active_side * 0.5 * math.pi
+                    break
+                if counts["impacts"] < max_recorded:
+                    impact_times[counts["impacts"]] = t
+                    impact_velocities[counts["impacts"]] = omega
+                counts["impacts"] += 1
+                omega *= cor
+                side = -active_side
+                theta = 0.0
+                deceleration = -side * angular_acceleration(0.0, side, *ground(t), parameters)
+                remaining = cascade_rest_time(omega, deceleration, cor)
+                if omega == 0.0 or remaining <= rest_tolerance or (
+                        abs(omega) <= velocity_floor and remaining < math.inf):
+                    if omega != 0.0:
+                        counts["cascades"] += 1
+                    resting = True
+                    rest_until = t + (0.0 if omega == 0.0 else remaining)
+                    info[INFO_T_REST] = rest_until
+                    omega = 0.0
+        if status != STATUS_COMPLETED:
+            break
+        if airborne:
+            status = STATUS_AIRBORNE
+            info[INFO_T_AIRBORNE] = t_end
+            break
+        out_theta[k + 1], out_omega[k + 1] = theta, omega
+        out_acceleration[k + 1] = 0.0 if resting else angular_acceleration(
+            theta, side, u1, v1, parameters)
+        filled = k + 2
+
+    info[INFO_T_END], info[INFO_THETA_END], info[INFO_THETA_DOT_END] = t, theta, omega
+    info[INFO_STEPS] = counts["steps"]
+    info[INFO_EVALUATIONS] = counts["evaluations"]
+    info[INFO_REJECTED] = 0
+    info[INFO_CASCADES] = counts["cascades"]
+    info[INFO_STATUS] = status
+    info[INFO_N_IMPACTS] = counts["impacts"]
+    info[INFO_N_OUTPUT] = filled
+    assert len(info) == N_INFO

@@ -1,0 +1,354 @@
+"""Tests of shaketable.motions: generators, utilities and measures.
+
+Reference values are closed forms (stated next to each test) or, for the
+artificial presets, the report's stated PGA and length of strong motion
+(Section 4.1 of the report) with bands set from measured values.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from shaketable import motions
+from shaketable.constants import G
+from shaketable.motion import Motion
+
+
+def velocity(motion):
+    """Exact velocity [m/s] of the piecewise-linear horizontal acceleration."""
+    a = motion.horizontal
+    return np.concatenate([[0.0], np.cumsum(0.5 * np.diff(motion.t) * (a[:-1] + a[1:]))])
+
+
+# ------------------------------------------------------------------ harmonic
+def test_harmonic_amplitude_frequency_phase_exact():
+    # Fig. 3.9 of the report: 2 Hz, 0.45 g horizontal + 0.26 g vertical.
+    phase = 0.7
+    m = motions.harmonic(2.0, 0.45, 0.26, duration=3.0, dt=0.01, phase=phase)
+    t = np.arange(301) * 0.01
+    np.testing.assert_allclose(m.t, t, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(m.horizontal, 0.45 * G * np.sin(4 * np.pi * t),
+                               rtol=0, atol=1e-12)
+    np.testing.assert_allclose(m.vertical, 0.26 * G * np.sin(4 * np.pi * t + phase),
+                               rtol=0, atol=1e-12)
+    # t = 0.125 s is a quarter period: the horizontal peak, exactly 0.45 g
+    fine = motions.harmonic(2.0, 0.45, duration=1.0, dt=0.125)
+    assert fine.horizontal[1] == pytest.approx(0.45 * G, rel=1e-14)
+
+
+def test_harmonic_fig_3_7_has_no_vertical():
+    # Fig. 3.7: 2 Hz, 0.5 g horizontal only.
+    m = motions.harmonic(2.0, 0.5, duration=5.0, dt=0.005)  # peaks on samples
+    assert m.vertical is None
+    assert m.pga == pytest.approx(0.5 * G, rel=1e-12)
+    assert m.duration == pytest.approx(5.0)
+
+
+def test_harmonic_ramp_starts_at_zero_and_reaches_full_amplitude():
+    m = motions.harmonic(2.0, 0.38, 0.33, duration=6.0, dt=0.005, ramp=2.0)
+    assert m.horizontal[0] == 0.0 and m.vertical[0] == 0.0
+    # first samples grow smoothly: envelope ~ (pi tau / 2 ramp)^2 near zero
+    assert np.all(np.abs(m.horizontal[:20]) < 0.38 * G * 1e-2)
+    t = m.t
+    envelope = np.where(t < 2.0, 0.5 * (1 - np.cos(np.pi * t / 2.0)), 1.0)
+    np.testing.assert_allclose(m.horizontal, 0.38 * G * envelope * np.sin(4 * np.pi * t),
+                               rtol=0, atol=1e-12)
+    after = t >= 2.0
+    assert np.max(np.abs(m.horizontal[after])) == pytest.approx(0.38 * G, rel=1e-6)
+
+
+def test_harmonic_quiet_lead_in():
+    m = motions.harmonic(2.0, 0.5, duration=2.0, dt=0.01, start=1.0)
+    assert m.t[-1] == pytest.approx(3.0)
+    assert np.all(m.horizontal[m.t < 1.0 - 1e-9] == 0.0)
+    shaking = m.t >= 1.0 - 1e-9
+    np.testing.assert_allclose(m.horizontal[shaking],
+                               0.5 * G * np.sin(4 * np.pi * (m.t[shaking] - 1.0)),
+                               rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("kwargs, parameter", [
+    (dict(frequency=0.0), "frequency"),
+    (dict(frequency=-2.0), "frequency"),
+    (dict(frequency=float("nan")), "frequency"),
+    (dict(horizontal_g=float("nan")), "horizontal_g"),
+    (dict(duration=0.0), "duration"),
+    (dict(dt=-0.01), "dt"),
+    (dict(ramp=-1.0), "ramp"),
+    (dict(ramp=10.0), "ramp"),
+    (dict(start=-1.0), "start"),
+    (dict(phase=float("inf")), "phase"),
+])
+def test_harmonic_rejects_bad_input(kwargs, parameter):
+    arguments = dict(frequency=2.0, horizontal_g=0.5, duration=5.0)
+    arguments.update(kwargs)
+    frequency = arguments.pop("frequency")
+    horizontal_g = arguments.pop("horizontal_g")
+    with pytest.raises(ValueError, match=parameter):
+        motions.harmonic(frequency, horizontal_g, **arguments)
+
+
+# ------------------------------------------------------------------ pulses
+def test_constant_pulse_matches_closed_form_section_2_3():
+    # Section 2.3: a for t1, then zero; velocity afterwards exactly a t1.
+    m = motions.constant_pulse(0.3, 0.1, duration=0.5, dt=0.001)
+    a = 0.3 * G
+    t = m.t
+    assert np.all(m.horizontal[t < 0.1 - 1e-9] == a)
+    assert np.all(m.horizontal[t > 0.1 + 1e-9] == 0.0)
+    assert m.horizontal[100] == pytest.approx(a / 2)  # t1 on a sample: cell average
+    assert m.vertical is None
+    v = velocity(m)
+    np.testing.assert_allclose(v[t <= 0.099 + 1e-9], a * t[t <= 0.099 + 1e-9], rtol=1e-12)
+    np.testing.assert_allclose(v[t >= 0.101 - 1e-9], a * 0.1, rtol=1e-12)
+
+
+@pytest.mark.parametrize("t1", [0.1003, 0.1007, 0.25])
+def test_constant_pulse_velocity_exact_off_grid(t1):
+    m = motions.constant_pulse(-0.2, t1, duration=0.5, dt=0.001)
+    assert velocity(m)[-1] == pytest.approx(-0.2 * G * t1, rel=1e-12)
+    assert np.all((m.horizontal <= 0.0) & (m.horizontal >= -0.2 * G))
+
+
+def test_half_sine_pulse_matches_closed_form_section_2_4():
+    # a sin(pi t / t_p) on [0, t_p], t_p = T_s / 2; velocity 2 a t_p / pi.
+    tp = 0.1
+    m = motions.half_sine_pulse(0.5, tp, duration=0.4, dt=0.001, sign=-1)
+    t = m.t
+    expected = np.where(t <= tp, -0.5 * G * np.sin(np.pi * np.clip(t, 0, tp) / tp), 0.0)
+    np.testing.assert_allclose(m.horizontal, expected, rtol=0, atol=1e-12)
+    # trapezoid of a sampled sine: relative error ~ (pi dt / t_p)^2 / 12 ~ 1e-4
+    assert velocity(m)[-1] == pytest.approx(-2 * 0.5 * G * tp / np.pi, rel=2e-4)
+
+
+@pytest.mark.parametrize("call, parameter", [
+    (lambda: motions.constant_pulse(0.3, 0.0, duration=1.0), "pulse_duration"),
+    (lambda: motions.constant_pulse(0.3, 2.0, duration=1.0), "pulse_duration"),
+    (lambda: motions.constant_pulse(float("nan"), 0.1, duration=1.0), "acceleration_g"),
+    (lambda: motions.constant_pulse(0.3, 0.1, duration=1.0, dt=0.0), "dt"),
+    (lambda: motions.half_sine_pulse(-0.5, 0.1, duration=1.0), "amplitude_g"),
+    (lambda: motions.half_sine_pulse(0.5, 0.1, duration=-1.0), "duration"),
+    (lambda: motions.half_sine_pulse(0.5, 0.1, duration=1.0, sign=2), "sign"),
+])
+def test_pulses_reject_bad_input(call, parameter):
+    with pytest.raises(ValueError, match=parameter):
+        call()
+
+
+# ------------------------------------------------------------------ artificial
+# Measured 5-95 % Arias durations (seeds 0..199, dt = 0.01 s):
+#   A-1        seed 0: 60.56 s, range 57.70 - 61.73 s, median 59.59 s
+#   B-1        seed 0: 29.64 s, range 28.13 - 31.11 s, median 29.94 s
+#   olive-view seed 0: 10.68 s, range 10.05 - 13.65 s, median 11.76 s
+# The report (Section 4.1) states 60 s, 30 s and about 12 s of strong motion;
+# the bands below are the report's value minus/plus about 10-25 %, wide enough
+# for any seed measured and narrow enough to catch a wrong envelope.
+PRESET_BANDS = {
+    "A-1": (0.5, 55.0, 65.0),
+    "B-1": (0.4, 26.0, 34.0),
+    "olive-view": (0.5, 9.0, 15.0),
+}
+
+
+@pytest.mark.parametrize("name", sorted(PRESET_BANDS))
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_artificial_preset_pga_and_strong_motion_duration(name, seed):
+    pga_g, low, high = PRESET_BANDS[name]
+    m = motions.artificial(name, seed=seed)
+    assert m.pga == pytest.approx(pga_g * G, rel=1e-12)
+    assert m.vertical is None
+    assert low <= motions.strong_motion_duration(m) <= high
+    # quiet start (quadratic envelope) and, after the baseline correction,
+    # the table ends at rest where it started
+    assert m.horizontal[0] == 0.0
+    v, d = motions._velocity_displacement(m.horizontal, m.dt)
+    assert abs(v[-1]) < 1e-9 and abs(d[-1]) < 1e-9
+
+
+def test_artificial_preset_descriptions_say_substitute():
+    assert set(motions.PRESETS) == {"A-1", "B-1", "olive-view"}
+    for preset in motions.PRESETS.values():
+        assert "SUBSTITUTE" in preset.description
+        assert "not the original" in preset.description
+    assert "SUBSTITUTE" in motions.artificial.__doc__
+
+
+def test_artificial_same_seed_identical_different_seed_different():
+    a = motions.artificial("B-1", seed=42)
+    b = motions.artificial("B-1", seed=42)
+    c = motions.artificial("B-1", seed=43)
+    np.testing.assert_array_equal(a.horizontal, b.horizontal)
+    np.testing.assert_array_equal(a.t, b.t)
+    assert not np.allclose(a.horizontal, c.horizontal)
+
+
+def test_artificial_overrides_and_vertical():
+    m = motions.artificial("olive-view", seed=5, pga_g=0.3, duration=20.0, dt=0.02,
+                           vertical_pga_g=0.2)
+    assert m.pga == pytest.approx(0.3 * G, rel=1e-12)
+    assert np.max(np.abs(m.vertical)) == pytest.approx(0.2 * G, rel=1e-12)
+    assert m.duration == pytest.approx(20.0)
+    # the horizontal does not depend on whether a vertical was asked for
+    h = motions.artificial("olive-view", seed=5, pga_g=0.3, duration=20.0, dt=0.02)
+    np.testing.assert_array_equal(m.horizontal, h.horizontal)
+
+
+def test_artificial_without_preset_needs_envelope():
+    with pytest.raises(ValueError, match="t1"):
+        motions.artificial(seed=0, pga_g=0.3, t2=10.0, decay=0.3)
+    m = motions.artificial(seed=0, pga_g=0.3, t1=1.0, t2=5.0, decay=0.5)
+    assert m.pga == pytest.approx(0.3 * G, rel=1e-12)
+    assert m.duration == pytest.approx(5.0 + math.log(100) / 0.5, abs=0.01)
+
+
+def test_artificial_unknown_preset_lists_presets():
+    with pytest.raises(ValueError, match=r"A-1.*B-1.*olive-view"):
+        motions.artificial("El Centro", seed=0)
+
+
+@pytest.mark.parametrize("kwargs, parameter", [
+    (dict(seed=-1), "seed"),
+    (dict(seed=1.5), "seed"),
+    (dict(seed=0, pga_g=-0.1), "pga_g"),
+    (dict(seed=0, dt=float("nan")), "dt"),
+    (dict(seed=0, duration=0.0), "duration"),
+    (dict(seed=0, zeta_g=0.0), "zeta_g"),
+])
+def test_artificial_rejects_bad_input(kwargs, parameter):
+    with pytest.raises(ValueError, match=parameter):
+        motions.artificial("B-1", **kwargs)
+
+
+# ------------------------------------------------------------------ utilities
+def test_scale_to_pga_new_motion_keeps_ratio():
+    m = motions.harmonic(2.0, 0.38, 0.33, duration=2.0, dt=0.005)  # peaks on samples
+    s = motions.scale_to_pga(m, 0.19)
+    assert s.pga == pytest.approx(0.19 * G, rel=1e-12)
+    np.testing.assert_allclose(s.vertical, m.vertical / 2, rtol=1e-12)
+    assert m.pga == pytest.approx(0.38 * G, rel=1e-12)  # original unchanged
+    with pytest.raises(ValueError, match="pga_g"):
+        motions.scale_to_pga(m, 0.0)
+
+
+@pytest.mark.parametrize("dt_new", [0.005, 0.02, 0.007 * np.pi / 3])  # last: irrational
+def test_resample_keeps_low_frequency_removes_above_nyquist(dt_new):
+    dt = 0.001
+    t = np.arange(10001) * dt
+    taper = 0.5 * (1 - np.cos(2 * np.pi * t / 10.0))
+    low = Motion(t, taper * np.sin(2 * np.pi * 1.0 * t), taper * np.cos(2 * np.pi * t))
+    r = motions.resample(low, dt_new)
+    assert r.dt == pytest.approx(dt_new, rel=1e-9)
+    assert r.t[-1] <= t[-1] + 1e-9
+    expected = 0.5 * (1 - np.cos(2 * np.pi * r.t / 10.0)) * np.sin(2 * np.pi * r.t)
+    np.testing.assert_allclose(r.horizontal, expected, rtol=0, atol=1e-3)
+    # a sine at 1.5 x the new Nyquist must not alias into the result
+    # (interior only: the abrupt start and end of that sine are broadband)
+    nyquist = 0.5 / dt_new
+    high = Motion(t, np.sin(2 * np.pi * 1.5 * nyquist * t))
+    rh = motions.resample(high, dt_new)
+    interior = (rh.t > 1.0) & (rh.t < 9.0)
+    assert np.max(np.abs(rh.horizontal[interior])) < 1e-2
+    # whereas plain decimation (integer ratios) would alias it at full amplitude
+    step = dt_new / dt
+    if abs(step - round(step)) < 1e-9:
+        assert np.max(np.abs(high.horizontal[::round(step)])) > 0.5
+
+
+def test_resample_finer_is_linear_interpolation():
+    m = motions.half_sine_pulse(0.5, 0.1, duration=0.3, dt=0.01)
+    r = motions.resample(m, 0.0025)
+    np.testing.assert_allclose(r.horizontal, np.interp(r.t, m.t, m.horizontal), atol=1e-12)
+
+
+def test_trim_and_pad():
+    m = motions.harmonic(2.0, 0.5, 0.2, duration=4.0, dt=0.01)
+    cut = motions.trim(m, 1.0, 2.0)
+    assert cut.t[0] == pytest.approx(1.0) and cut.t[-1] == pytest.approx(2.0)
+    assert cut.t.size == 101
+    np.testing.assert_array_equal(cut.horizontal, m.horizontal[100:201])
+    assert motions.trim(m, 1.0, 2.0, rezero=True).t[0] == 0.0
+    padded = motions.pad(cut, before=0.5, after=0.25)
+    assert padded.t.size == 101 + 50 + 25
+    assert padded.t[0] == pytest.approx(1.0)
+    assert np.all(padded.horizontal[:50] == 0) and np.all(padded.vertical[-25:] == 0)
+    np.testing.assert_array_equal(padded.horizontal[50:151], cut.horizontal)
+    with pytest.raises(ValueError, match="end"):
+        motions.trim(m, 2.0, 1.0)
+    with pytest.raises(ValueError, match="before"):
+        motions.pad(m, before=-1.0)
+    with pytest.raises(ValueError, match="dt"):
+        motions.resample(m, 0.0)
+
+
+# ------------------------------------------------------------------ measures
+def test_arias_intensity_of_sine_closed_form():
+    # I_A = pi / (2 g) * a^2 / 2 * T for a whole number of periods.
+    m = motions.harmonic(2.0, 0.5, duration=10.0, dt=0.001)
+    arias = motions.arias_intensity(m)
+    assert arias.shape == m.t.shape and arias[0] == 0.0
+    assert np.all(np.diff(arias) >= 0)
+    expected = np.pi / (2 * G) * (0.5 * G) ** 2 / 2 * 10.0
+    # piecewise-linear sine vs true sine: relative error ~ (2 pi f dt)^2 / 12
+    assert arias[-1] == pytest.approx(expected, rel=1e-4)
+
+
+def test_strong_motion_duration_of_uniform_sine():
+    # Arias grows linearly for a steady sine: the 5-95 % duration is 0.9 T.
+    m = motions.harmonic(5.0, 0.2, duration=20.0, dt=0.001)
+    assert motions.strong_motion_duration(m) == pytest.approx(18.0, abs=0.05)
+    with pytest.raises(ValueError, match="low"):
+        motions.strong_motion_duration(m, low=0.9, high=0.1)
+
+
+def test_response_spectrum_at_resonance_is_one_over_two_zeta():
+    # Steady-state amplification at resonance 1 / (2 zeta) = 10 for 5 %;
+    # 40 s at 2 Hz is 250 decay times 1/(zeta omega) ~ 1.6 s: transient gone.
+    m = motions.harmonic(2.0, 0.3, duration=40.0, dt=0.005)
+    sa = motions.response_spectrum(m, 0.5, damping=0.05)
+    assert isinstance(sa, float)
+    assert sa / (0.3 * G) == pytest.approx(10.0, rel=2e-3)
+    sa2 = motions.response_spectrum(m, np.array([0.5]), damping=0.02)
+    assert sa2.shape == (1,)
+    assert sa2[0] / (0.3 * G) == pytest.approx(25.0, rel=5e-3)
+
+
+def test_response_spectrum_short_period_tends_to_pga():
+    m = motions.artificial("olive-view", seed=0)
+    sa = motions.response_spectrum(m, [0.001, 0.005, 0.02])
+    assert sa[0] == pytest.approx(m.pga, rel=1e-3)
+    assert sa[1] == pytest.approx(m.pga, rel=2e-2)
+
+
+def test_response_spectrum_exact_against_constant_pulse_closed_form():
+    # Undamped oscillator under a step a for t1 then zero: after the pulse
+    # u = -(a / w^2) [cos w (t - t1) - cos w t]; max |u| = (2a/w^2)|sin(w t1/2)|.
+    # t1 = T/2 (on the grid) gives max |u| = 2 a / w^2, so Sa = 2 a.
+    # The step is spread over one sample interval, a small correction.
+    T = 0.4
+    m = motions.constant_pulse(0.2, T / 2, duration=3.0, dt=0.0005)
+    sa = motions.response_spectrum(m, T, damping=0.0)
+    assert sa == pytest.approx(2 * 0.2 * G, rel=1e-4)
+
+
+def test_response_spectrum_rejects_bad_input():
+    m = motions.harmonic(2.0, 0.5, duration=1.0)
+    with pytest.raises(ValueError, match="periods"):
+        motions.response_spectrum(m, [0.5, -1.0])
+    with pytest.raises(ValueError, match="damping"):
+        motions.response_spectrum(m, 0.5, damping=1.5)
+    uneven = Motion([0.0, 0.1, 0.3, 0.4], [0.0, 1.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="uniformly sampled"):
+        motions.response_spectrum(uneven, 0.5)
+
+
+def test_fourier_amplitude_peak_at_harmonic_frequency():
+    m = motions.harmonic(2.0, 0.5, duration=10.0, dt=0.01)
+    frequency, amplitude = motions.fourier_amplitude(m)
+    assert frequency[0] == 0.0 and frequency[-1] <= 50.0  # Nyquist 1 / (2 dt)
+    assert frequency[1] == pytest.approx(1.0 / (m.t.size * 0.01))
+    assert frequency[np.argmax(amplitude)] == pytest.approx(2.0, abs=0.1)
+    # |A(f)| at the line: a T / 2
+    assert amplitude.max() == pytest.approx(0.5 * G * 10.0 / 2, rel=2e-2)
