@@ -1,106 +1,38 @@
-"""Command line: ``shaketable SUBCOMMAND ...`` (thin layer over the library)."""
+"""Command line: ``shaketable SUBCOMMAND ...``, a thin layer over the library.
+
+Each subcommand lives in ``shaketable/commands/<name>.py`` and exposes
+``register(subparsers)``; :data:`SUBCOMMANDS` lists them in help order.
+"""
 
 from __future__ import annotations
 
 import argparse
-import json
-import math
+import importlib
 import sys
-from pathlib import Path
 
-from .geometry import Block
-
-
-
-
-def _resolve_angle(text: str, block: Block) -> float:
-    value = str(text).strip().lower()
-    for suffix, factor in (("alpha", block.alpha), ("deg", math.pi / 180), ("rad", 1.0)):
-        if value.endswith(suffix):
-            try:
-                return float(value[: -len(suffix)]) * factor
-            except ValueError:
-                break
-    raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg or 0.5alpha")
-
-
-def _load_motion(args):
-    from . import records
-
-    if args.record in records.available():
-        return records.load(args.record, vertical=not args.no_vertical)
-    path = Path(args.record)
-    if not path.exists():
-        raise ValueError(f"--record {args.record!r}: no such file and no bundled record of that "
-                         f"name (bundled: {', '.join(records.available())})")
-    record = records.read(path) if path.suffix.lower() == ".at2" else records.read(
-        path, units=args.units, dt=args.dt)
-    return records.combine(record, name=path.stem)
-
-
-def _simulate(args) -> int:
-    from . import plots
-    from .simulate import simulate
-
-    block = Block.parse(args.block)
-    motion = _load_motion(args) if args.record else None
-    if motion is not None and args.scale != 1.0:
-        motion = motion.scaled(args.scale)
-    theta0 = _resolve_angle(args.theta0, block)
-    result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
-                      method=args.method, subdivisions=args.subdivisions)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    result.to_frame().to_csv(out / "history.csv", index=False)
-    (out / "summary.json").write_text(json.dumps(result.summary(), indent=2))
-    plots.save(result.plot(), out / f"calcomp.{args.format}")
-    summary = result.summary()
-    print(f"{block.describe()} block, COR {args.cor}: {result.status}, "
-          f"max theta/alpha = {summary['max_theta_ratio [-]']:.3f}")
-    if result.overturned:
-        print(f"overturned at {result.t_overturn:.3f} s, direction {result.overturn_direction:+d}")
-    print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}, {out / ('calcomp.' + args.format)}")
-    return 0
+#: Subcommand modules in ``shaketable.commands``, in the order ``--help`` shows them.
+SUBCOMMANDS = ["simulate"]
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The argument parser with every subcommand registered."""
     parser = argparse.ArgumentParser(
         prog="shaketable",
         description="Virtual shaking-table tests of rocking rigid blocks "
                     "(Aslam, Godden & Scalise; BLOKROC).")
     commands = parser.add_subparsers(dest="command", required=True)
-
-    sim = commands.add_parser(
-        "simulate", help="one block, one motion (or free rocking): CSV, JSON and Calcomp figure",
-        description="Simulate one block. Without --record the block rocks freely from --theta0.")
-    sim.add_argument("--block", required=True,
-                     help="HEIGHTxWIDTH with unit, height first, e.g. 30x6in or 16x4ft")
-    sim.add_argument("--cor", type=float, required=True, help="coefficient of restitution [0-1]")
-    sim.add_argument("--theta0", default="0rad",
-                     help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad)")
-    sim.add_argument("--record", help="bundled record name (e.g. pacoima-dam-s16e) or a file")
-    sim.add_argument("--units", help="units of a text record file: g, m/s2 or gal")
-    sim.add_argument("--dt", type=float, help="sample interval of a one-column record [s]")
-    sim.add_argument("--scale", type=float, default=1.0, help="factor on the record [-]")
-    sim.add_argument("--no-vertical", action="store_true", help="drop the vertical component")
-    sim.add_argument("--duration", type=float, help="length of the run [s]")
-    sim.add_argument("--method", default="fast",
-                     choices=["fast", "reference", "predictor-corrector", "linear"])
-    sim.add_argument("--subdivisions", type=int, default=4,
-                     help="steps per sample for predictor-corrector")
-    sim.add_argument("--format", default="png", choices=["png", "svg", "pdf"])
-    sim.add_argument("--out", default="shaketable-out", help="output folder")
-    sim.set_defaults(handler=_simulate)
+    for name in SUBCOMMANDS:
+        importlib.import_module(f"shaketable.commands.{name}").register(commands)
     return parser
 
 
 def main(argv=None) -> int:
-    """Entry point of the ``shaketable`` console script."""
+    """Entry point of the ``shaketable`` console script; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
         return args.handler(args)
-    except ValueError as error:
+    except (ValueError, FileNotFoundError) as error:
         print(f"shaketable {args.command}: error: {error}", file=sys.stderr)
         return 2
 

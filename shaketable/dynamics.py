@@ -47,22 +47,31 @@ from .geometry import Block
 
 # Indices into the parameter array.
 HALF_WIDTH, HALF_HEIGHT, INERTIA, ROD_STIFFNESS, ROD_FORCE, ROD_ARM_1, ROD_ARM_2, ALPHA, \
-    HOLD_DOWN = range(9)
-N_PARAMETERS = 9
+    HOLD_DOWN, TOP_FORCE = range(10)
+N_PARAMETERS = 10
 
 
-def block_parameters(block: Block) -> np.ndarray:
+def block_parameters(block: Block, top_force: float = 0.0) -> np.ndarray:
     """Pack a block into the float array the compiled physics uses.
+
+    Parameters
+    ----------
+    block : Block
+    top_force : float
+        A constant horizontal force at the middle of the block's top, per unit
+        mass [m/s^2], positive along +x (one potentiometer wire, Section 3.3).
 
     Returns
     -------
-    ndarray, shape (9,)
+    ndarray, shape (10,)
         b [m], h [m], I0/M = 4R^2/3 [m^2], per-rod stiffness per mass
         g K/2 [1/s^2], per-rod prestress per mass g F0/2 [m/s^2], rod arms
-        S and B - S from the pivot [m], alpha [rad], and the hold-down
-        acceleration g F0 [m/s^2] (the rods' pull at rest, per unit mass).
+        S and B - S from the pivot [m], alpha [rad], the hold-down
+        acceleration g F0 [m/s^2] (the rods' pull at rest, per unit mass) and
+        the top force per mass [m/s^2].
     """
     parameters = np.zeros(N_PARAMETERS)
+    parameters[TOP_FORCE] = top_force
     parameters[HALF_WIDTH] = block.b
     parameters[HALF_HEIGHT] = block.h
     parameters[INERTIA] = block.I0_per_mass
@@ -97,18 +106,23 @@ def rod_moment(theta, parameters):
 
 
 @njit(cache=True)
-def angular_acceleration(theta, side, ug, vg, parameters):
+def angular_acceleration(theta, side, ug, vg, rg, parameters):
     """Angular acceleration theta'' [rad/s^2] from Eq. (2-13)/(2-14).
 
     Parameters
     ----------
     theta : float
-        Rotation [rad].
+        Rotation relative to the table [rad].
     side : float
         Active corner, +1 or -1; used when ``theta == 0`` (otherwise the sign
         of ``theta`` decides).
     ug, vg : float
-        Horizontal (+x) and vertical (upward) ground acceleration [m/s^2].
+        Horizontal (+x) and vertical (upward) ground acceleration at the
+        block [m/s^2].
+    rg : float
+        Angular acceleration of the table (pitch) [rad/s^2], same sense as
+        theta: the block's absolute rotation is theta + table rotation, so
+        it enters as -rg.
     parameters : ndarray
         From :func:`block_parameters`.
     """
@@ -125,17 +139,21 @@ def angular_acceleration(theta, side, ug, vg, parameters):
     lever_vertical = s * b * cosine - h * sine            # s * x of Eq. (2-11)
     moment = ug * lever_horizontal - (G + vg) * lever_vertical  # Eq. (2-13)
     moment -= s * rod_moment(theta, parameters)                   # Eq. (2-14)
-    return moment / parameters[INERTIA]
+    top_force = parameters[TOP_FORCE]
+    if top_force != 0.0:
+        # horizontal force at the top centre, lever 2h cos(theta) + s b sin(theta)
+        moment -= top_force * (2.0 * h * cosine + s * b * sine)
+    return moment / parameters[INERTIA] - rg
 
 
 @njit(cache=True)
-def uplift_margin(side, ug, vg, parameters):
+def uplift_margin(side, ug, vg, rg, parameters):
     """Net overturning moment per mass at theta = 0 toward ``side`` [m^2/s^2].
 
     Rocking onto ``side`` starts when this is positive: Eq. (2-1) generalised
     to prestress rods, ``s ug h > (g + vg) b + F0 b``.
     """
-    return side * angular_acceleration(0.0, side, ug, vg, parameters) * parameters[INERTIA]
+    return side * angular_acceleration(0.0, side, ug, vg, rg, parameters) * parameters[INERTIA]
 
 
 @njit(cache=True)

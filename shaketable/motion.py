@@ -48,6 +48,12 @@ class Motion:
         no vertical component (zeros).
     name : str, optional
         A label used in plots and summaries.
+    rotation : array_like, optional
+        Angular acceleration of the table (pitch) [rad/s^2], positive in the
+        sense of positive theta. ``None`` means a table that does not rotate.
+        Its other effects (tilt of gravity, vertical acceleration at the block's
+        distance from the pitch axis) are folded into ``horizontal`` and
+        ``vertical`` by :mod:`shaketable.table`.
 
     Notes
     -----
@@ -59,6 +65,7 @@ class Motion:
     horizontal: np.ndarray
     vertical: np.ndarray | None = None
     name: str = ""
+    rotation: np.ndarray | None = None
 
     def __post_init__(self):
         t = _as_float_array("Motion.t", self.t)
@@ -83,7 +90,15 @@ class Motion:
                 raise ValueError(
                     f"Motion.vertical has {vertical.size} samples but Motion.t has {t.size}"
                 )
-        for key, value in (("t", t), ("horizontal", horizontal), ("vertical", vertical)):
+        rotation = None
+        if self.rotation is not None:
+            rotation = _as_float_array("Motion.rotation", self.rotation)
+            if rotation.size != t.size:
+                raise ValueError(
+                    f"Motion.rotation has {rotation.size} samples but Motion.t has {t.size}"
+                )
+        for key, value in (("t", t), ("horizontal", horizontal), ("vertical", vertical),
+                           ("rotation", rotation)):
             if value is not None:
                 value.setflags(write=False)
             object.__setattr__(self, key, value)
@@ -141,6 +156,11 @@ class Motion:
         return self.vertical if self.vertical is not None else np.zeros_like(self.t)
 
     @property
+    def rotation_or_zero(self) -> np.ndarray:
+        """Table angular acceleration [rad/s^2], zeros when the table does not rotate."""
+        return self.rotation if self.rotation is not None else np.zeros_like(self.t)
+
+    @property
     def duration(self) -> float:
         """Time from first to last sample [s]."""
         return float(self.t[-1] - self.t[0])
@@ -158,11 +178,15 @@ class Motion:
     def scaled(self, factor: float) -> "Motion":
         """Return a copy with both components multiplied by ``factor``."""
         vertical = None if self.vertical is None else self.vertical * factor
-        return Motion(self.t, self.horizontal * factor, vertical, name=self.name)
+        rotation = None if self.rotation is None else self.rotation * factor
+        return Motion(self.t, self.horizontal * factor, vertical, name=self.name,
+                      rotation=rotation)
 
     def mirrored(self) -> "Motion":
-        """Return the motion with the horizontal component reversed in sign."""
-        return Motion(self.t, -self.horizontal, self.vertical, name=self.name)
+        """Return the mirror image: horizontal and rotation reversed in sign."""
+        rotation = None if self.rotation is None else -self.rotation
+        return Motion(self.t, -self.horizontal, self.vertical, name=self.name,
+                      rotation=rotation)
 
     def subdivided(self, parts: int) -> "Motion":
         """Insert ``parts - 1`` equally spaced samples in every interval.
@@ -184,4 +208,4 @@ class Motion:
             return None if values is None else np.interp(t, self.t, values)
 
         return Motion(t, resample(self.horizontal), resample(self.vertical),
-                      name=self.name)
+                      name=self.name, rotation=resample(self.rotation))

@@ -56,21 +56,26 @@ def _extended(motion: Motion, duration: float | None) -> Motion:
         if keep.sum() < 2:
             raise ValueError(f"duration {duration} s is shorter than one sample of the motion")
         vertical = None if motion.vertical is None else motion.vertical[keep]
-        return Motion(motion.t[keep], motion.horizontal[keep], vertical, name=motion.name)
+        rotation = None if motion.rotation is None else motion.rotation[keep]
+        return Motion(motion.t[keep], motion.horizontal[keep], vertical, name=motion.name,
+                      rotation=rotation)
     dt = motion.dt
     extra = int(math.ceil((end - motion.t[-1]) / dt - 1e-9))
     t = np.concatenate([motion.t, motion.t[-1] + dt * np.arange(1, extra + 1)])
     horizontal = np.concatenate([motion.horizontal, np.zeros(extra)])
-    vertical = None if motion.vertical is None else np.concatenate(
-        [motion.vertical, np.zeros(extra)])
-    return Motion(t, horizontal, vertical, name=motion.name)
+
+    def padded(values):
+        return None if values is None else np.concatenate([values, np.zeros(extra)])
+
+    return Motion(t, horizontal, padded(motion.vertical), name=motion.name,
+                  rotation=padded(motion.rotation))
 
 
 def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: float = 0.0,
              theta_dot0: float = 0.0, duration: float | None = None, method: str = "fast",
              rtol: float | None = None, subdivisions: int = 4, output_dt: float = 0.005,
-             rest_tolerance: float | None = None, max_recorded_impacts: int = 100_000
-             ) -> RockingResult:
+             rest_tolerance: float | None = None, max_recorded_impacts: int = 100_000,
+             top_force: float = 0.0) -> RockingResult:
     """Rocking response of a rigid block, Eqs. (2-13)/(2-14) with impacts.
 
     Parameters
@@ -105,6 +110,10 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
         closed form (default 1e-6 / p).
     max_recorded_impacts : int
         Impacts kept in ``impact_times`` (all are counted).
+    top_force : float
+        Constant horizontal force at the middle of the top of the block per
+        unit mass [m/s^2], positive along +x: one potentiometer wire
+        (Section 3.3); two opposite wires cancel.
 
     Returns
     -------
@@ -141,21 +150,22 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     rest = -1.0 if rest_tolerance is None else _check_number("rest_tolerance", rest_tolerance,
                                                              0.0)
 
-    parameters = block_parameters(block)
+    parameters = block_parameters(block, _check_number("top_force", top_force))
     t_grid = np.ascontiguousarray(motion.t)
     ug = np.ascontiguousarray(motion.horizontal)
     vg = np.ascontiguousarray(motion.vertical_or_zero)
+    rg = np.ascontiguousarray(motion.rotation_or_zero)
     n = t_grid.size
     theta, omega, acceleration = np.zeros(n), np.zeros(n), np.zeros(n)
     impact_times = np.zeros(max(1, int(max_recorded_impacts)))
     impact_velocities = np.zeros_like(impact_times)
     info = np.zeros(engine.N_INFO)
     if method == "reference":
-        integrate_reference(t_grid, ug, vg, parameters, block.alpha, block.p, cor, theta0,
+        integrate_reference(t_grid, ug, vg, rg, parameters, block.alpha, block.p, cor, theta0,
                             theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
                             impact_velocities, info)
     else:
-        engine.integrate(_COMPILED[method], t_grid, ug, vg, parameters, cor, theta0, theta_dot0,
+        engine.integrate(_COMPILED[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
                          rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
                          impact_velocities, info)
     return _result(block, motion, cor, method, t_grid, theta, omega, acceleration,

@@ -258,3 +258,35 @@ def test_vertical_acceleration_reaching_minus_g_stops_the_run_with_a_flag(method
 def test_bad_input_names_the_parameter(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+# --------------------------------------------------------------------------- extra loads
+@pytest.mark.parametrize("factor, rocks", [(0.9999, False), (1.0001, True)])
+def test_one_potentiometer_wire_tips_the_block_at_its_static_threshold(factor, rocks):
+    block = BLOCK_30x6
+    # A horizontal force F at the top centre, lever H, against the weight, lever b:
+    # the block tips over the +x corner (theta < 0) when F H > W b (statics).
+    force = factor * G * block.b / block.height
+    result = st.simulate(block, st.Motion.uniform(0.01, np.zeros(50)), cor=0.9,
+                         top_force=force)
+    assert (result.max_abs_theta > 0) == rocks
+    if rocks:
+        assert result.theta[-1] < 0
+
+
+@pytest.mark.parametrize("method", SOLVERS)
+@pytest.mark.parametrize("factor, rocks", [(0.9999, False), (1.0001, True)])
+def test_table_rotation_alone_starts_rocking_at_its_threshold(method, factor, rocks):
+    block = BLOCK_30x6
+    # theta is relative to the table: a table turning with angular acceleration r
+    # (same sense as theta) adds -r to theta''. At theta = 0 on the -x... +x corner
+    # (theta < 0) gravity gives +g b / I0 (exact) or +p^2 alpha (linearised), so the
+    # block lifts off when r exceeds it.
+    limit = (block.p ** 2 * block.alpha if method == "linear"
+             else G * block.b / block.I0_per_mass)
+    t = np.arange(0.0, 0.5, 0.01)
+    motion = st.Motion(t, np.zeros(t.size), rotation=np.full(t.size, factor * limit))
+    result = st.simulate(block, motion, cor=0.9, method=method)
+    assert (result.max_abs_theta > 0) == rocks
+    if rocks:
+        assert result.theta[-1] < 0

@@ -39,7 +39,7 @@ from numba import njit
 
 from ..constants import G
 from ..dynamics import (ALPHA, HALF_HEIGHT, HALF_WIDTH, HOLD_DOWN, INERTIA, ROD_ARM_1,
-                        ROD_ARM_2, ROD_FORCE, ROD_STIFFNESS, angular_acceleration,
+                        ROD_ARM_2, ROD_FORCE, ROD_STIFFNESS, TOP_FORCE, angular_acceleration,
                         cascade_rest_time)
 
 METHOD_FAST = 0
@@ -65,7 +65,7 @@ EVENT_UNSTABLE = 3
 
 
 @njit(cache=True)
-def _linear_acceleration(theta, side, ug, vg, parameters):
+def _linear_acceleration(theta, side, ug, vg, rg, parameters):
     """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4)."""
     b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
@@ -80,25 +80,32 @@ def _linear_acceleration(theta, side, ug, vg, parameters):
     arm_2 = parameters[ROD_ARM_2]
     rods = (parameters[ROD_FORCE] * (arm_1 + arm_2)
             + parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) * abs(theta))
-    return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods) / inertia
+    top = parameters[TOP_FORCE] * 2.0 * parameters[HALF_HEIGHT]
+    return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods - top) / inertia - rg
 
 
 @njit(cache=True)
-def model_acceleration(method, theta, side, ug, vg, parameters):
+def model_acceleration(method, theta, side, ug, vg, rg, parameters):
     """theta'' of the model a method integrates: exact, or linearised for METHOD_LINEAR."""
     if method == METHOD_LINEAR:
-        return _linear_acceleration(theta, side, ug, vg, parameters)
-    return angular_acceleration(theta, side, ug, vg, parameters)
+        return _linear_acceleration(theta, side, ug, vg, rg, parameters)
+    return angular_acceleration(theta, side, ug, vg, rg, parameters)
+
+
+@njit(cache=True)
+def _ground(segment, time):
+    """Horizontal, vertical [m/s^2] and rotational [rad/s^2] table acceleration at ``time``."""
+    fraction = (time - segment[0]) / segment[1]
+    return (segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction,
+            segment[6] + segment[7] * fraction)
 
 
 @njit(cache=True)
 def _dormand_prince(t, theta, omega, side, h, segment, parameters):
     """One Dormand-Prince 5(4) step; returns theta, omega, error of theta, error of omega."""
-    t0, span, u0, du, v0, dv = segment[0], segment[1], segment[2], segment[3], segment[4], segment[5]
-
     def f(time, y0):
-        fraction = (time - t0) / span
-        return angular_acceleration(y0, side, u0 + du * fraction, v0 + dv * fraction, parameters)
+        ug, vg, rg = _ground(segment, time)
+        return angular_acceleration(y0, side, ug, vg, rg, parameters)
 
     k1x = omega
     k1v = f(t, theta)
@@ -137,15 +144,11 @@ def _dormand_prince(t, theta, omega, side, h, segment, parameters):
 @njit(cache=True)
 def _heun(t, theta, omega, side, h, segment, parameters):
     """The report's predictor-corrector step (Section 2.8): Euler predictor, trapezoidal corrector."""
-    t0, span, u0, du, v0, dv = segment[0], segment[1], segment[2], segment[3], segment[4], segment[5]
-    fraction = (t - t0) / span
-    acceleration = angular_acceleration(theta, side, u0 + du * fraction, v0 + dv * fraction,
-                                        parameters)
+    ug, vg, rg = _ground(segment, t)
+    acceleration = angular_acceleration(theta, side, ug, vg, rg, parameters)
     theta_predicted = theta + h * omega
-    omega_predicted = omega + h * acceleration
-    fraction = (t + h - t0) / span
-    acceleration_predicted = angular_acceleration(theta_predicted, side, u0 + du * fraction,
-                                                  v0 + dv * fraction, parameters)
+    ug, vg, rg = _ground(segment, t + h)
+    acceleration_predicted = angular_acceleration(theta_predicted, side, ug, vg, rg, parameters)
     omega_new = omega + 0.5 * h * (acceleration + acceleration_predicted)
     theta_new = theta + 0.5 * h * (omega + omega_new)
     return theta_new, omega_new, 0.0, 0.0
@@ -154,7 +157,7 @@ def _heun(t, theta, omega, side, h, segment, parameters):
 @njit(cache=True)
 def _closed_form(t, theta, omega, side, h, segment, parameters):
     """Exact solution of the linearised equation over a time ``h`` (METHOD_LINEAR)."""
-    t0, span, u0, du, v0, dv = segment[0], segment[1], segment[2], segment[3], segment[4], segment[5]
+    t0, span, du, v0, dv, dr = segment[0], segment[1], segment[3], segment[4], segment[5], segment[7]
     b = parameters[HALF_WIDTH]
     hh = parameters[HALF_HEIGHT]
     radius = math.sqrt(b * b + hh * hh)
@@ -169,10 +172,11 @@ def _closed_form(t, theta, omega, side, h, segment, parameters):
     arm_2 = parameters[ROD_ARM_2]
     vertical = v0 + 0.5 * dv  # held at mid-interval
     mu = q * (G + vertical) - parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) / inertia
-    ug_here = u0 + du * (t - t0) / span
+    ug_here, _, rg_here = _ground(segment, t)
     c0 = (q * ug_here - q * (G + vertical) * s * parameters[ALPHA]
-          - s * parameters[ROD_FORCE] * (arm_1 + arm_2) / inertia)
-    c1 = q * du / span
+          - s * parameters[ROD_FORCE] * (arm_1 + arm_2) / inertia
+          - parameters[TOP_FORCE] * 2.0 * hh / inertia - rg_here)
+    c1 = q * du / span - dr / span
     if abs(mu) * h * h < 1e-12:
         theta_new = theta + omega * h + c0 * h * h / 2.0 + c1 * h * h * h / 6.0 + mu * theta * h * h / 2.0
         omega_new = omega + c0 * h + c1 * h * h / 2.0 + mu * theta * h
@@ -261,13 +265,7 @@ def _locate(kind, method, t, theta, omega, side, upper, segment, parameters, sig
 
 
 @njit(cache=True)
-def _ground(segment, time):
-    fraction = (time - segment[0]) / segment[1]
-    return segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction
-
-
-@njit(cache=True)
-def integrate(method, t_grid, ug, vg, parameters, cor, theta0, omega0, rtol, subdivisions,
+def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol, subdivisions,
               rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
               impact_velocities, info):
     """Integrate one run; fill the output arrays and ``info`` (see module constants).
@@ -276,8 +274,9 @@ def integrate(method, t_grid, ug, vg, parameters, cor, theta0, omega0, rtol, sub
     ----------
     method : int
         METHOD_FAST, METHOD_PREDICTOR_CORRECTOR or METHOD_LINEAR.
-    t_grid, ug, vg : ndarray
-        Sample times [s] and ground accelerations [m/s^2] (vertical upward).
+    t_grid, ug, vg, rg : ndarray
+        Sample times [s], ground accelerations [m/s^2] (vertical upward) and
+        table angular acceleration [rad/s^2].
     parameters : ndarray
         From :func:`shaketable.dynamics.block_parameters`.
     cor : float
@@ -317,7 +316,7 @@ def integrate(method, t_grid, ug, vg, parameters, cor, theta0, omega0, rtol, sub
         velocity_floor = max(velocity_floor, 1e3 * atol_omega)
     hold_down = parameters[HOLD_DOWN]
     max_recorded = impact_times.shape[0]
-    segment = np.empty(6)
+    segment = np.empty(8)
 
     for i in range(N_INFO):
         info[i] = math.nan
@@ -353,7 +352,8 @@ def integrate(method, t_grid, ug, vg, parameters, cor, theta0, omega0, rtol, sub
     if resting:
         out_acceleration[0] = 0.0
     else:
-        out_acceleration[0] = model_acceleration(method, theta, side, ug[0], vg[0], parameters)
+        out_acceleration[0] = model_acceleration(method, theta, side, ug[0], vg[0], rg[0],
+                                                 parameters)
     filled = 1
 
     for k in range(n - 1):
@@ -365,6 +365,8 @@ def integrate(method, t_grid, ug, vg, parameters, cor, theta0, omega0, rtol, sub
         segment[3] = ug[k + 1] - ug[k]
         segment[4] = vg[k]
         segment[5] = vg[k + 1] - vg[k]
+        segment[6] = rg[k]
+        segment[7] = rg[k + 1] - rg[k]
         # The model needs contact: g + vg (+ rods' hold-down) must stay positive.
         support_0 = G + vg[k] + hold_down
         support_1 = G + vg[k + 1] + hold_down
@@ -385,13 +387,13 @@ def integrate(method, t_grid, ug, vg, parameters, cor, theta0, omega0, rtol, sub
                     break
                 if rest_until > t:
                     t = rest_until
-                ua, va = _ground(segment, t)
-                ub, vb = _ground(segment, t_end)
+                ua, va, ra = _ground(segment, t)
+                ub, vb, rb = _ground(segment, t_end)
                 start = math.inf
                 start_side = 0.0
                 for s in (1.0, -1.0):
-                    margin_a = s * model_acceleration(method, 0.0, s, ua, va, parameters)
-                    margin_b = s * model_acceleration(method, 0.0, s, ub, vb, parameters)
+                    margin_a = s * model_acceleration(method, 0.0, s, ua, va, ra, parameters)
+                    margin_b = s * model_acceleration(method, 0.0, s, ub, vb, rb, parameters)
                     if margin_a > 0.0:
                         candidate = t
                     elif margin_b > 0.0:
@@ -513,8 +515,9 @@ def integrate(method, t_grid, ug, vg, parameters, cor, theta0, omega0, rtol, sub
                 side = -side
                 theta = 0.0
                 from_zero = True
-                ux, vx = _ground(segment, t)
-                deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, parameters)
+                ux, vx, rx = _ground(segment, t)
+                deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, rx,
+                                                          parameters)
                 remaining = cascade_rest_time(omega, deceleration, cor)
                 if omega == 0.0 or remaining <= rest_tolerance or (
                         abs(omega) <= velocity_floor and remaining < math.inf):
@@ -537,7 +540,7 @@ def integrate(method, t_grid, ug, vg, parameters, cor, theta0, omega0, rtol, sub
             out_acceleration[k + 1] = 0.0
         else:
             out_acceleration[k + 1] = model_acceleration(method, theta, side, ug[k + 1],
-                                                         vg[k + 1], parameters)
+                                                         vg[k + 1], rg[k + 1], parameters)
         filled = k + 2
 
     info[INFO_T_END] = t

@@ -27,7 +27,7 @@ from .engine import (INFO_CASCADES, INFO_EVALUATIONS, INFO_MAX_ABS_THETA, INFO_N
                      STATUS_AIRBORNE, STATUS_COMPLETED, STATUS_OVERTURNED)
 
 
-def integrate_reference(t_grid, ug, vg, parameters, alpha, p, cor, theta0, omega0, rtol,
+def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, omega0, rtol,
                         rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
                         impact_velocities, info):
     """Same contract as :func:`shaketable.solvers.engine.integrate` (METHOD_FAST)."""
@@ -54,17 +54,18 @@ def integrate_reference(t_grid, ug, vg, parameters, alpha, p, cor, theta0, omega
     rest_until = t
     out_theta[0], out_omega[0] = theta, omega
     out_acceleration[0] = 0.0 if resting else angular_acceleration(theta, side, ug[0], vg[0],
-                                                                   parameters)
+                                                                   rg[0], parameters)
     filled = 1
     max_recorded = len(impact_times)
 
     for k in range(len(t_grid) - 1):
         t0, t1 = float(t_grid[k]), float(t_grid[k + 1])
-        u0, u1, v0, v1 = ug[k], ug[k + 1], vg[k], vg[k + 1]
+        u0, u1, v0, v1, r0, r1 = ug[k], ug[k + 1], vg[k], vg[k + 1], rg[k], rg[k + 1]
 
         def ground(time):
             fraction = (time - t0) / (t1 - t0)
-            return u0 + (u1 - u0) * fraction, v0 + (v1 - v0) * fraction
+            return (u0 + (u1 - u0) * fraction, v0 + (v1 - v0) * fraction,
+                    r0 + (r1 - r0) * fraction)
 
         support_0, support_1 = G + v0 + hold_down, G + v1 + hold_down
         t_end, airborne = t1, False
@@ -174,7 +175,7 @@ def integrate_reference(t_grid, ug, vg, parameters, alpha, p, cor, theta0, omega
             break
         out_theta[k + 1], out_omega[k + 1] = theta, omega
         out_acceleration[k + 1] = 0.0 if resting else angular_acceleration(
-            theta, side, u1, v1, parameters)
+            theta, side, u1, v1, r1, parameters)
         filled = k + 2
 
     info[INFO_T_END], info[INFO_THETA_END], info[INFO_THETA_DOT_END] = t, theta, omega

@@ -1,0 +1,1 @@
+"""Subcommands of the ``shaketable`` command line, one module each."""
