@@ -229,7 +229,7 @@ def test_load_without_vertical_and_vertical_only_names():
     assert horizontal_only.vertical is None and horizontal_only.t.size == 5372
     chopra = records.load("el-centro-chopra")
     assert chopra.vertical is None and chopra.t.size == 1560
-    vertical_only = records.load("pacoima-dam-down")
+    vertical_only = records.load("pacoima-dam-down", pacoima_vertical_sign="down")
     np.testing.assert_array_equal(vertical_only.horizontal, 0.0)
     assert round(vertical_only.vertical.max() / G, 3) == 0.687
     np.testing.assert_array_equal(records.load("el-centro-1940-up").vertical,
