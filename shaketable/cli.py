@@ -11,7 +11,7 @@ import importlib
 import sys
 
 #: Subcommand modules in ``shaketable.commands``, in the order ``--help`` shows them.
-SUBCOMMANDS = ["simulate"]
+SUBCOMMANDS = ["simulate", "run", "reproduce"]
 
 
 def build_parser() -> argparse.ArgumentParser:

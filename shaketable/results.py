@@ -136,6 +136,8 @@ class RockingResult:
                 return None if not np.isfinite(value) else float(value)
             if isinstance(value, np.integer):
                 return int(value)
+            if isinstance(value, np.bool_):
+                return bool(value)
             return value
 
         block = self.block

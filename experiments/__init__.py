@@ -1,0 +1,1 @@
+"""The report's experiments as scene files (installed as ``shaketable.experiments``)."""

@@ -1,0 +1,34 @@
+"""``shaketable reproduce``: rerun the report's experiments and write a Markdown report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+def _reproduce(args) -> int:
+    from ..reproduce import reproduce
+    from ..scenes import scene_names
+
+    available = scene_names()
+    if args.list:
+        print("\n".join(available))
+        return 0
+    names = available if args.all or not args.names else args.names
+    report = reproduce(names, out=Path(args.out), progress=not args.quiet)
+    print(f"wrote {report}")
+    return 0
+
+
+def register(commands) -> None:
+    """Add the ``reproduce`` subcommand."""
+    parser = commands.add_parser(
+        "reproduce", help="rerun the report's figures and tables; write a Markdown report",
+        description="Run the report's experiments (the scenes of the experiments folder) "
+                    "and write report.md with every figure and a 'report value vs "
+                    "reproduced value' table for each.")
+    parser.add_argument("names", nargs="*", help="scene names (default: all)")
+    parser.add_argument("--all", action="store_true", help="every scene")
+    parser.add_argument("--list", action="store_true", help="list the scenes and stop")
+    parser.add_argument("--out", default="reproduce-out", help="output folder")
+    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.set_defaults(handler=_reproduce)
