@@ -48,6 +48,8 @@ REPORT_KEYS = {
 OUTPUT_KEYS = {"figure", "csv", "parquet", "svg"}
 TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
             "table", "sensors"}
+#: Studies that recompute one of the report's tables (a ``[study]`` section).
+STUDY_KINDS = {"report-table": {"table", "columns", "seed"}}
 
 
 class SceneError(ValueError):
@@ -103,6 +105,34 @@ class Scene:
     path: str = ""
 
 
+@dataclass(frozen=True)
+class Study:
+    """A scene that recomputes a whole table of the report (``[study]``).
+
+    Attributes
+    ----------
+    name, source, description : str
+    kind : str
+        ``"report-table"``.
+    table : str
+        Which printed table: ``"table_3_1"``, ``"table_4_1"``, ``"table_4_2"``, ``"table_4_3"``.
+    columns : tuple of str
+        Columns to recompute (default all).
+    seed : int
+        Seed of the substitute artificial accelerograms.
+    path : str
+    """
+
+    name: str
+    source: str
+    description: str
+    kind: str
+    table: str
+    columns: tuple = ()
+    seed: int = 1
+    path: str = ""
+
+
 def load_scene(path) -> Scene:
     """Read and validate a scene file.
 
@@ -124,7 +154,9 @@ def load_scene(path) -> Scene:
 
 
 def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
-    """Validate a scene given as a dict (the parsed TOML)."""
+    """Validate a scene given as a dict (the parsed TOML); a ``[study]`` gives a :class:`Study`."""
+    if "study" in data:
+        return _study(data, where)
     _only(data, TOP_KEYS, where, "top level")
     for key in ("name", "block", "motion", "rocking"):
         if key not in data:
@@ -177,6 +209,24 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
                  report=report, outputs=outputs,
                  table=_table(data.get("table", {}), where, "table"),
                  sensors=_table(data.get("sensors", {}), where, "sensors"), path=where)
+
+
+def _study(data: dict, where: str) -> Study:
+    _only(data, {"name", "source", "description", "study"}, where, "top level of a study")
+    spec = _table(data["study"], where, "study")
+    kind = spec.get("kind")
+    if kind not in STUDY_KINDS:
+        raise SceneError(f"{where}: study.kind must be one of {', '.join(STUDY_KINDS)}, "
+                         f"got {kind!r}")
+    _only({k: v for k, v in spec.items() if k != "kind"}, STUDY_KINDS[kind], where, "study")
+    table = spec.get("table")
+    if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3"):
+        raise SceneError(f"{where}: study.table must be table_3_1, table_4_1, table_4_2 or "
+                         f"table_4_3, got {table!r}")
+    return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                 description=str(data.get("description", "")), kind=kind, table=table,
+                 columns=tuple(spec.get("columns", ())), seed=int(spec.get("seed", 1)),
+                 path=where)
 
 
 # --------------------------------------------------------------------------- helpers

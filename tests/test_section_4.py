@@ -1,0 +1,78 @@
+"""Section 4 of the report: Tables 4.1-4.3 with the bundled Pacoima Dam records.
+
+Reference values are the printed tables (data/report/*.csv, transcribed from the
+report) and statements of Section 4.3. The bundled records are NGA-West2
+re-processings of what the report used, so cells near the overturning threshold
+can differ; the checks below are the report's robust statements.
+"""
+
+import pytest
+
+import shaketable as st
+from shaketable import records, theory
+from shaketable.constants import G
+from shaketable.report_tables import printed_table, reproduce_table, table_3_1
+
+
+@pytest.fixture(scope="module")
+def table_4_2():
+    return reproduce_table("table_4_2", columns=["pacoima S16E", "pacoima S74W"]).to_frame()
+
+
+@pytest.fixture(scope="module")
+def table_4_3():
+    return reproduce_table("table_4_3", columns=["pacoima S16E", "pacoima S74W"]).to_frame()
+
+
+def test_printed_tables_are_complete():
+    assert len(printed_table("table_4_2")) == 12 and len(printed_table("table_4_3")) == 12
+    assert len(printed_table("table_4_1")) == 6 and len(printed_table("table_3_1")) == 5
+
+
+def test_table_4_2_every_block_overturns_under_s16e_at_cor_1(table_4_2):
+    # Table 4.2, column S16E: F for all twelve blocks.
+    s16e = table_4_2[table_4_2["column"] == "pacoima S16E"]
+    assert (s16e["reproduced"] == "F").all()
+
+
+def test_table_4_3_the_3_ft_wide_blocks_that_survive_s16e(table_4_3):
+    # Table 4.3 (COR 0.90), S16E: 6 x 3 ft 0.38 and 9 x 3 ft 0.75 survive, all others F.
+    s16e = table_4_3[table_4_3["column"] == "pacoima S16E"].set_index(["height [ft]",
+                                                                        "width [ft]"])
+    survivors = s16e[s16e["reproduced"] != "F"]
+    assert set(survivors.index) == {(6.0, 3.0), (9.0, 3.0)}
+    # within the report's stated ~10 % agreement (Summary, item 3)
+    assert float(survivors.loc[(6.0, 3.0), "reproduced"]) == pytest.approx(0.38, abs=0.04)
+    assert float(survivors.loc[(9.0, 3.0), "reproduced"]) == pytest.approx(0.75, abs=0.08)
+
+
+@pytest.mark.parametrize("fixture", ["table_4_2", "table_4_3"])
+def test_overturn_verdicts_agree_in_most_pacoima_cells(fixture, request):
+    frame = request.getfixturevalue(fixture)
+    # The report's own test/theory agreement is about 10 % on amplitudes; near the
+    # threshold a verdict can flip with the record's processing. At least 5 of 6
+    # verdicts must agree (measured: 23/24 for Table 4.2 and 22/24 for Table 4.3).
+    assert frame["verdict_agrees"].mean() >= 5 / 6
+
+
+def test_larger_blocks_of_the_same_aspect_ratio_respond_less():
+    # Section 4.3 (1): at a fixed aspect ratio the larger block is generally more stable
+    # (4 x 2 ft vs 6 x 3 ft vs 8 x 4 ft under S74W, COR 0.90).
+    motion = records.load("pacoima-dam-s74w")
+    ratios = [st.simulate(st.Block.from_feet(2 * w, w), motion, cor=0.9).max_theta_ratio
+              for w in (2, 3, 4)]
+    assert ratios[0] > ratios[2]
+
+
+def test_table_3_1_exact_period_against_test_column():
+    frame = table_3_1()
+    # Section 3.7 (1): test and theory within 2 % (the table's own ratios reach 3 %).
+    assert (abs(frame["test / exact [-]"] - 1) <= 0.03).all()
+
+
+def test_section_4_3_4_single_pulse_by_eq_2_9():
+    # Section 4.3 (4): a single sine pulse of 0.1 s duration must reach "at least 4.6 g"
+    # to overturn the 16 x 4 ft block by Eq. (2-9).
+    block = st.Block.from_feet(16, 4)
+    amplitude = theory.half_sine_overturn_amplitude_large_frequency(block, 0.2) / G
+    assert amplitude == pytest.approx(4.6, rel=0.03)
