@@ -94,3 +94,52 @@ def save(fig, path) -> None:
     plt = _pyplot()
     fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
+
+
+def section_2_figure(frame, figure: str):
+    """Figs. 2.3, 2.4 and 2.6: the report's closed forms against the engine.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        From :func:`shaketable.section2.figure_2_3` (``figure="2.3"``),
+        ``figure_2_4`` (``"2.4"``) or ``figure_2_6`` (``"2.6"``).
+    figure : str
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    plt = _pyplot()
+    fig, axis = plt.subplots(figsize=(6.5, 4.5))
+    if figure == "2.3":
+        for (name, group), color in zip(frame.groupby("block", sort=False),
+                                        plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+            axis.plot(group["theta0/alpha [-]"], group["Eq. 2-5 [s]"], "--", color=color,
+                      lw=1, label=f"{name}: Eq. 2-5")
+            axis.plot(group["theta0/alpha [-]"], group["exact [s]"], "-", color=color, lw=1.2,
+                      label=f"{name}: exact")
+            axis.plot(group["theta0/alpha [-]"], group["engine [s]"], "o", color=color, ms=3)
+        axis.set_xlabel("amplitude θ0/α [-]")
+        axis.set_ylabel("period T [s]")
+        axis.set_title("Fig. 2.3: period of free rocking (dots: engine, COR 1)", fontsize=10)
+    elif figure == "2.4":
+        axis.plot(frame["a/(g alpha) [-]"], frame["Eq. 2-7 t1 [s]"], "--", label="Eq. 2-7")
+        axis.plot(frame["a/(g alpha) [-]"], frame["engine t1 [s]"], "o-", label="engine (exact)")
+        axis.set_xlabel("a / (g α) [-]")
+        axis.set_ylabel("duration t1 that overturns [s]")
+        axis.set_title("Fig. 2.4: constant acceleration of duration t1 (16 x 4 ft)", fontsize=10)
+    elif figure == "2.6":
+        axis.plot(frame["omega/p [-]"], frame["Eq. 2-8 [g]"], "--", label="Eq. 2-8")
+        axis.plot(frame["omega/p [-]"], frame["Eq. 2-9 [g]"], ":", label="Eq. 2-9")
+        axis.plot(frame["omega/p [-]"], frame["engine [g]"], "o-",
+                  label="engine: single half-sine pulse")
+        axis.set_xlabel("ω / p [-]")
+        axis.set_ylabel("pulse amplitude that overturns [g]")
+        axis.set_title("Fig. 2.6: sinusoidal pulse (16 x 4 ft)", fontsize=10)
+    else:
+        raise ValueError(f"figure must be '2.3', '2.4' or '2.6', got {figure!r}")
+    axis.grid(True, lw=0.3, alpha=0.6)
+    axis.legend(fontsize=7, frameon=False)
+    fig.tight_layout()
+    return fig

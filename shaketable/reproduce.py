@@ -97,6 +97,16 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     folder = out / study.name
     folder.mkdir(parents=True, exist_ok=True)
     lines = [f"## {study.source} — `{study.name}`", "", study.description, ""]
+    if study.kind == "report-figure":
+        from . import section2
+        from .plots import save, section_2_figure
+
+        frame = {"2.3": section2.figure_2_3, "2.4": section2.figure_2_4,
+                 "2.6": section2.figure_2_6}[study.table]()
+        frame.to_csv(folder / "curves.csv", index=False)
+        save(section_2_figure(frame, study.table), folder / "figure.png")
+        return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", "",
+                                   _markdown(frame.round(4))]) + "\n"
     if study.table == "table_3_1":
         frame = table_3_1()
         frame.to_csv(folder / "table.csv", index=False)

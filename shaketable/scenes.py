@@ -49,7 +49,7 @@ OUTPUT_KEYS = {"figure", "csv", "parquet", "svg"}
 TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
             "table", "sensors"}
 #: Studies that recompute one of the report's tables (a ``[study]`` section).
-STUDY_KINDS = {"report-table": {"table", "columns", "seed"}}
+STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"}}
 
 
 class SceneError(ValueError):
@@ -113,9 +113,10 @@ class Study:
     ----------
     name, source, description : str
     kind : str
-        ``"report-table"``.
+        ``"report-table"`` or ``"report-figure"``.
     table : str
-        Which printed table: ``"table_3_1"``, ``"table_4_1"``, ``"table_4_2"``, ``"table_4_3"``.
+        Which printed table: ``"table_3_1"``, ``"table_4_1"``, ``"table_4_2"``, ``"table_4_3"``;
+        for a ``"report-figure"`` study, the figure: ``"2.3"``, ``"2.4"``, ``"2.6"``.
     columns : tuple of str
         Columns to recompute (default all).
     seed : int
@@ -219,6 +220,13 @@ def _study(data: dict, where: str) -> Study:
         raise SceneError(f"{where}: study.kind must be one of {', '.join(STUDY_KINDS)}, "
                          f"got {kind!r}")
     _only({k: v for k, v in spec.items() if k != "kind"}, STUDY_KINDS[kind], where, "study")
+    if kind == "report-figure":
+        if spec.get("figure") not in ("2.3", "2.4", "2.6"):
+            raise SceneError(f"{where}: study.figure must be '2.3', '2.4' or '2.6', got "
+                             f"{spec.get('figure')!r}")
+        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                     description=str(data.get("description", "")), kind=kind,
+                     table=spec["figure"], path=where)
     table = spec.get("table")
     if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3"):
         raise SceneError(f"{where}: study.table must be table_3_1, table_4_1, table_4_2 or "

@@ -1,0 +1,94 @@
+"""Figs. 2.3-2.6 of the report: the slender-block closed forms against the engine.
+
+Each function returns a table (pandas DataFrame) with the report's analytic
+curve and the exact answer computed by the engine, so the figure shows where
+the slender-block approximations of Sections 2.2-2.4 fail.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from . import motions, theory
+from .constants import G
+from .geometry import Block
+from .simulate import simulate
+
+
+def _bisect(predicate, low, high, iterations=30):
+    """Smallest x in [low, high] with predicate(x) true (predicate monotone)."""
+    for _ in range(iterations):
+        middle = 0.5 * (low + high)
+        low, high = (low, middle) if predicate(middle) else (middle, high)
+    return 0.5 * (low + high)
+
+
+def figure_2_3(blocks=None, ratios=None) -> pd.DataFrame:
+    """Period vs amplitude (Fig. 2.3): Eq. (2-5), the exact period, and the engine's
+    time between impacts (x 2) at COR 1 [s]."""
+    blocks = blocks or [Block.from_inches(30, 6), Block.from_inches(36, 9),
+                        Block.from_feet(16, 4), Block.from_feet(6, 3)]
+    ratios = np.linspace(0.05, 0.95, 19) if ratios is None else np.asarray(ratios)
+    rows = []
+    for block in blocks:
+        for ratio in ratios:
+            amplitude = ratio * block.alpha
+            exact = theory.exact_period(block, amplitude)
+            run = simulate(block, cor=1.0, theta0=amplitude, duration=1.6 * exact,
+                           output_dt=exact / 50)
+            rows.append({"block": block.describe(), "R [m]": block.R, "alpha [rad]": block.alpha,
+                         "theta0/alpha [-]": ratio,
+                         "Eq. 2-5 [s]": theory.housner_period(block, amplitude),
+                         "exact [s]": exact,
+                         "engine [s]": 2 * float(np.diff(run.impact_times[:2])[0])})
+    return pd.DataFrame(rows)
+
+
+def figure_2_4(block=None, ratios=None) -> pd.DataFrame:
+    """Duration t1 of a constant acceleration a that overturns the block (Fig. 2.4):
+    Eq. (2-7) against the engine (bisection on t1) [s]."""
+    block = block or Block.from_feet(16, 4)
+    ratios = np.array([1.1, 1.25, 1.5, 2.0, 3.0, 4.0]) if ratios is None else np.asarray(ratios)
+    rows = []
+    for ratio in ratios:
+        acceleration_g = ratio * block.alpha  # a / g = ratio * alpha (a/(g alpha) = ratio)
+        closed = theory.constant_pulse_overturn_duration(block, acceleration_g * G)
+
+        def overturns(duration, acceleration_g=acceleration_g):
+            motion = motions.constant_pulse(acceleration_g, duration, duration=duration + 6.0 /
+                                            block.p * 3, dt=min(duration / 200, 0.002))
+            return simulate(block, motion, cor=1.0).overturned
+
+        engine = _bisect(overturns, 0.02 * closed, 3.0 * closed)
+        rows.append({"a/(g alpha) [-]": ratio, "a [g]": acceleration_g,
+                     "Eq. 2-7 t1 [s]": closed, "engine t1 [s]": engine})
+    return pd.DataFrame(rows)
+
+
+def figure_2_6(block=None, frequency_ratios=None) -> pd.DataFrame:
+    """Amplitude of a single half-sine pulse that overturns the block vs omega/p (Fig. 2.6):
+    Eq. (2-8), Eq. (2-9) and the engine (bisection on the amplitude) [g]."""
+    block = block or Block.from_feet(16, 4)
+    frequency_ratios = (np.array([1.0, 2.0, 3.0, 5.0, 10.0, 18.0])
+                        if frequency_ratios is None else np.asarray(frequency_ratios))
+    rows = []
+    for ratio in frequency_ratios:
+        omega = ratio * block.p
+        period = 2 * math.pi / omega
+        pulse = period / 2
+
+        def overturns(amplitude_g, pulse=pulse):
+            motion = motions.half_sine_pulse(amplitude_g, pulse, duration=pulse + 20.0 / block.p,
+                                             dt=pulse / 200)
+            return simulate(block, motion, cor=1.0).overturned
+
+        rows.append({"omega/p [-]": ratio, "pulse duration [s]": pulse,
+                     "Eq. 2-8 [g]": theory.half_sine_overturn_amplitude(block, period) / G,
+                     "Eq. 2-9 [g]": theory.half_sine_overturn_amplitude_large_frequency(
+                         block, period) / G,
+                     "engine [g]": _bisect(overturns, 0.2 * block.alpha, 40 * block.alpha *
+                                           max(ratio, 1.0))})
+    return pd.DataFrame(rows)
