@@ -6,12 +6,13 @@ report, so the right-hand side is smooth there) and hands each piece of free
 flight to one of three steppers:
 
 ``METHOD_FAST``
-    Dormand-Prince 5(4) with step-size control on a mixed absolute/relative
-    error, steps ending on every sample of the input. Events (impact at
-    theta = 0, |theta| = alpha, |theta| = pi/2 and the turning points
-    theta' = 0) are located by a bracketing root finder on the *stepper itself*
-    (one step from the step's start to the trial time), so an event time is as
-    accurate as the integration.
+    Dormand-Prince 5(4) (first same as last: six new evaluations per step) with
+    a PI step-size controller on a mixed absolute/relative error, steps ending
+    on every sample of the input. Events (impact at theta = 0, |theta| = alpha,
+    |theta| = pi/2 and the turning points theta' = 0) are located by a
+    safeguarded Newton iteration on the *stepper itself* (one step from the
+    step's start to the trial time), so an event time is as accurate as the
+    integration.
 ``METHOD_PREDICTOR_CORRECTOR``
     The report's two-step scheme (Section 2.8): each input interval is divided
     into ``subdivisions`` equal steps; each step predicts with an explicit Euler
@@ -22,6 +23,15 @@ flight to one of three steppers:
     interval (cosh/sinh, or cos/sin when stiff rods make mu negative). The
     vertical acceleration is held at its mid-interval value so that the closed
     form exists.
+
+During one flight (between two impacts) the block pivots on one corner,
+``side``; the steppers integrate that corner's equation, which is analytic in
+theta (:func:`flight_acceleration`). Eq. (2-13)/(2-14) switches corner where
+theta changes sign, a jump of 2 g b / I0 in theta'' that an explicit step
+straddling theta = 0 (or a stage of it) would see as an error of order one:
+the step-size controller then rejected steps over and over while it crept up
+on every impact. The analytic continuation past theta = 0 makes every step
+smooth, and the impact is where the continued solution reaches zero.
 
 All three share the event logic: start of rocking at the exact crossing of
 Eq. (2-1) inside an interval, the impact map theta' -> cor * theta', the
@@ -63,25 +73,65 @@ EVENT_OVERTURN = 1
 EVENT_PEAK = 2
 EVENT_UNSTABLE = 3
 
+# Right-hand-side evaluations per trial step (Dormand-Prince reuses its last stage).
+_EVALUATIONS_PER_STEP = (6, 2, 1)
+
 
 @njit(cache=True)
-def _linear_acceleration(theta, side, ug, vg, rg, parameters):
-    """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4)."""
+def flight_acceleration(theta, side, ug, vg, rg, parameters):
+    """theta'' [rad/s^2] of a block pivoting on the corner ``side`` (+1 or -1).
+
+    Eq. (2-13)/(2-14) with s = ``side`` whatever the sign of ``theta``: equal to
+    :func:`shaketable.dynamics.angular_acceleration` while ``side * theta >= 0``
+    and its analytic continuation beyond theta = 0 (the rods' uplift
+    sin|theta| continued as side * sin(theta)), so that a step of one flight
+    never sees the switch of corner.
+    """
+    s = side
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    cosine = math.cos(theta)
+    sine = math.sin(theta)
+    moment = ug * (h * cosine + s * b * sine) - (G + vg) * (s * b * cosine - h * sine)
+    stiffness = parameters[ROD_STIFFNESS]
+    force = parameters[ROD_FORCE]
+    if stiffness != 0.0 or force != 0.0:
+        uplift = s * sine
+        arm_1 = parameters[ROD_ARM_1]
+        arm_2 = parameters[ROD_ARM_2]
+        moment -= s * ((force + stiffness * arm_1 * uplift) * arm_1
+                       + (force + stiffness * arm_2 * uplift) * arm_2) * cosine
+    top_force = parameters[TOP_FORCE]
+    if top_force != 0.0:
+        moment -= top_force * (2.0 * h * cosine + s * b * sine)
+    return moment / parameters[INERTIA] - rg
+
+
+@njit(cache=True)
+def _linear_flight_acceleration(theta, side, ug, vg, rg, parameters):
+    """Slender-block linearisation (Eq. 2-4) about the corner ``side``, analytic in theta."""
+    s = side
     b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     radius = math.sqrt(b * b + h * h)
     inertia = parameters[INERTIA]
+    arm_1 = parameters[ROD_ARM_1]
+    arm_2 = parameters[ROD_ARM_2]
+    rods = (parameters[ROD_FORCE] * (arm_1 + arm_2)
+            + parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) * s * theta)
+    top = parameters[TOP_FORCE] * 2.0 * parameters[HALF_HEIGHT]
+    return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods - top) / inertia - rg
+
+
+@njit(cache=True)
+def _linear_acceleration(theta, side, ug, vg, rg, parameters):
+    """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4)."""
     s = side
     if theta > 0.0:
         s = 1.0
     elif theta < 0.0:
         s = -1.0
-    arm_1 = parameters[ROD_ARM_1]
-    arm_2 = parameters[ROD_ARM_2]
-    rods = (parameters[ROD_FORCE] * (arm_1 + arm_2)
-            + parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) * abs(theta))
-    top = parameters[TOP_FORCE] * 2.0 * parameters[HALF_HEIGHT]
-    return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods - top) / inertia - rg
+    return _linear_flight_acceleration(theta, s, ug, vg, rg, parameters)
 
 
 @njit(cache=True)
@@ -101,14 +151,26 @@ def _ground(segment, time):
 
 
 @njit(cache=True)
-def _dormand_prince(t, theta, omega, side, h, segment, parameters):
-    """One Dormand-Prince 5(4) step; returns theta, omega, error of theta, error of omega."""
+def _start_acceleration(method, t, theta, side, segment, parameters):
+    """theta'' of the flight model at the start of a flight or of an interval."""
+    ug, vg, rg = _ground(segment, t)
+    if method == METHOD_LINEAR:
+        return _linear_flight_acceleration(theta, side, ug, vg, rg, parameters)
+    return flight_acceleration(theta, side, ug, vg, rg, parameters)
+
+
+@njit(cache=True)
+def _dormand_prince(t, theta, omega, k1v, side, h, segment, parameters):
+    """One Dormand-Prince 5(4) step from a known theta''(t) = ``k1v``.
+
+    Returns theta, omega and theta'' at ``t + h`` (the last stage, reused as the
+    first of the next step) and the error estimates of theta and omega.
+    """
     def f(time, y0):
         ug, vg, rg = _ground(segment, time)
-        return angular_acceleration(y0, side, ug, vg, rg, parameters)
+        return flight_acceleration(y0, side, ug, vg, rg, parameters)
 
     k1x = omega
-    k1v = f(t, theta)
     x = theta + h * (k1x / 5.0)
     k2x = omega + h * (k1v / 5.0)
     k2v = f(t + h / 5.0, x)
@@ -138,36 +200,35 @@ def _dormand_prince(t, theta, omega, side, h, segment, parameters):
                               -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0)
     error_theta = h * (e1 * k1x + e3 * k3x + e4 * k4x + e5 * k5x + e6 * k6x + e7 * k7x)
     error_omega = h * (e1 * k1v + e3 * k3v + e4 * k4v + e5 * k5v + e6 * k6v + e7 * k7v)
-    return theta_new, omega_new, error_theta, error_omega
+    return theta_new, omega_new, k7v, error_theta, error_omega
 
 
 @njit(cache=True)
-def _heun(t, theta, omega, side, h, segment, parameters):
-    """The report's predictor-corrector step (Section 2.8): Euler predictor, trapezoidal corrector."""
-    ug, vg, rg = _ground(segment, t)
-    acceleration = angular_acceleration(theta, side, ug, vg, rg, parameters)
+def _heun(t, theta, omega, acceleration, side, h, segment, parameters):
+    """The report's predictor-corrector step (Section 2.8): Euler predictor, trapezoidal corrector.
+
+    ``acceleration`` is theta'' at the start; theta'' at the end is returned
+    for the next step.
+    """
     theta_predicted = theta + h * omega
     ug, vg, rg = _ground(segment, t + h)
-    acceleration_predicted = angular_acceleration(theta_predicted, side, ug, vg, rg, parameters)
+    acceleration_predicted = flight_acceleration(theta_predicted, side, ug, vg, rg, parameters)
     omega_new = omega + 0.5 * h * (acceleration + acceleration_predicted)
     theta_new = theta + 0.5 * h * (omega + omega_new)
-    return theta_new, omega_new, 0.0, 0.0
+    acceleration_new = flight_acceleration(theta_new, side, ug, vg, rg, parameters)
+    return theta_new, omega_new, acceleration_new, 0.0, 0.0
 
 
 @njit(cache=True)
 def _closed_form(t, theta, omega, side, h, segment, parameters):
     """Exact solution of the linearised equation over a time ``h`` (METHOD_LINEAR)."""
-    t0, span, du, v0, dv, dr = segment[0], segment[1], segment[3], segment[4], segment[5], segment[7]
+    span, du, v0, dv, dr = segment[1], segment[3], segment[4], segment[5], segment[7]
     b = parameters[HALF_WIDTH]
     hh = parameters[HALF_HEIGHT]
     radius = math.sqrt(b * b + hh * hh)
     inertia = parameters[INERTIA]
     q = radius / inertia  # = 3 / (4 R)
     s = side
-    if theta > 0.0:
-        s = 1.0
-    elif theta < 0.0:
-        s = -1.0
     arm_1 = parameters[ROD_ARM_1]
     arm_2 = parameters[ROD_ARM_2]
     vertical = v0 + 0.5 * dv  # held at mid-interval
@@ -180,88 +241,101 @@ def _closed_form(t, theta, omega, side, h, segment, parameters):
     if abs(mu) * h * h < 1e-12:
         theta_new = theta + omega * h + c0 * h * h / 2.0 + c1 * h * h * h / 6.0 + mu * theta * h * h / 2.0
         omega_new = omega + c0 * h + c1 * h * h / 2.0 + mu * theta * h
-        return theta_new, omega_new, 0.0, 0.0
-    particular = -c0 / mu
-    particular_rate = -c1 / mu
-    a = theta - particular
-    if mu > 0.0:
-        lam = math.sqrt(mu)
-        bb = (omega - particular_rate) / lam
-        ch = math.cosh(lam * h)
-        sh = math.sinh(lam * h)
-        theta_new = a * ch + bb * sh + particular + particular_rate * h
-        omega_new = lam * (a * sh + bb * ch) + particular_rate
     else:
-        lam = math.sqrt(-mu)
-        bb = (omega - particular_rate) / lam
-        co = math.cos(lam * h)
-        si = math.sin(lam * h)
-        theta_new = a * co + bb * si + particular + particular_rate * h
-        omega_new = lam * (-a * si + bb * co) + particular_rate
-    return theta_new, omega_new, 0.0, 0.0
+        particular = -c0 / mu
+        particular_rate = -c1 / mu
+        a = theta - particular
+        if mu > 0.0:
+            lam = math.sqrt(mu)
+            bb = (omega - particular_rate) / lam
+            ch = math.cosh(lam * h)
+            sh = math.sinh(lam * h)
+            theta_new = a * ch + bb * sh + particular + particular_rate * h
+            omega_new = lam * (a * sh + bb * ch) + particular_rate
+        else:
+            lam = math.sqrt(-mu)
+            bb = (omega - particular_rate) / lam
+            co = math.cos(lam * h)
+            si = math.sin(lam * h)
+            theta_new = a * co + bb * si + particular + particular_rate * h
+            omega_new = lam * (-a * si + bb * co) + particular_rate
+    # theta'' = mu theta + c0 + c1 tau exactly along the closed form
+    return theta_new, omega_new, mu * theta_new + c0 + c1 * h, 0.0, 0.0
 
 
 @njit(cache=True)
-def _advance(method, t, theta, omega, side, h, segment, parameters):
+def _advance(method, t, theta, omega, acceleration, side, h, segment, parameters):
+    """One step of ``method``: theta, omega, theta'' at ``t + h`` and error estimates."""
     if method == METHOD_FAST:
-        return _dormand_prince(t, theta, omega, side, h, segment, parameters)
+        return _dormand_prince(t, theta, omega, acceleration, side, h, segment, parameters)
     if method == METHOD_PREDICTOR_CORRECTOR:
-        return _heun(t, theta, omega, side, h, segment, parameters)
+        return _heun(t, theta, omega, acceleration, side, h, segment, parameters)
     return _closed_form(t, theta, omega, side, h, segment, parameters)
 
 
 @njit(cache=True)
-def _event_value(kind, method, t, theta, omega, side, tau, segment, parameters, sign, from_zero):
-    """Event function at ``t + tau``: positive before the event, <= 0 at and after it."""
-    if tau == 0.0:
-        x, v = theta, omega
-    else:
-        x, v, _, _ = _advance(method, t, theta, omega, side, tau, segment, parameters)
+def _event(kind, x, v, a, side, sign, alpha):
+    """Event function (positive before the event, <= 0 at and after it) and its rate."""
     if kind == EVENT_IMPACT:
-        if from_zero:
-            if tau == 0.0:
-                return side * omega
-            return side * x / tau
-        return side * x
+        return side * x, side * v
     if kind == EVENT_OVERTURN:
-        return 0.5 * math.pi - side * x
+        return 0.5 * math.pi - side * x, -side * v
     if kind == EVENT_PEAK:
-        return sign * v
-    return parameters[ALPHA] - abs(x)
+        return sign * v, sign * a
+    if x >= 0.0:
+        return alpha - x, -v
+    return alpha + x, v
 
 
 @njit(cache=True)
-def _locate(kind, method, t, theta, omega, side, upper, segment, parameters, sign, from_zero):
-    """Root of an event function on (0, upper] by the Illinois variant of regula falsi."""
+def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
+            a_upper, segment, parameters, sign):
+    """First root of an event function on (0, upper], by a safeguarded Newton iteration.
+
+    The event function is positive at 0 (by construction: for an impact from
+    theta = 0 it is positive just after 0) and ``<= 0`` at ``upper``, where the
+    state (``x_upper``, ``v_upper``, ``a_upper``) is known. Each trial is one
+    step of the stepper from ``t`` to ``t + tau``; the event function's rate
+    comes from the same step (theta' for theta events, theta'' for theta'), so
+    Newton converges in a few trials; a trial outside the bracket, or one that
+    does not halve the step, is replaced by bisection.
+
+    Returns tau, theta, theta', theta'' there and the number of trial steps.
+    """
+    alpha = parameters[ALPHA]
     a = 0.0
     b = upper
-    fa = _event_value(kind, method, t, theta, omega, side, a, segment, parameters, sign, from_zero)
-    fb = _event_value(kind, method, t, theta, omega, side, b, segment, parameters, sign, from_zero)
-    if fb > 0.0:
-        return upper
-    if fa <= 0.0:
-        return 0.0
-    tolerance = 4e-16 * (abs(t) + upper) + 1e-300
-    side_kept = 0
-    for _ in range(200):
-        if b - a <= tolerance:
-            break
-        c = (a * fb - b * fa) / (fb - fa)
-        if not (a < c < b):
-            c = 0.5 * (a + b)
-        fc = _event_value(kind, method, t, theta, omega, side, c, segment, parameters, sign,
-                          from_zero)
-        if fc > 0.0:
-            a, fa = c, fc
-            if side_kept == -1:
-                fb *= 0.5
-            side_kept = -1
+    c = upper
+    xc, vc, ac = x_upper, v_upper, a_upper
+    xb, vb, ab = x_upper, v_upper, a_upper
+    gc, dgc = _event(kind, xc, vc, ac, side, sign, alpha)
+    if gc > 0.0:
+        return upper, xc, vc, ac, 0
+    tolerance = 2e-16 * (abs(t) + upper) + 1e-300
+    previous = math.inf
+    trials = 0
+    for _ in range(100):
+        newton = math.inf if dgc == 0.0 else gc / dgc
+        candidate = c - newton
+        if not (a < candidate < b) or abs(2.0 * newton) > previous:
+            candidate = 0.5 * (a + b)
+        change = abs(candidate - c)
+        if abs(newton) <= tolerance:
+            break  # c is the root to within rounding
+        previous = change
+        x, v, acc, _, _ = _advance(method, t, theta, omega, acceleration, side, candidate,
+                                   segment, parameters)
+        trials += 1
+        g, dg = _event(kind, x, v, acc, side, sign, alpha)
+        c, xc, vc, ac, gc, dgc = candidate, x, v, acc, g, dg
+        if g > 0.0:
+            a = candidate
         else:
-            b, fb = c, fc
-            if side_kept == 1:
-                fa *= 0.5
-            side_kept = 1
-    return b
+            b, xb, vb, ab = candidate, x, v, acc
+        if b - a <= tolerance:
+            c, xc, vc, ac = b, xb, vb, ab
+            break
+    return c, xc, vc, ac, trials
 
 
 @njit(cache=True)
@@ -295,14 +369,17 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
         the impact velocity is within 1000 times the velocity tolerance, where
         the integration error would otherwise feed it forever.
     out_theta, out_omega, out_acceleration : ndarray
-        Filled with the state at every sample time reached.
+        Filled with the state at every sample time reached (length 0 arrays:
+        nothing is stored, for sweeps that only want the scalar results).
     impact_times, impact_velocities : ndarray
         Filled with the first ``len(impact_times)`` impacts (time [s],
         velocity before impact [rad/s]); ``info[INFO_N_IMPACTS]`` counts all.
     info : ndarray, shape (N_INFO,)
-        Filled with the scalar results.
+        Filled with the scalar results. ``INFO_EVALUATIONS`` counts every
+        right-hand-side evaluation, those of event location included.
     """
     n = t_grid.shape[0]
+    store = out_theta.shape[0] >= n
     alpha = parameters[ALPHA]
     radius = math.sqrt(parameters[HALF_WIDTH] ** 2 + parameters[HALF_HEIGHT] ** 2)
     p = math.sqrt(3.0 * G / (4.0 * radius))
@@ -316,6 +393,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
         velocity_floor = max(velocity_floor, 1e3 * atol_omega)
     hold_down = parameters[HOLD_DOWN]
     max_recorded = impact_times.shape[0]
+    per_step = _EVALUATIONS_PER_STEP[method]
     segment = np.empty(8)
 
     for i in range(N_INFO):
@@ -345,15 +423,19 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
     t = t_grid[0]
     last_impact = t
     step_size = 0.1 / p
-    from_zero = theta == 0.0
+    previous_error = 1e-4  # PI controller memory
+    acceleration = 0.0     # theta'' of the flight model at (t, theta), when known
+    known = False
+    just_rejected = False
 
-    out_theta[0] = theta
-    out_omega[0] = omega
-    if resting:
-        out_acceleration[0] = 0.0
-    else:
-        out_acceleration[0] = model_acceleration(method, theta, side, ug[0], vg[0], rg[0],
-                                                 parameters)
+    if store:
+        out_theta[0] = theta
+        out_omega[0] = omega
+        if resting:
+            out_acceleration[0] = 0.0
+        else:
+            out_acceleration[0] = model_acceleration(method, theta, side, ug[0], vg[0], rg[0],
+                                                     parameters)
     filled = 1
 
     for k in range(n - 1):
@@ -410,11 +492,18 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 side = start_side
                 theta = 0.0
                 omega = 0.0
-                from_zero = True
+                known = False
                 resting = False
                 if math.isnan(info[INFO_T_START]):
                     info[INFO_T_START] = t
                 continue
+
+            if not known:
+                if method != METHOD_LINEAR:  # the closed form does not need it
+                    acceleration = _start_acceleration(method, t, theta, side, segment,
+                                                       parameters)
+                    evaluations += 1
+                known = True
 
             # ---- one step of free flight about the active corner
             if method == METHOD_FAST:
@@ -426,17 +515,26 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                     h = min(substep, t_end - t)
             else:
                 h = t_end - t
-            theta_new, omega_new, error_theta, error_omega = _advance(
-                method, t, theta, omega, side, h, segment, parameters)
-            evaluations += 7 if method == METHOD_FAST else 2
+            theta_new, omega_new, acceleration_new, error_theta, error_omega = _advance(
+                method, t, theta, omega, acceleration, side, h, segment, parameters)
+            evaluations += per_step
             if method == METHOD_FAST:
                 error = max(abs(error_theta) / (atol_theta + rtol * max(abs(theta), abs(theta_new))),
                             abs(error_omega) / (atol_omega + rtol * max(abs(omega), abs(omega_new))))
-                if error > 1.0:
+                if not error <= 1.0:  # also NaN
+                    if error != error:
+                        error = 1e10
                     step_size = h * max(0.2, 0.9 * error ** -0.2)
                     rejected += 1
+                    just_rejected = True
                     continue
-                growth = 5.0 if error == 0.0 else min(5.0, 0.9 * error ** -0.2)
+                # PI control (Gustafsson; Hairer & Wanner's DOPRI5 constants)
+                error = max(error, 1e-10)
+                growth = min(5.0, max(0.2, 0.9 * error ** -0.17 * previous_error ** 0.04))
+                previous_error = error
+                if just_rejected:
+                    growth = min(growth, 1.0)
+                    just_rejected = False
                 if h < step_size:
                     # a step cut short by the end of the interval says nothing against
                     # the step size that was planned
@@ -447,55 +545,72 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
             # ---- terminal events inside the step
             tau = h
             kind = -1
-            if side * theta_new < 0.0 or (side * theta_new == 0.0 and side * omega_new < 0.0):
-                tau = _locate(EVENT_IMPACT, method, t, theta, omega, side, h, segment,
-                              parameters, 0.0, from_zero)
+            if side * omega < 0.0 and side * omega_new > 0.0 and side * theta_new > 0.0:
+                # theta turned back away from 0 inside the step: did it touch 0 first?
+                sign = 1.0 if omega > 0.0 else -1.0
+                tau_turn, x, v, acc, trials = _locate(
+                    EVENT_PEAK, method, t, theta, omega, acceleration, side, h, theta_new,
+                    omega_new, acceleration_new, segment, parameters, sign)
+                evaluations += trials * per_step
+                if side * x <= 0.0:
+                    tau, theta_new, omega_new, acceleration_new, trials = _locate(
+                        EVENT_IMPACT, method, t, theta, omega, acceleration, side, tau_turn,
+                        x, v, acc, segment, parameters, 0.0)
+                    evaluations += trials * per_step
+                    kind = EVENT_IMPACT
+            elif side * theta_new < 0.0 or (side * theta_new == 0.0 and side * omega_new < 0.0):
+                tau, theta_new, omega_new, acceleration_new, trials = _locate(
+                    EVENT_IMPACT, method, t, theta, omega, acceleration, side, h, theta_new,
+                    omega_new, acceleration_new, segment, parameters, 0.0)
+                evaluations += trials * per_step
                 kind = EVENT_IMPACT
             if side * theta_new >= 0.5 * math.pi:
-                tau_overturn = _locate(EVENT_OVERTURN, method, t, theta, omega, side, h,
-                                       segment, parameters, 0.0, from_zero)
-                if kind < 0 or tau_overturn < tau:
-                    tau = tau_overturn
-                    kind = EVENT_OVERTURN
-            if kind >= 0:
-                theta_new, omega_new, _, _ = _advance(method, t, theta, omega, side, tau,
-                                                      segment, parameters)
-                evaluations += 20
-                if kind == EVENT_IMPACT:
-                    theta_new = 0.0
-                else:
-                    theta_new = side * 0.5 * math.pi
+                tau, theta_new, omega_new, acceleration_new, trials = _locate(
+                    EVENT_OVERTURN, method, t, theta, omega, acceleration, side, tau, theta_new,
+                    omega_new, acceleration_new, segment, parameters, 0.0)
+                evaluations += trials * per_step
+                kind = EVENT_OVERTURN
+            if kind == EVENT_IMPACT:
+                theta_new = 0.0
+            elif kind == EVENT_OVERTURN:
+                theta_new = side * 0.5 * math.pi
 
             # ---- non-terminal events: turning point (max |theta|) and instability
-            if omega * omega_new < 0.0:
+            tau_peak = tau
+            theta_peak = theta_new
+            v_peak = omega_new
+            acceleration_peak = acceleration_new
+            if omega * omega_new < 0.0 and side * omega > 0.0:
                 sign = 1.0 if omega > 0.0 else -1.0
-                tau_peak = _locate(EVENT_PEAK, method, t, theta, omega, side, tau, segment,
-                                   parameters, sign, from_zero)
-                theta_peak, _, _, _ = _advance(method, t, theta, omega, side, tau_peak, segment,
-                                               parameters)
+                tau_peak, theta_peak, v_peak, acceleration_peak, trials = _locate(
+                    EVENT_PEAK, method, t, theta, omega, acceleration, side, tau, theta_new,
+                    omega_new, acceleration_new, segment, parameters, sign)
+                evaluations += trials * per_step
                 if abs(theta_peak) > info[INFO_MAX_ABS_THETA]:
                     info[INFO_MAX_ABS_THETA] = abs(theta_peak)
                     info[INFO_T_MAX] = t + tau_peak
                     info[INFO_THETA_AT_MAX] = theta_peak
-            else:
-                tau_peak = tau
-                theta_peak = theta_new
             if abs(theta_new) > info[INFO_MAX_ABS_THETA]:
                 info[INFO_MAX_ABS_THETA] = abs(theta_new)
                 info[INFO_T_MAX] = t + tau
                 info[INFO_THETA_AT_MAX] = theta_new
             if math.isnan(info[INFO_T_UNSTABLE]):
                 if abs(theta_peak) > alpha or abs(theta_new) > alpha:
-                    upper = tau_peak if abs(theta_peak) > alpha else tau
-                    tau_unstable = _locate(EVENT_UNSTABLE, method, t, theta, omega, side, upper,
-                                           segment, parameters, 0.0, from_zero)
+                    if abs(theta_peak) > alpha:
+                        upper, x, v, acc = tau_peak, theta_peak, v_peak, acceleration_peak
+                    else:
+                        upper, x, v, acc = tau, theta_new, omega_new, acceleration_new
+                    tau_unstable, x, v, acc, trials = _locate(
+                        EVENT_UNSTABLE, method, t, theta, omega, acceleration, side, upper, x, v,
+                        acc, segment, parameters, 0.0)
+                    evaluations += trials * per_step
                     info[INFO_T_UNSTABLE] = t + tau_unstable
                     info[INFO_UNSTABLE_DIRECTION] = side
 
             t = t + tau
             theta = theta_new
             omega = omega_new
-            from_zero = False
+            acceleration = acceleration_new
             steps += 1
 
             if kind == EVENT_OVERTURN:
@@ -514,7 +629,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 omega = cor * omega           # Section 2.7 (5), one signed theta
                 side = -side
                 theta = 0.0
-                from_zero = True
+                known = False
                 ux, vx, rx = _ground(segment, t)
                 deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, rx,
                                                           parameters)
@@ -534,13 +649,14 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
             status = STATUS_AIRBORNE
             info[INFO_T_AIRBORNE] = t_end
             break
-        out_theta[k + 1] = theta
-        out_omega[k + 1] = omega
-        if resting:
-            out_acceleration[k + 1] = 0.0
-        else:
-            out_acceleration[k + 1] = model_acceleration(method, theta, side, ug[k + 1],
-                                                         vg[k + 1], rg[k + 1], parameters)
+        if store:
+            out_theta[k + 1] = theta
+            out_omega[k + 1] = omega
+            if resting:
+                out_acceleration[k + 1] = 0.0
+            else:
+                out_acceleration[k + 1] = model_acceleration(method, theta, side, ug[k + 1],
+                                                             vg[k + 1], rg[k + 1], parameters)
         filled = k + 2
 
     info[INFO_T_END] = t
