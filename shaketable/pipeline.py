@@ -19,6 +19,7 @@ from .motion import Motion
 from .results import RockingResult
 from .scenes import Scene, SceneError
 from .simulate import simulate
+from .table_stage import TableRun, run_table, table_setup_from_dict
 
 
 def build_motion(scene: Scene) -> Motion | None:
@@ -118,6 +119,7 @@ class SceneResult:
     motion: Motion | None
     runs: tuple
     comparisons: tuple = field(default_factory=tuple)
+    table: TableRun | None = None
 
     @property
     def main(self) -> RockingResult:
@@ -137,7 +139,7 @@ class SceneResult:
 
     def summary(self) -> dict:
         """JSON-ready scalars: scene identification, each run, each comparison."""
-        return {
+        summary = {
             "scene": self.scene.name, "source": self.scene.source,
             "description": self.scene.description,
             "runs": [run.summary() for run in self.runs],
@@ -145,6 +147,11 @@ class SceneResult:
                              "reproduced": c.reproduced, "unit": c.unit, "agrees": c.agrees}
                             for c in self.comparisons],
         }
+        if self.table is not None:
+            summary["table"] = {"limits exceeded": self.table.warnings()}
+        if self.scene.mode() is not None:
+            summary["mode (Section 2.1)"] = self.scene.mode()
+        return summary
 
     def plot(self):
         """The Calcomp figure of the main run; other CORs overlaid on the displacement."""
@@ -185,24 +192,30 @@ class SceneResult:
 
 def run_scene(scene: Scene) -> SceneResult:
     """Run every stage a scene names and compare with the report's values."""
-    if scene.table:
-        raise SceneError(f"{scene.path}: [table] (pitch, actuator) is not available in this "
-                         "version of the pipeline")
     if scene.sensors:
         raise SceneError(f"{scene.path}: [sensors] is not available in this version of the "
                          "pipeline")
     motion = build_motion(scene)
+    table = None
+    felt = motion
+    if scene.table:
+        setup = table_setup_from_dict(scene.table, scene.path)
+        try:
+            table = run_table(motion, setup, duration=scene.duration)
+        except ValueError as error:
+            raise SceneError(f"{scene.path}: [table]: {error}") from None
+        felt = table.felt
     runs = []
     for cor in scene.cors:
         try:
-            runs.append(simulate(scene.block, motion, cor=cor, theta0=scene.theta0,
+            runs.append(simulate(scene.block, felt, cor=cor, theta0=scene.theta0,
                                  theta_dot0=scene.theta_dot0, duration=scene.duration,
                                  method=scene.method, **scene.options))
         except ValueError as error:
             raise SceneError(f"{scene.path}: [rocking]: {error}") from None
     comparisons = compare_with_report(scene, runs[0])
-    return SceneResult(scene=scene, motion=motion, runs=tuple(runs),
-                       comparisons=tuple(comparisons))
+    return SceneResult(scene=scene, motion=felt, runs=tuple(runs),
+                       comparisons=tuple(comparisons), table=table)
 
 
 def compare_with_report(scene: Scene, result: RockingResult) -> list[Comparison]:

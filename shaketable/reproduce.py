@@ -97,6 +97,8 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     folder = out / study.name
     folder.mkdir(parents=True, exist_ok=True)
     lines = [f"## {study.source} — `{study.name}`", "", study.description, ""]
+    if study.kind == "pitch-repeatability":
+        return _repeatability_section(study, folder, lines)
     if study.kind == "report-figure":
         from . import section2
         from .plots import save, section_2_figure
@@ -134,3 +136,25 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
         lines.append(f"| {column} | {count['cells']} | {count['same F / not F']} | "
                      f"{count['both numbers']} | {_format(count['median |difference|'])} |")
     return "\n".join(lines) + "\n"
+
+
+def _repeatability_section(study: Study, folder: Path, lines: list) -> str:
+    """Section 3.7 (2): the same command on a table pitching with different phases."""
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    from .plots import save
+    from .repeatability import section_3_7_cases
+
+    cases = section_3_7_cases(phases=study.seed)
+    figure, axes = plt.subplots(len(cases), 1, figsize=(8, 2.4 * len(cases)))
+    for case, axis in zip(cases, axes):
+        case.plot(axis)
+    figure.tight_layout()
+    save(figure, folder / "figure.png")
+    pd.concat([case.to_frame() for case in cases]).to_csv(folder / "runs.csv", index=False)
+    frame = pd.DataFrame([case.summary() for case in cases])
+    frame["overturn directions"] = frame["overturn directions"].map(
+        lambda values: ", ".join(f"{v:+d}" for v in values) or "—")
+    return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", "",
+                               _markdown(frame)]) + "\n"

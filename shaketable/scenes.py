@@ -10,12 +10,14 @@ Sections (``experiments/*.toml`` are the examples)::
     name, source, description       # top level: text
     [block]      size = "30x6in"  or  height = "30 in", width = "6 in"
     [block.rods] stiffness = "0.4 W/in", force = "0.4 W", edge_distance = "12 in"
+                 (and block.static_friction = 0.6: the sliding/rocking check of Section 2.1)
     [motion]     kind = "free" | "harmonic" | "record" | "artificial" | "half-sine"
                  | "constant-pulse", and the keys of that kind
     [rocking]    cor = 0.925 (or a list to compare), theta0 = "0.5 alpha",
                  duration = "8 s", method = "fast", subdivisions, rtol
     [report]     the report's values to compare with (see REPORT_KEYS)
     [outputs]    figure = true, csv = true, parquet = false, svg = false
+    [table]      command, highpass, actuator, pitch, limits (shaketable.table_stage)
 """
 
 from __future__ import annotations
@@ -49,7 +51,8 @@ OUTPUT_KEYS = {"figure", "csv", "parquet", "svg"}
 TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
             "table", "sensors"}
 #: Studies that recompute one of the report's tables (a ``[study]`` section).
-STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"}}
+STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"},
+               "pitch-repeatability": {"phases"}}
 
 
 class SceneError(ValueError):
@@ -102,7 +105,20 @@ class Scene:
     outputs: dict = field(default_factory=dict)
     table: dict = field(default_factory=dict)
     sensors: dict = field(default_factory=dict)
+    static_friction: float | None = None
     path: str = ""
+
+    def mode(self) -> str | None:
+        """Sliding or rocking by Section 2.1 (mu_s against B/H), when ``static_friction`` is given."""
+        if self.static_friction is None:
+            return None
+        ratio = self.block.width / self.block.height
+        if self.static_friction > ratio:
+            return (f"rocking: static friction {self.static_friction:g} > B/H = {ratio:.3f} "
+                    "(Section 2.1): the block rocks before it can slide")
+        return (f"SLIDING: static friction {self.static_friction:g} <= B/H = {ratio:.3f} "
+                "(Section 2.1, Eq. 2-2): the block slides before it rocks; the rocking "
+                "results below assume a base that cannot slide")
 
 
 @dataclass(frozen=True)
@@ -120,7 +136,8 @@ class Study:
     columns : tuple of str
         Columns to recompute (default all).
     seed : int
-        Seed of the substitute artificial accelerograms.
+        Seed of the substitute artificial accelerograms (for a
+        ``"pitch-repeatability"`` study: the number of pitch phases).
     path : str
     """
 
@@ -164,6 +181,11 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
             raise SceneError(f"{where}: missing [{key}]" if key != "name"
                              else f"{where}: missing 'name' at the top level")
     block = _block(data["block"], where)
+    static_friction = data["block"].get("static_friction")
+    if static_friction is not None and (isinstance(static_friction, bool) or not isinstance(
+            static_friction, (int, float)) or not 0 < static_friction < math.inf):
+        raise SceneError(f"{where}: block.static_friction must be a positive number (the "
+                         f"static coefficient of friction mu_s), got {static_friction!r}")
     motion = _motion(data["motion"], where)
     rocking = _table(data["rocking"], where, "rocking")
     _only(rocking, ROCKING_KEYS, where, "rocking")
@@ -208,8 +230,10 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
                  cors=tuple(float(c) for c in cors), theta0=theta0, theta_dot0=theta_dot0,
                  duration=duration, method=str(rocking.get("method", "fast")), options=options,
                  report=report, outputs=outputs,
-                 table=_table(data.get("table", {}), where, "table"),
-                 sensors=_table(data.get("sensors", {}), where, "sensors"), path=where)
+                 table=_table_section(data.get("table", {}), where),
+                 sensors=_table(data.get("sensors", {}), where, "sensors"),
+                 static_friction=None if static_friction is None else float(static_friction),
+                 path=where)
 
 
 def _study(data: dict, where: str) -> Study:
@@ -220,6 +244,14 @@ def _study(data: dict, where: str) -> Study:
         raise SceneError(f"{where}: study.kind must be one of {', '.join(STUDY_KINDS)}, "
                          f"got {kind!r}")
     _only({k: v for k, v in spec.items() if k != "kind"}, STUDY_KINDS[kind], where, "study")
+    if kind == "pitch-repeatability":
+        phases = spec.get("phases", 24)
+        if isinstance(phases, bool) or not isinstance(phases, int) or phases < 2:
+            raise SceneError(f"{where}: study.phases must be an integer of at least 2, got "
+                             f"{phases!r}")
+        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                     description=str(data.get("description", "")), kind=kind,
+                     table="", seed=phases, path=where)
     if kind == "report-figure":
         if spec.get("figure") not in ("2.3", "2.4", "2.6"):
             raise SceneError(f"{where}: study.figure must be '2.3', '2.4' or '2.6', got "
@@ -238,6 +270,18 @@ def _study(data: dict, where: str) -> Study:
 
 
 # --------------------------------------------------------------------------- helpers
+def _table_section(value, where) -> dict:
+    """The raw ``[table]`` section, validated now so that errors come at load time."""
+    from .table_stage import table_setup_from_dict
+
+    value = _table(value, where, "table")
+    try:
+        table_setup_from_dict(value, where)
+    except ValueError as error:
+        raise SceneError(str(error)) from None
+    return value
+
+
 def _table(value, where, section):
     if not isinstance(value, dict):
         raise SceneError(f"{where}: [{section}] must be a table, got {value!r}")
@@ -253,7 +297,7 @@ def _only(table: dict, allowed: set, where: str, section: str) -> None:
 
 def _block(table, where) -> Block:
     table = _table(table, where, "block")
-    _only(table, {"size", "height", "width", "rods"}, where, "block")
+    _only(table, {"size", "height", "width", "rods", "static_friction"}, where, "block")
     rods = None
     if "rods" in table:
         spec = _table(table["rods"], where, "block.rods")

@@ -19,6 +19,9 @@ UNITS = {
     "acceleration": ACCELERATION_UNITS,
     "time": {"s": 1.0, "ms": 1e-3, "min": 60.0},
     "frequency": {"hz": 1.0},
+    "velocity": {"m/s": 1.0, "cm/s": 0.01, "in/s": LENGTH_UNITS["in"], "ft/s": LENGTH_UNITS["ft"]},
+    "force": {"n": 1.0, "lbf": 4.4482216152605, "ozf": 4.4482216152605 / 16.0,
+              "oz": 4.4482216152605 / 16.0},
     "angle": {"rad": 1.0, "deg": math.pi / 180.0},
     "angular acceleration": {"rad/s2": 1.0, "rad/s^2": 1.0},
     "stiffness": {"w/m": 1.0, "w/in": 1.0 / LENGTH_UNITS["in"], "w/ft": 1.0 / LENGTH_UNITS["ft"]},
@@ -77,5 +80,5 @@ def parse_angle_or_ratio(value, alpha: float, *, where: str = "value") -> float:
 
 def _example(kind: str) -> str:
     return {"length": "30 in", "acceleration": "0.5 g", "time": "8 s", "frequency": "2 Hz",
-            "angle": "0.05 rad", "angular acceleration": "0.22 rad/s2",
+            "velocity": "25 in/s", "force": "20 oz", "angle": "0.05 rad", "angular acceleration": "0.22 rad/s2",
             "stiffness": "0.4 W/in", "weight": "0.4 W"}[kind]

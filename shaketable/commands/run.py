@@ -17,6 +17,11 @@ def _run(args) -> int:
     result = run_scene(scene)
     out = Path(args.out) if args.out else Path("shaketable-out") / scene.name
     written = result.write(out)
+    if scene.mode() is not None:
+        print(f"{scene.name}: {scene.mode()}")
+    if result.table is not None:
+        for line in result.table.warnings():
+            print(f"{scene.name}: table limit exceeded: {line}")
     for run in result.runs:
         verdict = (f"overturns ({run.overturn_direction:+d}) at {run.t_overturn:.2f} s"
                    if run.overturned else f"max theta/alpha = {run.max_theta_ratio:.3f}")
