@@ -120,6 +120,7 @@ class SceneResult:
     runs: tuple
     comparisons: tuple = field(default_factory=tuple)
     table: TableRun | None = None
+    tests: tuple = ()
 
     @property
     def main(self) -> RockingResult:
@@ -151,6 +152,8 @@ class SceneResult:
             summary["table"] = {"limits exceeded": self.table.warnings()}
         if self.scene.mode() is not None:
             summary["mode (Section 2.1)"] = self.scene.mode()
+        if self.tests:
+            summary["test vs theory"] = [test.metrics() for test in self.tests]
         return summary
 
     def plot(self):
@@ -187,14 +190,21 @@ class SceneResult:
             for suffix in ("png", "svg") if outputs.get("svg", False) else ("png",):
                 written.append(out / f"calcomp.{suffix}")
                 save(self.plot(), written[-1])
+                for index, test in enumerate(self.tests):
+                    label = "" if len(self.tests) == 1 else f"-{index + 1}"
+                    written.append(out / f"test-vs-theory{label}.{suffix}")
+                    title = (f"{self.scene.source or self.scene.name}: test vs theory, "
+                             f"{self.scene.block.describe()}")
+                    save(test.plot(title=title), written[-1])
+        for index, test in enumerate(self.tests):
+            label = "" if len(self.tests) == 1 else f"-{index + 1}"
+            written.append(out / f"record{label}.csv")
+            test.to_frame().to_csv(written[-1], index=False)
         return written
 
 
 def run_scene(scene: Scene) -> SceneResult:
     """Run every stage a scene names and compare with the report's values."""
-    if scene.sensors:
-        raise SceneError(f"{scene.path}: [sensors] is not available in this version of the "
-                         "pipeline")
     motion = build_motion(scene)
     table = None
     felt = motion
@@ -205,6 +215,8 @@ def run_scene(scene: Scene) -> SceneResult:
         except ValueError as error:
             raise SceneError(f"{scene.path}: [table]: {error}") from None
         felt = table.felt
+    if scene.sensors is not None:
+        return _run_virtual_tests(scene, motion, felt, table)
     runs = []
     for cor in scene.cors:
         try:
@@ -216,6 +228,28 @@ def run_scene(scene: Scene) -> SceneResult:
     comparisons = compare_with_report(scene, runs[0])
     return SceneResult(scene=scene, motion=felt, runs=tuple(runs),
                        comparisons=tuple(comparisons), table=table)
+
+
+def _run_virtual_tests(scene: Scene, commanded: Motion | None, felt: Motion | None,
+                       table: TableRun | None) -> "SceneResult":
+    """A scene with ``[sensors]``: one virtual test (and its theory run) per COR."""
+    from .virtual_test import run_virtual_test, sensors_from_dict, theory_from_dict
+
+    sensors = sensors_from_dict(scene.sensors, scene.path)
+    theory = theory_from_dict(scene.theory, scene.path)
+    tests = []
+    for cor in scene.cors:
+        try:
+            tests.append(run_virtual_test(scene.block, felt, cor=cor, sensors=sensors,
+                                          theory=theory, commanded=commanded,
+                                          theta0=scene.theta0, duration=scene.duration,
+                                          method=scene.method, **scene.options))
+        except ValueError as error:
+            raise SceneError(f"{scene.path}: virtual test: {error}") from None
+    runs = tuple(test.test for test in tests)
+    comparisons = compare_with_report(scene, tests[0].theory)
+    return SceneResult(scene=scene, motion=felt, runs=runs, comparisons=tuple(comparisons),
+                       table=table, tests=tuple(tests))
 
 
 def compare_with_report(scene: Scene, result: RockingResult) -> list[Comparison]:

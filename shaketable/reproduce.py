@@ -99,6 +99,8 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     lines = [f"## {study.source} — `{study.name}`", "", study.description, ""]
     if study.kind == "pitch-repeatability":
         return _repeatability_section(study, folder, lines)
+    if study.kind == "teaching":
+        return _teaching_section(study, folder, lines)
     if study.kind == "report-figure":
         from . import section2
         from .plots import save, section_2_figure
@@ -118,7 +120,10 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
         lines += [_markdown(frame.round(3)), "",
                   "The report's test/theory agreement is within 2–3 %; the exact nonlinear "
                   f"period agrees with the printed test periods within "
-                  f"{100 * abs(frame['test / exact [-]'] - 1).max():.1f} %."]
+                  f"{100 * abs(frame['test / exact [-]'] - 1).max():.1f} %. The virtual test "
+                  "(50 samples/s potentiometer record, period = 4 × max-to-zero, the "
+                  "report's reading) agrees with the exact period within "
+                  f"{100 * abs(frame['virtual / exact [-]'] - 1).max():.1f} %."]
         return "\n".join(lines) + "\n"
     comparison = reproduce_table(study.table, columns=study.columns or None, seed=study.seed)
     frame = comparison.to_frame()
@@ -158,3 +163,17 @@ def _repeatability_section(study: Study, folder: Path, lines: list) -> str:
         lambda values: ", ".join(f"{v:+d}" for v in values) or "—")
     return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", "",
                                _markdown(frame)]) + "\n"
+
+
+def _teaching_section(study: Study, folder: Path, lines: list) -> str:
+    """One item of the teaching gallery (:mod:`shaketable.teaching`): figure, numbers, CSV."""
+    from .teaching import run_item
+    from .teaching_plots import save_item
+
+    item = run_item(study.table)
+    frame = item.to_frame()
+    frame.to_csv(folder / "numbers.csv", index=False)
+    save_item(item, folder / "figure.png")
+    return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", ""]
+                     + [f"* {line}" for line in item.highlights()]
+                     + ["", _markdown(frame.round(4))]) + "\n"

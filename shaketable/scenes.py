@@ -18,6 +18,8 @@ Sections (``experiments/*.toml`` are the examples)::
     [report]     the report's values to compare with (see REPORT_KEYS)
     [outputs]    figure = true, csv = true, parquet = false, svg = false
     [table]      command, highpass, actuator, pitch, limits (shaketable.table_stage)
+    [sensors]    potentiometers, accelerometers, rate, noise... (shaketable.virtual_test)
+    [theory]     cor = "calibrated" or a number: the test-vs-theory comparison of Section 3.7
 """
 
 from __future__ import annotations
@@ -49,10 +51,10 @@ REPORT_KEYS = {
 }
 OUTPUT_KEYS = {"figure", "csv", "parquet", "svg"}
 TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
-            "table", "sensors"}
+            "table", "sensors", "theory"}
 #: Studies that recompute one of the report's tables (a ``[study]`` section).
 STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"},
-               "pitch-repeatability": {"phases"}}
+               "pitch-repeatability": {"phases"}, "teaching": {"item"}}
 
 
 class SceneError(ValueError):
@@ -84,8 +86,11 @@ class Scene:
     report : dict
         The report's values to compare with.
     outputs : dict
-    table, sensors : dict
+    table, theory : dict
         Raw optional stages (validated by their own modules).
+    sensors : dict or None
+        The raw ``[sensors]`` section; ``None`` when the scene has none (an
+        empty section means the default instruments).
     path : str
         Where the scene was read from.
     """
@@ -104,7 +109,8 @@ class Scene:
     report: dict = field(default_factory=dict)
     outputs: dict = field(default_factory=dict)
     table: dict = field(default_factory=dict)
-    sensors: dict = field(default_factory=dict)
+    sensors: dict | None = None
+    theory: dict = field(default_factory=dict)
     static_friction: float | None = None
     path: str = ""
 
@@ -231,7 +237,8 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
                  duration=duration, method=str(rocking.get("method", "fast")), options=options,
                  report=report, outputs=outputs,
                  table=_table_section(data.get("table", {}), where),
-                 sensors=_table(data.get("sensors", {}), where, "sensors"),
+                 sensors=_checked(data, "sensors", where) if "sensors" in data else None,
+                 theory=_checked(data, "theory", where),
                  static_friction=None if static_friction is None else float(static_friction),
                  path=where)
 
@@ -252,6 +259,15 @@ def _study(data: dict, where: str) -> Study:
         return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
                      description=str(data.get("description", "")), kind=kind,
                      table="", seed=phases, path=where)
+    if kind == "teaching":  # a gallery item of shaketable.teaching
+        from .teaching import ITEMS
+
+        if spec.get("item") not in ITEMS:
+            raise SceneError(f"{where}: study.item must be one of {', '.join(ITEMS)}, got "
+                             f"{spec.get('item')!r}")
+        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                     description=str(data.get("description", "")), kind=kind,
+                     table=spec["item"], path=where)
     if kind == "report-figure":
         if spec.get("figure") not in ("2.3", "2.4", "2.6"):
             raise SceneError(f"{where}: study.figure must be '2.3', '2.4' or '2.6', got "
@@ -270,6 +286,22 @@ def _study(data: dict, where: str) -> Study:
 
 
 # --------------------------------------------------------------------------- helpers
+def _checked(data: dict, section: str, where: str) -> dict:
+    """A raw ``[sensors]`` or ``[theory]`` section, validated now (errors at load time)."""
+    from .virtual_test import sensors_from_dict, theory_from_dict
+
+    value = _table(data.get(section, {}), where, section)
+    if section == "theory" and value and "sensors" not in data:
+        raise SceneError(f"{where}: [theory] compares a virtual test with theory; it needs "
+                         "a [sensors] section")
+    try:
+        if section == "sensors" or "sensors" in data:
+            (sensors_from_dict if section == "sensors" else theory_from_dict)(value, where)
+    except ValueError as error:
+        raise SceneError(str(error)) from None
+    return value
+
+
 def _table_section(value, where) -> dict:
     """The raw ``[table]`` section, validated now so that errors come at load time."""
     from .table_stage import table_setup_from_dict
