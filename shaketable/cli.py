@@ -11,7 +11,7 @@ import importlib
 import sys
 
 #: Subcommand modules in ``shaketable.commands``, in the order ``--help`` shows them.
-SUBCOMMANDS = ["simulate", "run", "reproduce"]
+SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "animate"]
 
 
 def build_parser() -> argparse.ArgumentParser:

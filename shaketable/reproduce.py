@@ -53,6 +53,13 @@ def reproduce(names, out="reproduce-out", progress: bool = True) -> Path:
             continue
         lines = [f"## {scene.source or scene.name} — `{scene.name}`", "", scene.description, "",
                  f"![{scene.name}]({scene.name}/calcomp.png)", ""]
+        for index, test in enumerate(result.tests):
+            label = "" if len(result.tests) == 1 else f"-{index + 1}"
+            metrics = test.metrics()
+            lines += [f"![test vs theory]({scene.name}/test-vs-theory{label}.png)", "",
+                      "| test vs theory | value |", "|---|---|"]
+            lines += [f"| {key} | {_format(value)} |" for key, value in metrics.items()]
+            lines.append("")
         for run in result.runs:
             verdict = (f"overturns in direction {run.overturn_direction:+d} at "
                        f"{run.t_overturn:.2f} s" if run.overturned else

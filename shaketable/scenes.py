@@ -138,7 +138,8 @@ class Study:
         ``"report-table"`` or ``"report-figure"``.
     table : str
         Which printed table: ``"table_3_1"``, ``"table_4_1"``, ``"table_4_2"``, ``"table_4_3"``;
-        for a ``"report-figure"`` study, the figure: ``"2.3"``, ``"2.4"``, ``"2.6"``.
+        for a ``"report-figure"`` study, the figure: ``"2.3"``, ``"2.4"``, ``"2.6"``;
+        for a ``"teaching"`` study, the item of :data:`shaketable.teaching.ITEMS`.
     columns : tuple of str
         Columns to recompute (default all).
     seed : int

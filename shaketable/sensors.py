@@ -383,12 +383,17 @@ class Digitizer:
                                             fs=self.rate * self.oversample)
         return np.abs(response)
 
-    def apply_filter(self, values: np.ndarray) -> np.ndarray:
-        """The anti-alias filter applied to fine-grid ``values``, started at rest on values[0]."""
+    def apply_filter(self, values: np.ndarray, initial_value: float | None = None) -> np.ndarray:
+        """The anti-alias filter applied to fine-grid ``values``.
+
+        The filter starts at rest on ``initial_value`` (default ``values[0]``):
+        the steady state of a signal that was constant before the record.
+        """
         if not self.anti_alias:
             return np.asarray(values, dtype=float)
         sos = self.filter_sos()
-        initial = scipy.signal.sosfilt_zi(sos) * values[0]
+        start = values[0] if initial_value is None else initial_value
+        initial = scipy.signal.sosfilt_zi(sos) * start
         filtered, _ = scipy.signal.sosfilt(sos, values, zi=initial)
         return filtered
 
@@ -576,13 +581,16 @@ def _digitize(fine: np.ndarray, digitizer: Digitizer, full_scale: float, rng,
               sensor_noise: float, sensor_range: float | None):
     """Sensor noise, sensor range, filter, sampling, ADC. Returns (samples, clipped)."""
     values = fine.copy()
+    # the signal was steady before the record: start the filter on its noise-free value
+    initial_value = float(fine[0]) if sensor_range is None else float(
+        np.clip(fine[0], -sensor_range, sensor_range))
     if sensor_noise > 0.0:
         values += rng.standard_normal(values.size) * (sensor_noise / digitizer.noise_gain())
     clipped_fine = np.zeros(values.size, dtype=bool)
     if sensor_range is not None:
         clipped_fine = np.abs(values) >= sensor_range
         values = np.clip(values, -sensor_range, sensor_range)
-    values = digitizer.apply_filter(values)
+    values = digitizer.apply_filter(values, initial_value)
     step = digitizer.oversample
     samples = values[::step].copy()
     clipped = clipped_fine[::step].copy()

@@ -253,15 +253,14 @@ def calibrate_from_free_rocking(block: Block, cor: float, sensors: Sensors,
     ``theory.free_rocking_duration`` seconds; :func:`shaketable.calibrate.calibrate`
     fits the record.
     """
-    from .calibrate import calibrate
+    from .calibrate import calibrate, virtual_free_rocking_record
 
-    release = theory.release * block.alpha
-    free = simulate(block, None, cor=cor, theta0=release, duration=theory.free_rocking_duration,
-                    top_force=sensors.top_force(block))
-    record = measure(free, block, free.motion, sensors)
-    if record.theta is None:
+    if sensors.potentiometers is None:
         raise ValueError("calibrating the COR needs potentiometers in [sensors]")
-    return calibrate(record.t, record.top_displacement, block=block, kind="top displacement")
+    record, _ = virtual_free_rocking_record(block, cor, theory.release * block.alpha,
+                                            sensors=sensors,
+                                            duration=theory.free_rocking_duration)
+    return calibrate(record, block, anti_alias=sensors.digitizer)
 
 
 # --------------------------------------------------------------------------- scene sections

@@ -21,8 +21,8 @@ flight to one of three steppers:
     Housner's slender-block linearisation, Eq. (2-4) extended to ground motion
     and rods: theta'' = mu theta + c0 + c1 tau, solved in closed form on each
     interval (cosh/sinh, or cos/sin when stiff rods make mu negative). The
-    vertical acceleration is held at its mid-interval value so that the closed
-    form exists.
+    vertical acceleration is held at its value at the middle of each step so
+    that the closed form exists.
 
 During one flight (between two impacts) the block pivots on one corner,
 ``side``; the steppers integrate that corner's equation, which is analytic in
@@ -231,7 +231,11 @@ def _closed_form(t, theta, omega, side, h, segment, parameters):
     s = side
     arm_1 = parameters[ROD_ARM_1]
     arm_2 = parameters[ROD_ARM_2]
-    vertical = v0 + 0.5 * dv  # held at mid-interval
+    # held at its value at the middle of the step (not of the input interval): as
+    # h -> 0 the closed form's theta'' tends to the model's at t, so a start of
+    # rocking found with v(t) never turns into an impact at zero elapsed time
+    # (which looped forever when v changed fast near -g)
+    vertical = v0 + dv * ((t - segment[0]) + 0.5 * h) / span
     mu = q * (G + vertical) - parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) / inertia
     ug_here, _, rg_here = _ground(segment, t)
     c0 = (q * ug_here - q * (G + vertical) * s * parameters[ALPHA]

@@ -5,7 +5,9 @@ integrator, different root finder: SciPy's ``solve_ivp`` events and Brent's
 method) used as the yardstick for the other methods and in the tests. It shares
 only the physics (:mod:`shaketable.dynamics`) and the event rules.
 
-It integrates each input interval separately (the ground acceleration is linear
+It integrates each input interval separately, one corner's equation
+continued smoothly past theta = 0 during a flight (like the engine; the
+impact is where that solution reaches zero), (the ground acceleration is linear
 inside one, so the right-hand side is smooth) with ``rtol`` and an absolute
 tolerance scaled by alpha, and is slow: one ``solve_ivp`` call per interval.
 """
@@ -19,12 +21,16 @@ from scipy.integrate import solve_ivp
 
 from ..constants import G
 from ..dynamics import HOLD_DOWN, angular_acceleration, cascade_rest_time
-from .engine import (INFO_CASCADES, INFO_EVALUATIONS, INFO_MAX_ABS_THETA, INFO_N_IMPACTS,
+from .engine import (INFO_CASCADES, flight_acceleration, INFO_EVALUATIONS, INFO_MAX_ABS_THETA, INFO_N_IMPACTS,
                      INFO_N_OUTPUT, INFO_OVERTURN_DIRECTION, INFO_REJECTED, INFO_STATUS,
                      INFO_STEPS, INFO_T_AIRBORNE, INFO_T_END, INFO_T_MAX, INFO_T_OVERTURN,
                      INFO_T_REST, INFO_T_START, INFO_T_UNSTABLE, INFO_THETA_AT_MAX,
                      INFO_THETA_DOT_END, INFO_THETA_END, INFO_UNSTABLE_DIRECTION, N_INFO,
                      STATUS_AIRBORNE, STATUS_COMPLETED, STATUS_OVERTURNED)
+
+
+class ReferenceSolverError(RuntimeError):
+    """SciPy's integrator gave up (step size below the spacing of floating-point numbers)."""
 
 
 def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, omega0, rtol,
@@ -105,7 +111,10 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
             from_zero = theta == 0.0
 
             def rhs(time, y):
-                return [y[1], angular_acceleration(y[0], active_side, *ground(time), parameters)]
+                # the active corner's equation continued past theta = 0 (smooth), as in
+                # the engine: Eq. 2-13's switch of corner there is a jump in theta''
+                # that made DOP853 give up at the impact
+                return [y[1], flight_acceleration(y[0], active_side, *ground(time), parameters)]
 
             def impact(time, y):
                 if from_zero:
@@ -129,6 +138,10 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
             solution = solve_ivp(rhs, (t, t_end), [theta, omega], method="DOP853", rtol=rtol,
                                  atol=atol, events=[impact, overturn, peak, unstable],
                                  first_step=None)
+            if solution.status == -1:
+                raise ReferenceSolverError(
+                    f"reference solver (DOP853, rtol {rtol:g}) failed at t = {solution.t[-1]!r} s "
+                    f"(theta = {solution.y[0, -1]!r} rad): {solution.message}")
             counts["steps"] += len(solution.t) - 1
             counts["evaluations"] += solution.nfev
             for time, y in zip(solution.t_events[2], solution.y_events[2]):

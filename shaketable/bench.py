@@ -1,0 +1,757 @@
+"""Benchmarks of the solvers: accuracy against run time (work-precision).
+
+Nothing here is a pass/fail test; the functions measure and return tables
+(pandas) that :mod:`shaketable.commands.bench` and ``benchmarks/`` write out.
+
+* :func:`benchmark_cases` -- the cases: the report's free rocking (Fig. 3.4),
+  harmonic (Figs. 3.7, 3.8) and Pacoima Dam (Fig. 4.1) runs and the extreme
+  cases (tiny and huge, slender and stocky blocks, 50 Hz input, a 100 s record
+  at 200 Hz, stiff prestress rods, shaking at 1.0001 and 0.9999 times Eq. (2-1),
+  COR 0 and 1, the decaying cascade of impacts, vertical acceleration reaching
+  -g).
+* :func:`work_precision` -- every method at several settings against a
+  ``reference`` run at the tightest tolerance: the error in max |theta| and in
+  the event times, and the median run time.
+* :func:`convergence_orders` -- slope of log error against log step per method.
+* :func:`accuracy_table` -- ``fast`` at its default against ``reference`` at its
+  default (the acceptance check: 1e-8 relative).
+* :func:`pacoima_timing`, :func:`first_call_seconds`, :func:`batch_throughput`
+  -- the speed figures.
+* :func:`results_markdown` -- the Markdown snippet (``benchmarks/RESULTS.md``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .constants import G
+from .geometry import Block, PrestressRods
+from .motion import Motion
+from .simulate import simulate
+
+#: Relative accuracy the fast engine must reach against ``reference`` (times, max |theta|).
+ACCEPT_RELATIVE = 1e-8
+#: Absolute accuracy of max |theta| [rad] for tiny responses.
+ACCEPT_ABSOLUTE_THETA = 1e-10
+#: Impacts compared: those before this time [s].
+IMPACT_WINDOW = 20.0
+
+#: Settings of each method in the work-precision study.
+FAST_RTOLS = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 5e-12, 1e-12, 1e-13)
+PC_SUBDIVISIONS = (1, 2, 4, 8, 16, 32, 64)
+REFERENCE_RTOLS = (1e-8, 1e-10, 1e-12)
+#: Fewer settings for ``--quick`` iterations.
+QUICK_FAST_RTOLS = (1e-6, 1e-8, 1e-10, 1e-12)
+QUICK_PC_SUBDIVISIONS = (1, 4, 16, 64)
+QUICK_REFERENCE_RTOLS = (1e-8, 1e-12)
+#: The truth: ``reference`` at the tightest tolerance SciPy accepts (100 eps).
+TRUTH_RTOL = 2.5e-14
+#: Default tolerance of ``method="reference"`` (:func:`shaketable.simulate`) [-].
+REFERENCE_DEFAULT_RTOL = 1e-12
+
+
+@dataclass(frozen=True)
+class Case:
+    """One benchmark run: block, motion (None: free rocking) and the rocking options."""
+
+    name: str
+    description: str
+    block: Block
+    motion: Motion | None
+    cor: float
+    theta0: float = 0.0
+    duration: float | None = None
+    options: dict = field(default_factory=dict)
+    extreme: bool = False
+    #: ``reference`` tolerances of the study for this case (None: all of them); a
+    #: long record skips the intermediate ones, each a minute of SciPy.
+    reference_rtols: tuple | None = None
+
+    def run(self, method="fast", **options):
+        """``simulate`` this case with ``method`` and extra options (rtol, subdivisions...)."""
+        return simulate(self.block, self.motion, cor=self.cor, theta0=self.theta0,
+                        duration=self.duration, method=method, **{**self.options, **options})
+
+    @property
+    def intervals(self) -> int:
+        """Number of input intervals (sample steps) of the run."""
+        if self.motion is None:
+            return int(math.ceil(self.duration / 0.005 - 1e-9))
+        n = self.motion.t.size - 1
+        if self.duration is not None:
+            n = int(round(self.duration / self.motion.dt))
+        return n
+
+
+# --------------------------------------------------------------------------- motions
+def _harmonic(frequency, horizontal_g, vertical_g=0.0, duration=10.0, dt=0.01):
+    from .motions import harmonic
+
+    return harmonic(frequency, horizontal_g, vertical_g, duration=duration, dt=dt)
+
+
+def threshold_harmonic(block: Block, factor: float, frequency: float = 2.0,
+                       duration: float = 2.0, dt: float = 0.005) -> Motion:
+    """Sine of amplitude ``factor`` times Eq. (2-1)'s level, a sample on every crest.
+
+    The amplitude is ``factor * (B/H) g`` (plus the rods' prestress), so the
+    block rocks only if ``factor > 1``; ``dt`` must divide a quarter period so
+    that the crest is sampled (the motion is linear between samples).
+    """
+    level = factor * block.rocking_threshold()
+    t = np.arange(0.0, duration + dt / 2, dt)
+    quarter = 1.0 / (4.0 * frequency)
+    crest = np.isclose(np.mod(t - quarter, 2 * quarter), 0.0, atol=1e-9)
+    values = np.sin(2 * np.pi * frequency * t)
+    values[crest] = np.sign(values[crest])  # exactly +-1 on the crests
+    return Motion(t, level * values, None,
+                  name=f"{frequency:g} Hz at {factor:g} x Eq. (2-1)")
+
+
+def vertical_to_minus_g(duration: float = 2.0, dt: float = 0.01, t_airborne: float = 1.37,
+                        horizontal_g: float = 0.3, frequency: float = 2.0) -> Motion:
+    """Horizontal sine and a vertical ramp that reaches -g at ``t_airborne`` [s]."""
+    t = np.arange(0.0, duration + dt / 2, dt)
+    vertical = -G * t / t_airborne
+    return Motion(t, horizontal_g * G * np.sin(2 * np.pi * frequency * t), vertical,
+                  name=f"vertical reaching -g at {t_airborne:g} s")
+
+
+def long_record(duration: float = 100.0, dt: float = 0.005, seed: int = 1,
+                pga_g: float = 0.3) -> Motion:
+    """A 100 s artificial record (A-1 substitute, PGA ``pga_g`` [g]) sampled at 200 Hz.
+
+    At 0.3 g (1.2 times Eq. (2-1) for 16 x 4 ft) the block rocks in short
+    episodes that end in a summed cascade, so the run is well conditioned.
+    At 0.5 g the same block rocks for tens of seconds and the rocking is
+    chaotic: two runs differing by 1e-12 drift apart like e^(0.5 t), and no
+    solver (not the reference at rtol 1e-12 against 2.5e-14 either) agrees to
+    1e-8 past about 20 s.
+    """
+    from .motions import artificial
+
+    return artificial("A-1", seed=seed, duration=duration, dt=dt, pga_g=pga_g)
+
+
+# --------------------------------------------------------------------------- cases
+def benchmark_cases(extreme: bool = True, quick: bool = False, names=None) -> list[Case]:
+    """The benchmark cases: the report's runs, then (``extreme``) the extreme ones.
+
+    Parameters
+    ----------
+    extreme : bool
+        Include the extreme cases of issue 3.
+    quick : bool
+        Shorten the long record to 20 s (for iterations).
+    names : list of str, optional
+        Keep only these cases; an unknown name raises ``ValueError`` listing
+        the known ones.
+    """
+    long_duration = 20.0 if quick else 100.0
+    from . import records
+
+    block_30x6 = Block.parse("30x6in")
+    pacoima = records.load("pacoima-dam-s16e")
+    cases = [
+        Case("free-rocking", "Fig. 3.4: 30 x 6 in, COR 0.925, released at 0.5 alpha, 8 s",
+             block_30x6, None, 0.925, theta0=0.5 * block_30x6.alpha, duration=8.0),
+        Case("harmonic-2hz-0.5g", "Fig. 3.7: 30 x 6 in, COR 0.925, 2 Hz 0.5 g (overturns)",
+             block_30x6, _harmonic(2.0, 0.5), 0.925),
+        Case("harmonic-2hz-vertical", "Fig. 3.8: 30 x 6 in, COR 0.925, 2 Hz 0.38 g H + 0.33 g V",
+             block_30x6, _harmonic(2.0, 0.38, 0.33), 0.925),
+        Case("pacoima-16x4ft", "Fig. 4.1: 16 x 4 ft, COR 1.0, Pacoima Dam S16E + vertical",
+             Block.parse("16x4ft"), pacoima, 1.0),
+    ]
+    if not extreme:
+        return _select(cases, names)
+    tiny = Block.parse("3x1cm")
+    slender = Block.from_slenderness(R=1.0, alpha=0.02)
+    stocky = Block.parse("1x1m")
+    rods = Block.parse("8x2ft", rods=PrestressRods.from_inches(40, 0.4, 12))
+    cases += [
+        Case("tiny-3x1cm", f"3 x 1 cm block (p = {tiny.p:.1f} rad/s), COR 0.9, 5 Hz 0.5 g, 3 s",
+             tiny, _harmonic(5.0, 0.5, duration=3.0, dt=0.002), 0.9, extreme=True),
+        Case("huge-20x5m", "20 x 5 m block, COR 0.95, Pacoima Dam S16E + vertical",
+             Block.parse("20x5m"), pacoima, 0.95, extreme=True),
+        Case("slender-alpha-0.02", "alpha = 0.02 rad, R = 1 m, COR 0.95, 1 Hz 0.03 g, 10 s",
+             slender, _harmonic(1.0, 0.03, duration=10.0), 0.95, extreme=True),
+        Case("stocky-1x1m", "H/B = 1 (1 x 1 m), COR 0.9, 3 Hz 1.5 g, 5 s",
+             stocky, _harmonic(3.0, 1.5, duration=5.0), 0.9, extreme=True),
+        Case("50hz-5g", "30 x 6 in, COR 0.925, 50 Hz 5 g at 1 kHz, 2 s",
+             block_30x6, _harmonic(50.0, 5.0, duration=2.0, dt=0.001), 0.925, extreme=True),
+        Case("long-100s-200hz", "16 x 4 ft, COR 0.95, 100 s A-1 substitute (0.3 g) at 200 Hz",
+             Block.parse("16x4ft"), long_record(duration=long_duration), 0.95, extreme=True,
+             reference_rtols=(REFERENCE_DEFAULT_RTOL,)),
+        Case("stiff-rods", "8 x 2 ft, rods K = 40 W/in, F0 = 0.4 W at mid-width, COR 0.95, "
+             "Pacoima Dam S16E + vertical, 15 s",
+             rods, pacoima, 0.95, duration=15.0, extreme=True),
+        Case("threshold-1.0001", "30 x 6 in, COR 0.925, 2 Hz at 1.0001 x Eq. (2-1)",
+             block_30x6, threshold_harmonic(block_30x6, 1.0001), 0.925, extreme=True),
+        Case("threshold-0.9999", "30 x 6 in, COR 0.925, 2 Hz at 0.9999 x Eq. (2-1)",
+             block_30x6, threshold_harmonic(block_30x6, 0.9999), 0.925, extreme=True),
+        Case("cor-0", "30 x 6 in, COR 0, 2 Hz 0.4 g, 4 s",
+             block_30x6, _harmonic(2.0, 0.4, duration=4.0), 0.0, extreme=True),
+        Case("cor-1", "30 x 6 in, COR 1, released at 0.6 alpha, 20 s",
+             block_30x6, None, 1.0, theta0=0.6 * block_30x6.alpha, duration=20.0, extreme=True),
+        Case("cascade", "36 x 9 in, COR 0.7, released at 0.9 alpha: the decaying cascade, 4 s",
+             Block.parse("36x9in"), None, 0.7, theta0=0.9 * Block.parse("36x9in").alpha,
+             duration=4.0, extreme=True),
+        Case("vertical-to-minus-g", "30 x 6 in, COR 0.925, 2 Hz 0.3 g, vertical ramp to -g "
+             "at 1.37 s", block_30x6, vertical_to_minus_g(), 0.925, extreme=True),
+    ]
+    return _select(cases, names)
+
+
+def _select(cases, names):
+    if names is None:
+        return cases
+    known = {case.name: case for case in cases}
+    unknown = [name for name in names if name not in known]
+    if unknown:
+        raise ValueError(f"unknown benchmark case(s) {unknown}; known: {sorted(known)}")
+    return [known[name] for name in names]
+
+
+# --------------------------------------------------------------------------- comparisons
+def _events(result, window=IMPACT_WINDOW):
+    times = result.impact_times[result.impact_times < window]
+    return times
+
+
+def compare(result, truth, window: float = IMPACT_WINDOW) -> dict:
+    """Errors of ``result`` against ``truth`` (two RockingResults of one case).
+
+    Returns the relative error of max |theta| (and the absolute one [rad]), the
+    largest relative error of the event times (impacts before 20 s, start,
+    unstable, overturn and airborne times, and the last rest time when it is
+    before 20 s in both), whether the number of impacts before 20 s and the
+    overturn verdict agree. A time present in one run and not in the other
+    counts as an infinite error.
+    """
+    theta_abs = abs(result.max_abs_theta - truth.max_abs_theta)
+    theta_rel = theta_abs / truth.max_abs_theta if truth.max_abs_theta > 0 else theta_abs
+    errors = []
+    a, b = _events(result, window), _events(truth, window)
+    n = min(a.size, b.size)
+    if n:
+        errors.append(np.max(np.abs(a[:n] - b[:n]) / np.abs(b[:n])))
+    for name in ("t_start", "t_unstable", "t_overturn", "t_rest", "t_airborne"):
+        x, y = getattr(result, name), getattr(truth, name)
+        if name == "t_rest" and not (x < window and y < window):
+            continue  # the last rest time: compared only inside the window, like impacts
+        if np.isfinite(x) and np.isfinite(y) and y != 0:
+            errors.append(abs(x - y) / abs(y))
+        elif np.isfinite(x) != np.isfinite(y):
+            errors.append(math.inf)
+    return {
+        "error max_theta [-]": theta_rel,
+        "error max_theta [rad]": theta_abs,
+        "error events [-]": max(errors) if errors else 0.0,
+        "impacts": int(a.size), "impacts truth": int(b.size),
+        "same impacts": bool(a.size == b.size),
+        "same verdict": bool(result.overturned == truth.overturned),
+    }
+
+
+def _timed(case, method, repeats, **options):
+    """Run ``case`` ``repeats`` times; the result and the median wall time [s].
+
+    The compiled methods get one untimed call first (numba compilation or cache
+    load); ``reference`` has nothing to warm up and is too slow to run twice.
+    """
+    if method != "reference":
+        case.run(method, **options)
+    times = []
+    result = None
+    for _ in range(max(1, repeats)):
+        start = time.perf_counter()
+        result = case.run(method, **options)
+        times.append(time.perf_counter() - start)
+    return result, float(np.median(times))
+
+
+def method_settings(fast_rtols=FAST_RTOLS, subdivisions=PC_SUBDIVISIONS,
+                    reference_rtols=REFERENCE_RTOLS, quick: bool = False
+                    ) -> list[tuple[str, str, dict]]:
+    """(method, label, options) of the work-precision study.
+
+    ``quick=True`` takes :data:`QUICK_FAST_RTOLS`, :data:`QUICK_PC_SUBDIVISIONS`
+    and :data:`QUICK_REFERENCE_RTOLS` instead of the defaults.
+    """
+    if quick:
+        fast_rtols, subdivisions, reference_rtols = (QUICK_FAST_RTOLS, QUICK_PC_SUBDIVISIONS,
+                                                     QUICK_REFERENCE_RTOLS)
+    settings = [("fast", f"rtol={r:g}", {"rtol": r}) for r in fast_rtols]
+    settings += [("predictor-corrector", f"subdivisions={s}", {"subdivisions": s})
+                 for s in subdivisions]
+    settings += [("linear", "closed form", {})]
+    settings += [("reference", f"rtol={r:g}", {"rtol": r}) for r in reference_rtols]
+    return settings
+
+
+#: Truth tolerances tried in turn when SciPy fails at the tighter one.
+TRUTH_FALLBACK_RTOLS = (TRUTH_RTOL, 1e-13, REFERENCE_DEFAULT_RTOL)
+
+
+class ReferenceStepFailure(RuntimeError):
+    """SciPy's DOP853 gave up inside an interval (``solve_ivp`` status -1)."""
+
+
+class _GuardedSolveIvp:
+    """Stand-in for ``solve_ivp`` in :mod:`shaketable.solvers.reference` that raises on status -1.
+
+    The reference solver does not check ``solution.status``; when DOP853 stops
+    with "Required step size is less than spacing between numbers" (seen at
+    rtol 2.5e-14 on a flight that starts at theta ~ 1e-16 beside the switch
+    of corner at theta = 0) it restarts the same interval forever. Here the
+    failure becomes an exception, so that the study can fall back to a looser
+    truth instead of hanging.
+    """
+
+    def __init__(self, solve_ivp):
+        self.solve_ivp = solve_ivp
+
+    def __call__(self, *args, **kwargs):
+        solution = self.solve_ivp(*args, **kwargs)
+        if solution.status == -1:
+            raise ReferenceStepFailure(f"DOP853 failed on {args[1]}: {solution.message}")
+        return solution
+
+
+def _run_reference_guarded(case, rtol):
+    from .solvers import reference as module
+
+    original = module.solve_ivp
+    module.solve_ivp = _GuardedSolveIvp(original)
+    try:
+        return case.run("reference", rtol=rtol)
+    finally:
+        module.solve_ivp = original
+
+
+def truth_run(case, cache: dict | None = None):
+    """The truth for ``case``: ``reference`` at :data:`TRUTH_RTOL` (memoised in ``cache``).
+
+    If SciPy fails at that tolerance (:class:`ReferenceStepFailure`), the next
+    of :data:`TRUTH_FALLBACK_RTOLS` is used; the tolerance used is stored in
+    the result's ``statistics["truth rtol"]``.
+    """
+    if cache is not None and (case.name, "truth") in cache:
+        return cache[(case.name, "truth")]
+    failure = None
+    for rtol in TRUTH_FALLBACK_RTOLS:
+        try:
+            result = reference_run(case, rtol, cache)
+        except ReferenceStepFailure as error:
+            failure = error
+            continue
+        result.statistics["truth rtol"] = rtol
+        if cache is not None:
+            cache[(case.name, "truth")] = result
+        return result
+    raise failure
+
+
+def reference_run(case, rtol: float, cache: dict | None = None):
+    """``reference`` at ``rtol`` for ``case``, memoised in ``cache`` by (case name, rtol).
+
+    Raises :class:`ReferenceStepFailure` where SciPy gives up (instead of the
+    reference solver's endless retry).
+    """
+    key = (case.name, float(rtol))
+    if cache is not None and key in cache:
+        return cache[key]
+    result = _run_reference_guarded(case, rtol)
+    if cache is not None:
+        cache[key] = result
+    return result
+
+
+def work_precision(cases=None, settings=None, repeats: int = 5, reference_repeats: int = 1,
+                   progress=None, cache: dict | None = None):
+    """Error against run time, one row per (case, method, setting).
+
+    Parameters
+    ----------
+    cases : list of Case, optional
+        Default :func:`benchmark_cases`.
+    settings : list, optional
+        Default :func:`method_settings`.
+    repeats : int
+        Timed repetitions of the compiled methods (median reported) [-].
+    reference_repeats : int
+        Timed repetitions of the slow ``reference`` method [-].
+    progress : callable, optional
+        Called with a message before each case.
+    cache : dict, optional
+        Memo of ``reference`` runs by (case name, rtol), filled here and reused
+        by :func:`accuracy_table` (each SciPy run of a long record is slow).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns: case, method, setting, rtol, subdivisions, time [s], the
+        errors of :func:`compare`, steps, rejected, evaluations, mean step [s]
+        (flight time over accepted steps), status, status truth.
+    """
+    import pandas as pd
+
+    cases = benchmark_cases() if cases is None else cases
+    settings = method_settings() if settings is None else settings
+    rows = []
+    for case in cases:
+        if progress:
+            progress(case.name)
+        truth = truth_run(case, cache)
+        for method, label, options in settings:
+            if (method == "reference" and case.reference_rtols is not None
+                    and options.get("rtol") not in case.reference_rtols):
+                continue
+            if method == "reference" and reference_repeats <= 1:
+                start = time.perf_counter()
+                try:
+                    result = reference_run(case, options["rtol"], None)
+                except ReferenceStepFailure:
+                    continue  # SciPy gave up at this tolerance: no point on the figure
+                seconds = time.perf_counter() - start
+                if cache is not None:
+                    cache.setdefault((case.name, float(options["rtol"])), result)
+            else:
+                count = reference_repeats if method == "reference" else repeats
+                result, seconds = _timed(case, method, count, **options)
+            row = {"case": case.name, "method": method, "setting": label,
+                   "rtol": options.get("rtol", math.nan),
+                   "subdivisions": options.get("subdivisions", math.nan),
+                   "time [s]": seconds, **compare(result, truth),
+                   "steps": result.statistics.get("steps", 0),
+                   "rejected": result.statistics.get("rejected", 0),
+                   "evaluations": result.statistics.get("evaluations", 0),
+                   "status": result.status, "status truth": truth.status,
+                   "truth rtol": truth.statistics["truth rtol"]}
+            row["mean step [s]"] = _mean_step(case, result, method, options)
+            rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _mean_step(case, result, method, options) -> float:
+    """Mean step of a run [s]: the fixed substep, or time in flight over accepted steps."""
+    dt = 0.005 if case.motion is None else case.motion.dt
+    if method == "predictor-corrector":
+        return dt / options.get("subdivisions", 4)
+    if method == "linear":
+        return dt
+    steps = result.statistics.get("steps", 0)
+    if not steps:
+        return math.nan
+    flying = _time_in_flight(result)
+    return flying / steps if flying > 0 else math.nan
+
+
+def _time_in_flight(result) -> float:
+    """Time the block was not at rest [s] (from the sampled history; rest is theta = omega = 0)."""
+    t = result.t
+    moving = (result.theta != 0.0) | (result.theta_dot != 0.0)
+    inside = moving[:-1] | moving[1:]
+    return float(np.sum(np.diff(t)[inside]))
+
+
+def convergence_orders(frame):
+    """Measured order of convergence per (case, method): slope of log error vs log step.
+
+    Least-squares slope of log10(error) against log10(mean step) over the
+    settings whose errors lie in [1e-13, 1e-2] (outside, the truth's own error
+    or a changed sequence of events dominates) and whose impact count and
+    verdict agree with the truth. Separate columns for max |theta| and for the
+    event times.
+    """
+    import pandas as pd
+
+    rows = []
+    for (case, method), group in frame.groupby(["case", "method"], sort=False):
+        if method == "linear":
+            continue
+        row = {"case": case, "method": method}
+        for column, key in (("error max_theta [-]", "order max_theta"),
+                            ("error events [-]", "order events")):
+            ok = group[group["same impacts"] & group["same verdict"]]
+            x = np.log10(ok["mean step [s]"].to_numpy(dtype=float))
+            y = ok[column].to_numpy(dtype=float)
+            keep = np.isfinite(x) & (y >= 1e-13) & (y <= 1e-2)
+            # a slope needs 3 distinct steps spanning 0.3 decades at least: fast's steps
+            # end on every input sample, so at loose tolerances the sample interval, not
+            # rtol, sets them and the points pile up at one step size
+            spread = np.ptp(x[keep]) if keep.any() else 0.0
+            row[key] = (float(np.polyfit(x[keep], np.log10(y[keep]), 1)[0])
+                        if np.unique(x[keep]).size >= 3 and spread >= 0.3 else math.nan)
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def accuracy_table(cases=None, progress=None, cache: dict | None = None):
+    """``fast`` at its default against ``reference`` at its default, per case.
+
+    Parameters
+    ----------
+    cases : list of Case, optional
+        Default :func:`benchmark_cases`.
+    progress : callable, optional
+        Called with each case's name.
+    cache : dict, optional
+        ``reference`` runs by (case name, rtol), as filled by
+        :func:`work_precision`; the truth (:data:`TRUTH_RTOL`) is taken from it
+        when present, otherwise not computed.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The errors of :func:`compare` (fast against reference), whether they
+        meet 1e-8 relative (1e-10 rad for max |theta| of tiny responses) with
+        the same verdict and impact count, max theta/alpha, the statuses and,
+        when the truth is known, the reference's own errors against it
+        ("reference error ... vs truth"): where those are as large as fast's,
+        the case itself is ill-conditioned (chaotic rocking), not the engine.
+    """
+    import pandas as pd
+
+    cases = benchmark_cases() if cases is None else cases
+    rows = []
+    for case in cases:
+        if progress:
+            progress(case.name)
+        fast = case.run("fast")
+        try:
+            reference = reference_run(case, REFERENCE_DEFAULT_RTOL, cache)
+        except ReferenceStepFailure as error:
+            rows.append({"case": case.name, "status": fast.status, "meets 1e-8": False,
+                         "status reference": f"failed: {error}"})
+            continue
+        row = {"case": case.name, "max theta/alpha": fast.max_theta_ratio,
+               "status": fast.status, "status reference": reference.status,
+               **compare(fast, reference)}
+        row["meets 1e-8"] = bool(
+            (row["error max_theta [-]"] <= ACCEPT_RELATIVE
+             or row["error max_theta [rad]"] <= ACCEPT_ABSOLUTE_THETA)
+            and row["error events [-]"] <= ACCEPT_RELATIVE
+            and row["same verdict"] and row["same impacts"])
+        truth = None if cache is None else cache.get((case.name, "truth"))
+        if truth is not None:
+            own = compare(reference, truth)
+            row["reference error max_theta vs truth [-]"] = own["error max_theta [-]"]
+            row["reference error events vs truth [-]"] = own["error events [-]"]
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+# --------------------------------------------------------------------------- speed
+def pacoima_timing(repeats: int = 200, reference_repeats: int = 3, cor: float = 0.95) -> dict:
+    """Pacoima Dam S16E with its vertical, 16 x 4 ft block: fast (warm) and reference times.
+
+    Returns the median and best fast time per run [ms], the median reference
+    time [s] measured in the same process, the speed-up and the run's status.
+    """
+    from . import records
+
+    block = Block.parse("16x4ft")
+    motion = records.load("pacoima-dam-s16e")
+    fast = simulate(block, motion, cor=cor)  # warm
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fast = simulate(block, motion, cor=cor)
+        times.append(time.perf_counter() - start)
+    reference_times = []
+    for _ in range(max(1, reference_repeats)):
+        start = time.perf_counter()
+        reference = simulate(block, motion, cor=cor, method="reference")
+        reference_times.append(time.perf_counter() - start)
+    median = float(np.median(times))
+    reference_median = float(np.median(reference_times))
+    return {"fast median [ms]": 1e3 * median, "fast best [ms]": 1e3 * float(np.min(times)),
+            "reference median [s]": reference_median, "speed-up [-]": reference_median / median,
+            "status": fast.status, "t_end [s]": float(fast.t[-1]),
+            "steps": fast.statistics["steps"], "rejected": fast.statistics["rejected"],
+            "evaluations": fast.statistics["evaluations"],
+            "same as reference": compare(fast, reference)}
+
+
+_FIRST_CALL = """
+import time
+start = time.perf_counter()
+import shaketable as st
+from shaketable import records
+imported = time.perf_counter()
+block = st.Block.parse("16x4ft")
+motion = records.load("pacoima-dam-s16e")
+loaded = time.perf_counter()
+st.simulate(block, motion, cor=0.95)
+first = time.perf_counter()
+st.simulate(block, motion, cor=0.95)
+second = time.perf_counter()
+print(imported - start, first - loaded, second - first)
+"""
+
+
+def first_call_seconds(cold: bool = False) -> dict:
+    """A fresh Python process: import time and first ``simulate`` call [s].
+
+    ``cold=False`` uses numba's on-disk cache (the usual case after the first
+    run on a machine); ``cold=True`` points ``NUMBA_CACHE_DIR`` at an empty
+    folder, so the engine is compiled from scratch.
+    """
+    env = dict(os.environ)
+    with tempfile.TemporaryDirectory() as folder:
+        if cold:
+            env["NUMBA_CACHE_DIR"] = folder
+        output = subprocess.run([sys.executable, "-c", _FIRST_CALL], capture_output=True,
+                                text=True, env=env, check=True).stdout.split()
+    imported, first, second = (float(x) for x in output[-3:])
+    return {"import [s]": imported, "first call [s]": first, "second call [s]": second}
+
+
+def batch_throughput(threads: int = 2, n_cors: int = 8, repeats: int = 3) -> dict:
+    """Runs per second of :func:`shaketable.batch.simulate_many` on ``threads`` threads.
+
+    The sweep: Table 4.2's nine block sizes x the two Pacoima Dam records x
+    ``n_cors`` values of COR in [0.7, 1.0], fast method.
+
+    Returns
+    -------
+    dict
+        runs, threads, median seconds per sweep, runs/s with ``threads``
+        threads, with one thread and for a Python loop over
+        :func:`shaketable.simulate`, and the number overturned; or, when
+        :mod:`shaketable.batch` is not installed yet, ``{"skipped": reason}``.
+    """
+    from . import records
+
+    try:
+        from .batch import simulate_many
+    except ImportError as error:
+        return {"skipped": f"shaketable.batch.simulate_many is not available ({error})"}
+
+    blocks = [Block.from_feet(h, w) for h, w in
+              ((2, 1), (3, 1), (4, 1), (5, 1), (4, 2), (6, 2), (8, 2), (6, 3), (9, 3))]
+    motions = [records.load("pacoima-dam-s16e"), records.load("pacoima-dam-s74w")]
+    cors = list(np.linspace(0.7, 1.0, n_cors))
+    runs = len(blocks) * len(motions) * len(cors)
+    simulate_many(blocks[:1], motions[:1], cors[:1], threads=threads)  # compile / load
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        frame = simulate_many(blocks, motions, cors, threads=threads)
+        times.append(time.perf_counter() - start)
+    serial = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        simulate_many(blocks, motions, cors, threads=1)
+        serial.append(time.perf_counter() - start)
+    loop = time.perf_counter()
+    for block in blocks:
+        for motion in motions:
+            for cor in cors:
+                simulate(block, motion, cor=cor)
+    loop = time.perf_counter() - loop
+    best = float(np.median(times))
+    return {"runs": runs, "threads": threads, "seconds": best, "runs/s": runs / best,
+            "runs/s 1 thread": runs / float(np.median(serial)),
+            "runs/s simulate loop": runs / loop,
+            "overturned": int(frame["overturned"].sum())}
+
+
+# --------------------------------------------------------------------------- report
+def _fmt(value, digits=2):
+    if isinstance(value, (bool, np.bool_)):
+        return "yes" if value else "no"
+    if isinstance(value, (int, np.integer)):
+        return str(value)
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "–" if value is None or math.isnan(value) else "inf"
+    if value == 0:
+        return "0"
+    if abs(value) < 1e-3 or abs(value) >= 1e5:
+        return f"{value:.{digits}e}"
+    return f"{value:.{digits + 2}g}"
+
+
+def markdown_table(frame, columns=None) -> str:
+    """A pandas frame as a GitHub Markdown table (numbers in short scientific form)."""
+    columns = list(frame.columns) if columns is None else columns
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    for _, row in frame[columns].iterrows():
+        lines.append("| " + " | ".join(_fmt(row[c]) if not isinstance(row[c], str) else row[c]
+                                       for c in columns) + " |")
+    return "\n".join(lines)
+
+
+def results_markdown(accuracy=None, orders=None, frame=None, pacoima=None, first_call=None,
+                     batch=None, figure: str = "docs/figures/work_precision.png",
+                     command: str = "python3 benchmarks/work_precision.py") -> str:
+    """The README-ready Markdown of the benchmark results.
+
+    Every argument is optional; the sections present are written: the figure
+    path, the work-precision summary (best fast and predictor-corrector
+    settings per case), the acceptance table (:func:`accuracy_table`), the
+    measured orders (:func:`convergence_orders`), the Pacoima Dam speed
+    (:func:`pacoima_timing`), the first-call times (:func:`first_call_seconds`)
+    and the batch throughput (:func:`batch_throughput`).
+    """
+    lines = ["# Benchmarks: accuracy against run time", "",
+             f"Made by `{command}` (shaketable.bench); machine: {os.cpu_count()} cores "
+             "shared with other work, so times are indicative.", ""]
+    if figure:
+        lines += ["## Work-precision figure", "", f"![work-precision]({figure})", "",
+                  "Error against `reference` at rtol 2.5e-14 (the truth) versus median run "
+                  "time, one panel per case. Solid: relative error of max |theta|; dashed: "
+                  "largest relative error of the event times (impacts before 20 s, start, "
+                  "unstable, overturn, airborne).", ""]
+    if pacoima is not None:
+        lines += ["## Speed: Pacoima Dam S16E + vertical, 16 x 4 ft, COR 0.95", "",
+                  "| quantity | value |", "|---|---|"]
+        for key, value in pacoima.items():
+            if isinstance(value, dict):
+                for inner, item in value.items():
+                    lines.append(f"| fast vs reference: {inner} | {_fmt(item)} |")
+            else:
+                lines.append(f"| {key} | {value if isinstance(value, str) else _fmt(value)} |")
+        lines.append("")
+    if first_call is not None:
+        lines += ["## First call in a fresh process", "", "| | import [s] | first simulate [s] "
+                  "| second simulate [s] |", "|---|---|---|---|"]
+        for label, values in first_call.items():
+            lines.append(f"| {label} | {_fmt(values['import [s]'])} | "
+                         f"{_fmt(values['first call [s]'])} | {_fmt(values['second call [s]'])} |")
+        lines.append("")
+    if batch is not None:
+        lines += ["## Batch throughput (`shaketable.batch.simulate_many`)", ""]
+        if "skipped" in batch:
+            lines += [f"Skipped: {batch['skipped']}.", ""]
+        else:
+            lines += ["| quantity | value |", "|---|---|"]
+            lines += [f"| {key} | {_fmt(value)} |" for key, value in batch.items()]
+            lines.append("")
+    if accuracy is not None:
+        lines += ["## Acceptance: fast (default rtol 5e-12) against reference (default rtol 1e-12)", "",
+                  "Target: 1e-8 relative in max |theta| (or 1e-10 rad) and in the event "
+                  "times, same impact count before 20 s and same verdict.", "",
+                  markdown_table(accuracy, [c for c in accuracy.columns if c not in
+                                            ("impacts truth",)]), ""]
+    if frame is not None:
+        best = frame[frame["method"].isin(["fast", "predictor-corrector", "linear"])]
+        lines += ["## Work-precision table (every setting; the CSV has all columns)", "",
+                  markdown_table(best, ["case", "method", "setting", "time [s]",
+                                        "error max_theta [-]", "error events [-]",
+                                        "same impacts", "same verdict"]), ""]
+    if orders is not None:
+        lines += ["## Measured orders of convergence", "",
+                  "Least-squares slope of log10(error) against log10(mean step), over the "
+                  "settings with the truth's impact count and verdict and errors in "
+                  "[1e-13, 1e-2].", "", markdown_table(orders), ""]
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,296 @@
+"""``shaketable sweep``: spec validation, rows equal to single runs, resume, Dask, CLI.
+
+No expected value here comes from the sweep code: each row is compared with an
+independent :func:`shaketable.simulate` on a motion built by hand from the
+documented recipe (record -> ``scale_to_pga`` / ``Motion.scaled`` -> pitching table),
+and resumed or distributed sweeps are compared with an uninterrupted local one.
+"""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import shaketable as st
+from shaketable import motions, records, sweep
+from shaketable.cli import main
+from shaketable.constants import G
+from shaketable.table import Pitch, motion_at_block
+
+REPOSITORY = Path(__file__).resolve().parents[1]
+
+SPEC = """
+name = "tiny"
+seed = 7
+[blocks]
+height = ["30 in", "4 ft"]
+aspect = [4, 5]
+[rocking]
+cor = [0.9, 1.0]
+duration = "6 s"
+[[records]]
+name = "pacoima-dam-s16e"
+[[records]]
+preset = "B-1"
+seeds = 2
+duration = "6 s"
+[intensity]
+pga = ["0.4 g", "0.8 g"]
+[run]
+chunk_size = 10
+"""
+# 2 heights x 2 aspects = 4 blocks, 2 COR, (1 + 2 realisations) x 2 PGA levels: 48 runs,
+# 5 chunks (the last one short).
+
+
+def write(tmp_path, text, name="spec.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture(scope="module")
+def reference_table(tmp_path_factory):
+    """The tiny sweep run once, uninterrupted, locally."""
+    folder = tmp_path_factory.mktemp("reference")
+    outcome = sweep.run_sweep(sweep.load_spec(write(folder, SPEC)), folder / "out",
+                              progress=False)
+    assert outcome.complete and outcome.computed_runs == 48
+    return outcome.table
+
+
+def _without_bookkeeping(table):
+    return table.drop(columns=["chunk"])
+
+
+# --------------------------------------------------------------------------- results
+def test_rows_equal_independent_single_runs(reference_table):
+    table = reference_table
+    assert list(table["run"]) == list(range(48))
+    pacoima = records.load("pacoima-dam-s16e")
+    realisations = {seed: motions.artificial("B-1", seed=seed, duration=6.0) for seed in (7, 8)}
+    for _, row in table.iterrows():
+        base = pacoima if row["record"] == "pacoima-dam-s16e" else realisations[row["seed"]]
+        target_g = round(row["target_pga [m/s^2]"] / G, 12)         # 0.4 or 0.8, as written
+        assert target_g in (0.4, 0.8)
+        motion = motions.scale_to_pga(base, target_g)
+        block = st.Block(row["block_height [m]"], row["block_width [m]"])
+        expected = st.simulate(block, motion, cor=row["cor [-]"], duration=6.0)
+        assert row["max_abs_theta [rad]"] == expected.max_abs_theta, row["run"]
+        assert row["status"] == expected.status
+        assert (row["t_overturn [s]"] == expected.t_overturn
+                or (math.isnan(row["t_overturn [s]"]) and math.isnan(expected.t_overturn)))
+        assert row["n_impacts"] == expected.n_impacts
+        assert row["pga [m/s^2]"] == pytest.approx(motion.pga, rel=1e-14)
+    # the grid: heights as written, H/B as written
+    assert sorted(set(np.round(table["block_height [m]"] / 0.0254, 9))) == [30.0, 48.0]
+    assert sorted(set(np.round(table["aspect_ratio [-]"], 12))) == [4.0, 5.0]
+    assert table["overturned"].any() and not table["overturned"].all()
+
+
+def test_pitch_phase_rows_equal_runs_on_a_pitching_table(tmp_path):
+    spec = sweep.load_spec(write(tmp_path, """
+name = "pitch"
+[blocks]
+sizes = ["30x6in"]
+[rocking]
+cor = 0.925
+duration = "5 s"
+[[records]]
+preset = "olive-view"
+seed = 1
+duration = "5 s"
+[intensity]
+scale = [0.6]
+[pitch]
+phases = ["0 deg", "90 deg", "180 deg"]
+"""))
+    table = sweep.run_sweep(spec, tmp_path / "out", progress=False).table
+    base = motions.artificial("olive-view", seed=1, duration=5.0)
+    block = st.Block.parse("30x6in")
+    for _, row in table.iterrows():
+        # Section 3.7 (2) defaults: 12 Hz, 0.22 rad/s^2; scaled first, then pitched
+        pitched = motion_at_block(base.scaled(0.6),
+                                  pitch=Pitch(12.0, 0.22, phase=row["pitch_phase [rad]"]))
+        expected = st.simulate(block, pitched, cor=0.925, duration=5.0)
+        assert row["max_abs_theta [rad]"] == expected.max_abs_theta
+    assert table["pitch_phase [rad]"].tolist() == pytest.approx([0, math.pi / 2, math.pi])
+
+
+# --------------------------------------------------------------------------- resume
+def test_killed_sweep_resumes_without_loss_or_repeat(tmp_path, reference_table):
+    spec = sweep.load_spec(write(tmp_path, SPEC))
+    out = tmp_path / "out"
+    written = []
+
+    def crash_after_two(chunk, frame):
+        written.append(chunk)
+        if len(written) == 2:
+            raise KeyboardInterrupt("killed")  # what Ctrl-C or a kill looks like mid-sweep
+
+    with pytest.raises(KeyboardInterrupt):
+        sweep.run_sweep(spec, out, progress=False, on_chunk=crash_after_two)
+    parts = sorted((out / "parts").glob("part-*.parquet"))
+    assert [p.name for p in parts] == ["part-000000.parquet", "part-000001.parquet"]
+    assert not (out / "results.parquet").exists()
+    partial = sweep.read_results(out)
+    assert list(partial["run"]) == list(range(20))
+
+    # without --resume the folder is refused (nothing is overwritten)
+    with pytest.raises(sweep.SweepError, match="--resume"):
+        sweep.run_sweep(spec, out, progress=False)
+    # one more chunk only, then the rest
+    step = sweep.run_sweep(spec, out, progress=False, resume=True, max_chunks=1)
+    assert not step.complete and step.computed_runs == 10 and step.skipped_runs == 20
+    final = sweep.run_sweep(spec, out, progress=False, resume=True)
+    assert final.complete and final.computed_runs == 18 and final.skipped_runs == 30
+    table = final.table
+    assert list(table["run"]) == list(range(48))   # none lost, none repeated
+    pd.testing.assert_frame_equal(_without_bookkeeping(table),
+                                  _without_bookkeeping(reference_table))
+    assert pd.read_parquet(out / "results.parquet").equals(table)
+
+
+def test_resume_refuses_a_changed_spec(tmp_path):
+    out = tmp_path / "out"
+    sweep.run_sweep(sweep.load_spec(write(tmp_path, SPEC)), out, progress=False,
+                    max_chunks=1)
+    changed = sweep.load_spec(write(tmp_path, SPEC.replace("seed = 7", "seed = 8"), "b.toml"))
+    with pytest.raises(sweep.SweepError, match="cannot resume.*fingerprint"):
+        sweep.run_sweep(changed, out, progress=False, resume=True)
+    assert json.loads((out / "manifest.json").read_text())["n_runs"] == 48
+
+
+def test_same_seed_same_table_whatever_chunks_and_threads(tmp_path, reference_table):
+    other = SPEC.replace("chunk_size = 10", "chunk_size = 17")
+    table = sweep.run_sweep(sweep.load_spec(write(tmp_path, other)), tmp_path / "a",
+                            progress=False, workers=1).table
+    pd.testing.assert_frame_equal(_without_bookkeeping(table),
+                                  _without_bookkeeping(reference_table))
+    reseeded = sweep.run_sweep(sweep.load_spec(write(tmp_path, SPEC.replace(
+        "seed = 7", "seed = 9"), "c.toml")), tmp_path / "b", progress=False).table
+    artificial = reseeded["record_kind"] == "artificial"
+    assert sorted(set(reseeded.loc[artificial, "seed"])) == [9, 10]
+    assert not np.array_equal(reseeded.loc[artificial, "max_abs_theta [rad]"],
+                              reference_table.loc[artificial, "max_abs_theta [rad]"])
+
+
+def test_csv_format_holds_the_same_values(tmp_path, reference_table):
+    outcome = sweep.run_sweep(sweep.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
+                              progress=False, fmt="csv")
+    assert outcome.path.name == "results.csv"
+    table = sweep.read_results(tmp_path / "out")
+    for column in ("run", "max_abs_theta [rad]", "t_overturn [s]", "status", "seed"):
+        left, right = table[column], reference_table[column]
+        assert left.astype(str).tolist() == right.astype(str).tolist() or np.allclose(
+            left, right, rtol=1e-15, equal_nan=True), column
+
+
+# --------------------------------------------------------------------------- Dask
+def test_local_dask_cluster_gives_the_same_table(tmp_path, reference_table):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        outcome = sweep.run_sweep(sweep.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
+                                  scheduler=client, progress=False)
+    assert outcome.complete
+    pd.testing.assert_frame_equal(_without_bookkeeping(outcome.table),
+                                  _without_bookkeeping(reference_table))
+
+
+# --------------------------------------------------------------------------- spec errors
+@pytest.mark.parametrize("change, message", [
+    (("name = \"tiny\"", ""), "missing 'name'"),
+    (("seed = 7", "seed = 7\ncolour = 1"), "unknown key 'colour' in the top level"),
+    (("height = [\"30 in\", \"4 ft\"]", "height = [30, 48]"), "blocks.height: 30 has no unit"),
+    (("aspect = [4, 5]", "width = [\"1 ft\"]\naspect = [4, 5]"),
+     r"\[blocks\] gives aspect, height, width"),
+    (("aspect = [4, 5]", "aspect = [0, 5]"), r"blocks.aspect \(H/B\) must be a number"),
+    (("cor = [0.9, 1.0]", "cor = [0.9, 1.1]"), "rocking.cor must be a number in"),
+    (("duration = \"6 s\"\n[[records]]", "duration = \"6 ft\"\n[[records]]"),
+     "rocking.duration: unknown time unit"),
+    (("name = \"pacoima-dam-s16e\"", "name = \"pacoima\""),
+     r"records\[0\].name 'pacoima' is not a bundled record"),
+    (("preset = \"B-1\"", "preset = \"C-1\""), r"records\[1\].preset must be one of"),
+    (("seeds = 2", "seeds = 0"), r"records\[1\].seeds must be a positive count"),
+    (("seeds = 2", "seeds = 2\nscale = 3"), r"unknown key 'scale' in records\[1\]"),
+    (("pga = [\"0.4 g\", \"0.8 g\"]", "pga = [\"0.4 g\"]\nscale = [1.0]"),
+     "gives both scale and pga"),
+    (("chunk_size = 10", "chunk_size = 0"), "run.chunk_size must be a positive integer"),
+    (("[run]", "[pitch]\nfrequency = \"12 Hz\"\n[run]"),
+     "needs exactly one of pitch.phases"),
+    (("name = \"pacoima-dam-s16e\"", "file = \"absent.AT2\""), r"records\[0\].file: no such"),
+])
+def test_spec_errors_name_the_file_and_the_key(tmp_path, change, message):
+    old, new = change
+    assert old in SPEC
+    path = write(tmp_path, SPEC.replace(old, new, 1))
+    with pytest.raises(sweep.SweepError, match=message) as caught:
+        sweep.load_spec(path)
+    assert str(caught.value).startswith(str(path))
+
+
+def test_bundled_sweep_specs_are_valid():
+    specs = sorted((REPOSITORY / "experiments" / "sweeps").glob("*.toml"))
+    assert len(specs) >= 3
+    for path in specs:
+        spec = sweep.load_spec(path)
+        assert spec.n_runs > 0, path
+
+
+# --------------------------------------------------------------------------- CLI
+def test_sweep_command_in_process(tmp_path, capsys):
+    spec = write(tmp_path, SPEC.replace("chunk_size = 10", "chunk_size = 48"))
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--no-progress",
+                 "--workers", "1"]) == 0
+    printed = capsys.readouterr().out
+    assert "48 runs in 1 chunk(s)" in printed and "results.parquet" in printed
+    assert len(pd.read_parquet(tmp_path / "out" / "results.parquet")) == 48
+    assert main(["sweep", str(write(tmp_path, "name = 'x'", "bad.toml"))]) == 2
+    assert "bad.toml: missing [blocks]" in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- figures
+def test_fragility_fit_recovers_a_known_lognormal_curve():
+    # outcomes drawn from P = Phi(ln(a / 0.4) / 0.3): the fit must find median 0.4 g and
+    # beta 0.3 within the sampling error of 4000 Bernoulli trials (a few per cent)
+    from scipy.stats import norm
+
+    from shaketable.sweep_plots import fragility_fit
+
+    rng = np.random.default_rng(5)
+    pga = np.repeat(np.linspace(0.1, 1.0, 40), 100)
+    overturned = rng.random(pga.size) < norm.cdf(np.log(pga / 0.4) / 0.3)
+    fit = fragility_fit(pga, overturned)
+    assert fit.median == pytest.approx(0.4, rel=0.03)
+    assert fit.beta == pytest.approx(0.3, rel=0.08)
+    with pytest.raises(ValueError, match="no run overturned"):
+        fragility_fit([0.1, 0.2], [False, False])
+
+
+def test_sweep_figures_draw_from_a_table(reference_table):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from shaketable import sweep_plots
+
+    one = reference_table[(reference_table["record"] == "pacoima-dam-s16e")
+                          & (reference_table["target_pga [m/s^2]"] == 0.4 * G)]
+    ax = sweep_plots.overturning_map(one, cor=1.0, y="height", length_unit="in")
+    assert ax.get_ylabel() == "height H [in]"
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["30", "48"]
+    n_f = sum(text.get_text() == "F" for text in ax.texts)
+    assert n_f == int(one[one["cor [-]"] == 1.0]["overturned"].sum())
+    with pytest.raises(ValueError, match="mix several 'cor"):
+        sweep_plots.overturning_map(one)
+    ax = sweep_plots.fragility_curve(reference_table, group=None, cor=0.9)
+    assert ax.get_xlabel() == "PGA [g]"
+    ax = sweep_plots.rocking_spectrum(one, cor=0.9, x="R")
+    assert ax.get_xlabel() == "size R [m]"
+    plt.close("all")
