@@ -33,7 +33,6 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-from .constants import G
 from .dynamics import N_PARAMETERS, block_parameters
 from .geometry import Block
 from .motion import Motion
@@ -276,7 +275,6 @@ def _labelled(name, values, kind, default_label):
 def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_index, cors,
            scales, *, threads, method, rtol, duration, **options):
     """Pack, run the compiled loop, and build the table."""
-    import pandas as pd
 
     unknown = sorted(set(options) - _OPTIONS)
     if unknown:

@@ -61,6 +61,10 @@ import scipy.signal
 
 from .constants import G
 from .motion import Motion
+from .validation import motion_argument as _motion
+from .validation import nonnegative as _nonnegative
+from .validation import number as _number
+from .validation import positive as _positive
 
 __all__ = [
     "ArtificialPreset",
@@ -85,37 +89,6 @@ _UNIFORM_RTOL = 1e-6
 
 
 # ------------------------------------------------------------------ validation
-def _number(name: str, value) -> float:
-    """Return ``value`` as a finite float or raise a ValueError naming it."""
-    if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating,
-                                                        np.integer)):
-        raise ValueError(f"{name} must be a real number, got {value!r}")
-    value = float(value)
-    if not math.isfinite(value):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return value
-
-
-def _positive(name: str, value, unit: str = "") -> float:
-    value = _number(name, value)
-    if value <= 0.0:
-        raise ValueError(f"{name} must be positive{unit}, got {value!r}")
-    return value
-
-
-def _nonnegative(name: str, value, unit: str = "") -> float:
-    value = _number(name, value)
-    if value < 0.0:
-        raise ValueError(f"{name} must be zero or positive{unit}, got {value!r}")
-    return value
-
-
-def _motion(name: str, motion) -> Motion:
-    if not isinstance(motion, Motion):
-        raise ValueError(f"{name} must be a shaketable Motion, got {type(motion).__name__}")
-    return motion
-
-
 def _uniform_dt(motion: Motion, what: str) -> float:
     """Sample interval of a uniformly sampled motion, else a ValueError."""
     steps = np.diff(motion.t)

@@ -67,6 +67,8 @@ from .constants import G, INCH
 from .geometry import Block
 from .motion import Motion
 from .results import RockingResult
+from .validation import nonnegative, positive
+from .validation import number as _number
 
 __all__ = [
     "OUNCE_FORCE",
@@ -88,27 +90,12 @@ WIRES = ("both", "minus-x", "plus-x")
 
 
 # ------------------------------------------------------------------ validation
-def _number(name: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
-        raise ValueError(f"{name} must be a real number, got {value!r}")
-    value = float(value)
-    if not math.isfinite(value):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return value
-
-
 def _positive(name: str, value, unit: str) -> float:
-    value = _number(name, value)
-    if value <= 0.0:
-        raise ValueError(f"{name} must be positive [{unit}], got {value!r}")
-    return value
+    return positive(name, value, f" [{unit}]")
 
 
 def _nonnegative(name: str, value, unit: str) -> float:
-    value = _number(name, value)
-    if value < 0.0:
-        raise ValueError(f"{name} must be zero or positive [{unit}], got {value!r}")
-    return value
+    return nonnegative(name, value, f" [{unit}]")
 
 
 def _integer(name: str, value, low: int, high: int) -> int:

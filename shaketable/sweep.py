@@ -76,7 +76,7 @@ import math
 import os
 import time
 import tomllib
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from functools import lru_cache
 from itertools import product
 from pathlib import Path
@@ -951,7 +951,6 @@ def run_sweep(spec, out, *, workers: int | None = None, scheduler: str | None = 
     -------
     SweepOutcome
     """
-    import pandas as pd
 
     if not isinstance(spec, SweepSpec):
         spec = load_spec(spec)

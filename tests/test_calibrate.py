@@ -16,7 +16,7 @@ import pytest
 
 import shaketable as st
 from shaketable.calibrate import (CalibrationError, Record, _covariance, calibrate,
-                                  compare_free_rocking, peak_estimate, period_fit, read_record,
+                                  period_fit, read_record,
                                   reproduce_fig_3_4, virtual_free_rocking_record)
 from shaketable.cli import main
 from shaketable.constants import INCH

@@ -9,7 +9,7 @@ from shaketable import Block, Motion
 from shaketable.constants import G
 from shaketable.motions import harmonic
 from shaketable.pipeline import run_scene
-from shaketable.scenes import SceneError, load_scene, scene_from_dict
+from shaketable.scenes import SceneError, scene_from_dict
 from shaketable.table import Actuator, Pitch
 from shaketable.table_stage import (SAMPLES_PER_PITCH_CYCLE, TableSetup, pitch_sampled,
                                     run_table, table_setup_from_dict)
