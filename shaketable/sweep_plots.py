@@ -356,3 +356,60 @@ def fragility_curve(table, *, group="block", cor=None, pga="pga [g]", ax=None):
     ax.grid(alpha=0.3)
     ax.fragility_fits = fits
     return ax
+
+
+def sweep_figures(table, out) -> list:
+    """The figures a sweep's table supports, written to folder ``out`` (PNG); their paths.
+
+    * an overturning map (width against H/B) per record and COR, when the
+      blocks vary in both;
+    * a rocking spectrum (max |theta|/alpha against p) per record and COR,
+      when the blocks vary;
+    * fragility curves (fraction overturned against PGA, lognormal fits) per
+      COR, when there are at least three PGA levels and several records or
+      realisations per level.
+    """
+    from pathlib import Path
+
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    from .plots import save
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    widths = table["block_width [m]"].nunique()
+    aspects = table["aspect_ratio [-]"].round(9).nunique()
+    pitch_free = table[table["pitch_phase [rad]"].isna()] if "pitch_phase [rad]" in table \
+        else table
+    for (record, seed, cor), rows in pitch_free.groupby(["record", "seed", "cor [-]"],
+                                                        sort=False, dropna=False):
+        if rows["scale [-]"].nunique() > 1 or rows["pga [g]"].round(6).nunique() > 1:
+            continue  # several intensities: the fragility figure covers them
+        if not pd.isna(seed) and rows["record_kind"].iloc[0] == "artificial":
+            record = f"{record}-seed{int(seed)}"
+        label = f"{record}-cor{cor:g}"
+        if widths > 1 and aspects > 1 and rows.groupby(
+                ["block_width [m]", "aspect_ratio [-]"]).size().max() == 1:
+            figure, axis = plt.subplots(figsize=(8, 5))
+            overturning_map(rows, ax=axis, length_unit="ft")
+            axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
+            written.append(out / f"map-{label}.png")
+            save(figure, written[-1])
+        if rows["block"].nunique() > 1:
+            figure, axis = plt.subplots(figsize=(8, 4))
+            rocking_spectrum(rows, ax=axis)
+            axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
+            written.append(out / f"spectrum-{label}.png")
+            save(figure, written[-1])
+    levels = table["pga [g]"].round(6).nunique()
+    per_level = table.groupby([table["pga [g]"].round(6), "block", "cor [-]"]).size().min()
+    if levels >= 3 and per_level >= 2:
+        for cor, rows in table.groupby("cor [-]", sort=False):
+            figure, axis = plt.subplots(figsize=(7, 4.5))
+            fragility_curve(rows, ax=axis)
+            axis.set_title(f"fragility, COR {cor:g}", fontsize=9)
+            written.append(out / f"fragility-cor{cor:g}.png")
+            save(figure, written[-1])
+    return written

@@ -294,3 +294,23 @@ def test_sweep_figures_draw_from_a_table(reference_table):
     ax = sweep_plots.rocking_spectrum(one, cor=0.9, x="R")
     assert ax.get_xlabel() == "size R [m]"
     plt.close("all")
+
+
+def test_sweep_command_draws_the_figures_the_table_supports(tmp_path, capsys):
+    # one PGA level: a map and a spectrum per (record, COR), no fragility curve
+    one_level = SPEC.replace('pga = ["0.4 g", "0.8 g"]', 'pga = ["0.4 g"]')
+    assert main(["sweep", str(write(tmp_path, one_level)), "--out", str(tmp_path / "a"),
+                 "--no-progress", "--workers", "1", "--figures"]) == 0
+    names = sorted(path.name for path in (tmp_path / "a" / "figures").iterdir())
+    table = pd.read_parquet(tmp_path / "a" / "results.parquet")
+    records = len(table[["record", "seed"]].drop_duplicates())  # each realisation its own
+    assert sum(name.startswith("map-") for name in names) == 2 * records
+    assert sum(name.startswith("spectrum-") for name in names) == 2 * records
+    assert not any(name.startswith("fragility") for name in names)
+    # three PGA levels over three records: one fragility figure per COR, no map
+    levels = SPEC.replace('pga = ["0.4 g", "0.8 g"]', 'pga = ["0.2 g", "0.4 g", "0.8 g"]')
+    assert main(["sweep", str(write(tmp_path, levels, "b.toml")), "--out",
+                 str(tmp_path / "b"), "--no-progress", "--workers", "1", "--figures"]) == 0
+    names = sorted(path.name for path in (tmp_path / "b" / "figures").iterdir())
+    assert names == ["fragility-cor0.9.png", "fragility-cor1.png"]
+    capsys.readouterr()

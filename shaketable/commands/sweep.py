@@ -31,6 +31,12 @@ def _sweep(args) -> int:
         print("note: pyarrow is not installed; the table is CSV, not Parquet "
               "(pip install 'shaketable[parquet]')")
     print(f"wrote {outcome.path}")
+    if args.figures:
+        from ..sweep_plots import sweep_figures
+
+        paths = sweep_figures(table, out / "figures")
+        print("wrote " + (", ".join(str(path) for path in paths) if paths else
+                          "no figure (the table has no grid of blocks or of PGA to draw)"))
     return 0
 
 
@@ -55,4 +61,8 @@ def register(commands) -> None:
     parser.add_argument("--max-chunks", type=int, default=None,
                         help="compute at most this many chunks now, then stop")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    parser.add_argument("--figures", action="store_true",
+                        help="also draw what the table supports: overturning maps and rocking "
+                             "spectra per record and COR, fragility curves over PGA "
+                             "(OUT/figures/*.png)")
     parser.set_defaults(handler=_sweep)

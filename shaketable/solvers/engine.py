@@ -638,6 +638,13 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, rx,
                                                           parameters)
                 remaining = cascade_rest_time(omega, deceleration, cor)
+                if remaining == math.inf and cor >= 1.0 and deceleration > 0.0 and abs(
+                        omega) <= velocity_floor:
+                    # COR = 1 never ends a cascade by itself: bounces of the same tiny
+                    # velocity, 2|w|/a0 long each, would go on forever (millions per
+                    # second). Below the velocity floor a bounce rises w^2/(2 a0), far
+                    # below the integration error: the block is at rest.
+                    remaining = 0.0
                 if omega == 0.0 or remaining <= rest_tolerance or (
                         abs(omega) <= velocity_floor and remaining < math.inf):
                     if omega != 0.0:

@@ -172,6 +172,9 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 theta = 0.0
                 deceleration = -side * angular_acceleration(0.0, side, *ground(t), parameters)
                 remaining = cascade_rest_time(omega, deceleration, cor)
+                if (remaining == math.inf and cor >= 1.0 and deceleration > 0.0
+                        and abs(omega) <= velocity_floor):
+                    remaining = 0.0  # COR = 1 bounces at the noise level: at rest (engine)
                 if omega == 0.0 or remaining <= rest_tolerance or (
                         abs(omega) <= velocity_floor and remaining < math.inf):
                     if omega != 0.0:
