@@ -6,9 +6,11 @@ report, so the right-hand side is smooth there) and hands each piece of free
 flight to one of three steppers:
 
 ``METHOD_FAST``
-    Dormand-Prince 5(4) (first same as last: six new evaluations per step) with
-    a PI step-size controller on a mixed absolute/relative error, steps ending
-    on every sample of the input. Events (impact at theta = 0, |theta| = alpha,
+    The Runge-Kutta-Nystrom pair RKN6(4)6FM of Dormand, El-Mikkawy and Prince
+    (order 6, embedded order 4, first same as last: five new evaluations per
+    step), which integrates theta'' = f(t, theta) directly, with a PI
+    step-size controller on a mixed absolute/relative error, steps ending on
+    every sample of the input. Events (impact at theta = 0, |theta| = alpha,
     |theta| = pi/2 and the turning points theta' = 0) are located by a
     safeguarded Newton iteration on the *stepper itself* (one step from the
     step's start to the trial time), so an event time is as accurate as the
@@ -73,8 +75,8 @@ EVENT_OVERTURN = 1
 EVENT_PEAK = 2
 EVENT_UNSTABLE = 3
 
-# Right-hand-side evaluations per trial step (Dormand-Prince reuses its last stage).
-_EVALUATIONS_PER_STEP = (6, 2, 1)
+# Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
+_EVALUATIONS_PER_STEP = (5, 2, 1)
 
 
 @njit(cache=True)
@@ -160,47 +162,54 @@ def _start_acceleration(method, t, theta, side, segment, parameters):
 
 
 @njit(cache=True)
-def _dormand_prince(t, theta, omega, k1v, side, h, segment, parameters):
-    """One Dormand-Prince 5(4) step from a known theta''(t) = ``k1v``.
+def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
+    """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``k1``.
 
-    Returns theta, omega and theta'' at ``t + h`` (the last stage, reused as the
-    first of the next step) and the error estimates of theta and omega.
+    Eq. (2-13)/(2-14) is a special second-order equation, theta'' = f(t, theta)
+    with no theta' term, which Nystrom formulas integrate directly: the pair
+    RKN6(4)6FM of Dormand, El-Mikkawy and Prince (IMA J. Numer. Anal. 7 (1987)
+    235-250) is of order 6 with an embedded order-4 estimate, and its sixth
+    stage is f(t + h, theta_new), reused as the next step's first (five new
+    evaluations per step against Dormand-Prince 5(4)'s six, at one order more).
+    Stages: theta_i = theta + c_i h omega + h^2 sum_j a_ij k_j,
+    k_i = f(t + c_i h, theta_i); theta_new = theta + h omega + h^2 sum b_i k_i,
+    omega_new = omega + h sum b'_i k_i.
+
+    Returns theta, omega and theta'' at ``t + h`` and the error estimates of
+    theta and omega (main minus embedded formula).
     """
-    def f(time, y0):
+    def f(time, x):
         ug, vg, rg = _ground(segment, time)
-        return flight_acceleration(y0, side, ug, vg, rg, parameters)
+        return flight_acceleration(x, side, ug, vg, rg, parameters)
 
-    k1x = omega
-    x = theta + h * (k1x / 5.0)
-    k2x = omega + h * (k1v / 5.0)
-    k2v = f(t + h / 5.0, x)
-    x = theta + h * (3.0 / 40.0 * k1x + 9.0 / 40.0 * k2x)
-    k3x = omega + h * (3.0 / 40.0 * k1v + 9.0 / 40.0 * k2v)
-    k3v = f(t + 3.0 * h / 10.0, x)
-    x = theta + h * (44.0 / 45.0 * k1x - 56.0 / 15.0 * k2x + 32.0 / 9.0 * k3x)
-    k4x = omega + h * (44.0 / 45.0 * k1v - 56.0 / 15.0 * k2v + 32.0 / 9.0 * k3v)
-    k4v = f(t + 4.0 * h / 5.0, x)
-    x = theta + h * (19372.0 / 6561.0 * k1x - 25360.0 / 2187.0 * k2x
-                     + 64448.0 / 6561.0 * k3x - 212.0 / 729.0 * k4x)
-    k5x = omega + h * (19372.0 / 6561.0 * k1v - 25360.0 / 2187.0 * k2v
-                       + 64448.0 / 6561.0 * k3v - 212.0 / 729.0 * k4v)
-    k5v = f(t + 8.0 * h / 9.0, x)
-    x = theta + h * (9017.0 / 3168.0 * k1x - 355.0 / 33.0 * k2x + 46732.0 / 5247.0 * k3x
-                     + 49.0 / 176.0 * k4x - 5103.0 / 18656.0 * k5x)
-    k6x = omega + h * (9017.0 / 3168.0 * k1v - 355.0 / 33.0 * k2v + 46732.0 / 5247.0 * k3v
-                       + 49.0 / 176.0 * k4v - 5103.0 / 18656.0 * k5v)
-    k6v = f(t + h, x)
-    theta_new = theta + h * (35.0 / 384.0 * k1x + 500.0 / 1113.0 * k3x + 125.0 / 192.0 * k4x
-                             - 2187.0 / 6784.0 * k5x + 11.0 / 84.0 * k6x)
-    omega_new = omega + h * (35.0 / 384.0 * k1v + 500.0 / 1113.0 * k3v + 125.0 / 192.0 * k4v
-                             - 2187.0 / 6784.0 * k5v + 11.0 / 84.0 * k6v)
-    k7x = omega_new
-    k7v = f(t + h, theta_new)
-    e1, e3, e4, e5, e6, e7 = (71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0,
-                              -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0)
-    error_theta = h * (e1 * k1x + e3 * k3x + e4 * k4x + e5 * k5x + e6 * k6x + e7 * k7x)
-    error_omega = h * (e1 * k1v + e3 * k3v + e4 * k4v + e5 * k5v + e6 * k6v + e7 * k7v)
-    return theta_new, omega_new, k7v, error_theta, error_omega
+    hh = h * h
+    k2 = f(t + 0.1 * h, theta + 0.1 * h * omega + hh * (1.0 / 200.0) * k1)
+    k3 = f(t + 0.3 * h, theta + 0.3 * h * omega
+           + hh * (-1.0 / 2200.0 * k1 + 1.0 / 22.0 * k2))
+    k4 = f(t + 0.7 * h, theta + 0.7 * h * omega
+           + hh * (637.0 / 6600.0 * k1 - 7.0 / 110.0 * k2 + 7.0 / 33.0 * k3))
+    k5 = f(t + 0.68 * h, theta + 0.68 * h * omega
+           + hh * (225437.0 / 1968750.0 * k1 - 30073.0 / 281250.0 * k2
+                   + 65569.0 / 281250.0 * k3 - 9367.0 / 984375.0 * k4))
+    theta_new = theta + h * omega + hh * (151.0 / 2142.0 * k1 + 5.0 / 116.0 * k2
+                                          + 385.0 / 1368.0 * k3 + 55.0 / 168.0 * k4
+                                          - 6250.0 / 28101.0 * k5)
+    k6 = f(t + h, theta_new)
+    omega_new = omega + h * (151.0 / 2142.0 * k1 + 25.0 / 522.0 * k2 + 275.0 / 684.0 * k3
+                             + 275.0 / 252.0 * k4 - 78125.0 / 112404.0 * k5 + 1.0 / 12.0 * k6)
+    # main minus embedded weights (the embedded formula's are 1349/157500,
+    # 7873/50000, 192199/900000, 521683/2100000, -16/125 for theta and 1349/157500,
+    # 7873/45000, 27457/90000, 521683/630000, -2/5, 1/12 for omega)
+    e1 = 151.0 / 2142.0 - 1349.0 / 157500.0
+    error_theta = hh * (e1 * k1 + (5.0 / 116.0 - 7873.0 / 50000.0) * k2
+                        + (385.0 / 1368.0 - 192199.0 / 900000.0) * k3
+                        + (55.0 / 168.0 - 521683.0 / 2100000.0) * k4
+                        + (-6250.0 / 28101.0 + 16.0 / 125.0) * k5)
+    error_omega = h * (e1 * k1 + (25.0 / 522.0 - 7873.0 / 45000.0) * k2
+                       + (275.0 / 684.0 - 27457.0 / 90000.0) * k3
+                       + (275.0 / 252.0 - 521683.0 / 630000.0) * k4
+                       + (-78125.0 / 112404.0 + 2.0 / 5.0) * k5)
+    return theta_new, omega_new, k6, error_theta, error_omega
 
 
 @njit(cache=True)
@@ -271,7 +280,7 @@ def _closed_form(t, theta, omega, side, h, segment, parameters):
 def _advance(method, t, theta, omega, acceleration, side, h, segment, parameters):
     """One step of ``method``: theta, omega, theta'' at ``t + h`` and error estimates."""
     if method == METHOD_FAST:
-        return _dormand_prince(t, theta, omega, acceleration, side, h, segment, parameters)
+        return _nystrom(t, theta, omega, acceleration, side, h, segment, parameters)
     if method == METHOD_PREDICTOR_CORRECTOR:
         return _heun(t, theta, omega, acceleration, side, h, segment, parameters)
     return _closed_form(t, theta, omega, side, h, segment, parameters)
