@@ -97,13 +97,14 @@ def save(fig, path) -> None:
 
 
 def section_2_figure(frame, figure: str):
-    """Figs. 2.3, 2.4 and 2.6: the report's closed forms against the engine.
+    """Figs. 2.3-2.6: the report's closed forms against the engine.
 
     Parameters
     ----------
     frame : pandas.DataFrame
         From :func:`shaketable.section2.figure_2_3` (``figure="2.3"``),
-        ``figure_2_4`` (``"2.4"``) or ``figure_2_6`` (``"2.6"``).
+        ``figure_2_4`` (``"2.4"``), ``figure_2_5`` (``"2.5"``) or ``figure_2_6``
+        (``"2.6"``).
     figure : str
 
     Returns
@@ -129,6 +130,32 @@ def section_2_figure(frame, figure: str):
         axis.set_xlabel("a / (g α) [-]")
         axis.set_ylabel("duration t1 that overturns [s]")
         axis.set_title("Fig. 2.4: constant acceleration of duration t1 (16 x 4 ft)", fontsize=10)
+    elif figure == "2.5":
+        colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        for (acceleration, group), color in zip(frame.groupby("a [g]", sort=False), colors):
+            closed = group["closed form t(alpha) [s]"].where(
+                np.isfinite(group["closed form t(alpha) [s]"]))
+            axis.plot(group["height [m]"], closed, "--", color=color, lw=1,
+                      label=f"a = {acceleration:g} g: slender closed form, t(α)")
+            axis.plot(group["height [m]"], group["engine t(alpha) [s]"], "o", color=color,
+                      ms=3, label=f"a = {acceleration:g} g: engine, t(α)")
+            axis.plot(group["height [m]"], group["engine t(pi/2) [s]"], "s-", color=color,
+                      ms=3, lw=0.8, label=f"a = {acceleration:g} g: engine, overturned")
+        axis.set_xscale("log")
+        axis.set_xlabel("block height H [m] (H/B = 4)")
+        axis.set_ylabel("time t [s]")
+        axis.set_title("Fig. 2.5: square acceleration pulse of 0.1 s (no point: the block "
+                       "falls back)", fontsize=9)
+    elif figure == "4.3.4":
+        duration = frame["pulse duration [s]"]
+        axis.plot(duration, frame["Eq. 2-9 [g]"], ":", label="Eq. 2-9 (the report's 4.6 g at 0.1 s)")
+        axis.plot(duration, frame["impulse limit [g]"], "--", label="exact impulse limit")
+        axis.plot(duration, frame["engine [g]"], "o-", label="engine (exact Eq. 2-13)")
+        axis.set_xscale("log")
+        axis.set_yscale("log")
+        axis.set_xlabel("half-sine pulse duration Ts/2 [s]")
+        axis.set_ylabel("amplitude that overturns [g]")
+        axis.set_title("Section 4.3 (4): single pulse on the 16 x 4 ft block", fontsize=10)
     elif figure == "2.6":
         axis.plot(frame["omega/p [-]"], frame["Eq. 2-8 [g]"], "--", label="Eq. 2-8")
         axis.plot(frame["omega/p [-]"], frame["Eq. 2-9 [g]"], ":", label="Eq. 2-9")
@@ -138,7 +165,7 @@ def section_2_figure(frame, figure: str):
         axis.set_ylabel("pulse amplitude that overturns [g]")
         axis.set_title("Fig. 2.6: sinusoidal pulse (16 x 4 ft)", fontsize=10)
     else:
-        raise ValueError(f"figure must be '2.3', '2.4' or '2.6', got {figure!r}")
+        raise ValueError(f"figure must be '2.3', '2.4', '2.5', '2.6' or '4.3.4', got {figure!r}")
     axis.grid(True, lw=0.3, alpha=0.6)
     axis.legend(fontsize=7, frameon=False)
     fig.tight_layout()

@@ -64,8 +64,10 @@ def reproduce(names, out="reproduce-out", progress: bool = True) -> Path:
             verdict = (f"overturns in direction {run.overturn_direction:+d} at "
                        f"{run.t_overturn:.2f} s" if run.overturned else
                        f"max θ/α = {run.max_theta_ratio:.3f}")
+            rods = ("" if run.block.rods is None else
+                    f"; largest rod force {run.max_rod_force:.3g} W (Section 4.4)")
             lines.append(f"* COR {run.cor:g}: {verdict}; unstable at "
-                         f"{_format(run.t_unstable)} s; {run.n_impacts} impacts")
+                         f"{_format(run.t_unstable)} s; {run.n_impacts} impacts{rods}")
         if result.comparisons:
             lines += ["", "| quantity | report | reproduced | unit | agrees |",
                       "|---|---|---|---|---|"]
@@ -113,11 +115,22 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
         from .plots import save, section_2_figure
 
         frame = {"2.3": section2.figure_2_3, "2.4": section2.figure_2_4,
-                 "2.6": section2.figure_2_6}[study.table]()
+                 "2.5": section2.figure_2_5, "2.6": section2.figure_2_6,
+                 "4.3.4": section2.section_4_3_4}[study.table]()
         frame.to_csv(folder / "curves.csv", index=False)
         save(section_2_figure(frame, study.table), folder / "figure.png")
-        return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", "",
-                                   _markdown(frame.round(4))]) + "\n"
+        lines += [f"![{study.name}]({study.name}/figure.png)", "", _markdown(frame.round(4))]
+        if study.table == "4.3.4":
+            # the report's one number: 4.6 g by Eq. (2-9) for a 0.1 s pulse
+            row = frame[frame["pulse duration [s]"] == 0.1].iloc[0]
+            agrees = abs(row["Eq. 2-9 [g]"] / 4.6 - 1) <= 0.05
+            tally[0 if agrees else 1] += 1
+            lines += ["", "| quantity | report | reproduced | unit | agrees |",
+                      "|---|---|---|---|---|",
+                      f"| Eq. 2-9, 0.1 s pulse | 4.6 | {row['Eq. 2-9 [g]']:.3g} | g | "
+                      f"{'yes' if agrees else '**no**'} |",
+                      f"| engine (exact), 0.1 s pulse | — | {row['engine [g]']:.3g} | g | — |"]
+        return "\n".join(lines) + "\n"
     if study.table == "table_3_1":
         frame = table_3_1()
         frame.to_csv(folder / "table.csv", index=False)
@@ -147,6 +160,27 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     for column, count in counts.items():
         lines.append(f"| {column} | {count['cells']} | {count['same F / not F']} | "
                      f"{count['both numbers']} | {_format(count['median |difference|'])} |")
+    pacoima = [column for column in counts if column.startswith("pacoima")]
+    if pacoima:
+        # the default reading of the Pacoima vertical was chosen by agreement with these
+        # tables: show the agreement under the other readings too (docs/section4.md)
+        from .report_tables import PACOIMA_VERTICAL_READINGS
+
+        lines += ["", "Verdicts of the Pacoima Dam columns under each reading of its vertical "
+                  "(labelled DWN in the file; the default uses the values as written, "
+                  "upward; see docs/section4.md):", "",
+                  "| reading of the vertical | same F / not F |", "|---|---|"]
+        for reading in PACOIMA_VERTICAL_READINGS:
+            if reading == "up":
+                agreeing = int(frame[frame["column"].isin(pacoima)]["verdict_agrees"].sum())
+            else:
+                other = reproduce_table(study.table, columns=pacoima,
+                                        pacoima_vertical=reading).to_frame()
+                agreeing = int(other["verdict_agrees"].sum())
+            label = {"up": "values as written, upward (default)",
+                     "down": "as labelled, downward", "none": "left out"}[reading]
+            cells = int(frame["column"].isin(pacoima).sum())
+            lines.append(f"| {label} | {agreeing}/{cells} |")
     return "\n".join(lines) + "\n"
 
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import math
+
 import numpy as np
 
 from .constants import G
@@ -108,6 +110,22 @@ class RockingResult:
         """max |theta| / alpha [-], the quantity of Tables 4.1-4.3."""
         return self.max_abs_theta / self.block.alpha
 
+    @property
+    def max_rod_force(self) -> float:
+        """Largest total tension in the prestress rods [W] (Section 4.4); 0 without rods.
+
+        The report's "0.4W + 0.4W Delta": F0 + K Delta, with the rods'
+        extension at the largest rotation. A rod at distance d from the pivot
+        stretches d sin|theta|; the pair's arms S and B - S add up to B, each
+        rod having half of K, so F = F0 + K (B/2) sin(max |theta|), which grows
+        with |theta|: its maximum is at the exactly located max |theta|.
+        """
+        rods = self.block.rods
+        if rods is None:
+            return 0.0
+        return float(rods.force + rods.stiffness * self.block.width / 2.0
+                     * math.sin(min(self.max_abs_theta, math.pi / 2.0)))
+
     def ground_at(self, times) -> tuple[np.ndarray, np.ndarray]:
         """Horizontal and vertical ground acceleration at ``times`` [m/s^2]."""
         motion = self.motion
@@ -153,6 +171,8 @@ class RockingResult:
             "t_airborne [s]": self.t_airborne, "t_rest [s]": self.t_rest,
             "n_impacts": self.n_impacts, "cascades": self.cascades,
         }
+        if block.rods is not None:
+            data["max_rod_force [W]"] = self.max_rod_force
         data.update({f"solver {key}": value for key, value in self.statistics.items()})
         return {key: clean(value) for key, value in data.items()}
 

@@ -50,6 +50,9 @@ REPORT_KEYS = {
     "tolerance": "number", "note": "text",
 }
 OUTPUT_KEYS = {"figure", "csv", "parquet", "svg"}
+#: Figures recomputed by a ``"report-figure"`` study: Figs. 2.3-2.6 and the
+#: single-pulse check of Section 4.3 (4).
+REPORT_FIGURES = ("2.3", "2.4", "2.5", "2.6", "4.3.4")
 TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
             "table", "sensors", "theory"}
 #: Studies that recompute one of the report's tables (a ``[study]`` section).
@@ -138,7 +141,7 @@ class Study:
         ``"report-table"`` or ``"report-figure"``.
     table : str
         Which printed table: ``"table_3_1"``, ``"table_4_1"``, ``"table_4_2"``, ``"table_4_3"``;
-        for a ``"report-figure"`` study, the figure: ``"2.3"``, ``"2.4"``, ``"2.6"``;
+        for a ``"report-figure"`` study, one of :data:`REPORT_FIGURES`;
         for a ``"teaching"`` study, the item of :data:`shaketable.teaching.ITEMS`.
     columns : tuple of str
         Columns to recompute (default all).
@@ -270,8 +273,9 @@ def _study(data: dict, where: str) -> Study:
                      description=str(data.get("description", "")), kind=kind,
                      table=spec["item"], path=where)
     if kind == "report-figure":
-        if spec.get("figure") not in ("2.3", "2.4", "2.6"):
-            raise SceneError(f"{where}: study.figure must be '2.3', '2.4' or '2.6', got "
+        if spec.get("figure") not in REPORT_FIGURES:
+            raise SceneError(f"{where}: study.figure must be one of "
+                             f"{', '.join(repr(name) for name in REPORT_FIGURES)}, got "
                              f"{spec.get('figure')!r}")
         return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
                      description=str(data.get("description", "")), kind=kind,

@@ -846,11 +846,23 @@ def _finished_chunks(spec, out: Path, fmt: str) -> set:
     return done
 
 
+def _solver_identity() -> dict:
+    """What a resumed sweep must share with the parts already written: the package
+    version, the solvers and their default tolerances (rows computed by another engine
+    must not be mixed into one table)."""
+    from . import __version__
+    from .simulate import _DEFAULT_RTOL, METHODS
+
+    return {"shaketable": __version__, "methods": dict(METHODS),
+            "default rtol": dict(_DEFAULT_RTOL)}
+
+
 def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
     manifest_path = out / "manifest.json"
     manifest = {"sweep": spec.name, "spec": spec.path, "fingerprint": spec.fingerprint(),
                 "n_runs": spec.n_runs, "chunk_size": spec.chunk_size,
-                "n_chunks": spec.n_chunks, "format": fmt, "format_version": FORMAT_VERSION}
+                "n_chunks": spec.n_chunks, "format": fmt, "format_version": FORMAT_VERSION,
+                "solver": _solver_identity()}
     if manifest_path.exists():
         if not resume:
             raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
@@ -859,7 +871,7 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
             old = json.loads(manifest_path.read_text())
         except (OSError, ValueError) as error:
             raise SweepError(f"{manifest_path}: unreadable manifest ({error})") from None
-        for key in ("fingerprint", "n_runs", "chunk_size", "format"):
+        for key in ("fingerprint", "n_runs", "chunk_size", "format", "solver"):
             if old.get(key) != manifest[key]:
                 raise SweepError(
                     f"{out}: cannot resume: the sweep there differs from {spec.path} in "

@@ -95,6 +95,70 @@ def constant_pulse_overturn_duration(block: Block, acceleration: float) -> float
     return math.acosh(1.0 + 1.0 / (2.0 * ratio * (ratio - 1.0))) / block.p
 
 
+def constant_pulse_unstable_time(block: Block, acceleration: float,
+                                 pulse_duration: float) -> float:
+    """Time at which a slender block reaches theta = alpha under a constant pulse (Fig. 2.5) [s].
+
+    The table accelerates at ``a`` for ``t1`` seconds, then moves on at constant
+    velocity (Section 2.3). With the slender-block linearisation (Eq. 2-4)
+    theta'' = p^2 (theta - alpha + a/g) during the pulse and p^2 (theta - alpha)
+    after it, starting from rest at theta = 0:
+
+    * during the pulse theta = alpha e (cosh(p t) - 1), e = a/(g alpha) - 1,
+      which reaches alpha at cosh(p t) = 1 + 1/e if that is before t1;
+    * after it, with x1 = alpha - theta(t1) and v1 = theta'(t1), the block
+      reaches alpha at t1 + artanh(x1 p / v1) / p when v1 > p x1, and never
+      otherwise (it falls back).
+
+    The boundary v1 = p x1 is Eq. (2-7); past theta = alpha the linearised
+    block runs away, so this is the time the report's Fig. 2.5 calls the
+    overturning time. Returns ``inf`` when the block falls back.
+
+    Parameters
+    ----------
+    block : Block
+    acceleration : float
+        Table acceleration a [m/s^2], above g alpha (else no rocking starts).
+    pulse_duration : float
+        t1 [s], positive.
+    """
+    ratio = acceleration / (G * block.alpha)
+    if ratio <= 1.0:
+        raise ValueError(f"acceleration must exceed g alpha = {G * block.alpha:.4g} m/s^2 "
+                         "for motion to start (Section 2.3)")
+    if not pulse_duration > 0.0:
+        raise ValueError(f"pulse_duration must be positive [s], got {pulse_duration!r}")
+    p, alpha, excess = block.p, block.alpha, ratio - 1.0
+    during = math.acosh(1.0 + 1.0 / excess) / p
+    if during <= pulse_duration:
+        return during
+    gap = alpha - alpha * excess * (math.cosh(p * pulse_duration) - 1.0)
+    velocity = alpha * excess * p * math.sinh(p * pulse_duration)
+    if velocity <= p * gap:
+        return math.inf
+    return pulse_duration + math.atanh(p * gap / velocity) / p
+
+
+def half_sine_impulse_overturn_amplitude(block: Block, pulse_duration: float) -> float:
+    """Amplitude of a very short half-sine pulse that overturns the block, exactly [m/s^2].
+
+    The impulsive limit of Section 2.4 without the slender-block approximation:
+    a pulse a sin(omega t) of duration Ts/2 = pi/omega changes the table's
+    velocity by 2a/omega; about the pivot the block takes the angular momentum
+    (I0/M) theta'_0 = (2a/omega) h, and it overturns when that kinetic energy
+    lifts the centre of mass over the corner, (1/2)(I0/M) theta'_0^2 =
+    g R (1 - cos alpha). Hence a = (omega / 2h) sqrt(2 g R (1 - cos alpha) I0/M),
+    with I0/M = 4R^2/3. For slender blocks this is a/(g alpha) = omega/(2p),
+    half of Eq. (2-9). Longer pulses need more (gravity acts during the pulse).
+    """
+    if not pulse_duration > 0.0:
+        raise ValueError(f"pulse_duration must be positive [s], got {pulse_duration!r}")
+    omega = math.pi / pulse_duration
+    inertia = 4.0 * block.R ** 2 / 3.0
+    return omega / (2.0 * block.h) * math.sqrt(2.0 * G * block.R * (1.0 - math.cos(block.alpha))
+                                               * inertia)
+
+
 def half_sine_overturn_amplitude(block: Block, pulse_period: float) -> float:
     """Minimum amplitude of a sine pulse of period Ts that overturns a slender block, Eq. (2-8) [m/s^2].
 

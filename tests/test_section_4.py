@@ -6,6 +6,8 @@ re-processings of what the report used, so cells near the overturning threshold
 can differ; the checks below are the report's robust statements.
 """
 
+import math
+
 import pytest
 
 import shaketable as st
@@ -50,9 +52,26 @@ def test_table_4_3_the_3_ft_wide_blocks_that_survive_s16e(table_4_3):
 def test_overturn_verdicts_agree_in_most_pacoima_cells(fixture, request):
     frame = request.getfixturevalue(fixture)
     # The report's own test/theory agreement is about 10 % on amplitudes; near the
-    # threshold a verdict can flip with the record's processing. At least 5 of 6
-    # verdicts must agree (measured: 23/24 for Table 4.2 and 22/24 for Table 4.3).
-    assert frame["verdict_agrees"].mean() >= 5 / 6
+    # threshold a verdict can flip with the record's processing. At least 21 of the 24
+    # printed verdicts must agree (measured: 23/24 for Table 4.2 and 22/24 for Table 4.3;
+    # 22 and 16 with the vertical read the other way, docs/section4.md).
+    assert frame["verdict_agrees"].sum() >= 21
+
+
+def test_table_4_1_pacoima_cells():
+    # Table 4.1 (printed, data/report/table_4_1.csv): 11 of its 12 Pacoima verdicts agree;
+    # the exception is 16 x 4 ft at COR 0.95 under S16E (0.82 printed, 0.78 in Fig. 4.2),
+    # which overturns here (docs/section4.md). Section 4.3 (1): the 15 x 5 ft block at
+    # COR 0.95 is the one that survives S16E; its printed 0.55 within the report's ~10 %.
+    frame = reproduce_table("table_4_1", columns=["pacoima S16E", "pacoima S74W"]).to_frame()
+    assert frame["verdict_agrees"].sum() >= 10
+    cell = frame[(frame["height [ft]"] == 15) & (frame["width [ft]"] == 5)
+                 & (frame["cor [-]"] == 0.95) & (frame["column"] == "pacoima S16E")].iloc[0]
+    assert cell["report"] == "0.55"
+    assert float(cell["reproduced"]) == pytest.approx(0.55, rel=0.1)
+    counts = reproduce_table("table_4_1", columns=["pacoima S16E", "A-1"]).counts()
+    # the substitute columns are counted apart from the recorded ones
+    assert counts["recorded records only"]["cells"] == 6 and counts["all"]["cells"] == 12
 
 
 def test_larger_blocks_of_the_same_aspect_ratio_respond_less():
@@ -76,3 +95,31 @@ def test_section_4_3_4_single_pulse_by_eq_2_9():
     block = st.Block.from_feet(16, 4)
     amplitude = theory.half_sine_overturn_amplitude_large_frequency(block, 0.2) / G
     assert amplitude == pytest.approx(4.6, rel=0.03)
+
+
+@pytest.mark.parametrize("vertical_sign", ["up", "down", None])
+def test_fig_4_16_4_17_prestress_rods_keep_the_block_standing(vertical_sign):
+    # Section 4.4: the 8 x 2 ft block overturns under Pacoima Dam S16E at COR 1.0 and 0.90
+    # (Tables 4.2, 4.3) and still at 0.70 (Fig. 4.16); tied down at its centre by a rod of
+    # stiffness 0.4 W/in and prestress 0.4 W (Fig. 4.17, COR 0.95) it stays stable. The report
+    # finds max theta/alpha = 0.3; here 0.60 (vertical as written), 0.72 (reversed), 0.45
+    # (none): the bundled record differs from the report's (docs/section4.md), so the test
+    # holds the report's robust statement, under every reading of the vertical.
+    if vertical_sign is None:
+        motion = records.load("pacoima-dam-s16e", vertical=False)
+    else:
+        motion = records.load("pacoima-dam-s16e", pacoima_vertical_sign=vertical_sign)
+    free = st.Block.from_feet(8, 2)
+    if vertical_sign == "up":  # the package's reading (records.load); reversed, COR 0.7 survives
+        for cor in (1.0, 0.9, 0.7):
+            assert st.simulate(free, motion, cor=cor).overturned
+    tied = st.Block.parse("8x2ft", rods=st.PrestressRods.from_inches(0.4, 0.4, 12))
+    result = st.simulate(tied, motion, cor=0.95)
+    assert not result.overturned and not result.unstable
+    assert result.max_theta_ratio < 0.8
+    # Section 4.4: the foundation carries "0.4W + .4W Delta", Delta the rod's extension [in]
+    # at the largest rotation, 12 in from the pivot corner
+    delta_in = 12.0 * math.sin(result.max_abs_theta)
+    assert result.max_rod_force == pytest.approx(0.4 + 0.4 * delta_in, rel=1e-12)
+    assert result.summary()["max_rod_force [W]"] == result.max_rod_force
+    assert st.simulate(free, motion, cor=0.95).max_rod_force == 0.0

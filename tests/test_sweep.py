@@ -202,6 +202,91 @@ def test_local_dask_cluster_gives_the_same_table(tmp_path, reference_table):
                                   _without_bookkeeping(reference_table))
 
 
+# A sweep of many chunks, to be killed mid-way: 10 heights x 5 aspects x 2 COR = 100 runs
+# of 20 s of Pacoima Dam, one chunk each.
+LONG_SPEC = """
+name = "long"
+seed = 3
+[blocks]
+height = ["2 ft", "3 ft", "4 ft", "5 ft", "6 ft", "8 ft", "10 ft", "12 ft", "14 ft", "16 ft"]
+aspect = [3, 4, 5, 6, 7]
+[rocking]
+cor = [0.85, 0.95]
+duration = "20 s"
+[[records]]
+name = "pacoima-dam-s16e"
+[run]
+chunk_size = 1
+"""
+
+
+def test_sigkilled_sweep_process_resumes_without_loss_or_repeat(tmp_path):
+    # A real kill: the CLI in its own process, SIGKILLed (no clean-up runs) as soon as its
+    # first chunk is on disk, with ~100 chunks to go; `--resume` must finish it into the
+    # same table as an uninterrupted run (each part is written to a temporary file and
+    # renamed, so a kill can leave a stray temporary but never a half part).
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    spec_path = write(tmp_path, LONG_SPEC)
+    out = tmp_path / "killed"
+    command = [sys.executable, "-m", "shaketable.cli", "sweep", str(spec_path), "--out",
+               str(out), "--workers", "1", "--no-progress"]
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    try:
+        while not list((out / "parts").glob("part-*.parquet")):
+            assert process.poll() is None, process.stderr.read().decode()
+            assert time.monotonic() < deadline, "no chunk written in 120 s"
+            time.sleep(0.002)
+        process.send_signal(signal.SIGKILL)
+        process.wait(timeout=30)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    assert process.returncode == -signal.SIGKILL
+    assert not (out / "results.parquet").exists()
+    kept = len(list((out / "parts").glob("part-*.parquet")))
+    assert 1 <= kept < 100
+    assert main(["sweep", str(spec_path), "--out", str(out), "--resume", "--workers", "1",
+                 "--no-progress"]) == 0
+    resumed = pd.read_parquet(out / "results.parquet")
+    assert list(resumed["run"]) == list(range(100))             # none lost, none repeated
+    # the same sweep uninterrupted (in one chunk: only the bookkeeping column differs)
+    whole = write(tmp_path, LONG_SPEC.replace("chunk_size = 1", "chunk_size = 100"), "whole.toml")
+    uninterrupted = sweep.run_sweep(sweep.load_spec(whole), tmp_path / "whole",
+                                    progress=False, workers=1).table
+    pd.testing.assert_frame_equal(_without_bookkeeping(resumed),
+                                  _without_bookkeeping(uninterrupted))
+
+
+def test_resume_refuses_parts_of_another_solver(tmp_path, monkeypatch):
+    spec = sweep.load_spec(write(tmp_path, SPEC))
+    out = tmp_path / "out"
+    sweep.run_sweep(spec, out, progress=False, max_chunks=1)
+    # another package version or another default tolerance must not be mixed in one table
+    original = sweep._solver_identity()
+    monkeypatch.setattr(sweep, "_solver_identity",
+                        lambda: {**original, "default rtol": {"fast": 1e-6}})
+    with pytest.raises(sweep.SweepError, match="cannot resume.*solver"):
+        sweep.run_sweep(spec, out, progress=False, resume=True)
+
+
+def test_dask_cluster_by_address_with_worker_processes(tmp_path, reference_table):
+    # `--scheduler ADDRESS` as a user runs it: the CLI connects to a scheduler by address
+    # and the work runs in two separate worker processes (which import shaketable there).
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        assert main(["sweep", str(write(tmp_path, SPEC)), "--out", str(tmp_path / "out"),
+                     "--scheduler", cluster.scheduler_address, "--no-progress"]) == 0
+    table = pd.read_parquet(tmp_path / "out" / "results.parquet")
+    pd.testing.assert_frame_equal(_without_bookkeeping(table),
+                                  _without_bookkeeping(reference_table))
+
+
 # --------------------------------------------------------------------------- spec errors
 @pytest.mark.parametrize("change, message", [
     (("name = \"tiny\"", ""), "missing 'name'"),
