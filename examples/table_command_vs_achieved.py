@@ -14,10 +14,12 @@ Section 3.6), this script
 
 Run from anywhere::
 
-    python examples/table_command_vs_achieved.py [--outdir DIR]
+    python examples/table_command_vs_achieved.py [--outdir DIR] [--docs-figure PNG]
 
 Writes ``table_command_vs_achieved_<case>.png`` (whole record) and
-``..._<case>_zoom.png`` (one second) into DIR (default: the current directory).
+``..._<case>_zoom.png`` (one second) into DIR (default: the current directory);
+with ``--docs-figure`` also the two one-second windows side by side in one PNG
+(``docs/figures/table_command_vs_achieved.png`` is made that way).
 """
 
 from __future__ import annotations
@@ -49,27 +51,57 @@ CASES = {
 }
 
 
+def achieved_pair(motion, highpass, pitch: Pitch, actuator: Actuator):
+    """The command, the servo's achieved motion and that motion felt on the pitching table."""
+    command = displacement_command(motion, highpass=highpass)
+    servo = achieved(command, actuator)
+    felt = motion_at_block(servo, pitch=pitch, block_position=BLOCK_POSITION)
+    return command, servo, felt
+
+
+def title_of(motion, highpass, pitch: Pitch, actuator: Actuator) -> str:
+    return (f"{motion.name}: command high-passed at {highpass:g} Hz\nservo "
+            f"{actuator.natural_frequency:g} Hz, ζ = {actuator.damping:g}; pitch "
+            f"{pitch.frequency:g} Hz, {pitch.amplitude:g} rad/s², block {BLOCK_POSITION:g} m "
+            "from the pitch axis")
+
+
+def docs_figure(path: Path, pitch: Pitch, actuator: Actuator) -> None:
+    """The one-second windows of both cases side by side, target vs achieved with and
+    without pitch (the figure of docs/table.md)."""
+    from shaketable.table_plots import _pyplot
+
+    plt = _pyplot()
+    fig = plt.figure(figsize=(16.0, 7.8), layout="constrained")
+    for panel, (motion, highpass, zoom) in zip(fig.subfigures(1, 2, wspace=0.03),
+                                                CASES.values()):
+        axes = panel.subplots(3, 1, sharex=True,
+                              gridspec_kw={"height_ratios": [1.2, 1.2, 1.0]})
+        _, servo, felt = achieved_pair(motion, highpass, pitch, actuator)
+        plot_command_vs_achieved(motion, servo, felt, ax=axes, window=zoom,
+                                 title=title_of(motion, highpass, pitch, actuator))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    print(f"wrote {path}")
+
+
 def run_case(name, motion, highpass, zoom, outdir: Path, pitch: Pitch, actuator: Actuator):
     """Command, limits, achieved motion, figure and block response for one motion."""
     from shaketable.table_plots import _pyplot
 
-    command = displacement_command(motion, highpass=highpass)
+    command, servo, felt = achieved_pair(motion, highpass, pitch, actuator)
     print(f"\n== {name}: high-pass {highpass} Hz, peak command displacement "
           f"{np.max(np.abs(command.horizontal_displacement)) * 1000:.1f} mm, velocity "
           f"{np.max(np.abs(command.horizontal_velocity)):.3f} m/s")
     exceeded = check_limits(command)
     verdict = "; ".join(map(str, exceeded)) if exceeded else "within the assumed limits"
     print("   limits: " + verdict)
-    servo = achieved(command, actuator)
-    felt = motion_at_block(servo, pitch=pitch, block_position=BLOCK_POSITION)
     print(f"   peak vertical acceleration at the block from pitch: "
           f"{np.max(np.abs(felt.vertical_or_zero - servo.vertical_or_zero)):.3f} m/s^2")
 
     plt = _pyplot()
-    title = (f"{motion.name}: command high-passed at {highpass:g} Hz\nservo "
-             f"{actuator.natural_frequency:g} Hz, ζ = {actuator.damping:g}; pitch "
-             f"{pitch.frequency:g} Hz, {pitch.amplitude:g} rad/s², block {BLOCK_POSITION:g} m "
-             "from the pitch axis")
+    title = title_of(motion, highpass, pitch, actuator)
     for suffix, window in (("", None), ("_zoom", zoom)):
         fig = plot_command_vs_achieved(motion, servo, felt, window=window, title=title)
         path = outdir / f"table_command_vs_achieved_{name}{suffix}.png"
@@ -89,6 +121,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--outdir", type=Path, default=Path("."),
                         help="directory for the PNG files (default: current directory)")
+    parser.add_argument("--docs-figure", type=Path, default=None,
+                        help="also write both one-second windows side by side to this PNG")
     args = parser.parse_args(argv)
     args.outdir.mkdir(parents=True, exist_ok=True)
     pitch = Pitch(seed=1)
@@ -98,6 +132,8 @@ def main(argv=None):
           f"g sin(phi) up to {G * np.sin(pitch.angle_amplitude):.2e} m/s^2")
     for name, (motion, highpass, zoom) in CASES.items():
         run_case(name, motion, highpass, zoom, args.outdir, pitch, actuator)
+    if args.docs_figure is not None:
+        docs_figure(args.docs_figure, pitch, actuator)
 
 
 if __name__ == "__main__":

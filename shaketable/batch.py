@@ -35,7 +35,7 @@ from numba import njit, prange
 
 from .dynamics import N_PARAMETERS, block_parameters
 from .geometry import Block
-from .motion import Motion
+from .motion import Motion, whole_number
 from .results import STATUSES
 from .simulate import _COMPILED, _DEFAULT_RTOL, _check_number, _extended
 from .solvers import engine
@@ -292,7 +292,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
         duration = _check_number("duration", duration, 0.0, low_open=True)
     rtol = _DEFAULT_RTOL.get(method, 1e-10) if rtol is None else rtol
     rtol = _check_number("rtol", rtol, 0.0, 1.0, low_open=True)
-    subdivisions = int(_check_number("subdivisions", options.get("subdivisions", 4), 1))
+    subdivisions = whole_number("subdivisions", options.get("subdivisions", 4))
     rest_tolerance = options.get("rest_tolerance")
     rest = -1.0 if rest_tolerance is None else _check_number("rest_tolerance",
                                                              rest_tolerance, 0.0)
@@ -318,6 +318,16 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     motion_index = np.ascontiguousarray(motion_index, dtype=np.int64)
     cors = np.ascontiguousarray(cors, dtype=float)
     scales = np.ascontiguousarray(scales, dtype=float)
+    pitched = np.array([motion.rotation is not None and bool(np.any(motion.rotation))
+                        for motion in runs])
+    scaled_pitch = pitched[motion_index] & (scales != 1.0)
+    if scaled_pitch.any():
+        first = int(np.flatnonzero(scaled_pitch)[0])
+        raise ValueError(
+            f"case {first}: scale {scales[first]:g} of a motion that carries the table's pitch "
+            f"({runs[motion_index[first]].name!r}): the pitch is a disturbance of the table, not "
+            "part of the record; scale the record first, then add the pitch "
+            "(shaketable.table.motion_at_block), as Motion.scaled does")
     arguments = (_COMPILED[method], t_all, ug_all, vg_all, rg_all, offsets, parameters,
                  block_index, motion_index, cors, scales, theta0, theta_dot0, rtol,
                  subdivisions, rest, info)

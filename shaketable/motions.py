@@ -622,7 +622,7 @@ def scale_to_pga(motion, pga_g) -> Motion:
     Parameters
     ----------
     motion : Motion
-        Motion to scale (unchanged).
+        Motion to scale (unchanged), without table pitch.
     pga_g : float
         Target peak horizontal acceleration [g], positive.
 
@@ -630,6 +630,21 @@ def scale_to_pga(motion, pga_g) -> Motion:
     -------
     Motion
         New motion [m/s^2].
+
+    Raises
+    ------
+    ValueError
+        ``pga_g`` not positive, a zero horizontal component, or a motion that
+        carries a table pitch (non-zero ``rotation``).
+
+    Notes
+    -----
+    The pitch is a disturbance of the table, not part of the earthquake, and
+    :func:`shaketable.table.motion_at_block` has folded its tilt and
+    tangential accelerations into ``horizontal`` and ``vertical``, where they
+    would both be scaled and distort the PGA. A pitched motion is therefore
+    refused (see :meth:`Motion.scaled`): scale the record first, then put it
+    on the pitching table.
     """
     motion = _motion("motion", motion)
     pga_g = _positive("pga_g", pga_g, " [g]")
@@ -665,7 +680,9 @@ def resample(motion, dt) -> Motion:
     Returns
     -------
     Motion
-        New motion from ``motion.t[0]`` to at most ``motion.t[-1]`` [m/s^2].
+        New motion from ``motion.t[0]`` to at most ``motion.t[-1]`` [m/s^2];
+        every channel present (horizontal, vertical, rotation [rad/s^2]) is
+        resampled the same way.
 
     Notes
     -----
@@ -691,7 +708,8 @@ def resample(motion, dt) -> Motion:
     t_new = t_old[0] + dt * np.arange(n_new)
 
     if abs(dt - dt_old) <= _UNIFORM_RTOL * dt_old:
-        return Motion(t_old, motion.horizontal, motion.vertical, name=motion.name)
+        return Motion(t_old, motion.horizontal, motion.vertical, name=motion.name,
+                      rotation=motion.rotation)
 
     if dt < dt_old:
         def convert(values):
@@ -707,9 +725,11 @@ def resample(motion, dt) -> Motion:
             def convert(values):
                 return _decimate_fft(values, dt_old, dt, t_old, t_new)
 
-    horizontal = convert(motion.horizontal)
-    vertical = None if motion.vertical is None else convert(motion.vertical)
-    return Motion(t_new, horizontal, vertical, name=motion.name)
+    def optional(values):
+        return None if values is None else convert(values)
+
+    return Motion(t_new, convert(motion.horizontal), optional(motion.vertical), name=motion.name,
+                  rotation=optional(motion.rotation))
 
 
 def trim(motion, start, end, *, rezero=False) -> Motion:
@@ -728,7 +748,8 @@ def trim(motion, start, end, *, rezero=False) -> Motion:
     Returns
     -------
     Motion
-        New motion with at least two samples [m/s^2].
+        New motion with at least two samples [m/s^2]; vertical and rotation
+        [rad/s^2] are cut with the horizontal.
     """
     motion = _motion("motion", motion)
     start = _number("start", start)
@@ -745,8 +766,12 @@ def trim(motion, start, end, *, rezero=False) -> Motion:
     t = motion.t[keep]
     if rezero:
         t = t - t[0]
-    vertical = None if motion.vertical is None else motion.vertical[keep]
-    return Motion(t, motion.horizontal[keep], vertical, name=motion.name)
+
+    def kept(values):
+        return None if values is None else values[keep]
+
+    return Motion(t, motion.horizontal[keep], kept(motion.vertical), name=motion.name,
+                  rotation=kept(motion.rotation))
 
 
 def pad(motion, before=0.0, after=0.0) -> Motion:
@@ -763,7 +788,9 @@ def pad(motion, before=0.0, after=0.0) -> Motion:
     -------
     Motion
         New motion starting at the original ``t[0]``; the original samples
-        are delayed by the padding added before [m/s^2].
+        are delayed by the padding added before [m/s^2]. Vertical and
+        rotation (when present) are padded with zeros too: the table is at
+        rest and does not pitch during the padding.
     """
     motion = _motion("motion", motion)
     before = _nonnegative("before", before, " [s]")
@@ -779,7 +806,8 @@ def pad(motion, before=0.0, after=0.0) -> Motion:
             return None
         return np.concatenate([np.zeros(n_before), values, np.zeros(n_after)])
 
-    return Motion(t, padded(motion.horizontal), padded(motion.vertical), name=motion.name)
+    return Motion(t, padded(motion.horizontal), padded(motion.vertical), name=motion.name,
+                  rotation=padded(motion.rotation))
 
 
 # ------------------------------------------------------------------ measures

@@ -3,11 +3,14 @@
 Readers
 -------
 * :func:`read_at2` -- PEER ``.AT2`` files (NGA-West2, older PEER, NGA-West1 and
-  the "Peknold" El Centro variant), values in g.
+  the "Peknold" El Centro variant), in the units the header states (or
+  ``units=`` when it states none: units are never assumed).
 * :func:`read_text` -- plain text or CSV, one column (with ``dt``) or a time
   column plus one or more value columns.
 * :func:`read_obspy` -- any waveform format ObsPy reads (SAC, MiniSEED, ...).
-* :func:`read` -- dispatch on the file extension.
+* :func:`read` -- dispatch on the extension and options; a file of any other
+  extension is offered to ObsPy first and read as text if ObsPy does not
+  recognise it.
 
 Every reader returns a :class:`Record`: one component, uniformly sampled, in
 SI units (m/s^2). :func:`combine` joins a horizontal and an optional vertical
@@ -229,13 +232,38 @@ def _find_npts_dt(lines: list[str], path: Path) -> tuple[int, int, float]:
     )
 
 
-def _at2_units(header: list[str], path: Path) -> str:
-    """Unit named in an AT2 header (e.g. ``UNITS OF G``); ``"g"`` when none is named."""
+def _at2_units(header: list[str], path: Path, units) -> str:
+    """Unit of an AT2 file: the one its header names (e.g. ``UNITS OF G``),
+    checked against ``units``; ``units`` when the header names none; else an error."""
+    stated = None
     for index, line in enumerate(header):
         match = _AT2_UNITS.search(line)
         if match:
-            return _unit_or_error(match["unit"], path, index + 1)
-    return "g"
+            stated = _unit_or_error(match["unit"], path, index + 1)
+            break
+    if units is None:
+        if stated is None:
+            raise RecordError(
+                f"{path}, lines 1-{len(header)}: the header does not state the acceleration "
+                "units (no 'UNITS OF ...'); pass units= (one of 'g', 'm/s2', 'cm/s2', 'gal')"
+            )
+        return stated
+    given = _units_argument(units, path)
+    if stated is not None and acceleration_factor(stated) != acceleration_factor(given):
+        raise ValueError(
+            f"{path}: units={units!r} contradicts the header's units {stated!r}"
+        )
+    return given
+
+
+def _units_argument(units, path: Path) -> str:
+    """The ``units=`` argument as a canonical unit, else a ValueError naming it and the file."""
+    if not isinstance(units, str):
+        raise ValueError(f"{path}: units must be a string such as 'g' or 'm/s2', got {units!r}")
+    try:
+        return _canonical_unit(units)
+    except ValueError as error:
+        raise ValueError(f"{path}: units={units!r}: {error}") from None
 
 
 def _at2_component(header: list[str]) -> str:
@@ -273,7 +301,7 @@ def _at2_values(lines: list[str], first: int, npts: int, path: Path) -> np.ndarr
     return values
 
 
-def read_at2(path) -> Record:
+def read_at2(path, *, units=None) -> Record:
     """Read a PEER ``.AT2`` acceleration file.
 
     Handles the NGA-West2 header (``NPTS=   4172, DT=   .0100 SEC,`` possibly
@@ -287,26 +315,34 @@ def read_at2(path) -> Record:
     ----------
     path : str or os.PathLike
         The file (CRLF or LF line endings).
+    units : str, optional
+        Unit of the values (``g``, ``m/s2``, ``cm/s2``, ``gal``). Required when
+        the header does not state it (no ``UNITS OF ...``, ``The units are
+        (g)``, ...); when both are there they must agree. Units are never
+        assumed.
 
     Returns
     -------
     Record
         ``acceleration`` [m/s^2]; ``component`` from the last comma field of
         header line 2 (e.g. ``"164"``, ``"DWN"``, ``"UP"``); ``units_in_file``
-        from the header (``UNITS OF G``), ``"g"`` when the header names none.
+        from the header or from ``units``.
 
     Raises
     ------
     RecordError
         Missing NPTS/DT line, a token that is not a finite number, fewer or
-        more values than NPTS, or an unknown unit; the message names the file
-        and the line.
+        more values than NPTS, an unknown unit in the header, or no unit in
+        the header and no ``units``; the message names the file and the line.
+    ValueError
+        ``units`` unknown or contradicting the header; the message names the
+        file.
     """
     path = Path(path)
     lines = _read_lines(path)
     npts_line, npts, dt = _find_npts_dt(lines, path)
     header = lines[: npts_line + 1]
-    units = _at2_units(header, path)
+    units = _at2_units(header, path, units)
     values = _at2_values(lines, npts_line + 1, npts, path)
     return Record(
         dt=dt,
@@ -474,6 +510,31 @@ def _uniform_dt(times: np.ndarray, line_numbers: list[int], path: Path) -> float
     return float(f"{dt:.12g}")  # drop the rounding noise of printed times
 
 
+def _optional_positive(value, name: str, unit: str, path: Path):
+    """``None`` or a positive finite float, else a ValueError naming ``name`` and the file."""
+    if value is None:
+        return None
+    if isinstance(value, bool):
+        raise ValueError(f"{path}: {name} must be a positive number{unit}, got {value!r}")
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{path}: {name} must be a positive number{unit}, "
+                         f"got {value!r}") from None
+    if not (math.isfinite(number) and number > 0.0):
+        raise ValueError(f"{path}: {name} must be a positive finite number{unit}, got {value!r}")
+    return number
+
+
+def _option_integer(value, name: str, path: Path, minimum: int | None = 0) -> int:
+    """An integer option (``skiprows``, a column index), else a ValueError naming it and the file."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{path}: {name} must be an integer, got {value!r}")
+    if minimum is not None and value < minimum:
+        raise ValueError(f"{path}: {name} must be >= {minimum}, got {value!r}")
+    return int(value)
+
+
 def read_text(path, *, dt=None, units=None, time_column=None, value_column=None,
               skiprows=None, delimiter=None) -> Record:
     """Read a plain text or CSV acceleration record.
@@ -522,6 +583,16 @@ def read_text(path, *, dt=None, units=None, time_column=None, value_column=None,
         choice, or contradictory arguments; the message names the file.
     """
     path = Path(path)
+    dt = _optional_positive(dt, "dt", " [s]", path)
+    if skiprows is not None:
+        skiprows = _option_integer(skiprows, "skiprows", path)
+    for name, column in (("time_column", time_column), ("value_column", value_column)):
+        if column is not None and not isinstance(column, str):
+            _option_integer(column, name, path, minimum=None)
+    if delimiter is not None and (not isinstance(delimiter, str) or not delimiter):
+        raise ValueError(f"{path}: delimiter must be a non-empty string, got {delimiter!r}")
+    if units is not None:
+        units = _units_argument(units, path)
     lines = _read_lines(path)
     header_length = _header_length(lines, skiprows, delimiter)
     header = lines[:header_length]
@@ -534,7 +605,7 @@ def read_text(path, *, dt=None, units=None, time_column=None, value_column=None,
     if time_index is None:
         if dt is None:
             raise ValueError(f"{path} has no time column; pass dt= (sample interval [s])")
-        sample_interval = float(dt)
+        sample_interval = dt
     else:
         sample_interval = _uniform_dt(table[:, time_index], line_numbers, path)
         t0 = float(table[0, time_index])
@@ -568,8 +639,8 @@ def _select_trace(stream, component, path: Path):
     return stream[0]
 
 
-def read_obspy(path, *, units, component=None) -> Record:
-    """Read any waveform format ObsPy understands (SAC, MiniSEED, ...).
+def read_obspy(path, *, units=None, component=None, format=None) -> Record:
+    """Read any waveform format ObsPy understands (SAC, MiniSEED, GSE2, SEG-Y, ...).
 
     ObsPy is imported here only, when the function is called.
 
@@ -584,6 +655,9 @@ def read_obspy(path, *, units, component=None) -> Record:
         One letter selects by component (last letter of the channel code, e.g.
         ``"Z"``); a longer string selects by channel code (e.g. ``"HNZ"``).
         Needed when the file holds more than one trace.
+    format : str, optional
+        ObsPy format name (``"SAC"``, ``"MSEED"``, ``"GSE2"``, ...); default:
+        ObsPy detects it.
 
     Returns
     -------
@@ -596,15 +670,23 @@ def read_obspy(path, *, units, component=None) -> Record:
     RecordError
         ObsPy cannot read the file, the trace choice is ambiguous, or a sample
         is not finite (the message names the file and the sample index).
+    ValueError
+        ``units`` missing or unknown, or a bad ``format``/``component``
+        argument; the message names the file.
     """
-    import obspy  # the only ObsPy import in shaketable
-
     path = Path(path)
-    unit = _canonical_unit(units)
-    try:
-        stream = obspy.read(str(path))
-    except Exception as error:  # ObsPy raises many types for unreadable files
-        raise RecordError(f"{path}: ObsPy cannot read the file: {error}") from None
+    if units is None:
+        raise ValueError(f"{path}: waveform files do not state acceleration units reliably; "
+                         "pass units= (one of 'g', 'm/s2', 'cm/s2', 'gal')")
+    unit = _units_argument(units, path)
+    for name, value in (("format", format), ("component", component)):
+        if value is not None and (not isinstance(value, str) or not value.strip()):
+            raise ValueError(f"{path}: {name} must be a non-empty string, got {value!r}")
+    return _record_from_stream(_obspy_stream(path, format), path, unit, component)
+
+
+def _record_from_stream(stream, path: Path, unit: str, component) -> Record:
+    """The :class:`Record` of the one selected trace of an ObsPy stream."""
     trace = _select_trace(stream, component, path)
     samples = np.asarray(trace.data, dtype=float)
     bad = np.flatnonzero(~np.isfinite(samples))
@@ -621,25 +703,112 @@ def read_obspy(path, *, units, component=None) -> Record:
     )
 
 
+class _UnknownToObspy(RecordError):
+    """ObsPy does not recognise the file's format (it may be plain text)."""
+
+
+def _obspy_stream(path: Path, format: str | None):
+    """``obspy.read`` with errors that name the file."""
+    import obspy  # the only ObsPy import in shaketable
+
+    if not path.is_file():
+        raise RecordError(f"{path}: cannot read the file: no such file")
+    try:
+        return obspy.read(str(path), format=None if format is None else format.upper())
+    except TypeError as error:  # ObsPy's "Unknown format" / "Format ... is not supported"
+        if format is None and "unknown format" in str(error).lower():
+            raise _UnknownToObspy(f"{path}: ObsPy does not recognise the format") from None
+        raise RecordError(f"{path}: ObsPy cannot read the file: {error}") from None
+    except Exception as error:  # ObsPy raises many types for unreadable files
+        raise RecordError(f"{path}: ObsPy cannot read the file: {error}") from None
+
+
 # --------------------------------------------------------------------- dispatch
-_OBSPY_EXTENSIONS = {".sac", ".mseed", ".miniseed"}
+#: Extensions read by ObsPy without trying text (binary or ObsPy-specific formats).
+_OBSPY_EXTENSIONS = {".sac", ".mseed", ".miniseed", ".msd", ".gse2", ".segy", ".sgy", ".su",
+                     ".seg2", ".sg2"}
+#: Extensions that are plain text: read as text without asking ObsPy.
+_TEXT_EXTENSIONS = {".csv", ".tsv"}
+_TEXT_OPTIONS = {"dt", "time_column", "value_column", "skiprows", "delimiter"}
+_OBSPY_OPTIONS = {"component", "format"}
+_READ_OPTIONS = _TEXT_OPTIONS | _OBSPY_OPTIONS | {"units"}
 
 
 def read(path, **options) -> Record:
-    """Read a record, choosing the reader from the file extension.
+    """Read a record, choosing the reader from the file and the options.
 
-    ``.at2`` -> :func:`read_at2`; ``.sac``, ``.mseed``, ``.miniseed`` ->
-    :func:`read_obspy`; anything else -> :func:`read_text`. Keyword options
-    are passed to the chosen reader (:func:`read_at2` takes none).
+    * ``.at2`` -> :func:`read_at2` (option ``units``);
+    * ``format=`` or ``component=`` given, or a waveform extension
+      (``.sac``, ``.mseed``, ``.miniseed``, ``.msd``, ``.gse2``, ``.segy``,
+      ``.sgy``, ``.su``, ``.seg2``, ``.sg2``) -> :func:`read_obspy`;
+    * a text-only option given (``dt``, ``time_column``, ``value_column``,
+      ``skiprows``, ``delimiter``) or a ``.csv``/``.tsv`` file ->
+      :func:`read_text`;
+    * any other file: ObsPy is tried first (every format it detects), and a
+      file whose format it does not recognise is read as text.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The record file.
+    **options
+        Passed to the chosen reader: ``units`` (all readers), ``dt``,
+        ``time_column``, ``value_column``, ``skiprows``, ``delimiter`` (text),
+        ``component``, ``format`` (ObsPy). An option given as ``None`` counts
+        as not given.
+
+    Returns
+    -------
+    Record
+
+    Raises
+    ------
+    RecordError
+        The file is malformed (the message names the file, and the line or
+        sample); when ObsPy recognises a format but fails and the text reader
+        fails too, the message gives both reasons.
+    ValueError
+        An unknown option, text and ObsPy options together, or a bad value;
+        the message names the option and the file.
     """
-    extension = Path(path).suffix.lower()
+    path = Path(path)
+    options = {key: value for key, value in options.items() if value is not None}
+    unknown = sorted(set(options) - _READ_OPTIONS)
+    if unknown:
+        raise ValueError(f"{path}: unknown option {unknown[0]!r}; records.read accepts "
+                         f"{sorted(_READ_OPTIONS)}")
+    text_only = sorted(set(options) & _TEXT_OPTIONS)
+    obspy_only = sorted(set(options) & _OBSPY_OPTIONS)
+    extension = path.suffix.lower()
     if extension == ".at2":
-        if options:
-            raise TypeError(f"read_at2 takes no options, got {sorted(options)}")
-        return read_at2(path)
-    if extension in _OBSPY_EXTENSIONS:
+        extra = sorted(set(options) - {"units"})
+        if extra:
+            raise ValueError(f"{path}: option {extra[0]!r} does not apply to an AT2 file "
+                             "(read_at2 takes only units=)")
+        return read_at2(path, **options)
+    if text_only and obspy_only:
+        raise ValueError(f"{path}: text options {text_only} and ObsPy options {obspy_only} "
+                         "cannot be combined")
+    if obspy_only or extension in _OBSPY_EXTENSIONS:
         return read_obspy(path, **options)
-    return read_text(path, **options)
+    if text_only or extension in _TEXT_EXTENSIONS:
+        return read_text(path, **options)
+    try:
+        stream = _obspy_stream(path, None)
+    except _UnknownToObspy:
+        return read_text(path, **options)
+    except RecordError as obspy_error:
+        if not path.is_file():
+            raise
+        try:  # ObsPy took it for a waveform format and failed: maybe it is text after all
+            return read_text(path, **options)
+        except ValueError as text_error:
+            raise RecordError(f"{obspy_error}; read as text: {text_error}") from None
+    if options.get("units") is None:
+        raise ValueError(f"{path}: ObsPy reads this file as a waveform, whose acceleration "
+                         "units it does not state reliably; pass units= (one of 'g', 'm/s2', "
+                         "'cm/s2', 'gal')")
+    return _record_from_stream(stream, path, _units_argument(options["units"], path), None)
 
 
 # --------------------------------------------------------------------- combine

@@ -107,7 +107,7 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     folder.mkdir(parents=True, exist_ok=True)
     lines = [f"## {study.source} — `{study.name}`", "", study.description, ""]
     if study.kind == "pitch-repeatability":
-        return _repeatability_section(study, folder, lines)
+        return _repeatability_section(study, folder, lines, tally)
     if study.kind == "teaching":
         return _teaching_section(study, folder, lines)
     if study.kind == "report-figure":
@@ -184,13 +184,13 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _repeatability_section(study: Study, folder: Path, lines: list) -> str:
+def _repeatability_section(study: Study, folder: Path, lines: list, tally: list) -> str:
     """Section 3.7 (2): the same command on a table pitching with different phases."""
     import matplotlib.pyplot as plt
     import pandas as pd
 
     from .plots import save
-    from .repeatability import section_3_7_cases
+    from .repeatability import section_3_7_cases, section_3_7_contrast
 
     cases = section_3_7_cases(phases=study.seed)
     figure, axes = plt.subplots(len(cases), 1, figsize=(8, 2.4 * len(cases)))
@@ -202,8 +202,13 @@ def _repeatability_section(study: Study, folder: Path, lines: list) -> str:
     frame = pd.DataFrame([case.summary() for case in cases])
     frame["overturn directions"] = frame["overturn directions"].map(
         lambda values: ", ".join(f"{v:+d}" for v in values) or "—")
-    return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", "",
-                               _markdown(frame)]) + "\n"
+    lines += [f"![{study.name}]({study.name}/figure.png)", "", _markdown(frame), "",
+              "| quantity | report | reproduced | unit | agrees |", "|---|---|---|---|---|"]
+    for line in section_3_7_contrast(cases):
+        tally[0 if line.agrees else 1] += 1
+        lines.append(f"| {line.quantity} | {_format(line.report)} | {_format(line.reproduced)} "
+                     f"| {line.unit} | {'yes' if line.agrees else '**no**'} |")
+    return "\n".join(lines) + "\n"
 
 
 def _teaching_section(study: Study, folder: Path, lines: list) -> str:

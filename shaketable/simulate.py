@@ -8,7 +8,7 @@ import numpy as np
 
 from .dynamics import airborne_acceleration, block_parameters
 from .geometry import Block
-from .motion import Motion
+from .motion import MIN_SAMPLE_INTERVAL, Motion, whole_number
 from .results import STATUSES, RockingResult
 from .solvers import engine
 from .solvers.reference import integrate_reference
@@ -47,27 +47,52 @@ def _check_number(name, value, low=-math.inf, high=math.inf, low_open=False):
 
 
 def _extended(motion: Motion, duration: float | None) -> Motion:
-    """The motion cut or padded with zeros (table at rest) to ``duration`` seconds."""
+    """The motion cut or padded with zeros (table at rest) to end at exactly ``duration``.
+
+    Cut: the samples before ``t[0] + duration`` and one at that time,
+    interpolated linearly (exact: a motion is linear between samples); a
+    sample already within rounding of it is kept as it is. Padded: zeros
+    every ``motion.dt`` after the last sample, the last interval shortened
+    to end at ``t[0] + duration``.
+    """
     if duration is None:
         return motion
-    end = motion.t[0] + duration
-    if end <= motion.t[-1] + 1e-12:
-        keep = motion.t <= end + 1e-12
-        if keep.sum() < 2:
-            raise ValueError(f"duration {duration} s is shorter than one sample of the motion")
-        vertical = None if motion.vertical is None else motion.vertical[keep]
-        rotation = None if motion.rotation is None else motion.rotation[keep]
-        return Motion(motion.t[keep], motion.horizontal[keep], vertical, name=motion.name,
-                      rotation=rotation)
+    t = motion.t
+    end = t[0] + duration
+    tolerance = max(1e-9 * motion.dt, MIN_SAMPLE_INTERVAL)
+    if end <= t[-1] + tolerance:
+        k = int(np.searchsorted(t, end - tolerance, side="left"))
+        if t[k] <= end + tolerance:       # a sample at the end already
+            times, index = t[:k + 1], slice(0, k + 1)
+            interpolate = False
+        else:
+            times, index = np.append(t[:k], end), slice(0, k)
+            interpolate = True
+        if times.size < 2:
+            raise ValueError(f"duration {duration!r} s is shorter than the shortest accepted "
+                             f"sample interval {MIN_SAMPLE_INTERVAL:g} s")
+
+        def cut(values):
+            if values is None:
+                return None
+            if not interpolate:
+                return values[index]
+            return np.append(values[index], np.interp(end, t, values))
+
+        return Motion(times, cut(motion.horizontal), cut(motion.vertical), name=motion.name,
+                      rotation=cut(motion.rotation))
     dt = motion.dt
-    extra = int(math.ceil((end - motion.t[-1]) / dt - 1e-9))
-    t = np.concatenate([motion.t, motion.t[-1] + dt * np.arange(1, extra + 1)])
-    horizontal = np.concatenate([motion.horizontal, np.zeros(extra)])
+    extra = int(math.ceil((end - t[-1]) / dt - 1e-9))
+    added = t[-1] + dt * np.arange(1, extra + 1)
+    added[-1] = end
+    if added.size > 1 and end - added[-2] < tolerance:
+        added = np.delete(added, -2)
+    times = np.concatenate([t, added])
 
     def padded(values):
-        return None if values is None else np.concatenate([values, np.zeros(extra)])
+        return None if values is None else np.concatenate([values, np.zeros(added.size)])
 
-    return Motion(t, horizontal, padded(motion.vertical), name=motion.name,
+    return Motion(times, padded(motion.horizontal), padded(motion.vertical), name=motion.name,
                   rotation=padded(motion.rotation))
 
 
@@ -92,8 +117,10 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     theta_dot0 : float
         Initial angular velocity [rad/s].
     duration : float, optional
-        Length of the run [s]. With a motion, the motion is cut to it or
-        continued with the table at rest.
+        Length of the run [s]; the run ends at exactly ``t[0] + duration``.
+        With a motion, the motion is cut there (the last sample interpolated
+        linearly when it falls between samples) or continued with the table
+        at rest.
     method : str
         One of :data:`METHODS`: ``"fast"`` (default), ``"reference"``,
         ``"predictor-corrector"``, ``"linear"``.
@@ -102,14 +129,17 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
         reference 1e-12 by default).
     subdivisions : int
         Equal parts each input interval is divided into by the
-        predictor-corrector (Section 2.8).
+        predictor-corrector (Section 2.8): an integer >= 1 (``2.7`` is
+        refused, not truncated).
     output_dt : float
-        Output interval for free rocking [s].
+        Output interval for free rocking [s]: output at 0, output_dt,
+        2 output_dt, ... and at ``duration`` (:meth:`Motion.at_rest`), never
+        beyond it.
     rest_tolerance : float, optional
         Remaining duration of an impact cascade [s] below which it is summed in
         closed form (default 1e-6 / p).
     max_recorded_impacts : int
-        Impacts kept in ``impact_times`` (all are counted).
+        Impacts kept in ``impact_times`` (all are counted), an integer >= 0.
     top_force : float
         Constant horizontal force at the middle of the top of the block per
         unit mass [m/s^2], positive along +x: one potentiometer wire
@@ -123,6 +153,9 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     ------
     ValueError
         For invalid parameters; the message names the parameter.
+    shaketable.solvers.reference.ReferenceSolverError
+        ``method="reference"`` only: SciPy's integrator gave up or made no
+        progress.
     """
     if not isinstance(block, Block):
         raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
@@ -146,7 +179,7 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     if rtol is None:
         rtol = _DEFAULT_RTOL.get(method, 1e-10)
     rtol = _check_number("rtol", rtol, 0.0, 1.0, low_open=True)
-    subdivisions = int(_check_number("subdivisions", subdivisions, 1))
+    subdivisions = whole_number("subdivisions", subdivisions)
     rest = -1.0 if rest_tolerance is None else _check_number("rest_tolerance", rest_tolerance,
                                                              0.0)
 
@@ -157,7 +190,8 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     rg = np.ascontiguousarray(motion.rotation_or_zero)
     n = t_grid.size
     theta, omega, acceleration = np.zeros(n), np.zeros(n), np.zeros(n)
-    impact_times = np.zeros(max(1, int(max_recorded_impacts)))
+    impact_times = np.zeros(max(1, whole_number("max_recorded_impacts", max_recorded_impacts,
+                                                minimum=0)))
     impact_velocities = np.zeros_like(impact_times)
     info = np.zeros(engine.N_INFO)
     if method == "reference":

@@ -213,6 +213,8 @@ def rocking_spectrum(table, *, x="p", record=None, cor=None, group="aspect", ax=
     ax.axhline(top, color="0.6", lw=0.8, ls="--")
     ax.text(ax.get_xlim()[0], top, " F (overturned)", va="bottom", fontsize=8, color="0.3")
     ax.set_ylim(0, top * 1.08)
+    if x == "p":
+        x_label += "   (larger blocks to the left: p = sqrt(3g/4R))"
     ax.set_xlabel(x_label)
     ax.set_ylabel("max |theta| / alpha [-]")
     label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]

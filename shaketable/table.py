@@ -544,23 +544,33 @@ def achieved(command, actuator=None) -> Motion:
     command : TableCommand
         From :func:`displacement_command`.
     actuator : Actuator, optional
-        Default ``Actuator()``.
+        The servo model. ``None`` (default) means no actuator model: the
+        table does exactly what it is commanded, and the result is the
+        command's own acceleration (:meth:`TableCommand.motion`). Pass
+        ``Actuator()`` for the assumed 25 Hz, zeta = 0.7 servo.
 
     Returns
     -------
     Motion
         Achieved table accelerations [m/s^2] at the command's times; vertical
         only if the command has a vertical axis; no rotation.
+
+    Raises
+    ------
+    ValueError
+        ``command`` not a :class:`TableCommand` or ``actuator`` neither an
+        :class:`Actuator` nor ``None``.
     """
     if not isinstance(command, TableCommand):
         raise ValueError(f"command must be a TableCommand, got {type(command).__name__}")
-    if actuator is None:
-        actuator = Actuator()
-    elif not isinstance(actuator, Actuator):
+    if actuator is not None and not isinstance(actuator, Actuator):
         raise ValueError(f"actuator must be an Actuator or None, got {type(actuator).__name__}")
+    name = f"{command.name} (achieved)" if command.name else "achieved"
+    if actuator is None:
+        return Motion(command.t, command.horizontal_acceleration, command.vertical_acceleration,
+                      name=name)
     outputs = {axis: _servo_output(actuator, command.t, command.quantity(axis, "acceleration"))
                for axis in command.axes}
-    name = f"{command.name} (achieved)" if command.name else "achieved"
     return Motion(command.t, outputs["horizontal"], outputs.get("vertical"), name=name)
 
 
@@ -570,22 +580,31 @@ def achieved_displacement(command, actuator=None) -> dict[str, np.ndarray]:
     Parameters
     ----------
     command : TableCommand
+        From :func:`displacement_command`.
     actuator : Actuator, optional
-        Default ``Actuator()``.
+        The servo model; ``None`` (default) means none: the achieved
+        displacement is the command itself.
 
     Returns
     -------
     dict
-        Axis name -> achieved displacement [m]. The displacement command is
-        interpolated linearly between samples, so this is accurate to the
-        sampling of the command (unlike :func:`achieved`, which is exact).
+        Axis name -> achieved displacement [m]. Through an actuator the
+        displacement command is interpolated linearly between samples, so
+        this is accurate to the sampling of the command (unlike
+        :func:`achieved`, which is exact).
+
+    Raises
+    ------
+    ValueError
+        ``command`` not a :class:`TableCommand` or ``actuator`` neither an
+        :class:`Actuator` nor ``None``.
     """
     if not isinstance(command, TableCommand):
         raise ValueError(f"command must be a TableCommand, got {type(command).__name__}")
-    if actuator is None:
-        actuator = Actuator()
-    elif not isinstance(actuator, Actuator):
+    if actuator is not None and not isinstance(actuator, Actuator):
         raise ValueError(f"actuator must be an Actuator or None, got {type(actuator).__name__}")
+    if actuator is None:
+        return {axis: np.array(command.quantity(axis, "displacement")) for axis in command.axes}
     return {axis: _servo_output(actuator, command.t, command.quantity(axis, "displacement"))
             for axis in command.axes}
 

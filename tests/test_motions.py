@@ -283,6 +283,123 @@ def test_trim_and_pad():
         motions.resample(m, 0.0)
 
 
+# ------------------------------------------------------------------ the pitch channel
+def pitched_motion(dt=0.001, duration=2.0):
+    """A motion with all three channels: rotation is a 1 Hz sine [rad/s^2], so that a
+    resampled rotation can be checked against the closed form sin(2 pi t)."""
+    t = dt * np.arange(int(round(duration / dt)) + 1)
+    taper = 0.5 * (1 - np.cos(2 * np.pi * t / duration))   # zero at both ends
+    return Motion(t, 0.3 * G * taper * np.sin(4 * np.pi * t), 0.1 * G * taper * np.cos(2 * np.pi * t),
+                  name="pitched", rotation=0.22 * taper * np.sin(2 * np.pi * t))
+
+
+def test_trim_keeps_the_rotation_of_the_kept_samples():
+    m = pitched_motion()
+    cut = motions.trim(m, 0.5, 1.5)
+    keep = (m.t >= 0.5 - 1e-12) & (m.t <= 1.5 + 1e-12)
+    # trimming is selection: the rotation samples are the original ones, exactly
+    np.testing.assert_array_equal(cut.rotation, m.rotation[keep])
+    np.testing.assert_array_equal(cut.horizontal, m.horizontal[keep])
+    assert motions.trim(pitched_motion().scaled(1.0), 0.5, 1.5).rotation is not None
+    assert motions.trim(motions.harmonic(2.0, 0.5, duration=1.0), 0.2, 0.4).rotation is None
+
+
+def test_pad_pads_the_rotation_with_zeros():
+    m = pitched_motion()
+    padded = motions.pad(m, before=0.1, after=0.2)
+    # the table is at rest and does not pitch during the padding: 100 and 200 zeros
+    np.testing.assert_array_equal(padded.rotation[:100], 0.0)
+    np.testing.assert_array_equal(padded.rotation[-200:], 0.0)
+    np.testing.assert_array_equal(padded.rotation[100:-200], m.rotation)
+    assert padded.rotation.size == padded.t.size == m.t.size + 300
+
+
+@pytest.mark.parametrize("dt_new", [0.0005, 0.001, 0.004, 0.007 * np.pi / 3])
+def test_resample_resamples_the_rotation_like_the_other_channels(dt_new):
+    m = pitched_motion()
+    # the same converter on every channel: a motion whose rotation equals its
+    # horizontal (numerically) must come out with rotation == horizontal exactly
+    twin = Motion(m.t, m.rotation, None, rotation=m.rotation)
+    r = motions.resample(twin, dt_new)
+    np.testing.assert_array_equal(r.rotation, r.horizontal)
+    # and the 1 Hz rotation is kept (closed form), finer or coarser
+    r = motions.resample(m, dt_new)
+    expected = 0.22 * 0.5 * (1 - np.cos(np.pi * r.t)) * np.sin(2 * np.pi * r.t)
+    np.testing.assert_allclose(r.rotation, expected, rtol=0, atol=2e-4 * 0.22)
+
+
+def test_motion_scaled_refuses_a_pitched_motion_and_scale_to_pga_too():
+    # The pitch is the table's (Section 3.7 (2)), not the earthquake's, and
+    # motion_at_block has folded its tilt into the horizontal: it cannot be scaled.
+    from shaketable.table import Pitch, motion_at_block
+
+    base = motions.harmonic(2.0, 0.5, duration=1.0, dt=0.002)
+    pitched = motion_at_block(base, pitch=Pitch(seed=1), block_position=1.0)
+    with pytest.raises(ValueError, match=r"pitch.*scale the table motion first"):
+        pitched.scaled(0.5)
+    with pytest.raises(ValueError, match="pitch"):
+        motions.scale_to_pga(pitched, 0.3)
+    # the documented order: scale, then pitch
+    recipe = motion_at_block(motions.scale_to_pga(base, 0.25), pitch=Pitch(seed=1),
+                             block_position=1.0)
+    factor = 0.25 * G / base.pga  # about 0.5 (the sampled peak is just below 0.5 g)
+    np.testing.assert_allclose(recipe.horizontal - pitched.horizontal,
+                               (factor - 1.0) * base.horizontal, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(recipe.rotation, pitched.rotation)  # pitch not scaled
+    # factor 1 and an all-zero rotation channel are fine
+    np.testing.assert_array_equal(pitched.scaled(1.0).rotation, pitched.rotation)
+    flat = Motion(base.t, base.horizontal, rotation=np.zeros(base.t.size))
+    assert flat.scaled(2.0).pga == pytest.approx(2 * base.pga, rel=1e-15)
+    with pytest.raises(ValueError, match="factor"):
+        base.scaled("2")
+
+
+# ------------------------------------------------------------------ Motion builders
+def test_motion_subdivided_is_the_report_straight_line_subdivision():
+    # Section 2.8: each interval divided into equal parts, straight line between the
+    # given points. By hand for t = [0, 1, 3], values [0, 2, -2], 4 parts:
+    m = Motion([0.0, 1.0, 3.0], [0.0, 2.0, -2.0], [1.0, 1.0, 3.0], rotation=[0.0, 4.0, 0.0])
+    s = m.subdivided(4)
+    np.testing.assert_array_equal(s.t, [0, .25, .5, .75, 1, 1.5, 2, 2.5, 3])
+    np.testing.assert_array_equal(s.horizontal, [0, .5, 1, 1.5, 2, 1, 0, -1, -2])
+    np.testing.assert_array_equal(s.vertical, [1, 1, 1, 1, 1, 1.5, 2, 2.5, 3])
+    np.testing.assert_array_equal(s.rotation, [0, 1, 2, 3, 4, 3, 2, 1, 0])
+    assert m.subdivided(1) is m
+    np.testing.assert_array_equal(m.subdivided(4.0).t, s.t)   # an integral float is an integer
+    for bad in (2.7, 0, -1, "3", True, float("nan")):
+        with pytest.raises(ValueError, match="parts must be an integer >= 1"):
+            m.subdivided(bad)
+
+
+@pytest.mark.parametrize("build, match", [
+    (lambda: Motion.at_rest(1.0, 0.0), "dt must be positive"),
+    (lambda: Motion.at_rest(1.0, -0.1), "dt must be positive"),
+    (lambda: Motion.at_rest("1", 0.1), "duration must be a real number"),
+    (lambda: Motion.at_rest(0.0), "duration must be positive"),
+    (lambda: Motion.uniform("x", [0.0, 1.0]), "dt must be a real number"),
+    (lambda: Motion.uniform(float("inf"), [0.0, 1.0]), "dt must be finite"),
+    (lambda: Motion.uniform(0.01, [0.0, 1.0], t0="a"), "t0 must be a real number"),
+    (lambda: Motion.uniform(0.01, ["a", "b"]), "horizontal must be an array of numbers"),
+    (lambda: Motion.from_g([0.0, 1.0], ["a", "b"]), "horizontal_g"),
+    (lambda: Motion([0.0, 1e-300, 2e-300], [0.0, 0.0, 0.0]), r"Motion.t: the sample interval"),
+    (lambda: Motion([0.0, 0.01], [0.0, 1e200]), r"Motion.horizontal\[1\].*largest accepted"),
+    (lambda: Motion([0.0, 0.01], [0.0, 0.0], [-1e7, 0.0]), r"Motion.vertical\[0\]"),
+    (lambda: Motion([0.0, 0.01], [0.0, 0.0], rotation=[0.0, 2e6]), r"Motion.rotation\[1\]"),
+])
+def test_motion_builders_reject_bad_input_naming_the_parameter(build, match):
+    with pytest.raises(ValueError, match=match):
+        build()
+
+
+def test_at_rest_ends_exactly_at_duration():
+    # samples at multiples of dt, then a last, shorter interval ending at duration
+    np.testing.assert_array_equal(Motion.at_rest(1.0, 5.0).t, [0.0, 1.0])
+    np.testing.assert_allclose(Motion.at_rest(1.0, 0.3).t, [0.0, 0.3, 0.6, 0.9, 1.0],
+                               rtol=0, atol=1e-15)
+    whole = Motion.at_rest(6.0, 0.005)
+    assert whole.t.size == 1201 and whole.t[-1] == 6.0
+
+
 # ------------------------------------------------------------------ measures
 def test_arias_intensity_of_sine_closed_form():
     # I_A = pi / (2 g) * a^2 / 2 * T for a whole number of periods.
@@ -352,3 +469,35 @@ def test_fourier_amplitude_peak_at_harmonic_frequency():
     assert frequency[np.argmax(amplitude)] == pytest.approx(2.0, abs=0.1)
     # |A(f)| at the line: a T / 2
     assert amplitude.max() == pytest.approx(0.5 * G * 10.0 / 2, rel=2e-2)
+
+
+# ------------------------------------------------------------------ figure of the presets
+def test_plot_artificial_presets_smoke_and_measures():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from shaketable.motions_plots import plot_artificial_presets, preset_measures
+
+    fig = plot_artificial_presets(("B-1", "olive-view"), seeds=(0, 1), dt=0.02,
+                                  periods=np.geomspace(0.05, 3.0, 12))
+    assert len(fig.axes) == 6                       # 2 presets x (history, S_a, Fourier)
+    assert "SUBSTITUTES" in fig._suptitle.get_text()
+    history, spectrum, fourier = fig.axes[:3]
+    legend = " ".join(text.get_text() for text in history.get_legend().get_texts())
+    assert "PGA 0.40 g" in legend and "D5-95" in legend
+    assert fourier.get_xscale() == "log" and spectrum.get_xscale() == "log"
+    plt.close(fig)
+    # the measures behind the legend: PGA exact (the preset's target, Section 4.1),
+    # D5-95 as motions.strong_motion_duration, the window inside the record
+    table = preset_measures(["olive-view"], [3])
+    row = table.iloc[0]
+    motion = motions.artificial("olive-view", seed=3)
+    assert row["pga [g]"] == pytest.approx(0.5, rel=1e-12)
+    assert row["D5-95 [s]"] == pytest.approx(motions.strong_motion_duration(motion), rel=1e-9)
+    assert 0.0 < row["t5 [s]"] < row["t95 [s]"] < motion.duration
+    assert 0.3 < row["predominant frequency [Hz]"] < 5.0
+    for bad, match in ((dict(presets=["El Centro"]), "unknown preset"),
+                       (dict(seeds=[-1]), "seeds"), (dict(smoothing=0.0), "smoothing")):
+        with pytest.raises(ValueError, match=match):
+            plot_artificial_presets(**bad)

@@ -352,6 +352,37 @@ def test_at2_unknown_units(tmp_path):
     assert "line 3" in message and "unknown acceleration unit" in message
 
 
+# A header with everything but the units (hand-written: no 'UNITS OF' anywhere)
+NO_UNITS_HEADER = ["PEER NGA STRONG MOTION DATABASE RECORD", "Quake, 1/1/2000, Station, 090",
+                   "ACCELERATION TIME SERIES", "NPTS=      7, DT=   .0100 SEC,"]
+
+
+def test_at2_without_units_is_refused_unless_units_are_given(tmp_path):
+    path = write(tmp_path / "nounits.AT2", NO_UNITS_HEADER + VALUES)
+    # units are never assumed (issue 4): the message names the file and the header lines
+    with pytest.raises(RecordError, match=r"nounits\.AT2, lines 1-4:.*does not state.*units="):
+        records.read_at2(path)
+    with pytest.raises(RecordError, match=r"nounits\.AT2.*units="):
+        records.read(path)
+    # the same numbers in g and in gal (1 gal = 0.01 m/s^2), by hand
+    np.testing.assert_allclose(records.read_at2(path, units="g").acceleration,
+                               EXPECTED_VALUES_G * G)
+    in_gal = records.read(path, units="gal")    # read() passes units= to AT2 files
+    np.testing.assert_allclose(in_gal.acceleration, EXPECTED_VALUES_G * 0.01)
+    assert in_gal.units_in_file == "gal"
+
+
+def test_at2_units_argument_must_agree_with_the_header(tmp_path):
+    path = write(tmp_path / "g.AT2", AT2_HEADER + VALUES)
+    assert records.read(path, units="g").units_in_file == "g"
+    with pytest.raises(ValueError, match=r"g\.AT2: units='cm/s2' contradicts"):
+        records.read_at2(path, units="cm/s2")
+    with pytest.raises(ValueError, match=r"g\.AT2: units='furlongs'"):
+        records.read_at2(path, units="furlongs")
+    with pytest.raises(ValueError, match=r"g\.AT2: option 'dt' does not apply"):
+        records.read(path, units="g", dt=0.01)
+
+
 def test_missing_file_names_it(tmp_path):
     with pytest.raises(RecordError, match="missing.AT2"):
         records.read(tmp_path / "missing.AT2")
@@ -407,6 +438,30 @@ def test_dt_must_agree_with_time_column(tmp_path):
     assert records.read_text(path, units="g", time_column=0, dt=0.01).npts == 3
     with pytest.raises(ValueError, match="time column steps"):
         records.read_text(path, units="g", time_column=0, dt=0.02)
+
+
+@pytest.mark.parametrize("options, match", [
+    (dict(dt="x", units="g"), r"one\.txt: dt must be a positive number \[s\], got 'x'"),
+    (dict(dt=-0.01, units="g"), r"one\.txt: dt must be a positive finite number"),
+    (dict(dt=float("nan"), units="g"), r"one\.txt: dt must be a positive finite number"),
+    (dict(dt=0.01, units=9.81), r"one\.txt: units must be a string"),
+    (dict(dt=0.01, units="g", skiprows="1"), r"one\.txt: skiprows must be an integer"),
+    (dict(dt=0.01, units="g", value_column=1.5), r"one\.txt: value_column must be an integer"),
+])
+def test_text_options_are_checked_naming_parameter_and_file(tmp_path, options, match):
+    path = write(tmp_path / "one.txt", ["0.1", "-0.2", "0.3"])
+    with pytest.raises(ValueError, match=match):
+        records.read_text(path, **options)
+
+
+def test_read_rejects_unknown_options_naming_them(tmp_path):
+    path = write(tmp_path / "one.txt", ["0.1", "-0.2"])
+    with pytest.raises(ValueError, match=r"one\.txt: unknown option 'step'"):
+        records.read(path, step=0.01)
+    with pytest.raises(ValueError, match=r"one\.txt: text options.*cannot be combined"):
+        records.read(path, dt=0.01, component="Z")
+    # None counts as not given (the CLI passes units=None, dt=None)
+    assert records.read(path, dt=0.01, units="g", component=None).npts == 2
 
 
 def text_error(tmp_path, lines, name="bad.dat", **options):
@@ -483,6 +538,38 @@ def test_read_obspy_errors_name_the_file(tmp_path):
     make_trace(data=(0.1, np.nan, 0.3)).write(str(tmp_path / "nan.sac"), format="SAC")
     with pytest.raises(RecordError, match=r"nan\.sac, sample 1"):
         records.read_obspy(tmp_path / "nan.sac", units="g")
+
+
+def test_read_offers_other_extensions_to_obspy_before_text(tmp_path):
+    # a SAC file under an extension the dispatcher does not know: ObsPy detects it
+    make_trace().write(str(tmp_path / "table.bin"), format="SAC")
+    record = records.read(tmp_path / "table.bin", units="g")
+    assert record.component == "HNZ" and record.dt == pytest.approx(0.01)
+    np.testing.assert_allclose(record.acceleration, np.array([0.1, -0.2, 0.3, -0.4]) * G,
+                               rtol=1e-6)
+    with pytest.raises(ValueError, match=r"table\.bin: ObsPy reads this file.*units="):
+        records.read(tmp_path / "table.bin")
+    # GSE2 (an ObsPy format the old dispatcher sent to the text reader), int32 counts
+    import obspy
+
+    obspy.Trace(np.array([1, -2, 3], dtype=np.int32),
+                header={"delta": 0.02, "channel": "HNE"}).write(str(tmp_path / "w.gse2"),
+                                                                 format="GSE2")
+    gse = records.read(tmp_path / "w.gse2", units="gal")
+    np.testing.assert_allclose(gse.acceleration, [0.01, -0.02, 0.03])   # 1 gal = 0.01 m/s^2
+    # format= chooses ObsPy whatever the extension
+    make_trace().write(str(tmp_path / "table.txt"), format="SAC")
+    assert records.read(tmp_path / "table.txt", units="g", format="SAC").npts == 4
+    # a text file ObsPy does not recognise falls back to the text reader
+    text = write(tmp_path / "plain.dat", ["time acc (g)", "0 0.1", "0.01 0.2"])
+    np.testing.assert_allclose(records.read(text).acceleration, [0.1 * G, 0.2 * G])
+    with pytest.raises(RecordError, match=r"plain\.dat: ObsPy cannot read"):
+        records.read(text, units="g", format="SAC")   # but not when format= says otherwise
+    with pytest.raises(RecordError, match=r"nothing\.xyz: cannot read the file"):
+        records.read(tmp_path / "nothing.xyz")
+    with pytest.raises(ValueError, match=r"z\.sac: waveform files.*units="):
+        make_trace().write(str(tmp_path / "z.sac"), format="SAC")
+        records.read_obspy(tmp_path / "z.sac")
 
 
 def test_obspy_is_imported_only_in_records_and_lazily():

@@ -1,15 +1,15 @@
 """The virtual test of Section 3.7: test (sensors on a pitching table) against theory."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from shaketable import Block
-from shaketable.motions import harmonic
-from shaketable.pipeline import run_scene
-from shaketable.scenes import SceneError, scene_from_dict
+from shaketable.pipeline import build_motion, run_scene
+from shaketable.scenes import SceneError, load_scene, resolve_scene_path, scene_from_dict
 from shaketable.sensors import Potentiometers, Sensors
-from shaketable.table import Pitch
-from shaketable.table_stage import TableSetup, run_table
+from shaketable.table_stage import run_table, table_setup_from_dict
 from shaketable.virtual_test import TheorySetup, run_virtual_test, sensors_from_dict
 
 BLOCK = Block.parse("30x6in")
@@ -34,21 +34,56 @@ def test_free_rocking_test_and_theory_with_the_true_cor_agree():
     assert wrong.metrics()["RMS difference theta/alpha"] > 2 * metrics["RMS difference theta/alpha"]
 
 
-def test_harmonic_test_unstable_at_about_the_same_time():
-    # Fig. 3.8: "test and theory unstable at about the same time, overturning the same
-    # way"; the test on a table pitching at 12 Hz, 0.22 rad/s^2, the theory driven by
-    # the 50 samples/s digitized accelerations. (Figs. 3.7 and 3.9 started abruptly
-    # sit near an overturning boundary where the pitch changes the fate for some
-    # phases: see the section-3-7-pitch study.)
-    motion = harmonic(2.0, 0.38, 0.33, duration=4.0, dt=0.01)
+def _harmonic_virtual_test(name, seed, **motion_changes):
+    """The scene ``name`` (Figs. 3.7-3.9) with pitch and sensor seed ``seed``.
+
+    The theory runs with the report's COR 0.925 (Section 3.7 (2)) instead of
+    calibrating it (identified as 0.92501 from the virtual free rocking, see
+    docs/virtual_test.md), which keeps the test fast.
+    """
+    scene = load_scene(resolve_scene_path(name))
+    if motion_changes:
+        scene = replace(scene, motion={**scene.motion, **motion_changes})
+    setup = table_setup_from_dict(scene.table, scene.path)
+    if motion_changes.get("ramp") == 0.0:  # the abrupt start: no displacement command
+        setup = replace(setup, command=False)
+    setup = replace(setup, pitch=replace(setup.pitch, seed=seed))
+    felt = run_table(build_motion(scene), setup).felt
+    return run_virtual_test(scene.block, felt, cor=0.925, sensors=Sensors(seed=seed),
+                            theory=TheorySetup(cor=0.925)).metrics()
+
+
+@pytest.mark.parametrize("name", ["fig-3-7", "fig-3-8", "fig-3-9"])
+def test_harmonic_test_unstable_at_about_the_same_time(name):
+    # Figs. 3.7-3.9, Section 3.7 (2): "the block becomes unstable at about the same
+    # points in both test and computer results, and overturning is in the same
+    # direction". Test: the block on the table pitching at 12 Hz, 0.22 rad/s^2 (four
+    # pitch phases, seeds 1-4), read by the sensors; theory: driven by the 50 samples/s
+    # digitized accelerations. "About the same point" = on the same excursion, i.e.
+    # within half a period of the 2 Hz table motion (0.25 s, the scenes' tolerance);
+    # peaks within the report's about 10 %.
+    for seed in (1, 2, 3, 4):
+        metrics = _harmonic_virtual_test(name, seed)
+        assert metrics["overturned test"] and metrics["overturned theory"], (name, seed)
+        assert abs(metrics["t unstable test [s]"] - metrics["t unstable theory [s]"]) <= 0.25, \
+            (name, seed, metrics)
+        assert metrics["direction test"] == metrics["direction theory"] != 0, (name, seed)
+        assert abs(metrics["peak ratio test/theory"] - 1.0) <= 0.10, (name, seed, metrics)
+
+
+def test_abrupt_fig_3_7_start_lets_the_pitch_decide():
+    # The scenes' start matters (docs/virtual_test.md): started abruptly at phase 0
+    # (no ramp, no displacement command, the scenes before the ramp), Fig. 3.7 sits
+    # near an overturning boundary and the pitch changes when and which way the block
+    # falls, so test and theory disagree for some pitch phase (seed 1 was reported by
+    # the audit as 8.98 s vs 5.28 s, opposite directions).
+    disagree = 0
     for seed in (1, 2, 3):
-        felt = run_table(motion, TableSetup(pitch=Pitch(seed=seed))).felt
-        metrics = run_virtual_test(BLOCK, felt, cor=0.925, sensors=Sensors(seed=seed),
-                                   theory=TheorySetup(cor=0.925)).metrics()
-        assert metrics["overturned test"] and metrics["overturned theory"]
-        assert metrics["t unstable test [s]"] == pytest.approx(metrics["t unstable theory [s]"],
-                                                              abs=0.1)
-        assert metrics["direction test"] == metrics["direction theory"] != 0
+        metrics = _harmonic_virtual_test("fig-3-7", seed, ramp=0.0, duration=10.0)
+        t_test, t_theory = metrics["t unstable test [s]"], metrics["t unstable theory [s]"]
+        disagree += (t_test is None or t_theory is None or abs(t_test - t_theory) > 0.25
+                     or metrics["direction test"] != metrics["direction theory"])
+    assert disagree >= 1
 
 
 def test_one_wire_pulls_the_block():
@@ -106,3 +141,44 @@ def test_table_3_1_periods_measured_the_reports_way():
     assert (abs(frame["virtual / exact [-]"] - 1.0) < 0.02).all()
     # the half cycles measured are the table's amplitudes (within 0.1 deg)
     assert (abs(frame["virtual test amplitude [deg]"] - frame["amplitude [deg]"]) < 0.1).all()
+
+
+def test_scene_scores_test_against_theory():
+    # Section 3.7 (2) for Figs. 3.7-3.9: same verdict, same direction, unstable at
+    # about the same point (|dt| <= 0.25 s, the scene's tolerance), peak ratio within
+    # the report's about 10 %: four "test vs theory" lines besides the report's values.
+    result = run_scene(load_scene(resolve_scene_path("fig-3-7")))
+    lines = {line.quantity: line for line in result.comparisons}
+    metrics = result.tests[0].metrics()
+    assert lines["overturns"].reproduced == result.tests[0].theory.overturned
+    scored = [line for line in result.comparisons if line.quantity.startswith("test vs theory")]
+    assert len(scored) == 4 and all(line.agrees for line in scored)
+    assert lines["test vs theory: peak ratio"].reproduced == metrics["peak ratio test/theory"]
+    # The same scene started abruptly on a table without a displacement command (the
+    # scene before the ramp) disagrees for pitch seed 1, and the lines must say so.
+    scene = load_scene(resolve_scene_path("fig-3-7"))
+    abrupt = replace(scene, motion={**scene.motion, "ramp": 0.0, "duration": 10.0},
+                     table={"pitch": {"seed": 1}})
+    result = run_scene(abrupt)
+    metrics = result.tests[0].metrics()
+    lines = {line.quantity: line for line in result.comparisons}
+    same_direction = metrics["direction test"] == metrics["direction theory"]
+    assert lines["test vs theory: direction of instability"].agrees == same_direction
+    assert not all(line.agrees for line in lines.values()
+                   if line.quantity.startswith("test vs theory"))
+
+
+def test_fig_3_5_values_are_the_tests():
+    # Fig. 3.5 is "TEST DATA" (its caption): the report's overturning after about
+    # 4 s (Section 3.6, a time to the nearest second: +-0.5 s) is compared with the
+    # virtual test, not with the theory. For earthquake motions the report gives no
+    # theory: test and theory "did not show the same level of agreement" (Section
+    # 3.7 (2)), one line with the report's answer "no".
+    result = run_scene(load_scene(resolve_scene_path("fig-3-5")))
+    test = result.tests[0].test
+    lines = {line.quantity.split(" (")[0]: line for line in result.comparisons}
+    line = lines["t overturn"]
+    assert line.report == 4.0 and line.reproduced == round(test.t_overturn, 3)
+    assert "±0.5 s" in line.quantity and line.agrees == (abs(test.t_overturn - 4.0) <= 0.5)
+    (closeness,) = [c for c in result.comparisons if c.quantity.startswith("test vs theory")]
+    assert closeness.report is False and closeness.agrees == (closeness.reproduced is False)

@@ -29,8 +29,9 @@ def _load_motion(args):
     if not path.exists():
         raise ValueError(f"--record {args.record!r}: no such file and no bundled record of that "
                          f"name (bundled: {', '.join(records.available())})")
-    record = records.read(path) if path.suffix.lower() == ".at2" else records.read(
-        path, units=args.units, dt=args.dt)
+    # an AT2 states its units and step in its header; --units / --dt are checked against
+    # it, or supply what a header does not say (records.read ignores options left at None)
+    record = records.read(path, units=args.units, dt=args.dt)
     return records.combine(record, name=path.stem)
 
 
@@ -70,7 +71,7 @@ def register(commands) -> None:
     sim.add_argument("--theta0", default="0rad",
                      help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad)")
     sim.add_argument("--record", help="bundled record name (e.g. pacoima-dam-s16e) or a file")
-    sim.add_argument("--units", help="units of a text record file: g, m/s2 or gal")
+    sim.add_argument("--units", help="units of the record file: g, m/s2 or gal (needed for a text file, and for an AT2 whose header does not state them)")
     sim.add_argument("--dt", type=float, help="sample interval of a one-column record [s]")
     sim.add_argument("--scale", type=float, default=1.0, help="factor on the record [-]")
     sim.add_argument("--no-vertical", action="store_true", help="drop the vertical component")

@@ -30,7 +30,21 @@ from .engine import (INFO_CASCADES, flight_acceleration, INFO_EVALUATIONS, INFO_
 
 
 class ReferenceSolverError(RuntimeError):
-    """SciPy's integrator gave up (step size below the spacing of floating-point numbers)."""
+    """SciPy's integrator gave up, or the event loop stopped advancing in time.
+
+    The second happens only for degenerate input (an input interval near the
+    spacing of floating-point numbers, or an acceleration so large that the
+    block starts and impacts again at the same instant); :class:`Motion`
+    refuses most such input before it gets here.
+    """
+
+
+#: Consecutive segments (rocking start, flight, impact) that may end at the
+#: instant they began before the reference solver gives up: a real start of
+#: rocking followed by an immediate impact happens once or twice, not 100 times.
+MAX_STALLED_SEGMENTS = 100
+#: Segments (solve_ivp calls) allowed inside one input interval.
+MAX_SEGMENTS_PER_INTERVAL = 100_000
 
 
 def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, omega0, rtol,
@@ -80,7 +94,14 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
         elif support_1 <= 0:
             t_end, airborne = t0 + (t1 - t0) * support_0 / (support_0 - support_1), True
 
+        stalled = segments = 0
         while t < t_end:
+            segments += 1
+            if segments > MAX_SEGMENTS_PER_INTERVAL:
+                raise ReferenceSolverError(
+                    f"reference solver: more than {MAX_SEGMENTS_PER_INTERVAL} segments in the "
+                    f"input interval [{t0!r}, {t1!r}] s (at t = {t!r} s); the input is "
+                    "degenerate (interval too short or acceleration too large?)")
             if resting:
                 if rest_until >= t_end:
                     t = t_end
@@ -151,6 +172,13 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
             if math.isnan(info[INFO_T_UNSTABLE]) and len(solution.t_events[3]):
                 info[INFO_T_UNSTABLE] = solution.t_events[3][0]
                 info[INFO_UNSTABLE_DIRECTION] = active_side
+            stalled = stalled + 1 if float(solution.t[-1]) <= t else 0
+            if stalled > MAX_STALLED_SEGMENTS:
+                raise ReferenceSolverError(
+                    f"reference solver made no progress at t = {t!r} s in the input interval "
+                    f"[{t0!r}, {t1!r}] s ({t1 - t0!r} s long): {MAX_STALLED_SEGMENTS} "
+                    "consecutive segments ended where they began; the input is degenerate "
+                    "(interval too short or acceleration too large?)")
             t = float(solution.t[-1])
             theta, omega = float(solution.y[0, -1]), float(solution.y[1, -1])
             if abs(theta) > info[INFO_MAX_ABS_THETA]:
