@@ -162,6 +162,36 @@ def _start_acceleration(method, t, theta, side, segment, parameters):
 
 
 @njit(cache=True)
+def _first_positive_margin(method, start, t_end, side, segment, parameters):
+    """The first time in [start, t_end] at which rocking onto ``side`` really begins [s].
+
+    ``start`` is the crossing of Eq. (2-1) located by linear interpolation of
+    the margin s theta''(theta = 0), which is affine in time inside an input
+    interval; there the margin is zero to rounding and may be a few ulps
+    negative. A flight begun with s theta'' <= 0 "impacts" at once with zero
+    velocity, the block rests at the same instant and the crossing is found
+    again: an endless loop. The margin is positive at ``t_end`` (that is how
+    the crossing was found), so bisection gives the first representable time
+    with a positive margin, a few ulps after ``start``.
+    """
+    ua, va, ra = _ground(segment, start)
+    if side * model_acceleration(method, 0.0, side, ua, va, ra, parameters) > 0.0:
+        return start
+    low = start
+    high = t_end
+    for _ in range(200):
+        middle = 0.5 * (low + high)
+        if middle <= low or middle >= high:
+            break
+        um, vm, rm = _ground(segment, middle)
+        if side * model_acceleration(method, 0.0, side, um, vm, rm, parameters) > 0.0:
+            high = middle
+        else:
+            low = middle
+    return high
+
+
+@njit(cache=True)
 def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
     """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``k1``.
 
@@ -501,7 +531,8 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 if start_side == 0.0:
                     t = t_end
                     break
-                t = start
+                t = _first_positive_margin(method, start, t_end, start_side, segment,
+                                           parameters)
                 side = start_side
                 theta = 0.0
                 omega = 0.0

@@ -122,6 +122,22 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 if start_side == 0.0:
                     t = t_end
                     break
+                # at the interpolated crossing the margin is zero to rounding: begin where
+                # it is strictly positive (else the flight "impacts" at once and the block
+                # rests and restarts at the same instant forever; engine: same rule)
+                low, high = start, t_end
+                if start_side * angular_acceleration(0.0, start_side, *ground(start),
+                                                     parameters) <= 0.0:
+                    for _ in range(200):
+                        middle = 0.5 * (low + high)
+                        if middle <= low or middle >= high:
+                            break
+                        if start_side * angular_acceleration(0.0, start_side, *ground(middle),
+                                                             parameters) > 0.0:
+                            high = middle
+                        else:
+                            low = middle
+                    start = high
                 t, side, theta, omega, resting = start, start_side, 0.0, 0.0, False
                 if math.isnan(info[INFO_T_START]):
                     info[INFO_T_START] = t
