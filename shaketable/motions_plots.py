@@ -20,25 +20,12 @@ import numpy as np
 
 from . import motions
 from .constants import G
+from .plots import _pyplot
 
 __all__ = ["plot_artificial_presets", "preset_measures"]
 
 #: Default natural periods of the response spectrum [s], 0.02 to 5 s.
 DEFAULT_PERIODS = np.geomspace(0.02, 5.0, 90)
-
-
-def _pyplot():
-    import matplotlib
-
-    usable = ("agg", "module://matplotlib_inline.backend_inline")
-    if matplotlib.get_backend().lower() not in usable:
-        try:
-            import matplotlib.pyplot as plt  # noqa: F401
-        except ImportError:  # pragma: no cover
-            matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _check_presets(presets) -> list[str]:

@@ -10,26 +10,13 @@ import numpy as np
 
 from .constants import G
 from .motion import Motion
+from .plots import _pyplot
 
 __all__ = ["plot_command_vs_achieved"]
 
 _TARGET = dict(color="k", lw=1.6, alpha=0.45, label="target (commanded)")
 _WITHOUT = dict(color="tab:blue", lw=0.9, ls="--", label="achieved (command → servo)")
 _WITH = dict(color="tab:red", lw=0.7, label="achieved + pitch, at the block")
-
-
-def _pyplot():
-    import matplotlib
-
-    usable = ("agg", "module://matplotlib_inline.backend_inline")
-    if matplotlib.get_backend().lower() not in usable:
-        try:
-            import matplotlib.pyplot as plt  # noqa: F401
-        except ImportError:  # pragma: no cover
-            matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _check(name: str, motion) -> Motion:
