@@ -74,6 +74,12 @@ def plot_fit(calibration, axes=None):
     top.plot(record.t, calibration.fitted * scale, lw=1.0, color="C3",
              label=f"engine, COR {calibration.cor:.{digits}f}")
     top.axvline(calibration.t_release, color="C2", lw=0.8, ls=":", label="release (fitted)")
+    cutoff = getattr(calibration, "filter_cutoff", np.inf)
+    if getattr(calibration, "anti_alias", "none") != "none":
+        top.plot([], [], " ", label=(f"{calibration.filter_order}-pole filter, "
+                                     + (f"{cutoff:.3g} Hz" if np.isfinite(cutoff) else "none")
+                                     + (" (fitted)" if calibration.anti_alias == "fit"
+                                        else " (given)")))
     top.set_ylabel(f"{record.quantity} [{unit}]")
     top.legend(loc="upper right", fontsize=8)
     top.grid(alpha=0.3)

@@ -5,6 +5,33 @@ from __future__ import annotations
 from pathlib import Path
 
 
+def _anti_alias(text: str, record, order):
+    """The ``--anti-alias`` value: 'fit', 'none' or a cutoff in Hz (a known filter)."""
+    from ..sensors import Digitizer
+
+    key = text.strip().lower()
+    if key in ("fit", "none"):
+        return key
+    try:
+        cutoff = float(key.removesuffix("hz").strip())
+    except ValueError:
+        raise ValueError(f"--anti-alias {text!r}: give 'fit', 'none' or the cutoff in Hz, "
+                         "e.g. 20") from None
+    return Digitizer(rate=record.rate, cutoff=cutoff, filter_order=4 if order == "auto"
+                     else int(order))
+
+
+def _filter_order(text: str):
+    key = text.strip().lower()
+    if key == "auto":
+        return key
+    try:
+        return int(key)
+    except ValueError:
+        raise ValueError(f"--filter-order {text!r}: give 'auto' or a number of poles 1-8") \
+            from None
+
+
 def _calibrate(args) -> int:
     import matplotlib
 
@@ -14,7 +41,6 @@ def _calibrate(args) -> int:
     from ..calibrate import calibrate, read_record
     from ..constants import length_factor
     from ..geometry import Block
-    from ..sensors import Digitizer
 
     block = Block.parse(args.block)
     height = None
@@ -24,14 +50,16 @@ def _calibrate(args) -> int:
             height = float(number) * length_factor(unit or "m")
         except ValueError:
             raise ValueError(f"--height {args.height!r}: write a length such as '30 in'") from None
-    record = read_record(args.record, column=args.column, units=args.units, rate=args.rate,
+    column = args.column
+    if column is not None and column.strip().lstrip("-").isdigit():
+        column = int(column)
+    record = read_record(args.record, column=column, units=args.units, rate=args.rate,
                          height=height)
-    anti_alias = None
-    if args.anti_alias is not None:
-        anti_alias = Digitizer(rate=record.rate, cutoff=args.anti_alias,
-                               filter_order=args.filter_order)
-    result = calibrate(record, block, anti_alias=anti_alias, bootstrap=args.bootstrap,
-                       seed=args.seed, interval=args.interval)
+    order = _filter_order(args.filter_order)
+    anti_alias = _anti_alias(args.anti_alias, record, order)
+    result = calibrate(record, block, anti_alias=anti_alias,
+                       filter_order=order if anti_alias == "fit" else "auto",
+                       bootstrap=args.bootstrap, seed=args.seed, interval=args.interval)
     out = Path(args.out) if args.out else Path("shaketable-out") / f"calibrate-{record.name}"
     out.mkdir(parents=True, exist_ok=True)
     figure = result.plot(title=f"COR calibration: {record.name}, {block.describe()} block")
@@ -49,27 +77,37 @@ def _calibrate(args) -> int:
 
 def register(commands) -> None:
     """Add the ``calibrate`` subcommand."""
+    # argparse %-formats the help= strings of arguments (a literal percent is written %%
+    # there) but prints description= as it is
     parser = commands.add_parser(
         "calibrate", help="coefficient of restitution of a free-rocking record, with interval",
         description="Identify the COR, release angle, release time and sensor offset of a "
                     "free-rocking record by least squares with the engine in the loop; print "
-                    "the COR with its 95 %% interval, write the fit figure, a JSON and a CSV.")
-    parser.add_argument("record", help="CSV file with a header (a 'time [s]' column, or --rate)")
+                    "the COR with its 95 % interval, write the fit figure, a JSON (with the "
+                    "interval) and a CSV.")
+    parser.add_argument("record", help="CSV file with a header (a 'time [s]' column, or "
+                                       "--rate), or a plain-text table, headerless or "
+                                       "whitespace-separated (then give --units)")
     parser.add_argument("--block", required=True, help="block size, height x width, e.g. 30x6in")
-    parser.add_argument("--column", help="the measured column (default: the only non-time one)")
+    parser.add_argument("--column", help="the measured column, by name or 0-based index "
+                                         "(default: the only non-time one)")
     parser.add_argument("--units", help="unit of the column: rad, deg, mrad (angle) or m, cm, "
                                         "mm, in, ft (top displacement); default from '[unit]' "
                                         "in its name")
     parser.add_argument("--rate", type=float, help="samples per second, without a time column")
     parser.add_argument("--height", help="height of the potentiometer wire, e.g. '30 in' "
                                          "(default: the block's height)")
-    parser.add_argument("--anti-alias", type=float, metavar="HZ",
-                        help="cutoff of the acquisition's Butterworth anti-alias filter, "
-                             "modelled in the fit (default: not modelled)")
-    parser.add_argument("--filter-order", type=int, default=4,
-                        help="poles of that filter (default 4)")
-    parser.add_argument("--interval", choices=("hac", "iid"), default="hac",
-                        help="covariance of the interval (default hac: Newey-West)")
+    parser.add_argument("--anti-alias", default="fit", metavar="fit|none|HZ",
+                        help="the acquisition's anti-alias filter in the model: 'fit' "
+                             "(default: a Butterworth low-pass whose cutoff is fitted), "
+                             "'none' (a record known to be unfiltered) or the known cutoff "
+                             "in Hz of a Butterworth filter of --filter-order poles")
+    parser.add_argument("--filter-order", default="auto", metavar="auto|N",
+                        help="poles of that filter (default auto: 1, 2, 4 and 8 are fitted "
+                             "and the best kept; 4 for a known cutoff)")
+    parser.add_argument("--interval", choices=("acf", "hac", "iid"), default="acf",
+                        help="covariance of the 95 %% interval (default acf: the residuals' "
+                             "autocovariance, stationary noise; hac: Newey-West; iid)")
     parser.add_argument("--bootstrap", type=int, default=0, metavar="N",
                         help="moving-block bootstrap refits for the interval (default 0)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the bootstrap")
