@@ -1,5 +1,5 @@
 """Full work-precision study: writes benchmarks/RESULTS.md, benchmarks/work_precision.csv
-and docs/figures/work_precision.png (about 5 minutes on 2 shared cores).
+and docs/figures/work_precision.png (about 1-2 minutes on 2 cores).
 
     python3 benchmarks/work_precision.py [--quick]
 """

@@ -48,6 +48,9 @@ ACCEPT_ABSOLUTE_THETA = 1e-10
 #: Impacts compared: those before this time [s].
 IMPACT_WINDOW = 20.0
 
+#: Errors below this are not used to measure orders of convergence: the truth (reference at
+#: rtol 2.5e-14) is itself up to 5e-11 off on these cases (stiff rods).
+ORDER_ERROR_FLOOR = 1e-10
 #: Settings of each method in the work-precision study.
 FAST_RTOLS = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 5e-12, 1e-12, 1e-13)
 PC_SUBDIVISIONS = (1, 2, 4, 8, 16, 32, 64)
@@ -440,8 +443,9 @@ def convergence_orders(frame):
     """Measured order of convergence per (case, method): slope of log error vs log step.
 
     Least-squares slope of log10(error) against log10(mean step) over the
-    settings whose errors lie in [1e-13, 1e-2] (outside, the truth's own error
-    or a changed sequence of events dominates) and whose impact count and
+    settings whose errors lie in [1e-10, 1e-2] (below, the truth's own error,
+    up to 5e-11 on these cases, dominates; above, a changed sequence of
+    events) and whose impact count and
     verdict agree with the truth. Separate columns for max |theta| and for the
     event times.
     """
@@ -457,7 +461,7 @@ def convergence_orders(frame):
             ok = group[group["same impacts"] & group["same verdict"]]
             x = np.log10(ok["mean step [s]"].to_numpy(dtype=float))
             y = ok[column].to_numpy(dtype=float)
-            keep = np.isfinite(x) & (y >= 1e-13) & (y <= 1e-2)
+            keep = np.isfinite(x) & (y >= ORDER_ERROR_FLOOR) & (y <= 1e-2)
             # a slope needs 3 distinct steps spanning 0.3 decades at least: fast's steps
             # end on every input sample, so at loose tolerances the sample interval, not
             # rtol, sets them and the points pile up at one step size
@@ -734,5 +738,9 @@ def results_markdown(accuracy=None, orders=None, frame=None, pacoima=None, first
         lines += ["## Measured orders of convergence", "",
                   "Least-squares slope of log10(error) against log10(mean step), over the "
                   "settings with the truth's impact count and verdict and errors in "
-                  "[1e-13, 1e-2].", "", markdown_table(orders), ""]
+                  f"[{ORDER_ERROR_FLOOR:g}, 1e-2]; '–' where fewer than three settings qualify "
+                  "(the fast engine's errors are at the truth's own level, or its steps are "
+                  "set by the input's samples). The fast stepper's order at fixed steps is "
+                  "tested in tests/test_engine.py (measured 5.99, 6.01, 6.18).", "",
+                  markdown_table(orders), ""]
     return "\n".join(lines) + "\n"

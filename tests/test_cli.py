@@ -47,3 +47,24 @@ def test_simulate_bundled_record(tmp_path):
 def test_simulate_bad_input_is_a_clear_error(argv, message, tmp_path, capsys):
     assert main(argv + ["--out", str(tmp_path)]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_run_writes_parquet_and_svg_on_request(tmp_path, capsys):
+    # `shaketable run SCENE --parquet --svg` (issue 5): history.parquet holds the same table
+    # as history.csv, and the Calcomp figure is written as SVG besides PNG
+    pytest.importorskip("pyarrow")
+    out = tmp_path / "fig-2-9"
+    assert main(["run", "fig-2-9", "--out", str(out), "--parquet", "--svg"]) == 0
+    csv = pd.read_csv(out / "history.csv")
+    parquet = pd.read_parquet(out / "history.parquet")
+    assert list(parquet.columns) == list(csv.columns) and len(parquet) == len(csv) > 100
+    pd.testing.assert_frame_equal(parquet, csv, check_exact=False, rtol=1e-12)
+    assert (out / "calcomp.svg").read_text().lstrip().startswith(("<?xml", "<svg"))
+    assert (out / "calcomp.png").stat().st_size > 10_000
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["scene"] == "fig-2-9" and summary["runs"][0]["cor [-]"] is not None
+    # without the flags: neither
+    plain = tmp_path / "plain"
+    assert main(["run", "fig-2-9", "--out", str(plain)]) == 0
+    assert not (plain / "history.parquet").exists() and not (plain / "calcomp.svg").exists()
+    capsys.readouterr()

@@ -366,12 +366,14 @@ block = st.Block.parse("30x6in")
 for t, u in ((np.array([0.0, 1e-300, 2e-300]), np.full(3, 5.0)),
              (np.array([0.0, 0.01, 0.02, 1.0]), np.array([0.0, 1e200, 0.0, 0.0]))):
     n = t.size
+    info = np.zeros(engine.N_INFO)
     try:
         integrate_reference(t, u, np.zeros(n), np.zeros(n), block_parameters(block),
                             block.alpha, block.p, 0.9, 0.0, 0.0, 1e-12, -1.0, np.zeros(n),
                             np.zeros(n), np.zeros(n), np.zeros(10), np.zeros(10),
-                            np.zeros(engine.N_INFO))
-        print("no error")
+                            info)
+        print("overturned %+d" % info[engine.INFO_OVERTURN_DIRECTION]
+              if info[engine.INFO_STATUS] == engine.STATUS_OVERTURNED else "no error")
     except ReferenceSolverError as error:
         print("ReferenceSolverError:", error)
 """
@@ -379,8 +381,12 @@ for t, u in ((np.array([0.0, 1e-300, 2e-300]), np.full(3, 5.0)),
                           text=True, timeout=120, check=True)
     lines = done.stdout.strip().splitlines()
     assert len(lines) == 2
-    assert all(line.startswith("ReferenceSolverError: reference solver made no progress")
-               for line in lines), lines
+    # an interval of 1e-300 s: no progress is possible, the guard says so
+    assert lines[0].startswith("ReferenceSolverError: reference solver made no progress"), lines
+    # a 1e200 m/s^2 sample: since rocking starts where Eq. (2-1)'s margin is positive (the
+    # loop came from a start at a rounding-negative margin) this simply overturns the block
+    # at once, toward +theta (a positive ground acceleration drives theta positive)
+    assert lines[1] == "overturned +1", lines
 
 
 # --------------------------------------------------------------------------- prestress rods
@@ -565,3 +571,50 @@ def test_rocking_starts_at_the_eq_2_1_crossing_even_on_a_sample():
     # Eq. (2-1) is linear in t here: the crossing is exact to rounding of t
     assert worst["fast"] < 1e-12 and worst["reference"] < 1e-12
     assert worst["predictor-corrector"] < 1e-12
+
+
+def test_fast_stepper_is_sixth_order_with_a_fifth_order_local_error_estimate():
+    # The fast stepper is the Runge-Kutta-Nystrom pair RKN6(4) of Dormand, El-Mikkawy and
+    # Prince (1987): global error O(h^6), embedded estimate of the local error O(h^5).
+    # Fixed steps on one flight of the 16 x 4 ft block under ground accelerations linear in
+    # time (as inside one input interval), against SciPy's DOP853 at rtol 1e-13 (independent).
+    from scipy.integrate import solve_ivp
+
+    from shaketable.constants import G
+    from shaketable.dynamics import block_parameters
+    from shaketable.solvers.engine import _nystrom, flight_acceleration
+
+    block = st.Block.parse("16x4ft")
+    parameters = block_parameters(block)
+    span = 0.8
+    # segment: t0, span, ug(t0), dug, vg(t0), dvg, rg(t0), drg over the span (engine layout)
+    segment = np.array([0.0, span, 0.3 * G, 0.5 * G, -0.1 * G, 0.2 * G, 0.0, 0.0])
+
+    def ground(time):
+        fraction = time / span
+        return (segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction, 0.0)
+
+    def rhs(time, y):
+        return [y[1], flight_acceleration(y[0], 1.0, *ground(time), parameters)]
+
+    theta0 = 0.05
+    exact = solve_ivp(rhs, (0.0, span), [theta0, 0.0], method="DOP853", rtol=1e-13,
+                      atol=1e-16).y[:, -1]
+    errors = []
+    for steps in (4, 8, 16, 32):
+        h = span / steps
+        theta, omega = theta0, 0.0
+        acceleration = flight_acceleration(theta, 1.0, *ground(0.0), parameters)
+        for k in range(steps):
+            theta, omega, acceleration, _, _ = _nystrom(k * h, theta, omega, acceleration, 1.0,
+                                                        h, segment, parameters)
+        errors.append(max(abs(theta - exact[0]), abs(omega - exact[1]) * h))
+    orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert errors[-1] < 1e-11 and np.all((orders > 5.5) & (orders < 6.6)), (errors, orders)
+
+    # one step from the same state: the error estimate (main minus embedded) ~ h^5
+    acceleration = flight_acceleration(theta0, 1.0, *ground(0.0), parameters)
+    estimates = [abs(_nystrom(0.0, theta0, 0.0, acceleration, 1.0, h, segment, parameters)[3])
+                 for h in (0.4, 0.2, 0.1, 0.05)]
+    estimate_orders = np.log2(np.array(estimates[:-1]) / np.array(estimates[1:]))
+    assert np.all((estimate_orders > 4.6) & (estimate_orders < 5.6)), estimate_orders

@@ -55,7 +55,7 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     if speed:
         progress("speed: Pacoima Dam, 16 x 4 ft, COR 0.95")
         pacoima = bench.pacoima_timing(repeats=50 if quick else 200,
-                                       reference_repeats=1 if quick else 3)
+                                       reference_repeats=1 if quick else 5)
         progress("first call in a fresh process")
         first_call = {"numba cache on disk": bench.first_call_seconds(cold=False)}
         if not quick:
