@@ -170,3 +170,48 @@ def section_2_figure(frame, figure: str):
     axis.legend(fontsize=7, frameon=False)
     fig.tight_layout()
     return fig
+
+
+def figure_3_6(frame, block=None):
+    """Fig. 3.6: period of free rocking against amplitude, 36 x 9 in block.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        From :func:`shaketable.report_tables.table_3_1`: the report's test and
+        theory periods (Table 3.1) and the virtual test's periods read the
+        report's way.
+    block : Block, optional
+        The block of the curves (default 36 x 9 in).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Eq. (2-5) and the exact period (quadrature of the energy integral) as
+        curves, the printed and virtual periods as points.
+    """
+    from . import theory
+    from .geometry import Block
+
+    plt = _pyplot()
+    block = block or Block.from_inches(36, 9)
+    degrees = 180.0 / np.pi
+    amplitudes = np.linspace(0.02, 0.95, 80) * block.alpha
+    fig, axis = plt.subplots(figsize=(6.5, 4.5))
+    axis.plot(amplitudes * degrees, [theory.housner_period(block, a) for a in amplitudes], "--",
+              color="0.4", lw=1, label="Eq. 2-5 (slender block)")
+    axis.plot(amplitudes * degrees, [theory.exact_period(block, a) for a in amplitudes], "-",
+              color="C3", lw=1.2, label="exact (energy integral)")
+    axis.plot(frame["amplitude [deg]"], frame["test period [s]"], "o", color="k", ms=5,
+              label="report: test (Table 3.1)")
+    axis.plot(frame["amplitude [deg]"], frame["theory period [s]"], "x", color="C0", ms=6,
+              label="report: theory (Table 3.1)")
+    axis.plot(frame["virtual test amplitude [deg]"], frame["virtual test period [s]"], "s",
+              mfc="none", color="C2", ms=6, label="virtual test, 50 samples/s, 4 x max-to-zero")
+    axis.set_xlabel("amplitude θ0 [deg]")
+    axis.set_ylabel("period T [s]")
+    axis.set_title(f"Fig. 3.6: period against amplitude, {block.describe()} block", fontsize=10)
+    axis.grid(True, lw=0.3, alpha=0.6)
+    axis.legend(fontsize=7, frameon=False)
+    fig.tight_layout()
+    return fig

@@ -132,8 +132,12 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
                       f"| engine (exact), 0.1 s pulse | — | {row['engine [g]']:.3g} | g | — |"]
         return "\n".join(lines) + "\n"
     if study.table == "table_3_1":
+        from .plots import figure_3_6, save
+
         frame = table_3_1()
         frame.to_csv(folder / "table.csv", index=False)
+        save(figure_3_6(frame), folder / "figure.png")
+        lines += [f"![{study.name}]({study.name}/figure.png)", ""]
         agrees = (abs(frame["test / exact [-]"] - 1) <= 0.03)
         tally[0] += int(agrees.sum())
         tally[1] += int((~agrees).sum())
