@@ -70,10 +70,14 @@ STATUS_AIRBORNE = 2
  INFO_N_OUTPUT, INFO_T_REST) = range(20)
 N_INFO = 20
 
-EVENT_IMPACT = 0
-EVENT_OVERTURN = 1
-EVENT_PEAK = 2
-EVENT_UNSTABLE = 3
+# Event codes. Floats on purpose: numba types an integer constant passed to a compiled
+# function as a literal and compiles a separate copy of the callee for each value (four
+# copies of _locate, each with every stepper inlined, doubled the first-call compile time);
+# floats have no literal type, so _locate is compiled once and branches at run time.
+EVENT_IMPACT = 0.0
+EVENT_OVERTURN = 1.0
+EVENT_PEAK = 2.0
+EVENT_UNSTABLE = 3.0
 
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
 _EVALUATIONS_PER_STEP = (5, 2, 1)
@@ -588,7 +592,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
 
             # ---- terminal events inside the step
             tau = h
-            kind = -1
+            kind = -1.0
             if side * omega < 0.0 and side * omega_new > 0.0 and side * theta_new > 0.0:
                 # theta turned back away from 0 inside the step: did it touch 0 first?
                 sign = 1.0 if omega > 0.0 else -1.0
