@@ -215,37 +215,28 @@ def test_butterworth_delay_is_the_ramp_lag():
     assert butterworth_delay(1) == pytest.approx(1.0)       # RC: delay = time constant
 
 
-def test_acf_covariance_widens_for_correlated_residuals():
-    # as below (AR(1), phi = 0.8: true variance factor 9): the stationary-autocovariance
-    # sandwich with 10 Bartlett-tapered lags recovers most of it too
+@pytest.mark.parametrize("interval", ["acf", "hac"])
+def test_covariance_widens_for_correlated_residuals(interval):
+    # estimating a mean (J = ones) from AR(1) residuals with phi = 0.8: the true variance of
+    # the mean is sigma^2 (1 + phi) / (1 - phi) / n = 9 sigma^2 / n; the iid formula gives
+    # sigma^2 / n. Newey-West ("hac") and the stationary-autocovariance sandwich ("acf"),
+    # both with 10 Bartlett-tapered lags, recover most of the factor 9.
     rng = np.random.default_rng(0)
     e = np.zeros(5000)
     for i in range(1, e.size):
         e[i] = 0.8 * e[i - 1] + rng.standard_normal()
     jacobian = np.ones((e.size, 1))
     residual = e - e.mean()
-    ratio = _covariance(jacobian, residual, "acf", 10)[0, 0] / _covariance(
+    ratio = _covariance(jacobian, residual, interval, 10)[0, 0] / _covariance(
         jacobian, residual, "iid", 10)[0, 0]
     assert 5.0 < ratio < 9.5
+
+
+def test_covariance_of_recomputes_the_stored_interval():
     _, result = _calibrated(0.9, 12)
     assert covariance_of(result, "acf") == pytest.approx(result.covariance)
     with pytest.raises(ValueError, match="interval"):
         covariance_of(result, "sandwich")
-
-
-def test_hac_covariance_widens_for_correlated_residuals():
-    # estimating a mean (J = ones) from AR(1) residuals with phi = 0.8: the true variance of
-    # the mean is sigma^2 (1 + phi) / (1 - phi) / n = 9 sigma^2 / n; the iid formula gives
-    # sigma^2 / n. Newey-West with 10 lags recovers most of the factor 9.
-    rng = np.random.default_rng(0)
-    e = np.zeros(5000)
-    for i in range(1, e.size):
-        e[i] = 0.8 * e[i - 1] + rng.standard_normal()
-    jacobian = np.ones((e.size, 1))
-    residual = e - e.mean()
-    ratio = _covariance(jacobian, residual, "hac", 10)[0, 0] / _covariance(
-        jacobian, residual, "iid", 10)[0, 0]
-    assert 5.0 < ratio < 9.5
 
 
 # ------------------------------------------------------------------ Fig. 3.4 (issue 6)
