@@ -49,12 +49,14 @@ def exact_period(block: Block, amplitude: float) -> float:
     p = block.p
 
     def integrand(u):
-        theta = amplitude * (1.0 - u * u)
-        # cos(alpha - theta) - cos(alpha - theta0) written without cancellation
-        difference = 2.0 * math.sin(alpha - 0.5 * (theta + amplitude)) * math.sin(
-            0.5 * (amplitude - theta))
-        if difference <= 0.0:
-            difference = 2.0 * math.sin(alpha - amplitude) * math.sin(0.5 * amplitude * u * u)
+        # cos(alpha - theta) - cos(alpha - theta0) = 2 sin(alpha - (theta + theta0)/2)
+        # sin((theta0 - theta)/2), with theta0 - theta = theta0 u^2 and theta + theta0 =
+        # theta0 (2 - u^2) written out: no difference of nearly equal numbers near u = 0
+        half_lift = 0.5 * amplitude * u * u
+        difference = 2.0 * math.sin(alpha - amplitude + half_lift) * math.sin(half_lift)
+        if difference <= 0.0:  # u = 0: the integrand's limit
+            return 2.0 * amplitude / math.sqrt(2.0 * p * p * math.sin(alpha - amplitude)
+                                               * amplitude)
         return 2.0 * amplitude * u / math.sqrt(2.0 * p * p * difference)
 
     quarter, _ = quad(integrand, 0.0, 1.0, epsabs=0.0, epsrel=1e-13, limit=200)
