@@ -73,7 +73,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import scipy.linalg
 import scipy.optimize
 import scipy.signal
 import scipy.stats
@@ -307,21 +306,15 @@ def _check_rate(rate) -> float:
 
 def _is_csv_with_header(lines: list[str]) -> bool:
     """True when the first line that is neither blank nor a comment is a comma-separated header."""
+    from .records import _is_number
+
     for line in lines:
         stripped = line.strip()
         if not stripped or stripped[0] in "#%":
             continue
         fields = [field.strip() for field in stripped.split(",")]
-        return len(fields) > 1 and not _is_number_text(fields[0])
+        return len(fields) > 1 and not _is_number(fields[0])
     return False
-
-
-def _is_number_text(token: str) -> bool:
-    try:
-        float(token.replace("D", "E").replace("d", "e"))
-    except ValueError:
-        return False
-    return True
 
 
 def read_record(path, *, column: str | int | None = None, units: str | None = None,
@@ -1495,11 +1488,12 @@ def calibrate(record: Record, block: Block, *, anti_alias="fit", filter_order="a
     solution = solve(plain, np.array([cor_guess, theta0_guess, t_release_guess, offset_guess]),
                      lower, upper, scales, **tight)
     x = solution.x
-    evaluations = plain.evaluations
+    models = [plain]  # every model made: their runs of the engine add up to the cost
     model = plain
     if mode == "known":
         # the known filter: its delay leaves the release time
         model = _Model(record, block, "known", digitizer, digitizer.filter_order, rtol)
+        models.append(model)
         x[2] -= butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff)
     elif mode == "fit":
         tau_max = 1.0 / (2.0 * math.pi * 0.05 * record.rate)
@@ -1516,14 +1510,12 @@ def calibrate(record: Record, block: Block, *, anti_alias="fit", filter_order="a
         for order in orders:
             candidate = _Model(record, block, "fit", None, order, rtol)
             trial = solve(candidate, np.append(x, tau_start**2), lower, upper, scales, **loose)
-            evaluations += candidate.evaluations
+            models.append(candidate)
             if best is None or trial.cost < best[1].cost:
                 best = (candidate, trial)
         model, solution = best
         if len(orders) > 1:
-            before = model.evaluations
             solution = solve(model, solution.x, lower, upper, scales, **tight)
-            evaluations += model.evaluations - before
     if mode == "known":
         # stage 2: the known filter, from the unfiltered optimum
         solution = solve(model, x, lower, upper, scales, **tight)
@@ -1607,7 +1599,7 @@ def calibrate(record: Record, block: Block, *, anti_alias="fit", filter_order="a
         "residual_lag1_autocorrelation": lag1,
         "samples": int(t.size),
         "lags": int(lags),
-        "engine_runs": int(evaluations + (model.evaluations if mode == "known" else 0)),
+        "engine_runs": int(sum(made.evaluations for made in models)),  # Jacobian included
         "optimizer_status": int(solution.status),
         "seconds": _time.perf_counter() - started,
     }

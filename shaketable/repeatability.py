@@ -318,6 +318,22 @@ def pitch_repeatability(block: Block, motion: Motion, *, cor: float, phases: int
                                record_end=float(motion.t[-1]))
 
 
+def _largest_spread(cases) -> float:
+    """The largest spread of ``cases`` (NaN ones, with no usable pair of runs, ignored).
+
+    Raises
+    ------
+    ValueError
+        When no case has a spread, naming the cases.
+    """
+    spreads = np.array([case.spread() for case in cases], dtype=float)
+    if not np.isfinite(spreads).any():
+        raise ValueError("no spread to compare with: every run of "
+                         f"{', '.join(case.name for case in cases) or 'no case'} lacks a "
+                         "usable pair of phases")
+    return float(np.nanmax(spreads))
+
+
 def section_3_7_cases(phases: int = 24) -> list[RepeatabilityResult]:
     """The report's harmonic tests and earthquake-type motions on the pitching table.
 
@@ -352,7 +368,7 @@ def section_3_7_cases(phases: int = 24) -> list[RepeatabilityResult]:
         scene_case("fig-3-5", "Fig. 3.5: earthquake-type 0.5 g H + 0.2 g V (substitute)",
                    "earthquake-type"),
     ]
-    harmonic_spread = max(case.spread() for case in cases if case.kind == "harmonic")
+    harmonic_spread = _largest_spread([case for case in cases if case.kind == "harmonic"])
     return [replace(case, reference_spread=harmonic_spread) for case in cases]
 
 
@@ -374,7 +390,7 @@ def section_3_7_contrast(cases) -> list:
     harmonic = [case for case in cases if case.kind == "harmonic"]
     if not harmonic:
         raise ValueError("section_3_7_contrast needs at least one case of kind 'harmonic'")
-    largest = max(case.spread() for case in harmonic)
+    largest = _largest_spread(harmonic)
     lines = []
     for case in cases:
         if case.kind != "earthquake-type":

@@ -19,7 +19,13 @@ from .simulate import simulate
 
 
 def _bisect(predicate, low, high, iterations=30):
-    """Smallest x in [low, high] with predicate(x) true (predicate monotone)."""
+    """Smallest x in [low, high] with predicate(x) true (predicate monotone).
+
+    Raises ValueError when the bracket does not hold the switch (predicate(low)
+    already true, or predicate(high) false), instead of returning its edge.
+    """
+    if predicate(low) or not predicate(high):
+        raise ValueError(f"the bracket [{low:.6g}, {high:.6g}] does not hold the threshold")
     for _ in range(iterations):
         middle = 0.5 * (low + high)
         low, high = (low, middle) if predicate(middle) else (middle, high)

@@ -235,6 +235,12 @@ def test_covariance_widens_for_correlated_residuals(interval):
 def test_covariance_of_recomputes_the_stored_interval():
     _, result = _calibrated(0.9, 12)
     assert covariance_of(result, "acf") == pytest.approx(result.covariance)
+    # the textbook least-squares covariance, written out here: s^2 (J^T J)^-1 with
+    # s^2 = |r|^2 / (n - k)
+    jacobian, residuals = result.jacobian, result.residuals
+    n, k = jacobian.shape
+    textbook = (residuals @ residuals / (n - k)) * np.linalg.inv(jacobian.T @ jacobian)
+    assert covariance_of(result, "iid") == pytest.approx(textbook, rel=1e-9)
     with pytest.raises(ValueError, match="interval"):
         covariance_of(result, "sandwich")
 

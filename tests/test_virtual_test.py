@@ -179,6 +179,10 @@ def test_fig_3_5_values_are_the_tests():
     lines = {line.quantity.split(" (")[0]: line for line in result.comparisons}
     line = lines["t overturn"]
     assert line.report == 4.0 and line.reproduced == round(test.t_overturn, 3)
-    assert "±0.5 s" in line.quantity and line.agrees == (abs(test.t_overturn - 4.0) <= 0.5)
+    # measured: the substitute overturns the block at 3.05 s, outside 4 +- 0.5 s
+    assert "±0.5 s" in line.quantity and test.t_overturn < 3.5 and line.agrees is False
     (closeness,) = [c for c in result.comparisons if c.quantity.startswith("test vs theory")]
-    assert closeness.report is False and closeness.agrees == (closeness.reproduced is False)
+    # measured (docs/virtual_test.md): at 0.5 g the substitute's test and theory agree as
+    # closely as the harmonic tests do, which the report says they did not: "differs"
+    assert closeness.report is False and closeness.reproduced is True
+    assert closeness.agrees is False

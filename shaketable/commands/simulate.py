@@ -29,8 +29,9 @@ def _load_motion(args):
     if not path.exists():
         raise ValueError(f"--record {args.record!r}: no such file and no bundled record of that "
                          f"name (bundled: {', '.join(records.available())})")
-    # an AT2 states its units and step in its header; --units / --dt are checked against
-    # it, or supply what a header does not say (records.read ignores options left at None)
+    # an AT2 states its step and (usually) its units in its header: --units is checked
+    # against it or supplies what it does not say, --dt is refused for it with a clear
+    # message; records.read ignores options left at None
     record = records.read(path, units=args.units, dt=args.dt)
     return records.combine(record, name=path.stem)
 
