@@ -122,7 +122,7 @@ def assert_matches(record: Record, npts, dt, pga_g, sign, peak_time, t0):
 
 # ------------------------------------------------------------- shared collection
 @needs_shared
-@pytest.mark.parametrize("relative, options, npts, dt, pga_g, sign, peak_time, t0", _cases())
+@pytest.mark.parametrize("relative, options, npts, dt, pga_g, sign, peak_time, t0", list(_cases()))
 def test_shared_record_matches_provenance(relative, options, npts, dt, pga_g, sign,
                                           peak_time, t0):
     record = records.read(SHARED_RECORDS / relative, **options)
