@@ -318,8 +318,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     motion_index = np.ascontiguousarray(motion_index, dtype=np.int64)
     cors = np.ascontiguousarray(cors, dtype=float)
     scales = np.ascontiguousarray(scales, dtype=float)
-    pitched = np.array([motion.rotation is not None and bool(np.any(motion.rotation))
-                        for motion in runs])
+    pitched = np.array([motion.pitched for motion in runs])
     scaled_pitch = pitched[motion_index] & (scales != 1.0)
     if scaled_pitch.any():
         first = int(np.flatnonzero(scaled_pitch)[0])

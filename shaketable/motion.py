@@ -288,6 +288,11 @@ class Motion:
         return self.vertical if self.vertical is not None else np.zeros_like(self.t)
 
     @property
+    def pitched(self) -> bool:
+        """True when the motion carries a non-zero table rotation (pitch)."""
+        return self.rotation is not None and bool(np.any(self.rotation != 0.0))
+
+    @property
     def rotation_or_zero(self) -> np.ndarray:
         """Table angular acceleration [rad/s^2], zeros when the table does not rotate."""
         return self.rotation if self.rotation is not None else np.zeros_like(self.t)
@@ -339,7 +344,7 @@ class Motion:
         if factor == 1.0:
             return Motion(self.t, self.horizontal, self.vertical, name=self.name,
                           rotation=self.rotation)
-        if self.rotation is not None and np.any(self.rotation != 0.0):
+        if self.pitched:
             raise ValueError(
                 f"cannot scale motion {self.name!r} by factor {factor!r}: it carries a table "
                 "pitch (rotation), whose tilt and tangential accelerations are already in "
