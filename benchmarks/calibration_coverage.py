@@ -1,7 +1,7 @@
 """Accuracy and interval coverage of the COR calibration (issue 6), over many seeds.
 
 For each true COR (default 0.80, 0.85, 0.90, 0.925, 0.95, 0.98) and each seed, a virtual
-free-rocking test of the 30 x 6 in block is made with shaketable.sensors (both
+free-rocking test of the 30 x 6 in block is made with shaketable.lab.sensors (both
 potentiometers, 50 samples/s, 20 Hz 4-pole Butterworth anti-alias filter, 12-bit ADC over
 +-15 in, 0.005 in sensor noise after the filter, 0.5 LSB ADC noise), released from a random
 angle in [0.3, 0.7] alpha at a random time 0.3-1.5 s after the record starts (plus a random
@@ -41,9 +41,12 @@ from pathlib import Path
 import numpy as np
 
 import shaketable as st
-from shaketable.calibrate import (Record, calibrate, covariance_of,
-                                  virtual_free_rocking_record)
-from shaketable.sensors import Digitizer, Potentiometers, Sensors
+from shaketable.calibration.record import Record
+from shaketable.calibration.fit import calibrate
+from shaketable.calibration.covariance import covariance_of
+from shaketable.calibration.free_rocking import virtual_free_rocking_record
+from shaketable.lab.digitizer import Digitizer
+from shaketable.lab.sensors import Potentiometers, Sensors
 
 ROOT = Path(__file__).resolve().parents[1]
 BLOCK = st.Block.parse("30x6in")

@@ -7,7 +7,7 @@ reference in the same process, the speed ratio, and the first call in a fresh pr
 
 import json
 
-from shaketable import bench
+from shaketable.studies import work_precision as bench
 
 if __name__ == "__main__":
     timing = bench.pacoima_timing(repeats=200, reference_repeats=3)

@@ -4,13 +4,13 @@ Issue 7's target: at most 60 s. The sweep (a spec built below) is 100 blocks
 (width 0.5-5 ft x H/B 1.5-8) x 5 motions of 30 s at 100 Hz (Pacoima Dam S16E and
 S74W with their vertical, cut to 30 s; three olive-view SUBSTITUTE realisations)
 x 4 scale factors (0.25-1.0) x 5 COR (0.8-1.0) = 10,000 runs, run by
-:func:`shaketable.sweep.run_sweep` exactly as ``shaketable sweep`` does
+:func:`shaketable.sweeps.execute.run_sweep` exactly as ``shaketable sweep`` does
 (chunks of 500, each written to its own Parquet part, then joined), after one
 small warm-up sweep that loads the compiled code.
 
 Run:  python benchmarks/sweep_throughput.py [--threads 2] [--out DIR]
 It prints the wall time, runs per second, and the same for the bare batch
-(:func:`shaketable.batch.simulate_cases` on the same runs, no I/O).
+(:func:`shaketable.solvers.batch.simulate_cases` on the same runs, no I/O).
 """
 
 from __future__ import annotations
@@ -51,20 +51,20 @@ def main(argv=None) -> int:
     parser.add_argument("--out", default=None, help="keep the sweep folder here")
     args = parser.parse_args(argv)
 
-    from shaketable import sweep
-    from shaketable.batch import simulate_cases
+    from shaketable.sweeps import execute, spec
+    from shaketable.solvers.batch import simulate_cases
 
     with tempfile.TemporaryDirectory() as scratch:
         folder = Path(args.out) if args.out else Path(scratch)
         spec_path = folder / "throughput.toml"
         folder.mkdir(parents=True, exist_ok=True)
         spec_path.write_text(SPEC)
-        spec = sweep.load_spec(spec_path)
+        spec = spec.load_spec(spec_path)
         assert spec.n_runs == 10_000, spec.n_runs
 
         # warm-up: compiled code from the cache, records read, motions generated
         began = time.perf_counter()
-        sweep.run_sweep(sweep.spec_from_dict({**spec.raw, "name": "warm-up",
+        execute.run_sweep(spec.spec_from_dict({**spec.raw, "name": "warm-up",
                                               "blocks": {"sizes": ["30x6in"]},
                                               "rocking": {"cor": 0.9, "duration": "2 s"}},
                                              where="warm-up"),
@@ -72,19 +72,19 @@ def main(argv=None) -> int:
         warm_up = time.perf_counter() - began
 
         began = time.perf_counter()
-        outcome = sweep.run_sweep(spec, folder / "sweep", workers=args.threads, progress=False)
+        outcome = execute.run_sweep(spec, folder / "sweep", workers=args.threads, progress=False)
         seconds = time.perf_counter() - began
         table = outcome.table
         assert outcome.complete and len(table) == 10_000
 
         # the same runs through the bare batch (no chunking, no I/O)
-        from shaketable.batch import Case
+        from shaketable.solvers.batch import Case
         cases = []
         for k in range(spec.n_chunks):
-            inputs = sweep.runs_table(spec, k * spec.chunk_size, (k + 1) * spec.chunk_size)
+            inputs = execute.runs_table(spec, k * spec.chunk_size, (k + 1) * spec.chunk_size)
             for row in inputs.itertuples(index=False):
                 seed = None if row.seed is None or str(row.seed) == "<NA>" else int(row.seed)
-                motion, factor = sweep.build_motion(spec, row.record_index, seed,
+                motion, factor = execute.build_motion(spec, row.record_index, seed,
                                                     row.level_index)
                 cases.append(Case(spec.blocks[row.block_index], motion, row[-1], scale=factor))
         began = time.perf_counter()

@@ -1,11 +1,11 @@
 """Frequency content, PGA and strong-motion duration of the artificial presets.
 
-The presets "A-1", "B-1" and "olive-view" of :data:`shaketable.motions.PRESETS`
+The presets "A-1", "B-1" and "olive-view" of :data:`shaketable.ground.generators.PRESETS`
 are SUBSTITUTES in the spirit of the records of Section 4.1 of the report, not
 the originals (which are not available). This script draws, for seeds 0-2, the
 acceleration with its 5-95 % Arias window, the 5 %-damped response spectrum and
-the Fourier amplitude spectrum (:func:`shaketable.motions_plots.plot_artificial_presets`)
-and prints the measures (:func:`shaketable.motions_plots.preset_measures`).
+the Fourier amplitude spectrum (:func:`shaketable.plots.ground.plot_artificial_presets`)
+and prints the measures (:func:`shaketable.plots.ground.preset_measures`).
 
 Run from anywhere::
 
@@ -17,7 +17,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from shaketable.motions_plots import plot_artificial_presets, preset_measures
+from shaketable.plots.ground import plot_artificial_presets, preset_measures
 
 SEEDS = (0, 1, 2)
 PRESETS = ("A-1", "B-1", "olive-view")

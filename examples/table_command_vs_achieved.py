@@ -4,11 +4,11 @@ For a 2 Hz, 0.5 g harmonic (Fig. 3.7 of the report) and the artificial
 "olive-view" record (a substitute for the San Fernando-like record of
 Section 3.6), this script
 
-1. derives the displacement command (:func:`shaketable.table.displacement_command`)
+1. derives the displacement command (:func:`shaketable.lab.command.displacement_command`)
    and checks it against the assumed limits of the Berkeley table;
-2. passes it through the assumed servo (:class:`shaketable.table.Actuator`);
+2. passes it through the assumed servo (:class:`shaketable.lab.servo.Actuator`);
 3. adds the 12 Hz, 0.22 rad/s^2 pitch the report measured, for a block 1 m
-   from the pitch axis (:func:`shaketable.table.motion_at_block`);
+   from the pitch axis (:func:`shaketable.lab.pitch.motion_at_block`);
 4. plots the three and runs the 30 x 6 in block (COR 0.925) on the achieved
    motion without and with pitch.
 
@@ -29,11 +29,14 @@ from pathlib import Path
 
 import numpy as np
 
-from shaketable import Block, G, simulate
-from shaketable import motions
-from shaketable.table import (Actuator, Pitch, achieved, check_limits, displacement_command,
-                              motion_at_block)
-from shaketable.table_plots import plot_command_vs_achieved
+from shaketable import Block, G
+from shaketable.solvers import api as simulate
+from shaketable.ground import generators as motions
+from shaketable.lab.servo import Actuator, achieved
+from shaketable.lab.pitch import Pitch, motion_at_block
+from shaketable.lab.limits import check_limits
+from shaketable.lab.command import displacement_command
+from shaketable.plots.table import plot_command_vs_achieved
 
 #: Horizontal distance of the block from the table's pitch axis [m] (assumed).
 BLOCK_POSITION = 1.0
@@ -69,7 +72,7 @@ def title_of(motion, highpass, pitch: Pitch, actuator: Actuator) -> str:
 def docs_figure(path: Path, pitch: Pitch, actuator: Actuator) -> None:
     """The one-second windows of both cases side by side, target vs achieved with and
     without pitch (the figure of docs/table.md)."""
-    from shaketable.table_plots import _pyplot
+    from shaketable.plots.table import _pyplot
 
     plt = _pyplot()
     fig = plt.figure(figsize=(16.0, 7.8), layout="constrained")
@@ -88,7 +91,7 @@ def docs_figure(path: Path, pitch: Pitch, actuator: Actuator) -> None:
 
 def run_case(name, motion, highpass, zoom, outdir: Path, pitch: Pitch, actuator: Actuator):
     """Command, limits, achieved motion, figure and block response for one motion."""
-    from shaketable.table_plots import _pyplot
+    from shaketable.plots.table import _pyplot
 
     command, servo, felt = achieved_pair(motion, highpass, pitch, actuator)
     print(f"\n== {name}: high-pass {highpass} Hz, peak command displacement "

@@ -1,13 +1,13 @@
 """Regenerate the teaching gallery's figures: docs/figures/teaching_*.png.
 
 Run from the repository root: ``python examples/teaching_gallery.py`` (about 5 s).
-Each item is one function of :mod:`shaketable.teaching`; its numbers are printed.
+Each item is one function of :mod:`shaketable.studies.teaching`; its numbers are printed.
 """
 
 from pathlib import Path
 
-from shaketable import teaching
-from shaketable.teaching_plots import save_item
+from shaketable.studies import teaching
+from shaketable.plots.teaching import save_item
 
 FIGURES = Path(__file__).resolve().parent.parent / "docs" / "figures"
 

@@ -4,11 +4,11 @@ Reproduces Aslam, Godden & Scalise, *Rocking and overturning response of rigid
 bodies to earthquake motions* (LBL / UC Berkeley; program BLOKROC).
 """
 
-from .constants import FOOT, G, INCH
-from .geometry import Block, PrestressRods
-from .motion import Motion
-from .results import RockingResult
-from .simulate import METHODS, simulate
+from shaketable.core.constants import FOOT, INCH, G
+from shaketable.core.geometry import Block, PrestressRods
+from shaketable.core.motion import Motion
+from shaketable.core.results import RockingResult
+from shaketable.solvers.api import METHODS, simulate
 
 __all__ = ["Block", "PrestressRods", "Motion", "RockingResult", "simulate", "METHODS", "G",
            "INCH", "FOOT"]

@@ -5,8 +5,9 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .pipeline import run_scene
-from .scenes import Study, load_scene, resolve_scene_path
+from shaketable.scenes.catalog import resolve_scene_path
+from shaketable.scenes.parse import Study, load_scene
+from shaketable.scenes.run import run_scene
 
 
 def _format(value) -> str:
@@ -101,7 +102,7 @@ def _markdown(frame) -> str:
 
 def _study_section(study: Study, out: Path, tally: list) -> str:
     """Recompute one of the report's tables; write its CSV; return the Markdown section."""
-    from .report_tables import reproduce_table, table_3_1
+    from shaketable.studies.report_tables import reproduce_table, table_3_1
 
     folder = out / study.name
     folder.mkdir(parents=True, exist_ok=True)
@@ -111,12 +112,13 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     if study.kind == "teaching":
         return _teaching_section(study, folder, lines)
     if study.kind == "report-figure":
-        from . import section2
-        from .plots import save, section_2_figure
+        from shaketable.plots.base import save
+        from shaketable.plots.studies import section_2_figure
+        from shaketable.studies import pulses, section2
 
         frame = {"2.3": section2.figure_2_3, "2.4": section2.figure_2_4,
                  "2.5": section2.figure_2_5, "2.6": section2.figure_2_6,
-                 "4.3.4": section2.section_4_3_4}[study.table]()
+                 "4.3.4": pulses.section_4_3_4}[study.table]()
         frame.to_csv(folder / "curves.csv", index=False)
         save(section_2_figure(frame, study.table), folder / "figure.png")
         lines += [f"![{study.name}]({study.name}/figure.png)", "", _markdown(frame.round(4))]
@@ -132,7 +134,8 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
                       f"| engine (exact), 0.1 s pulse | — | {row['engine [g]']:.3g} | g | — |"]
         return "\n".join(lines) + "\n"
     if study.table == "table_3_1":
-        from .plots import figure_3_6, save
+        from shaketable.plots.base import save
+        from shaketable.plots.studies import figure_3_6
 
         frame = table_3_1()
         frame.to_csv(folder / "table.csv", index=False)
@@ -168,7 +171,7 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     if pacoima:
         # the default reading of the Pacoima vertical was chosen by agreement with these
         # tables: show the agreement under the other readings too (docs/section4.md)
-        from .report_tables import PACOIMA_VERTICAL_READINGS
+        from shaketable.studies.report_tables import PACOIMA_VERTICAL_READINGS
 
         lines += ["", "Verdicts of the Pacoima Dam columns under each reading of its vertical "
                   "(labelled DWN in the file; the default uses the values as written, "
@@ -193,8 +196,8 @@ def _repeatability_section(study: Study, folder: Path, lines: list, tally: list)
     import matplotlib.pyplot as plt
     import pandas as pd
 
-    from .plots import save
-    from .repeatability import section_3_7_cases, section_3_7_contrast
+    from shaketable.plots.base import save
+    from shaketable.studies.repeatability import section_3_7_cases, section_3_7_contrast
 
     cases = section_3_7_cases(phases=study.seed)
     figure, axes = plt.subplots(len(cases), 1, figsize=(8, 2.4 * len(cases)))
@@ -216,9 +219,9 @@ def _repeatability_section(study: Study, folder: Path, lines: list, tally: list)
 
 
 def _teaching_section(study: Study, folder: Path, lines: list) -> str:
-    """One item of the teaching gallery (:mod:`shaketable.teaching`): figure, numbers, CSV."""
-    from .teaching import run_item
-    from .teaching_plots import save_item
+    """One item of the teaching gallery (:mod:`shaketable.studies.teaching`): figure, numbers, CSV."""
+    from shaketable.plots.teaching import save_item
+    from shaketable.studies.teaching import run_item
 
     item = run_item(study.table)
     frame = item.to_frame()

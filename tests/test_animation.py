@@ -1,4 +1,4 @@
-"""The animated GIF (shaketable.animation) and ``shaketable animate``."""
+"""The animated GIF (shaketable.plots.animation) and ``shaketable animate``."""
 
 import math
 
@@ -7,8 +7,8 @@ import pytest
 from PIL import Image
 
 import shaketable as st
-from shaketable import motions
-from shaketable.animation import animate, block_outline, frame_times, table_displacement
+from shaketable.ground import generators as motions
+from shaketable.plots.animation import animate, block_outline, frame_times, table_displacement
 from shaketable.cli import main
 
 

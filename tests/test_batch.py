@@ -1,7 +1,7 @@
-"""``shaketable.batch``: many runs in one compiled loop, each equal to ``simulate``.
+"""``shaketable.solvers.batch``: many runs in one compiled loop, each equal to ``simulate``.
 
 The expected values here are never produced by the batch itself: every row is
-compared with an independent call of :func:`shaketable.simulate` (one run, its
+compared with an independent call of :func:`shaketable.solvers.api` (one run, its
 own Python driver) on the same inputs, and must agree *exactly* (the batch calls
 the same compiled integrator on the same numbers; any difference is a bug).
 """
@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import shaketable as st
-from shaketable import batch, motions, records
+from shaketable.solvers import batch
+from shaketable.ground import generators as motions, records
 
 # Scalar columns of the batch table -> the RockingResult attribute they must equal.
 SCALARS = {

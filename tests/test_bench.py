@@ -1,20 +1,20 @@
-"""Smoke tests of shaketable.bench on one small case (no timing assertions)."""
+"""Smoke tests of shaketable.studies.benchmark_cases on one small case (no timing assertions)."""
 
 import numpy as np
 import pytest
 
 import shaketable as st
-from shaketable import bench
+from shaketable.studies import benchmark_cases, work_precision
 
 
 @pytest.fixture(scope="module")
 def small():
     block = st.Block.parse("16x4ft")
-    motion = bench._harmonic(2.0, 0.3, duration=3.0)
-    case = bench.Case("small", "16 x 4 ft, 2 Hz 0.3 g, 3 s", block, motion, 0.95)
-    settings = bench.method_settings(fast_rtols=(1e-5, 1e-7, 1e-9), subdivisions=(2, 4, 8, 16),
+    motion = benchmark_cases._harmonic(2.0, 0.3, duration=3.0)
+    case = benchmark_cases.Case("small", "16 x 4 ft, 2 Hz 0.3 g, 3 s", block, motion, 0.95)
+    settings = work_precision.method_settings(fast_rtols=(1e-5, 1e-7, 1e-9), subdivisions=(2, 4, 8, 16),
                                      reference_rtols=(1e-8,))
-    frame = bench.work_precision([case], settings, repeats=1)
+    frame = work_precision.work_precision([case], settings, repeats=1)
     return case, frame
 
 
@@ -41,16 +41,16 @@ def test_errors_decrease_as_settings_tighten(small):
 
 def test_predictor_corrector_order_is_two(small):
     _, frame = small
-    orders = bench.convergence_orders(frame).set_index("method")
+    orders = work_precision.convergence_orders(frame).set_index("method")
     # Heun's method (Section 2.8 of the report) is second order
     assert 1.7 < orders.loc["predictor-corrector", "order max_theta"] < 2.3
 
 
 def test_markdown_and_figure(small, tmp_path):
     _, frame = small
-    text = bench.results_markdown(frame=frame, orders=bench.convergence_orders(frame))
+    text = work_precision.results_markdown(frame=frame, orders=work_precision.convergence_orders(frame))
     assert "| case | method |" in text and "orders of convergence" in text
-    from shaketable.bench_plots import save_work_precision_figure
+    from shaketable.plots.bench import save_work_precision_figure
 
     path = tmp_path / "wp.png"
     save_work_precision_figure(frame, path)
@@ -59,7 +59,7 @@ def test_markdown_and_figure(small, tmp_path):
 
 def test_unknown_case_is_named():
     with pytest.raises(ValueError, match="unknown benchmark case"):
-        bench.benchmark_cases(names=["no-such-case"])
+        benchmark_cases.benchmark_cases(names=["no-such-case"])
 
 
 def test_cli_bench_help(capsys):

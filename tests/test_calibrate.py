@@ -1,7 +1,7 @@
-"""Tests of shaketable.calibrate: COR identification by recovery from virtual free-rocking tests.
+"""Tests of shaketable.calibration.fit: COR identification by recovery from virtual free-rocking tests.
 
 Every "true" value below is an input of the virtual test (the engine run seen through
-shaketable.sensors: both potentiometers, 50 samples/s, 20 Hz 4-pole anti-alias filter,
+shaketable.lab.sensors: both potentiometers, 50 samples/s, 20 Hz 4-pole anti-alias filter,
 12-bit ADC, noise, a record starting at an unknown time before the release); the
 calibration has to get it back from the record alone.
 """
@@ -17,14 +17,17 @@ import pytest
 import shaketable as st
 import scipy.signal
 
-from shaketable.calibrate import (FILTER_ORDERS, CalibrationError, Record,
-                                  _analog_butterworth_foh, _covariance, _foh_filter,
-                                  butterworth_delay, calibrate, covariance_of, period_fit,
-                                  read_record, reproduce_fig_3_4, virtual_free_rocking_record)
-from shaketable.sensors import Potentiometers, Sensors
+from shaketable.calibration.fit import calibrate
+from shaketable.calibration.record import FILTER_ORDERS
+from shaketable.calibration.record import CalibrationError, Record, read_record
+from shaketable.calibration.filters import analog_butterworth_foh, foh_filter, butterworth_delay
+from shaketable.calibration.covariance import sandwich_covariance, covariance_of
+from shaketable.calibration.peaks import period_fit
+from shaketable.calibration.free_rocking import reproduce_fig_3_4, virtual_free_rocking_record
+from shaketable.lab.sensors import Potentiometers, Sensors
 from shaketable.cli import main
-from shaketable.constants import INCH
-from shaketable.sensors import Digitizer
+from shaketable.core.constants import INCH
+from shaketable.lab.digitizer import Digitizer
 
 BLOCK = st.Block.parse("30x6in")    # the report's test block (Sections 3.2, 3.5)
 # Low-frequency group delay of a 4-pole Butterworth low-pass at fc = 20 Hz:
@@ -90,7 +93,7 @@ def test_modelling_the_anti_alias_filter_removes_its_delay():
 
 
 def test_fitted_filter_finds_the_acquisitions_cutoff():
-    # the virtual acquisition's filter is 4-pole at 20 Hz (shaketable.sensors.Digitizer);
+    # the virtual acquisition's filter is 4-pole at 20 Hz (shaketable.lab.digitizer.Digitizer);
     # over 600 benchmark records the fitted cutoff's median is 20.0-20.6 Hz and 90 % lie
     # in 16.0-38.3 Hz (benchmarks/CALIBRATION.md, "Fitted filter")
     _, result = _calibrated(0.90, 12)
@@ -198,7 +201,7 @@ def test_foh_filter_is_the_analog_butterworth():
     for order in (1, 2, 4, 8):
         for cutoff in (2.5, 20.0, 1000.0):
             tau = 1.0 / (2 * math.pi * cutoff)
-            ours = _foh_filter(_analog_butterworth_foh(order, tau, dt), signal, signal[0])
+            ours = foh_filter(analog_butterworth_foh(order, tau, dt), signal, signal[0])
             _, exact, _ = scipy.signal.lsim(scipy.signal.butter(order, 1 / tau, analog=True),
                                             signal - signal[0], t)
             np.testing.assert_allclose(ours, exact + signal[0], atol=1e-9)
@@ -209,7 +212,7 @@ def test_butterworth_delay_is_the_ramp_lag():
     # 4 poles at 20 Hz that is FILTER_DELAY (textbook pole positions, top of this file)
     dt, cutoff = 0.0025, 20.0
     t = np.arange(0.0, 2.0, dt)
-    out = _foh_filter(_analog_butterworth_foh(4, 1 / (2 * math.pi * cutoff), dt), t, 0.0)
+    out = foh_filter(analog_butterworth_foh(4, 1 / (2 * math.pi * cutoff), dt), t, 0.0)
     assert t[-1] - out[-1] == pytest.approx(FILTER_DELAY, rel=1e-6)
     assert butterworth_delay(4) / (2 * math.pi * cutoff) == pytest.approx(FILTER_DELAY, rel=1e-12)
     assert butterworth_delay(1) == pytest.approx(1.0)       # RC: delay = time constant
@@ -227,7 +230,7 @@ def test_covariance_widens_for_correlated_residuals(interval):
         e[i] = 0.8 * e[i - 1] + rng.standard_normal()
     jacobian = np.ones((e.size, 1))
     residual = e - e.mean()
-    ratio = _covariance(jacobian, residual, interval, 10)[0, 0] / _covariance(
+    ratio = sandwich_covariance(jacobian, residual, interval, 10)[0, 0] / sandwich_covariance(
         jacobian, residual, "iid", 10)[0, 0]
     assert 5.0 < ratio < 9.5
 
@@ -337,7 +340,7 @@ def test_read_record_csv_and_errors(tmp_path):
 
 def test_read_record_plain_text(tmp_path):
     # the same record written as the package's text readers take it: whitespace-separated,
-    # with and without a header line (shaketable.records.read_text's tokenizer)
+    # with and without a header line (shaketable.ground.readers.text.read_text's tokenizer)
     record, _ = _calibrated(0.9, 12)
     headed = tmp_path / "headed.txt"
     headed.write_text("% potentiometer, 30 x 6 in block\ntime  top [in]\n" + "\n".join(

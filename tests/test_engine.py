@@ -14,9 +14,9 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import shaketable as st
-from shaketable import theory
-from shaketable.constants import G
-from shaketable.geometry import PrestressRods
+from shaketable.core import theory
+from shaketable.core.constants import G
+from shaketable.core.geometry import PrestressRods
 
 SOLVERS = ["fast", "reference", "predictor-corrector", "linear"]
 BLOCK_30x6 = st.Block.parse("30x6in")
@@ -359,7 +359,7 @@ def test_reference_solver_gives_up_cleanly_on_a_degenerate_interval():
     # so the run is in a subprocess with a timeout: a hang fails the test.
     code = """
 import numpy as np, shaketable as st
-from shaketable.dynamics import block_parameters
+from shaketable.core.dynamics import block_parameters
 from shaketable.solvers import engine
 from shaketable.solvers.reference import ReferenceSolverError, integrate_reference
 block = st.Block.parse("30x6in")
@@ -535,8 +535,8 @@ _CROSSINGS = r"""
 import math, sys
 import numpy as np
 import shaketable as st
-from shaketable.constants import G
-from shaketable.motion import Motion
+from shaketable.core.constants import G
+from shaketable.core.motion import Motion
 
 block = st.Block.parse("30x6in")
 worst = {}
@@ -580,8 +580,8 @@ def test_fast_stepper_is_sixth_order_with_a_fifth_order_local_error_estimate():
     # time (as inside one input interval), against SciPy's DOP853 at rtol 1e-13 (independent).
     from scipy.integrate import solve_ivp
 
-    from shaketable.constants import G
-    from shaketable.dynamics import block_parameters
+    from shaketable.core.constants import G
+    from shaketable.core.dynamics import block_parameters
     from shaketable.solvers.engine import _nystrom, flight_acceleration
 
     block = st.Block.parse("16x4ft")

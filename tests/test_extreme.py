@@ -14,24 +14,26 @@ import numpy as np
 import pytest
 
 import shaketable as st
-from shaketable import bench, records, theory
-from shaketable.constants import G
+from shaketable.studies import benchmark_cases, work_precision
+from shaketable.ground import records
+from shaketable.core import theory
+from shaketable.core.constants import G
 
 BLOCK_30x6 = st.Block.parse("30x6in")
 
 
-def _agree(fast, reference, rel=bench.ACCEPT_RELATIVE):
+def _agree(fast, reference, rel=benchmark_cases.ACCEPT_RELATIVE):
     """Issue 3's acceptance: 1e-8 relative (1e-10 rad for max |theta|), same events."""
-    errors = bench.compare(fast, reference)
+    errors = benchmark_cases.compare(fast, reference)
     assert np.all(np.isfinite(fast.theta)) and np.all(np.isfinite(fast.theta_dot))
     assert errors["same verdict"] and errors["same impacts"], errors
     assert (errors["error max_theta [-]"] <= rel
-            or errors["error max_theta [rad]"] <= bench.ACCEPT_ABSOLUTE_THETA), errors
+            or errors["error max_theta [rad]"] <= benchmark_cases.ACCEPT_ABSOLUTE_THETA), errors
     assert errors["error events [-]"] <= rel, errors
 
 
 def _case(name):
-    return bench.benchmark_cases(quick=True, names=[name])[0]
+    return benchmark_cases.benchmark_cases(quick=True, names=[name])[0]
 
 
 # --------------------------------------------------------------------------- size
@@ -100,7 +102,7 @@ def test_50hz_5g_input_matches_reference_and_stays_small():
 
 
 def test_100s_record_at_200hz_converges_and_matches_reference():
-    motion = bench.long_record()
+    motion = benchmark_cases.long_record()
     assert motion.t.size == 20001 and motion.dt == pytest.approx(0.005)
     block = st.Block.parse("16x4ft")
     fast = st.simulate(block, motion, cor=0.95)
@@ -108,10 +110,10 @@ def test_100s_record_at_200hz_converges_and_matches_reference():
     assert np.all(np.isfinite(fast.theta))
     # converged over the whole 100 s: the default rtol against 1e-13
     tight = st.simulate(block, motion, cor=0.95, rtol=1e-13)
-    errors = bench.compare(fast, tight, window=100.0)
+    errors = benchmark_cases.compare(fast, tight, window=100.0)
     assert errors["same impacts"] and fast.n_impacts == tight.n_impacts
     assert errors["error events [-]"] < 1e-8
-    assert errors["error max_theta [rad]"] < bench.ACCEPT_ABSOLUTE_THETA
+    assert errors["error max_theta [rad]"] < benchmark_cases.ACCEPT_ABSOLUTE_THETA
     # and the impacts before 20 s against the independent reference (first 30 s)
     short = st.simulate(block, motion, cor=0.95, duration=30.0)
     _agree(short, st.simulate(block, motion, cor=0.95, duration=30.0, method="reference"))
@@ -138,8 +140,8 @@ def test_stiff_prestress_rods_explicit_scheme_shortens_its_steps():
     # the issue's 1e-8: at the default rtol 1e-11 the fast engine is 9e-12 off the
     # reference at rtol 2.5e-14 in the event times, 7e-12 in max |theta| (RESULTS.md)
     _agree(fast, reference, rel=1e-8)
-    from shaketable.dynamics import block_parameters
-    from shaketable.dynamics import INERTIA, ROD_ARM_1, ROD_ARM_2, ROD_STIFFNESS
+    from shaketable.core.dynamics import block_parameters
+    from shaketable.core.dynamics import INERTIA, ROD_ARM_1, ROD_ARM_2, ROD_STIFFNESS
     parameters = block_parameters(block)
     omega_r = math.sqrt(parameters[ROD_STIFFNESS] * (parameters[ROD_ARM_1] ** 2
                                                      + parameters[ROD_ARM_2] ** 2)
@@ -147,8 +149,8 @@ def test_stiff_prestress_rods_explicit_scheme_shortens_its_steps():
     assert omega_r == pytest.approx(26.1, rel=2e-3)
     no_stiffness = st.Block.parse("8x2ft", rods=st.PrestressRods.from_inches(0.0, 0.4, 12))
     soft = st.simulate(no_stiffness, motion, cor=0.95, duration=15.0)
-    step = bench._time_in_flight(fast) / fast.statistics["steps"]
-    soft_step = bench._time_in_flight(soft) / soft.statistics["steps"]
+    step = work_precision._time_in_flight(fast) / fast.statistics["steps"]
+    soft_step = work_precision._time_in_flight(soft) / soft.statistics["steps"]
     assert step < 0.5 * soft_step            # shorter steps...
     assert step * omega_r < 0.3              # ...set by accuracy, far inside stability (3-4)
     # the rods hold the block: Eq. (2-1) with prestress raises the threshold to 1.4 B/H g
@@ -160,7 +162,7 @@ def test_stiff_prestress_rods_explicit_scheme_shortens_its_steps():
 @pytest.mark.parametrize("factor", [1.0001, 0.9999])
 def test_near_threshold_shaking(factor):
     block = BLOCK_30x6
-    motion = bench.threshold_harmonic(block, factor)
+    motion = benchmark_cases.threshold_harmonic(block, factor)
     fast = st.simulate(block, motion, cor=0.925)
     reference = st.simulate(block, motion, cor=0.925, method="reference")
     if factor < 1:
@@ -235,7 +237,7 @@ def test_decaying_cascade_rest_time_converges_with_bounded_cost():
 # --------------------------------------------------------------------------- leaving the ground
 @pytest.mark.parametrize("method", ["fast", "reference", "predictor-corrector", "linear"])
 def test_vertical_acceleration_reaching_minus_g_flags_airborne_at_the_right_time(method):
-    motion = bench.vertical_to_minus_g(t_airborne=1.37)
+    motion = benchmark_cases.vertical_to_minus_g(t_airborne=1.37)
     result = st.simulate(BLOCK_30x6, motion, cor=0.925, method=method)
     # the ramp -g t / 1.37 s reaches -g (g + v'' = 0, no contact) at 1.37 s exactly
     assert result.status == "airborne"

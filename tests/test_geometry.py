@@ -2,7 +2,7 @@
 
 The 16 x 4 ft block (height x width, the report's order; Section 4 uses it) with
 1 ft = 0.3048 m exactly (international foot) and g = 9.80665 m/s^2 (standard
-gravity, ``shaketable.constants.G``):
+gravity, ``shaketable.core.constants.G``):
 
 * H = 16 ft = 4.8768 m, B = 4 ft = 1.2192 m (exact decimals);
 * h = H/2 = 2.4384 m, b = B/2 = 0.6096 m (exact);
@@ -21,7 +21,7 @@ import math
 import pytest
 
 from shaketable import Block
-from shaketable.constants import G
+from shaketable.core.constants import G
 
 
 @pytest.mark.parametrize("text", ["16x4ft", "16 x 4 ft", "16ft x 4ft", "16X4FT", "16×4ft"])

@@ -1,4 +1,4 @@
-"""Tests of shaketable.motions: generators, utilities and measures.
+"""Tests of shaketable.ground.generators: generators, utilities and measures.
 
 Reference values are closed forms (stated next to each test) or, for the
 artificial presets, the report's stated PGA and length of strong motion
@@ -12,9 +12,9 @@ import math
 import numpy as np
 import pytest
 
-from shaketable import motions
-from shaketable.constants import G
-from shaketable.motion import Motion
+from shaketable.ground import generators, signals
+from shaketable.core.constants import G
+from shaketable.core.motion import Motion
 
 
 def velocity(motion):
@@ -27,7 +27,7 @@ def velocity(motion):
 def test_harmonic_amplitude_frequency_phase_exact():
     # Fig. 3.9 of the report: 2 Hz, 0.45 g horizontal + 0.26 g vertical.
     phase = 0.7
-    m = motions.harmonic(2.0, 0.45, 0.26, duration=3.0, dt=0.01, phase=phase)
+    m = generators.harmonic(2.0, 0.45, 0.26, duration=3.0, dt=0.01, phase=phase)
     t = np.arange(301) * 0.01
     np.testing.assert_allclose(m.t, t, rtol=0, atol=1e-12)
     np.testing.assert_allclose(m.horizontal, 0.45 * G * np.sin(4 * np.pi * t),
@@ -35,20 +35,20 @@ def test_harmonic_amplitude_frequency_phase_exact():
     np.testing.assert_allclose(m.vertical, 0.26 * G * np.sin(4 * np.pi * t + phase),
                                rtol=0, atol=1e-12)
     # t = 0.125 s is a quarter period: the horizontal peak, exactly 0.45 g
-    fine = motions.harmonic(2.0, 0.45, duration=1.0, dt=0.125)
+    fine = generators.harmonic(2.0, 0.45, duration=1.0, dt=0.125)
     assert fine.horizontal[1] == pytest.approx(0.45 * G, rel=1e-14)
 
 
 def test_harmonic_fig_3_7_has_no_vertical():
     # Fig. 3.7: 2 Hz, 0.5 g horizontal only.
-    m = motions.harmonic(2.0, 0.5, duration=5.0, dt=0.005)  # peaks on samples
+    m = generators.harmonic(2.0, 0.5, duration=5.0, dt=0.005)  # peaks on samples
     assert m.vertical is None
     assert m.pga == pytest.approx(0.5 * G, rel=1e-12)
     assert m.duration == pytest.approx(5.0)
 
 
 def test_harmonic_ramp_starts_at_zero_and_reaches_full_amplitude():
-    m = motions.harmonic(2.0, 0.38, 0.33, duration=6.0, dt=0.005, ramp=2.0)
+    m = generators.harmonic(2.0, 0.38, 0.33, duration=6.0, dt=0.005, ramp=2.0)
     assert m.horizontal[0] == 0.0 and m.vertical[0] == 0.0
     # first samples grow smoothly: envelope ~ (pi tau / 2 ramp)^2 near zero
     assert np.all(np.abs(m.horizontal[:20]) < 0.38 * G * 1e-2)
@@ -61,7 +61,7 @@ def test_harmonic_ramp_starts_at_zero_and_reaches_full_amplitude():
 
 
 def test_harmonic_quiet_lead_in():
-    m = motions.harmonic(2.0, 0.5, duration=2.0, dt=0.01, start=1.0)
+    m = generators.harmonic(2.0, 0.5, duration=2.0, dt=0.01, start=1.0)
     assert m.t[-1] == pytest.approx(3.0)
     assert np.all(m.horizontal[m.t < 1.0 - 1e-9] == 0.0)
     shaking = m.t >= 1.0 - 1e-9
@@ -88,13 +88,13 @@ def test_harmonic_rejects_bad_input(kwargs, parameter):
     frequency = arguments.pop("frequency")
     horizontal_g = arguments.pop("horizontal_g")
     with pytest.raises(ValueError, match=parameter):
-        motions.harmonic(frequency, horizontal_g, **arguments)
+        generators.harmonic(frequency, horizontal_g, **arguments)
 
 
 # ------------------------------------------------------------------ pulses
 def test_constant_pulse_matches_closed_form_section_2_3():
     # Section 2.3: a for t1, then zero; velocity afterwards exactly a t1.
-    m = motions.constant_pulse(0.3, 0.1, duration=0.5, dt=0.001)
+    m = generators.constant_pulse(0.3, 0.1, duration=0.5, dt=0.001)
     a = 0.3 * G
     t = m.t
     assert np.all(m.horizontal[t < 0.1 - 1e-9] == a)
@@ -108,7 +108,7 @@ def test_constant_pulse_matches_closed_form_section_2_3():
 
 @pytest.mark.parametrize("t1", [0.1003, 0.1007, 0.25])
 def test_constant_pulse_velocity_exact_off_grid(t1):
-    m = motions.constant_pulse(-0.2, t1, duration=0.5, dt=0.001)
+    m = generators.constant_pulse(-0.2, t1, duration=0.5, dt=0.001)
     assert velocity(m)[-1] == pytest.approx(-0.2 * G * t1, rel=1e-12)
     assert np.all((m.horizontal <= 0.0) & (m.horizontal >= -0.2 * G))
 
@@ -116,7 +116,7 @@ def test_constant_pulse_velocity_exact_off_grid(t1):
 def test_half_sine_pulse_matches_closed_form_section_2_4():
     # a sin(pi t / t_p) on [0, t_p], t_p = T_s / 2; velocity 2 a t_p / pi.
     tp = 0.1
-    m = motions.half_sine_pulse(0.5, tp, duration=0.4, dt=0.001, sign=-1)
+    m = generators.half_sine_pulse(0.5, tp, duration=0.4, dt=0.001, sign=-1)
     t = m.t
     expected = np.where(t <= tp, -0.5 * G * np.sin(np.pi * np.clip(t, 0, tp) / tp), 0.0)
     np.testing.assert_allclose(m.horizontal, expected, rtol=0, atol=1e-12)
@@ -125,13 +125,13 @@ def test_half_sine_pulse_matches_closed_form_section_2_4():
 
 
 @pytest.mark.parametrize("call, parameter", [
-    (lambda: motions.constant_pulse(0.3, 0.0, duration=1.0), "pulse_duration"),
-    (lambda: motions.constant_pulse(0.3, 2.0, duration=1.0), "pulse_duration"),
-    (lambda: motions.constant_pulse(float("nan"), 0.1, duration=1.0), "acceleration_g"),
-    (lambda: motions.constant_pulse(0.3, 0.1, duration=1.0, dt=0.0), "dt"),
-    (lambda: motions.half_sine_pulse(-0.5, 0.1, duration=1.0), "amplitude_g"),
-    (lambda: motions.half_sine_pulse(0.5, 0.1, duration=-1.0), "duration"),
-    (lambda: motions.half_sine_pulse(0.5, 0.1, duration=1.0, sign=2), "sign"),
+    (lambda: generators.constant_pulse(0.3, 0.0, duration=1.0), "pulse_duration"),
+    (lambda: generators.constant_pulse(0.3, 2.0, duration=1.0), "pulse_duration"),
+    (lambda: generators.constant_pulse(float("nan"), 0.1, duration=1.0), "acceleration_g"),
+    (lambda: generators.constant_pulse(0.3, 0.1, duration=1.0, dt=0.0), "dt"),
+    (lambda: generators.half_sine_pulse(-0.5, 0.1, duration=1.0), "amplitude_g"),
+    (lambda: generators.half_sine_pulse(0.5, 0.1, duration=-1.0), "duration"),
+    (lambda: generators.half_sine_pulse(0.5, 0.1, duration=1.0, sign=2), "sign"),
 ])
 def test_pulses_reject_bad_input(call, parameter):
     with pytest.raises(ValueError, match=parameter):
@@ -157,56 +157,56 @@ PRESET_BANDS = {
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_artificial_preset_pga_and_strong_motion_duration(name, seed):
     pga_g, low, high = PRESET_BANDS[name]
-    m = motions.artificial(name, seed=seed)
+    m = generators.artificial(name, seed=seed)
     assert m.pga == pytest.approx(pga_g * G, rel=1e-12)
     assert m.vertical is None
-    assert low <= motions.strong_motion_duration(m) <= high
+    assert low <= signals.strong_motion_duration(m) <= high
     # quiet start (quadratic envelope) and, after the baseline correction,
     # the table ends at rest where it started
     assert m.horizontal[0] == 0.0
-    v, d = motions._velocity_displacement(m.horizontal, m.dt)
+    v, d = generators._velocity_displacement(m.horizontal, m.dt)
     assert abs(v[-1]) < 1e-9 and abs(d[-1]) < 1e-9
 
 
 def test_artificial_preset_descriptions_say_substitute():
-    assert set(motions.PRESETS) == {"A-1", "B-1", "olive-view"}
-    for preset in motions.PRESETS.values():
+    assert set(generators.PRESETS) == {"A-1", "B-1", "olive-view"}
+    for preset in generators.PRESETS.values():
         assert "SUBSTITUTE" in preset.description
         assert "not the original" in preset.description
-    assert "SUBSTITUTE" in motions.artificial.__doc__
+    assert "SUBSTITUTE" in generators.artificial.__doc__
 
 
 def test_artificial_same_seed_identical_different_seed_different():
-    a = motions.artificial("B-1", seed=42)
-    b = motions.artificial("B-1", seed=42)
-    c = motions.artificial("B-1", seed=43)
+    a = generators.artificial("B-1", seed=42)
+    b = generators.artificial("B-1", seed=42)
+    c = generators.artificial("B-1", seed=43)
     np.testing.assert_array_equal(a.horizontal, b.horizontal)
     np.testing.assert_array_equal(a.t, b.t)
     assert not np.allclose(a.horizontal, c.horizontal)
 
 
 def test_artificial_overrides_and_vertical():
-    m = motions.artificial("olive-view", seed=5, pga_g=0.3, duration=20.0, dt=0.02,
+    m = generators.artificial("olive-view", seed=5, pga_g=0.3, duration=20.0, dt=0.02,
                            vertical_pga_g=0.2)
     assert m.pga == pytest.approx(0.3 * G, rel=1e-12)
     assert np.max(np.abs(m.vertical)) == pytest.approx(0.2 * G, rel=1e-12)
     assert m.duration == pytest.approx(20.0)
     # the horizontal does not depend on whether a vertical was asked for
-    h = motions.artificial("olive-view", seed=5, pga_g=0.3, duration=20.0, dt=0.02)
+    h = generators.artificial("olive-view", seed=5, pga_g=0.3, duration=20.0, dt=0.02)
     np.testing.assert_array_equal(m.horizontal, h.horizontal)
 
 
 def test_artificial_without_preset_needs_envelope():
     with pytest.raises(ValueError, match="t1"):
-        motions.artificial(seed=0, pga_g=0.3, t2=10.0, decay=0.3)
-    m = motions.artificial(seed=0, pga_g=0.3, t1=1.0, t2=5.0, decay=0.5)
+        generators.artificial(seed=0, pga_g=0.3, t2=10.0, decay=0.3)
+    m = generators.artificial(seed=0, pga_g=0.3, t1=1.0, t2=5.0, decay=0.5)
     assert m.pga == pytest.approx(0.3 * G, rel=1e-12)
     assert m.duration == pytest.approx(5.0 + math.log(100) / 0.5, abs=0.01)
 
 
 def test_artificial_unknown_preset_lists_presets():
     with pytest.raises(ValueError, match=r"A-1.*B-1.*olive-view"):
-        motions.artificial("El Centro", seed=0)
+        generators.artificial("El Centro", seed=0)
 
 
 @pytest.mark.parametrize("kwargs, parameter", [
@@ -219,18 +219,18 @@ def test_artificial_unknown_preset_lists_presets():
 ])
 def test_artificial_rejects_bad_input(kwargs, parameter):
     with pytest.raises(ValueError, match=parameter):
-        motions.artificial("B-1", **kwargs)
+        generators.artificial("B-1", **kwargs)
 
 
 # ------------------------------------------------------------------ utilities
 def test_scale_to_pga_new_motion_keeps_ratio():
-    m = motions.harmonic(2.0, 0.38, 0.33, duration=2.0, dt=0.005)  # peaks on samples
-    s = motions.scale_to_pga(m, 0.19)
+    m = generators.harmonic(2.0, 0.38, 0.33, duration=2.0, dt=0.005)  # peaks on samples
+    s = signals.scale_to_pga(m, 0.19)
     assert s.pga == pytest.approx(0.19 * G, rel=1e-12)
     np.testing.assert_allclose(s.vertical, m.vertical / 2, rtol=1e-12)
     assert m.pga == pytest.approx(0.38 * G, rel=1e-12)  # original unchanged
     with pytest.raises(ValueError, match="pga_g"):
-        motions.scale_to_pga(m, 0.0)
+        signals.scale_to_pga(m, 0.0)
 
 
 @pytest.mark.parametrize("dt_new", [0.005, 0.02, 0.007 * np.pi / 3])  # last: irrational
@@ -239,7 +239,7 @@ def test_resample_keeps_low_frequency_removes_above_nyquist(dt_new):
     t = np.arange(10001) * dt
     taper = 0.5 * (1 - np.cos(2 * np.pi * t / 10.0))
     low = Motion(t, taper * np.sin(2 * np.pi * 1.0 * t), taper * np.cos(2 * np.pi * t))
-    r = motions.resample(low, dt_new)
+    r = signals.resample(low, dt_new)
     assert r.dt == pytest.approx(dt_new, rel=1e-9)
     assert r.t[-1] <= t[-1] + 1e-9
     expected = 0.5 * (1 - np.cos(2 * np.pi * r.t / 10.0)) * np.sin(2 * np.pi * r.t)
@@ -248,7 +248,7 @@ def test_resample_keeps_low_frequency_removes_above_nyquist(dt_new):
     # (interior only: the abrupt start and end of that sine are broadband)
     nyquist = 0.5 / dt_new
     high = Motion(t, np.sin(2 * np.pi * 1.5 * nyquist * t))
-    rh = motions.resample(high, dt_new)
+    rh = signals.resample(high, dt_new)
     interior = (rh.t > 1.0) & (rh.t < 9.0)
     assert np.max(np.abs(rh.horizontal[interior])) < 1e-2
     # whereas plain decimation (integer ratios) would alias it at full amplitude
@@ -258,29 +258,29 @@ def test_resample_keeps_low_frequency_removes_above_nyquist(dt_new):
 
 
 def test_resample_finer_is_linear_interpolation():
-    m = motions.half_sine_pulse(0.5, 0.1, duration=0.3, dt=0.01)
-    r = motions.resample(m, 0.0025)
+    m = generators.half_sine_pulse(0.5, 0.1, duration=0.3, dt=0.01)
+    r = signals.resample(m, 0.0025)
     np.testing.assert_allclose(r.horizontal, np.interp(r.t, m.t, m.horizontal), atol=1e-12)
 
 
 def test_trim_and_pad():
-    m = motions.harmonic(2.0, 0.5, 0.2, duration=4.0, dt=0.01)
-    cut = motions.trim(m, 1.0, 2.0)
+    m = generators.harmonic(2.0, 0.5, 0.2, duration=4.0, dt=0.01)
+    cut = signals.trim(m, 1.0, 2.0)
     assert cut.t[0] == pytest.approx(1.0) and cut.t[-1] == pytest.approx(2.0)
     assert cut.t.size == 101
     np.testing.assert_array_equal(cut.horizontal, m.horizontal[100:201])
-    assert motions.trim(m, 1.0, 2.0, rezero=True).t[0] == 0.0
-    padded = motions.pad(cut, before=0.5, after=0.25)
+    assert signals.trim(m, 1.0, 2.0, rezero=True).t[0] == 0.0
+    padded = signals.pad(cut, before=0.5, after=0.25)
     assert padded.t.size == 101 + 50 + 25
     assert padded.t[0] == pytest.approx(1.0)
     assert np.all(padded.horizontal[:50] == 0) and np.all(padded.vertical[-25:] == 0)
     np.testing.assert_array_equal(padded.horizontal[50:151], cut.horizontal)
     with pytest.raises(ValueError, match="end"):
-        motions.trim(m, 2.0, 1.0)
+        signals.trim(m, 2.0, 1.0)
     with pytest.raises(ValueError, match="before"):
-        motions.pad(m, before=-1.0)
+        signals.pad(m, before=-1.0)
     with pytest.raises(ValueError, match="dt"):
-        motions.resample(m, 0.0)
+        signals.resample(m, 0.0)
 
 
 # ------------------------------------------------------------------ the pitch channel
@@ -295,18 +295,18 @@ def pitched_motion(dt=0.001, duration=2.0):
 
 def test_trim_keeps_the_rotation_of_the_kept_samples():
     m = pitched_motion()
-    cut = motions.trim(m, 0.5, 1.5)
+    cut = signals.trim(m, 0.5, 1.5)
     keep = (m.t >= 0.5 - 1e-12) & (m.t <= 1.5 + 1e-12)
     # trimming is selection: the rotation samples are the original ones, exactly
     np.testing.assert_array_equal(cut.rotation, m.rotation[keep])
     np.testing.assert_array_equal(cut.horizontal, m.horizontal[keep])
-    assert motions.trim(pitched_motion().scaled(1.0), 0.5, 1.5).rotation is not None
-    assert motions.trim(motions.harmonic(2.0, 0.5, duration=1.0), 0.2, 0.4).rotation is None
+    assert signals.trim(pitched_motion().scaled(1.0), 0.5, 1.5).rotation is not None
+    assert signals.trim(generators.harmonic(2.0, 0.5, duration=1.0), 0.2, 0.4).rotation is None
 
 
 def test_pad_pads_the_rotation_with_zeros():
     m = pitched_motion()
-    padded = motions.pad(m, before=0.1, after=0.2)
+    padded = signals.pad(m, before=0.1, after=0.2)
     # the table is at rest and does not pitch during the padding: 100 and 200 zeros
     np.testing.assert_array_equal(padded.rotation[:100], 0.0)
     np.testing.assert_array_equal(padded.rotation[-200:], 0.0)
@@ -320,10 +320,10 @@ def test_resample_resamples_the_rotation_like_the_other_channels(dt_new):
     # the same converter on every channel: a motion whose rotation equals its
     # horizontal (numerically) must come out with rotation == horizontal exactly
     twin = Motion(m.t, m.rotation, None, rotation=m.rotation)
-    r = motions.resample(twin, dt_new)
+    r = signals.resample(twin, dt_new)
     np.testing.assert_array_equal(r.rotation, r.horizontal)
     # and the 1 Hz rotation is kept (closed form), finer or coarser
-    r = motions.resample(m, dt_new)
+    r = signals.resample(m, dt_new)
     expected = 0.22 * 0.5 * (1 - np.cos(np.pi * r.t)) * np.sin(2 * np.pi * r.t)
     np.testing.assert_allclose(r.rotation, expected, rtol=0, atol=2e-4 * 0.22)
 
@@ -331,16 +331,16 @@ def test_resample_resamples_the_rotation_like_the_other_channels(dt_new):
 def test_motion_scaled_refuses_a_pitched_motion_and_scale_to_pga_too():
     # The pitch is the table's (Section 3.7 (2)), not the earthquake's, and
     # motion_at_block has folded its tilt into the horizontal: it cannot be scaled.
-    from shaketable.table import Pitch, motion_at_block
+    from shaketable.lab.pitch import Pitch, motion_at_block
 
-    base = motions.harmonic(2.0, 0.5, duration=1.0, dt=0.002)
+    base = generators.harmonic(2.0, 0.5, duration=1.0, dt=0.002)
     pitched = motion_at_block(base, pitch=Pitch(seed=1), block_position=1.0)
     with pytest.raises(ValueError, match=r"pitch.*scale the table motion first"):
         pitched.scaled(0.5)
     with pytest.raises(ValueError, match="pitch"):
-        motions.scale_to_pga(pitched, 0.3)
+        signals.scale_to_pga(pitched, 0.3)
     # the documented order: scale, then pitch
-    recipe = motion_at_block(motions.scale_to_pga(base, 0.25), pitch=Pitch(seed=1),
+    recipe = motion_at_block(signals.scale_to_pga(base, 0.25), pitch=Pitch(seed=1),
                              block_position=1.0)
     factor = 0.25 * G / base.pga  # about 0.5 (the sampled peak is just below 0.5 g)
     np.testing.assert_allclose(recipe.horizontal - pitched.horizontal,
@@ -403,8 +403,8 @@ def test_at_rest_ends_exactly_at_duration():
 # ------------------------------------------------------------------ measures
 def test_arias_intensity_of_sine_closed_form():
     # I_A = pi / (2 g) * a^2 / 2 * T for a whole number of periods.
-    m = motions.harmonic(2.0, 0.5, duration=10.0, dt=0.001)
-    arias = motions.arias_intensity(m)
+    m = generators.harmonic(2.0, 0.5, duration=10.0, dt=0.001)
+    arias = signals.arias_intensity(m)
     assert arias.shape == m.t.shape and arias[0] == 0.0
     assert np.all(np.diff(arias) >= 0)
     expected = np.pi / (2 * G) * (0.5 * G) ** 2 / 2 * 10.0
@@ -414,27 +414,27 @@ def test_arias_intensity_of_sine_closed_form():
 
 def test_strong_motion_duration_of_uniform_sine():
     # Arias grows linearly for a steady sine: the 5-95 % duration is 0.9 T.
-    m = motions.harmonic(5.0, 0.2, duration=20.0, dt=0.001)
-    assert motions.strong_motion_duration(m) == pytest.approx(18.0, abs=0.05)
+    m = generators.harmonic(5.0, 0.2, duration=20.0, dt=0.001)
+    assert signals.strong_motion_duration(m) == pytest.approx(18.0, abs=0.05)
     with pytest.raises(ValueError, match="low"):
-        motions.strong_motion_duration(m, low=0.9, high=0.1)
+        signals.strong_motion_duration(m, low=0.9, high=0.1)
 
 
 def test_response_spectrum_at_resonance_is_one_over_two_zeta():
     # Steady-state amplification at resonance 1 / (2 zeta) = 10 for 5 %;
     # 40 s at 2 Hz is 250 decay times 1/(zeta omega) ~ 1.6 s: transient gone.
-    m = motions.harmonic(2.0, 0.3, duration=40.0, dt=0.005)
-    sa = motions.response_spectrum(m, 0.5, damping=0.05)
+    m = generators.harmonic(2.0, 0.3, duration=40.0, dt=0.005)
+    sa = signals.response_spectrum(m, 0.5, damping=0.05)
     assert isinstance(sa, float)
     assert sa / (0.3 * G) == pytest.approx(10.0, rel=2e-3)
-    sa2 = motions.response_spectrum(m, np.array([0.5]), damping=0.02)
+    sa2 = signals.response_spectrum(m, np.array([0.5]), damping=0.02)
     assert sa2.shape == (1,)
     assert sa2[0] / (0.3 * G) == pytest.approx(25.0, rel=5e-3)
 
 
 def test_response_spectrum_short_period_tends_to_pga():
-    m = motions.artificial("olive-view", seed=0)
-    sa = motions.response_spectrum(m, [0.001, 0.005, 0.02])
+    m = generators.artificial("olive-view", seed=0)
+    sa = signals.response_spectrum(m, [0.001, 0.005, 0.02])
     assert sa[0] == pytest.approx(m.pga, rel=1e-3)
     assert sa[1] == pytest.approx(m.pga, rel=2e-2)
 
@@ -445,25 +445,25 @@ def test_response_spectrum_exact_against_constant_pulse_closed_form():
     # t1 = T/2 (on the grid) gives max |u| = 2 a / w^2, so Sa = 2 a.
     # The step is spread over one sample interval, a small correction.
     T = 0.4
-    m = motions.constant_pulse(0.2, T / 2, duration=3.0, dt=0.0005)
-    sa = motions.response_spectrum(m, T, damping=0.0)
+    m = generators.constant_pulse(0.2, T / 2, duration=3.0, dt=0.0005)
+    sa = signals.response_spectrum(m, T, damping=0.0)
     assert sa == pytest.approx(2 * 0.2 * G, rel=1e-4)
 
 
 def test_response_spectrum_rejects_bad_input():
-    m = motions.harmonic(2.0, 0.5, duration=1.0)
+    m = generators.harmonic(2.0, 0.5, duration=1.0)
     with pytest.raises(ValueError, match="periods"):
-        motions.response_spectrum(m, [0.5, -1.0])
+        signals.response_spectrum(m, [0.5, -1.0])
     with pytest.raises(ValueError, match="damping"):
-        motions.response_spectrum(m, 0.5, damping=1.5)
+        signals.response_spectrum(m, 0.5, damping=1.5)
     uneven = Motion([0.0, 0.1, 0.3, 0.4], [0.0, 1.0, 0.0, 0.0])
     with pytest.raises(ValueError, match="uniformly sampled"):
-        motions.response_spectrum(uneven, 0.5)
+        signals.response_spectrum(uneven, 0.5)
 
 
 def test_fourier_amplitude_peak_at_harmonic_frequency():
-    m = motions.harmonic(2.0, 0.5, duration=10.0, dt=0.01)
-    frequency, amplitude = motions.fourier_amplitude(m)
+    m = generators.harmonic(2.0, 0.5, duration=10.0, dt=0.01)
+    frequency, amplitude = signals.fourier_amplitude(m)
     assert frequency[0] == 0.0 and frequency[-1] <= 50.0  # Nyquist 1 / (2 dt)
     assert frequency[1] == pytest.approx(1.0 / (m.t.size * 0.01))
     assert frequency[np.argmax(amplitude)] == pytest.approx(2.0, abs=0.1)
@@ -477,7 +477,7 @@ def test_plot_artificial_presets_smoke_and_measures():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from shaketable.motions_plots import plot_artificial_presets, preset_measures
+    from shaketable.plots.ground import plot_artificial_presets, preset_measures
 
     fig = plot_artificial_presets(("B-1", "olive-view"), seeds=(0, 1), dt=0.02,
                                   periods=np.geomspace(0.05, 3.0, 12))
@@ -492,9 +492,9 @@ def test_plot_artificial_presets_smoke_and_measures():
     # D5-95 as motions.strong_motion_duration, the window inside the record
     table = preset_measures(["olive-view"], [3])
     row = table.iloc[0]
-    motion = motions.artificial("olive-view", seed=3)
+    motion = generators.artificial("olive-view", seed=3)
     assert row["pga [g]"] == pytest.approx(0.5, rel=1e-12)
-    assert row["D5-95 [s]"] == pytest.approx(motions.strong_motion_duration(motion), rel=1e-9)
+    assert row["D5-95 [s]"] == pytest.approx(signals.strong_motion_duration(motion), rel=1e-9)
     assert 0.0 < row["t5 [s]"] < row["t95 [s]"] < motion.duration
     assert 0.3 < row["predominant frequency [Hz]"] < 5.0
     for bad, match in ((dict(presets=["El Centro"]), "unknown preset"),

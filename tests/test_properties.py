@@ -7,8 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st_
 
 import shaketable as st
-from shaketable import theory
-from shaketable.constants import G
+from shaketable.core import theory
+from shaketable.core.constants import G
 
 blocks = st_.builds(lambda height, aspect: st.Block(height, height / aspect),
                     st_.floats(0.05, 10.0), st_.floats(1.0, 12.0))

@@ -1,4 +1,4 @@
-"""Tests of shaketable.records: readers, errors, combining and bundled records.
+"""Tests of shaketable.ground.records: readers, errors, combining and bundled records.
 
 The expected NPTS, DT, PGA (in g, to the 3 decimals printed), sign and time of
 the peak are copied from ``shared/data/records/PROVENANCE.md`` (the collection
@@ -18,10 +18,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from shaketable import records
-from shaketable.constants import G
-from shaketable.motion import Motion
-from shaketable.records import Record, RecordError
+from shaketable.ground.readers import at2, text, waveform
+from shaketable.ground import records
+from shaketable.core.constants import G
+from shaketable.core.motion import Motion
+from shaketable.ground.readers.common import Record, RecordError
 
 SHARED = Path(os.environ.get("SHAKETABLE_SHARED")
               or Path(__file__).resolve().parents[2] / "shared")
@@ -139,15 +140,15 @@ def test_every_file_in_provenance_is_checked():
 @needs_shared
 @pytest.mark.parametrize("relative, component", sorted(EXPECTED_COMPONENT.items()))
 def test_shared_at2_component_label(relative, component):
-    assert records.read_at2(SHARED_RECORDS / relative).component == component
+    assert at2.read_at2(SHARED_RECORDS / relative).component == component
 
 
 @needs_shared
 def test_shared_at2_units_and_description():
-    record = records.read_at2(SHARED_RECORDS / "OpenSees/IELC180.AT2")
+    record = at2.read_at2(SHARED_RECORDS / "OpenSees/IELC180.AT2")
     assert record.units_in_file == "g"
     assert "EL CENTRO ARRAY #9" in record.description
-    assert records.read_at2(SHARED_RECORDS / "EE-UQ/elCentro.AT2").units_in_file == "g"
+    assert at2.read_at2(SHARED_RECORDS / "EE-UQ/elCentro.AT2").units_in_file == "g"
 
 
 # ------------------------------------------------------------- bundled records
@@ -269,7 +270,7 @@ EXPECTED_VALUES_G = np.array([0.01, -0.02, 0.03, -0.04, 0.05, -0.06, 0.07])
 ], ids=["nga-west2", "filter-poles", "older-peer", "nga-west1"])
 @pytest.mark.parametrize("newline", ["\n", "\r\n"], ids=["LF", "CRLF"])
 def test_at2_header_variants(tmp_path, header, newline):
-    record = records.read_at2(write(tmp_path / "a.AT2", header + VALUES, newline))
+    record = at2.read_at2(write(tmp_path / "a.AT2", header + VALUES, newline))
     assert record.npts == 7 and record.dt == pytest.approx(0.01)
     np.testing.assert_allclose(record.acceleration, EXPECTED_VALUES_G * G)
     assert record.component == "DWN"
@@ -294,7 +295,7 @@ def test_at2_peknold_variant_without_component(tmp_path):
 def test_at2_units_word_is_read_from_header(tmp_path):
     header = ["PEER", "X, 1/1/2000, Station, 090",
               "ACCELERATION TIME SERIES IN UNITS OF CM/SEC/SEC", "NPTS= 7, DT= .01 SEC"]
-    record = records.read_at2(write(tmp_path / "gal.AT2", header + VALUES))
+    record = at2.read_at2(write(tmp_path / "gal.AT2", header + VALUES))
     assert record.units_in_file == "cm/s2"
     np.testing.assert_allclose(record.acceleration, EXPECTED_VALUES_G * 0.01)
 
@@ -315,7 +316,7 @@ AT2_HEADER = ["PEER NGA STRONG MOTION DATABASE RECORD", "Quake, 1/1/2000, Statio
 def at2_error(tmp_path, lines, name="bad.AT2"):
     path = write(tmp_path / name, lines)
     with pytest.raises(RecordError) as error:
-        records.read_at2(path)
+        at2.read_at2(path)
     assert name in str(error.value)
     return str(error.value)
 
@@ -361,11 +362,11 @@ def test_at2_without_units_is_refused_unless_units_are_given(tmp_path):
     path = write(tmp_path / "nounits.AT2", NO_UNITS_HEADER + VALUES)
     # units are never assumed (issue 4): the message names the file and the header lines
     with pytest.raises(RecordError, match=r"nounits\.AT2, lines 1-4:.*does not state.*units="):
-        records.read_at2(path)
+        at2.read_at2(path)
     with pytest.raises(RecordError, match=r"nounits\.AT2.*units="):
         records.read(path)
     # the same numbers in g and in gal (1 gal = 0.01 m/s^2), by hand
-    np.testing.assert_allclose(records.read_at2(path, units="g").acceleration,
+    np.testing.assert_allclose(at2.read_at2(path, units="g").acceleration,
                                EXPECTED_VALUES_G * G)
     in_gal = records.read(path, units="gal")    # read() passes units= to AT2 files
     np.testing.assert_allclose(in_gal.acceleration, EXPECTED_VALUES_G * 0.01)
@@ -376,9 +377,9 @@ def test_at2_units_argument_must_agree_with_the_header(tmp_path):
     path = write(tmp_path / "g.AT2", AT2_HEADER + VALUES)
     assert records.read(path, units="g").units_in_file == "g"
     with pytest.raises(ValueError, match=r"g\.AT2: units='cm/s2' contradicts"):
-        records.read_at2(path, units="cm/s2")
+        at2.read_at2(path, units="cm/s2")
     with pytest.raises(ValueError, match=r"g\.AT2: units='furlongs'"):
-        records.read_at2(path, units="furlongs")
+        at2.read_at2(path, units="furlongs")
     with pytest.raises(ValueError, match=r"g\.AT2: option 'dt' does not apply"):
         records.read(path, units="g", dt=0.01)
 
@@ -394,40 +395,40 @@ def test_csv_units_from_header(tmp_path):
                               ("cm/s2", 0.01), ("gal", 0.01)):
         path = write(tmp_path / "a.csv", [f"time,acc ({unit_text})", "0,0.5", "0.01,-1.0",
                                           "0.02,0.25"], "\r\n")
-        record = records.read_text(path)
+        record = text.read_text(path)
         assert record.dt == pytest.approx(0.01)
         np.testing.assert_allclose(record.acceleration, np.array([0.5, -1.0, 0.25]) * factor)
 
 
 def test_one_column_needs_dt_and_units(tmp_path):
     path = write(tmp_path / "one.txt", ["0.1", "-0.2", "0.3"])
-    record = records.read_text(path, dt=0.02, units="g")
+    record = text.read_text(path, dt=0.02, units="g")
     assert record.dt == 0.02 and record.t0 == 0.0
     np.testing.assert_allclose(record.acceleration, [0.1 * G, -0.2 * G, 0.3 * G])
     with pytest.raises(ValueError, match=r"one\.txt.*dt="):
-        records.read_text(path, units="g")
+        text.read_text(path, units="g")
 
 
 def test_units_must_be_stated_or_given(tmp_path):
     path = write(tmp_path / "nounits.dat", ["0 0.1", "0.01 0.2"])
     with pytest.raises(ValueError, match=r"nounits\.dat.*units are not stated"):
-        records.read_text(path)
-    assert records.read_text(path, units="m/s^2").units_in_file == "m/s2"
+        text.read_text(path)
+    assert text.read_text(path, units="m/s^2").units_in_file == "m/s2"
 
 
 def test_units_given_must_agree_with_header(tmp_path):
     path = write(tmp_path / "a.csv", ["time,acc (g)", "0,0.5", "0.01,-1.0"])
-    assert records.read_text(path, units="g").units_in_file == "g"
+    assert text.read_text(path, units="g").units_in_file == "g"
     with pytest.raises(ValueError, match=r"a\.csv.*contradicts"):
-        records.read_text(path, units="cm/s2")
+        text.read_text(path, units="cm/s2")
 
 
 def test_multi_column_needs_value_column(tmp_path):
     path = write(tmp_path / "three.csv", ["time,ns (g),ew (g),v (g)", "0,1,2,3", "0.5,4,5,6"])
     with pytest.raises(ValueError, match=r"three\.csv has 4 columns.*value_column"):
-        records.read_text(path)
-    by_index = records.read_text(path, value_column=2)
-    by_name = records.read_text(path, value_column="ew (g)")
+        text.read_text(path)
+    by_index = text.read_text(path, value_column=2)
+    by_name = text.read_text(path, value_column="ew (g)")
     np.testing.assert_allclose(by_index.acceleration, [2 * G, 5 * G])
     np.testing.assert_array_equal(by_name.acceleration, by_index.acceleration)
     assert by_index.dt == 0.5 and by_index.component == "ew (g)"
@@ -435,9 +436,9 @@ def test_multi_column_needs_value_column(tmp_path):
 
 def test_dt_must_agree_with_time_column(tmp_path):
     path = write(tmp_path / "t.dat", ["0 1", "0.01 2", "0.02 3"])
-    assert records.read_text(path, units="g", time_column=0, dt=0.01).npts == 3
+    assert text.read_text(path, units="g", time_column=0, dt=0.01).npts == 3
     with pytest.raises(ValueError, match="time column steps"):
-        records.read_text(path, units="g", time_column=0, dt=0.02)
+        text.read_text(path, units="g", time_column=0, dt=0.02)
 
 
 @pytest.mark.parametrize("options, match", [
@@ -451,7 +452,7 @@ def test_dt_must_agree_with_time_column(tmp_path):
 def test_text_options_are_checked_naming_parameter_and_file(tmp_path, options, match):
     path = write(tmp_path / "one.txt", ["0.1", "-0.2", "0.3"])
     with pytest.raises(ValueError, match=match):
-        records.read_text(path, **options)
+        text.read_text(path, **options)
 
 
 def test_read_rejects_unknown_options_naming_them(tmp_path):
@@ -467,7 +468,7 @@ def test_read_rejects_unknown_options_naming_them(tmp_path):
 def text_error(tmp_path, lines, name="bad.dat", **options):
     path = write(tmp_path / name, lines)
     with pytest.raises(RecordError) as error:
-        records.read_text(path, units="g", **options)
+        text.read_text(path, units="g", **options)
     assert name in str(error.value)
     return str(error.value)
 
@@ -499,7 +500,7 @@ def test_text_without_data(tmp_path):
 
 def test_text_skiprows_and_delimiter(tmp_path):
     path = write(tmp_path / "semi.txt", ["1 2 3 header of numbers", "0;0.1", "0.01;-0.2"])
-    record = records.read_text(path, skiprows=1, delimiter=";", units="g")
+    record = text.read_text(path, skiprows=1, delimiter=";", units="g")
     np.testing.assert_allclose(record.acceleration, [0.1 * G, -0.2 * G])
 
 
@@ -524,10 +525,10 @@ def test_read_sac_and_mseed(tmp_path):
                                rtol=1e-6)
     east = records.read(tmp_path / "two.mseed", units="m/s2", component="E")
     np.testing.assert_allclose(east.acceleration, [1, 2, 3, 4])
-    assert records.read_obspy(tmp_path / "two.mseed", units="gal",
+    assert waveform.read_obspy(tmp_path / "two.mseed", units="gal",
                               component="HNZ").pga == pytest.approx(0.004, rel=1e-6)
     with pytest.raises(RecordError, match=r"two\.mseed.*exactly one trace"):
-        records.read_obspy(tmp_path / "two.mseed", units="g")
+        waveform.read_obspy(tmp_path / "two.mseed", units="g")
 
 
 def test_read_obspy_errors_name_the_file(tmp_path):
@@ -537,7 +538,7 @@ def test_read_obspy_errors_name_the_file(tmp_path):
         records.read(garbage, units="g")
     make_trace(data=(0.1, np.nan, 0.3)).write(str(tmp_path / "nan.sac"), format="SAC")
     with pytest.raises(RecordError, match=r"nan\.sac, sample 1"):
-        records.read_obspy(tmp_path / "nan.sac", units="g")
+        waveform.read_obspy(tmp_path / "nan.sac", units="g")
 
 
 def test_read_offers_other_extensions_to_obspy_before_text(tmp_path):
@@ -569,7 +570,7 @@ def test_read_offers_other_extensions_to_obspy_before_text(tmp_path):
         records.read(tmp_path / "nothing.xyz")
     with pytest.raises(ValueError, match=r"z\.sac: waveform files.*units="):
         make_trace().write(str(tmp_path / "z.sac"), format="SAC")
-        records.read_obspy(tmp_path / "z.sac")
+        waveform.read_obspy(tmp_path / "z.sac")
 
 
 def test_obspy_is_imported_only_in_records_and_lazily():
@@ -578,7 +579,7 @@ def test_obspy_is_imported_only_in_records_and_lazily():
                  if re.search(r"^\s*(import|from)\s+obspy", path.read_text(encoding="utf-8"),
                               re.MULTILINE)]
     assert importers in ([], ["records.py"])
-    code = "import sys, shaketable.records; print('obspy' in sys.modules)"
+    code = "import sys, shaketable.ground.records; print('obspy' in sys.modules)"
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             cwd=package.parent, check=True)
     assert result.stdout.strip() == "False"

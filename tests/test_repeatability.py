@@ -6,12 +6,11 @@ import numpy as np
 import pytest
 
 from shaketable import Block
-from shaketable.motions import artificial, harmonic
-from shaketable.repeatability import (is_final, pitch_repeatability, run_to_the_end,
-                                      section_3_7_cases, section_3_7_contrast)
-from shaketable.simulate import simulate
-from shaketable.table import Pitch
-from shaketable.table_stage import TableSetup, run_table
+from shaketable.ground.generators import artificial, harmonic
+from shaketable.studies.repeatability import is_final, pitch_repeatability, run_to_the_end, section_3_7_cases, section_3_7_contrast
+from shaketable.solvers.api import simulate
+from shaketable.lab.pitch import Pitch
+from shaketable.lab.stage import TableSetup, run_table
 
 BLOCK = Block.parse("30x6in")
 

@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 from shaketable.cli import main
-from shaketable.constants import INCH
-from shaketable.pipeline import build_motion, run_scene
-from shaketable.scenes import (SceneError, load_scene, resolve_scene_path, scene_from_dict,
-                               scene_names)
+from shaketable.core.constants import INCH
+from shaketable.scenes.run import build_motion, run_scene
+from shaketable.scenes.parse import SceneError, load_scene, scene_from_dict
+from shaketable.scenes.catalog import resolve_scene_path, scene_names
 
 GOOD = """
 name = "demo"
@@ -43,7 +43,7 @@ def test_every_bundled_scene_is_valid():
     names = scene_names()
     assert {"fig-3-4", "fig-3-7", "fig-4-1", "fig-4-17"} <= set(names)
     for name in names:
-        from shaketable.scenes import resolve_scene_path
+        from shaketable.scenes.catalog import resolve_scene_path
 
         scene = load_scene(resolve_scene_path(name))
         assert scene.source, name
@@ -158,7 +158,7 @@ def test_harmonic_scenes_start_and_end_the_table_at_rest(name):
     # the ramp's slope against cos(2 pi f t) vanishes when the ramp lasts an odd number
     # of half periods) and they end a quarter period after whole cycles, where the
     # velocity is zero: the command's stroke stays within the table's +-5 in.
-    from shaketable.table import displacement_command
+    from shaketable.lab.command import displacement_command
 
     scene = load_scene(resolve_scene_path(name))
     frequency, amplitude = scene.motion["frequency"], scene.motion["horizontal"]

@@ -3,7 +3,7 @@
 import pytest
 
 import shaketable as st
-from shaketable import section2
+from shaketable.studies import pulses, section2
 
 SLENDER = st.Block.from_slenderness(R=2.0, alpha=0.02)
 
@@ -43,8 +43,8 @@ def test_fig_2_5_closed_form_boundary_is_eq_2_7():
     # The linearised time to theta = alpha under a constant pulse of duration t1 is finite
     # exactly when t1 exceeds the overturning duration of Eq. (2-7) (the report's own
     # closed form, derived independently of the time formula).
-    from shaketable import theory
-    from shaketable.constants import G
+    from shaketable.core import theory
+    from shaketable.core.constants import G
 
     block = st.Block.parse("16x4ft")
     for ratio in (1.2, 2.0, 4.0):
@@ -83,7 +83,7 @@ def test_section_4_3_4_engine_tends_to_the_exact_impulse_limit():
     # (2a/omega) h and must lift its centre of mass over the corner (theory.
     # half_sine_impulse_overturn_amplitude, 2.31 g at 0.1 s). The engine's amplitude must tend
     # to it at first order in the pulse duration (gravity acts during the pulse).
-    frame = section2.section_4_3_4(pulse_durations=(0.1, 0.01))
+    frame = pulses.section_4_3_4(pulse_durations=(0.1, 0.01))
     first = frame.iloc[0]
     assert first["Eq. 2-9 [g]"] == pytest.approx(4.6, rel=0.03)          # report, Section 4.3 (4)
     assert first["impulse limit [g]"] == pytest.approx(2.313, rel=1e-3)  # hand value, see theory

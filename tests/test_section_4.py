@@ -11,9 +11,10 @@ import math
 import pytest
 
 import shaketable as st
-from shaketable import records, theory
-from shaketable.constants import G
-from shaketable.report_tables import printed_table, reproduce_table, table_3_1
+from shaketable.ground import records
+from shaketable.core import theory
+from shaketable.core.constants import G
+from shaketable.studies.report_tables import printed_table, reproduce_table, table_3_1
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""Tests of shaketable.sensors: potentiometer geometry, clipping, digitization, wires, noise."""
+"""Tests of shaketable.lab.sensors: potentiometer geometry, clipping, digitization, wires, noise."""
 
 from __future__ import annotations
 
@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 
 import shaketable as st
-from shaketable.constants import G, INCH
-from shaketable.motion import Motion
-from shaketable.sensors import (Accelerometers, Digitizer, Measurement, Potentiometers, Sensors,
-                                measure, theta_from_top_displacement, top_displacement)
+from shaketable.core.constants import G, INCH
+from shaketable.core.motion import Motion
+from shaketable.lab.sensors import Accelerometers, Measurement, Potentiometers, Sensors, measure, theta_from_top_displacement, top_displacement
+from shaketable.lab.digitizer import Digitizer
 
 BLOCK = st.Block.parse("30x6in")   # the report's test block (Section 3.2)
 QUIET = Digitizer(bits=0, noise=0.0)   # no ADC step, no ADC noise

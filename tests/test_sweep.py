@@ -1,7 +1,7 @@
 """``shaketable sweep``: spec validation, rows equal to single runs, resume, Dask, CLI.
 
 No expected value here comes from the sweep code: each row is compared with an
-independent :func:`shaketable.simulate` on a motion built by hand from the
+independent :func:`shaketable.solvers.api` on a motion built by hand from the
 documented recipe (record -> ``scale_to_pga`` / ``Motion.scaled`` -> pitching table),
 and resumed or distributed sweeps are compared with an uninterrupted local one.
 """
@@ -15,10 +15,11 @@ import pandas as pd
 import pytest
 
 import shaketable as st
-from shaketable import motions, records, sweep
+from shaketable.ground import generators, signals, records
+from shaketable.sweeps import execute, spec, store
 from shaketable.cli import main
-from shaketable.constants import G
-from shaketable.table import Pitch, motion_at_block
+from shaketable.core.constants import G
+from shaketable.lab.pitch import Pitch, motion_at_block
 
 REPOSITORY = Path(__file__).resolve().parents[1]
 
@@ -56,7 +57,7 @@ def write(tmp_path, text, name="spec.toml") -> Path:
 def reference_table(tmp_path_factory):
     """The tiny sweep run once, uninterrupted, locally."""
     folder = tmp_path_factory.mktemp("reference")
-    outcome = sweep.run_sweep(sweep.load_spec(write(folder, SPEC)), folder / "out",
+    outcome = execute.run_sweep(spec.load_spec(write(folder, SPEC)), folder / "out",
                               progress=False)
     assert outcome.complete and outcome.computed_runs == 48
     return outcome.table
@@ -71,12 +72,12 @@ def test_rows_equal_independent_single_runs(reference_table):
     table = reference_table
     assert list(table["run"]) == list(range(48))
     pacoima = records.load("pacoima-dam-s16e")
-    realisations = {seed: motions.artificial("B-1", seed=seed, duration=6.0) for seed in (7, 8)}
+    realisations = {seed: generators.artificial("B-1", seed=seed, duration=6.0) for seed in (7, 8)}
     for _, row in table.iterrows():
         base = pacoima if row["record"] == "pacoima-dam-s16e" else realisations[row["seed"]]
         target_g = round(row["target_pga [m/s^2]"] / G, 12)         # 0.4 or 0.8, as written
         assert target_g in (0.4, 0.8)
-        motion = motions.scale_to_pga(base, target_g)
+        motion = signals.scale_to_pga(base, target_g)
         block = st.Block(row["block_height [m]"], row["block_width [m]"])
         expected = st.simulate(block, motion, cor=row["cor [-]"], duration=6.0)
         assert row["max_abs_theta [rad]"] == expected.max_abs_theta, row["run"]
@@ -92,7 +93,7 @@ def test_rows_equal_independent_single_runs(reference_table):
 
 
 def test_pitch_phase_rows_equal_runs_on_a_pitching_table(tmp_path):
-    spec = sweep.load_spec(write(tmp_path, """
+    spec = spec.load_spec(write(tmp_path, """
 name = "pitch"
 [blocks]
 sizes = ["30x6in"]
@@ -108,8 +109,8 @@ scale = [0.6]
 [pitch]
 phases = ["0 deg", "90 deg", "180 deg"]
 """))
-    table = sweep.run_sweep(spec, tmp_path / "out", progress=False).table
-    base = motions.artificial("olive-view", seed=1, duration=5.0)
+    table = execute.run_sweep(spec, tmp_path / "out", progress=False).table
+    base = generators.artificial("olive-view", seed=1, duration=5.0)
     block = st.Block.parse("30x6in")
     for _, row in table.iterrows():
         # Section 3.7 (2) defaults: 12 Hz, 0.22 rad/s^2; scaled first, then pitched
@@ -122,7 +123,7 @@ phases = ["0 deg", "90 deg", "180 deg"]
 
 # --------------------------------------------------------------------------- resume
 def test_killed_sweep_resumes_without_loss_or_repeat(tmp_path, reference_table):
-    spec = sweep.load_spec(write(tmp_path, SPEC))
+    spec = spec.load_spec(write(tmp_path, SPEC))
     out = tmp_path / "out"
     written = []
 
@@ -132,20 +133,20 @@ def test_killed_sweep_resumes_without_loss_or_repeat(tmp_path, reference_table):
             raise KeyboardInterrupt("killed")  # what Ctrl-C or a kill looks like mid-sweep
 
     with pytest.raises(KeyboardInterrupt):
-        sweep.run_sweep(spec, out, progress=False, on_chunk=crash_after_two)
+        execute.run_sweep(spec, out, progress=False, on_chunk=crash_after_two)
     parts = sorted((out / "parts").glob("part-*.parquet"))
     assert [p.name for p in parts] == ["part-000000.parquet", "part-000001.parquet"]
     assert not (out / "results.parquet").exists()
-    partial = sweep.read_results(out)
+    partial = store.read_results(out)
     assert list(partial["run"]) == list(range(20))
 
     # without --resume the folder is refused (nothing is overwritten)
-    with pytest.raises(sweep.SweepError, match="--resume"):
-        sweep.run_sweep(spec, out, progress=False)
+    with pytest.raises(spec.SweepError, match="--resume"):
+        execute.run_sweep(spec, out, progress=False)
     # one more chunk only, then the rest
-    step = sweep.run_sweep(spec, out, progress=False, resume=True, max_chunks=1)
+    step = execute.run_sweep(spec, out, progress=False, resume=True, max_chunks=1)
     assert not step.complete and step.computed_runs == 10 and step.skipped_runs == 20
-    final = sweep.run_sweep(spec, out, progress=False, resume=True)
+    final = execute.run_sweep(spec, out, progress=False, resume=True)
     assert final.complete and final.computed_runs == 18 and final.skipped_runs == 30
     table = final.table
     assert list(table["run"]) == list(range(48))   # none lost, none repeated
@@ -156,21 +157,21 @@ def test_killed_sweep_resumes_without_loss_or_repeat(tmp_path, reference_table):
 
 def test_resume_refuses_a_changed_spec(tmp_path):
     out = tmp_path / "out"
-    sweep.run_sweep(sweep.load_spec(write(tmp_path, SPEC)), out, progress=False,
+    execute.run_sweep(spec.load_spec(write(tmp_path, SPEC)), out, progress=False,
                     max_chunks=1)
-    changed = sweep.load_spec(write(tmp_path, SPEC.replace("seed = 7", "seed = 8"), "b.toml"))
-    with pytest.raises(sweep.SweepError, match="cannot resume.*fingerprint"):
-        sweep.run_sweep(changed, out, progress=False, resume=True)
+    changed = spec.load_spec(write(tmp_path, SPEC.replace("seed = 7", "seed = 8"), "b.toml"))
+    with pytest.raises(spec.SweepError, match="cannot resume.*fingerprint"):
+        execute.run_sweep(changed, out, progress=False, resume=True)
     assert json.loads((out / "manifest.json").read_text())["n_runs"] == 48
 
 
 def test_same_seed_same_table_whatever_chunks_and_threads(tmp_path, reference_table):
     other = SPEC.replace("chunk_size = 10", "chunk_size = 17")
-    table = sweep.run_sweep(sweep.load_spec(write(tmp_path, other)), tmp_path / "a",
+    table = execute.run_sweep(spec.load_spec(write(tmp_path, other)), tmp_path / "a",
                             progress=False, workers=1).table
     pd.testing.assert_frame_equal(_without_bookkeeping(table),
                                   _without_bookkeeping(reference_table))
-    reseeded = sweep.run_sweep(sweep.load_spec(write(tmp_path, SPEC.replace(
+    reseeded = execute.run_sweep(spec.load_spec(write(tmp_path, SPEC.replace(
         "seed = 7", "seed = 9"), "c.toml")), tmp_path / "b", progress=False).table
     artificial = reseeded["record_kind"] == "artificial"
     assert sorted(set(reseeded.loc[artificial, "seed"])) == [9, 10]
@@ -179,10 +180,10 @@ def test_same_seed_same_table_whatever_chunks_and_threads(tmp_path, reference_ta
 
 
 def test_csv_format_holds_the_same_values(tmp_path, reference_table):
-    outcome = sweep.run_sweep(sweep.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
+    outcome = execute.run_sweep(spec.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
                               progress=False, fmt="csv")
     assert outcome.path.name == "results.csv"
-    table = sweep.read_results(tmp_path / "out")
+    table = store.read_results(tmp_path / "out")
     for column in ("run", "max_abs_theta [rad]", "t_overturn [s]", "status", "seed"):
         left, right = table[column], reference_table[column]
         assert left.astype(str).tolist() == right.astype(str).tolist() or np.allclose(
@@ -195,7 +196,7 @@ def test_local_dask_cluster_gives_the_same_table(tmp_path, reference_table):
     with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
-        outcome = sweep.run_sweep(sweep.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
+        outcome = execute.run_sweep(spec.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
                                   scheduler=client, progress=False)
     assert outcome.complete
     pd.testing.assert_frame_equal(_without_bookkeeping(outcome.table),
@@ -256,22 +257,22 @@ def test_sigkilled_sweep_process_resumes_without_loss_or_repeat(tmp_path):
     assert list(resumed["run"]) == list(range(100))             # none lost, none repeated
     # the same sweep uninterrupted (in one chunk: only the bookkeeping column differs)
     whole = write(tmp_path, LONG_SPEC.replace("chunk_size = 1", "chunk_size = 100"), "whole.toml")
-    uninterrupted = sweep.run_sweep(sweep.load_spec(whole), tmp_path / "whole",
+    uninterrupted = execute.run_sweep(spec.load_spec(whole), tmp_path / "whole",
                                     progress=False, workers=1).table
     pd.testing.assert_frame_equal(_without_bookkeeping(resumed),
                                   _without_bookkeeping(uninterrupted))
 
 
 def test_resume_refuses_parts_of_another_solver(tmp_path, monkeypatch):
-    spec = sweep.load_spec(write(tmp_path, SPEC))
+    spec = spec.load_spec(write(tmp_path, SPEC))
     out = tmp_path / "out"
-    sweep.run_sweep(spec, out, progress=False, max_chunks=1)
+    execute.run_sweep(spec, out, progress=False, max_chunks=1)
     # another package version or another default tolerance must not be mixed in one table
-    original = sweep._solver_identity()
+    original = execute._solver_identity()
     monkeypatch.setattr(sweep, "_solver_identity",
                         lambda: {**original, "default rtol": {"fast": 1e-6}})
-    with pytest.raises(sweep.SweepError, match="cannot resume.*solver"):
-        sweep.run_sweep(spec, out, progress=False, resume=True)
+    with pytest.raises(spec.SweepError, match="cannot resume.*solver"):
+        execute.run_sweep(spec, out, progress=False, resume=True)
 
 
 def test_dask_cluster_by_address_with_worker_processes(tmp_path, reference_table):
@@ -314,8 +315,8 @@ def test_spec_errors_name_the_file_and_the_key(tmp_path, change, message):
     old, new = change
     assert old in SPEC
     path = write(tmp_path, SPEC.replace(old, new, 1))
-    with pytest.raises(sweep.SweepError, match=message) as caught:
-        sweep.load_spec(path)
+    with pytest.raises(spec.SweepError, match=message) as caught:
+        spec.load_spec(path)
     assert str(caught.value).startswith(str(path))
 
 
@@ -323,7 +324,7 @@ def test_bundled_sweep_specs_are_valid():
     specs = sorted((REPOSITORY / "experiments" / "sweeps").glob("*.toml"))
     assert len(specs) >= 3
     for path in specs:
-        spec = sweep.load_spec(path)
+        spec = spec.load_spec(path)
         assert spec.n_runs > 0, path
 
 
@@ -345,7 +346,7 @@ def test_fragility_fit_recovers_a_known_lognormal_curve():
     # beta 0.3 within the sampling error of 4000 Bernoulli trials (a few per cent)
     from scipy.stats import norm
 
-    from shaketable.sweep_plots import fragility_fit
+    from shaketable.sweeps.fragility import fragility_fit
 
     rng = np.random.default_rng(5)
     pga = np.repeat(np.linspace(0.1, 1.0, 40), 100)
@@ -363,7 +364,7 @@ def test_sweep_figures_draw_from_a_table(reference_table):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from shaketable import sweep_plots
+    from shaketable.plots.calcomp import sweeps as sweep_plots
 
     one = reference_table[(reference_table["record"] == "pacoima-dam-s16e")
                           & (reference_table["target_pga [m/s^2]"] == 0.4 * G)]

@@ -1,4 +1,4 @@
-"""Tests of shaketable.table: command, limits, servo, pitch and the motion at the block.
+"""Tests of shaketable.lab.command: command, limits, servo, pitch and the motion at the block.
 
 Every reference value is a closed form worked out next to the test:
 
@@ -18,11 +18,14 @@ import math
 import numpy as np
 import pytest
 
-from shaketable import Block, Motion, motions, simulate
-from shaketable.constants import G, INCH
-from shaketable.table import (Actuator, LimitExceedance, Pitch, TableCommand, TableLimits,
-                              achieved, achieved_displacement, check_limits,
-                              displacement_command, motion_at_block, pitch_history)
+from shaketable import Block, Motion
+from shaketable.ground import generators as motions
+from shaketable.solvers import api as simulate
+from shaketable.core.constants import G, INCH
+from shaketable.lab.servo import Actuator, achieved, achieved_displacement
+from shaketable.lab.limits import LimitExceedance, TableLimits, check_limits
+from shaketable.lab.pitch import Pitch, motion_at_block, pitch_history
+from shaketable.lab.command import TableCommand, displacement_command
 
 PITCH_FREQUENCY = 12.0                 # [Hz], Section 3.7 (2)
 W = 2.0 * math.pi * PITCH_FREQUENCY    # [rad/s]
@@ -346,7 +349,7 @@ def test_plot_command_vs_achieved_draws_three_panels():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from shaketable.table_plots import plot_command_vs_achieved
+    from shaketable.plots.table import plot_command_vs_achieved
 
     target = motions.harmonic(2.0, 0.5, duration=2.125, dt=0.005, ramp=0.5)
     servo = achieved(displacement_command(target), Actuator())  # the assumed servo, explicitly

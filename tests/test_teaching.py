@@ -1,4 +1,4 @@
-"""The teaching gallery (shaketable.teaching): each physics claim against closed forms.
+"""The teaching gallery (shaketable.studies.teaching): each physics claim against closed forms.
 
 Expected numbers are written out here from the report's equations (not taken from the
 code under test); each carries a comment with its source.
@@ -10,8 +10,10 @@ import numpy as np
 import pytest
 
 import shaketable as st
-from shaketable import motions, teaching
-from shaketable.scenes import SceneError, Study, load_scene, resolve_scene_path, scene_from_dict
+from shaketable.ground import generators as motions
+from shaketable.studies import teaching
+from shaketable.scenes.parse import SceneError, Study, load_scene, scene_from_dict
+from shaketable.scenes.catalog import resolve_scene_path
 
 G = 9.80665  # m/s^2, standard gravity (docs/conventions.md)
 
@@ -131,7 +133,7 @@ def test_gallery_errors_name_the_parameter():
 
 
 def test_teaching_scenes_are_studies_and_plots_render(tmp_path):
-    from shaketable.teaching_plots import save_item
+    from shaketable.plots.teaching import save_item
 
     for name in teaching.ITEMS:
         study = load_scene(resolve_scene_path(f"teaching-{name}"))

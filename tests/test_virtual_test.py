@@ -6,11 +6,12 @@ import numpy as np
 import pytest
 
 from shaketable import Block
-from shaketable.pipeline import build_motion, run_scene
-from shaketable.scenes import SceneError, load_scene, resolve_scene_path, scene_from_dict
-from shaketable.sensors import Potentiometers, Sensors
-from shaketable.table_stage import run_table, table_setup_from_dict
-from shaketable.virtual_test import TheorySetup, run_virtual_test, sensors_from_dict
+from shaketable.scenes.run import build_motion, run_scene
+from shaketable.scenes.parse import SceneError, load_scene, scene_from_dict
+from shaketable.scenes.catalog import resolve_scene_path
+from shaketable.lab.sensors import Potentiometers, Sensors
+from shaketable.lab.stage import run_table, table_setup_from_dict
+from shaketable.scenes.virtual_test import TheorySetup, run_virtual_test, sensors_from_dict
 
 BLOCK = Block.parse("30x6in")
 
@@ -135,7 +136,7 @@ def test_table_3_1_periods_measured_the_reports_way():
     # Table 3.1 / Section 3.7 (1): 36 x 9 in block, period = 4 x (max to zero) read on
     # the 50 samples/s record; the report's test/theory agreement is within 2-3 %.
     # Reference: the exact nonlinear period (quadrature of the energy integral).
-    from shaketable.report_tables import table_3_1
+    from shaketable.studies.report_tables import table_3_1
 
     frame = table_3_1()
     assert (abs(frame["virtual / exact [-]"] - 1.0) < 0.02).all()

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 
 def _animate(args) -> int:
-    from ..animation import animate
-    from ..pipeline import build_motion, run_scene
-    from ..scenes import Study, load_scene, resolve_scene_path
+    from shaketable.plots.animation import animate
+    from shaketable.scenes.catalog import resolve_scene_path
+    from shaketable.scenes.parse import Study, load_scene
+    from shaketable.scenes.run import build_motion, run_scene
 
     scene = load_scene(resolve_scene_path(args.scene))
     if isinstance(scene, Study):

@@ -12,7 +12,7 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     Parameters
     ----------
     cases : list of str, optional
-        Case names (default: all of :func:`shaketable.bench.benchmark_cases`).
+        Case names (default: all of :func:`shaketable.studies.benchmark_cases.benchmark_cases`).
     quick : bool
         Fewer settings, 20 s instead of 100 s for the long record, fewer repeats.
     repeats : int
@@ -33,15 +33,15 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     list of Path
         The files written.
     """
-    from .. import bench
-    from ..bench_plots import save_work_precision_figure
+    from shaketable.plots.bench import save_work_precision_figure
+    from shaketable.studies import benchmark_cases, work_precision
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    selected = bench.benchmark_cases(quick=quick, names=cases)
-    settings = bench.method_settings(quick=quick)
+    selected = benchmark_cases.benchmark_cases(quick=quick, names=cases)
+    settings = work_precision.method_settings(quick=quick)
     cache = {}
-    frame = bench.work_precision(selected, settings, repeats=repeats, cache=cache,
+    frame = work_precision.work_precision(selected, settings, repeats=repeats, cache=cache,
                                  progress=lambda name: progress(f"work-precision: {name}"))
     csv = out / "work_precision.csv"
     frame.to_csv(csv, index=False)
@@ -49,20 +49,20 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     figure.parent.mkdir(parents=True, exist_ok=True)
     save_work_precision_figure(frame, figure)
     progress("accuracy: fast against reference at their defaults")
-    accuracy = bench.accuracy_table(selected, cache=cache)
-    orders = bench.convergence_orders(frame)
+    accuracy = work_precision.accuracy_table(selected, cache=cache)
+    orders = work_precision.convergence_orders(frame)
     pacoima = first_call = batch = None
     if speed:
         progress("speed: Pacoima Dam, 16 x 4 ft, COR 0.95")
-        pacoima = bench.pacoima_timing(repeats=50 if quick else 200,
+        pacoima = work_precision.pacoima_timing(repeats=50 if quick else 200,
                                        reference_repeats=1 if quick else 5)
         progress("first call in a fresh process")
-        first_call = {"numba cache on disk": bench.first_call_seconds(cold=False)}
+        first_call = {"numba cache on disk": work_precision.first_call_seconds(cold=False)}
         if not quick:
-            first_call["empty cache (compiles)"] = bench.first_call_seconds(cold=True)
+            first_call["empty cache (compiles)"] = work_precision.first_call_seconds(cold=True)
         progress("batch throughput")
-        batch = bench.batch_throughput(repeats=1 if quick else 3)
-    text = bench.results_markdown(accuracy, orders, frame, pacoima, first_call, batch,
+        batch = work_precision.batch_throughput(repeats=1 if quick else 3)
+    text = work_precision.results_markdown(accuracy, orders, frame, pacoima, first_call, batch,
                                   figure=markdown_figure or figure.name,
                                   command="shaketable bench" + (" --quick" if quick else ""))
     results = out / "RESULTS.md"

@@ -7,7 +7,7 @@ from pathlib import Path
 
 def _anti_alias(text: str, record, order):
     """The ``--anti-alias`` value: 'fit', 'none' or a cutoff in Hz (a known filter)."""
-    from ..sensors import Digitizer
+    from shaketable.lab.digitizer import Digitizer
 
     key = text.strip().lower()
     if key in ("fit", "none"):
@@ -38,9 +38,10 @@ def _calibrate(args) -> int:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..calibrate import calibrate, read_record
-    from ..constants import length_factor
-    from ..geometry import Block
+    from shaketable.calibration.fit import calibrate
+    from shaketable.calibration.record import read_record
+    from shaketable.core.constants import length_factor
+    from shaketable.core.geometry import Block
 
     block = Block.parse(args.block)
     height = None

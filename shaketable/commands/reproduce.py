@@ -6,8 +6,8 @@ from pathlib import Path
 
 
 def _reproduce(args) -> int:
-    from ..reproduce import reproduce
-    from ..scenes import scene_names
+    from shaketable.reproduce import reproduce
+    from shaketable.scenes.catalog import scene_names
 
     available = scene_names()
     if args.list:

@@ -6,8 +6,9 @@ from pathlib import Path
 
 
 def _run(args) -> int:
-    from ..pipeline import run_scene
-    from ..scenes import load_scene, resolve_scene_path
+    from shaketable.scenes.catalog import resolve_scene_path
+    from shaketable.scenes.parse import load_scene
+    from shaketable.scenes.run import run_scene
 
     scene = load_scene(resolve_scene_path(args.scene))
     if args.parquet or args.svg:

@@ -6,7 +6,7 @@ import json
 import math
 from pathlib import Path
 
-from ..geometry import Block
+from shaketable.core.geometry import Block
 
 
 def _resolve_angle(text: str, block: Block) -> float:
@@ -21,7 +21,7 @@ def _resolve_angle(text: str, block: Block) -> float:
 
 
 def _load_motion(args):
-    from .. import records
+    from shaketable.ground import records
 
     if args.record in records.available():
         return records.load(args.record, vertical=not args.no_vertical)
@@ -37,8 +37,8 @@ def _load_motion(args):
 
 
 def _simulate(args) -> int:
-    from .. import plots
-    from ..simulate import simulate
+    from shaketable.plots.calcomp import base as plots
+    from shaketable.solvers.api import simulate
 
     block = Block.parse(args.block)
     motion = _load_motion(args) if args.record else None

@@ -6,7 +6,8 @@ from pathlib import Path
 
 
 def _sweep(args) -> int:
-    from ..sweep import load_spec, run_sweep
+    from shaketable.sweeps.execute import run_sweep
+    from shaketable.sweeps.spec import load_spec
 
     spec = load_spec(args.spec)
     out = Path(args.out) if args.out else Path("shaketable-out") / spec.name
@@ -32,7 +33,7 @@ def _sweep(args) -> int:
               "(pip install 'shaketable[parquet]')")
     print(f"wrote {outcome.path}")
     if args.figures:
-        from ..sweep_plots import sweep_figures
+        from shaketable.plots.sweeps import sweep_figures
 
         paths = sweep_figures(table, out / "figures")
         print("wrote " + (", ".join(str(path) for path in paths) if paths else
@@ -45,7 +46,7 @@ def register(commands) -> None:
     parser = commands.add_parser(
         "sweep", help="run a parameter sweep (TOML spec) into a Parquet table, resumable",
         description="Run every combination of blocks, COR, records, PGA levels and pitch "
-                    "phases named in a sweep spec (see shaketable.sweep) and write one row "
+                    "phases named in a sweep spec (see shaketable.sweeps.spec) and write one row "
                     "per run to OUT/results.parquet. Finished chunks are kept on disk: "
                     "a killed sweep continues with --resume.")
     parser.add_argument("spec", help="path to the sweep spec .toml")

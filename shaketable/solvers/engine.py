@@ -38,7 +38,7 @@ smooth, and the impact is where the continued solution reaches zero.
 All three share the event logic: start of rocking at the exact crossing of
 Eq. (2-1) inside an interval, the impact map theta' -> cor * theta', the
 summation of the endless cascade of impacts of a decaying block
-(:func:`shaketable.dynamics.cascade_rest_time`), unstable / overturned, and the
+(:func:`shaketable.core.dynamics.cascade_rest_time`), unstable / overturned, and the
 block leaving the ground when g + vg <= 0.
 """
 
@@ -49,17 +49,32 @@ import math
 import numpy as np
 from numba import njit
 
-from ..constants import G
-from ..dynamics import (ALPHA, HALF_HEIGHT, HALF_WIDTH, HOLD_DOWN, INERTIA, ROD_ARM_1,
-                        ROD_ARM_2, ROD_FORCE, ROD_STIFFNESS, TOP_FORCE, angular_acceleration,
-                        cascade_rest_time)
+from shaketable.core.constants import G
+from shaketable.core.dynamics import (
+    ALPHA,
+    HALF_HEIGHT,
+    HALF_WIDTH,
+    HOLD_DOWN,
+    INERTIA,
+    ROD_ARM_1,
+    ROD_ARM_2,
+    ROD_FORCE,
+    ROD_STIFFNESS,
+    TOP_FORCE,
+    angular_acceleration,
+    cascade_rest_time,
+)
 
 METHOD_FAST = 0
+
 METHOD_PREDICTOR_CORRECTOR = 1
+
 METHOD_LINEAR = 2
 
 STATUS_COMPLETED = 0
+
 STATUS_OVERTURNED = 1
+
 STATUS_AIRBORNE = 2
 
 # Layout of the float summary array returned by ``integrate``.
@@ -68,6 +83,7 @@ STATUS_AIRBORNE = 2
  INFO_THETA_AT_MAX, INFO_T_END, INFO_THETA_END, INFO_THETA_DOT_END, INFO_STEPS,
  INFO_EVALUATIONS, INFO_REJECTED, INFO_CASCADES, INFO_STATUS, INFO_N_IMPACTS,
  INFO_N_OUTPUT, INFO_T_REST) = range(20)
+
 N_INFO = 20
 
 # Event codes. Floats on purpose: numba types an integer constant passed to a compiled
@@ -75,8 +91,11 @@ N_INFO = 20
 # copies of _locate, each with every stepper inlined, doubled the first-call compile time);
 # floats have no literal type, so _locate is compiled once and branches at run time.
 EVENT_IMPACT = 0.0
+
 EVENT_OVERTURN = 1.0
+
 EVENT_PEAK = 2.0
+
 EVENT_UNSTABLE = 3.0
 
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
@@ -88,7 +107,7 @@ def flight_acceleration(theta, side, ug, vg, rg, parameters):
     """theta'' [rad/s^2] of a block pivoting on the corner ``side`` (+1 or -1).
 
     Eq. (2-13)/(2-14) with s = ``side`` whatever the sign of ``theta``: equal to
-    :func:`shaketable.dynamics.angular_acceleration` while ``side * theta >= 0``
+    :func:`shaketable.core.dynamics.angular_acceleration` while ``side * theta >= 0``
     and its analytic continuation beyond theta = 0 (the rods' uplift
     sin|theta| continued as side * sin(theta)), so that a step of one flight
     never sees the switch of corner.
@@ -399,7 +418,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
         Sample times [s], ground accelerations [m/s^2] (vertical upward) and
         table angular acceleration [rad/s^2].
     parameters : ndarray
-        From :func:`shaketable.dynamics.block_parameters`.
+        From :func:`shaketable.core.dynamics.block_parameters`.
     cor : float
         Coefficient of restitution [-].
     theta0, omega0 : float

@@ -3,7 +3,7 @@
 An implementation independent of :mod:`shaketable.solvers.engine` (different
 integrator, different root finder: SciPy's ``solve_ivp`` events and Brent's
 method) used as the yardstick for the other methods and in the tests. It shares
-only the physics (:mod:`shaketable.dynamics`) and the event rules.
+only the physics (:mod:`shaketable.core.dynamics`) and the event rules.
 
 It integrates each input interval separately, one corner's equation
 continued smoothly past theta = 0 during a flight (like the engine; the
@@ -19,14 +19,35 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..constants import G
-from ..dynamics import HOLD_DOWN, angular_acceleration, cascade_rest_time
-from .engine import (INFO_CASCADES, flight_acceleration, INFO_EVALUATIONS, INFO_MAX_ABS_THETA, INFO_N_IMPACTS,
-                     INFO_N_OUTPUT, INFO_OVERTURN_DIRECTION, INFO_REJECTED, INFO_STATUS,
-                     INFO_STEPS, INFO_T_AIRBORNE, INFO_T_END, INFO_T_MAX, INFO_T_OVERTURN,
-                     INFO_T_REST, INFO_T_START, INFO_T_UNSTABLE, INFO_THETA_AT_MAX,
-                     INFO_THETA_DOT_END, INFO_THETA_END, INFO_UNSTABLE_DIRECTION, N_INFO,
-                     STATUS_AIRBORNE, STATUS_COMPLETED, STATUS_OVERTURNED)
+from shaketable.core.constants import G
+from shaketable.core.dynamics import HOLD_DOWN, angular_acceleration, cascade_rest_time
+from shaketable.solvers.engine import (
+    INFO_CASCADES,
+    INFO_EVALUATIONS,
+    INFO_MAX_ABS_THETA,
+    INFO_N_IMPACTS,
+    INFO_N_OUTPUT,
+    INFO_OVERTURN_DIRECTION,
+    INFO_REJECTED,
+    INFO_STATUS,
+    INFO_STEPS,
+    INFO_T_AIRBORNE,
+    INFO_T_END,
+    INFO_T_MAX,
+    INFO_T_OVERTURN,
+    INFO_T_REST,
+    INFO_T_START,
+    INFO_T_UNSTABLE,
+    INFO_THETA_AT_MAX,
+    INFO_THETA_DOT_END,
+    INFO_THETA_END,
+    INFO_UNSTABLE_DIRECTION,
+    N_INFO,
+    STATUS_AIRBORNE,
+    STATUS_COMPLETED,
+    STATUS_OVERTURNED,
+    flight_acceleration,
+)
 
 
 class ReferenceSolverError(RuntimeError):
@@ -43,6 +64,7 @@ class ReferenceSolverError(RuntimeError):
 #: instant they began before the reference solver gives up: a real start of
 #: rocking followed by an immediate impact happens once or twice, not 100 times.
 MAX_STALLED_SEGMENTS = 100
+
 #: Segments (solve_ivp calls) allowed inside one input interval.
 MAX_SEGMENTS_PER_INTERVAL = 100_000
 

@@ -1,0 +1,261 @@
+"""TODO docstring (from calibrate)."""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from shaketable.calibration.model import PARAMETERS
+from shaketable.calibration.peaks import PeakEstimate, PeriodFit
+from shaketable.calibration.record import Record, json_safe
+from shaketable.core.constants import INCH
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
+from shaketable.solvers.api import simulate
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """The COR identified from one free-rocking record.
+
+    Attributes
+    ----------
+    record : Record
+    block : Block
+    cor : float
+        Least-squares COR [-].
+    cor_interval : tuple of float
+        95 % interval of the COR [-] (``interval_method``).
+    cor_se : float
+        Standard error of the COR [-].
+    theta0, theta0_se : float
+        Release angle and standard error [rad].
+    t_release, t_release_se : float
+        Release time and standard error [s]: when the block left theta0, the
+        modelled filter's delay removed (with ``anti_alias="none"`` the
+        apparent release, delay included).
+    offset, offset_se : float
+        Sensor offset and standard error [record unit: rad or m].
+    covariance : ndarray
+        Covariance of the fitted parameters (``parameters``): 4 x 4, or 5 x 5
+        with the fitted filter (its ``t_release`` is the apparent one).
+    interval_method : str
+        ``"acf"``, ``"hac"`` or ``"iid"`` (see :data:`INTERVALS`), or ``"bootstrap"``.
+    bootstrap_interval : tuple or None
+        Percentile interval of the moving-block bootstrap [-].
+    bootstrap_cors : ndarray or None
+        The bootstrap replicates [-].
+    fitted, residuals : ndarray
+        Model and record minus model at the samples [record unit].
+    goodness : dict
+        rms [unit], noise estimate [unit], R^2 [-], lag-1 autocorrelation of
+        the residuals [-], samples, lags of the covariance, evaluations, time [s].
+    peaks : PeakEstimate or None
+        The independent peak-amplitude estimate (None if it failed).
+    periods : PeriodFit or None
+        The period fit (None if it failed).
+    notes : tuple of str
+        Warnings (parameters at a bound, failed side methods).
+    anti_alias : str
+        How the acquisition's filter was modelled: ``"fit"``, ``"known"`` or
+        ``"none"`` (:data:`ANTI_ALIAS`).
+    filter_order : int
+        Poles of the modelled Butterworth filter.
+    filter_cutoff : float
+        Its cutoff [Hz] (fitted or given; inf for none).
+    filter_delay : float
+        Its low-frequency group delay [s] (:func:`butterworth_delay` / (2 pi f_c)).
+    t_release_apparent : float
+        Release time plus the filter's delay [s]: where the record's release
+        shows (the theory runs of :func:`compare_free_rocking` start there).
+    parameters : tuple of str
+        Names of the fitted parameters, in the covariance's order.
+    jacobian : ndarray
+        d(model)/d(parameters) at the optimum, n x k [record unit / parameter
+        unit], from which ``covariance`` was made (:func:`covariance_of`
+        recomputes it another way).
+    """
+
+    record: Record
+    block: Block
+    cor: float
+    cor_interval: tuple
+    cor_se: float
+    theta0: float
+    theta0_se: float
+    t_release: float
+    t_release_se: float
+    offset: float
+    offset_se: float
+    covariance: np.ndarray
+    interval_method: str
+    fitted: np.ndarray
+    residuals: np.ndarray
+    goodness: dict
+    peaks: PeakEstimate | None = None
+    periods: PeriodFit | None = None
+    bootstrap_interval: tuple | None = None
+    bootstrap_cors: np.ndarray | None = None
+    notes: tuple = field(default_factory=tuple)
+    anti_alias: str = "none"
+    filter_order: int = 4
+    filter_cutoff: float = math.inf
+    filter_delay: float = 0.0
+    t_release_apparent: float | None = None
+    parameters: tuple = PARAMETERS
+    jacobian: np.ndarray | None = field(default=None, repr=False)
+
+    @property
+    def confidence(self) -> float:
+        """Level of ``cor_interval`` [-]."""
+        return 0.95
+
+    def to_frame(self):
+        """Record, fit and residuals as a :class:`pandas.DataFrame` (units in the names)."""
+        import pandas as pd
+
+        scale, unit = self.record.display_scale()
+        return pd.DataFrame({
+            "time [s]": self.record.t,
+            f"record [{unit}]": self.record.values * scale,
+            f"fitted [{unit}]": self.fitted * scale,
+            f"residual [{unit}]": self.residuals * scale,
+            "theta fitted [rad]": self.record.to_angle(self.fitted - self.offset, self.block),
+        })
+
+    def summary(self) -> dict:
+        """JSON-ready scalar results (units in the keys)."""
+        unit = "rad" if self.record.quantity == "angle" else "m"
+        data = {
+            "record": self.record.name, "quantity": self.record.quantity,
+            "block_height [m]": self.block.height, "block_width [m]": self.block.width,
+            "cor [-]": self.cor, "cor_low [-]": self.cor_interval[0],
+            "cor_high [-]": self.cor_interval[1],
+            "cor_interval [-]": [float(self.cor_interval[0]), float(self.cor_interval[1])],
+            "cor_interval_level [-]": self.confidence, "cor_se [-]": self.cor_se,
+            "interval": self.interval_method,
+            "anti_alias": self.anti_alias, "filter_order": self.filter_order,
+            "filter_cutoff [Hz]": self.filter_cutoff, "filter_delay [s]": self.filter_delay,
+            "theta0 [rad]": self.theta0, "theta0_se [rad]": self.theta0_se,
+            "theta0/alpha [-]": self.theta0 / self.block.alpha,
+            "t_release [s]": self.t_release, "t_release_se [s]": self.t_release_se,
+            "t_release_apparent [s]": self.t_release_apparent,
+            f"offset [{unit}]": self.offset, f"offset_se [{unit}]": self.offset_se,
+        }
+        data.update({f"fit {key}": value for key, value in self.goodness.items()})
+        if self.bootstrap_interval is not None:
+            data["bootstrap_low [-]"], data["bootstrap_high [-]"] = self.bootstrap_interval
+            data["bootstrap_samples"] = int(self.bootstrap_cors.size)
+        if self.peaks is not None:
+            data.update({"peak_cor [-]": self.peaks.cor,
+                         "peak_cor_low [-]": self.peaks.cor_interval[0],
+                         "peak_cor_high [-]": self.peaks.cor_interval[1],
+                         "peaks_used": int(self.peaks.amplitudes.size),
+                         "cor_vs_velocity_slope [s/rad]": self.peaks.slope,
+                         "cor_vs_velocity_slope_se [s/rad]": self.peaks.slope_se,
+                         "cor_velocity_independent": self.peaks.velocity_independent})
+        if self.periods is not None:
+            effective = self.periods.block
+            data.update({"period_fit_R [m]": self.periods.R,
+                         "period_fit_R_se [m]": self.periods.R_se,
+                         "period_fit_alpha [rad]": self.periods.alpha,
+                         "period_fit_alpha_se [rad]": self.periods.alpha_se,
+                         "period_fit_height [m]": effective.height,
+                         "period_fit_width [m]": effective.width,
+                         "period_fit_rms [s]": self.periods.rms})
+        data["notes"] = list(self.notes)
+        return {key: json_safe(value) for key, value in data.items()}
+
+    def to_json(self, path=None) -> str:
+        """The summary as JSON text; written to ``path`` when given."""
+        text = json.dumps(self.summary(), indent=2)
+        if path is not None:
+            Path(path).write_text(text + "\n")
+        return text
+
+    def plot(self, fig=None, title: str | None = None):
+        """Record, fitted curve, residuals, COR per impact and periods (PNG-ready figure)."""
+        from shaketable.plots.calibration import plot_calibration
+
+        return plot_calibration(self, fig=fig, title=title)
+
+    def predict(self, motion: Motion | None = None, **kwargs):
+        """The theory run with the calibrated COR (see :func:`predict`)."""
+        return predict(self, motion, **kwargs)
+
+    @property
+    def digits(self) -> int:
+        """Decimals worth printing for the COR: one beyond the interval's half-width."""
+        half = 0.5 * (self.cor_interval[1] - self.cor_interval[0])
+        return max(4, int(math.ceil(-math.log10(half))) + 1) if half > 0 else 6
+
+    def text(self) -> str:
+        """One-paragraph human summary."""
+        low, high = self.cor_interval
+        digits = self.digits
+        unit = "rad" if self.record.quantity == "angle" else "m"
+        if self.anti_alias == "fit":
+            filter_text = (f"fitted {self.filter_order}-pole filter: none"
+                           if not math.isfinite(self.filter_cutoff) else
+                           f"fitted {self.filter_order}-pole filter at {self.filter_cutoff:.3g} Hz")
+        elif self.anti_alias == "known":
+            filter_text = f"given {self.filter_order}-pole filter at {self.filter_cutoff:.3g} Hz"
+        else:
+            filter_text = "no filter modelled"
+        lines = [f"COR = {self.cor:.{digits}f}  (95 % interval {low:.{digits}f} to "
+                 f"{high:.{digits}f}, {self.interval_method}; {filter_text})",
+                 f"release angle {self.theta0:.5f} rad = {self.theta0 / self.block.alpha:.3f} "
+                 f"alpha at t = {self.t_release:.3f} s; fit rms {self.goodness['rms']:.3g} "
+                 f"{unit}, R^2 {self.goodness['r_squared']:.6f}"]
+        if self.bootstrap_interval is not None:
+            lines.append(f"bootstrap ({self.bootstrap_cors.size}): "
+                         f"{self.bootstrap_interval[0]:.{digits}f} to "
+                         f"{self.bootstrap_interval[1]:.{digits}f}")
+        if self.peaks is not None:
+            p = self.peaks
+            lines.append(f"peak method: COR = {p.cor:.4f} ({p.cor_interval[0]:.4f} to "
+                         f"{p.cor_interval[1]:.4f}) from {p.amplitudes.size} peaks; COR vs "
+                         f"impact velocity slope {p.slope:+.4f} +- {1.96 * p.slope_se:.4f} s/rad"
+                         + (" (no dependence)" if p.velocity_independent else " (DEPENDS)"))
+        if self.periods is not None:
+            e = self.periods.block
+            lines.append(f"period fit: R = {self.periods.R:.4f} m, alpha = "
+                         f"{self.periods.alpha:.4f} rad -> {e.height / INCH:.2f} x "
+                         f"{e.width / INCH:.2f} in (nominal {self.block.describe()})")
+        lines.extend(f"note: {note}" for note in self.notes)
+        return "\n".join(lines)
+
+
+# ------------------------------------------------------------------ theory run
+def predict(calibration: Calibration, motion: Motion | None = None, *,
+            duration: float | None = None, theta0: float | None = None, **kwargs):
+    """The theory run with the calibrated COR (the report's use of nu = 0.925, Section 3.6).
+
+    Parameters
+    ----------
+    calibration : Calibration
+    motion : Motion, optional
+        Table motion; ``None`` repeats the free-rocking test from the fitted
+        release angle (time measured from the release).
+    duration : float, optional
+        Length of the run [s] (default: the record's length after release).
+    theta0 : float, optional
+        Initial rotation [rad] (default: the fitted release angle for free
+        rocking, 0 under a motion).
+    **kwargs
+        Passed to :func:`shaketable.solvers.api`.
+    """
+    if not isinstance(calibration, Calibration):
+        raise ValueError(f"calibration must be a Calibration, got {type(calibration).__name__}")
+    if motion is None:
+        theta0 = calibration.theta0 if theta0 is None else theta0
+        if duration is None:
+            duration = float(calibration.record.t[-1] - calibration.t_release)
+    else:
+        theta0 = 0.0 if theta0 is None else theta0
+    return simulate(calibration.block, motion, cor=calibration.cor, theta0=theta0,
+                    duration=duration, **kwargs)

@@ -1,0 +1,185 @@
+"""Equation of motion of a rocking block, Eqs. (2-13) and (2-14) of [1]_.
+
+Sign convention (stated once for the package; ``docs/conventions.md`` repeats it)
+--------------------------------------------------------------------------------
+* ``theta`` is a single signed rotation [rad]. ``theta > 0``: the block pivots on
+  its corner at -x and its top moves toward -x; ``theta < 0``: it pivots on the
+  corner at +x. This is the report's Fig. 2.7 convention, in which a positive
+  horizontal ground acceleration drives ``theta`` positive (Eq. 2-13 as printed).
+* The horizontal ground acceleration ``ug`` is positive along +x [m/s^2].
+* The vertical ground acceleration ``vg`` is positive upward [m/s^2].
+
+With ``s = sign(theta)`` (the active corner) Eq. (2-13) reads, per unit mass,
+
+    (4/3) R^2 theta'' = ug (h cos(theta) + s b sin(theta))
+                        - (g + vg) (s b cos(theta) - h sin(theta)) - s M_rods / M
+
+which for ``theta > 0`` is Eq. (2-13) letter for letter and for ``theta < 0`` its
+mirror image. The printed Eq. (2-14) writes B and H where Eq. (2-13) has b and h;
+that is a misprint: with K = F0 = 0 it must reduce to Eq. (2-13), so b and h are
+used here. The rod moments are the report's RM1 and RM2 with the rods'
+extensions taken as the uplift of their anchor points, delta_i = d_i sin|theta|.
+
+Impact (Section 2.7 (5)): the report writes theta'_{i+1} = -nu theta'_i with
+theta measured about the active corner; with one signed theta that is
+``theta_dot_after = cor * theta_dot_before`` (same sign).
+
+Every function here is compiled with numba (``nopython``) and works on floats and
+one parameter array built by :func:`block_parameters`, so the solvers can call
+them without Python overhead.
+
+References
+----------
+.. [1] M. Aslam, W. G. Godden and D. T. Scalise, "Rocking and overturning
+   response of rigid bodies to earthquake motions", Lawrence Berkeley
+   Laboratory, University of California, Berkeley.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from shaketable.core.constants import G
+from shaketable.core.geometry import Block
+
+# Indices into the parameter array.
+HALF_WIDTH, HALF_HEIGHT, INERTIA, ROD_STIFFNESS, ROD_FORCE, ROD_ARM_1, ROD_ARM_2, ALPHA, \
+    HOLD_DOWN, TOP_FORCE = range(10)
+
+N_PARAMETERS = 10
+
+
+def block_parameters(block: Block, top_force: float = 0.0) -> np.ndarray:
+    """Pack a block into the float array the compiled physics uses.
+
+    Parameters
+    ----------
+    block : Block
+    top_force : float
+        A constant horizontal force at the middle of the block's top, per unit
+        mass [m/s^2], positive along +x (one potentiometer wire, Section 3.3).
+
+    Returns
+    -------
+    ndarray, shape (10,)
+        b [m], h [m], I0/M = 4R^2/3 [m^2], per-rod stiffness per mass
+        g K/2 [1/s^2], per-rod prestress per mass g F0/2 [m/s^2], rod arms
+        S and B - S from the pivot [m], alpha [rad], the hold-down
+        acceleration g F0 [m/s^2] (the rods' pull at rest, per unit mass) and
+        the top force per mass [m/s^2].
+    """
+    parameters = np.zeros(N_PARAMETERS)
+    parameters[TOP_FORCE] = top_force
+    parameters[HALF_WIDTH] = block.b
+    parameters[HALF_HEIGHT] = block.h
+    parameters[INERTIA] = block.I0_per_mass
+    parameters[ALPHA] = block.alpha
+    rods = block.rods
+    if rods is not None:
+        parameters[ROD_STIFFNESS] = G * rods.stiffness / 2
+        parameters[ROD_FORCE] = G * rods.force / 2
+        parameters[ROD_ARM_1] = rods.edge_distance
+        parameters[ROD_ARM_2] = block.width - rods.edge_distance
+        parameters[HOLD_DOWN] = G * rods.force
+    return parameters
+
+
+@njit(cache=True)
+def rod_moment(theta, parameters):
+    """Restoring moment of the prestress rods per unit mass [m^2/s^2], Eq. (2-14).
+
+    RM1 + RM2 = sum_i (F0_i + K_i d_i sin|theta|) d_i cos(theta), always >= 0
+    for |theta| < pi/2 and acting toward theta = 0.
+    """
+    stiffness = parameters[ROD_STIFFNESS]
+    force = parameters[ROD_FORCE]
+    if stiffness == 0.0 and force == 0.0:
+        return 0.0
+    uplift = math.sin(abs(theta))
+    cosine = math.cos(theta)
+    arm_1 = parameters[ROD_ARM_1]
+    arm_2 = parameters[ROD_ARM_2]
+    return ((force + stiffness * arm_1 * uplift) * arm_1
+            + (force + stiffness * arm_2 * uplift) * arm_2) * cosine
+
+
+@njit(cache=True)
+def angular_acceleration(theta, side, ug, vg, rg, parameters):
+    """Angular acceleration theta'' [rad/s^2] from Eq. (2-13)/(2-14).
+
+    Parameters
+    ----------
+    theta : float
+        Rotation relative to the table [rad].
+    side : float
+        Active corner, +1 or -1; used when ``theta == 0`` (otherwise the sign
+        of ``theta`` decides).
+    ug, vg : float
+        Horizontal (+x) and vertical (upward) ground acceleration at the
+        block [m/s^2].
+    rg : float
+        Angular acceleration of the table (pitch) [rad/s^2], same sense as
+        theta: the block's absolute rotation is theta + table rotation, so
+        it enters as -rg.
+    parameters : ndarray
+        From :func:`block_parameters`.
+    """
+    s = side
+    if theta > 0.0:
+        s = 1.0
+    elif theta < 0.0:
+        s = -1.0
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    cosine = math.cos(theta)
+    sine = math.sin(theta)
+    lever_horizontal = h * cosine + s * b * sine          # y of Eq. (2-11)
+    lever_vertical = s * b * cosine - h * sine            # s * x of Eq. (2-11)
+    moment = ug * lever_horizontal - (G + vg) * lever_vertical  # Eq. (2-13)
+    moment -= s * rod_moment(theta, parameters)                   # Eq. (2-14)
+    top_force = parameters[TOP_FORCE]
+    if top_force != 0.0:
+        # horizontal force at the top centre, lever 2h cos(theta) + s b sin(theta)
+        moment -= top_force * (2.0 * h * cosine + s * b * sine)
+    return moment / parameters[INERTIA] - rg
+
+
+@njit(cache=True)
+def uplift_margin(side, ug, vg, rg, parameters):
+    """Net overturning moment per mass at theta = 0 toward ``side`` [m^2/s^2].
+
+    Rocking onto ``side`` starts when this is positive: Eq. (2-1) generalised
+    to prestress rods, ``s ug h > (g + vg) b + F0 b``.
+    """
+    return side * angular_acceleration(0.0, side, ug, vg, rg, parameters) * parameters[INERTIA]
+
+
+@njit(cache=True)
+def cascade_rest_time(theta_dot_after, deceleration, cor):
+    """Time for an endless cascade of impacts to die out [s].
+
+    Near theta = 0 a block pushed back onto its base by a deceleration ``a0``
+    flies for 2|w|/a0 after an impact with velocity w, and each impact
+    multiplies w by ``cor``. The flights form a geometric series whose sum,
+    2|w| / (a0 (1 - cor)), is the finite time at which the block comes to rest
+    (infinitely many impacts in finite time).
+
+    Returns ``inf`` when the series does not converge (``cor >= 1`` or
+    ``deceleration <= 0``).
+    """
+    if deceleration <= 0.0 or cor >= 1.0:
+        return math.inf
+    return 2.0 * abs(theta_dot_after) / (deceleration * (1.0 - cor))
+
+
+def airborne_acceleration(block: Block) -> float:
+    """Vertical ground acceleration at which the block leaves the ground [m/s^2].
+
+    The model (Section 2.7) assumes contact: with ``g + vg <= 0`` a free-standing
+    block is lifted off (prestress rods hold it down down to ``-g (1 + F0)``).
+    """
+    force = 0.0 if block.rods is None else block.rods.force
+    return -G * (1.0 + force)

@@ -1,0 +1,206 @@
+"""Block geometry (Sections 2.2 and 2.6 of the report) and prestress rods (Eq. 2-14).
+
+Nomenclature (report symbol -> code name):
+
+=========  ======================  =======================================
+report     code                    meaning
+=========  ======================  =======================================
+H, B       ``height``, ``width``   total height and width of the block [m]
+h, b       ``h``, ``b``            half height H/2 and half width B/2 [m]
+R          ``R``                   corner-to-centroid distance [m]
+alpha      ``alpha``               block angle arctan(b/h) [rad]
+p          ``p``                   frequency parameter sqrt(3g/4R) [rad/s]
+I0         ``I0_per_mass``         moment of inertia about a corner / M [m^2]
+K          ``PrestressRods.stiffness``   total rod stiffness [W per m]
+F0         ``PrestressRods.force``       total initial rod force [W]
+S          ``PrestressRods.edge_distance``  rod distance from an edge [m]
+=========  ======================  =======================================
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+from shaketable.core.constants import G, length_factor
+from shaketable.core.validation import nonnegative, positive
+
+
+@dataclass(frozen=True)
+class PrestressRods:
+    """A symmetric pair of vertical prestress rods tying the block to the floor.
+
+    The report (Section 2.8, Eq. 2-14) places one rod at distance ``S`` from
+    each edge; each rod is hinged at the ground, stays elastic and is always in
+    tension. Here ``stiffness`` and ``force`` are the **totals** of the pair
+    (Fig. 4.17: "total stiffness 0.4 W/in, total prestressing force 0.4 W"),
+    each rod carrying half. A single rod in the middle (Fig. 4.17) is
+    ``edge_distance = width / 2``.
+
+    Parameters
+    ----------
+    stiffness : float
+        Total axial stiffness K of the rods, in block weights per metre [W/m]
+        (use :meth:`from_inches` for the report's W/in).
+    force : float
+        Total initial prestress force F0, in block weights [W].
+    edge_distance : float
+        Distance S of each rod from its nearer edge of the block [m].
+    """
+
+    stiffness: float
+    force: float
+    edge_distance: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "stiffness", nonnegative("PrestressRods.stiffness", self.stiffness))
+        object.__setattr__(self, "force", nonnegative("PrestressRods.force", self.force))
+        object.__setattr__(self, "edge_distance",
+                           nonnegative("PrestressRods.edge_distance", self.edge_distance))
+
+    @classmethod
+    def from_inches(cls, stiffness_w_per_in: float, force_w: float,
+                    edge_distance_in: float) -> "PrestressRods":
+        """Rods given in the report's units: K in W/in, F0 in W, S in inches."""
+        return cls(nonnegative("stiffness", stiffness_w_per_in) / length_factor("in"),
+                   force_w, nonnegative("edge_distance", edge_distance_in) * length_factor("in"))
+
+
+_SIZE = re.compile(
+    r"^\s*(?P<height>[0-9]*\.?[0-9]+)\s*(?P<hunit>[a-z]+)?\s*[x×]\s*"
+    r"(?P<width>[0-9]*\.?[0-9]+)\s*(?P<wunit>[a-z]+)?\s*$",
+    re.IGNORECASE,
+)
+
+
+@dataclass(frozen=True)
+class Block:
+    """A rigid rectangular block rocking on its bottom edges.
+
+    Parameters
+    ----------
+    height : float
+        Total height H [m].
+    width : float
+        Total width B [m] (in the plane of rocking).
+    rods : PrestressRods, optional
+        Prestress rods tying the block down (Eq. 2-14); ``None`` for a
+        free-standing block.
+
+    Notes
+    -----
+    Density and the third dimension do not enter the response (Eq. 2-13 is
+    independent of the mass), so a block is its two dimensions.
+    """
+
+    height: float
+    width: float
+    rods: PrestressRods | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "height", positive("Block.height", self.height))
+        object.__setattr__(self, "width", positive("Block.width", self.width))
+        if self.rods is not None:
+            if not isinstance(self.rods, PrestressRods):
+                raise ValueError(f"Block.rods must be PrestressRods or None, got {self.rods!r}")
+            if self.rods.edge_distance > self.width:
+                raise ValueError(
+                    f"PrestressRods.edge_distance ({self.rods.edge_distance} m) must not exceed "
+                    f"the block width ({self.width} m)"
+                )
+
+    # ----------------------------------------------------------- constructors
+    @classmethod
+    def parse(cls, text: str, rods: PrestressRods | None = None) -> "Block":
+        """Build a block from ``"HEIGHTxWIDTH unit"`` text, height first.
+
+        Examples: ``"30x6in"``, ``"16x4ft"``, ``"36in x 9in"``, ``"0.5x0.1m"``.
+        The report writes blocks as height x width ("30 in. x 6 in.").
+        A unit is required.
+        """
+        match = _SIZE.match(str(text))
+        if not match:
+            raise ValueError(
+                f"block size {text!r} not understood; expected 'HEIGHTxWIDTH<unit>' "
+                "such as '30x6in' or '16x4ft'"
+            )
+        unit = match["wunit"] or match["hunit"]
+        if unit is None:
+            raise ValueError(f"block size {text!r} has no unit; write e.g. '30x6in' or '16x4ft'")
+        height_unit = match["hunit"] or unit
+        return cls(float(match["height"]) * length_factor(height_unit),
+                   float(match["width"]) * length_factor(unit), rods)
+
+    @classmethod
+    def from_inches(cls, height: float, width: float, rods=None) -> "Block":
+        """Block with height and width in inches."""
+        return cls(positive("height", height) * length_factor("in"),
+                   positive("width", width) * length_factor("in"), rods)
+
+    @classmethod
+    def from_feet(cls, height: float, width: float, rods=None) -> "Block":
+        """Block with height and width in feet."""
+        return cls(positive("height", height) * length_factor("ft"),
+                   positive("width", width) * length_factor("ft"), rods)
+
+    @classmethod
+    def from_slenderness(cls, R: float, alpha: float, rods=None) -> "Block":
+        """Block from its size R [m] and block angle alpha [rad] (0 < alpha < pi/2)."""
+        R = positive("R", R)
+        alpha = positive("alpha", alpha)
+        if alpha >= math.pi / 2:
+            raise ValueError(f"alpha must be below pi/2, got {alpha!r}")
+        return cls(2 * R * math.cos(alpha), 2 * R * math.sin(alpha), rods)
+
+    # -------------------------------------------------------------- derived
+    @property
+    def h(self) -> float:
+        """Half height h = H/2, height of the centroid [m]."""
+        return self.height / 2
+
+    @property
+    def b(self) -> float:
+        """Half width b = B/2, horizontal distance from an edge to the centroid [m]."""
+        return self.width / 2
+
+    @property
+    def R(self) -> float:
+        """Distance from a bottom corner to the centroid, sqrt(b^2 + h^2) [m]."""
+        return math.hypot(self.b, self.h)
+
+    @property
+    def alpha(self) -> float:
+        """Block angle alpha = arctan(b/h) [rad] (Fig. 2.2): the static stability limit."""
+        return math.atan2(self.b, self.h)
+
+    @property
+    def aspect_ratio(self) -> float:
+        """Height over width H/B [-]."""
+        return self.height / self.width
+
+    @property
+    def p(self) -> float:
+        """Frequency parameter p = sqrt(3 g / 4 R) [rad/s] (Section 2.2)."""
+        return math.sqrt(3 * G / (4 * self.R))
+
+    @property
+    def I0_per_mass(self) -> float:
+        """Moment of inertia about a bottom corner per unit mass, 4R^2/3 [m^2] (Eq. 2-12)."""
+        return 4 * self.R ** 2 / 3
+
+    def rocking_threshold(self, vertical: float = 0.0) -> float:
+        """Horizontal acceleration that starts rocking, Eq. (2-1) [m/s^2].
+
+        ``(B/H) (g + v)`` plus the prestress of the rods, where ``v`` is the
+        vertical ground acceleration [m/s^2] (positive upward).
+        """
+        restoring = (G + vertical) * self.b
+        if self.rods is not None:
+            restoring += G * self.rods.force * self.b  # the pair's resultant acts at mid-width
+        return restoring / self.h
+
+    def describe(self) -> str:
+        """Short label in inches, the report's units, e.g. ``30 x 6 in``."""
+        inch = length_factor("in")
+        return f"{self.height / inch:g} x {self.width / inch:g} in"

@@ -1,0 +1,406 @@
+"""Ground motion: sampled horizontal and vertical ground accelerations.
+
+Sign convention (stated once for the whole package, see ``docs/conventions.md``):
+
+* ``horizontal`` is the table (ground) acceleration along +x [m/s^2].
+* ``vertical`` is the table acceleration, positive **upward** [m/s^2].
+
+Between samples the accelerations vary linearly (Section 2.8 of the report).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+
+from shaketable.core.constants import G
+
+#: Shortest sample interval a motion accepts [s] (1 ns). Digitised records
+#: are sampled at 0.005-0.02 s and the report's subdivision (Section 2.8)
+#: divides that by a few; an interval 1e6 times shorter is a mistake, and
+#: the adaptive solvers cannot advance across intervals near the spacing of
+#: floating-point numbers.
+MIN_SAMPLE_INTERVAL = 1e-9
+
+#: Largest magnitude accepted for an acceleration channel [m/s^2 or rad/s^2]:
+#: about 1e5 g, five orders of magnitude above the strongest records (about
+#: 1.2 g in the report) and far below where squares of the values overflow.
+MAX_ACCELERATION = 1e6
+
+
+def _scalar(name: str, value, unit: str, *, positive: bool = False) -> float:
+    """``value`` as a finite float (positive if asked), else a ValueError naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.integer,
+                                                        np.floating)):
+        raise ValueError(f"{name} must be a real number{unit}, got {value!r}")
+    number = float(value)
+    if not math.isfinite(number):
+        raise ValueError(f"{name} must be finite{unit}, got {value!r}")
+    if positive and number <= 0.0:
+        raise ValueError(f"{name} must be positive{unit}, got {value!r}")
+    return number
+
+
+def whole_number(name: str, value, minimum: int = 1) -> int:
+    """``value`` as an int >= ``minimum``, else a ValueError naming ``name``.
+
+    Integers (Python or NumPy) and floats with an integral value (``4.0``)
+    are accepted; ``2.7``, booleans, strings and non-finite values are not.
+    """
+    if isinstance(value, bool):
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    if isinstance(value, (numbers.Integral, np.integer)):
+        number = int(value)
+    elif isinstance(value, (numbers.Real, np.floating)) and math.isfinite(value) \
+            and float(value).is_integer():
+        number = int(value)
+    else:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    if number < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return number
+
+
+def _bounded(name: str, array: np.ndarray, unit: str) -> np.ndarray:
+    """``array`` if every value is within :data:`MAX_ACCELERATION`, else a ValueError."""
+    if array.size and np.max(np.abs(array)) > MAX_ACCELERATION:
+        index = int(np.argmax(np.abs(array)))
+        raise ValueError(
+            f"{name}[{index}] = {float(array[index])!r} {unit} exceeds the largest accepted "
+            f"magnitude {MAX_ACCELERATION:g} {unit} (about 1e5 g); check the units"
+        )
+    return array
+
+
+def _as_float_array(name: str, values) -> np.ndarray:
+    try:
+        array = np.asarray(values, dtype=float)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{name} must be an array of numbers: {error}") from None
+    if array.ndim != 1:
+        raise ValueError(f"{name} must be one-dimensional, got shape {array.shape}")
+    bad = np.flatnonzero(~np.isfinite(array))
+    if bad.size:
+        raise ValueError(
+            f"{name} contains {bad.size} non-finite value(s) (NaN or inf), "
+            f"first at index {bad[0]}"
+        )
+    return array
+
+
+@dataclass(frozen=True)
+class Motion:
+    """Ground (table) acceleration history, linear between samples.
+
+    Parameters
+    ----------
+    t : array_like
+        Sample times [s], strictly increasing.
+    horizontal : array_like
+        Horizontal ground acceleration [m/s^2], positive along +x.
+    vertical : array_like, optional
+        Vertical ground acceleration [m/s^2], positive upward. ``None`` means
+        no vertical component (zeros).
+    name : str, optional
+        A label used in plots and summaries.
+    rotation : array_like, optional
+        Angular acceleration of the table (pitch) [rad/s^2], positive in the
+        sense of positive theta. ``None`` means a table that does not rotate.
+        Its other effects (tilt of gravity, vertical acceleration at the block's
+        distance from the pitch axis) are folded into ``horizontal`` and
+        ``vertical`` by :mod:`shaketable.lab.command`.
+
+    Raises
+    ------
+    ValueError
+        Non-numeric or non-finite values, fewer than 2 samples, times not
+        strictly increasing or closer than :data:`MIN_SAMPLE_INTERVAL`,
+        lengths that differ from ``t``, or a value beyond
+        :data:`MAX_ACCELERATION`; the message names the field.
+
+    Notes
+    -----
+    The arrays are copied and made read-only: a motion never changes after it
+    is built, and running a simulation never changes it.
+    """
+
+    t: np.ndarray
+    horizontal: np.ndarray
+    vertical: np.ndarray | None = None
+    name: str = ""
+    rotation: np.ndarray | None = None
+
+    def __post_init__(self):
+        t = _as_float_array("Motion.t", self.t)
+        if t.size < 2:
+            raise ValueError(f"Motion.t needs at least 2 samples, got {t.size}")
+        steps = np.diff(t)
+        if np.any(steps <= 0):
+            index = int(np.flatnonzero(steps <= 0)[0])
+            raise ValueError(
+                "Motion.t must be strictly increasing; "
+                f"t[{index + 1}] = {t[index + 1]!r} <= t[{index}] = {t[index]!r}"
+            )
+        if np.any(steps < MIN_SAMPLE_INTERVAL):
+            index = int(np.flatnonzero(steps < MIN_SAMPLE_INTERVAL)[0])
+            raise ValueError(
+                f"Motion.t: the sample interval t[{index + 1}] - t[{index}] = "
+                f"{float(steps[index])!r} s is below the shortest accepted "
+                f"{MIN_SAMPLE_INTERVAL:g} s"
+            )
+        horizontal = _bounded("Motion.horizontal",
+                              _as_float_array("Motion.horizontal", self.horizontal), "m/s^2")
+        if horizontal.size != t.size:
+            raise ValueError(
+                f"Motion.horizontal has {horizontal.size} samples but Motion.t has {t.size}"
+            )
+        vertical = None
+        if self.vertical is not None:
+            vertical = _bounded("Motion.vertical",
+                                _as_float_array("Motion.vertical", self.vertical), "m/s^2")
+            if vertical.size != t.size:
+                raise ValueError(
+                    f"Motion.vertical has {vertical.size} samples but Motion.t has {t.size}"
+                )
+        rotation = None
+        if self.rotation is not None:
+            rotation = _bounded("Motion.rotation",
+                                _as_float_array("Motion.rotation", self.rotation), "rad/s^2")
+            if rotation.size != t.size:
+                raise ValueError(
+                    f"Motion.rotation has {rotation.size} samples but Motion.t has {t.size}"
+                )
+        for key, value in (("t", t), ("horizontal", horizontal), ("vertical", vertical),
+                           ("rotation", rotation)):
+            if value is not None:
+                value.setflags(write=False)
+            object.__setattr__(self, key, value)
+
+    # ------------------------------------------------------------------ builders
+    @classmethod
+    def from_g(cls, t, horizontal_g, vertical_g=None, name: str = "") -> "Motion":
+        """Build a motion from accelerations given in units of g.
+
+        Parameters
+        ----------
+        t : array_like
+            Sample times [s].
+        horizontal_g : array_like
+            Horizontal acceleration [g].
+        vertical_g : array_like, optional
+            Vertical acceleration, positive upward [g].
+        name : str, optional
+            A label used in plots and summaries.
+
+        Returns
+        -------
+        Motion
+            Accelerations converted to [m/s^2].
+
+        Raises
+        ------
+        ValueError
+            Values that are not numbers, not finite, or of the wrong length;
+            the message names the argument.
+        """
+        horizontal = _as_float_array("horizontal_g", horizontal_g) * G
+        vertical = None if vertical_g is None else _as_float_array("vertical_g", vertical_g) * G
+        return cls(t, horizontal, vertical, name=name)
+
+    @classmethod
+    def uniform(cls, dt: float, horizontal, vertical=None, t0: float = 0.0,
+                name: str = "") -> "Motion":
+        """Build a motion sampled every ``dt`` seconds starting at ``t0``.
+
+        Parameters
+        ----------
+        dt : float
+            Sample interval [s], positive and at least
+            :data:`MIN_SAMPLE_INTERVAL`.
+        horizontal : array_like
+            Horizontal acceleration [m/s^2].
+        vertical : array_like, optional
+            Vertical acceleration, positive upward [m/s^2].
+        t0 : float, optional
+            Time of the first sample [s].
+        name : str, optional
+            A label used in plots and summaries.
+
+        Returns
+        -------
+        Motion
+
+        Raises
+        ------
+        ValueError
+            ``dt`` or ``t0`` not a finite number, ``dt`` not positive, or bad
+            samples; the message names the argument.
+        """
+        dt = _scalar("dt", dt, " [s]", positive=True)
+        t0 = _scalar("t0", t0, " [s]")
+        horizontal = _as_float_array("horizontal", horizontal)
+        return cls(t0 + dt * np.arange(horizontal.size), horizontal, vertical, name=name)
+
+    @classmethod
+    def at_rest(cls, duration: float, dt: float = 0.005) -> "Motion":
+        """A table at rest for exactly ``duration`` seconds (free rocking).
+
+        Parameters
+        ----------
+        duration : float
+            Length [s], positive. The last sample is at exactly ``duration``.
+        dt : float, optional
+            Sample interval [s], positive: samples at 0, dt, 2 dt, ... and a
+            last, shorter interval ending at ``duration`` when ``duration`` is
+            not a whole number of ``dt`` (a ``dt`` longer than ``duration``
+            gives the two samples 0 and ``duration``).
+
+        Returns
+        -------
+        Motion
+            Zero horizontal acceleration, no vertical, no rotation.
+
+        Raises
+        ------
+        ValueError
+            ``duration`` or ``dt`` not a positive finite number.
+        """
+        duration = _scalar("duration", duration, " [s]", positive=True)
+        dt = _scalar("dt", dt, " [s]", positive=True)
+        if duration < MIN_SAMPLE_INTERVAL:
+            raise ValueError(f"duration must be at least {MIN_SAMPLE_INTERVAL:g} s, "
+                             f"got {duration!r}")
+        whole = int(math.floor(duration / dt + 1e-9))
+        t = np.linspace(0.0, whole * dt, whole + 1)
+        if duration - t[-1] > max(1e-9 * dt, MIN_SAMPLE_INTERVAL):
+            t = np.append(t, duration)   # a last, shorter interval
+        else:
+            t[-1] = duration             # a whole number of dt (to rounding)
+        return cls(t, np.zeros(t.size), None, name="at rest")
+
+    # ------------------------------------------------------------------ queries
+    @property
+    def vertical_or_zero(self) -> np.ndarray:
+        """Vertical acceleration [m/s^2], zeros when the motion has none."""
+        return self.vertical if self.vertical is not None else np.zeros_like(self.t)
+
+    @property
+    def pitched(self) -> bool:
+        """True when the motion carries a non-zero table rotation (pitch)."""
+        return self.rotation is not None and bool(np.any(self.rotation != 0.0))
+
+    @property
+    def rotation_or_zero(self) -> np.ndarray:
+        """Table angular acceleration [rad/s^2], zeros when the table does not rotate."""
+        return self.rotation if self.rotation is not None else np.zeros_like(self.t)
+
+    @property
+    def duration(self) -> float:
+        """Time from first to last sample [s]."""
+        return float(self.t[-1] - self.t[0])
+
+    @property
+    def dt(self) -> float:
+        """Median sample interval [s]."""
+        return float(np.median(np.diff(self.t)))
+
+    @property
+    def pga(self) -> float:
+        """Peak absolute horizontal acceleration [m/s^2]."""
+        return float(np.max(np.abs(self.horizontal)))
+
+    def scaled(self, factor: float) -> "Motion":
+        """Return a copy with the horizontal and vertical multiplied by ``factor``.
+
+        Parameters
+        ----------
+        factor : float
+            Scale factor [-], a finite number.
+
+        Returns
+        -------
+        Motion
+
+        Raises
+        ------
+        ValueError
+            ``factor`` is not a finite number, or the motion carries a table
+            pitch (a non-zero ``rotation``) and ``factor`` is not 1.
+
+        Notes
+        -----
+        The pitch is a disturbance of the table, not part of the earthquake,
+        and :func:`shaketable.lab.pitch.motion_at_block` has already folded its
+        tilt of gravity and tangential accelerations into ``horizontal`` and
+        ``vertical``: they cannot be separated again, so scaling would scale
+        the pitch with the record. Scale the table motion first, then add
+        the pitch (the order :mod:`shaketable.sweeps.spec` uses). A ``rotation`` of
+        zeros is kept as it is.
+        """
+        factor = _scalar("factor", factor, " [-]")
+        if factor == 1.0:
+            return Motion(self.t, self.horizontal, self.vertical, name=self.name,
+                          rotation=self.rotation)
+        if self.pitched:
+            raise ValueError(
+                f"cannot scale motion {self.name!r} by factor {factor!r}: it carries a table "
+                "pitch (rotation), whose tilt and tangential accelerations are already in "
+                "its horizontal and vertical; scale the table motion first, then add the "
+                "pitch with shaketable.lab.pitch.motion_at_block"
+            )
+        vertical = None if self.vertical is None else self.vertical * factor
+        return Motion(self.t, self.horizontal * factor, vertical, name=self.name,
+                      rotation=self.rotation)
+
+    def mirrored(self) -> "Motion":
+        """Return the mirror image: horizontal and rotation reversed in sign."""
+        rotation = None if self.rotation is None else -self.rotation
+        return Motion(self.t, -self.horizontal, self.vertical, name=self.name,
+                      rotation=rotation)
+
+    def subdivided(self, parts: int) -> "Motion":
+        """Insert ``parts - 1`` equally spaced samples in every interval.
+
+        The report's BLOKROC subdivided each digitized interval into equal
+        parts with a straight line between given points (Section 2.8); the
+        linear interpolation here reproduces that exactly, for every channel
+        (horizontal, vertical and rotation).
+
+        Parameters
+        ----------
+        parts : int
+            Number of equal parts per interval [-], an integer >= 1
+            (``4.0`` is accepted, ``2.7`` is not).
+
+        Returns
+        -------
+        Motion
+            ``(n - 1) parts + 1`` samples; ``self`` when ``parts`` is 1.
+
+        Raises
+        ------
+        ValueError
+            ``parts`` is not an integer >= 1.
+        """
+        parts = whole_number("parts", parts)
+        if parts == 1:
+            return self
+        fractions = np.arange(parts) / parts
+        t = (self.t[:-1, None] + np.diff(self.t)[:, None] * fractions).ravel()
+        t = np.append(t, self.t[-1])
+
+        def resample(values):
+            return None if values is None else np.interp(t, self.t, values)
+
+        return Motion(t, resample(self.horizontal), resample(self.vertical),
+                      name=self.name, rotation=resample(self.rotation))
+
+
+def motion_argument(name: str, motion) -> Motion:
+    """``motion`` if it is a :class:`~shaketable.core.motion.Motion`, else a ValueError naming ``name``."""
+    if not isinstance(motion, Motion):
+        raise ValueError(f"{name} must be a shaketable Motion, got {type(motion).__name__}")
+    return motion

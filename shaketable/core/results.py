@@ -1,0 +1,182 @@
+"""The result of one simulation."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from shaketable.core.constants import G
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
+
+#: Why a run stopped.
+STATUSES = ("completed", "overturned", "airborne")
+
+
+@dataclass(frozen=True)
+class RockingResult:
+    """Time history and scalar results of one rocking simulation.
+
+    Attributes
+    ----------
+    block : Block
+        The block simulated.
+    motion : Motion
+        The ground motion it stood on (``Motion.at_rest`` for free rocking).
+    cor : float
+        Coefficient of restitution [-].
+    method : str
+        Solver that produced the result.
+    t : ndarray
+        Output times [s]: the motion's samples up to the end of the run; an
+        overturned or airborne run ends with its event time.
+    theta : ndarray
+        Rotation [rad] (positive: pivot on the -x corner, see the docs).
+    theta_dot : ndarray
+        Angular velocity [rad/s].
+    theta_ddot : ndarray
+        Angular acceleration [rad/s^2] (zero while the block rests).
+    impact_times : ndarray
+        Times of the resolved impacts [s].
+    impact_velocities : ndarray
+        Angular velocity just before each impact [rad/s].
+    t_start : float
+        First uplift [s]; NaN when the block never rocked.
+    t_unstable : float
+        First time |theta| exceeded alpha [s]; NaN if never.
+    unstable_direction : int
+        Sign of theta when it first exceeded alpha (0 if never).
+    t_overturn : float
+        Time |theta| reached pi/2 [s]; NaN if the block did not overturn.
+    overturn_direction : int
+        +1 or -1 (sign of theta), 0 if the block did not overturn.
+    t_airborne : float
+        Time the vertical ground acceleration reached -g (the block leaves
+        the ground, outside the model) [s]; NaN if never. The run stops there.
+    t_rest : float
+        Time the block last came to rest after a cascade of impacts [s]; NaN if never.
+    max_abs_theta : float
+        Peak |theta| [rad] (located at the turning point, not only at samples).
+    t_max : float
+        Time of the peak [s].
+    n_impacts : int
+        Number of impacts resolved one by one (the summed tail of a cascade is
+        not counted).
+    cascades : int
+        Number of endless impact cascades summed in closed form.
+    statistics : dict
+        Solver work: steps, rejected steps, right-hand-side evaluations.
+    """
+
+    block: Block
+    motion: Motion
+    cor: float
+    method: str
+    t: np.ndarray
+    theta: np.ndarray
+    theta_dot: np.ndarray
+    theta_ddot: np.ndarray
+    impact_times: np.ndarray
+    impact_velocities: np.ndarray
+    t_start: float
+    t_unstable: float
+    unstable_direction: int
+    t_overturn: float
+    overturn_direction: int
+    t_airborne: float
+    t_rest: float
+    max_abs_theta: float
+    t_max: float
+    n_impacts: int
+    cascades: int
+    status: str
+    statistics: dict = field(default_factory=dict)
+
+    @property
+    def overturned(self) -> bool:
+        """True when the block reached |theta| = pi/2."""
+        return self.status == "overturned"
+
+    @property
+    def unstable(self) -> bool:
+        """True when |theta| exceeded alpha at some time."""
+        return bool(np.isfinite(self.t_unstable))
+
+    @property
+    def max_theta_ratio(self) -> float:
+        """max |theta| / alpha [-], the quantity of Tables 4.1-4.3."""
+        return self.max_abs_theta / self.block.alpha
+
+    @property
+    def max_rod_force(self) -> float:
+        """Largest total tension in the prestress rods [W] (Section 4.4); 0 without rods.
+
+        The report's "0.4W + 0.4W Delta": F0 + K Delta, with the rods'
+        extension at the largest rotation. A rod at distance d from the pivot
+        stretches d sin|theta|; the pair's arms S and B - S add up to B, each
+        rod having half of K, so F = F0 + K (B/2) sin(max |theta|), which grows
+        with |theta|: its maximum is at the exactly located max |theta|.
+        """
+        rods = self.block.rods
+        if rods is None:
+            return 0.0
+        return float(rods.force + rods.stiffness * self.block.width / 2.0
+                     * math.sin(min(self.max_abs_theta, math.pi / 2.0)))
+
+    def ground_at(self, times) -> tuple[np.ndarray, np.ndarray]:
+        """Horizontal and vertical ground acceleration at ``times`` [m/s^2]."""
+        motion = self.motion
+        return (np.interp(times, motion.t, motion.horizontal),
+                np.interp(times, motion.t, motion.vertical_or_zero))
+
+    def to_frame(self):
+        """Time history as a :class:`pandas.DataFrame` with units in the column names."""
+        import pandas as pd
+
+        horizontal, vertical = self.ground_at(self.t)
+        return pd.DataFrame({
+            "time [s]": self.t,
+            "ground horizontal [g]": horizontal / G,
+            "ground vertical [g]": vertical / G,
+            "theta [rad]": self.theta,
+            "theta_dot [rad/s]": self.theta_dot,
+            "theta_ddot [rad/s^2]": self.theta_ddot,
+            "theta/alpha [-]": self.theta / self.block.alpha,
+        })
+
+    def summary(self) -> dict:
+        """Scalar results as a JSON-ready dict (NaN written as None)."""
+        def clean(value):
+            if isinstance(value, (float, np.floating)):
+                return None if not np.isfinite(value) else float(value)
+            if isinstance(value, np.integer):
+                return int(value)
+            if isinstance(value, np.bool_):
+                return bool(value)
+            return value
+
+        block = self.block
+        data = {
+            "block_height [m]": block.height, "block_width [m]": block.width,
+            "alpha [rad]": block.alpha, "p [rad/s]": block.p, "cor [-]": self.cor,
+            "method": self.method, "motion": self.motion.name, "status": self.status,
+            "overturned": self.overturned, "max_theta_ratio [-]": self.max_theta_ratio,
+            "max_abs_theta [rad]": self.max_abs_theta, "t_max [s]": self.t_max,
+            "t_start [s]": self.t_start, "t_unstable [s]": self.t_unstable,
+            "unstable_direction": self.unstable_direction,
+            "t_overturn [s]": self.t_overturn, "overturn_direction": self.overturn_direction,
+            "t_airborne [s]": self.t_airborne, "t_rest [s]": self.t_rest,
+            "n_impacts": self.n_impacts, "cascades": self.cascades,
+        }
+        if block.rods is not None:
+            data["max_rod_force [W]"] = self.max_rod_force
+        data.update({f"solver {key}": value for key, value in self.statistics.items()})
+        return {key: clean(value) for key, value in data.items()}
+
+    def plot(self, fig=None, title: str | None = None):
+        """The report's Calcomp layout (Figs. 2.8, 4.1); see :func:`shaketable.plots.calcomp`."""
+        from shaketable.plots.calcomp import calcomp
+
+        return calcomp(self, fig=fig, title=title)

@@ -1,0 +1,84 @@
+"""Quantities written with their unit, as scenes and the CLI accept them.
+
+``parse("0.5 g", "acceleration")`` -> 4.903325 [m/s^2]. A dimensional quantity
+must carry its unit (a bare number is refused); a dimensionless one must not.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from shaketable.core.constants import ACCELERATION_UNITS, LENGTH_UNITS
+
+_NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+
+#: Units accepted for each kind of quantity, name -> factor to SI.
+UNITS = {
+    "length": LENGTH_UNITS,
+    "acceleration": ACCELERATION_UNITS,
+    "time": {"s": 1.0, "ms": 1e-3, "min": 60.0},
+    "frequency": {"hz": 1.0},
+    "velocity": {"m/s": 1.0, "cm/s": 0.01, "in/s": LENGTH_UNITS["in"], "ft/s": LENGTH_UNITS["ft"]},
+    "force": {"n": 1.0, "lbf": 4.4482216152605, "ozf": 4.4482216152605 / 16.0,
+              "oz": 4.4482216152605 / 16.0},
+    "angle": {"rad": 1.0, "deg": math.pi / 180.0},
+    "angular acceleration": {"rad/s2": 1.0, "rad/s^2": 1.0},
+    "stiffness": {"w/m": 1.0, "w/in": 1.0 / LENGTH_UNITS["in"], "w/ft": 1.0 / LENGTH_UNITS["ft"]},
+    "weight": {"w": 1.0},
+}
+
+
+def parse(value, kind: str, *, where: str = "value") -> float:
+    """A quantity of ``kind`` in SI units.
+
+    Parameters
+    ----------
+    value : str or float
+        ``"30 in"``, ``"0.5 g"``, ``"2 Hz"``... Numbers are accepted only for
+        a quantity whose SI value is given in SI units explicitly, i.e. never
+        for a dimensional kind.
+    kind : str
+        A key of :data:`UNITS`.
+    where : str
+        What to name in an error message (e.g. ``"scene.toml: motion.frequency"``).
+
+    Raises
+    ------
+    ValueError
+        A missing or unknown unit, or text that is not a number with a unit.
+    """
+    units = UNITS[kind]
+    if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+        raise ValueError(f"{where}: expected a {kind} with its unit such as "
+                         f"'{_example(kind)}', got {value!r}")
+    if isinstance(value, (int, float)):
+        raise ValueError(f"{where}: {value!r} has no unit; write the {kind} with its unit, "
+                         f"e.g. '{_example(kind)}' (units: {', '.join(sorted(units))})")
+    match = _NUMBER_UNIT.match(value)
+    if not match or not match.group(2):
+        raise ValueError(f"{where}: {value!r} is not a number with a unit; write e.g. "
+                         f"'{_example(kind)}' (units: {', '.join(sorted(units))})")
+    number, unit = float(match.group(1)), match.group(2).replace(" ", "").lower()
+    if unit not in units:
+        raise ValueError(f"{where}: unknown {kind} unit {match.group(2)!r}; expected one of "
+                         f"{', '.join(sorted(units))}")
+    return number * units[unit]
+
+
+def parse_angle_or_ratio(value, alpha: float, *, where: str = "value") -> float:
+    """An angle [rad] written in rad, deg or as a multiple of alpha (``"0.5 alpha"``)."""
+    if isinstance(value, str) and value.strip().lower().endswith("alpha"):
+        text = value.strip()[:-5].strip() or "1"
+        try:
+            return float(text) * alpha
+        except ValueError:
+            raise ValueError(f"{where}: {value!r} is not a multiple of alpha such as "
+                             "'0.5 alpha'") from None
+    return parse(value, "angle", where=where)
+
+
+def _example(kind: str) -> str:
+    return {"length": "30 in", "acceleration": "0.5 g", "time": "8 s", "frequency": "2 Hz",
+            "velocity": "25 in/s", "force": "20 oz", "angle": "0.05 rad", "angular acceleration": "0.22 rad/s2",
+            "stiffness": "0.4 W/in", "weight": "0.4 W"}[kind]

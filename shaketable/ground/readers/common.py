@@ -1,0 +1,245 @@
+"""TODO docstring (from records)."""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from shaketable.core.constants import acceleration_factor
+
+
+class RecordError(ValueError):
+    """A record file is malformed; the message names the file and the line."""
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """One uniformly sampled acceleration component read from a file.
+
+    Parameters
+    ----------
+    dt : float
+        Sample interval [s], positive.
+    acceleration : array_like
+        Acceleration samples [m/s^2], in the sign convention of the file
+        (a component labelled ``DWN`` is still positive downward here; the
+        conversion to positive-up happens in :func:`combine`).
+    component : str, optional
+        Component or orientation label as written in the file, e.g. ``"164"``,
+        ``"UP"``, ``"DWN"``; empty when the file does not state it.
+    description : str, optional
+        Free-text identification of the record taken from the file header.
+    source : str, optional
+        Path of the file the record was read from.
+    units_in_file : str, optional
+        Acceleration unit of the numbers in the file (``"g"``, ``"m/s2"``,
+        ``"cm/s2"`` or ``"gal"``).
+    t0 : float, optional
+        Time of the first sample [s] (non-zero only when a time column says so).
+
+    Notes
+    -----
+    The acceleration array is copied and made read-only.
+    """
+
+    dt: float
+    acceleration: np.ndarray
+    component: str = ""
+    description: str = ""
+    source: str = ""
+    units_in_file: str = ""
+    t0: float = 0.0
+
+    def __post_init__(self):
+        dt = float(self.dt)
+        if not (math.isfinite(dt) and dt > 0):
+            raise ValueError(f"Record.dt must be a positive number of seconds, got {self.dt!r}")
+        acceleration = np.array(self.acceleration, dtype=float)
+        if acceleration.ndim != 1 or acceleration.size == 0:
+            raise ValueError(
+                f"Record.acceleration must be a non-empty 1-D array, got shape {acceleration.shape}"
+            )
+        if not np.all(np.isfinite(acceleration)):
+            index = int(np.flatnonzero(~np.isfinite(acceleration))[0])
+            raise ValueError(f"Record.acceleration[{index}] is not finite")
+        acceleration.setflags(write=False)
+        object.__setattr__(self, "dt", dt)
+        object.__setattr__(self, "acceleration", acceleration)
+        object.__setattr__(self, "source", str(self.source))
+        object.__setattr__(self, "t0", float(self.t0))
+
+    @property
+    def npts(self) -> int:
+        """Number of samples."""
+        return int(self.acceleration.size)
+
+    @property
+    def duration(self) -> float:
+        """Record length ``npts * dt`` [s] (as PEER and PROVENANCE.md count it)."""
+        return self.npts * self.dt
+
+    @property
+    def t(self) -> np.ndarray:
+        """Sample times ``t0 + i * dt`` [s]."""
+        return self.t0 + self.dt * np.arange(self.npts)
+
+    @property
+    def pga(self) -> float:
+        """Peak absolute acceleration [m/s^2]."""
+        return float(np.max(np.abs(self.acceleration)))
+
+    @property
+    def peak_acceleration(self) -> float:
+        """Signed acceleration at the peak of ``|a|`` [m/s^2] (first peak if tied)."""
+        return float(self.acceleration[self._peak_index])
+
+    @property
+    def peak_time(self) -> float:
+        """Time of the peak of ``|a|`` [s] (first peak if tied)."""
+        return self.t0 + self.dt * self._peak_index
+
+    @property
+    def _peak_index(self) -> int:
+        return int(np.argmax(np.abs(self.acceleration)))
+
+
+# --------------------------------------------------------------------- helpers
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?"
+
+_NPTS_DT_PATTERNS = (
+    # NGA-West2 "NPTS=   4172, DT=   .0100 SEC," and older PEER "NPTS=  4000, DT= .01000 SEC"
+    re.compile(rf"NPTS\s*=\s*(?P<npts>\d+)\s*,?\s*DT\s*=\s*(?P<dt>{_NUMBER})", re.IGNORECASE),
+    # NGA-West1 "4164    0.0100    NPTS, DT"
+    re.compile(rf"^\s*(?P<npts>\d+)\s+(?P<dt>{_NUMBER})\s+NPTS\s*,\s*DT", re.IGNORECASE),
+)
+
+#: How many leading lines of an AT2 file are searched for the NPTS/DT line.
+_AT2_MAX_HEADER_LINES = 10
+
+_AT2_UNITS = re.compile(
+    r"UNITS\s*(?:OF|ARE|IN|=|:)?\s*[(\[]?\s*(?P<unit>[A-Za-z][A-Za-z0-9/^*]*)", re.IGNORECASE
+)
+
+_UNIT_WORD = r"g|gal|cm/s(?:ec)?(?:\^?2|/s(?:ec)?)|m/s(?:ec)?(?:\^?2|/s(?:ec)?)"
+
+_TEXT_UNITS = (
+    re.compile(rf"[(\[]\s*(?P<unit>{_UNIT_WORD})\s*[)\]]", re.IGNORECASE),
+    re.compile(rf"\bunits?\s*(?:of|are|in|=|:)?\s*(?P<unit>{_UNIT_WORD})(?![\w/^])", re.IGNORECASE),
+)
+
+_COMPONENT = re.compile(r"^\s*(?P<component>[A-Za-z0-9+\-]{1,8})\s*(?:\(.*\))?\s*$")
+
+_DOWN_LABELS = {"DWN", "DOWN", "DN"}
+
+
+def _read_lines(path: Path) -> list[str]:
+    """Lines of a text file, CRLF or LF, without line endings."""
+    try:
+        with open(path, encoding="utf-8", errors="replace", newline=None) as stream:
+            return stream.read().splitlines()
+    except OSError as error:
+        raise RecordError(f"{path}: cannot read the file: {error.strerror or error}") from None
+
+
+def _where(path: Path, line_number: int) -> str:
+    return f"{path}, line {line_number}"
+
+
+def _parse_number(token: str, path: Path, line_number: int) -> float:
+    """Parse one finite number (Fortran ``D`` exponents accepted)."""
+    try:
+        value = float(token.replace("D", "E").replace("d", "e"))
+    except ValueError:
+        raise RecordError(f"{_where(path, line_number)}: {token!r} is not a number") from None
+    if not math.isfinite(value):
+        raise RecordError(f"{_where(path, line_number)}: {token!r} is not a finite number")
+    return value
+
+
+def _canonical_unit(word: str) -> str:
+    """Map a unit as written (``G``, ``cm/sec/sec``, ``m/s^2`` ...) to a key of
+    :data:`shaketable.core.constants.ACCELERATION_UNITS`; raise ``ValueError`` if unknown."""
+    unit = word.strip().lower().replace(" ", "").replace("sec", "s")
+    unit = unit.replace("**2", "2").replace("^2", "2").replace("²", "2").replace("/s/s", "/s2")
+    acceleration_factor(unit)  # raises ValueError listing the accepted units
+    return unit
+
+
+def _unit_or_error(word: str, path: Path, line_number: int) -> str:
+    try:
+        return _canonical_unit(word)
+    except ValueError as error:
+        raise RecordError(f"{_where(path, line_number)}: {error}") from None
+
+
+def _units_argument(units, path: Path) -> str:
+    """The ``units=`` argument as a canonical unit, else a ValueError naming it and the file."""
+    if not isinstance(units, str):
+        raise ValueError(f"{path}: units must be a string such as 'g' or 'm/s2', got {units!r}")
+    try:
+        return _canonical_unit(units)
+    except ValueError as error:
+        raise ValueError(f"{path}: units={units!r}: {error}") from None
+
+
+# --------------------------------------------------------------------- text
+def _split_fields(line: str, delimiter: str | None) -> list[str]:
+    if delimiter is None:
+        return [field for field in re.split(r"[\s,;]+", line.strip()) if field]
+    return [field.strip() for field in line.split(delimiter)]
+
+
+def _is_number(token: str) -> bool:
+    try:
+        float(token.replace("D", "E").replace("d", "e"))
+    except ValueError:
+        return False
+    return True
+
+
+def _uniform_dt(times: np.ndarray, line_numbers: list[int], path: Path) -> float:
+    """Sample interval [s] of a time column; every step must be within 1 % of
+    the median step."""
+    if times.size < 2:
+        raise RecordError(f"{_where(path, line_numbers[0])}: a time column needs 2 or more rows")
+    steps = np.diff(times)
+    typical = float(np.median(steps))
+    irregular = np.flatnonzero(~(np.abs(steps - typical) <= 0.01 * abs(typical)) | (steps <= 0))
+    if irregular.size:
+        index = int(irregular[0])
+        raise RecordError(
+            f"{_where(path, line_numbers[index + 1])}: time step {float(steps[index]):g} s "
+            f"differs from the usual step {typical:g} s; only uniformly sampled records "
+            "are supported"
+        )
+    dt = (times[-1] - times[0]) / (times.size - 1)
+    return float(f"{dt:.12g}")  # drop the rounding noise of printed times
+
+
+def _optional_positive(value, name: str, unit: str, path: Path):
+    """``None`` or a positive finite float, else a ValueError naming ``name`` and the file."""
+    if value is None:
+        return None
+    if isinstance(value, bool):
+        raise ValueError(f"{path}: {name} must be a positive number{unit}, got {value!r}")
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{path}: {name} must be a positive number{unit}, "
+                         f"got {value!r}") from None
+    if not (math.isfinite(number) and number > 0.0):
+        raise ValueError(f"{path}: {name} must be a positive finite number{unit}, got {value!r}")
+    return number
+
+
+def _option_integer(value, name: str, path: Path, minimum: int | None = 0) -> int:
+    """An integer option (``skiprows``, a column index), else a ValueError naming it and the file."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{path}: {name} must be an integer, got {value!r}")
+    if minimum is not None and value < minimum:
+        raise ValueError(f"{path}: {name} must be >= {minimum}, got {value!r}")
+    return int(value)

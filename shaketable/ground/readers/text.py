@@ -1,0 +1,237 @@
+"""TODO docstring (from records)."""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+
+from shaketable.core.constants import acceleration_factor
+from shaketable.ground.readers.common import (
+    _TEXT_UNITS,
+    Record,
+    RecordError,
+    _canonical_unit,
+    _is_number,
+    _option_integer,
+    _optional_positive,
+    _parse_number,
+    _read_lines,
+    _split_fields,
+    _uniform_dt,
+    _units_argument,
+    _where,
+)
+
+
+def _is_comment_or_blank(line: str) -> bool:
+    stripped = line.strip()
+    return not stripped or stripped[0] in "#%"
+
+
+def _header_length(lines: list[str], skiprows: int | None, delimiter: str | None) -> int:
+    """Number of leading header lines: ``skiprows``, or the leading lines that are
+    blank, comments or start with something that is not a number."""
+    if skiprows is not None:
+        if skiprows < 0:
+            raise ValueError(f"skiprows must be >= 0, got {skiprows!r}")
+        return skiprows
+    for index, line in enumerate(lines):
+        if _is_comment_or_blank(line):
+            continue
+        fields = _split_fields(line, delimiter)
+        if fields and _is_number(fields[0]):
+            return index
+    return len(lines)
+
+
+def _text_rows(lines: list[str], first: int, delimiter: str | None, path: Path):
+    """Parse the numeric table below the header; return ``(array, line_numbers)``."""
+    rows, line_numbers = [], []
+    for index in range(first, len(lines)):
+        if _is_comment_or_blank(lines[index]):
+            continue
+        fields = _split_fields(lines[index], delimiter)
+        if rows and len(fields) != len(rows[0]):
+            raise RecordError(
+                f"{_where(path, index + 1)}: {len(fields)} column(s), but the data "
+                f"start with {len(rows[0])} (truncated or ragged line?)"
+            )
+        rows.append([_parse_number(field, path, index + 1) for field in fields])
+        line_numbers.append(index + 1)
+    if not rows:
+        raise RecordError(f"{_where(path, max(len(lines), 1))}: no numeric data found in the file")
+    return np.array(rows, dtype=float), line_numbers
+
+
+def _column_names(header: list[str], ncolumns: int, delimiter: str | None) -> list[str]:
+    """Column names from the last non-blank header line, when it has one per column."""
+    for line in reversed(header):
+        if line.strip():
+            if delimiter is not None:
+                candidates = [[name.strip() for name in line.split(delimiter)]]
+            else:
+                candidates = [[name for name in re.split(r"[,;\t]|\s{2,}", line.strip()) if name],
+                              line.split()]
+            for names in candidates:
+                if len(names) == ncolumns:
+                    return names
+            return []
+    return []
+
+
+def _column_index(choice, names: list[str], ncolumns: int, what: str, path: Path) -> int:
+    if isinstance(choice, str):
+        lowered = [name.strip().lower() for name in names]
+        if choice.strip().lower() not in lowered:
+            raise ValueError(f"{path}: no column named {choice!r} for {what}; columns are {names}")
+        return lowered.index(choice.strip().lower())
+    index = int(choice)
+    if not -ncolumns <= index < ncolumns:
+        raise ValueError(f"{path}: {what}={choice!r} but the file has {ncolumns} column(s)")
+    return index % ncolumns
+
+
+def _choose_columns(ncolumns, dt, time_column, value_column, names, path):
+    """Return ``(time column index or None, value column index)``."""
+    if time_column is None and dt is None and ncolumns >= 2:
+        time_column = 0
+    time_index = None if time_column is None else _column_index(
+        time_column, names, ncolumns, "time_column", path)
+    if value_column is None:
+        others = [index for index in range(ncolumns) if index != time_index]
+        if len(others) != 1:
+            raise ValueError(
+                f"{path} has {ncolumns} columns{f' {names}' if names else ''}; "
+                "choose the acceleration column with value_column=<index or name>"
+            )
+        return time_index, others[0]
+    value_index = _column_index(value_column, names, ncolumns, "value_column", path)
+    if value_index == time_index:
+        raise ValueError(f"{path}: value_column and time_column are both column {value_index}")
+    return time_index, value_index
+
+
+def _units_in_text(text: str) -> set[str]:
+    found = set()
+    for pattern in _TEXT_UNITS:
+        for match in pattern.finditer(text):
+            found.add(_canonical_unit(match["unit"]))
+    return found
+
+
+def _text_units(header, names, value_index, units, path) -> str:
+    """Units from the value column's header name, else from the whole header,
+    checked against the ``units`` argument."""
+    stated = _units_in_text(names[value_index]) if names else set()
+    if not stated:
+        stated = _units_in_text("\n".join(header))
+    if len(stated) > 1:
+        raise RecordError(
+            f"{path}, lines 1-{len(header)}: the header names several units {sorted(stated)}; "
+            "pass units= to say which applies"
+        )
+    if units is not None:
+        given = _canonical_unit(units)
+        if stated and acceleration_factor(stated.pop()) != acceleration_factor(given):
+            raise ValueError(
+                f"{path}: units={units!r} contradicts the unit written in the file header"
+            )
+        return given
+    if not stated:
+        raise ValueError(
+            f"{path}: the acceleration units are not stated in the file; "
+            "pass units= (one of 'g', 'm/s2', 'cm/s2', 'gal')"
+        )
+    return stated.pop()
+
+
+def read_text(path, *, dt=None, units=None, time_column=None, value_column=None,
+              skiprows=None, delimiter=None) -> Record:
+    """Read a plain text or CSV acceleration record.
+
+    Layouts: one column of accelerations (``dt`` required), or a time column
+    [s] followed by one or more acceleration columns. Leading lines that do
+    not start with a number are a header (or give ``skiprows``); a header such
+    as ``time,acc (g)`` states the units. Lines starting with ``#`` or ``%`` are
+    skipped. Fields are split on whitespace, commas or semicolons unless
+    ``delimiter`` is given.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file (CRLF or LF).
+    dt : float, optional
+        Sample interval [s]. Required for a file without a time column; when
+        given, no time column is assumed unless ``time_column`` is given (then
+        the two must agree within 1 %).
+    units : str, optional
+        Unit of the acceleration numbers: ``g``, ``m/s2``, ``m/s^2``, ``cm/s2``
+        or ``gal``. Required unless the header states it; must agree with it.
+    time_column : int or str, optional
+        Index (0-based) or header name of the time column [s]. Default: column
+        0 when the file has 2 or more columns and ``dt`` is not given.
+    value_column : int or str, optional
+        Index or header name of the acceleration column. Required when more
+        than one column besides the time column remains.
+    skiprows : int, optional
+        Number of header lines to skip (default: detected).
+    delimiter : str, optional
+        Field separator (default: whitespace, ``,`` or ``;``).
+
+    Returns
+    -------
+    Record
+        ``acceleration`` [m/s^2]; ``t0`` is the first time of a time column.
+
+    Raises
+    ------
+    RecordError
+        A non-numeric or non-finite token, a ragged line, no data, or a
+        non-uniform time column; the message names the file and the line.
+    ValueError
+        Units neither stated in the file nor given, missing ``dt`` or column
+        choice, or contradictory arguments; the message names the file.
+    """
+    path = Path(path)
+    dt = _optional_positive(dt, "dt", " [s]", path)
+    if skiprows is not None:
+        skiprows = _option_integer(skiprows, "skiprows", path)
+    for name, column in (("time_column", time_column), ("value_column", value_column)):
+        if column is not None and not isinstance(column, str):
+            _option_integer(column, name, path, minimum=None)
+    if delimiter is not None and (not isinstance(delimiter, str) or not delimiter):
+        raise ValueError(f"{path}: delimiter must be a non-empty string, got {delimiter!r}")
+    if units is not None:
+        units = _units_argument(units, path)
+    lines = _read_lines(path)
+    header_length = _header_length(lines, skiprows, delimiter)
+    header = lines[:header_length]
+    table, line_numbers = _text_rows(lines, header_length, delimiter, path)
+    ncolumns = table.shape[1]
+    names = _column_names(header, ncolumns, delimiter)
+    time_index, value_index = _choose_columns(ncolumns, dt, time_column, value_column, names, path)
+    unit = _text_units(header, names, value_index, units, path)
+    t0 = 0.0
+    if time_index is None:
+        if dt is None:
+            raise ValueError(f"{path} has no time column; pass dt= (sample interval [s])")
+        sample_interval = dt
+    else:
+        sample_interval = _uniform_dt(table[:, time_index], line_numbers, path)
+        t0 = float(table[0, time_index])
+        if dt is not None and not math.isclose(dt, sample_interval, rel_tol=0.01):
+            raise ValueError(
+                f"{path}: dt={dt!r} s but the time column steps by {sample_interval!r} s"
+            )
+    return Record(
+        dt=sample_interval,
+        acceleration=table[:, value_index] * acceleration_factor(unit),
+        component=names[value_index].strip() if names else "",
+        description=path.stem,
+        source=str(path),
+        units_in_file=unit,
+        t0=t0,
+    )

@@ -1,0 +1,165 @@
+"""Work-precision figure of :mod:`shaketable.studies.benchmark_cases` (matplotlib is imported only here).
+
+One log-log panel per benchmark case: the error of every method against the
+truth (``reference`` at the tightest tolerance) versus the median run time.
+Solid lines with filled markers: relative error of max |theta|; dashed lines
+with open markers: largest relative error of the event times (impacts before
+20 s, start, unstable, overturn, rest, airborne). Each line is one method
+swept over its setting; the first and last settings are written at the ends
+of the max |theta| line (rtol for ``fast`` and ``reference``, subdivisions
+for ``predictor-corrector``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: Colour and marker of each method.
+STYLE = {
+    "fast": ("tab:blue", "o"),
+    "predictor-corrector": ("tab:orange", "s"),
+    "linear": ("tab:green", "D"),
+    "reference": ("tab:red", "^"),
+}
+
+#: Errors below this are drawn on it (an error of exactly 0 has no logarithm) [-].
+ERROR_FLOOR = 1e-16
+
+
+def _pyplot():
+    import matplotlib
+
+    if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
+        try:
+            import matplotlib.pyplot as plt  # noqa: F401
+        except ImportError:  # pragma: no cover
+            matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _short(label: str) -> str:
+    """``rtol=1e-08`` -> ``1e-8``; ``subdivisions=4`` -> ``n=4``."""
+    if label.startswith("rtol="):
+        value = float(label[5:])
+        exponent = math.log10(value)
+        return f"1e{round(exponent)}" if abs(exponent - round(exponent)) < 1e-9 else f"{value:g}"
+    if label.startswith("subdivisions="):
+        return "n=" + label.split("=", 1)[1]
+    return ""
+
+
+def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
+    """Draw one case of a :func:`shaketable.studies.work_precision.work_precision` frame.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Output of :func:`shaketable.studies.work_precision.work_precision`.
+    case : str
+        The case to draw (``frame["case"]``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into (a new figure otherwise).
+    annotate : bool
+        Write the first and last setting of each line next to it.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    plt = _pyplot()
+    if ax is None:
+        _, ax = plt.subplots(figsize=(5, 4))
+    rows = frame[frame["case"] == case]
+    for method, (color, marker) in STYLE.items():
+        group = rows[rows["method"] == method]
+        if group.empty:
+            continue
+        time = group["time [s]"].to_numpy(dtype=float)
+        order = np.argsort(time) if method != "linear" else np.arange(time.size)
+        for column, style, face in (("error max_theta [-]", "-", color),
+                                    ("error events [-]", "--", "none")):
+            error = np.maximum(group[column].to_numpy(dtype=float), ERROR_FLOOR)
+            error = np.where(np.isfinite(error), error, np.nan)
+            ax.loglog(time[order], error[order], style, color=color, marker=marker,
+                      markerfacecolor=face, markersize=4, linewidth=1.2)
+        if annotate and method != "linear" and len(group) > 1:
+            error = np.maximum(group["error max_theta [-]"].to_numpy(dtype=float), ERROR_FLOOR)
+            labels = list(group["setting"])
+            for index, align in ((0, "right"), (len(labels) - 1, "left")):
+                if np.isfinite(error[index]):
+                    ax.annotate(_short(labels[index]), (time[index], error[index]),
+                                textcoords="offset points", xytext=(-3 if align == "right" else 3, 3),
+                                ha=align, fontsize=6.5, color=color)
+    ax.axhline(1e-8, color="0.6", linewidth=0.8, linestyle=":")
+    ax.set_ylim(ERROR_FLOOR / 3, 10.0)
+    ax.set_title(case, fontsize=9)
+    ax.tick_params(labelsize=7)
+    ax.grid(True, which="major", linewidth=0.3, alpha=0.6)
+    return ax
+
+
+def work_precision_figure(frame, cases=None, columns: int = 4, fig=None):
+    """The work-precision grid: one panel per case, shared legend.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Output of :func:`shaketable.studies.work_precision.work_precision`.
+    cases : list of str, optional
+        Cases in panel order (default: as they appear in ``frame``).
+    columns : int
+        Panels per row.
+    fig : matplotlib.figure.Figure, optional
+        Figure to draw into (a new one, sized to the grid, otherwise).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    plt = _pyplot()
+    from matplotlib.lines import Line2D
+
+    cases = list(dict.fromkeys(frame["case"])) if cases is None else list(cases)
+    if not cases:
+        raise ValueError("frame has no cases to draw")
+    columns = max(1, min(int(columns), len(cases)))
+    rows = int(math.ceil(len(cases) / columns))
+    if fig is None:
+        fig = plt.figure(figsize=(3.3 * columns + 0.6, 2.75 * rows + 1.1))
+    axes = fig.subplots(rows, columns, squeeze=False)
+    for ax, case in zip(axes.flat, cases):
+        work_precision_panel(frame, case, ax=ax)
+    for ax in axes.flat[len(cases):]:
+        ax.set_visible(False)
+    for ax in axes[:, 0]:
+        ax.set_ylabel("error vs truth [-]", fontsize=8)
+    for ax in axes[-1, :]:
+        ax.set_xlabel("median run time [s]", fontsize=8)
+    handles = [Line2D([], [], color=color, marker=marker, label=method)
+               for method, (color, marker) in STYLE.items() if (frame["method"] == method).any()]
+    handles += [Line2D([], [], color="k", marker="o", label="max |theta| (solid)"),
+                Line2D([], [], color="k", marker="o", markerfacecolor="none", linestyle="--",
+                       label="event times (dashed)"),
+                Line2D([], [], color="0.6", linestyle=":", label="1e-8 target")]
+    fig.legend(handles=handles, loc="upper center", ncol=len(handles), fontsize=8,
+               frameon=False)
+    fig.suptitle("Work-precision: error against the reference at rtol 2.5e-14 "
+                 "(labels: rtol of fast/reference, n = predictor-corrector subdivisions; "
+                 f"errors below {ERROR_FLOOR:g} drawn at it)", fontsize=8.5, y=0.005,
+                 va="bottom")
+    fig.tight_layout(rect=(0, 0.03, 1, 1 - 0.35 / (2.75 * rows + 1.1)))
+    return fig
+
+
+def save_work_precision_figure(frame, path, cases=None, dpi: int = 110) -> None:
+    """Draw :func:`work_precision_figure` and write it to ``path`` (PNG, SVG... by suffix)."""
+    plt = _pyplot()
+    fig = work_precision_figure(frame, cases=cases)
+    try:
+        fig.savefig(path, dpi=dpi)
+    finally:
+        plt.close(fig)

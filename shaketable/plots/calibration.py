@@ -1,0 +1,158 @@
+"""Figures of the sensors and the COR calibration (matplotlib is imported only here).
+
+* :func:`plot_measurement` -- a digitized record (angle, table accelerations).
+* :func:`plot_fit` -- the record, the fitted engine curve and the residuals.
+* :func:`plot_cor_per_impact` -- COR of each impact against the impact velocity
+  (the check of the report's Section 3.7 (1) claim).
+* :func:`plot_periods` -- period against amplitude (Table 3.1 / Fig. 3.6 style).
+* :func:`plot_calibration` -- the four panels above in one figure.
+
+Every function takes ``ax=None`` (or ``fig=None``) and returns what it drew on.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shaketable.core.constants import G
+
+
+def _figure(fig, nrows, ncols=1, figsize=(8.0, 6.0), **kwargs):
+    import matplotlib.pyplot as plt
+
+    if fig is None:
+        fig = plt.figure(figsize=figsize)
+    axes = fig.subplots(nrows, ncols, squeeze=False, **kwargs)
+    return fig, axes
+
+
+def plot_measurement(measurement, fig=None, title: str | None = None):
+    """Angle (report's and exact) and the table accelerations of a :class:`Measurement`.
+
+    Returns the figure.
+    """
+    panels = [("theta", measurement.theta is not None),
+              ("horizontal", measurement.table_horizontal is not None),
+              ("vertical", measurement.table_vertical is not None)]
+    panels = [name for name, present in panels if present]
+    if not panels:
+        raise ValueError("the measurement has no channel to plot")
+    fig, axes = _figure(fig, len(panels), figsize=(8.0, 2.2 * len(panels) + 0.8), sharex=True)
+    alpha = measurement.block.alpha
+    for ax, name in zip(axes[:, 0], panels):
+        if name == "theta":
+            ax.plot(measurement.t, measurement.theta / alpha, lw=0.9,
+                    label="-top displacement / H (report)")
+            ax.plot(measurement.t, measurement.theta_exact / alpha, lw=0.9, ls="--",
+                    label="exact geometry")
+            ax.set_ylabel(r"$\theta/\alpha$ [-]")
+            ax.legend(loc="upper right", fontsize=8)
+        elif name == "horizontal":
+            ax.plot(measurement.t, measurement.table_horizontal / G, lw=0.8)
+            ax.set_ylabel("table horizontal [g]")
+        else:
+            ax.plot(measurement.t, measurement.table_vertical / G, lw=0.8)
+            ax.set_ylabel("table vertical [g]")
+        ax.grid(alpha=0.3)
+    axes[-1, 0].set_xlabel("time [s]")
+    fig.suptitle(title or f"{measurement.block.describe()} block, {measurement.rate:g} samples/s")
+    fig.tight_layout()
+    return fig
+
+
+def plot_fit(calibration, axes=None):
+    """Record, fitted curve (top) and residuals (bottom). Returns the two axes."""
+    if axes is None:
+        _, grid = _figure(None, 2, figsize=(8.0, 5.0), sharex=True,
+                          gridspec_kw={"height_ratios": [3, 1]})
+        axes = grid[:, 0]
+    top, bottom = axes
+    record = calibration.record
+    scale, unit = record.display_scale()
+    top.plot(record.t, record.values * scale, ".", ms=2.5, color="0.35", label="record")
+    digits = calibration.digits
+    top.plot(record.t, calibration.fitted * scale, lw=1.0, color="C3",
+             label=f"engine, COR {calibration.cor:.{digits}f}")
+    top.axvline(calibration.t_release, color="C2", lw=0.8, ls=":", label="release (fitted)")
+    cutoff = getattr(calibration, "filter_cutoff", np.inf)
+    if getattr(calibration, "anti_alias", "none") != "none":
+        top.plot([], [], " ", label=(f"{calibration.filter_order}-pole filter, "
+                                     + (f"{cutoff:.3g} Hz" if np.isfinite(cutoff) else "none")
+                                     + (" (fitted)" if calibration.anti_alias == "fit"
+                                        else " (given)")))
+    top.set_ylabel(f"{record.quantity} [{unit}]")
+    top.legend(loc="upper right", fontsize=8)
+    top.grid(alpha=0.3)
+    low, high = calibration.cor_interval
+    top.set_title(f"COR = {calibration.cor:.{digits}f}  (95 % interval {low:.{digits}f} to "
+                  f"{high:.{digits}f}, {calibration.interval_method})", fontsize=10)
+    bottom.plot(record.t, calibration.residuals * scale, lw=0.6, color="0.2")
+    bottom.axhline(0.0, color="C3", lw=0.8)
+    bottom.set_ylabel(f"residual [{unit}]")
+    bottom.set_xlabel("time [s]")
+    bottom.grid(alpha=0.3)
+    return top, bottom
+
+
+def plot_cor_per_impact(peaks, ax=None):
+    """COR of each impact (from successive peaks) against the impact velocity. Returns the axes."""
+    if ax is None:
+        _, grid = _figure(None, 1, figsize=(6.0, 4.0))
+        ax = grid[0, 0]
+    ax.errorbar(peaks.impact_velocity, peaks.cor_per_impact, yerr=1.96 * peaks.cor_per_impact_se,
+                fmt="o", ms=4, capsize=2, label="per impact (95 %)")
+    ax.axhline(peaks.cor, color="C3", lw=1.0, label=f"constant fit {peaks.cor:.4f}")
+    if np.isfinite(peaks.slope):
+        v = np.linspace(np.min(peaks.impact_velocity), np.max(peaks.impact_velocity), 2)
+        ax.plot(v, peaks.intercept + peaks.slope * v, color="C1", ls="--", lw=1.0,
+                label=f"linear trend: slope {peaks.slope:+.3f} +- {1.96 * peaks.slope_se:.3f} s/rad")
+    ax.set_xlabel("angular velocity before impact [rad/s]")
+    ax.set_ylabel("COR of the impact [-]")
+    ax.set_title("Section 3.7 (1): does the COR depend on the impact velocity?", fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return ax
+
+
+def plot_periods(period_fit, ax=None):
+    """Measured periods against amplitude with the fitted and nominal exact curves. Returns the axes."""
+    if ax is None:
+        _, grid = _figure(None, 1, figsize=(6.0, 4.0))
+        ax = grid[0, 0]
+    degrees = 180.0 / np.pi
+    how = ("2 x impact-to-impact" if period_fit.method == "zeros"
+           else "4 x peak-to-zero, the report's way")
+    ax.plot(period_fit.amplitudes * degrees, period_fit.periods, "o", ms=4,
+            label=f"record ({how})")
+    grid_amplitudes = np.linspace(0.03, 0.9, 60) * period_fit.alpha
+    ax.plot(grid_amplitudes * degrees, period_fit.curve(grid_amplitudes), color="C3", lw=1.0,
+            label=f"exact, fitted R = {period_fit.R:.4f} m, alpha = {period_fit.alpha:.4f}")
+    if period_fit.nominal is not None:
+        nominal = period_fit.nominal
+        amplitudes = np.linspace(0.03, 0.9, 60) * nominal.alpha
+        ax.plot(amplitudes * degrees, period_fit.curve(amplitudes, nominal.R, nominal.alpha),
+                color="0.5", lw=0.8, ls="--", label=f"exact, nominal {nominal.describe()}")
+    ax.set_xlabel("amplitude [deg]")
+    ax.set_ylabel("period [s]")
+    ax.set_title("Period against amplitude (Table 3.1 / Fig. 3.6)", fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return ax
+
+
+def plot_calibration(calibration, fig=None, title: str | None = None):
+    """Fit, residuals, COR per impact and periods in one figure. Returns the figure."""
+    import matplotlib.pyplot as plt
+
+    if fig is None:
+        fig = plt.figure(figsize=(11.0, 7.5))
+    grid = fig.add_gridspec(3, 2, height_ratios=[2.2, 1.0, 2.0], hspace=0.45, wspace=0.25)
+    top = fig.add_subplot(grid[0, :])
+    bottom = fig.add_subplot(grid[1, :], sharex=top)
+    plot_fit(calibration, axes=(top, bottom))
+    if calibration.peaks is not None:
+        plot_cor_per_impact(calibration.peaks, ax=fig.add_subplot(grid[2, 0]))
+    if calibration.periods is not None:
+        plot_periods(calibration.periods, ax=fig.add_subplot(grid[2, 1]))
+    fig.suptitle(title or f"COR calibration, {calibration.block.describe()} block")
+    return fig

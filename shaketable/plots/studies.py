@@ -1,0 +1,128 @@
+"""TODO docstring (from plots)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shaketable.plots.base import _pyplot
+
+
+def section_2_figure(frame, figure: str):
+    """Figs. 2.3-2.6: the report's closed forms against the engine.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        From :func:`shaketable.studies.section2.figure_2_3` (``figure="2.3"``),
+        ``figure_2_4`` (``"2.4"``), ``figure_2_5`` (``"2.5"``) or ``figure_2_6``
+        (``"2.6"``).
+    figure : str
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    plt = _pyplot()
+    fig, axis = plt.subplots(figsize=(6.5, 4.5))
+    if figure == "2.3":
+        for (name, group), color in zip(frame.groupby("block", sort=False),
+                                        plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+            axis.plot(group["theta0/alpha [-]"], group["Eq. 2-5 [s]"], "--", color=color,
+                      lw=1, label=f"{name}: Eq. 2-5")
+            axis.plot(group["theta0/alpha [-]"], group["exact [s]"], "-", color=color, lw=1.2,
+                      label=f"{name}: exact")
+            axis.plot(group["theta0/alpha [-]"], group["engine [s]"], "o", color=color, ms=3)
+        axis.set_xlabel("amplitude θ0/α [-]")
+        axis.set_ylabel("period T [s]")
+        axis.set_title("Fig. 2.3: period of free rocking (dots: engine, COR 1)", fontsize=10)
+    elif figure == "2.4":
+        axis.plot(frame["a/(g alpha) [-]"], frame["Eq. 2-7 t1 [s]"], "--", label="Eq. 2-7")
+        axis.plot(frame["a/(g alpha) [-]"], frame["engine t1 [s]"], "o-", label="engine (exact)")
+        axis.set_xlabel("a / (g α) [-]")
+        axis.set_ylabel("duration t1 that overturns [s]")
+        axis.set_title("Fig. 2.4: constant acceleration of duration t1 (16 x 4 ft)", fontsize=10)
+    elif figure == "2.5":
+        colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+        for (acceleration, group), color in zip(frame.groupby("a [g]", sort=False), colors):
+            closed = group["closed form t(alpha) [s]"].where(
+                np.isfinite(group["closed form t(alpha) [s]"]))
+            axis.plot(group["height [m]"], closed, "--", color=color, lw=1,
+                      label=f"a = {acceleration:g} g: slender closed form, t(α)")
+            axis.plot(group["height [m]"], group["engine t(alpha) [s]"], "o", color=color,
+                      ms=3, label=f"a = {acceleration:g} g: engine, t(α)")
+            axis.plot(group["height [m]"], group["engine t(pi/2) [s]"], "s-", color=color,
+                      ms=3, lw=0.8, label=f"a = {acceleration:g} g: engine, overturned")
+        axis.set_xscale("log")
+        axis.set_xlabel("block height H [m] (H/B = 4)")
+        axis.set_ylabel("time t [s]")
+        axis.set_title("Fig. 2.5: square acceleration pulse of 0.1 s (no point: the block "
+                       "falls back)", fontsize=9)
+    elif figure == "4.3.4":
+        duration = frame["pulse duration [s]"]
+        axis.plot(duration, frame["Eq. 2-9 [g]"], ":", label="Eq. 2-9 (the report's 4.6 g at 0.1 s)")
+        axis.plot(duration, frame["impulse limit [g]"], "--", label="exact impulse limit")
+        axis.plot(duration, frame["engine [g]"], "o-", label="engine (exact Eq. 2-13)")
+        axis.set_xscale("log")
+        axis.set_yscale("log")
+        axis.set_xlabel("half-sine pulse duration Ts/2 [s]")
+        axis.set_ylabel("amplitude that overturns [g]")
+        axis.set_title("Section 4.3 (4): single pulse on the 16 x 4 ft block", fontsize=10)
+    elif figure == "2.6":
+        axis.plot(frame["omega/p [-]"], frame["Eq. 2-8 [g]"], "--", label="Eq. 2-8")
+        axis.plot(frame["omega/p [-]"], frame["Eq. 2-9 [g]"], ":", label="Eq. 2-9")
+        axis.plot(frame["omega/p [-]"], frame["engine [g]"], "o-",
+                  label="engine: single half-sine pulse")
+        axis.set_xlabel("ω / p [-]")
+        axis.set_ylabel("pulse amplitude that overturns [g]")
+        axis.set_title("Fig. 2.6: sinusoidal pulse (16 x 4 ft)", fontsize=10)
+    else:
+        raise ValueError(f"figure must be '2.3', '2.4', '2.5', '2.6' or '4.3.4', got {figure!r}")
+    axis.grid(True, lw=0.3, alpha=0.6)
+    axis.legend(fontsize=7, frameon=False)
+    fig.tight_layout()
+    return fig
+
+
+def figure_3_6(frame, block=None):
+    """Fig. 3.6: period of free rocking against amplitude, 36 x 9 in block.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        From :func:`shaketable.studies.report_tables.table_3_1`: the report's test and
+        theory periods (Table 3.1) and the virtual test's periods read the
+        report's way.
+    block : Block, optional
+        The block of the curves (default 36 x 9 in).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Eq. (2-5) and the exact period (quadrature of the energy integral) as
+        curves, the printed and virtual periods as points.
+    """
+    from shaketable.core import theory
+    from shaketable.core.geometry import Block
+
+    plt = _pyplot()
+    block = block or Block.from_inches(36, 9)
+    degrees = 180.0 / np.pi
+    amplitudes = np.linspace(0.02, 0.95, 80) * block.alpha
+    fig, axis = plt.subplots(figsize=(6.5, 4.5))
+    axis.plot(amplitudes * degrees, [theory.housner_period(block, a) for a in amplitudes], "--",
+              color="0.4", lw=1, label="Eq. 2-5 (slender block)")
+    axis.plot(amplitudes * degrees, [theory.exact_period(block, a) for a in amplitudes], "-",
+              color="C3", lw=1.2, label="exact (energy integral)")
+    axis.plot(frame["amplitude [deg]"], frame["test period [s]"], "o", color="k", ms=5,
+              label="report: test (Table 3.1)")
+    axis.plot(frame["amplitude [deg]"], frame["theory period [s]"], "x", color="C0", ms=6,
+              label="report: theory (Table 3.1)")
+    axis.plot(frame["virtual test amplitude [deg]"], frame["virtual test period [s]"], "s",
+              mfc="none", color="C2", ms=6, label="virtual test, 50 samples/s, 4 x max-to-zero")
+    axis.set_xlabel("amplitude θ0 [deg]")
+    axis.set_ylabel("period T [s]")
+    axis.set_title(f"Fig. 3.6: period against amplitude, {block.describe()} block", fontsize=10)
+    axis.grid(True, lw=0.3, alpha=0.6)
+    axis.legend(fontsize=7, frameon=False)
+    fig.tight_layout()
+    return fig

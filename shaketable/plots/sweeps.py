@@ -1,0 +1,334 @@
+"""Figures of sweep tables: overturning maps, rocking spectra, fragility curves.
+
+Every function takes the tidy table of :func:`shaketable.sweeps.execute.run_sweep` (or of
+:func:`shaketable.solvers.batch.simulate_many`), an optional matplotlib ``ax`` and returns
+the axes. matplotlib is imported inside the plotting functions only;
+:func:`fragility_fit` is plain numerics.
+
+* :func:`overturning_map` -- block size against aspect ratio (or B/H), colour =
+  max |theta|/alpha, overturned cells black and marked "F" (the report's notation
+  in Tables 4.1-4.3).
+* :func:`rocking_spectrum` -- max |theta|/alpha against the size R or the
+  frequency parameter p for one record, one line per aspect ratio.
+* :func:`fragility_curve` -- fraction overturned against PGA over a record set,
+  with the lognormal fragility fitted by maximum likelihood
+  (:func:`fragility_fit`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shaketable.sweeps.fragility import fragility_fit
+
+_RATIO = "max_theta_ratio [-]"
+
+_AXES = {
+    "aspect": ("aspect_ratio [-]", "H/B [-]"),
+    "slenderness": ("B/H [-]", "B/H [-]"),
+    "alpha": ("alpha [rad]", "alpha [rad]"),
+    "width": ("block_width [m]", "width B [m]"),
+    "height": ("block_height [m]", "height H [m]"),
+    "R": ("R [m]", "size R [m]"),
+    "p": ("p [rad/s]", "p [rad/s]"),
+}
+
+
+def _column(table, key):
+    """The column of ``key`` (a short name of :data:`_AXES` or a column) and its label."""
+    if key in _AXES:
+        column, label = _AXES[key]
+    else:
+        column, label = key, key
+    if column == "B/H [-]":
+        return 1.0 / table["aspect_ratio [-]"].to_numpy(), label
+    if column == "R [m]" and column not in table:
+        return np.hypot(table["block_width [m]"], table["block_height [m]"]).to_numpy() / 2, \
+            label
+    if column not in table:
+        raise ValueError(f"the table has no column {column!r} (for {key!r}); short names: "
+                         f"{', '.join(_AXES)}")
+    return table[column].to_numpy(), label
+
+
+def _in_unit(values, label, unit):
+    """A length axis converted from metres to ``unit`` (other axes unchanged)."""
+    if not label.endswith("[m]") or unit == "m":
+        return values, label
+    from shaketable.core.constants import LENGTH_UNITS
+
+    if unit not in LENGTH_UNITS:
+        raise ValueError(f"length_unit must be one of {', '.join(LENGTH_UNITS)}, got {unit!r}")
+    return values / LENGTH_UNITS[unit], label[:-3] + f"[{unit}]"
+
+
+def _select(table, **conditions):
+    """Rows where every given column equals its value (None: no condition)."""
+    for column, value in conditions.items():
+        if value is None:
+            continue
+        if column not in table:
+            raise ValueError(f"the table has no column {column!r}")
+        table = table[table[column] == value]
+        if table.empty:
+            raise ValueError(f"no rows with {column} == {value!r}")
+    return table
+
+
+def _one(table, column):
+    values = table[column].unique()
+    if len(values) > 1:
+        raise ValueError(f"the rows mix several {column!r} ({', '.join(map(str, values[:5]))}); "
+                         f"select one with {column.split(' ')[0]}=...")
+    return values[0]
+
+
+def overturning_map(table, *, x="aspect", y="width", record=None, cor=None, ax=None,
+                    vmax=1.0, annotate=True, length_unit="m"):
+    """Block size against aspect ratio, coloured by max |theta|/alpha, F = overturned.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sweep table; the rows selected must hold one run per (x, y) cell.
+    x, y : str
+        Short names (``"aspect"`` H/B, ``"slenderness"`` B/H, ``"alpha"``,
+        ``"width"``, ``"height"``, ``"R"``, ``"p"``) or column names.
+    record, cor : optional
+        Select the rows of one record (``record`` column, or ``motion`` for a
+        batch table) and one COR [-].
+    vmax : float
+        Top of the colour scale for max |theta|/alpha [-].
+    annotate : bool
+        Write the value (two decimals, as the report's tables) or F in each cell.
+    length_unit : str
+        Unit of a length axis (``"m"``, ``"ft"``, ``"in"``, ``"cm"``, ``"mm"``).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+
+    rows = _select(table, record=record, **{"cor [-]": cor})
+    _one(rows, "cor [-]")
+    _one(rows, "record" if "record" in rows else "motion")
+    xs, x_label = _in_unit(*_column(rows, x), length_unit)
+    ys, y_label = _in_unit(*_column(rows, y), length_unit)
+    x_values = np.unique(np.round(xs, 12))
+    y_values = np.unique(np.round(ys, 12))
+    grid = np.full((y_values.size, x_values.size), np.nan)
+    overturned = np.zeros_like(grid, dtype=bool)
+    seen = np.zeros_like(grid, dtype=int)
+    for xv, yv, ratio, over in zip(np.round(xs, 12), np.round(ys, 12), rows[_RATIO],
+                                   rows["overturned"]):
+        i, j = np.searchsorted(y_values, yv), np.searchsorted(x_values, xv)
+        grid[i, j] = ratio
+        overturned[i, j] = over
+        seen[i, j] += 1
+    if seen.max() > 1:
+        raise ValueError("several runs fall in one cell of the map: select one record, COR, "
+                         "scale and pitch phase")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.5, 5.5))
+    cmap = plt.get_cmap("viridis").with_extremes(bad="white")
+    shown = np.ma.masked_invalid(np.where(overturned, np.nan, grid))
+    image = ax.pcolormesh(np.arange(x_values.size + 1) - 0.5, np.arange(y_values.size + 1) - 0.5,
+                          shown, cmap=cmap, vmin=0.0, vmax=vmax, shading="flat")
+    ax.pcolormesh(np.arange(x_values.size + 1) - 0.5, np.arange(y_values.size + 1) - 0.5,
+                  np.ma.masked_where(~overturned, np.ones_like(grid)),
+                  cmap=ListedColormap(["#b2182b"]), shading="flat")
+    if annotate:
+        for i in range(y_values.size):
+            for j in range(x_values.size):
+                if seen[i, j] == 0:
+                    continue
+                if overturned[i, j]:
+                    ax.text(j, i, "F", ha="center", va="center", color="white",
+                            fontsize=8, fontweight="bold")
+                else:
+                    value = grid[i, j]
+                    ax.text(j, i, f"{value:.2f}", ha="center", va="center", fontsize=6.5,
+                            color="white" if value < 0.6 * vmax else "black")
+    ax.set_xticks(range(x_values.size), [f"{v:.3g}" for v in x_values])
+    ax.set_yticks(range(y_values.size), [f"{v:.3g}" for v in y_values])
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(y_label)
+    bar = ax.figure.colorbar(image, ax=ax, extend="max")
+    bar.set_label("max |theta| / alpha [-]  (red, F: overturned)")
+    label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
+    ax.set_title(f"{label}, COR {rows['cor [-]'].iloc[0]:g}: "
+                 f"{int(overturned.sum())} of {int((seen > 0).sum())} overturn")
+    return ax
+
+
+def rocking_spectrum(table, *, x="p", record=None, cor=None, group="aspect", ax=None):
+    """max |theta|/alpha against block size (R) or p for one record, a line per aspect ratio.
+
+    Overturned runs are drawn as crosses on the dashed line at the top
+    (max |theta|/alpha is not meaningful past pi/2).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+    x : str
+        ``"p"`` (frequency parameter [rad/s]), ``"R"`` (size [m]) or another
+        short name or column.
+    record, cor : optional
+        Select one record and one COR.
+    group : str
+        One line per value of this (short name or column), default H/B.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    import matplotlib.pyplot as plt
+
+    rows = _select(table, record=record, **{"cor [-]": cor})
+    _one(rows, "cor [-]")
+    _one(rows, "record" if "record" in rows else "motion")
+    xs, x_label = _column(rows, x)
+    groups, group_label = _column(rows, group)
+    ratios = rows[_RATIO].to_numpy()
+    over = rows["overturned"].to_numpy()
+    finite_top = max(1.0, float(np.nanmax(np.where(over, np.nan, ratios))) * 1.05
+                     if (~over).any() else 1.0)
+    top = finite_top * 1.08
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7, 4.5))
+    colours = plt.get_cmap("plasma")(np.linspace(0, 0.85, len(np.unique(groups))))
+    for colour, value in zip(colours, np.unique(np.round(groups, 12))):
+        pick = np.round(groups, 12) == value
+        order = np.argsort(xs[pick])
+        xv, rv, ov = xs[pick][order], ratios[pick][order], over[pick][order]
+        shown = np.where(ov, np.nan, rv)
+        ax.plot(xv, shown, "o-", ms=3, color=colour, label=f"{group_label} {value:.3g}")
+        ax.plot(xv[ov], np.full(ov.sum(), top), "x", color=colour, ms=6)
+    ax.axhline(1.0, color="0.4", lw=0.8, ls=":")
+    ax.axhline(top, color="0.6", lw=0.8, ls="--")
+    ax.text(ax.get_xlim()[0], top, " F (overturned)", va="bottom", fontsize=8, color="0.3")
+    ax.set_ylim(0, top * 1.08)
+    if x == "p":
+        x_label += "   (larger blocks to the left: p = sqrt(3g/4R))"
+    ax.set_xlabel(x_label)
+    ax.set_ylabel("max |theta| / alpha [-]")
+    label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
+    ax.set_title(f"Rocking spectrum: {label}, COR {rows['cor [-]'].iloc[0]:g}")
+    ax.legend(fontsize=7, ncol=2)
+    return ax
+
+
+def fragility_curve(table, *, group="block", cor=None, pga="pga [g]", ax=None):
+    """Fraction overturned against PGA over the records of a sweep, with lognormal fits.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sweep table with several records (or realisations) per PGA level.
+    group : str or None
+        One curve per value of this column (default per block).
+    cor : float, optional
+        Select one COR.
+    pga : str
+        PGA column (``"pga [g]"`` default).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        With ``ax.fragility_fits``: a dict group -> :class:`FragilityFit`
+        (None where every run, or none, overturned).
+    """
+    import matplotlib.pyplot as plt
+
+    rows = _select(table, **{"cor [-]": cor})
+    _one(rows, "cor [-]")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7, 4.5))
+    groups = [(None, rows)] if group is None else list(rows.groupby(group, sort=False))
+    colours = plt.get_cmap("tab10")(np.arange(len(groups)) % 10)
+    fits = {}
+    grid = np.linspace(max(1e-3, rows[pga].min() * 0.8), rows[pga].max() * 1.1, 300)
+    for colour, (name, part) in zip(colours, groups):
+        levels = part.groupby(np.round(part[pga], 9))["overturned"].agg(["mean", "size"])
+        label = str(name) if name is not None else "all runs"
+        ax.plot(levels.index, levels["mean"], "o", color=colour, ms=4,
+                label=f"{label}: fraction of {int(levels['size'].median())} records")
+        try:
+            fit = fragility_fit(part[pga], part["overturned"])
+        except ValueError:
+            fits[name] = None
+            continue
+        fits[name] = fit
+        ax.plot(grid, fit.probability(grid), "-", color=colour, lw=1.2,
+                label=f"{label}: lognormal, median {fit.median:.3g}, beta {fit.beta:.2f}")
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_xlabel("PGA [g]" if pga == "pga [g]" else pga)
+    ax.set_ylabel("P(overturn) [-]")
+    records = rows["record"].unique() if "record" in rows else rows["motion"].unique()
+    n_motions = rows.groupby(["record", "seed"], dropna=False).ngroups if "record" in rows \
+        else len(records)
+    ax.set_title(f"Fragility: {', '.join(map(str, records))} ({n_motions} motions), "
+                 f"COR {rows['cor [-]'].iloc[0]:g}")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    ax.fragility_fits = fits
+    return ax
+
+
+def sweep_figures(table, out) -> list:
+    """The figures a sweep's table supports, written to folder ``out`` (PNG); their paths.
+
+    * an overturning map (width against H/B) per record and COR, when the
+      blocks vary in both;
+    * a rocking spectrum (max |theta|/alpha against p) per record and COR,
+      when the blocks vary;
+    * fragility curves (fraction overturned against PGA, lognormal fits) per
+      COR, when there are at least three PGA levels and several records or
+      realisations per level.
+    """
+    from pathlib import Path
+
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    from shaketable.plots.base import save
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    widths = table["block_width [m]"].nunique()
+    aspects = table["aspect_ratio [-]"].round(9).nunique()
+    pitch_free = table[table["pitch_phase [rad]"].isna()] if "pitch_phase [rad]" in table \
+        else table
+    for (record, seed, cor), rows in pitch_free.groupby(["record", "seed", "cor [-]"],
+                                                        sort=False, dropna=False):
+        if rows["scale [-]"].nunique() > 1 or rows["pga [g]"].round(6).nunique() > 1:
+            continue  # several intensities: the fragility figure covers them
+        if not pd.isna(seed) and rows["record_kind"].iloc[0] == "artificial":
+            record = f"{record}-seed{int(seed)}"
+        label = f"{record}-cor{cor:g}"
+        if widths > 1 and aspects > 1 and rows.groupby(
+                ["block_width [m]", "aspect_ratio [-]"]).size().max() == 1:
+            figure, axis = plt.subplots(figsize=(8, 5))
+            overturning_map(rows, ax=axis, length_unit="ft")
+            axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
+            written.append(out / f"map-{label}.png")
+            save(figure, written[-1])
+        if rows["block"].nunique() > 1:
+            figure, axis = plt.subplots(figsize=(8, 4))
+            rocking_spectrum(rows, ax=axis)
+            axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
+            written.append(out / f"spectrum-{label}.png")
+            save(figure, written[-1])
+    levels = table["pga [g]"].round(6).nunique()
+    per_level = table.groupby([table["pga [g]"].round(6), "block", "cor [-]"]).size().min()
+    if levels >= 3 and per_level >= 2:
+        for cor, rows in table.groupby("cor [-]", sort=False):
+            figure, axis = plt.subplots(figsize=(7, 4.5))
+            fragility_curve(rows, ax=axis)
+            axis.set_title(f"fragility, COR {cor:g}", fontsize=9)
+            written.append(out / f"fragility-cor{cor:g}.png")
+            save(figure, written[-1])
+    return written

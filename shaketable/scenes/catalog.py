@@ -1,0 +1,40 @@
+"""TODO docstring (from scenes)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from shaketable.scenes.parse import SceneError
+
+
+def resolve_scene_path(name_or_path: str, directory=None) -> Path:
+    """A scene file from a path or a name in the experiments folder."""
+    candidate = Path(name_or_path)
+    if candidate.suffix == ".toml" and candidate.exists():
+        return candidate
+    folder = Path(directory) if directory is not None else experiments_folder()
+    path = folder / f"{name_or_path}.toml"
+    if not path.exists():
+        names = ", ".join(sorted(p.stem for p in folder.glob("*.toml")))
+        raise SceneError(f"no scene {name_or_path!r} (not a file, not in {folder}); "
+                         f"available: {names}")
+    return path
+
+
+def scene_names(directory=None) -> list[str]:
+    """Names of the scenes in a folder (default: the bundled experiments), in figure order."""
+    import re
+
+    folder = Path(directory) if directory is not None else experiments_folder()
+
+    def natural(name):
+        return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name)]
+
+    return sorted((path.stem for path in folder.glob("*.toml")), key=natural)
+
+
+def experiments_folder() -> Path:
+    """The scenes shipped with the package (the repository's ``experiments/``)."""
+    from importlib.resources import files
+
+    return Path(str(files("shaketable.experiments")))

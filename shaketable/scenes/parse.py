@@ -1,0 +1,407 @@
+"""Scenes: an experiment written as a TOML file, parsed and validated.
+
+A scene names only what it needs; the pipeline (:mod:`shaketable.scenes.run`) runs
+only the stages a scene names. Every dimensional value carries its unit
+(``"30 in"``, ``"0.5 g"``, ``"2 Hz"``); errors name the file, the key and what is
+expected.
+
+Sections (``experiments/*.toml`` are the examples)::
+
+    name, source, description       # top level: text
+    [block]      size = "30x6in"  or  height = "30 in", width = "6 in"
+    [block.rods] stiffness = "0.4 W/in", force = "0.4 W", edge_distance = "12 in"
+                 (and block.static_friction = 0.6: the sliding/rocking check of Section 2.1)
+    [motion]     kind = "free" | "harmonic" | "record" | "artificial" | "half-sine"
+                 | "constant-pulse", and the keys of that kind
+    [rocking]    cor = 0.925 (or a list to compare), theta0 = "0.5 alpha",
+                 duration = "8 s", method = "fast", subdivisions, rtol
+    [report]     the report's values to compare with (see REPORT_KEYS)
+    [outputs]    figure = true, csv = true, parquet = false, svg = false
+    [table]      command, highpass, actuator, pitch, limits (shaketable.lab.stage)
+    [sensors]    potentiometers, accelerometers, rate, noise... (shaketable.scenes.virtual_test)
+    [theory]     cor = "calibrated" or a number: the test-vs-theory comparison of Section 3.7
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import tomllib
+
+from shaketable.core.geometry import Block, PrestressRods
+from shaketable.core.units import parse, parse_angle_or_ratio
+
+MOTION_KEYS = {
+    "free": set(),
+    "harmonic": {"frequency", "horizontal", "vertical", "phase", "duration", "dt", "ramp",
+                 "start"},
+    "record": {"name", "file", "units", "dt", "column", "vertical", "scale",
+               "pacoima_vertical_sign", "duration"},
+    "artificial": {"preset", "seed", "pga", "duration", "dt", "vertical_pga"},
+    "half-sine": {"amplitude", "pulse_duration", "duration", "dt", "sign"},
+    "constant-pulse": {"acceleration", "pulse_duration", "duration", "dt"},
+}
+
+ROCKING_KEYS = {"cor", "theta0", "theta_dot0", "duration", "method", "subdivisions", "rtol"}
+
+#: The report's values a scene may state, and how each is compared.
+REPORT_KEYS = {
+    "t_rest": "time", "cycles": "number", "overturned": "bool", "overturn_direction": "number",
+    "t_unstable": "time", "t_overturn": "time", "max_theta_ratio": "number",
+    "tolerance": "number", "note": "text",
+}
+
+OUTPUT_KEYS = {"figure", "csv", "parquet", "svg"}
+
+#: Figures recomputed by a ``"report-figure"`` study: Figs. 2.3-2.6 and the
+#: single-pulse check of Section 4.3 (4).
+REPORT_FIGURES = ("2.3", "2.4", "2.5", "2.6", "4.3.4")
+
+TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
+            "table", "sensors", "theory"}
+
+#: Studies that recompute one of the report's tables (a ``[study]`` section).
+STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"},
+               "pitch-repeatability": {"phases"}, "teaching": {"item"}}
+
+
+class SceneError(ValueError):
+    """A scene file that cannot be used; the message names the file and the key."""
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated experiment.
+
+    Attributes
+    ----------
+    name, source, description : str
+        Identification; ``source`` names the report's figure or table.
+    block : Block
+    motion : dict
+        The ``[motion]`` table with ``kind`` checked and values converted to SI.
+    cors : tuple of float
+        Coefficients of restitution to run (one run each) [-].
+    theta0 : float
+        Initial rotation [rad].
+    theta_dot0 : float
+        Initial angular velocity [rad/s].
+    duration : float or None
+        Run length [s].
+    method : str
+    options : dict
+        Further keyword arguments for :func:`shaketable.solvers.api`.
+    report : dict
+        The report's values to compare with.
+    outputs : dict
+    table, theory : dict
+        Raw optional stages (validated by their own modules).
+    sensors : dict or None
+        The raw ``[sensors]`` section; ``None`` when the scene has none (an
+        empty section means the default instruments).
+    path : str
+        Where the scene was read from.
+    """
+
+    name: str
+    source: str
+    description: str
+    block: Block
+    motion: dict
+    cors: tuple
+    theta0: float = 0.0
+    theta_dot0: float = 0.0
+    duration: float | None = None
+    method: str = "fast"
+    options: dict = field(default_factory=dict)
+    report: dict = field(default_factory=dict)
+    outputs: dict = field(default_factory=dict)
+    table: dict = field(default_factory=dict)
+    sensors: dict | None = None
+    theory: dict = field(default_factory=dict)
+    static_friction: float | None = None
+    path: str = ""
+
+    def mode(self) -> str | None:
+        """Sliding or rocking by Section 2.1 (mu_s against B/H), when ``static_friction`` is given."""
+        if self.static_friction is None:
+            return None
+        ratio = self.block.width / self.block.height
+        if self.static_friction > ratio:
+            return (f"rocking: static friction {self.static_friction:g} > B/H = {ratio:.3f} "
+                    "(Section 2.1): the block rocks before it can slide")
+        return (f"SLIDING: static friction {self.static_friction:g} <= B/H = {ratio:.3f} "
+                "(Section 2.1, Eq. 2-2): the block slides before it rocks; the rocking "
+                "results below assume a base that cannot slide")
+
+
+@dataclass(frozen=True)
+class Study:
+    """A scene that recomputes a whole table of the report (``[study]``).
+
+    Attributes
+    ----------
+    name, source, description : str
+    kind : str
+        ``"report-table"`` or ``"report-figure"``.
+    table : str
+        Which printed table: ``"table_3_1"``, ``"table_4_1"``, ``"table_4_2"``, ``"table_4_3"``;
+        for a ``"report-figure"`` study, one of :data:`REPORT_FIGURES`;
+        for a ``"teaching"`` study, the item of :data:`shaketable.studies.teaching.ITEMS`.
+    columns : tuple of str
+        Columns to recompute (default all).
+    seed : int
+        Seed of the substitute artificial accelerograms (for a
+        ``"pitch-repeatability"`` study: the number of pitch phases).
+    path : str
+    """
+
+    name: str
+    source: str
+    description: str
+    kind: str
+    table: str
+    columns: tuple = ()
+    seed: int = 1
+    path: str = ""
+
+
+def load_scene(path) -> Scene:
+    """Read and validate a scene file.
+
+    Raises
+    ------
+    SceneError
+        With the file name, the key and what was expected.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as error:
+        raise SceneError(f"{path}: cannot read the scene ({error.strerror})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise SceneError(f"{path}: not valid TOML: {error}") from None
+    return scene_from_dict(data, where=str(path))
+
+
+def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
+    """Validate a scene given as a dict (the parsed TOML); a ``[study]`` gives a :class:`Study`."""
+    if "study" in data:
+        return _study(data, where)
+    _only(data, TOP_KEYS, where, "top level")
+    for key in ("name", "block", "motion", "rocking"):
+        if key not in data:
+            raise SceneError(f"{where}: missing [{key}]" if key != "name"
+                             else f"{where}: missing 'name' at the top level")
+    block = _block(data["block"], where)
+    static_friction = data["block"].get("static_friction")
+    if static_friction is not None and (isinstance(static_friction, bool) or not isinstance(
+            static_friction, (int, float)) or not 0 < static_friction < math.inf):
+        raise SceneError(f"{where}: block.static_friction must be a positive number (the "
+                         f"static coefficient of friction mu_s), got {static_friction!r}")
+    motion = _motion(data["motion"], where)
+    rocking = _table(data["rocking"], where, "rocking")
+    _only(rocking, ROCKING_KEYS, where, "rocking")
+    if "cor" not in rocking:
+        raise SceneError(f"{where}: rocking.cor is missing (coefficient of restitution, 0-1)")
+    cors = rocking["cor"] if isinstance(rocking["cor"], list) else [rocking["cor"]]
+    for cor in cors:
+        if isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0 <= cor <= 1:
+            raise SceneError(f"{where}: rocking.cor must be a number in [0, 1] or a list of "
+                             f"them, got {rocking['cor']!r}")
+    try:
+        theta0 = parse_angle_or_ratio(rocking.get("theta0", "0 rad"), block.alpha,
+                                      where=f"{where}: rocking.theta0")
+        theta_dot0 = 0.0
+        if "theta_dot0" in rocking:
+            theta_dot0 = parse(str(rocking["theta_dot0"]).replace("rad/s", "rad"), "angle",
+                               where=f"{where}: rocking.theta_dot0")
+        duration = (parse(rocking["duration"], "time", where=f"{where}: rocking.duration")
+                    if "duration" in rocking else None)
+    except ValueError as error:
+        raise SceneError(str(error)) from None
+    if motion["kind"] == "free" and duration is None:
+        raise SceneError(f"{where}: rocking.duration is needed for free rocking, e.g. '8 s'")
+    options = {}
+    for key in ("subdivisions", "rtol"):
+        if key in rocking:
+            options[key] = rocking[key]
+    report = _table(data.get("report", {}), where, "report")
+    _only(report, set(REPORT_KEYS), where, "report")
+    outputs = {"figure": True, "csv": True, "parquet": False, "svg": False}
+    given = _table(data.get("outputs", {}), where, "outputs")
+    _only(given, OUTPUT_KEYS, where, "outputs")
+    for key, value in given.items():
+        if not isinstance(value, bool):
+            raise SceneError(f"{where}: outputs.{key} must be true or false, got {value!r}")
+    outputs.update(given)
+    name = data["name"]
+    if not isinstance(name, str) or not name:
+        raise SceneError(f"{where}: 'name' must be a non-empty string")
+    return Scene(name=name, source=str(data.get("source", "")),
+                 description=str(data.get("description", "")), block=block, motion=motion,
+                 cors=tuple(float(c) for c in cors), theta0=theta0, theta_dot0=theta_dot0,
+                 duration=duration, method=str(rocking.get("method", "fast")), options=options,
+                 report=report, outputs=outputs,
+                 table=_table_section(data.get("table", {}), where),
+                 sensors=_checked(data, "sensors", where) if "sensors" in data else None,
+                 theory=_checked(data, "theory", where),
+                 static_friction=None if static_friction is None else float(static_friction),
+                 path=where)
+
+
+def _study(data: dict, where: str) -> Study:
+    _only(data, {"name", "source", "description", "study"}, where, "top level of a study")
+    spec = _table(data["study"], where, "study")
+    kind = spec.get("kind")
+    if kind not in STUDY_KINDS:
+        raise SceneError(f"{where}: study.kind must be one of {', '.join(STUDY_KINDS)}, "
+                         f"got {kind!r}")
+    _only({k: v for k, v in spec.items() if k != "kind"}, STUDY_KINDS[kind], where, "study")
+    if kind == "pitch-repeatability":
+        phases = spec.get("phases", 24)
+        if isinstance(phases, bool) or not isinstance(phases, int) or phases < 2:
+            raise SceneError(f"{where}: study.phases must be an integer of at least 2, got "
+                             f"{phases!r}")
+        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                     description=str(data.get("description", "")), kind=kind,
+                     table="", seed=phases, path=where)
+    if kind == "teaching":  # a gallery item of shaketable.studies.teaching
+        from shaketable.studies.teaching import ITEMS
+
+        if spec.get("item") not in ITEMS:
+            raise SceneError(f"{where}: study.item must be one of {', '.join(ITEMS)}, got "
+                             f"{spec.get('item')!r}")
+        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                     description=str(data.get("description", "")), kind=kind,
+                     table=spec["item"], path=where)
+    if kind == "report-figure":
+        if spec.get("figure") not in REPORT_FIGURES:
+            raise SceneError(f"{where}: study.figure must be one of "
+                             f"{', '.join(repr(name) for name in REPORT_FIGURES)}, got "
+                             f"{spec.get('figure')!r}")
+        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                     description=str(data.get("description", "")), kind=kind,
+                     table=spec["figure"], path=where)
+    table = spec.get("table")
+    if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3"):
+        raise SceneError(f"{where}: study.table must be table_3_1, table_4_1, table_4_2 or "
+                         f"table_4_3, got {table!r}")
+    return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                 description=str(data.get("description", "")), kind=kind, table=table,
+                 columns=tuple(spec.get("columns", ())), seed=int(spec.get("seed", 1)),
+                 path=where)
+
+
+# --------------------------------------------------------------------------- helpers
+def _checked(data: dict, section: str, where: str) -> dict:
+    """A raw ``[sensors]`` or ``[theory]`` section, validated now (errors at load time)."""
+    from shaketable.scenes.virtual_test import sensors_from_dict, theory_from_dict
+
+    value = _table(data.get(section, {}), where, section)
+    if section == "theory" and value and "sensors" not in data:
+        raise SceneError(f"{where}: [theory] compares a virtual test with theory; it needs "
+                         "a [sensors] section")
+    try:
+        if section == "sensors" or "sensors" in data:
+            (sensors_from_dict if section == "sensors" else theory_from_dict)(value, where)
+    except ValueError as error:
+        raise SceneError(str(error)) from None
+    return value
+
+
+def _table_section(value, where) -> dict:
+    """The raw ``[table]`` section, validated now so that errors come at load time."""
+    from shaketable.lab.stage import table_setup_from_dict
+
+    value = _table(value, where, "table")
+    try:
+        table_setup_from_dict(value, where)
+    except ValueError as error:
+        raise SceneError(str(error)) from None
+    return value
+
+
+def _table(value, where, section):
+    if not isinstance(value, dict):
+        raise SceneError(f"{where}: [{section}] must be a table, got {value!r}")
+    return value
+
+
+def _only(table: dict, allowed: set, where: str, section: str) -> None:
+    unknown = sorted(set(table) - allowed)
+    if unknown:
+        raise SceneError(f"{where}: unknown key {unknown[0]!r} in [{section}]; expected one of "
+                         f"{', '.join(sorted(allowed)) or '(none)'}")
+
+
+def _block(table, where) -> Block:
+    table = _table(table, where, "block")
+    _only(table, {"size", "height", "width", "rods", "static_friction"}, where, "block")
+    rods = None
+    if "rods" in table:
+        spec = _table(table["rods"], where, "block.rods")
+        _only(spec, {"stiffness", "force", "edge_distance"}, where, "block.rods")
+        missing = {"stiffness", "force", "edge_distance"} - set(spec)
+        if missing:
+            raise SceneError(f"{where}: block.rods needs {', '.join(sorted(missing))}")
+        try:
+            rods = PrestressRods(
+                parse(spec["stiffness"], "stiffness", where=f"{where}: block.rods.stiffness"),
+                parse(spec["force"], "weight", where=f"{where}: block.rods.force"),
+                parse(spec["edge_distance"], "length", where=f"{where}: block.rods.edge_distance"))
+        except ValueError as error:
+            raise SceneError(str(error) if str(error).startswith(where) else
+                             f"{where}: block.rods: {error}") from None
+    try:
+        if "size" in table:
+            if "height" in table or "width" in table:
+                raise SceneError(f"{where}: [block] gives 'size' and height/width; give one")
+            return Block.parse(table["size"], rods=rods)
+        if "height" not in table or "width" not in table:
+            raise SceneError(f"{where}: [block] needs size = '30x6in' or height and width")
+        return Block(parse(table["height"], "length", where=f"{where}: block.height"),
+                     parse(table["width"], "length", where=f"{where}: block.width"), rods)
+    except SceneError:
+        raise
+    except ValueError as error:
+        raise SceneError(str(error) if str(error).startswith(where) else
+                         f"{where}: block: {error}") from None
+
+
+_MOTION_UNITS = {
+    "frequency": "frequency", "horizontal": "acceleration", "vertical": "acceleration",
+    "phase": "angle", "duration": "time", "dt": "time", "ramp": "time", "start": "time",
+    "pga": "acceleration", "vertical_pga": "acceleration", "amplitude": "acceleration",
+    "acceleration": "acceleration", "pulse_duration": "time",
+}
+
+
+def _motion(table, where) -> dict:
+    table = dict(_table(table, where, "motion"))
+    kind = table.pop("kind", None)
+    if kind not in MOTION_KEYS:
+        raise SceneError(f"{where}: motion.kind must be one of {', '.join(MOTION_KEYS)}, "
+                         f"got {kind!r}")
+    _only(table, MOTION_KEYS[kind], where, f"motion ({kind})")
+    converted = {"kind": kind}
+    for key, value in table.items():
+        unit_kind = _MOTION_UNITS.get(key)
+        if unit_kind is not None and not (kind == "record" and key == "vertical"):
+            try:
+                value = parse(value, unit_kind, where=f"{where}: motion.{key}")
+            except ValueError as error:
+                raise SceneError(str(error)) from None
+        converted[key] = value
+    if kind == "record" and ("name" in converted) == ("file" in converted):
+        raise SceneError(f"{where}: a record motion needs exactly one of motion.name "
+                         "(a bundled record) or motion.file")
+    if kind == "harmonic" and not {"frequency", "horizontal", "duration"} <= set(converted):
+        raise SceneError(f"{where}: a harmonic motion needs frequency, horizontal and duration")
+    if kind == "artificial" and not {"preset", "seed"} <= set(converted):
+        raise SceneError(f"{where}: an artificial motion needs preset and seed")
+    return converted

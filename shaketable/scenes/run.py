@@ -1,0 +1,243 @@
+"""Running a scene: motion -> (table) -> block -> outputs and the comparison with the report.
+
+Only the stages a scene names are run. The core never reads TOML; the scene
+is parsed by :mod:`shaketable.scenes.parse` first.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from shaketable.core.constants import G
+from shaketable.core.motion import Motion
+from shaketable.core.results import RockingResult
+from shaketable.ground import generators
+from shaketable.lab.stage import TableRun, run_table, table_setup_from_dict
+from shaketable.scenes.compare import (
+    compare_test_with_theory,
+    compare_with_report,
+    is_earthquake,
+)
+from shaketable.scenes.parse import Scene, SceneError
+from shaketable.solvers.api import simulate
+
+
+def build_motion(scene: Scene) -> Motion | None:
+    """The table motion a scene names [m/s^2], or ``None`` for free rocking."""
+    spec = dict(scene.motion)
+    kind = spec.pop("kind")
+    g = G
+    try:
+        if kind == "free":
+            return None
+        if kind == "harmonic":
+            return generators.harmonic(
+                spec["frequency"], spec["horizontal"] / g, spec.get("vertical", 0.0) / g,
+                duration=spec["duration"], dt=spec.get("dt", 0.01), phase=spec.get("phase", 0.0),
+                ramp=spec.get("ramp", 0.0), start=spec.get("start", 0.0))
+        if kind == "half-sine":
+            return generators.half_sine_pulse(
+                spec["amplitude"] / g, spec["pulse_duration"], duration=spec["duration"],
+                dt=spec.get("dt", 0.001), sign=spec.get("sign", 1))
+        if kind == "constant-pulse":
+            return generators.constant_pulse(
+                spec["acceleration"] / g, spec["pulse_duration"], duration=spec["duration"],
+                dt=spec.get("dt", 0.001))
+        if kind == "artificial":
+            options = {"seed": spec["seed"], "dt": spec.get("dt", 0.01)}
+            if "duration" in spec:
+                options["duration"] = spec["duration"]
+            if "pga" in spec:
+                options["pga_g"] = spec["pga"] / g
+            if "vertical_pga" in spec:
+                options["vertical_pga_g"] = spec["vertical_pga"] / g
+            return generators.artificial(spec["preset"], **options)
+        if kind == "record":
+            return _record_motion(spec, scene)
+    except SceneError:
+        raise
+    except (ValueError, KeyError) as error:
+        raise SceneError(f"{scene.path}: [motion] ({kind}): {error}") from None
+    raise SceneError(f"{scene.path}: motion.kind {kind!r} is not runnable")  # pragma: no cover
+
+
+def _record_motion(spec: dict, scene: Scene) -> Motion:
+    from shaketable.ground import records
+
+    with_vertical = bool(spec.get("vertical", True))
+    if "name" in spec:
+        options = {}
+        if "pacoima_vertical_sign" in spec:
+            options["pacoima_vertical_sign"] = spec["pacoima_vertical_sign"]
+        motion = records.load(spec["name"], vertical=with_vertical, **options)
+    else:
+        path = Path(spec["file"])
+        if not path.is_absolute():
+            path = Path(scene.path).parent / path
+        options = {key: spec[key] for key in ("units", "dt") if key in spec}
+        if "column" in spec:
+            options["value_column"] = spec["column"]
+        record = records.read(path, **options)
+        motion = records.combine(record, name=path.stem)
+    scale = spec.get("scale", 1.0)
+    if scale != 1.0:
+        motion = motion.scaled(float(scale))
+    return motion
+
+
+@dataclass(frozen=True)
+class SceneResult:
+    """The runs of one scene (one per COR) and their comparison with the report."""
+
+    scene: Scene
+    motion: Motion | None
+    runs: tuple
+    comparisons: tuple = field(default_factory=tuple)
+    table: TableRun | None = None
+    tests: tuple = ()
+
+    @property
+    def main(self) -> RockingResult:
+        """The first run (the scene's first COR)."""
+        return self.runs[0]
+
+    def to_frame(self):
+        """Time histories of every run, long format with a ``cor [-]`` column."""
+        import pandas as pd
+
+        frames = []
+        for run in self.runs:
+            frame = run.to_frame()
+            frame.insert(0, "cor [-]", run.cor)
+            frames.append(frame)
+        return pd.concat(frames, ignore_index=True)
+
+    def summary(self) -> dict:
+        """JSON-ready scalars: scene identification, each run, each comparison."""
+        summary = {
+            "scene": self.scene.name, "source": self.scene.source,
+            "description": self.scene.description,
+            "runs": [run.summary() for run in self.runs],
+            "comparisons": [{"quantity": c.quantity, "report": c.report,
+                             "reproduced": c.reproduced, "unit": c.unit, "agrees": c.agrees}
+                            for c in self.comparisons],
+        }
+        if self.table is not None:
+            summary["table"] = {"limits exceeded": self.table.warnings()}
+        if self.scene.mode() is not None:
+            summary["mode (Section 2.1)"] = self.scene.mode()
+        if self.tests:
+            summary["test vs theory"] = [test.metrics() for test in self.tests]
+        return summary
+
+    def plot(self):
+        """The Calcomp figure of the main run; other CORs overlaid on the displacement."""
+        from shaketable.plots.calcomp import calcomp
+
+        title = f"{self.scene.source}: {self.scene.name}" if self.scene.source else None
+        figure = calcomp(self.main, title=title)
+        if len(self.runs) > 1:
+            axis = figure.axes[3]
+            for run in self.runs[1:]:
+                axis.plot(run.t, run.theta, lw=0.9, label=f"COR = {run.cor:g}")
+            axis.plot([], [], color="k", label=f"COR = {self.main.cor:g}")
+            axis.legend(loc="upper right", fontsize=7, frameon=False)
+        return figure
+
+    def write(self, out) -> list[Path]:
+        """Write the outputs the scene asks for into folder ``out``; return the paths."""
+        from shaketable.plots.base import save
+
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        written = []
+        outputs = self.scene.outputs
+        if outputs.get("csv", True):
+            written.append(out / "history.csv")
+            self.to_frame().to_csv(written[-1], index=False)
+        if outputs.get("parquet", False):
+            written.append(out / "history.parquet")
+            self.to_frame().to_parquet(written[-1], index=False)
+        written.append(out / "summary.json")
+        written[-1].write_text(json.dumps(self.summary(), indent=2))
+        if outputs.get("figure", True):
+            for suffix in ("png", "svg") if outputs.get("svg", False) else ("png",):
+                written.append(out / f"calcomp.{suffix}")
+                save(self.plot(), written[-1])
+                for index, test in enumerate(self.tests):
+                    label = "" if len(self.tests) == 1 else f"-{index + 1}"
+                    written.append(out / f"test-vs-theory{label}.{suffix}")
+                    title = (f"{self.scene.source or self.scene.name}: test vs theory, "
+                             f"{self.scene.block.describe()}")
+                    save(test.plot(title=title), written[-1])
+        for index, test in enumerate(self.tests):
+            label = "" if len(self.tests) == 1 else f"-{index + 1}"
+            written.append(out / f"record{label}.csv")
+            test.to_frame().to_csv(written[-1], index=False)
+        return written
+
+
+def run_scene(scene: Scene) -> SceneResult:
+    """Run every stage a scene names and compare with the report's values."""
+    motion = build_motion(scene)
+    table = None
+    felt = motion
+    if scene.table:
+        setup = table_setup_from_dict(scene.table, scene.path)
+        try:
+            table = run_table(motion, setup, duration=scene.duration)
+        except ValueError as error:
+            raise SceneError(f"{scene.path}: [table]: {error}") from None
+        felt = table.felt
+    if scene.sensors is not None:
+        return _run_virtual_tests(scene, motion, felt, table)
+    runs = []
+    for cor in scene.cors:
+        try:
+            runs.append(simulate(scene.block, felt, cor=cor, theta0=scene.theta0,
+                                 theta_dot0=scene.theta_dot0, duration=scene.duration,
+                                 method=scene.method, **scene.options))
+        except ValueError as error:
+            raise SceneError(f"{scene.path}: [rocking]: {error}") from None
+    comparisons = compare_with_report(scene, runs[0])
+    return SceneResult(scene=scene, motion=felt, runs=tuple(runs),
+                       comparisons=tuple(comparisons), table=table)
+
+
+def _run_virtual_tests(scene: Scene, commanded: Motion | None, felt: Motion | None,
+                       table: TableRun | None) -> "SceneResult":
+    """A scene with ``[sensors]``: one virtual test (and its theory run) per COR.
+
+    The comparisons are (i) the report's values against the run they describe
+    and (ii) the test against the theory (:func:`compare_test_with_theory`).
+    For Figs. 3.4 and 3.7-3.9 the report's values are those of both curves and
+    are compared with the theory run; Fig. 3.5 is *test data* (its caption),
+    and every earthquake-type scene (:data:`EARTHQUAKE_KINDS`) is compared with
+    the virtual test run, since the report gives no theory for earthquake
+    motions (Section 3.7 (2)).
+    """
+    from shaketable.scenes.virtual_test import (
+        run_virtual_test,
+        sensors_from_dict,
+        theory_from_dict,
+    )
+
+    sensors = sensors_from_dict(scene.sensors, scene.path)
+    theory = theory_from_dict(scene.theory, scene.path)
+    tests = []
+    for cor in scene.cors:
+        try:
+            tests.append(run_virtual_test(scene.block, felt, cor=cor, sensors=sensors,
+                                          theory=theory, commanded=commanded,
+                                          theta0=scene.theta0, duration=scene.duration,
+                                          method=scene.method, **scene.options))
+        except ValueError as error:
+            raise SceneError(f"{scene.path}: virtual test: {error}") from None
+    runs = tuple(test.test for test in tests)
+    described = tests[0].test if is_earthquake(scene) else tests[0].theory
+    comparisons = compare_with_report(scene, described) + compare_test_with_theory(scene,
+                                                                                   tests[0])
+    return SceneResult(scene=scene, motion=felt, runs=runs, comparisons=tuple(comparisons),
+                       table=table, tests=tuple(tests))

@@ -1,0 +1,140 @@
+"""``simulate``: one block, one ground motion, one solver."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from shaketable.core.dynamics import block_parameters
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion, whole_number
+from shaketable.core.results import RockingResult
+from shaketable.core.validation import in_range
+from shaketable.solvers import engine
+from shaketable.solvers.common import _COMPILED, _DEFAULT_RTOL, _extended, _result
+from shaketable.solvers.reference import integrate_reference
+
+#: Solvers by name. ``fast`` is the default.
+METHODS = {
+    "fast": "compiled Runge-Kutta-Nystrom 6(4), adaptive, with event location (numba)",
+    "reference": "SciPy DOP853 with tight tolerances and Brent event location (slow)",
+    "predictor-corrector": "the report's BLOKROC scheme: Heun steps, `subdivisions` per sample",
+    "linear": "Housner's slender-block linearisation (Eq. 2-4), closed form between events",
+}
+
+
+def _check_method(method: str) -> str:
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; expected one of {sorted(METHODS)}")
+    return method
+
+
+def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: float = 0.0,
+             theta_dot0: float = 0.0, duration: float | None = None, method: str = "fast",
+             rtol: float | None = None, subdivisions: int = 4, output_dt: float = 0.005,
+             rest_tolerance: float | None = None, max_recorded_impacts: int = 100_000,
+             top_force: float = 0.0) -> RockingResult:
+    """Rocking response of a rigid block, Eqs. (2-13)/(2-14) with impacts.
+
+    Parameters
+    ----------
+    block : Block
+        The block (with optional prestress rods).
+    motion : Motion, optional
+        Ground accelerations [m/s^2]. ``None`` is free rocking on a table at
+        rest (Figs. 2.9, 2.10, 3.4): give ``duration``.
+    cor : float
+        Coefficient of restitution [-] in [0, 1] (Section 2.7 (5)).
+    theta0 : float
+        Initial rotation [rad], |theta0| < pi/2.
+    theta_dot0 : float
+        Initial angular velocity [rad/s].
+    duration : float, optional
+        Length of the run [s]; the run ends at exactly ``t[0] + duration``.
+        With a motion, the motion is cut there (the last sample interpolated
+        linearly when it falls between samples) or continued with the table
+        at rest.
+    method : str
+        One of :data:`METHODS`: ``"fast"`` (default), ``"reference"``,
+        ``"predictor-corrector"``, ``"linear"``.
+    rtol : float, optional
+        Relative tolerance of the adaptive methods [-] (fast 1e-11,
+        reference 1e-12 by default).
+    subdivisions : int
+        Equal parts each input interval is divided into by the
+        predictor-corrector (Section 2.8): an integer >= 1 (``2.7`` is
+        refused, not truncated).
+    output_dt : float
+        Output interval for free rocking [s]: output at 0, output_dt,
+        2 output_dt, ... and at ``duration`` (:meth:`Motion.at_rest`), never
+        beyond it.
+    rest_tolerance : float, optional
+        Remaining duration of an impact cascade [s] below which it is summed in
+        closed form (default 1e-6 / p).
+    max_recorded_impacts : int
+        Impacts kept in ``impact_times`` (all are counted), an integer >= 0.
+    top_force : float
+        Constant horizontal force at the middle of the top of the block per
+        unit mass [m/s^2], positive along +x: one potentiometer wire
+        (Section 3.3); two opposite wires cancel.
+
+    Returns
+    -------
+    RockingResult
+
+    Raises
+    ------
+    ValueError
+        For invalid parameters; the message names the parameter.
+    shaketable.solvers.reference.ReferenceSolverError
+        ``method="reference"`` only: SciPy's integrator gave up or made no
+        progress.
+    """
+    if not isinstance(block, Block):
+        raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
+    method = _check_method(method)
+    cor = in_range("cor", cor, 0.0, 1.0)
+    theta0 = in_range("theta0", theta0)
+    theta_dot0 = in_range("theta_dot0", theta_dot0)
+    if abs(theta0) >= math.pi / 2:
+        raise ValueError(f"theta0 must satisfy |theta0| < pi/2 rad, got {theta0!r}")
+    if duration is not None:
+        duration = in_range("duration", duration, 0.0, low_open=True)
+    if motion is None:
+        if duration is None:
+            raise ValueError("free rocking (motion=None) needs a duration [s]")
+        motion = Motion.at_rest(duration, in_range("output_dt", output_dt, 0.0,
+                                                        low_open=True))
+    elif not isinstance(motion, Motion):
+        raise ValueError(f"motion must be a shaketable.Motion or None, got {type(motion).__name__}")
+    else:
+        motion = _extended(motion, duration)
+    if rtol is None:
+        rtol = _DEFAULT_RTOL.get(method, 1e-10)
+    rtol = in_range("rtol", rtol, 0.0, 1.0, low_open=True)
+    subdivisions = whole_number("subdivisions", subdivisions)
+    rest = -1.0 if rest_tolerance is None else in_range("rest_tolerance", rest_tolerance,
+                                                             0.0)
+
+    parameters = block_parameters(block, in_range("top_force", top_force))
+    t_grid = np.ascontiguousarray(motion.t)
+    ug = np.ascontiguousarray(motion.horizontal)
+    vg = np.ascontiguousarray(motion.vertical_or_zero)
+    rg = np.ascontiguousarray(motion.rotation_or_zero)
+    n = t_grid.size
+    theta, omega, acceleration = np.zeros(n), np.zeros(n), np.zeros(n)
+    impact_times = np.zeros(max(1, whole_number("max_recorded_impacts", max_recorded_impacts,
+                                                minimum=0)))
+    impact_velocities = np.zeros_like(impact_times)
+    info = np.zeros(engine.N_INFO)
+    if method == "reference":
+        integrate_reference(t_grid, ug, vg, rg, parameters, block.alpha, block.p, cor, theta0,
+                            theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
+                            impact_velocities, info)
+    else:
+        engine.integrate(_COMPILED[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
+                         rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
+                         impact_velocities, info)
+    return _result(block, motion, cor, method, t_grid, theta, omega, acceleration,
+                   impact_times, impact_velocities, info)

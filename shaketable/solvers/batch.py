@@ -1,0 +1,414 @@
+"""Many runs at once: (block, motion, COR) combinations in one compiled loop.
+
+:func:`simulate_many` runs the Cartesian product of blocks, motions and
+coefficients of restitution; :func:`simulate_cases` runs an explicit list of
+:class:`Case`. Both hand every run to the compiled engine
+(:func:`shaketable.solvers.engine.integrate`) from one numba ``prange`` loop
+(``parallel=True``), with length-0 output arrays so that no time history is
+stored: there is no Python work per run, only per batch. Each run gives
+exactly the scalar results of :func:`shaketable.solvers.api` with the same
+arguments (the same compiled code on the same numbers; ``tests/test_batch.py``
+checks this bit for bit).
+
+The result is a :class:`pandas.DataFrame`, one row per run, with the inputs
+and every scalar output. Its column names are those of
+:meth:`shaketable.core.results.RockingResult.summary` (units in square brackets),
+plus the inputs a batch adds (labels, indices, scale factor). A run whose
+vertical table acceleration reaches -g stops there (the block would leave the
+ground, outside the model): its ``status`` is ``"airborne"``, ``airborne`` is
+True and ``t_airborne [s]`` says when; its other results are those up to that
+time, never a silent NaN.
+
+NaN in a result column means "never happened" (no uplift, never unstable,
+did not overturn, never came to rest), as in :class:`RockingResult`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from itertools import product
+
+import numba
+import numpy as np
+from numba import njit, prange
+
+from shaketable.core.dynamics import N_PARAMETERS, block_parameters
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion, whole_number
+from shaketable.core.results import STATUSES
+from shaketable.core.validation import in_range
+from shaketable.solvers import engine
+from shaketable.solvers.common import _COMPILED, _DEFAULT_RTOL, _extended
+
+__all__ = ["Case", "METHODS", "simulate_cases", "simulate_many"]
+
+#: Methods the batch runs (the compiled ones; ``reference`` is SciPy, one run at a time).
+METHODS = tuple(_COMPILED)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One run of a batch.
+
+    Parameters
+    ----------
+    block : Block
+        The block.
+    motion : Motion
+        Ground accelerations [m/s^2] (vertical positive up).
+    cor : float
+        Coefficient of restitution [-] in [0, 1].
+    scale : float
+        Factor [-] applied to every component of the motion (as
+        :meth:`Motion.scaled`), positive; 1 leaves it unchanged.
+    block_label, motion_label : str
+        Labels written in the result table (default: ``Block.describe()``
+        and ``Motion.name``).
+    """
+
+    block: Block
+    motion: Motion
+    cor: float
+    scale: float = 1.0
+    block_label: str = ""
+    motion_label: str = ""
+
+    def __post_init__(self):
+        if not isinstance(self.block, Block):
+            raise ValueError(f"Case.block must be a shaketable.Block, got "
+                             f"{type(self.block).__name__}")
+        if not isinstance(self.motion, Motion):
+            raise ValueError(f"Case.motion must be a shaketable.Motion, got "
+                             f"{type(self.motion).__name__}")
+        object.__setattr__(self, "cor", in_range("Case.cor", self.cor, 0.0, 1.0))
+        object.__setattr__(self, "scale", in_range("Case.scale", self.scale, 0.0,
+                                                        low_open=True))
+
+
+@njit(parallel=True, cache=True)
+def _run_batch(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
+               case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
+               rest_tolerance, info):
+    """Integrate every case; ``info[i]`` receives case i's scalar results.
+
+    The motions are stored end to end in ``t_all`` ... ``rg_all``; motion m
+    occupies ``offsets[m]:offsets[m + 1]``. ``parameters[j]`` is block j's
+    :func:`~shaketable.core.dynamics.block_parameters`.
+    """
+    n_cases = case_block.shape[0]
+    for i in prange(n_cases):
+        m = case_motion[i]
+        first = offsets[m]
+        last = offsets[m + 1]
+        scale = case_scale[i]
+        t_grid = t_all[first:last]
+        ug = ug_all[first:last] * scale
+        vg = vg_all[first:last] * scale
+        rg = rg_all[first:last] * scale
+        none = np.empty(0)
+        engine.integrate(method, t_grid, ug, vg, rg, parameters[case_block[i]], case_cor[i],
+                         theta0, omega0, rtol, subdivisions, rest_tolerance, none, none, none,
+                         none, none, info[i])
+
+
+@njit(cache=True)
+def _run_batch_serial(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
+                      case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
+                      rest_tolerance, info):
+    """:func:`_run_batch` on the calling thread only (``threads=1``).
+
+    Safe to call from several Python threads at once (Dask workers), which a
+    ``parallel=True`` function is not under numba's ``workqueue`` threading layer.
+    """
+    for i in range(case_block.shape[0]):
+        m = case_motion[i]
+        first = offsets[m]
+        last = offsets[m + 1]
+        scale = case_scale[i]
+        none = np.empty(0)
+        engine.integrate(method, t_all[first:last], ug_all[first:last] * scale,
+                         vg_all[first:last] * scale, rg_all[first:last] * scale,
+                         parameters[case_block[i]], case_cor[i], theta0, omega0, rtol,
+                         subdivisions, rest_tolerance, none, none, none, none, none, info[i])
+
+
+# --------------------------------------------------------------------------- public API
+def simulate_many(blocks, motions, cors, *, scales=(1.0,), threads: int | None = None,
+                  method: str = "fast", rtol: float | None = None,
+                  duration: float | None = None, **options):
+    """Every combination of blocks, motions, COR (and scale factors), in parallel.
+
+    Parameters
+    ----------
+    blocks : Block, sequence of Block or dict
+        The blocks; a dict maps a label to each block (default label:
+        ``Block.describe()``).
+    motions : Motion, sequence of Motion or dict
+        The ground motions [m/s^2]; a dict maps a label to each (default
+        label: ``Motion.name``).
+    cors : float or sequence of float
+        Coefficients of restitution [-] in [0, 1].
+    scales : sequence of float
+        Factors [-] multiplying every component of each motion (default 1).
+    threads : int, optional
+        Number of threads (``numba.set_num_threads``; default all numba
+        may use, :data:`numba.config.NUMBA_NUM_THREADS`).
+    method : str
+        ``"fast"`` (default), ``"predictor-corrector"`` or ``"linear"``
+        (:data:`METHODS`).
+    rtol : float, optional
+        Relative tolerance [-] (default as :func:`shaketable.solvers.api`).
+    duration : float, optional
+        Length of every run [s]: motions are cut to it or continued with the
+        table at rest, as in :func:`shaketable.solvers.api`.
+    **options
+        ``theta0`` [rad], ``theta_dot0`` [rad/s], ``subdivisions``,
+        ``rest_tolerance`` [s], ``top_force`` [m/s^2], as in
+        :func:`shaketable.solvers.api`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per run, in the order ``product(blocks, motions, scales,
+        cors)`` (the last varies fastest); the columns are listed in the
+        module docstring.
+
+    Raises
+    ------
+    ValueError
+        An invalid argument; the message names it.
+    """
+    block_labels, block_list = _labelled("blocks", blocks, Block, Block.describe)
+    motion_labels, motion_list = _labelled("motions", motions, Motion, lambda m: m.name)
+    cor_list = [in_range(f"cors[{k}]", c, 0.0, 1.0) for k, c in
+                enumerate(_as_list(cors))]
+    scale_list = [in_range(f"scales[{k}]", s, 0.0, low_open=True) for k, s in
+                  enumerate(_as_list(scales))]
+    if not cor_list or not scale_list:
+        raise ValueError("cors and scales must not be empty")
+    index = np.array(list(product(range(len(block_list)), range(len(motion_list)),
+                                  range(len(scale_list)), range(len(cor_list)))),
+                     dtype=np.int64).reshape(-1, 4)
+    return _batch(block_list, block_labels, motion_list, motion_labels, index[:, 0],
+                  index[:, 1], np.array(cor_list)[index[:, 3]],
+                  np.array(scale_list)[index[:, 2]], threads=threads, method=method,
+                  rtol=rtol, duration=duration, **options)
+
+
+def simulate_cases(cases, *, threads: int | None = None, method: str = "fast",
+                   rtol: float | None = None, duration: float | None = None, **options):
+    """An explicit list of runs, in parallel; one row per :class:`Case`, in order.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+        The runs. Blocks and motions shared between cases (the same object)
+        are packed once.
+    threads, method, rtol, duration, **options
+        As in :func:`simulate_many`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        As :func:`simulate_many`, row i for ``cases[i]``.
+    """
+    cases = list(cases)
+    if not cases:
+        raise ValueError("cases must not be empty")
+    blocks, block_labels, block_of = [], [], {}
+    motions, motion_labels, motion_of = [], [], {}
+    block_index = np.empty(len(cases), dtype=np.int64)
+    motion_index = np.empty(len(cases), dtype=np.int64)
+    for k, case in enumerate(cases):
+        if not isinstance(case, Case):
+            raise ValueError(f"cases[{k}] must be a shaketable.solvers.batch.Case, got "
+                             f"{type(case).__name__}")
+        key = (id(case.block), case.block_label)
+        if key not in block_of:
+            block_of[key] = len(blocks)
+            blocks.append(case.block)
+            block_labels.append(case.block_label or case.block.describe())
+        key = (id(case.motion), case.motion_label)
+        if key not in motion_of:
+            motion_of[key] = len(motions)
+            motions.append(case.motion)
+            motion_labels.append(case.motion_label or case.motion.name)
+        block_index[k] = block_of[(id(case.block), case.block_label)]
+        motion_index[k] = motion_of[(id(case.motion), case.motion_label)]
+    return _batch(blocks, block_labels, motions, motion_labels, block_index, motion_index,
+                  np.array([case.cor for case in cases]),
+                  np.array([case.scale for case in cases]), threads=threads, method=method,
+                  rtol=rtol, duration=duration, **options)
+
+
+# --------------------------------------------------------------------------- internals
+_OPTIONS = {"theta0", "theta_dot0", "subdivisions", "rest_tolerance", "top_force"}
+
+
+def _as_list(values):
+    if isinstance(values, (int, float, np.integer, np.floating)):
+        return [values]
+    return list(values)
+
+
+def _labelled(name, values, kind, default_label):
+    """(labels, objects) from one object, a sequence or a label -> object dict."""
+    if isinstance(values, kind):
+        values = [values]
+    if isinstance(values, dict):
+        labels, objects = [str(key) for key in values], list(values.values())
+    else:
+        objects = list(values)
+        labels = None
+    if not objects:
+        raise ValueError(f"{name} must not be empty")
+    for k, item in enumerate(objects):
+        if not isinstance(item, kind):
+            raise ValueError(f"{name}[{k}] must be a shaketable.{kind.__name__}, got "
+                             f"{type(item).__name__}")
+    if labels is None:
+        labels = [default_label(item) for item in objects]
+    return labels, objects
+
+
+def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_index, cors,
+           scales, *, threads, method, rtol, duration, **options):
+    """Pack, run the compiled loop, and build the table."""
+
+    unknown = sorted(set(options) - _OPTIONS)
+    if unknown:
+        raise ValueError(f"unknown option {unknown[0]!r}; expected one of "
+                         f"{', '.join(sorted(_OPTIONS))}")
+    if method not in _COMPILED:
+        raise ValueError(f"method must be one of {list(METHODS)} for a batch, got {method!r}"
+                         + (" (the reference solver runs one at a time: use "
+                            "shaketable.solvers.api)" if method == "reference" else ""))
+    theta0 = in_range("theta0", options.get("theta0", 0.0))
+    theta_dot0 = in_range("theta_dot0", options.get("theta_dot0", 0.0))
+    if abs(theta0) >= math.pi / 2:
+        raise ValueError(f"theta0 must satisfy |theta0| < pi/2 rad, got {theta0!r}")
+    if duration is not None:
+        duration = in_range("duration", duration, 0.0, low_open=True)
+    rtol = _DEFAULT_RTOL.get(method, 1e-10) if rtol is None else rtol
+    rtol = in_range("rtol", rtol, 0.0, 1.0, low_open=True)
+    subdivisions = whole_number("subdivisions", options.get("subdivisions", 4))
+    rest_tolerance = options.get("rest_tolerance")
+    rest = -1.0 if rest_tolerance is None else in_range("rest_tolerance",
+                                                             rest_tolerance, 0.0)
+    top_force = in_range("top_force", options.get("top_force", 0.0))
+    if threads is not None:
+        threads = int(in_range("threads", threads, 1, numba.config.NUMBA_NUM_THREADS))
+
+    # motions end to end (each cut or padded to `duration` exactly as simulate does)
+    runs = [_extended(motion, duration) for motion in motions]
+    offsets = np.zeros(len(runs) + 1, dtype=np.int64)
+    offsets[1:] = np.cumsum([motion.t.size for motion in runs])
+    t_all = np.concatenate([motion.t for motion in runs])
+    ug_all = np.concatenate([motion.horizontal for motion in runs])
+    vg_all = np.concatenate([motion.vertical_or_zero for motion in runs])
+    rg_all = np.concatenate([motion.rotation_or_zero for motion in runs])
+    parameters = np.empty((len(blocks), N_PARAMETERS))
+    for j, block in enumerate(blocks):
+        parameters[j] = block_parameters(block, top_force)
+    n = len(block_index)
+    info = np.full((n, engine.N_INFO), np.nan)
+
+    block_index = np.ascontiguousarray(block_index, dtype=np.int64)
+    motion_index = np.ascontiguousarray(motion_index, dtype=np.int64)
+    cors = np.ascontiguousarray(cors, dtype=float)
+    scales = np.ascontiguousarray(scales, dtype=float)
+    pitched = np.array([motion.pitched for motion in runs])
+    scaled_pitch = pitched[motion_index] & (scales != 1.0)
+    if scaled_pitch.any():
+        first = int(np.flatnonzero(scaled_pitch)[0])
+        raise ValueError(
+            f"case {first}: scale {scales[first]:g} of a motion that carries the table's pitch "
+            f"({runs[motion_index[first]].name!r}): the pitch is a disturbance of the table, not "
+            "part of the record; scale the record first, then add the pitch "
+            "(shaketable.lab.pitch.motion_at_block), as Motion.scaled does")
+    arguments = (_COMPILED[method], t_all, ug_all, vg_all, rg_all, offsets, parameters,
+                 block_index, motion_index, cors, scales, theta0, theta_dot0, rtol,
+                 subdivisions, rest, info)
+    if threads == 1:
+        _run_batch_serial(*arguments)
+    else:
+        previous = numba.get_num_threads()
+        try:
+            if threads is not None:
+                numba.set_num_threads(threads)
+            # dynamic scheduling, one run at a time: run costs differ a lot
+            with numba.parallel_chunksize(1):
+                _run_batch(*arguments)
+        finally:
+            numba.set_num_threads(previous)
+
+    return _frame(blocks, block_labels, runs, motion_labels, block_index, motion_index, cors,
+                  scales, info, method, rtol, duration)
+
+
+def _frame(blocks, block_labels, motions, motion_labels, block_index, motion_index, cors,
+           scales, info, method, rtol, duration):
+    import pandas as pd
+
+    heights = np.array([block.height for block in blocks])
+    widths = np.array([block.width for block in blocks])
+    alphas = np.array([block.alpha for block in blocks])
+    ps = np.array([block.p for block in blocks])
+    rods = np.array([block.rods is not None for block in blocks])
+    pgas = np.array([motion.pga for motion in motions])
+    durations = np.array([motion.duration for motion in motions])
+    has_vertical = np.array([motion.vertical is not None for motion in motions])
+    status_code = info[:, engine.INFO_STATUS].astype(np.int64)
+    status = np.array(STATUSES, dtype=object)[status_code]
+    max_abs = info[:, engine.INFO_MAX_ABS_THETA]
+    alpha = alphas[block_index]
+
+    def direction(column):
+        values = info[:, column]
+        return np.where(np.isfinite(values), values, 0.0).astype(np.int64)
+
+    frame = pd.DataFrame({
+        "block": np.array(block_labels, dtype=object)[block_index],
+        "block_height [m]": heights[block_index],
+        "block_width [m]": widths[block_index],
+        "aspect_ratio [-]": heights[block_index] / widths[block_index],
+        "alpha [rad]": alpha,
+        "p [rad/s]": ps[block_index],
+        "rods": rods[block_index],
+        "motion": np.array(motion_labels, dtype=object)[motion_index],
+        "scale [-]": np.asarray(scales, dtype=float),
+        "pga [m/s^2]": pgas[motion_index] * np.asarray(scales, dtype=float),
+        "motion_vertical": has_vertical[motion_index],
+        "duration [s]": durations[motion_index],
+        "cor [-]": np.asarray(cors, dtype=float),
+        "method": method,
+        "rtol [-]": rtol,
+        "status": status,
+        "overturned": status_code == engine.STATUS_OVERTURNED,
+        "airborne": status_code == engine.STATUS_AIRBORNE,
+        "unstable": np.isfinite(info[:, engine.INFO_T_UNSTABLE]),
+        "max_theta_ratio [-]": max_abs / alpha,
+        "max_abs_theta [rad]": max_abs,
+        "t_max [s]": info[:, engine.INFO_T_MAX],
+        "t_start [s]": info[:, engine.INFO_T_START],
+        "t_unstable [s]": info[:, engine.INFO_T_UNSTABLE],
+        "unstable_direction": direction(engine.INFO_UNSTABLE_DIRECTION),
+        "t_overturn [s]": info[:, engine.INFO_T_OVERTURN],
+        "overturn_direction": direction(engine.INFO_OVERTURN_DIRECTION),
+        "t_airborne [s]": info[:, engine.INFO_T_AIRBORNE],
+        "t_rest [s]": info[:, engine.INFO_T_REST],
+        "t_end [s]": info[:, engine.INFO_T_END],
+        "n_impacts": info[:, engine.INFO_N_IMPACTS].astype(np.int64),
+        "cascades": info[:, engine.INFO_CASCADES].astype(np.int64),
+        "solver steps": info[:, engine.INFO_STEPS].astype(np.int64),
+        "solver rejected": info[:, engine.INFO_REJECTED].astype(np.int64),
+        "solver evaluations": info[:, engine.INFO_EVALUATIONS].astype(np.int64),
+        "block_index": np.asarray(block_index, dtype=np.int64),
+        "motion_index": np.asarray(motion_index, dtype=np.int64),
+    })
+    bad = ~np.isfinite(frame["max_abs_theta [rad]"].to_numpy())
+    if bad.any():  # the engine always sets it; say so loudly if it ever does not
+        raise RuntimeError(f"{int(bad.sum())} run(s) returned no max |theta|, first row "
+                           f"{int(np.flatnonzero(bad)[0])}")
+    return frame

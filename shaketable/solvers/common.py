@@ -1,0 +1,114 @@
+"""TODO docstring (from simulate)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from shaketable.core.dynamics import airborne_acceleration
+from shaketable.core.geometry import Block
+from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion
+from shaketable.core.results import STATUSES, RockingResult
+from shaketable.solvers import engine
+
+_DEFAULT_RTOL = {"fast": 1e-11, "reference": 1e-12}
+
+_COMPILED = {"fast": engine.METHOD_FAST,
+             "predictor-corrector": engine.METHOD_PREDICTOR_CORRECTOR,
+             "linear": engine.METHOD_LINEAR}
+
+
+def _extended(motion: Motion, duration: float | None) -> Motion:
+    """The motion cut or padded with zeros (table at rest) to end at exactly ``duration``.
+
+    Cut: the samples before ``t[0] + duration`` and one at that time,
+    interpolated linearly (exact: a motion is linear between samples); a
+    sample already within rounding of it is kept as it is. Padded: zeros
+    every ``motion.dt`` after the last sample, the last interval shortened
+    to end at ``t[0] + duration``.
+    """
+    if duration is None:
+        return motion
+    t = motion.t
+    end = t[0] + duration
+    tolerance = max(1e-9 * motion.dt, MIN_SAMPLE_INTERVAL)
+    if end <= t[-1] + tolerance:
+        k = int(np.searchsorted(t, end - tolerance, side="left"))
+        if t[k] <= end + tolerance:       # a sample at the end already
+            times, index = t[:k + 1], slice(0, k + 1)
+            interpolate = False
+        else:
+            times, index = np.append(t[:k], end), slice(0, k)
+            interpolate = True
+        if times.size < 2:
+            raise ValueError(f"duration {duration!r} s is shorter than the shortest accepted "
+                             f"sample interval {MIN_SAMPLE_INTERVAL:g} s")
+
+        def cut(values):
+            if values is None:
+                return None
+            if not interpolate:
+                return values[index]
+            return np.append(values[index], np.interp(end, t, values))
+
+        return Motion(times, cut(motion.horizontal), cut(motion.vertical), name=motion.name,
+                      rotation=cut(motion.rotation))
+    dt = motion.dt
+    extra = int(math.ceil((end - t[-1]) / dt - 1e-9))
+    added = t[-1] + dt * np.arange(1, extra + 1)
+    added[-1] = end
+    if added.size > 1 and end - added[-2] < tolerance:
+        added = np.delete(added, -2)
+    times = np.concatenate([t, added])
+
+    def padded(values):
+        return None if values is None else np.concatenate([values, np.zeros(added.size)])
+
+    return Motion(times, padded(motion.horizontal), padded(motion.vertical), name=motion.name,
+                  rotation=padded(motion.rotation))
+
+
+def _result(block, motion, cor, method, t_grid, theta, omega, acceleration, impact_times,
+            impact_velocities, info) -> RockingResult:
+    filled = int(info[engine.INFO_N_OUTPUT])
+    status = STATUSES[int(info[engine.INFO_STATUS])]
+    t = t_grid[:filled]
+    theta, omega, acceleration = theta[:filled], omega[:filled], acceleration[:filled]
+    t_end = info[engine.INFO_T_END]
+    if status != "completed" and t_end > t[-1]:
+        t = np.append(t, t_end)
+        theta = np.append(theta, info[engine.INFO_THETA_END])
+        omega = np.append(omega, info[engine.INFO_THETA_DOT_END])
+        acceleration = np.append(acceleration, np.nan if status == "airborne" else 0.0)
+        if status == "overturned":
+            acceleration[-1] = acceleration[-2]
+    if status == "airborne":
+        acceleration[-1] = acceleration[-2] if acceleration.size > 1 else 0.0
+    n_impacts = int(info[engine.INFO_N_IMPACTS])
+    kept = min(n_impacts, impact_times.size)
+
+    def direction(index):
+        value = info[index]
+        return 0 if not np.isfinite(value) else int(value)
+
+    return RockingResult(
+        block=block, motion=motion, cor=cor, method=method, t=t, theta=theta, theta_dot=omega,
+        theta_ddot=acceleration, impact_times=impact_times[:kept].copy(),
+        impact_velocities=impact_velocities[:kept].copy(),
+        t_start=info[engine.INFO_T_START], t_unstable=info[engine.INFO_T_UNSTABLE],
+        unstable_direction=direction(engine.INFO_UNSTABLE_DIRECTION),
+        t_overturn=info[engine.INFO_T_OVERTURN],
+        overturn_direction=direction(engine.INFO_OVERTURN_DIRECTION),
+        t_airborne=info[engine.INFO_T_AIRBORNE], t_rest=info[engine.INFO_T_REST],
+        max_abs_theta=info[engine.INFO_MAX_ABS_THETA], t_max=info[engine.INFO_T_MAX],
+        n_impacts=n_impacts, cascades=int(info[engine.INFO_CASCADES]), status=status,
+        statistics={"steps": int(info[engine.INFO_STEPS]),
+                    "rejected": int(info[engine.INFO_REJECTED]),
+                    "evaluations": int(info[engine.INFO_EVALUATIONS])},
+    )
+
+
+def airborne_limit(block: Block) -> float:
+    """Vertical acceleration at which the block leaves the ground [m/s^2] (re-export)."""
+    return airborne_acceleration(block)

@@ -1,0 +1,511 @@
+"""TODO docstring (from bench)."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+from shaketable.core.geometry import Block
+from shaketable.solvers.api import simulate
+from shaketable.solvers.common import _DEFAULT_RTOL
+from shaketable.solvers.reference import ReferenceSolverError
+from shaketable.studies.benchmark_cases import (
+    ACCEPT_ABSOLUTE_THETA,
+    ACCEPT_RELATIVE,
+    FAST_RTOLS,
+    ORDER_ERROR_FLOOR,
+    PC_SUBDIVISIONS,
+    QUICK_FAST_RTOLS,
+    QUICK_PC_SUBDIVISIONS,
+    QUICK_REFERENCE_RTOLS,
+    REFERENCE_DEFAULT_RTOL,
+    REFERENCE_RTOLS,
+    TARGET_FAST_MS,
+    TARGET_SPEED_UP,
+    TRUTH_RTOL,
+    benchmark_cases,
+    compare,
+)
+
+
+def _timed(case, method, repeats, **options):
+    """Run ``case`` ``repeats`` times; the result and the median wall time [s].
+
+    The compiled methods get one untimed call first (numba compilation or cache
+    load); ``reference`` has nothing to warm up and is too slow to run twice.
+    """
+    if method != "reference":
+        case.run(method, **options)
+    times = []
+    result = None
+    for _ in range(max(1, repeats)):
+        start = time.perf_counter()
+        result = case.run(method, **options)
+        times.append(time.perf_counter() - start)
+    return result, float(np.median(times))
+
+
+def method_settings(fast_rtols=FAST_RTOLS, subdivisions=PC_SUBDIVISIONS,
+                    reference_rtols=REFERENCE_RTOLS, quick: bool = False
+                    ) -> list[tuple[str, str, dict]]:
+    """(method, label, options) of the work-precision study.
+
+    ``quick=True`` takes :data:`QUICK_FAST_RTOLS`, :data:`QUICK_PC_SUBDIVISIONS`
+    and :data:`QUICK_REFERENCE_RTOLS` instead of the defaults.
+    """
+    if quick:
+        fast_rtols, subdivisions, reference_rtols = (QUICK_FAST_RTOLS, QUICK_PC_SUBDIVISIONS,
+                                                     QUICK_REFERENCE_RTOLS)
+    settings = [("fast", f"rtol={r:g}", {"rtol": r}) for r in fast_rtols]
+    settings += [("predictor-corrector", f"subdivisions={s}", {"subdivisions": s})
+                 for s in subdivisions]
+    settings += [("linear", "closed form", {})]
+    settings += [("reference", f"rtol={r:g}", {"rtol": r}) for r in reference_rtols]
+    return settings
+
+
+#: Truth tolerances tried in turn when SciPy fails at the tighter one.
+TRUTH_FALLBACK_RTOLS = (TRUTH_RTOL, 1e-13, REFERENCE_DEFAULT_RTOL)
+
+#: SciPy's DOP853 gave up inside an interval (``solve_ivp`` status -1), seen at rtol
+#: 2.5e-14 on a flight that starts at theta ~ 1e-16 beside the switch of corner:
+#: :func:`truth_run` then falls back to a looser truth.
+ReferenceStepFailure = ReferenceSolverError
+
+
+def truth_run(case, cache: dict | None = None):
+    """The truth for ``case``: ``reference`` at :data:`TRUTH_RTOL` (memoised in ``cache``).
+
+    If SciPy fails at that tolerance (:class:`ReferenceStepFailure`), the next
+    of :data:`TRUTH_FALLBACK_RTOLS` is used; the tolerance used is stored in
+    the result's ``statistics["truth rtol"]``.
+    """
+    if cache is not None and (case.name, "truth") in cache:
+        return cache[(case.name, "truth")]
+    failure = None
+    for rtol in TRUTH_FALLBACK_RTOLS:
+        try:
+            result = reference_run(case, rtol, cache)
+        except ReferenceStepFailure as error:
+            failure = error
+            continue
+        result.statistics["truth rtol"] = rtol
+        if cache is not None:
+            cache[(case.name, "truth")] = result
+        return result
+    raise failure
+
+
+def reference_run(case, rtol: float, cache: dict | None = None):
+    """``reference`` at ``rtol`` for ``case``, memoised in ``cache`` by (case name, rtol).
+
+    Raises :class:`ReferenceStepFailure` where SciPy gives up.
+    """
+    key = (case.name, float(rtol))
+    if cache is not None and key in cache:
+        return cache[key]
+    result = case.run("reference", rtol=rtol)
+    if cache is not None:
+        cache[key] = result
+    return result
+
+
+def work_precision(cases=None, settings=None, repeats: int = 5, reference_repeats: int = 1,
+                   progress=None, cache: dict | None = None):
+    """Error against run time, one row per (case, method, setting).
+
+    Parameters
+    ----------
+    cases : list of Case, optional
+        Default :func:`benchmark_cases`.
+    settings : list, optional
+        Default :func:`method_settings`.
+    repeats : int
+        Timed repetitions of the compiled methods (median reported) [-].
+    reference_repeats : int
+        Timed repetitions of the slow ``reference`` method [-].
+    progress : callable, optional
+        Called with a message before each case.
+    cache : dict, optional
+        Memo of ``reference`` runs by (case name, rtol), filled here and reused
+        by :func:`accuracy_table` (each SciPy run of a long record is slow).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns: case, method, setting, rtol, subdivisions, time [s], the
+        errors of :func:`compare`, steps, rejected, evaluations, mean step [s]
+        (flight time over accepted steps), status, status truth.
+    """
+    import pandas as pd
+
+    cases = benchmark_cases() if cases is None else cases
+    settings = method_settings() if settings is None else settings
+    rows = []
+    for case in cases:
+        if progress:
+            progress(case.name)
+        truth = truth_run(case, cache)
+        for method, label, options in settings:
+            if (method == "reference" and case.reference_rtols is not None
+                    and options.get("rtol") not in case.reference_rtols):
+                continue
+            if method == "reference" and reference_repeats <= 1:
+                start = time.perf_counter()
+                try:
+                    result = reference_run(case, options["rtol"], None)
+                except ReferenceStepFailure:
+                    continue  # SciPy gave up at this tolerance: no point on the figure
+                seconds = time.perf_counter() - start
+                if cache is not None:
+                    cache.setdefault((case.name, float(options["rtol"])), result)
+            else:
+                count = reference_repeats if method == "reference" else repeats
+                result, seconds = _timed(case, method, count, **options)
+            row = {"case": case.name, "method": method, "setting": label,
+                   "rtol": options.get("rtol", math.nan),
+                   "subdivisions": options.get("subdivisions", math.nan),
+                   "time [s]": seconds, **compare(result, truth),
+                   "steps": result.statistics.get("steps", 0),
+                   "rejected": result.statistics.get("rejected", 0),
+                   "evaluations": result.statistics.get("evaluations", 0),
+                   "status": result.status, "status truth": truth.status,
+                   "truth rtol": truth.statistics["truth rtol"]}
+            row["mean step [s]"] = _mean_step(case, result, method, options)
+            rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _mean_step(case, result, method, options) -> float:
+    """Mean step of a run [s]: the fixed substep, or time in flight over accepted steps."""
+    dt = 0.005 if case.motion is None else case.motion.dt
+    if method == "predictor-corrector":
+        return dt / options.get("subdivisions", 4)
+    if method == "linear":
+        return dt
+    steps = result.statistics.get("steps", 0)
+    if not steps:
+        return math.nan
+    flying = _time_in_flight(result)
+    return flying / steps if flying > 0 else math.nan
+
+
+def _time_in_flight(result) -> float:
+    """Time the block was not at rest [s] (from the sampled history; rest is theta = omega = 0)."""
+    t = result.t
+    moving = (result.theta != 0.0) | (result.theta_dot != 0.0)
+    inside = moving[:-1] | moving[1:]
+    return float(np.sum(np.diff(t)[inside]))
+
+
+def convergence_orders(frame):
+    """Measured order of convergence per (case, method): slope of log error vs log step.
+
+    Least-squares slope of log10(error) against log10(mean step) over the
+    settings whose errors lie in [1e-10, 1e-2] (below, the truth's own error,
+    up to 5e-11 on these cases, dominates; above, a changed sequence of
+    events) and whose impact count and
+    verdict agree with the truth. Separate columns for max |theta| and for the
+    event times.
+    """
+    import pandas as pd
+
+    rows = []
+    for (case, method), group in frame.groupby(["case", "method"], sort=False):
+        if method == "linear":
+            continue
+        row = {"case": case, "method": method}
+        for column, key in (("error max_theta [-]", "order max_theta"),
+                            ("error events [-]", "order events")):
+            ok = group[group["same impacts"] & group["same verdict"]]
+            x = np.log10(ok["mean step [s]"].to_numpy(dtype=float))
+            y = ok[column].to_numpy(dtype=float)
+            keep = np.isfinite(x) & (y >= ORDER_ERROR_FLOOR) & (y <= 1e-2)
+            # a slope needs 3 distinct steps spanning 0.3 decades at least: fast's steps
+            # end on every input sample, so at loose tolerances the sample interval, not
+            # rtol, sets them and the points pile up at one step size
+            spread = np.ptp(x[keep]) if keep.any() else 0.0
+            row[key] = (float(np.polyfit(x[keep], np.log10(y[keep]), 1)[0])
+                        if np.unique(x[keep]).size >= 3 and spread >= 0.3 else math.nan)
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def accuracy_table(cases=None, progress=None, cache: dict | None = None):
+    """``fast`` at its default against ``reference`` at its default, per case.
+
+    Parameters
+    ----------
+    cases : list of Case, optional
+        Default :func:`benchmark_cases`.
+    progress : callable, optional
+        Called with each case's name.
+    cache : dict, optional
+        ``reference`` runs by (case name, rtol), as filled by
+        :func:`work_precision`; the truth (:data:`TRUTH_RTOL`) is taken from it
+        when present, otherwise not computed.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The errors of :func:`compare` (fast against reference), whether they
+        meet 1e-8 relative (1e-10 rad for max |theta| of tiny responses) with
+        the same verdict and impact count, max theta/alpha, the statuses and,
+        when the truth is known, the reference's own errors against it
+        ("reference error ... vs truth"): where those are as large as fast's,
+        the case itself is ill-conditioned (chaotic rocking), not the engine.
+    """
+    import pandas as pd
+
+    cases = benchmark_cases() if cases is None else cases
+    rows = []
+    for case in cases:
+        if progress:
+            progress(case.name)
+        fast = case.run("fast")
+        try:
+            reference = reference_run(case, REFERENCE_DEFAULT_RTOL, cache)
+        except ReferenceStepFailure as error:
+            rows.append({"case": case.name, "status": fast.status, "meets 1e-8": False,
+                         "status reference": f"failed: {error}"})
+            continue
+        row = {"case": case.name, "max theta/alpha": fast.max_theta_ratio,
+               "status": fast.status, "status reference": reference.status,
+               **compare(fast, reference)}
+        row["meets 1e-8"] = bool(
+            (row["error max_theta [-]"] <= ACCEPT_RELATIVE
+             or row["error max_theta [rad]"] <= ACCEPT_ABSOLUTE_THETA)
+            and row["error events [-]"] <= ACCEPT_RELATIVE
+            and row["same verdict"] and row["same impacts"])
+        truth = None if cache is None else cache.get((case.name, "truth"))
+        if truth is not None:
+            own = compare(reference, truth)
+            row["reference error max_theta vs truth [-]"] = own["error max_theta [-]"]
+            row["reference error events vs truth [-]"] = own["error events [-]"]
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+# --------------------------------------------------------------------------- speed
+def pacoima_timing(repeats: int = 200, reference_repeats: int = 3, cor: float = 0.95) -> dict:
+    """Pacoima Dam S16E with its vertical, 16 x 4 ft block: fast (warm) and reference times.
+
+    Returns the median and best fast time per run [ms], the median reference
+    time [s] measured in the same process, the speed-up and the run's status.
+    """
+    from shaketable.ground import records
+
+    block = Block.parse("16x4ft")
+    motion = records.load("pacoima-dam-s16e")
+    fast = simulate(block, motion, cor=cor)  # warm
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fast = simulate(block, motion, cor=cor)
+        times.append(time.perf_counter() - start)
+    reference_times = []
+    for _ in range(max(1, reference_repeats)):
+        start = time.perf_counter()
+        reference = simulate(block, motion, cor=cor, method="reference")
+        reference_times.append(time.perf_counter() - start)
+    median = float(np.median(times))
+    reference_median = float(np.median(reference_times))
+    return {"fast median [ms]": 1e3 * median, "fast best [ms]": 1e3 * float(np.min(times)),
+            "reference median [s]": reference_median, "speed-up [-]": reference_median / median,
+            "status": fast.status, "t_end [s]": float(fast.t[-1]),
+            "steps": fast.statistics["steps"], "rejected": fast.statistics["rejected"],
+            "evaluations": fast.statistics["evaluations"],
+            "same as reference": compare(fast, reference)}
+
+
+_FIRST_CALL = """
+import time
+start = time.perf_counter()
+import shaketable as st
+from shaketable.ground import records
+imported = time.perf_counter()
+block = st.Block.parse("16x4ft")
+motion = records.load("pacoima-dam-s16e")
+loaded = time.perf_counter()
+st.simulate(block, motion, cor=0.95)
+first = time.perf_counter()
+st.simulate(block, motion, cor=0.95)
+second = time.perf_counter()
+print(imported - start, first - loaded, second - first)
+"""
+
+
+def first_call_seconds(cold: bool = False) -> dict:
+    """A fresh Python process: import time and first ``simulate`` call [s].
+
+    ``cold=False`` uses numba's on-disk cache (the usual case after the first
+    run on a machine); ``cold=True`` points ``NUMBA_CACHE_DIR`` at an empty
+    folder, so the engine is compiled from scratch.
+    """
+    env = dict(os.environ)
+    with tempfile.TemporaryDirectory() as folder:
+        if cold:
+            env["NUMBA_CACHE_DIR"] = folder
+        output = subprocess.run([sys.executable, "-c", _FIRST_CALL], capture_output=True,
+                                text=True, env=env, check=True).stdout.split()
+    imported, first, second = (float(x) for x in output[-3:])
+    return {"import [s]": imported, "first call [s]": first, "second call [s]": second}
+
+
+def batch_throughput(threads: int = 2, n_cors: int = 8, repeats: int = 3) -> dict:
+    """Runs per second of :func:`shaketable.solvers.batch.simulate_many` on ``threads`` threads.
+
+    The sweep: Table 4.2's nine block sizes x the two Pacoima Dam records x
+    ``n_cors`` values of COR in [0.7, 1.0], fast method.
+
+    Returns
+    -------
+    dict
+        runs, threads, median seconds per sweep, runs/s with ``threads``
+        threads, with one thread and for a Python loop over
+        :func:`shaketable.solvers.api`, and the number overturned; or, when
+        :mod:`shaketable.solvers.batch` is not installed yet, ``{"skipped": reason}``.
+    """
+    from shaketable.ground import records
+
+    try:
+        from shaketable.solvers.batch import simulate_many
+    except ImportError as error:
+        return {"skipped": f"shaketable.solvers.batch.simulate_many is not available ({error})"}
+
+    blocks = [Block.from_feet(h, w) for h, w in
+              ((2, 1), (3, 1), (4, 1), (5, 1), (4, 2), (6, 2), (8, 2), (6, 3), (9, 3))]
+    motions = [records.load("pacoima-dam-s16e"), records.load("pacoima-dam-s74w")]
+    cors = list(np.linspace(0.7, 1.0, n_cors))
+    runs = len(blocks) * len(motions) * len(cors)
+    simulate_many(blocks[:1], motions[:1], cors[:1], threads=threads)  # compile / load
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        frame = simulate_many(blocks, motions, cors, threads=threads)
+        times.append(time.perf_counter() - start)
+    serial = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        simulate_many(blocks, motions, cors, threads=1)
+        serial.append(time.perf_counter() - start)
+    loop = time.perf_counter()
+    for block in blocks:
+        for motion in motions:
+            for cor in cors:
+                simulate(block, motion, cor=cor)
+    loop = time.perf_counter() - loop
+    best = float(np.median(times))
+    return {"runs": runs, "threads": threads, "seconds": best, "runs/s": runs / best,
+            "runs/s 1 thread": runs / float(np.median(serial)),
+            "runs/s simulate loop": runs / loop,
+            "overturned": int(frame["overturned"].sum())}
+
+
+# --------------------------------------------------------------------------- report
+def _fmt(value, digits=2):
+    if isinstance(value, (bool, np.bool_)):
+        return "yes" if value else "no"
+    if isinstance(value, (int, np.integer)):
+        return str(value)
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "–" if value is None or math.isnan(value) else "inf"
+    if value == 0:
+        return "0"
+    if abs(value) < 1e-3 or abs(value) >= 1e5:
+        return f"{value:.{digits}e}"
+    return f"{value:.{digits + 2}g}"
+
+
+def markdown_table(frame, columns=None) -> str:
+    """A pandas frame as a GitHub Markdown table (numbers in short scientific form)."""
+    columns = list(frame.columns) if columns is None else columns
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    for _, row in frame[columns].iterrows():
+        lines.append("| " + " | ".join(_fmt(row[c]) if not isinstance(row[c], str) else row[c]
+                                       for c in columns) + " |")
+    return "\n".join(lines)
+
+
+def results_markdown(accuracy=None, orders=None, frame=None, pacoima=None, first_call=None,
+                     batch=None, figure: str = "docs/figures/work_precision.png",
+                     command: str = "python3 benchmarks/work_precision.py") -> str:
+    """The README-ready Markdown of the benchmark results.
+
+    Every argument is optional; the sections present are written: the figure
+    path, the work-precision summary (best fast and predictor-corrector
+    settings per case), the acceptance table (:func:`accuracy_table`), the
+    measured orders (:func:`convergence_orders`), the Pacoima Dam speed
+    (:func:`pacoima_timing`), the first-call times (:func:`first_call_seconds`)
+    and the batch throughput (:func:`batch_throughput`).
+    """
+    lines = ["# Benchmarks: accuracy against run time", "",
+             f"Made by `{command}` (shaketable.studies.benchmark_cases); machine: {os.cpu_count()} cores "
+             "shared with other work, so times are indicative.", ""]
+    if figure:
+        lines += ["## Work-precision figure", "", f"![work-precision]({figure})", "",
+                  "Error against `reference` at rtol 2.5e-14 (the truth) versus median run "
+                  "time, one panel per case. Solid: relative error of max |theta|; dashed: "
+                  "largest relative error of the event times (impacts before 20 s, start, "
+                  "unstable, overturn, airborne).", ""]
+    if pacoima is not None:
+        lines += ["## Speed: Pacoima Dam S16E + vertical, 16 x 4 ft, COR 0.95", "",
+                  "| quantity | value |", "|---|---|"]
+        for key, value in pacoima.items():
+            if isinstance(value, dict):
+                for inner, item in value.items():
+                    lines.append(f"| fast vs reference: {inner} | {_fmt(item)} |")
+            else:
+                lines.append(f"| {key} | {value if isinstance(value, str) else _fmt(value)} |")
+        milliseconds = pacoima["fast median [ms]"]
+        ratio = pacoima["speed-up [-]"]
+        lines += ["", f"Targets (issue 3): fast at most {TARGET_FAST_MS:g} ms per run warm: "
+                  f"{'met' if milliseconds <= TARGET_FAST_MS else 'NOT met'} "
+                  f"({milliseconds:.3g} ms); at least {TARGET_SPEED_UP:g} times faster than "
+                  f"`reference` in the same process: "
+                  f"{'met' if ratio >= TARGET_SPEED_UP else 'NOT met'} ({ratio:.0f}x)."]
+        lines.append("")
+    if first_call is not None:
+        lines += ["## First call in a fresh process", "", "| | import [s] | first simulate [s] "
+                  "| second simulate [s] |", "|---|---|---|---|"]
+        for label, values in first_call.items():
+            lines.append(f"| {label} | {_fmt(values['import [s]'])} | "
+                         f"{_fmt(values['first call [s]'])} | {_fmt(values['second call [s]'])} |")
+        lines.append("")
+    if batch is not None:
+        lines += ["## Batch throughput (`shaketable.solvers.batch.simulate_many`)", ""]
+        if "skipped" in batch:
+            lines += [f"Skipped: {batch['skipped']}.", ""]
+        else:
+            lines += ["| quantity | value |", "|---|---|"]
+            lines += [f"| {key} | {_fmt(value)} |" for key, value in batch.items()]
+            lines.append("")
+    if accuracy is not None:
+        lines += [f"## Acceptance: fast (default rtol {_DEFAULT_RTOL['fast']:g}) against reference "
+                  f"(default rtol {_DEFAULT_RTOL['reference']:g})", "",
+                  "Target: 1e-8 relative in max |theta| (or 1e-10 rad) and in the event "
+                  "times, same impact count before 20 s and same verdict.", "",
+                  markdown_table(accuracy, [c for c in accuracy.columns if c not in
+                                            ("impacts truth",)]), ""]
+    if frame is not None:
+        best = frame[frame["method"].isin(["fast", "predictor-corrector", "linear"])]
+        lines += ["## Work-precision table (every setting; the CSV has all columns)", "",
+                  markdown_table(best, ["case", "method", "setting", "time [s]",
+                                        "error max_theta [-]", "error events [-]",
+                                        "same impacts", "same verdict"]), ""]
+    if orders is not None:
+        lines += ["## Measured orders of convergence", "",
+                  "Least-squares slope of log10(error) against log10(mean step), over the "
+                  "settings with the truth's impact count and verdict and errors in "
+                  f"[{ORDER_ERROR_FLOOR:g}, 1e-2]; '–' where fewer than three settings qualify "
+                  "(the fast engine's errors are at the truth's own level, or its steps are "
+                  "set by the input's samples). The fast stepper's order at fixed steps is "
+                  "tested in tests/test_engine.py (measured 5.99, 6.01, 6.18).", "",
+                  markdown_table(orders), ""]
+    return "\n".join(lines) + "\n"

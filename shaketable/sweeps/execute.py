@@ -1,0 +1,398 @@
+"""TODO docstring (from sweep)."""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from shaketable.core.constants import G
+from shaketable.core.motion import Motion
+from shaketable.core.units import parse_angle_or_ratio
+from shaketable.sweeps.spec import (
+    RecordSpec,
+    SweepError,
+    SweepSpec,
+    _pitch_of,
+    load_spec,
+)
+from shaketable.sweeps.store import (
+    FORMAT_VERSION,
+    _finished_chunks,
+    _part_path,
+    _write_atomic,
+    _write_text_atomic,
+    parquet_available,
+    read_results,
+)
+
+
+@lru_cache(maxsize=16)
+def _record_motion(record: RecordSpec, seed) -> Motion:
+    """The unscaled ground motion of one record realisation [m/s^2] (cached per process)."""
+    from shaketable.ground import generators as motions
+    from shaketable.ground import records
+
+    options = dict(record.options)
+    if record.kind == "bundled":
+        return records.load(record.name, vertical=record.vertical)
+    if record.kind == "file":
+        return records.combine(records.read(record.file, **options), name=record.label)
+    return motions.artificial(record.preset, seed=seed, **options)
+
+
+def build_motion(spec: SweepSpec, record_index: int, seed=None, level_index: int = 0,
+                 phase_index=None) -> tuple[Motion, float]:
+    """The motion of one run and its earthquake scale factor.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+    record_index : int
+        Index into ``spec.records``.
+    seed : int, optional
+        Seed of the artificial realisation (``None`` for a recorded motion).
+    level_index : int
+        Index into ``spec.levels``.
+    phase_index : int, optional
+        Index into ``spec.pitch.phases`` (``None`` without pitch).
+
+    Returns
+    -------
+    motion : Motion
+        Without pitch: the *unscaled* record (the batch scales it by
+        ``factor``); with pitch: the record scaled by ``factor`` (as
+        :meth:`Motion.scaled`) and then put on the pitching table by
+        :func:`shaketable.lab.pitch.motion_at_block`.
+    factor : float
+        Scale factor of the earthquake [-]: the level itself, or target PGA /
+        record PGA (as :func:`shaketable.ground.signals.scale_to_pga`).
+    """
+    base = _record_motion(spec.records[record_index], seed)
+    level = spec.levels[level_index]
+    if spec.intensity == "pga":
+        if base.pga == 0.0:
+            raise SweepError(f"{spec.path}: record {spec.records[record_index].label!r} has "
+                             "no horizontal motion; it cannot be scaled to a PGA")
+        factor = level / base.pga
+    else:
+        factor = level
+    if spec.pitch is None:
+        return base, factor
+    from shaketable.lab.pitch import motion_at_block
+
+    scaled = base if factor == 1.0 else base.scaled(factor)
+    pitched = motion_at_block(scaled, pitch=_pitch_of(spec.pitch, phase_index, spec.seed),
+                              block_position=spec.pitch.block_position,
+                              axis_depth=spec.pitch.axis_depth)
+    return pitched, factor
+
+
+def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None):
+    """The inputs of runs ``start`` to ``stop`` (the grid, before running), one row each.
+
+    Columns: ``run``, ``record_index``, ``seed``, ``phase_index``,
+    ``level_index``, ``block_index``, ``cor [-]``.
+    """
+    import pandas as pd
+
+    stop = spec.n_runs if stop is None else min(stop, spec.n_runs)
+    runs = np.arange(start, stop, dtype=np.int64)
+    n_cor, n_block, n_level = len(spec.cors), len(spec.blocks), len(spec.levels)
+    cor_index = runs % n_cor
+    block_index = (runs // n_cor) % n_block
+    level_index = (runs // (n_cor * n_block)) % n_level
+    variant_index = runs // (n_cor * n_block * n_level)
+    variants = spec.motion_variants
+    return pd.DataFrame({
+        "run": runs,
+        "variant": variant_index,
+        "record_index": np.array([variants[v][0] for v in variant_index], dtype=np.int64),
+        "seed": pd.array([variants[v][1] for v in variant_index], dtype="Int64"),
+        "phase_index": pd.array([variants[v][2] for v in variant_index], dtype="Int64"),
+        "level_index": level_index,
+        "block_index": block_index,
+        "cor [-]": np.array(spec.cors)[cor_index],
+    })
+
+
+def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
+    """Run one chunk; the rows of the result table for runs ``chunk * chunk_size`` on.
+
+    A plain function of picklable arguments: this is what a Dask worker runs.
+    """
+    import pandas as pd
+
+    from shaketable.solvers.batch import Case, simulate_cases
+
+    start = chunk * spec.chunk_size
+    inputs = runs_table(spec, start, start + spec.chunk_size)
+    cases, factors, record_pgas, motions = [], [], [], {}
+    cors = inputs["cor [-]"].to_numpy()
+    for k, row in enumerate(inputs.drop(columns="cor [-]").itertuples(index=False)):
+        seed = None if pd.isna(row.seed) else int(row.seed)
+        phase = None if pd.isna(row.phase_index) else int(row.phase_index)
+        key = (row.record_index, seed, row.level_index, phase)
+        if key not in motions:
+            motions[key] = build_motion(spec, row.record_index, seed, row.level_index, phase)
+        motion, factor = motions[key]
+        record = spec.records[row.record_index]
+        label = record.label if seed is None else f"{record.label} (seed {seed})"
+        block = spec.blocks[row.block_index]
+        cases.append(Case(block, motion, cors[k], scale=1.0 if spec.pitch is not None else factor,
+                          block_label=block.describe(), motion_label=label))
+        factors.append(factor)
+        record_pgas.append(_record_motion(record, seed).pga)
+    options = {key: value for key, value in spec.options.items() if key != "theta0"}
+    theta0_text = spec.options.get("theta0")
+    if theta0_text is None:
+        frame = simulate_cases(cases, threads=threads, method=spec.method,
+                               duration=spec.duration, **options)
+    else:  # "k alpha" depends on the block: one batch per block
+        parts = []
+        for block_index, group in inputs.groupby("block_index", sort=False):
+            theta0 = parse_angle_or_ratio(theta0_text, spec.blocks[block_index].alpha)
+            subset = [cases[i] for i in group.index]
+            part = simulate_cases(subset, threads=threads, method=spec.method,
+                                  duration=spec.duration, theta0=theta0, **options)
+            part.index = group.index
+            parts.append(part)
+        frame = pd.concat(parts).sort_index()
+    frame = frame.drop(columns=["block_index", "motion_index", "scale [-]", "pga [m/s^2]"])
+    record_pgas = np.array(record_pgas)
+    factors = np.array(factors)
+    level = np.array(spec.levels)[inputs["level_index"].to_numpy()]
+    records = [spec.records[i] for i in inputs["record_index"]]
+    phases = np.array([math.nan if pd.isna(k) else spec.pitch.phases[int(k)]
+                       for k in inputs["phase_index"]])
+    extra = pd.DataFrame({
+        "sweep": spec.name,
+        "run": inputs["run"].to_numpy(),
+        "chunk": chunk,
+        "record": [record.label for record in records],
+        "record_kind": [record.kind for record in records],
+        "seed": inputs["seed"].array,
+        "record_pga [m/s^2]": record_pgas,
+        "scale [-]": factors,
+        "target_pga [m/s^2]": level if spec.intensity == "pga" else np.full(len(level), np.nan),
+        "pga [m/s^2]": record_pgas * factors,
+        "pga [g]": record_pgas * factors / G,
+        "pitch": spec.pitch is not None,
+        "pitch_phase [rad]": phases,
+        "R [m]": [spec.blocks[i].R for i in inputs["block_index"]],
+        "block_index": inputs["block_index"].to_numpy(),
+    })
+    frame = frame.reset_index(drop=True)
+    return pd.concat([extra, frame], axis=1)
+
+
+def _solver_identity() -> dict:
+    """What a resumed sweep must share with the parts already written: the package
+    version, the solvers and their default tolerances (rows computed by another engine
+    must not be mixed into one table)."""
+    from shaketable import __version__
+    from shaketable.solvers.api import METHODS
+    from shaketable.solvers.common import _DEFAULT_RTOL
+
+    return {"shaketable": __version__, "methods": dict(METHODS),
+            "default rtol": dict(_DEFAULT_RTOL)}
+
+
+def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
+    manifest_path = out / "manifest.json"
+    manifest = {"sweep": spec.name, "spec": spec.path, "fingerprint": spec.fingerprint(),
+                "n_runs": spec.n_runs, "chunk_size": spec.chunk_size,
+                "n_chunks": spec.n_chunks, "format": fmt, "format_version": FORMAT_VERSION,
+                "solver": _solver_identity()}
+    if manifest_path.exists():
+        if not resume:
+            raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
+                             "(resume=True) to continue it, or choose another output folder")
+        try:
+            old = json.loads(manifest_path.read_text())
+        except (OSError, ValueError) as error:
+            raise SweepError(f"{manifest_path}: unreadable manifest ({error})") from None
+        for key in ("fingerprint", "n_runs", "chunk_size", "format", "solver"):
+            if old.get(key) != manifest[key]:
+                raise SweepError(
+                    f"{out}: cannot resume: the sweep there differs from {spec.path} in "
+                    f"{key} ({old.get(key)!r} there, {manifest[key]!r} now); use another "
+                    "output folder")
+        for stray in (out / "parts").glob(".*.tmp"):
+            stray.unlink()
+        return _finished_chunks(spec, out, fmt)
+    (out / "parts").mkdir(parents=True, exist_ok=True)
+    existing = [p for p in (out / "parts").iterdir() if not p.name.startswith(".")]
+    if existing:
+        raise SweepError(f"{out}: holds part files but no manifest; choose another output "
+                         "folder")
+    _write_text_atomic(manifest_path, json.dumps(manifest, indent=2))
+    return set()
+
+
+@dataclass(frozen=True)
+class SweepOutcome:
+    """What :func:`run_sweep` did.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame or None
+        The whole result table (None when the sweep stopped before the end).
+    path : Path or None
+        The joined table's file.
+    out : Path
+        Output folder.
+    computed_runs, skipped_runs : int
+        Runs computed now, and runs found finished on disk (resume).
+    seconds : float
+        Wall-clock time of this call [s].
+    complete : bool
+        Every chunk is on disk.
+    format : str
+        ``"parquet"`` or ``"csv"``.
+    """
+
+    table: object
+    path: Path | None
+    out: Path
+    computed_runs: int
+    skipped_runs: int
+    seconds: float
+    complete: bool
+    format: str
+
+
+def run_sweep(spec, out, *, workers: int | None = None, scheduler: str | None = None,
+              resume: bool = False, progress: bool = True, max_chunks: int | None = None,
+              on_chunk=None, fmt: str | None = None) -> SweepOutcome:
+    """Run a sweep into the folder ``out``, chunk by chunk, resumable.
+
+    Parameters
+    ----------
+    spec : SweepSpec or path
+        The sweep (a path is read with :func:`load_spec`).
+    out : path
+        Output folder: ``manifest.json``, ``parts/part-NNNNNN.parquet`` and,
+        at the end, ``results.parquet``.
+    workers : int, optional
+        Local: threads of the compiled batch loop (default all cores). With
+        ``scheduler``: threads inside each Dask task (default 1; the cluster's
+        own workers give the parallelism).
+    scheduler : str, optional
+        Address of a ``dask.distributed`` scheduler (``tcp://host:8786``), or
+        a ``distributed.Client``; the chunks become Dask tasks.
+    resume : bool
+        Continue a sweep already in ``out`` (finished chunks are kept, not
+        recomputed). Without it an existing sweep in ``out`` is an error.
+    progress : bool
+        Show a progress bar with the time left (tqdm, on stderr).
+    max_chunks : int, optional
+        Compute at most this many chunks now, then stop (the rest on resume).
+    on_chunk : callable, optional
+        Called as ``on_chunk(chunk_index, frame)`` after each chunk is on disk.
+    fmt : {"parquet", "csv"}, optional
+        Part and result format; default Parquet when pyarrow is installed,
+        else CSV (with a note in the manifest and on stderr).
+
+    Returns
+    -------
+    SweepOutcome
+    """
+
+    if not isinstance(spec, SweepSpec):
+        spec = load_spec(spec)
+    out = Path(out)
+    if fmt is None:
+        fmt = "parquet" if parquet_available() else "csv"
+        if fmt == "csv":
+            import sys
+            print("shaketable sweep: note: pyarrow is not installed, writing CSV instead of "
+                  "Parquet (pip install 'shaketable[parquet]')", file=sys.stderr)
+    if fmt not in ("parquet", "csv"):
+        raise ValueError(f"fmt must be 'parquet' or 'csv', got {fmt!r}")
+    if fmt == "parquet" and not parquet_available():
+        raise ValueError("fmt='parquet' needs pyarrow (pip install 'shaketable[parquet]')")
+    if max_chunks is not None and (isinstance(max_chunks, bool) or int(max_chunks) < 0):
+        raise ValueError(f"max_chunks must be a non-negative integer, got {max_chunks!r}")
+    began = time.perf_counter()
+    done = _prepare(spec, out, resume, fmt)
+    todo = [chunk for chunk in range(spec.n_chunks) if chunk not in done]
+    if max_chunks is not None:
+        todo = todo[:int(max_chunks)]
+    skipped = sum(_chunk_length(spec, chunk) for chunk in done)
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
+        bar = tqdm(total=spec.n_runs, initial=skipped, unit="run", desc=spec.name,
+                   smoothing=0.1)
+    computed = 0
+
+    def finished(chunk, frame):
+        nonlocal computed
+        _write_atomic(frame, _part_path(out, chunk, fmt), fmt)
+        computed += len(frame)
+        if bar is not None:
+            bar.update(len(frame))
+        if on_chunk is not None:
+            on_chunk(chunk, frame)
+
+    try:
+        if scheduler is None:
+            for chunk in todo:
+                finished(chunk, compute_chunk(spec, chunk, threads=workers))
+        else:
+            _run_on_dask(spec, todo, scheduler, workers or 1, finished)
+    finally:
+        if bar is not None:
+            bar.close()
+
+    complete = len(_finished_chunks(spec, out, fmt)) == spec.n_chunks
+    table = path = None
+    if complete:
+        table = read_results(out, fmt=fmt, parts_only=True)
+        path = out / f"results.{'parquet' if fmt == 'parquet' else 'csv'}"
+        _write_atomic(table, path, fmt)
+    return SweepOutcome(table=table, path=path, out=out, computed_runs=computed,
+                        skipped_runs=skipped, seconds=time.perf_counter() - began,
+                        complete=complete, format=fmt)
+
+
+def _chunk_length(spec, chunk: int) -> int:
+    return min(spec.chunk_size, spec.n_runs - chunk * spec.chunk_size)
+
+
+def _run_on_dask(spec, chunks, scheduler, threads, finished) -> None:
+    """Submit every chunk to a Dask cluster; write each as it completes."""
+    try:
+        from distributed import Client, as_completed
+    except ImportError:
+        raise ValueError("--scheduler needs dask.distributed: pip install "
+                         "'shaketable[cluster]'") from None
+    own = not isinstance(scheduler, Client)
+    client = Client(scheduler) if own else scheduler
+    try:
+        futures = {client.submit(compute_chunk, spec, chunk, threads, pure=False,
+                                 key=f"shaketable-sweep-{spec.name}-{chunk}-{time.time_ns()}"):
+                   chunk for chunk in chunks}
+        failures = []
+        for future in as_completed(futures):
+            chunk = futures[future]
+            try:
+                frame = future.result()
+            except Exception as error:  # keep writing the others; report at the end
+                failures.append((chunk, error))
+                continue
+            finished(chunk, frame)
+        if failures:
+            chunk, error = failures[0]
+            raise RuntimeError(f"{len(failures)} chunk(s) failed on the cluster, first chunk "
+                               f"{chunk}: {error!r}; the finished chunks are on disk, run "
+                               "again with --resume") from error
+    finally:
+        if own:
+            client.close()

@@ -1,0 +1,633 @@
+"""Parameter sweeps: a TOML spec, a grid of runs, a tidy table; parallel, resumable, Dask.
+
+A sweep spec names grids; every combination is one run of
+:func:`shaketable.solvers.batch.simulate_cases` and one row of the result table. Every
+dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``)::
+
+    name = "pacoima-map"
+    description = "..."
+    seed = 1                      # artificial records and drawn pitch phases
+
+    [blocks]                      # one of these groups of keys:
+    height = ["2 ft", "4 ft"]     #   height + width | height + aspect | width + aspect
+    width = ["1 ft"]              #   (aspect = H/B [-], plain numbers)
+    # R = ["0.5 m"]               #   R + alpha | R + aspect  (R: the size, sqrt(b^2 + h^2))
+    # alpha = ["0.1 rad"]
+    # sizes = ["30x6in", "16x4ft"] #   an explicit list
+    [blocks.rods]                 # optional, on every block (as in a scene)
+    stiffness = "0.4 W/in"
+    force = "0.4 W"
+    edge_distance = "12 in"
+
+    [rocking]
+    cor = [0.9, 1.0]              # [-], a number or a list
+    duration = "30 s"             # optional: cut (or pad) every motion
+    method = "fast"               # optional; rtol, theta0 ("0.1 alpha"), subdivisions
+
+    [[records]]                   # one table per record; any number of them
+    name = "pacoima-dam-s16e"     # a bundled record (vertical = false drops its vertical)
+    [[records]]
+    file = "my-record.AT2"        # a file, relative to the spec (units, dt, column as in a scene)
+    [[records]]
+    preset = "A-1"                # an artificial SUBSTITUTE preset (shaketable.ground.generators.PRESETS)
+    seeds = 5                     # 5 realisations, seeds seed .. seed + 4; or a list [3, 7]
+    # seed = 10                   # base seed of this entry (default: the top-level seed)
+    # duration = "30 s", dt = "0.01 s", pga = "0.5 g", vertical_pga = "0.2 g"
+
+    [intensity]                   # optional; one of
+    scale = [0.5, 1.0, 1.5]       #   factors [-] on every component of the record
+    # pga = ["0.1 g", "0.2 g"]    #   target peak horizontal acceleration (both components scaled)
+
+    [pitch]                       # optional: the table pitches (shaketable.lab.pitch.Pitch)
+    phases = 8                    # 8 phases evenly in [0, 2 pi); or a list ["0 deg", "90 deg"]
+    # random_phases = 16          # or 16 phases drawn uniformly from the top-level seed
+    frequency = "12 Hz"           # defaults: Section 3.7 (2) of the report, 12 Hz, 0.22 rad/s2
+    amplitude = "0.22 rad/s2"
+    # block_position = "0 in", axis_depth = "0 in"
+
+    [run]
+    chunk_size = 500              # runs per chunk (a part file each)
+
+Order of the runs (the ``run`` column): record realisation, pitch phase,
+intensity, block, COR, the last varying fastest. A record is scaled first and
+then put on the pitching table (:func:`shaketable.lab.pitch.motion_at_block`): the
+pitch is the table's, not the earthquake's, and is not scaled.
+
+Execution (:func:`run_sweep`): the runs are cut into chunks of ``chunk_size``;
+each finished chunk is written atomically (a temporary file renamed) to its own
+part file under ``OUT/parts/``, so a sweep that is killed loses nothing already
+written; run again with ``resume=True`` it skips the chunks on disk and repeats
+none. When every chunk is on disk the parts are joined into ``OUT/results.parquet``
+(``results.csv`` when pyarrow is missing, with a note). Locally the chunks run
+one after the other, each spread over ``workers`` threads by the compiled batch
+loop; with ``scheduler`` they are Dask tasks on a ``distributed`` cluster (the
+workers must have shaketable installed and see record files at the same path).
+
+The same spec (and seed) always gives the same table, whatever the number of
+workers, the chunking or the interruptions.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from dataclasses import dataclass, field
+from itertools import product
+from pathlib import Path
+
+import numpy as np
+import tomllib
+
+from shaketable.core.constants import G
+from shaketable.core.geometry import Block, PrestressRods
+from shaketable.core.units import parse, parse_angle_or_ratio
+
+TOP_KEYS = {"name", "description", "seed", "blocks", "rocking", "records", "intensity",
+            "pitch", "run"}
+
+BLOCK_KEYS = {"height", "width", "aspect", "R", "alpha", "sizes", "rods"}
+
+#: The groups of block keys a spec may give (one of them).
+BLOCK_GRIDS = (("height", "width"), ("height", "aspect"), ("width", "aspect"), ("R", "alpha"),
+               ("R", "aspect"), ("sizes",))
+
+ROCKING_KEYS = {"cor", "duration", "method", "rtol", "theta0", "subdivisions"}
+
+RECORD_KEYS = {
+    "bundled": {"name", "vertical", "label"},
+    "file": {"file", "units", "dt", "column", "label"},
+    "artificial": {"preset", "seed", "seeds", "duration", "dt", "pga", "vertical_pga", "label"},
+}
+
+INTENSITY_KEYS = {"scale", "pga"}
+
+PITCH_KEYS = {"phases", "random_phases", "frequency", "amplitude", "block_position",
+              "axis_depth", "frequency_drift", "amplitude_drift"}
+
+RUN_KEYS = {"chunk_size"}
+
+
+class SweepError(ValueError):
+    """A sweep spec (or output folder) that cannot be used; the message names file and key."""
+
+
+@dataclass(frozen=True)
+class RecordSpec:
+    """One entry of ``[[records]]``.
+
+    Attributes
+    ----------
+    kind : str
+        ``"bundled"``, ``"file"`` or ``"artificial"``.
+    label : str
+        Name in the result table (``motion`` column).
+    name : str
+        Bundled record name (:func:`shaketable.ground.records.available`).
+    vertical : bool
+        Keep the bundled record's vertical component.
+    file : str
+        Absolute path of a record file.
+    options : tuple
+        Reader options (``units``, ``dt`` [s], ``value_column``) for a file,
+        or generator options (``duration`` [s], ``dt`` [s], ``pga_g`` [g],
+        ``vertical_pga_g`` [g]) for an artificial record, as (key, value) pairs.
+    preset : str
+        Artificial preset (:data:`shaketable.ground.generators.PRESETS`).
+    seeds : tuple of int
+        Seeds of the artificial realisations (``(None,)`` for a recorded motion).
+    """
+
+    kind: str
+    label: str
+    name: str = ""
+    vertical: bool = True
+    file: str = ""
+    options: tuple = ()
+    preset: str = ""
+    seeds: tuple = (None,)
+
+
+@dataclass(frozen=True)
+class PitchGrid:
+    """The ``[pitch]`` section: phases [rad] and the :class:`shaketable.lab.pitch.Pitch` settings.
+
+    Attributes
+    ----------
+    phases : tuple of float
+        Pitch phases psi [rad] (one run each).
+    frequency : float
+        Pitch frequency [Hz].
+    amplitude : float
+        Angular-acceleration amplitude [rad/s^2].
+    block_position : float
+        Distance of the block from the pitch axis along +x [m].
+    axis_depth : float
+        Height of the table surface above the pitch axis [m].
+    frequency_drift, amplitude_drift : float
+        Relative drifts [-] (seeded with the spec's seed).
+    """
+
+    phases: tuple
+    frequency: float = 12.0
+    amplitude: float = 0.22
+    block_position: float = 0.0
+    axis_depth: float = 0.0
+    frequency_drift: float = 0.0
+    amplitude_drift: float = 0.0
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A validated sweep (see the module docstring for the TOML).
+
+    Attributes
+    ----------
+    name, description : str
+    seed : int
+        Seed of the artificial records (default base) and of drawn pitch phases.
+    blocks : tuple of Block
+    block_inputs : tuple of dict
+        For each block the grid values that made it (SI units), for the table.
+    cors : tuple of float
+        Coefficients of restitution [-].
+    records : tuple of RecordSpec
+    intensity : str
+        ``"scale"`` (factors) or ``"pga"`` (target peak horizontal acceleration).
+    levels : tuple of float
+        Scale factors [-] or target PGAs [m/s^2].
+    pitch : PitchGrid or None
+    duration : float or None
+        Length of every run [s].
+    method : str
+    options : dict
+        ``rtol``, ``theta0`` [rad or "k alpha"], ``subdivisions`` for the batch.
+    chunk_size : int
+        Runs per chunk.
+    path : str
+        Where the spec was read from (for messages and relative record files).
+    raw : dict
+        The parsed TOML, for the manifest's fingerprint.
+    """
+
+    name: str
+    description: str
+    seed: int
+    blocks: tuple
+    block_inputs: tuple
+    cors: tuple
+    records: tuple
+    intensity: str = "scale"
+    levels: tuple = (1.0,)
+    pitch: PitchGrid | None = None
+    duration: float | None = None
+    method: str = "fast"
+    options: dict = field(default_factory=dict)
+    chunk_size: int = 500
+    path: str = "<spec>"
+    raw: dict = field(default_factory=dict, compare=False, repr=False)
+
+    # ------------------------------------------------------------ the grid
+    @property
+    def motion_variants(self) -> tuple:
+        """(record index, seed, phase index) of every distinct base motion, in run order."""
+        phases = range(len(self.pitch.phases)) if self.pitch is not None else [None]
+        return tuple((r, seed, k) for r, record in enumerate(self.records)
+                     for seed in record.seeds for k in phases)
+
+    @property
+    def n_runs(self) -> int:
+        """Number of runs (rows of the table)."""
+        return (len(self.motion_variants) * len(self.levels) * len(self.blocks)
+                * len(self.cors))
+
+    @property
+    def n_chunks(self) -> int:
+        """Number of chunks."""
+        return math.ceil(self.n_runs / self.chunk_size)
+
+    def fingerprint(self) -> str:
+        """SHA-256 of the spec's content (and of the record files it reads)."""
+        digest = hashlib.sha256(json.dumps(self.raw, sort_keys=True, default=str).encode())
+        for record in self.records:
+            if record.kind == "file":
+                digest.update(Path(record.file).read_bytes())
+        return digest.hexdigest()
+
+
+# --------------------------------------------------------------------------- parsing
+def load_spec(path) -> SweepSpec:
+    """Read and validate a sweep spec (TOML).
+
+    Raises
+    ------
+    SweepError
+        With the file name, the key and what was expected.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as error:
+        raise SweepError(f"{path}: cannot read the sweep spec ({error.strerror})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise SweepError(f"{path}: not valid TOML: {error}") from None
+    return spec_from_dict(data, where=str(path), directory=path.parent)
+
+
+def spec_from_dict(data: dict, where: str = "<spec>", directory=None) -> SweepSpec:
+    """Validate a sweep spec given as a dict (the parsed TOML).
+
+    Parameters
+    ----------
+    data : dict
+    where : str
+        Name used in error messages (the file).
+    directory : path, optional
+        Folder that relative record files are resolved against (default the
+        current directory).
+    """
+    directory = Path(directory) if directory is not None else Path.cwd()
+    _only(data, TOP_KEYS, where, "the top level")
+    for key in ("name", "blocks", "rocking", "records"):
+        if key not in data:
+            raise SweepError(f"{where}: missing " + (f"[{key}]" if key != "name" else
+                                                     "'name' at the top level"))
+    name = data["name"]
+    if not isinstance(name, str) or not name.strip():
+        raise SweepError(f"{where}: 'name' must be a non-empty string, got {name!r}")
+    seed = data.get("seed", 1)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise SweepError(f"{where}: 'seed' must be a non-negative integer, got {seed!r}")
+
+    blocks, block_inputs = _blocks(_section(data, "blocks", where), where)
+    rocking = _section(data, "rocking", where)
+    _only(rocking, ROCKING_KEYS, where, "[rocking]")
+    if "cor" not in rocking:
+        raise SweepError(f"{where}: rocking.cor is missing (coefficient of restitution, "
+                         "a number in [0, 1] or a list)")
+    cors = tuple(_number_list(rocking["cor"], where, "rocking.cor", 0.0, 1.0))
+    duration = None
+    if "duration" in rocking:
+        duration = _quantity(rocking["duration"], "time", where, "rocking.duration",
+                             positive=True)
+    method = rocking.get("method", "fast")
+    from shaketable.solvers.batch import METHODS
+    if method not in METHODS:
+        raise SweepError(f"{where}: rocking.method must be one of {', '.join(METHODS)}, "
+                         f"got {method!r}")
+    options = {}
+    if "rtol" in rocking:
+        rtol = rocking["rtol"]
+        if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) or not 0 < rtol < 1:
+            raise SweepError(f"{where}: rocking.rtol must be a number in (0, 1), got {rtol!r}")
+        options["rtol"] = float(rtol)
+    if "subdivisions" in rocking:
+        value = rocking["subdivisions"]
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise SweepError(f"{where}: rocking.subdivisions must be a positive integer, "
+                             f"got {value!r}")
+        options["subdivisions"] = value
+    if "theta0" in rocking:
+        value = rocking["theta0"]
+        if not isinstance(value, str):
+            raise SweepError(f"{where}: rocking.theta0 must be text such as '0.1 alpha' or "
+                             f"'0.01 rad', got {value!r}")
+        try:
+            parse_angle_or_ratio(value, 1.0, where=f"{where}: rocking.theta0")
+        except ValueError as error:
+            raise SweepError(str(error)) from None
+        options["theta0"] = value
+
+    records = _records(data["records"], where, directory, seed)
+    intensity, levels = _intensity(data.get("intensity", {}), where)
+    pitch = _pitch(data.get("pitch"), where, seed)
+    run = data.get("run", {})
+    if not isinstance(run, dict):
+        raise SweepError(f"{where}: [run] must be a table, got {run!r}")
+    _only(run, RUN_KEYS, where, "[run]")
+    chunk_size = run.get("chunk_size", 500)
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
+        raise SweepError(f"{where}: run.chunk_size must be a positive integer, got "
+                         f"{chunk_size!r}")
+    return SweepSpec(name=name.strip(), description=str(data.get("description", "")),
+                     seed=seed, blocks=tuple(blocks), block_inputs=tuple(block_inputs),
+                     cors=cors, records=tuple(records), intensity=intensity,
+                     levels=tuple(levels), pitch=pitch, duration=duration, method=method,
+                     options=options, chunk_size=chunk_size, path=where, raw=data)
+
+
+def _only(table: dict, allowed: set, where: str, section: str) -> None:
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        raise SweepError(f"{where}: unknown key {unknown[0]!r} in {section}; expected one of "
+                         f"{', '.join(sorted(allowed))}")
+
+
+def _section(data, key, where) -> dict:
+    value = data[key]
+    if not isinstance(value, dict):
+        raise SweepError(f"{where}: [{key}] must be a table, got {value!r}")
+    return value
+
+
+def _as_list(value):
+    return value if isinstance(value, list) else [value]
+
+
+def _number_list(value, where, key, low=-math.inf, high=math.inf, low_open=False):
+    values = _as_list(value)
+    if not values:
+        raise SweepError(f"{where}: {key} must not be an empty list")
+    result = []
+    for item in values:
+        ok = not isinstance(item, bool) and isinstance(item, (int, float)) and \
+            math.isfinite(item) and low <= item <= high and not (low_open and item == low)
+        if not ok:
+            bracket = "(" if low_open else "["
+            raise SweepError(f"{where}: {key} must be a number in {bracket}{low:g}, {high:g}] "
+                             f"or a list of them, got {item!r}")
+        result.append(float(item))
+    return result
+
+
+def _quantity(value, kind, where, key, positive=False):
+    try:
+        number = parse(value, kind, where=f"{where}: {key}")
+    except ValueError as error:
+        raise SweepError(str(error)) from None
+    if positive and not number > 0:
+        raise SweepError(f"{where}: {key} must be positive, got {value!r}")
+    return number
+
+
+def _quantity_list(value, kind, where, key, positive=True):
+    values = _as_list(value)
+    if not values:
+        raise SweepError(f"{where}: {key} must not be an empty list")
+    return [_quantity(item, kind, where, key, positive=positive) for item in values]
+
+
+def _blocks(table, where):
+    _only(table, BLOCK_KEYS, where, "[blocks]")
+    rods = None
+    if "rods" in table:
+        spec = table["rods"]
+        if not isinstance(spec, dict):
+            raise SweepError(f"{where}: [blocks.rods] must be a table")
+        _only(spec, {"stiffness", "force", "edge_distance"}, where, "[blocks.rods]")
+        missing = {"stiffness", "force", "edge_distance"} - set(spec)
+        if missing:
+            raise SweepError(f"{where}: blocks.rods needs {', '.join(sorted(missing))}")
+        try:
+            rods = PrestressRods(
+                _quantity(spec["stiffness"], "stiffness", where, "blocks.rods.stiffness"),
+                _quantity(spec["force"], "weight", where, "blocks.rods.force"),
+                _quantity(spec["edge_distance"], "length", where, "blocks.rods.edge_distance"))
+        except SweepError:
+            raise
+        except ValueError as error:
+            raise SweepError(f"{where}: blocks.rods: {error}") from None
+    given = tuple(sorted(set(table) - {"rods"}))
+    grid = next((g for g in BLOCK_GRIDS if set(g) == set(given)), None)
+    if grid is None:
+        raise SweepError(f"{where}: [blocks] gives {', '.join(given) or 'nothing'}; give one "
+                         "of: " + "; ".join(" + ".join(g) for g in BLOCK_GRIDS))
+    blocks, inputs = [], []
+
+    def add(make, key, values):
+        try:
+            block = make()
+        except ValueError as error:
+            raise SweepError(f"{where}: blocks.{key}: {error}") from None
+        blocks.append(block)
+        inputs.append(values)
+
+    if grid == ("sizes",):
+        for text in _as_list(table["sizes"]):
+            if not isinstance(text, str):
+                raise SweepError(f"{where}: blocks.sizes must be texts such as '30x6in', got "
+                                 f"{text!r}")
+            add(lambda: Block.parse(text, rods=rods), "sizes", {"size": text})
+        return blocks, inputs
+    lengths = {key: _quantity_list(table[key], "length", where, f"blocks.{key}")
+               for key in ("height", "width", "R") if key in table}
+    if "aspect" in table:
+        aspects = _number_list(table["aspect"], where, "blocks.aspect (H/B)", 0.0,
+                               low_open=True)
+    if "alpha" in table:
+        alphas = []
+        for item in _as_list(table["alpha"]):
+            value = _quantity(item, "angle", where, "blocks.alpha", positive=True)
+            if value >= math.pi / 2:
+                raise SweepError(f"{where}: blocks.alpha must be below 90 deg, got {item!r}")
+            alphas.append(value)
+    if grid == ("height", "width"):
+        for height, width in product(lengths["height"], lengths["width"]):
+            add(lambda: Block(height, width, rods), "height", {})
+    elif grid == ("height", "aspect"):
+        for height, aspect in product(lengths["height"], aspects):
+            add(lambda: Block(height, height / aspect, rods), "aspect", {"aspect": aspect})
+    elif grid == ("width", "aspect"):
+        for width, aspect in product(lengths["width"], aspects):
+            add(lambda: Block(width * aspect, width, rods), "aspect", {"aspect": aspect})
+    elif grid == ("R", "alpha"):
+        for radius, alpha in product(lengths["R"], alphas):
+            add(lambda: Block.from_slenderness(radius, alpha, rods), "alpha", {})
+    else:  # R + aspect
+        for radius, aspect in product(lengths["R"], aspects):
+            add(lambda: Block.from_slenderness(radius, math.atan(1.0 / aspect), rods),
+                "aspect", {"aspect": aspect})
+    return blocks, inputs
+
+
+def _records(value, where, directory: Path, seed: int):
+    from shaketable.ground import generators as motions
+    from shaketable.ground import records as bundled
+
+    if isinstance(value, dict):
+        value = [value]
+    if not isinstance(value, list) or not value:
+        raise SweepError(f"{where}: [[records]] must be one or more tables, got {value!r}")
+    result = []
+    for k, entry in enumerate(value):
+        key = f"records[{k}]"
+        if not isinstance(entry, dict):
+            raise SweepError(f"{where}: {key} must be a table, got {entry!r}")
+        kinds = [kind for kind, marker in (("bundled", "name"), ("file", "file"),
+                                            ("artificial", "preset")) if marker in entry]
+        if len(kinds) != 1:
+            raise SweepError(f"{where}: {key} needs exactly one of 'name' (a bundled record), "
+                             "'file' (a record file) or 'preset' (an artificial record)")
+        kind = kinds[0]
+        _only(entry, RECORD_KEYS[kind], where, f"{key} ({kind})")
+        label = entry.get("label")
+        if label is not None and (not isinstance(label, str) or not label):
+            raise SweepError(f"{where}: {key}.label must be a non-empty string")
+        if kind == "bundled":
+            if entry["name"] not in bundled.available():
+                raise SweepError(f"{where}: {key}.name {entry['name']!r} is not a bundled "
+                                 f"record; available: {', '.join(bundled.available())}")
+            vertical = entry.get("vertical", True)
+            if not isinstance(vertical, bool):
+                raise SweepError(f"{where}: {key}.vertical must be true or false")
+            result.append(RecordSpec("bundled", label or entry["name"], name=entry["name"],
+                                     vertical=vertical))
+        elif kind == "file":
+            path = Path(entry["file"])
+            path = path if path.is_absolute() else (directory / path)
+            if not path.is_file():
+                raise SweepError(f"{where}: {key}.file: no such file {str(path)!r}")
+            options = []
+            if "units" in entry:
+                options.append(("units", str(entry["units"])))
+            if "dt" in entry:
+                options.append(("dt", _quantity(entry["dt"], "time", where, f"{key}.dt",
+                                                positive=True)))
+            if "column" in entry:
+                options.append(("value_column", entry["column"]))
+            result.append(RecordSpec("file", label or path.stem, file=str(path.resolve()),
+                                     options=tuple(options)))
+        else:
+            if entry["preset"] not in motions.PRESETS:
+                raise SweepError(f"{where}: {key}.preset must be one of "
+                                 f"{', '.join(sorted(motions.PRESETS))}, got {entry['preset']!r}")
+            base = entry.get("seed", seed)
+            if isinstance(base, bool) or not isinstance(base, int) or base < 0:
+                raise SweepError(f"{where}: {key}.seed must be a non-negative integer, got "
+                                 f"{base!r}")
+            seeds = entry.get("seeds", 1)
+            if isinstance(seeds, list):
+                if not seeds or any(isinstance(s, bool) or not isinstance(s, int) or s < 0
+                                    for s in seeds) or len(set(seeds)) != len(seeds):
+                    raise SweepError(f"{where}: {key}.seeds must be a count or a list of "
+                                     f"distinct non-negative integers, got {seeds!r}")
+                seeds = tuple(seeds)
+            elif isinstance(seeds, bool) or not isinstance(seeds, int) or seeds < 1:
+                raise SweepError(f"{where}: {key}.seeds must be a positive count or a list of "
+                                 f"seeds, got {seeds!r}")
+            else:
+                seeds = tuple(range(base, base + seeds))
+            options = []
+            for name, unit_kind, target, factor in (("duration", "time", "duration", 1.0),
+                                                    ("dt", "time", "dt", 1.0),
+                                                    ("pga", "acceleration", "pga_g", G),
+                                                    ("vertical_pga", "acceleration",
+                                                     "vertical_pga_g", G)):
+                if name in entry:
+                    options.append((target, _quantity(entry[name], unit_kind, where,
+                                                      f"{key}.{name}", positive=True) / factor))
+            result.append(RecordSpec("artificial", label or entry["preset"],
+                                     preset=entry["preset"], seeds=seeds,
+                                     options=tuple(options)))
+    labels = [record.label for record in result]
+    duplicated = sorted({label for label in labels if labels.count(label) > 1})
+    if duplicated:
+        raise SweepError(f"{where}: two [[records]] are both labelled {duplicated[0]!r}; give "
+                         "one of them a 'label'")
+    return result
+
+
+def _intensity(table, where):
+    if not isinstance(table, dict):
+        raise SweepError(f"{where}: [intensity] must be a table, got {table!r}")
+    _only(table, INTENSITY_KEYS, where, "[intensity]")
+    if len(table) > 1:
+        raise SweepError(f"{where}: [intensity] gives both scale and pga; give one")
+    if "pga" in table:
+        return "pga", _quantity_list(table["pga"], "acceleration", where, "intensity.pga")
+    if "scale" in table:
+        return "scale", _number_list(table["scale"], where, "intensity.scale", 0.0,
+                                     low_open=True)
+    return "scale", [1.0]
+
+
+def _pitch(table, where, seed):
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise SweepError(f"{where}: [pitch] must be a table, got {table!r}")
+    _only(table, PITCH_KEYS, where, "[pitch]")
+    if ("phases" in table) == ("random_phases" in table):
+        raise SweepError(f"{where}: [pitch] needs exactly one of pitch.phases (a count, evenly "
+                         "spaced, or a list of angles) or pitch.random_phases (a count)")
+    if "phases" in table:
+        value = table["phases"]
+        if isinstance(value, int) and not isinstance(value, bool):
+            if value < 1:
+                raise SweepError(f"{where}: pitch.phases must be at least 1, got {value!r}")
+            phases = [2.0 * math.pi * k / value for k in range(value)]
+        else:
+            phases = [_quantity(item, "angle", where, "pitch.phases") for item in
+                      _as_list(value)]
+    else:
+        count = table["random_phases"]
+        if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+            raise SweepError(f"{where}: pitch.random_phases must be a positive count, got "
+                             f"{count!r}")
+        phases = list(np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, count))
+    values = {}
+    for key, kind in (("frequency", "frequency"), ("amplitude", "angular acceleration"),
+                      ("block_position", "length"), ("axis_depth", "length")):
+        if key in table:
+            values[key] = _quantity(table[key], kind, where, f"pitch.{key}",
+                                    positive=key == "frequency")
+    for key in ("frequency_drift", "amplitude_drift"):
+        if key in table:
+            values[key] = _number_list(table[key], where, f"pitch.{key}", 0.0, 0.25)[0]
+    grid = PitchGrid(phases=tuple(float(p) for p in phases), **values)
+    try:
+        _pitch_of(grid, 0, seed)
+    except ValueError as error:
+        raise SweepError(f"{where}: [pitch]: {error}") from None
+    return grid
+
+
+def _pitch_of(grid: PitchGrid, index: int, seed: int):
+    from shaketable.lab.pitch import Pitch
+
+    drift = grid.frequency_drift > 0 or grid.amplitude_drift > 0
+    return Pitch(frequency=grid.frequency, amplitude=grid.amplitude,
+                 phase=grid.phases[index], seed=seed if drift else None,
+                 frequency_drift=grid.frequency_drift, amplitude_drift=grid.amplitude_drift)

@@ -1,0 +1,93 @@
+"""TODO docstring (from sweep)."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from shaketable.sweeps.spec import SweepError
+
+#: Version of the result layout, written in the manifest.
+FORMAT_VERSION = 1
+
+
+# --------------------------------------------------------------------------- execution
+def parquet_available() -> bool:
+    """True when pyarrow (the ``parquet`` extra) is installed."""
+    return importlib.util.find_spec("pyarrow") is not None
+
+
+def _write_atomic(frame, path: Path, fmt: str) -> None:
+    temporary = path.with_name(f".{path.name}.tmp")
+    if fmt == "parquet":
+        frame.to_parquet(temporary, index=False)
+    else:
+        frame.to_csv(temporary, index=False)
+    os.replace(temporary, path)
+
+
+def _read(path: Path, fmt: str):
+    import pandas as pd
+
+    if fmt == "parquet":
+        return pd.read_parquet(path)
+    frame = pd.read_csv(path)
+    for column in ("seed",):
+        if column in frame:
+            frame[column] = frame[column].astype("Int64")
+    return frame
+
+
+def _part_path(out: Path, chunk: int, fmt: str) -> Path:
+    return out / "parts" / f"part-{chunk:06d}.{'parquet' if fmt == 'parquet' else 'csv'}"
+
+
+def _finished_chunks(spec, out: Path, fmt: str) -> set:
+    """Chunks whose part file is on disk and holds exactly that chunk's runs."""
+    done = set()
+    for chunk in range(spec.n_chunks):
+        path = _part_path(out, chunk, fmt)
+        if not path.exists():
+            continue
+        start = chunk * spec.chunk_size
+        expected = np.arange(start, min(start + spec.chunk_size, spec.n_runs))
+        try:
+            runs = _read(path, fmt)["run"].to_numpy()
+        except Exception:  # unreadable: recompute it (atomic writes make this unlikely)
+            path.unlink()
+            continue
+        if np.array_equal(runs, expected):
+            done.add(chunk)
+        else:
+            path.unlink()
+    return done
+
+
+def _write_text_atomic(path: Path, text: str) -> None:
+    temporary = path.with_name(f".{path.name}.tmp")
+    temporary.write_text(text)
+    os.replace(temporary, path)
+
+
+def read_results(out, *, fmt: str | None = None, parts_only: bool = False):
+    """The result table of a sweep folder: ``results.*`` or, if absent, the parts so far.
+
+    Rows are in run order. A partial sweep gives the finished chunks only.
+    """
+    import pandas as pd
+
+    out = Path(out)
+    if fmt is None:
+        fmt = json.loads((out / "manifest.json").read_text())["format"]
+    final = out / f"results.{'parquet' if fmt == 'parquet' else 'csv'}"
+    if final.exists() and not parts_only:
+        return _read(final, fmt)
+    parts = sorted((out / "parts").glob(f"part-*.{'parquet' if fmt == 'parquet' else 'csv'}"))
+    if not parts:
+        raise SweepError(f"{out}: no finished chunks yet")
+    table = pd.concat([_read(path, fmt) for path in parts], ignore_index=True)
+    return table.sort_values("run", kind="stable").reset_index(drop=True)
