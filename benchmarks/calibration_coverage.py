@@ -41,10 +41,10 @@ from pathlib import Path
 import numpy as np
 
 import shaketable as st
-from shaketable.calibration.record import Record
-from shaketable.calibration.fit import calibrate
 from shaketable.calibration.covariance import covariance_of
+from shaketable.calibration.fit import calibrate
 from shaketable.calibration.free_rocking import virtual_free_rocking_record
+from shaketable.calibration.record import Record
 from shaketable.lab.digitizer import Digitizer
 from shaketable.lab.sensors import Potentiometers, Sensors
 

@@ -51,8 +51,8 @@ def main(argv=None) -> int:
     parser.add_argument("--out", default=None, help="keep the sweep folder here")
     args = parser.parse_args(argv)
 
-    from shaketable.sweeps import execute, spec
     from shaketable.solvers.batch import simulate_cases
+    from shaketable.sweeps import execute, spec
 
     with tempfile.TemporaryDirectory() as scratch:
         folder = Path(args.out) if args.out else Path(scratch)

@@ -29,13 +29,12 @@ from pathlib import Path
 
 import numpy as np
 
-from shaketable import Block, G
-from shaketable.solvers import api as simulate
+from shaketable import Block, G, simulate
 from shaketable.ground import generators as motions
-from shaketable.lab.servo import Actuator, achieved
-from shaketable.lab.pitch import Pitch, motion_at_block
-from shaketable.lab.limits import check_limits
 from shaketable.lab.command import displacement_command
+from shaketable.lab.limits import check_limits
+from shaketable.lab.pitch import Pitch, motion_at_block
+from shaketable.lab.servo import Actuator, achieved
 from shaketable.plots.table import plot_command_vs_achieved
 
 #: Horizontal distance of the block from the table's pitch axis [m] (assumed).

@@ -6,8 +6,8 @@ Each item is one function of :mod:`shaketable.studies.teaching`; its numbers are
 
 from pathlib import Path
 
-from shaketable.studies import teaching
 from shaketable.plots.teaching import save_item
+from shaketable.studies import teaching
 
 FIGURES = Path(__file__).resolve().parent.parent / "docs" / "figures"
 

@@ -7,9 +7,14 @@ import pytest
 from PIL import Image
 
 import shaketable as st
-from shaketable.ground import generators as motions
-from shaketable.plots.animation import animate, block_outline, frame_times, table_displacement
 from shaketable.cli import main
+from shaketable.ground import generators as motions
+from shaketable.plots.animation import (
+    animate,
+    block_outline,
+    frame_times,
+    table_displacement,
+)
 
 
 def test_frame_times_subsample_by_speed_over_fps():

@@ -12,8 +12,9 @@ import numpy as np
 import pytest
 
 import shaketable as st
+from shaketable.ground import generators as motions
+from shaketable.ground import records
 from shaketable.solvers import batch
-from shaketable.ground import generators as motions, records
 
 # Scalar columns of the batch table -> the RockingResult attribute they must equal.
 SCALARS = {

@@ -13,21 +13,31 @@ import math
 
 import numpy as np
 import pytest
-
-import shaketable as st
 import scipy.signal
 
+import shaketable as st
+from shaketable.calibration.covariance import covariance_of, sandwich_covariance
+from shaketable.calibration.filters import (
+    analog_butterworth_foh,
+    butterworth_delay,
+    foh_filter,
+)
 from shaketable.calibration.fit import calibrate
-from shaketable.calibration.record import FILTER_ORDERS
-from shaketable.calibration.record import CalibrationError, Record, read_record
-from shaketable.calibration.filters import analog_butterworth_foh, foh_filter, butterworth_delay
-from shaketable.calibration.covariance import sandwich_covariance, covariance_of
+from shaketable.calibration.free_rocking import (
+    reproduce_fig_3_4,
+    virtual_free_rocking_record,
+)
 from shaketable.calibration.peaks import period_fit
-from shaketable.calibration.free_rocking import reproduce_fig_3_4, virtual_free_rocking_record
-from shaketable.lab.sensors import Potentiometers, Sensors
+from shaketable.calibration.record import (
+    FILTER_ORDERS,
+    CalibrationError,
+    Record,
+    read_record,
+)
 from shaketable.cli import main
 from shaketable.core.constants import INCH
 from shaketable.lab.digitizer import Digitizer
+from shaketable.lab.sensors import Potentiometers, Sensors
 
 BLOCK = st.Block.parse("30x6in")    # the report's test block (Sections 3.2, 3.5)
 # Low-frequency group delay of a 4-pole Butterworth low-pass at fc = 20 Hz:

@@ -4,7 +4,6 @@ Reference values and where they come from are stated next to each number.
 """
 
 import math
-
 import subprocess
 import sys
 

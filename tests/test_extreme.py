@@ -14,10 +14,10 @@ import numpy as np
 import pytest
 
 import shaketable as st
-from shaketable.studies import benchmark_cases, work_precision
-from shaketable.ground import records
 from shaketable.core import theory
 from shaketable.core.constants import G
+from shaketable.ground import records
+from shaketable.studies import benchmark_cases, work_precision
 
 BLOCK_30x6 = st.Block.parse("30x6in")
 
@@ -140,8 +140,13 @@ def test_stiff_prestress_rods_explicit_scheme_shortens_its_steps():
     # the 1e-8: at the default rtol 1e-11 the fast engine is 9e-12 off the
     # reference at rtol 2.5e-14 in the event times, 7e-12 in max |theta| (RESULTS.md)
     _agree(fast, reference, rel=1e-8)
-    from shaketable.core.dynamics import block_parameters
-    from shaketable.core.dynamics import INERTIA, ROD_ARM_1, ROD_ARM_2, ROD_STIFFNESS
+    from shaketable.core.dynamics import (
+        INERTIA,
+        ROD_ARM_1,
+        ROD_ARM_2,
+        ROD_STIFFNESS,
+        block_parameters,
+    )
     parameters = block_parameters(block)
     omega_r = math.sqrt(parameters[ROD_STIFFNESS] * (parameters[ROD_ARM_1] ** 2
                                                      + parameters[ROD_ARM_2] ** 2)

@@ -12,9 +12,9 @@ import math
 import numpy as np
 import pytest
 
-from shaketable.ground import generators, signals
 from shaketable.core.constants import G
 from shaketable.core.motion import Motion
+from shaketable.ground import generators, signals
 
 
 def velocity(motion):

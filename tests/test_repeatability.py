@@ -7,10 +7,16 @@ import pytest
 
 from shaketable import Block
 from shaketable.ground.generators import artificial, harmonic
-from shaketable.studies.repeatability import is_final, pitch_repeatability, run_to_the_end, section_3_7_cases, section_3_7_contrast
-from shaketable.solvers.api import simulate
 from shaketable.lab.pitch import Pitch
 from shaketable.lab.stage import TableSetup, run_table
+from shaketable.solvers.api import simulate
+from shaketable.studies.repeatability import (
+    is_final,
+    pitch_repeatability,
+    run_to_the_end,
+    section_3_7_cases,
+    section_3_7_contrast,
+)
 
 BLOCK = Block.parse("30x6in")
 

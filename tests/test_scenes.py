@@ -9,9 +9,9 @@ import pytest
 
 from shaketable.cli import main
 from shaketable.core.constants import INCH
-from shaketable.scenes.run import build_motion, run_scene
-from shaketable.scenes.parse import SceneError, load_scene, scene_from_dict
 from shaketable.scenes.catalog import resolve_scene_path, scene_names
+from shaketable.scenes.parse import SceneError, load_scene, scene_from_dict
+from shaketable.scenes.run import build_motion, run_scene
 
 GOOD = """
 name = "demo"

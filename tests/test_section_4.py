@@ -11,9 +11,9 @@ import math
 import pytest
 
 import shaketable as st
-from shaketable.ground import records
 from shaketable.core import theory
 from shaketable.core.constants import G
+from shaketable.ground import records
 from shaketable.studies.report_tables import printed_table, reproduce_table, table_3_1
 
 

@@ -8,10 +8,18 @@ import numpy as np
 import pytest
 
 import shaketable as st
-from shaketable.core.constants import G, INCH
+from shaketable.core.constants import INCH, G
 from shaketable.core.motion import Motion
-from shaketable.lab.sensors import Accelerometers, Measurement, Potentiometers, Sensors, measure, theta_from_top_displacement, top_displacement
 from shaketable.lab.digitizer import Digitizer
+from shaketable.lab.sensors import (
+    Accelerometers,
+    Measurement,
+    Potentiometers,
+    Sensors,
+    measure,
+    theta_from_top_displacement,
+    top_displacement,
+)
 
 BLOCK = st.Block.parse("30x6in")   # the report's test block (Section 3.2)
 QUIET = Digitizer(bits=0, noise=0.0)   # no ADC step, no ADC noise

@@ -15,11 +15,12 @@ import pandas as pd
 import pytest
 
 import shaketable as st
-from shaketable.ground import generators, signals, records
-from shaketable.sweeps import execute, spec, store
+from shaketable import sweeps
 from shaketable.cli import main
 from shaketable.core.constants import G
+from shaketable.ground import generators, records, signals
 from shaketable.lab.pitch import Pitch, motion_at_block
+from shaketable.sweeps import execute
 
 REPOSITORY = Path(__file__).resolve().parents[1]
 
@@ -57,7 +58,7 @@ def write(tmp_path, text, name="spec.toml") -> Path:
 def reference_table(tmp_path_factory):
     """The tiny sweep run once, uninterrupted, locally."""
     folder = tmp_path_factory.mktemp("reference")
-    outcome = execute.run_sweep(spec.load_spec(write(folder, SPEC)), folder / "out",
+    outcome = sweeps.run_sweep(sweeps.load_spec(write(folder, SPEC)), folder / "out",
                               progress=False)
     assert outcome.complete and outcome.computed_runs == 48
     return outcome.table
@@ -93,7 +94,7 @@ def test_rows_equal_independent_single_runs(reference_table):
 
 
 def test_pitch_phase_rows_equal_runs_on_a_pitching_table(tmp_path):
-    spec = spec.load_spec(write(tmp_path, """
+    spec = sweeps.load_spec(write(tmp_path, """
 name = "pitch"
 [blocks]
 sizes = ["30x6in"]
@@ -109,7 +110,7 @@ scale = [0.6]
 [pitch]
 phases = ["0 deg", "90 deg", "180 deg"]
 """))
-    table = execute.run_sweep(spec, tmp_path / "out", progress=False).table
+    table = sweeps.run_sweep(spec, tmp_path / "out", progress=False).table
     base = generators.artificial("olive-view", seed=1, duration=5.0)
     block = st.Block.parse("30x6in")
     for _, row in table.iterrows():
@@ -123,7 +124,7 @@ phases = ["0 deg", "90 deg", "180 deg"]
 
 # --------------------------------------------------------------------------- resume
 def test_killed_sweep_resumes_without_loss_or_repeat(tmp_path, reference_table):
-    spec = spec.load_spec(write(tmp_path, SPEC))
+    spec = sweeps.load_spec(write(tmp_path, SPEC))
     out = tmp_path / "out"
     written = []
 
@@ -133,20 +134,20 @@ def test_killed_sweep_resumes_without_loss_or_repeat(tmp_path, reference_table):
             raise KeyboardInterrupt("killed")  # what Ctrl-C or a kill looks like mid-sweep
 
     with pytest.raises(KeyboardInterrupt):
-        execute.run_sweep(spec, out, progress=False, on_chunk=crash_after_two)
+        sweeps.run_sweep(spec, out, progress=False, on_chunk=crash_after_two)
     parts = sorted((out / "parts").glob("part-*.parquet"))
     assert [p.name for p in parts] == ["part-000000.parquet", "part-000001.parquet"]
     assert not (out / "results.parquet").exists()
-    partial = store.read_results(out)
+    partial = sweeps.read_results(out)
     assert list(partial["run"]) == list(range(20))
 
     # without --resume the folder is refused (nothing is overwritten)
-    with pytest.raises(spec.SweepError, match="--resume"):
-        execute.run_sweep(spec, out, progress=False)
+    with pytest.raises(sweeps.SweepError, match="--resume"):
+        sweeps.run_sweep(spec, out, progress=False)
     # one more chunk only, then the rest
-    step = execute.run_sweep(spec, out, progress=False, resume=True, max_chunks=1)
+    step = sweeps.run_sweep(spec, out, progress=False, resume=True, max_chunks=1)
     assert not step.complete and step.computed_runs == 10 and step.skipped_runs == 20
-    final = execute.run_sweep(spec, out, progress=False, resume=True)
+    final = sweeps.run_sweep(spec, out, progress=False, resume=True)
     assert final.complete and final.computed_runs == 18 and final.skipped_runs == 30
     table = final.table
     assert list(table["run"]) == list(range(48))   # none lost, none repeated
@@ -157,21 +158,21 @@ def test_killed_sweep_resumes_without_loss_or_repeat(tmp_path, reference_table):
 
 def test_resume_refuses_a_changed_spec(tmp_path):
     out = tmp_path / "out"
-    execute.run_sweep(spec.load_spec(write(tmp_path, SPEC)), out, progress=False,
+    sweeps.run_sweep(sweeps.load_spec(write(tmp_path, SPEC)), out, progress=False,
                     max_chunks=1)
-    changed = spec.load_spec(write(tmp_path, SPEC.replace("seed = 7", "seed = 8"), "b.toml"))
-    with pytest.raises(spec.SweepError, match="cannot resume.*fingerprint"):
-        execute.run_sweep(changed, out, progress=False, resume=True)
+    changed = sweeps.load_spec(write(tmp_path, SPEC.replace("seed = 7", "seed = 8"), "b.toml"))
+    with pytest.raises(sweeps.SweepError, match="cannot resume.*fingerprint"):
+        sweeps.run_sweep(changed, out, progress=False, resume=True)
     assert json.loads((out / "manifest.json").read_text())["n_runs"] == 48
 
 
 def test_same_seed_same_table_whatever_chunks_and_threads(tmp_path, reference_table):
     other = SPEC.replace("chunk_size = 10", "chunk_size = 17")
-    table = execute.run_sweep(spec.load_spec(write(tmp_path, other)), tmp_path / "a",
+    table = sweeps.run_sweep(sweeps.load_spec(write(tmp_path, other)), tmp_path / "a",
                             progress=False, workers=1).table
     pd.testing.assert_frame_equal(_without_bookkeeping(table),
                                   _without_bookkeeping(reference_table))
-    reseeded = execute.run_sweep(spec.load_spec(write(tmp_path, SPEC.replace(
+    reseeded = sweeps.run_sweep(sweeps.load_spec(write(tmp_path, SPEC.replace(
         "seed = 7", "seed = 9"), "c.toml")), tmp_path / "b", progress=False).table
     artificial = reseeded["record_kind"] == "artificial"
     assert sorted(set(reseeded.loc[artificial, "seed"])) == [9, 10]
@@ -180,10 +181,10 @@ def test_same_seed_same_table_whatever_chunks_and_threads(tmp_path, reference_ta
 
 
 def test_csv_format_holds_the_same_values(tmp_path, reference_table):
-    outcome = execute.run_sweep(spec.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
+    outcome = sweeps.run_sweep(sweeps.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
                               progress=False, fmt="csv")
     assert outcome.path.name == "results.csv"
-    table = store.read_results(tmp_path / "out")
+    table = sweeps.read_results(tmp_path / "out")
     for column in ("run", "max_abs_theta [rad]", "t_overturn [s]", "status", "seed"):
         left, right = table[column], reference_table[column]
         assert left.astype(str).tolist() == right.astype(str).tolist() or np.allclose(
@@ -196,7 +197,7 @@ def test_local_dask_cluster_gives_the_same_table(tmp_path, reference_table):
     with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
-        outcome = execute.run_sweep(spec.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
+        outcome = sweeps.run_sweep(sweeps.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
                                   scheduler=client, progress=False)
     assert outcome.complete
     pd.testing.assert_frame_equal(_without_bookkeeping(outcome.table),
@@ -257,22 +258,22 @@ def test_sigkilled_sweep_process_resumes_without_loss_or_repeat(tmp_path):
     assert list(resumed["run"]) == list(range(100))             # none lost, none repeated
     # the same sweep uninterrupted (in one chunk: only the bookkeeping column differs)
     whole = write(tmp_path, LONG_SPEC.replace("chunk_size = 1", "chunk_size = 100"), "whole.toml")
-    uninterrupted = execute.run_sweep(spec.load_spec(whole), tmp_path / "whole",
+    uninterrupted = sweeps.run_sweep(sweeps.load_spec(whole), tmp_path / "whole",
                                     progress=False, workers=1).table
     pd.testing.assert_frame_equal(_without_bookkeeping(resumed),
                                   _without_bookkeeping(uninterrupted))
 
 
 def test_resume_refuses_parts_of_another_solver(tmp_path, monkeypatch):
-    spec = spec.load_spec(write(tmp_path, SPEC))
+    spec = sweeps.load_spec(write(tmp_path, SPEC))
     out = tmp_path / "out"
-    execute.run_sweep(spec, out, progress=False, max_chunks=1)
+    sweeps.run_sweep(spec, out, progress=False, max_chunks=1)
     # another package version or another default tolerance must not be mixed in one table
-    original = execute._solver_identity()
-    monkeypatch.setattr(sweep, "_solver_identity",
+    original = execute.solver_identity()
+    monkeypatch.setattr(execute, "solver_identity",
                         lambda: {**original, "default rtol": {"fast": 1e-6}})
-    with pytest.raises(spec.SweepError, match="cannot resume.*solver"):
-        execute.run_sweep(spec, out, progress=False, resume=True)
+    with pytest.raises(sweeps.SweepError, match="cannot resume.*solver"):
+        sweeps.run_sweep(spec, out, progress=False, resume=True)
 
 
 def test_dask_cluster_by_address_with_worker_processes(tmp_path, reference_table):
@@ -315,8 +316,8 @@ def test_spec_errors_name_the_file_and_the_key(tmp_path, change, message):
     old, new = change
     assert old in SPEC
     path = write(tmp_path, SPEC.replace(old, new, 1))
-    with pytest.raises(spec.SweepError, match=message) as caught:
-        spec.load_spec(path)
+    with pytest.raises(sweeps.SweepError, match=message) as caught:
+        sweeps.load_spec(path)
     assert str(caught.value).startswith(str(path))
 
 
@@ -324,7 +325,7 @@ def test_bundled_sweep_specs_are_valid():
     specs = sorted((REPOSITORY / "experiments" / "sweeps").glob("*.toml"))
     assert len(specs) >= 3
     for path in specs:
-        spec = spec.load_spec(path)
+        spec = sweeps.load_spec(path)
         assert spec.n_runs > 0, path
 
 
@@ -364,7 +365,7 @@ def test_sweep_figures_draw_from_a_table(reference_table):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from shaketable.plots.calcomp import sweeps as sweep_plots
+    from shaketable.plots import sweeps as sweep_plots
 
     one = reference_table[(reference_table["record"] == "pacoima-dam-s16e")
                           & (reference_table["target_pga [m/s^2]"] == 0.4 * G)]

@@ -18,14 +18,13 @@ import math
 import numpy as np
 import pytest
 
-from shaketable import Block, Motion
+from shaketable import Block, Motion, simulate
+from shaketable.core.constants import INCH, G
 from shaketable.ground import generators as motions
-from shaketable.solvers import api as simulate
-from shaketable.core.constants import G, INCH
-from shaketable.lab.servo import Actuator, achieved, achieved_displacement
+from shaketable.lab.command import TableCommand, displacement_command
 from shaketable.lab.limits import LimitExceedance, TableLimits, check_limits
 from shaketable.lab.pitch import Pitch, motion_at_block, pitch_history
-from shaketable.lab.command import TableCommand, displacement_command
+from shaketable.lab.servo import Actuator, achieved, achieved_displacement
 
 PITCH_FREQUENCY = 12.0                 # [Hz], Section 3.7 (2)
 W = 2.0 * math.pi * PITCH_FREQUENCY    # [rad/s]

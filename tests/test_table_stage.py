@@ -8,11 +8,17 @@ import pytest
 from shaketable import Block, Motion
 from shaketable.core.constants import G
 from shaketable.ground.generators import harmonic
-from shaketable.scenes.run import run_scene
-from shaketable.scenes.parse import SceneError, scene_from_dict
-from shaketable.lab.servo import Actuator
 from shaketable.lab.pitch import Pitch
-from shaketable.lab.stage import SAMPLES_PER_PITCH_CYCLE, TableSetup, pitch_sampled, run_table, table_setup_from_dict
+from shaketable.lab.servo import Actuator
+from shaketable.lab.stage import (
+    SAMPLES_PER_PITCH_CYCLE,
+    TableSetup,
+    pitch_sampled,
+    run_table,
+    table_setup_from_dict,
+)
+from shaketable.scenes.parse import SceneError, scene_from_dict
+from shaketable.scenes.run import run_scene
 
 
 def _ramped(amplitude_g=0.3, frequency=2.0, duration=12.0):

@@ -11,9 +11,10 @@ import pytest
 
 import shaketable as st
 from shaketable.ground import generators as motions
-from shaketable.studies import teaching
-from shaketable.scenes.parse import SceneError, Study, load_scene, scene_from_dict
+from shaketable.ground import records
 from shaketable.scenes.catalog import resolve_scene_path
+from shaketable.scenes.parse import SceneError, Study, load_scene, scene_from_dict
+from shaketable.studies import teaching
 
 G = 9.80665  # m/s^2, standard gravity (docs/conventions.md)
 
@@ -55,7 +56,7 @@ def test_lower_cor_raises_the_peak_under_pacoima_s74w():
     assert peaks[0.94] < peaks[0.95] < peaks[0.93]  # and not monotonic in COR
     assert item.rises_when_cor_drops and item.worst_cor == 0.93
     # the sweep reports what simulate gives for the same inputs
-    direct = st.simulate(st.Block.parse("6x2ft"), st.records.load("pacoima-dam-s74w"),
+    direct = st.simulate(st.Block.parse("6x2ft"), records.load("pacoima-dam-s74w"),
                          cor=0.93)
     assert peaks[0.93] == direct.max_theta_ratio
     assert item.report_points == ((1.0, 0.38), (0.90, 0.58))  # Tables 4.2 and 4.3

@@ -6,12 +6,16 @@ import numpy as np
 import pytest
 
 from shaketable import Block
-from shaketable.scenes.run import build_motion, run_scene
-from shaketable.scenes.parse import SceneError, load_scene, scene_from_dict
-from shaketable.scenes.catalog import resolve_scene_path
 from shaketable.lab.sensors import Potentiometers, Sensors
 from shaketable.lab.stage import run_table, table_setup_from_dict
-from shaketable.scenes.virtual_test import TheorySetup, run_virtual_test, sensors_from_dict
+from shaketable.scenes.catalog import resolve_scene_path
+from shaketable.scenes.parse import SceneError, load_scene, scene_from_dict
+from shaketable.scenes.run import build_motion, run_scene
+from shaketable.scenes.virtual_test import (
+    TheorySetup,
+    run_virtual_test,
+    sensors_from_dict,
+)
 
 BLOCK = Block.parse("30x6in")
 

@@ -37,7 +37,7 @@ def _load_motion(args):
 
 
 def _simulate(args) -> int:
-    from shaketable.plots.calcomp import base as plots
+    from shaketable.plots import base as plots
     from shaketable.solvers.api import simulate
 
     block = Block.parse(args.block)

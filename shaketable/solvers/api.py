@@ -12,7 +12,7 @@ from shaketable.core.motion import Motion, whole_number
 from shaketable.core.results import RockingResult
 from shaketable.core.validation import in_range
 from shaketable.solvers import engine
-from shaketable.solvers.common import _COMPILED, _DEFAULT_RTOL, _extended, _result
+from shaketable.solvers.common import COMPILED_METHODS, DEFAULT_RTOL, extended, result_from_info
 from shaketable.solvers.reference import integrate_reference
 
 #: Solvers by name. ``fast`` is the default.
@@ -109,9 +109,9 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     elif not isinstance(motion, Motion):
         raise ValueError(f"motion must be a shaketable.Motion or None, got {type(motion).__name__}")
     else:
-        motion = _extended(motion, duration)
+        motion = extended(motion, duration)
     if rtol is None:
-        rtol = _DEFAULT_RTOL.get(method, 1e-10)
+        rtol = DEFAULT_RTOL.get(method, 1e-10)
     rtol = in_range("rtol", rtol, 0.0, 1.0, low_open=True)
     subdivisions = whole_number("subdivisions", subdivisions)
     rest = -1.0 if rest_tolerance is None else in_range("rest_tolerance", rest_tolerance,
@@ -133,8 +133,8 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
                             theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
                             impact_velocities, info)
     else:
-        engine.integrate(_COMPILED[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
+        engine.integrate(COMPILED_METHODS[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
                          rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
                          impact_velocities, info)
-    return _result(block, motion, cor, method, t_grid, theta, omega, acceleration,
+    return result_from_info(block, motion, cor, method, t_grid, theta, omega, acceleration,
                    impact_times, impact_velocities, info)

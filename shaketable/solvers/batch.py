@@ -39,12 +39,12 @@ from shaketable.core.motion import Motion, whole_number
 from shaketable.core.results import STATUSES
 from shaketable.core.validation import in_range
 from shaketable.solvers import engine
-from shaketable.solvers.common import _COMPILED, _DEFAULT_RTOL, _extended
+from shaketable.solvers.common import COMPILED_METHODS, DEFAULT_RTOL, extended
 
 __all__ = ["Case", "METHODS", "simulate_cases", "simulate_many"]
 
 #: Methods the batch runs (the compiled ones; ``reference`` is SciPy, one run at a time).
-METHODS = tuple(_COMPILED)
+METHODS = tuple(COMPILED_METHODS)
 
 
 @dataclass(frozen=True)
@@ -280,7 +280,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     if unknown:
         raise ValueError(f"unknown option {unknown[0]!r}; expected one of "
                          f"{', '.join(sorted(_OPTIONS))}")
-    if method not in _COMPILED:
+    if method not in COMPILED_METHODS:
         raise ValueError(f"method must be one of {list(METHODS)} for a batch, got {method!r}"
                          + (" (the reference solver runs one at a time: use "
                             "shaketable.solvers.api)" if method == "reference" else ""))
@@ -290,7 +290,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
         raise ValueError(f"theta0 must satisfy |theta0| < pi/2 rad, got {theta0!r}")
     if duration is not None:
         duration = in_range("duration", duration, 0.0, low_open=True)
-    rtol = _DEFAULT_RTOL.get(method, 1e-10) if rtol is None else rtol
+    rtol = DEFAULT_RTOL.get(method, 1e-10) if rtol is None else rtol
     rtol = in_range("rtol", rtol, 0.0, 1.0, low_open=True)
     subdivisions = whole_number("subdivisions", options.get("subdivisions", 4))
     rest_tolerance = options.get("rest_tolerance")
@@ -301,7 +301,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
         threads = int(in_range("threads", threads, 1, numba.config.NUMBA_NUM_THREADS))
 
     # motions end to end (each cut or padded to `duration` exactly as simulate does)
-    runs = [_extended(motion, duration) for motion in motions]
+    runs = [extended(motion, duration) for motion in motions]
     offsets = np.zeros(len(runs) + 1, dtype=np.int64)
     offsets[1:] = np.cumsum([motion.t.size for motion in runs])
     t_all = np.concatenate([motion.t for motion in runs])
@@ -327,7 +327,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
             f"({runs[motion_index[first]].name!r}): the pitch is a disturbance of the table, not "
             "part of the record; scale the record first, then add the pitch "
             "(shaketable.lab.pitch.motion_at_block), as Motion.scaled does")
-    arguments = (_COMPILED[method], t_all, ug_all, vg_all, rg_all, offsets, parameters,
+    arguments = (COMPILED_METHODS[method], t_all, ug_all, vg_all, rg_all, offsets, parameters,
                  block_index, motion_index, cors, scales, theta0, theta_dot0, rtol,
                  subdivisions, rest, info)
     if threads == 1:

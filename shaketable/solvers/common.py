@@ -12,14 +12,14 @@ from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion
 from shaketable.core.results import STATUSES, RockingResult
 from shaketable.solvers import engine
 
-_DEFAULT_RTOL = {"fast": 1e-11, "reference": 1e-12}
+DEFAULT_RTOL = {"fast": 1e-11, "reference": 1e-12}
 
-_COMPILED = {"fast": engine.METHOD_FAST,
+COMPILED_METHODS = {"fast": engine.METHOD_FAST,
              "predictor-corrector": engine.METHOD_PREDICTOR_CORRECTOR,
              "linear": engine.METHOD_LINEAR}
 
 
-def _extended(motion: Motion, duration: float | None) -> Motion:
+def extended(motion: Motion, duration: float | None) -> Motion:
     """The motion cut or padded with zeros (table at rest) to end at exactly ``duration``.
 
     Cut: the samples before ``t[0] + duration`` and one at that time,
@@ -69,7 +69,7 @@ def _extended(motion: Motion, duration: float | None) -> Motion:
                   rotation=padded(motion.rotation))
 
 
-def _result(block, motion, cor, method, t_grid, theta, omega, acceleration, impact_times,
+def result_from_info(block, motion, cor, method, t_grid, theta, omega, acceleration, impact_times,
             impact_velocities, info) -> RockingResult:
     filled = int(info[engine.INFO_N_OUTPUT])
     status = STATUSES[int(info[engine.INFO_STATUS])]

@@ -13,7 +13,7 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.solvers.api import simulate
-from shaketable.solvers.common import _DEFAULT_RTOL
+from shaketable.solvers.common import DEFAULT_RTOL
 from shaketable.solvers.reference import ReferenceSolverError
 from shaketable.studies.benchmark_cases import (
     ACCEPT_ABSOLUTE_THETA,
@@ -487,8 +487,8 @@ def results_markdown(accuracy=None, orders=None, frame=None, pacoima=None, first
             lines += [f"| {key} | {_fmt(value)} |" for key, value in batch.items()]
             lines.append("")
     if accuracy is not None:
-        lines += [f"## Acceptance: fast (default rtol {_DEFAULT_RTOL['fast']:g}) against reference "
-                  f"(default rtol {_DEFAULT_RTOL['reference']:g})", "",
+        lines += [f"## Acceptance: fast (default rtol {DEFAULT_RTOL['fast']:g}) against reference "
+                  f"(default rtol {DEFAULT_RTOL['reference']:g})", "",
                   "Target: 1e-8 relative in max |theta| (or 1e-10 rad) and in the event "
                   "times, same impact count before 20 s and same verdict.", "",
                   markdown_table(accuracy, [c for c in accuracy.columns if c not in

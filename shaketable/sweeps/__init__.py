@@ -1,1 +1,14 @@
-"""TODO package docstring."""
+"""Parameter sweeps: a TOML spec of blocks x records x intensities x CORs, run in chunks.
+
+:mod:`~shaketable.sweeps.spec` reads and checks the spec, :mod:`~shaketable.sweeps.execute`
+runs it (locally or on a Dask cluster) and :mod:`~shaketable.sweeps.store` writes the
+Parquet/CSV parts that make a sweep resumable; :mod:`~shaketable.sweeps.fragility` fits
+fragility curves to the table.
+"""
+
+from shaketable.sweeps.execute import SweepOutcome, run_sweep, runs_table, solver_identity
+from shaketable.sweeps.spec import SweepError, SweepSpec, load_spec, spec_from_dict
+from shaketable.sweeps.store import parquet_available, read_results
+
+__all__ = ["SweepError", "SweepOutcome", "SweepSpec", "load_spec", "parquet_available",
+           "read_results", "run_sweep", "runs_table", "solver_identity", "spec_from_dict"]

@@ -191,16 +191,16 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
     return pd.concat([extra, frame], axis=1)
 
 
-def _solver_identity() -> dict:
+def solver_identity() -> dict:
     """What a resumed sweep must share with the parts already written: the package
     version, the solvers and their default tolerances (rows computed by another engine
     must not be mixed into one table)."""
     from shaketable import __version__
     from shaketable.solvers.api import METHODS
-    from shaketable.solvers.common import _DEFAULT_RTOL
+    from shaketable.solvers.common import DEFAULT_RTOL
 
     return {"shaketable": __version__, "methods": dict(METHODS),
-            "default rtol": dict(_DEFAULT_RTOL)}
+            "default rtol": dict(DEFAULT_RTOL)}
 
 
 def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
@@ -208,7 +208,7 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
     manifest = {"sweep": spec.name, "spec": spec.path, "fingerprint": spec.fingerprint(),
                 "n_runs": spec.n_runs, "chunk_size": spec.chunk_size,
                 "n_chunks": spec.n_chunks, "format": fmt, "format_version": FORMAT_VERSION,
-                "solver": _solver_identity()}
+                "solver": solver_identity()}
     if manifest_path.exists():
         if not resume:
             raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
