@@ -44,7 +44,7 @@ import shaketable as st
 from shaketable.calibration.covariance import covariance_of
 from shaketable.calibration.fit import calibrate
 from shaketable.calibration.free_rocking import virtual_free_rocking_record
-from shaketable.calibration.record import Record
+from shaketable.calibration.record import FreeRockingRecord
 from shaketable.lab.digitizer import Digitizer
 from shaketable.lab.sensors import Potentiometers, Sensors
 
@@ -77,7 +77,7 @@ def virtual(cor, seed, digitizer=None, method="fast", noise=True):
                                             sensors=sensors, method=method,
                                             rtol=DATA_RTOL if method == "fast" else None)
     shift = rng.uniform(0.0, 5.0)
-    return Record(record.t + shift, record.values, record.quantity, height=record.height,
+    return FreeRockingRecord(record.t + shift, record.values, record.quantity, height=record.height,
                   name=f"cor {cor} seed {seed}")
 
 

@@ -7,7 +7,7 @@ and docs/figures/work_precision.png (about 1-2 minutes on 2 cores).
 import sys
 from pathlib import Path
 
-from shaketable.commands.bench import run_study
+from shaketable.bench import run_study
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -71,9 +71,9 @@ def title_of(motion, highpass, pitch: Pitch, actuator: Actuator) -> str:
 def docs_figure(path: Path, pitch: Pitch, actuator: Actuator) -> None:
     """The one-second windows of both cases side by side, target vs achieved with and
     without pitch (the figure of docs/table.md)."""
-    from shaketable.plots.table import _pyplot
+    from shaketable.plots.base import pyplot
 
-    plt = _pyplot()
+    plt = pyplot()
     fig = plt.figure(figsize=(16.0, 7.8), layout="constrained")
     for panel, (motion, highpass, zoom) in zip(fig.subfigures(1, 2, wspace=0.03),
                                                 CASES.values()):
@@ -90,7 +90,7 @@ def docs_figure(path: Path, pitch: Pitch, actuator: Actuator) -> None:
 
 def run_case(name, motion, highpass, zoom, outdir: Path, pitch: Pitch, actuator: Actuator):
     """Command, limits, achieved motion, figure and block response for one motion."""
-    from shaketable.plots.table import _pyplot
+    from shaketable.plots.base import pyplot
 
     command, servo, felt = achieved_pair(motion, highpass, pitch, actuator)
     print(f"\n== {name}: high-pass {highpass} Hz, peak command displacement "
@@ -102,7 +102,7 @@ def run_case(name, motion, highpass, zoom, outdir: Path, pitch: Pitch, actuator:
     print(f"   peak vertical acceleration at the block from pitch: "
           f"{np.max(np.abs(felt.vertical_or_zero - servo.vertical_or_zero)):.3f} m/s^2")
 
-    plt = _pyplot()
+    plt = pyplot()
     title = title_of(motion, highpass, pitch, actuator)
     for suffix, window in (("", None), ("_zoom", zoom)):
         fig = plot_command_vs_achieved(motion, servo, felt, window=window, title=title)

@@ -118,11 +118,11 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
 
         frame = {"2.3": section2.figure_2_3, "2.4": section2.figure_2_4,
                  "2.5": section2.figure_2_5, "2.6": section2.figure_2_6,
-                 "4.3.4": pulses.section_4_3_4}[study.table]()
+                 "4.3.4": pulses.section_4_3_4}[study.figure]()
         frame.to_csv(folder / "curves.csv", index=False)
-        save(section_2_figure(frame, study.table), folder / "figure.png")
+        save(section_2_figure(frame, study.figure), folder / "figure.png")
         lines += [f"![{study.name}]({study.name}/figure.png)", "", _markdown(frame.round(4))]
-        if study.table == "4.3.4":
+        if study.figure == "4.3.4":
             # the report's one number: 4.6 g by Eq. (2-9) for a 0.1 s pulse
             row = frame[frame["pulse duration [s]"] == 0.1].iloc[0]
             agrees = abs(row["Eq. 2-9 [g]"] / 4.6 - 1) <= 0.05
@@ -193,18 +193,15 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
 
 def _repeatability_section(study: Study, folder: Path, lines: list, tally: list) -> str:
     """Section 3.7 (2): the same command on a table pitching with different phases."""
-    import matplotlib.pyplot as plt
     import pandas as pd
 
     from shaketable.plots.base import save
-    from shaketable.studies.repeatability import section_3_7_cases, section_3_7_contrast
+    from shaketable.plots.studies import pitch_repeatability_figure
+    from shaketable.scenes.studies import section_3_7_cases
+    from shaketable.studies.repeatability import section_3_7_contrast
 
-    cases = section_3_7_cases(phases=study.seed)
-    figure, axes = plt.subplots(len(cases), 1, figsize=(8, 2.4 * len(cases)))
-    for case, axis in zip(cases, axes):
-        case.plot(axis)
-    figure.tight_layout()
-    save(figure, folder / "figure.png")
+    cases = section_3_7_cases(phases=study.phases)
+    save(pitch_repeatability_figure(cases), folder / "figure.png")
     pd.concat([case.to_frame() for case in cases]).to_csv(folder / "runs.csv", index=False)
     frame = pd.DataFrame([case.summary() for case in cases])
     frame["overturn directions"] = frame["overturn directions"].map(
@@ -223,7 +220,7 @@ def _teaching_section(study: Study, folder: Path, lines: list) -> str:
     from shaketable.plots.teaching import save_item
     from shaketable.studies.teaching import run_item
 
-    item = run_item(study.table)
+    item = run_item(study.item)
     frame = item.to_frame()
     frame.to_csv(folder / "numbers.csv", index=False)
     save_item(item, folder / "figure.png")

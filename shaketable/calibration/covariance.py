@@ -1,4 +1,6 @@
-"""TODO docstring (from calibrate)."""
+"""Covariance of the fitted parameters: iid, sandwich with the residuals' autocovariance,
+and Newey-West (HAC) for the serially correlated residuals of a sampled record.
+"""
 
 from __future__ import annotations
 

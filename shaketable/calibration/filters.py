@@ -1,4 +1,6 @@
-"""TODO docstring (from calibrate)."""
+"""The acquisition's anti-alias filter as the fit models it: a causal Butterworth low-pass
+discretised with a first-order hold, and its group delay [s].
+"""
 
 from __future__ import annotations
 

@@ -48,7 +48,7 @@ COR values "by eye" (Section 3.5, Fig. 3.4: COR = 0.925). Here:
 * :func:`predict`, :func:`compare_free_rocking`, :func:`reproduce_fig_3_4` --
   the calibrated COR fed back into the theory run (Section 3.7 (1), Fig. 3.4).
 
-Inputs are :class:`Record` objects (time and angle, or time and top
+Inputs are :class:`FreeRockingRecord` objects (time and angle, or time and top
 displacement with the block height), built directly, from a
 :class:`~shaketable.lab.sensors.Measurement` or read from a CSV or plain-text file
 (:func:`read_record`).
@@ -92,7 +92,7 @@ from shaketable.calibration.record import (
     FILTER_ORDERS,
     INTERVALS,
     CalibrationError,
-    Record,
+    FreeRockingRecord,
 )
 from shaketable.calibration.result import Calibration
 from shaketable.core.geometry import Block
@@ -101,7 +101,7 @@ from shaketable.lab.digitizer import Digitizer
 
 
 # ------------------------------------------------------------------ calibrate
-def _check_record(record: Record, block: Block, stroke: float | None):
+def _check_record(record: FreeRockingRecord, block: Block, stroke: float | None):
     """Clear messages for records that cannot give a COR. Returns (theta, sigma)."""
     t, values = record.t, record.values
     if t.size < 20:
@@ -165,7 +165,7 @@ def _filter_mode(anti_alias):
                      f"got {anti_alias!r}")
 
 
-def calibrate(record: Record, block: Block, *, anti_alias="fit", filter_order="auto",
+def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filter_order="auto",
               interval: str = "acf", bootstrap: int = 0, seed: int | None = None,
               stroke: float | None = None, rtol: float = 1e-9,
               max_interval: float = 0.05) -> Calibration:
@@ -173,7 +173,7 @@ def calibrate(record: Record, block: Block, *, anti_alias="fit", filter_order="a
 
     Parameters
     ----------
-    record : Record
+    record : FreeRockingRecord
         The whole record (may begin before the release and end long after rest).
     block : Block
         The nominal block (Eq. 2-3 needs alpha and p).
@@ -225,8 +225,8 @@ def calibrate(record: Record, block: Block, *, anti_alias="fit", filter_order="a
         Bad arguments, naming the argument.
     """
     started = _time.perf_counter()
-    if not isinstance(record, Record):
-        raise ValueError(f"record must be a shaketable.calibration.record.Record, got "
+    if not isinstance(record, FreeRockingRecord):
+        raise ValueError(f"record must be a shaketable.calibration.record.FreeRockingRecord, got "
                          f"{type(record).__name__}")
     if not isinstance(block, Block):
         raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")

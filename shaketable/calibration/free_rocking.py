@@ -1,4 +1,6 @@
-"""TODO docstring (from calibrate)."""
+"""Free rocking, test against theory (Fig. 3.4, Table 3.1): a virtual free-rocking record,
+its calibration, and the comparison of the measured decay with the model's.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +11,7 @@ import numpy as np
 
 from shaketable.calibration.fit import calibrate
 from shaketable.calibration.peaks import find_peaks, noise_level
-from shaketable.calibration.record import Record, json_safe
+from shaketable.calibration.record import FreeRockingRecord, json_safe
 from shaketable.calibration.result import Calibration, predict
 from shaketable.core.geometry import Block
 from shaketable.solvers.api import simulate
@@ -35,7 +37,7 @@ class FreeRockingComparison:
     theory : RockingResult
         Free rocking from the fitted release angle with the calibrated COR.
     t, test_theta, theory_theta : ndarray
-        Record times [s] and the two angles [rad] (offset removed; theory
+        FreeRockingRecord times [s] and the two angles [rad] (offset removed; theory
         shifted to the fitted release time).
     peak_ratios : ndarray
         Test / theory amplitude of the successive peaks [-].
@@ -141,7 +143,7 @@ def virtual_free_rocking_record(block: Block, cor: float, theta0: float, *, seed
     seed : int or None
         Seed of the sensors' noise (ignored when ``sensors`` is given).
     before, duration : float
-        Record time before the release and in all [s].
+        FreeRockingRecord time before the release and in all [s].
     sensors : Sensors, optional
         Default ``Sensors(seed=seed)``.
     method, rtol
@@ -151,7 +153,7 @@ def virtual_free_rocking_record(block: Block, cor: float, theta0: float, *, seed
 
     Returns
     -------
-    (Record, Measurement)
+    (FreeRockingRecord, Measurement)
     """
     from shaketable.lab.sensors import Sensors, measure
 
@@ -168,7 +170,7 @@ def virtual_free_rocking_record(block: Block, cor: float, theta0: float, *, seed
         sensors = replace(sensors, digitizer=replace(digitizer, start=-before,
                                                      end=duration - before))
     measurement = measure(run, block, sensors=sensors)
-    return Record.from_measurement(measurement), measurement
+    return FreeRockingRecord.from_measurement(measurement), measurement
 
 
 def reproduce_fig_3_4(*, cor: float = 0.925, theta0_ratio: float = 0.5, seed: int = 0,

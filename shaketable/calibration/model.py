@@ -1,4 +1,6 @@
-"""TODO docstring (from calibrate)."""
+"""The model the COR fit adjusts: the free-rocking solution of Eq. (2-13) with the impact
+map (Eq. 2-16), sampled and filtered as the record was, and its Jacobian.
+"""
 
 from __future__ import annotations
 
@@ -11,7 +13,7 @@ from shaketable.calibration.filters import (
     butterworth_delay,
     foh_filter,
 )
-from shaketable.calibration.record import Record
+from shaketable.calibration.record import FreeRockingRecord
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.lab.digitizer import Digitizer
@@ -27,7 +29,7 @@ TAU_FLOOR = 1e-6
 
 
 class FreeRockingModel:
-    """Record-space prediction y(t_k; x) with the engine in the loop.
+    """FreeRockingRecord-space prediction y(t_k; x) with the engine in the loop.
 
     ``x = (cor, theta0, t_release, offset)`` and, when the anti-alias filter is
     fitted (``filter="fit"``), a fifth parameter u = tau^2 [s^2], the square of
@@ -39,7 +41,7 @@ class FreeRockingModel:
     unfiltered model, reached smoothly, which keeps the Jacobian regular there.
     """
 
-    def __init__(self, record: Record, block: Block, mode: str, digitizer: Digitizer | None,
+    def __init__(self, record: FreeRockingRecord, block: Block, mode: str, digitizer: Digitizer | None,
                  order: int, rtol: float, method: str = "fast"):
         self.record, self.block, self.mode, self.rtol = record, block, mode, rtol
         self.digitizer, self.order, self.method = digitizer, int(order), method

@@ -1,4 +1,6 @@
-"""TODO docstring (from calibrate)."""
+"""Classical estimates from a free-rocking record: noise level, zero crossings, peaks,
+the COR from successive peak ratios (Eq. 2-17) and from the periods (Eq. 2-7).
+"""
 
 from __future__ import annotations
 
@@ -10,7 +12,7 @@ import scipy.optimize
 import scipy.signal
 import scipy.stats
 
-from shaketable.calibration.record import CalibrationError, Record
+from shaketable.calibration.record import CalibrationError, FreeRockingRecord
 from shaketable.core.geometry import Block
 from shaketable.core.theory import exact_period, impact_velocity
 
@@ -171,7 +173,7 @@ class PeakEstimate:
         return bool(abs(self.slope) <= 1.96 * self.slope_se) if np.isfinite(self.slope) else True
 
 
-def peak_estimate(record: Record, block: Block, *, offset: float = 0.0,
+def peak_estimate(record: FreeRockingRecord, block: Block, *, offset: float = 0.0,
                   t_release: float | None = None, min_amplitude: float | None = None,
                   sigma: float | None = None) -> PeakEstimate:
     """COR from successive peaks with the exact energy relation between impacts.
@@ -183,7 +185,7 @@ def peak_estimate(record: Record, block: Block, *, offset: float = 0.0,
 
     Parameters
     ----------
-    record : Record
+    record : FreeRockingRecord
     block : Block
         Gives alpha (and the height for a displacement record).
     offset : float
@@ -293,7 +295,7 @@ class PeriodFit:
                          for a in np.atleast_1d(amplitudes)])
 
 
-def period_fit(record: Record, block: Block, *, offset: float = 0.0,
+def period_fit(record: FreeRockingRecord, block: Block, *, offset: float = 0.0,
                t_release: float | None = None, fit_alpha: bool = True,
                sigma: float | None = None, method: str = "zeros") -> PeriodFit:
     """Fit the exact period of Eq. (2-3) to the record's periods for R (and alpha).

@@ -1,4 +1,6 @@
-"""TODO docstring (from calibrate)."""
+"""A measured free-rocking record (:class:`FreeRockingRecord`): reading CSV or text files
+with units, and the options the calibration accepts.
+"""
 
 from __future__ import annotations
 
@@ -29,7 +31,7 @@ class CalibrationError(ValueError):
 
 
 @dataclass(frozen=True)
-class Record:
+class FreeRockingRecord:
     """A free-rocking record: times and one measured quantity.
 
     Parameters
@@ -90,22 +92,22 @@ class Record:
 
     # ------------------------------------------------------------ builders
     @classmethod
-    def from_angle(cls, t, theta, *, units: str = "rad", name: str = "") -> "Record":
-        """Record of the angle, in ``units`` (rad, deg, mrad)."""
+    def from_angle(cls, t, theta, *, units: str = "rad", name: str = "") -> "FreeRockingRecord":
+        """FreeRockingRecord of the angle, in ``units`` (rad, deg, mrad)."""
         factor = _unit_factor(units, ANGLE_UNITS, "units")
         return cls(t, np.asarray(theta, dtype=float) * factor, "angle", name=name)
 
     @classmethod
     def from_top_displacement(cls, t, displacement, *, height: float | None = None,
-                              units: str = "m", name: str = "") -> "Record":
-        """Record of the top displacement in ``units`` (m, cm, mm, in, ft); ``height`` [m]."""
+                              units: str = "m", name: str = "") -> "FreeRockingRecord":
+        """FreeRockingRecord of the top displacement in ``units`` (m, cm, mm, in, ft); ``height`` [m]."""
         factor = _unit_factor(units, LENGTH_UNITS, "units")
         return cls(t, np.asarray(displacement, dtype=float) * factor, "top displacement",
                    height=height, name=name)
 
     @classmethod
     def from_measurement(cls, measurement: Measurement,
-                         quantity: str = "top displacement") -> "Record":
+                         quantity: str = "top displacement") -> "FreeRockingRecord":
         """The potentiometer channel of a :class:`~shaketable.lab.sensors.Measurement`.
 
         ``quantity="angle"`` takes the report's angle (top displacement / height).
@@ -181,12 +183,12 @@ def _is_time_name(name: str) -> bool:
     return lowered.startswith("time") or lowered.split(" ")[0] in ("t", "t[s]", "t(s)")
 
 
-def _record_from_columns(path: Path, t, values, units: str, column: str, height) -> Record:
+def _record_from_columns(path: Path, t, values, units: str, column: str, height) -> FreeRockingRecord:
     unit_key = units.strip().lower()
     if unit_key in ANGLE_UNITS:
-        return Record.from_angle(t, values, units=unit_key, name=path.stem)
+        return FreeRockingRecord.from_angle(t, values, units=unit_key, name=path.stem)
     if unit_key in LENGTH_UNITS:
-        return Record.from_top_displacement(t, values, units=unit_key, height=height,
+        return FreeRockingRecord.from_top_displacement(t, values, units=unit_key, height=height,
                                             name=path.stem)
     raise ValueError(f"{path}: unknown unit {units!r} of column {column!r}; expected an angle "
                      f"({sorted(ANGLE_UNITS)}) or a length ({sorted(LENGTH_UNITS)})")
@@ -201,19 +203,19 @@ def _check_rate(rate) -> float:
 
 def _is_csv_with_header(lines: list[str]) -> bool:
     """True when the first line that is neither blank nor a comment is a comma-separated header."""
-    from shaketable.ground.readers.common import _is_number
+    from shaketable.ground.readers.common import is_number
 
     for line in lines:
         stripped = line.strip()
         if not stripped or stripped[0] in "#%":
             continue
         fields = [field.strip() for field in stripped.split(",")]
-        return len(fields) > 1 and not _is_number(fields[0])
+        return len(fields) > 1 and not is_number(fields[0])
     return False
 
 
 def read_record(path, *, column: str | int | None = None, units: str | None = None,
-                rate: float | None = None, height: float | None = None) -> Record:
+                rate: float | None = None, height: float | None = None) -> FreeRockingRecord:
     """Read a free-rocking record from a CSV or plain-text file.
 
     Two layouts are read:
@@ -255,14 +257,14 @@ def read_record(path, *, column: str | int | None = None, units: str | None = No
         that is not a number (:class:`shaketable.ground.readers.common.RecordError` from
         the text reader is a ValueError).
     """
-    from shaketable.ground.readers.common import _read_lines
+    from shaketable.ground.readers.common import read_lines
 
     path = Path(path)
     if not path.exists():
         raise FileNotFoundError(f"{path}: no such record file")
     if rate is not None:
         rate = _check_rate(rate)
-    lines = _read_lines(path)
+    lines = read_lines(path)
     if not _is_csv_with_header(lines):
         return _read_text_record(path, lines, column=column, units=units, rate=rate,
                                  height=height)
@@ -312,15 +314,19 @@ def read_record(path, *, column: str | int | None = None, units: str | None = No
     return _record_from_columns(path, t, values, units, column, height)
 
 
-def _read_text_record(path: Path, lines, *, column, units, rate, height) -> Record:
+def _read_text_record(path: Path, lines, *, column, units, rate, height) -> FreeRockingRecord:
     """Headerless or whitespace-separated record, through shaketable.ground.records' text tokenizer."""
-    from shaketable.ground.readers.text import _column_names, _header_length, _text_rows
+    from shaketable.ground.readers.text import (
+        count_header_lines,
+        header_column_names,
+        text_rows,
+    )
 
-    first = _header_length(lines, None, None)
+    first = count_header_lines(lines, None, None)
     header = lines[:first]
-    table, line_numbers = _text_rows(lines, first, None, path)
+    table, line_numbers = text_rows(lines, first, None, path)
     ncolumns = table.shape[1]
-    names = _column_names(header, ncolumns, None)
+    names = header_column_names(header, ncolumns, None)
     if isinstance(column, str):
         lowered = [name.strip().lower() for name in names]
         if column.strip().lower() not in lowered:

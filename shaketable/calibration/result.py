@@ -1,4 +1,6 @@
-"""TODO docstring (from calibrate)."""
+"""The answer of a calibration (:class:`Calibration`): COR with its interval, the fit's
+residuals, JSON/CSV output and a figure; :func:`predict` runs the calibrated block.
+"""
 
 from __future__ import annotations
 
@@ -11,7 +13,7 @@ import numpy as np
 
 from shaketable.calibration.model import PARAMETERS
 from shaketable.calibration.peaks import PeakEstimate, PeriodFit
-from shaketable.calibration.record import Record, json_safe
+from shaketable.calibration.record import FreeRockingRecord, json_safe
 from shaketable.core.constants import INCH
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
@@ -24,7 +26,7 @@ class Calibration:
 
     Attributes
     ----------
-    record : Record
+    record : FreeRockingRecord
     block : Block
     cor : float
         Least-squares COR [-].
@@ -80,7 +82,7 @@ class Calibration:
         recomputes it another way).
     """
 
-    record: Record
+    record: FreeRockingRecord
     block: Block
     cor: float
     cor_interval: tuple
@@ -115,7 +117,7 @@ class Calibration:
         return 0.95
 
     def to_frame(self):
-        """Record, fit and residuals as a :class:`pandas.DataFrame` (units in the names)."""
+        """FreeRockingRecord, fit and residuals as a :class:`pandas.DataFrame` (units in the names)."""
         import pandas as pd
 
         scale, unit = self.record.display_scale()
@@ -178,7 +180,7 @@ class Calibration:
         return text
 
     def plot(self, fig=None, title: str | None = None):
-        """Record, fitted curve, residuals, COR per impact and periods (PNG-ready figure)."""
+        """FreeRockingRecord, fitted curve, residuals, COR per impact and periods (PNG-ready figure)."""
         from shaketable.plots.calibration import plot_calibration
 
         return plot_calibration(self, fig=fig, title=title)

@@ -33,24 +33,16 @@ def _filter_order(text: str):
 
 
 def _calibrate(args) -> int:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     from shaketable.calibration.fit import calibrate
     from shaketable.calibration.record import read_record
-    from shaketable.core.constants import length_factor
     from shaketable.core.geometry import Block
+    from shaketable.core.units import parse
+    from shaketable.plots.base import save
 
     block = Block.parse(args.block)
     height = None
     if args.height is not None:
-        number, _, unit = args.height.strip().partition(" ")
-        try:
-            height = float(number) * length_factor(unit or "m")
-        except ValueError:
-            raise ValueError(f"--height {args.height!r}: write a length such as '30 in'") from None
+        height = parse(args.height, "length", where="--height")
     column = args.column
     if column is not None and column.strip().lstrip("-").isdigit():
         column = int(column)
@@ -64,8 +56,7 @@ def _calibrate(args) -> int:
     out = Path(args.out) if args.out else Path("shaketable-out") / f"calibrate-{record.name}"
     out.mkdir(parents=True, exist_ok=True)
     figure = result.plot(title=f"COR calibration: {record.name}, {block.describe()} block")
-    figure.savefig(out / "calibration.png", dpi=120)
-    plt.close(figure)
+    save(figure, out / "calibration.png", dpi=120)
     result.to_json(out / "calibration.json")
     result.to_frame().to_csv(out / "calibration.csv", index=False)
     print(f"{record.name}: {block.describe()} block, {record.t.size} samples at "

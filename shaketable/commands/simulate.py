@@ -7,6 +7,7 @@ import math
 from pathlib import Path
 
 from shaketable.core.geometry import Block
+from shaketable.solvers.layout import METHODS
 
 
 def _resolve_angle(text: str, block: Block) -> float:
@@ -78,7 +79,7 @@ def register(commands) -> None:
     sim.add_argument("--no-vertical", action="store_true", help="drop the vertical component")
     sim.add_argument("--duration", type=float, help="length of the run [s]")
     sim.add_argument("--method", default="fast",
-                     choices=["fast", "reference", "predictor-corrector", "linear"])
+                     choices=list(METHODS))
     sim.add_argument("--subdivisions", type=int, default=4,
                      help="steps per sample for predictor-corrector")
     sim.add_argument("--format", default="png", choices=["png", "svg", "pdf"])

@@ -107,6 +107,38 @@ def rod_moment(theta, parameters):
 
 
 @njit(cache=True)
+def flight_acceleration(theta, side, ug, vg, rg, parameters):
+    """theta'' [rad/s^2] of a block pivoting on the corner ``side`` (+1 or -1): Eq. (2-13)/(2-14).
+
+    The one statement of the equation of motion in the package; every solver uses it.
+
+    Eq. (2-13)/(2-14) with s = ``side`` whatever the sign of ``theta``: equal to
+    :func:`angular_acceleration` while ``side * theta >= 0``
+    and its analytic continuation beyond theta = 0 (the rods' uplift
+    sin|theta| continued as side * sin(theta)), so that a step of one flight
+    never sees the switch of corner.
+    """
+    s = side
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    cosine = math.cos(theta)
+    sine = math.sin(theta)
+    moment = ug * (h * cosine + s * b * sine) - (G + vg) * (s * b * cosine - h * sine)
+    stiffness = parameters[ROD_STIFFNESS]
+    force = parameters[ROD_FORCE]
+    if stiffness != 0.0 or force != 0.0:
+        uplift = s * sine
+        arm_1 = parameters[ROD_ARM_1]
+        arm_2 = parameters[ROD_ARM_2]
+        moment -= s * ((force + stiffness * arm_1 * uplift) * arm_1
+                       + (force + stiffness * arm_2 * uplift) * arm_2) * cosine
+    top_force = parameters[TOP_FORCE]
+    if top_force != 0.0:
+        moment -= top_force * (2.0 * h * cosine + s * b * sine)
+    return moment / parameters[INERTIA] - rg
+
+
+@njit(cache=True)
 def angular_acceleration(theta, side, ug, vg, rg, parameters):
     """Angular acceleration theta'' [rad/s^2] from Eq. (2-13)/(2-14).
 
@@ -132,19 +164,9 @@ def angular_acceleration(theta, side, ug, vg, rg, parameters):
         s = 1.0
     elif theta < 0.0:
         s = -1.0
-    b = parameters[HALF_WIDTH]
-    h = parameters[HALF_HEIGHT]
-    cosine = math.cos(theta)
-    sine = math.sin(theta)
-    lever_horizontal = h * cosine + s * b * sine          # y of Eq. (2-11)
-    lever_vertical = s * b * cosine - h * sine            # s * x of Eq. (2-11)
-    moment = ug * lever_horizontal - (G + vg) * lever_vertical  # Eq. (2-13)
-    moment -= s * rod_moment(theta, parameters)                   # Eq. (2-14)
-    top_force = parameters[TOP_FORCE]
-    if top_force != 0.0:
-        # horizontal force at the top centre, lever 2h cos(theta) + s b sin(theta)
-        moment -= top_force * (2.0 * h * cosine + s * b * sine)
-    return moment / parameters[INERTIA] - rg
+    # Eq. (2-13)/(2-14) on the corner the block stands on: with s = sign(theta) the
+    # continued form is the equation itself (s sin(theta) = sin|theta|, exactly)
+    return flight_acceleration(theta, s, ug, vg, rg, parameters)
 
 
 @njit(cache=True)

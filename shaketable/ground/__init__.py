@@ -1,1 +1,3 @@
-"""TODO package docstring."""
+"""Ground motions: generators (harmonic, pulses, artificial accelerograms),
+signal utilities (resample, trim, spectra), record readers and the bundled records.
+"""

@@ -62,15 +62,15 @@ from shaketable.core.validation import number as _number
 from shaketable.core.validation import positive as _positive
 
 #: Relative tolerance used to decide that a motion is uniformly sampled.
-_UNIFORM_RTOL = 1e-6
+UNIFORM_RTOL = 1e-6
 
 
 # ------------------------------------------------------------------ validation
-def _uniform_dt(motion: Motion, what: str) -> float:
+def uniform_step(motion: Motion, what: str) -> float:
     """Sample interval of a uniformly sampled motion, else a ValueError."""
     steps = np.diff(motion.t)
     dt = float(np.mean(steps))
-    if np.max(np.abs(steps - dt)) > _UNIFORM_RTOL * dt:
+    if np.max(np.abs(steps - dt)) > UNIFORM_RTOL * dt:
         raise ValueError(
             f"{what} needs a uniformly sampled motion; this one has steps from "
             f"{steps.min()!r} to {steps.max()!r} s (use Motion.subdivided or "
@@ -79,7 +79,7 @@ def _uniform_dt(motion: Motion, what: str) -> float:
     return dt
 
 
-def _component(motion: Motion, component: str) -> np.ndarray:
+def motion_component(motion: Motion, component: str) -> np.ndarray:
     if component == "horizontal":
         return motion.horizontal
     if component == "vertical":

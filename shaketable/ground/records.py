@@ -38,17 +38,17 @@ import numpy as np
 from shaketable.core.motion import Motion
 from shaketable.ground.readers.at2 import read_at2
 from shaketable.ground.readers.common import (
-    _DOWN_LABELS,
+    DOWN_LABELS,
     Record,
     RecordError,
-    _units_argument,
+    units_argument,
 )
 from shaketable.ground.readers.text import read_text
 from shaketable.ground.readers.waveform import (
-    _obspy_stream,
-    _record_from_stream,
-    _UnknownToObspy,
+    UnknownToObspy,
+    obspy_stream,
     read_obspy,
+    record_from_stream,
 )
 
 # --------------------------------------------------------------------- dispatch
@@ -127,8 +127,8 @@ def read(path, **options) -> Record:
     if text_only or extension in _TEXT_EXTENSIONS:
         return read_text(path, **options)
     try:
-        stream = _obspy_stream(path, None)
-    except _UnknownToObspy:
+        stream = obspy_stream(path, None)
+    except UnknownToObspy:
         return read_text(path, **options)
     except RecordError as obspy_error:
         if not path.is_file():
@@ -141,13 +141,13 @@ def read(path, **options) -> Record:
         raise ValueError(f"{path}: ObsPy reads this file as a waveform, whose acceleration "
                          "units it does not state reliably; pass units= (one of 'g', 'm/s2', "
                          "'cm/s2', 'gal')")
-    return _record_from_stream(stream, path, _units_argument(options["units"], path), None)
+    return record_from_stream(stream, path, units_argument(options["units"], path), None)
 
 
 # --------------------------------------------------------------------- combine
 def _vertical_is_positive_down(vertical: Record, vertical_positive: str | None) -> bool:
     if vertical_positive is None:
-        return vertical.component.strip().upper() in _DOWN_LABELS
+        return vertical.component.strip().upper() in DOWN_LABELS
     choice = str(vertical_positive).strip().lower()
     if choice not in ("up", "down"):
         raise ValueError(f"vertical_positive must be 'up' or 'down', got {vertical_positive!r}")

@@ -1,4 +1,7 @@
-"""TODO docstring (from motions)."""
+"""Signal utilities on a :class:`~shaketable.core.motion.Motion`: scaling to a PGA,
+resampling, trimming and padding, Arias intensity, strong-motion duration,
+response and Fourier spectra.
+"""
 
 from __future__ import annotations
 
@@ -16,7 +19,7 @@ from shaketable.core.motion import motion_argument as _motion
 from shaketable.core.validation import nonnegative as _nonnegative
 from shaketable.core.validation import number as _number
 from shaketable.core.validation import positive as _positive
-from shaketable.ground.generators import _UNIFORM_RTOL, _component, _uniform_dt
+from shaketable.ground.generators import UNIFORM_RTOL, motion_component, uniform_step
 
 
 # ------------------------------------------------------------------ utilities
@@ -105,7 +108,7 @@ def resample(motion, dt) -> Motion:
     """
     motion = _motion("motion", motion)
     dt = _positive("dt", dt, " [s]")
-    dt_old = _uniform_dt(motion, "resample")
+    dt_old = uniform_step(motion, "resample")
     t_old = motion.t
     span = motion.duration
     n_new = int(math.floor(span / dt + 1e-9)) + 1
@@ -113,7 +116,7 @@ def resample(motion, dt) -> Motion:
         raise ValueError(f"dt = {dt!r} s is longer than the motion ({span!r} s)")
     t_new = t_old[0] + dt * np.arange(n_new)
 
-    if abs(dt - dt_old) <= _UNIFORM_RTOL * dt_old:
+    if abs(dt - dt_old) <= UNIFORM_RTOL * dt_old:
         return Motion(t_old, motion.horizontal, motion.vertical, name=motion.name,
                       rotation=motion.rotation)
 
@@ -201,7 +204,7 @@ def pad(motion, before=0.0, after=0.0) -> Motion:
     motion = _motion("motion", motion)
     before = _nonnegative("before", before, " [s]")
     after = _nonnegative("after", after, " [s]")
-    dt = _uniform_dt(motion, "pad")
+    dt = uniform_step(motion, "pad")
     n_before = int(round(before / dt))
     n_after = int(round(after / dt))
     n = motion.t.size + n_before + n_after
@@ -238,7 +241,7 @@ def arias_intensity(motion, component="horizontal") -> np.ndarray:
         the total.
     """
     motion = _motion("motion", motion)
-    a = _component(motion, component)
+    a = motion_component(motion, component)
     pieces = np.diff(motion.t) * (a[:-1] ** 2 + a[:-1] * a[1:] + a[1:] ** 2) / 3.0
     return np.pi / (2.0 * G) * np.concatenate([[0.0], np.cumsum(pieces)])
 
@@ -346,8 +349,8 @@ def response_spectrum(motion, periods, damping=0.05, component="horizontal"):
         raise ValueError("periods is empty")
     if not np.all(np.isfinite(flat)) or np.any(flat <= 0.0):
         raise ValueError(f"periods must be positive and finite [s], got {periods!r}")
-    dt = _uniform_dt(motion, "response_spectrum")
-    p = _component(motion, component)
+    dt = uniform_step(motion, "response_spectrum")
+    p = motion_component(motion, component)
     omega = 2.0 * np.pi / flat
     a, b0, b1 = _oscillator_maps(omega, damping, dt)
 
@@ -406,8 +409,8 @@ def fourier_amplitude(motion, component="horizontal"):
         Fourier amplitude [m/s].
     """
     motion = _motion("motion", motion)
-    dt = _uniform_dt(motion, "fourier_amplitude")
-    values = _component(motion, component)
+    dt = uniform_step(motion, "fourier_amplitude")
+    values = motion_component(motion, component)
     frequency = np.fft.rfftfreq(values.size, dt)
     amplitude = dt * np.abs(np.fft.rfft(values))
     return frequency, amplitude

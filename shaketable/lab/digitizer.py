@@ -1,4 +1,6 @@
-"""TODO docstring (from sensors)."""
+"""The acquisition: anti-alias filter, sampler and ADC (report Sections 3.5-3.6: 50
+samples/s).
+"""
 
 from __future__ import annotations
 

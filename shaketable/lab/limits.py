@@ -1,4 +1,4 @@
-"""TODO docstring (from table)."""
+"""The table's stroke, velocity and acceleration limits, and where a command exceeds them."""
 
 from __future__ import annotations
 

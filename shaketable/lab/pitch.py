@@ -1,4 +1,6 @@
-"""TODO docstring (from table)."""
+"""The table's pitch disturbance (about 12 Hz, Section 3.7) and the motion a block feels at
+its position on a pitching table.
+"""
 
 from __future__ import annotations
 

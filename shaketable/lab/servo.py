@@ -1,4 +1,4 @@
-"""TODO docstring (from table)."""
+"""The actuator: what the table achieves for a commanded displacement (servo dynamics)."""
 
 from __future__ import annotations
 

@@ -136,9 +136,9 @@ class _Scene:
                  times: np.ndarray, highpass, figsize=(8.0, 3.6), title=None):
         from matplotlib.patches import Polygon, Rectangle
 
-        from shaketable.plots.base import _pyplot
+        from shaketable.plots.base import pyplot
 
-        plt = _pyplot()
+        plt = pyplot()
         self.result, self.block, self.times = result, block, times
         end = result.t[-1]
         self.theta = np.interp(np.minimum(times, end), result.t, result.theta)
@@ -305,9 +305,9 @@ def animate(result: RockingResult, block: Block | None = None, motion: Motion | 
     try:
         animation.save(str(out), writer=PillowWriter(fps=fps), dpi=int(dpi))
     finally:
-        from shaketable.plots.base import _pyplot
+        from shaketable.plots.base import pyplot
 
-        _pyplot().close(scene.fig)
+        pyplot().close(scene.fig)
     return AnimationFile(path=out, n_frames=len(times), fps=float(fps), speed=float(speed),
                          t_first=float(times[0]), t_last=float(times[-1]))
 
@@ -325,8 +325,8 @@ def snapshot(result: RockingResult, time: float, *, out, motion: Motion | None =
     scene.draw(1)
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    from shaketable.plots.base import _pyplot
+    from shaketable.plots.base import pyplot
 
     scene.fig.savefig(out, dpi=dpi)
-    _pyplot().close(scene.fig)
+    pyplot().close(scene.fig)
     return out

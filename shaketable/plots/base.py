@@ -1,9 +1,17 @@
-"""TODO docstring (from plots)."""
+"""The one way the package reaches pyplot, and saving a figure.
+
+Every figure of the package is drawn in :mod:`shaketable.plots`, the only
+folder that imports matplotlib (``tests/test_layering.py``). The package never
+sets a global backend: :func:`pyplot` imports pyplot under the user's backend,
+and falls back to the file-only Agg backend only where the configured
+interactive backend cannot be imported (a machine without a display).
+"""
 
 from __future__ import annotations
 
 
-def _pyplot():
+def pyplot():
+    """matplotlib.pyplot, imported on first use (Agg if the configured backend cannot load)."""
     import matplotlib
 
     if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
@@ -16,8 +24,8 @@ def _pyplot():
     return plt
 
 
-def save(fig, path) -> None:
-    """Save and close a figure."""
-    plt = _pyplot()
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+def save(fig, path, dpi: int = 110) -> None:
+    """Save a figure to ``path`` (format from the suffix) and close it."""
+    plt = pyplot()
+    fig.savefig(path, dpi=dpi, bbox_inches="tight")
     plt.close(fig)

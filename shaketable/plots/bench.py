@@ -16,6 +16,8 @@ import math
 
 import numpy as np
 
+from shaketable.plots.base import pyplot
+
 #: Colour and marker of each method.
 STYLE = {
     "fast": ("tab:blue", "o"),
@@ -26,19 +28,6 @@ STYLE = {
 
 #: Errors below this are drawn on it (an error of exactly 0 has no logarithm) [-].
 ERROR_FLOOR = 1e-16
-
-
-def _pyplot():
-    import matplotlib
-
-    if matplotlib.get_backend().lower() not in ("agg", "module://matplotlib_inline.backend_inline"):
-        try:
-            import matplotlib.pyplot as plt  # noqa: F401
-        except ImportError:  # pragma: no cover
-            matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
 
 
 def _short(label: str) -> str:
@@ -70,7 +59,7 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     -------
     matplotlib.axes.Axes
     """
-    plt = _pyplot()
+    plt = pyplot()
     if ax is None:
         _, ax = plt.subplots(figsize=(5, 4))
     rows = frame[frame["case"] == case]
@@ -120,7 +109,7 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None):
     -------
     matplotlib.figure.Figure
     """
-    plt = _pyplot()
+    plt = pyplot()
     from matplotlib.lines import Line2D
 
     cases = list(dict.fromkeys(frame["case"])) if cases is None else list(cases)
@@ -157,7 +146,7 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None):
 
 def save_work_precision_figure(frame, path, cases=None, dpi: int = 110) -> None:
     """Draw :func:`work_precision_figure` and write it to ``path`` (PNG, SVG... by suffix)."""
-    plt = _pyplot()
+    plt = pyplot()
     fig = work_precision_figure(frame, cases=cases)
     try:
         fig.savefig(path, dpi=dpi)

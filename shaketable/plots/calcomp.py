@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.constants import G
-from shaketable.plots.base import _pyplot
+from shaketable.plots.base import pyplot
 
 
 def calcomp(result, fig=None, title: str | None = None):
@@ -28,7 +28,7 @@ def calcomp(result, fig=None, title: str | None = None):
     -------
     matplotlib.figure.Figure
     """
-    plt = _pyplot()
+    plt = pyplot()
     if fig is None:
         fig = plt.figure(figsize=(8.5, 9.0))
     axes = fig.subplots(4, 1, sharex=True, gridspec_kw={"height_ratios": [1, 1, 1.3, 1.5]})

@@ -15,10 +15,11 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.constants import G
+from shaketable.plots.base import pyplot
 
 
 def _figure(fig, nrows, ncols=1, figsize=(8.0, 6.0), **kwargs):
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     if fig is None:
         fig = plt.figure(figsize=figsize)
@@ -142,7 +143,7 @@ def plot_periods(period_fit, ax=None):
 
 def plot_calibration(calibration, fig=None, title: str | None = None):
     """Fit, residuals, COR per impact and periods in one figure. Returns the figure."""
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     if fig is None:
         fig = plt.figure(figsize=(11.0, 7.5))

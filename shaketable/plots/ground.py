@@ -20,7 +20,7 @@ import numpy as np
 
 from shaketable.core.constants import G
 from shaketable.ground import generators, signals
-from shaketable.plots.base import _pyplot
+from shaketable.plots.base import pyplot
 
 __all__ = ["plot_artificial_presets", "preset_measures"]
 
@@ -172,7 +172,7 @@ def plot_artificial_presets(presets=("A-1", "B-1", "olive-view"), seeds=(0, 1, 2
     if isinstance(smoothing, bool) or not isinstance(smoothing, (numbers.Real, np.floating)) \
             or not math.isfinite(smoothing) or smoothing <= 0:
         raise ValueError(f"smoothing must be a positive number [Hz], got {smoothing!r}")
-    plt = _pyplot()
+    plt = pyplot()
     fig, axes = plt.subplots(len(names), 3, figsize=(14.0, 3.4 * len(names) + 0.8),
                              layout="constrained", squeeze=False,
                              gridspec_kw={"width_ratios": [1.45, 1.0, 1.0]})

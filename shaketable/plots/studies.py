@@ -1,10 +1,14 @@
-"""TODO docstring (from plots)."""
+"""Figures of the report's studies: Section 2 (Figs. 2.3-2.6, Section 4.3 (4)), Fig. 3.6
+and the Section 3.7 (2) pitch repeatability.
+"""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from shaketable.plots.base import _pyplot
+from shaketable.plots.base import pyplot
 
 
 def section_2_figure(frame, figure: str):
@@ -22,7 +26,7 @@ def section_2_figure(frame, figure: str):
     -------
     matplotlib.figure.Figure
     """
-    plt = _pyplot()
+    plt = pyplot()
     fig, axis = plt.subplots(figsize=(6.5, 4.5))
     if figure == "2.3":
         for (name, group), color in zip(frame.groupby("block", sort=False),
@@ -104,7 +108,7 @@ def figure_3_6(frame, block=None):
     from shaketable.core import theory
     from shaketable.core.geometry import Block
 
-    plt = _pyplot()
+    plt = pyplot()
     block = block or Block.from_inches(36, 9)
     degrees = 180.0 / np.pi
     amplitudes = np.linspace(0.02, 0.95, 80) * block.alpha
@@ -126,3 +130,41 @@ def figure_3_6(frame, block=None):
     axis.legend(fontsize=7, frameon=False)
     fig.tight_layout()
     return fig
+
+
+def plot_pitch_repeatability(result, ax=None):
+    """theta/alpha of every phase (thin lines) and without pitch (black).
+
+    ``result`` is a :class:`RepeatabilityResult`; see :meth:`RepeatabilityResult.plot`.
+    """
+    plt = pyplot()
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(8, 3))
+    alpha = result.without_pitch.block.alpha
+    for run in result.runs:
+        ax.plot(run.t, run.theta / alpha, lw=0.5, alpha=0.6)
+    ax.plot(result.without_pitch.t, result.without_pitch.theta / alpha, color="k", lw=1.2,
+            label="no pitch")
+    for level in (-1, 1):
+        ax.axhline(level, color="0.4", ls="--", lw=0.8)
+    if math.isfinite(result.record_end):
+        ax.axvline(result.record_end, color="0.6", lw=0.8, ls=":")
+    ax.set_ylim(-2.0, 2.0)
+    ax.set_ylabel("θ/α [-]")
+    ax.set_xlabel("time [s] (dotted: end of the record, then the table is at rest)")
+    summary = result.summary()
+    ax.set_title(f"{result.name}: {len(result.runs)} pitch phases, "
+                 f"{100 * summary['overturned fraction']:.0f} % overturn", fontsize=9)
+    ax.legend(loc="upper left", fontsize=7, frameon=False)
+    return ax
+
+
+def pitch_repeatability_figure(cases):
+    """Section 3.7 (2): one panel per case of :func:`plot_pitch_repeatability`, stacked."""
+    plt = pyplot()
+    figure, axes = plt.subplots(len(cases), 1, figsize=(8, 2.4 * len(cases)), squeeze=False)
+    for case, axis in zip(cases, axes[:, 0]):
+        plot_pitch_repeatability(case, axis)
+    figure.tight_layout()
+    return figure

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from shaketable.plots.base import pyplot
 from shaketable.sweeps.fragility import fragility_fit
 
 _RATIO = "max_theta_ratio [-]"
@@ -108,7 +109,7 @@ def overturning_map(table, *, x="aspect", y="width", record=None, cor=None, ax=N
     -------
     matplotlib.axes.Axes
     """
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     from matplotlib.colors import ListedColormap
 
     rows = _select(table, record=record, **{"cor [-]": cor})
@@ -184,7 +185,7 @@ def rocking_spectrum(table, *, x="p", record=None, cor=None, group="aspect", ax=
     -------
     matplotlib.axes.Axes
     """
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     rows = _select(table, record=record, **{"cor [-]": cor})
     _one(rows, "cor [-]")
@@ -240,7 +241,7 @@ def fragility_curve(table, *, group="block", cor=None, pga="pga [g]", ax=None):
         With ``ax.fragility_fits``: a dict group -> :class:`FragilityFit`
         (None where every run, or none, overturned).
     """
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     rows = _select(table, **{"cor [-]": cor})
     _one(rows, "cor [-]")
@@ -290,7 +291,7 @@ def sweep_figures(table, out) -> list:
     """
     from pathlib import Path
 
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import pandas as pd
 
     from shaketable.plots.base import save

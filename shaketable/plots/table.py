@@ -10,7 +10,7 @@ import numpy as np
 
 from shaketable.core.constants import G
 from shaketable.core.motion import Motion
-from shaketable.plots.base import _pyplot
+from shaketable.plots.base import pyplot
 
 __all__ = ["plot_command_vs_achieved"]
 
@@ -76,7 +76,7 @@ def plot_command_vs_achieved(table_motion, achieved_without_pitch, achieved_with
         window = (float(window[0]), float(window[1]))
         if not window[0] < window[1]:
             raise ValueError(f"window must be (start, end) with start < end [s], got {window}")
-    plt = _pyplot()
+    plt = pyplot()
     if ax is None:
         fig, axes = plt.subplots(3, 1, sharex=True, figsize=(9.0, 7.5), layout="constrained",
                                  gridspec_kw={"height_ratios": [1.2, 1.2, 1.0]})

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from shaketable.plots.base import _pyplot
+from shaketable.plots.base import pyplot
 
 _FOOT = 0.3048
 
@@ -46,7 +46,7 @@ def plot_period_amplitude(item, ax=None):
     -------
     matplotlib.axes.Axes
     """
-    plt = _pyplot()
+    plt = pyplot()
     if ax is None:
         _, ax = plt.subplots(figsize=(6.5, 4.3))
     ratios = item.amplitude_ratios
@@ -86,7 +86,7 @@ def plot_cor_sweep(item, fig=None):
     -------
     matplotlib.figure.Figure
     """
-    plt = _pyplot()
+    plt = pyplot()
     if fig is None:
         fig = plt.figure(figsize=(10, 4.2))
     left, right = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1, 1.3]})
@@ -142,7 +142,7 @@ def plot_similar_blocks(item, fig=None):
     -------
     matplotlib.figure.Figure
     """
-    plt = _pyplot()
+    plt = pyplot()
     if fig is None:
         fig = plt.figure(figsize=(10, 4.2))
     left, right = fig.subplots(1, 2)
@@ -199,7 +199,7 @@ def plot_rocking_onset(item, fig=None):
     -------
     matplotlib.figure.Figure
     """
-    plt = _pyplot()
+    plt = pyplot()
     if fig is None:
         fig = plt.figure(figsize=(10, 4.2))
     left, right = fig.subplots(1, 2)

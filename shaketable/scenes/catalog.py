@@ -1,4 +1,4 @@
-"""TODO docstring (from scenes)."""
+"""The bundled scenes (``experiments/``): their names and where a name or path leads."""
 
 from __future__ import annotations
 

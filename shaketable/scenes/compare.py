@@ -1,4 +1,6 @@
-"""TODO docstring (from pipeline)."""
+"""Report against reproduction: the tolerances a scene states, the report's values compared
+with a run, and the test-vs-theory criteria of Section 3.
+"""
 
 from __future__ import annotations
 
@@ -9,35 +11,11 @@ import numpy as np
 
 from shaketable.core.results import RockingResult
 from shaketable.scenes.parse import Scene, SceneError
-
-
-@dataclass(frozen=True)
-class Comparison:
-    """One "report value vs reproduced value" line.
-
-    Attributes
-    ----------
-    quantity : str
-    report : object
-        The report's value (with its unit in ``unit``).
-    reproduced : object
-    unit : str
-    agrees : bool
-        Within the stated tolerance (the report's own ~10 % unless the scene
-        says otherwise, :func:`scene_tolerances`), the same verdict for yes/no
-        quantities, or the criterion met for a test-vs-theory line
-        (:func:`compare_test_with_theory`).
-    """
-
-    quantity: str
-    report: object
-    reproduced: object
-    unit: str
-    agrees: bool
-
-    def __post_init__(self):
-        object.__setattr__(self, "agrees", bool(self.agrees))
-
+from shaketable.studies.comparison import (
+    TEST_THEORY_PEAK_RATIO,
+    TEST_THEORY_T_UNSTABLE,
+    Comparison,
+)
 
 #: Motion kinds that are earthquake accelerograms. For these the report shows test data
 #: only (Fig. 3.5, "TEST DATA") and states that test and theory did not agree as well as
@@ -46,15 +24,6 @@ class Comparison:
 #: (Section 3.7 (2)).
 EARTHQUAKE_KINDS = frozenset({"artificial", "record"})
 
-#: Default largest |t_unstable(test) - t_unstable(theory)| [s] for "unstable at about the
-#: same point" (Section 3.7 (2)): half a period of the report's 2 Hz table motion, i.e. the
-#: block becomes unstable on the same excursion (each half cycle of the table pushes it
-#: one way). A scene may state its own as ``tolerance = { test_theory_t_unstable = "..." }``.
-TEST_THEORY_T_UNSTABLE = 0.25
-
-#: Default half-width of the band of the peak ratio test/theory around 1 [-]: the report's
-#: "about 10 %" agreement. A scene may state ``tolerance = { test_theory_peak_ratio = ... }``.
-TEST_THEORY_PEAK_RATIO = 0.10
 
 #: Default relative tolerance of a report value [-] (the report's "about 10 %").
 REPORT_TOLERANCE = 0.10
@@ -227,7 +196,7 @@ def compare_test_with_theory(scene: Scene, test) -> list[Comparison]:
     theta when |theta| first exceeds alpha, 0 when never); |t_unstable(test) -
     t_unstable(theory)| within ``test_theory_t_unstable`` (default
     :data:`TEST_THEORY_T_UNSTABLE`); the peak ratio test/theory (each curve
-    up to its own instability, :meth:`shaketable.scenes.virtual_test.TestTheory.metrics`)
+    up to its own instability, :meth:`shaketable.scenes.virtual_test.VirtualTestResult.metrics`)
     within 1 +- ``test_theory_peak_ratio`` (default :data:`TEST_THEORY_PEAK_RATIO`).
 
     For earthquake-type motions (:data:`EARTHQUAKE_KINDS`) the report states the
@@ -237,7 +206,7 @@ def compare_test_with_theory(scene: Scene, test) -> list[Comparison]:
     Parameters
     ----------
     scene : Scene
-    test : TestTheory
+    test : VirtualTestResult
         One virtual test (:func:`shaketable.scenes.virtual_test.run_virtual_test`).
     """
     metrics = test.metrics()

@@ -28,7 +28,10 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import tomllib
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10: the same parser, as a package
+    import tomli as tomllib
 
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
@@ -139,33 +142,55 @@ class Scene:
 
 @dataclass(frozen=True)
 class Study:
-    """A scene that recomputes a whole table of the report (``[study]``).
+    """A scene that runs a study of the report or of the teaching gallery (``[study]``).
+
+    Each kind reads its own keys (the others keep their defaults):
 
     Attributes
     ----------
     name, source, description : str
     kind : str
-        ``"report-table"`` or ``"report-figure"``.
+        One of :data:`STUDY_KINDS`: ``"report-table"``, ``"report-figure"``,
+        ``"pitch-repeatability"`` or ``"teaching"``.
     table : str
-        Which printed table: ``"table_3_1"``, ``"table_4_1"``, ``"table_4_2"``, ``"table_4_3"``;
-        for a ``"report-figure"`` study, one of :data:`REPORT_FIGURES`;
-        for a ``"teaching"`` study, the item of :data:`shaketable.studies.teaching.ITEMS`.
+        ``"report-table"``: which printed table, ``"table_3_1"``, ``"table_4_1"``,
+        ``"table_4_2"`` or ``"table_4_3"``.
     columns : tuple of str
-        Columns to recompute (default all).
+        ``"report-table"``: the columns to recompute (default all).
     seed : int
-        Seed of the substitute artificial accelerograms (for a
-        ``"pitch-repeatability"`` study: the number of pitch phases).
+        ``"report-table"``: seed of the substitute artificial accelerograms.
+    figure : str
+        ``"report-figure"``: one of :data:`REPORT_FIGURES`.
+    phases : int
+        ``"pitch-repeatability"``: the number of pitch phases run per case.
+    item : str
+        ``"teaching"``: a gallery item registered with :func:`register_study_items`.
     path : str
+        The scene file.
     """
 
     name: str
     source: str
     description: str
     kind: str
-    table: str
+    table: str = ""
     columns: tuple = ()
     seed: int = 1
+    figure: str = ""
+    phases: int = 24
+    item: str = ""
     path: str = ""
+
+
+#: Names a study kind accepts for its ``item`` key, registered by the studies
+#: themselves through the loader (:mod:`shaketable.scenes`), so that this parser
+#: imports no study module.
+STUDY_ITEMS: dict[str, tuple[str, ...]] = {}
+
+
+def register_study_items(kind: str, items) -> None:
+    """Declare the items a ``[study]`` of ``kind`` may name (e.g. the teaching gallery)."""
+    STUDY_ITEMS[kind] = tuple(items)
 
 
 def load_scene(path) -> Scene:
@@ -262,39 +287,39 @@ def _study(data: dict, where: str) -> Study:
         raise SceneError(f"{where}: study.kind must be one of {', '.join(STUDY_KINDS)}, "
                          f"got {kind!r}")
     _only({k: v for k, v in spec.items() if k != "kind"}, STUDY_KINDS[kind], where, "study")
+    common = dict(name=str(data.get("name", "")), source=str(data.get("source", "")),
+                  description=str(data.get("description", "")), kind=kind, path=where)
     if kind == "pitch-repeatability":
         phases = spec.get("phases", 24)
         if isinstance(phases, bool) or not isinstance(phases, int) or phases < 2:
             raise SceneError(f"{where}: study.phases must be an integer of at least 2, got "
                              f"{phases!r}")
-        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
-                     description=str(data.get("description", "")), kind=kind,
-                     table="", seed=phases, path=where)
-    if kind == "teaching":  # a gallery item of shaketable.studies.teaching
-        from shaketable.studies.teaching import ITEMS
-
-        if spec.get("item") not in ITEMS:
-            raise SceneError(f"{where}: study.item must be one of {', '.join(ITEMS)}, got "
+        return Study(**common, phases=phases)
+    if kind == "teaching":
+        items = STUDY_ITEMS.get(kind, ())
+        if spec.get("item") not in items:
+            raise SceneError(f"{where}: study.item must be one of {', '.join(items)}, got "
                              f"{spec.get('item')!r}")
-        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
-                     description=str(data.get("description", "")), kind=kind,
-                     table=spec["item"], path=where)
+        return Study(**common, item=spec["item"])
     if kind == "report-figure":
         if spec.get("figure") not in REPORT_FIGURES:
             raise SceneError(f"{where}: study.figure must be one of "
                              f"{', '.join(repr(name) for name in REPORT_FIGURES)}, got "
                              f"{spec.get('figure')!r}")
-        return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
-                     description=str(data.get("description", "")), kind=kind,
-                     table=spec["figure"], path=where)
+        return Study(**common, figure=spec["figure"])
     table = spec.get("table")
     if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3"):
         raise SceneError(f"{where}: study.table must be table_3_1, table_4_1, table_4_2 or "
                          f"table_4_3, got {table!r}")
-    return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
-                 description=str(data.get("description", "")), kind=kind, table=table,
-                 columns=tuple(spec.get("columns", ())), seed=int(spec.get("seed", 1)),
-                 path=where)
+    seed = spec.get("seed", 1)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise SceneError(f"{where}: study.seed must be a non-negative integer, got {seed!r}")
+    columns = spec.get("columns", ())
+    if not isinstance(columns, list) or not all(isinstance(c, str) for c in columns):
+        if columns != ():
+            raise SceneError(f"{where}: study.columns must be a list of column names, got "
+                             f"{columns!r}")
+    return Study(**common, table=table, columns=tuple(columns), seed=seed)
 
 
 # --------------------------------------------------------------------------- helpers

@@ -231,7 +231,9 @@ def _run_virtual_tests(scene: Scene, commanded: Motion | None, felt: Motion | No
         try:
             tests.append(run_virtual_test(scene.block, felt, cor=cor, sensors=sensors,
                                           theory=theory, commanded=commanded,
-                                          theta0=scene.theta0, duration=scene.duration,
+                                          theta0=scene.theta0,
+                                          theta_dot0=scene.theta_dot0,
+                                          duration=scene.duration,
                                           method=scene.method, **scene.options))
         except ValueError as error:
             raise SceneError(f"{scene.path}: virtual test: {error}") from None

@@ -19,7 +19,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
@@ -71,7 +70,7 @@ class TheorySetup:
 
 
 @dataclass(frozen=True)
-class TestTheory:
+class VirtualTestResult:
     """One virtual test and its theory run.
 
     Attributes
@@ -177,47 +176,16 @@ class TestTheory:
         Top: the digitized table accelerations (when measured); bottom: theta/alpha
         of the test (measured) and the theory, with the +-1 stability lines.
         """
-        import matplotlib.pyplot as plt
+        from shaketable.plots.virtual_test import plot_test_vs_theory
 
-        driven = bool(np.any(self.test.motion.horizontal) or np.any(self.test.motion.vertical_or_zero))
-        rows = 2 if self.measurement.table_horizontal is not None and driven else 1
-        if fig is None:
-            fig = plt.figure(figsize=(8, 2.6 + 2.4 * rows))
-        axes = fig.subplots(rows, 1, sharex=True, squeeze=False)[:, 0]
-        t = self.measurement.t
-        alpha = self.block.alpha
-        if rows == 2:
-            axes[0].plot(t, self.measurement.table_horizontal / G, lw=0.8, color="k",
-                         label="horizontal")
-            if self.measurement.table_vertical is not None:
-                axes[0].plot(t, self.measurement.table_vertical / G, lw=0.8, color="tab:blue",
-                             label="vertical")
-            axes[0].set_ylabel("table acc. [g]\n(digitized)")
-            axes[0].legend(loc="upper right", fontsize=7, frameon=False)
-        axis = axes[-1]
-        axis.plot(t, self.measured_theta() / alpha, color="k", lw=1.0,
-                  label=f"test (measured, true COR {self.test.cor:g})")
-        axis.plot(t, self.theory_theta() / alpha, color="tab:red", lw=1.0, ls="--",
-                  label=f"theory (COR {self.theory_cor:.3f})")
-        for level in (-1.0, 1.0):
-            axis.axhline(level, color="0.4", ls=":", lw=0.8)
-        limit = max(1.5, min(4.0, 1.1 * float(np.max(np.abs(self.measured_theta()))) / alpha))
-        axis.set_ylim(-limit, limit)
-        axis.set_ylabel("θ/α [-]")
-        axis.set_xlabel("time [s]")
-        axis.legend(loc="upper right", fontsize=7, frameon=False)
-        metrics = self.metrics()
-        axis.set_title(f"peak ratio {metrics['peak ratio test/theory']}, RMS difference "
-                       f"{metrics['RMS difference theta/alpha']} α", fontsize=8)
-        fig.suptitle(title or f"test vs theory: {self.block.describe()}", fontsize=10)
-        fig.tight_layout()
-        return fig
+        return plot_test_vs_theory(self, fig=fig, title=title)
 
 
 def run_virtual_test(block: Block, felt: Motion | None, *, cor: float, sensors: Sensors,
                      theory: TheorySetup | None = None, commanded: Motion | None = None,
-                     theta0: float = 0.0, duration: float | None = None,
-                     method: str = "fast", **options) -> TestTheory:
+                     theta0: float = 0.0, theta_dot0: float = 0.0,
+                     duration: float | None = None, method: str = "fast",
+                     **options) -> VirtualTestResult:
     """The virtual test of ``block`` on the table motion ``felt`` and its theory run.
 
     Parameters
@@ -234,12 +202,14 @@ def run_virtual_test(block: Block, felt: Motion | None, *, cor: float, sensors: 
         Default ``TheorySetup()``: the COR identified from a free-rocking test.
     commanded : Motion, optional
         Drives the theory when no accelerometers are fitted.
-    theta0, duration, method, options
-        As for :func:`shaketable.solvers.api` (the test run).
+    theta0, theta_dot0, duration, method, options
+        As for :func:`shaketable.solvers.api.simulate` (the test run; the theory run
+        starts from the same state).
     """
     theory = TheorySetup() if theory is None else theory
     top_force = sensors.top_force(block)
-    test = simulate(block, felt, cor=cor, theta0=theta0, duration=duration, method=method,
+    test = simulate(block, felt, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
+                    duration=duration, method=method,
                     top_force=top_force, **options)
     measurement = measure(test, block, felt if felt is not None else test.motion, sensors)
     calibration = None
@@ -253,9 +223,9 @@ def run_virtual_test(block: Block, felt: Motion | None, *, cor: float, sensors: 
         drive = measurement.motion()
     else:
         drive = commanded if commanded is not None else felt
-    theory_run = simulate(block, drive, cor=theory_cor, theta0=theta0,
+    theory_run = simulate(block, drive, cor=theory_cor, theta0=theta0, theta_dot0=theta_dot0,
                           duration=duration if drive is None else None, method=theory.method)
-    return TestTheory(test, measurement, theory_run, theory_cor, calibration)
+    return VirtualTestResult(test, measurement, theory_run, theory_cor, calibration)
 
 
 def calibrate_from_free_rocking(block: Block, cor: float, sensors: Sensors,
@@ -397,5 +367,5 @@ def _rounded(value, digits=3):
     return round(float(value), digits)
 
 
-__all__ = ["TheorySetup", "TestTheory", "run_virtual_test", "calibrate_from_free_rocking",
+__all__ = ["TheorySetup", "VirtualTestResult", "run_virtual_test", "calibrate_from_free_rocking",
            "sensors_from_dict", "theory_from_dict"]

@@ -12,16 +12,13 @@ from shaketable.core.motion import Motion, whole_number
 from shaketable.core.results import RockingResult
 from shaketable.core.validation import in_range
 from shaketable.solvers import engine
-from shaketable.solvers.common import COMPILED_METHODS, DEFAULT_RTOL, extended, result_from_info
-from shaketable.solvers.reference import integrate_reference
-
-#: Solvers by name. ``fast`` is the default.
-METHODS = {
-    "fast": "compiled Runge-Kutta-Nystrom 6(4), adaptive, with event location (numba)",
-    "reference": "SciPy DOP853 with tight tolerances and Brent event location (slow)",
-    "predictor-corrector": "the report's BLOKROC scheme: Heun steps, `subdivisions` per sample",
-    "linear": "Housner's slender-block linearisation (Eq. 2-4), closed form between events",
-}
+from shaketable.solvers.common import (
+    COMPILED_METHODS,
+    DEFAULT_RTOL,
+    extended,
+    result_from_info,
+)
+from shaketable.solvers.layout import METHODS
 
 
 def _check_method(method: str) -> str:
@@ -129,6 +126,10 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     impact_velocities = np.zeros_like(impact_times)
     info = np.zeros(engine.N_INFO)
     if method == "reference":
+        from shaketable.solvers.reference import (
+            integrate_reference,  # SciPy: loaded on use
+        )
+
         integrate_reference(t_grid, ug, vg, rg, parameters, block.alpha, block.p, cor, theta0,
                             theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
                             impact_velocities, info)

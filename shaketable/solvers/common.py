@@ -1,4 +1,7 @@
-"""TODO docstring (from simulate)."""
+"""What :func:`~shaketable.solvers.api.simulate` and the batch share: the compiled methods,
+their default tolerances, the motion cut or padded to a duration and the info array
+turned into a :class:`~shaketable.core.results.RockingResult`.
+"""
 
 from __future__ import annotations
 
@@ -6,8 +9,6 @@ import math
 
 import numpy as np
 
-from shaketable.core.dynamics import airborne_acceleration
-from shaketable.core.geometry import Block
 from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion
 from shaketable.core.results import STATUSES, RockingResult
 from shaketable.solvers import engine
@@ -107,8 +108,3 @@ def result_from_info(block, motion, cor, method, t_grid, theta, omega, accelerat
                     "rejected": int(info[engine.INFO_REJECTED]),
                     "evaluations": int(info[engine.INFO_EVALUATIONS])},
     )
-
-
-def airborne_limit(block: Block) -> float:
-    """Vertical acceleration at which the block leaves the ground [m/s^2] (re-export)."""
-    return airborne_acceleration(block)

@@ -40,6 +40,9 @@ Eq. (2-1) inside an interval, the impact map theta' -> cor * theta', the
 summation of the endless cascade of impacts of a decaying block
 (:func:`shaketable.core.dynamics.cascade_rest_time`), unstable / overturned, and the
 block leaving the ground when g + vg <= 0.
+
+Size: one compiled unit on purpose (about 700 lines): numba inlines the steppers and
+the event location into :func:`integrate`, and a module boundary would not change that.
 """
 
 from __future__ import annotations
@@ -63,73 +66,44 @@ from shaketable.core.dynamics import (
     TOP_FORCE,
     angular_acceleration,
     cascade_rest_time,
+    flight_acceleration,
 )
-
-METHOD_FAST = 0
-
-METHOD_PREDICTOR_CORRECTOR = 1
-
-METHOD_LINEAR = 2
-
-STATUS_COMPLETED = 0
-
-STATUS_OVERTURNED = 1
-
-STATUS_AIRBORNE = 2
-
-# Layout of the float summary array returned by ``integrate``.
-(INFO_T_START, INFO_T_UNSTABLE, INFO_UNSTABLE_DIRECTION, INFO_T_OVERTURN,
- INFO_OVERTURN_DIRECTION, INFO_T_AIRBORNE, INFO_MAX_ABS_THETA, INFO_T_MAX,
- INFO_THETA_AT_MAX, INFO_T_END, INFO_THETA_END, INFO_THETA_DOT_END, INFO_STEPS,
- INFO_EVALUATIONS, INFO_REJECTED, INFO_CASCADES, INFO_STATUS, INFO_N_IMPACTS,
- INFO_N_OUTPUT, INFO_T_REST) = range(20)
-
-N_INFO = 20
-
-# Event codes. Floats on purpose: numba types an integer constant passed to a compiled
-# function as a literal and compiles a separate copy of the callee for each value (four
-# copies of _locate, each with every stepper inlined, doubled the first-call compile time);
-# floats have no literal type, so _locate is compiled once and branches at run time.
-EVENT_IMPACT = 0.0
-
-EVENT_OVERTURN = 1.0
-
-EVENT_PEAK = 2.0
-
-EVENT_UNSTABLE = 3.0
+from shaketable.solvers.layout import (
+    EVENT_IMPACT,
+    EVENT_OVERTURN,
+    EVENT_PEAK,
+    EVENT_UNSTABLE,
+    INFO_CASCADES,
+    INFO_EVALUATIONS,
+    INFO_MAX_ABS_THETA,
+    INFO_N_IMPACTS,
+    INFO_N_OUTPUT,
+    INFO_OVERTURN_DIRECTION,
+    INFO_REJECTED,
+    INFO_STATUS,
+    INFO_STEPS,
+    INFO_T_AIRBORNE,
+    INFO_T_END,
+    INFO_T_MAX,
+    INFO_T_OVERTURN,
+    INFO_T_REST,
+    INFO_T_START,
+    INFO_T_UNSTABLE,
+    INFO_THETA_AT_MAX,
+    INFO_THETA_DOT_END,
+    INFO_THETA_END,
+    INFO_UNSTABLE_DIRECTION,
+    METHOD_FAST,
+    METHOD_LINEAR,
+    METHOD_PREDICTOR_CORRECTOR,
+    N_INFO,
+    STATUS_AIRBORNE,
+    STATUS_COMPLETED,
+    STATUS_OVERTURNED,
+)
 
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
 _EVALUATIONS_PER_STEP = (5, 2, 1)
-
-
-@njit(cache=True)
-def flight_acceleration(theta, side, ug, vg, rg, parameters):
-    """theta'' [rad/s^2] of a block pivoting on the corner ``side`` (+1 or -1).
-
-    Eq. (2-13)/(2-14) with s = ``side`` whatever the sign of ``theta``: equal to
-    :func:`shaketable.core.dynamics.angular_acceleration` while ``side * theta >= 0``
-    and its analytic continuation beyond theta = 0 (the rods' uplift
-    sin|theta| continued as side * sin(theta)), so that a step of one flight
-    never sees the switch of corner.
-    """
-    s = side
-    b = parameters[HALF_WIDTH]
-    h = parameters[HALF_HEIGHT]
-    cosine = math.cos(theta)
-    sine = math.sin(theta)
-    moment = ug * (h * cosine + s * b * sine) - (G + vg) * (s * b * cosine - h * sine)
-    stiffness = parameters[ROD_STIFFNESS]
-    force = parameters[ROD_FORCE]
-    if stiffness != 0.0 or force != 0.0:
-        uplift = s * sine
-        arm_1 = parameters[ROD_ARM_1]
-        arm_2 = parameters[ROD_ARM_2]
-        moment -= s * ((force + stiffness * arm_1 * uplift) * arm_1
-                       + (force + stiffness * arm_2 * uplift) * arm_2) * cosine
-    top_force = parameters[TOP_FORCE]
-    if top_force != 0.0:
-        moment -= top_force * (2.0 * h * cosine + s * b * sine)
-    return moment / parameters[INERTIA] - rg
 
 
 @njit(cache=True)

@@ -18,10 +18,16 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from shaketable.core.constants import G
-from shaketable.core.dynamics import HOLD_DOWN, angular_acceleration, cascade_rest_time
-from shaketable.solvers.engine import (
+from shaketable.core.dynamics import (
+    HOLD_DOWN,
+    angular_acceleration,
+    cascade_rest_time,
+    flight_acceleration,
+)
+from shaketable.solvers.layout import (
     INFO_CASCADES,
     INFO_EVALUATIONS,
     INFO_MAX_ABS_THETA,
@@ -46,8 +52,40 @@ from shaketable.solvers.engine import (
     STATUS_AIRBORNE,
     STATUS_COMPLETED,
     STATUS_OVERTURNED,
-    flight_acceleration,
 )
+
+
+def _passed_impact(solution, side, t_segment):
+    """The impact a step passed without seeing it, as ``(time, omega)``, else None.
+
+    ``solve_ivp`` tests the sign of an event function at step ends only: a dip of
+    theta below zero (on the active corner's side, ``side * theta < 0``) that begins
+    and ends inside one step is invisible to the impact event. Its turning point is
+    not: theta' changes sign once there, and the peak event finds it. A turning point
+    on the wrong side of theta = 0 therefore means the block hit the table before it;
+    the impact is the first zero of ``side * theta`` before that turning point, found
+    on the step's dense output (Brent's method). Turning points after a terminal
+    event (an impact seen, or an overturn) are not considered.
+    """
+    t_last = float(solution.t[-1])
+    for time, y in zip(solution.t_events[2], solution.y_events[2]):
+        if time >= t_last and solution.status == 1:
+            break
+        if side * y[0] >= 0.0:
+            continue
+        # the last accepted step time before the turning point: theta is on the
+        # active side there (else the impact event would have stopped the segment)
+        steps = solution.t[solution.t < time]
+        low = float(steps[-1]) if steps.size else t_segment
+        theta_of = lambda s: side * float(solution.sol(s)[0])  # noqa: E731
+        if theta_of(low) <= 0.0:  # the segment began at theta = 0 (a start of rocking)
+            low = float(np.nextafter(low, time))
+            if theta_of(low) <= 0.0:
+                return low, float(solution.sol(low)[1])
+        t_impact = brentq(theta_of, low, float(time), xtol=1e-15, rtol=4 * np.finfo(float).eps,
+                          maxiter=200)
+        return t_impact, float(solution.sol(t_impact)[1])
+    return None
 
 
 class ReferenceSolverError(RuntimeError):
@@ -196,34 +234,46 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
 
             solution = solve_ivp(rhs, (t, t_end), [theta, omega], method="DOP853", rtol=rtol,
                                  atol=atol, events=[impact, overturn, peak, unstable],
-                                 first_step=None)
+                                 first_step=None, dense_output=True)
             if solution.status == -1:
                 raise ReferenceSolverError(
                     f"reference solver (DOP853, rtol {rtol:g}) failed at t = {solution.t[-1]!r} s "
                     f"(theta = {solution.y[0, -1]!r} rad): {solution.message}")
             counts["steps"] += len(solution.t) - 1
             counts["evaluations"] += solution.nfev
+            passed = _passed_impact(solution, active_side, t)
+            if passed is not None:
+                # theta dipped past zero and back inside one step: the sign test at step
+                # ends cannot see it, but the turning point on the wrong side can
+                t_impact, omega_impact = passed
             for time, y in zip(solution.t_events[2], solution.y_events[2]):
+                if passed is not None and time > t_impact:
+                    break
                 if abs(y[0]) > info[INFO_MAX_ABS_THETA]:
                     info[INFO_MAX_ABS_THETA], info[INFO_T_MAX], info[INFO_THETA_AT_MAX] = \
                         abs(y[0]), time, y[0]
-            if math.isnan(info[INFO_T_UNSTABLE]) and len(solution.t_events[3]):
+            if math.isnan(info[INFO_T_UNSTABLE]) and len(solution.t_events[3]) and (
+                    passed is None or solution.t_events[3][0] <= t_impact):
                 info[INFO_T_UNSTABLE] = solution.t_events[3][0]
                 info[INFO_UNSTABLE_DIRECTION] = active_side
-            stalled = stalled + 1 if float(solution.t[-1]) <= t else 0
+            end_time = t_impact if passed is not None else float(solution.t[-1])
+            stalled = stalled + 1 if end_time <= t else 0
             if stalled > MAX_STALLED_SEGMENTS:
                 raise ReferenceSolverError(
                     f"reference solver made no progress at t = {t!r} s in the input interval "
                     f"[{t0!r}, {t1!r}] s ({t1 - t0!r} s long): {MAX_STALLED_SEGMENTS} "
                     "consecutive segments ended where they began; the input is degenerate "
                     "(interval too short or acceleration too large?)")
-            t = float(solution.t[-1])
-            theta, omega = float(solution.y[0, -1]), float(solution.y[1, -1])
+            if passed is not None:
+                t, theta, omega = t_impact, 0.0, omega_impact
+            else:
+                t = float(solution.t[-1])
+                theta, omega = float(solution.y[0, -1]), float(solution.y[1, -1])
             if abs(theta) > info[INFO_MAX_ABS_THETA]:
                 info[INFO_MAX_ABS_THETA], info[INFO_T_MAX], info[INFO_THETA_AT_MAX] = \
                     abs(theta), t, theta
-            if solution.status == 1:  # a terminal event
-                if len(solution.t_events[1]):
+            if passed is not None or solution.status == 1:  # an impact or overturn
+                if passed is None and len(solution.t_events[1]):
                     status = STATUS_OVERTURNED
                     info[INFO_T_OVERTURN] = t
                     info[INFO_OVERTURN_DIRECTION] = active_side

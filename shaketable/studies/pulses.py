@@ -1,4 +1,6 @@
-"""TODO docstring (from section2)."""
+"""Pulse studies: the overturning threshold by bisection and Section 4.3 (4) (the 16 x 4 ft
+block under short half-sine pulses, Eq. 2-9).
+"""
 
 from __future__ import annotations
 
@@ -13,7 +15,7 @@ from shaketable.core.geometry import Block
 from shaketable.solvers.api import simulate
 
 
-def _bisect(predicate, low, high, iterations=30):
+def bisect_threshold(predicate, low, high, iterations=30):
     """Smallest x in [low, high] with predicate(x) true (predicate monotone).
 
     Raises ValueError when the bracket does not hold the switch (predicate(low)
@@ -64,7 +66,7 @@ def section_4_3_4(block=None, pulse_durations=(0.1, 0.05, 0.02, 0.01)) -> pd.Dat
             motion = _half_sine_then_rest(amplitude_g, pulse, tail=12.0 / block.p)
             return simulate(block, motion, cor=1.0).overturned
 
-        engine = _bisect(overturns, 0.5 * impulse, 2.0 * impulse, iterations=16)
+        engine = bisect_threshold(overturns, 0.5 * impulse, 2.0 * impulse, iterations=16)
         rows.append({"pulse duration [s]": pulse, "omega/p [-]": math.pi / pulse / block.p,
                      "Eq. 2-9 [g]": theory.half_sine_overturn_amplitude_large_frequency(
                          block, period) / G,

@@ -33,8 +33,8 @@ from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
 from shaketable.lab.pitch import Pitch
 from shaketable.lab.stage import TableSetup, pitch_sampled, run_table
-from shaketable.scenes.compare import TEST_THEORY_T_UNSTABLE
 from shaketable.solvers.api import simulate
+from shaketable.studies.comparison import TEST_THEORY_T_UNSTABLE
 
 #: Free rocking added after the record, first try [s]. The 30 x 6 in block
 #: released at half its block angle comes to rest in about 6 s (Fig. 3.4,
@@ -242,27 +242,9 @@ class RepeatabilityResult:
 
     def plot(self, ax=None):
         """theta/alpha of every phase (thin lines) and without pitch (black)."""
-        import matplotlib.pyplot as plt
+        from shaketable.plots.studies import plot_pitch_repeatability
 
-        if ax is None:
-            _, ax = plt.subplots(figsize=(8, 3))
-        alpha = self.without_pitch.block.alpha
-        for run in self.runs:
-            ax.plot(run.t, run.theta / alpha, lw=0.5, alpha=0.6)
-        ax.plot(self.without_pitch.t, self.without_pitch.theta / alpha, color="k", lw=1.2,
-                label="no pitch")
-        for level in (-1, 1):
-            ax.axhline(level, color="0.4", ls="--", lw=0.8)
-        if math.isfinite(self.record_end):
-            ax.axvline(self.record_end, color="0.6", lw=0.8, ls=":")
-        ax.set_ylim(-2.0, 2.0)
-        ax.set_ylabel("θ/α [-]")
-        ax.set_xlabel("time [s] (dotted: end of the record, then the table is at rest)")
-        summary = self.summary()
-        ax.set_title(f"{self.name}: {len(self.runs)} pitch phases, "
-                     f"{100 * summary['overturned fraction']:.0f} % overturn", fontsize=9)
-        ax.legend(loc="upper left", fontsize=7, frameon=False)
-        return ax
+        return plot_pitch_repeatability(self, ax=ax)
 
 
 def pitch_repeatability(block: Block, motion: Motion, *, cor: float, phases: int = 24,
@@ -318,7 +300,7 @@ def pitch_repeatability(block: Block, motion: Motion, *, cor: float, phases: int
                                record_end=float(motion.t[-1]))
 
 
-def _largest_spread(cases) -> float:
+def largest_spread(cases) -> float:
     """The largest spread of ``cases`` (NaN ones, with no usable pair of runs, ignored).
 
     Raises
@@ -334,45 +316,6 @@ def _largest_spread(cases) -> float:
     return float(np.nanmax(spreads))
 
 
-def section_3_7_cases(phases: int = 24) -> list[RepeatabilityResult]:
-    """The report's harmonic tests and earthquake-type motions on the pitching table.
-
-    The harmonic cases are the scenes ``fig-3-7``, ``fig-3-8`` and ``fig-3-9``
-    as they are (ramped start, displacement command, 30 x 6 in block, COR
-    0.925). The earthquake-type cases are the motion of the scene ``fig-3-5``
-    (the package's ``olive-view`` SUBSTITUTE, the report's table records are
-    not available) at :data:`EARTHQUAKE_ROCKING_LEVEL`, where it rocks the
-    block substantially, and at Fig. 3.5's own 0.5 g. Each case's
-    ``reference_spread`` is the largest spread of the harmonic cases.
-    """
-    from shaketable.lab.stage import table_setup_from_dict
-    from shaketable.scenes.catalog import resolve_scene_path
-    from shaketable.scenes.parse import load_scene
-    from shaketable.scenes.run import build_motion
-
-    def scene_case(name, label, kind, scale=1.0):
-        scene = load_scene(resolve_scene_path(name))
-        setup = table_setup_from_dict(scene.table, scene.path)
-        motion = build_motion(scene)
-        if scale != 1.0:
-            motion = motion.scaled(scale)
-        return pitch_repeatability(scene.block, motion, cor=scene.cors[0], phases=phases,
-                                   setup=setup, name=label, kind=kind)
-
-    level = EARTHQUAKE_ROCKING_LEVEL
-    cases = [
-        scene_case("fig-3-7", "Fig. 3.7: 2 Hz, 0.5 g H", "harmonic"),
-        scene_case("fig-3-8", "Fig. 3.8: 2 Hz, 0.38 g H + 0.33 g V", "harmonic"),
-        scene_case("fig-3-9", "Fig. 3.9: 2 Hz, 0.45 g H + 0.26 g V", "harmonic"),
-        scene_case("fig-3-5", f"earthquake-type {level:g} g H + {0.4 * level:.3g} g V "
-                   "(Fig. 3.5 substitute scaled)", "earthquake-type", scale=level / 0.5),
-        scene_case("fig-3-5", "Fig. 3.5: earthquake-type 0.5 g H + 0.2 g V (substitute)",
-                   "earthquake-type"),
-    ]
-    harmonic_spread = _largest_spread([case for case in cases if case.kind == "harmonic"])
-    return [replace(case, reference_spread=harmonic_spread) for case in cases]
-
-
 def section_3_7_contrast(cases) -> list:
     """The report's contrast of Section 3.7 (2) as "report vs reproduced" lines.
 
@@ -386,12 +329,12 @@ def section_3_7_contrast(cases) -> list:
     -------
     list of shaketable.scenes.compare.Comparison
     """
-    from shaketable.scenes.compare import Comparison
+    from shaketable.studies.comparison import Comparison
 
     harmonic = [case for case in cases if case.kind == "harmonic"]
     if not harmonic:
         raise ValueError("section_3_7_contrast needs at least one case of kind 'harmonic'")
-    largest = _largest_spread(harmonic)
+    largest = largest_spread(harmonic)
     lines = []
     for case in cases:
         if case.kind != "earthquake-type":

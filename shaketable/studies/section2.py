@@ -17,7 +17,7 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.ground import generators as motions
 from shaketable.solvers.api import simulate
-from shaketable.studies.pulses import _bisect
+from shaketable.studies.pulses import bisect_threshold
 
 
 def figure_2_3(blocks=None, ratios=None) -> pd.DataFrame:
@@ -56,7 +56,7 @@ def figure_2_4(block=None, ratios=None) -> pd.DataFrame:
                                             block.p * 3, dt=min(duration / 200, 0.002))
             return simulate(block, motion, cor=1.0).overturned
 
-        engine = _bisect(overturns, 0.02 * closed, 3.0 * closed)
+        engine = bisect_threshold(overturns, 0.02 * closed, 3.0 * closed)
         rows.append({"a/(g alpha) [-]": ratio, "a [g]": acceleration_g,
                      "Eq. 2-7 t1 [s]": closed, "engine t1 [s]": engine})
     return pd.DataFrame(rows)
@@ -117,6 +117,6 @@ def figure_2_6(block=None, frequency_ratios=None) -> pd.DataFrame:
                      "Eq. 2-8 [g]": theory.half_sine_overturn_amplitude(block, period) / G,
                      "Eq. 2-9 [g]": theory.half_sine_overturn_amplitude_large_frequency(
                          block, period) / G,
-                     "engine [g]": _bisect(overturns, 0.2 * block.alpha, 40 * block.alpha *
+                     "engine [g]": bisect_threshold(overturns, 0.2 * block.alpha, 40 * block.alpha *
                                            max(ratio, 1.0))})
     return pd.DataFrame(rows)

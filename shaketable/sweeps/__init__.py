@@ -6,7 +6,12 @@ Parquet/CSV parts that make a sweep resumable; :mod:`~shaketable.sweeps.fragilit
 fragility curves to the table.
 """
 
-from shaketable.sweeps.execute import SweepOutcome, run_sweep, runs_table, solver_identity
+from shaketable.sweeps.execute import (
+           SweepOutcome,
+           run_sweep,
+           runs_table,
+           solver_identity,
+)
 from shaketable.sweeps.spec import SweepError, SweepSpec, load_spec, spec_from_dict
 from shaketable.sweeps.store import parquet_available, read_results
 

@@ -1,4 +1,6 @@
-"""TODO docstring (from sweep)."""
+"""Running a sweep: the runs table, chunks through the batch engine, locally or on a Dask
+cluster, with progress and resume.
+"""
 
 from __future__ import annotations
 
@@ -18,17 +20,17 @@ from shaketable.sweeps.spec import (
     RecordSpec,
     SweepError,
     SweepSpec,
-    _pitch_of,
     load_spec,
+    pitch_of,
 )
 from shaketable.sweeps.store import (
     FORMAT_VERSION,
-    _finished_chunks,
-    _part_path,
-    _write_atomic,
-    _write_text_atomic,
+    finished_chunks,
     parquet_available,
+    part_path,
     read_results,
+    write_atomic,
+    write_text_atomic,
 )
 
 
@@ -87,7 +89,7 @@ def build_motion(spec: SweepSpec, record_index: int, seed=None, level_index: int
     from shaketable.lab.pitch import motion_at_block
 
     scaled = base if factor == 1.0 else base.scaled(factor)
-    pitched = motion_at_block(scaled, pitch=_pitch_of(spec.pitch, phase_index, spec.seed),
+    pitched = motion_at_block(scaled, pitch=pitch_of(spec.pitch, phase_index, spec.seed),
                               block_position=spec.pitch.block_position,
                               axis_depth=spec.pitch.axis_depth)
     return pitched, factor
@@ -195,9 +197,9 @@ def solver_identity() -> dict:
     """What a resumed sweep must share with the parts already written: the package
     version, the solvers and their default tolerances (rows computed by another engine
     must not be mixed into one table)."""
-    from shaketable import __version__
-    from shaketable.solvers.api import METHODS
     from shaketable.solvers.common import DEFAULT_RTOL
+    from shaketable.solvers.layout import METHODS
+    from shaketable.version import __version__
 
     return {"shaketable": __version__, "methods": dict(METHODS),
             "default rtol": dict(DEFAULT_RTOL)}
@@ -225,13 +227,13 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                     "output folder")
         for stray in (out / "parts").glob(".*.tmp"):
             stray.unlink()
-        return _finished_chunks(spec, out, fmt)
+        return finished_chunks(spec, out, fmt)
     (out / "parts").mkdir(parents=True, exist_ok=True)
     existing = [p for p in (out / "parts").iterdir() if not p.name.startswith(".")]
     if existing:
         raise SweepError(f"{out}: holds part files but no manifest; choose another output "
                          "folder")
-    _write_text_atomic(manifest_path, json.dumps(manifest, indent=2))
+    write_text_atomic(manifest_path, json.dumps(manifest, indent=2))
     return set()
 
 
@@ -334,7 +336,7 @@ def run_sweep(spec, out, *, workers: int | None = None, scheduler: str | None = 
 
     def finished(chunk, frame):
         nonlocal computed
-        _write_atomic(frame, _part_path(out, chunk, fmt), fmt)
+        write_atomic(frame, part_path(out, chunk, fmt), fmt)
         computed += len(frame)
         if bar is not None:
             bar.update(len(frame))
@@ -351,12 +353,12 @@ def run_sweep(spec, out, *, workers: int | None = None, scheduler: str | None = 
         if bar is not None:
             bar.close()
 
-    complete = len(_finished_chunks(spec, out, fmt)) == spec.n_chunks
+    complete = len(finished_chunks(spec, out, fmt)) == spec.n_chunks
     table = path = None
     if complete:
         table = read_results(out, fmt=fmt, parts_only=True)
         path = out / f"results.{'parquet' if fmt == 'parquet' else 'csv'}"
-        _write_atomic(table, path, fmt)
+        write_atomic(table, path, fmt)
     return SweepOutcome(table=table, path=path, out=out, computed_runs=computed,
                         skipped_runs=skipped, seconds=time.perf_counter() - began,
                         complete=complete, format=fmt)

@@ -1,4 +1,4 @@
-"""TODO docstring (from sweep_plots)."""
+"""Fragility curves fitted to a sweep's table (lognormal, maximum likelihood)."""
 
 from __future__ import annotations
 

@@ -65,6 +65,8 @@ workers must have shaketable installed and see record files at the same path).
 
 The same spec (and seed) always gives the same table, whatever the number of
 workers, the chunking or the interruptions.
+
+Size: about 600 lines, half of them this docstring (the spec format's reference).
 """
 
 from __future__ import annotations
@@ -77,7 +79,11 @@ from itertools import product
 from pathlib import Path
 
 import numpy as np
-import tomllib
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10: the same parser, as a package
+    import tomli as tomllib
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block, PrestressRods
@@ -618,13 +624,13 @@ def _pitch(table, where, seed):
             values[key] = _number_list(table[key], where, f"pitch.{key}", 0.0, 0.25)[0]
     grid = PitchGrid(phases=tuple(float(p) for p in phases), **values)
     try:
-        _pitch_of(grid, 0, seed)
+        pitch_of(grid, 0, seed)
     except ValueError as error:
         raise SweepError(f"{where}: [pitch]: {error}") from None
     return grid
 
 
-def _pitch_of(grid: PitchGrid, index: int, seed: int):
+def pitch_of(grid: PitchGrid, index: int, seed: int):
     from shaketable.lab.pitch import Pitch
 
     drift = grid.frequency_drift > 0 or grid.amplitude_drift > 0

@@ -1,4 +1,6 @@
-"""TODO docstring (from sweep)."""
+"""The sweep's store: Parquet (or CSV) parts written atomically, found again on resume,
+and read back as one table.
+"""
 
 from __future__ import annotations
 
@@ -21,7 +23,7 @@ def parquet_available() -> bool:
     return importlib.util.find_spec("pyarrow") is not None
 
 
-def _write_atomic(frame, path: Path, fmt: str) -> None:
+def write_atomic(frame, path: Path, fmt: str) -> None:
     temporary = path.with_name(f".{path.name}.tmp")
     if fmt == "parquet":
         frame.to_parquet(temporary, index=False)
@@ -42,15 +44,15 @@ def _read(path: Path, fmt: str):
     return frame
 
 
-def _part_path(out: Path, chunk: int, fmt: str) -> Path:
+def part_path(out: Path, chunk: int, fmt: str) -> Path:
     return out / "parts" / f"part-{chunk:06d}.{'parquet' if fmt == 'parquet' else 'csv'}"
 
 
-def _finished_chunks(spec, out: Path, fmt: str) -> set:
+def finished_chunks(spec, out: Path, fmt: str) -> set:
     """Chunks whose part file is on disk and holds exactly that chunk's runs."""
     done = set()
     for chunk in range(spec.n_chunks):
-        path = _part_path(out, chunk, fmt)
+        path = part_path(out, chunk, fmt)
         if not path.exists():
             continue
         start = chunk * spec.chunk_size
@@ -67,7 +69,7 @@ def _finished_chunks(spec, out: Path, fmt: str) -> set:
     return done
 
 
-def _write_text_atomic(path: Path, text: str) -> None:
+def write_text_atomic(path: Path, text: str) -> None:
     temporary = path.with_name(f".{path.name}.tmp")
     temporary.write_text(text)
     os.replace(temporary, path)

@@ -1,4 +1,4 @@
-"""TODO docstring (from records)."""
+"""The PEER NGA ``.AT2`` reader: header (NPTS, DT, units, component) and values."""
 
 from __future__ import annotations
 
@@ -8,33 +8,33 @@ import numpy as np
 
 from shaketable.core.constants import acceleration_factor
 from shaketable.ground.readers.common import (
-    _AT2_MAX_HEADER_LINES,
-    _AT2_UNITS,
-    _COMPONENT,
-    _NPTS_DT_PATTERNS,
+    AT2_MAX_HEADER_LINES,
+    AT2_UNITS,
+    COMPONENT_PATTERN,
+    NPTS_DT_PATTERNS,
     Record,
     RecordError,
-    _parse_number,
-    _read_lines,
-    _unit_or_error,
-    _units_argument,
-    _where,
+    file_location,
+    parse_number,
+    read_lines,
+    unit_or_error,
+    units_argument,
 )
 
 
 # --------------------------------------------------------------------- AT2
 def _find_npts_dt(lines: list[str], path: Path) -> tuple[int, int, float]:
     """Return ``(index of the NPTS/DT line, npts, dt [s])`` of an AT2 header."""
-    searched = min(len(lines), _AT2_MAX_HEADER_LINES)
+    searched = min(len(lines), AT2_MAX_HEADER_LINES)
     for index in range(searched):
-        for pattern in _NPTS_DT_PATTERNS:
+        for pattern in NPTS_DT_PATTERNS:
             match = pattern.search(lines[index])
             if match:
                 npts = int(match["npts"])
-                dt = _parse_number(match["dt"], path, index + 1)
+                dt = parse_number(match["dt"], path, index + 1)
                 if npts < 1 or dt <= 0:
                     raise RecordError(
-                        f"{_where(path, index + 1)}: NPTS={npts} and DT={dt} must be positive"
+                        f"{file_location(path, index + 1)}: NPTS={npts} and DT={dt} must be positive"
                     )
                 return index, npts, dt
     raise RecordError(
@@ -48,9 +48,9 @@ def _at2_units(header: list[str], path: Path, units) -> str:
     checked against ``units``; ``units`` when the header names none; else an error."""
     stated = None
     for index, line in enumerate(header):
-        match = _AT2_UNITS.search(line)
+        match = AT2_UNITS.search(line)
         if match:
-            stated = _unit_or_error(match["unit"], path, index + 1)
+            stated = unit_or_error(match["unit"], path, index + 1)
             break
     if units is None:
         if stated is None:
@@ -59,7 +59,7 @@ def _at2_units(header: list[str], path: Path, units) -> str:
                 "units (no 'UNITS OF ...'); pass units= (one of 'g', 'm/s2', 'cm/s2', 'gal')"
             )
         return stated
-    given = _units_argument(units, path)
+    given = units_argument(units, path)
     if stated is not None and acceleration_factor(stated) != acceleration_factor(given):
         raise ValueError(
             f"{path}: units={units!r} contradicts the header's units {stated!r}"
@@ -71,7 +71,7 @@ def _at2_component(header: list[str]) -> str:
     """Component from the last comma field of header line 2 (``"164"``, ``"DWN"``, ``"UP"``)."""
     if len(header) < 2 or "," not in header[1]:
         return ""
-    match = _COMPONENT.match(header[1].rsplit(",", 1)[1])
+    match = COMPONENT_PATTERN.match(header[1].rsplit(",", 1)[1])
     return match["component"] if match else ""
 
 
@@ -90,13 +90,13 @@ def _at2_values(lines: list[str], first: int, npts: int, path: Path) -> np.ndarr
         for token in lines[index].replace(",", " ").split():
             if count == npts:
                 raise RecordError(
-                    f"{_where(path, index + 1)}: more values than NPTS={npts} in the header"
+                    f"{file_location(path, index + 1)}: more values than NPTS={npts} in the header"
                 )
-            values[count] = _parse_number(token, path, index + 1)
+            values[count] = parse_number(token, path, index + 1)
             count += 1
     if count < npts:
         raise RecordError(
-            f"{_where(path, len(lines))}: the file ends after {count} of NPTS={npts} values "
+            f"{file_location(path, len(lines))}: the file ends after {count} of NPTS={npts} values "
             "(truncated data?)"
         )
     return values
@@ -140,7 +140,7 @@ def read_at2(path, *, units=None) -> Record:
         file.
     """
     path = Path(path)
-    lines = _read_lines(path)
+    lines = read_lines(path)
     npts_line, npts, dt = _find_npts_dt(lines, path)
     header = lines[: npts_line + 1]
     units = _at2_units(header, path, units)

@@ -1,4 +1,6 @@
-"""TODO docstring (from records)."""
+"""What every reader shares: the one-component :class:`Record`, :class:`RecordError`
+(naming file and line), number and unit parsing.
+"""
 
 from __future__ import annotations
 
@@ -110,7 +112,7 @@ class Record:
 # --------------------------------------------------------------------- helpers
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?"
 
-_NPTS_DT_PATTERNS = (
+NPTS_DT_PATTERNS = (
     # NGA-West2 "NPTS=   4172, DT=   .0100 SEC," and older PEER "NPTS=  4000, DT= .01000 SEC"
     re.compile(rf"NPTS\s*=\s*(?P<npts>\d+)\s*,?\s*DT\s*=\s*(?P<dt>{_NUMBER})", re.IGNORECASE),
     # NGA-West1 "4164    0.0100    NPTS, DT"
@@ -118,25 +120,25 @@ _NPTS_DT_PATTERNS = (
 )
 
 #: How many leading lines of an AT2 file are searched for the NPTS/DT line.
-_AT2_MAX_HEADER_LINES = 10
+AT2_MAX_HEADER_LINES = 10
 
-_AT2_UNITS = re.compile(
+AT2_UNITS = re.compile(
     r"UNITS\s*(?:OF|ARE|IN|=|:)?\s*[(\[]?\s*(?P<unit>[A-Za-z][A-Za-z0-9/^*]*)", re.IGNORECASE
 )
 
 _UNIT_WORD = r"g|gal|cm/s(?:ec)?(?:\^?2|/s(?:ec)?)|m/s(?:ec)?(?:\^?2|/s(?:ec)?)"
 
-_TEXT_UNITS = (
+TEXT_UNITS = (
     re.compile(rf"[(\[]\s*(?P<unit>{_UNIT_WORD})\s*[)\]]", re.IGNORECASE),
     re.compile(rf"\bunits?\s*(?:of|are|in|=|:)?\s*(?P<unit>{_UNIT_WORD})(?![\w/^])", re.IGNORECASE),
 )
 
-_COMPONENT = re.compile(r"^\s*(?P<component>[A-Za-z0-9+\-]{1,8})\s*(?:\(.*\))?\s*$")
+COMPONENT_PATTERN = re.compile(r"^\s*(?P<component>[A-Za-z0-9+\-]{1,8})\s*(?:\(.*\))?\s*$")
 
-_DOWN_LABELS = {"DWN", "DOWN", "DN"}
+DOWN_LABELS = {"DWN", "DOWN", "DN"}
 
 
-def _read_lines(path: Path) -> list[str]:
+def read_lines(path: Path) -> list[str]:
     """Lines of a text file, CRLF or LF, without line endings."""
     try:
         with open(path, encoding="utf-8", errors="replace", newline=None) as stream:
@@ -145,22 +147,22 @@ def _read_lines(path: Path) -> list[str]:
         raise RecordError(f"{path}: cannot read the file: {error.strerror or error}") from None
 
 
-def _where(path: Path, line_number: int) -> str:
+def file_location(path: Path, line_number: int) -> str:
     return f"{path}, line {line_number}"
 
 
-def _parse_number(token: str, path: Path, line_number: int) -> float:
+def parse_number(token: str, path: Path, line_number: int) -> float:
     """Parse one finite number (Fortran ``D`` exponents accepted)."""
     try:
         value = float(token.replace("D", "E").replace("d", "e"))
     except ValueError:
-        raise RecordError(f"{_where(path, line_number)}: {token!r} is not a number") from None
+        raise RecordError(f"{file_location(path, line_number)}: {token!r} is not a number") from None
     if not math.isfinite(value):
-        raise RecordError(f"{_where(path, line_number)}: {token!r} is not a finite number")
+        raise RecordError(f"{file_location(path, line_number)}: {token!r} is not a finite number")
     return value
 
 
-def _canonical_unit(word: str) -> str:
+def canonical_unit(word: str) -> str:
     """Map a unit as written (``G``, ``cm/sec/sec``, ``m/s^2`` ...) to a key of
     :data:`shaketable.core.constants.ACCELERATION_UNITS`; raise ``ValueError`` if unknown."""
     unit = word.strip().lower().replace(" ", "").replace("sec", "s")
@@ -169,31 +171,31 @@ def _canonical_unit(word: str) -> str:
     return unit
 
 
-def _unit_or_error(word: str, path: Path, line_number: int) -> str:
+def unit_or_error(word: str, path: Path, line_number: int) -> str:
     try:
-        return _canonical_unit(word)
+        return canonical_unit(word)
     except ValueError as error:
-        raise RecordError(f"{_where(path, line_number)}: {error}") from None
+        raise RecordError(f"{file_location(path, line_number)}: {error}") from None
 
 
-def _units_argument(units, path: Path) -> str:
+def units_argument(units, path: Path) -> str:
     """The ``units=`` argument as a canonical unit, else a ValueError naming it and the file."""
     if not isinstance(units, str):
         raise ValueError(f"{path}: units must be a string such as 'g' or 'm/s2', got {units!r}")
     try:
-        return _canonical_unit(units)
+        return canonical_unit(units)
     except ValueError as error:
         raise ValueError(f"{path}: units={units!r}: {error}") from None
 
 
 # --------------------------------------------------------------------- text
-def _split_fields(line: str, delimiter: str | None) -> list[str]:
+def split_fields(line: str, delimiter: str | None) -> list[str]:
     if delimiter is None:
         return [field for field in re.split(r"[\s,;]+", line.strip()) if field]
     return [field.strip() for field in line.split(delimiter)]
 
 
-def _is_number(token: str) -> bool:
+def is_number(token: str) -> bool:
     try:
         float(token.replace("D", "E").replace("d", "e"))
     except ValueError:
@@ -201,18 +203,18 @@ def _is_number(token: str) -> bool:
     return True
 
 
-def _uniform_dt(times: np.ndarray, line_numbers: list[int], path: Path) -> float:
+def uniform_time_step(times: np.ndarray, line_numbers: list[int], path: Path) -> float:
     """Sample interval [s] of a time column; every step must be within 1 % of
     the median step."""
     if times.size < 2:
-        raise RecordError(f"{_where(path, line_numbers[0])}: a time column needs 2 or more rows")
+        raise RecordError(f"{file_location(path, line_numbers[0])}: a time column needs 2 or more rows")
     steps = np.diff(times)
     typical = float(np.median(steps))
     irregular = np.flatnonzero(~(np.abs(steps - typical) <= 0.01 * abs(typical)) | (steps <= 0))
     if irregular.size:
         index = int(irregular[0])
         raise RecordError(
-            f"{_where(path, line_numbers[index + 1])}: time step {float(steps[index]):g} s "
+            f"{file_location(path, line_numbers[index + 1])}: time step {float(steps[index]):g} s "
             f"differs from the usual step {typical:g} s; only uniformly sampled records "
             "are supported"
         )
@@ -220,7 +222,7 @@ def _uniform_dt(times: np.ndarray, line_numbers: list[int], path: Path) -> float
     return float(f"{dt:.12g}")  # drop the rounding noise of printed times
 
 
-def _optional_positive(value, name: str, unit: str, path: Path):
+def optional_positive(value, name: str, unit: str, path: Path):
     """``None`` or a positive finite float, else a ValueError naming ``name`` and the file."""
     if value is None:
         return None
@@ -236,7 +238,7 @@ def _optional_positive(value, name: str, unit: str, path: Path):
     return number
 
 
-def _option_integer(value, name: str, path: Path, minimum: int | None = 0) -> int:
+def option_integer(value, name: str, path: Path, minimum: int | None = 0) -> int:
     """An integer option (``skiprows``, a column index), else a ValueError naming it and the file."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise ValueError(f"{path}: {name} must be an integer, got {value!r}")

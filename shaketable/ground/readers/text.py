@@ -1,4 +1,6 @@
-"""TODO docstring (from records)."""
+"""Delimited text records: a time column or a step, named columns, units from the header
+or given explicitly.
+"""
 
 from __future__ import annotations
 
@@ -10,19 +12,19 @@ import numpy as np
 
 from shaketable.core.constants import acceleration_factor
 from shaketable.ground.readers.common import (
-    _TEXT_UNITS,
+    TEXT_UNITS,
     Record,
     RecordError,
-    _canonical_unit,
-    _is_number,
-    _option_integer,
-    _optional_positive,
-    _parse_number,
-    _read_lines,
-    _split_fields,
-    _uniform_dt,
-    _units_argument,
-    _where,
+    canonical_unit,
+    file_location,
+    is_number,
+    option_integer,
+    optional_positive,
+    parse_number,
+    read_lines,
+    split_fields,
+    uniform_time_step,
+    units_argument,
 )
 
 
@@ -31,7 +33,7 @@ def _is_comment_or_blank(line: str) -> bool:
     return not stripped or stripped[0] in "#%"
 
 
-def _header_length(lines: list[str], skiprows: int | None, delimiter: str | None) -> int:
+def count_header_lines(lines: list[str], skiprows: int | None, delimiter: str | None) -> int:
     """Number of leading header lines: ``skiprows``, or the leading lines that are
     blank, comments or start with something that is not a number."""
     if skiprows is not None:
@@ -41,32 +43,32 @@ def _header_length(lines: list[str], skiprows: int | None, delimiter: str | None
     for index, line in enumerate(lines):
         if _is_comment_or_blank(line):
             continue
-        fields = _split_fields(line, delimiter)
-        if fields and _is_number(fields[0]):
+        fields = split_fields(line, delimiter)
+        if fields and is_number(fields[0]):
             return index
     return len(lines)
 
 
-def _text_rows(lines: list[str], first: int, delimiter: str | None, path: Path):
+def text_rows(lines: list[str], first: int, delimiter: str | None, path: Path):
     """Parse the numeric table below the header; return ``(array, line_numbers)``."""
     rows, line_numbers = [], []
     for index in range(first, len(lines)):
         if _is_comment_or_blank(lines[index]):
             continue
-        fields = _split_fields(lines[index], delimiter)
+        fields = split_fields(lines[index], delimiter)
         if rows and len(fields) != len(rows[0]):
             raise RecordError(
-                f"{_where(path, index + 1)}: {len(fields)} column(s), but the data "
+                f"{file_location(path, index + 1)}: {len(fields)} column(s), but the data "
                 f"start with {len(rows[0])} (truncated or ragged line?)"
             )
-        rows.append([_parse_number(field, path, index + 1) for field in fields])
+        rows.append([parse_number(field, path, index + 1) for field in fields])
         line_numbers.append(index + 1)
     if not rows:
-        raise RecordError(f"{_where(path, max(len(lines), 1))}: no numeric data found in the file")
+        raise RecordError(f"{file_location(path, max(len(lines), 1))}: no numeric data found in the file")
     return np.array(rows, dtype=float), line_numbers
 
 
-def _column_names(header: list[str], ncolumns: int, delimiter: str | None) -> list[str]:
+def header_column_names(header: list[str], ncolumns: int, delimiter: str | None) -> list[str]:
     """Column names from the last non-blank header line, when it has one per column."""
     for line in reversed(header):
         if line.strip():
@@ -116,9 +118,9 @@ def _choose_columns(ncolumns, dt, time_column, value_column, names, path):
 
 def _units_in_text(text: str) -> set[str]:
     found = set()
-    for pattern in _TEXT_UNITS:
+    for pattern in TEXT_UNITS:
         for match in pattern.finditer(text):
-            found.add(_canonical_unit(match["unit"]))
+            found.add(canonical_unit(match["unit"]))
     return found
 
 
@@ -134,7 +136,7 @@ def _text_units(header, names, value_index, units, path) -> str:
             "pass units= to say which applies"
         )
     if units is not None:
-        given = _canonical_unit(units)
+        given = canonical_unit(units)
         if stated and acceleration_factor(stated.pop()) != acceleration_factor(given):
             raise ValueError(
                 f"{path}: units={units!r} contradicts the unit written in the file header"
@@ -196,22 +198,22 @@ def read_text(path, *, dt=None, units=None, time_column=None, value_column=None,
         choice, or contradictory arguments; the message names the file.
     """
     path = Path(path)
-    dt = _optional_positive(dt, "dt", " [s]", path)
+    dt = optional_positive(dt, "dt", " [s]", path)
     if skiprows is not None:
-        skiprows = _option_integer(skiprows, "skiprows", path)
+        skiprows = option_integer(skiprows, "skiprows", path)
     for name, column in (("time_column", time_column), ("value_column", value_column)):
         if column is not None and not isinstance(column, str):
-            _option_integer(column, name, path, minimum=None)
+            option_integer(column, name, path, minimum=None)
     if delimiter is not None and (not isinstance(delimiter, str) or not delimiter):
         raise ValueError(f"{path}: delimiter must be a non-empty string, got {delimiter!r}")
     if units is not None:
-        units = _units_argument(units, path)
-    lines = _read_lines(path)
-    header_length = _header_length(lines, skiprows, delimiter)
+        units = units_argument(units, path)
+    lines = read_lines(path)
+    header_length = count_header_lines(lines, skiprows, delimiter)
     header = lines[:header_length]
-    table, line_numbers = _text_rows(lines, header_length, delimiter, path)
+    table, line_numbers = text_rows(lines, header_length, delimiter, path)
     ncolumns = table.shape[1]
-    names = _column_names(header, ncolumns, delimiter)
+    names = header_column_names(header, ncolumns, delimiter)
     time_index, value_index = _choose_columns(ncolumns, dt, time_column, value_column, names, path)
     unit = _text_units(header, names, value_index, units, path)
     t0 = 0.0
@@ -220,7 +222,7 @@ def read_text(path, *, dt=None, units=None, time_column=None, value_column=None,
             raise ValueError(f"{path} has no time column; pass dt= (sample interval [s])")
         sample_interval = dt
     else:
-        sample_interval = _uniform_dt(table[:, time_index], line_numbers, path)
+        sample_interval = uniform_time_step(table[:, time_index], line_numbers, path)
         t0 = float(table[0, time_index])
         if dt is not None and not math.isclose(dt, sample_interval, rel_tol=0.01):
             raise ValueError(

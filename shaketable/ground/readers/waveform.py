@@ -1,4 +1,6 @@
-"""TODO docstring (from records)."""
+"""Records read through ObsPy (MiniSEED, SAC, K-NET, ...): trace selection and units.
+ObsPy is imported lazily, on the first such read.
+"""
 
 from __future__ import annotations
 
@@ -7,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from shaketable.core.constants import acceleration_factor
-from shaketable.ground.readers.common import Record, RecordError, _units_argument
+from shaketable.ground.readers.common import Record, RecordError, units_argument
 
 
 # --------------------------------------------------------------------- ObsPy
@@ -64,14 +66,14 @@ def read_obspy(path, *, units=None, component=None, format=None) -> Record:
     if units is None:
         raise ValueError(f"{path}: waveform files do not state acceleration units reliably; "
                          "pass units= (one of 'g', 'm/s2', 'cm/s2', 'gal')")
-    unit = _units_argument(units, path)
+    unit = units_argument(units, path)
     for name, value in (("format", format), ("component", component)):
         if value is not None and (not isinstance(value, str) or not value.strip()):
             raise ValueError(f"{path}: {name} must be a non-empty string, got {value!r}")
-    return _record_from_stream(_obspy_stream(path, format), path, unit, component)
+    return record_from_stream(obspy_stream(path, format), path, unit, component)
 
 
-def _record_from_stream(stream, path: Path, unit: str, component) -> Record:
+def record_from_stream(stream, path: Path, unit: str, component) -> Record:
     """The :class:`Record` of the one selected trace of an ObsPy stream."""
     trace = _select_trace(stream, component, path)
     samples = np.asarray(trace.data, dtype=float)
@@ -89,11 +91,11 @@ def _record_from_stream(stream, path: Path, unit: str, component) -> Record:
     )
 
 
-class _UnknownToObspy(RecordError):
+class UnknownToObspy(RecordError):
     """ObsPy does not recognise the file's format (it may be plain text)."""
 
 
-def _obspy_stream(path: Path, format: str | None):
+def obspy_stream(path: Path, format: str | None):
     """``obspy.read`` with errors that name the file."""
     import obspy  # the only ObsPy import in shaketable
 
@@ -103,7 +105,7 @@ def _obspy_stream(path: Path, format: str | None):
         return obspy.read(str(path), format=None if format is None else format.upper())
     except TypeError as error:  # ObsPy's "Unknown format" / "Format ... is not supported"
         if format is None and "unknown format" in str(error).lower():
-            raise _UnknownToObspy(f"{path}: ObsPy does not recognise the format") from None
+            raise UnknownToObspy(f"{path}: ObsPy does not recognise the format") from None
         raise RecordError(f"{path}: ObsPy cannot read the file: {error}") from None
     except Exception as error:  # ObsPy raises many types for unreadable files
         raise RecordError(f"{path}: ObsPy cannot read the file: {error}") from None

@@ -9,7 +9,6 @@ of records beside the repository clone). Tests of those files skip when the
 from __future__ import annotations
 
 import hashlib
-import os
 import re
 import subprocess
 import sys
@@ -24,16 +23,9 @@ from shaketable.core.motion import Motion
 from shaketable.ground import records
 from shaketable.ground.readers import at2, text, waveform
 from shaketable.ground.readers.common import Record, RecordError
+from tests.helpers import SHARED_RECORDS, needs_shared
 
-SHARED = Path(os.environ.get("SHAKETABLE_SHARED")
-              or Path(__file__).resolve().parents[2] / "shared")
-SHARED_RECORDS = SHARED / "data" / "records"
 BUNDLED_RECORDS = Path(shaketable.__file__).resolve().parent / "data" / "records"
-
-needs_shared = pytest.mark.skipif(
-    not (SHARED_RECORDS / "PROVENANCE.md").is_file(),
-    reason=f"shared record collection not found at {SHARED_RECORDS} (set SHAKETABLE_SHARED)",
-)
 
 # Expected values from shared/data/records/PROVENANCE.md (tables of sections 1, 2
 # and 3): file -> (reader options, NPTS, DT [s], PGA [g], sign of the peak,

@@ -138,7 +138,7 @@ def test_teaching_scenes_are_studies_and_plots_render(tmp_path):
 
     for name in teaching.ITEMS:
         study = load_scene(resolve_scene_path(f"teaching-{name}"))
-        assert isinstance(study, Study) and study.kind == "teaching" and study.table == name
+        assert isinstance(study, Study) and study.kind == "teaching" and study.item == name
     item = teaching.period_amplitude("36x9in", [0.2, 0.6])
     save_item(item, tmp_path / "period.png")
     assert (tmp_path / "period.png").stat().st_size > 10_000

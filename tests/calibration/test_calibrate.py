@@ -31,7 +31,7 @@ from shaketable.calibration.peaks import period_fit
 from shaketable.calibration.record import (
     FILTER_ORDERS,
     CalibrationError,
-    Record,
+    FreeRockingRecord,
     read_record,
 )
 from shaketable.cli import main
@@ -50,7 +50,7 @@ def _virtual(cor, seed, theta0_ratio=0.5, shift=3.7, duration=10.0):
     """A virtual record whose clock starts 1.3 s before the release at t = shift [s]."""
     record, _ = virtual_free_rocking_record(BLOCK, cor, theta0_ratio * BLOCK.alpha, seed=seed,
                                             before=1.3, duration=duration)
-    return Record(record.t + shift, record.values, record.quantity, height=record.height,
+    return FreeRockingRecord(record.t + shift, record.values, record.quantity, height=record.height,
                   clipped=record.clipped, name=f"virtual cor {cor}")
 
 
@@ -187,7 +187,7 @@ def test_period_fit_recovers_the_block_size():
 def test_angle_record_with_an_offset():
     # the same test read as an angle (the report's way) with a sensor offset of 0.002 rad
     record, measurement = virtual_free_rocking_record(BLOCK, 0.85, 0.4 * BLOCK.alpha, seed=5)
-    angle = Record.from_angle(measurement.t, measurement.theta_exact + 0.002)
+    angle = FreeRockingRecord.from_angle(measurement.t, measurement.theta_exact + 0.002)
     result = calibrate(angle, BLOCK)
     assert abs(result.cor - 0.85) < 0.005
     assert result.offset == pytest.approx(0.002, abs=2e-4)
@@ -278,22 +278,22 @@ def test_record_without_rocking():
     t = np.arange(0.0, 10.0, 0.02)
     noise = np.random.default_rng(1).normal(0.0, 1e-4, t.size)
     with pytest.raises(CalibrationError, match="no rocking"):
-        calibrate(Record.from_angle(t, noise), BLOCK)
+        calibrate(FreeRockingRecord.from_angle(t, noise), BLOCK)
 
 
 def test_record_too_short():
     record = _virtual(0.9, 3)
     keep = record.t < 3.7 + 0.75        # release and one impact only
     with pytest.raises(CalibrationError, match="too short"):
-        calibrate(Record(record.t[keep], record.values[keep], record.quantity), BLOCK)
+        calibrate(FreeRockingRecord(record.t[keep], record.values[keep], record.quantity), BLOCK)
     with pytest.raises(CalibrationError, match="too short"):
-        calibrate(Record(record.t[:10], record.values[:10], record.quantity), BLOCK)
+        calibrate(FreeRockingRecord(record.t[:10], record.values[:10], record.quantity), BLOCK)
 
 
 def test_clipped_record():
     record = _virtual(0.9, 4)
     limit = 2.0 * INCH          # a potentiometer of +-2 in range on a 3 in swing
-    clipped = Record(record.t, np.clip(record.values, -limit, limit), record.quantity)
+    clipped = FreeRockingRecord(record.t, np.clip(record.values, -limit, limit), record.quantity)
     with pytest.raises(CalibrationError, match="clipped"):
         calibrate(clipped, BLOCK)
     with pytest.raises(CalibrationError, match="clipped"):
@@ -304,19 +304,19 @@ def test_too_noisy_record():
     record = _virtual(0.9, 5)
     noisy = record.values + np.random.default_rng(2).normal(0.0, 0.3 * INCH, record.t.size)
     with pytest.raises(CalibrationError, match="too noisy"):
-        calibrate(Record(record.t, noisy, record.quantity), BLOCK)
+        calibrate(FreeRockingRecord(record.t, noisy, record.quantity), BLOCK)
 
 
 def test_bad_arguments_name_the_argument():
     record, _ = _calibrated(0.9, 12)
     with pytest.raises(ValueError, match="quantity"):
-        Record([0, 1], [0, 1], "velocity")
+        FreeRockingRecord([0, 1], [0, 1], "velocity")
     with pytest.raises(ValueError, match="interval"):
         calibrate(record, BLOCK, interval="wild")
     with pytest.raises(ValueError, match="block"):
         calibrate(record, "30x6in")
     with pytest.raises(ValueError, match="units"):
-        Record.from_top_displacement([0, 1], [0, 1], units="furlong")
+        FreeRockingRecord.from_top_displacement([0, 1], [0, 1], units="furlong")
     with pytest.raises(ValueError, match="anti_alias"):
         calibrate(record, BLOCK, anti_alias="guess")
     with pytest.raises(ValueError, match="filter_order"):

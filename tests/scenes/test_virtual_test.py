@@ -191,3 +191,16 @@ def test_fig_3_5_values_are_the_tests():
     # closely as the harmonic tests do, which the report says they did not: "differs"
     assert closeness.report is False and closeness.reproduced is True
     assert closeness.agrees is False
+
+
+def test_an_initial_velocity_reaches_the_test_and_the_theory_with_sensors():
+    # issue 12: theta_dot0 was dropped for scenes with [sensors]. Free rocking of the
+    # 30 x 6 in block thrown from theta = 0 with theta' = 0.2 rad/s (table at rest).
+    data = {"name": "thrown", "block": {"size": "30x6in"},
+            "motion": {"kind": "free"},
+            "rocking": {"cor": 0.925, "theta_dot0": "0.2 rad/s", "duration": "3 s"},
+            "sensors": {"seed": 1}, "theory": {"cor": 0.925}}
+    result = run_scene(scene_from_dict(data, "thrown.toml"))
+    test = result.tests[0]
+    assert test.test.theta_dot[0] == 0.2 and test.theory.theta_dot[0] == 0.2
+    assert np.max(np.abs(test.test.theta)) > 0.0

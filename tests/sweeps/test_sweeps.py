@@ -21,8 +21,7 @@ from shaketable.core.constants import G
 from shaketable.ground import generators, records, signals
 from shaketable.lab.pitch import Pitch, motion_at_block
 from shaketable.sweeps import execute
-
-REPOSITORY = Path(__file__).resolve().parents[1]
+from tests.helpers import REPOSITORY  # noqa: E402
 
 SPEC = """
 name = "tiny"

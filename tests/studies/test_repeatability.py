@@ -9,12 +9,12 @@ from shaketable import Block
 from shaketable.ground.generators import artificial, harmonic
 from shaketable.lab.pitch import Pitch
 from shaketable.lab.stage import TableSetup, run_table
+from shaketable.scenes.studies import section_3_7_cases
 from shaketable.solvers.api import simulate
 from shaketable.studies.repeatability import (
     is_final,
     pitch_repeatability,
     run_to_the_end,
-    section_3_7_cases,
     section_3_7_contrast,
 )
 

@@ -1,0 +1,105 @@
+"""The package's architecture, enforced (issue 12; docs/architecture.md).
+
+Each folder of ``shaketable/`` is a layer; a module may import its own layer and
+the layers below it, never above. The one exception is a ``.plot()``
+convenience: a function body may import :mod:`shaketable.plots` (a thin
+delegate, loaded only when a figure is asked for). Third-party libraries with
+one home: matplotlib only in ``plots/``, obspy only in ``ground/readers/``,
+the TOML reader only in ``scenes/`` and ``sweeps/``, numba only in ``core`` and
+``solvers``. No module imports another module's private (``_``) names. The
+scene parser knows no study and no pipeline module. The benchmark harness does
+not drive the CLI module.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+from tests.helpers import REPOSITORY
+
+#: Layer of each top-level folder or module of the package: a module may import
+#: from a layer of lower rank, or from its own folder.
+RANK = {"core": 0, "solvers": 1, "ground": 1, "lab": 2, "calibration": 3, "sweeps": 3,
+        "studies": 4, "scenes": 5, "plots": 6, "reproduce": 7, "bench": 7, "commands": 8, "cli": 9,
+        "__init__": 10, "__main__": 10, "version": 0}
+
+#: Third-party modules and the layers allowed to import them.
+HOMES = {"matplotlib": ("plots",), "obspy": ("ground/readers",), "tomllib": ("scenes", "sweeps"),
+         "tomli": ("scenes", "sweeps"), "numba": ("core", "solvers")}
+
+
+def _layer(relative: Path) -> str:
+    return relative.parts[0] if len(relative.parts) > 1 else relative.stem
+
+
+def _imports(tree: ast.Module):
+    """(imported module, names, whether inside a function) for each import statement."""
+    module_level = {id(node) for node in tree.body}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                yield alias.name, [], id(node) not in module_level
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            yield node.module, [a.name for a in node.names], id(node) not in module_level
+
+
+def violations(package: Path) -> list[str]:
+    """Every breach of the rules above in the package folder ``package``."""
+    found = []
+    for path in sorted(package.rglob("*.py")):
+        relative = path.relative_to(package)
+        layer = _layer(relative)
+        own = ".".join((package.name,) + relative.with_suffix("").parts)
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for module, names, lazy in _imports(tree):
+            top = module.split(".")[0]
+            if top in HOMES and not any(str(relative).startswith(home) for home in HOMES[top]):
+                found.append(f"{relative}: imports {module} (allowed only in {HOMES[top]})")
+            if top != package.name:
+                continue
+            parts = module.split(".")
+            if len(parts) == 1:   # `from shaketable import X`: the package's public names
+                target = "__init__"
+            else:
+                target = parts[1]
+            if target not in RANK:
+                continue
+            if target == "plots" and lazy and layer != "plots":
+                pass  # a .plot() delegate
+            elif target != layer and RANK[target] >= RANK.get(layer, 0):
+                found.append(f"{relative}: imports {module} (layer {target!r} is not below "
+                             f"{layer!r})")
+            private = [name for name in names if name.startswith("_") and name != "__version__"]
+            if private and module != own:
+                found.append(f"{relative}: imports private {private} from {module}")
+            if str(relative) == "scenes/parse.py" and (target == "studies" or module in (
+                    f"{package.name}.scenes.run", f"{package.name}.reproduce")):
+                found.append(f"{relative}: the scene parser imports {module}")
+    return found
+
+
+def test_the_package_respects_its_layers():
+    assert violations(REPOSITORY / "shaketable") == []
+
+
+def test_the_check_fails_when_core_imports_plots(tmp_path):
+    # the same rules on a copy of two modules, one of them changed to break a rule
+    package = tmp_path / "shaketable"
+    for relative in ("core/geometry.py", "plots/base.py"):
+        (package / relative).parent.mkdir(parents=True, exist_ok=True)
+        (package / relative).write_text((REPOSITORY / "shaketable" / relative).read_text())
+    assert violations(package) == []
+    geometry = package / "core" / "geometry.py"
+    geometry.write_text(geometry.read_text() + "\nfrom shaketable.plots.base import save\n"
+                        "import matplotlib\nfrom shaketable.core.units import _NUMBER_UNIT\n")
+    found = violations(package)
+    assert any("imports shaketable.plots.base (layer 'plots'" in v for v in found)
+    assert any("imports matplotlib" in v for v in found)
+    assert any("imports private ['_NUMBER_UNIT']" in v for v in found)
+
+
+def test_benchmarks_do_not_drive_the_cli_module():
+    for path in sorted((REPOSITORY / "benchmarks").glob("*.py")):
+        for module, _, _ in _imports(ast.parse(path.read_text(encoding="utf-8"))):
+            assert not module.startswith("shaketable.commands"), f"{path.name}: {module}"
