@@ -190,3 +190,25 @@ def test_frame_summary_plot(tmp_path):
 
     save(fig, tmp_path / "slide.png")
     assert (tmp_path / "slide.png").stat().st_size > 0
+
+
+def test_cli_slide_in_process(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    from shaketable.cli import main
+
+    assert main(["slide", "--record", "pacoima-dam-s74w", "--static-friction", "0.2",
+                 "--block", "16x4ft", "--out", str(tmp_path)]) == 0
+    printed = capsys.readouterr().out
+    assert "peak slip 8.30 in" in printed and "Section 2.1: sliding" in printed
+    assert (tmp_path / "summary.json").exists() and (tmp_path / "sliding.png").exists()
+    assert main(["slide", "--static-friction", "-0.1", "--record", "pacoima-dam-s74w",
+                 "--out", str(tmp_path)]) == 2
+
+
+def test_table_4_4_scene_loads():
+    from pathlib import Path
+
+    from shaketable.scenes.parse import Study, load_scene
+
+    scene = load_scene(Path(__file__).resolve().parents[1] / "experiments" / "table-4-4.toml")
+    assert isinstance(scene, Study) and scene.table == "table_4_4"

@@ -288,7 +288,7 @@ def _study(data: dict, where: str) -> Study:
                      description=str(data.get("description", "")), kind=kind,
                      table=spec["figure"], path=where)
     table = spec.get("table")
-    if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3"):
+    if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3", "table_4_4"):
         raise SceneError(f"{where}: study.table must be table_3_1, table_4_1, table_4_2 or "
                          f"table_4_3, got {table!r}")
     return Study(name=str(data.get("name", "")), source=str(data.get("source", "")),
