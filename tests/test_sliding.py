@@ -7,12 +7,17 @@ import math
 import numpy as np
 import pytest
 
-from shaketable.core.constants import G, INCH
+from shaketable.core.constants import INCH, G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.sliding_result import Friction
 from shaketable.ground import generators
-from shaketable.solvers.sliding import first_threshold_time, mode_choice, peak_slips, slide
+from shaketable.solvers.sliding import (
+    first_threshold_time,
+    mode_choice,
+    peak_slips,
+    slide,
+)
 
 # A step of the table acceleration needs one sample interval: EPS is that interval, and
 # changes the exact peak by a relative O(EPS / t1) (measured 3.3e-8 for t1 = 0.3 s).

@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from shaketable.core.constants import G, INCH
+from shaketable.core.constants import INCH, G
 from shaketable.core.motion import Motion
 
 #: Phases of the block on the table, the ``state`` codes of :class:`SlidingResult`.
@@ -95,7 +95,7 @@ class Friction:
         object.__setattr__(self, "dynamic", dynamic)
 
     @classmethod
-    def coulomb(cls, mu: float) -> "Friction":
+    def coulomb(cls, mu: float) -> Friction:
         """One coefficient for starting and sliding (mu_s = mu_d = ``mu``)."""
         return cls(mu, mu)
 

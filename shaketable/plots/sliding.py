@@ -7,8 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from shaketable.core.constants import G, INCH
-from shaketable.plots.base import _pyplot
+from shaketable.core.constants import INCH, G
 
 
 def sliding_figure(result, fig=None, title: str | None = None):
@@ -16,7 +15,8 @@ def sliding_figure(result, fig=None, title: str | None = None):
 
     Sliding phases are shaded; the peak slip is marked. Returns the figure.
     """
-    plt = _pyplot()
+    import matplotlib.pyplot as plt
+
     if fig is None:
         fig = plt.figure(figsize=(9, 7))
     axes = fig.subplots(3, 1, sharex=True)
@@ -56,7 +56,8 @@ def sliding_vs_rocking_figure(sliding, rocking, fig=None, title: str | None = No
 
     ``sliding`` and ``rocking`` are :class:`shaketable.studies.sliding.ModeResult`.
     """
-    plt = _pyplot()
+    import matplotlib.pyplot as plt
+
     if fig is None:
         fig = plt.figure(figsize=(9, 7.5))
     axes = fig.subplots(3, 1, sharex=True)
@@ -85,7 +86,7 @@ def sliding_vs_rocking_figure(sliding, rocking, fig=None, title: str | None = No
                f"max theta/alpha {rock_run.max_theta_ratio:.2f}")
     extra = ""
     when = rocking.combined.get("required friction exceeds mu_s at [s]")
-    if when is not None and when == when:
+    if when is not None and not np.isnan(when):
         extra = f"; would also slide at {when:.2f} s (outside the model)"
     axes[2].set_title(f"high friction mu = {rocking.choice['mode mu_s [-]']:g} > B/H: ROCKS "
                       f"from {rocking.choice['mode t_start [s]']:.2f} s, {verdict}{extra}",

@@ -185,7 +185,7 @@ def stick_slip_kernel(t, ug, vg, mu_s, mu_d, gravity, x0, v0, state0, x_out, v_o
                     state = SLIDING_NEG if direction > 0.0 else SLIDING_POS
                     event = EV_START
                     episodes += 1
-                    if t_first != t_first:
+                    if math.isnan(t_first):
                         t_first = t[k] + tau
                 else:
                     done = True
@@ -323,11 +323,11 @@ def mode_choice(block: Block, motion: Motion, static_friction: float) -> dict:
     mu_s = Friction(static_friction).static
     t_rock = first_threshold_time(motion, ratio)                     # Eq. (2-1)
     t_slide = first_threshold_time(motion, mu_s)                     # Eq. (2-2)
-    if mu_s > ratio and t_rock == t_rock:
+    if mu_s > ratio and not math.isnan(t_rock):
         mode, start = "rocking", t_rock
-    elif t_slide == t_slide and not (t_rock < t_slide):
+    elif not math.isnan(t_slide) and not (t_rock < t_slide):
         mode, start = "sliding", t_slide
-    elif t_rock == t_rock:  # mu_s <= B/H but rocking's threshold first: cannot happen
+    elif not math.isnan(t_rock):  # mu_s <= B/H but rocking's threshold first: cannot happen
         mode, start = "rocking", t_rock
     else:
         mode, start = "moves with the table", math.nan

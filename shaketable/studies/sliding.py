@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from shaketable.core.constants import G, INCH
+from shaketable.core.constants import INCH, G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.sliding_result import Friction
