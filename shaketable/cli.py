@@ -11,7 +11,8 @@ import importlib
 import sys
 
 #: Subcommand modules in ``shaketable.commands``, in the order ``--help`` shows them.
-SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "animate"]
+SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "animate",
+               "slide"]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -107,6 +107,8 @@ def _study_section(study: Study, out: Path, tally: list) -> str:
     folder = out / study.name
     folder.mkdir(parents=True, exist_ok=True)
     lines = [f"## {study.source} — `{study.name}`", "", study.description, ""]
+    if study.table == "table_4_4":  # the sliding mode (shaketable.studies.sliding)
+        return _table_4_4_section(study, folder, lines, tally)
     if study.kind == "pitch-repeatability":
         return _repeatability_section(study, folder, lines, tally)
     if study.kind == "teaching":
@@ -227,3 +229,17 @@ def _teaching_section(study: Study, folder: Path, lines: list) -> str:
     return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", ""]
                      + [f"* {line}" for line in item.highlights()]
                      + ["", _markdown(frame.round(4))]) + "\n"
+
+
+def _table_4_4_section(study: Study, folder: Path, lines: list, tally: list) -> str:
+    """Table 4.4 (Section 4.5): maximum sliding displacement, report beside reproduced."""
+    from shaketable.studies.sliding import table_4_4, table_4_4_markdown
+
+    frame = table_4_4(columns=study.columns or None, seed=study.seed)
+    frame.to_csv(folder / "table.csv", index=False)
+    recorded = frame[~frame["substitute motion"]]
+    agrees = (abs(recorded["ratio [-]"] - 1.0) <= 0.10)
+    tally[0] += int(agrees.sum())
+    tally[1] += int((~agrees).sum())
+    body = table_4_4_markdown(frame).split("\n", 1)[1]  # drop its own heading
+    return "\n".join(lines) + body + "\n"

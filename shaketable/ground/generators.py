@@ -313,6 +313,10 @@ class ArtificialPreset:
         Clough-Penzien high-pass damping ratio [-].
     source : str
         Where in the report the preset's intent comes from.
+    seed_offset : int
+        Added to the ``seed`` given to :func:`artificial`, so that two presets
+        with the same parameters (A-1, A-2: two realisations of one type) give
+        different records for the same seed.
     """
 
     name: str
@@ -327,6 +331,7 @@ class ArtificialPreset:
     omega_f: float = 1.5
     zeta_f: float = 0.6
     source: str = "Section 4.1 of the report"
+    seed_offset: int = 0
 
 
 _SUBSTITUTE = (
@@ -353,6 +358,18 @@ PRESETS: dict[str, ArtificialPreset] = {
         ),
         pga_g=0.5, duration=100.0, t1=4.0, t2=64.0, decay=0.1,
         source="Section 4.1 of the report (A-1: 0.5 g, 60 s of strong motion)",
+    ),
+    "A-2": ArtificialPreset(
+        name="A-2",
+        description=(
+            "Substitute for the artificial accelerogram A-2 of Table 4.4 of the report "
+            "(Section 4.5; the report gives no characteristics of A-2 beyond its name, "
+            "apparently a second type-A record of Jennings, Housner & Tsai 1968): "
+            "A-1's parameters (0.5 g, about 60 s of strong motion, horizontal only) "
+            "with another realisation of the noise. " + _SUBSTITUTE
+        ),
+        pga_g=0.5, duration=100.0, t1=4.0, t2=64.0, decay=0.1, seed_offset=1_000_003,
+        source="Section 4.5 / Table 4.4 of the report (A-2: a second type-A record)",
     ),
     "B-1": ArtificialPreset(
         name="B-1",
@@ -571,7 +588,7 @@ def artificial(preset=None, *, seed, duration=None, dt=0.01, pga_g=None,
     n = t.size
     filters = (values["omega_g"], values["zeta_g"], values["omega_f"], values["zeta_f"])
     envelope = jennings_envelope(t, values["t1"], values["t2"], values["decay"])
-    rng = np.random.default_rng(int(seed))
+    rng = np.random.default_rng(int(seed) + (preset.seed_offset if preset is not None else 0))
 
     def component(peak_g):
         shaped = envelope * _filtered_noise(rng, n, dt, *filters)

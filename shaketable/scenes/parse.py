@@ -308,7 +308,7 @@ def _study(data: dict, where: str) -> Study:
                              f"{spec.get('figure')!r}")
         return Study(**common, figure=spec["figure"])
     table = spec.get("table")
-    if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3"):
+    if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3", "table_4_4"):
         raise SceneError(f"{where}: study.table must be table_3_1, table_4_1, table_4_2 or "
                          f"table_4_3, got {table!r}")
     seed = spec.get("seed", 1)
