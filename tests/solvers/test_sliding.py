@@ -18,6 +18,7 @@ from shaketable.solvers.sliding import (
     peak_slips,
     slide,
 )
+from tests.helpers import REPOSITORY
 
 # A step of the table acceleration needs one sample interval: EPS is that interval, and
 # changes the exact peak by a relative O(EPS / t1) (measured 3.3e-8 for t1 = 0.3 s).
@@ -211,9 +212,8 @@ def test_cli_slide_in_process(tmp_path, capsys):
 
 
 def test_table_4_4_scene_loads():
-    from pathlib import Path
 
     from shaketable.scenes.parse import Study, load_scene
 
-    scene = load_scene(Path(__file__).resolve().parents[1] / "experiments" / "table-4-4.toml")
+    scene = load_scene(REPOSITORY / "experiments" / "table-4-4.toml")
     assert isinstance(scene, Study) and scene.table == "table_4_4"
