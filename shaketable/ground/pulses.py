@@ -19,8 +19,8 @@ name              f(t)                                                        du
 ================  ==========================================================  ==================
 
 For ``type-Cn`` the velocity is ``v_p (sin(omega t + phi) - sin phi)``
-and phi solves ``1 + cos phi = sin phi ((2n + 1) pi - phi)`` (the table
-returns to its starting point when the pulse ends) [3]_. For ``ricker``,
+and phi solves ``2 cos phi = sin phi ((2n + 1) pi - 2 phi)``: velocity and
+displacement of the table are zero when the pulse ends [3]_. For ``ricker``,
 omega = 2 pi f_p with f_p its peak (Fourier) frequency [Hz].
 
 The engine treats a motion as linear between samples. A straight chord over
@@ -67,10 +67,10 @@ _ALIASES = {"type-A": "one-sine", "type-a": "one-sine", "type-B": "one-cosine",
 
 
 def cycloidal_phase(n: int) -> float:
-    """Phase phi [rad] of the Makris & Roussos type-Cn pulse: 1 + cos phi = sin phi ((2n+1) pi - phi)."""
+    """Phase phi [rad] of the Makris & Roussos type-Cn pulse: 2 cos phi = sin phi ((2n+1) pi - 2 phi)."""
     n = whole_number("n", n)
     low, high = 0.0, math.pi / 2
-    g = lambda phi: 1.0 + math.cos(phi) - math.sin(phi) * ((2 * n + 1) * math.pi - phi)  # noqa: E731
+    g = lambda phi: 2.0 * math.cos(phi) - math.sin(phi) * ((2 * n + 1) * math.pi - 2 * phi)  # noqa: E731
     for _ in range(200):                         # g(0) = 2 > 0 > g(pi/2): bisection to rounding
         middle = 0.5 * (low + high)
         if g(middle) > 0.0:
