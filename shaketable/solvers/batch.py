@@ -399,6 +399,8 @@ def _frame(blocks, block_labels, motions, motion_labels, block_index, motion_ind
         "t_airborne [s]": info[:, engine.INFO_T_AIRBORNE],
         "t_rest [s]": info[:, engine.INFO_T_REST],
         "t_end [s]": info[:, engine.INFO_T_END],
+        "theta_end [rad]": info[:, engine.INFO_THETA_END],
+        "theta_dot_end [rad/s]": info[:, engine.INFO_THETA_DOT_END],
         "n_impacts": info[:, engine.INFO_N_IMPACTS].astype(np.int64),
         "cascades": info[:, engine.INFO_CASCADES].astype(np.int64),
         "solver steps": info[:, engine.INFO_STEPS].astype(np.int64),
