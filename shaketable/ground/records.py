@@ -354,7 +354,7 @@ def _sign_note(entry: _Bundled) -> str:
                 "combine() reads the label as down and warns)")
     if entry.vertical is not None:
         return "; vertical: file labelled UP, read as positive up"
-    return 
+    return ""
 
 
 def _bundled(name: str) -> _Bundled:
