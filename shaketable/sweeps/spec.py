@@ -77,7 +77,10 @@ from itertools import product
 from pathlib import Path
 
 import numpy as np
-import tomllib
+try:  # Python >= 3.11
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
+    import tomli as tomllib  # type: ignore[no-redef]
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block, PrestressRods
