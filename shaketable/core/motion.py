@@ -59,7 +59,7 @@ def whole_number(name: str, value, minimum: int = 1) -> int:
         number = int(value)
     elif isinstance(value, (numbers.Real, np.floating)) and math.isfinite(value) \
             and float(value).is_integer():
-        number = int(value)
+        number = int(value)  # type: ignore[arg-type]
     else:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
     if number < minimum:
@@ -145,7 +145,7 @@ class Motion:
     vertical: np.ndarray | None = None
     name: str = ""
     rotation: np.ndarray | None = None
-    metadata: Mapping[str, Any] = field(default=None, compare=False)  # type: ignore[assignment]
+    metadata: Mapping[str, Any] = field(default_factory=dict, compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "metadata", frozen_metadata(self.metadata))
@@ -260,7 +260,7 @@ class Motion:
         t0 = _scalar("t0", t0, " [s]")
         horizontal = _as_float_array("horizontal", horizontal)
         return cls(t0 + dt * np.arange(horizontal.size), horizontal, vertical, name=name,
-                   metadata=metadata)
+                   metadata=metadata if metadata is not None else {})
 
     @classmethod
     def at_rest(cls, duration: float, dt: float = 0.005) -> "Motion":

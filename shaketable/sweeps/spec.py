@@ -77,6 +77,7 @@ from itertools import product
 from pathlib import Path
 
 import numpy as np
+
 try:  # Python >= 3.11
     import tomllib
 except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli

@@ -62,7 +62,7 @@ class Record:
     source: str = ""
     units_in_file: str = ""
     t0: float = 0.0
-    metadata: Mapping[str, Any] = field(default=None)  # type: ignore[assignment]
+    metadata: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         dt = float(self.dt)

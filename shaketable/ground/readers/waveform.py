@@ -90,8 +90,8 @@ def _select_trace(stream: Any, component: str | int | None, path: Any) -> Any:
                               f"{len(stream)} traces {[trace.id for trace in stream]}")
         return stream[int(component)]
     if component is not None:
-        key = "component" if len(component) == 1 else "channel"
-        stream = stream.select(**{key: component})
+        key = "component" if len(str(component)) == 1 else "channel"
+        stream = stream.select(**{key: str(component)})
     if len(stream) != 1:
         ids = [trace.id for trace in stream]
         raise RecordError(
@@ -154,7 +154,7 @@ def trace_to_record(trace: Any, *, units: str | None = None, remove_mean: bool |
         ``units`` missing, unknown or contradicting the declared units;
         :class:`RecordError` for a non-finite sample.
     """
-    label = str(source) or trace.id
+    label: Any = str(source) or trace.id
     stats = trace.stats
     file_format = str(stats.get("_format", "") or "").upper()
     samples = np.asarray(trace.data, dtype=float)
@@ -164,6 +164,7 @@ def trace_to_record(trace: Any, *, units: str | None = None, remove_mean: bool |
                           "is not finite")
     response = _response_sensitivity(stats)
     given = None if units is None else _units_argument(units, label)
+    declared: str | None
     if response is not None:
         samples = samples / response[0]
         declared, how = response[1], "its attached instrument response"
