@@ -12,8 +12,7 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.ground.pulses import PULSES, Pulse, cycloidal_phase, pulse_motion
 from shaketable.studies import pulses as section_pulses
-from shaketable.studies.overturning_spectrum import (decide_after_pulse, housner_cor,
-                                                     overturning_spectrum)
+from shaketable.studies.overturning_spectrum import decide_after_pulse, housner_cor, overturning_spectrum
 
 sys.path.insert(0, os.path.dirname(__file__))
 import pulse_reference  # noqa: E402  (SciPy DOP853 on the analytic pulse, written independently)

@@ -12,7 +12,10 @@ from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 
@@ -56,7 +59,7 @@ def whole_number(name: str, value, minimum: int = 1) -> int:
         number = int(value)
     elif isinstance(value, (numbers.Real, np.floating)) and math.isfinite(value) \
             and float(value).is_integer():
-        number = int(value)
+        number = int(value)  # type: ignore[arg-type]
     else:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
     if number < minimum:
@@ -112,6 +115,16 @@ class Motion:
         Its other effects (tilt of gravity, vertical acceleration at the block's
         distance from the pitch axis) are folded into ``horizontal`` and
         ``vertical`` by :mod:`shaketable.lab.command`.
+    metadata : mapping, optional
+        Where the motion came from, for people and for writing it back: for a
+        record read through ObsPy, one entry per component (``"horizontal"``,
+        ``"vertical"``) with ``network``, ``station``, ``location``,
+        ``channel``, ``starttime`` (ISO 8601, UTC), ``format``, ``calib``,
+        ``units_in_file`` and ``mean_removed``; for a bundled or combined
+        record, ``vertical_positive`` and ``vertical_sign_source`` say how the
+        vertical's sign was read. Never used by the physics. Stored as a
+        read-only mapping; not compared by ``==``. Kept by :meth:`scaled`,
+        :meth:`mirrored` and :meth:`subdivided`.
 
     Raises
     ------
@@ -132,8 +145,10 @@ class Motion:
     vertical: np.ndarray | None = None
     name: str = ""
     rotation: np.ndarray | None = None
+    metadata: Mapping[str, Any] = field(default_factory=dict, compare=False)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "metadata", frozen_metadata(self.metadata))
         t = _as_float_array("Motion.t", self.t)
         if t.size < 2:
             raise ValueError(f"Motion.t needs at least 2 samples, got {t.size}")
@@ -212,7 +227,7 @@ class Motion:
 
     @classmethod
     def uniform(cls, dt: float, horizontal, vertical=None, t0: float = 0.0,
-                name: str = "") -> "Motion":
+                name: str = "", metadata: Mapping[str, Any] | None = None) -> "Motion":
         """Build a motion sampled every ``dt`` seconds starting at ``t0``.
 
         Parameters
@@ -228,6 +243,8 @@ class Motion:
             Time of the first sample [s].
         name : str, optional
             A label used in plots and summaries.
+        metadata : mapping, optional
+            Provenance (see :class:`Motion`).
 
         Returns
         -------
@@ -242,7 +259,8 @@ class Motion:
         dt = _scalar("dt", dt, " [s]", positive=True)
         t0 = _scalar("t0", t0, " [s]")
         horizontal = _as_float_array("horizontal", horizontal)
-        return cls(t0 + dt * np.arange(horizontal.size), horizontal, vertical, name=name)
+        return cls(t0 + dt * np.arange(horizontal.size), horizontal, vertical, name=name,
+                   metadata=metadata if metadata is not None else {})
 
     @classmethod
     def at_rest(cls, duration: float, dt: float = 0.005) -> "Motion":
@@ -280,6 +298,39 @@ class Motion:
         else:
             t[-1] = duration             # a whole number of dt (to rounding)
         return cls(t, np.zeros(t.size), None, name="at rest")
+
+    # ------------------------------------------------------------------ ObsPy
+    @classmethod
+    def from_stream(cls, stream: Any, horizontal: str | int | None = None,
+                    vertical: str | int | None = None, **options: Any) -> "Motion":
+        """Build a motion from an ObsPy ``Stream`` (calib and units applied).
+
+        A thin delegate of :func:`shaketable.ground.readers.waveform.motion_from_stream`
+        (ObsPy is imported only there); see it for the parameters.
+        """
+        from shaketable.ground.readers.waveform import motion_from_stream
+
+        return motion_from_stream(stream, horizontal=horizontal, vertical=vertical, **options)
+
+    @classmethod
+    def from_trace(cls, trace: Any, **options: Any) -> "Motion":
+        """Build a horizontal-only motion from one ObsPy ``Trace``.
+
+        A thin delegate of :func:`shaketable.ground.readers.waveform.motion_from_stream`.
+        """
+        from shaketable.ground.readers.waveform import motion_from_stream
+
+        return motion_from_stream(trace, **options)
+
+    def to_stream(self, **options: Any) -> Any:
+        """This motion as an ObsPy ``Stream`` of accelerations [m/s^2].
+
+        A thin delegate of :func:`shaketable.ground.readers.waveform.motion_to_stream`;
+        write the result with ``stream.write(path, format="MSEED")`` or ``"SAC"``.
+        """
+        from shaketable.ground.readers.waveform import motion_to_stream
+
+        return motion_to_stream(self, **options)
 
     # ------------------------------------------------------------------ queries
     @property
@@ -343,7 +394,7 @@ class Motion:
         factor = _scalar("factor", factor, " [-]")
         if factor == 1.0:
             return Motion(self.t, self.horizontal, self.vertical, name=self.name,
-                          rotation=self.rotation)
+                          rotation=self.rotation, metadata=self.metadata)
         if self.pitched:
             raise ValueError(
                 f"cannot scale motion {self.name!r} by factor {factor!r}: it carries a table "
@@ -353,13 +404,13 @@ class Motion:
             )
         vertical = None if self.vertical is None else self.vertical * factor
         return Motion(self.t, self.horizontal * factor, vertical, name=self.name,
-                      rotation=self.rotation)
+                      rotation=self.rotation, metadata=self.metadata)
 
     def mirrored(self) -> "Motion":
         """Return the mirror image: horizontal and rotation reversed in sign."""
         rotation = None if self.rotation is None else -self.rotation
         return Motion(self.t, -self.horizontal, self.vertical, name=self.name,
-                      rotation=rotation)
+                      rotation=rotation, metadata=self.metadata)
 
     def subdivided(self, parts: int) -> "Motion":
         """Insert ``parts - 1`` equally spaced samples in every interval.
@@ -396,7 +447,17 @@ class Motion:
             return None if values is None else np.interp(t, self.t, values)
 
         return Motion(t, resample(self.horizontal), resample(self.vertical),
-                      name=self.name, rotation=resample(self.rotation))
+                      name=self.name, rotation=resample(self.rotation), metadata=self.metadata)
+
+
+def frozen_metadata(metadata: Mapping[str, Any] | None) -> Mapping[str, Any]:
+    """A read-only copy of ``metadata`` (nested mappings frozen too); empty for ``None``."""
+    if metadata is None:
+        return MappingProxyType({})
+    if not isinstance(metadata, Mapping):
+        raise ValueError(f"metadata must be a mapping, got {type(metadata).__name__}")
+    return MappingProxyType({str(key): frozen_metadata(value) if isinstance(value, Mapping)
+                             else value for key, value in metadata.items()})
 
 
 def motion_argument(name: str, motion) -> Motion:

