@@ -147,11 +147,11 @@ def read_strong_motion(path: str | Path, *, component: str | int | None = None) 
     RecordError
         Unreadable file, ambiguous component, or not an acceleration.
     """
-    from shaketable.ground.readers.waveform import _select_trace
+    from shaketable.ground.readers.waveform import select_trace
 
     path = Path(path)
     stream = read_strong_motion_stream(path)
-    return _record(_select_trace(stream, component, path), path)
+    return _record(select_trace(stream, component, path), path)
 
 
 def load_strong_motion(path: str | Path, horizontal: str | int | None = None,
@@ -179,11 +179,11 @@ def load_strong_motion(path: str | Path, horizontal: str | int | None = None,
     MissingExtraError
         gmprocess is not installed (the message names the ``formats`` extra).
     """
-    from shaketable.ground.readers.waveform import _select_trace
+    from shaketable.ground.readers.waveform import select_trace
     from shaketable.ground.records import combine
 
     path = Path(path)
     stream = read_strong_motion_stream(path)
-    record_h = _record(_select_trace(stream, horizontal, path), path)
-    record_v = None if vertical is None else _record(_select_trace(stream, vertical, path), path)
+    record_h = _record(select_trace(stream, horizontal, path), path)
+    record_v = None if vertical is None else _record(select_trace(stream, vertical, path), path)
     return combine(record_h, record_v, vertical_positive="up", name=name)

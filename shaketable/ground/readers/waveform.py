@@ -83,7 +83,7 @@ def _as_stream(value: Any) -> Any:
     raise ValueError(f"expected an ObsPy Trace or Stream, got {type(value).__name__}")
 
 
-def _select_trace(stream: Any, component: str | int | None, path: Any) -> Any:
+def select_trace(stream: Any, component: str | int | None, path: Any) -> Any:
     if isinstance(component, (int, np.integer)) and not isinstance(component, bool):
         if not -len(stream) <= int(component) < len(stream):
             raise RecordError(f"{path}: trace index {component} out of range for "
@@ -261,7 +261,7 @@ def read_obspy(path: Any, *, units: str | None = None, component: str | int | No
 def record_from_stream(stream: Any, path: Any, unit: str | None, component: Any,
                         remove_mean: bool | None = None) -> Record:
     """The :class:`Record` of the one selected trace of an ObsPy stream."""
-    trace = _select_trace(stream, component, path or "ObsPy stream")
+    trace = select_trace(stream, component, path or "ObsPy stream")
     return trace_to_record(trace, units=unit, remove_mean=remove_mean, source=path)
 
 
@@ -330,11 +330,11 @@ def motion_from_stream(stream: Any, horizontal: str | int | None = None,
     from shaketable.ground.records import combine  # records imports this module
 
     stream = _as_stream(stream)
-    chosen_h = _select_trace(stream, horizontal, "ObsPy stream")
+    chosen_h = select_trace(stream, horizontal, "ObsPy stream")
     record_h = trace_to_record(chosen_h, units=units, remove_mean=remove_mean)
     record_v = None
     if vertical is not None:
-        chosen_v = _select_trace(stream, vertical, "ObsPy stream")
+        chosen_v = select_trace(stream, vertical, "ObsPy stream")
         if chosen_v is chosen_h:
             raise ValueError(f"horizontal and vertical select the same trace {chosen_h.id}")
         if abs(chosen_v.stats.starttime - chosen_h.stats.starttime) > 1e-6 * chosen_h.stats.delta:
