@@ -37,5 +37,5 @@ def test_py_typed_license_and_changelog_are_present():
 def test_version_is_written_once():
     pyproject = (ROOT / "pyproject.toml").read_text()
     assert re.search(r'^version\s*=\s*"', pyproject, re.MULTILINE) is None
-    assert 'version = { attr = "shaketable.__version__" }' in pyproject
+    assert 'version = { attr = "shaketable.version.__version__" }' in pyproject
     assert re.fullmatch(r"\d+\.\d+\.\d+(\.dev\d+)?", shaketable.__version__)

@@ -169,7 +169,7 @@ def test_artificial_preset_pga_and_strong_motion_duration(name, seed):
 
 
 def test_artificial_preset_descriptions_say_substitute():
-    assert set(generators.PRESETS) == {"A-1", "B-1", "olive-view"}
+    assert set(generators.PRESETS) == {"A-1", "A-2", "B-1", "olive-view"}
     for preset in generators.PRESETS.values():
         assert "SUBSTITUTE" in preset.description
         assert "not the original" in preset.description

@@ -2,8 +2,6 @@
 and the literature; Section 4.3 (4) recomputed."""
 
 import math
-import os
-import sys
 
 import numpy as np
 import pytest
@@ -13,9 +11,7 @@ from shaketable.core.geometry import Block
 from shaketable.ground.pulses import PULSES, Pulse, cycloidal_phase, pulse_motion
 from shaketable.studies import pulses as section_pulses
 from shaketable.studies.overturning_spectrum import decide_after_pulse, housner_cor, overturning_spectrum
-
-sys.path.insert(0, os.path.dirname(__file__))
-import pulse_reference  # noqa: E402  (SciPy DOP853 on the analytic pulse, written independently)
+from tests.studies import pulse_reference  # SciPy DOP853 on the analytic pulse, written independently
 
 # alpha = 0.25 rad, p = 2 rad/s (R = 3 g / 16), Housner's COR: the blocks of Zhang & Makris (2001)
 BLOCK = Block.from_slenderness(3 * G / 16, 0.25)
