@@ -6,6 +6,7 @@ import json
 import math
 from pathlib import Path
 
+from shaketable.commands.common import load_motion
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -21,28 +22,12 @@ def _resolve_angle(text: str, block: Block) -> float:
     raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg or 0.5alpha")
 
 
-def _load_motion(args):
-    from shaketable.ground import records
-
-    if args.record in records.available():
-        return records.load(args.record, vertical=not args.no_vertical)
-    path = Path(args.record)
-    if not path.exists():
-        raise ValueError(f"--record {args.record!r}: no such file and no bundled record of that "
-                         f"name (bundled: {', '.join(records.available())})")
-    # an AT2 states its step and (usually) its units in its header: --units is checked
-    # against it or supplies what it does not say, --dt is refused for it with a clear
-    # message; records.read ignores options left at None
-    record = records.read(path, units=args.units, dt=args.dt)
-    return records.combine(record, name=path.stem)
-
-
 def _simulate(args) -> int:
     from shaketable.plots import base as plots
     from shaketable.solvers.api import simulate
 
     block = Block.parse(args.block)
-    motion = _load_motion(args) if args.record else None
+    motion = load_motion(args) if args.record else None
     if motion is not None and args.scale != 1.0:
         motion = motion.scaled(args.scale)
     theta0 = _resolve_angle(args.theta0, block)

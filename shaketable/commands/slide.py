@@ -5,18 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-
-def _motion(args):
-    """A bundled record by name, or a record file (units/dt as for ``simulate``)."""
-    from shaketable.ground import records
-
-    if args.record in records.available():
-        return records.load(args.record, vertical=not args.no_vertical)
-    path = Path(args.record)
-    if not path.exists():
-        raise ValueError(f"--record {args.record!r}: no such file and no bundled record of that "
-                         f"name (bundled: {', '.join(records.available())})")
-    return records.combine(records.read(path, units=args.units, dt=args.dt), name=path.stem)
+from shaketable.commands.common import load_motion
 
 
 def _slide(args) -> int:
@@ -37,7 +26,7 @@ def _slide(args) -> int:
         return 0
     if not args.record:
         raise ValueError("--record is required (or give --table-4-4)")
-    motion = _motion(args)
+    motion = load_motion(args)
     if args.scale != 1.0:
         motion = motion.scaled(args.scale)
     if args.sweep:

@@ -338,6 +338,11 @@ class Motion:
         """Vertical acceleration [m/s^2], zeros when the motion has none."""
         return self.vertical if self.vertical is not None else np.zeros_like(self.t)
 
+    def at(self, times) -> tuple[np.ndarray, np.ndarray]:
+        """Horizontal and vertical acceleration at ``times`` [m/s^2] (linear between samples)."""
+        return (np.interp(times, self.t, self.horizontal),
+                np.interp(times, self.t, self.vertical_or_zero))
+
     @property
     def pitched(self) -> bool:
         """True when the motion carries a non-zero table rotation (pitch)."""

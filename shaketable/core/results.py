@@ -127,9 +127,7 @@ class RockingResult:
 
     def ground_at(self, times) -> tuple[np.ndarray, np.ndarray]:
         """Horizontal and vertical ground acceleration at ``times`` [m/s^2]."""
-        motion = self.motion
-        return (np.interp(times, motion.t, motion.horizontal),
-                np.interp(times, motion.t, motion.vertical_or_zero))
+        return self.motion.at(times)
 
     def to_frame(self):
         """Time history as a :class:`pandas.DataFrame` with units in the column names."""

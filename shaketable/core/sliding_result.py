@@ -27,14 +27,13 @@ References
 
 from __future__ import annotations
 
-import math
-import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from shaketable.core.constants import INCH, G
 from shaketable.core.motion import Motion
+from shaketable.core.validation import nonnegative
 
 #: Phases of the block on the table, the ``state`` codes of :class:`SlidingResult`.
 STATES = {0: "stuck", 1: "sliding +x", -1: "sliding -x", 2: "airborne"}
@@ -46,18 +45,6 @@ EVENTS = {1: "slip starts", 2: "sticks", 3: "reverses", 4: "lifts off (g + vg <=
 #: Overall outcomes of a run.
 STATUSES = ("at rest", "slid", "airborne")
 
-
-def _coefficient(name: str, value) -> float:
-    """``value`` as a finite non-negative float, else a ValueError naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.integer,
-                                                        np.floating)):
-        raise ValueError(f"{name} must be a real number [-], got {value!r}")
-    number = float(value)
-    if not math.isfinite(number):
-        raise ValueError(f"{name} must be finite [-], got {value!r}")
-    if number < 0.0:
-        raise ValueError(f"{name} must not be negative [-], got {value!r}")
-    return number
 
 
 @dataclass(frozen=True)
@@ -85,9 +72,9 @@ class Friction:
     dynamic: float | None = None
 
     def __post_init__(self):
-        static = _coefficient("static friction mu_s", self.static)
-        dynamic = static if self.dynamic is None else _coefficient(
-            "dynamic friction mu_d", self.dynamic)
+        static = nonnegative("static friction mu_s", self.static, " [-]")
+        dynamic = static if self.dynamic is None else nonnegative(
+            "dynamic friction mu_d", self.dynamic, " [-]")
         if dynamic > static:
             raise ValueError(f"dynamic friction mu_d ({dynamic!r}) must not exceed static "
                              f"friction mu_s ({static!r})")
@@ -178,9 +165,7 @@ class SlidingResult:
 
     def ground_at(self, times) -> tuple[np.ndarray, np.ndarray]:
         """Horizontal and vertical table acceleration at ``times`` (linear) [m/s^2]."""
-        motion = self.motion
-        return (np.interp(times, motion.t, motion.horizontal),
-                np.interp(times, motion.t, motion.vertical_or_zero))
+        return self.motion.at(times)
 
     def to_frame(self):
         """Time history as a :class:`pandas.DataFrame`, units in the column names."""

@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import quad
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
@@ -58,6 +57,8 @@ def exact_period(block: Block, amplitude: float) -> float:
             return 2.0 * amplitude / math.sqrt(2.0 * p * p * math.sin(alpha - amplitude)
                                                * amplitude)
         return 2.0 * amplitude * u / math.sqrt(2.0 * p * p * difference)
+
+    from scipy.integrate import quad  # loaded on first use (import shaketable stays light)
 
     quarter, _ = quad(integrand, 0.0, 1.0, epsabs=0.0, epsrel=1e-13, limit=200)
     return 4.0 * quarter

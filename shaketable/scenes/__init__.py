@@ -9,6 +9,12 @@ The parser imports no study: the studies' items are registered here.
 """
 
 from shaketable.scenes.parse import register_study_items
-from shaketable.studies.teaching import ITEMS as _TEACHING_ITEMS
 
-register_study_items("teaching", _TEACHING_ITEMS)
+
+def _teaching_items() -> tuple[str, ...]:
+    from shaketable.studies.teaching import ITEMS  # the engine: loaded when a scene asks
+
+    return tuple(ITEMS)
+
+
+register_study_items("teaching", _teaching_items)

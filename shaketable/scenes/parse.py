@@ -184,13 +184,14 @@ class Study:
 
 #: Names a study kind accepts for its ``item`` key, registered by the studies
 #: themselves through the loader (:mod:`shaketable.scenes`), so that this parser
-#: imports no study module.
-STUDY_ITEMS: dict[str, tuple[str, ...]] = {}
+#: imports no study module: a function giving the names, called when a scene
+#: of that kind is read.
+STUDY_ITEMS: dict = {}
 
 
 def register_study_items(kind: str, items) -> None:
-    """Declare the items a ``[study]`` of ``kind`` may name (e.g. the teaching gallery)."""
-    STUDY_ITEMS[kind] = tuple(items)
+    """Declare the items a ``[study]`` of ``kind`` may name: a function returning them."""
+    STUDY_ITEMS[kind] = items
 
 
 def load_scene(path) -> Scene:
@@ -296,7 +297,7 @@ def _study(data: dict, where: str) -> Study:
                              f"{phases!r}")
         return Study(**common, phases=phases)
     if kind == "teaching":
-        items = STUDY_ITEMS.get(kind, ())
+        items = STUDY_ITEMS[kind]() if kind in STUDY_ITEMS else ()
         if spec.get("item") not in items:
             raise SceneError(f"{where}: study.item must be one of {', '.join(items)}, got "
                              f"{spec.get('item')!r}")

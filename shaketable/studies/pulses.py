@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pandas as pd
 
 from shaketable.core import theory
@@ -28,17 +27,6 @@ def bisect_threshold(predicate, low, high, iterations=30):
     return 0.5 * (low + high)
 
 
-def _half_sine_then_rest(amplitude_g, pulse, tail, points=200, dt_after=0.005):
-    """A half-sine pulse finely sampled, then the table at rest (coarse samples)."""
-    from shaketable.core.motion import Motion
-
-    during = np.linspace(0.0, pulse, points + 1)
-    after = pulse + dt_after * np.arange(1, int(math.ceil(tail / dt_after)) + 1)
-    t = np.concatenate([during, after])
-    horizontal = np.concatenate([amplitude_g * G * np.sin(math.pi * during / pulse),
-                                 np.zeros(after.size)])
-    horizontal[points] = 0.0  # sin(pi) rounding
-    return Motion(t, horizontal, name=f"half-sine {amplitude_g:.4g} g, {pulse:g} s")
 
 
 def section_4_3_4(block=None, pulse_durations=(0.1, 0.05, 0.02, 0.01)) -> pd.DataFrame:
