@@ -579,7 +579,8 @@ def test_obspy_is_imported_lazily():
 def test_combine_flips_dwn_and_pads_the_shorter_vertical():
     horizontal = Record(0.01, [1.0, 2.0, 3.0, 4.0], component="164")
     down = Record(0.01, [0.5, -0.5], component="DWN")
-    motion = records.combine(horizontal, down, name="test")
+    with pytest.warns(records.VerticalSignWarning, match="labelled positive down"):
+        motion = records.combine(horizontal, down, name="test")
     assert motion.name == "test" and motion.t.size == 4
     np.testing.assert_array_equal(motion.vertical, [-0.5, 0.5, 0.0, 0.0])
     as_up = records.combine(horizontal, down, vertical_positive="up")
