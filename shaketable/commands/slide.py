@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 from shaketable.commands.common import load_motion
+from shaketable.core.constants import INCH
 
 
 def _slide(args) -> int:
@@ -42,7 +43,8 @@ def _slide(args) -> int:
     (out / "summary.json").write_text(json.dumps(result.summary(), indent=2))
     save(result.plot(), out / f"sliding.{args.format}")
     print(f"{result.status}: peak slip {result.peak_slip_inches:.2f} in, residual "
-          f"{result.residual_slip:.4f} m, {result.slip_episodes} slip episodes")
+          f"{result.residual_slip / INCH:+.2f} in ({result.residual_slip:+.4f} m), "
+          f"{result.slip_episodes} slip episodes")
     if block is not None:
         print(f"Section 2.1: {result.mode_choice['mode (Section 2.1)']} "
               f"(B/H = {result.mode_choice['B/H [-]']:.3f}, mu_s = {static:g})")
