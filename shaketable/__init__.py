@@ -9,11 +9,21 @@ are loaded on first use, so that ``import shaketable`` (and a reader or a
 generator) does not compile or load the numba engine or SciPy's integrators.
 """
 
-from shaketable.core.constants import FOOT, INCH, G
-from shaketable.core.geometry import Block, PrestressRods
-from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
-from shaketable.version import __version__
+import os as _os
+
+# numba's on-disk cache of the compiled engine goes to the user's cache folder, not
+# next to the modules: a cache written inside site-packages outlives `pip uninstall`
+# and its leftover folder then shadows a later editable install (issue 13). Set
+# NUMBA_CACHE_DIR yourself to put it elsewhere.
+_os.environ.setdefault("NUMBA_CACHE_DIR", _os.path.join(
+    _os.environ.get("XDG_CACHE_HOME") or _os.path.join(_os.path.expanduser("~"), ".cache"),
+    "shaketable", "numba"))
+
+from shaketable.core.constants import FOOT, INCH, G  # noqa: E402
+from shaketable.core.geometry import Block, PrestressRods  # noqa: E402
+from shaketable.core.motion import Motion  # noqa: E402
+from shaketable.core.results import RockingResult  # noqa: E402
+from shaketable.version import __version__  # noqa: E402
 
 __all__ = ["Block", "PrestressRods", "Motion", "RockingResult", "simulate", "METHODS", "G",
            "INCH", "FOOT", "__version__"]
