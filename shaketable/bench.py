@@ -38,18 +38,18 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     list of Path
         The files written.
     """
+    from shaketable.core.files import prepare_output_folder, write_csv, write_text
     from shaketable.plots.bench import save_work_precision_figure
     from shaketable.studies import benchmark_cases, work_precision
 
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = prepare_output_folder(out, "out")
     selected = benchmark_cases.benchmark_cases(quick=quick, names=cases)
     settings = work_precision.method_settings(quick=quick)
     cache = {}
     frame = work_precision.work_precision(selected, settings, repeats=repeats, cache=cache,
                                  progress=lambda name: progress(f"work-precision: {name}"))
     csv = out / "work_precision.csv"
-    frame.to_csv(csv, index=False)
+    write_csv(csv, frame)
     figure = Path(figure_path) if figure_path else out / "work_precision.png"
     figure.parent.mkdir(parents=True, exist_ok=True)
     save_work_precision_figure(frame, figure)
@@ -71,5 +71,5 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
                                   figure=markdown_figure or figure.name,
                                   command="shaketable bench" + (" --quick" if quick else ""))
     results = out / "RESULTS.md"
-    results.write_text(text)
+    write_text(results, text)
     return [csv, figure, results]

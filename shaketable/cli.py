@@ -2,28 +2,53 @@
 
 Each subcommand lives in ``shaketable/commands/<name>.py`` and exposes
 ``register(subparsers)``; :data:`SUBCOMMANDS` lists them in help order.
+
+Exit status: 0 success, 1 a run that failed (a scene that could not be
+reproduced, a file that could not be written, not enough memory, an internal
+error, 130 interrupted with Ctrl-C), 2 bad usage or bad input (an unknown
+option, a malformed value, a missing or malformed file, an unusable output path).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
+import io
+import os
 import sys
 
 #: Subcommand modules in ``shaketable.commands``, in the order ``--help`` shows them.
 SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "animate",
                "slide"]
 
+#: Exit statuses (documented in ``shaketable --help``).
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
+
+EPILOG = ("exit status: 0 success; 1 a run that failed (e.g. a scene that could not be "
+          "reproduced, a file that could not be written, not enough memory); 2 bad usage or "
+          "input (unknown option, malformed value, missing or malformed file, unusable output "
+          "path); 130 interrupted (Ctrl-C). Set SHAKETABLE_TRACEBACK=1 to see Python "
+          "tracebacks of unexpected errors.")
+
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every subcommand registered."""
+    from shaketable.version import __version__
+
     parser = argparse.ArgumentParser(
         prog="shaketable",
         description="Virtual shaking-table tests of rocking rigid blocks "
-                    "(Aslam, Godden & Scalise; BLOKROC).")
-    commands = parser.add_subparsers(dest="command", required=True)
+                    "(Aslam, Godden & Scalise; BLOKROC).", epilog=EPILOG)
+    parser.add_argument("--version", action="version", version=f"shaketable {__version__}")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for name in SUBCOMMANDS:
         importlib.import_module(f"shaketable.commands.{name}").register(commands)
+    for subparser in commands.choices.values():
+        subparser.epilog = subparser.epilog or EPILOG
+        if not any("--quiet" in action.option_strings for action in subparser._actions):
+            subparser.add_argument("-q", "--quiet", action="store_true",
+                                   help="print nothing but errors (no progress, no summary)")
     return parser
 
 
@@ -31,11 +56,37 @@ def main(argv=None) -> int:
     """Entry point of the ``shaketable`` console script; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    prefix = f"shaketable {args.command}: error:"
+    quiet = getattr(args, "quiet", False)
     try:
-        return args.handler(args)
-    except (ValueError, FileNotFoundError) as error:
-        print(f"shaketable {args.command}: error: {error}", file=sys.stderr)
-        return 2
+        with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
+            return int(args.handler(args) or 0)
+    except KeyboardInterrupt:
+        print(f"shaketable {args.command}: interrupted; files already written are complete",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except (ValueError, FileNotFoundError, NotADirectoryError, IsADirectoryError) as error:
+        print(f"{prefix} {error}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except RuntimeError as error:  # a run that failed and says why (e.g. cluster chunks)
+        print(f"{prefix} {error}", file=sys.stderr)
+        return EXIT_FAILED
+    except MemoryError:
+        print(f"{prefix} not enough memory for this run (make it shorter or its output step "
+              f"coarser)", file=sys.stderr)
+        return EXIT_FAILED
+    except OSError as error:
+        where = f" {error.filename!r}" if error.filename else ""
+        print(f"{prefix} cannot read or write{where}: {error.strerror or error}",
+              file=sys.stderr)
+        return EXIT_FAILED
+    except Exception as error:  # the last line of defence: a bug, said as one
+        if os.environ.get("SHAKETABLE_TRACEBACK"):
+            raise
+        print(f"{prefix} internal error ({type(error).__name__}: {error}). This is a bug in "
+              f"shaketable; please report it with the command you ran (SHAKETABLE_TRACEBACK=1 "
+              f"shows the traceback)", file=sys.stderr)
+        return EXIT_FAILED
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -243,3 +243,31 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: list) -> 
     tally[1] += int((~agrees).sum())
     body = table_4_4_markdown(frame).split("\n", 1)[1]  # drop its own heading
     return "\n".join(lines) + body + "\n"
+
+
+def run_study(study: Study, out) -> tuple[Path, tuple[int, int]]:
+    """Run one ``[study]`` scene into folder ``out``: its CSV, figure and ``report.md``.
+
+    What ``reproduce`` writes for the study, on its own: the files go straight into
+    ``out`` (not ``out/<name>``), and ``out/report.md`` holds the study's section
+    with its comparison with the report.
+
+    Returns
+    -------
+    (Path, (int, int))
+        The report and the numbers of comparisons that agree and differ.
+    """
+    import os
+    import tempfile
+
+    from shaketable.core.files import prepare_output_folder, write_text
+
+    folder = prepare_output_folder(out, "out")
+    tally = [0, 0]
+    with tempfile.TemporaryDirectory(dir=folder, prefix=".staging-") as staging:
+        section = _study_section(study, Path(staging), tally)
+        for produced in sorted((Path(staging) / study.name).iterdir()):
+            os.replace(produced, folder / produced.name)
+    section = section.replace(f"]({study.name}/", "](")
+    report = write_text(folder / "report.md", section)
+    return report, (tally[0], tally[1])

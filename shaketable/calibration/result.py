@@ -7,7 +7,6 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
@@ -176,7 +175,9 @@ class Calibration:
         """The summary as JSON text; written to ``path`` when given."""
         text = json.dumps(self.summary(), indent=2)
         if path is not None:
-            Path(path).write_text(text + "\n")
+            from shaketable.core.files import write_text
+
+            write_text(path, text + "\n")
         return text
 
     def plot(self, fig=None, title: str | None = None):

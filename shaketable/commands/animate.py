@@ -4,11 +4,13 @@ from __future__ import annotations
 
 
 def _animate(args) -> int:
+    from shaketable.core.files import prepare_output_file
     from shaketable.plots.animation import animate
     from shaketable.scenes.catalog import resolve_scene_path
     from shaketable.scenes.parse import Study, load_scene
     from shaketable.scenes.run import build_motion, run_scene
 
+    prepare_output_file(args.out, "--out", suffixes=(".gif",))
     scene = load_scene(resolve_scene_path(args.scene))
     if isinstance(scene, Study):
         raise ValueError(f"{scene.path}: a [study] has no single block to animate; give a "

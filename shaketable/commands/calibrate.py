@@ -35,11 +35,13 @@ def _filter_order(text: str):
 def _calibrate(args) -> int:
     from shaketable.calibration.fit import calibrate
     from shaketable.calibration.record import read_record
+    from shaketable.core.files import prepare_output_folder, write_csv
     from shaketable.core.geometry import Block
     from shaketable.core.units import parse
     from shaketable.plots.base import save
 
     block = Block.parse(args.block)
+    out = prepare_output_folder(args.out or Path("shaketable-out") / f"calibrate-{Path(args.record).stem}")
     height = None
     if args.height is not None:
         height = parse(args.height, "length", where="--height")
@@ -53,12 +55,10 @@ def _calibrate(args) -> int:
     result = calibrate(record, block, anti_alias=anti_alias,
                        filter_order=order if anti_alias == "fit" else "auto",
                        bootstrap=args.bootstrap, seed=args.seed, interval=args.interval)
-    out = Path(args.out) if args.out else Path("shaketable-out") / f"calibrate-{record.name}"
-    out.mkdir(parents=True, exist_ok=True)
     figure = result.plot(title=f"COR calibration: {record.name}, {block.describe()} block")
     save(figure, out / "calibration.png", dpi=120)
     result.to_json(out / "calibration.json")
-    result.to_frame().to_csv(out / "calibration.csv", index=False)
+    write_csv(out / "calibration.csv", result.to_frame())
     print(f"{record.name}: {block.describe()} block, {record.t.size} samples at "
           f"{record.rate:.4g} samples/s")
     print(result.text())

@@ -1,7 +1,10 @@
-"""What the subcommands share: reading ``--record`` into a motion."""
+"""What the subcommands share: reading ``--record`` into a motion, the first-compile notice."""
 
 from __future__ import annotations
 
+import hashlib
+import os
+import sys
 from pathlib import Path
 
 
@@ -12,6 +15,9 @@ def load_motion(args):
     if args.record in records.available():
         return records.load(args.record, vertical=not args.no_vertical)
     path = Path(args.record)
+    if path.is_dir():
+        raise ValueError(f"--record {args.record!r}: is a folder; give a record file or a "
+                         f"bundled record name (bundled: {', '.join(records.available())})")
     if not path.exists():
         raise ValueError(f"--record {args.record!r}: no such file and no bundled record of that "
                          f"name (bundled: {', '.join(records.available())})")
@@ -19,4 +25,51 @@ def load_motion(args):
     # against it or supplies what it does not say, --dt is refused for it with a clear
     # message; records.read ignores options left at None
     record = records.read(path, units=args.units, dt=args.dt)
-    return records.combine(record, name=path.stem)
+    try:
+        return records.combine(record, name=path.stem)
+    except ValueError as error:  # e.g. values beyond any earthquake: say which file
+        raise ValueError(f"{path}: {error}") from None
+
+
+def scaled(motion, factor, option: str = "--scale"):
+    """The motion times ``--scale``, the option checked and named."""
+    from shaketable.core.validation import number
+
+    factor = number(option, factor)
+    return motion if factor == 1.0 else motion.scaled(factor)
+
+
+#: The compiled functions whose numba cache files tell that the engine was compiled
+#: before, and what their first compilation costs on the 2-core CI machine (measured, README).
+_COMPILED = {"engine": ("engine.integrate-", "the engine", "~6 s"),
+             "batch": ("batch._run_batch-", "the batch engine", "~11 s")}
+
+
+def compiled_before(which: str = "engine") -> bool:
+    """Whether numba's on-disk cache holds the compiled ``which`` (engine or batch).
+
+    Looks for the cache index files numba writes (``NUMBA_CACHE_DIR``, set by
+    ``import shaketable`` to the user's cache folder unless already set) for the
+    installed solvers folder and this Python version, without importing numba.
+    """
+    import shaketable.solvers as solvers
+
+    folder = os.path.dirname(os.path.abspath(solvers.__file__))
+    subpath = f"solvers_{hashlib.sha1(folder.encode()).hexdigest()}"
+    cache = Path(os.environ.get("NUMBA_CACHE_DIR", "")) / subpath
+    tag = f"py{sys.version_info.major}{sys.version_info.minor}"
+    prefix = _COMPILED[which][0]
+    return cache.is_dir() and any(cache.glob(f"{prefix}*.{tag}.nbi"))
+
+
+def notice_first_compile(quiet: bool = False, which=("engine",)) -> None:
+    """One line on stderr when the engine (or the batch engine) is about to compile."""
+    if quiet:
+        return
+    missing = [name for name in which if not compiled_before(name)]
+    if missing:
+        parts = [f"{_COMPILED[name][1]} ({_COMPILED[name][2]})" for name in missing]
+        print(f"shaketable: compiling {' and '.join(parts)} once; later runs load it from "
+              f"the cache in {os.environ.get('NUMBA_CACHE_DIR')}", file=sys.stderr, flush=True)
+
+

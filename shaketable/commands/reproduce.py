@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from pathlib import Path
+import sys
+
+from shaketable.commands.common import notice_first_compile
 
 
 def _reproduce(args) -> int:
@@ -14,8 +16,21 @@ def _reproduce(args) -> int:
         print("\n".join(available))
         return 0
     names = available if args.all or not args.names else args.names
-    report = reproduce(names, out=Path(args.out), progress=not args.quiet)
+    unknown = [name for name in names if name not in available]
+    if unknown:  # checked before anything is written
+        raise ValueError(f"no scene {', '.join(repr(name) for name in unknown)}; "
+                         f"`shaketable reproduce --list` lists the {len(available)} scenes")
+    from shaketable.core.files import prepare_output_folder
+
+    out = prepare_output_folder(args.out)
+    notice_first_compile(args.quiet)
+    report = reproduce(names, out=out, progress=not args.quiet)
     print(f"wrote {report}")
+    failed = report.read_text(encoding="utf-8").count("**Not reproduced:**")
+    if failed:
+        print(f"shaketable reproduce: {failed} scene(s) could not be reproduced (see {report})",
+              file=sys.stderr)
+        return 1
     return 0
 
 

@@ -1,4 +1,4 @@
-"""``shaketable run SCENE.toml``: one scene, its outputs and its comparison with the report."""
+"""``shaketable run SCENE``: one scene (or study), its outputs and its comparison with the report."""
 
 from __future__ import annotations
 
@@ -6,17 +6,26 @@ from pathlib import Path
 
 
 def _run(args) -> int:
-    from shaketable.scenes.catalog import resolve_scene_path
-    from shaketable.scenes.parse import load_scene
+    from shaketable.commands.common import notice_first_compile
+    from shaketable.core.files import prepare_output_folder
+    from shaketable.scenes.catalog import is_sweep_spec, resolve_scene_path
+    from shaketable.scenes.parse import Study, load_scene
+
+    if is_sweep_spec(args.scene):
+        raise ValueError(f"{args.scene!r} is a sweep spec, not a scene: run it with "
+                         f"`shaketable sweep {args.scene}`")
+    scene = load_scene(resolve_scene_path(args.scene))
+    out = prepare_output_folder(args.out or Path("shaketable-out") / scene.name)
+    notice_first_compile(args.quiet)
+    if isinstance(scene, Study):
+        return _run_study(scene, out)
     from shaketable.scenes.run import run_scene
 
-    scene = load_scene(resolve_scene_path(args.scene))
     if args.parquet or args.svg:
         outputs = dict(scene.outputs, parquet=args.parquet or scene.outputs["parquet"],
                        svg=args.svg or scene.outputs["svg"])
         scene = type(scene)(**{**scene.__dict__, "outputs": outputs})
     result = run_scene(scene)
-    out = Path(args.out) if args.out else Path("shaketable-out") / scene.name
     written = result.write(out)
     if scene.mode() is not None:
         print(f"{scene.name}: {scene.mode()}")
@@ -35,12 +44,26 @@ def _run(args) -> int:
     return 0
 
 
+def _run_study(study, out: Path) -> int:
+    """A ``[study]`` scene: the report's table or figure it recomputes, as ``reproduce`` does."""
+    from shaketable.reproduce import run_study
+
+    report, (agree, differ) = run_study(study, out)
+    print(f"{study.name}: {study.source or study.kind}: {study.description}")
+    if agree or differ:
+        print(f"{study.name}: {agree} comparison(s) with the report agree, {differ} differ "
+              f"(see {report})")
+    print(f"wrote {out}/ ({', '.join(sorted(path.name for path in out.iterdir() if not path.name.startswith('.')))})")
+    return 0
+
+
 def register(commands) -> None:
     """Add the ``run`` subcommand."""
     parser = commands.add_parser(
         "run", help="run one scene (TOML): CSV, Calcomp figure, summary.json",
         description="Run a scene file, or a scene of the experiments folder by name "
-                    "(e.g. fig-3-4).")
+                    "(e.g. fig-3-4). A [study] scene (e.g. table-4-2, fig-2-6, "
+                    "teaching-lower-cor) writes its table, figure and report.md.")
     parser.add_argument("scene", help="path to a scene .toml, or the name of a bundled scene")
     parser.add_argument("--out", help="output folder (default shaketable-out/<scene name>)")
     parser.add_argument("--parquet", action="store_true", help="also write history.parquet")

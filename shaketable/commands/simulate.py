@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
-from shaketable.commands.common import load_motion
+from shaketable.commands.common import load_motion, scaled
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -23,20 +22,20 @@ def _resolve_angle(text: str, block: Block) -> float:
 
 
 def _simulate(args) -> int:
+    from shaketable.core.files import prepare_output_folder, write_csv, write_text
     from shaketable.plots import base as plots
     from shaketable.solvers.api import simulate
 
     block = Block.parse(args.block)
+    out = prepare_output_folder(args.out)
     motion = load_motion(args) if args.record else None
-    if motion is not None and args.scale != 1.0:
-        motion = motion.scaled(args.scale)
+    if motion is not None:
+        motion = scaled(motion, args.scale)
     theta0 = _resolve_angle(args.theta0, block)
     result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
                       method=args.method, subdivisions=args.subdivisions)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    result.to_frame().to_csv(out / "history.csv", index=False)
-    (out / "summary.json").write_text(json.dumps(result.summary(), indent=2))
+    write_csv(out / "history.csv", result.to_frame())
+    write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
     plots.save(result.plot(), out / f"calcomp.{args.format}")
     summary = result.summary()
     print(f"{block.describe()} block, COR {args.cor}: {result.status}, "

@@ -3,44 +3,42 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
-from shaketable.commands.common import load_motion
+from shaketable.commands.common import load_motion, scaled
 from shaketable.core.constants import INCH
 
 
 def _slide(args) -> int:
+    from shaketable.core.files import prepare_output_folder, write_csv, write_text
     from shaketable.core.geometry import Block
     from shaketable.core.sliding_result import Friction
     from shaketable.plots.base import save
     from shaketable.solvers.sliding import peak_slips, slide
 
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = prepare_output_folder(args.out)
     if args.table_4_4:
         from shaketable.studies.sliding import table_4_4, table_4_4_markdown
 
         frame = table_4_4(seed=args.seed)
-        frame.to_csv(out / "table_4_4.csv", index=False)
-        (out / "table_4_4.md").write_text(table_4_4_markdown(frame))
+        write_csv(out / "table_4_4.csv", frame)
+        write_text(out / "table_4_4.md", table_4_4_markdown(frame))
         print(table_4_4_markdown(frame))
         return 0
     if not args.record:
         raise ValueError("--record is required (or give --table-4-4)")
     motion = load_motion(args)
-    if args.scale != 1.0:
-        motion = motion.scaled(args.scale)
+    motion = scaled(motion, args.scale)
     if args.sweep:
         frame = peak_slips(motion, args.sweep)
-        frame.to_csv(out / "sweep.csv", index=False)
+        write_csv(out / "sweep.csv", frame)
         print(frame[["mu_d [-]", "peak slip [in]", "residual slip [m]"]].to_string(index=False))
         return 0
     static = args.static_friction
     dynamic = args.dynamic_friction if args.dynamic_friction is not None else static
     block = Block.parse(args.block) if args.block else None
     result = slide(motion, Friction(static, dynamic), block=block)
-    result.to_frame().to_csv(out / "history.csv", index=False)
-    (out / "summary.json").write_text(json.dumps(result.summary(), indent=2))
+    write_csv(out / "history.csv", result.to_frame())
+    write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
     save(result.plot(), out / f"sliding.{args.format}")
     print(f"{result.status}: peak slip {result.peak_slip_inches:.2f} in, residual "
           f"{result.residual_slip / INCH:+.2f} in ({result.residual_slip:+.4f} m), "

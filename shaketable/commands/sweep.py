@@ -6,17 +6,26 @@ from pathlib import Path
 
 
 def _sweep(args) -> int:
+    from shaketable.commands.common import notice_first_compile
+    from shaketable.core.files import prepare_output_folder
+    from shaketable.scenes.catalog import resolve_sweep_path
     from shaketable.sweeps.execute import run_sweep
     from shaketable.sweeps.spec import load_spec
 
-    spec = load_spec(args.spec)
-    out = Path(args.out) if args.out else Path("shaketable-out") / spec.name
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers must be a positive number of threads, got {args.workers}")
+    if args.max_chunks is not None and args.max_chunks < 0:
+        raise ValueError(f"--max-chunks must be 0 or more, got {args.max_chunks}")
+    spec = load_spec(resolve_sweep_path(args.spec))
+    out = prepare_output_folder(args.out or Path("shaketable-out") / spec.name)
     where = f"Dask cluster {args.scheduler}" if args.scheduler else (
         f"{args.workers} local thread(s)" if args.workers else "all local cores")
     print(f"{spec.name}: {spec.n_runs} runs in {spec.n_chunks} chunk(s) of {spec.chunk_size}, "
           f"on {where}")
+    if not args.scheduler:
+        notice_first_compile(args.quiet, which=("batch",))
     outcome = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler,
-                        resume=args.resume, progress=not args.no_progress,
+                        resume=args.resume, progress=not (args.no_progress or args.quiet),
                         max_chunks=args.max_chunks)
     rate = outcome.computed_runs / outcome.seconds if outcome.seconds > 0 else float("nan")
     print(f"{spec.name}: computed {outcome.computed_runs} runs in {outcome.seconds:.1f} s "
@@ -49,7 +58,9 @@ def register(commands) -> None:
                     "phases named in a sweep spec (see shaketable.sweeps.spec) and write one row "
                     "per run to OUT/results.parquet. Finished chunks are kept on disk: "
                     "a killed sweep continues with --resume.")
-    parser.add_argument("spec", help="path to the sweep spec .toml")
+    parser.add_argument("spec", help="path to a sweep spec .toml, or the name of a bundled "
+                                     "one (pacoima-overturning-map, artificial-fragility, "
+                                     "pitch-phase-repeatability)")
     parser.add_argument("--out", help="output folder (default shaketable-out/<sweep name>)")
     parser.add_argument("--workers", type=int, default=None,
                         help="local threads (default all cores); with --scheduler, threads "

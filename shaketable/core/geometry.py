@@ -67,6 +67,14 @@ class PrestressRods:
                    force_w, nonnegative("edge_distance", edge_distance_in) * length_factor("in"))
 
 
+#: Accepted block dimensions [m]: from a 1 mm model to a 1 km monolith (the physics
+#: has no scale, but outside this range a size is a unit mistake, and extreme values
+#: overflow or underflow the block's constants p and R).
+MIN_DIMENSION, MAX_DIMENSION = 1e-3, 1e3
+
+#: Accepted aspect ratios H/B: alpha from about 0.06 degrees to 89.4 degrees.
+MIN_ASPECT_RATIO, MAX_ASPECT_RATIO = 1e-2, 1e3
+
 _SIZE = re.compile(
     r"^\s*(?P<height>[0-9]*\.?[0-9]+)\s*(?P<hunit>[a-z]+)?\s*[x×]\s*"
     r"(?P<width>[0-9]*\.?[0-9]+)\s*(?P<wunit>[a-z]+)?\s*$",
@@ -99,8 +107,17 @@ class Block:
     rods: PrestressRods | None = None
 
     def __post_init__(self):
-        object.__setattr__(self, "height", positive("Block.height", self.height))
-        object.__setattr__(self, "width", positive("Block.width", self.width))
+        for name in ("height", "width"):
+            value = positive(f"Block.{name}", getattr(self, name), " [m]")
+            if not MIN_DIMENSION <= value <= MAX_DIMENSION:
+                raise ValueError(f"Block.{name} must be from {MIN_DIMENSION:g} m to "
+                                 f"{MAX_DIMENSION:g} m, got {value!r} m")
+            object.__setattr__(self, name, value)
+        ratio = self.height / self.width
+        if not MIN_ASPECT_RATIO <= ratio <= MAX_ASPECT_RATIO:
+            raise ValueError(f"Block aspect ratio H/B must be from {MIN_ASPECT_RATIO:g} to "
+                             f"{MAX_ASPECT_RATIO:g}, got {ratio:.3g} (height {self.height!r} m, "
+                             f"width {self.width!r} m)")
         if self.rods is not None:
             if not isinstance(self.rods, PrestressRods):
                 raise ValueError(f"Block.rods must be PrestressRods or None, got {self.rods!r}")

@@ -291,7 +291,10 @@ class Motion:
         if duration < MIN_SAMPLE_INTERVAL:
             raise ValueError(f"duration must be at least {MIN_SAMPLE_INTERVAL:g} s, "
                              f"got {duration!r}")
-        whole = int(math.floor(duration / dt + 1e-9))
+        from shaketable.core.validation import sample_count
+
+        whole = sample_count(math.floor(duration / dt + 1e-9),
+                             f"a table at rest for {duration:g} s at dt = {dt:g} s")
         t = np.linspace(0.0, whole * dt, whole + 1)
         if duration - t[-1] > max(1e-9 * dt, MIN_SAMPLE_INTERVAL):
             t = np.append(t, duration)   # a last, shorter interval

@@ -61,3 +61,30 @@ def seed(name: str, value) -> int | None:
             or value < 0:
         raise ValueError(f"{name} must be a non-negative integer or None, got {value!r}")
     return int(value)
+
+
+#: Most samples a motion or a run may have: 10 million samples (a day of record at
+#: 0.01 s is 8.6 million); the arrays of one run then take about 0.6 GB.
+MAX_SAMPLES = 10_000_000
+
+#: Most fixed steps (samples x subdivisions) a fixed-step method may take in one run
+#: (about a minute of the predictor-corrector on one core).
+MAX_FIXED_STEPS = 2_000_000_000
+
+
+def sample_count(count: float, what: str) -> int:
+    """A number of samples checked against :data:`MAX_SAMPLES` before anything is allocated.
+
+    Parameters
+    ----------
+    count : float
+        The number of samples asked for (may be huge or not finite).
+    what : str
+        How it was asked for, for the message, e.g. ``"duration 1e9 s at dt 0.005 s"``.
+    """
+    if not math.isfinite(count) or count > MAX_SAMPLES:
+        shown = f"{count:.3g}" if math.isfinite(count) else "infinitely many"
+        raise ValueError(f"{what} asks for {shown} samples; the limit is {MAX_SAMPLES:,} "
+                         f"samples per motion or run (shorten the run or use a longer "
+                         f"sample interval)")
+    return int(count)

@@ -60,6 +60,7 @@ from shaketable.core.motion import Motion
 from shaketable.core.validation import nonnegative as _nonnegative
 from shaketable.core.validation import number as _number
 from shaketable.core.validation import positive as _positive
+from shaketable.core.validation import sample_count
 
 #: Relative tolerance used to decide that a motion is uniformly sampled.
 UNIFORM_RTOL = 1e-6
@@ -91,7 +92,8 @@ def motion_component(motion: Motion, component: str) -> np.ndarray:
 
 def _grid(total: float, dt: float) -> np.ndarray:
     """Times 0, dt, ... up to ``total`` (inclusive within rounding) [s]."""
-    n = int(math.floor(total / dt + 1e-9)) + 1
+    n = sample_count(math.floor(total / dt + 1e-9) + 1,
+                     f"duration {total:g} s at dt = {dt:g} s")
     if n < 2:
         raise ValueError(
             f"duration {total!r} s is shorter than one sample interval dt = {dt!r} s"
@@ -104,7 +106,18 @@ def _fmt(value: float) -> str:
 
 
 # ------------------------------------------------------------------ harmonic
-def harmonic(frequency, horizontal_g, vertical_g=0.0, *, duration, dt=0.01,
+#: Fewest samples per period a harmonic may have. Two or fewer alias (50 Hz at 0.01 s
+#: falls on the sine's zeros, 60 Hz reads as 40 Hz); four samples still hold the
+#: peaks of a sine in phase with them. A sine drawn linearly between N samples per
+#: period can miss its peak by up to 1 - cos(pi / N): use 20 or more for accuracy.
+MIN_SAMPLES_PER_PERIOD = 4
+
+#: Samples per period of a harmonic's default step, ``dt = min(0.01 s, 1 / (20 f))``
+#: (a peak error of at most 1.2 %; 0.01 s, the report's digitizing, up to 5 Hz).
+DEFAULT_SAMPLES_PER_PERIOD = 20
+
+
+def harmonic(frequency, horizontal_g, vertical_g=0.0, *, duration, dt=None,
              phase=0.0, ramp=0.0, start=0.0) -> Motion:
     """Sinusoidal table motion, horizontal and optionally vertical.
 
@@ -129,7 +142,9 @@ def harmonic(frequency, horizontal_g, vertical_g=0.0, *, duration, dt=0.01,
         Length of the shaking [s], positive; the motion ends at
         ``start + duration``.
     dt : float, optional
-        Sample interval [s], positive.
+        Sample interval [s], positive, with at least :data:`MIN_SAMPLES_PER_PERIOD`
+        samples per period (a coarser step would alias or flatten the sine).
+        Default ``min(0.01, 1 / (20 frequency))``: 0.01 s up to 5 Hz.
     phase : float, optional
         Phase of the vertical component relative to the horizontal one [rad].
         The report does not give it; 0 means both cross zero upward together.
@@ -157,7 +172,15 @@ def harmonic(frequency, horizontal_g, vertical_g=0.0, *, duration, dt=0.01,
     horizontal_g = _number("horizontal_g", horizontal_g)
     vertical_g = _number("vertical_g", vertical_g)
     duration = _positive("duration", duration, " [s]")
+    if dt is None:
+        dt = min(0.01, 1.0 / (DEFAULT_SAMPLES_PER_PERIOD * frequency))
     dt = _positive("dt", dt, " [s]")
+    if frequency * dt > 1.0 / MIN_SAMPLES_PER_PERIOD:
+        raise ValueError(
+            f"dt = {dt!r} s gives {1.0 / (frequency * dt):.3g} samples per period of the "
+            f"{frequency!r} Hz harmonic; at least {MIN_SAMPLES_PER_PERIOD} are needed (a "
+            f"coarser step aliases or flattens the sine): use dt <= "
+            f"{1.0 / (MIN_SAMPLES_PER_PERIOD * frequency):.3g} s, or leave dt out")
     phase = _number("phase", phase)
     ramp = _nonnegative("ramp", ramp, " [s]")
     start = _nonnegative("start", start, " [s]")

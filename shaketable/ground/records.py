@@ -248,7 +248,8 @@ def combine(horizontal: Record, vertical: Record | None = None, *,
     Returns
     -------
     Motion
-        Sampled every ``dt`` from ``horizontal.t0``; vertical positive up.
+        Sampled every ``dt`` from t = 0 (the records' own start ``t0``, when not
+        0, is kept in ``metadata["start time [s]"]``); vertical positive up.
         ``metadata`` holds each record's own metadata under ``"horizontal"``
         and ``"vertical"``, and ``"vertical_positive"`` (``"up"``/``"down"``,
         the reading applied) with ``"vertical_sign_source"`` (``"argument"``
@@ -259,10 +260,14 @@ def combine(horizontal: Record, vertical: Record | None = None, *,
     ValueError
         Different ``dt`` or ``t0``, or an invalid ``vertical_positive``.
     """
+    # the motion's clock starts at 0: a record whose time column starts at an epoch
+    # offset (t0 = 1.7e9 s) would leave the engine's event location no digits; the
+    # record's own start is kept in the metadata
+    start = {"start time [s]": horizontal.t0} if horizontal.t0 != 0.0 else {}
     if vertical is None:
-        return Motion.uniform(horizontal.dt, horizontal.acceleration, None, t0=horizontal.t0,
+        return Motion.uniform(horizontal.dt, horizontal.acceleration, None,
                               name=name or _default_name(horizontal, None, False),
-                              metadata={"horizontal": horizontal.metadata})
+                              metadata={"horizontal": horizontal.metadata, **start})
     _check_same_sampling(horizontal, vertical)
     positive_down = _vertical_is_positive_down(vertical, vertical_positive)
     if positive_down and vertical_positive is None:
@@ -271,10 +276,11 @@ def combine(horizontal: Record, vertical: Record | None = None, *,
     vertical_up = -vertical.acceleration if positive_down else vertical.acceleration
     metadata = {"horizontal": horizontal.metadata, "vertical": vertical.metadata,
                 "vertical_positive": "down" if positive_down else "up",
-                "vertical_sign_source": "label" if vertical_positive is None else "argument"}
+                "vertical_sign_source": "label" if vertical_positive is None else "argument",
+                **start}
     return Motion.uniform(
         horizontal.dt, _padded(horizontal.acceleration, length), _padded(vertical_up, length),
-        t0=horizontal.t0, name=name or _default_name(horizontal, vertical, positive_down),
+        name=name or _default_name(horizontal, vertical, positive_down),
         metadata=metadata,
     )
 

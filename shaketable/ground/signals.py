@@ -19,6 +19,7 @@ from shaketable.core.motion import motion_argument as _motion
 from shaketable.core.validation import nonnegative as _nonnegative
 from shaketable.core.validation import number as _number
 from shaketable.core.validation import positive as _positive
+from shaketable.core.validation import sample_count
 from shaketable.ground.generators import UNIFORM_RTOL, motion_component, uniform_step
 
 
@@ -111,7 +112,8 @@ def resample(motion, dt) -> Motion:
     dt_old = uniform_step(motion, "resample")
     t_old = motion.t
     span = motion.duration
-    n_new = int(math.floor(span / dt + 1e-9)) + 1
+    n_new = sample_count(math.floor(span / dt + 1e-9) + 1,
+                         f"resampling {span:g} s at dt = {dt:g} s")
     if n_new < 2:
         raise ValueError(f"dt = {dt!r} s is longer than the motion ({span!r} s)")
     t_new = t_old[0] + dt * np.arange(n_new)
@@ -205,8 +207,9 @@ def pad(motion, before=0.0, after=0.0) -> Motion:
     before = _nonnegative("before", before, " [s]")
     after = _nonnegative("after", after, " [s]")
     dt = uniform_step(motion, "pad")
-    n_before = int(round(before / dt))
-    n_after = int(round(after / dt))
+    n_before = sample_count(round(before / dt), f"padding {before:g} s before at dt = {dt:g} s")
+    n_after = sample_count(round(after / dt), f"padding {after:g} s after at dt = {dt:g} s")
+    sample_count(motion.t.size + n_before + n_after, "the padded motion")
     n = motion.t.size + n_before + n_after
     t = motion.t[0] + dt * np.arange(n)
 

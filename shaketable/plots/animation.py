@@ -299,11 +299,14 @@ def animate(result: RockingResult, block: Block | None = None, motion: Motion | 
     t_last = float(result.t[-1]) if end is None else min(float(end), float(result.t[-1]))
     times = frame_times(t_first, t_last, fps, speed, max_frames)
     scene = _Scene(result, block, motion, times, highpass, title=title)
-    out.parent.mkdir(parents=True, exist_ok=True)
+    from shaketable.core.files import atomic_write, prepare_output_file
+
+    out = prepare_output_file(out, "out")
     animation = FuncAnimation(scene.fig, scene.draw, frames=len(times), blit=False,
                               repeat=False)
     try:
-        animation.save(str(out), writer=PillowWriter(fps=fps), dpi=int(dpi))
+        atomic_write(out, lambda temporary: animation.save(
+            str(temporary), writer=PillowWriter(fps=fps), dpi=int(dpi)))
     finally:
         from shaketable.plots.base import pyplot
 
@@ -323,10 +326,12 @@ def snapshot(result: RockingResult, time: float, *, out, motion: Motion | None =
     times = np.array([first, float(time), last])
     scene = _Scene(result, block, motion, times, highpass)
     scene.draw(1)
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
+    from shaketable.core.files import atomic_write, prepare_output_file
     from shaketable.plots.base import pyplot
 
-    scene.fig.savefig(out, dpi=dpi)
-    pyplot().close(scene.fig)
+    out = prepare_output_file(out, "out")
+    try:
+        atomic_write(out, lambda temporary: scene.fig.savefig(temporary, dpi=dpi))
+    finally:
+        pyplot().close(scene.fig)
     return out

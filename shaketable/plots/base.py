@@ -25,7 +25,11 @@ def pyplot():
 
 
 def save(fig, path, dpi: int = 110) -> None:
-    """Save a figure to ``path`` (format from the suffix) and close it."""
+    """Save a figure to ``path`` (format from the suffix, written atomically) and close it."""
+    from shaketable.core.files import atomic_write
+
     plt = pyplot()
-    fig.savefig(path, dpi=dpi, bbox_inches="tight")
-    plt.close(fig)
+    try:
+        atomic_write(path, lambda temporary: fig.savefig(temporary, dpi=dpi, bbox_inches="tight"))
+    finally:
+        plt.close(fig)

@@ -21,6 +21,42 @@ def resolve_scene_path(name_or_path: str, directory=None) -> Path:
     return path
 
 
+def sweep_names() -> list[str]:
+    """Names of the bundled sweep specs (``experiments/sweeps/``)."""
+    return sorted(path.stem for path in (experiments_folder() / "sweeps").glob("*.toml"))
+
+
+def resolve_sweep_path(name_or_path: str) -> Path:
+    """A sweep spec from a path or the name of a bundled spec (``experiments/sweeps``)."""
+    candidate = Path(name_or_path)
+    if candidate.suffix == ".toml" and candidate.exists():
+        return candidate
+    path = experiments_folder() / "sweeps" / f"{name_or_path}.toml"
+    if path.exists():
+        return path
+    if candidate.suffix == ".toml":
+        raise SceneError(f"no sweep spec {name_or_path!r}: no such file")
+    raise SceneError(f"no sweep spec {name_or_path!r} (not a .toml file, not bundled); "
+                     f"bundled: {', '.join(sweep_names())}")
+
+
+def is_sweep_spec(name_or_path: str) -> bool:
+    """Whether a name or path given to ``run`` is a sweep spec rather than a scene."""
+    candidate = Path(name_or_path)
+    if candidate.suffix == ".toml" and candidate.is_file():
+        if candidate.resolve().parent == (experiments_folder() / "sweeps").resolve():
+            return True
+        try:
+            head = candidate.read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            return False
+        # the sections only a sweep spec has (shaketable.sweeps.spec.TOP_KEYS)
+        return any(line.strip() in ("[blocks]", "[[records]]", "[intensity]", "[run]")
+                   for line in head.splitlines())
+    return name_or_path in sweep_names() and not (experiments_folder()
+                                                  / f"{name_or_path}.toml").exists()
+
+
 def scene_names(directory=None) -> list[str]:
     """Names of the scenes in a folder (default: the bundled experiments), in figure order."""
     import re

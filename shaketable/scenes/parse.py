@@ -207,6 +207,10 @@ def load_scene(path) -> Scene:
         text = path.read_text(encoding="utf-8")
     except OSError as error:
         raise SceneError(f"{path}: cannot read the scene ({error.strerror})") from None
+    except UnicodeDecodeError as error:
+        line = path.read_bytes()[:error.start].count(b"\n") + 1
+        raise SceneError(f"{path}, line {line}: not UTF-8 text (byte {error.object[error.start]:#04x}); "
+                         f"save the scene as UTF-8") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
@@ -235,6 +239,9 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
     if "cor" not in rocking:
         raise SceneError(f"{where}: rocking.cor is missing (coefficient of restitution, 0-1)")
     cors = rocking["cor"] if isinstance(rocking["cor"], list) else [rocking["cor"]]
+    if not cors:
+        raise SceneError(f"{where}: rocking.cor is an empty list; give a number in [0, 1] or a "
+                         f"list of them")
     for cor in cors:
         if isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0 <= cor <= 1:
             raise SceneError(f"{where}: rocking.cor must be a number in [0, 1] or a list of "

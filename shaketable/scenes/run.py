@@ -35,7 +35,7 @@ def build_motion(scene: Scene) -> Motion | None:
         if kind == "harmonic":
             return generators.harmonic(
                 spec["frequency"], spec["horizontal"] / g, spec.get("vertical", 0.0) / g,
-                duration=spec["duration"], dt=spec.get("dt", 0.01), phase=spec.get("phase", 0.0),
+                duration=spec["duration"], dt=spec.get("dt"), phase=spec.get("phase", 0.0),
                 ramp=spec.get("ramp", 0.0), start=spec.get("start", 0.0))
         if kind == "half-sine":
             return generators.half_sine_pulse(
@@ -148,20 +148,20 @@ class SceneResult:
 
     def write(self, out) -> list[Path]:
         """Write the outputs the scene asks for into folder ``out``; return the paths."""
+        from shaketable.core.files import prepare_output_folder, write_csv, write_parquet, write_text
         from shaketable.plots.base import save
 
-        out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
+        out = prepare_output_folder(out, "out")
         written = []
         outputs = self.scene.outputs
         if outputs.get("csv", True):
             written.append(out / "history.csv")
-            self.to_frame().to_csv(written[-1], index=False)
+            write_csv(written[-1], self.to_frame())
         if outputs.get("parquet", False):
             written.append(out / "history.parquet")
-            self.to_frame().to_parquet(written[-1], index=False)
+            write_parquet(written[-1], self.to_frame())
         written.append(out / "summary.json")
-        written[-1].write_text(json.dumps(self.summary(), indent=2))
+        write_text(written[-1], json.dumps(self.summary(), indent=2))
         if outputs.get("figure", True):
             for suffix in ("png", "svg") if outputs.get("svg", False) else ("png",):
                 written.append(out / f"calcomp.{suffix}")
@@ -175,7 +175,7 @@ class SceneResult:
         for index, test in enumerate(self.tests):
             label = "" if len(self.tests) == 1 else f"-{index + 1}"
             written.append(out / f"record{label}.csv")
-            test.to_frame().to_csv(written[-1], index=False)
+            write_csv(written[-1], test.to_frame())
         return written
 
 

@@ -15,6 +15,8 @@ from shaketable.solvers import engine
 from shaketable.solvers.common import (
     COMPILED_METHODS,
     DEFAULT_RTOL,
+    call_interruptibly,
+    check_fixed_steps,
     extended,
     result_from_info,
 )
@@ -120,6 +122,7 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     vg = np.ascontiguousarray(motion.vertical_or_zero)
     rg = np.ascontiguousarray(motion.rotation_or_zero)
     n = t_grid.size
+    check_fixed_steps(method, n, subdivisions)
     theta, omega, acceleration = np.zeros(n), np.zeros(n), np.zeros(n)
     impact_times = np.zeros(max(1, whole_number("max_recorded_impacts", max_recorded_impacts,
                                                 minimum=0)))
@@ -134,8 +137,10 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
                             theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
                             impact_velocities, info)
     else:
-        engine.integrate(COMPILED_METHODS[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
-                         rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
-                         impact_velocities, info)
+        work = n * (subdivisions if method == "predictor-corrector" else 1)
+        call_interruptibly(engine.integrate, (
+            COMPILED_METHODS[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
+            rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
+            impact_velocities, info), work)
     return result_from_info(block, motion, cor, method, t_grid, theta, omega, acceleration,
                    impact_times, impact_velocities, info)

@@ -39,7 +39,7 @@ from shaketable.core.motion import Motion, whole_number
 from shaketable.core.results import STATUSES
 from shaketable.core.validation import in_range
 from shaketable.solvers import engine
-from shaketable.solvers.common import COMPILED_METHODS, DEFAULT_RTOL, extended
+from shaketable.solvers.common import COMPILED_METHODS, DEFAULT_RTOL, check_fixed_steps, extended
 
 __all__ = ["Case", "METHODS", "simulate_cases", "simulate_many"]
 
@@ -302,6 +302,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
 
     # motions end to end (each cut or padded to `duration` exactly as simulate does)
     runs = [extended(motion, duration) for motion in motions]
+    check_fixed_steps(method, max(motion.t.size for motion in runs), subdivisions)
     offsets = np.zeros(len(runs) + 1, dtype=np.int64)
     offsets[1:] = np.cumsum([motion.t.size for motion in runs])
     t_all = np.concatenate([motion.t for motion in runs])

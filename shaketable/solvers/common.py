@@ -11,6 +11,7 @@ import numpy as np
 
 from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion
 from shaketable.core.results import STATUSES, RockingResult
+from shaketable.core.validation import MAX_FIXED_STEPS, sample_count
 from shaketable.solvers import engine
 
 DEFAULT_RTOL = {"fast": 1e-11, "reference": 1e-12}
@@ -18,6 +19,17 @@ DEFAULT_RTOL = {"fast": 1e-11, "reference": 1e-12}
 COMPILED_METHODS = {"fast": engine.METHOD_FAST,
              "predictor-corrector": engine.METHOD_PREDICTOR_CORRECTOR,
              "linear": engine.METHOD_LINEAR}
+
+
+def starting_at_zero(motion: Motion) -> Motion:
+    """The motion with its clock starting at 0; its own start in ``metadata["start time [s]"]``."""
+    start = float(motion.t[0])
+    if start == 0.0:
+        return motion
+    metadata = dict(motion.metadata)
+    metadata["start time [s]"] = start + float(metadata.get("start time [s]", 0.0))
+    return Motion(motion.t - start, motion.horizontal, motion.vertical, name=motion.name,
+                  rotation=motion.rotation, metadata=metadata)
 
 
 def extended(motion: Motion, duration: float | None) -> Motion:
@@ -28,7 +40,13 @@ def extended(motion: Motion, duration: float | None) -> Motion:
     sample already within rounding of it is kept as it is. Padded: zeros
     every ``motion.dt`` after the last sample, the last interval shortened
     to end at ``t[0] + duration``.
+
+    A motion that does not start at t = 0 (a record whose time column starts at an
+    epoch offset, say t0 = 1.7e9 s) is first shifted to start at 0, its start kept
+    in ``metadata["start time [s]"]``: a run's clock starts at the motion's first
+    sample, and times of 1e9 s would leave the event location (1e-12 s) no digits.
     """
+    motion = starting_at_zero(motion)
     if duration is None:
         return motion
     t = motion.t
@@ -56,7 +74,8 @@ def extended(motion: Motion, duration: float | None) -> Motion:
         return Motion(times, cut(motion.horizontal), cut(motion.vertical), name=motion.name,
                       rotation=cut(motion.rotation))
     dt = motion.dt
-    extra = int(math.ceil((end - t[-1]) / dt - 1e-9))
+    extra = sample_count(math.ceil((end - t[-1]) / dt - 1e-9),
+                         f"extending the motion to duration {duration:g} s at its dt = {dt:g} s")
     added = t[-1] + dt * np.arange(1, extra + 1)
     added[-1] = end
     if added.size > 1 and end - added[-2] < tolerance:
@@ -108,3 +127,55 @@ def result_from_info(block, motion, cor, method, t_grid, theta, omega, accelerat
                     "rejected": int(info[engine.INFO_REJECTED]),
                     "evaluations": int(info[engine.INFO_EVALUATIONS])},
     )
+
+
+#: Runs with more work than this (sample intervals, or fixed steps) run in a worker
+#: thread so that Ctrl-C reaches Python within ~0.1 s; shorter runs (well under a
+#: second) are called directly and keep their microsecond overhead.
+INTERRUPTIBLE_WORK = 2_000_000
+
+
+def call_interruptibly(function, arguments: tuple, work: int):
+    """``function(*arguments)``; a long compiled run in a thread that Ctrl-C can leave.
+
+    The compiled engine (``nogil``) cannot see Ctrl-C while it runs. For work above
+    :data:`INTERRUPTIBLE_WORK` it runs in a daemon thread while the main thread waits
+    in 0.1 s slices, so KeyboardInterrupt is raised at once in the caller (the
+    abandoned thread finishes into arrays nobody reads; a CLI process exits). The
+    arithmetic is the same either way: results are bit-identical.
+    """
+    import threading
+
+    if work <= INTERRUPTIBLE_WORK or threading.current_thread() is not threading.main_thread():
+        return function(*arguments)
+    outcome: dict = {}
+
+    def target():
+        try:
+            outcome["value"] = function(*arguments)
+        except BaseException as error:  # handed back to the caller below
+            outcome["error"] = error
+
+    worker = threading.Thread(target=target, name="shaketable-engine", daemon=True)
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.1)
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome.get("value")
+
+
+def check_fixed_steps(method: str, samples: int, subdivisions: int) -> None:
+    """Refuse a fixed-step run whose work exceeds :data:`MAX_FIXED_STEPS` before it starts.
+
+    ``predictor-corrector`` takes ``subdivisions`` equal steps per sample interval,
+    whatever the motion: (samples - 1) x subdivisions steps in all.
+    """
+    if method != "predictor-corrector":
+        return
+    steps = (samples - 1) * subdivisions
+    if steps > MAX_FIXED_STEPS:
+        raise ValueError(f"subdivisions {subdivisions:,} x {samples - 1:,} sample intervals = "
+                         f"{steps:.3g} predictor-corrector steps; the limit is "
+                         f"{MAX_FIXED_STEPS:.3g} per run (use fewer subdivisions, or "
+                         f"method='fast', which chooses its own steps)")

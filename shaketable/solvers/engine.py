@@ -378,7 +378,7 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
     return c, xc, vc, ac, trials
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)  # nogil: a long run can go on in a thread (Ctrl-C, api.py)
 def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol, subdivisions,
               rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
               impact_velocities, info):

@@ -321,7 +321,21 @@ def run_sweep(spec, out, *, workers: int | None = None, scheduler: str | None = 
         raise ValueError("fmt='parquet' needs pyarrow (pip install 'shaketable[parquet]')")
     if max_chunks is not None and (isinstance(max_chunks, bool) or int(max_chunks) < 0):
         raise ValueError(f"max_chunks must be a non-negative integer, got {max_chunks!r}")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):
+        raise ValueError(f"workers (--workers) must be a positive integer (threads), "
+                         f"got {workers!r}")
     began = time.perf_counter()
+    client, own_client = (None, False) if scheduler is None else _connect(scheduler)
+    try:
+        return _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk,
+                    began)
+    finally:
+        if own_client:
+            client.close()
+
+
+def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk, began):
     done = _prepare(spec, out, resume, fmt)
     todo = [chunk for chunk in range(spec.n_chunks) if chunk not in done]
     if max_chunks is not None:
@@ -344,11 +358,11 @@ def run_sweep(spec, out, *, workers: int | None = None, scheduler: str | None = 
             on_chunk(chunk, frame)
 
     try:
-        if scheduler is None:
+        if client is None:
             for chunk in todo:
                 finished(chunk, compute_chunk(spec, chunk, threads=workers))
         else:
-            _run_on_dask(spec, todo, scheduler, workers or 1, finished)
+            _run_on_dask(spec, todo, client, workers or 1, finished)
     finally:
         if bar is not None:
             bar.close()
@@ -368,33 +382,50 @@ def _chunk_length(spec, chunk: int) -> int:
     return min(spec.chunk_size, spec.n_runs - chunk * spec.chunk_size)
 
 
-def _run_on_dask(spec, chunks, scheduler, threads, finished) -> None:
-    """Submit every chunk to a Dask cluster; write each as it completes."""
+#: Seconds to wait for a Dask scheduler before saying it cannot be reached.
+SCHEDULER_TIMEOUT = 10.0
+
+
+def _connect(scheduler):
+    """A ``distributed.Client`` for an address (connected here, before anything is
+    written), or the client given; and whether it is ours to close."""
     try:
-        from distributed import Client, as_completed
+        from distributed import Client
     except ImportError:
         raise ValueError("--scheduler needs dask.distributed: pip install "
                          "'shaketable[cluster]'") from None
-    own = not isinstance(scheduler, Client)
-    client = Client(scheduler) if own else scheduler
+    if isinstance(scheduler, Client):
+        return scheduler, False
+    if not isinstance(scheduler, str) or not scheduler.strip():
+        raise ValueError(f"scheduler (--scheduler) must be an address such as "
+                         f"tcp://host:8786, got {scheduler!r}")
     try:
-        futures = {client.submit(compute_chunk, spec, chunk, threads, pure=False,
-                                 key=f"shaketable-sweep-{spec.name}-{chunk}-{time.time_ns()}"):
-                   chunk for chunk in chunks}
-        failures = []
-        for future in as_completed(futures):
-            chunk = futures[future]
-            try:
-                frame = future.result()
-            except Exception as error:  # keep writing the others; report at the end
-                failures.append((chunk, error))
-                continue
-            finished(chunk, frame)
-        if failures:
-            chunk, error = failures[0]
-            raise RuntimeError(f"{len(failures)} chunk(s) failed on the cluster, first chunk "
-                               f"{chunk}: {error!r}; the finished chunks are on disk, run "
-                               "again with --resume") from error
-    finally:
-        if own:
-            client.close()
+        return Client(scheduler, timeout=SCHEDULER_TIMEOUT), True
+    except (OSError, TimeoutError, ValueError) as error:
+        raise ValueError(f"--scheduler {scheduler!r}: cannot reach a Dask scheduler there "
+                         f"within {SCHEDULER_TIMEOUT:g} s ({type(error).__name__}: "
+                         f"{error}); nothing was written") from None
+
+
+def _run_on_dask(spec, chunks, client, threads, finished) -> None:
+    """Submit every chunk to a Dask cluster; write each as it completes."""
+    from distributed import as_completed
+
+    futures = {client.submit(compute_chunk, spec, chunk, threads, pure=False,
+                             key=f"shaketable-sweep-{spec.name}-{chunk}-{time.time_ns()}"):
+               chunk for chunk in chunks}
+    failures = []
+    for future in as_completed(futures):
+        chunk = futures[future]
+        try:
+            frame = future.result()
+        except Exception as error:  # keep writing the others; report at the end
+            failures.append((chunk, error))
+            continue
+        finished(chunk, frame)
+    if failures:
+        chunk, error = failures[0]
+        raise RuntimeError(f"{len(failures)} chunk(s) failed on the cluster, first chunk "
+                           f"{chunk}: {error!r}; the finished chunks are on disk, run "
+                           "again with --resume") from error
+

@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import importlib.util
 import json
-import os
 from pathlib import Path
 
 import numpy as np
 
+from shaketable.core.files import write_csv, write_parquet, write_text
 from shaketable.sweeps.spec import SweepError
 
 #: Version of the result layout, written in the manifest.
@@ -24,12 +24,11 @@ def parquet_available() -> bool:
 
 
 def write_atomic(frame, path: Path, fmt: str) -> None:
-    temporary = path.with_name(f".{path.name}.tmp")
+    """Write a part or the result table: temporary file, then rename (nothing truncated)."""
     if fmt == "parquet":
-        frame.to_parquet(temporary, index=False)
+        write_parquet(path, frame)
     else:
-        frame.to_csv(temporary, index=False)
-    os.replace(temporary, path)
+        write_csv(path, frame)
 
 
 def _read(path: Path, fmt: str):
@@ -70,9 +69,8 @@ def finished_chunks(spec, out: Path, fmt: str) -> set:
 
 
 def write_text_atomic(path: Path, text: str) -> None:
-    temporary = path.with_name(f".{path.name}.tmp")
-    temporary.write_text(text)
-    os.replace(temporary, path)
+    """Write the manifest: temporary file, then rename."""
+    write_text(path, text)
 
 
 def read_results(out, *, fmt: str | None = None, parts_only: bool = False):

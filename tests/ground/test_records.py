@@ -594,11 +594,12 @@ def test_combine_flips_dwn_and_pads_the_shorter_vertical():
         records.combine(horizontal, up, vertical_positive="left")
 
 
-def test_combine_pads_the_shorter_horizontal_and_keeps_t0():
+def test_combine_pads_the_shorter_horizontal_and_starts_the_clock_at_zero():
     horizontal = Record(0.02, [1.0, 2.0], t0=0.02)
     vertical = Record(0.02, [0.1, 0.2, 0.3], component="UP", t0=0.02)
     motion = records.combine(horizontal, vertical)
-    np.testing.assert_allclose(motion.t, [0.02, 0.04, 0.06])
+    np.testing.assert_array_equal(motion.t, [0.0, 0.02, 0.04])
+    assert motion.metadata["start time [s]"] == 0.02
     np.testing.assert_array_equal(motion.horizontal, [1.0, 2.0, 0.0])
     assert records.combine(horizontal).vertical is None
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -86,6 +87,8 @@ def _at2_values(lines: list[str], first: int, npts: int, path: Path) -> np.ndarr
     """Read exactly ``npts`` whitespace-separated values from ``lines[first:]``."""
     values = np.empty(npts)
     count = 0
+    shapes: dict = {}
+    last = ("", 0)
     for index in range(first, len(lines)):
         for token in lines[index].replace(",", " ").split():
             if count == npts:
@@ -93,13 +96,50 @@ def _at2_values(lines: list[str], first: int, npts: int, path: Path) -> np.ndarr
                     f"{file_location(path, index + 1)}: more values than NPTS={npts} in the header"
                 )
             values[count] = parse_number(token, path, index + 1)
+            shape = _number_shape(token)
+            shapes[shape] = shapes.get(shape, 0) + 1
+            last = (token, index + 1)
             count += 1
     if count < npts:
         raise RecordError(
             f"{file_location(path, len(lines))}: the file ends after {count} of NPTS={npts} values "
             "(truncated data?)"
         )
+    _check_last_value_complete(shapes, last, path)
     return values
+
+
+_NUMBER_SHAPE = re.compile(r"^[+-]?(\d*)\.(\d*)(?:[eEdD]([+-]?)(\d*))?$")
+
+
+def _number_shape(token: str) -> tuple:
+    """(digits after the point, exponent digits) of a printed number; () if free-form."""
+    match = _NUMBER_SHAPE.match(token)
+    if match is None:
+        return ()
+    return len(match[2]), None if match[4] is None else len(match[4])
+
+
+def _check_last_value_complete(shapes: dict, last: tuple, path: Path) -> None:
+    """Refuse a file cut in the middle of its last number.
+
+    AT2 values are printed in one fixed format (``-.1234567E-02``). A last value
+    with fewer fraction or exponent digits than every other value of a file that
+    uses one format (``.1234567E-0``: 1000 times too large) is a cut file, not data.
+    """
+    token, line = last
+    shape = _number_shape(token)
+    if not shape or len(shapes) != 2 or shapes.get(shape, 0) != 1:
+        return
+    (usual,) = [other for other in shapes if other != shape]
+    if not usual or sum(shapes.values()) < 3:
+        return
+    fraction, exponent = shape
+    if fraction < usual[0] or (usual[1] is not None and (exponent or 0) < usual[1]):
+        raise RecordError(
+            f"{file_location(path, line)}: the last value {token!r} has fewer digits than "
+            f"every other value of the file: the file looks cut in the middle of a number "
+            f"(download it again)")
 
 
 def read_at2(path, *, units=None) -> Record:

@@ -149,8 +149,17 @@ COMPONENT_PATTERN = re.compile(r"^\s*(?P<component>[A-Za-z0-9+\-]{1,8})\s*(?:\(.
 DOWN_LABELS = {"DWN", "DOWN", "DN"}
 
 
+def missing_file_message(path: Path) -> str:
+    """Why ``path`` cannot be read as a record file: a folder, or nothing there."""
+    if Path(path).is_dir():
+        return f"{path}: is a folder, not a record file"
+    return f"{path}: cannot read the file: no such file"
+
+
 def read_lines(path: Path) -> list[str]:
     """Lines of a text file, CRLF or LF, without line endings."""
+    if not Path(path).is_file():
+        raise RecordError(missing_file_message(path))
     try:
         with open(path, encoding="utf-8", errors="replace", newline=None) as stream:
             return stream.read().splitlines()
@@ -220,6 +229,13 @@ def uniform_time_step(times: np.ndarray, line_numbers: list[int], path: Path) ->
     if times.size < 2:
         raise RecordError(f"{file_location(path, line_numbers[0])}: a time column needs 2 or more rows")
     steps = np.diff(times)
+    backwards = np.flatnonzero(~(steps > 0))
+    if backwards.size:
+        index = int(backwards[0])
+        raise RecordError(
+            f"{file_location(path, line_numbers[index + 1])}: time {float(times[index + 1]):.10g} s "
+            f"does not increase from {float(times[index]):.10g} s on the line before; the time "
+            "column must increase")
     typical = float(np.median(steps))
     irregular = np.flatnonzero(~(np.abs(steps - typical) <= 0.01 * abs(typical)) | (steps <= 0))
     if irregular.size:
@@ -229,8 +245,13 @@ def uniform_time_step(times: np.ndarray, line_numbers: list[int], path: Path) ->
             f"differs from the usual step {typical:g} s; only uniformly sampled records "
             "are supported"
         )
-    dt = (times[-1] - times[0]) / (times.size - 1)
-    return float(f"{dt:.12g}")  # drop the rounding noise of printed times
+    span = float(times[-1] - times[0])
+    dt = span / (times.size - 1)
+    # drop the rounding noise of printed times: 12 significant digits, fewer when the
+    # times are large (an epoch offset, t0 = 1.7e9 s, leaves ~7 digits in the span)
+    noise = 4.0 * float(np.spacing(max(abs(float(times[0])), abs(float(times[-1]))))) / span
+    digits = int(min(12, max(3, math.floor(-math.log10(noise)))))
+    return float(f"{dt:.{digits}g}")
 
 
 def optional_positive(value, name: str, unit: str, path: Path):

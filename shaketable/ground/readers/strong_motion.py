@@ -30,7 +30,7 @@ import numpy as np
 
 from shaketable.core.constants import acceleration_factor
 from shaketable.core.motion import Motion
-from shaketable.ground.readers.common import Record, RecordError
+from shaketable.ground.readers.common import Record, RecordError, missing_file_message
 
 #: The optional extra that installs gmprocess.
 EXTRA = "formats"
@@ -84,7 +84,7 @@ def read_strong_motion_stream(path: str | Path) -> Any:
 
     path = Path(path)
     if not path.is_file():
-        raise RecordError(f"{path}: cannot read the file: no such file")
+        raise RecordError(missing_file_message(path))
     try:
         streams = read_data(str(path))
     except Exception as error:  # gmprocess raises many types for unreadable files

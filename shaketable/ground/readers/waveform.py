@@ -46,7 +46,12 @@ import numpy as np
 
 from shaketable.core.constants import acceleration_factor
 from shaketable.core.motion import Motion
-from shaketable.ground.readers.common import Record, RecordError, units_argument
+from shaketable.ground.readers.common import (
+    Record,
+    RecordError,
+    missing_file_message,
+    units_argument,
+)
 
 #: Unit of ``data * calib`` declared by the format (ObsPy's ``stats._format``).
 DECLARED_UNITS = {"KNET": "m/s2"}
@@ -274,7 +279,7 @@ def obspy_stream(path: Path, format: str | None) -> Any:
     import obspy  # the only ObsPy import in shaketable (with strong_motion.py)
 
     if not path.is_file():
-        raise RecordError(f"{path}: cannot read the file: no such file")
+        raise RecordError(missing_file_message(path))
     try:
         return obspy.read(str(path), format=None if format is None else format.upper())
     except TypeError as error:  # ObsPy's "Unknown format" / "Format ... is not supported"

@@ -1,0 +1,144 @@
+"""Output files: a folder checked before the work starts, every file written atomically.
+
+A command checks its output folder with :func:`prepare_output_folder` before it
+computes anything (an existing file in the way, a path under a file, a folder it
+may not write into: a clear error, no work lost). Every file is then written
+through :func:`atomic_write`: into a temporary file beside it, renamed over the
+target when complete, so a failure (a full disk, Ctrl-C) leaves the previous
+file or none, never a truncated one.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+
+
+class OutputPathError(ValueError):
+    """An output path that cannot be used; the message names the option and the path."""
+
+
+def prepare_output_folder(path, option: str = "--out") -> Path:
+    """Create the output folder ``path`` (and its parents) or say why it cannot be.
+
+    Parameters
+    ----------
+    path : str or Path
+        The folder the results go to.
+    option : str
+        What the user called it (a CLI option or a parameter name), for the message.
+
+    Returns
+    -------
+    Path
+        The folder, existing and writable.
+
+    Raises
+    ------
+    OutputPathError
+        The path is an existing file, lies under a file, or cannot be created or
+        written into.
+    """
+    folder = Path(path)
+    if str(path).strip() == "":
+        raise OutputPathError(f"{option}: the output folder is empty; give a folder name")
+    if folder.exists() and not folder.is_dir():
+        raise OutputPathError(f"{option} {str(path)!r}: is an existing file, not a folder; "
+                              f"give a folder name")
+    for parent in folder.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise OutputPathError(f"{option} {str(path)!r}: {str(parent)!r} is a file, so "
+                                      f"no folder can be made under it")
+            break
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise OutputPathError(f"{option} {str(path)!r}: cannot create the folder "
+                              f"({error.strerror or error})") from None
+    try:  # the only reliable test of "may write here" (permissions, read-only mounts, ACLs)
+        with tempfile.NamedTemporaryFile(dir=folder, prefix=".shaketable-write-test-"):
+            pass
+    except OSError as error:
+        raise OutputPathError(f"{option} {str(path)!r}: cannot write into the folder "
+                              f"({error.strerror or error})") from None
+    return folder
+
+
+def prepare_output_file(path, option: str = "--out", suffixes: tuple = ()) -> Path:
+    """Check an output file's path before the work starts; create its folder.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to be written.
+    option : str
+        What the user called it, for the message.
+    suffixes : tuple of str, optional
+        Accepted suffixes (e.g. ``(".gif",)``); empty accepts any.
+
+    Raises
+    ------
+    OutputPathError
+        The path is an existing folder, has a suffix not accepted, or its folder
+        cannot be created or written into.
+    """
+    file = Path(path)
+    if str(path).strip() == "":
+        raise OutputPathError(f"{option}: the output file name is empty")
+    if file.is_dir():
+        raise OutputPathError(f"{option} {str(path)!r}: is an existing folder; give a file name")
+    if suffixes and file.suffix.lower() not in suffixes:
+        raise OutputPathError(f"{option} {str(path)!r}: the file must end in "
+                              f"{' or '.join(suffixes)}")
+    prepare_output_folder(file.parent if str(file.parent) else ".", option=f"{option} (its folder)")
+    return file
+
+
+def atomic_write(path, write: Callable[[Path], object]) -> Path:
+    """Write a file through a temporary file in the same folder, then rename it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file to produce.
+    write : callable
+        ``write(temporary_path)`` writes the content; the temporary path keeps the
+        target's suffix, so writers that choose a format from the suffix (matplotlib)
+        work unchanged.
+
+    Returns
+    -------
+    Path
+        ``path``, complete. On any failure the temporary file is removed and the
+        exception propagates: ``path`` keeps its previous content (or does not exist).
+    """
+    path = Path(path)
+    handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=path.suffix)
+    os.close(handle)
+    temporary = Path(name)
+    try:
+        write(temporary)
+        os.replace(temporary, path)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+    return path
+
+
+def write_text(path, text: str) -> Path:
+    """Write a UTF-8 text file atomically (see :func:`atomic_write`)."""
+    return atomic_write(path, lambda temporary: temporary.write_text(text, encoding="utf-8"))
+
+
+def write_csv(path, frame, **options) -> Path:
+    """Write a pandas DataFrame as CSV atomically (``index=False`` unless given)."""
+    options.setdefault("index", False)
+    return atomic_write(path, lambda temporary: frame.to_csv(temporary, **options))
+
+
+def write_parquet(path, frame) -> Path:
+    """Write a pandas DataFrame as Parquet atomically (needs pyarrow)."""
+    return atomic_write(path, lambda temporary: frame.to_parquet(temporary, index=False))
