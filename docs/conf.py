@@ -49,7 +49,10 @@ myst_enable_extensions = ["dollarmath"]
 myst_heading_anchors = 3
 # The Markdown pages link the repository's files (../shaketable/..., ../benchmarks/...)
 # as GitHub would show them; those are not pages of the site.
-suppress_warnings = ["myst.xref_missing", "myst.header", "config.cache"]
+suppress_warnings = ["myst.xref_missing", "myst.header", "config.cache",
+                     # a module's References list citations its functions cite, not the
+                     # module docstring itself
+                     "ref.citation"]
 
 # -- API reference ------------------------------------------------------------
 autosummary_generate = True
@@ -99,3 +102,30 @@ html_theme_options = {
     "show_toc_level": 2,
 }
 html_static_path: list[str] = []
+
+
+# -- Docstrings: plain-text notation that reStructuredText would misread -------
+# The docstrings write absolute values as |theta| and cite the report as [1]_ (numpydoc).
+# In reST |theta| is a substitution and [1]_ needs a References section in the same
+# docstring; escape the first and unlink the second where that section is absent,
+# before numpydoc reads the docstring (priority < 500).
+import re  # noqa: E402
+
+_BARS = re.compile(r"(?<![\\`|])\|(\S(?:[^|\n`]*?\S)?)\|(?![_|])")
+_CITATION = re.compile(r"\[(\d+)\]_")
+
+
+def _plain_notation(app, what, name, obj, options, lines):
+    has_references = any(line.strip() == "References" for line in lines)
+    for index, line in enumerate(lines):
+        stripped = line.lstrip()
+        if stripped.startswith(("+-", "+=", "| ", "..", "==")):
+            continue  # tables and directives
+        line = _BARS.sub(r"\\|\1\\|", line)
+        if not has_references:
+            line = _CITATION.sub(r"[\1]", line)
+        lines[index] = line
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _plain_notation, priority=400)

@@ -28,7 +28,7 @@ PRESETS = ("A-1", "B-1", "olive-view")
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
+    parser = argparse.ArgumentParser(description="Draw the artificial presets and print their measures.")
     parser.add_argument("--out", type=Path, default=None,
                         help="PNG file to write (default: none, the figure is only drawn)")
     args = parser.parse_args(argv)

@@ -124,7 +124,7 @@ def run_case(name, motion, highpass, zoom, outdir: Path, pitch: Pitch, actuator:
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
+    parser = argparse.ArgumentParser(description="Target vs achieved table acceleration, with and without pitch.")
     parser.add_argument("--outdir", type=Path, default=None,
                         help="directory for the PNG files (default: a temporary folder)")
     parser.add_argument("--docs-figure", type=Path, default=None,

@@ -60,7 +60,7 @@ for cor in (0.7, 0.8, 0.85, 0.9, 0.925, 0.95, 0.98):
 # 5. Watch it overturn
 # --------------------
 # theta/alpha against time for a low and a high COR: the block overturns when
-# |theta|/alpha passes 1 and keeps going (to pi/2, lying on its side).
+# abs(theta)/alpha passes 1 and keeps going (to pi/2, lying on its side).
 import matplotlib.pyplot as plt
 
 fig, ax = plt.subplots(figsize=(8, 3.5))
