@@ -1,7 +1,7 @@
 """Equation of motion of a rocking block, Eqs. (2-13) and (2-14) of [1]_.
 
 Sign convention (stated once for the package; ``docs/conventions.md`` repeats it)
---------------------------------------------------------------------------------
+---------------------------------------------------------------------------------
 * ``theta`` is a single signed rotation [rad]. ``theta > 0``: the block pivots on
   its corner at -x and its top moves toward -x; ``theta < 0``: it pivots on the
   corner at +x. This is the report's Fig. 2.7 convention, in which a positive

@@ -2,19 +2,19 @@
 
 Nomenclature (report symbol -> code name):
 
-=========  ======================  =======================================
-report     code                    meaning
-=========  ======================  =======================================
-H, B       ``height``, ``width``   total height and width of the block [m]
-h, b       ``h``, ``b``            half height H/2 and half width B/2 [m]
-R          ``R``                   corner-to-centroid distance [m]
-alpha      ``alpha``               block angle arctan(b/h) [rad]
-p          ``p``                   frequency parameter sqrt(3g/4R) [rad/s]
-I0         ``I0_per_mass``         moment of inertia about a corner / M [m^2]
-K          ``PrestressRods.stiffness``   total rod stiffness [W per m]
-F0         ``PrestressRods.force``       total initial rod force [W]
-S          ``PrestressRods.edge_distance``  rod distance from an edge [m]
-=========  ======================  =======================================
+=========  ================================  =======================================
+report     code                              meaning
+=========  ================================  =======================================
+H, B       ``height``, ``width``             total height and width of the block [m]
+h, b       ``h``, ``b``                      half height H/2 and half width B/2 [m]
+R          ``R``                             corner-to-centroid distance [m]
+alpha      ``alpha``                         block angle arctan(b/h) [rad]
+p          ``p``                             frequency parameter sqrt(3g/4R) [rad/s]
+I0         ``I0_per_mass``                   moment of inertia about a corner / M [m^2]
+K          ``PrestressRods.stiffness``       total rod stiffness [W per m]
+F0         ``PrestressRods.force``           total initial rod force [W]
+S          ``PrestressRods.edge_distance``   rod distance from an edge [m]
+=========  ================================  =======================================
 """
 
 from __future__ import annotations

@@ -6,17 +6,17 @@ Makris & Roussos [3]_). Every pulse here is a unit-amplitude shape ``f(t)``
 (peak |f| = 1) of circular frequency ``omega`` [rad/s]; the table
 acceleration is ``a f(t)`` [m/s^2] during the pulse and zero after it.
 
-================  ==========================================================  ==================
+================  ==========================================================  ======================
 name              f(t)                                                        duration
-================  ==========================================================  ==================
+================  ==========================================================  ======================
 ``half-sine``     sin(omega t)                                                pi / omega
 ``one-sine``      sin(omega t)  (Zhang & Makris type-A, forward pulse)        2 pi / omega
 ``one-cosine``    cos(omega t)  (type-B; table at rest at t = 0, f jumps)     2 pi / omega
 ``type-A``        same as ``one-sine``                                        2 pi / omega
 ``type-B``        same as ``one-cosine``                                      2 pi / omega
 ``type-C1`` ...   cos(omega t + phi), phi from zero final displacement        (n + 1/2 - phi/pi) T
-``ricker``        (1 - 2 u^2) exp(-u^2), u = omega (t - t0) / 2, t0 = 2 sqrt(6)/omega  2 t0
-================  ==========================================================  ==================
+``ricker``        (1 - 2 u^2) exp(-u^2), u = omega (t - t0) / 2                  2 t0 = 4 sqrt(6)/omega
+================  ==========================================================  ======================
 
 For ``type-Cn`` the velocity is ``v_p (sin(omega t + phi) - sin phi)``
 and phi solves ``2 cos phi = sin phi ((2n + 1) pi - 2 phi)``: velocity and

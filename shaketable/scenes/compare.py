@@ -28,8 +28,8 @@ EARTHQUAKE_KINDS = frozenset({"artificial", "record"})
 #: Default relative tolerance of a report value [-] (the report's "about 10 %").
 REPORT_TOLERANCE = 0.10
 
-#: Keys of a per-quantity ``[report] tolerance = { ... }`` table and what each accepts:
-#: ``"time"`` a relative number or an absolute time with its unit ("0.5 s"); ``"number"`` a
+#: Keys of a per-quantity ``[report] tolerance = {...}`` table and what each accepts.
+#: ``"time"``: a relative number or an absolute time with its unit ("0.5 s"); ``"number"`` a
 #: relative number; ``"band"`` the half-width of a band around 1; ``"absolute time"`` a time
 #: with its unit only.
 TOLERANCE_KEYS = {"t_rest": "time", "t_unstable": "time", "t_overturn": "time",
@@ -193,8 +193,8 @@ def compare_test_with_theory(scene: Scene, test) -> list[Comparison]:
     that test and theory agree: "the block becomes unstable at about the same
     point ... and overturning is in the same direction". Four lines score that:
     the same overturning verdict; the same direction of instability (sign of
-    theta when |theta| first exceeds alpha, 0 when never); |t_unstable(test) -
-    t_unstable(theory)| within ``test_theory_t_unstable`` (default
+    theta when |theta| first exceeds alpha, 0 when never); the difference
+    |t_unstable(test) - t_unstable(theory)| within ``test_theory_t_unstable`` (default
     :data:`TEST_THEORY_T_UNSTABLE`); the peak ratio test/theory (each curve
     up to its own instability, :meth:`shaketable.scenes.virtual_test.VirtualTestResult.metrics`)
     within 1 +- ``test_theory_peak_ratio`` (default :data:`TEST_THEORY_PEAK_RATIO`).

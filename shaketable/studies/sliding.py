@@ -26,6 +26,7 @@ import time
 from dataclasses import dataclass
 from importlib.resources import files
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -212,7 +213,7 @@ class ModeResult:
     """
 
     choice: dict
-    result: object
+    result: Any  # RockingResult, SlidingResult or None
     combined: dict
 
     def summary(self) -> dict:
@@ -243,6 +244,7 @@ def respond(block: Block, motion: Motion, friction, *, cor: float = 0.95) -> Mod
         Friction(*friction) if isinstance(friction, (tuple, list)) else Friction(friction))
     choice = mode_choice(block, motion, friction.static)
     combined = {}
+    result: Any
     if choice["mode (Section 2.1)"] == "rocking":
         result = simulate(block, motion, cor=cor)
         needed = required_friction(result)

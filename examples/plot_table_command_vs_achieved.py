@@ -1,4 +1,6 @@
-"""Target vs achieved table acceleration, with and without the table's pitch.
+"""
+Section 3.7: target vs achieved table acceleration, with and without pitch
+==========================================================================
 
 For a 2 Hz, 0.5 g harmonic (Fig. 3.7 of the report) and the artificial
 "olive-view" record (a substitute for the San Fernando-like record of
@@ -14,17 +16,18 @@ Section 3.6), this script
 
 Run from anywhere::
 
-    python examples/table_command_vs_achieved.py [--outdir DIR] [--docs-figure PNG]
+    python examples/plot_table_command_vs_achieved.py [--outdir DIR] [--docs-figure PNG]
 
 Writes ``table_command_vs_achieved_<case>.png`` (whole record) and
-``..._<case>_zoom.png`` (one second) into DIR (default: the current directory);
-with ``--docs-figure`` also the two one-second windows side by side in one PNG
-(``docs/figures/table_command_vs_achieved.png`` is made that way).
+``..._<case>_zoom.png`` (one second) into DIR (default: a temporary folder) and
+draws the two one-second windows side by side; ``--docs-figure PNG`` saves that
+figure too (``docs/figures/table_command_vs_achieved.png`` is made that way).
 """
 
 from __future__ import annotations
 
 import argparse
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -68,9 +71,9 @@ def title_of(motion, highpass, pitch: Pitch, actuator: Actuator) -> str:
             "from the pitch axis")
 
 
-def docs_figure(path: Path, pitch: Pitch, actuator: Actuator) -> None:
+def docs_figure(path: Path | None, pitch: Pitch, actuator: Actuator):
     """The one-second windows of both cases side by side, target vs achieved with and
-    without pitch (the figure of docs/table.md)."""
+    without pitch (the figure of docs/table.md); saved to ``path`` when given."""
     from shaketable.plots.base import pyplot
 
     plt = pyplot()
@@ -82,10 +85,11 @@ def docs_figure(path: Path, pitch: Pitch, actuator: Actuator) -> None:
         _, servo, felt = achieved_pair(motion, highpass, pitch, actuator)
         plot_command_vs_achieved(motion, servo, felt, ax=axes, window=zoom,
                                  title=title_of(motion, highpass, pitch, actuator))
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    print(f"wrote {path}")
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(path, dpi=100)
+        print(f"wrote {path}")
+    return fig
 
 
 def run_case(name, motion, highpass, zoom, outdir: Path, pitch: Pitch, actuator: Actuator):
@@ -120,12 +124,13 @@ def run_case(name, motion, highpass, zoom, outdir: Path, pitch: Pitch, actuator:
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--outdir", type=Path, default=Path("."),
-                        help="directory for the PNG files (default: current directory)")
+    parser = argparse.ArgumentParser(description="Target vs achieved table acceleration, with and without pitch.")
+    parser.add_argument("--outdir", type=Path, default=None,
+                        help="directory for the PNG files (default: a temporary folder)")
     parser.add_argument("--docs-figure", type=Path, default=None,
                         help="also write both one-second windows side by side to this PNG")
     args = parser.parse_args(argv)
+    args.outdir = args.outdir or Path(tempfile.mkdtemp(prefix="shaketable-table-"))
     args.outdir.mkdir(parents=True, exist_ok=True)
     pitch = Pitch(seed=1)
     actuator = Actuator()
@@ -134,8 +139,7 @@ def main(argv=None):
           f"g sin(phi) up to {G * np.sin(pitch.angle_amplitude):.2e} m/s^2")
     for name, (motion, highpass, zoom) in CASES.items():
         run_case(name, motion, highpass, zoom, args.outdir, pitch, actuator)
-    if args.docs_figure is not None:
-        docs_figure(args.docs_figure, pitch, actuator)
+    docs_figure(args.docs_figure, pitch, actuator)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,6 @@
-"""Frequency content, PGA and strong-motion duration of the artificial presets.
+"""
+Artificial records: frequency content, PGA and strong-motion duration
+======================================================================
 
 The presets "A-1", "B-1" and "olive-view" of :data:`shaketable.ground.generators.PRESETS`
 are SUBSTITUTES in the spirit of the records of Section 4.1 of the report, not
@@ -9,7 +11,9 @@ and prints the measures (:func:`shaketable.plots.ground.preset_measures`).
 
 Run from anywhere::
 
-    python examples/artificial_presets.py [--out docs/figures/artificial_presets.png]
+    python examples/plot_artificial_presets.py [--out artificial_presets.png]
+
+Without ``--out`` the figure is only drawn (and shown in the documentation's gallery).
 """
 
 from __future__ import annotations
@@ -24,18 +28,19 @@ PRESETS = ("A-1", "B-1", "olive-view")
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", type=Path, default=Path("artificial_presets.png"),
-                        help="PNG file to write (default: ./artificial_presets.png)")
+    parser = argparse.ArgumentParser(description="Draw the artificial presets and print their measures.")
+    parser.add_argument("--out", type=Path, default=None,
+                        help="PNG file to write (default: none, the figure is only drawn)")
     args = parser.parse_args(argv)
     table = preset_measures(PRESETS, SEEDS)
     with_columns = ["preset", "seed", "pga [g]", "D5-95 [s]", "t5 [s]", "t95 [s]",
                     "predominant frequency [Hz]"]
     print(table[with_columns].to_string(index=False, float_format=lambda x: f"{x:.2f}"))
     fig = plot_artificial_presets(PRESETS, SEEDS)
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(args.out, dpi=110)
-    print(f"wrote {args.out}")
+    if args.out is not None:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(args.out, dpi=110)
+        print(f"wrote {args.out}")
 
 
 if __name__ == "__main__":
