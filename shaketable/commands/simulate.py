@@ -38,11 +38,7 @@ def _simulate(args) -> int:
     result.to_frame().to_csv(out / "history.csv", index=False)
     (out / "summary.json").write_text(json.dumps(result.summary(), indent=2))
     plots.save(result.plot(), out / f"calcomp.{args.format}")
-    summary = result.summary()
-    print(f"{block.describe()} block, COR {args.cor}: {result.status}, "
-          f"max theta/alpha = {summary['max_theta_ratio [-]']:.3f}")
-    if result.overturned:
-        print(f"overturned at {result.t_overturn:.3f} s, direction {result.overturn_direction:+d}")
+    print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
     print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}, {out / ('calcomp.' + args.format)}")
     return 0
 
