@@ -178,8 +178,10 @@ class SceneResult:
                 for index, test in enumerate(self.tests):
                     label = "" if len(self.tests) == 1 else f"-{index + 1}"
                     written.append(out / f"test-vs-theory{label}.{suffix}")
-                    title = (f"{self.scene.source or self.scene.name}: test vs theory, "
-                             f"{self.scene.block.describe()}")
+                    title = (f"{self.scene.source or self.scene.name}: virtual test vs "
+                             f"theory, {self.scene.block.describe()} block, "
+                             + ("free rocking" if self.scene.motion.get("kind") == "free"
+                                else f"{self.scene.motion.get('kind')} table motion"))
                     save(test.plot(title=title), written[-1])
         for index, test in enumerate(self.tests):
             label = "" if len(self.tests) == 1 else f"-{index + 1}"
