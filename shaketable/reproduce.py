@@ -130,6 +130,32 @@ def reproduce(names, out="reproduce-out", progress: bool = True) -> Path:
               "(section `table-4-4`).", ""]
     path = out / "report.md"
     path.write_text("\n".join(header + sections))
+    write_gallery(out)
+    return path
+
+
+def write_gallery(out) -> Path:
+    """Write ``out/gallery.md``: every figure (PNG) under ``out``, one heading per scene.
+
+    The page a reader scans to look at every figure of a reproduction at once
+    (``shaketable reproduce --all --out FOLDER`` writes it beside report.md).
+    """
+    out = Path(out)
+    lines = ["# Gallery: every figure of the reproduction", "",
+             "Written by `shaketable reproduce --all --out FOLDER` beside `report.md`; "
+             "each figure is discussed in the report's section of the same scene.", ""]
+    for folder in sorted((path for path in out.iterdir() if path.is_dir()),
+                         key=lambda path: [int(part) if part.isdigit() else part
+                                           for part in path.name.replace("-", " ").split()]):
+        figures = sorted(folder.glob("*.png"))
+        if not figures:
+            continue
+        lines += [f"## `{folder.name}`", ""]
+        lines += [f"![{folder.name}/{figure.name}]({folder.name}/{figure.name})"
+                  for figure in figures]
+        lines.append("")
+    path = out / "gallery.md"
+    path.write_text("\n".join(lines))
     return path
 
 

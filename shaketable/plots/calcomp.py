@@ -118,10 +118,11 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
         axis.set_ylabel(label)
     rates, rotation = axes[-2], axes[-1]
     t_broken, acceleration = broken_at_sign_changes(result.t, result.theta, result.theta_ddot)
+    which = f", COR {result.cor:g} only" if others else ""
     rates.plot(t_broken, acceleration, color=_ACCELERATION_COLOUR, lw=0.6,
-               label="θ'' angular acceleration [rad/s²]\n(broken at impacts)")
+               label=f"θ'' angular acceleration [rad/s²]\n(broken at impacts{which})")
     rates.plot(result.t, result.theta_dot, color=_VELOCITY_COLOUR, lw=0.9,
-               label="θ' angular velocity [rad/s]")
+               label=f"θ' angular velocity [rad/s]{which}")
     rates.set_ylabel("θ'' [rad/s²]\nθ' [rad/s]")
     rates.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=True,
                  borderaxespad=0.0)
