@@ -24,12 +24,12 @@ def _reproduce(args) -> int:
 
     out = prepare_output_folder(args.out)
     notice_first_compile(args.quiet)
-    report = reproduce(names, out=out, progress=not args.quiet)
-    print(f"wrote {report}")
-    failed = report.read_text(encoding="utf-8").count("**Not reproduced:**")
+    failed: list = []
+    report = reproduce(names, out=out, progress=not args.quiet, failures=failed)
+    print(f"wrote {report} (and gallery.md beside it)")
     if failed:
-        print(f"shaketable reproduce: {failed} scene(s) could not be reproduced (see {report})",
-              file=sys.stderr)
+        print(f"shaketable reproduce: {len(failed)} scene(s) could not be reproduced: "
+              f"{', '.join(failed)} (their sections in {report} say why)", file=sys.stderr)
         return 1
     return 0
 

@@ -33,13 +33,17 @@ def _run(args) -> int:
         for line in result.table.warnings():
             print(f"{scene.name}: table limit exceeded: {line}")
     for run in result.runs:
-        verdict = (f"overturns ({run.overturn_direction:+d}) at {run.t_overturn:.2f} s"
-                   if run.overturned else f"max theta/alpha = {run.max_theta_ratio:.3f}")
-        print(f"{scene.name}: {scene.block.describe()}, COR {run.cor:g}: {verdict}")
+        line = f"{scene.name}: {scene.block.describe()} block, COR {run.cor:g}: {run.verdict()}"
+        if run.overturned:
+            line += (f" (largest rocking before instability "
+                     f"{run.max_theta_ratio_before_instability:.3f} alpha)")
+        print(line)
     for line in result.comparisons:
-        mark = "agrees" if line.agrees else "differs"
-        print(f"  {line.quantity}: report {line.report} {line.unit}, reproduced "
-              f"{line.reproduced} {line.unit} ({mark})")
+        verdict = "agrees" if line.agrees else "differs"
+        print(f"  {line.quantity}: the report gives {_words(line.report, line.unit)}, "
+              f"reproduced {_words(line.reproduced, line.unit)}: {verdict}")
+    if scene.report.get("note"):
+        print(f"  note: {scene.report['note']}")
     print("wrote " + ", ".join(str(path) for path in written))
     return 0
 
@@ -55,6 +59,17 @@ def _run_study(study, out: Path) -> int:
               f"(see {report})")
     print(f"wrote {out}/ ({', '.join(sorted(path.name for path in out.iterdir() if not path.name.startswith('.')))})")
     return 0
+
+
+def _words(value, unit: str) -> str:
+    """A compared value in words with its unit ("yes", "6.42 s", "0.78")."""
+    if isinstance(value, bool):
+        text = "yes" if value else "no"
+    elif value is None:
+        text = "none"
+    else:
+        text = f"{value:g}" if isinstance(value, float) else str(value)
+    return f"{text} {unit}".strip() if unit not in ("", "-") else text
 
 
 def register(commands) -> None:

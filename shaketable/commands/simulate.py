@@ -37,11 +37,7 @@ def _simulate(args) -> int:
     write_csv(out / "history.csv", result.to_frame())
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
     plots.save(result.plot(), out / f"calcomp.{args.format}")
-    summary = result.summary()
-    print(f"{block.describe()} block, COR {args.cor}: {result.status}, "
-          f"max theta/alpha = {summary['max_theta_ratio [-]']:.3f}")
-    if result.overturned:
-        print(f"overturned at {result.t_overturn:.3f} s, direction {result.overturn_direction:+d}")
+    print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
     print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}, {out / ('calcomp.' + args.format)}")
     return 0
 

@@ -106,8 +106,45 @@ class RockingResult:
 
     @property
     def max_theta_ratio(self) -> float:
-        """max |theta| / alpha [-], the quantity of Tables 4.1-4.3."""
+        """max |theta| / alpha [-], the quantity of Tables 4.1-4.3; NaN for an overturned run.
+
+        An overturned run is the report's "F": the run stops at |theta| = pi/2,
+        and (pi/2)/alpha is where the run was stopped, not a peak. Its largest
+        rocking before the fatal excursion is :attr:`max_theta_ratio_before_instability`.
+        """
+        if self.overturned:
+            return math.nan
         return self.max_abs_theta / self.block.alpha
+
+    @property
+    def max_theta_ratio_before_instability(self) -> float:
+        """Largest |theta| / alpha [-] before the excursion on which |theta| first passed alpha.
+
+        The rocking that preceded instability: the samples before the last
+        change of sign of theta (or the first uplift) that precedes
+        ``t_unstable``; 0 when the block became unstable on its first
+        excursion. For a run that never became unstable it is
+        :attr:`max_theta_ratio`. Read at the output samples (the peak of the
+        whole run, :attr:`max_abs_theta`, is located exactly).
+        """
+        if not self.unstable:
+            return self.max_theta_ratio
+        before = self.t < self.t_unstable
+        theta = self.theta[before]
+        crossings = np.flatnonzero(np.sign(theta[1:]) * np.sign(theta[:-1]) < 0)
+        if crossings.size == 0:
+            return 0.0
+        return float(np.max(np.abs(theta[:crossings[-1] + 1]))) / self.block.alpha
+
+    def verdict(self) -> str:
+        """The run in words: "overturned (+) at 6.42 s", "max θ/α = 0.78", or the airborne time."""
+        if self.overturned:
+            side = "+" if self.overturn_direction > 0 else "−"
+            return f"overturned ({side}) at {self.t_overturn:.2f} s"
+        if self.status == "airborne":
+            return (f"leaves the ground at {self.t_airborne:.2f} s (vertical ≤ −g), "
+                    f"max θ/α = {self.max_theta_ratio:.2f} until then")
+        return f"max θ/α = {self.max_theta_ratio:.2f}"
 
     @property
     def max_rod_force(self) -> float:
@@ -145,7 +182,14 @@ class RockingResult:
         })
 
     def summary(self) -> dict:
-        """Scalar results as a JSON-ready dict (NaN written as None)."""
+        """Scalar results as a JSON-ready dict (NaN written as None).
+
+        The fields are described in ``docs/conventions.md`` ("Results of a run"):
+        an overturned run has ``overturned`` true, ``t_overturn [s]`` and
+        ``overturn_direction``, ``max_theta_ratio [-]`` None (the report's F) and
+        its earlier rocking in ``max_theta_ratio_before_instability [-]``;
+        ``verdict`` says it in words.
+        """
         def clean(value):
             if isinstance(value, (float, np.floating)):
                 return None if not np.isfinite(value) else float(value)
@@ -160,7 +204,9 @@ class RockingResult:
             "block_height [m]": block.height, "block_width [m]": block.width,
             "alpha [rad]": block.alpha, "p [rad/s]": block.p, "cor [-]": self.cor,
             "method": self.method, "motion": self.motion.name, "status": self.status,
+            "verdict": self.verdict(),
             "overturned": self.overturned, "max_theta_ratio [-]": self.max_theta_ratio,
+            "max_theta_ratio_before_instability [-]": self.max_theta_ratio_before_instability,
             "max_abs_theta [rad]": self.max_abs_theta, "t_max [s]": self.t_max,
             "t_start [s]": self.t_start, "t_unstable [s]": self.t_unstable,
             "unstable_direction": self.unstable_direction,

@@ -1,20 +1,79 @@
-"""Figures. The only module of the package that imports matplotlib."""
+"""The report's Calcomp layout (Figs. 2.8 and 4.1-4.17): ground, angular motion, rotation."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from shaketable.core.constants import G
+from shaketable.core.constants import G, length_factor
 from shaketable.plots.base import pyplot
 
+#: Colours of the angular acceleration and velocity traces.
+_ACCELERATION_COLOUR = "tab:red"
+_VELOCITY_COLOUR = "tab:blue"
 
-def calcomp(result, fig=None, title: str | None = None):
-    """The report's Calcomp layout (Figs. 2.8 and 4.1-4.17) for one result.
+
+def describe_block(block) -> str:
+    """The block as the report's captions give it: ``"B × H = 4 × 16 ft"`` (or inches).
+
+    Feet when both dimensions are whole feet of at least 2 ft (Chapter 4's
+    blocks), inches otherwise (Chapter 3's specimens); prestress rods with
+    their total stiffness K [W/in] and force F0 [W] (Section 2.8).
+    """
+    foot, inch = length_factor("ft"), length_factor("in")
+    width_ft, height_ft = block.width / foot, block.height / foot
+    if min(width_ft, height_ft) >= 2 and np.allclose([width_ft, height_ft],
+                                                     np.round([width_ft, height_ft]), atol=1e-9):
+        text = f"B × H = {width_ft:g} × {height_ft:g} ft"
+    else:
+        text = f"B × H = {block.width / inch:g} × {block.height / inch:g} in"
+    if block.rods is not None:
+        text += (f", prestress rods K = {block.rods.stiffness * inch:g} W/in, "
+                 f"F0 = {block.rods.force:g} W")
+    return text
+
+
+def describe_motion(motion, free: bool) -> str:
+    """The ground motion in words (its name, or "free rocking")."""
+    if free:
+        return "free rocking (no ground motion)"
+    return motion.name or "ground motion"
+
+
+def has_signal(values) -> bool:
+    """True when a ground-motion channel is not identically zero."""
+    return bool(np.any(np.asarray(values) != 0.0))
+
+
+def broken_at_sign_changes(t, theta, values):
+    """``(t, values)`` with NaN inserted where theta changes sign (an impact).
+
+    The angular acceleration of Eq. (2-13) flips sign at each impact (the
+    pivot changes corner), and jumps from and to zero where the block lifts
+    off or comes to rest: a line drawn through the samples would draw a
+    vertical jump at every impact, and a cascade of impacts would become a
+    solid band. Broken at the impacts, the trace shows its envelope.
+    """
+    t = np.asarray(t, dtype=float)
+    values = np.asarray(values, dtype=float)
+    sign = np.sign(theta)
+    breaks = np.flatnonzero(sign[1:] != sign[:-1]) + 1
+    return np.insert(t, breaks, np.nan), np.insert(values, breaks, np.nan)
+
+
+def calcomp(result, fig=None, title: str | None = None, time_range=None, others=(),
+            details=()):
+    """The report's Calcomp layout (Figs. 2.8 and 4.1-4.17) for one result, with its caption.
 
     From top to bottom: horizontal and vertical ground acceleration [g], the
     angular acceleration [rad/s^2] and velocity [rad/s] superimposed, and the
     angular displacement [rad] with the +-alpha lines that bound the stable
-    region.
+    region. A ground channel that is identically zero is left out and said so
+    in the caption (free rocking has no ground panel). The angular
+    acceleration is broken at every impact (:func:`broken_at_sign_changes`).
+
+    The caption (the figure's title) carries what the report's captions give:
+    block B x H with units, COR, prestress rods K and F0, the ground motion,
+    and the verdict ("overturned (+) at 6.42 s" or "max θ/α = 0.78").
 
     Parameters
     ----------
@@ -22,56 +81,93 @@ def calcomp(result, fig=None, title: str | None = None):
     fig : matplotlib.figure.Figure, optional
         Figure to draw into (a new one otherwise).
     title : str, optional
-        Defaults to the block, COR and motion, in the report's style.
+        First line of the caption, e.g. ``"Fig. 4.1"``; the block, COR, motion
+        and verdict follow on their own lines.
+    time_range : (float, float), optional
+        Time axis limits [s] (default: the motion's start to the end of the
+        run). Figures meant to be compared share one.
+    others : sequence of RockingResult, optional
+        Runs of the same block and motion at other CORs, overlaid on the
+        rotation panel (their verdicts join the caption).
+    details : sequence of str, optional
+        Further caption lines (e.g. the record's scale or a substitute note).
 
     Returns
     -------
     matplotlib.figure.Figure
     """
     plt = pyplot()
-    if fig is None:
-        fig = plt.figure(figsize=(8.5, 9.0))
-    axes = fig.subplots(4, 1, sharex=True, gridspec_kw={"height_ratios": [1, 1, 1.3, 1.5]})
     block = result.block
     motion = result.motion
     end = result.t[-1]
     shown = motion.t <= end + 1e-12
-    axes[0].plot(motion.t[shown], motion.horizontal[shown] / G, color="k", lw=0.7)
-    axes[0].set_ylabel("horizontal\nground acc. [g]")
-    axes[1].plot(motion.t[shown], motion.vertical_or_zero[shown] / G, color="k", lw=0.7)
-    axes[1].set_ylabel("vertical\nground acc. [g]")
-    axes[2].plot(result.t, result.theta_ddot, color="tab:red", lw=0.6,
-                 label="angular acceleration [rad/s²]")
-    axes[2].plot(result.t, result.theta_dot, color="tab:blue", lw=0.9,
-                 label="angular velocity [rad/s]")
-    axes[2].set_ylabel("θ'' [rad/s²]\nθ' [rad/s]")
-    axes[2].legend(loc="upper right", fontsize=7, frameon=False)
-    axes[3].plot(result.t, result.theta, color="k", lw=0.9)
+    horizontal = motion.horizontal[shown] / G
+    vertical = motion.vertical_or_zero[shown] / G
+    with_horizontal, with_vertical = has_signal(horizontal), has_signal(vertical)
+    ground = [(label, values) for label, values, present in (
+        ("horizontal\nground acc. [g]", horizontal, with_horizontal),
+        ("vertical\nground acc. [g]", vertical, with_vertical)) if present]
+    ratios = [1.0] * len(ground) + [1.3, 1.5]
+    if fig is None:
+        fig = plt.figure(figsize=(8.5, 3.6 + 1.9 * len(ratios)), layout="constrained")
+    else:
+        fig.set_layout_engine("constrained")
+    axes = fig.subplots(len(ratios), 1, sharex=True, gridspec_kw={"height_ratios": ratios})
+    for axis, (label, values) in zip(axes, ground):
+        axis.plot(motion.t[shown], values, color="k", lw=0.7)
+        axis.set_ylabel(label)
+    rates, rotation = axes[-2], axes[-1]
+    t_broken, acceleration = broken_at_sign_changes(result.t, result.theta, result.theta_ddot)
+    which = f", COR {result.cor:g} only" if others else ""
+    rates.plot(t_broken, acceleration, color=_ACCELERATION_COLOUR, lw=0.6,
+               label=f"θ'' angular acceleration [rad/s²]\n(broken at impacts{which})")
+    rates.plot(result.t, result.theta_dot, color=_VELOCITY_COLOUR, lw=0.9,
+               label=f"θ' angular velocity [rad/s]{which}")
+    rates.set_ylabel("θ'' [rad/s²]\nθ' [rad/s]")
+    rates.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=True,
+                 borderaxespad=0.0)
+    rotation.plot(result.t, result.theta, color="k", lw=0.9,
+                  label=f"COR {result.cor:g}" if others else "θ")
+    extremes = [float(np.max(np.abs(result.theta), initial=0.0))]
+    for other in others:
+        rotation.plot(other.t, other.theta, lw=0.9, label=f"COR {other.cor:g}")
+        extremes.append(float(np.max(np.abs(other.theta), initial=0.0)))
     for sign in (1, -1):
-        axes[3].axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--")
-    axes[3].set_ylabel("θ [rad]")
-    axes[3].set_xlabel("time [s]")
-    limit = max(1.3 * block.alpha, 1.1 * float(np.max(np.abs(result.theta), initial=0.0)))
-    axes[3].set_ylim(-limit, limit)
-    note = f"max θ/α = {result.max_theta_ratio:.2f}"
-    if result.overturned:
-        note += f", overturns ({'+' if result.overturn_direction > 0 else '−'}) at " \
-                f"{result.t_overturn:.2f} s"
-    elif result.status == "airborne":
-        note += f", leaves the ground at {result.t_airborne:.2f} s (vertical ≤ −g)"
-    axes[3].text(0.01, 0.04, note, transform=axes[3].transAxes, fontsize=8)
+        rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
+                         label="±α (stability limit)" if sign > 0 else None)
+    rotation.set_ylabel("θ [rad]")
+    rotation.set_xlabel("time [s]")
+    limit = max(1.3 * block.alpha, 1.1 * max(extremes))
+    rotation.set_ylim(-limit, limit)
+    rotation.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=True,
+                    borderaxespad=0.0)
+    start, stop = (motion.t[0], max(end, motion.t[0] + 1e-9)) if time_range is None \
+        else time_range
     for axis in axes:
         axis.grid(True, lw=0.3, alpha=0.5)
-        axis.set_xlim(motion.t[0], max(end, motion.t[0] + 1e-9))
-    if title is None:
-        inch = 0.0254
-        title = (f"B = {block.width / inch:g} in, H = {block.height / inch:g} in, "
-                 f"COR = {result.cor:g}")
-        if block.rods is not None:
-            title += (f", K = {block.rods.stiffness * inch:g} W/in, "
-                      f"prestress = {block.rods.force:g} W")
-        if motion.name:
-            title = f"{motion.name}\n{title}"
-    fig.suptitle(title, fontsize=10)
+        axis.set_xlim(start, stop)
+    fig.suptitle("\n".join(calcomp_caption(result, title=title, others=others,
+                                           details=details)), fontsize=9.5)
     fig.align_ylabels(axes)
     return fig
+
+
+def calcomp_caption(result, title: str | None = None, others=(), details=()) -> list[str]:
+    """The caption lines of :func:`calcomp`: heading, block and COR, motion, verdict."""
+    block, motion = result.block, result.motion
+    free = not has_signal(motion.horizontal) and not has_signal(motion.vertical_or_zero)
+    cors = ", ".join(f"{run.cor:g}" for run in (result, *others))
+    lines = [] if not title else [title]
+    lines.append(f"{describe_block(block)}, α = {block.alpha:.4g} rad, COR {cors}")
+    ground = describe_motion(motion, free)
+    if not free and not has_signal(motion.vertical_or_zero):
+        ground += " (no vertical motion: panel left out)"
+    elif not free and not has_signal(motion.horizontal):
+        ground += " (no horizontal motion: panel left out)"
+    lines.append(ground)
+    lines.extend(details)
+    if others:
+        lines.append("; ".join(f"COR {run.cor:g}: {run.verdict()}" for run in (result, *others)))
+    else:
+        lines.append(result.verdict())
+    return lines

@@ -142,21 +142,32 @@ def plot_pitch_repeatability(result, ax=None):
     if ax is None:
         _, ax = plt.subplots(figsize=(8, 3))
     alpha = result.without_pitch.block.alpha
-    for run in result.runs:
-        ax.plot(run.t, run.theta / alpha, lw=0.5, alpha=0.6)
+    for index, run in enumerate(result.runs):
+        ax.plot(run.t, run.theta / alpha, lw=0.5, alpha=0.6,
+                label=f"{len(result.runs)} pitch phases (thin)" if index == 0 else None)
     ax.plot(result.without_pitch.t, result.without_pitch.theta / alpha, color="k", lw=1.2,
             label="no pitch")
+    # zoom on the action: to a little past the last run's end of motion (overturn or rest)
+    ends = []
+    for run in (*result.runs, result.without_pitch):
+        moving = np.flatnonzero(run.theta != 0.0)
+        ends.append(run.t[moving[-1]] if moving.size else run.t[-1])
+    last = max(ends)
+    ax.set_xlim(0.0, min(max(run.t[-1] for run in result.runs), last + max(0.5, 0.1 * last)))
     for level in (-1, 1):
         ax.axhline(level, color="0.4", ls="--", lw=0.8)
     if math.isfinite(result.record_end):
         ax.axvline(result.record_end, color="0.6", lw=0.8, ls=":")
     ax.set_ylim(-2.0, 2.0)
     ax.set_ylabel("θ/α [-]")
-    ax.set_xlabel("time [s] (dotted: end of the record, then the table is at rest)")
+    shown = math.isfinite(result.record_end) and result.record_end <= ax.get_xlim()[1]
+    ax.set_xlabel("time [s]" + (" (dotted: end of the record, then the table is at rest)"
+                                if shown else ""))
     summary = result.summary()
     ax.set_title(f"{result.name}: {len(result.runs)} pitch phases, "
                  f"{100 * summary['overturned fraction']:.0f} % overturn", fontsize=9)
-    ax.legend(loc="upper left", fontsize=7, frameon=False)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=True,
+              borderaxespad=0.0)
     return ax
 
 

@@ -16,7 +16,8 @@ Sections (``experiments/*.toml`` are the examples)::
     [rocking]    cor = 0.925 (or a list to compare), theta0 = "0.5 alpha",
                  duration = "8 s", method = "fast", subdivisions, rtol
     [report]     the report's values to compare with (see REPORT_KEYS)
-    [outputs]    figure = true, csv = true, parquet = false, svg = false
+    [outputs]    figure = true, csv = true, parquet = false, svg = false,
+                 time_range = ["0 s", "42 s"] (the figures' time axis)
     [table]      command, highpass, actuator, pitch, limits (shaketable.lab.stage)
     [sensors]    potentiometers, accelerometers, rate, noise... (shaketable.scenes.virtual_test)
     [theory]     cor = "calibrated" or a number: the test-vs-theory comparison of Section 3.7
@@ -53,10 +54,12 @@ ROCKING_KEYS = {"cor", "theta0", "theta_dot0", "duration", "method", "subdivisio
 REPORT_KEYS = {
     "t_rest": "time", "cycles": "number", "overturned": "bool", "overturn_direction": "number",
     "t_unstable": "time", "t_overturn": "time", "max_theta_ratio": "number",
-    "tolerance": "number", "note": "text",
+    "tolerance": "number", "note": "text", "by_construction": "keys",
 }
 
-OUTPUT_KEYS = {"figure", "csv", "parquet", "svg"}
+#: ``time_range = ["0 s", "42 s"]``: the time axis of the scene's figures, shared by
+#: figures meant to be compared (Figs. 4.1/4.2, 4.13/4.14, 4.16/4.17).
+OUTPUT_KEYS = {"figure", "csv", "parquet", "svg", "time_range"}
 
 #: Figures recomputed by a ``"report-figure"`` study: Figs. 2.3-2.6 and the
 #: single-pulse check of Section 4.3 (4).
@@ -265,11 +268,17 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
             options[key] = rocking[key]
     report = _table(data.get("report", {}), where, "report")
     _only(report, set(REPORT_KEYS), where, "report")
+    chosen = report.get("by_construction", [])
+    if not isinstance(chosen, list) or not set(chosen) <= set(report) - {"by_construction"}:
+        raise SceneError(f"{where}: report.by_construction must list keys of [report] that "
+                         f"match by construction (e.g. [\"t_unstable\"]), got {chosen!r}")
     outputs = {"figure": True, "csv": True, "parquet": False, "svg": False}
     given = _table(data.get("outputs", {}), where, "outputs")
     _only(given, OUTPUT_KEYS, where, "outputs")
     for key, value in given.items():
-        if not isinstance(value, bool):
+        if key == "time_range":
+            given = dict(given, time_range=_time_range(value, where))
+        elif not isinstance(value, bool):
             raise SceneError(f"{where}: outputs.{key} must be true or false, got {value!r}")
     outputs.update(given)
     name = data["name"]
@@ -357,6 +366,21 @@ def _table_section(value, where) -> dict:
     except ValueError as error:
         raise SceneError(str(error)) from None
     return value
+
+
+def _time_range(value, where) -> tuple:
+    """``outputs.time_range``: two times with units, start before stop -> (start, stop) [s]."""
+    if not isinstance(value, list) or len(value) != 2:
+        raise SceneError(f"{where}: outputs.time_range must be two times such as "
+                         f"[\"0 s\", \"42 s\"], got {value!r}")
+    try:
+        start, stop = (parse(item, "time", where=f"{where}: outputs.time_range")
+                       for item in value)
+    except ValueError as error:
+        raise SceneError(str(error)) from None
+    if not stop > start:
+        raise SceneError(f"{where}: outputs.time_range must end after it starts, got {value!r}")
+    return (start, stop)
 
 
 def _table(value, where, section):

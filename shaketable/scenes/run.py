@@ -133,18 +133,27 @@ class SceneResult:
         return summary
 
     def plot(self):
-        """The Calcomp figure of the main run; other CORs overlaid on the displacement."""
+        """The Calcomp figure of the main run, captioned; other CORs overlaid on the rotation."""
         from shaketable.plots.calcomp import calcomp
 
-        title = f"{self.scene.source}: {self.scene.name}" if self.scene.source else None
-        figure = calcomp(self.main, title=title)
-        if len(self.runs) > 1:
-            axis = figure.axes[3]
-            for run in self.runs[1:]:
-                axis.plot(run.t, run.theta, lw=0.9, label=f"COR = {run.cor:g}")
-            axis.plot([], [], color="k", label=f"COR = {self.main.cor:g}")
-            axis.legend(loc="upper right", fontsize=7, frameon=False)
-        return figure
+        title = (f"{self.scene.source} (scene {self.scene.name})" if self.scene.source
+                 else f"scene {self.scene.name}")
+        return calcomp(self.main, title=title, others=self.runs[1:],
+                       time_range=self.scene.outputs.get("time_range"),
+                       details=self.caption_details())
+
+    def caption_details(self) -> list[str]:
+        """Caption lines beside the block and motion: record scale, substitute motion, table."""
+        spec = self.scene.motion
+        details = []
+        if spec.get("kind") == "record" and float(spec.get("scale", 1.0)) != 1.0:
+            details.append(f"record scaled by {float(spec['scale']):g}")
+        if spec.get("kind") == "artificial":
+            details.append("SUBSTITUTE accelerogram (the report's artificial record is not "
+                           "available): compare trends, not values")
+        if self.table is not None:
+            details.append("motion felt by the block on the virtual shaking table")
+        return details
 
     def write(self, out) -> list[Path]:
         """Write the outputs the scene asks for into folder ``out``; return the paths."""
@@ -169,8 +178,10 @@ class SceneResult:
                 for index, test in enumerate(self.tests):
                     label = "" if len(self.tests) == 1 else f"-{index + 1}"
                     written.append(out / f"test-vs-theory{label}.{suffix}")
-                    title = (f"{self.scene.source or self.scene.name}: test vs theory, "
-                             f"{self.scene.block.describe()}")
+                    title = (f"{self.scene.source or self.scene.name}: virtual test vs "
+                             f"theory, {self.scene.block.describe()} block, "
+                             + ("free rocking" if self.scene.motion.get("kind") == "free"
+                                else f"{self.scene.motion.get('kind')} table motion"))
                     save(test.plot(title=title), written[-1])
         for index, test in enumerate(self.tests):
             label = "" if len(self.tests) == 1 else f"-{index + 1}"

@@ -21,6 +21,9 @@ class Comparison:
         says otherwise, :func:`scene_tolerances`), the same verdict for yes/no
         quantities, or the criterion met for a test-vs-theory line
         (:func:`compare_test_with_theory`).
+    key : str
+        The scene's ``[report]`` key compared (e.g. ``"t_unstable"``), empty for
+        lines that are not one of the report's values.
     """
 
     quantity: str
@@ -28,6 +31,7 @@ class Comparison:
     reproduced: object
     unit: str
     agrees: bool
+    key: str = ""
 
     def __post_init__(self):
         object.__setattr__(self, "agrees", bool(self.agrees))
@@ -43,3 +47,55 @@ TEST_THEORY_T_UNSTABLE = 0.25
 #: Default half-width of the band of the peak ratio test/theory around 1 [-]: the report's
 #: "about 10 %" agreement. A scene may state ``tolerance = { test_theory_peak_ratio = ... }``.
 TEST_THEORY_PEAK_RATIO = 0.10
+
+
+#: The three kinds of comparison of the reproduction report, in the order its headline
+#: gives them: against the report's own inputs (recorded earthquakes, harmonic and free
+#: rocking, closed forms), against the package's SUBSTITUTE accelerograms (the report's
+#: artificial records are not available: not expected to match), and values that match
+#: by construction (a realisation chosen to match, Fig. 4.15).
+COMPARISON_KINDS = ("report inputs", "substitute", "by construction")
+
+
+@dataclass
+class ComparisonTally:
+    """Agreeing and differing comparisons of the reproduction report, counted by kind.
+
+    Every "yes"/"no" line of the report is counted once, in one kind of
+    :data:`COMPARISON_KINDS`.
+
+    Attributes
+    ----------
+    counts : dict of str to list of int
+        ``{kind: [agree, differ]}``.
+    """
+
+    counts: dict = None
+
+    def __post_init__(self):
+        if self.counts is None:
+            self.counts = {kind: [0, 0] for kind in COMPARISON_KINDS}
+
+    def add(self, kind: str, agrees: bool, number: int = 1) -> None:
+        """Count ``number`` comparisons of ``kind`` that agree (or differ)."""
+        if kind not in self.counts:
+            raise ValueError(f"kind must be one of {', '.join(COMPARISON_KINDS)}, got {kind!r}")
+        self.counts[kind][0 if agrees else 1] += int(number)
+
+    def add_many(self, kind: str, agreeing: int, total: int) -> None:
+        """Count ``total`` comparisons of ``kind`` of which ``agreeing`` agree."""
+        self.add(kind, True, agreeing)
+        self.add(kind, False, total - agreeing)
+
+    def headline(self) -> list[str]:
+        """The report's headline: one bold line per kind of comparison."""
+        agree, differ = self.counts["report inputs"]
+        lines = [f"**Against the report's own inputs (recorded earthquakes, harmonic and free "
+                 f"rocking, closed forms): {agree} comparisons agree, {differ} differ.**"]
+        agree, differ = self.counts["substitute"]
+        lines.append(f"**Against SUBSTITUTE accelerograms (the report's artificial records are "
+                     f"not available; not expected to match): {agree} agree, {differ} differ.**")
+        agree, differ = self.counts["by construction"]
+        lines.append(f"**By construction (a substitute realisation chosen among 200 to match, "
+                     f"Fig. 4.15; not evidence): {agree} agree, {differ} differ.**")
+        return lines

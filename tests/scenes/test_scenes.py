@@ -91,7 +91,7 @@ def test_run_command_writes_outputs(tmp_path, capsys):
     path = write(tmp_path, GOOD)
     assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
     printed = capsys.readouterr().out
-    assert "t rest (±10 %): report 6.0 s" in printed and "agrees" in printed
+    assert "t rest (±10 %): the report gives 6 s, reproduced" in printed and "agrees" in printed
     assert (tmp_path / "out" / "history.csv").exists()
 
 
