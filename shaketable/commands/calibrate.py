@@ -32,6 +32,23 @@ def _filter_order(text: str):
             from None
 
 
+def bundled_free_rocking() -> dict:
+    """Bundled free-rocking records: name -> path (``shaketable/data/free_rocking``)."""
+    from importlib.resources import files
+
+    folder = Path(str(files("shaketable.data.free_rocking")))
+    return {path.stem: path for path in sorted(folder.glob("*.csv"))}
+
+
+def _record_path(text: str) -> Path:
+    """A record file, or the name of a bundled free-rocking record."""
+    path = Path(text)
+    bundled = bundled_free_rocking()
+    if not path.exists() and text in bundled:
+        return bundled[text]
+    return path
+
+
 def _calibrate(args) -> int:
     from shaketable.calibration.fit import calibrate
     from shaketable.calibration.record import read_record
@@ -41,14 +58,15 @@ def _calibrate(args) -> int:
     from shaketable.plots.base import save
 
     block = Block.parse(args.block)
-    out = prepare_output_folder(args.out or Path("shaketable-out") / f"calibrate-{Path(args.record).stem}")
+    out = prepare_output_folder(args.out or Path("shaketable-out")
+                                / f"calibrate-{Path(args.record).stem}")
     height = None
     if args.height is not None:
         height = parse(args.height, "length", where="--height")
     column = args.column
     if column is not None and column.strip().lstrip("-").isdigit():
         column = int(column)
-    record = read_record(args.record, column=column, units=args.units, rate=args.rate,
+    record = read_record(_record_path(args.record), column=column, units=args.units, rate=args.rate,
                          height=height)
     order = _filter_order(args.filter_order)
     anti_alias = _anti_alias(args.anti_alias, record, order)
@@ -79,7 +97,10 @@ def register(commands) -> None:
                     "interval) and a CSV.")
     parser.add_argument("record", help="CSV file with a header (a 'time [s]' column, or "
                                        "--rate), or a plain-text table, headerless or "
-                                       "whitespace-separated (then give --units)")
+                                       "whitespace-separated (then give --units); or "
+                                       "the name of a bundled free-rocking record: "
+                                       "virtual-fig-3-4 (a virtual Fig. 3.4 test, true "
+                                       "COR 0.925)")
     parser.add_argument("--block", required=True, help="block size, height x width, e.g. 30x6in")
     parser.add_argument("--column", help="the measured column, by name or 0-based index "
                                          "(default: the only non-time one)")

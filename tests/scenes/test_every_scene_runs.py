@@ -1,0 +1,35 @@
+"""Every bundled scene runs with ``shaketable run NAME`` (issue 13): studies included.
+
+The audit found `run` crashing on every ``[study]`` scene; this runs the command
+on each bundled name, in-process, and fails on any traceback or non-zero exit.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from shaketable.scenes.catalog import scene_names, sweep_names
+from tests.test_bad_input import run_cli
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", scene_names())
+def test_run_succeeds_on_every_bundled_scene(name, tmp_path):
+    status, out, err = run_cli(["run", name, "--out", tmp_path / name], cwd=tmp_path)
+    assert "Traceback" not in err and "internal error" not in err, err
+    assert status == 0, err
+    assert "wrote" in out
+    assert any((tmp_path / name).iterdir())
+
+
+@pytest.mark.parametrize("name", sweep_names())
+def test_run_on_a_sweep_spec_says_to_use_sweep(name, tmp_path):
+    status, _, err = run_cli(["run", name], cwd=tmp_path)
+    assert status == 2 and f"shaketable sweep {name}" in err
+
+
+def test_sweep_accepts_a_bundled_name(tmp_path):
+    status, out, err = run_cli(["sweep", "artificial-fragility", "--max-chunks", "0",
+                                "--no-progress", "--out", tmp_path / "sweep"], cwd=tmp_path)
+    assert status == 0, err
+    assert "artificial-fragility" in out and "--resume" in out
