@@ -301,7 +301,7 @@ def read_record(path, *, column: str | int | None = None, units: str | None = No
         if bad.size:
             line = _data_line(path, int(bad[0]))
             raise ValueError(f"{path}, line {line}: column {name!r} holds "
-                             f"{frame[name].iloc[bad[0]]!r}, not a number")
+                             f"{str(frame[name].iloc[bad[0]])!r}, not a finite number")
         return values
 
     values = numbers_of(column)

@@ -10,8 +10,11 @@ from shaketable.scenes.parse import SceneError
 def resolve_scene_path(name_or_path: str, directory=None) -> Path:
     """A scene file from a path or a name in the experiments folder."""
     candidate = Path(name_or_path)
-    if candidate.suffix == ".toml" and candidate.exists():
+    if candidate.suffix == ".toml" and candidate.is_file():
         return candidate
+    if candidate.is_dir():
+        raise SceneError(f"{name_or_path!r} is a folder; give a scene .toml file or the name "
+                         f"of a bundled scene (`shaketable reproduce --list`)")
     folder = Path(directory) if directory is not None else experiments_folder()
     path = folder / f"{name_or_path}.toml"
     if not path.exists():

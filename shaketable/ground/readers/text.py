@@ -143,6 +143,15 @@ def _text_units(header, names, value_index, units, path) -> str:
             )
         return given
     if not stated:
+        import re
+
+        bracketed = re.search(r"[\[(]([^\])]+)[\])]", names[value_index]) if names else None
+        if bracketed:
+            raise ValueError(
+                f"{path}, line {len(header)}: unknown acceleration unit {bracketed[1]!r} in the "
+                f"header of column {names[value_index].strip()!r}; expected one of 'g', 'm/s2', "
+                "'cm/s2', 'gal' (or pass units=)"
+            )
         raise ValueError(
             f"{path}: the acceleration units are not stated in the file; "
             "pass units= (one of 'g', 'm/s2', 'cm/s2', 'gal')"
