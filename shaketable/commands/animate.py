@@ -15,6 +15,9 @@ def _animate(args) -> int:
     if isinstance(scene, Study):
         raise ValueError(f"{scene.path}: a [study] has no single block to animate; give a "
                          "scene with [block], [motion] and [rocking]")
+    from shaketable.commands.common import notice_first_compile
+
+    notice_first_compile(args.quiet)
     result = run_scene(scene)
     if not 0 <= args.run < len(result.runs):
         raise ValueError(f"--run must be between 0 and {len(result.runs) - 1} (the scene's "

@@ -69,6 +69,9 @@ def _calibrate(args) -> int:
     record = read_record(_record_path(args.record), column=column, units=args.units, rate=args.rate,
                          height=height)
     order = _filter_order(args.filter_order)
+    from shaketable.commands.common import notice_first_compile
+
+    notice_first_compile(args.quiet)
     anti_alias = _anti_alias(args.anti_alias, record, order)
     result = calibrate(record, block, anti_alias=anti_alias,
                        filter_order=order if anti_alias == "fit" else "auto",

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import math
 
-from shaketable.commands.common import load_motion, scaled
+from shaketable.commands.common import load_motion, notice_first_compile, scaled
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -32,6 +32,7 @@ def _simulate(args) -> int:
     if motion is not None:
         motion = scaled(motion, args.scale)
     theta0 = _resolve_angle(args.theta0, block)
+    notice_first_compile(args.quiet)
     result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
                       method=args.method, subdivisions=args.subdivisions)
     write_csv(out / "history.csv", result.to_frame())

@@ -217,7 +217,18 @@ class Block:
             restoring += G * self.rods.force * self.b  # the pair's resultant acts at mid-width
         return restoring / self.h
 
-    def describe(self) -> str:
-        """Short label in inches, the report's units, e.g. ``30 x 6 in``."""
-        inch = length_factor("in")
+    def describe(self, unit: str | None = None) -> str:
+        """Short label in the report's units, height first: ``30 x 6 in``, ``16 x 4 ft``.
+
+        Parameters
+        ----------
+        unit : {None, "in"}
+            ``None``: feet when both dimensions are whole feet (as the report writes
+            its Section 4 blocks), else inches. ``"in"``: always inches (the labels
+            of sweep tables, kept stable so that a resumed sweep matches its parts).
+        """
+        inch, foot = length_factor("in"), length_factor("ft")
+        in_feet = [value / foot for value in (self.height, self.width)]
+        if unit is None and all(abs(value - round(value)) < 1e-9 and round(value) >= 1 for value in in_feet):
+            return f"{round(in_feet[0])} x {round(in_feet[1])} ft"
         return f"{self.height / inch:g} x {self.width / inch:g} in"

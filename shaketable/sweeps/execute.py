@@ -147,7 +147,7 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
         label = record.label if seed is None else f"{record.label} (seed {seed})"
         block = spec.blocks[row.block_index]
         cases.append(Case(block, motion, cors[k], scale=1.0 if spec.pitch is not None else factor,
-                          block_label=block.describe(), motion_label=label))
+                          block_label=block.describe(unit="in"), motion_label=label))
         factors.append(factor)
         record_pgas.append(_record_motion(record, seed).pga)
     options = {key: value for key, value in spec.options.items() if key != "theta0"}

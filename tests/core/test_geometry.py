@@ -37,7 +37,9 @@ def test_parse_16x4ft_derived_quantities_by_hand(text):
     assert block.p == pytest.approx(1.710630692527962, rel=1e-13)
     assert block.I0_per_mass == pytest.approx(8.42320896, rel=1e-14)
     assert block.aspect_ratio == pytest.approx(4.0, rel=1e-15)
-    assert block.describe() == "192 x 48 in"
+    assert block.describe() == "16 x 4 ft" and block.describe(unit="in") == "192 x 48 in"
+    assert Block.parse("30x6in").describe() == "30 x 6 in"
+    assert Block.parse("36x9in").describe() == "36 x 9 in"  # 3 x 0.75 ft: inches
 
 
 def test_derived_quantities_are_consistent_with_each_other():
