@@ -130,6 +130,15 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
         lines.append("")
     for run in result.runs:
         lines.append(run_line(run))
+    for index, run in enumerate(result.slides):
+        label = "" if len(result.slides) == 1 else f"-{index + 1}"
+        lines.append(f"* sliding, μs {run.friction.static:g}, μd {run.friction.dynamic:g}: peak "
+                     f"slip {run.peak_slip_inches:.2f} in ({run.peak_slip:.3f} m), residual "
+                     f"{run.residual_slip:+.3f} m, {run.slip_episodes} slip episodes "
+                     f"(Section 2.1: {run.mode_choice.get('mode (Section 2.1)', 'n/a')})")
+        lines.append(f"\n![sliding]({scene.name}/sliding{label}.png)\n")
+    if scene.mode() is not None:
+        lines.append(f"* Section 2.1: {scene.mode()}")
     if result.tests:
         lines += ["", TIMING_NOTE]
     if result.comparisons:

@@ -38,6 +38,12 @@ def _run(args) -> int:
             line += (f" (largest rocking before instability "
                      f"{run.max_theta_ratio_before_instability:.3f} alpha)")
         print(line)
+    for run in result.slides:
+        print(f"{scene.name}: sliding with mu_s {run.friction.static:g}, mu_d "
+              f"{run.friction.dynamic:g}: peak slip {run.peak_slip_inches:.2f} in "
+              f"({run.peak_slip:.4f} m), residual {run.residual_slip:+.4f} m, "
+              f"{run.slip_episodes} slip episode(s); Section 2.1: "
+              f"{run.mode_choice.get('mode (Section 2.1)', 'n/a')}")
     for line in result.comparisons:
         verdict = "agrees" if line.agrees else "differs"
         print(f"  {line.quantity}: the report gives {_words(line.report, line.unit)}, "

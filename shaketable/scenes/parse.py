@@ -21,6 +21,9 @@ Sections (``experiments/*.toml`` are the examples)::
     [table]      command, highpass, actuator, pitch, limits (shaketable.lab.stage)
     [sensors]    potentiometers, accelerometers, rate, noise... (shaketable.scenes.virtual_test)
     [theory]     cor = "calibrated" or a number: the test-vs-theory comparison of Section 3.7
+    [sliding]    static_friction = 0.3, dynamic_friction = 0.2 (or a list to compare): the
+                 same block and table motion also run sliding (Coulomb stick-slip,
+                 Section 4.5), beside the rocking runs, with Section 2.1's choice
 """
 
 from __future__ import annotations
@@ -66,7 +69,10 @@ OUTPUT_KEYS = {"figure", "csv", "parquet", "svg", "time_range"}
 REPORT_FIGURES = ("2.3", "2.4", "2.5", "2.6", "4.3.4")
 
 TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
-            "table", "sensors", "theory"}
+            "table", "sensors", "theory", "sliding"}
+
+#: Keys of a scene's ``[sliding]`` section (friction coefficients, dimensionless).
+SLIDING_KEYS = {"static_friction", "dynamic_friction"}
 
 #: Studies that recompute one of the report's tables (a ``[study]`` section).
 STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"},
@@ -107,6 +113,10 @@ class Scene:
     sensors : dict or None
         The raw ``[sensors]`` section; ``None`` when the scene has none (an
         empty section means the default instruments).
+    static_friction : float or None
+        ``block.static_friction``: mu_s for Section 2.1's sliding-or-rocking check.
+    sliding : tuple of (float, float)
+        ``[sliding]``: the (mu_s, mu_d) pairs of the sliding runs (empty: none).
     path : str
         Where the scene was read from.
     """
@@ -128,6 +138,7 @@ class Scene:
     sensors: dict | None = None
     theory: dict = field(default_factory=dict)
     static_friction: float | None = None
+    sliding: tuple = ()
     path: str = ""
 
     def mode(self) -> str | None:
@@ -293,7 +304,35 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
                  sensors=_checked(data, "sensors", where) if "sensors" in data else None,
                  theory=_checked(data, "theory", where),
                  static_friction=None if static_friction is None else float(static_friction),
+                 sliding=_sliding(data, motion, where),
                  path=where)
+
+
+def _sliding(data: dict, motion: dict, where: str) -> tuple:
+    """``[sliding]``: the (mu_s, mu_d) pairs to run, one per dynamic_friction given."""
+    if "sliding" not in data:
+        return ()
+    section = _table(data["sliding"], where, "sliding")
+    _only(section, SLIDING_KEYS, where, "sliding")
+    if motion["kind"] == "free":
+        raise SceneError(f"{where}: [sliding] needs a table motion; free rocking has none")
+    if "static_friction" not in section:
+        raise SceneError(f"{where}: sliding.static_friction is missing (mu_s, e.g. 0.3)")
+    static = section["static_friction"]
+    dynamic = section.get("dynamic_friction", static)
+    dynamics = dynamic if isinstance(dynamic, list) else [dynamic]
+    if not dynamics:
+        raise SceneError(f"{where}: sliding.dynamic_friction is an empty list")
+    for name, value in [("static_friction", static)] + [("dynamic_friction", d)
+                                                        for d in dynamics]:
+        if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                or not 0 <= value < math.inf:
+            raise SceneError(f"{where}: sliding.{name} must be a number >= 0 (a coefficient "
+                             f"of friction), got {value!r}")
+        if name == "dynamic_friction" and value > static:
+            raise SceneError(f"{where}: sliding.dynamic_friction {value!r} must not exceed "
+                             f"static_friction {static!r}")
+    return tuple((float(static), float(d)) for d in dynamics)
 
 
 def _study(data: dict, where: str) -> Study:

@@ -97,6 +97,7 @@ class SceneResult:
     comparisons: tuple = field(default_factory=tuple)
     table: TableRun | None = None
     tests: tuple = ()
+    slides: tuple = ()
 
     @property
     def main(self) -> RockingResult:
@@ -130,6 +131,8 @@ class SceneResult:
             summary["mode (Section 2.1)"] = self.scene.mode()
         if self.tests:
             summary["test vs theory"] = [test.metrics() for test in self.tests]
+        if self.slides:
+            summary["sliding"] = [run.summary() for run in self.slides]
         return summary
 
     def plot(self):
@@ -187,6 +190,15 @@ class SceneResult:
             label = "" if len(self.tests) == 1 else f"-{index + 1}"
             written.append(out / f"record{label}.csv")
             write_csv(written[-1], test.to_frame())
+        for index, run in enumerate(self.slides):
+            label = "" if len(self.slides) == 1 else f"-{index + 1}"
+            written.append(out / f"sliding{label}.csv")
+            write_csv(written[-1], run.to_frame())
+            if outputs.get("figure", True):
+                written.append(out / f"sliding{label}.png")
+                title = (f"{self.scene.source or self.scene.name}: the same block sliding, "
+                         f"mu_s {run.friction.static:g}, mu_d {run.friction.dynamic:g}")
+                save(run.plot(title=title), written[-1])
         return written
 
 
@@ -203,6 +215,9 @@ def run_scene(scene: Scene) -> SceneResult:
             raise SceneError(f"{scene.path}: [table]: {error}") from None
         felt = table.felt
     if scene.sensors is not None:
+        if scene.sliding:
+            raise SceneError(f"{scene.path}: [sliding] and [sensors] cannot be combined: the "
+                             "virtual instruments read a rocking block")
         return _run_virtual_tests(scene, motion, felt, table)
     runs = []
     for cor in scene.cors:
@@ -214,7 +229,24 @@ def run_scene(scene: Scene) -> SceneResult:
             raise SceneError(f"{scene.path}: [rocking]: {error}") from None
     comparisons = compare_with_report(scene, runs[0])
     return SceneResult(scene=scene, motion=felt, runs=tuple(runs),
-                       comparisons=tuple(comparisons), table=table)
+                       comparisons=tuple(comparisons), table=table,
+                       slides=_run_sliding(scene, felt))
+
+
+def _run_sliding(scene: Scene, felt: Motion | None) -> tuple:
+    """``[sliding]``: the same block on the same table motion, sliding, per (mu_s, mu_d)."""
+    if not scene.sliding or felt is None:
+        return ()
+    from shaketable.core.sliding_result import Friction
+    from shaketable.solvers.common import extended
+    from shaketable.solvers.sliding import slide
+
+    motion = extended(felt, scene.duration)
+    try:
+        return tuple(slide(motion, Friction(static, dynamic), block=scene.block)
+                     for static, dynamic in scene.sliding)
+    except ValueError as error:
+        raise SceneError(f"{scene.path}: [sliding]: {error}") from None
 
 
 def _run_virtual_tests(scene: Scene, commanded: Motion | None, felt: Motion | None,
