@@ -63,7 +63,7 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     if ax is None:
         _, ax = plt.subplots(figsize=(5, 4))
     rows = frame[frame["case"] == case]
-    for method, (color, marker) in STYLE.items():
+    for rank, (method, (color, marker)) in enumerate(STYLE.items()):
         group = rows[rows["method"] == method]
         if group.empty:
             continue
@@ -80,12 +80,21 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
             labels = list(group["setting"])
             for index, align in ((0, "right"), (len(labels) - 1, "left")):
                 if np.isfinite(error[index]):
+                    # at the error floor every method's labels would share one line:
+                    # stack them, one row per method
+                    lift = 3 + 8 * rank if error[index] <= ERROR_FLOOR * (1 + 1e-9) else 3
                     ax.annotate(_short(labels[index]), (time[index], error[index]),
-                                textcoords="offset points", xytext=(-3 if align == "right" else 3, 3),
+                                textcoords="offset points",
+                                xytext=(-3 if align == "right" else 3, lift),
                                 ha=align, fontsize=6.5, color=color)
     ax.axhline(1e-8, color="0.6", linewidth=0.8, linestyle=":")
     ax.set_ylim(ERROR_FLOOR / 3, 10.0)
     ax.set_title(case, fontsize=9)
+    # minor ticks unlabelled: on a panel spanning about one decade matplotlib labels
+    # them (2 x 10^-4, 4 x 10^-4, ...) and the labels overrun each other
+    from matplotlib.ticker import NullFormatter
+
+    ax.xaxis.set_minor_formatter(NullFormatter())
     ax.tick_params(labelsize=7)
     ax.grid(True, which="major", linewidth=0.3, alpha=0.6)
     return ax

@@ -68,6 +68,14 @@ def section_2_figure(frame, figure: str):
         axis.plot(duration, frame["engine [g]"], "o-", label="engine (exact Eq. 2-13)")
         axis.set_xscale("log")
         axis.set_yscale("log")
+        # plain decimal ticks on both log axes (no 4 x 10^1 labels piling up)
+        from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
+
+        axis.xaxis.set_major_locator(FixedLocator([0.01, 0.02, 0.05, 0.1]))
+        axis.yaxis.set_major_locator(FixedLocator([2, 3, 5, 10, 20, 30, 50]))
+        for ticks in (axis.xaxis, axis.yaxis):
+            ticks.set_major_formatter(ScalarFormatter())
+            ticks.set_minor_formatter(NullFormatter())
         axis.set_xlabel("half-sine pulse duration Ts/2 [s]")
         axis.set_ylabel("amplitude that overturns [g]")
         axis.set_title("Section 4.3 (4): single pulse on the 16 x 4 ft block", fontsize=10)

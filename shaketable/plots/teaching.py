@@ -124,7 +124,7 @@ def plot_cor_sweep(item, fig=None):
     right.set_ylim(-1.2, 1.2)
     right.legend(fontsize=7.5, frameon=False, loc="upper right")
     _finish(right, "θ/α: the lower COR rocks higher")
-    fig.suptitle(f"A lower COR can raise the peak: {_label(item.block)} block, "
+    fig.suptitle(f"A lower COR can raise the peak: {_label(item.block)} block\n"
                  f"{item.motion_name} (Section 4.3 (3), Figs. 4.13-4.14)", fontsize=10)
     fig.tight_layout()
     return fig
@@ -181,7 +181,7 @@ def plot_similar_blocks(item, fig=None):
                  title=f"max difference {item.scaling_difference:.1e} of the peak",
                  title_fontsize=7.5)
     _finish(right, "Scaling law: similar blocks, record slowed by √λ: same θ(p t)")
-    fig.suptitle(f"Geometrically similar blocks: the larger survives ({item.motion_name}; "
+    fig.suptitle(f"Geometrically similar blocks: the larger survives\n({item.motion_name}; "
                  "Section 2.4 (1), Tables 4.2-4.3)", fontsize=10)
     fig.tight_layout()
     return fig
