@@ -12,7 +12,7 @@ import sys
 
 #: Subcommand modules in ``shaketable.commands``, in the order ``--help`` shows them.
 SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "animate",
-               "slide"]
+               "slide", "spectrum"]
 
 
 def build_parser() -> argparse.ArgumentParser:
