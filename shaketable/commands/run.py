@@ -31,6 +31,12 @@ def _run(args) -> int:
         mark = "agrees" if line.agrees else "differs"
         print(f"  {line.quantity}: report {line.report} {line.unit}, reproduced "
               f"{line.reproduced} {line.unit} ({mark})")
+    if scene.ensemble:
+        from shaketable.scenes.ensemble import run_ensembles
+
+        more, lines = run_ensembles(scene, result.motion, out)
+        written += more
+        print("\n".join(lines))
     print("wrote " + ", ".join(str(path) for path in written))
     return 0
 
