@@ -372,7 +372,8 @@ def _mark(summary: dict) -> str:
 
 def table_predictability(name: str, *, members: int = 200,
                          perturbation: Perturbation | None = None, columns=None,
-                         seed: int = 0, threads: int | None = None) -> pd.DataFrame:
+                         seed: int = 0, motion_seed: int = 1,
+                         threads: int | None = None) -> pd.DataFrame:
     """Table 4.1, 4.2 or 4.3 recomputed with an ensemble per cell and a robust/fragile mark.
 
     Every cell is run ``members`` times (member 0 nominal, the others
@@ -388,6 +389,7 @@ def table_predictability(name: str, *, members: int = 200,
         One row per cell: height [ft], width [ft], cor [-], column, report (as
         printed), reproduced (the nominal run, "F" = overturns), verdict_agrees,
         mark ("robust" / "fragile P=0.32"), the :func:`summarize` columns.
+    ``motion_seed`` is the realisation of the substitute (artificial) columns.
     """
     from shaketable.studies.report_tables import (COLUMNS, column_motion, printed_table)
 
@@ -399,7 +401,7 @@ def table_predictability(name: str, *, members: int = 200,
     drawn = perturbed_members(members, perturbation, seed)
     shared = {}
     for column in columns:
-        motion = column_motion(column)
+        motion = column_motion(column, motion_seed)
         shared[column] = (motion, [shifted(motion, s * motion.dt) for s in drawn.start])
     cases, cells = [], []
     for _, line in printed.iterrows():
@@ -437,3 +439,30 @@ def agreement_counts(frame: pd.DataFrame) -> dict:
         result[label] = {"cells": int(len(part)),
                          "same F / not F (nominal run)": int(part["verdict_agrees"].sum())}
     return result
+
+
+def predictability_markdown(name: str, *, columns=None, motion_seed: int = 1,
+                            members: int = 200) -> list:
+    """Markdown lines for the reproduction report: the marks per cell and the two counts."""
+    frame = table_predictability(name, members=members, columns=columns,
+                                 motion_seed=motion_seed)
+    frame = frame.assign(cell=frame["report"] + " / " + frame["reproduced"] + " ("
+                         + frame["mark"] + ")")
+    wide = frame.pivot_table(index=["height [ft]", "width [ft]", "cor [-]"], columns="column",
+                             values="cell", aggfunc="first", sort=False).reset_index()
+    header = "| " + " | ".join(str(c) for c in wide.columns) + " |"
+    lines = ["", f"**How predictable each verdict is** ({members} copies per cell, every "
+             "input perturbed by 1e-9 relative; shaketable.studies.predictability). "
+             "robust: every copy reaches the same verdict; fragile: P(overturn) over the "
+             "copies, and the printed verdict is one draw of a chaotic response.", "",
+             header, "|" + "---|" * len(wide.columns)]
+    for _, row in wide.iterrows():
+        lines.append("| " + " | ".join(f"{v:g}" if isinstance(v, float) else str(v)
+                                       for v in row) + " |")
+    counts = agreement_counts(frame)
+    lines += ["", "| cells | count | same F / not F as the report (nominal run) |",
+              "|---|---|---|"]
+    for label, count in counts.items():
+        lines.append(f"| {label} | {count['cells']} | "
+                     f"{count['same F / not F (nominal run)']} |")
+    return lines
