@@ -88,3 +88,38 @@ def test_pacoima_s74w_2x1_cell_is_fragile():
     assert 0.0 < low < result.p_overturn < high < 1.0
     assert 0.0 < result.horizon < column_motion("pacoima S74W").duration
     assert "fragile" in result.describe()
+
+
+def test_simulate_ensemble_and_spectrum_from_the_command_line(tmp_path, capsys):
+    import json
+
+    from shaketable.cli import main
+
+    assert main(["simulate", "--block", "4x1ft", "--cor", "0.9", "--record",
+                 "pacoima-dam-s16e", "--duration", "4", "--ensemble", "6", "--perturb", "0",
+                 "--perturb-cor", "0.01", "--out", str(tmp_path / "sim")]) == 0
+    summary = json.loads((tmp_path / "sim" / "ensemble.json").read_text())
+    assert summary["members"] == 6 and summary["perturbation [-]"]["cor"] == 0.01
+    assert (tmp_path / "sim" / "ensemble.png").exists()
+    assert main(["spectrum", "--alpha", "0.25", "--p", "2", "--ratios", "2",
+                 "--tolerance", "1e-6", "--out", str(tmp_path / "spec")]) == 0
+    import pandas as pd
+
+    bands = pd.read_csv(tmp_path / "spec" / "spectrum.csv", comment="#")
+    first = bands[bands["verdict"] == "overturns"]["from a/(g tan alpha) [-]"].min()
+    # half-sine, omega/p = 2: 1.8015 (issue 16, the well-known value; four decimals)
+    assert first == pytest.approx(1.8015, abs=5e-5)
+    assert "overturns without impact" in capsys.readouterr().out
+
+
+def test_scene_ensemble_section_is_validated():
+    from shaketable.scenes.parse import SceneError, scene_from_dict
+
+    base = {"name": "e", "block": {"height": "4 ft", "width": "1 ft"},
+            "motion": {"kind": "record", "name": "pacoima-dam-s16e"}, "rocking": {"cor": 0.9}}
+    scene = scene_from_dict({**base, "ensemble": {"members": 50, "perturb_cor": 0.01}})
+    assert scene.ensemble == {"members": 50, "perturb_cor": 0.01}
+    with pytest.raises(SceneError, match="ensemble.members"):
+        scene_from_dict({**base, "ensemble": {"members": 1}})
+    with pytest.raises(SceneError, match="unknown key ensemble.spread"):
+        scene_from_dict({**base, "ensemble": {"spread": 0.1}})
