@@ -321,6 +321,10 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
                      "down": "as labelled, downward", "none": "left out"}[reading]
             cells = int(frame["column"].isin(pacoima).sum())
             lines.append(f"| {label} | {agreeing}/{cells} |")
+    from shaketable.studies.predictability import predictability_markdown  # issue 16
+
+    lines += predictability_markdown(study.table, columns=study.columns or None,
+                                     motion_seed=study.seed)
     return "\n".join(lines) + "\n"
 
 

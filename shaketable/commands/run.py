@@ -50,6 +50,12 @@ def _run(args) -> int:
               f"reproduced {_words(line.reproduced, line.unit)}: {verdict}")
     if scene.report.get("note"):
         print(f"  note: {scene.report['note']}")
+    if scene.ensemble:
+        from shaketable.scenes.ensemble import run_ensembles
+
+        more, lines = run_ensembles(scene, result.motion, out)
+        written += more
+        print("\n".join(lines))
     print("wrote " + ", ".join(str(path) for path in written))
     return 0
 

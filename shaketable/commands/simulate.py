@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 
@@ -32,7 +33,9 @@ def _simulate(args) -> int:
     if motion is not None:
         motion = scaled(motion, args.scale)
     theta0 = _resolve_angle(args.theta0, block)
-    notice_first_compile(args.quiet)
+    notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else ("engine",))
+    if args.ensemble:
+        return _ensemble(args, block, motion, out)
     result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
                       method=args.method, subdivisions=args.subdivisions)
     write_csv(out / "history.csv", result.to_frame())
@@ -40,6 +43,36 @@ def _simulate(args) -> int:
     plots.save(result.plot(), out / f"calcomp.{args.format}")
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
     print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}, {out / ('calcomp.' + args.format)}")
+    return 0
+
+
+def _ensemble(args, block, motion, out) -> int:
+    from shaketable.plots import base as plots
+    from shaketable.studies.predictability import Perturbation, ensemble
+
+    if motion is None:
+        raise ValueError("--ensemble needs a --record (free rocking from --theta0 is not chaotic)")
+    spread = args.perturb
+    perturbation = Perturbation(
+        amplitude=spread if args.perturb_amplitude is None else args.perturb_amplitude,
+        cor=spread if args.perturb_cor is None else args.perturb_cor,
+        size=spread if args.perturb_size is None else args.perturb_size,
+        start=spread if args.perturb_start is None else args.perturb_start)
+    result = ensemble(block, motion, cor=args.cor, members=args.ensemble,
+                      perturbation=perturbation, seed=args.seed, duration=args.duration,
+                      method=args.method, threshold=args.horizon_threshold)
+    from shaketable.core.files import write_csv, write_text
+
+    write_csv(out / "ensemble.csv", result.to_frame())
+    summary = {key: (value if not isinstance(value, float) or math.isfinite(value) else str(value))
+               for key, value in result.summary.items()}
+    summary["perturbation [-]"] = dataclasses.asdict(perturbation)
+    write_text(out / "ensemble.json", json.dumps(summary, indent=2, default=float))
+    plots.save(result.plot().figure, out / f"ensemble.{args.format}")
+    print(f"{block.describe()} block, COR {args.cor}, {args.ensemble} members: "
+          f"{result.describe()}")
+    print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
+          f"{out / ('ensemble.' + args.format)}")
     return 0
 
 
@@ -63,6 +96,20 @@ def register(commands) -> None:
                      choices=list(METHODS))
     sim.add_argument("--subdivisions", type=int, default=4,
                      help="steps per sample for predictor-corrector")
+    ens = sim.add_argument_group(
+        "ensemble", "how predictable the verdict is: perturbed copies of the run "
+        "(shaketable.studies.predictability)")
+    ens.add_argument("--ensemble", type=int, default=0, metavar="N",
+                     help="run N perturbed copies (member 0 nominal) and report P(overturn)")
+    ens.add_argument("--perturb", type=float, default=1e-9,
+                     help="relative spread of every input (amplitude, COR, size, start) "
+                          "[-] (default 1e-9)")
+    for name in ("amplitude", "cor", "size", "start"):
+        ens.add_argument(f"--perturb-{name}", type=float,
+                         help=f"relative spread of the {name} [-] (default --perturb)")
+    ens.add_argument("--seed", type=int, default=0, help="seed of the draws")
+    ens.add_argument("--horizon-threshold", type=float, default=1e-3,
+                     help="horizon: |d theta| above this many alpha (default 1e-3)")
     sim.add_argument("--format", default="png", choices=["png", "svg", "pdf"])
     sim.add_argument("--out", default="shaketable-out", help="output folder")
     sim.set_defaults(handler=_simulate)

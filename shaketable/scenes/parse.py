@@ -69,7 +69,7 @@ OUTPUT_KEYS = {"figure", "csv", "parquet", "svg", "time_range"}
 REPORT_FIGURES = ("2.3", "2.4", "2.5", "2.6", "4.3.4")
 
 TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
-            "table", "sensors", "theory", "sliding"}
+            "table", "sensors", "theory", "sliding", "ensemble"}
 
 #: Keys of a scene's ``[sliding]`` section (friction coefficients, dimensionless).
 SLIDING_KEYS = {"static_friction", "dynamic_friction"}
@@ -140,6 +140,7 @@ class Scene:
     static_friction: float | None = None
     sliding: tuple = ()
     path: str = ""
+    ensemble: dict = field(default_factory=dict)
 
     def mode(self) -> str | None:
         """Sliding or rocking by Section 2.1 (mu_s against B/H), when ``static_friction`` is given."""
@@ -305,7 +306,7 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
                  theory=_checked(data, "theory", where),
                  static_friction=None if static_friction is None else float(static_friction),
                  sliding=_sliding(data, motion, where),
-                 path=where)
+                 path=where, ensemble=_ensemble_section(data, where))
 
 
 def _sliding(data: dict, motion: dict, where: str) -> tuple:
@@ -379,6 +380,20 @@ def _study(data: dict, where: str) -> Study:
 
 
 # --------------------------------------------------------------------------- helpers
+def _ensemble_section(data: dict, where: str) -> dict:
+    """The raw ``[ensemble]`` section, validated now (scenes.ensemble)."""
+    from shaketable.scenes.ensemble import ensemble_options
+
+    section = _table(data.get("ensemble", {}), where, "ensemble")
+    if section or "ensemble" in data:
+        try:
+            ensemble_options(section, where)
+        except ValueError as error:
+            raise SceneError(str(error)) from None
+        return dict(section) or {"members": 200}
+    return {}
+
+
 def _checked(data: dict, section: str, where: str) -> dict:
     """A raw ``[sensors]`` or ``[theory]`` section, validated now (errors at load time)."""
     from shaketable.scenes.virtual_test import sensors_from_dict, theory_from_dict

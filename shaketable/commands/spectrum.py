@@ -1,0 +1,109 @@
+"""``shaketable spectrum``: overturning spectrum of pulses (every overturn/safe band)."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from shaketable.core.constants import G
+from shaketable.core.geometry import Block
+
+
+def parse_ratios(text: str) -> list:
+    """omega/p values: ``"1,2,3"`` or a range ``"1:10:0.5"`` (start:stop:step, stop included)."""
+    text = str(text).strip()
+    if ":" in text:
+        parts = [float(x) for x in text.split(":")]
+        if len(parts) != 3 or parts[2] <= 0 or parts[1] < parts[0]:
+            raise ValueError(f"--ratios {text!r}: a range is start:stop:step with step > 0")
+        count = int(round((parts[1] - parts[0]) / parts[2]))
+        return [parts[0] + k * parts[2] for k in range(count + 1)]
+    try:
+        values = [float(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise ValueError(f"--ratios {text!r}: give numbers separated by commas, or "
+                         "start:stop:step") from None
+    if not values or min(values) <= 0:
+        raise ValueError(f"--ratios {text!r}: omega/p values must be positive")
+    return values
+
+
+def block_of(block: str | None, alpha: float | None, p: float | None) -> Block:
+    """The block from ``HxW`` with a unit, or from alpha [rad] and p [rad/s]."""
+    if block is not None:
+        if alpha is not None or p is not None:
+            raise ValueError("give either --block or --alpha and --p, not both")
+        return Block.parse(block)
+    if alpha is None or p is None:
+        raise ValueError("give --block HxW (e.g. 16x4ft) or both --alpha [rad] and --p [rad/s]")
+    if p <= 0:
+        raise ValueError(f"--p must be positive [rad/s], got {p!r}")
+    return Block.from_slenderness(3 * G / (4 * p * p), alpha)   # p^2 = 3 g / (4 R)
+
+
+def cor_of(text: str):
+    """A number or ``housner``."""
+    if str(text).lower() == "housner":
+        return "housner"
+    return float(text)
+
+
+def _spectrum(args) -> int:
+    from shaketable.plots import base as plots
+    from shaketable.studies.overturning_spectrum import overturning_spectrum
+
+    block = block_of(args.block, args.alpha, args.p)
+    start = time.perf_counter()
+    result = overturning_spectrum(block, pulses=args.pulse or ["half-sine"],
+                                  ratios=parse_ratios(args.ratios), cor=cor_of(args.cor),
+                                  ceiling=args.ceiling, scan_step=args.scan_step,
+                                  tolerance=args.tolerance)
+    elapsed = time.perf_counter() - start
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    written = [out / "spectrum.csv"]
+    result.to_csv(written[0])
+    if args.parquet:
+        written.append(out / "spectrum.parquet")
+        result.to_frame().to_parquet(written[-1], index=False)
+    ax = result.plot()
+    written.append(out / f"spectrum.{args.format}")
+    plots.save(ax.figure, written[-1])
+    bands = result.to_frame()
+    print(f"{block.describe()} block (alpha {block.alpha:.6g} rad, p {block.p:.6g} rad/s), "
+          f"COR {result.cor:.6g}: {len(bands)} bands, {result.runs} runs, {elapsed:.1f} s")
+    for _, row in bands[bands["verdict"] == "overturns"].iterrows():
+        print(f"  {row['pulse']:>10} omega/p {row['omega/p [-]']:g}: overturns "
+              f"{row['how']} from {row['from a/(g tan alpha) [-]']:.7g} to "
+              f"{row['to a/(g tan alpha) [-]']:.7g}")
+    if result.flags:
+        print(f"  {len(result.flags)} flag(s): windows narrower than the scan cannot be "
+              f"excluded there (see {written[0]})")
+    print("wrote " + ", ".join(str(path) for path in written))
+    return 0
+
+
+def register(commands) -> None:
+    """Add the ``spectrum`` subcommand to an argparse subparsers object."""
+    spec = commands.add_parser(
+        "spectrum", help="overturning spectrum of pulses: every overturn/safe band, CSV and figure",
+        description="Every overturn/safe band edge in a/(g tan alpha) of a block under pulses, "
+                    "over omega/p (shaketable.studies.overturning_spectrum).")
+    spec.add_argument("--block", help="HEIGHTxWIDTH with unit, e.g. 16x4ft")
+    spec.add_argument("--alpha", type=float, help="block angle alpha [rad] (with --p)")
+    spec.add_argument("--p", type=float, help="frequency parameter p [rad/s] (with --alpha)")
+    spec.add_argument("--cor", default="housner",
+                      help="coefficient of restitution [0-1] or 'housner' (1 - 1.5 sin^2 alpha)")
+    spec.add_argument("--pulse", action="append",
+                      help="half-sine, one-sine, one-cosine, type-A, type-B, type-C1, ..., ricker "
+                           "(repeat for several; default half-sine)")
+    spec.add_argument("--ratios", default="1,2,3,4,6,8,10",
+                      help="omega/p values: 1,2,4 or start:stop:step (default 1,2,3,4,6,8,10)")
+    spec.add_argument("--ceiling", type=float, help="largest a/(g tan alpha) examined [-]")
+    spec.add_argument("--scan-step", type=float, default=0.005, help="relative scan step [-]")
+    spec.add_argument("--tolerance", type=float, default=1e-8,
+                      help="relative width of each band edge [-]")
+    spec.add_argument("--parquet", action="store_true", help="also write spectrum.parquet")
+    spec.add_argument("--format", default="png", choices=["png", "svg", "pdf"])
+    spec.add_argument("--out", default="shaketable-out", help="output folder")
+    spec.set_defaults(handler=_spectrum)

@@ -1,0 +1,62 @@
+"""Overturning spectra in the style of Zhang & Makris (2001): shaded overturning regions
+on the omega/p - a/(g tan alpha) plane, with Housner's Eq. (2-8) of the report."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shaketable.plots.base import pyplot
+
+
+def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
+    """Overturn (shaded) and safe bands of one pulse of an :class:`OverturningSpectrum`.
+
+    Each omega/p of the spectrum is a vertical strip (half-way to its
+    neighbours); overturning without impact and after impacts are shaded
+    differently. Housner's Eq. (2-8), a/(g tan alpha) = sqrt(1 + (omega/p)^2)
+    (the half-sine estimate), is drawn for comparison.
+
+    Returns
+    -------
+    matplotlib.axes.Axes (the last one when several pulses make several panels)
+    """
+    plt = pyplot()
+    bands = spectrum.bands
+    pulses = [pulse] if pulse else list(dict.fromkeys(bands["pulse"]))
+    if ax is None:
+        _, axes = plt.subplots(1, len(pulses), figsize=(4.6 * len(pulses), 4.2), squeeze=False)
+        axes = list(axes[0])
+    else:
+        axes = [ax] * len(pulses)
+    for axis, kind in zip(axes, pulses):
+        rows = bands[bands["pulse"] == kind]
+        ratios = np.array(sorted(set(rows["omega/p [-]"])))
+        edges = np.concatenate([[ratios[0] - 0.5 * (ratios[1] - ratios[0]) if ratios.size > 1
+                                 else ratios[0] - 0.5],
+                                0.5 * (ratios[1:] + ratios[:-1]),
+                                [ratios[-1] + 0.5 * (ratios[-1] - ratios[-2]) if ratios.size > 1
+                                 else ratios[0] + 0.5]])
+        labelled = set()
+        for k, ratio in enumerate(ratios):
+            for _, row in rows[np.isclose(rows["omega/p [-]"], ratio)].iterrows():
+                if row["verdict"] != "overturns":
+                    continue
+                without = row["impacts"] == 0
+                label = "overturns without impact" if without else "overturns after impact(s)"
+                axis.fill_between([edges[k], edges[k + 1]], row["from a/(g tan alpha) [-]"],
+                                  row["to a/(g tan alpha) [-]"],
+                                  color="#d95f02" if without else "#7570b3", alpha=0.55,
+                                  lw=0, label=None if label in labelled else label)
+                labelled.add(label)
+        x = np.linspace(max(0.0, edges[0]), edges[-1], 200)
+        axis.plot(x, np.sqrt(1 + x ** 2), "k--", lw=1, label="Eq. (2-8) (Housner)")
+        axis.set_xlim(edges[0], edges[-1])
+        axis.set_ylim(0, float(rows["to a/(g tan alpha) [-]"].max()))
+        axis.set_xlabel("omega / p [-]")
+        axis.set_ylabel("a / (g tan alpha) [-]")
+        block = spectrum.block
+        axis.set_title(f"{kind}: alpha {block.alpha:.3g} rad, p {block.p:.3g} rad/s, "
+                       f"COR {spectrum.cor:.3g}\n(white: safe)", fontsize=9)
+        axis.grid(True, lw=0.3, alpha=0.6)
+        axis.legend(fontsize=7, loc="upper left")
+    return axes[-1]
