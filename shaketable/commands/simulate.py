@@ -52,6 +52,9 @@ def _ensemble(args, block, motion, out) -> int:
 
     if motion is None:
         raise ValueError("--ensemble needs a --record (free rocking from --theta0 is not chaotic)")
+    if args.ensemble < 2:
+        raise ValueError(f"--ensemble must be 2 or more members (the nominal run and its "
+                         f"perturbed copies), got {args.ensemble}")
     spread = args.perturb
     perturbation = Perturbation(
         amplitude=spread if args.perturb_amplitude is None else args.perturb_amplitude,
@@ -64,7 +67,7 @@ def _ensemble(args, block, motion, out) -> int:
     from shaketable.core.files import write_csv, write_text
 
     write_csv(out / "ensemble.csv", result.to_frame())
-    summary = {key: (value if not isinstance(value, float) or math.isfinite(value) else str(value))
+    summary = {key: (value if not isinstance(value, float) or math.isfinite(value) else None)
                for key, value in result.summary.items()}
     summary["perturbation [-]"] = dataclasses.asdict(perturbation)
     write_text(out / "ensemble.json", json.dumps(summary, indent=2, default=float))

@@ -2,28 +2,42 @@
 
 from __future__ import annotations
 
+import math
 import time
-from pathlib import Path
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
+
+#: Most values of omega/p one spectrum may ask for (each costs a scan and bisections).
+MAX_RATIOS = 1000
 
 
 def parse_ratios(text: str) -> list:
     """omega/p values: ``"1,2,3"`` or a range ``"1:10:0.5"`` (start:stop:step, stop included)."""
     text = str(text).strip()
     if ":" in text:
-        parts = [float(x) for x in text.split(":")]
-        if len(parts) != 3 or parts[2] <= 0 or parts[1] < parts[0]:
-            raise ValueError(f"--ratios {text!r}: a range is start:stop:step with step > 0")
+        try:
+            parts = [float(x) for x in text.split(":")]
+        except ValueError:
+            raise ValueError(f"--ratios {text!r}: a range is start:stop:step, three numbers") \
+                from None
+        if len(parts) != 3 or not all(math.isfinite(x) for x in parts) or parts[2] <= 0 \
+                or parts[1] < parts[0] or parts[0] <= 0:
+            raise ValueError(f"--ratios {text!r}: a range is start:stop:step with "
+                             f"0 < start <= stop and step > 0")
         count = int(round((parts[1] - parts[0]) / parts[2]))
+        if count > MAX_RATIOS:
+            raise ValueError(f"--ratios {text!r} asks for {count + 1} values of omega/p; at "
+                             f"most {MAX_RATIOS} in one spectrum")
         return [parts[0] + k * parts[2] for k in range(count + 1)]
     try:
         values = [float(x) for x in text.split(",") if x.strip()]
     except ValueError:
         raise ValueError(f"--ratios {text!r}: give numbers separated by commas, or "
                          "start:stop:step") from None
-    if not values or min(values) <= 0:
+    if len(values) > MAX_RATIOS:
+        raise ValueError(f"--ratios: at most {MAX_RATIOS} values of omega/p in one spectrum")
+    if not values or min(values) <= 0 or not all(math.isfinite(x) for x in values):
         raise ValueError(f"--ratios {text!r}: omega/p values must be positive")
     return values
 
@@ -49,23 +63,25 @@ def cor_of(text: str):
 
 
 def _spectrum(args) -> int:
+    from shaketable.commands.common import notice_first_compile
+    from shaketable.core.files import atomic_write, prepare_output_folder, write_parquet
     from shaketable.plots import base as plots
     from shaketable.studies.overturning_spectrum import overturning_spectrum
 
     block = block_of(args.block, args.alpha, args.p)
+    out = prepare_output_folder(args.out)
+    notice_first_compile(args.quiet, which=("batch",))
     start = time.perf_counter()
     result = overturning_spectrum(block, pulses=args.pulse or ["half-sine"],
                                   ratios=parse_ratios(args.ratios), cor=cor_of(args.cor),
                                   ceiling=args.ceiling, scan_step=args.scan_step,
                                   tolerance=args.tolerance)
     elapsed = time.perf_counter() - start
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     written = [out / "spectrum.csv"]
-    result.to_csv(written[0])
+    atomic_write(written[0], result.to_csv)
     if args.parquet:
         written.append(out / "spectrum.parquet")
-        result.to_frame().to_parquet(written[-1], index=False)
+        write_parquet(written[-1], result.to_frame())
     ax = result.plot()
     written.append(out / f"spectrum.{args.format}")
     plots.save(ax.figure, written[-1])

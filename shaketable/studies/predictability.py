@@ -177,16 +177,21 @@ def summarize(frame: pd.DataFrame) -> dict:
     ratio = frame["max_theta_ratio [-]"].to_numpy()
     n, k = len(frame), int(overturned.sum())
     low, high = wilson_interval(k, n)
+    # the peak statistics are of the members that stand: an overturned member has no
+    # peak ((pi/2)/alpha is where the run stopped, not a response), it is counted in P
     standing = ratio[~overturned]
+
+    def statistic(function):
+        return float(function(standing)) if standing.size else math.nan
+
     return {"members": n, "overturned": k, "P(overturn) [-]": k / n,
             "P low [-]": low, "P high [-]": high,
             "nominal overturned": bool(overturned[0]),
             "robust": k in (0, n),
-            "median max theta/alpha [-]": float(np.median(ratio)),
-            "p05 max theta/alpha [-]": float(np.percentile(ratio, 5)),
-            "p95 max theta/alpha [-]": float(np.percentile(ratio, 95)),
-            "median max theta/alpha standing [-]": (float(np.median(standing))
-                                                    if standing.size else math.nan)}
+            "standing members": int(standing.size),
+            "median max theta/alpha [-]": statistic(np.median),
+            "p05 max theta/alpha [-]": statistic(lambda x: np.percentile(x, 5)),
+            "p95 max theta/alpha [-]": statistic(lambda x: np.percentile(x, 95))}
 
 
 def trajectories(block: Block, motion: Motion, cor: float, *, members: int = 5,
@@ -291,9 +296,11 @@ class EnsembleResult:
         verdict = ("robust" if s["robust"] else "fragile") + (
             f": P(overturn) = {s['P(overturn) [-]']:.3f} [{s['P low [-]']:.3f}, "
             f"{s['P high [-]']:.3f}] (Wilson 95 %) over {s['members']} members")
-        return (f"{verdict}; max theta/alpha median {s['median max theta/alpha [-]']:.3f}, "
-                f"5-95 % {s['p05 max theta/alpha [-]']:.3f}-{s['p95 max theta/alpha [-]']:.3f}"
-                f"; predictability horizon {s['horizon [s]']:.2f} s "
+        peaks = ("every member overturns (F)" if not s["standing members"] else
+                 f"max theta/alpha of the {s['standing members']} standing members: median "
+                 f"{s['median max theta/alpha [-]']:.3f}, 5-95 % "
+                 f"{s['p05 max theta/alpha [-]']:.3f}-{s['p95 max theta/alpha [-]']:.3f}")
+        return (f"{verdict}; {peaks}; predictability horizon {s['horizon [s]']:.2f} s "
                 f"(|d theta| > {self.threshold:g} alpha)")
 
     def to_frame(self) -> pd.DataFrame:

@@ -60,7 +60,9 @@ def test_unperturbed_ensemble_is_the_run_repeated():
                          horizon_spread=0.0)
     ratios = result.to_frame()["max_theta_ratio [-]"].to_numpy()
     assert np.all(ratios == ratios[0])
-    assert ratios[0] == pytest.approx(single.max_theta_ratio, rel=1e-12)
+    # the batch column is max |theta| / alpha of the run, (pi/2)/alpha for an overturned
+    # member (ranked above every survivor in the ensemble's percentiles)
+    assert ratios[0] == pytest.approx(single.max_abs_theta / block.alpha, rel=1e-12)
     assert result.robust
     assert result.p_overturn in (0.0, 1.0)
     assert result.horizon == math.inf       # identical copies never diverge
