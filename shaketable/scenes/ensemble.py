@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 ENSEMBLE_KEYS = {"members", "perturb", "perturb_amplitude", "perturb_cor", "perturb_size",
                  "perturb_start", "seed", "horizon_threshold"}
@@ -51,7 +50,7 @@ def ensemble_options(section: dict, where: str) -> dict:
             "threshold": float(threshold)}
 
 
-def run_ensembles(scene, felt, out) -> list:
+def run_ensembles(scene, felt, out) -> tuple[list, list[str]]:
     """One ensemble per COR of ``scene`` on the motion the block feels; write its files.
 
     Returns ``(written paths, lines to print)``.
@@ -60,8 +59,9 @@ def run_ensembles(scene, felt, out) -> list:
     from shaketable.studies.predictability import Perturbation, ensemble
 
     options = ensemble_options(scene.ensemble, scene.path)
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    from shaketable.core.files import prepare_output_folder, write_csv, write_text
+
+    out = prepare_output_folder(out, "out")
     written, lines = [], []
     for index, cor in enumerate(scene.cors):
         label = "" if len(scene.cors) == 1 else f"-cor{cor:g}"
@@ -70,11 +70,11 @@ def run_ensembles(scene, felt, out) -> list:
                           threshold=options["threshold"], duration=scene.duration,
                           method=scene.method)
         written.append(out / f"ensemble{label}.csv")
-        result.to_frame().to_csv(written[-1], index=False)
+        write_csv(written[-1], result.to_frame())
         summary = {key: value if not isinstance(value, float) or math.isfinite(value)
-                   else str(value) for key, value in result.summary.items()}
+                   else None for key, value in result.summary.items()}
         written.append(out / f"ensemble{label}.json")
-        written[-1].write_text(json.dumps(summary, indent=2, default=float))
+        write_text(written[-1], json.dumps(summary, indent=2, default=float))
         written.append(out / f"ensemble{label}.png")
         save(result.plot().figure, written[-1])
         lines.append(f"{scene.name}: COR {cor:g}, {options['members']} members: "

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 
 @dataclass(frozen=True)
@@ -70,11 +70,7 @@ class ComparisonTally:
         ``{kind: [agree, differ]}``.
     """
 
-    counts: dict = None
-
-    def __post_init__(self):
-        if self.counts is None:
-            self.counts = {kind: [0, 0] for kind in COMPARISON_KINDS}
+    counts: dict = field(default_factory=lambda: {kind: [0, 0] for kind in COMPARISON_KINDS})
 
     def add(self, kind: str, agrees: bool, number: int = 1) -> None:
         """Count ``number`` comparisons of ``kind`` that agree (or differ)."""

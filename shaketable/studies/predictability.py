@@ -413,7 +413,12 @@ def table_predictability(name: str, *, members: int = 200,
     cases, cells = [], []
     for _, line in printed.iterrows():
         height, width = float(line["height [ft]"]), float(line["width [ft]"])
-        cor = float(line["cor [-]"]) if "cor [-]" in line else fixed_cor
+        if "cor [-]" in line:
+            cor = float(line["cor [-]"])
+        elif fixed_cor is not None:
+            cor = fixed_cor
+        else:
+            raise ValueError(f"{name}: the printed table gives no COR and none is fixed for it")
         block = Block.from_feet(height, width)
         for column in columns:
             motion, copies = shared[column]
