@@ -58,8 +58,6 @@ def _calibrate(args) -> int:
     from shaketable.plots.base import save
 
     block = Block.parse(args.block)
-    out = prepare_output_folder(args.out or Path("shaketable-out")
-                                / f"calibrate-{Path(args.record).stem}")
     height = None
     if args.height is not None:
         height = parse(args.height, "length", where="--height")
@@ -73,6 +71,9 @@ def _calibrate(args) -> int:
 
     notice_first_compile(args.quiet)
     anti_alias = _anti_alias(args.anti_alias, record, order)
+    # the output folder is checked before the fit (the expensive part), after the inputs
+    out = prepare_output_folder(args.out or Path("shaketable-out")
+                                / f"calibrate-{Path(args.record).stem}")
     result = calibrate(record, block, anti_alias=anti_alias,
                        filter_order=order if anti_alias == "fit" else "auto",
                        bootstrap=args.bootstrap, seed=args.seed, interval=args.interval)

@@ -28,11 +28,11 @@ def _simulate(args) -> int:
     from shaketable.solvers.api import simulate
 
     block = Block.parse(args.block)
-    out = prepare_output_folder(args.out)
     motion = load_motion(args) if args.record else None
     if motion is not None:
         motion = scaled(motion, args.scale)
     theta0 = _resolve_angle(args.theta0, block)
+    out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
     notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else ("engine",))
     if args.ensemble:
         return _ensemble(args, block, motion, out)
