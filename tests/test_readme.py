@@ -1,9 +1,10 @@
 """Every command of the README's "Use" section runs verbatim from an empty folder (issue 13).
 
 The ``shaketable ...`` lines of the README's bash blocks (the set-up block's pip lines
-excepted) and its Python blocks are extracted and run, each in a fresh temporary
-folder outside the repository, through ``python -m shaketable`` (the same entry
-point as the console script) and a fresh interpreter: exit status 0, no traceback.
+excepted) are run in order in one temporary folder outside the repository, as a user
+would type them (so a folder an earlier command wrote is there for the later ones),
+through ``python -m shaketable`` (the same entry point as the console script); the
+Python blocks in a fresh interpreter: exit status 0, no traceback, files written.
 """
 
 from __future__ import annotations
@@ -51,15 +52,26 @@ def test_the_readme_has_commands_and_python():
     assert len(COMMANDS) >= 8 and PYTHON_BLOCKS
 
 
+@pytest.fixture(scope="module")
+def user_folder(tmp_path_factory):
+    """The one folder, empty at first, where the README's commands run one after another."""
+    return tmp_path_factory.mktemp("readme-user")
+
+
+def _files(folder):
+    return {path: path.stat().st_mtime_ns for path in folder.rglob("*") if path.is_file()}
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("command", COMMANDS)
-def test_readme_command_runs_verbatim_from_an_empty_folder(command, tmp_path):
+def test_readme_command_runs_verbatim_from_an_empty_folder(command, user_folder):
+    before = _files(user_folder)
     argv = [sys.executable, "-m", "shaketable"] + shlex.split(command)[1:]
-    done = subprocess.run(argv, cwd=tmp_path, env=_environment(), capture_output=True,
+    done = subprocess.run(argv, cwd=user_folder, env=_environment(), capture_output=True,
                           text=True, timeout=600)
     assert "Traceback" not in done.stderr, done.stderr
     assert done.returncode == 0, done.stderr
-    assert any(tmp_path.iterdir()), "the command wrote nothing"
+    assert _files(user_folder) != before, "the command wrote nothing"
 
 
 @pytest.mark.parametrize("index", range(len(PYTHON_BLOCKS)))

@@ -11,8 +11,9 @@ import numpy as np
 
 from shaketable.calibration.fit import calibrate
 from shaketable.calibration.peaks import find_peaks, noise_level
-from shaketable.calibration.record import FreeRockingRecord, json_safe
+from shaketable.calibration.record import FreeRockingRecord
 from shaketable.calibration.result import Calibration, predict
+from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
 from shaketable.solvers.api import simulate
 
@@ -68,7 +69,7 @@ class FreeRockingComparison:
 
     def summary(self) -> dict:
         """Scalar results (JSON-ready)."""
-        return {key: json_safe(value) for key, value in {
+        return {key: json_ready(value) for key, value in {
             "cor [-]": self.calibration.cor,
             "peak_ratio_mean [-]": float(np.mean(self.peak_ratios)),
             "peak_ratio_max_deviation [-]": float(np.max(np.abs(self.peak_ratios - 1.0))),

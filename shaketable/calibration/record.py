@@ -406,11 +406,3 @@ ANTI_ALIAS = {"fit": "Butterworth low-pass, cutoff fitted", "known": "the given 
               "none": "no filter"}
 
 
-def json_safe(value):
-    if isinstance(value, (float, np.floating)):
-        return None if not np.isfinite(value) else float(value)
-    if isinstance(value, (np.integer,)):
-        return int(value)
-    if isinstance(value, np.bool_):
-        return bool(value)
-    return value

@@ -12,8 +12,9 @@ import numpy as np
 
 from shaketable.calibration.model import PARAMETERS
 from shaketable.calibration.peaks import PeakEstimate, PeriodFit
-from shaketable.calibration.record import FreeRockingRecord, json_safe
+from shaketable.calibration.record import FreeRockingRecord
 from shaketable.core.constants import INCH
+from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.solvers.api import simulate
@@ -169,7 +170,7 @@ class Calibration:
                          "period_fit_width [m]": effective.width,
                          "period_fit_rms [s]": self.periods.rms})
         data["notes"] = list(self.notes)
-        return {key: json_safe(value) for key, value in data.items()}
+        return {key: json_ready(value) for key, value in data.items()}
 
     def to_json(self, path=None) -> str:
         """The summary as JSON text; written to ``path`` when given."""

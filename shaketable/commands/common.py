@@ -8,6 +8,19 @@ import sys
 from pathlib import Path
 
 
+def add_record_arguments(parser) -> None:
+    """The options :func:`load_motion` and :func:`scaled` read: --record, --units, --dt,
+    --scale, --no-vertical."""
+    parser.add_argument("--record", help="bundled record name (e.g. pacoima-dam-s16e) or a file")
+    parser.add_argument("--units", help="units of the record file: g, m/s2 or gal (needed for "
+                                        "a text file, and for an AT2 whose header does not "
+                                        "state them)")
+    parser.add_argument("--dt", type=float, help="sample interval of a one-column record [s]")
+    parser.add_argument("--scale", type=float, default=1.0, help="factor on the record [-]")
+    parser.add_argument("--no-vertical", action="store_true",
+                        help="drop the vertical component")
+
+
 def load_motion(args):
     """``--record``: a bundled record by name, or a record file (``--units``, ``--dt``)."""
     from shaketable.ground import records

@@ -6,7 +6,12 @@ import dataclasses
 import json
 import math
 
-from shaketable.commands.common import load_motion, notice_first_compile, scaled
+from shaketable.commands.common import (
+    add_record_arguments,
+    load_motion,
+    notice_first_compile,
+    scaled,
+)
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -64,11 +69,10 @@ def _ensemble(args, block, motion, out) -> int:
     result = ensemble(block, motion, cor=args.cor, members=args.ensemble,
                       perturbation=perturbation, seed=args.seed, duration=args.duration,
                       method=args.method, threshold=args.horizon_threshold)
-    from shaketable.core.files import write_csv, write_text
+    from shaketable.core.files import json_ready_dict, write_csv, write_text
 
     write_csv(out / "ensemble.csv", result.to_frame())
-    summary = {key: (value if not isinstance(value, float) or math.isfinite(value) else None)
-               for key, value in result.summary.items()}
+    summary = json_ready_dict(result.summary)
     summary["perturbation [-]"] = dataclasses.asdict(perturbation)
     write_text(out / "ensemble.json", json.dumps(summary, indent=2, default=float))
     plots.save(result.plot().figure, out / f"ensemble.{args.format}")
@@ -89,11 +93,7 @@ def register(commands) -> None:
     sim.add_argument("--cor", type=float, required=True, help="coefficient of restitution [0-1]")
     sim.add_argument("--theta0", default="0rad",
                      help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad)")
-    sim.add_argument("--record", help="bundled record name (e.g. pacoima-dam-s16e) or a file")
-    sim.add_argument("--units", help="units of the record file: g, m/s2 or gal (needed for a text file, and for an AT2 whose header does not state them)")
-    sim.add_argument("--dt", type=float, help="sample interval of a one-column record [s]")
-    sim.add_argument("--scale", type=float, default=1.0, help="factor on the record [-]")
-    sim.add_argument("--no-vertical", action="store_true", help="drop the vertical component")
+    add_record_arguments(sim)
     sim.add_argument("--duration", type=float, help="length of the run [s]")
     sim.add_argument("--method", default="fast",
                      choices=list(METHODS))

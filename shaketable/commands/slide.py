@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from shaketable.commands.common import load_motion, scaled
+from shaketable.commands.common import add_record_arguments, load_motion, scaled
 from shaketable.core.constants import INCH
 
 
@@ -54,11 +54,7 @@ def register(commands) -> None:
     sub = commands.add_parser(
         "slide", help="sliding block (Coulomb stick-slip): one run, a mu_d sweep, or Table 4.4",
         description="Sliding mode of Section 2.1 / 4.5: peak and residual slip under a record.")
-    sub.add_argument("--record", help="bundled record name (e.g. pacoima-dam-s16e) or a file")
-    sub.add_argument("--units", help="units of the record file: g, m/s2 or gal")
-    sub.add_argument("--dt", type=float, help="sample interval of a one-column record [s]")
-    sub.add_argument("--scale", type=float, default=1.0, help="factor on the record [-]")
-    sub.add_argument("--no-vertical", action="store_true", help="drop the vertical component")
+    add_record_arguments(sub)
     sub.add_argument("--static-friction", type=float, default=0.2, help="mu_s [-]")
     sub.add_argument("--dynamic-friction", type=float, help="mu_d [-] (default mu_s)")
     sub.add_argument("--block", help="HEIGHTxWIDTH with unit: adds the Section 2.1 mode choice")

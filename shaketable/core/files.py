@@ -10,10 +10,13 @@ file or none, never a truncated one.
 
 from __future__ import annotations
 
+import math
 import os
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
+
+import numpy as np
 
 
 class OutputPathError(ValueError):
@@ -126,6 +129,44 @@ def atomic_write(path, write: Callable[[Path], object]) -> Path:
         temporary.unlink(missing_ok=True)
         raise
     return path
+
+
+def read_utf8(path, what: str, error: type = ValueError) -> str:
+    """The text of a UTF-8 input file, or ``error`` naming the file (and line, and byte).
+
+    Parameters
+    ----------
+    path : Path
+    what : str
+        What the file is, for the message (``"scene"``, ``"sweep spec"``).
+    error : type
+        The exception class to raise (a ValueError subclass of the caller's layer).
+    """
+    path = Path(path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except OSError as problem:
+        raise error(f"{path}: cannot read the {what} ({problem.strerror})") from None
+    except UnicodeDecodeError as problem:
+        line = path.read_bytes()[:problem.start].count(b"\n") + 1
+        raise error(f"{path}, line {line}: not UTF-8 text (byte "
+                    f"{problem.object[problem.start]:#04x}); save the {what} as UTF-8") from None
+
+
+def json_ready(value):
+    """A scalar as JSON can hold it: NaN and infinities as None, NumPy scalars as Python."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    return value
+
+
+def json_ready_dict(data: Mapping) -> dict:
+    """:func:`json_ready` applied to every value of a flat mapping (a run's summary)."""
+    return {key: json_ready(value) for key, value in data.items()}
 
 
 def write_text(path, text: str) -> Path:

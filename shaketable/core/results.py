@@ -190,14 +190,7 @@ class RockingResult:
         its earlier rocking in ``max_theta_ratio_before_instability [-]``;
         ``verdict`` says it in words.
         """
-        def clean(value):
-            if isinstance(value, (float, np.floating)):
-                return None if not np.isfinite(value) else float(value)
-            if isinstance(value, np.integer):
-                return int(value)
-            if isinstance(value, np.bool_):
-                return bool(value)
-            return value
+        from shaketable.core.files import json_ready_dict
 
         block = self.block
         data = {
@@ -217,7 +210,7 @@ class RockingResult:
         if block.rods is not None:
             data["max_rod_force [W]"] = self.max_rod_force
         data.update({f"solver {key}": value for key, value in self.statistics.items()})
-        return {key: clean(value) for key, value in data.items()}
+        return json_ready_dict(data)
 
     def plot(self, fig=None, title: str | None = None):
         """The report's Calcomp layout (Figs. 2.8, 4.1); see :func:`shaketable.plots.calcomp`."""

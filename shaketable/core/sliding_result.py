@@ -191,12 +191,7 @@ class SlidingResult:
 
     def summary(self) -> dict:
         """Scalar results as a JSON-ready dict (NaN written as None)."""
-        def clean(value):
-            if isinstance(value, (float, np.floating)):
-                return None if not np.isfinite(value) else float(value)
-            if isinstance(value, np.integer):
-                return int(value)
-            return value
+        from shaketable.core.files import json_ready_dict
 
         data = {
             "response mode": "sliding", "motion": self.motion.name, "status": self.status,
@@ -209,7 +204,7 @@ class SlidingResult:
             "t_first_slip [s]": self.t_first_slip,
         }
         data.update(self.mode_choice)
-        return {key: clean(value) for key, value in data.items()}
+        return json_ready_dict(data)
 
     def plot(self, fig=None, title: str | None = None):
         """Table acceleration, relative velocity and displacement; see

@@ -37,8 +37,18 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
                                 [ratios[-1] + 0.5 * (ratios[-1] - ratios[-2]) if ratios.size > 1
                                  else ratios[0] + 0.5]])
         labelled = set()
+        top = float(rows["to a/(g tan alpha) [-]"].max())
         for k, ratio in enumerate(ratios):
-            for _, row in rows[np.isclose(rows["omega/p [-]"], ratio)].iterrows():
+            strip = rows[np.isclose(rows["omega/p [-]"], ratio)]
+            # above this ratio's ceiling nothing was computed: grey, not the white of "safe"
+            ceiling = float(strip["to a/(g tan alpha) [-]"].max())
+            if ceiling < top:
+                label = "above the scan's ceiling (not computed)"
+                axis.fill_between([edges[k], edges[k + 1]], ceiling, top, color="0.85",
+                                  hatch="//", edgecolor="0.6", lw=0,
+                                  label=None if label in labelled else label)
+                labelled.add(label)
+            for _, row in strip.iterrows():
                 if row["verdict"] != "overturns":
                     continue
                 without = row["impacts"] == 0
@@ -51,7 +61,7 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
         x = np.linspace(max(0.0, edges[0]), edges[-1], 200)
         axis.plot(x, np.sqrt(1 + x ** 2), "k--", lw=1, label="Eq. (2-8) (Housner)")
         axis.set_xlim(edges[0], edges[-1])
-        axis.set_ylim(0, float(rows["to a/(g tan alpha) [-]"].max()))
+        axis.set_ylim(0, top)
         axis.set_xlabel("omega / p [-]")
         axis.set_ylabel("a / (g tan alpha) [-]")
         block = spectrum.block

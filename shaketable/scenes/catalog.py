@@ -12,11 +12,13 @@ def resolve_scene_path(name_or_path: str, directory=None) -> Path:
     candidate = Path(name_or_path)
     if candidate.suffix == ".toml" and candidate.is_file():
         return candidate
+    folder = Path(directory) if directory is not None else experiments_folder()
+    path = folder / f"{name_or_path}.toml"
+    if path.is_file():  # a bundled name wins over a folder of that name (e.g. an earlier --out)
+        return path
     if candidate.is_dir():
         raise SceneError(f"{name_or_path!r} is a folder; give a scene .toml file or the name "
                          f"of a bundled scene (`shaketable reproduce --list`)")
-    folder = Path(directory) if directory is not None else experiments_folder()
-    path = folder / f"{name_or_path}.toml"
     if not path.exists():
         names = ", ".join(sorted(p.stem for p in folder.glob("*.toml")))
         raise SceneError(f"no scene {name_or_path!r} (not a file, not in {folder}); "

@@ -59,7 +59,12 @@ def run_ensembles(scene, felt, out) -> tuple[list, list[str]]:
     from shaketable.studies.predictability import Perturbation, ensemble
 
     options = ensemble_options(scene.ensemble, scene.path)
-    from shaketable.core.files import prepare_output_folder, write_csv, write_text
+    from shaketable.core.files import (
+        json_ready_dict,
+        prepare_output_folder,
+        write_csv,
+        write_text,
+    )
 
     out = prepare_output_folder(out, "out")
     written, lines = [], []
@@ -71,8 +76,7 @@ def run_ensembles(scene, felt, out) -> tuple[list, list[str]]:
                           method=scene.method)
         written.append(out / f"ensemble{label}.csv")
         write_csv(written[-1], result.to_frame())
-        summary = {key: value if not isinstance(value, float) or math.isfinite(value)
-                   else None for key, value in result.summary.items()}
+        summary = json_ready_dict(result.summary)
         written.append(out / f"ensemble{label}.json")
         write_text(written[-1], json.dumps(summary, indent=2, default=float))
         written.append(out / f"ensemble{label}.png")

@@ -217,15 +217,10 @@ def load_scene(path) -> Scene:
     SceneError
         With the file name, the key and what was expected.
     """
+    from shaketable.core.files import read_utf8
+
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise SceneError(f"{path}: cannot read the scene ({error.strerror})") from None
-    except UnicodeDecodeError as error:
-        line = path.read_bytes()[:error.start].count(b"\n") + 1
-        raise SceneError(f"{path}, line {line}: not UTF-8 text (byte {error.object[error.start]:#04x}); "
-                         f"save the scene as UTF-8") from None
+    text = read_utf8(path, "scene", SceneError)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:

@@ -223,8 +223,9 @@ class ModeResult:
             data.update(self.result.summary())
             data.update(self.choice)
         data.update(self.combined)
-        return {key: (None if isinstance(value, float) and not math.isfinite(value) else value)
-                for key, value in data.items()}
+        from shaketable.core.files import json_ready_dict
+
+        return json_ready_dict(data)
 
 
 def respond(block: Block, motion: Motion, friction, *, cor: float = 0.95) -> ModeResult:

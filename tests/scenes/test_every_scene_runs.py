@@ -33,3 +33,14 @@ def test_sweep_accepts_a_bundled_name(tmp_path):
                                 "--no-progress", "--out", tmp_path / "sweep"], cwd=tmp_path)
     assert status == 0, err
     assert "artificial-fragility" in out and "--resume" in out
+
+
+def test_a_bundled_name_wins_over_a_folder_of_that_name(tmp_path):
+    """The README's commands in one folder: `simulate --out fig-3-4` leaves a folder named
+    fig-3-4, and `reproduce fig-3-4` must still mean the bundled scene (a newcomer trial
+    found it read as "is a folder")."""
+    (tmp_path / "fig-2-10").mkdir()
+    status, _, err = run_cli(["run", "fig-2-10", "--out", tmp_path / "out"], cwd=tmp_path)
+    assert status == 0, err
+    status, _, err = run_cli(["reproduce", "fig-2-10", "--out", tmp_path / "rep"], cwd=tmp_path)
+    assert status == 0, err
