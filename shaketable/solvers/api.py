@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from shaketable.core.dynamics import block_parameters
@@ -14,19 +12,12 @@ from shaketable.core.validation import in_range
 from shaketable.solvers import engine
 from shaketable.solvers.common import (
     COMPILED_METHODS,
-    DEFAULT_RTOL,
     call_interruptibly,
     check_fixed_steps,
     extended,
     result_from_info,
+    run_options,
 )
-from shaketable.solvers.layout import METHODS
-
-
-def _check_method(method: str) -> str:
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; expected one of {sorted(METHODS)}")
-    return method
 
 
 def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: float = 0.0,
@@ -55,7 +46,7 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
         linearly when it falls between samples) or continued with the table
         at rest.
     method : str
-        One of :data:`METHODS`: ``"fast"`` (default), ``"reference"``,
+        One of :data:`~shaketable.solvers.layout.METHODS`: ``"fast"`` (default), ``"reference"``,
         ``"predictor-corrector"``, ``"linear"``.
     rtol : float, optional
         Relative tolerance of the adaptive methods [-] (fast 1e-11,
@@ -92,31 +83,23 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     """
     if not isinstance(block, Block):
         raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
-    method = _check_method(method)
     cor = in_range("cor", cor, 0.0, 1.0)
-    theta0 = in_range("theta0", theta0)
-    theta_dot0 = in_range("theta_dot0", theta_dot0)
-    if abs(theta0) >= math.pi / 2:
-        raise ValueError(f"theta0 must satisfy |theta0| < pi/2 rad, got {theta0!r}")
-    if duration is not None:
-        duration = in_range("duration", duration, 0.0, low_open=True)
+    options = run_options(method, theta0=theta0, theta_dot0=theta_dot0, duration=duration,
+                          rtol=rtol, subdivisions=subdivisions, rest_tolerance=rest_tolerance,
+                          top_force=top_force)
     if motion is None:
-        if duration is None:
+        if options.duration is None:
             raise ValueError("free rocking (motion=None) needs a duration [s]")
-        motion = Motion.at_rest(duration, in_range("output_dt", output_dt, 0.0,
-                                                        low_open=True))
+        motion = Motion.at_rest(options.duration, in_range("output_dt", output_dt, 0.0,
+                                                                low_open=True))
     elif not isinstance(motion, Motion):
         raise ValueError(f"motion must be a shaketable.Motion or None, got {type(motion).__name__}")
     else:
-        motion = extended(motion, duration)
-    if rtol is None:
-        rtol = DEFAULT_RTOL.get(method, 1e-10)
-    rtol = in_range("rtol", rtol, 0.0, 1.0, low_open=True)
-    subdivisions = whole_number("subdivisions", subdivisions)
-    rest = -1.0 if rest_tolerance is None else in_range("rest_tolerance", rest_tolerance,
-                                                             0.0)
+        motion = extended(motion, options.duration)
+    method, rtol, subdivisions = options.method, options.rtol, options.subdivisions
+    theta0, theta_dot0, rest = options.theta0, options.theta_dot0, options.rest_tolerance
 
-    parameters = block_parameters(block, in_range("top_force", top_force))
+    parameters = block_parameters(block, options.top_force)
     t_grid = np.ascontiguousarray(motion.t)
     ug = np.ascontiguousarray(motion.horizontal)
     vg = np.ascontiguousarray(motion.vertical_or_zero)

@@ -20,12 +20,16 @@ True and ``t_airborne [s]`` says when; its other results are those up to that
 time, never a silent NaN.
 
 NaN in a result column means "never happened" (no uplift, never unstable,
-did not overturn, never came to rest), as in :class:`RockingResult`.
+did not overturn, never came to rest), as in :class:`RockingResult`; and
+``max_theta_ratio [-]`` is NaN for an overturned run, as
+:attr:`RockingResult.max_theta_ratio` (the report's F). The columns a batch row
+shares with :meth:`RockingResult.summary` hold the same values, bit for bit;
+``max_theta_ratio_before_instability [-]`` and ``verdict`` need the time history or
+are text, and are left to :func:`shaketable.solvers.api.simulate`.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from itertools import product
 
@@ -35,11 +39,16 @@ from numba import njit, prange
 
 from shaketable.core.dynamics import N_PARAMETERS, block_parameters
 from shaketable.core.geometry import Block
-from shaketable.core.motion import Motion, whole_number
+from shaketable.core.motion import Motion
 from shaketable.core.results import STATUSES
 from shaketable.core.validation import in_range
 from shaketable.solvers import engine
-from shaketable.solvers.common import COMPILED_METHODS, DEFAULT_RTOL, check_fixed_steps, extended
+from shaketable.solvers.common import (
+    COMPILED_METHODS,
+    check_fixed_steps,
+    extended,
+    run_options,
+)
 
 __all__ = ["Case", "METHODS", "simulate_cases", "simulate_many"]
 
@@ -177,7 +186,9 @@ def simulate_many(blocks, motions, cors, *, scales=(1.0,), threads: int | None =
     Raises
     ------
     ValueError
-        An invalid argument; the message names it.
+        An invalid argument; the message names it. The options are checked by
+        :func:`shaketable.solvers.common.run_options`, as for
+        :func:`shaketable.solvers.api.simulate`.
     """
     block_labels, block_list = _labelled("blocks", blocks, Block, Block.describe)
     motion_labels, motion_list = _labelled("motions", motions, Motion, lambda m: m.name)
@@ -280,23 +291,11 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     if unknown:
         raise ValueError(f"unknown option {unknown[0]!r}; expected one of "
                          f"{', '.join(sorted(_OPTIONS))}")
-    if method not in COMPILED_METHODS:
-        raise ValueError(f"method must be one of {list(METHODS)} for a batch, got {method!r}"
-                         + (" (the reference solver runs one at a time: use "
-                            "shaketable.solvers.api)" if method == "reference" else ""))
-    theta0 = in_range("theta0", options.get("theta0", 0.0))
-    theta_dot0 = in_range("theta_dot0", options.get("theta_dot0", 0.0))
-    if abs(theta0) >= math.pi / 2:
-        raise ValueError(f"theta0 must satisfy |theta0| < pi/2 rad, got {theta0!r}")
-    if duration is not None:
-        duration = in_range("duration", duration, 0.0, low_open=True)
-    rtol = DEFAULT_RTOL.get(method, 1e-10) if rtol is None else rtol
-    rtol = in_range("rtol", rtol, 0.0, 1.0, low_open=True)
-    subdivisions = whole_number("subdivisions", options.get("subdivisions", 4))
-    rest_tolerance = options.get("rest_tolerance")
-    rest = -1.0 if rest_tolerance is None else in_range("rest_tolerance",
-                                                             rest_tolerance, 0.0)
-    top_force = in_range("top_force", options.get("top_force", 0.0))
+    checked = run_options(method, methods=METHODS, rtol=rtol, duration=duration, **options)
+    method, rtol, duration = checked.method, checked.rtol, checked.duration
+    theta0, theta_dot0 = checked.theta0, checked.theta_dot0
+    subdivisions, rest, top_force = (checked.subdivisions, checked.rest_tolerance,
+                                     checked.top_force)
     if threads is not None:
         threads = int(in_range("threads", threads, 1, numba.config.NUMBA_NUM_THREADS))
 
@@ -389,7 +388,10 @@ def _frame(blocks, block_labels, motions, motion_labels, block_index, motion_ind
         "overturned": status_code == engine.STATUS_OVERTURNED,
         "airborne": status_code == engine.STATUS_AIRBORNE,
         "unstable": np.isfinite(info[:, engine.INFO_T_UNSTABLE]),
-        "max_theta_ratio [-]": max_abs / alpha,
+        # as RockingResult.max_theta_ratio: NaN for an overturned run (the report's F;
+        # (pi/2)/alpha is where the run stopped, not a peak: max_abs_theta keeps it)
+        "max_theta_ratio [-]": np.where(status_code == engine.STATUS_OVERTURNED, np.nan,
+                                        max_abs / alpha),
         "max_abs_theta [rad]": max_abs,
         "t_max [s]": info[:, engine.INFO_T_MAX],
         "t_start [s]": info[:, engine.INFO_T_START],

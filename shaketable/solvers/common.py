@@ -1,24 +1,102 @@
 """What :func:`~shaketable.solvers.api.simulate` and the batch share: the compiled methods,
-their default tolerances, the motion cut or padded to a duration and the info array
-turned into a :class:`~shaketable.core.results.RockingResult`.
+their default tolerances, the checked run options, the motion cut or padded to a
+duration and the info array turned into a :class:`~shaketable.core.results.RockingResult`.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
-from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion
+from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion, whole_number
 from shaketable.core.results import STATUSES, RockingResult
-from shaketable.core.validation import MAX_FIXED_STEPS, sample_count
+from shaketable.core.validation import MAX_FIXED_STEPS, in_range, sample_count
 from shaketable.solvers import engine
+from shaketable.solvers.layout import METHODS
 
 DEFAULT_RTOL = {"fast": 1e-11, "reference": 1e-12}
 
 COMPILED_METHODS = {"fast": engine.METHOD_FAST,
              "predictor-corrector": engine.METHOD_PREDICTOR_CORRECTOR,
              "linear": engine.METHOD_LINEAR}
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """The options of a run, checked once for :func:`~shaketable.solvers.api.simulate` and
+    the batch (:mod:`shaketable.solvers.batch`) alike.
+
+    Attributes
+    ----------
+    method : str
+        A name of the solver registry :data:`~shaketable.solvers.layout.METHODS`.
+    theta0 : float
+        Initial rotation [rad], |theta0| < pi/2.
+    theta_dot0 : float
+        Initial angular velocity [rad/s].
+    duration : float or None
+        Length of the run [s] (``None``: the motion's own).
+    rtol : float
+        Relative tolerance of the adaptive methods [-], in (0, 1].
+    subdivisions : int
+        Predictor-corrector steps per input interval, >= 1.
+    rest_tolerance : float
+        Cascade duration [s] below which it is summed in closed form; -1 means the
+        engine's default, 1e-6 / p.
+    top_force : float
+        Horizontal force at the top per unit mass [m/s^2].
+    """
+
+    method: str
+    theta0: float
+    theta_dot0: float
+    duration: float | None
+    rtol: float
+    subdivisions: int
+    rest_tolerance: float
+    top_force: float
+
+
+def run_options(method: str = "fast", *, methods=METHODS, theta0: float = 0.0,
+                theta_dot0: float = 0.0, duration: float | None = None,
+                rtol: float | None = None, subdivisions: int = 4,
+                rest_tolerance: float | None = None, top_force: float = 0.0) -> RunOptions:
+    """Check the options of a run and give them as :class:`RunOptions`.
+
+    Parameters
+    ----------
+    method : str
+        The solver; it must be one of ``methods``.
+    methods : collection of str
+        The methods the caller runs (the batch runs only the compiled ones).
+    theta0, theta_dot0, duration, rtol, subdivisions, rest_tolerance, top_force
+        As in :func:`shaketable.solvers.api.simulate`.
+
+    Raises
+    ------
+    ValueError
+        Naming the option and what it must be.
+    """
+    if method not in methods:
+        hint = (" (the reference solver runs one at a time: use shaketable.simulate)"
+                if method == "reference" and method in METHODS else "")
+        raise ValueError(f"unknown method {method!r}; expected one of {sorted(methods)}{hint}")
+    theta0 = in_range("theta0", theta0)
+    if abs(theta0) >= math.pi / 2:
+        raise ValueError(f"theta0 must satisfy |theta0| < pi/2 rad, got {theta0!r}")
+    if duration is not None:
+        duration = in_range("duration", duration, 0.0, low_open=True)
+    if rtol is None:
+        rtol = DEFAULT_RTOL.get(method, 1e-10)
+    return RunOptions(
+        method=method, theta0=theta0, theta_dot0=in_range("theta_dot0", theta_dot0),
+        duration=duration, rtol=in_range("rtol", rtol, 0.0, 1.0, low_open=True),
+        subdivisions=whole_number("subdivisions", subdivisions),
+        rest_tolerance=(-1.0 if rest_tolerance is None
+                        else in_range("rest_tolerance", rest_tolerance, 0.0)),
+        top_force=in_range("top_force", top_force))
 
 
 def starting_at_zero(motion: Motion) -> Motion:

@@ -94,7 +94,7 @@ def run_to_the_end(block: Block, felt: Motion, *, cor: float, method: str = "fas
     cor : float
         Coefficient of restitution [-].
     method : str
-        Solver (:data:`shaketable.solvers.api.METHODS`).
+        Solver (:data:`shaketable.solvers.layout.METHODS`).
     tail : float
         First length of table at rest after the record [s], positive; doubled
         until the verdict is final (:func:`is_final`).
