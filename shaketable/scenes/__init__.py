@@ -5,10 +5,14 @@
 :mod:`~shaketable.scenes.catalog` finds the bundled ones by name;
 :mod:`~shaketable.scenes.run` is the pipeline (motion, table, sensors, block,
 theory) and :mod:`~shaketable.scenes.compare` sets the result beside the report.
-The parser imports no study: the studies' items are registered here.
+The parser imports no study and no pipeline module: the studies' items and the
+parsers of the ``[sensors]`` and ``[theory]`` sections are registered here (each
+loaded when a scene asks for it).
 """
 
-from shaketable.scenes.parse import register_study_items
+from typing import Any
+
+from shaketable.scenes.parse import register_section_parser, register_study_items
 
 
 def _teaching_items() -> tuple[str, ...]:
@@ -18,3 +22,19 @@ def _teaching_items() -> tuple[str, ...]:
 
 
 register_study_items("teaching", _teaching_items)
+
+
+def _sensors(section: dict, where: str) -> Any:
+    from shaketable.scenes.virtual_test import sensors_from_dict
+
+    return sensors_from_dict(section, where)
+
+
+def _theory(section: dict, where: str) -> Any:
+    from shaketable.scenes.virtual_test import theory_from_dict
+
+    return theory_from_dict(section, where)
+
+
+register_section_parser("sensors", _sensors)
+register_section_parser("theory", _theory)

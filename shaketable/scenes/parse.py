@@ -29,8 +29,10 @@ Sections (``experiments/*.toml`` are the examples)::
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 try:  # Python >= 3.11
     import tomllib
@@ -39,6 +41,9 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
+
+if TYPE_CHECKING:
+    from shaketable.lab.stage import TableSetup
 
 MOTION_KEYS = {
     "free": set(),
@@ -108,11 +113,17 @@ class Scene:
     report : dict
         The report's values to compare with.
     outputs : dict
-    table, theory : dict
-        Raw optional stages (validated by their own modules).
-    sensors : dict or None
-        The raw ``[sensors]`` section; ``None`` when the scene has none (an
-        empty section means the default instruments).
+    table : TableSetup or None
+        ``[table]``, parsed (:func:`shaketable.lab.stage.table_setup_from_dict`);
+        ``None`` when the scene has no (or an empty) ``[table]``: the block feels
+        the commanded motion.
+    sensors : shaketable.lab.sensors.Sensors or None
+        ``[sensors]``, parsed by the parser registered for it
+        (:func:`shaketable.scenes.virtual_test.sensors_from_dict`); ``None`` when
+        the scene has none (an empty section means the default instruments).
+    theory : shaketable.scenes.virtual_test.TheorySetup or None
+        ``[theory]``, parsed the same way; set (defaults included) whenever the
+        scene has ``[sensors]``, ``None`` otherwise.
     static_friction : float or None
         ``block.static_friction``: mu_s for Section 2.1's sliding-or-rocking check.
     sliding : tuple of (float, float)
@@ -134,9 +145,9 @@ class Scene:
     options: dict = field(default_factory=dict)
     report: dict = field(default_factory=dict)
     outputs: dict = field(default_factory=dict)
-    table: dict = field(default_factory=dict)
-    sensors: dict | None = None
-    theory: dict = field(default_factory=dict)
+    table: TableSetup | None = None
+    sensors: Any = None
+    theory: Any = None
     static_friction: float | None = None
     sliding: tuple = ()
     path: str = ""
@@ -209,6 +220,18 @@ def register_study_items(kind: str, items) -> None:
     STUDY_ITEMS[kind] = items
 
 
+#: Parsers of the stage sections that a pipeline module runs (``"sensors"``,
+#: ``"theory"``), registered by the loader (:mod:`shaketable.scenes`), so that this
+#: parser imports no pipeline module: ``parser(section: dict, where: str)`` returns
+#: the section's frozen object or raises ValueError naming the key.
+SECTION_PARSERS: dict[str, Callable[[dict, str], Any]] = {}
+
+
+def register_section_parser(section: str, parser: Callable[[dict, str], Any]) -> None:
+    """Declare the function that parses a scene's ``[section]`` into its object."""
+    SECTION_PARSERS[section] = parser
+
+
 def load_scene(path) -> Scene:
     """Read and validate a scene file.
 
@@ -244,6 +267,9 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
         raise SceneError(f"{where}: block.static_friction must be a positive number (the "
                          f"static coefficient of friction mu_s), got {static_friction!r}")
     motion = _motion(data["motion"], where)
+    if data.get("theory") and "sensors" not in data:
+        raise SceneError(f"{where}: [theory] compares a virtual test with theory; it needs "
+                         "a [sensors] section")
     rocking = _table(data["rocking"], where, "rocking")
     _only(rocking, ROCKING_KEYS, where, "rocking")
     if "cor" not in rocking:
@@ -297,8 +323,8 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
                  duration=duration, method=str(rocking.get("method", "fast")), options=options,
                  report=report, outputs=outputs,
                  table=_table_section(data.get("table", {}), where),
-                 sensors=_checked(data, "sensors", where) if "sensors" in data else None,
-                 theory=_checked(data, "theory", where),
+                 sensors=_stage_section(data, "sensors", where) if "sensors" in data else None,
+                 theory=_stage_section(data, "theory", where) if "sensors" in data else None,
                  static_friction=None if static_friction is None else float(static_friction),
                  sliding=_sliding(data, motion, where),
                  path=where, ensemble=_ensemble_section(data, where))
@@ -389,32 +415,29 @@ def _ensemble_section(data: dict, where: str) -> dict:
     return {}
 
 
-def _checked(data: dict, section: str, where: str) -> dict:
-    """A raw ``[sensors]`` or ``[theory]`` section, validated now (errors at load time)."""
-    from shaketable.scenes.virtual_test import sensors_from_dict, theory_from_dict
-
+def _stage_section(data: dict, section: str, where: str) -> Any:
+    """``[sensors]`` or ``[theory]``, parsed once by its registered parser (errors at load)."""
     value = _table(data.get(section, {}), where, section)
-    if section == "theory" and value and "sensors" not in data:
-        raise SceneError(f"{where}: [theory] compares a virtual test with theory; it needs "
-                         "a [sensors] section")
+    if section not in SECTION_PARSERS:
+        raise SceneError(f"{where}: [{section}] cannot be read: no parser is registered "
+                         "for it (import shaketable.scenes, which registers them)")
     try:
-        if section == "sensors" or "sensors" in data:
-            (sensors_from_dict if section == "sensors" else theory_from_dict)(value, where)
+        return SECTION_PARSERS[section](value, where)
     except ValueError as error:
         raise SceneError(str(error)) from None
-    return value
 
 
-def _table_section(value, where) -> dict:
-    """The raw ``[table]`` section, validated now so that errors come at load time."""
+def _table_section(value, where) -> TableSetup | None:
+    """``[table]`` parsed into a :class:`~shaketable.lab.stage.TableSetup` (``None``: none)."""
     from shaketable.lab.stage import table_setup_from_dict
 
     value = _table(value, where, "table")
+    if not value:
+        return None
     try:
-        table_setup_from_dict(value, where)
+        return table_setup_from_dict(value, where)
     except ValueError as error:
         raise SceneError(str(error)) from None
-    return value
 
 
 def _time_range(value, where) -> tuple:

@@ -14,7 +14,7 @@ from shaketable.core.constants import G
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
 from shaketable.ground import generators
-from shaketable.lab.stage import TableRun, run_table, table_setup_from_dict
+from shaketable.lab.stage import TableRun, run_table
 from shaketable.scenes.compare import (
     compare_test_with_theory,
     compare_with_report,
@@ -207,10 +207,9 @@ def run_scene(scene: Scene) -> SceneResult:
     motion = build_motion(scene)
     table = None
     felt = motion
-    if scene.table:
-        setup = table_setup_from_dict(scene.table, scene.path)
+    if scene.table is not None:
         try:
-            table = run_table(motion, setup, duration=scene.duration)
+            table = run_table(motion, scene.table, duration=scene.duration)
         except ValueError as error:
             raise SceneError(f"{scene.path}: [table]: {error}") from None
         felt = table.felt
@@ -261,14 +260,9 @@ def _run_virtual_tests(scene: Scene, commanded: Motion | None, felt: Motion | No
     the virtual test run, since the report gives no theory for earthquake
     motions (Section 3.7 (2)).
     """
-    from shaketable.scenes.virtual_test import (
-        run_virtual_test,
-        sensors_from_dict,
-        theory_from_dict,
-    )
+    from shaketable.scenes.virtual_test import run_virtual_test
 
-    sensors = sensors_from_dict(scene.sensors, scene.path)
-    theory = theory_from_dict(scene.theory, scene.path)
+    sensors, theory = scene.sensors, scene.theory
     tests = []
     for cor in scene.cors:
         try:

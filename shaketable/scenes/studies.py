@@ -23,14 +23,14 @@ def section_3_7_cases(phases: int = 24) -> list[RepeatabilityResult]:
     block substantially, and at Fig. 3.5's own 0.5 g. Each case's
     ``reference_spread`` is the largest spread of the harmonic cases.
     """
-    from shaketable.lab.stage import table_setup_from_dict
+    from shaketable.lab.stage import TableSetup
     from shaketable.scenes.catalog import resolve_scene_path
     from shaketable.scenes.parse import load_scene
     from shaketable.scenes.run import build_motion
 
     def scene_case(name, label, kind, scale=1.0):
         scene = load_scene(resolve_scene_path(name))
-        setup = table_setup_from_dict(scene.table, scene.path)
+        setup = scene.table if scene.table is not None else TableSetup()
         motion = build_motion(scene)
         if scale != 1.0:
             motion = motion.scaled(scale)

@@ -162,7 +162,7 @@ def test_harmonic_scenes_start_and_end_the_table_at_rest(name):
 
     scene = load_scene(resolve_scene_path(name))
     frequency, amplitude = scene.motion["frequency"], scene.motion["horizontal"]
-    assert scene.table["command"] is True
+    assert scene.table is not None and scene.table.command is True
     assert scene.motion["ramp"] == pytest.approx(0.5 / frequency)
     assert (scene.motion["duration"] * frequency) % 1.0 == pytest.approx(0.25)
     motion = build_motion(scene)

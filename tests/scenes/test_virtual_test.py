@@ -7,7 +7,7 @@ import pytest
 
 from shaketable import Block
 from shaketable.lab.sensors import Potentiometers, Sensors
-from shaketable.lab.stage import run_table, table_setup_from_dict
+from shaketable.lab.stage import TableSetup, run_table, table_setup_from_dict
 from shaketable.scenes.catalog import resolve_scene_path
 from shaketable.scenes.parse import SceneError, load_scene, scene_from_dict
 from shaketable.scenes.run import build_motion, run_scene
@@ -49,7 +49,7 @@ def _harmonic_virtual_test(name, seed, **motion_changes):
     scene = load_scene(resolve_scene_path(name))
     if motion_changes:
         scene = replace(scene, motion={**scene.motion, **motion_changes})
-    setup = table_setup_from_dict(scene.table, scene.path)
+    setup = scene.table if scene.table is not None else TableSetup()
     if motion_changes.get("ramp") == 0.0:  # the abrupt start: no displacement command
         setup = replace(setup, command=False)
     setup = replace(setup, pitch=replace(setup.pitch, seed=seed))
@@ -163,7 +163,7 @@ def test_scene_scores_test_against_theory():
     # scene before the ramp) disagrees for pitch seed 1, and the lines must say so.
     scene = load_scene(resolve_scene_path("fig-3-7"))
     abrupt = replace(scene, motion={**scene.motion, "ramp": 0.0, "duration": 10.0},
-                     table={"pitch": {"seed": 1}})
+                     table=table_setup_from_dict({"pitch": {"seed": 1}}))
     result = run_scene(abrupt)
     metrics = result.tests[0].metrics()
     lines = {line.quantity: line for line in result.comparisons}
@@ -204,3 +204,18 @@ def test_an_initial_velocity_reaches_the_test_and_the_theory_with_sensors():
     test = result.tests[0]
     assert test.test.theta_dot[0] == 0.2 and test.theory.theta_dot[0] == 0.2
     assert np.max(np.abs(test.test.theta)) > 0.0
+
+
+def test_stage_sections_are_parsed_once_into_frozen_objects():
+    """[table], [sensors] and [theory] are typed at load (issue 12): the pipeline gets
+    the objects, never the raw TOML tables, and a scene without them has None."""
+    from shaketable.scenes.virtual_test import TheorySetup
+
+    scene = _scene(table={"pitch": {"seed": 3}}, sensors={"seed": 3}, theory={"cor": 0.925})
+    assert isinstance(scene.table, TableSetup) and scene.table.pitch is not None
+    assert isinstance(scene.sensors, Sensors) and scene.sensors.seed == 3
+    assert isinstance(scene.theory, TheorySetup) and scene.theory.cor == 0.925
+    bare = _scene()
+    assert bare.table is None and bare.sensors is None and bare.theory is None
+    with pytest.raises(SceneError, match="needs a \\[sensors\\] section"):
+        _scene(theory={"cor": 0.9})
