@@ -92,7 +92,9 @@ def place_legend(axis, corners=LEGEND_CORNERS, **options):
     """A legend in the first corner of ``axis`` where it covers no plotted point, else outside.
 
     Each corner of ``corners`` is tried in turn; the legend stays in the first
-    one whose box (with a small margin) holds none of :func:`plotted_points`.
+    one whose box (with a small margin) holds none of :func:`plotted_points`
+    (measured on the laid-out axes when the figure has a layout engine; call it
+    after ``tight_layout`` otherwise).
     When every corner covers data the legend goes outside, to the right of the
     axes. ``options`` go to :meth:`matplotlib.axes.Axes.legend`.
 
@@ -101,6 +103,8 @@ def place_legend(axis, corners=LEGEND_CORNERS, **options):
     matplotlib.legend.Legend
     """
     figure = axis.figure
+    if figure.get_layout_engine() is not None:
+        figure.draw_without_rendering()  # the layout first: corners of the final axes
     renderer = figure.canvas.get_renderer()
     points = plotted_points(axis)
     to_axes = axis.transAxes.inverted()
