@@ -148,8 +148,10 @@ class _Scene:
         grid = fig.add_gridspec(2, 2, width_ratios=[1, 1.35], height_ratios=[1.6, 1],
                                 wspace=0.28, hspace=0.12)
         self.stage = fig.add_subplot(grid[:, 0])
-        self.history = fig.add_subplot(grid[0, 1])
-        self.ground = fig.add_subplot(grid[1, 1], sharex=self.history)
+        # no ground panel without horizontal ground motion (free rocking): it would be empty
+        with_ground = bool(np.any(ground.horizontal))
+        self.history = fig.add_subplot(grid[0, 1] if with_ground else grid[:, 1])
+        self.ground = fig.add_subplot(grid[1, 1], sharex=self.history) if with_ground else None
 
         outlines = np.array([block_outline(block, th, d)
                              for th, d in zip(self.theta, self.displacement)])
@@ -187,21 +189,27 @@ class _Scene:
         limit = max(1.2, 1.05 * float(np.max(np.abs(ratio), initial=0.0)))
         history.set_ylim(-limit, limit)
         history.set_ylabel("θ/α [-]", fontsize=8)
-        history.tick_params(labelbottom=False, labelsize=7)
+        history.tick_params(labelbottom=not with_ground, labelsize=7)
+        if not with_ground:
+            history.set_xlabel("time [s]", fontsize=8)
         history.grid(True, lw=0.3, alpha=0.5)
         self.cursor = history.axvline(times[0], color="tab:blue", lw=1.0)
         (self.dot,) = history.plot([times[0]], [self.theta[0] / block.alpha], "o",
                                    color="tab:blue", ms=4)
-        shown = ground.t <= max(end, times[-1]) + 1e-12
-        self.ground.plot(ground.t[shown], ground.horizontal[shown] / G, color="0.3", lw=0.6)
-        self.ground.set_ylabel("ü [g]", fontsize=8)
-        self.ground.set_xlabel("time [s]", fontsize=8)
-        self.ground.tick_params(labelsize=7)
-        self.ground.grid(True, lw=0.3, alpha=0.5)
-        self.ground_cursor = self.ground.axvline(times[0], color="tab:blue", lw=1.0)
+        self.ground_cursor = None
+        if self.ground is not None:
+            shown = ground.t <= max(end, times[-1]) + 1e-12
+            self.ground.plot(ground.t[shown], ground.horizontal[shown] / G, color="0.3", lw=0.6)
+            self.ground.set_ylabel("ü [g]", fontsize=8)
+            self.ground.set_xlabel("time [s]", fontsize=8)
+            self.ground.tick_params(labelsize=7)
+            self.ground.grid(True, lw=0.3, alpha=0.5)
+            self.ground_cursor = self.ground.axvline(times[0], color="tab:blue", lw=1.0)
         history.set_xlim(times[0], times[-1])
         if title is None:
-            title = f"{block.describe()} block, COR {result.cor:g}"
+            from shaketable.plots.calcomp import describe_block
+
+            title = f"{describe_block(block)}, COR {result.cor:g}"
             if not np.any(ground.horizontal) and not np.any(ground.vertical_or_zero):
                 title = f"free rocking: {title}, released at θ/α = {ratio[0]:.2f}"
             elif ground.name:
@@ -216,7 +224,8 @@ class _Scene:
         self.table.set_x(d - self.table_width / 2)
         self.block_patch.set_xy(self.outlines[index][:4])
         self.cursor.set_xdata([t, t])
-        self.ground_cursor.set_xdata([t, t])
+        if self.ground_cursor is not None:
+            self.ground_cursor.set_xdata([t, t])
         self.dot.set_data([t], [self.theta[index] / self.block.alpha])
         result = self.result
         state = ""
@@ -225,7 +234,9 @@ class _Scene:
         elif np.isfinite(result.t_unstable) and t >= result.t_unstable:
             state = f"\n|θ| > α at {result.t_unstable:.2f} s"
         self.clock.set_text(f"t = {t:5.2f} s, table x = {100 * d:+.1f} cm{state}")
-        return self.table, self.block_patch, self.cursor, self.ground_cursor, self.dot, self.clock
+        return tuple(artist for artist in (self.table, self.block_patch, self.cursor,
+                                           self.ground_cursor, self.dot, self.clock)
+                     if artist is not None)
 
 
 def _inputs(result, block, motion):

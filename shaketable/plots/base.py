@@ -33,3 +33,89 @@ def save(fig, path, dpi: int = 110) -> None:
         atomic_write(path, lambda temporary: fig.savefig(temporary, dpi=dpi, bbox_inches="tight"))
     finally:
         plt.close(fig)
+
+
+#: Where :func:`place_legend` tries a legend inside the axes, in this order.
+LEGEND_CORNERS = ("upper right", "upper left", "lower left", "lower right")
+
+
+def plotted_points(axis, spacing: float = 0.004):
+    """Every drawn line, line collection and marker of ``axis`` as points in axes fractions.
+
+    Straight segments are filled with points every ``spacing`` (axes
+    fraction), so a long horizontal reference line counts where it runs, not
+    only at its two ends. Returns an ``(n, 2)`` array.
+    """
+    import numpy as np
+    from matplotlib.collections import LineCollection, PathCollection
+
+    to_axes = axis.transAxes.inverted()
+    pieces = []
+
+    def add(path_display):
+        points = to_axes.transform(path_display)
+        points = points[np.all(np.isfinite(points), axis=1)]
+        if len(points) < 2:
+            pieces.append(points)
+            return
+        steps = np.hypot(*np.diff(points, axis=0).T)
+        arc = np.concatenate([[0.0], np.cumsum(steps)])
+        count = int(min(200_000, max(len(points), arc[-1] / spacing)))
+        samples = np.linspace(0.0, arc[-1], count)
+        pieces.append(np.column_stack([np.interp(samples, arc, points[:, 0]),
+                                       np.interp(samples, arc, points[:, 1])]))
+        pieces.append(points)
+
+    for line in axis.get_lines():
+        if line.get_visible() and len(line.get_xydata()):
+            xy = line.get_transform().transform(np.asarray(line.get_xydata(), dtype=float))
+            # a NaN breaks a line: each run of finite points is its own path
+            finite = np.all(np.isfinite(xy), axis=1)
+            for run in np.split(np.arange(len(xy)), np.flatnonzero(np.diff(finite)) + 1):
+                if finite[run[0]]:
+                    add(xy[run])
+    for collection in axis.collections:
+        if not collection.get_visible():
+            continue
+        if isinstance(collection, LineCollection):
+            for segment in collection.get_segments():
+                add(collection.get_transform().transform(np.asarray(segment, dtype=float)))
+        elif isinstance(collection, PathCollection):
+            offsets = np.asarray(collection.get_offsets(), dtype=float)
+            if offsets.size:
+                pieces.append(to_axes.transform(
+                    collection.get_offset_transform().transform(offsets)))
+    return np.concatenate(pieces) if pieces else np.empty((0, 2))
+
+
+def place_legend(axis, corners=LEGEND_CORNERS, **options):
+    """A legend in the first corner of ``axis`` where it covers no plotted point, else outside.
+
+    Each corner of ``corners`` is tried in turn; the legend stays in the first
+    one whose box (with a small margin) holds none of :func:`plotted_points`
+    (measured on the laid-out axes when the figure has a layout engine; call it
+    after ``tight_layout`` otherwise).
+    When every corner covers data the legend goes outside, to the right of the
+    axes. ``options`` go to :meth:`matplotlib.axes.Axes.legend`.
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+    """
+    figure = axis.figure
+    if figure.get_layout_engine() is not None:
+        figure.draw_without_rendering()  # the layout first: corners of the final axes
+    renderer = figure.canvas.get_renderer()
+    points = plotted_points(axis)
+    to_axes = axis.transAxes.inverted()
+    margin = 0.01
+    for corner in corners:
+        legend = axis.legend(loc=corner, **options)
+        box = legend.get_window_extent(renderer).transformed(to_axes)
+        inside = ((points[:, 0] > box.x0 - margin) & (points[:, 0] < box.x1 + margin)
+                  & (points[:, 1] > box.y0 - margin) & (points[:, 1] < box.y1 + margin))
+        if not inside.any():
+            return legend
+    options.setdefault("frameon", True)
+    return axis.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+                       **options)

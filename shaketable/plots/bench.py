@@ -78,7 +78,9 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
         if annotate and method != "linear" and len(group) > 1:
             error = np.maximum(group["error max_theta [-]"].to_numpy(dtype=float), ERROR_FLOOR)
             labels = list(group["setting"])
-            for index, align in ((0, "right"), (len(labels) - 1, "left")):
+            # the labels at the two ends of the line in time, written away from each other
+            # (the first setting is not always the fastest: "1e-81e-12" ran together)
+            for index, align in ((int(order[0]), "right"), (int(order[-1]), "left")):
                 if np.isfinite(error[index]):
                     # at the error floor every method's labels would share one line:
                     # stack them, one row per method

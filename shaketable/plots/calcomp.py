@@ -146,10 +146,35 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
     for axis in axes:
         axis.grid(True, lw=0.3, alpha=0.5)
         axis.set_xlim(start, stop)
+    mark_overturn(axes, result, stop)
     fig.suptitle("\n".join(calcomp_caption(result, title=title, others=others,
                                            details=details)), fontsize=9.5)
     fig.align_ylabels(axes)
     return fig
+
+
+def mark_overturn(axes, run, stop) -> None:
+    """Where the run ends because the block overturned, when the time axis goes on past it.
+
+    A run stops where its block overturns; on a time axis shared with another
+    figure (``time_range``) the panels are blank after that time. A vertical
+    line on every panel and the words "overturned (±) at t s: the run ends
+    here" on the rotation panel say why, where the blank begins. Nothing is
+    drawn when the axis ends with the run (the caption gives the time).
+    """
+    start = axes[0].get_xlim()[0]
+    if not run.overturned or not np.isfinite(run.t_overturn) \
+            or stop - run.t_overturn <= 0.1 * (stop - start):
+        return
+    for axis in axes:
+        axis.axvline(run.t_overturn, color="0.35", lw=0.8, ls="-.")
+    side = "+" if run.overturn_direction > 0 else "−"
+    # on the side away from the fall: the trace ends at the top (+) or at the bottom (−)
+    axes[-1].annotate(f"overturned ({side}) at {run.t_overturn:.2f} s:\nthe run ends here",
+                      (run.t_overturn, 0.96 if run.overturn_direction < 0 else 0.04),
+                      xycoords=axes[-1].get_xaxis_transform(), xytext=(4, 0),
+                      textcoords="offset points", fontsize=7, ha="left",
+                      va="top" if run.overturn_direction < 0 else "bottom")
 
 
 def calcomp_caption(result, title: str | None = None, others=(), details=()) -> list[str]:

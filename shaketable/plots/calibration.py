@@ -15,14 +15,14 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.constants import G
-from shaketable.plots.base import pyplot
+from shaketable.plots.base import place_legend, pyplot
 
 
 def _figure(fig, nrows, ncols=1, figsize=(8.0, 6.0), **kwargs):
     plt = pyplot()
 
     if fig is None:
-        fig = plt.figure(figsize=figsize)
+        fig = plt.figure(figsize=figsize, layout="constrained")
     axes = fig.subplots(nrows, ncols, squeeze=False, **kwargs)
     return fig, axes
 
@@ -57,7 +57,6 @@ def plot_measurement(measurement, fig=None, title: str | None = None):
         ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time [s]")
     fig.suptitle(title or f"{measurement.block.describe()} block, {measurement.rate:g} samples/s")
-    fig.tight_layout()
     return fig
 
 
@@ -82,7 +81,7 @@ def plot_fit(calibration, axes=None):
                                      + (" (fitted)" if calibration.anti_alias == "fit"
                                         else " (given)")))
     top.set_ylabel(f"{record.quantity} [{unit}]")
-    top.legend(loc="upper right", fontsize=8)
+    place_legend(top, fontsize=8)
     top.grid(alpha=0.3)
     low, high = calibration.cor_interval
     top.set_title(f"COR = {calibration.cor:.{digits}f}  (95 % interval {low:.{digits}f} to "
@@ -110,7 +109,7 @@ def plot_cor_per_impact(peaks, ax=None):
     ax.set_xlabel("angular velocity before impact [rad/s]")
     ax.set_ylabel("COR of the impact [-]")
     ax.set_title("Section 3.7 (1): does the COR depend on the impact velocity?", fontsize=10)
-    ax.legend(fontsize=8)
+    place_legend(ax, fontsize=8)
     ax.grid(alpha=0.3)
     return ax
 
@@ -136,7 +135,7 @@ def plot_periods(period_fit, ax=None):
     ax.set_xlabel("amplitude [deg]")
     ax.set_ylabel("period [s]")
     ax.set_title("Period against amplitude (Table 3.1 / Fig. 3.6)", fontsize=10)
-    ax.legend(fontsize=8)
+    place_legend(ax, fontsize=8)
     ax.grid(alpha=0.3)
     return ax
 
@@ -146,8 +145,8 @@ def plot_calibration(calibration, fig=None, title: str | None = None):
     plt = pyplot()
 
     if fig is None:
-        fig = plt.figure(figsize=(11.0, 7.5))
-    grid = fig.add_gridspec(3, 2, height_ratios=[2.2, 1.0, 2.0], hspace=0.45, wspace=0.25)
+        fig = plt.figure(figsize=(11.0, 7.5), layout="constrained")
+    grid = fig.add_gridspec(3, 2, height_ratios=[2.2, 1.0, 2.0])
     top = fig.add_subplot(grid[0, :])
     bottom = fig.add_subplot(grid[1, :], sharex=top)
     plot_fit(calibration, axes=(top, bottom))
@@ -156,4 +155,7 @@ def plot_calibration(calibration, fig=None, title: str | None = None):
     if calibration.periods is not None:
         plot_periods(calibration.periods, ax=fig.add_subplot(grid[2, 1]))
     fig.suptitle(title or f"COR calibration, {calibration.block.describe()} block")
+    for axis in fig.axes:  # the corners again, on the laid-out grid of all four panels
+        if axis.get_legend() is not None:
+            place_legend(axis, fontsize=8)
     return fig

@@ -8,17 +8,21 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.constants import INCH, G
+from shaketable.plots.base import place_legend, pyplot
 
 
 def sliding_figure(result, fig=None, title: str | None = None):
     """Table acceleration [g], relative velocity [in/s] and relative displacement [in].
 
-    Sliding phases are shaded; the peak slip is marked. Returns the figure.
+    Sliding phases are shaded; the peak slip is marked. The time axis ends a
+    little after the last slip (the x label gives the end of the record when
+    it is cut). Returns the figure.
     """
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     if fig is None:
-        fig = plt.figure(figsize=(9, 7))
+        fig = plt.figure(figsize=(9, 7), layout="constrained")
+    else:
+        fig.set_layout_engine("constrained")
     axes = fig.subplots(3, 1, sharex=True)
     t = result.t
     horizontal, vertical = result.ground_at(t)
@@ -30,7 +34,6 @@ def sliding_figure(result, fig=None, title: str | None = None):
     axes[0].plot(t, mu_s * normal, "k--", lw=0.6, label=r"$\pm\mu_s(1+\ddot v/g)$ (Eq. 2-2)")
     axes[0].plot(t, -mu_s * normal, "k--", lw=0.6)
     axes[0].set_ylabel("table acc. [g]")
-    axes[0].legend(loc="upper right", fontsize=7)
     axes[1].plot(t, result.v / INCH, lw=0.8, color="C2")
     axes[1].set_ylabel("relative vel. [in/s]")
     axes[2].plot(t, result.x / INCH, lw=1.0, color="C3")
@@ -41,13 +44,24 @@ def sliding_figure(result, fig=None, title: str | None = None):
     axes[2].annotate(f"peak {result.peak_slip_inches:.2f} in", (result.t_peak, peak_x / INCH),
                      textcoords="offset points", xytext=(6, 6), fontsize=8)
     axes[2].set_ylabel("relative disp. [in]")
-    axes[2].set_xlabel("time [s]")
     sliding = result.state != 0
     for axis in axes:
         axis.fill_between(t, 0, 1, where=sliding, step="post", color="C1", alpha=0.12,
                           transform=axis.get_xaxis_transform(), lw=0)
-    fig.suptitle(title or f"Sliding block, {result.motion.name}: mu_s = {mu_s:g}, "
-                 f"mu_d = {result.friction.dynamic:g} (shaded: sliding)", fontsize=10)
+    # zoom on the sliding: to a little after the last slip, the rest of the record said
+    label = "time [s]"
+    if np.any(sliding):
+        last = float(t[np.flatnonzero(sliding)[-1]])
+        stop = min(float(t[-1]), last + max(2.0, 0.2 * (last - float(t[0]))))
+        if stop < float(t[-1]):
+            axes[2].set_xlim(float(t[0]), stop)
+            label += (f"   (no slip after {last:.2f} s; the record goes on to "
+                      f"{float(t[-1]):.1f} s)")
+    axes[2].set_xlabel(label)
+    place_legend(axes[0], fontsize=7, frameon=True)
+    heading = title or (f"Sliding block, {result.motion.name}: μs = {mu_s:g}, "
+                        f"μd = {result.friction.dynamic:g}")
+    fig.suptitle(f"{heading} (shaded: sliding)", fontsize=10)
     return fig
 
 
@@ -56,7 +70,7 @@ def sliding_vs_rocking_figure(sliding, rocking, fig=None, title: str | None = No
 
     ``sliding`` and ``rocking`` are :class:`shaketable.studies.sliding.ModeResult`.
     """
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     if fig is None:
         fig = plt.figure(figsize=(9, 7.5))

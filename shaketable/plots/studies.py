@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from shaketable.plots.base import pyplot
+from shaketable.plots.base import place_legend, pyplot
 
 
 def section_2_figure(frame, figure: str):
@@ -29,16 +29,31 @@ def section_2_figure(frame, figure: str):
     plt = pyplot()
     fig, axis = plt.subplots(figsize=(6.5, 4.5))
     if figure == "2.3":
+        from matplotlib.lines import Line2D
+
+        # the exact curve wide and pale, Eq. 2-5 dashed on top: the two nearly coincide and
+        # each must stay visible; one legend entry per block (colour) and per curve (style)
+        handles = []
         for (name, group), color in zip(frame.groupby("block", sort=False),
                                         plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+            axis.plot(group["theta0/alpha [-]"], group["exact [s]"], "-", color=color, lw=3.0,
+                      alpha=0.4)
             axis.plot(group["theta0/alpha [-]"], group["Eq. 2-5 [s]"], "--", color=color,
-                      lw=1, label=f"{name}: Eq. 2-5")
-            axis.plot(group["theta0/alpha [-]"], group["exact [s]"], "-", color=color, lw=1.2,
-                      label=f"{name}: exact")
-            axis.plot(group["theta0/alpha [-]"], group["engine [s]"], "o", color=color, ms=3)
+                      lw=1.0, zorder=3)
+            axis.plot(group["theta0/alpha [-]"], group["engine [s]"], "o", color=color, ms=3,
+                      zorder=4)
+            handles.append(Line2D([], [], color=color, lw=3.0, alpha=0.6, label=name))
+        handles += [Line2D([], [], color="0.3", lw=3.0, alpha=0.4, label="exact"),
+                    Line2D([], [], color="0.3", lw=1.0, ls="--", label="Eq. 2-5"),
+                    Line2D([], [], color="0.3", ls="none", marker="o", ms=3,
+                           label="engine, COR 1")]
         axis.set_xlabel("amplitude θ0/α [-]")
         axis.set_ylabel("period T [s]")
-        axis.set_title("Fig. 2.3: period of free rocking (dots: engine, COR 1)", fontsize=10)
+        axis.set_title("Fig. 2.3: period of free rocking", fontsize=10)
+        axis.grid(True, lw=0.3, alpha=0.6)
+        fig.tight_layout()
+        place_legend(axis, handles=handles, fontsize=7, frameon=False)
+        return fig
     elif figure == "2.4":
         axis.plot(frame["a/(g alpha) [-]"], frame["Eq. 2-7 t1 [s]"], "--", label="Eq. 2-7")
         axis.plot(frame["a/(g alpha) [-]"], frame["engine t1 [s]"], "o-", label="engine (exact)")
@@ -90,8 +105,8 @@ def section_2_figure(frame, figure: str):
     else:
         raise ValueError(f"figure must be '2.3', '2.4', '2.5', '2.6' or '4.3.4', got {figure!r}")
     axis.grid(True, lw=0.3, alpha=0.6)
-    axis.legend(fontsize=7, frameon=False)
     fig.tight_layout()
+    place_legend(axis, fontsize=7, frameon=False)
     return fig
 
 
@@ -121,10 +136,11 @@ def figure_3_6(frame, block=None):
     degrees = 180.0 / np.pi
     amplitudes = np.linspace(0.02, 0.95, 80) * block.alpha
     fig, axis = plt.subplots(figsize=(6.5, 4.5))
-    axis.plot(amplitudes * degrees, [theory.housner_period(block, a) for a in amplitudes], "--",
-              color="0.4", lw=1, label="Eq. 2-5 (slender block)")
+    # the exact curve wide and pale, Eq. 2-5 dashed on top: they nearly coincide
     axis.plot(amplitudes * degrees, [theory.exact_period(block, a) for a in amplitudes], "-",
-              color="C3", lw=1.2, label="exact (energy integral)")
+              color="C3", lw=3.0, alpha=0.45, label="exact (energy integral)")
+    axis.plot(amplitudes * degrees, [theory.housner_period(block, a) for a in amplitudes], "--",
+              color="0.2", lw=1, label="Eq. 2-5 (slender block)")
     axis.plot(frame["amplitude [deg]"], frame["test period [s]"], "o", color="k", ms=5,
               label="report: test (Table 3.1)")
     axis.plot(frame["amplitude [deg]"], frame["theory period [s]"], "x", color="C0", ms=6,
@@ -135,8 +151,8 @@ def figure_3_6(frame, block=None):
     axis.set_ylabel("period T [s]")
     axis.set_title(f"Fig. 3.6: period against amplitude, {block.describe()} block", fontsize=10)
     axis.grid(True, lw=0.3, alpha=0.6)
-    axis.legend(fontsize=7, frameon=False)
     fig.tight_layout()
+    place_legend(axis, fontsize=7, frameon=False)
     return fig
 
 
@@ -150,11 +166,13 @@ def plot_pitch_repeatability(result, ax=None):
     if ax is None:
         _, ax = plt.subplots(figsize=(8, 3))
     alpha = result.without_pitch.block.alpha
-    for index, run in enumerate(result.runs):
-        ax.plot(run.t, run.theta / alpha, lw=0.5, alpha=0.6,
-                label=f"{len(result.runs)} pitch phases (thin)" if index == 0 else None)
-    ax.plot(result.without_pitch.t, result.without_pitch.theta / alpha, color="k", lw=1.2,
+    # no pitch wide and black underneath, every pitch phase thin and in one colour on top:
+    # where the phases coincide with it they show as one line inside the black one
+    ax.plot(result.without_pitch.t, result.without_pitch.theta / alpha, color="k", lw=2.4,
             label="no pitch")
+    for index, run in enumerate(result.runs):
+        ax.plot(run.t, run.theta / alpha, lw=0.6, color="tab:orange", alpha=0.7,
+                label=f"each of {len(result.runs)} pitch phases" if index == 0 else None)
     # zoom on the action: to a little past the last run's end of motion (overturn or rest)
     ends = []
     for run in (*result.runs, result.without_pitch):

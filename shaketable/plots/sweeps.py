@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from shaketable.plots.base import pyplot
+from shaketable.plots.base import place_legend, pyplot
 from shaketable.sweeps.fragility import fragility_fit
 
 _RATIO = "max_theta_ratio [-]"
@@ -205,19 +205,22 @@ def rocking_spectrum(table, *, x="p", record=None, cor=None, group="aspect", ax=
         order = np.argsort(xs[pick])
         xv, rv, ov = xs[pick][order], ratios[pick][order], over[pick][order]
         shown = np.where(ov, np.nan, rv)
-        ax.plot(xv, shown, "o-", ms=3, color=colour, label=f"{group_label} {value:.3g}")
+        name = group_label.replace(" [-]", "")
+        ax.plot(xv, shown, "o-", ms=3, color=colour, label=f"{name} = {value:.3g}")
         ax.plot(xv[ov], np.full(ov.sum(), top), "x", color=colour, ms=6)
     ax.axhline(1.0, color="0.4", lw=0.8, ls=":")
     ax.axhline(top, color="0.6", lw=0.8, ls="--")
-    ax.text(ax.get_xlim()[0], top, " F (overturned)", va="bottom", fontsize=8, color="0.3")
     ax.set_ylim(0, top * 1.08)
+    # the overturned row is named on the axis, as a tick "F", not by a text on the crosses
+    ticks = [tick for tick in ax.get_yticks() if 0 <= tick <= finite_top]
+    ax.set_yticks(ticks + [top], [f"{tick:g}" for tick in ticks] + ["F (overturned)"])
     if x == "p":
         x_label += "   (larger blocks to the left: p = sqrt(3g/4R))"
     ax.set_xlabel(x_label)
     ax.set_ylabel("max |theta| / alpha [-]")
     label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
     ax.set_title(f"Rocking spectrum: {label}, COR {rows['cor [-]'].iloc[0]:g}")
-    ax.legend(fontsize=7, ncol=2)
+    place_legend(ax, fontsize=7, ncol=2)
     return ax
 
 
@@ -272,8 +275,8 @@ def fragility_curve(table, *, group="block", cor=None, pga="pga [g]", ax=None):
         else len(records)
     ax.set_title(f"Fragility: {', '.join(map(str, records))} ({n_motions} motions), "
                  f"COR {rows['cor [-]'].iloc[0]:g}")
-    ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
+    place_legend(ax, fontsize=7)
     ax.fragility_fits = fits
     return ax
 

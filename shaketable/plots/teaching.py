@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from shaketable.plots.base import pyplot
+from shaketable.plots.base import place_legend, pyplot
 
 _FOOT = 0.3048
 
@@ -225,15 +225,15 @@ def plot_rocking_onset(item, fig=None):
                      f"{item.t_start_with_vertical:.2f} s")
     for sign in (1, -1):
         right.axhline(sign, color="tab:gray", ls="--", lw=0.8)
-    right.set_ylim(-1.2, 1.2)
+    right.set_ylim(-1.2, 1.6)  # room above the +α line for the legend
     right.set_xlabel("time [s]")
     right.set_ylabel("θ/α [-]")
-    right.legend(fontsize=7.5, frameon=False, loc="upper left")
     _finish(right, f"{item.harmonic_frequency:g} Hz, {item.harmonic_horizontal_g:g} g < "
-                   f"B/H = {ratio:.2f} g: rocking needs the downward half-cycles")
+                   f"B/H = {ratio:.2f} g:\nrocking needs the downward half-cycles")
     fig.suptitle("Rocking starts at a lower horizontal acceleration while the ground "
                  "accelerates downward (Eq. 2-1)", fontsize=10)
     fig.tight_layout()
+    place_legend(right, fontsize=7.5, frameon=False)
     return fig
 
 

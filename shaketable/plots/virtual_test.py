@@ -6,6 +6,7 @@ import numpy as np
 
 from shaketable.core.constants import G
 from shaketable.plots.base import pyplot
+from shaketable.plots.calcomp import describe_block
 
 
 def plot_test_vs_theory(result, fig=None, title: str | None = None):
@@ -67,5 +68,11 @@ def plot_test_vs_theory(result, fig=None, title: str | None = None):
     axis.set_title(f"peak ratio virtual test/theory {metrics['peak ratio test/theory']}, RMS "
                    f"difference {metrics['RMS difference theta/alpha']} α (before "
                    "instability)", fontsize=8)
-    fig.suptitle(title or f"virtual test vs theory: {result.block.describe()}", fontsize=10)
+    for panel in axes:
+        panel.grid(True, lw=0.3, alpha=0.5)
+    fig.align_ylabels(axes)
+    # the block as the Calcomp caption gives it (B x H with units), under the given title
+    block = describe_block(result.block)
+    fig.suptitle(f"{title}\n{block}" if title else f"virtual test vs theory: {block}",
+                 fontsize=10)
     return fig

@@ -182,7 +182,7 @@ class SceneResult:
                     label = "" if len(self.tests) == 1 else f"-{index + 1}"
                     written.append(out / f"test-vs-theory{label}.{suffix}")
                     title = (f"{self.scene.source or self.scene.name}: virtual test vs "
-                             f"theory, {self.scene.block.describe()} block, "
+                             "theory, "  # the figure gives the block (B x H) below
                              + ("free rocking" if self.scene.motion.get("kind") == "free"
                                 else f"{self.scene.motion.get('kind')} table motion"))
                     save(test.plot(title=title), written[-1])
@@ -197,7 +197,7 @@ class SceneResult:
             if outputs.get("figure", True):
                 written.append(out / f"sliding{label}.png")
                 title = (f"{self.scene.source or self.scene.name}: the same block sliding, "
-                         f"mu_s {run.friction.static:g}, mu_d {run.friction.dynamic:g}")
+                         f"μs {run.friction.static:g}, μd {run.friction.dynamic:g}")
                 save(run.plot(title=title), written[-1])
         return written
 
