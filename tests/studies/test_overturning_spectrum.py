@@ -130,3 +130,35 @@ def test_pulse_registry_is_loud_and_shapes_are_right():
 
 def test_housner_cor():
     assert housner_cor(BLOCK) == pytest.approx(1 - 1.5 * math.sin(0.25) ** 2)
+
+
+def test_a_band_narrower_than_the_scan_is_flagged_not_hidden(tmp_path):
+    """The one-sine safe window at omega/p = 4 (5.00928-5.32302, Zhang & Makris 2001, 6.3 %
+    wide) scanned with a 20 % step: bisection still finds it (its two sides differ), to the
+    literature's 6 digits, and it is flagged as narrower than the scan in the table, the
+    windows, the CSV and the figure."""
+    coarse = overturning_spectrum(BLOCK, ["one-sine"], [4], scan_step=0.2)
+    assert coarse.edges("one-sine", 4) == pytest.approx(ONE_SINE_4, abs=5e-6)
+    frame = coarse.to_frame()
+    window = frame[frame["from a/(g tan alpha) [-]"].round(5) == 5.00928].iloc[0]
+    assert window["verdict"] == "safe" and window["flagged"]
+    assert "narrower than the scan step (0.2 relative)" in window["note"]
+    assert not frame[frame["verdict"] == "overturns"]["flagged"].any()
+    narrow = coarse.windows[coarse.windows["reason"] == "band narrower than the scan"]
+    assert len(narrow) == 1
+    assert narrow.iloc[0]["from a/(g tan alpha) [-]"] == pytest.approx(5.00928, abs=5e-6)
+    path = tmp_path / "coarse.csv"
+    coarse.to_csv(path)
+    assert "# flag: one-sine omega/p=4: safe band 5.00928" in path.read_text()
+    ax = coarse.plot()
+    framed = [patch for patch in ax.patches if patch.get_edgecolor()[:3] == (1.0, 0.0, 0.0)]
+    assert len(framed) == len(coarse.windows) == 1
+    assert framed[0].get_y() == pytest.approx(5.00928, abs=5e-6)
+
+
+def test_the_default_scan_resolves_the_known_bands(spectra):
+    """At the default 0.5 % step no band of these spectra is narrower than the scan, and
+    the half-sine (a single transition) has nothing to flag."""
+    half, one = spectra
+    assert half.flags == [] and not half.to_frame()["flagged"].any()
+    assert "band narrower than the scan" not in set(one.windows["reason"])
