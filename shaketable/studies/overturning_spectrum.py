@@ -396,18 +396,22 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
 
 def threshold(block: Block, shape: Pulse, *, cor, low: float, high: float,
               tolerance: float = 1e-9, samples_per_cycle: int = 8192) -> float:
-    """Smallest a/(g tan alpha) in [low, high] that overturns, by bisection [-].
+    """The one amplitude a/(g tan alpha) in [low, high] above which ``shape`` overturns [-].
 
-    Unlike a plain bisection it checks the answer: the amplitudes a fraction
-    ``scan`` apart between ``low`` and the edge are verified safe on a 1 %
-    grid, so a banded pulse whose lower band lies inside the bracket raises
-    instead of returning the edge of a higher band.
+    For pulses with a **single transition** (safe below, overturning above; the
+    half-sine of Fig. 2.6 and Section 4.3 (4)). The assumption is checked, not
+    assumed: the bracket is scanned on a 1 % geometric grid first, and a scan
+    showing more than one transition (a banded pulse, e.g. a one-sine:
+    :func:`overturning_spectrum` finds every edge) raises instead of returning
+    one edge of a band. The switch is then bisected to ``tolerance`` relative.
+    A safe window narrower than 1 % above the edge is not seen by the scan
+    (:func:`overturning_spectrum` flags such places).
 
     Raises
     ------
     ValueError
-        ``low`` already overturns, ``high`` does not, or a band below the
-        edge found was skipped.
+        ``low`` already overturns, ``high`` does not, or the scan shows more
+        than one transition.
     """
     grid = np.exp(np.linspace(math.log(low), math.log(high),
                               int(math.ceil(math.log(high / low) / math.log1p(0.01))) + 1))
@@ -415,7 +419,13 @@ def threshold(block: Block, shape: Pulse, *, cor, low: float, high: float,
                                  samples_per_cycle=samples_per_cycle)["overturns"].to_numpy()
     if verdicts[0] or not verdicts[-1]:
         raise ValueError(f"the bracket [{low:.6g}, {high:.6g}] does not hold the threshold")
-    k = int(np.argmax(verdicts))
+    changes = np.flatnonzero(verdicts[1:] != verdicts[:-1])
+    if changes.size > 1:
+        where = ", ".join(f"{grid[k]:.4g}-{grid[k + 1]:.4g}" for k in changes)
+        raise ValueError(f"{shape.kind} at omega = {shape.omega:.6g} rad/s: {changes.size} "
+                         f"overturn/safe transitions in [{low:.6g}, {high:.6g}] (near {where}), "
+                         "not one threshold; overturning_spectrum gives every band edge")
+    k = int(changes[0]) + 1
     lo, hi = grid[k - 1], grid[k]
     while hi / lo - 1 > tolerance:
         middle = math.sqrt(lo * hi)

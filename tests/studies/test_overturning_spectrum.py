@@ -10,7 +10,12 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.ground.pulses import PULSES, Pulse, cycloidal_phase, pulse_motion
 from shaketable.studies import pulses as section_pulses
-from shaketable.studies.overturning_spectrum import decide_after_pulse, housner_cor, overturning_spectrum
+from shaketable.studies.overturning_spectrum import (
+    decide_after_pulse,
+    housner_cor,
+    overturning_spectrum,
+    threshold,
+)
 from tests.studies import pulse_reference  # SciPy DOP853 on the analytic pulse, written independently
 
 # alpha = 0.25 rad, p = 2 rad/s (R = 3 g / 16), Housner's COR: the blocks of Zhang & Makris (2001)
@@ -162,3 +167,26 @@ def test_the_default_scan_resolves_the_known_bands(spectra):
     half, one = spectra
     assert half.flags == [] and not half.to_frame()["flagged"].any()
     assert "band narrower than the scan" not in set(one.windows["reason"])
+
+
+def test_the_single_threshold_bisection_refuses_a_banded_pulse():
+    """threshold() (Fig. 2.6, Section 4.3 (4)) checks its single-transition assumption:
+    the one-sine at omega/p = 4 has three transitions in [1.5, 8] (1.78856, 5.00928,
+    5.32302, Zhang & Makris 2001) and must raise rather than return one edge; the
+    half-sine there has one (2.7975, the literature value quoted in issue 16)."""
+    shape = Pulse("one-sine", 4 * BLOCK.p)
+    with pytest.raises(ValueError, match="3 overturn/safe transitions.*overturning_spectrum"):
+        threshold(BLOCK, shape, cor="housner", low=1.5, high=8.0)
+    half = threshold(BLOCK, Pulse("half-sine", 4 * BLOCK.p), cor="housner", low=1.5, high=8.0,
+                     tolerance=1e-7)
+    assert half == pytest.approx(HALF_SINE[4], abs=5e-5)
+
+
+def test_bisect_threshold_checks_a_single_switch():
+    # a predicate true on (1, 2) and above 3: two switches in [0, 4] seen by the scan
+    with pytest.raises(ValueError, match="switches 3 times"):
+        section_pulses.bisect_threshold(lambda x: 1 < x < 2 or x > 3, 0.0, 4.0)
+    edge = section_pulses.bisect_threshold(lambda x: x > math.pi, 0.0, 4.0, iterations=40)
+    assert edge == pytest.approx(math.pi, abs=1e-11)
+    with pytest.raises(ValueError, match="does not hold"):
+        section_pulses.bisect_threshold(lambda x: x > 5, 0.0, 4.0)
