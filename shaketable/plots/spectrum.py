@@ -16,8 +16,9 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
     neighbours); overturning without impact and after impacts are shaded
     differently. The places the spectrum flags (:attr:`OverturningSpectrum.windows`:
     a band narrower than the scan step, a mode change without a safe band, safe but
-    unstable scan points) are framed in dashed red with a red marker, not hidden. Housner's Eq. (2-8), a/(g tan alpha) = sqrt(1 + (omega/p)^2)
-    (the half-sine estimate), is drawn for comparison.
+    unstable scan points) are framed in dashed red with a red marker, not hidden.
+    Housner's Eq. (2-8), a/(g tan alpha) = sqrt(1 + (omega/p)^2) (the half-sine
+    estimate), is drawn for comparison.
 
     Returns
     -------
