@@ -308,7 +308,7 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
     runs = len(flat_x)
     classes = _classes(verdicts)
     ratios_theta = verdicts["max_theta_ratio [-]"].to_numpy()
-    windows = []           # (series index, lo, hi, reason, words)
+    windows: list = []     # (series index, lo, hi, reason, words)
     brackets = []          # [series index, lo, hi, class lo, class hi]
     start = 0
     for index, grid in enumerate(grids):

@@ -86,7 +86,7 @@ theta/alpha over the members that stand. ``chunk_size`` still counts cells
 The same spec (and seed) always gives the same table, whatever the number of
 workers, the chunking or the interruptions.
 
-Size: about 600 lines, half of them this docstring (the spec format's reference).
+Size: about 680 lines, half of them this docstring (the spec format's reference).
 """
 
 from __future__ import annotations
