@@ -244,6 +244,8 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
         return _repeatability_section(study, folder, lines, tally)
     if study.kind == "teaching":
         return _teaching_section(study, folder, lines)
+    if study.kind == "overturning-spectrum":
+        return _spectrum_section(study, folder, lines)
     if study.kind == "report-figure":
         from shaketable.plots.base import save
         from shaketable.plots.studies import section_2_figure
@@ -369,6 +371,79 @@ def _teaching_section(study: Study, folder: Path, lines: list) -> str:
     return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", ""]
                      + [f"* {line}" for line in item.highlights()]
                      + ["", _markdown(frame.round(4))]) + "\n"
+
+
+def _spectrum_section(study: Study, folder: Path, lines: list) -> str:
+    """An overturning spectrum (issue 16): every band, its flags, the figure, and the
+    published edges the scene gives beside the reproduced ones.
+
+    The published values are the literature's, not the report's: they are shown with
+    their own agreement column and not counted in the report's headline.
+    """
+    import math
+
+    from shaketable.core.files import atomic_write
+    from shaketable.plots.base import save
+    from shaketable.studies.overturning_spectrum import overturning_spectrum
+
+    settings = study.spectrum
+    result = overturning_spectrum(settings.block, pulses=settings.pulses,
+                                  ratios=settings.ratios, cor=settings.cor,
+                                  ceiling=settings.ceiling, scan_step=settings.scan_step,
+                                  tolerance=settings.tolerance)
+    atomic_write(folder / "spectrum.csv", result.to_csv)
+    save(result.plot().figure, folder / "spectrum.png")
+    block = settings.block
+    cor = ("Housner's 1 − 1.5 sin²α = " if settings.cor == "housner" else "") + f"{result.cor:.6g}"
+    lines += [f"![{study.name}]({study.name}/spectrum.png)", "",
+              f"Block α = {block.alpha:.6g} rad, p = {block.p:.6g} rad/s; COR {cor}. Scan: "
+              f"geometric, {100 * result.scan_step:g} % relative step from a/(g tan α) = 1 "
+              f"(below it the block does not rock); every edge bisected to "
+              f"{result.tolerance:g} relative; {result.runs} runs of the batch engine "
+              "(`shaketable.studies.overturning_spectrum`; the verdict after the pulse "
+              "decided by energy). Bands (a/(g tan α)):", ""]
+    frame = result.to_frame()
+    shown = frame.drop(columns=["impacts"]).assign(
+        flagged=frame["flagged"].map(lambda flag: "**yes**" if flag else ""),
+        note=frame["note"].str.replace("|", "\\|", regex=False))   # |theta| in a table cell
+    for column in ("from a/(g tan alpha) [-]", "to a/(g tan alpha) [-]"):
+        shown[column] = shown[column].map(lambda x: f"{x:.7g}")
+    lines.append(_markdown(shown))
+    if result.flags:
+        lines += ["", "**Flagged** (a window narrower than the scan may hide, or was found "
+                  "only because its sides differ; the CSV's `note` says which):", ""]
+        lines += [f"* {flag}" for flag in result.flags]
+    lines += ["", "Minimum overturning amplitude against Housner's Eq. (2-8), the report's "
+              "half-sine estimate a/(g α) = √(1 + (ω/p)²), drawn on the figure with α ≈ tan α "
+              "(the slender-block reading of Section 2.4):", "",
+              "| pulse | ω/p | minimum (engine) | Eq. (2-8) | bands above the minimum |",
+              "|---|---|---|---|---|"]
+    for pulse in settings.pulses:
+        for ratio in settings.ratios:
+            minimum = result.minimum(pulse, ratio)
+            eq_2_8 = math.sqrt(1.0 + ratio ** 2)
+            above = len(result.edges(pulse, ratio)) - 1
+            lines.append(f"| {pulse} | {ratio:g} | {minimum:.7g} | {eq_2_8:.4g} | "
+                         + (f"{above} more edge(s): a safe region above the minimum"
+                            if above else "one transition") + " |")
+    if settings.references:
+        lines += ["", "Published band edges (the literature, not the report: not counted in "
+                  "the report's headline):", "",
+                  "| source | pulse | ω/p | published edges | reproduced edges | largest "
+                  "difference | tolerance | agrees |", "|---|---|---|---|---|---|---|---|"]
+        for reference in settings.references:
+            found = result.edges(reference.pulse, reference.omega_over_p)
+            same = len(found) == len(reference.edges)
+            worst = (max(abs(a - b) for a, b in zip(found, reference.edges)) if same
+                     else math.inf)
+            agrees = worst <= reference.tolerance
+            lines.append(
+                f"| {reference.source or '—'} | {reference.pulse} | "
+                f"{reference.omega_over_p:g} | {', '.join(f'{x:g}' for x in reference.edges)} "
+                f"| {', '.join(f'{x:.6f}' for x in found)} | "
+                + (f"{worst:.1e}" if same else f"{len(found)} edges, not {len(reference.edges)}")
+                + f" | {reference.tolerance:g} | {'yes' if agrees else '**no**'} |")
+    return "\n".join(lines) + "\n"
 
 
 def _table_4_4_section(study: Study, folder: Path, lines: list, tally: ComparisonTally) -> str:

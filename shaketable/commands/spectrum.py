@@ -2,44 +2,12 @@
 
 from __future__ import annotations
 
-import math
 import time
 
-from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 
-#: Most values of omega/p one spectrum may ask for (each costs a scan and bisections).
-MAX_RATIOS = 1000
-
-
-def parse_ratios(text: str) -> list:
-    """omega/p values: ``"1,2,3"`` or a range ``"1:10:0.5"`` (start:stop:step, stop included)."""
-    text = str(text).strip()
-    if ":" in text:
-        try:
-            parts = [float(x) for x in text.split(":")]
-        except ValueError:
-            raise ValueError(f"--ratios {text!r}: a range is start:stop:step, three numbers") \
-                from None
-        if len(parts) != 3 or not all(math.isfinite(x) for x in parts) or parts[2] <= 0 \
-                or parts[1] < parts[0] or parts[0] <= 0:
-            raise ValueError(f"--ratios {text!r}: a range is start:stop:step with "
-                             f"0 < start <= stop and step > 0")
-        count = int(round((parts[1] - parts[0]) / parts[2]))
-        if count > MAX_RATIOS:
-            raise ValueError(f"--ratios {text!r} asks for {count + 1} values of omega/p; at "
-                             f"most {MAX_RATIOS} in one spectrum")
-        return [parts[0] + k * parts[2] for k in range(count + 1)]
-    try:
-        values = [float(x) for x in text.split(",") if x.strip()]
-    except ValueError:
-        raise ValueError(f"--ratios {text!r}: give numbers separated by commas, or "
-                         "start:stop:step") from None
-    if len(values) > MAX_RATIOS:
-        raise ValueError(f"--ratios: at most {MAX_RATIOS} values of omega/p in one spectrum")
-    if not values or min(values) <= 0 or not all(math.isfinite(x) for x in values):
-        raise ValueError(f"--ratios {text!r}: omega/p values must be positive")
-    return values
+# one reader of omega/p values and of (alpha, p) for the command and the scene kind
+from shaketable.scenes.spectrum import MAX_RATIOS, block_from, parse_ratios  # noqa: F401
 
 
 def block_of(block: str | None, alpha: float | None, p: float | None) -> Block:
@@ -52,7 +20,7 @@ def block_of(block: str | None, alpha: float | None, p: float | None) -> Block:
         raise ValueError("give --block HxW (e.g. 16x4ft) or both --alpha [rad] and --p [rad/s]")
     if p <= 0:
         raise ValueError(f"--p must be positive [rad/s], got {p!r}")
-    return Block.from_slenderness(3 * G / (4 * p * p), alpha)   # p^2 = 3 g / (4 R)
+    return block_from(alpha, p)
 
 
 def cor_of(text: str):

@@ -22,6 +22,9 @@ def _sweep(args) -> int:
         f"{args.workers} local thread(s)" if args.workers else "all local cores")
     print(f"{spec.name}: {spec.n_runs} runs in {spec.n_chunks} chunk(s) of {spec.chunk_size}, "
           f"on {where}")
+    if spec.ensemble is not None:
+        print(f"{spec.name}: each run is an ensemble of {spec.ensemble['members']} perturbed "
+              f"copies ([ensemble]: {spec.n_runs * spec.ensemble['members']} simulations)")
     if not args.scheduler:
         notice_first_compile(args.quiet, which=("batch",))
     outcome = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler,
@@ -37,6 +40,11 @@ def _sweep(args) -> int:
     table = outcome.table
     print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
           f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")
+    if "mark" in table:
+        fragile = table[table["mark"] == "fragile"]
+        print(f"{spec.name}: {len(fragile)} of {len(table)} verdicts are fragile (some of the "
+              f"{spec.ensemble['members']} perturbed copies disagree; see 'P(overturn) [-]'), "
+              f"{len(table) - len(fragile)} robust")
     if outcome.format == "csv":
         print("note: pyarrow is not installed; the table is CSV, not Parquet "
               "(pip install 'shaketable[parquet]')")

@@ -4,6 +4,7 @@ on the omega/p - a/(g tan alpha) plane, with Housner's Eq. (2-8) of the report."
 from __future__ import annotations
 
 import numpy as np
+from matplotlib.patches import Rectangle
 
 from shaketable.plots.base import pyplot
 
@@ -13,8 +14,11 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
 
     Each omega/p of the spectrum is a vertical strip (half-way to its
     neighbours); overturning without impact and after impacts are shaded
-    differently. Housner's Eq. (2-8), a/(g tan alpha) = sqrt(1 + (omega/p)^2)
-    (the half-sine estimate), is drawn for comparison.
+    differently. The places the spectrum flags (:attr:`OverturningSpectrum.windows`:
+    a band narrower than the scan step, a mode change without a safe band, safe but
+    unstable scan points) are framed in dashed red with a red marker, not hidden.
+    Housner's Eq. (2-8), a/(g tan alpha) = sqrt(1 + (omega/p)^2) (the half-sine
+    estimate), is drawn for comparison.
 
     Returns
     -------
@@ -58,6 +62,19 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
                                   color="#d95f02" if without else "#7570b3", alpha=0.55,
                                   lw=0, label=None if label in labelled else label)
                 labelled.add(label)
+        # flagged places (OverturningSpectrum.windows): where a window narrower than the
+        # scan may hide, or a band narrower than the scan was found; a dashed red frame
+        # and a marker at the strip's right edge (visible even when very thin)
+        windows = spectrum.windows
+        for _, window in windows[windows["pulse"] == kind].iterrows():
+            k = int(np.argmin(np.abs(ratios - window["omega/p [-]"])))
+            low, high = window["from a/(g tan alpha) [-]"], window["to a/(g tan alpha) [-]"]
+            label = "flagged (see the CSV's note): a band or a possible window narrower than the scan"
+            axis.add_patch(Rectangle((edges[k], low), edges[k + 1] - edges[k], high - low,
+                                     fill=False, edgecolor="red", lw=1.2, ls="--"))
+            axis.plot([edges[k + 1]], [0.5 * (low + high)], marker="<", color="red", ms=7,
+                      ls="none", label=None if label in labelled else label)
+            labelled.add(label)
         x = np.linspace(max(0.0, edges[0]), edges[-1], 200)
         axis.plot(x, np.sqrt(1 + x ** 2), "k--", lw=1, label="Eq. (2-8) (Housner)")
         axis.set_xlim(edges[0], edges[-1])
@@ -68,5 +85,6 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
         axis.set_title(f"{kind}: alpha {block.alpha:.3g} rad, p {block.p:.3g} rad/s, "
                        f"COR {spectrum.cor:.3g}\n(white: safe)", fontsize=9)
         axis.grid(True, lw=0.3, alpha=0.6)
-        axis.legend(fontsize=7, loc="upper left")
+        axis.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1,
+                    frameon=False)
     return axes[-1]

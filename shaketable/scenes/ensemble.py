@@ -3,51 +3,19 @@
 Keys (all optional): ``members`` (default 200), ``perturb`` (relative spread of every
 input, default 1e-9), ``perturb_amplitude``, ``perturb_cor``, ``perturb_size``,
 ``perturb_start`` (override it per input), ``seed`` (0), ``horizon_threshold`` (1e-3,
-in units of alpha). See :mod:`shaketable.studies.predictability`.
+in units of alpha). See :mod:`shaketable.studies.predictability`; the keys are read by
+:func:`shaketable.core.ensemble.ensemble_options` (shared with a sweep's ``[ensemble]``).
 """
 
 from __future__ import annotations
 
 import json
-import math
 
-ENSEMBLE_KEYS = {"members", "perturb", "perturb_amplitude", "perturb_cor", "perturb_size",
-                 "perturb_start", "seed", "horizon_threshold"}
+# one parser of [ensemble] for scenes and sweep specs, in the core layer (the sweeps
+# sit below the scenes); re-exported here, where the scene parser imports it from
+from shaketable.core.ensemble import ENSEMBLE_KEYS, ensemble_options
 
-
-def ensemble_options(section: dict, where: str) -> dict:
-    """Validated ``[ensemble]`` options (raises ValueError naming the key).
-
-    Loads no study and no solver (the scene parser stays light): the spreads are
-    checked here and become a :class:`~shaketable.studies.predictability.Perturbation`
-    when the ensemble runs.
-    """
-    unknown = sorted(set(section) - ENSEMBLE_KEYS)
-    if unknown:
-        raise ValueError(f"{where}: unknown key ensemble.{unknown[0]}; expected one of "
-                         f"{', '.join(sorted(ENSEMBLE_KEYS))}")
-    members = section.get("members", 200)
-    if isinstance(members, bool) or not isinstance(members, int) or members < 2:
-        raise ValueError(f"{where}: ensemble.members must be an integer >= 2, got {members!r}")
-    seed = section.get("seed", 0)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise ValueError(f"{where}: ensemble.seed must be a non-negative integer, got {seed!r}")
-    spread = section.get("perturb", 1e-9)
-    spreads = {}
-    for name in ("amplitude", "cor", "size", "start"):
-        value = section.get(f"perturb_{name}", spread)
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
-                0 <= value < 1):
-            raise ValueError(f"{where}: ensemble.perturb_{name} (or perturb) must be a "
-                             f"relative spread in [0, 1), got {value!r}")
-        spreads[name] = float(value)
-    threshold = section.get("horizon_threshold", 1e-3)
-    if isinstance(threshold, bool) or not isinstance(threshold, (int, float)) or not (
-            0 < threshold < math.inf):
-        raise ValueError(f"{where}: ensemble.horizon_threshold must be positive, got "
-                         f"{threshold!r}")
-    return {"members": members, "seed": seed, "spreads": spreads,
-            "threshold": float(threshold)}
+__all__ = ["ENSEMBLE_KEYS", "ensemble_options", "run_ensembles"]
 
 
 def run_ensembles(scene, felt, out) -> tuple[list, list[str]]:

@@ -81,7 +81,10 @@ SLIDING_KEYS = {"static_friction", "dynamic_friction"}
 
 #: Studies that recompute one of the report's tables (a ``[study]`` section).
 STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"},
-               "pitch-repeatability": {"phases"}, "teaching": {"item"}}
+               "pitch-repeatability": {"phases"}, "teaching": {"item"},
+               # issue 16; the keys are read by shaketable.scenes.spectrum
+               "overturning-spectrum": {"pulse", "block", "alpha", "p", "cor", "omega_over_p",
+                                        "ceiling", "scan_step", "tolerance", "reference"}}
 
 
 class SceneError(ValueError):
@@ -177,7 +180,7 @@ class Study:
     name, source, description : str
     kind : str
         One of :data:`STUDY_KINDS`: ``"report-table"``, ``"report-figure"``,
-        ``"pitch-repeatability"`` or ``"teaching"``.
+        ``"pitch-repeatability"``, ``"teaching"`` or ``"overturning-spectrum"``.
     table : str
         ``"report-table"``: which printed table, ``"table_3_1"``, ``"table_4_1"``,
         ``"table_4_2"`` or ``"table_4_3"``.
@@ -193,6 +196,9 @@ class Study:
         ``"teaching"``: a gallery item registered with :func:`register_study_items`.
     path : str
         The scene file.
+    spectrum : SpectrumSettings or None
+        ``"overturning-spectrum"``: its validated inputs
+        (:class:`shaketable.scenes.spectrum.SpectrumSettings`).
     """
 
     name: str
@@ -206,6 +212,7 @@ class Study:
     phases: int = 24
     item: str = ""
     path: str = ""
+    spectrum: object = None
 
 
 #: Names a study kind accepts for its ``item`` key, registered by the studies
@@ -367,6 +374,13 @@ def _study(data: dict, where: str) -> Study:
     _only({k: v for k, v in spec.items() if k != "kind"}, STUDY_KINDS[kind], where, "study")
     common = dict(name=str(data.get("name", "")), source=str(data.get("source", "")),
                   description=str(data.get("description", "")), kind=kind, path=where)
+    if kind == "overturning-spectrum":
+        from shaketable.scenes.spectrum import spectrum_settings
+
+        try:
+            return Study(**common, spectrum=spectrum_settings(spec, where))
+        except ValueError as error:
+            raise SceneError(str(error)) from None
     if kind == "pitch-repeatability":
         phases = spec.get("phases", 24)
         if isinstance(phases, bool) or not isinstance(phases, int) or phases < 2:

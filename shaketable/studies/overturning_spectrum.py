@@ -24,18 +24,34 @@ barrier, and never otherwise. No run length has to be guessed (the old
 Scan and bisection
 ------------------
 Amplitudes x = a/(g tan alpha) from 1 (below it the block does not rock) to
-``ceiling`` are scanned on a geometric grid of relative step ``scan_step``
-(default 0.5 %; the narrowest band in [2]_'s spectra is about 6 % wide).
+``ceiling`` are scanned on a geometric grid of relative step ``scan_step``.
 Each scan point gets a class: ``safe`` or ``overturns after n impacts``.
 Every neighbouring pair of differing classes is bisected, all brackets of
 all omega/p in one batch per round, until its relative width is below
 ``tolerance`` (default 1e-8); a midpoint whose class differs from both ends
-splits the bracket (a band found inside). Windows narrower than the scan can
-be missed; two hints are reported in :attr:`OverturningSpectrum.flags`
-instead of being hidden: a change of overturning mode without a safe band
-found between (a safe window narrower than the tolerance cannot be
-excluded), and safe scan intervals whose ends became unstable
-(|theta| > alpha) and recovered (an overturning window could lie between).
+splits the bracket (a band found inside).
+
+How the scan step is chosen: the default, 0.5 % relative, puts about a dozen
+scan points across the narrowest band known in these spectra (the one-sine
+safe window at omega/p = 4, 5.00928-5.32302, is 6.3 % wide [2]_) at a cost of
+about 200 log(ceiling) scan runs per omega/p. A band narrower than the step
+is seen only when the verdicts on its two sides differ (the bisection then
+finds it); a window narrower than the step between two scan points of the
+same verdict is invisible to any scan. Such places are **flagged, not
+hidden**: the band table's ``flagged`` column is true and its ``note`` says
+why, :attr:`OverturningSpectrum.windows` lists the amplitude intervals
+concerned (the figure marks them) and :attr:`OverturningSpectrum.flags`
+repeats them in words (also in the CSV header). Three kinds:
+
+* a band narrower than the scan step: found, because the verdicts on its
+  two sides differ (bisecting a bracket whose ends differ keeps a band
+  lying wholly inside it until a midpoint lands in it), but its like could
+  hide between scan points of equal verdict elsewhere: scan finer;
+* a change of overturning mode (e.g. after one impact -> without impact)
+  with no safe band found between: a safe window narrower than
+  ``tolerance`` cannot be excluded at that edge;
+* safe scan points that all became unstable (|theta| > alpha) and
+  recovered: an overturning window narrower than the step may lie between.
 
 References
 ----------
@@ -58,12 +74,17 @@ from shaketable.core.geometry import Block
 from shaketable.ground.pulses import Pulse, pulse_motion
 from shaketable.solvers.batch import Case, simulate_cases
 
-__all__ = ["COLUMNS", "OverturningSpectrum", "decide_after_pulse", "housner_cor",
+__all__ = ["COLUMNS", "WINDOW_COLUMNS", "OverturningSpectrum", "decide_after_pulse", "housner_cor",
            "overturn_verdicts", "overturning_spectrum", "threshold"]
 
 #: Columns of :meth:`OverturningSpectrum.to_frame`.
 COLUMNS = ["pulse", "omega/p [-]", "from a/(g tan alpha) [-]", "to a/(g tan alpha) [-]",
-           "verdict", "how", "impacts", "note"]
+           "verdict", "how", "impacts", "flagged", "note"]
+
+#: Columns of :attr:`OverturningSpectrum.windows`: where a window narrower than the scan
+#: may hide (amplitudes a/(g tan alpha) [-]).
+WINDOW_COLUMNS = ["pulse", "omega/p [-]", "from a/(g tan alpha) [-]",
+                  "to a/(g tan alpha) [-]", "reason"]
 
 
 def housner_cor(block: Block) -> float:
@@ -179,9 +200,13 @@ class OverturningSpectrum:
         Relative scan step [-], relative bracket width of every edge [-],
         largest amplitude examined a/(g tan alpha) [-].
     flags : list of str
-        Places where a window narrower than the scan may hide.
+        Places where a window narrower than the scan may hide, in words.
     runs : int
         Engine runs used.
+    windows : pandas.DataFrame
+        The same places as amplitude intervals, columns :data:`WINDOW_COLUMNS`
+        (``reason``: ``"band narrower than the scan"``, ``"mode change without
+        a safe band"`` or ``"unstable but safe at both ends"``).
     """
 
     block: Block
@@ -192,6 +217,7 @@ class OverturningSpectrum:
     ceiling: float
     flags: list = field(default_factory=list)
     runs: int = 0
+    windows: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=WINDOW_COLUMNS))
 
     def to_frame(self) -> pd.DataFrame:
         """The tidy band table (a copy)."""
@@ -282,7 +308,7 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
     runs = len(flat_x)
     classes = _classes(verdicts)
     ratios_theta = verdicts["max_theta_ratio [-]"].to_numpy()
-    flags = []
+    windows: list = []     # (series index, lo, hi, reason, words)
     brackets = []          # [series index, lo, hi, class lo, class hi]
     start = 0
     for index, grid in enumerate(grids):
@@ -292,9 +318,16 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
             if cls[k] != cls[k + 1]:
                 brackets.append([index, grid[k], grid[k + 1], cls[k], cls[k + 1]])
             elif cls[k] < 0 and theta[k] > 1 and theta[k + 1] > 1:
-                flags.append(f"{keys[index][0]} omega/p={keys[index][1]:g}: safe at "
-                             f"{grid[k]:.6g} and {grid[k + 1]:.6g} but unstable (|theta| > "
-                             "alpha) at both: a narrower overturning window cannot be excluded")
+                # consecutive such intervals make one window
+                if windows and windows[-1][0] == index and windows[-1][2] == grid[k] \
+                        and windows[-1][3] == "unstable but safe at both ends":
+                    lo = windows.pop()[1]
+                else:
+                    lo = grid[k]
+                windows.append((index, lo, grid[k + 1], "unstable but safe at both ends",
+                                f"safe but unstable (|theta| > alpha) at every scan point "
+                                f"from {lo:.6g} to {grid[k + 1]:.6g}: an overturning window "
+                                "narrower than the scan step cannot be excluded there"))
         start += grid.size
     edges = []
     while brackets:
@@ -315,6 +348,7 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
             else:
                 brackets.append([b[0], b[1], x, b[3], c])
                 brackets.append([b[0], x, b[2], c, b[4]])
+    step = math.log1p(scan_step)
     rows = []
     for index, key in enumerate(keys):
         found = sorted((e for e in edges if e[0] == index), key=lambda e: e[1])
@@ -322,36 +356,62 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
         first = classes[sum(g.size for g in grids[:index])]
         band_classes = [first] + [e[4] for e in found]
         for k, cls in enumerate(band_classes):
-            note = ""
+            notes = []
             if k > 0 and cls >= 0 and band_classes[k - 1] >= 0:
-                note = (f"mode changes at {points[k]:.9g} with no safe band found: one "
-                        f"narrower than {tolerance:g} relative cannot be excluded")
-                flags.append(f"{key[0]} omega/p={key[1]:g}: {note}")
+                edge = found[k - 1]
+                notes.append(f"mode changes at {points[k]:.9g} with no safe band found: a "
+                             f"safe window narrower than {tolerance:g} relative cannot be "
+                             "excluded there")
+                windows.append((index, edge[1], edge[2], "mode change without a safe band",
+                                notes[-1]))
+            inner = 0 < k < len(band_classes) - 1
+            if inner and math.log(points[k + 1] / points[k]) < step:
+                notes.append(f"band narrower than the scan step ({scan_step:g} relative): "
+                             "found because the verdicts on its two sides differ; one as "
+                             "narrow between scan points of the same verdict would not be "
+                             "seen (scan finer)")
+                windows.append((index, points[k], points[k + 1], "band narrower than the scan",
+                                f"{'overturning' if cls >= 0 else 'safe'} band "
+                                f"{points[k]:.9g}-{points[k + 1]:.9g}: {notes[-1]}"))
+            for window in windows:
+                if (window[0] == index and window[3] == "unstable but safe at both ends"
+                        and points[k] <= window[1] < points[k + 1]):
+                    notes.append(window[4])
+            flagged = bool(notes)
             if k == len(band_classes) - 1:
-                note = (note + "; " if note else "") + "up to the ceiling"
+                notes.append("up to the ceiling")
             rows.append({"pulse": key[0], "omega/p [-]": key[1],
                          "from a/(g tan alpha) [-]": points[k],
                          "to a/(g tan alpha) [-]": points[k + 1],
                          "verdict": "overturns" if cls >= 0 else "safe", "how": _how(cls),
-                         "impacts": cls if cls >= 0 else -1, "note": note})
+                         "impacts": cls if cls >= 0 else -1, "flagged": flagged,
+                         "note": "; ".join(notes)})
+    windows.sort(key=lambda w: (w[0], w[1]))
+    flags = [f"{keys[w[0]][0]} omega/p={keys[w[0]][1]:g}: {w[4]}" for w in windows]
+    window_frame = pd.DataFrame([(keys[w[0]][0], keys[w[0]][1], float(w[1]), float(w[2]), w[3])
+                                 for w in windows], columns=WINDOW_COLUMNS)
     return OverturningSpectrum(block, cor, pd.DataFrame(rows, columns=COLUMNS), scan_step,
-                               tolerance, float(max(tops)), flags, runs)
+                               tolerance, float(max(tops)), flags, runs, window_frame)
 
 
 def threshold(block: Block, shape: Pulse, *, cor, low: float, high: float,
               tolerance: float = 1e-9, samples_per_cycle: int = 8192) -> float:
-    """Smallest a/(g tan alpha) in [low, high] that overturns, by bisection [-].
+    """The one amplitude a/(g tan alpha) in [low, high] above which ``shape`` overturns [-].
 
-    Unlike a plain bisection it checks the answer: the amplitudes a fraction
-    ``scan`` apart between ``low`` and the edge are verified safe on a 1 %
-    grid, so a banded pulse whose lower band lies inside the bracket raises
-    instead of returning the edge of a higher band.
+    For pulses with a **single transition** (safe below, overturning above; the
+    half-sine of Fig. 2.6 and Section 4.3 (4)). The assumption is checked, not
+    assumed: the bracket is scanned on a 1 % geometric grid first, and a scan
+    showing more than one transition (a banded pulse, e.g. a one-sine:
+    :func:`overturning_spectrum` finds every edge) raises instead of returning
+    one edge of a band. The switch is then bisected to ``tolerance`` relative.
+    A safe window narrower than 1 % above the edge is not seen by the scan
+    (:func:`overturning_spectrum` flags such places).
 
     Raises
     ------
     ValueError
-        ``low`` already overturns, ``high`` does not, or a band below the
-        edge found was skipped.
+        ``low`` already overturns, ``high`` does not, or the scan shows more
+        than one transition.
     """
     grid = np.exp(np.linspace(math.log(low), math.log(high),
                               int(math.ceil(math.log(high / low) / math.log1p(0.01))) + 1))
@@ -359,7 +419,13 @@ def threshold(block: Block, shape: Pulse, *, cor, low: float, high: float,
                                  samples_per_cycle=samples_per_cycle)["overturns"].to_numpy()
     if verdicts[0] or not verdicts[-1]:
         raise ValueError(f"the bracket [{low:.6g}, {high:.6g}] does not hold the threshold")
-    k = int(np.argmax(verdicts))
+    changes = np.flatnonzero(verdicts[1:] != verdicts[:-1])
+    if changes.size > 1:
+        where = ", ".join(f"{grid[k]:.4g}-{grid[k + 1]:.4g}" for k in changes)
+        raise ValueError(f"{shape.kind} at omega = {shape.omega:.6g} rad/s: {changes.size} "
+                         f"overturn/safe transitions in [{low:.6g}, {high:.6g}] (near {where}), "
+                         "not one threshold; overturning_spectrum gives every band edge")
+    k = int(changes[0]) + 1
     lo, hi = grid[k - 1], grid[k]
     while hi / lo - 1 > tolerance:
         middle = math.sqrt(lo * hi)

@@ -45,115 +45,24 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from shaketable.core.ensemble import (  # the solver-free part, shared with the sweeps
+    HORIZON_THRESHOLD,
+    TINY,
+    Members,
+    Perturbation,
+    perturbed_block,
+    perturbed_cor,
+    perturbed_members,
+    shifted,
+    verdict_statistics,
+    wilson_interval,
+)
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.solvers.batch import Case, simulate_cases
 
 __all__ = ["Perturbation", "EnsembleResult", "ensemble", "wilson_interval",
            "perturbed_members", "horizon", "trajectories", "TINY"]
-
-#: Default relative spread of every input [-]: far below any physical
-#: uncertainty, large enough (1e7 machine epsilons) to be a different run.
-TINY = 1e-9
-
-#: Default divergence threshold of the horizon [-], in units of alpha.
-HORIZON_THRESHOLD = 1e-3
-
-
-@dataclass(frozen=True)
-class Perturbation:
-    """Relative spreads [-] of the inputs of an ensemble (uniform in +/- spread).
-
-    Attributes
-    ----------
-    amplitude : float
-        Of the input amplitude (every component of the motion) [-].
-    cor : float
-        Of the coefficient of restitution [-] (the result kept in [0, 1]).
-    size : float
-        Of the block height and width, independently [-].
-    start : float
-        Of the record's start, in sample intervals [-]: the record is read
-        from ``t + start * u * dt`` on (linear interpolation).
-    """
-
-    amplitude: float = TINY
-    cor: float = TINY
-    size: float = TINY
-    start: float = TINY
-
-    def __post_init__(self):
-        for name in ("amplitude", "cor", "size", "start"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value)
-                    and 0.0 <= value < 1.0):
-                raise ValueError(f"Perturbation.{name} must be a relative spread in [0, 1), "
-                                 f"got {value!r}")
-            object.__setattr__(self, name, float(value))
-
-    @classmethod
-    def uniform(cls, spread: float) -> "Perturbation":
-        """Every input perturbed by the same relative ``spread``."""
-        return cls(spread, spread, spread, spread)
-
-
-def wilson_interval(successes: int, trials: int, z: float = 1.959964) -> tuple[float, float]:
-    """Wilson's score interval for a binomial proportion (95 % for the default z).
-
-    Wilson, E. B., J. Am. Stat. Assoc. 22(158), 209-212, 1927.
-    """
-    if trials <= 0:
-        raise ValueError(f"trials must be positive, got {trials!r}")
-    if not 0 <= successes <= trials:
-        raise ValueError(f"successes must be in [0, trials], got {successes!r}")
-    p = successes / trials
-    denominator = 1.0 + z * z / trials
-    centre = (p + z * z / (2 * trials)) / denominator
-    half = z * math.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials)) / denominator
-    return max(0.0, centre - half), min(1.0, centre + half)
-
-
-def shifted(motion: Motion, delta: float) -> Motion:
-    """The record read from ``t + delta`` on [s] (same grid, linear interpolation)."""
-    if delta == 0.0:
-        return motion
-    times = motion.t + delta
-    horizontal = np.interp(times, motion.t, motion.horizontal)
-    vertical = None if motion.vertical is None else np.interp(times, motion.t, motion.vertical)
-    rotation = None if motion.rotation is None else np.interp(times, motion.t, motion.rotation)
-    return Motion(motion.t, horizontal, vertical, name=motion.name, rotation=rotation,
-                  metadata=motion.metadata)
-
-
-def _factors(rng, members, spread):
-    """``members`` factors 1 + spread * U[-1, 1], the first exactly 1."""
-    values = 1.0 + spread * rng.uniform(-1.0, 1.0, members)
-    values[0] = 1.0
-    return values
-
-
-@dataclass(frozen=True)
-class Members:
-    """The perturbed inputs of an ensemble, member 0 the nominal run."""
-
-    amplitude: np.ndarray
-    cor: np.ndarray
-    height: np.ndarray
-    width: np.ndarray
-    start: np.ndarray
-
-
-def perturbed_members(members: int, perturbation: Perturbation, seed: int = 0) -> Members:
-    """Factors (amplitude, COR, height, width) and start shifts [sample intervals] per member."""
-    if not (isinstance(members, (int, np.integer)) and members >= 2):
-        raise ValueError(f"members must be an integer >= 2, got {members!r}")
-    rng = np.random.default_rng(seed)
-    start = perturbation.start * rng.uniform(-1.0, 1.0, members)
-    start[0] = 0.0
-    return Members(_factors(rng, members, perturbation.amplitude),
-                   _factors(rng, members, perturbation.cor),
-                   _factors(rng, members, perturbation.size),
-                   _factors(rng, members, perturbation.size), start)
 
 
 def member_cases(block: Block, motion: Motion, cor: float, drawn: Members,
@@ -163,35 +72,17 @@ def member_cases(block: Block, motion: Motion, cor: float, drawn: Members,
         motions = [shifted(motion, s * motion.dt) for s in drawn.start]
     cases = []
     for k in range(drawn.amplitude.size):
-        member_block = block if k == 0 else Block(block.height * drawn.height[k],
-                                                  block.width * drawn.width[k], block.rods)
-        cases.append(Case(member_block, motions[k], min(1.0, max(0.0, cor * drawn.cor[k])),
-                          scale=float(drawn.amplitude[k]), block_label=label or
-                          block.describe(), motion_label=motion.name))
+        cases.append(Case(perturbed_block(block, drawn, k), motions[k],
+                          perturbed_cor(cor, drawn, k), scale=float(drawn.amplitude[k]),
+                          block_label=label or block.describe(), motion_label=motion.name))
     return cases
 
 
 def summarize(frame: pd.DataFrame) -> dict:
-    """P(overturn), its Wilson interval, and max |theta|/alpha statistics of members' rows."""
-    overturned = frame["overturned"].to_numpy()
-    ratio = frame["max_theta_ratio [-]"].to_numpy()
-    n, k = len(frame), int(overturned.sum())
-    low, high = wilson_interval(k, n)
-    # the peak statistics are of the members that stand: an overturned member has no
-    # peak ((pi/2)/alpha is where the run stopped, not a response), it is counted in P
-    standing = ratio[~overturned]
-
-    def statistic(function):
-        return float(function(standing)) if standing.size else math.nan
-
-    return {"members": n, "overturned": k, "P(overturn) [-]": k / n,
-            "P low [-]": low, "P high [-]": high,
-            "nominal overturned": bool(overturned[0]),
-            "robust": k in (0, n),
-            "standing members": int(standing.size),
-            "median max theta/alpha [-]": statistic(np.median),
-            "p05 max theta/alpha [-]": statistic(lambda x: np.percentile(x, 5)),
-            "p95 max theta/alpha [-]": statistic(lambda x: np.percentile(x, 95))}
+    """P(overturn), its Wilson interval, and max |theta|/alpha statistics of members' rows
+    (:func:`shaketable.core.ensemble.verdict_statistics` of the batch columns)."""
+    return verdict_statistics(frame["overturned"].to_numpy(),
+                              frame["max_theta_ratio [-]"].to_numpy())
 
 
 def trajectories(block: Block, motion: Motion, cor: float, *, members: int = 5,
@@ -206,12 +97,11 @@ def trajectories(block: Block, motion: Motion, cor: float, *, members: int = 5,
     drawn = perturbed_members(members, Perturbation.uniform(spread), seed)
     runs = []
     for k in range(members):
-        member_block = block if k == 0 else Block(block.height * drawn.height[k],
-                                                  block.width * drawn.width[k], block.rods)
+        member_block = perturbed_block(block, drawn, k)
         felt = shifted(motion, drawn.start[k] * motion.dt)
         if drawn.amplitude[k] != 1.0:
             felt = felt.scaled(float(drawn.amplitude[k]))
-        runs.append(simulate(member_block, felt, cor=min(1.0, cor * drawn.cor[k]),
+        runs.append(simulate(member_block, felt, cor=perturbed_cor(cor, drawn, k),
                              duration=duration, method=method))
     return runs
 

@@ -1,5 +1,11 @@
-"""Pulse studies: the overturning threshold by bisection and Section 4.3 (4) (the 16 x 4 ft
+"""Pulse studies: a checked single-threshold bisection and Section 4.3 (4) (the 16 x 4 ft
 block under short half-sine pulses, Eq. 2-9).
+
+Every bisection of the studies checks its single-transition assumption on a scan
+first and raises when the scan shows more than one (:func:`bisect_threshold`, and
+:func:`shaketable.studies.overturning_spectrum.threshold` for pulses); pulses with
+several overturn/safe bands are the business of
+:func:`shaketable.studies.overturning_spectrum.overturning_spectrum`.
 """
 
 from __future__ import annotations
@@ -13,20 +19,37 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 
 
-def bisect_threshold(predicate, low, high, iterations=30):
-    """Smallest x in [low, high] with predicate(x) true (predicate monotone).
+def bisect_threshold(predicate, low, high, iterations=30, scan=8):
+    """Smallest x in [low, high] with predicate(x) true, for a predicate with one switch.
 
-    Raises ValueError when the bracket does not hold the switch (predicate(low)
-    already true, or predicate(high) false), instead of returning its edge.
+    The single switch (false below, true above) is checked, not assumed:
+    ``scan + 1`` evenly spaced points of the bracket are evaluated first, and
+    a predicate that switches more than once there raises (a banded response;
+    for pulses :func:`shaketable.studies.overturning_spectrum.overturning_spectrum`
+    gives every edge). The scan interval holding the switch is then bisected
+    ``iterations`` times. A second pair of switches closer together than the
+    scan spacing, (high - low) / scan, is not seen.
+
+    Raises
+    ------
+    ValueError
+        The bracket does not hold the switch (predicate(low) already true, or
+        predicate(high) false), or the scan shows more than one switch.
     """
-    if predicate(low) or not predicate(high):
+    points = [low + (high - low) * k / scan for k in range(scan + 1)]
+    values = [bool(predicate(x)) for x in points]
+    if values[0] or not values[-1]:
         raise ValueError(f"the bracket [{low:.6g}, {high:.6g}] does not hold the threshold")
+    switches = [k for k in range(scan) if values[k] != values[k + 1]]
+    if len(switches) > 1:
+        raise ValueError(f"the predicate switches {len(switches)} times in [{low:.6g}, "
+                         f"{high:.6g}] (near " + ", ".join(f"{points[k]:.4g}" for k in switches)
+                         + "): not a single threshold")
+    low, high = points[switches[0]], points[switches[0] + 1]
     for _ in range(iterations):
         middle = 0.5 * (low + high)
         low, high = (low, middle) if predicate(middle) else (middle, high)
     return 0.5 * (low + high)
-
-
 
 
 def section_4_3_4(block=None, pulse_durations=(0.1, 0.05, 0.02, 0.01)) -> pd.DataFrame:

@@ -45,7 +45,8 @@ def figure_2_3(blocks=None, ratios=None) -> pd.DataFrame:
 
 def figure_2_4(block=None, ratios=None) -> pd.DataFrame:
     """Duration t1 of a constant acceleration a that overturns the block (Fig. 2.4):
-    Eq. (2-7) against the engine (bisection on t1) [s]."""
+    Eq. (2-7) against the engine (bisection on t1, its single switch checked on a scan
+    of the bracket: :func:`shaketable.studies.pulses.bisect_threshold`) [s]."""
     block = block or Block.from_feet(16, 4)
     ratios = np.array([1.1, 1.25, 1.5, 2.0, 3.0, 4.0]) if ratios is None else np.asarray(ratios)
     rows = []
@@ -100,7 +101,8 @@ def figure_2_5(heights=None, aspect_ratio: float = 4.0, accelerations_g=(0.5, 1.
 
 def figure_2_6(block=None, frequency_ratios=None) -> pd.DataFrame:
     """Amplitude of a single half-sine pulse that overturns the block vs omega/p (Fig. 2.6):
-    Eq. (2-8), Eq. (2-9) and the engine (bisection on the amplitude) [g]."""
+    Eq. (2-8), Eq. (2-9) and the engine (bisection on the amplitude, its single transition
+    checked on a 1 % scan: :func:`shaketable.studies.overturning_spectrum.threshold`) [g]."""
     block = block or Block.from_feet(16, 4)
     frequency_ratios = (np.array([1.0, 2.0, 3.0, 5.0, 10.0, 18.0])
                         if frequency_ratios is None else np.asarray(frequency_ratios))

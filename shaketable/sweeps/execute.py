@@ -126,11 +126,13 @@ def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None):
 def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
     """Run one chunk; the rows of the result table for runs ``chunk * chunk_size`` on.
 
-    A plain function of picklable arguments: this is what a Dask worker runs.
+    A plain function of picklable arguments: this is what a Dask worker runs. With
+    ``spec.ensemble`` each run is an ensemble of perturbed copies (its row gains
+    :data:`ENSEMBLE_COLUMNS` and ``mark``).
     """
     import pandas as pd
 
-    from shaketable.solvers.batch import Case, simulate_cases
+    from shaketable.solvers.batch import Case
 
     start = chunk * spec.chunk_size
     inputs = runs_table(spec, start, start + spec.chunk_size)
@@ -150,21 +152,11 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
                           block_label=block.describe(unit="in"), motion_label=label))
         factors.append(factor)
         record_pgas.append(_record_motion(record, seed).pga)
-    options = {key: value for key, value in spec.options.items() if key != "theta0"}
-    theta0_text = spec.options.get("theta0")
-    if theta0_text is None:
-        frame = simulate_cases(cases, threads=threads, method=spec.method,
-                               duration=spec.duration, **options)
-    else:  # "k alpha" depends on the block: one batch per block
-        parts = []
-        for block_index, group in inputs.groupby("block_index", sort=False):
-            theta0 = parse_angle_or_ratio(theta0_text, spec.blocks[block_index].alpha)
-            subset = [cases[i] for i in group.index]
-            part = simulate_cases(subset, threads=threads, method=spec.method,
-                                  duration=spec.duration, theta0=theta0, **options)
-            part.index = group.index
-            parts.append(part)
-        frame = pd.concat(parts).sort_index()
+    statistics = None
+    if spec.ensemble is None:
+        frame = _simulate(spec, inputs, cases, threads)
+    else:
+        frame, statistics = _simulate_ensembles(spec, inputs, cases, threads)
     frame = frame.drop(columns=["block_index", "motion_index", "scale [-]", "pga [m/s^2]"])
     record_pgas = np.array(record_pgas)
     factors = np.array(factors)
@@ -190,7 +182,89 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
         "block_index": inputs["block_index"].to_numpy(),
     })
     frame = frame.reset_index(drop=True)
-    return pd.concat([extra, frame], axis=1)
+    return pd.concat([extra, frame] + ([] if statistics is None else [statistics]), axis=1)
+
+
+def _simulate(spec: SweepSpec, inputs, cases: list, threads):
+    """The batch rows of ``cases`` (one per row of ``inputs``), in order."""
+    import pandas as pd
+
+    from shaketable.solvers.batch import simulate_cases
+
+    options = {key: value for key, value in spec.options.items() if key != "theta0"}
+    theta0_text = spec.options.get("theta0")
+    if theta0_text is None:
+        return simulate_cases(cases, threads=threads, method=spec.method,
+                              duration=spec.duration, **options)
+    # "k alpha" depends on the block: one batch per block
+    parts = []
+    for block_index, group in inputs.groupby("block_index", sort=False):
+        theta0 = parse_angle_or_ratio(theta0_text, spec.blocks[block_index].alpha)
+        subset = [cases[i] for i in group.index]
+        part = simulate_cases(subset, threads=threads, method=spec.method,
+                              duration=spec.duration, theta0=theta0, **options)
+        part.index = group.index
+        parts.append(part)
+    return pd.concat(parts).sort_index()
+
+
+#: Ensemble columns a sweep row gains with ``[ensemble]`` (:func:`verdict_statistics` names).
+ENSEMBLE_COLUMNS = {"members": "members", "overturned": "overturned members",
+                    "P(overturn) [-]": "P(overturn) [-]", "P low [-]": "P low [-]",
+                    "P high [-]": "P high [-]", "robust": "robust",
+                    "standing members": "standing members",
+                    "median max theta/alpha [-]": "median max theta/alpha [-]",
+                    "p05 max theta/alpha [-]": "p05 max theta/alpha [-]",
+                    "p95 max theta/alpha [-]": "p95 max theta/alpha [-]"}
+
+
+def _simulate_ensembles(spec: SweepSpec, inputs, cases: list, threads):
+    """Each cell's ensemble in one batch: the nominal rows and the ensemble columns.
+
+    Member k of every cell has the k-th draw of
+    :func:`shaketable.core.ensemble.perturbed_members` (a function of the spec
+    alone, so a chunk's rows do not depend on the chunking or on a resume);
+    member 0 is the cell's own case, so its row is the row of the sweep
+    without ``[ensemble]``.
+    """
+    import pandas as pd
+
+    from shaketable.core.ensemble import (
+        Perturbation,
+        perturbed_block,
+        perturbed_cor,
+        perturbed_members,
+        shifted,
+        verdict_statistics,
+    )
+    from shaketable.solvers.batch import Case
+
+    members = spec.ensemble["members"]
+    drawn = perturbed_members(members, Perturbation(**spec.ensemble["spreads"]),
+                              spec.ensemble["seed"])
+    copies: dict = {}           # shifted copies of each motion, shared by its cells
+    expanded = []
+    for case in cases:
+        key = (id(case.motion), case.motion_label)
+        if key not in copies:
+            copies[key] = [shifted(case.motion, s * case.motion.dt) for s in drawn.start]
+        for k in range(members):
+            expanded.append(Case(perturbed_block(case.block, drawn, k), copies[key][k],
+                                 perturbed_cor(case.cor, drawn, k),
+                                 scale=case.scale * float(drawn.amplitude[k]),
+                                 block_label=case.block_label, motion_label=case.motion_label))
+    repeated = inputs.loc[inputs.index.repeat(members)].reset_index(drop=True)
+    frame = _simulate(spec, repeated, expanded, threads)
+    overturned = frame["overturned"].to_numpy().reshape(len(cases), members)
+    ratio = frame["max_theta_ratio [-]"].to_numpy().reshape(len(cases), members)
+    rows = []
+    for k in range(len(cases)):
+        summary = verdict_statistics(overturned[k], ratio[k])
+        row = {name: summary[key] for key, name in ENSEMBLE_COLUMNS.items()}
+        row["mark"] = "robust" if summary["robust"] else "fragile"
+        rows.append(row)
+    nominal = frame.iloc[::members].reset_index(drop=True)
+    return nominal, pd.DataFrame(rows)
 
 
 def solver_identity() -> dict:
@@ -211,6 +285,8 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                 "n_runs": spec.n_runs, "chunk_size": spec.chunk_size,
                 "n_chunks": spec.n_chunks, "format": fmt, "format_version": FORMAT_VERSION,
                 "solver": solver_identity()}
+    if spec.ensemble is not None:
+        manifest["ensemble"] = spec.ensemble
     if manifest_path.exists():
         if not resume:
             raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "

@@ -45,8 +45,14 @@ dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``):
     amplitude = "0.22 rad/s2"
     # block_position = "0 in", axis_depth = "0 in"
 
+    [ensemble]                    # optional: every cell run as an ensemble (issue 16)
+    members = 200                 # copies per cell, the first the nominal run
+    perturb = 1e-9                # relative spread of every input; or per input:
+    # perturb_amplitude, perturb_cor, perturb_size, perturb_start (sample intervals)
+    # seed = 0                    # of the draws (member k is the same in every cell)
+
     [run]
-    chunk_size = 500              # runs per chunk (a part file each)
+    chunk_size = 500              # runs (cells) per chunk (a part file each)
 
 Order of the runs (the ``run`` column): record realisation, pitch phase,
 intensity, block, COR, the last varying fastest. A record is scaled first and
@@ -63,10 +69,24 @@ one after the other, each spread over ``workers`` threads by the compiled batch
 loop; with ``scheduler`` they are Dask tasks on a ``distributed`` cluster (the
 workers must have shaketable installed and see record files at the same path).
 
+With ``[ensemble]`` (the keys of a scene's ``[ensemble]``, read by
+:func:`shaketable.core.ensemble.ensemble_options`, except ``horizon_threshold``:
+a sweep computes no horizon) each cell is run ``members`` times: member 0 is
+the cell's own run (its row is the row the sweep writes without
+``[ensemble]``), member k has the amplitude, COR, block height and width and
+the record's start perturbed by the k-th draw of
+:func:`shaketable.core.ensemble.perturbed_members` (the same draw in every
+cell). The row gains the ensemble's verdict: ``members``, ``overturned
+members``, ``P(overturn) [-]`` with its Wilson 95 % interval (``P low [-]``,
+``P high [-]``), ``robust`` (every member agrees) and ``mark``
+(``robust`` / ``fragile``), and the median and 5-95 % range of max
+theta/alpha over the members that stand. ``chunk_size`` still counts cells
+(a chunk runs ``chunk_size * members`` simulations).
+
 The same spec (and seed) always gives the same table, whatever the number of
 workers, the chunking or the interruptions.
 
-Size: about 600 lines, half of them this docstring (the spec format's reference).
+Size: about 680 lines, half of them this docstring (the spec format's reference).
 """
 
 from __future__ import annotations
@@ -90,7 +110,7 @@ from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
 
 TOP_KEYS = {"name", "description", "seed", "blocks", "rocking", "records", "intensity",
-            "pitch", "run"}
+            "pitch", "run", "ensemble"}
 
 BLOCK_KEYS = {"height", "width", "aspect", "R", "alpha", "sizes", "rods"}
 
@@ -209,7 +229,10 @@ class SweepSpec:
     options : dict
         ``rtol``, ``theta0`` [rad or "k alpha"], ``subdivisions`` for the batch.
     chunk_size : int
-        Runs per chunk.
+        Runs (cells) per chunk.
+    ensemble : dict or None
+        ``[ensemble]``: :func:`shaketable.core.ensemble.ensemble_options`
+        (``members``, ``seed``, ``spreads``); None runs each cell once.
     path : str
         Where the spec was read from (for messages and relative record files).
     raw : dict
@@ -230,6 +253,7 @@ class SweepSpec:
     method: str = "fast"
     options: dict = field(default_factory=dict)
     chunk_size: int = 500
+    ensemble: dict | None = None
     path: str = "<spec>"
     raw: dict = field(default_factory=dict, compare=False, repr=False)
 
@@ -360,7 +384,24 @@ def spec_from_dict(data: dict, where: str = "<spec>", directory=None) -> SweepSp
                      seed=seed, blocks=tuple(blocks), block_inputs=tuple(block_inputs),
                      cors=cors, records=tuple(records), intensity=intensity,
                      levels=tuple(levels), pitch=pitch, duration=duration, method=method,
-                     options=options, chunk_size=chunk_size, path=where, raw=data)
+                     options=options, chunk_size=chunk_size,
+                     ensemble=_ensemble(data.get("ensemble"), where), path=where, raw=data)
+
+
+def _ensemble(table, where):
+    """``[ensemble]``: the scene's option parser (no horizon in a sweep); None if absent."""
+    from shaketable.core.ensemble import ensemble_options
+
+    if table is None:
+        return None
+    if not isinstance(table, dict):
+        raise SweepError(f"{where}: [ensemble] must be a table, got {table!r}")
+    try:
+        options = ensemble_options(table, where, horizon=False)
+    except ValueError as error:
+        raise SweepError(str(error)) from None
+    del options["threshold"]
+    return options
 
 
 def _only(table: dict, allowed: set, where: str, section: str) -> None:

@@ -10,7 +10,12 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.ground.pulses import PULSES, Pulse, cycloidal_phase, pulse_motion
 from shaketable.studies import pulses as section_pulses
-from shaketable.studies.overturning_spectrum import decide_after_pulse, housner_cor, overturning_spectrum
+from shaketable.studies.overturning_spectrum import (
+    decide_after_pulse,
+    housner_cor,
+    overturning_spectrum,
+    threshold,
+)
 from tests.studies import pulse_reference  # SciPy DOP853 on the analytic pulse, written independently
 
 # alpha = 0.25 rad, p = 2 rad/s (R = 3 g / 16), Housner's COR: the blocks of Zhang & Makris (2001)
@@ -130,3 +135,58 @@ def test_pulse_registry_is_loud_and_shapes_are_right():
 
 def test_housner_cor():
     assert housner_cor(BLOCK) == pytest.approx(1 - 1.5 * math.sin(0.25) ** 2)
+
+
+def test_a_band_narrower_than_the_scan_is_flagged_not_hidden(tmp_path):
+    """The one-sine safe window at omega/p = 4 (5.00928-5.32302, Zhang & Makris 2001, 6.3 %
+    wide) scanned with a 20 % step: bisection still finds it (its two sides differ), to the
+    literature's 6 digits, and it is flagged as narrower than the scan in the table, the
+    windows, the CSV and the figure."""
+    coarse = overturning_spectrum(BLOCK, ["one-sine"], [4], scan_step=0.2)
+    assert coarse.edges("one-sine", 4) == pytest.approx(ONE_SINE_4, abs=5e-6)
+    frame = coarse.to_frame()
+    window = frame[frame["from a/(g tan alpha) [-]"].round(5) == 5.00928].iloc[0]
+    assert window["verdict"] == "safe" and window["flagged"]
+    assert "narrower than the scan step (0.2 relative)" in window["note"]
+    assert not frame[frame["verdict"] == "overturns"]["flagged"].any()
+    narrow = coarse.windows[coarse.windows["reason"] == "band narrower than the scan"]
+    assert len(narrow) == 1
+    assert narrow.iloc[0]["from a/(g tan alpha) [-]"] == pytest.approx(5.00928, abs=5e-6)
+    path = tmp_path / "coarse.csv"
+    coarse.to_csv(path)
+    assert "# flag: one-sine omega/p=4: safe band 5.00928" in path.read_text()
+    ax = coarse.plot()
+    framed = [patch for patch in ax.patches if patch.get_edgecolor()[:3] == (1.0, 0.0, 0.0)]
+    assert len(framed) == len(coarse.windows) == 1
+    assert framed[0].get_y() == pytest.approx(5.00928, abs=5e-6)
+
+
+def test_the_default_scan_resolves_the_known_bands(spectra):
+    """At the default 0.5 % step no band of these spectra is narrower than the scan, and
+    the half-sine (a single transition) has nothing to flag."""
+    half, one = spectra
+    assert half.flags == [] and not half.to_frame()["flagged"].any()
+    assert "band narrower than the scan" not in set(one.windows["reason"])
+
+
+def test_the_single_threshold_bisection_refuses_a_banded_pulse():
+    """threshold() (Fig. 2.6, Section 4.3 (4)) checks its single-transition assumption:
+    the one-sine at omega/p = 4 has three transitions in [1.5, 8] (1.78856, 5.00928,
+    5.32302, Zhang & Makris 2001) and must raise rather than return one edge; the
+    half-sine there has one (2.7975, the literature value quoted in issue 16)."""
+    shape = Pulse("one-sine", 4 * BLOCK.p)
+    with pytest.raises(ValueError, match="3 overturn/safe transitions.*overturning_spectrum"):
+        threshold(BLOCK, shape, cor="housner", low=1.5, high=8.0)
+    half = threshold(BLOCK, Pulse("half-sine", 4 * BLOCK.p), cor="housner", low=1.5, high=8.0,
+                     tolerance=1e-7)
+    assert half == pytest.approx(HALF_SINE[4], abs=5e-5)
+
+
+def test_bisect_threshold_checks_a_single_switch():
+    # a predicate true on (1, 2) and above 3: two switches in [0, 4] seen by the scan
+    with pytest.raises(ValueError, match="switches 3 times"):
+        section_pulses.bisect_threshold(lambda x: 1 < x < 2 or x > 3, 0.0, 4.0)
+    edge = section_pulses.bisect_threshold(lambda x: x > math.pi, 0.0, 4.0, iterations=40)
+    assert edge == pytest.approx(math.pi, abs=1e-11)
+    with pytest.raises(ValueError, match="does not hold"):
+        section_pulses.bisect_threshold(lambda x: x > 5, 0.0, 4.0)
