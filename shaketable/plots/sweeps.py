@@ -13,6 +13,9 @@ the axes. matplotlib is imported inside the plotting functions only;
 * :func:`fragility_curve` -- fraction overturned against PGA over a record set,
   with the lognormal fragility fitted by maximum likelihood
   (:func:`fragility_fit`).
+* :func:`pitch_phase_spread` -- the same block, record and PGA run at every phase
+  of the table's pitch (Section 3.7 (2)): max |theta|/alpha of each phase and how
+  many phases overturn.
 """
 
 from __future__ import annotations
@@ -281,6 +284,71 @@ def fragility_curve(table, *, group="block", cor=None, pga="pga [g]", ax=None):
     return ax
 
 
+def pitch_phase_spread(table, *, record=None, cor=None, ax=None):
+    """max |theta|/alpha of every pitch phase against PGA, for one record and COR.
+
+    Section 3.7 (2) of the report: the same table motion repeated gives different
+    responses, because the table's 12 Hz pitch starts at a different phase each
+    time. Each dot is one phase; a phase that overturns is a cross on the "F" line,
+    and the count of overturning phases is written above each PGA level.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sweep table with a ``pitch_phase [rad]`` column (a ``[pitch]`` sweep).
+    record : str, optional
+        Select one record (needed when the table has several).
+    cor : float, optional
+        Select one COR.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    plt = pyplot()
+
+    rows = _select(table, record=record, **{"cor [-]": cor})
+    rows = rows[rows["pitch_phase [rad]"].notna()]
+    if rows.empty:
+        raise ValueError("the table has no runs with a pitch phase (a sweep with [pitch])")
+    _one(rows, "cor [-]")
+    _one(rows, "record")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7, 4.5))
+    levels = np.round(rows["pga [g]"].to_numpy(), 6)
+    ratios = rows[_RATIO].to_numpy()
+    over = rows["overturned"].to_numpy(dtype=bool)
+    standing_top = float(np.nanmax(ratios[~over])) if (~over).any() else 1.0
+    top = max(1.2, standing_top * 1.15)
+    unique = np.unique(levels)
+    width = 0.25 * (np.min(np.diff(unique)) if unique.size > 1 else max(unique[0], 0.1))
+    for level in unique:
+        pick = levels == level
+        phases = int(pick.sum())
+        offsets = np.linspace(-width, width, phases) if phases > 1 else np.zeros(1)
+        ax.plot(level + offsets[~over[pick]], ratios[pick][~over[pick]], "o", ms=3,
+                color="tab:blue")
+        ax.plot(level + offsets[over[pick]], np.full(int(over[pick].sum()), top), "x",
+                ms=5, color="tab:red")
+        ax.text(level, top * 1.04, f"{int(over[pick].sum())}/{phases} F", ha="center",
+                va="bottom", fontsize=8, color="tab:red")
+    ax.axhline(1.0, color="0.4", lw=0.8, ls=":")
+    ax.axhline(top, color="0.6", lw=0.8, ls="--")
+    ax.set_yticks([*[tick for tick in ax.get_yticks() if 0 <= tick < top * 0.95], top])
+    ax.set_yticklabels([*[f"{tick:g}" for tick in ax.get_yticks()[:-1]], "F"])
+    ax.set_ylim(0, top * 1.15)
+    ax.set_xticks(unique)
+    ax.set_xticklabels([f"{level:g}" for level in unique])
+    ax.set_xlabel("PGA [g] (at each level, the pitch phases side by side)")
+    ax.set_ylabel("max |θ|/α [-]")
+    block = rows["block"].iloc[0] if rows["block"].nunique() == 1 else "several blocks"
+    ax.set_title(f"{rows['record'].iloc[0]}: {block}, COR {rows['cor [-]'].iloc[0]:g}, "
+                 f"{int(rows['pitch_phase [rad]'].round(9).nunique())} pitch phases "
+                 "(Section 3.7 (2))", fontsize=9)
+    ax.grid(alpha=0.3)
+    return ax
+
+
 def sweep_figures(table, out) -> list:
     """The figures a sweep's table supports, written to folder ``out`` (PNG); their paths.
 
@@ -290,7 +358,9 @@ def sweep_figures(table, out) -> list:
       when the blocks vary;
     * fragility curves (fraction overturned against PGA, lognormal fits) per
       COR, when there are at least three PGA levels and several records or
-      realisations per level.
+      realisations per level (runs without pitch);
+    * the spread over the pitch phases (:func:`pitch_phase_spread`) per record,
+      block and COR, for a sweep with ``[pitch]``.
     """
     from pathlib import Path
 
@@ -326,13 +396,25 @@ def sweep_figures(table, out) -> list:
             axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
             written.append(out / f"spectrum-{label}.png")
             save(figure, written[-1])
-    levels = table["pga [g]"].round(6).nunique()
-    per_level = table.groupby([table["pga [g]"].round(6), "block", "cor [-]"]).size().min()
+    levels = pitch_free["pga [g]"].round(6).nunique()
+    per_level = (pitch_free.groupby([pitch_free["pga [g]"].round(6), "block", "cor [-]"])
+                 .size().min() if len(pitch_free) else 0)
     if levels >= 3 and per_level >= 2:
-        for cor, rows in table.groupby("cor [-]", sort=False):
+        for cor, rows in pitch_free.groupby("cor [-]", sort=False):
             figure, axis = plt.subplots(figsize=(7, 4.5))
             fragility_curve(rows, ax=axis)
             axis.set_title(f"fragility, COR {cor:g}", fontsize=9)
             written.append(out / f"fragility-cor{cor:g}.png")
+            save(figure, written[-1])
+    if "pitch_phase [rad]" in table:
+        pitched = table[table["pitch_phase [rad]"].notna()]
+        for (record, seed, block, cor), rows in pitched.groupby(
+                ["record", "seed", "block", "cor [-]"], sort=False, dropna=False):
+            figure, axis = plt.subplots(figsize=(7, 4.5))
+            pitch_phase_spread(rows, ax=axis)
+            if not pd.isna(seed) and rows["record_kind"].iloc[0] == "artificial":
+                record = f"{record}-seed{int(seed)}"
+            name = f"pitch-{record}-{block.replace(' ', '')}-cor{cor:g}"
+            written.append(out / f"{name}.png")
             save(figure, written[-1])
     return written

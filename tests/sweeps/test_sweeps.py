@@ -400,3 +400,51 @@ def test_sweep_command_draws_the_figures_the_table_supports(tmp_path, capsys):
     names = sorted(path.name for path in (tmp_path / "b" / "figures").iterdir())
     assert names == ["fragility-cor0.9.png", "fragility-cor1.png"]
     capsys.readouterr()
+
+
+def test_a_pitch_sweep_draws_the_spread_over_phases_not_a_fragility(tmp_path):
+    """A [pitch] sweep repeats one record at several phases of the table's pitch: its
+    figure is the spread over the phases per record (Section 3.7 (2)), with the count of
+    overturning phases; the phases are not 'records' of a fragility curve (which, mixing
+    two records' PGA levels, drew one curve through both)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from shaketable.plots.sweeps import sweep_figures
+
+    spec = sweeps.load_spec(write(tmp_path, """
+name = "pitch"
+[blocks]
+sizes = ["30x6in"]
+[rocking]
+cor = 0.925
+duration = "5 s"
+[[records]]
+preset = "olive-view"
+seed = 1
+duration = "5 s"
+[[records]]
+preset = "A-1"
+seed = 2
+duration = "5 s"
+[intensity]
+scale = [0.2, 0.6, 1.0]
+[pitch]
+phases = 4
+"""))
+    table = sweeps.run_sweep(spec, tmp_path / "out", progress=False).table
+    paths = sweep_figures(table, tmp_path / "figures")
+    names = sorted(path.name for path in paths)
+    assert names == ["pitch-A-1-seed2-30x6in-cor0.925.png",
+                     "pitch-olive-view-seed1-30x6in-cor0.925.png"]
+    from shaketable.plots.base import pyplot
+    from shaketable.plots.sweeps import pitch_phase_spread
+
+    rows = table[table["seed"] == 1]
+    ax = pitch_phase_spread(rows)
+    counts = [text.get_text() for text in ax.texts]
+    expected = [f"{int(part['overturned'].sum())}/4 F"
+                for _, part in rows.groupby(rows["pga [g]"].round(6))]
+    assert counts == expected
+    assert "4 pitch phases" in ax.get_title()
+    pyplot().close("all")
