@@ -95,6 +95,14 @@ class Digitizer:
         """Sample interval 1 / rate [s]."""
         return 1.0 / self.rate
 
+    @property
+    def cutoff_frequency(self) -> float:
+        """Cutoff of the anti-alias filter [Hz]: ``cutoff``, whose default 0.4 x ``rate`` is
+        filled in when the digitizer is made (so never None)."""
+        if self.cutoff is None:   # only if __post_init__ was bypassed
+            raise ValueError("Digitizer.cutoff is not set")
+        return self.cutoff
+
     def filter_sos(self, fine_rate: float | None = None) -> np.ndarray:
         """Second-order sections of the anti-alias filter on the fine grid.
 
