@@ -40,12 +40,8 @@ def _butterworth_prototype(order: int) -> tuple[np.ndarray, np.ndarray, np.ndarr
             c_matrix @ vectors)
 
 
-#: (alpha, gain, direct) of :func:`analog_butterworth_foh`: complex mode poles, complex
-#: gains and the real feed-through.
-FohCoefficients = tuple[np.ndarray, np.ndarray, float]
-
-
-def analog_butterworth_foh(order: int, tau: float, dt: float) -> FohCoefficients:
+def analog_butterworth_foh(order: int, tau: float,
+                           dt: float) -> tuple[np.ndarray, np.ndarray, float]:
     """Modal first-order-hold discretisation of an analog Butterworth low-pass (omega_c = 1/tau).
 
     H(s) = H_1(s tau) with H_1 the unit-cutoff prototype, so A = A_1 / tau,
@@ -80,7 +76,8 @@ def analog_butterworth_foh(order: int, tau: float, dt: float) -> FohCoefficients
     return exponential, c * beta, direct
 
 
-def foh_filter(coefficients: FohCoefficients, values: np.ndarray, initial: float) -> np.ndarray:
+def foh_filter(coefficients: tuple[np.ndarray, np.ndarray, float], values: np.ndarray,
+               initial: float) -> np.ndarray:
     """Apply :func:`analog_butterworth_foh` coefficients, at rest on ``initial`` before."""
     alpha, gain, direct = coefficients
     out = direct * values

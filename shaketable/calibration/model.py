@@ -11,7 +11,6 @@ import numpy as np
 import numpy.typing as npt
 
 from shaketable.calibration.filters import (
-    FohCoefficients,
     analog_butterworth_foh,
     butterworth_delay,
     foh_filter,
@@ -29,6 +28,10 @@ PARAMETERS = ("cor", "theta0", "t_release", "offset")
 
 #: Smallest filter time constant modelled [s]: below it the fitted filter is the identity.
 TAU_FLOOR = 1e-6
+
+# (alpha, gain, direct) of analog_butterworth_foh: complex mode poles, complex gains and
+# the real feed-through.
+_FohCoefficients = tuple[np.ndarray, np.ndarray, float]
 
 
 class FreeRockingModel:
@@ -54,7 +57,7 @@ class FreeRockingModel:
             self.fine_dt = 1.0 / (self._known_digitizer.rate * self._known_digitizer.oversample)
         elif mode == "fit":
             self.fine_dt = record.dt / 8.0
-        self._filters: dict[float, FohCoefficients] = {}
+        self._filters: dict[float, _FohCoefficients] = {}
 
     @property
     def _known_digitizer(self) -> Digitizer:
@@ -86,7 +89,7 @@ class FreeRockingModel:
         out[after] = values[1:grid.size]
         return out
 
-    def _filter(self, tau: float) -> FohCoefficients:
+    def _filter(self, tau: float) -> _FohCoefficients:
         key = float(tau)
         if key not in self._filters:
             if len(self._filters) > 64:
