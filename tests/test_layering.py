@@ -38,15 +38,30 @@ def _layer(relative: Path) -> str:
     return relative.parts[0] if len(relative.parts) > 1 else relative.stem
 
 
+def _type_checking_imports(tree: ast.Module) -> set[int]:
+    """Ids of the import statements inside ``if TYPE_CHECKING:`` blocks (never executed)."""
+    found = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and (
+                (isinstance(node.test, ast.Name) and node.test.id == "TYPE_CHECKING")
+                or (isinstance(node.test, ast.Attribute) and node.test.attr == "TYPE_CHECKING")):
+            found.update(id(inner) for statement in node.body for inner in ast.walk(statement)
+                         if isinstance(inner, (ast.Import, ast.ImportFrom)))
+    return found
+
+
 def _imports(tree: ast.Module):
-    """(imported module, names, whether inside a function) for each import statement."""
+    """(imported module, names, whether inside a function, whether for type checking only)
+    for each import statement."""
     module_level = {id(node) for node in tree.body}
+    type_only = _type_checking_imports(tree)
     for node in ast.walk(tree):
         if isinstance(node, ast.Import):
             for alias in node.names:
-                yield alias.name, [], id(node) not in module_level
+                yield alias.name, [], id(node) not in module_level, id(node) in type_only
         elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-            yield node.module, [a.name for a in node.names], id(node) not in module_level
+            yield (node.module, [a.name for a in node.names], id(node) not in module_level,
+                   id(node) in type_only)
 
 
 def violations(package: Path) -> list[str]:
@@ -57,9 +72,12 @@ def violations(package: Path) -> list[str]:
         layer = _layer(relative)
         own = ".".join((package.name,) + relative.with_suffix("").parts)
         tree = ast.parse(path.read_text(encoding="utf-8"))
-        for module, names, lazy in _imports(tree):
+        for module, names, lazy, type_only in _imports(tree):
             top = module.split(".")[0]
-            if top in HOMES and not any(str(relative).startswith(home) for home in HOMES[top]):
+            # a type-only import (``if TYPE_CHECKING:``, e.g. matplotlib's Figure for a
+            # .plot() return type) never runs: the third-party homes do not apply to it
+            if top in HOMES and not type_only \
+                    and not any(str(relative).startswith(home) for home in HOMES[top]):
                 found.append(f"{relative}: imports {module} (allowed only in {HOMES[top]})")
             if top != package.name:
                 continue
@@ -108,5 +126,21 @@ def test_the_check_fails_when_core_imports_plots(tmp_path):
 
 def test_benchmarks_do_not_drive_the_cli_module():
     for path in sorted((REPOSITORY / "benchmarks").glob("*.py")):
-        for module, _, _ in _imports(ast.parse(path.read_text(encoding="utf-8"))):
+        for module, _, _, _ in _imports(ast.parse(path.read_text(encoding="utf-8"))):
             assert not module.startswith("shaketable.commands"), f"{path.name}: {module}"
+
+
+def test_a_type_only_matplotlib_import_is_allowed_but_not_an_upward_one(tmp_path):
+    # `if TYPE_CHECKING:` imports never run: matplotlib's Figure may name a return type
+    # outside plots; the ranks of the package's own layers still apply to them
+    package = tmp_path / "shaketable"
+    (package / "core").mkdir(parents=True)
+    geometry = package / "core" / "geometry.py"
+    geometry.write_text((REPOSITORY / "shaketable" / "core" / "geometry.py").read_text()
+                        + "\nfrom typing import TYPE_CHECKING\nif TYPE_CHECKING:\n"
+                        "    from matplotlib.figure import Figure\n")
+    assert violations(package) == []
+    geometry.write_text(geometry.read_text()
+                        + "    from shaketable.scenes.parse import Scene\n")
+    assert violations(package) == [
+        "core/geometry.py: imports shaketable.scenes.parse (layer 'scenes' is not below 'core')"]

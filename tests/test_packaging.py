@@ -13,19 +13,44 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_toml_fallback_to_tomli_when_tomllib_is_missing():
-    # Python 3.10 has no tomllib; simulate that and hand in a stand-in "tomli"
-    # (tomli and tomllib are the same parser) to prove the fallback path is taken.
+    # Python 3.10 has no tomllib; simulate that (None in sys.modules makes the import
+    # fail) and hand in a stand-in "tomli" (tomli and tomllib are the same parser) that
+    # counts its calls, to prove the fallback path is taken and that a bundled scene and
+    # a bundled sweep spec then load through it, and a bad file still gives a clear error.
     code = (
         "import sys, types, tomllib as real\n"
-        "fake = types.ModuleType('tomli'); fake.loads = real.loads\n"
+        "calls = []\n"
+        "fake = types.ModuleType('tomli')\n"
+        "fake.loads = lambda text: calls.append(len(text)) or real.loads(text)\n"
         "fake.TOMLDecodeError = real.TOMLDecodeError\n"
         "sys.modules['tomli'] = fake; sys.modules['tomllib'] = None\n"
         "import shaketable.scenes.parse as parse, shaketable.sweeps.spec as spec\n"
+        "from shaketable.scenes.catalog import resolve_scene_path, resolve_sweep_path\n"
         "print(parse.tomllib is fake, spec.tomllib is fake)\n"
+        "scene = parse.load_scene(resolve_scene_path('fig-3-4'))\n"
+        "sweep = spec.load_spec(resolve_sweep_path('artificial-fragility'))\n"
+        "print(scene.name, sweep.name, len(calls))\n"
+        "import pathlib, tempfile\n"
+        "bad = pathlib.Path(tempfile.mkdtemp()) / 'bad.toml'\n"
+        "bad.write_text('[block\\n', encoding='utf-8')\n"
+        "try:\n"
+        "    parse.load_scene(bad)\n"
+        "except ValueError as error:\n"
+        "    print('refused', 'bad.toml' in str(error), len(calls))\n"
     )
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                            check=True, cwd=ROOT)
-    assert result.stdout.split() == ["True", "True"]
+                            cwd=ROOT)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0].split() == ["True", "True"]
+    assert lines[1].split() == ["fig-3-4", "artificial-fragility", "2"]
+    assert lines[2].split() == ["refused", "True", "3"]
+
+
+def test_pyproject_declares_tomli_for_python_3_10():
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert re.search(r'requires-python\s*=\s*">=3\.10"', pyproject)
+    assert "\"tomli>=2.0; python_version < '3.11'\"" in pyproject
 
 
 def test_py_typed_license_and_changelog_are_present():

@@ -26,7 +26,8 @@ def _autocovariance(residuals, lags: int) -> np.ndarray:
     return np.array([float(residuals[:n - k] @ residuals[k:]) / n for k in range(lags + 1)])
 
 
-def sandwich_covariance(jacobian, residuals, method: str, lags: int):
+def sandwich_covariance(jacobian: np.ndarray, residuals: np.ndarray, method: str,
+                        lags: int) -> np.ndarray:
     """Covariance of the least-squares parameters, ``(J^T J)^-1 M (J^T J)^-1``.
 
     * ``"acf"``: M = J^T Sigma J with Sigma the Toeplitz matrix of the residuals'
@@ -75,5 +76,7 @@ def covariance_of(calibration: Calibration, interval: str) -> np.ndarray:
     """
     if interval not in INTERVALS:
         raise ValueError(f"interval must be one of {sorted(INTERVALS)}, got {interval!r}")
+    if calibration.jacobian is None:
+        raise ValueError("calibration has no Jacobian (it was not made by calibrate())")
     return sandwich_covariance(calibration.jacobian, calibration.residuals, interval,
-                       int(calibration.goodness["lags"]))
+                               int(calibration.goodness["lags"]))

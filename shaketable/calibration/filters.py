@@ -27,7 +27,7 @@ def butterworth_delay(order: int) -> float:
 
 
 @functools.lru_cache(maxsize=8)
-def _butterworth_prototype(order: int):
+def _butterworth_prototype(order: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Modal form of the analog Butterworth low-pass with omega_c = 1 rad/s.
 
     Returns (poles, V, V^-1 B_1, C_1 V) of a state-space realisation
@@ -40,7 +40,8 @@ def _butterworth_prototype(order: int):
             c_matrix @ vectors)
 
 
-def analog_butterworth_foh(order: int, tau: float, dt: float):
+def analog_butterworth_foh(order: int, tau: float,
+                           dt: float) -> tuple[np.ndarray, np.ndarray, float]:
     """Modal first-order-hold discretisation of an analog Butterworth low-pass (omega_c = 1/tau).
 
     H(s) = H_1(s tau) with H_1 the unit-cutoff prototype, so A = A_1 / tau,
@@ -75,7 +76,8 @@ def analog_butterworth_foh(order: int, tau: float, dt: float):
     return exponential, c * beta, direct
 
 
-def foh_filter(coefficients, values, initial: float):
+def foh_filter(coefficients: tuple[np.ndarray, np.ndarray, float], values: np.ndarray,
+               initial: float) -> np.ndarray:
     """Apply :func:`analog_butterworth_foh` coefficients, at rest on ``initial`` before."""
     alpha, gain, direct = coefficients
     out = direct * values

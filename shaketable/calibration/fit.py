@@ -67,6 +67,7 @@ from __future__ import annotations
 import math
 import numbers
 import time as _time
+from typing import Any
 
 import numpy as np
 import scipy.optimize
@@ -101,8 +102,12 @@ from shaketable.lab.digitizer import Digitizer
 
 
 # ------------------------------------------------------------------ calibrate
-def _check_record(record: FreeRockingRecord, block: Block, stroke: float | None):
-    """Clear messages for records that cannot give a COR. Returns (theta, sigma)."""
+def _check_record(record: FreeRockingRecord, block: Block,
+                  stroke: float | None) -> tuple[np.ndarray, float, float, list[int]]:
+    """Clear messages for records that cannot give a COR.
+
+    Returns (theta [rad], noise sigma [rad], offset guess [record unit], zero crossings).
+    """
     t, values = record.t, record.values
     if t.size < 20:
         raise CalibrationError(f"record {record.name!r} has {t.size} samples: too short "
@@ -153,7 +158,7 @@ def _check_record(record: FreeRockingRecord, block: Block, stroke: float | None)
     return theta, sigma, offset_guess, crossings
 
 
-def _filter_mode(anti_alias):
+def _filter_mode(anti_alias: object) -> tuple[str, Digitizer | None]:
     """("none" | "known" | "fit", Digitizer or None) for the ``anti_alias`` argument."""
     if anti_alias is None or (isinstance(anti_alias, str) and anti_alias == "none"):
         return "none", None
@@ -165,7 +170,19 @@ def _filter_mode(anti_alias):
                      f"got {anti_alias!r}")
 
 
-def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filter_order="auto",
+def _filter_orders(filter_order: object) -> tuple[int, ...]:
+    """The Butterworth orders to fit for the ``filter_order`` argument ("auto" or 1 to 8)."""
+    if isinstance(filter_order, str) and filter_order == "auto":
+        return FILTER_ORDERS
+    if isinstance(filter_order, (bool, str)) or not isinstance(filter_order, numbers.Real) \
+            or not float(filter_order).is_integer() or not 1 <= float(filter_order) <= 8:
+        raise ValueError(f"filter_order must be 'auto' or an integer from 1 to 8, got "
+                         f"{filter_order!r}")
+    return (int(float(filter_order)),)
+
+
+def calibrate(record: FreeRockingRecord, block: Block, *,
+              anti_alias: str | Digitizer | None = "fit", filter_order: int | str = "auto",
               interval: str = "acf", bootstrap: int = 0, seed: int | None = None,
               stroke: float | None = None, rtol: float = 1e-9,
               max_interval: float = 0.05) -> Calibration:
@@ -233,11 +250,7 @@ def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filt
     if interval not in INTERVALS:
         raise ValueError(f"interval must be one of {sorted(INTERVALS)}, got {interval!r}")
     mode, digitizer = _filter_mode(anti_alias)
-    if not (isinstance(filter_order, str) and filter_order == "auto") and (
-            isinstance(filter_order, (bool, str)) or not isinstance(filter_order, numbers.Real)
-            or int(filter_order) != filter_order or not 1 <= filter_order <= 8):
-        raise ValueError(f"filter_order must be 'auto' or an integer from 1 to 8, got "
-                         f"{filter_order!r}")
+    orders = _filter_orders(filter_order)
     if isinstance(bootstrap, bool) or int(bootstrap) != bootstrap or bootstrap < 0:
         raise ValueError(f"bootstrap must be a non-negative integer, got {bootstrap!r}")
     theta, sigma, offset_guess, crossings = _check_record(record, block, stroke)
@@ -252,7 +265,7 @@ def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filt
         np.abs(first_segment))])) if first_segment.size else theta[0]
     theta0_guess = sign * min(max(abs(theta0_guess), 1e-4), 0.98 * block.alpha)
     t_release_guess = first_zero - exact_period(block, abs(theta0_guess)) / 4.0
-    notes = []
+    notes: list[str] = []
     try:
         cor_guess = peak_estimate(record, block, offset=offset_guess,
                                   t_release=t_release_guess if t_release_guess > t[0] else None,
@@ -270,7 +283,8 @@ def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filt
         scales[3] = max(sigma * height, 1e-9)
     steps = [2e-4, 2e-4 * block.alpha, 2e-3 * record.dt * 5, max(1e-6 * unit_scale, 1e-12)]
 
-    def solve(model, x0, low, high, scale, **options):
+    def solve(model: FreeRockingModel, x0: np.ndarray, low: list[float], high: list[float],
+              scale: list[float], **options: Any) -> scipy.optimize.OptimizeResult:
         x0 = np.clip(x0, np.array(low) + 1e-12, np.array(high) - 1e-12)
         return scipy.optimize.least_squares(lambda x: record.values - model(x), x0,
                                             bounds=(low, high), x_scale=np.array(scale),
@@ -284,11 +298,11 @@ def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filt
     x = solution.x
     models = [plain]  # every model made: their runs of the engine add up to the cost
     model = plain
-    if mode == "known":
+    if digitizer is not None:       # mode "known"
         # the known filter: its delay leaves the release time
         model = FreeRockingModel(record, block, "known", digitizer, digitizer.filter_order, rtol)
         models.append(model)
-        x[2] -= butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff)
+        x[2] -= butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff_frequency)
     elif mode == "fit":
         tau_max = 1.0 / (2.0 * math.pi * 0.05 * record.rate)
         tau_start = 1.0 / (2.0 * math.pi * 0.4 * record.rate)
@@ -298,15 +312,15 @@ def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filt
         # stage 2: the filtered model from the unfiltered optimum, for each candidate order;
         # the smallest residual sum of squares wins
         # (chi-square differences between orders are > 1, so a loose tolerance ranks them)
-        orders = FILTER_ORDERS if filter_order == "auto" else (int(filter_order),)
         loose = dict(xtol=1e-6, ftol=1e-7, gtol=1e-8, max_nfev=200) if len(orders) > 1 else tight
-        best = None
+        best: tuple[FreeRockingModel, scipy.optimize.OptimizeResult] | None = None
         for order in orders:
             candidate = FreeRockingModel(record, block, "fit", None, order, rtol)
             trial = solve(candidate, np.append(x, tau_start**2), lower, upper, scales, **loose)
             models.append(candidate)
             if best is None or trial.cost < best[1].cost:
                 best = (candidate, trial)
+        assert best is not None, "orders is never empty"
         model, solution = best
         if len(orders) > 1:
             solution = solve(model, solution.x, lower, upper, scales, **tight)
@@ -344,15 +358,16 @@ def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filt
         elif x[4] >= 0.999 * upper[4]:
             notes.append(f"the fitted anti-alias filter reached its lowest cutoff "
                          f"{cutoff:.3g} Hz: the record looks smoothed beyond a plain filter")
-    elif mode == "known":
-        delay = butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff)
+    elif digitizer is not None:     # mode "known"
+        delay = butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff_frequency)
         apparent = t_release + delay
 
-    boot_interval = boot = None
+    boot_interval: tuple[float, float] | None = None
+    boot: np.ndarray | None = None
     if bootstrap:
         rng = np.random.default_rng(seed)
         length = 4 * lags
-        boot = []
+        replicates: list[float] = []
         for _ in range(int(bootstrap)):
             starts = rng.integers(0, t.size - length + 1, size=int(math.ceil(t.size / length)))
             sample = np.concatenate([res[s:s + length] for s in starts])[:t.size]
@@ -361,8 +376,8 @@ def calibrate(record: FreeRockingRecord, block: Block, *, anti_alias="fit", filt
             replicate = scipy.optimize.least_squares(
                 lambda y: target - model(y), x, bounds=(lower, upper), x_scale=np.array(scales),
                 diff_step=1e-5, max_nfev=100)
-            boot.append(replicate.x[0])
-        boot = np.array(boot)
+            replicates.append(replicate.x[0])
+        boot = np.array(replicates)
         boot_interval = (float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5)))
         cor_interval, method = boot_interval, "bootstrap"
 

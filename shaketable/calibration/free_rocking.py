@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,6 +17,9 @@ from shaketable.calibration.result import Calibration, predict
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
 from shaketable.solvers.api import simulate
+
+if TYPE_CHECKING:
+    from shaketable.lab.sensors import Measurement, Sensors
 
 
 def _visible_rest(t, theta, threshold):
@@ -125,8 +129,9 @@ def compare_free_rocking(calibration: Calibration, *, rest_threshold: float | No
 
 
 def virtual_free_rocking_record(block: Block, cor: float, theta0: float, *, seed: int | None = 0,
-                                before: float = 1.0, duration: float = 10.0, sensors=None,
-                                method: str = "fast", rtol: float | None = None):
+                                before: float = 1.0, duration: float = 10.0,
+                                sensors: Sensors | None = None, method: str = "fast",
+                                rtol: float | None = None) -> tuple[FreeRockingRecord, Measurement]:
     """A virtual free-rocking test seen through the sensors (Section 3.5 set-up).
 
     Both potentiometers (their forces cancel), 50 samples/s with the 20 Hz

@@ -5,8 +5,10 @@ map (Eq. 2-16), sampled and filtered as the record was, and its Jacobian.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 
 import numpy as np
+import numpy.typing as npt
 
 from shaketable.calibration.filters import (
     analog_butterworth_foh,
@@ -27,6 +29,10 @@ PARAMETERS = ("cor", "theta0", "t_release", "offset")
 #: Smallest filter time constant modelled [s]: below it the fitted filter is the identity.
 TAU_FLOOR = 1e-6
 
+# (alpha, gain, direct) of analog_butterworth_foh: complex mode poles, complex gains and
+# the real feed-through.
+_FohCoefficients = tuple[np.ndarray, np.ndarray, float]
+
 
 class FreeRockingModel:
     """FreeRockingRecord-space prediction y(t_k; x) with the engine in the loop.
@@ -42,23 +48,30 @@ class FreeRockingModel:
     """
 
     def __init__(self, record: FreeRockingRecord, block: Block, mode: str, digitizer: Digitizer | None,
-                 order: int, rtol: float, method: str = "fast"):
+                 order: int, rtol: float, method: str = "fast") -> None:
         self.record, self.block, self.mode, self.rtol = record, block, mode, rtol
         self.digitizer, self.order, self.method = digitizer, int(order), method
         self.evaluations = 0
         self.delay = butterworth_delay(self.order)
         if mode == "known":
-            self.fine_dt = 1.0 / (digitizer.rate * digitizer.oversample)
+            self.fine_dt = 1.0 / (self._known_digitizer.rate * self._known_digitizer.oversample)
         elif mode == "fit":
             self.fine_dt = record.dt / 8.0
-        self._filters = {}
+        self._filters: dict[float, _FohCoefficients] = {}
+
+    @property
+    def _known_digitizer(self) -> Digitizer:
+        """The digitizer of ``mode="known"`` (the fit passes one in that mode)."""
+        if self.digitizer is None:
+            raise ValueError("FreeRockingModel: mode 'known' needs a digitizer")
+        return self.digitizer
 
     @property
     def size(self) -> int:
         """Number of parameters."""
         return 5 if self.mode == "fit" else 4
 
-    def theta(self, cor, theta0, t_release, times):
+    def theta(self, cor: float, theta0: float, t_release: float, times: np.ndarray) -> np.ndarray:
         """Rotation [rad] at ``times`` [s] (held at theta0 before the release)."""
         self.evaluations += 1
         tau = times - t_release
@@ -76,7 +89,7 @@ class FreeRockingModel:
         out[after] = values[1:grid.size]
         return out
 
-    def _filter(self, tau):
+    def _filter(self, tau: float) -> _FohCoefficients:
         key = float(tau)
         if key not in self._filters:
             if len(self._filters) > 64:
@@ -84,16 +97,17 @@ class FreeRockingModel:
             self._filters[key] = analog_butterworth_foh(self.order, tau, self.fine_dt)
         return self._filters[key]
 
-    def cutoff(self, x) -> float:
+    def cutoff(self, x: np.ndarray) -> float:
         """Cutoff frequency [Hz] of the filter in the model (inf: none)."""
         if self.mode == "known":
-            return float(self.digitizer.cutoff) if self.digitizer.anti_alias else math.inf
+            digitizer = self._known_digitizer
+            return float(digitizer.cutoff_frequency) if digitizer.anti_alias else math.inf
         if self.mode == "fit":
             tau = math.sqrt(max(float(x[4]), 0.0))
             return 1.0 / (2.0 * math.pi * tau) if tau > TAU_FLOOR else math.inf
         return math.inf
 
-    def __call__(self, x) -> np.ndarray:
+    def __call__(self, x: np.ndarray) -> np.ndarray:
         cor, theta0, t_release, offset = x[:4]
         t = self.record.t
         if self.mode == "none":
@@ -111,7 +125,7 @@ class FreeRockingModel:
         theta[0] = theta0
         quantity = self.record.to_quantity(theta, self.block)
         if self.mode == "known":
-            filtered = self.digitizer.apply_filter(quantity)
+            filtered = self._known_digitizer.apply_filter(quantity)
         elif tau > TAU_FLOOR:
             filtered = foh_filter(self._filter(tau), quantity, quantity[0])
         else:
@@ -119,7 +133,9 @@ class FreeRockingModel:
         return np.interp(t - t_release + shift, fine, filtered, left=quantity[0]) + offset
 
 
-def model_jacobian(model, x, steps, lower, upper):
+def model_jacobian(model: Callable[[np.ndarray], np.ndarray], x: npt.ArrayLike,
+                   steps: Sequence[float], lower: Sequence[float],
+                   upper: Sequence[float]) -> np.ndarray:
     """Central differences, one-sided where a step would cross a bound."""
     columns = []
     for index, step in enumerate(steps):

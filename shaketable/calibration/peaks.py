@@ -8,6 +8,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 import scipy.optimize
 import scipy.signal
 import scipy.stats
@@ -18,7 +19,7 @@ from shaketable.core.theory import exact_period, impact_velocity
 
 
 # ------------------------------------------------------------------ signal helpers
-def noise_level(values) -> float:
+def noise_level(values: npt.ArrayLike) -> float:
     """Robust estimate of the white-noise RMS of a smooth record [its unit].
 
     The median absolute fourth difference, scaled: for white noise of RMS
@@ -36,8 +37,9 @@ def noise_level(values) -> float:
 
 def threshold_crossings(theta: np.ndarray, threshold: float) -> list[int]:
     """Indices i where theta changes sign between i and i+1, with hysteresis ``threshold``."""
-    crossings, state = [], 0
-    last_index = None
+    crossings: list[int] = []
+    state = 0
+    last_index = 0          # index of the last sample beyond the threshold (once state != 0)
     for index, value in enumerate(theta):
         if value > threshold:
             sign = 1
@@ -50,8 +52,6 @@ def threshold_crossings(theta: np.ndarray, threshold: float) -> list[int]:
             segment = theta[last_index:index + 1] * state
             inside = np.flatnonzero(segment > 0)
             crossings.append(last_index + int(inside[-1]))
-        if sign != state or last_index is None:
-            pass
         state = sign
         last_index = index
     return crossings
@@ -64,16 +64,17 @@ class _Peaks:
     signs: np.ndarray
     zeros: np.ndarray        # time of the zero crossing after each peak [s] (NaN if none)
     first_is_release: bool
-    zeros_before: np.ndarray = None   # time of the zero crossing before each peak [s]
+    zeros_before: np.ndarray  # time of the zero crossing before each peak [s] (NaN if none)
 
 
-def zero_time(t, theta, index):
+def zero_time(t: np.ndarray, theta: np.ndarray, index: int) -> float:
     """Linear interpolation of the zero of theta between samples index and index+1 [s]."""
     a, b = theta[index], theta[index + 1]
     return float(t[index] + (t[index + 1] - t[index]) * a / (a - b))
 
 
-def find_peaks(t, theta, block: Block, sigma: float, *, plateau_end: float | None = None):
+def find_peaks(t: np.ndarray, theta: np.ndarray, block: Block, sigma: float, *,
+               plateau_end: float | None = None) -> _Peaks:
     """Peaks of a free-rocking angle: one extreme between successive zero crossings.
 
     Each peak is refined by a least-squares parabola over the samples within a
@@ -85,7 +86,11 @@ def find_peaks(t, theta, block: Block, sigma: float, *, plateau_end: float | Non
     threshold = max(4.0 * sigma, 1e-3 * block.alpha)
     crossings = threshold_crossings(theta, threshold)
     bounds = [0] + [c + 1 for c in crossings] + [theta.size]
-    times, amplitudes, signs, zeros, before = [], [], [], [], []
+    times: list[float] = []
+    amplitudes: list[float] = []
+    signs: list[float] = []
+    zeros: list[float] = []
+    before: list[float] = []
     first_is_release = False
     for number, (start, stop) in enumerate(zip(bounds[:-1], bounds[1:])):
         segment = theta[start:stop]
@@ -157,7 +162,7 @@ class PeakEstimate:
     """
 
     cor: float
-    cor_interval: tuple
+    cor_interval: tuple[float, float]
     peak_times: np.ndarray
     amplitudes: np.ndarray
     cor_per_impact: np.ndarray
@@ -287,7 +292,8 @@ class PeriodFit:
         """The effective block: height 2 R cos(alpha), width 2 R sin(alpha)."""
         return Block.from_slenderness(self.R, self.alpha)
 
-    def curve(self, amplitudes, R: float | None = None, alpha: float | None = None):
+    def curve(self, amplitudes: npt.ArrayLike, R: float | None = None,
+              alpha: float | None = None) -> np.ndarray:
         """Exact period [s] at ``amplitudes`` [rad] for (R, alpha) (default: fitted)."""
         block = Block.from_slenderness(self.R if R is None else R,
                                        self.alpha if alpha is None else alpha)
@@ -338,7 +344,7 @@ def period_fit(record: FreeRockingRecord, block: Block, *, offset: float = 0.0,
         raise CalibrationError(f"only {amplitudes.size} measurable period(s): too short or too "
                                f"little rocking for the period fit ({needed} are needed)")
 
-    def residuals(x):
+    def residuals(x: np.ndarray) -> np.ndarray:
         R, alpha = x[0], (x[1] if fit_alpha else block.alpha)
         trial = Block.from_slenderness(R, alpha)
         return np.array([exact_period(trial, min(a, 0.999 * alpha)) for a in amplitudes]) - periods

@@ -6,10 +6,12 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import numpy.typing as npt
 
 from shaketable.core.constants import INCH, LENGTH_UNITS
 from shaketable.core.geometry import Block
@@ -60,7 +62,7 @@ class FreeRockingRecord:
     clipped: np.ndarray | None = None
     name: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.quantity not in QUANTITIES:
             raise ValueError(f"quantity must be one of {QUANTITIES}, got {self.quantity!r}")
         t = np.array(self.t, dtype=float)
@@ -92,22 +94,26 @@ class FreeRockingRecord:
 
     # ------------------------------------------------------------ builders
     @classmethod
-    def from_angle(cls, t, theta, *, units: str = "rad", name: str = "") -> "FreeRockingRecord":
+    def from_angle(cls, t: npt.ArrayLike, theta: npt.ArrayLike, *, units: str = "rad",
+                   name: str = "") -> FreeRockingRecord:
         """FreeRockingRecord of the angle, in ``units`` (rad, deg, mrad)."""
         factor = _unit_factor(units, ANGLE_UNITS, "units")
-        return cls(t, np.asarray(theta, dtype=float) * factor, "angle", name=name)
+        return cls(np.asarray(t, dtype=float), np.asarray(theta, dtype=float) * factor, "angle",
+                   name=name)
 
     @classmethod
-    def from_top_displacement(cls, t, displacement, *, height: float | None = None,
-                              units: str = "m", name: str = "") -> "FreeRockingRecord":
+    def from_top_displacement(cls, t: npt.ArrayLike, displacement: npt.ArrayLike, *,
+                              height: float | None = None, units: str = "m",
+                              name: str = "") -> FreeRockingRecord:
         """FreeRockingRecord of the top displacement in ``units`` (m, cm, mm, in, ft); ``height`` [m]."""
         factor = _unit_factor(units, LENGTH_UNITS, "units")
-        return cls(t, np.asarray(displacement, dtype=float) * factor, "top displacement",
+        return cls(np.asarray(t, dtype=float), np.asarray(displacement, dtype=float) * factor,
+                   "top displacement",
                    height=height, name=name)
 
     @classmethod
     def from_measurement(cls, measurement: Measurement,
-                         quantity: str = "top displacement") -> "FreeRockingRecord":
+                         quantity: str = "top displacement") -> FreeRockingRecord:
         """The potentiometer channel of a :class:`~shaketable.lab.sensors.Measurement`.
 
         ``quantity="angle"`` takes the report's angle (top displacement / height).
@@ -115,10 +121,10 @@ class FreeRockingRecord:
         if not isinstance(measurement, Measurement):
             raise ValueError(f"measurement must be a Measurement, got "
                              f"{type(measurement).__name__}")
-        if measurement.top_displacement is None:
+        top_displacement, theta = measurement.top_displacement, measurement.theta
+        if top_displacement is None or theta is None:
             raise ValueError("the measurement has no potentiometer channel")
-        values = (measurement.top_displacement if quantity == "top displacement"
-                  else measurement.theta)
+        values = top_displacement if quantity == "top displacement" else theta
         return cls(measurement.t, values, quantity, height=measurement.block.height
                    if quantity == "top displacement" else None,
                    clipped=measurement.top_clipped, name=measurement.name)
@@ -143,14 +149,14 @@ class FreeRockingRecord:
         """Factor and unit for plots: rad for angles, in for displacements."""
         return (1.0, "rad") if self.quantity == "angle" else (1.0 / INCH, "in")
 
-    def to_quantity(self, theta, block: Block) -> np.ndarray:
+    def to_quantity(self, theta: npt.ArrayLike, block: Block) -> np.ndarray:
         """The record's quantity for rotations ``theta`` [rad] (no offset)."""
         if self.quantity == "angle":
             return np.asarray(theta, dtype=float)
         height = self.height if self.height is not None else block.height
         return top_displacement(theta, _wire_block(block, height))
 
-    def to_angle(self, values, block: Block) -> np.ndarray:
+    def to_angle(self, values: npt.ArrayLike, block: Block) -> np.ndarray:
         """Rotation [rad] of quantity ``values`` (exact inversion for displacements)."""
         if self.quantity == "angle":
             return np.asarray(values, dtype=float)
@@ -162,7 +168,7 @@ def _wire_block(block: Block, height: float) -> Block:
     return block if height == block.height else Block(height, block.width)
 
 
-def _unit_factor(unit, table, name):
+def _unit_factor(unit: str, table: dict[str, float], name: str) -> float:
     key = str(unit).strip().lower()
     if key not in table:
         raise ValueError(f"{name}: unknown unit {unit!r}; expected one of {sorted(table)}")
@@ -183,7 +189,8 @@ def _is_time_name(name: str) -> bool:
     return lowered.startswith("time") or lowered.split(" ")[0] in ("t", "t[s]", "t(s)")
 
 
-def _record_from_columns(path: Path, t, values, units: str, column: str, height) -> FreeRockingRecord:
+def _record_from_columns(path: Path, t: np.ndarray, values: np.ndarray, units: str, column: str,
+                         height: float | None) -> FreeRockingRecord:
     unit_key = units.strip().lower()
     if unit_key in ANGLE_UNITS:
         return FreeRockingRecord.from_angle(t, values, units=unit_key, name=path.stem)
@@ -194,9 +201,9 @@ def _record_from_columns(path: Path, t, values, units: str, column: str, height)
                      f"({sorted(ANGLE_UNITS)}) or a length ({sorted(LENGTH_UNITS)})")
 
 
-def _check_rate(rate) -> float:
+def _check_rate(rate: object) -> float:
     if isinstance(rate, bool) or not isinstance(rate, numbers.Real) or not (
-            math.isfinite(rate) and rate > 0):
+            math.isfinite(float(rate)) and float(rate) > 0):
         raise ValueError(f"rate must be a positive number [samples/s], got {rate!r}")
     return float(rate)
 
@@ -214,7 +221,7 @@ def _is_csv_with_header(lines: list[str]) -> bool:
     return False
 
 
-def read_record(path, *, column: str | int | None = None, units: str | None = None,
+def read_record(path: str | os.PathLike[str], *, column: str | int | None = None, units: str | None = None,
                 rate: float | None = None, height: float | None = None) -> FreeRockingRecord:
     """Read a free-rocking record from a CSV or plain-text file.
 
@@ -295,7 +302,7 @@ def read_record(path, *, column: str | int | None = None, units: str | None = No
             raise ValueError(f"{path}: column {column!r} has no unit in brackets; give --units "
                              f"(angle: {sorted(ANGLE_UNITS)}, length: {sorted(LENGTH_UNITS)})")
 
-    def numbers_of(name):
+    def numbers_of(name: str) -> np.ndarray:
         values = pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
         bad = np.flatnonzero(~np.isfinite(values))
         if bad.size:
@@ -314,7 +321,8 @@ def read_record(path, *, column: str | int | None = None, units: str | None = No
     return _record_from_columns(path, t, values, units, column, height)
 
 
-def _read_text_record(path: Path, lines, *, column, units, rate, height) -> FreeRockingRecord:
+def _read_text_record(path: Path, lines: list[str], *, column: str | int | None, units: str | None,
+                      rate: float | None, height: float | None) -> FreeRockingRecord:
     """Headerless or whitespace-separated record, through shaketable.ground.records' text tokenizer."""
     from shaketable.ground.readers.text import (
         count_header_lines,

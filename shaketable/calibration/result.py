@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -17,7 +19,12 @@ from shaketable.core.constants import INCH
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.core.results import RockingResult
 from shaketable.solvers.api import simulate
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.figure import Figure
 
 
 @dataclass(frozen=True)
@@ -85,7 +92,7 @@ class Calibration:
     record: FreeRockingRecord
     block: Block
     cor: float
-    cor_interval: tuple
+    cor_interval: tuple[float, float]
     cor_se: float
     theta0: float
     theta0_se: float
@@ -97,18 +104,18 @@ class Calibration:
     interval_method: str
     fitted: np.ndarray
     residuals: np.ndarray
-    goodness: dict
+    goodness: dict[str, Any]
     peaks: PeakEstimate | None = None
     periods: PeriodFit | None = None
-    bootstrap_interval: tuple | None = None
+    bootstrap_interval: tuple[float, float] | None = None
     bootstrap_cors: np.ndarray | None = None
-    notes: tuple = field(default_factory=tuple)
+    notes: tuple[str, ...] = field(default_factory=tuple)
     anti_alias: str = "none"
     filter_order: int = 4
     filter_cutoff: float = math.inf
     filter_delay: float = 0.0
     t_release_apparent: float | None = None
-    parameters: tuple = PARAMETERS
+    parameters: tuple[str, ...] = PARAMETERS
     jacobian: np.ndarray | None = field(default=None, repr=False)
 
     @property
@@ -116,7 +123,7 @@ class Calibration:
         """Level of ``cor_interval`` [-]."""
         return 0.95
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """FreeRockingRecord, fit and residuals as a :class:`pandas.DataFrame` (units in the names)."""
         import pandas as pd
 
@@ -129,7 +136,7 @@ class Calibration:
             "theta fitted [rad]": self.record.to_angle(self.fitted - self.offset, self.block),
         })
 
-    def summary(self) -> dict:
+    def summary(self) -> dict[str, Any]:
         """JSON-ready scalar results (units in the keys)."""
         unit = "rad" if self.record.quantity == "angle" else "m"
         data = {
@@ -149,7 +156,7 @@ class Calibration:
             f"offset [{unit}]": self.offset, f"offset_se [{unit}]": self.offset_se,
         }
         data.update({f"fit {key}": value for key, value in self.goodness.items()})
-        if self.bootstrap_interval is not None:
+        if self.bootstrap_interval is not None and self.bootstrap_cors is not None:
             data["bootstrap_low [-]"], data["bootstrap_high [-]"] = self.bootstrap_interval
             data["bootstrap_samples"] = int(self.bootstrap_cors.size)
         if self.peaks is not None:
@@ -172,7 +179,7 @@ class Calibration:
         data["notes"] = list(self.notes)
         return {key: json_ready(value) for key, value in data.items()}
 
-    def to_json(self, path=None) -> str:
+    def to_json(self, path: str | os.PathLike[str] | None = None) -> str:
         """The summary as JSON text; written to ``path`` when given."""
         text = json.dumps(self.summary(), indent=2)
         if path is not None:
@@ -181,13 +188,13 @@ class Calibration:
             write_text(path, text + "\n")
         return text
 
-    def plot(self, fig=None, title: str | None = None):
+    def plot(self, fig: Figure | None = None, title: str | None = None) -> Figure:
         """FreeRockingRecord, fitted curve, residuals, COR per impact and periods (PNG-ready figure)."""
         from shaketable.plots.calibration import plot_calibration
 
         return plot_calibration(self, fig=fig, title=title)
 
-    def predict(self, motion: Motion | None = None, **kwargs):
+    def predict(self, motion: Motion | None = None, **kwargs: Any) -> RockingResult:
         """The theory run with the calibrated COR (see :func:`predict`)."""
         return predict(self, motion, **kwargs)
 
@@ -215,7 +222,7 @@ class Calibration:
                  f"release angle {self.theta0:.5f} rad = {self.theta0 / self.block.alpha:.3f} "
                  f"alpha at t = {self.t_release:.3f} s; fit rms {self.goodness['rms']:.3g} "
                  f"{unit}, R^2 {self.goodness['r_squared']:.6f}"]
-        if self.bootstrap_interval is not None:
+        if self.bootstrap_interval is not None and self.bootstrap_cors is not None:
             lines.append(f"bootstrap ({self.bootstrap_cors.size}): "
                          f"{self.bootstrap_interval[0]:.{digits}f} to "
                          f"{self.bootstrap_interval[1]:.{digits}f}")
@@ -236,7 +243,8 @@ class Calibration:
 
 # ------------------------------------------------------------------ theory run
 def predict(calibration: Calibration, motion: Motion | None = None, *,
-            duration: float | None = None, theta0: float | None = None, **kwargs):
+            duration: float | None = None, theta0: float | None = None,
+            **kwargs: Any) -> RockingResult:
     """The theory run with the calibrated COR (the report's use of nu = 0.925, Section 3.6).
 
     Parameters

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import dataclasses
 import json
 import math
@@ -83,7 +84,7 @@ def _ensemble(args, block, motion, out) -> int:
     return 0
 
 
-def register(commands) -> None:
+def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``simulate`` subcommand to an argparse subparsers object."""
     sim = commands.add_parser(
         "simulate", help="one block, one motion (or free rocking): CSV, JSON and Calcomp figure",

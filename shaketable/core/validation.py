@@ -8,7 +8,7 @@ import numbers
 import numpy as np
 
 
-def number(name: str, value) -> float:
+def number(name: str, value: object) -> float:
     """``value`` as a finite float, else a ValueError naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating,
                                                         np.integer)):
@@ -19,7 +19,7 @@ def number(name: str, value) -> float:
     return value
 
 
-def positive(name: str, value, unit: str = "") -> float:
+def positive(name: str, value: object, unit: str = "") -> float:
     """A finite positive number; ``unit`` (e.g. ``" [Hz]"``) is quoted in the message."""
     value = number(name, value)
     if value <= 0.0:
@@ -27,7 +27,7 @@ def positive(name: str, value, unit: str = "") -> float:
     return value
 
 
-def nonnegative(name: str, value, unit: str = "") -> float:
+def nonnegative(name: str, value: object, unit: str = "") -> float:
     """A finite number, zero or positive; ``unit`` is quoted in the message."""
     value = number(name, value)
     if value < 0.0:
@@ -35,15 +35,15 @@ def nonnegative(name: str, value, unit: str = "") -> float:
     return value
 
 
-def integer(name: str, value, low: int, high: int) -> int:
+def integer(name: str, value: object, low: int, high: int) -> int:
     """An integer (Python or NumPy, not a bool) from ``low`` to ``high`` inclusive."""
     if isinstance(value, bool) or not isinstance(value, (numbers.Integral, np.integer)) \
-            or not low <= value <= high:
+            or not low <= int(value) <= high:
         raise ValueError(f"{name} must be an integer from {low} to {high}, got {value!r}")
     return int(value)
 
 
-def in_range(name: str, value, low: float = -math.inf, high: float = math.inf,
+def in_range(name: str, value: object, low: float = -math.inf, high: float = math.inf,
              low_open: bool = False) -> float:
     """A finite number in ``[low, high]`` (``(low, high]`` if ``low_open``)."""
     value = number(name, value)
@@ -53,12 +53,12 @@ def in_range(name: str, value, low: float = -math.inf, high: float = math.inf,
     return value
 
 
-def seed(name: str, value) -> int | None:
+def seed(name: str, value: object) -> int | None:
     """A random seed: a non-negative integer, or None for fresh entropy."""
     if value is None:
         return None
     if isinstance(value, bool) or not isinstance(value, (numbers.Integral, np.integer)) \
-            or value < 0:
+            or int(value) < 0:
         raise ValueError(f"{name} must be a non-negative integer or None, got {value!r}")
     return int(value)
 

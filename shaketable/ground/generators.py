@@ -54,6 +54,7 @@ import numbers
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from shaketable.core.constants import G
 from shaketable.core.motion import Motion
@@ -117,8 +118,9 @@ MIN_SAMPLES_PER_PERIOD = 4
 DEFAULT_SAMPLES_PER_PERIOD = 20
 
 
-def harmonic(frequency, horizontal_g, vertical_g=0.0, *, duration, dt=None,
-             phase=0.0, ramp=0.0, start=0.0) -> Motion:
+def harmonic(frequency: float, horizontal_g: float, vertical_g: float = 0.0, *,
+             duration: float, dt: float | None = None, phase: float = 0.0, ramp: float = 0.0,
+             start: float = 0.0) -> Motion:
     """Sinusoidal table motion, horizontal and optionally vertical.
 
     The horizontal acceleration is ``a_h sin(2 pi f tau)`` and the vertical
@@ -206,7 +208,8 @@ def harmonic(frequency, horizontal_g, vertical_g=0.0, *, duration, dt=None,
 
 
 # ------------------------------------------------------------------ pulses
-def constant_pulse(acceleration_g, pulse_duration, *, duration, dt=0.001) -> Motion:
+def constant_pulse(acceleration_g: float, pulse_duration: float, *, duration: float,
+                   dt: float = 0.001) -> Motion:
     """Constant table acceleration ``a`` for ``t1`` seconds, then none.
 
     After the pulse the table moves on at the constant velocity ``a t1``
@@ -259,7 +262,8 @@ def constant_pulse(acceleration_g, pulse_duration, *, duration, dt=0.001) -> Mot
     return Motion(t, horizontal, None, name=name)
 
 
-def half_sine_pulse(amplitude_g, pulse_duration, *, duration, dt=0.001, sign=1) -> Motion:
+def half_sine_pulse(amplitude_g: float, pulse_duration: float, *, duration: float,
+                    dt: float = 0.001, sign: int = 1) -> Motion:
     """One half sine wave of table acceleration, then none.
 
     ``a_g(t) = sign * a * sin(pi t / t_p)`` for ``0 <= t <= t_p`` and zero
@@ -425,7 +429,7 @@ PRESETS: dict[str, ArtificialPreset] = {
 }
 
 
-def jennings_envelope(t, t1, t2, decay) -> np.ndarray:
+def jennings_envelope(t: npt.ArrayLike, t1: float, t2: float, decay: float) -> np.ndarray:
     """Intensity envelope of Jennings, Housner and Tsai [2]_.
 
     ``(t / t1)^2`` for ``t < t1``, 1 for ``t1 <= t <= t2`` and
@@ -448,7 +452,8 @@ def jennings_envelope(t, t1, t2, decay) -> np.ndarray:
     )
 
 
-def _ground_filter(omega, omega_g, zeta_g, omega_f, zeta_f) -> np.ndarray:
+def _ground_filter(omega: np.ndarray, omega_g: float, zeta_g: float, omega_f: float,
+                   zeta_f: float) -> np.ndarray:
     """Kanai-Tajimi times Clough-Penzien transfer function at ``i omega``."""
     s = 1j * omega
     kanai_tajimi = (2.0 * zeta_g * omega_g * s + omega_g**2) / (
@@ -457,7 +462,8 @@ def _ground_filter(omega, omega_g, zeta_g, omega_f, zeta_f) -> np.ndarray:
     return kanai_tajimi * clough_penzien
 
 
-def _filtered_noise(rng, n, dt, omega_g, zeta_g, omega_f, zeta_f) -> np.ndarray:
+def _filtered_noise(rng: np.random.Generator, n: int, dt: float, omega_g: float, zeta_g: float,
+                    omega_f: float, zeta_f: float) -> np.ndarray:
     """Stationary Gaussian noise with the Kanai-Tajimi/Clough-Penzien PSD."""
     noise = rng.standard_normal(n)
     spectrum = np.fft.rfft(noise)
@@ -466,7 +472,7 @@ def _filtered_noise(rng, n, dt, omega_g, zeta_g, omega_f, zeta_f) -> np.ndarray:
                         n)
 
 
-def _velocity_displacement(acceleration: np.ndarray, dt: float):
+def _velocity_displacement(acceleration: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
     """Velocity [m/s] and displacement [m] of a piecewise-linear acceleration.
 
     Exact integrals from rest at the first sample, uniform step ``dt``.
@@ -478,7 +484,8 @@ def _velocity_displacement(acceleration: np.ndarray, dt: float):
     return velocity, displacement
 
 
-def _baseline_corrected(acceleration, envelope, t, dt) -> np.ndarray:
+def _baseline_corrected(acceleration: np.ndarray, envelope: np.ndarray, t: np.ndarray,
+                        dt: float) -> np.ndarray:
     """Subtract ``envelope (c0 + c1 t/T)`` so final velocity and displacement vanish."""
     shapes = (envelope, envelope * (t - t[0]) / (t[-1] - t[0]))
     ends = np.array([_velocity_displacement(shape, dt) for shape in shapes])[:, :, -1]
@@ -487,10 +494,13 @@ def _baseline_corrected(acceleration, envelope, t, dt) -> np.ndarray:
     return acceleration - c0 * shapes[0] - c1 * shapes[1]
 
 
-def artificial(preset=None, *, seed, duration=None, dt=0.01, pga_g=None,
-               t1=None, t2=None, decay=None, omega_g=None, zeta_g=None,
-               omega_f=None, zeta_f=None, vertical_pga_g=None, baseline=True,
-               name=None) -> Motion:
+def artificial(preset: str | ArtificialPreset | None = None, *, seed: int,
+               duration: float | None = None, dt: float = 0.01, pga_g: float | None = None,
+               t1: float | None = None, t2: float | None = None, decay: float | None = None,
+               omega_g: float | None = None, zeta_g: float | None = None,
+               omega_f: float | None = None, zeta_f: float | None = None,
+               vertical_pga_g: float | None = None, baseline: bool = True,
+               name: str | None = None) -> Motion:
     """Artificial earthquake accelerogram (filtered, enveloped white noise).
 
     Stationary Gaussian white noise (``numpy.random.default_rng(seed)``) is
@@ -577,7 +587,7 @@ def artificial(preset=None, *, seed, duration=None, dt=0.01, pga_g=None,
         )
 
     if isinstance(seed, bool) or not isinstance(seed, (numbers.Integral, np.integer)) \
-            or seed < 0:
+            or int(seed) < 0:
         raise ValueError(f"seed must be a non-negative integer, got {seed!r}")
 
     defaults = dict(omega_g=15.6, zeta_g=0.6, omega_f=1.5, zeta_f=0.6)
@@ -596,24 +606,25 @@ def artificial(preset=None, *, seed, duration=None, dt=0.01, pga_g=None,
     units = dict(pga_g=" [g]", t1=" [s]", t2=" [s]", decay=" [1/s]",
                  omega_g=" [rad/s]", zeta_g="", omega_f=" [rad/s]", zeta_f="",
                  duration=" [s]")
-    for key in ("pga_g", "t1", "t2", "decay", "omega_g", "zeta_g", "omega_f", "zeta_f"):
-        values[key] = _positive(key, values[key], units[key])
-    if values["t2"] < values["t1"]:
-        raise ValueError(f"t2 ({values['t2']!r} s) must not be before t1 ({values['t1']!r} s)")
-    if values["duration"] is None:
-        values["duration"] = values["t2"] + math.log(100.0) / values["decay"]
-    total = _positive("duration", values["duration"], " [s]")
+    checked = {key: _positive(key, values[key], units[key])
+               for key in ("pga_g", "t1", "t2", "decay", "omega_g", "zeta_g", "omega_f", "zeta_f")}
+    if checked["t2"] < checked["t1"]:
+        raise ValueError(f"t2 ({checked['t2']!r} s) must not be before t1 ({checked['t1']!r} s)")
+    total_asked = values["duration"]
+    if total_asked is None:
+        total_asked = checked["t2"] + math.log(100.0) / checked["decay"]
+    total = _positive("duration", total_asked, " [s]")
     dt = _positive("dt", dt, " [s]")
     if vertical_pga_g is not None:
         vertical_pga_g = _positive("vertical_pga_g", vertical_pga_g, " [g]")
 
     t = _grid(total, dt)
     n = t.size
-    filters = (values["omega_g"], values["zeta_g"], values["omega_f"], values["zeta_f"])
-    envelope = jennings_envelope(t, values["t1"], values["t2"], values["decay"])
+    filters = (checked["omega_g"], checked["zeta_g"], checked["omega_f"], checked["zeta_f"])
+    envelope = jennings_envelope(t, checked["t1"], checked["t2"], checked["decay"])
     rng = np.random.default_rng(int(seed) + (preset.seed_offset if preset is not None else 0))
 
-    def component(peak_g):
+    def component(peak_g: float) -> np.ndarray:
         shaped = envelope * _filtered_noise(rng, n, dt, *filters)
         if baseline:
             shaped = _baseline_corrected(shaped, envelope, t, dt)
@@ -622,7 +633,7 @@ def artificial(preset=None, *, seed, duration=None, dt=0.01, pga_g=None,
             raise ValueError("the envelope is zero over the whole duration; check t1, duration")
         return shaped * (peak_g * G / peak)
 
-    horizontal = component(values["pga_g"])
+    horizontal = component(checked["pga_g"])
     vertical = None if vertical_pga_g is None else component(vertical_pga_g)
     if name is None:
         name = preset.name if preset is not None else "artificial"

@@ -32,7 +32,6 @@ sense of positive theta (counterclockwise with +x to the right and up up).
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass
 
 import numpy as np
@@ -40,6 +39,7 @@ import scipy.signal
 
 from shaketable.core.motion import Motion
 from shaketable.core.motion import motion_argument as _motion
+from shaketable.core.validation import integer as _integer
 from shaketable.core.validation import positive as _positive
 
 pass
@@ -64,7 +64,7 @@ def _uniform_dt(t: np.ndarray, what: str) -> float:
     return dt
 
 
-def _read_only(name: str, values, size: int | None = None) -> np.ndarray:
+def _read_only(name: str, values: object, size: int | None = None) -> np.ndarray:
     try:
         array = np.array(values, dtype=float)
     except (TypeError, ValueError) as error:
@@ -117,7 +117,7 @@ class TableCommand:
     vertical_acceleration: np.ndarray | None = None
     name: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         t = _read_only("TableCommand.t", self.t)
         if t.size < 2 or np.any(np.diff(t) <= 0.0):
             raise ValueError("TableCommand.t must have at least 2 strictly increasing samples")
@@ -173,7 +173,7 @@ def _butterworth_highpassed(acceleration: np.ndarray, dt: float, corner: float,
     return scipy.signal.sosfiltfilt(sos, padded, padtype=None)[pad:pad + acceleration.size]
 
 
-def _integrated_from_rest(acceleration: np.ndarray, dt: float):
+def _integrated_from_rest(acceleration: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
     """Velocity [m/s] and displacement [m] of a piecewise-linear acceleration.
 
     Exact integrals from rest (zero velocity and displacement) at the first
@@ -195,7 +195,7 @@ def _baseline_shapes(s: np.ndarray, duration: float) -> np.ndarray:
     return np.array([k * (k - 1) * s ** (k - 2) for k in (3, 4, 5)]) / duration**2
 
 
-def _rest_baseline_corrected(acceleration: np.ndarray, t: np.ndarray, dt: float):
+def _rest_baseline_corrected(acceleration: np.ndarray, t: np.ndarray, dt: float) -> np.ndarray:
     """Subtract ``c3 g3 + c4 g4 + c5 g5`` (:func:`_baseline_shapes`) so the table ends at rest.
 
     The coefficients make the exactly integrated (piecewise-linear) corrected
@@ -213,7 +213,8 @@ def _rest_baseline_corrected(acceleration: np.ndarray, t: np.ndarray, dt: float)
 
 
 def _axis_command(acceleration: np.ndarray, t: np.ndarray, dt: float,
-                  highpass: float | None, order: int, baseline: bool):
+                  highpass: float | None, order: int,
+                  baseline: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Displacement, velocity and implied acceleration of one axis."""
     if highpass is not None:
         acceleration = _butterworth_highpassed(acceleration, dt, highpass, order)
@@ -223,7 +224,8 @@ def _axis_command(acceleration: np.ndarray, t: np.ndarray, dt: float,
     return displacement, velocity, acceleration
 
 
-def displacement_command(motion, *, highpass=0.1, order=4, baseline=True) -> TableCommand:
+def displacement_command(motion: Motion, *, highpass: float | None = 0.1, order: int = 4,
+                         baseline: bool = True) -> TableCommand:
     """The displacement history that commands the table for ``motion``.
 
     The report's table is driven by displacement-time histories derived from
@@ -285,12 +287,10 @@ def displacement_command(motion, *, highpass=0.1, order=4, baseline=True) -> Tab
         if highpass >= nyquist:
             raise ValueError(f"highpass ({highpass!r} Hz) must be below the Nyquist "
                              f"frequency {nyquist:g} Hz of the motion")
-    if isinstance(order, bool) or not isinstance(order, (numbers.Integral, np.integer)) \
-            or not 1 <= order <= 8:
-        raise ValueError(f"order must be an integer from 1 to 8, got {order!r}")
+    order = _integer("order", order, 1, 8)
     if not isinstance(baseline, (bool, np.bool_)):
         raise ValueError(f"baseline must be True or False, got {baseline!r}")
-    fields = {}
+    fields: dict[str, np.ndarray] = {}
     for axis in AXES:
         acceleration = getattr(motion, axis)
         if acceleration is None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 import scipy.signal
 
 from shaketable.core.constants import G
@@ -95,6 +96,14 @@ class Digitizer:
         """Sample interval 1 / rate [s]."""
         return 1.0 / self.rate
 
+    @property
+    def cutoff_frequency(self) -> float:
+        """Cutoff of the anti-alias filter [Hz]: ``cutoff``, whose default 0.4 x ``rate`` is
+        filled in when the digitizer is made (so never None)."""
+        if self.cutoff is None:   # only if __post_init__ was bypassed
+            raise ValueError("Digitizer.cutoff is not set")
+        return self.cutoff
+
     def filter_sos(self, fine_rate: float | None = None) -> np.ndarray:
         """Second-order sections of the anti-alias filter on the fine grid.
 
@@ -107,7 +116,7 @@ class Digitizer:
         return scipy.signal.butter(self.filter_order, self.cutoff, btype="low", fs=fine_rate,
                                    output="sos")
 
-    def gain(self, frequency) -> np.ndarray:
+    def gain(self, frequency: npt.ArrayLike) -> np.ndarray:
         """|H(f)| of the anti-alias filter [-] at ``frequency`` [Hz] (1 without filter)."""
         frequency = np.atleast_1d(np.asarray(frequency, dtype=float))
         if not self.anti_alias:
@@ -144,8 +153,8 @@ class Digitizer:
         return 0.0 if self.bits == 0 else 2.0 * full_scale / 2**self.bits
 
 
-def digitize(fine: np.ndarray, digitizer: Digitizer, full_scale: float, rng,
-              sensor_noise: float, sensor_range: float | None):
+def digitize(fine: np.ndarray, digitizer: Digitizer, full_scale: float, rng: np.random.Generator,
+             sensor_noise: float, sensor_range: float | None) -> tuple[np.ndarray, np.ndarray]:
     """Sensor noise, sensor range, filter, sampling, ADC. Returns (samples, clipped)."""
     values = fine.copy()
     # the signal was steady before the record: start the filter on its noise-free value

@@ -6,6 +6,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 import scipy.signal
 
 from shaketable.core.motion import Motion
@@ -41,7 +42,7 @@ class Actuator:
     damping: float = 0.7
     delay: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "natural_frequency",
                            _positive("natural_frequency", self.natural_frequency, " [Hz]"))
         object.__setattr__(self, "damping", _positive("damping", self.damping, " [-]"))
@@ -52,13 +53,13 @@ class Actuator:
         """Natural circular frequency wn [rad/s]."""
         return 2.0 * math.pi * self.natural_frequency
 
-    def transfer(self, frequency) -> np.ndarray:
+    def transfer(self, frequency: npt.ArrayLike) -> np.ndarray:
         """Complex frequency response X/U at ``frequency`` [Hz] (closed form)."""
         s = 2j * np.pi * np.asarray(frequency, dtype=float)
         wn = self.omega
         return wn**2 / (s**2 + 2.0 * self.damping * wn * s + wn**2) * np.exp(-s * self.delay)
 
-    def gain(self, frequency) -> np.ndarray:
+    def gain(self, frequency: npt.ArrayLike) -> np.ndarray:
         """Amplitude ratio |X/U| at ``frequency`` [Hz] [-]: 1 at 0 Hz, 1/(2 zeta) at wn."""
         return np.abs(self.transfer(frequency))
 
@@ -73,7 +74,14 @@ def _servo_output(actuator: Actuator, t: np.ndarray, command: np.ndarray) -> np.
     return np.asarray(output, dtype=float)
 
 
-def achieved(command, actuator=None) -> Motion:
+def _axis_history(command: TableCommand, axis: str, quantity: str) -> np.ndarray:
+    """One history [SI] of an axis the command has (``axis`` from ``command.axes``)."""
+    history = command.quantity(axis, quantity)
+    assert history is not None, f"{axis} is one of the command's axes"
+    return history
+
+
+def achieved(command: TableCommand, actuator: Actuator | None = None) -> Motion:
     """Accelerations the table achieves for a displacement command.
 
     Each axis's displacement command goes through the :class:`Actuator`
@@ -113,12 +121,13 @@ def achieved(command, actuator=None) -> Motion:
     if actuator is None:
         return Motion(command.t, command.horizontal_acceleration, command.vertical_acceleration,
                       name=name)
-    outputs = {axis: _servo_output(actuator, command.t, command.quantity(axis, "acceleration"))
+    outputs = {axis: _servo_output(actuator, command.t, _axis_history(command, axis, "acceleration"))
                for axis in command.axes}
     return Motion(command.t, outputs["horizontal"], outputs.get("vertical"), name=name)
 
 
-def achieved_displacement(command, actuator=None) -> dict[str, np.ndarray]:
+def achieved_displacement(command: TableCommand,
+                          actuator: Actuator | None = None) -> dict[str, np.ndarray]:
     """Achieved table displacement per axis [m] (the command through the servo).
 
     Parameters
@@ -149,5 +158,5 @@ def achieved_displacement(command, actuator=None) -> dict[str, np.ndarray]:
         raise ValueError(f"actuator must be an Actuator or None, got {type(actuator).__name__}")
     if actuator is None:
         return {axis: np.array(command.quantity(axis, "displacement")) for axis in command.axes}
-    return {axis: _servo_output(actuator, command.t, command.quantity(axis, "displacement"))
+    return {axis: _servo_output(actuator, command.t, _axis_history(command, axis, "displacement"))
             for axis in command.axes}

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,6 +17,9 @@ from shaketable.studies.comparison import (
     TEST_THEORY_T_UNSTABLE,
     Comparison,
 )
+
+if TYPE_CHECKING:
+    from shaketable.scenes.virtual_test import VirtualTestResult
 
 #: Motion kinds that are earthquake accelerograms. For these the report shows test data
 #: only (Fig. 3.5, "TEST DATA") and states that test and theory did not agree as well as
@@ -70,7 +74,7 @@ class Tolerance:
         return f"±{100 * self.value:g} %"
 
 
-def scene_tolerances(scene: Scene) -> dict:
+def scene_tolerances(scene: Scene) -> dict[str, Tolerance]:
     """The tolerance of every quantity of :data:`TOLERANCE_KEYS` for ``scene``.
 
     ``[report] tolerance`` is either one relative number for every report value
@@ -99,7 +103,7 @@ def scene_tolerances(scene: Scene) -> dict:
     given = scene.report.get("tolerance", REPORT_TOLERANCE)
     where = f"{scene.path}: report.tolerance"
     common = REPORT_TOLERANCE
-    table = {}
+    table: dict[str, object] = {}
     if isinstance(given, dict):
         table = given
     elif isinstance(given, bool) or not isinstance(given, (int, float)) or not 0 <= given:
@@ -149,7 +153,7 @@ def compare_with_report(scene: Scene, result: RockingResult) -> list[Comparison]
 
     report = scene.report
     tolerances = scene_tolerances(scene)
-    lines = []
+    lines: list[Comparison] = []
     for key, value in report.items():
         if key in ("tolerance", "note", "by_construction"):
             continue
@@ -177,18 +181,18 @@ def compare_with_report(scene: Scene, result: RockingResult) -> list[Comparison]
         else:  # times
             tolerance = tolerances[key]
             expected = parse(value, "time", where=f"{scene.path}: report.{key}")
-            reproduced = getattr(result, key)
-            reproduced = None if reproduced is None or not math.isfinite(reproduced) else \
-                round(float(reproduced), 3)
+            run_time = getattr(result, key)
+            reproduced_time = None if run_time is None or not math.isfinite(run_time) else \
+                round(float(run_time), 3)
             lines.append(Comparison(f"{key.replace('_', ' ')} ({tolerance.describe('s')})",
-                                    expected, reproduced, "s",
-                                    reproduced is not None and
-                                    tolerance.accepts(reproduced, expected)))
+                                    expected, reproduced_time, "s",
+                                    reproduced_time is not None and
+                                    tolerance.accepts(reproduced_time, expected)))
         lines[before:] = [replace(line, key=key) for line in lines[before:]]
     return lines
 
 
-def compare_test_with_theory(scene: Scene, test) -> list[Comparison]:
+def compare_test_with_theory(scene: Scene, test: VirtualTestResult) -> list[Comparison]:
     """The virtual test against its theory run, as Section 3.7 (2) compares them.
 
     For free rocking and harmonic motion (Figs. 3.4, 3.7-3.9) the report states
@@ -257,11 +261,11 @@ def _yes(flag: bool) -> str:
     return "yes" if flag else "no"
 
 
-def _text(value) -> str:
+def _text(value: float | None) -> str:
     return "never" if value is None else f"{value:g} s"
 
 
-def _close(value, expected, tolerance) -> bool:
+def _close(value: float, expected: float, tolerance: float) -> bool:
     if expected == 0:
         return abs(value) <= tolerance
     return abs(value - expected) <= tolerance * abs(expected)

@@ -23,13 +23,16 @@ Nothing here is a pass/fail test; the functions measure and return tables
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.motion import Motion
+from shaketable.core.results import RockingResult
 from shaketable.solvers.api import simulate
 
 #: Relative accuracy the fast engine must reach against ``reference`` (times, max |theta|).
@@ -82,13 +85,13 @@ class Case:
     cor: float
     theta0: float = 0.0
     duration: float | None = None
-    options: dict = field(default_factory=dict)
+    options: dict[str, Any] = field(default_factory=dict)
     extreme: bool = False
     #: ``reference`` tolerances of the study for this case (None: all of them); a
     #: long record skips the intermediate ones, each a minute of SciPy.
-    reference_rtols: tuple | None = None
+    reference_rtols: tuple[float, ...] | None = None
 
-    def run(self, method="fast", **options):
+    def run(self, method: str = "fast", **options: Any) -> RockingResult:
         """``simulate`` this case with ``method`` and extra options (rtol, subdivisions...)."""
         return simulate(self.block, self.motion, cor=self.cor, theta0=self.theta0,
                         duration=self.duration, method=method, **{**self.options, **options})
@@ -97,6 +100,8 @@ class Case:
     def intervals(self) -> int:
         """Number of input intervals (sample steps) of the run."""
         if self.motion is None:
+            if self.duration is None:
+                raise ValueError(f"case {self.name!r}: free rocking needs a duration")
             return int(math.ceil(self.duration / 0.005 - 1e-9))
         n = self.motion.t.size - 1
         if self.duration is not None:
@@ -105,7 +110,8 @@ class Case:
 
 
 # --------------------------------------------------------------------------- motions
-def _harmonic(frequency, horizontal_g, vertical_g=0.0, duration=10.0, dt=0.01):
+def _harmonic(frequency: float, horizontal_g: float, vertical_g: float = 0.0,
+              duration: float = 10.0, dt: float = 0.01) -> Motion:
     from shaketable.ground.generators import harmonic
 
     return harmonic(frequency, horizontal_g, vertical_g, duration=duration, dt=dt)
@@ -155,7 +161,8 @@ def long_record(duration: float = 100.0, dt: float = 0.005, seed: int = 1,
 
 
 # --------------------------------------------------------------------------- cases
-def benchmark_cases(extreme: bool = True, quick: bool = False, names=None) -> list[Case]:
+def benchmark_cases(extreme: bool = True, quick: bool = False,
+                    names: Sequence[str] | None = None) -> list[Case]:
     """The benchmark cases: the report's runs, then (``extreme``) the extreme ones.
 
     Parameters
@@ -223,7 +230,7 @@ def benchmark_cases(extreme: bool = True, quick: bool = False, names=None) -> li
     return _select(cases, names)
 
 
-def _select(cases, names):
+def _select(cases: list[Case], names: Sequence[str] | None) -> list[Case]:
     if names is None:
         return cases
     known = {case.name: case for case in cases}
@@ -234,12 +241,13 @@ def _select(cases, names):
 
 
 # --------------------------------------------------------------------------- comparisons
-def _events(result, window=IMPACT_WINDOW):
+def _events(result: RockingResult, window: float = IMPACT_WINDOW) -> np.ndarray:
     times = result.impact_times[result.impact_times < window]
     return times
 
 
-def compare(result, truth, window: float = IMPACT_WINDOW) -> dict:
+def compare(result: RockingResult, truth: RockingResult,
+            window: float = IMPACT_WINDOW) -> dict[str, Any]:
     """Errors of ``result`` against ``truth`` (two RockingResults of one case).
 
     Returns the relative error of max |theta| (and the absolute one [rad]), the

@@ -24,7 +24,9 @@ as standing.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -35,6 +37,12 @@ from shaketable.lab.pitch import Pitch
 from shaketable.lab.stage import TableSetup, pitch_sampled, run_table
 from shaketable.solvers.api import simulate
 from shaketable.studies.comparison import TEST_THEORY_T_UNSTABLE
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.axes import Axes
+
+    from shaketable.studies.comparison import Comparison
 
 #: Free rocking added after the record, first try [s]. The 30 x 6 in block
 #: released at half its block angle comes to rest in about 6 s (Fig. 3.4,
@@ -138,13 +146,13 @@ class RepeatabilityResult:
 
     name: str
     phases: np.ndarray
-    runs: tuple
-    without_pitch: object
+    runs: tuple[RockingResult, ...]
+    without_pitch: RockingResult
     kind: str = ""
     record_end: float = math.inf
     reference_spread: float | None = None
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """One row per phase: the scalar results of each run."""
         import pandas as pd
 
@@ -207,7 +215,7 @@ class RepeatabilityResult:
         return not (peaks.size and peaks.min() > 0 and peaks.max() / peaks.min() - 1.0
                     > REPEATABLE_PEAK)
 
-    def summary(self) -> dict:
+    def summary(self) -> dict[str, Any]:
         """The spread of the outcomes over the phases and the report's finding (JSON-ready)."""
         frame = self.to_frame()
         standing = frame.loc[~frame["overturned"], "max theta/alpha [-]"].to_numpy()
@@ -240,7 +248,7 @@ class RepeatabilityResult:
             summary["agrees"] = reproduced == REPORT_FINDING[self.kind]
         return summary
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Axes:
         """theta/alpha of every phase (thin lines) and without pitch (black)."""
         from shaketable.plots.studies import plot_pitch_repeatability
 
@@ -290,17 +298,24 @@ def pitch_repeatability(block: Block, motion: Motion, *, cor: float, phases: int
     values = np.linspace(0.0, 2.0 * math.pi, phases, endpoint=False)
     runs = []
     for phase in values:
-        felt = run_table(motion, setup.with_pitch_phase(phase)).felt
+        felt = _felt(motion, setup.with_pitch_phase(phase))
         runs.append(run_to_the_end(block, felt, cor=cor, method=method, tail=tail))
     # the reference: the same table without pitch, on the same (finer) time grid
-    plain = run_table(motion, replace(setup, pitch=None)).felt
-    plain = pitch_sampled(plain, pitch)
+    plain = pitch_sampled(_felt(motion, replace(setup, pitch=None)), pitch)
     without = run_to_the_end(block, plain, cor=cor, method=method, tail=tail)
     return RepeatabilityResult(name or motion.name, values, tuple(runs), without, kind=kind,
                                record_end=float(motion.t[-1]))
 
 
-def largest_spread(cases) -> float:
+def _felt(motion: Motion, setup: TableSetup) -> Motion:
+    """What the block feels on ``setup`` for ``motion`` [m/s^2] (a motion is commanded, so
+    :func:`~shaketable.lab.stage.run_table` always gives one)."""
+    felt = run_table(motion, setup).felt
+    assert felt is not None, "run_table gives a felt motion for a commanded motion"
+    return felt
+
+
+def largest_spread(cases: Sequence[RepeatabilityResult]) -> float:
     """The largest spread of ``cases`` (NaN ones, with no usable pair of runs, ignored).
 
     Raises
@@ -316,7 +331,7 @@ def largest_spread(cases) -> float:
     return float(np.nanmax(spreads))
 
 
-def section_3_7_contrast(cases) -> list:
+def section_3_7_contrast(cases: Sequence[RepeatabilityResult]) -> list[Comparison]:
     """The report's contrast of Section 3.7 (2) as "report vs reproduced" lines.
 
     One line per earthquake-type case: is the spread of the harmonic tests
@@ -347,9 +362,9 @@ def section_3_7_contrast(cases) -> list:
     return lines
 
 
-def _finite_or(value, default):
+def _finite_or(value: float | None, default: float) -> float:
     return value if value is not None and math.isfinite(value) else default
 
 
-def _rounded(value, digits=3):
+def _rounded(value: float, digits: int = 3) -> float:
     return round(float(value), digits)

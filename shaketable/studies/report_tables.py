@@ -7,17 +7,24 @@ The printed values are in the repository's ``data/report/*.csv`` (installed as
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from importlib.resources import files
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
 
 from shaketable.core import theory
 from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
+from shaketable.core.results import RockingResult
 from shaketable.ground import generators as motions
 from shaketable.ground import records
 from shaketable.solvers.api import simulate
+
+if TYPE_CHECKING:
+    from shaketable.lab.sensors import Sensors
 
 #: How each column of Tables 4.1-4.3 is made. Pacoima Dam: the bundled NGA-West2
 #: records with the recorded vertical (read as in ``records.load``). Olive View,
@@ -44,7 +51,8 @@ def printed_table(name: str) -> pd.DataFrame:
 PACOIMA_VERTICAL_READINGS = ("up", "down", "none")
 
 
-def column_motion(column: str, seed: int = SUBSTITUTE_SEED, pacoima_vertical: str = "up"):
+def column_motion(column: str, seed: int = SUBSTITUTE_SEED,
+                  pacoima_vertical: str = "up") -> Motion:
     """The ground motion of a column of Tables 4.1-4.3.
 
     ``pacoima_vertical`` is one of :data:`PACOIMA_VERTICAL_READINGS`.
@@ -76,14 +84,14 @@ class TableComparison:
     name: str
     frame: pd.DataFrame
 
-    def counts(self) -> dict:
+    def counts(self) -> dict[str, dict[str, Any]]:
         """Agreement counted per column, over the recorded (Pacoima Dam) columns, and in total.
 
         The substitute columns (artificial motions in place of the unavailable
         records) are counted in "all" but not in "recorded records only".
         """
         frame = self.frame
-        result = {}
+        result: dict[str, dict[str, Any]] = {}
         groups = list(frame.groupby("column", sort=False))
         recorded = frame[~frame["substitute motion"]]
         if 0 < len(recorded) < len(frame):
@@ -103,11 +111,11 @@ class TableComparison:
         return self.frame
 
 
-def _cell(result) -> str:
+def _cell(result: RockingResult) -> str:
     return "F" if result.overturned else f"{result.max_theta_ratio:.2f}"
 
 
-def reproduce_table(name: str, columns=None, seed: int = SUBSTITUTE_SEED,
+def reproduce_table(name: str, columns: Sequence[str] | None = None, seed: int = SUBSTITUTE_SEED,
                     pacoima_vertical: str = "up") -> TableComparison:
     """Recompute Table 4.1, 4.2 or 4.3 (``name`` = ``"table_4_1"`` ...) with the fast engine.
 
@@ -124,6 +132,8 @@ def reproduce_table(name: str, columns=None, seed: int = SUBSTITUTE_SEED,
     for _, line in printed.iterrows():
         height, width = float(line["height [ft]"]), float(line["width [ft]"])
         cor = float(line["cor [-]"]) if "cor [-]" in line else fixed_cor
+        if cor is None:
+            raise ValueError(f"{name} has neither a 'cor [-]' column nor a fixed COR")
         block = Block.from_feet(height, width)
         for column in columns:
             reproduced = _cell(simulate(block, motion_of[column], cor=cor))
@@ -157,7 +167,7 @@ def table_3_1() -> pd.DataFrame:
 
 
 def virtual_period(block: Block, amplitude: float, *, cor: float = 0.98, seed: int = 0,
-                   sensors=None) -> tuple[float, float]:
+                   sensors: Sensors | None = None) -> tuple[float, float]:
     """Period of free rocking measured the report's way on a virtual 50 samples/s record.
 
     Section 3.7 (1): the period is four times the time from a maximum of the
@@ -181,6 +191,9 @@ def virtual_period(block: Block, amplitude: float, *, cor: float = 0.98, seed: i
                    duration=2.5 * theory.exact_period(block, release))
     record = measure(run, block, run.motion, sensors if sensors is not None else Sensors(seed=seed))
     t, theta = record.t, record.theta
+    if theta is None:
+        raise ValueError("sensors must include the potentiometer: the period is measured on "
+                         "the recorded angle")
     first_zero = int(np.nonzero(theta < 0.0)[0][0])
     # the extremum of the second half cycle (theta < 0) and its following zero
     after = first_zero + int(np.nonzero(theta[first_zero:] > 0.0)[0][0])

@@ -28,9 +28,12 @@ function each); splitting them would scatter one page of the documentation.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from shaketable.core import theory
 from shaketable.core.constants import G
@@ -38,12 +41,17 @@ from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.solvers.api import simulate
 
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
 __all__ = ["ITEMS", "CorSweep", "PeriodAmplitude", "RockingOnset", "SimilarBlocks",
            "cor_sweep", "period_amplitude", "rocking_onset", "run_item", "similar_blocks",
            "time_stretched"]
 
 
-def _block(name: str, value) -> Block:
+def _block(name: str, value: Block | str) -> Block:
     if isinstance(value, str):
         return Block.parse(value)
     if not isinstance(value, Block):
@@ -52,7 +60,7 @@ def _block(name: str, value) -> Block:
     return value
 
 
-def _record(name: str, value) -> Motion:
+def _record(name: str, value: Motion | str) -> Motion:
     if isinstance(value, str):
         from shaketable.ground import records
 
@@ -63,7 +71,7 @@ def _record(name: str, value) -> Motion:
     return value
 
 
-def _ratios(name: str, values, low: float, high: float) -> np.ndarray:
+def _ratios(name: str, values: npt.ArrayLike, low: float, high: float) -> np.ndarray:
     array = np.asarray(values, dtype=float).ravel()
     if array.size == 0 or not np.all((array > low) & (array < high)):
         raise ValueError(f"{name} must be numbers strictly between {low:g} and {high:g}, "
@@ -105,7 +113,7 @@ class PeriodAmplitude:
     linear_period: float
     reference_ratio: float
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """One row per amplitude, units in the column names."""
         import pandas as pd
 
@@ -137,14 +145,14 @@ class PeriodAmplitude:
             f"T = {self.linear_period:.3f} s at every amplitude.",
         ]
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Axes:
         """Period against amplitude; see :func:`shaketable.plots.teaching.plot_period_amplitude`."""
         from shaketable.plots.teaching import plot_period_amplitude
 
         return plot_period_amplitude(self, ax=ax)
 
 
-def period_amplitude(block="36x9in", amplitude_ratios=None, *,
+def period_amplitude(block: Block | str = "36x9in", amplitude_ratios: npt.ArrayLike | None = None, *,
                      reference_ratio: float = 0.5) -> PeriodAmplitude:
     """The period of free rocking grows with the amplitude (Section 2.2, Fig. 2.3).
 
@@ -216,8 +224,8 @@ class CorSweep:
     cors: np.ndarray
     max_theta_ratio: np.ndarray
     overturned: np.ndarray
-    histories: dict
-    report_points: tuple = ()
+    histories: dict[float, tuple[np.ndarray, np.ndarray]]
+    report_points: tuple[tuple[float, float], ...] = ()
 
     @property
     def worst_cor(self) -> float:
@@ -232,7 +240,7 @@ class CorSweep:
         later = np.where(self.overturned[1:], np.inf, self.max_theta_ratio[1:])
         return bool(np.any(later > first))
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """One row per COR."""
         import pandas as pd
 
@@ -257,7 +265,7 @@ class CorSweep:
                                    in self.report_points) + ".")
         return lines
 
-    def plot(self, fig=None):
+    def plot(self, fig: Figure | None = None) -> Figure:
         """Sweep and two time histories; see :func:`shaketable.plots.teaching.plot_cor_sweep`."""
         from shaketable.plots.teaching import plot_cor_sweep
 
@@ -269,7 +277,8 @@ class CorSweep:
 _REPORT_6X2_S74W = ((1.0, 0.38), (0.90, 0.58))
 
 
-def cor_sweep(block="6x2ft", motion="pacoima-dam-s74w", cors=None) -> CorSweep:
+def cor_sweep(block: Block | str = "6x2ft", motion: Motion | str = "pacoima-dam-s74w",
+              cors: npt.ArrayLike | None = None) -> CorSweep:
     """Max theta/alpha against COR: a lower COR can raise the peak (Section 4.3 (3)).
 
     "The response of a rocking block actually may increase with a reduction in
@@ -366,7 +375,7 @@ class SimilarBlocks:
     motion_name: str
     max_theta_ratio: np.ndarray
     overturned: np.ndarray
-    scaling_blocks: tuple
+    scaling_blocks: tuple[Block, Block]
     scale: float
     scaling_pt: np.ndarray
     scaling_theta_small: np.ndarray
@@ -378,7 +387,7 @@ class SimilarBlocks:
         return float(np.max(np.abs(self.scaling_theta_large - self.scaling_theta_small))
                      / np.max(np.abs(self.scaling_theta_small)))
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """One row per block size."""
         import pandas as pd
 
@@ -403,7 +412,7 @@ class SimilarBlocks:
                 f"{small.height / foot:g} ft block under the record: theta(p t) differs by "
                 f"{self.scaling_difference:.1e} of the peak (solver tolerance)."]
 
-    def plot(self, fig=None):
+    def plot(self, fig: Figure | None = None) -> Figure:
         """Response vs size and the scaling law; see
         :func:`shaketable.plots.teaching.plot_similar_blocks`."""
         from shaketable.plots.teaching import plot_similar_blocks
@@ -411,8 +420,9 @@ class SimilarBlocks:
         return plot_similar_blocks(self, fig=fig)
 
 
-def similar_blocks(aspect_ratio: float = 5.0, heights_ft=None, motion="pacoima-dam-s74w", *,
-                   cor: float = 0.9, scaling_pair=(10.0, 15.0)) -> SimilarBlocks:
+def similar_blocks(aspect_ratio: float = 5.0, heights_ft: npt.ArrayLike | None = None,
+                   motion: Motion | str = "pacoima-dam-s74w", *, cor: float = 0.9,
+                   scaling_pair: tuple[float, float] = (10.0, 15.0)) -> SimilarBlocks:
     """Similar blocks (same alpha): the larger one rocks less (Section 2.4 (1)).
 
     In the time tau = p t, Eq. (2-13) of [1]_ divided by (4/3) R^2 p^2 reads
@@ -517,7 +527,7 @@ class RockingOnset:
     theta_with_vertical: np.ndarray
     t_start_with_vertical: float
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """One row per vertical acceleration."""
         import pandas as pd
 
@@ -544,7 +554,7 @@ class RockingOnset:
                 f"alone: max |theta| = {np.max(np.abs(self.theta_without_vertical)):.2g} "
                 f"alpha; with {self.harmonic_vertical_g:g} g vertical: {start}."]
 
-    def plot(self, fig=None):
+    def plot(self, fig: Figure | None = None) -> Figure:
         """Threshold line and the harmonic demonstration; see
         :func:`shaketable.plots.teaching.plot_rocking_onset`."""
         from shaketable.plots.teaching import plot_rocking_onset
@@ -552,7 +562,8 @@ class RockingOnset:
         return plot_rocking_onset(self, fig=fig)
 
 
-def rocking_onset(block="30x6in", vertical_g=None, *, ramp_rate_g: float = 0.5,
+def rocking_onset(block: Block | str = "30x6in", vertical_g: npt.ArrayLike | None = None, *,
+                  ramp_rate_g: float = 0.5,
                   dt: float = 0.002, harmonic_horizontal_g: float = 0.18,
                   harmonic_vertical_g: float = 0.3, harmonic_frequency: float = 2.0,
                   harmonic_duration: float = 3.0) -> RockingOnset:
@@ -629,8 +640,11 @@ def rocking_onset(block="30x6in", vertical_g=None, *, ramp_rate_g: float = 0.5,
 
 
 # ---------------------------------------------------------------- registry
+#: What a gallery item returns.
+TeachingItem = PeriodAmplitude | CorSweep | SimilarBlocks | RockingOnset
+
 #: Gallery items by the name a ``[study] kind = "teaching"`` scene gives.
-ITEMS = {
+ITEMS: dict[str, Callable[[], TeachingItem]] = {
     "period-amplitude": period_amplitude,
     "cor-sweep": cor_sweep,
     "similar-blocks": similar_blocks,
@@ -638,7 +652,7 @@ ITEMS = {
 }
 
 
-def run_item(name: str):
+def run_item(name: str) -> TeachingItem:
     """Run one gallery item with its defaults by name (one of :data:`ITEMS`)."""
     if name not in ITEMS:
         raise ValueError(f"unknown teaching item {name!r}; expected one of {sorted(ITEMS)}")

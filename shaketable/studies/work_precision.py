@@ -10,10 +10,13 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from shaketable.core.geometry import Block
+from shaketable.core.results import RockingResult
 from shaketable.solvers.api import simulate
 from shaketable.solvers.common import DEFAULT_RTOL
 from shaketable.solvers.reference import ReferenceSolverError
@@ -31,12 +34,19 @@ from shaketable.studies.benchmark_cases import (
     TARGET_FAST_MS,
     TARGET_SPEED_UP,
     TRUTH_RTOL,
+    Case,
     benchmark_cases,
     compare,
 )
 
+if TYPE_CHECKING:
+    import pandas as pd
 
-def _timed(case, method, repeats, **options):
+#: Called with each case's name as the study reaches it.
+Progress = Callable[[str], object]
+
+
+def _timed(case: Case, method: str, repeats: int, **options: Any) -> tuple[RockingResult, float]:
     """Run ``case`` ``repeats`` times; the result and the median wall time [s].
 
     The compiled methods get one untimed call first (numba compilation or cache
@@ -50,12 +60,14 @@ def _timed(case, method, repeats, **options):
         start = time.perf_counter()
         result = case.run(method, **options)
         times.append(time.perf_counter() - start)
+    assert result is not None, "the loop runs at least once"
     return result, float(np.median(times))
 
 
-def method_settings(fast_rtols=FAST_RTOLS, subdivisions=PC_SUBDIVISIONS,
-                    reference_rtols=REFERENCE_RTOLS, quick: bool = False
-                    ) -> list[tuple[str, str, dict]]:
+def method_settings(fast_rtols: Sequence[float] = FAST_RTOLS,
+                    subdivisions: Sequence[int] = PC_SUBDIVISIONS,
+                    reference_rtols: Sequence[float] = REFERENCE_RTOLS, quick: bool = False
+                    ) -> list[tuple[str, str, dict[str, Any]]]:
     """(method, label, options) of the work-precision study.
 
     ``quick=True`` takes :data:`QUICK_FAST_RTOLS`, :data:`QUICK_PC_SUBDIVISIONS`
@@ -81,7 +93,7 @@ TRUTH_FALLBACK_RTOLS = (TRUTH_RTOL, 1e-13, REFERENCE_DEFAULT_RTOL)
 ReferenceStepFailure = ReferenceSolverError
 
 
-def truth_run(case, cache: dict | None = None):
+def truth_run(case: Case, cache: dict | None = None) -> RockingResult:
     """The truth for ``case``: ``reference`` at :data:`TRUTH_RTOL` (memoised in ``cache``).
 
     If SciPy fails at that tolerance (:class:`ReferenceStepFailure`), the next
@@ -90,7 +102,7 @@ def truth_run(case, cache: dict | None = None):
     """
     if cache is not None and (case.name, "truth") in cache:
         return cache[(case.name, "truth")]
-    failure = None
+    failure: ReferenceSolverError | None = None
     for rtol in TRUTH_FALLBACK_RTOLS:
         try:
             result = reference_run(case, rtol, cache)
@@ -101,10 +113,11 @@ def truth_run(case, cache: dict | None = None):
         if cache is not None:
             cache[(case.name, "truth")] = result
         return result
+    assert failure is not None, "TRUTH_FALLBACK_RTOLS is not empty"
     raise failure
 
 
-def reference_run(case, rtol: float, cache: dict | None = None):
+def reference_run(case: Case, rtol: float, cache: dict | None = None) -> RockingResult:
     """``reference`` at ``rtol`` for ``case``, memoised in ``cache`` by (case name, rtol).
 
     Raises :class:`ReferenceStepFailure` where SciPy gives up.
@@ -118,8 +131,10 @@ def reference_run(case, rtol: float, cache: dict | None = None):
     return result
 
 
-def work_precision(cases=None, settings=None, repeats: int = 5, reference_repeats: int = 1,
-                   progress=None, cache: dict | None = None):
+def work_precision(cases: Sequence[Case] | None = None,
+                   settings: Sequence[tuple[str, str, dict[str, Any]]] | None = None,
+                   repeats: int = 5, reference_repeats: int = 1, progress: Progress | None = None,
+                   cache: dict | None = None) -> pd.DataFrame:
     """Error against run time, one row per (case, method, setting).
 
     Parameters
@@ -184,7 +199,7 @@ def work_precision(cases=None, settings=None, repeats: int = 5, reference_repeat
     return pd.DataFrame(rows)
 
 
-def _mean_step(case, result, method, options) -> float:
+def _mean_step(case: Case, result: RockingResult, method: str, options: dict[str, Any]) -> float:
     """Mean step of a run [s]: the fixed substep, or time in flight over accepted steps."""
     dt = 0.005 if case.motion is None else case.motion.dt
     if method == "predictor-corrector":
@@ -198,7 +213,7 @@ def _mean_step(case, result, method, options) -> float:
     return flying / steps if flying > 0 else math.nan
 
 
-def _time_in_flight(result) -> float:
+def _time_in_flight(result: RockingResult) -> float:
     """Time the block was not at rest [s] (from the sampled history; rest is theta = omega = 0)."""
     t = result.t
     moving = (result.theta != 0.0) | (result.theta_dot != 0.0)
@@ -206,7 +221,7 @@ def _time_in_flight(result) -> float:
     return float(np.sum(np.diff(t)[inside]))
 
 
-def convergence_orders(frame):
+def convergence_orders(frame: pd.DataFrame) -> pd.DataFrame:
     """Measured order of convergence per (case, method): slope of log error vs log step.
 
     Least-squares slope of log10(error) against log10(mean step) over the
@@ -239,7 +254,8 @@ def convergence_orders(frame):
     return pd.DataFrame(rows)
 
 
-def accuracy_table(cases=None, progress=None, cache: dict | None = None):
+def accuracy_table(cases: Sequence[Case] | None = None, progress: Progress | None = None,
+                   cache: dict | None = None) -> pd.DataFrame:
     """``fast`` at its default against ``reference`` at its default, per case.
 
     Parameters
@@ -295,7 +311,8 @@ def accuracy_table(cases=None, progress=None, cache: dict | None = None):
 
 
 # --------------------------------------------------------------------------- speed
-def pacoima_timing(repeats: int = 200, reference_repeats: int = 3, cor: float = 0.95) -> dict:
+def pacoima_timing(repeats: int = 200, reference_repeats: int = 3,
+                   cor: float = 0.95) -> dict[str, Any]:
     """Pacoima Dam S16E with its vertical, 16 x 4 ft block: fast (warm) and reference times.
 
     Returns the median and best fast time per run [ms], the median reference
@@ -343,7 +360,7 @@ print(imported - start, first - loaded, second - first)
 """
 
 
-def first_call_seconds(cold: bool = False) -> dict:
+def first_call_seconds(cold: bool = False) -> dict[str, float]:
     """A fresh Python process: import time and first ``simulate`` call [s].
 
     ``cold=False`` uses numba's on-disk cache (the usual case after the first
@@ -360,7 +377,7 @@ def first_call_seconds(cold: bool = False) -> dict:
     return {"import [s]": imported, "first call [s]": first, "second call [s]": second}
 
 
-def batch_throughput(threads: int = 2, n_cors: int = 8, repeats: int = 3) -> dict:
+def batch_throughput(threads: int = 2, n_cors: int = 8, repeats: int = 3) -> dict[str, Any]:
     """Runs per second of :func:`shaketable.solvers.batch.simulate_many` on ``threads`` threads.
 
     The sweep: Table 4.2's nine block sizes x the two Pacoima Dam records x
@@ -411,7 +428,7 @@ def batch_throughput(threads: int = 2, n_cors: int = 8, repeats: int = 3) -> dic
 
 
 # --------------------------------------------------------------------------- report
-def _fmt(value, digits=2):
+def _fmt(value: Any, digits: int = 2) -> str:
     if isinstance(value, (bool, np.bool_)):
         return "yes" if value else "no"
     if isinstance(value, (int, np.integer)):
@@ -425,7 +442,7 @@ def _fmt(value, digits=2):
     return f"{value:.{digits + 2}g}"
 
 
-def markdown_table(frame, columns=None) -> str:
+def markdown_table(frame: pd.DataFrame, columns: Sequence[str] | None = None) -> str:
     """A pandas frame as a GitHub Markdown table (numbers in short scientific form)."""
     columns = list(frame.columns) if columns is None else columns
     lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
@@ -435,8 +452,10 @@ def markdown_table(frame, columns=None) -> str:
     return "\n".join(lines)
 
 
-def results_markdown(accuracy=None, orders=None, frame=None, pacoima=None, first_call=None,
-                     batch=None, figure: str = "docs/figures/work_precision.png",
+def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame | None = None,
+                     frame: pd.DataFrame | None = None, pacoima: dict[str, Any] | None = None,
+                     first_call: dict[str, dict[str, float]] | None = None,
+                     batch: dict[str, Any] | None = None, figure: str = "docs/figures/work_precision.png",
                      command: str = "python3 benchmarks/work_precision.py") -> str:
     """The README-ready Markdown of the benchmark results.
 

@@ -168,3 +168,66 @@ def test_waveform_module_does_not_import_obspy_at_import_time():
                             check=True)
     assert result.stdout.strip() == "False"
     assert waveform.DECLARED_UNITS["KNET"] == "m/s2"
+
+
+# --------------------------------------------------------------- response-derived units
+def _trace_with_response(input_units: str, gain: float) -> obspy.Trace:
+    """A trace of counts with an instrument response made by ObsPy's own
+    ``Response.from_paz`` (flat: no poles or zeros; the overall sensitivity is
+    ``gain`` counts per ``input_units``)."""
+    from obspy.core.inventory.response import Response
+
+    rng = np.random.default_rng(7)
+    counts = rng.integers(-40_000, 40_000, size=500).astype(np.int32)
+    trace = obspy.Trace(counts, header={"delta": 0.01, "network": "XX", "station": "ABC",
+                                        "location": "00", "channel": "HNE", "calib": 1.0})
+    trace.stats.response = Response.from_paz([], [], gain, input_units=input_units,
+                                             output_units="COUNTS")
+    return trace
+
+
+@pytest.mark.filterwarnings("ignore:ObsPy can not map unit:UserWarning")  # CM/S**2: evalresp only
+@pytest.mark.parametrize("input_units, factor", [("M/S**2", 1.0), ("CM/S**2", 0.01)])
+def test_attached_response_gives_the_units_and_obspys_sensitivity_removal(input_units, factor):
+    """No units= given: the response's input units (its instrument sensitivity) are the
+    units; the expected peak is ObsPy's own ``Trace.remove_sensitivity()`` (counts over
+    the overall sensitivity), converted to m/s^2 -- not a value from shaketable."""
+    trace = _trace_with_response(input_units, 4.0e5)
+    corrected = trace.copy()
+    corrected.remove_sensitivity()
+    expected = np.max(np.abs(corrected.data)) * factor
+    record = records.read(trace)
+    assert record.pga == pytest.approx(expected, rel=1e-12)
+    assert record.units_in_file == ("m/s2" if factor == 1.0 else "cm/s2")
+    motion = Motion.from_stream(obspy.Stream([trace]), horizontal="HNE")
+    assert np.max(np.abs(motion.horizontal)) == pytest.approx(expected, rel=1e-12)
+    assert motion.metadata["horizontal"]["units_in_file"] == record.units_in_file
+
+
+def test_units_that_contradict_the_attached_response_are_refused():
+    trace = _trace_with_response("M/S**2", 4.0e5)
+    with pytest.raises(ValueError, match="contradicts its attached instrument response"):
+        records.read(trace, units="g")
+    assert records.read(trace, units="m/s2").units_in_file == "m/s2"  # agreeing units pass
+
+
+def test_a_velocity_response_is_refused_naming_the_trace():
+    """ObsPy's own example stream and inventory (``obspy.read()``,
+    ``obspy.read_inventory()``: BW.RJOB, a seismometer whose response has input
+    units M/S) are velocities: the error names the trace and says so."""
+    stream = obspy.read()
+    inventory = obspy.read_inventory()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # attach_response is deprecated in newer ObsPy
+        stream.attach_response(inventory)
+    trace = stream.select(channel="EHZ")[0]
+    assert trace.stats.response.instrument_sensitivity.input_units == "M/S"
+    with pytest.raises(ValueError, match=r"BW\.RJOB\.\.EHZ.*'M/S', not an acceleration"):
+        records.read(trace)
+
+
+def test_without_response_or_format_units_the_message_asks_for_units():
+    trace = _trace_with_response("M/S**2", 4.0e5)
+    del trace.stats.response
+    with pytest.raises(ValueError, match="pass units="):
+        records.read(trace)

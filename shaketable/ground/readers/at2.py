@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
 
@@ -142,7 +143,7 @@ def _check_last_value_complete(shapes: dict, last: tuple, path: Path) -> None:
             f"(download it again)")
 
 
-def read_at2(path, *, units=None) -> Record:
+def read_at2(path: str | os.PathLike[str], *, units: str | None = None) -> Record:
     """Read a PEER ``.AT2`` acceleration file.
 
     Handles the NGA-West2 header (``NPTS=   4172, DT=   .0100 SEC,`` possibly

@@ -198,7 +198,7 @@ def unit_or_error(word: str, path: Path, line_number: int) -> str:
         raise RecordError(f"{file_location(path, line_number)}: {error}") from None
 
 
-def units_argument(units, path: Path) -> str:
+def units_argument(units: object, path: Path) -> str:
     """The ``units=`` argument as a canonical unit, else a ValueError naming it and the file."""
     if not isinstance(units, str):
         raise ValueError(f"{path}: units must be a string such as 'g' or 'm/s2', got {units!r}")
@@ -254,7 +254,7 @@ def uniform_time_step(times: np.ndarray, line_numbers: list[int], path: Path) ->
     return float(f"{dt:.{digits}g}")
 
 
-def optional_positive(value, name: str, unit: str, path: Path):
+def optional_positive(value: Any, name: str, unit: str, path: Path) -> float | None:
     """``None`` or a positive finite float, else a ValueError naming ``name`` and the file."""
     if value is None:
         return None
@@ -270,7 +270,7 @@ def optional_positive(value, name: str, unit: str, path: Path):
     return number
 
 
-def option_integer(value, name: str, path: Path, minimum: int | None = 0) -> int:
+def option_integer(value: object, name: str, path: Path, minimum: int | None = 0) -> int:
     """An integer option (``skiprows``, a column index), else a ValueError naming it and the file."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise ValueError(f"{path}: {name} must be an integer, got {value!r}")

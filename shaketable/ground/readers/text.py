@@ -5,6 +5,7 @@ or given explicitly.
 from __future__ import annotations
 
 import math
+import os
 import re
 from pathlib import Path
 
@@ -49,9 +50,11 @@ def count_header_lines(lines: list[str], skiprows: int | None, delimiter: str | 
     return len(lines)
 
 
-def text_rows(lines: list[str], first: int, delimiter: str | None, path: Path):
+def text_rows(lines: list[str], first: int, delimiter: str | None,
+              path: Path) -> tuple[np.ndarray, list[int]]:
     """Parse the numeric table below the header; return ``(array, line_numbers)``."""
-    rows, line_numbers = [], []
+    rows: list[list[float]] = []
+    line_numbers: list[int] = []
     for index in range(first, len(lines)):
         if _is_comment_or_blank(lines[index]):
             continue
@@ -84,7 +87,7 @@ def header_column_names(header: list[str], ncolumns: int, delimiter: str | None)
     return []
 
 
-def _column_index(choice, names: list[str], ncolumns: int, what: str, path: Path) -> int:
+def _column_index(choice: str | int, names: list[str], ncolumns: int, what: str, path: Path) -> int:
     if isinstance(choice, str):
         lowered = [name.strip().lower() for name in names]
         if choice.strip().lower() not in lowered:
@@ -96,7 +99,9 @@ def _column_index(choice, names: list[str], ncolumns: int, what: str, path: Path
     return index % ncolumns
 
 
-def _choose_columns(ncolumns, dt, time_column, value_column, names, path):
+def _choose_columns(ncolumns: int, dt: float | None, time_column: str | int | None,
+                    value_column: str | int | None, names: list[str],
+                    path: Path) -> tuple[int | None, int]:
     """Return ``(time column index or None, value column index)``."""
     if time_column is None and dt is None and ncolumns >= 2:
         time_column = 0
@@ -117,14 +122,15 @@ def _choose_columns(ncolumns, dt, time_column, value_column, names, path):
 
 
 def _units_in_text(text: str) -> set[str]:
-    found = set()
+    found: set[str] = set()
     for pattern in TEXT_UNITS:
         for match in pattern.finditer(text):
             found.add(canonical_unit(match["unit"]))
     return found
 
 
-def _text_units(header, names, value_index, units, path) -> str:
+def _text_units(header: list[str], names: list[str], value_index: int, units: str | None,
+                path: Path) -> str:
     """Units from the value column's header name, else from the whole header,
     checked against the ``units`` argument."""
     stated = _units_in_text(names[value_index]) if names else set()
@@ -159,8 +165,9 @@ def _text_units(header, names, value_index, units, path) -> str:
     return stated.pop()
 
 
-def read_text(path, *, dt=None, units=None, time_column=None, value_column=None,
-              skiprows=None, delimiter=None) -> Record:
+def read_text(path: str | os.PathLike[str], *, dt: float | None = None, units: str | None = None,
+              time_column: str | int | None = None, value_column: str | int | None = None,
+              skiprows: int | None = None, delimiter: str | None = None) -> Record:
     """Read a plain text or CSV acceleration record.
 
     Layouts: one column of accelerations (``dt`` required), or a time column
