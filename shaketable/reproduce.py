@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from shaketable.scenes.catalog import resolve_scene_path
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.scenes.run import run_scene
 from shaketable.studies.comparison import ComparisonTally
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 #: What the run lines and the test-vs-theory tables time differently (Figs. 3.4-3.9).
 TIMING_NOTE = ("*Times:* the run lines give the exact block's times (events located in the "
@@ -251,9 +256,11 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
         from shaketable.plots.studies import section_2_figure
         from shaketable.studies import pulses, section2
 
-        frame = {"2.3": section2.figure_2_3, "2.4": section2.figure_2_4,
-                 "2.5": section2.figure_2_5, "2.6": section2.figure_2_6,
-                 "4.3.4": pulses.section_4_3_4}[study.figure]()
+        figures: dict[str, Callable[[], pd.DataFrame]] = {
+            "2.3": section2.figure_2_3, "2.4": section2.figure_2_4,
+            "2.5": section2.figure_2_5, "2.6": section2.figure_2_6,
+            "4.3.4": pulses.section_4_3_4}
+        frame = figures[study.figure]()
         frame.to_csv(folder / "curves.csv", index=False)
         save(section_2_figure(frame, study.figure), folder / "figure.png")
         lines += [f"![{study.name}]({study.name}/figure.png)", "", _markdown(frame.round(4))]
@@ -387,6 +394,7 @@ def _spectrum_section(study: Study, folder: Path, lines: list) -> str:
     from shaketable.studies.overturning_spectrum import overturning_spectrum
 
     settings = study.spectrum
+    assert settings is not None   # an "overturning-spectrum" study has its settings
     result = overturning_spectrum(settings.block, pulses=settings.pulses,
                                   ratios=settings.ratios, cor=settings.cor,
                                   ceiling=settings.ceiling, scan_step=settings.scan_step,

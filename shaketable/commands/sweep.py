@@ -38,9 +38,11 @@ def _sweep(args) -> int:
               f"(finished chunks are in {out / 'parts'})")
         return 0
     table = outcome.table
+    assert table is not None   # complete: the joined table was read
     print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
           f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")
     if "mark" in table:
+        assert spec.ensemble is not None   # the mark column comes from [ensemble]
         fragile = table[table["mark"] == "fragile"]
         print(f"{spec.name}: {len(fragile)} of {len(table)} verdicts are fragile (some of the "
               f"{spec.ensemble['members']} perturbed copies disagree; see 'P(overturn) [-]'), "

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import Any, NoReturn
 
 import numpy as np
 
@@ -155,6 +156,8 @@ def run_table(motion: Motion | None, setup: TableSetup | None, *,
                              "none)")
         if duration is None:
             raise ValueError("a pitching table at rest needs rocking.duration")
+        # not empty and no command: the table pitches
+        assert setup.pitch is not None
         table_motion = Motion.at_rest(duration, dt=1.0 / (setup.pitch.frequency
                                                           * SAMPLES_PER_PITCH_CYCLE))
     elif setup.command:
@@ -167,6 +170,8 @@ def run_table(motion: Motion | None, setup: TableSetup | None, *,
         table_motion = Motion(achieved_motion.t, achieved_motion.horizontal,
                               achieved_motion.vertical, name=motion.name)
     if setup.pitch is not None:
+        # a commanded motion, or a table at rest for the pitch (above)
+        assert table_motion is not None
         table_motion = motion_at_block(pitch_sampled(table_motion, setup.pitch),
                                        pitch=setup.pitch, block_position=setup.block_position,
                                        axis_depth=setup.axis_depth)
@@ -203,7 +208,7 @@ def table_setup_from_dict(spec: dict, where: str = "<scene>") -> TableSetup:
     ValueError
         Naming the file and the key.
     """
-    def fail(key, message):
+    def fail(key: str, message: str) -> NoReturn:
         raise ValueError(f"{where}: table.{key}: {message}")
 
     if not isinstance(spec, dict):
@@ -212,7 +217,7 @@ def table_setup_from_dict(spec: dict, where: str = "<scene>") -> TableSetup:
     if unknown:
         raise ValueError(f"{where}: unknown key {unknown[0]!r} in [table]; expected one of "
                          f"{', '.join(sorted(_TABLE_KEYS))}")
-    options = {}
+    options: dict[str, Any] = {}
     command = spec.get("command", "actuator" in spec and spec["actuator"] is not False)
     if not isinstance(command, bool):
         fail("command", f"must be true or false, got {command!r}")
@@ -226,7 +231,7 @@ def table_setup_from_dict(spec: dict, where: str = "<scene>") -> TableSetup:
         limits = spec["limits"]
         if not isinstance(limits, dict):
             fail("limits", "must be a table such as { horizontal_stroke = '5 in' }")
-        values = {}
+        values: dict[str, Any] = {}
         for key, value in limits.items():
             axis, _, quantity = key.partition("_")
             if axis not in ("horizontal", "vertical") or quantity not in _LIMIT_UNITS:
@@ -293,7 +298,7 @@ def table_setup_from_dict(spec: dict, where: str = "<scene>") -> TableSetup:
         raise ValueError(f"{where}: [table]: {error}") from None
 
 
-def _plain_number(value, where, key) -> float:
+def _plain_number(value: Any, where: str, key: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise ValueError(f"{where}: table.{key} must be a plain number, got {value!r}")
     return float(value)

@@ -317,7 +317,10 @@ def animate(result: RockingResult, block: Block | None = None, motion: Motion | 
                               repeat=False)
     try:
         atomic_write(out, lambda temporary: animation.save(
-            str(temporary), writer=PillowWriter(fps=fps), dpi=int(dpi)))
+            # matplotlib's stub says int; PillowWriter only computes 1000 / fps, and a
+            # fractional fps is meant (a frame every speed / fps simulated seconds)
+            str(temporary), writer=PillowWriter(fps=fps),  # type: ignore[arg-type]
+            dpi=int(dpi)))
     finally:
         from shaketable.plots.base import pyplot
 

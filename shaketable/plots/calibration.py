@@ -32,10 +32,10 @@ def plot_measurement(measurement, fig=None, title: str | None = None):
 
     Returns the figure.
     """
-    panels = [("theta", measurement.theta is not None),
-              ("horizontal", measurement.table_horizontal is not None),
-              ("vertical", measurement.table_vertical is not None)]
-    panels = [name for name, present in panels if present]
+    channels = [("theta", measurement.theta is not None),
+                ("horizontal", measurement.table_horizontal is not None),
+                ("vertical", measurement.table_vertical is not None)]
+    panels = [name for name, present in channels if present]
     if not panels:
         raise ValueError("the measurement has no channel to plot")
     fig, axes = _figure(fig, len(panels), figsize=(8.0, 2.2 * len(panels) + 0.8), sharex=True)

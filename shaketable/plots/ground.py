@@ -59,7 +59,8 @@ def _arias_window(motion, low=0.05, high=0.95) -> tuple[float, float]:
     """Times [s] at which the cumulative Arias intensity reaches ``low`` and ``high``."""
     arias = signals.arias_intensity(motion)
     fraction = arias / arias[-1]
-    return tuple(float(np.interp(level, fraction, motion.t)) for level in (low, high))
+    start, end = (float(np.interp(level, fraction, motion.t)) for level in (low, high))
+    return start, end
 
 
 def preset_measures(presets=("A-1", "B-1", "olive-view"), seeds=(0, 1, 2), *, dt=0.01):

@@ -44,6 +44,7 @@ from shaketable.core.units import parse, parse_angle_or_ratio
 
 if TYPE_CHECKING:
     from shaketable.lab.stage import TableSetup
+    from shaketable.scenes.spectrum import SpectrumSettings
 
 MOTION_KEYS = {
     "free": set(),
@@ -212,7 +213,7 @@ class Study:
     phases: int = 24
     item: str = ""
     path: str = ""
-    spectrum: object = None
+    spectrum: SpectrumSettings | None = None
 
 
 #: Names a study kind accepts for its ``item`` key, registered by the studies
@@ -239,7 +240,7 @@ def register_section_parser(section: str, parser: Callable[[dict, str], Any]) ->
     SECTION_PARSERS[section] = parser
 
 
-def load_scene(path) -> Scene:
+def load_scene(path: str | Path) -> Scene | Study:
     """Read and validate a scene file.
 
     Raises
@@ -258,7 +259,7 @@ def load_scene(path) -> Scene:
     return scene_from_dict(data, where=str(path))
 
 
-def scene_from_dict(data: dict, where: str = "<scene>") -> Scene:
+def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
     """Validate a scene given as a dict (the parsed TOML); a ``[study]`` gives a :class:`Study`."""
     if "study" in data:
         return _study(data, where)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from shaketable.core.constants import G
 from shaketable.core.motion import Motion
@@ -117,7 +118,7 @@ class SceneResult:
 
     def summary(self) -> dict:
         """JSON-ready scalars: scene identification, each run, each comparison."""
-        summary = {
+        summary: dict[str, Any] = {
             "scene": self.scene.name, "source": self.scene.source,
             "description": self.scene.description,
             "runs": [run.summary() for run in self.runs],

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -324,7 +325,7 @@ def theory_from_dict(spec: dict, where: str = "<scene>") -> TheorySetup:
     if unknown:
         raise ValueError(f"{where}: unknown key {unknown[0]!r} in [theory]; expected one of "
                          f"{', '.join(sorted(_THEORY_KEYS))}")
-    options = {}
+    options: dict[str, Any] = {}
     cor = spec.get("cor", "calibrated")
     if cor != "calibrated":
         if isinstance(cor, bool) or not isinstance(cor, (int, float)):

@@ -227,8 +227,12 @@ def simulate_cases(cases, *, threads: int | None = None, method: str = "fast",
     cases = list(cases)
     if not cases:
         raise ValueError("cases must not be empty")
-    blocks, block_labels, block_of = [], [], {}
-    motions, motion_labels, motion_of = [], [], {}
+    blocks: list[Block] = []
+    block_labels: list[str] = []
+    block_of: dict[tuple[int, str], int] = {}
+    motions: list[Motion] = []
+    motion_labels: list[str] = []
+    motion_of: dict[tuple[int, str], int] = {}
     block_index = np.empty(len(cases), dtype=np.int64)
     motion_index = np.empty(len(cases), dtype=np.int64)
     for k, case in enumerate(cases):

@@ -10,6 +10,7 @@ import time
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -32,6 +33,11 @@ from shaketable.sweeps.store import (
     write_atomic,
     write_text_atomic,
 )
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from shaketable.solvers.batch import Case
 
 
 @lru_cache(maxsize=16)
@@ -136,7 +142,10 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
 
     start = chunk * spec.chunk_size
     inputs = runs_table(spec, start, start + spec.chunk_size)
-    cases, factors, record_pgas, motions = [], [], [], {}
+    cases: list[Case] = []
+    factor_list: list[float] = []
+    pga_list: list[float] = []
+    motions: dict[tuple, tuple[Motion, float]] = {}
     cors = inputs["cor [-]"].to_numpy()
     for k, row in enumerate(inputs.drop(columns="cor [-]").itertuples(index=False)):
         seed = None if pd.isna(row.seed) else int(row.seed)
@@ -150,19 +159,21 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
         block = spec.blocks[row.block_index]
         cases.append(Case(block, motion, cors[k], scale=1.0 if spec.pitch is not None else factor,
                           block_label=block.describe(unit="in"), motion_label=label))
-        factors.append(factor)
-        record_pgas.append(_record_motion(record, seed).pga)
+        factor_list.append(factor)
+        pga_list.append(_record_motion(record, seed).pga)
     statistics = None
     if spec.ensemble is None:
         frame = _simulate(spec, inputs, cases, threads)
     else:
         frame, statistics = _simulate_ensembles(spec, inputs, cases, threads)
     frame = frame.drop(columns=["block_index", "motion_index", "scale [-]", "pga [m/s^2]"])
-    record_pgas = np.array(record_pgas)
-    factors = np.array(factors)
+    record_pgas = np.array(pga_list)
+    factors = np.array(factor_list)
     level = np.array(spec.levels)[inputs["level_index"].to_numpy()]
     records = [spec.records[i] for i in inputs["record_index"]]
-    phases = np.array([math.nan if pd.isna(k) else spec.pitch.phases[int(k)]
+    # a run has a phase index only when the sweep pitches
+    pitch_phases = () if spec.pitch is None else spec.pitch.phases
+    phases = np.array([math.nan if pd.isna(k) else pitch_phases[int(k)]
                        for k in inputs["phase_index"]])
     extra = pd.DataFrame({
         "sweep": spec.name,
@@ -239,9 +250,11 @@ def _simulate_ensembles(spec: SweepSpec, inputs, cases: list, threads):
     )
     from shaketable.solvers.batch import Case
 
-    members = spec.ensemble["members"]
-    drawn = perturbed_members(members, Perturbation(**spec.ensemble["spreads"]),
-                              spec.ensemble["seed"])
+    ensemble = spec.ensemble
+    assert ensemble is not None   # called for a sweep with [ensemble] only
+    members = ensemble["members"]
+    drawn = perturbed_members(members, Perturbation(**ensemble["spreads"]),
+                              ensemble["seed"])
     copies: dict = {}           # shifted copies of each motion, shared by its cells
     expanded = []
     for case in cases:
@@ -335,7 +348,7 @@ class SweepOutcome:
         ``"parquet"`` or ``"csv"``.
     """
 
-    table: object
+    table: pd.DataFrame | None
     path: Path | None
     out: Path
     computed_runs: int
@@ -402,6 +415,8 @@ def run_sweep(spec, out, *, workers: int | None = None, scheduler: str | None = 
         raise ValueError(f"workers (--workers) must be a positive integer (threads), "
                          f"got {workers!r}")
     began = time.perf_counter()
+    client: Any      # a distributed.Client, or None
+    own_client: bool
     client, own_client = (None, False) if scheduler is None else _connect(scheduler)
     try:
         return _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk,
@@ -500,8 +515,8 @@ def _run_on_dask(spec, chunks, client, threads, finished) -> None:
             continue
         finished(chunk, frame)
     if failures:
-        chunk, error = failures[0]
+        first_chunk, first_error = failures[0]
         raise RuntimeError(f"{len(failures)} chunk(s) failed on the cluster, first chunk "
-                           f"{chunk}: {error!r}; the finished chunks are on disk, run "
-                           "again with --resume") from error
+                           f"{first_chunk}: {first_error!r}; the finished chunks are on disk, "
+                           "run again with --resume") from first_error
 

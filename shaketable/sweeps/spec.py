@@ -97,6 +97,7 @@ import math
 from dataclasses import dataclass, field
 from itertools import product
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -346,7 +347,7 @@ def spec_from_dict(data: dict, where: str = "<spec>", directory=None) -> SweepSp
     if method not in METHODS:
         raise SweepError(f"{where}: rocking.method must be one of {', '.join(METHODS)}, "
                          f"got {method!r}")
-    options = {}
+    options: dict[str, Any] = {}
     if "rtol" in rocking:
         rtol = rocking["rtol"]
         if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) or not 0 < rtol < 1:
