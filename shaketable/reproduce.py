@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+import os
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -15,6 +16,9 @@ from shaketable.studies.comparison import ComparisonTally
 if TYPE_CHECKING:
     import pandas as pd
 
+    from shaketable.core.results import RockingResult
+    from shaketable.scenes.parse import Scene
+
 #: What the run lines and the test-vs-theory tables time differently (Figs. 3.4-3.9).
 TIMING_NOTE = ("*Times:* the run lines give the exact block's times (events located in the "
                "integration); the test-vs-theory table reads both curves from the virtual "
@@ -22,7 +26,7 @@ TIMING_NOTE = ("*Times:* the run lines give the exact block's times (events loca
                "grid at or after the exact event (the first sample beyond α).")
 
 
-def run_line(run) -> str:
+def run_line(run: RockingResult) -> str:
     """One run in words and units for report.md: verdict, instability, impacts, rods."""
     if run.overturned:
         side = "+" if run.overturn_direction > 0 else "−"
@@ -42,7 +46,7 @@ def run_line(run) -> str:
     return f"* COR {run.cor:g}: {verdict}; {unstable}; {impacts}{rods}"
 
 
-def comparison_kind(scene, quantity_key: str | None = None) -> str:
+def comparison_kind(scene: Scene, quantity_key: str | None = None) -> str:
     """The kind (:data:`shaketable.studies.comparison.COMPARISON_KINDS`) of a scene's comparison.
 
     A quantity the scene lists in ``[report] by_construction`` matches by
@@ -64,7 +68,7 @@ def _format(value) -> str:
     return str(value)
 
 
-def reproduce(names, out="reproduce-out", progress: bool = True,
+def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out", progress: bool = True,
               failures: list | None = None) -> Path:
     """Run the named scenes; write ``out/report.md`` with figures and comparison tables.
 
@@ -202,7 +206,7 @@ def _assemble(out: Path, rerun) -> Path:
     return path
 
 
-def write_gallery(out) -> Path:
+def write_gallery(out: str | os.PathLike[str]) -> Path:
     """Write ``out/gallery.md``: every figure (PNG) under ``out``, one heading per scene.
 
     The page a reader scans to look at every figure of a reproduction at once
@@ -474,7 +478,7 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
     return "\n".join(lines) + body + "\n"
 
 
-def run_study(study: Study, out) -> tuple[Path, tuple[int, int]]:
+def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[int, int]]:
     """Run one ``[study]`` scene into folder ``out``: its CSV, figure and ``report.md``.
 
     What ``reproduce`` writes for the study, on its own: the files go straight into

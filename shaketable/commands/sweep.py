@@ -3,9 +3,13 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import argparse
 
 
-def _sweep(args) -> int:
+def _sweep(args: argparse.Namespace) -> int:
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import prepare_output_folder
     from shaketable.scenes.catalog import resolve_sweep_path
@@ -60,7 +64,7 @@ def _sweep(args) -> int:
     return 0
 
 
-def register(commands) -> None:
+def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``sweep`` subcommand."""
     parser = commands.add_parser(
         "sweep", help="run a parameter sweep (TOML spec) into a Parquet table, resumable",

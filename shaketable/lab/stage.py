@@ -69,7 +69,7 @@ class TableSetup:
     block_position: float = 0.0
     axis_depth: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.actuator is not None and not self.command:
             raise ValueError("table.actuator needs table.command = true (the servo follows "
                              "a displacement command)")

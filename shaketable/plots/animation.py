@@ -22,10 +22,12 @@ References
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
@@ -96,7 +98,8 @@ def frame_times(t_first: float, t_last: float, fps: float, speed: float,
     return t_first + step * np.arange(count)
 
 
-def table_displacement(motion: Motion | None, times, *, highpass: float | None = 0.1):
+def table_displacement(motion: Motion | None, times: ArrayLike, *,
+                       highpass: float | None = 0.1) -> np.ndarray:
     """Horizontal table displacement at ``times`` [m] for a table motion [m/s^2].
 
     The displacement command of :func:`shaketable.lab.command.displacement_command`
@@ -257,7 +260,7 @@ def _inputs(result, block, motion):
 
 
 def animate(result: RockingResult, block: Block | None = None, motion: Motion | None = None, *,
-            out, fps: float = DEFAULT_FPS, speed: float = 1.0, start: float | None = None,
+            out: str | os.PathLike[str], fps: float = DEFAULT_FPS, speed: float = 1.0, start: float | None = None,
             end: float | None = None, dpi: int = 72, highpass: float | None = 0.1,
             title: str | None = None, max_frames: int = MAX_FRAMES) -> AnimationFile:
     """Write an animated GIF of the block rocking on the moving table.
@@ -329,7 +332,8 @@ def animate(result: RockingResult, block: Block | None = None, motion: Motion | 
                          t_first=float(times[0]), t_last=float(times[-1]))
 
 
-def snapshot(result: RockingResult, time: float, *, out, motion: Motion | None = None,
+def snapshot(result: RockingResult, time: float, *, out: str | os.PathLike[str],
+             motion: Motion | None = None,
              span: tuple | None = None, dpi: int = 90, highpass: float | None = 0.1) -> Path:
     """One frame of :func:`animate` at simulated ``time`` [s], saved as an image (PNG...).
 

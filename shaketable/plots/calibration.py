@@ -12,10 +12,19 @@ Every function takes ``ax=None`` (or ``fig=None``) and returns what it drew on.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from shaketable.core.constants import G
 from shaketable.plots.base import place_legend, pyplot
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from shaketable.calibration.peaks import PeakEstimate, PeriodFit
+    from shaketable.calibration.result import Calibration
 
 
 def _figure(fig, nrows, ncols=1, figsize=(8.0, 6.0), **kwargs):
@@ -27,7 +36,8 @@ def _figure(fig, nrows, ncols=1, figsize=(8.0, 6.0), **kwargs):
     return fig, axes
 
 
-def plot_measurement(measurement, fig=None, title: str | None = None):
+def plot_measurement(measurement, fig: Figure | None = None,
+                     title: str | None = None) -> Figure:
     """Angle (report's and exact) and the table accelerations of a :class:`Measurement`.
 
     Returns the figure.
@@ -60,7 +70,8 @@ def plot_measurement(measurement, fig=None, title: str | None = None):
     return fig
 
 
-def plot_fit(calibration, axes=None):
+def plot_fit(calibration: Calibration,
+             axes: tuple[Axes, Axes] | None = None) -> tuple[Axes, Axes]:
     """Record, fitted curve (top) and residuals (bottom). Returns the two axes."""
     if axes is None:
         _, grid = _figure(None, 2, figsize=(8.0, 5.0), sharex=True,
@@ -94,7 +105,7 @@ def plot_fit(calibration, axes=None):
     return top, bottom
 
 
-def plot_cor_per_impact(peaks, ax=None):
+def plot_cor_per_impact(peaks: PeakEstimate, ax: Axes | None = None) -> Axes:
     """COR of each impact (from successive peaks) against the impact velocity. Returns the axes."""
     if ax is None:
         _, grid = _figure(None, 1, figsize=(6.0, 4.0))
@@ -114,7 +125,7 @@ def plot_cor_per_impact(peaks, ax=None):
     return ax
 
 
-def plot_periods(period_fit, ax=None):
+def plot_periods(period_fit: PeriodFit, ax: Axes | None = None) -> Axes:
     """Measured periods against amplitude with the fitted and nominal exact curves. Returns the axes."""
     if ax is None:
         _, grid = _figure(None, 1, figsize=(6.0, 4.0))
@@ -140,7 +151,8 @@ def plot_periods(period_fit, ax=None):
     return ax
 
 
-def plot_calibration(calibration, fig=None, title: str | None = None):
+def plot_calibration(calibration: Calibration, fig: Figure | None = None,
+                     title: str | None = None) -> Figure:
     """Fit, residuals, COR per impact and periods in one figure. Returns the figure."""
     plt = pyplot()
 

@@ -15,12 +15,19 @@ from __future__ import annotations
 
 import math
 import numbers
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from shaketable.core.constants import G
 from shaketable.ground import generators, signals
 from shaketable.plots.base import pyplot
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.figure import Figure
 
 __all__ = ["plot_artificial_presets", "preset_measures"]
 
@@ -63,7 +70,9 @@ def _arias_window(motion, low=0.05, high=0.95) -> tuple[float, float]:
     return start, end
 
 
-def preset_measures(presets=("A-1", "B-1", "olive-view"), seeds=(0, 1, 2), *, dt=0.01):
+def preset_measures(presets: str | Sequence[str] = ("A-1", "B-1", "olive-view"),
+                    seeds: int | Sequence[int] = (0, 1, 2), *,
+                    dt: float = 0.01) -> pd.DataFrame:
     """PGA, strong-motion duration and predominant frequency of preset realisations.
 
     Parameters
@@ -115,8 +124,10 @@ def _smoothed(frequency: np.ndarray, amplitude: np.ndarray, width: float) -> np.
     return np.convolve(amplitude, kernel, mode="same")
 
 
-def plot_artificial_presets(presets=("A-1", "B-1", "olive-view"), seeds=(0, 1, 2), *,
-                            dt=0.01, damping=0.05, periods=None, smoothing=0.25):
+def plot_artificial_presets(presets: str | Sequence[str] = ("A-1", "B-1", "olive-view"),
+                            seeds: int | Sequence[int] = (0, 1, 2), *, dt: float = 0.01,
+                            damping: float = 0.05, periods: ArrayLike | None = None,
+                            smoothing: float = 0.25) -> Figure:
     """Frequency content, PGA and strong-motion duration of the artificial presets.
 
     One row per preset, three panels each:

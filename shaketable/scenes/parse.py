@@ -220,10 +220,10 @@ class Study:
 #: themselves through the loader (:mod:`shaketable.scenes`), so that this parser
 #: imports no study module: a function giving the names, called when a scene
 #: of that kind is read.
-STUDY_ITEMS: dict = {}
+STUDY_ITEMS: dict[str, Callable[[], Any]] = {}
 
 
-def register_study_items(kind: str, items) -> None:
+def register_study_items(kind: str, items: Callable[[], Any]) -> None:
     """Declare the items a ``[study]`` of ``kind`` may name: a function returning them."""
     STUDY_ITEMS[kind] = items
 

@@ -7,9 +7,10 @@ is parsed by :mod:`shaketable.scenes.parse` first.
 from __future__ import annotations
 
 import json
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from shaketable.core.constants import G
 from shaketable.core.motion import Motion
@@ -23,6 +24,10 @@ from shaketable.scenes.compare import (
 )
 from shaketable.scenes.parse import Scene, SceneError
 from shaketable.solvers.api import simulate
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.figure import Figure
 
 
 def build_motion(scene: Scene) -> Motion | None:
@@ -105,7 +110,7 @@ class SceneResult:
         """The first run (the scene's first COR)."""
         return self.runs[0]
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """Time histories of every run, long format with a ``cor [-]`` column."""
         import pandas as pd
 
@@ -136,7 +141,7 @@ class SceneResult:
             summary["sliding"] = [run.summary() for run in self.slides]
         return summary
 
-    def plot(self):
+    def plot(self) -> Figure:
         """The Calcomp figure of the main run, captioned; other CORs overlaid on the rotation."""
         from shaketable.plots.calcomp import calcomp
 
@@ -159,7 +164,7 @@ class SceneResult:
             details.append("motion felt by the block on the virtual shaking table")
         return details
 
-    def write(self, out) -> list[Path]:
+    def write(self, out: str | os.PathLike[str]) -> list[Path]:
         """Write the outputs the scene asks for into folder ``out``; return the paths."""
         from shaketable.core.files import prepare_output_folder, write_csv, write_parquet, write_text
         from shaketable.plots.base import save

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -34,6 +34,12 @@ from shaketable.lab.sensors import (
     measure,
 )
 from shaketable.solvers.api import simulate
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.figure import Figure
+
+    from shaketable.calibration.result import Calibration
 
 
 @dataclass(frozen=True)
@@ -60,7 +66,7 @@ class TheorySetup:
     free_rocking_duration: float = 8.0
     method: str = "fast"
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.cor is not None and not (isinstance(self.cor, (int, float))
                                          and 0.0 <= self.cor <= 1.0):
             raise ValueError(f"theory.cor must be a number in [0, 1] or 'calibrated', got "
@@ -165,13 +171,13 @@ class VirtualTestResult:
             "t overturn theory [s]": _rounded(self.theory.t_overturn),
         }
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """The record and the theory at its samples (pandas)."""
         frame = self.measurement.to_frame()
         frame["theory theta [rad]"] = self.theory_theta()
         return frame
 
-    def plot(self, fig=None, title: str | None = None):
+    def plot(self, fig: Figure | None = None, title: str | None = None) -> Figure:
         """Test and theory overlaid, like Figs. 3.4 and 3.7-3.9.
 
         Top: the digitized table accelerations (when measured); bottom: theta/alpha
@@ -186,7 +192,7 @@ def run_virtual_test(block: Block, felt: Motion | None, *, cor: float, sensors: 
                      theory: TheorySetup | None = None, commanded: Motion | None = None,
                      theta0: float = 0.0, theta_dot0: float = 0.0,
                      duration: float | None = None, method: str = "fast",
-                     **options) -> VirtualTestResult:
+                     **options: Any) -> VirtualTestResult:
     """The virtual test of ``block`` on the table motion ``felt`` and its theory run.
 
     Parameters
@@ -230,7 +236,7 @@ def run_virtual_test(block: Block, felt: Motion | None, *, cor: float, sensors: 
 
 
 def calibrate_from_free_rocking(block: Block, cor: float, sensors: Sensors,
-                                theory: TheorySetup):
+                                theory: TheorySetup) -> Calibration:
     """COR of ``block`` identified from its virtual free-rocking record (Section 3.5).
 
     The block (true ``cor``) is released from ``theory.release`` alpha on a

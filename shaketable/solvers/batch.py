@@ -30,8 +30,10 @@ are text, and are left to :func:`shaketable.solvers.api.simulate`.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from itertools import product
+from typing import TYPE_CHECKING, Any
 
 import numba
 import numpy as np
@@ -49,6 +51,9 @@ from shaketable.solvers.common import (
     extended,
     run_options,
 )
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 __all__ = ["Case", "METHODS", "simulate_cases", "simulate_many"]
 
@@ -83,7 +88,7 @@ class Case:
     block_label: str = ""
     motion_label: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if not isinstance(self.block, Block):
             raise ValueError(f"Case.block must be a shaketable.Block, got "
                              f"{type(self.block).__name__}")
@@ -143,9 +148,11 @@ def _run_batch_serial(method, t_all, ug_all, vg_all, rg_all, offsets, parameters
 
 
 # --------------------------------------------------------------------------- public API
-def simulate_many(blocks, motions, cors, *, scales=(1.0,), threads: int | None = None,
-                  method: str = "fast", rtol: float | None = None,
-                  duration: float | None = None, **options):
+def simulate_many(blocks: Block | Iterable[Block] | Mapping[str, Block],
+                  motions: Motion | Iterable[Motion] | Mapping[str, Motion],
+                  cors: float | Iterable[float], *, scales: Iterable[float] = (1.0,),
+                  threads: int | None = None, method: str = "fast", rtol: float | None = None,
+                  duration: float | None = None, **options: Any) -> pd.DataFrame:
     """Every combination of blocks, motions, COR (and scale factors), in parallel.
 
     Parameters
@@ -207,8 +214,9 @@ def simulate_many(blocks, motions, cors, *, scales=(1.0,), threads: int | None =
                   rtol=rtol, duration=duration, **options)
 
 
-def simulate_cases(cases, *, threads: int | None = None, method: str = "fast",
-                   rtol: float | None = None, duration: float | None = None, **options):
+def simulate_cases(cases: Iterable[Case], *, threads: int | None = None, method: str = "fast",
+                   rtol: float | None = None, duration: float | None = None,
+                   **options: Any) -> pd.DataFrame:
     """An explicit list of runs, in parallel; one row per :class:`Case`, in order.
 
     Parameters

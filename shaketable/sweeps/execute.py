@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -54,8 +56,8 @@ def _record_motion(record: RecordSpec, seed) -> Motion:
     return motions.artificial(record.preset, seed=seed, **options)
 
 
-def build_motion(spec: SweepSpec, record_index: int, seed=None, level_index: int = 0,
-                 phase_index=None) -> tuple[Motion, float]:
+def build_motion(spec: SweepSpec, record_index: int, seed: int | None = None,
+                 level_index: int = 0, phase_index: int | None = None) -> tuple[Motion, float]:
     """The motion of one run and its earthquake scale factor.
 
     Parameters
@@ -94,6 +96,7 @@ def build_motion(spec: SweepSpec, record_index: int, seed=None, level_index: int
         return base, factor
     from shaketable.lab.pitch import motion_at_block
 
+    assert phase_index is not None   # a pitching sweep's runs each have a phase
     scaled = base if factor == 1.0 else base.scaled(factor)
     pitched = motion_at_block(scaled, pitch=pitch_of(spec.pitch, phase_index, spec.seed),
                               block_position=spec.pitch.block_position,
@@ -101,7 +104,7 @@ def build_motion(spec: SweepSpec, record_index: int, seed=None, level_index: int
     return pitched, factor
 
 
-def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None):
+def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None) -> pd.DataFrame:
     """The inputs of runs ``start`` to ``stop`` (the grid, before running), one row each.
 
     Columns: ``run``, ``record_index``, ``seed``, ``phase_index``,
@@ -129,7 +132,7 @@ def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None):
     })
 
 
-def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None):
+def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd.DataFrame:
     """Run one chunk; the rows of the result table for runs ``chunk * chunk_size`` on.
 
     A plain function of picklable arguments: this is what a Dask worker runs. With
@@ -358,9 +361,11 @@ class SweepOutcome:
     format: str
 
 
-def run_sweep(spec, out, *, workers: int | None = None, scheduler: str | None = None,
+def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[str], *,
+              workers: int | None = None, scheduler: str | None = None,
               resume: bool = False, progress: bool = True, max_chunks: int | None = None,
-              on_chunk=None, fmt: str | None = None) -> SweepOutcome:
+              on_chunk: Callable[[int, pd.DataFrame], object] | None = None,
+              fmt: str | None = None) -> SweepOutcome:
     """Run a sweep into the folder ``out``, chunk by chunk, resumable.
 
     Parameters

@@ -94,10 +94,11 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+import os
 from dataclasses import dataclass, field
 from itertools import product
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -109,6 +110,9 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
+
+if TYPE_CHECKING:
+    from shaketable.lab.pitch import Pitch
 
 TOP_KEYS = {"name", "description", "seed", "blocks", "rocking", "records", "intensity",
             "pitch", "run", "ensemble"}
@@ -287,7 +291,7 @@ class SweepSpec:
 
 
 # --------------------------------------------------------------------------- parsing
-def load_spec(path) -> SweepSpec:
+def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
     """Read and validate a sweep spec (TOML).
 
     Raises
@@ -306,7 +310,8 @@ def load_spec(path) -> SweepSpec:
     return spec_from_dict(data, where=str(path), directory=path.parent)
 
 
-def spec_from_dict(data: dict, where: str = "<spec>", directory=None) -> SweepSpec:
+def spec_from_dict(data: dict, where: str = "<spec>",
+                   directory: str | os.PathLike[str] | None = None) -> SweepSpec:
     """Validate a sweep spec given as a dict (the parsed TOML).
 
     Parameters
@@ -671,7 +676,7 @@ def _pitch(table, where, seed):
     return grid
 
 
-def pitch_of(grid: PitchGrid, index: int, seed: int):
+def pitch_of(grid: PitchGrid, index: int, seed: int) -> Pitch:
     from shaketable.lab.pitch import Pitch
 
     drift = grid.frequency_drift > 0 or grid.amplitude_drift > 0
