@@ -78,6 +78,14 @@ def _bounded(name: str, array: np.ndarray, unit: str) -> np.ndarray:
     return array
 
 
+def _component(name: str, values, unit: str, samples: int) -> np.ndarray:
+    """One component of a Motion as a checked float array of ``samples`` values."""
+    array = _bounded(f"Motion.{name}", _as_float_array(f"Motion.{name}", values), unit)
+    if array.size != samples:
+        raise ValueError(f"Motion.{name} has {array.size} samples but Motion.t has {samples}")
+    return array
+
+
 def _as_float_array(name: str, values) -> np.ndarray:
     try:
         array = np.asarray(values, dtype=float)
@@ -166,28 +174,11 @@ class Motion:
                 f"{float(steps[index])!r} s is below the shortest accepted "
                 f"{MIN_SAMPLE_INTERVAL:g} s"
             )
-        horizontal = _bounded("Motion.horizontal",
-                              _as_float_array("Motion.horizontal", self.horizontal), "m/s^2")
-        if horizontal.size != t.size:
-            raise ValueError(
-                f"Motion.horizontal has {horizontal.size} samples but Motion.t has {t.size}"
-            )
-        vertical = None
-        if self.vertical is not None:
-            vertical = _bounded("Motion.vertical",
-                                _as_float_array("Motion.vertical", self.vertical), "m/s^2")
-            if vertical.size != t.size:
-                raise ValueError(
-                    f"Motion.vertical has {vertical.size} samples but Motion.t has {t.size}"
-                )
-        rotation = None
-        if self.rotation is not None:
-            rotation = _bounded("Motion.rotation",
-                                _as_float_array("Motion.rotation", self.rotation), "rad/s^2")
-            if rotation.size != t.size:
-                raise ValueError(
-                    f"Motion.rotation has {rotation.size} samples but Motion.t has {t.size}"
-                )
+        horizontal = _component("horizontal", self.horizontal, "m/s^2", t.size)
+        vertical = (None if self.vertical is None
+                    else _component("vertical", self.vertical, "m/s^2", t.size))
+        rotation = (None if self.rotation is None
+                    else _component("rotation", self.rotation, "rad/s^2", t.size))
         for key, value in (("t", t), ("horizontal", horizontal), ("vertical", vertical),
                            ("rotation", rotation)):
             if value is not None:
@@ -345,6 +336,14 @@ class Motion:
         """Horizontal and vertical acceleration at ``times`` [m/s^2] (linear between samples)."""
         return (np.interp(times, self.t, self.horizontal),
                 np.interp(times, self.t, self.vertical_or_zero))
+
+    def columns_in_g(self, times) -> dict[str, np.ndarray]:
+        """``{"ground horizontal [g]": ..., "ground vertical [g]": ...}`` at ``times``.
+
+        The ground columns of every result's :meth:`to_frame`, in units of g.
+        """
+        horizontal, vertical = self.at(times)
+        return {"ground horizontal [g]": horizontal / G, "ground vertical [g]": vertical / G}
 
     @property
     def pitched(self) -> bool:

@@ -7,7 +7,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 
@@ -170,11 +169,9 @@ class RockingResult:
         """Time history as a :class:`pandas.DataFrame` with units in the column names."""
         import pandas as pd
 
-        horizontal, vertical = self.ground_at(self.t)
         return pd.DataFrame({
             "time [s]": self.t,
-            "ground horizontal [g]": horizontal / G,
-            "ground vertical [g]": vertical / G,
+            **self.motion.columns_in_g(self.t),
             "theta [rad]": self.theta,
             "theta_dot [rad/s]": self.theta_dot,
             "theta_ddot [rad/s^2]": self.theta_ddot,

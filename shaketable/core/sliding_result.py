@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from shaketable.core.constants import INCH, G
+from shaketable.core.constants import INCH
 from shaketable.core.motion import Motion
 from shaketable.core.validation import nonnegative
 
@@ -171,11 +171,9 @@ class SlidingResult:
         """Time history as a :class:`pandas.DataFrame`, units in the column names."""
         import pandas as pd
 
-        horizontal, vertical = self.ground_at(self.t)
         return pd.DataFrame({
             "time [s]": self.t,
-            "ground horizontal [g]": horizontal / G,
-            "ground vertical [g]": vertical / G,
+            **self.motion.columns_in_g(self.t),
             "relative displacement [m]": self.x,
             "relative velocity [m/s]": self.v,
             "state": [STATES[int(code)] for code in self.state],

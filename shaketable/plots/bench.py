@@ -151,7 +151,7 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None):
                  "(labels: rtol of fast/reference, n = predictor-corrector subdivisions; "
                  f"errors below {ERROR_FLOOR:g} drawn at it)", fontsize=8.5, y=0.005,
                  va="bottom")
-    fig.tight_layout(rect=(0, 0.03, 1, 1 - 0.35 / (2.75 * rows + 1.1)))
+    fig.tight_layout(rect=(0, 0.03, 1, 1 - 0.22 / (2.75 * rows + 1.1)))
     return fig
 
 

@@ -40,15 +40,17 @@ def plot_bundle(runs, ax=None, *, horizon: float = math.nan, threshold: float = 
             ax.plot(run.t, ratio, color=colours[k - 1], lw=0.7, alpha=0.8,
                     label="perturbed copies" if k == 1 else None)
         if run.overturned:
-            ax.plot(run.t[-1], float(np.clip(ratio[-1], -2.9, 2.9)), "x", color="crimson", ms=6, zorder=6)
+            # drawn whole even at the top of the axis (clip_on=False): x = overturned
+            ax.plot(run.t[-1], float(np.clip(ratio[-1], -2.9, 2.9)), "x", color="crimson",
+                    ms=6, zorder=6, clip_on=False)
     for level in (-1, 1):
         ax.axhline(level, color="grey", lw=0.6, ls=":")
     if math.isfinite(horizon):
         ax.axvline(horizon, color="crimson", lw=1, ls="--",
-                   label=f"horizon {horizon:.2f} s (|d theta| > {threshold:g} alpha)")
+                   label=f"horizon {horizon:.2f} s (|Δθ| > {threshold:g} α)")
     ax.set_ylim(-3, 3)
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("theta / alpha [-]")
+    ax.set_ylabel("θ/α [-]")
     first = runs[0]
     ax.set_title(title or f"{first.block.describe()} block, {first.motion.name}, COR "
                           f"{first.cor:g}: {len(runs)} runs (x: overturned)", fontsize=9)
