@@ -48,7 +48,8 @@ COR = 0.925
 CASES = {
     # name: (motion, high-pass corner [Hz], zoom window [s])
     # ends a quarter period after 20 cycles, where the table's velocity is ~0
-    "harmonic-2Hz-0.5g": (motions.harmonic(2.0, 0.5, duration=10.125, dt=0.0025, ramp=1.0),
+    "harmonic-2Hz-0.5g": (motions.harmonic(2.0, horizontal=0.5 * G, duration=10.125,
+                                           dt=0.0025, ramp=1.0),
                           0.1, (3.0, 4.0)),
     # 0.5 Hz: about the lowest corner at which olive-view fits the assumed +-5 in
     # stroke. Subdivided to dt = 0.0025 s so the 12 Hz pitch has 33 samples a period.

@@ -40,7 +40,9 @@ free.plot()
 # 3. Shake the table
 # ------------------
 # A 2 Hz, 0.5 g harmonic table motion (the report's Fig. 3.7), ramped up over one second.
-motion = generators.harmonic(2.0, 0.5, duration=10.0, dt=0.0025, ramp=1.0)
+# Accelerations are given in m/s^2: ``0.5 * st.G`` is 0.5 g.
+motion = generators.harmonic(2.0, horizontal=0.5 * st.G, duration=10.0, dt=0.0025,
+                             ramp=1.0)
 result = st.simulate(block, motion, cor=0.925)
 print(result.status, f"max |theta|/alpha = {result.max_theta_ratio:.2f}")
 result.plot()

@@ -23,6 +23,7 @@ import pytest
 
 import shaketable as st
 from shaketable.cli import main
+from shaketable.core.constants import G
 from tests.helpers import REPOSITORY
 
 RECORDS = REPOSITORY / "shaketable" / "data" / "records"
@@ -554,14 +555,14 @@ def _api_cases():
          "t"),
         ("api", "motion-lengths", lambda: Motion(np.arange(3) * 0.01, [0.0, 1.0]), "samples"),
         ("api", "at-rest-huge", lambda: Motion.at_rest(1e12), "limit"),
-        ("api", "harmonic-text", lambda: generators.harmonic("2", 0.5, duration=1), "frequency"),
-        ("api", "harmonic-aliased-60hz", lambda: generators.harmonic(60, 0.5, duration=1,
+        ("api", "harmonic-text", lambda: generators.harmonic("2", horizontal=0.5 * G, duration=1), "frequency"),
+        ("api", "harmonic-aliased-60hz", lambda: generators.harmonic(60, horizontal=0.5 * G, duration=1,
                                                                      dt=0.01),
          "samples per period"),
-        ("api", "harmonic-zeros-50hz", lambda: generators.harmonic(50, 0.5, duration=1,
+        ("api", "harmonic-zeros-50hz", lambda: generators.harmonic(50, horizontal=0.5 * G, duration=1,
                                                                    dt=0.01),
          "samples per period"),
-        ("api", "harmonic-1e9hz", lambda: generators.harmonic(1e9, 0.5, duration=1), "limit"),
+        ("api", "harmonic-1e9hz", lambda: generators.harmonic(1e9, horizontal=0.5 * G, duration=1), "limit"),
         ("api", "artificial-preset", lambda: generators.artificial("Z-9", seed=1), "Z-9"),
         ("api", "read-folder", lambda: records.read(REPOSITORY), "folder"),
         ("api", "read-missing", lambda: records.read("no-such-record.AT2"),
@@ -634,11 +635,11 @@ def test_harmonic_default_step_follows_the_frequency():
     samples per period above 5 Hz (and keeps the report's 0.01 s below)."""
     from shaketable.ground import generators
 
-    fast = generators.harmonic(50.0, 0.5, duration=1.0)
+    fast = generators.harmonic(50.0, horizontal=0.5 * G, duration=1.0)
     assert fast.dt == pytest.approx(1 / (20 * 50.0))
     # 20 samples per period, in phase with the sine: the 5th sample is its peak
     assert fast.pga == pytest.approx(0.5 * st.G, rel=1e-9)
-    assert generators.harmonic(2.0, 0.5, duration=1.0).dt == pytest.approx(0.01)
+    assert generators.harmonic(2.0, horizontal=0.5 * G, duration=1.0).dt == pytest.approx(0.01)
 
 
 def test_at2_cut_in_its_last_number_is_refused(tmp_path):

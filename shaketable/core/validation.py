@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
+from collections.abc import Callable
+from typing import ParamSpec, TypeVar
 
 import numpy as np
 
@@ -88,3 +91,49 @@ def sample_count(count: float, what: str) -> int:
                          f"samples per motion or run (shorten the run or use a longer "
                          f"sample interval)")
     return int(count)
+
+
+_Parameters = ParamSpec("_Parameters")
+_Returned = TypeVar("_Returned")
+
+
+def renamed_to_si(positional: int, **renamed: str) -> Callable[
+        [Callable[_Parameters, _Returned]], Callable[_Parameters, _Returned]]:
+    """Decorator: a call in a generator's old g-based form raises a ``TypeError`` saying what to pass.
+
+    Version 0.1's generators took accelerations in g, some positionally; a call
+    written for them would otherwise either fail with Python's bare message or,
+    worse, pass a value in g where m/s^2 is now expected.
+
+    Parameters
+    ----------
+    positional : int
+        How many positional arguments the decorated function takes; more is an
+        old-form call.
+    **renamed : str
+        Each removed ``*_g`` keyword [g] mapped to its SI replacement [m/s^2].
+    """
+    def decorate(function: Callable[_Parameters, _Returned]) -> Callable[
+            _Parameters, _Returned]:
+        name = function.__name__
+        hint = ", ".join(f"{new}=<value in g> * G" for new in renamed.values())
+
+        @functools.wraps(function)
+        def checked(*args: _Parameters.args, **kwargs: _Parameters.kwargs) -> _Returned:
+            for old, new in renamed.items():
+                if old in kwargs:
+                    raise TypeError(
+                        f"{name}() takes accelerations in m/s^2 now: pass "
+                        f"{new}={kwargs[old]!r} * G (G from shaketable.core.constants) "
+                        f"instead of {old}={kwargs[old]!r}")
+            if len(args) > positional:
+                takes = ("no positional arguments" if positional == 0 else
+                         f"{positional} positional argument{'s' if positional > 1 else ''}")
+                raise TypeError(
+                    f"{name}() takes {takes} (got {len(args)}); pass its accelerations "
+                    f"as keywords in m/s^2: {hint}")
+            return function(*args, **kwargs)
+
+        return checked
+
+    return decorate

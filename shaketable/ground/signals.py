@@ -16,16 +16,34 @@ import scipy.signal
 from shaketable.core.constants import G
 from shaketable.core.motion import Motion
 from shaketable.core.motion import motion_argument as _motion
+from shaketable.core.sampling import UNIFORM_RTOL
+from shaketable.core.sampling import uniform_step as _uniform_times
 from shaketable.core.validation import nonnegative as _nonnegative
 from shaketable.core.validation import number as _number
 from shaketable.core.validation import positive as _positive
-from shaketable.core.validation import sample_count
-from shaketable.ground.generators import UNIFORM_RTOL, motion_component, uniform_step
+from shaketable.core.validation import renamed_to_si, sample_count
+
+
+def uniform_step(motion: Motion, what: str) -> float:
+    """Sample interval of a uniformly sampled motion [s], else a ValueError naming ``what``."""
+    return _uniform_times(motion.t, what)
+
+
+def motion_component(motion: Motion, component: str) -> np.ndarray:
+    """The ``"horizontal"`` or ``"vertical"`` acceleration of a motion [m/s^2] (zeros if absent)."""
+    if component == "horizontal":
+        return motion.horizontal
+    if component == "vertical":
+        return motion.vertical_or_zero
+    raise ValueError(
+        f"component must be 'horizontal' or 'vertical', got {component!r}"
+    )
 
 
 # ------------------------------------------------------------------ utilities
-def scale_to_pga(motion, pga_g) -> Motion:
-    """Scale a motion so that its peak horizontal acceleration is ``pga_g``.
+@renamed_to_si(1, pga_g="pga")
+def scale_to_pga(motion: Motion, *, pga: float) -> Motion:
+    """Scale a motion so that its peak horizontal acceleration is ``pga``.
 
     Both components are multiplied by the same factor (their ratio is kept).
 
@@ -33,8 +51,9 @@ def scale_to_pga(motion, pga_g) -> Motion:
     ----------
     motion : Motion
         Motion to scale (unchanged), without table pitch.
-    pga_g : float
-        Target peak horizontal acceleration [g], positive.
+    pga : float
+        Target peak horizontal acceleration [m/s^2], positive (``0.3 * G`` for
+        0.3 g, with :data:`~shaketable.core.constants.G`).
 
     Returns
     -------
@@ -44,7 +63,7 @@ def scale_to_pga(motion, pga_g) -> Motion:
     Raises
     ------
     ValueError
-        ``pga_g`` not positive, a zero horizontal component, or a motion that
+        ``pga`` not positive, a zero horizontal component, or a motion that
         carries a table pitch (non-zero ``rotation``).
 
     Notes
@@ -57,10 +76,10 @@ def scale_to_pga(motion, pga_g) -> Motion:
     on the pitching table.
     """
     motion = _motion("motion", motion)
-    pga_g = _positive("pga_g", pga_g, " [g]")
+    pga = _positive("pga", pga, " [m/s^2]")
     if motion.pga == 0.0:
         raise ValueError("motion has a zero horizontal component; it cannot be scaled to a PGA")
-    return motion.scaled(pga_g * G / motion.pga)
+    return motion.scaled(pga / motion.pga)
 
 
 def _decimate_fft(values: np.ndarray, dt_old: float, dt_new: float,

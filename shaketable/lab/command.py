@@ -39,31 +39,15 @@ import scipy.signal
 
 from shaketable.core.motion import Motion
 from shaketable.core.motion import motion_argument as _motion
+from shaketable.core.sampling import uniform_step
 from shaketable.core.validation import integer as _integer
 from shaketable.core.validation import positive as _positive
-
-pass
 
 #: Axes of the table, in the order used everywhere in this module.
 AXES = ("horizontal", "vertical")
 
-#: Relative tolerance used to decide that a motion is uniformly sampled.
-_UNIFORM_RTOL = 1e-6
-
 
 # ------------------------------------------------------------------ validation
-def _uniform_dt(t: np.ndarray, what: str) -> float:
-    """Sample interval of uniformly sampled times [s], else a ValueError."""
-    steps = np.diff(t)
-    dt = float(np.mean(steps))
-    if np.max(np.abs(steps - dt)) > _UNIFORM_RTOL * dt:
-        raise ValueError(
-            f"{what} needs a uniformly sampled motion; this one has steps from "
-            f"{steps.min()!r} to {steps.max()!r} s"
-        )
-    return dt
-
-
 def _read_only(name: str, values: object, size: int | None = None) -> np.ndarray:
     try:
         array = np.array(values, dtype=float)
@@ -280,7 +264,7 @@ def displacement_command(motion: Motion, *, highpass: float | None = 0.1, order:
         out of range; the message names it.
     """
     motion = _motion("motion", motion)
-    dt = _uniform_dt(motion.t, "displacement_command")
+    dt = uniform_step(motion.t, "displacement_command")
     if highpass is not None:
         highpass = _positive("highpass", highpass, " [Hz]")
         nyquist = 0.5 / dt

@@ -108,7 +108,7 @@ def preset_measures(presets: str | Sequence[str] = ("A-1", "B-1", "olive-view"),
             smooth = _smoothed(frequency, amplitude, 0.5)
             rows.append({
                 "preset": name, "seed": seed, "pga [g]": motion.pga / G,
-                "target pga [g]": generators.PRESETS[name].pga_g,
+                "target pga [g]": generators.PRESETS[name].pga / G,
                 "D5-95 [s]": t95 - t5, "t5 [s]": t5, "t95 [s]": t95,
                 "predominant frequency [Hz]": float(frequency[np.argmax(smooth)]),
                 "duration [s]": motion.duration,
@@ -216,8 +216,8 @@ def plot_artificial_presets(presets: str | Sequence[str] = ("A-1", "B-1", "olive
                            color=colour, lw=0.8, alpha=0.8)
         spectrum.plot(periods, np.mean(spectra, axis=0), color="k", lw=1.6,
                       label=f"mean of {len(seed_list)} seeds")
-        spectrum.axhline(preset.pga_g, color="0.4", ls=":", lw=1.0,
-                         label=f"PGA {preset.pga_g:g} g (T → 0 limit)")
+        spectrum.axhline(preset.pga / G, color="0.4", ls=":", lw=1.0,
+                         label=f"PGA {preset.pga / G:g} g (T → 0 limit)")
         spectrum.set_xscale("log")
         spectrum.set_xlabel("period T [s]")
         spectrum.set_ylabel(f"S_a [g], ζ = {damping:g}")
@@ -232,7 +232,7 @@ def plot_artificial_presets(presets: str | Sequence[str] = ("A-1", "B-1", "olive
         history.set_xlim(0.0, preset.duration)
         history.set_xlabel("time [s]")
         history.set_ylabel("horizontal [g]")
-        history.set_title(f"{name} (substitute): target PGA {preset.pga_g:g} g, "
+        history.set_title(f"{name} (substitute): target PGA {preset.pga / G:g} g, "
                           f"{preset.duration:g} s record", loc="left", fontsize=9)
         legend = history.legend(fontsize=7, loc="upper right", frameon=True, framealpha=0.85)
         for handle in getattr(legend, "legend_handles", []):

@@ -12,7 +12,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from shaketable.core.constants import G
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
 from shaketable.ground import generators
@@ -34,31 +33,32 @@ def build_motion(scene: Scene) -> Motion | None:
     """The table motion a scene names [m/s^2], or ``None`` for free rocking."""
     spec = dict(scene.motion)
     kind = spec.pop("kind")
-    g = G
     try:
         if kind == "free":
             return None
         if kind == "harmonic":
             return generators.harmonic(
-                spec["frequency"], spec["horizontal"] / g, spec.get("vertical", 0.0) / g,
-                duration=spec["duration"], dt=spec.get("dt"), phase=spec.get("phase", 0.0),
+                spec["frequency"], horizontal=spec["horizontal"],
+                vertical=spec.get("vertical", 0.0), duration=spec["duration"],
+                dt=spec.get("dt"), phase=spec.get("phase", 0.0),
                 ramp=spec.get("ramp", 0.0), start=spec.get("start", 0.0))
         if kind == "half-sine":
             return generators.half_sine_pulse(
-                spec["amplitude"] / g, spec["pulse_duration"], duration=spec["duration"],
+                amplitude=spec["amplitude"], pulse_duration=spec["pulse_duration"],
+                duration=spec["duration"],
                 dt=spec.get("dt", 0.001), sign=spec.get("sign", 1))
         if kind == "constant-pulse":
             return generators.constant_pulse(
-                spec["acceleration"] / g, spec["pulse_duration"], duration=spec["duration"],
+                acceleration=spec["acceleration"], pulse_duration=spec["pulse_duration"],
+                duration=spec["duration"],
                 dt=spec.get("dt", 0.001))
         if kind == "artificial":
             options = {"seed": spec["seed"], "dt": spec.get("dt", 0.01)}
             if "duration" in spec:
                 options["duration"] = spec["duration"]
-            if "pga" in spec:
-                options["pga_g"] = spec["pga"] / g
-            if "vertical_pga" in spec:
-                options["vertical_pga_g"] = spec["vertical_pga"] / g
+            for key in ("pga", "vertical_pga"):
+                if key in spec:
+                    options[key] = spec[key]
             return generators.artificial(spec["preset"], **options)
         if kind == "record":
             return _record_motion(spec, scene)

@@ -114,7 +114,8 @@ def _harmonic(frequency: float, horizontal_g: float, vertical_g: float = 0.0,
               duration: float = 10.0, dt: float = 0.01) -> Motion:
     from shaketable.ground.generators import harmonic
 
-    return harmonic(frequency, horizontal_g, vertical_g, duration=duration, dt=dt)
+    return harmonic(frequency, horizontal=horizontal_g * G, vertical=vertical_g * G,
+                    duration=duration, dt=dt)
 
 
 def threshold_harmonic(block: Block, factor: float, frequency: float = 2.0,
@@ -157,7 +158,7 @@ def long_record(duration: float = 100.0, dt: float = 0.005, seed: int = 1,
     """
     from shaketable.ground.generators import artificial
 
-    return artificial("A-1", seed=seed, duration=duration, dt=dt, pga_g=pga_g)
+    return artificial("A-1", seed=seed, duration=duration, dt=dt, pga=pga_g * G)
 
 
 # --------------------------------------------------------------------------- cases

@@ -55,8 +55,10 @@ def figure_2_4(block=None, ratios=None) -> pd.DataFrame:
         closed = theory.constant_pulse_overturn_duration(block, acceleration_g * G)
 
         def overturns(duration, acceleration_g=acceleration_g):
-            motion = motions.constant_pulse(acceleration_g, duration, duration=duration + 6.0 /
-                                            block.p * 3, dt=min(duration / 200, 0.002))
+            motion = motions.constant_pulse(acceleration=acceleration_g * G,
+                                            pulse_duration=duration,
+                                            duration=duration + 6.0 / block.p * 3,
+                                            dt=min(duration / 200, 0.002))
             return simulate(block, motion, cor=1.0).overturned
 
         engine = bisect_threshold(overturns, 0.02 * closed, 3.0 * closed)
@@ -87,7 +89,8 @@ def figure_2_5(heights=None, aspect_ratio: float = 4.0, accelerations_g=(0.5, 1.
             closed = theory.constant_pulse_unstable_time(block, acceleration_g * G,
                                                          pulse_duration)
             duration = pulse_duration + 12.0 / block.p
-            motion = motions.constant_pulse(acceleration_g, pulse_duration, duration=duration,
+            motion = motions.constant_pulse(acceleration=acceleration_g * G,
+                                            pulse_duration=pulse_duration, duration=duration,
                                             dt=min(pulse_duration / 100, 0.25 / block.p / 20))
             run = simulate(block, motion, cor=1.0)
             rows.append({"a [g]": acceleration_g, "height [m]": float(height),

@@ -621,10 +621,10 @@ def rocking_onset(block: Block | str = "30x6in", vertical_g: npt.ArrayLike | Non
 
     from shaketable.ground.generators import harmonic
 
-    alone = harmonic(harmonic_frequency, harmonic_horizontal_g, duration=harmonic_duration,
-                     dt=0.002)
-    both = harmonic(harmonic_frequency, harmonic_horizontal_g, harmonic_vertical_g,
-                    duration=harmonic_duration, dt=0.002)
+    alone = harmonic(harmonic_frequency, horizontal=harmonic_horizontal_g * G,
+                     duration=harmonic_duration, dt=0.002)
+    both = harmonic(harmonic_frequency, horizontal=harmonic_horizontal_g * G,
+                    vertical=harmonic_vertical_g * G, duration=harmonic_duration, dt=0.002)
     run_alone = simulate(block, alone, cor=0.9)
     run_both = simulate(block, both, cor=0.9)
     count = min(run_alone.t.size, run_both.t.size)

@@ -107,7 +107,6 @@ try:  # Python >= 3.11
 except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
     import tomli as tomllib  # type: ignore[no-redef]
 
-from shaketable.core.constants import G
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
 
@@ -161,8 +160,8 @@ class RecordSpec:
         Absolute path of a record file.
     options : tuple
         Reader options (``units``, ``dt`` [s], ``value_column``) for a file,
-        or generator options (``duration`` [s], ``dt`` [s], ``pga_g`` [g],
-        ``vertical_pga_g`` [g]) for an artificial record, as (key, value) pairs.
+        or generator options (``duration`` [s], ``dt`` [s], ``pga`` [m/s^2],
+        ``vertical_pga`` [m/s^2]) for an artificial record, as (key, value) pairs.
     preset : str
         Artificial preset (:data:`shaketable.ground.generators.PRESETS`).
     seeds : tuple of int
@@ -602,14 +601,11 @@ def _records(value, where, directory: Path, seed: int):
             else:
                 seeds = tuple(range(base, base + seeds))
             options = []
-            for name, unit_kind, target, factor in (("duration", "time", "duration", 1.0),
-                                                    ("dt", "time", "dt", 1.0),
-                                                    ("pga", "acceleration", "pga_g", G),
-                                                    ("vertical_pga", "acceleration",
-                                                     "vertical_pga_g", G)):
+            for name, unit_kind in (("duration", "time"), ("dt", "time"),
+                                    ("pga", "acceleration"), ("vertical_pga", "acceleration")):
                 if name in entry:
-                    options.append((target, _quantity(entry[name], unit_kind, where,
-                                                      f"{key}.{name}", positive=True) / factor))
+                    options.append((name, _quantity(entry[name], unit_kind, where,
+                                                    f"{key}.{name}", positive=True)))
             result.append(RecordSpec("artificial", label or entry["preset"],
                                      preset=entry["preset"], seeds=seeds,
                                      options=tuple(options)))

@@ -1,4 +1,4 @@
-"""Tests of shaketable.ground.generators: generators, utilities and measures.
+"""Tests of shaketable.ground.generators (and .artificial) and .signals: generators, utilities, measures.
 
 Reference values are closed forms (stated next to each test) or, for the
 artificial presets, the report's stated PGA and length of strong motion
@@ -27,7 +27,7 @@ def velocity(motion):
 def test_harmonic_amplitude_frequency_phase_exact():
     # Fig. 3.9 of the report: 2 Hz, 0.45 g horizontal + 0.26 g vertical.
     phase = 0.7
-    m = generators.harmonic(2.0, 0.45, 0.26, duration=3.0, dt=0.01, phase=phase)
+    m = generators.harmonic(2.0, horizontal=0.45 * G, vertical=0.26 * G, duration=3.0, dt=0.01, phase=phase)
     t = np.arange(301) * 0.01
     np.testing.assert_allclose(m.t, t, rtol=0, atol=1e-12)
     np.testing.assert_allclose(m.horizontal, 0.45 * G * np.sin(4 * np.pi * t),
@@ -35,20 +35,20 @@ def test_harmonic_amplitude_frequency_phase_exact():
     np.testing.assert_allclose(m.vertical, 0.26 * G * np.sin(4 * np.pi * t + phase),
                                rtol=0, atol=1e-12)
     # t = 0.125 s is a quarter period: the horizontal peak, exactly 0.45 g
-    fine = generators.harmonic(2.0, 0.45, duration=1.0, dt=0.125)
+    fine = generators.harmonic(2.0, horizontal=0.45 * G, duration=1.0, dt=0.125)
     assert fine.horizontal[1] == pytest.approx(0.45 * G, rel=1e-14)
 
 
 def test_harmonic_fig_3_7_has_no_vertical():
     # Fig. 3.7: 2 Hz, 0.5 g horizontal only.
-    m = generators.harmonic(2.0, 0.5, duration=5.0, dt=0.005)  # peaks on samples
+    m = generators.harmonic(2.0, horizontal=0.5 * G, duration=5.0, dt=0.005)  # peaks on samples
     assert m.vertical is None
     assert m.pga == pytest.approx(0.5 * G, rel=1e-12)
     assert m.duration == pytest.approx(5.0)
 
 
 def test_harmonic_ramp_starts_at_zero_and_reaches_full_amplitude():
-    m = generators.harmonic(2.0, 0.38, 0.33, duration=6.0, dt=0.005, ramp=2.0)
+    m = generators.harmonic(2.0, horizontal=0.38 * G, vertical=0.33 * G, duration=6.0, dt=0.005, ramp=2.0)
     assert m.horizontal[0] == 0.0 and m.vertical[0] == 0.0
     # first samples grow smoothly: envelope ~ (pi tau / 2 ramp)^2 near zero
     assert np.all(np.abs(m.horizontal[:20]) < 0.38 * G * 1e-2)
@@ -61,7 +61,7 @@ def test_harmonic_ramp_starts_at_zero_and_reaches_full_amplitude():
 
 
 def test_harmonic_quiet_lead_in():
-    m = generators.harmonic(2.0, 0.5, duration=2.0, dt=0.01, start=1.0)
+    m = generators.harmonic(2.0, horizontal=0.5 * G, duration=2.0, dt=0.01, start=1.0)
     assert m.t[-1] == pytest.approx(3.0)
     assert np.all(m.horizontal[m.t < 1.0 - 1e-9] == 0.0)
     shaking = m.t >= 1.0 - 1e-9
@@ -74,7 +74,8 @@ def test_harmonic_quiet_lead_in():
     (dict(frequency=0.0), "frequency"),
     (dict(frequency=-2.0), "frequency"),
     (dict(frequency=float("nan")), "frequency"),
-    (dict(horizontal_g=float("nan")), "horizontal_g"),
+    (dict(horizontal=float("nan")), "horizontal"),
+    (dict(vertical=float("inf")), "vertical"),
     (dict(duration=0.0), "duration"),
     (dict(dt=-0.01), "dt"),
     (dict(ramp=-1.0), "ramp"),
@@ -83,18 +84,61 @@ def test_harmonic_quiet_lead_in():
     (dict(phase=float("inf")), "phase"),
 ])
 def test_harmonic_rejects_bad_input(kwargs, parameter):
-    arguments = dict(frequency=2.0, horizontal_g=0.5, duration=5.0)
+    arguments = dict(frequency=2.0, horizontal=0.5 * G, duration=5.0)
     arguments.update(kwargs)
     frequency = arguments.pop("frequency")
-    horizontal_g = arguments.pop("horizontal_g")
     with pytest.raises(ValueError, match=parameter):
-        generators.harmonic(frequency, horizontal_g, **arguments)
+        generators.harmonic(frequency, **arguments)
+
+
+@pytest.mark.parametrize("call, replacement", [
+    (lambda: generators.harmonic(2.0, 0.5, duration=1.0), "horizontal=<value in g> * G"),
+    (lambda: generators.harmonic(2.0, horizontal_g=0.5, duration=1.0), "horizontal=0.5 * G"),
+    (lambda: generators.harmonic(2.0, horizontal=1.0, vertical_g=0.2, duration=1.0),
+     "vertical=0.2 * G"),
+    (lambda: generators.constant_pulse(0.3, 0.1, duration=1.0), "acceleration=<value in g>"),
+    (lambda: generators.constant_pulse(acceleration_g=0.3, pulse_duration=0.1, duration=1.0),
+     "acceleration=0.3 * G"),
+    (lambda: generators.half_sine_pulse(0.5, 0.1, duration=1.0), "amplitude=<value in g>"),
+    (lambda: generators.half_sine_pulse(amplitude_g=0.5, pulse_duration=0.1, duration=1.0),
+     "amplitude=0.5 * G"),
+    (lambda: generators.artificial("B-1", seed=1, pga_g=0.3), "pga=0.3 * G"),
+    (lambda: generators.artificial("B-1", seed=1, vertical_pga_g=0.2), "vertical_pga=0.2 * G"),
+    (lambda: signals.scale_to_pga(generators.harmonic(2.0, horizontal=1.0, duration=1.0), 0.3),
+     "pga=<value in g> * G"),
+    (lambda: signals.scale_to_pga(generators.harmonic(2.0, horizontal=1.0, duration=1.0),
+                                  pga_g=0.3), "pga=0.3 * G"),
+])
+def test_old_g_based_calls_say_what_to_pass(call, replacement):
+    # Version 0.1 took these accelerations in g (partly positionally); such a call must
+    # not run with a value in g read as m/s^2, and the message names the SI keyword.
+    with pytest.raises(TypeError, match=replacement.replace("*", r"\*")):
+        call()
+
+
+def test_generators_take_si_amplitudes():
+    # The samples are the given m/s^2 times the unit shape, bit for bit: no conversion
+    # through g happens inside (a g -> SI -> g round trip used to).
+    amplitude = 3.7  # m/s^2, not a round number of g
+    t = 0.01 * np.arange(101)
+    m = generators.harmonic(2.0, horizontal=amplitude, vertical=-amplitude / 2,
+                            duration=1.0, dt=0.01)
+    np.testing.assert_array_equal(m.horizontal, amplitude * np.sin(2.0 * np.pi * 2.0 * t))
+    np.testing.assert_array_equal(m.vertical, -amplitude / 2 * np.sin(2.0 * np.pi * 2.0 * t))
+    pulse = generators.constant_pulse(acceleration=amplitude, pulse_duration=0.1,
+                                      duration=0.5, dt=0.01)
+    assert pulse.horizontal[0] == amplitude and pulse.horizontal[-1] == 0.0
+    half = generators.half_sine_pulse(amplitude=amplitude, pulse_duration=0.5, duration=1.0,
+                                      dt=0.01)
+    assert half.pga == pytest.approx(amplitude, rel=1e-15)  # sin(pi/2) = 1 at t = 0.25 s
+    assert generators.artificial("B-1", seed=1, pga=amplitude).pga == pytest.approx(
+        amplitude, rel=1e-15)
 
 
 # ------------------------------------------------------------------ pulses
 def test_constant_pulse_matches_closed_form_section_2_3():
     # Section 2.3: a for t1, then zero; velocity afterwards exactly a t1.
-    m = generators.constant_pulse(0.3, 0.1, duration=0.5, dt=0.001)
+    m = generators.constant_pulse(acceleration=0.3 * G, pulse_duration=0.1, duration=0.5, dt=0.001)
     a = 0.3 * G
     t = m.t
     assert np.all(m.horizontal[t < 0.1 - 1e-9] == a)
@@ -108,7 +152,7 @@ def test_constant_pulse_matches_closed_form_section_2_3():
 
 @pytest.mark.parametrize("t1", [0.1003, 0.1007, 0.25])
 def test_constant_pulse_velocity_exact_off_grid(t1):
-    m = generators.constant_pulse(-0.2, t1, duration=0.5, dt=0.001)
+    m = generators.constant_pulse(acceleration=-0.2 * G, pulse_duration=t1, duration=0.5, dt=0.001)
     assert velocity(m)[-1] == pytest.approx(-0.2 * G * t1, rel=1e-12)
     assert np.all((m.horizontal <= 0.0) & (m.horizontal >= -0.2 * G))
 
@@ -116,7 +160,7 @@ def test_constant_pulse_velocity_exact_off_grid(t1):
 def test_half_sine_pulse_matches_closed_form_section_2_4():
     # a sin(pi t / t_p) on [0, t_p], t_p = T_s / 2; velocity 2 a t_p / pi.
     tp = 0.1
-    m = generators.half_sine_pulse(0.5, tp, duration=0.4, dt=0.001, sign=-1)
+    m = generators.half_sine_pulse(amplitude=0.5 * G, pulse_duration=tp, duration=0.4, dt=0.001, sign=-1)
     t = m.t
     expected = np.where(t <= tp, -0.5 * G * np.sin(np.pi * np.clip(t, 0, tp) / tp), 0.0)
     np.testing.assert_allclose(m.horizontal, expected, rtol=0, atol=1e-12)
@@ -125,13 +169,13 @@ def test_half_sine_pulse_matches_closed_form_section_2_4():
 
 
 @pytest.mark.parametrize("call, parameter", [
-    (lambda: generators.constant_pulse(0.3, 0.0, duration=1.0), "pulse_duration"),
-    (lambda: generators.constant_pulse(0.3, 2.0, duration=1.0), "pulse_duration"),
-    (lambda: generators.constant_pulse(float("nan"), 0.1, duration=1.0), "acceleration_g"),
-    (lambda: generators.constant_pulse(0.3, 0.1, duration=1.0, dt=0.0), "dt"),
-    (lambda: generators.half_sine_pulse(-0.5, 0.1, duration=1.0), "amplitude_g"),
-    (lambda: generators.half_sine_pulse(0.5, 0.1, duration=-1.0), "duration"),
-    (lambda: generators.half_sine_pulse(0.5, 0.1, duration=1.0, sign=2), "sign"),
+    (lambda: generators.constant_pulse(acceleration=0.3 * G, pulse_duration=0.0, duration=1.0), "pulse_duration"),
+    (lambda: generators.constant_pulse(acceleration=0.3 * G, pulse_duration=2.0, duration=1.0), "pulse_duration"),
+    (lambda: generators.constant_pulse(acceleration=float("nan"), pulse_duration=0.1, duration=1.0), "acceleration"),
+    (lambda: generators.constant_pulse(acceleration=0.3 * G, pulse_duration=0.1, duration=1.0, dt=0.0), "dt"),
+    (lambda: generators.half_sine_pulse(amplitude=-0.5 * G, pulse_duration=0.1, duration=1.0), "amplitude"),
+    (lambda: generators.half_sine_pulse(amplitude=0.5 * G, pulse_duration=0.1, duration=-1.0), "duration"),
+    (lambda: generators.half_sine_pulse(amplitude=0.5 * G, pulse_duration=0.1, duration=1.0, sign=2), "sign"),
 ])
 def test_pulses_reject_bad_input(call, parameter):
     with pytest.raises(ValueError, match=parameter):
@@ -164,8 +208,12 @@ def test_artificial_preset_pga_and_strong_motion_duration(name, seed):
     # quiet start (quadratic envelope) and, after the baseline correction,
     # the table ends at rest where it started
     assert m.horizontal[0] == 0.0
-    v, d = generators._velocity_displacement(m.horizontal, m.dt)
-    assert abs(v[-1]) < 1e-9 and abs(d[-1]) < 1e-9
+    # Exact integrals of the piecewise-linear acceleration, written here: over a step h,
+    # v gains h (a0 + a1) / 2 and d gains v0 h + h^2 (2 a0 + a1) / 6.
+    v = velocity(m)
+    a0, a1, h = m.horizontal[:-1], m.horizontal[1:], m.dt
+    d_end = np.sum(v[:-1] * h + h * h * (2.0 * a0 + a1) / 6.0)
+    assert abs(v[-1]) < 1e-9 and abs(d_end) < 1e-9
 
 
 def test_artificial_preset_descriptions_say_substitute():
@@ -186,20 +234,20 @@ def test_artificial_same_seed_identical_different_seed_different():
 
 
 def test_artificial_overrides_and_vertical():
-    m = generators.artificial("olive-view", seed=5, pga_g=0.3, duration=20.0, dt=0.02,
-                           vertical_pga_g=0.2)
+    m = generators.artificial("olive-view", seed=5, pga=0.3 * G, duration=20.0, dt=0.02,
+                           vertical_pga=0.2 * G)
     assert m.pga == pytest.approx(0.3 * G, rel=1e-12)
     assert np.max(np.abs(m.vertical)) == pytest.approx(0.2 * G, rel=1e-12)
     assert m.duration == pytest.approx(20.0)
     # the horizontal does not depend on whether a vertical was asked for
-    h = generators.artificial("olive-view", seed=5, pga_g=0.3, duration=20.0, dt=0.02)
+    h = generators.artificial("olive-view", seed=5, pga=0.3 * G, duration=20.0, dt=0.02)
     np.testing.assert_array_equal(m.horizontal, h.horizontal)
 
 
 def test_artificial_without_preset_needs_envelope():
     with pytest.raises(ValueError, match="t1"):
-        generators.artificial(seed=0, pga_g=0.3, t2=10.0, decay=0.3)
-    m = generators.artificial(seed=0, pga_g=0.3, t1=1.0, t2=5.0, decay=0.5)
+        generators.artificial(seed=0, pga=0.3 * G, t2=10.0, decay=0.3)
+    m = generators.artificial(seed=0, pga=0.3 * G, t1=1.0, t2=5.0, decay=0.5)
     assert m.pga == pytest.approx(0.3 * G, rel=1e-12)
     assert m.duration == pytest.approx(5.0 + math.log(100) / 0.5, abs=0.01)
 
@@ -212,7 +260,8 @@ def test_artificial_unknown_preset_lists_presets():
 @pytest.mark.parametrize("kwargs, parameter", [
     (dict(seed=-1), "seed"),
     (dict(seed=1.5), "seed"),
-    (dict(seed=0, pga_g=-0.1), "pga_g"),
+    (dict(seed=0, pga=-0.1), "pga"),
+    (dict(seed=0, vertical_pga=0.0), "vertical_pga"),
     (dict(seed=0, dt=float("nan")), "dt"),
     (dict(seed=0, duration=0.0), "duration"),
     (dict(seed=0, zeta_g=0.0), "zeta_g"),
@@ -224,13 +273,13 @@ def test_artificial_rejects_bad_input(kwargs, parameter):
 
 # ------------------------------------------------------------------ utilities
 def test_scale_to_pga_new_motion_keeps_ratio():
-    m = generators.harmonic(2.0, 0.38, 0.33, duration=2.0, dt=0.005)  # peaks on samples
-    s = signals.scale_to_pga(m, 0.19)
+    m = generators.harmonic(2.0, horizontal=0.38 * G, vertical=0.33 * G, duration=2.0, dt=0.005)  # peaks on samples
+    s = signals.scale_to_pga(m, pga=0.19 * G)
     assert s.pga == pytest.approx(0.19 * G, rel=1e-12)
     np.testing.assert_allclose(s.vertical, m.vertical / 2, rtol=1e-12)
     assert m.pga == pytest.approx(0.38 * G, rel=1e-12)  # original unchanged
-    with pytest.raises(ValueError, match="pga_g"):
-        signals.scale_to_pga(m, 0.0)
+    with pytest.raises(ValueError, match="pga"):
+        signals.scale_to_pga(m, pga=0.0)
 
 
 @pytest.mark.parametrize("dt_new", [0.005, 0.02, 0.007 * np.pi / 3])  # last: irrational
@@ -258,13 +307,13 @@ def test_resample_keeps_low_frequency_removes_above_nyquist(dt_new):
 
 
 def test_resample_finer_is_linear_interpolation():
-    m = generators.half_sine_pulse(0.5, 0.1, duration=0.3, dt=0.01)
+    m = generators.half_sine_pulse(amplitude=0.5 * G, pulse_duration=0.1, duration=0.3, dt=0.01)
     r = signals.resample(m, 0.0025)
     np.testing.assert_allclose(r.horizontal, np.interp(r.t, m.t, m.horizontal), atol=1e-12)
 
 
 def test_trim_and_pad():
-    m = generators.harmonic(2.0, 0.5, 0.2, duration=4.0, dt=0.01)
+    m = generators.harmonic(2.0, horizontal=0.5 * G, vertical=0.2 * G, duration=4.0, dt=0.01)
     cut = signals.trim(m, 1.0, 2.0)
     assert cut.t[0] == pytest.approx(1.0) and cut.t[-1] == pytest.approx(2.0)
     assert cut.t.size == 101
@@ -301,7 +350,7 @@ def test_trim_keeps_the_rotation_of_the_kept_samples():
     np.testing.assert_array_equal(cut.rotation, m.rotation[keep])
     np.testing.assert_array_equal(cut.horizontal, m.horizontal[keep])
     assert signals.trim(pitched_motion().scaled(1.0), 0.5, 1.5).rotation is not None
-    assert signals.trim(generators.harmonic(2.0, 0.5, duration=1.0), 0.2, 0.4).rotation is None
+    assert signals.trim(generators.harmonic(2.0, horizontal=0.5 * G, duration=1.0), 0.2, 0.4).rotation is None
 
 
 def test_pad_pads_the_rotation_with_zeros():
@@ -333,14 +382,14 @@ def test_motion_scaled_refuses_a_pitched_motion_and_scale_to_pga_too():
     # motion_at_block has folded its tilt into the horizontal: it cannot be scaled.
     from shaketable.lab.pitch import Pitch, motion_at_block
 
-    base = generators.harmonic(2.0, 0.5, duration=1.0, dt=0.002)
+    base = generators.harmonic(2.0, horizontal=0.5 * G, duration=1.0, dt=0.002)
     pitched = motion_at_block(base, pitch=Pitch(seed=1), block_position=1.0)
     with pytest.raises(ValueError, match=r"pitch.*scale the table motion first"):
         pitched.scaled(0.5)
     with pytest.raises(ValueError, match="pitch"):
-        signals.scale_to_pga(pitched, 0.3)
+        signals.scale_to_pga(pitched, pga=0.3 * G)
     # the documented order: scale, then pitch
-    recipe = motion_at_block(signals.scale_to_pga(base, 0.25), pitch=Pitch(seed=1),
+    recipe = motion_at_block(signals.scale_to_pga(base, pga=0.25 * G), pitch=Pitch(seed=1),
                              block_position=1.0)
     factor = 0.25 * G / base.pga  # about 0.5 (the sampled peak is just below 0.5 g)
     np.testing.assert_allclose(recipe.horizontal - pitched.horizontal,
@@ -403,7 +452,7 @@ def test_at_rest_ends_exactly_at_duration():
 # ------------------------------------------------------------------ measures
 def test_arias_intensity_of_sine_closed_form():
     # I_A = pi / (2 g) * a^2 / 2 * T for a whole number of periods.
-    m = generators.harmonic(2.0, 0.5, duration=10.0, dt=0.001)
+    m = generators.harmonic(2.0, horizontal=0.5 * G, duration=10.0, dt=0.001)
     arias = signals.arias_intensity(m)
     assert arias.shape == m.t.shape and arias[0] == 0.0
     assert np.all(np.diff(arias) >= 0)
@@ -414,7 +463,7 @@ def test_arias_intensity_of_sine_closed_form():
 
 def test_strong_motion_duration_of_uniform_sine():
     # Arias grows linearly for a steady sine: the 5-95 % duration is 0.9 T.
-    m = generators.harmonic(5.0, 0.2, duration=20.0, dt=0.001)
+    m = generators.harmonic(5.0, horizontal=0.2 * G, duration=20.0, dt=0.001)
     assert signals.strong_motion_duration(m) == pytest.approx(18.0, abs=0.05)
     with pytest.raises(ValueError, match="low"):
         signals.strong_motion_duration(m, low=0.9, high=0.1)
@@ -423,7 +472,7 @@ def test_strong_motion_duration_of_uniform_sine():
 def test_response_spectrum_at_resonance_is_one_over_two_zeta():
     # Steady-state amplification at resonance 1 / (2 zeta) = 10 for 5 %;
     # 40 s at 2 Hz is 250 decay times 1/(zeta omega) ~ 1.6 s: transient gone.
-    m = generators.harmonic(2.0, 0.3, duration=40.0, dt=0.005)
+    m = generators.harmonic(2.0, horizontal=0.3 * G, duration=40.0, dt=0.005)
     sa = signals.response_spectrum(m, 0.5, damping=0.05)
     assert isinstance(sa, float)
     assert sa / (0.3 * G) == pytest.approx(10.0, rel=2e-3)
@@ -445,13 +494,13 @@ def test_response_spectrum_exact_against_constant_pulse_closed_form():
     # t1 = T/2 (on the grid) gives max |u| = 2 a / w^2, so Sa = 2 a.
     # The step is spread over one sample interval, a small correction.
     T = 0.4
-    m = generators.constant_pulse(0.2, T / 2, duration=3.0, dt=0.0005)
+    m = generators.constant_pulse(acceleration=0.2 * G, pulse_duration=T / 2, duration=3.0, dt=0.0005)
     sa = signals.response_spectrum(m, T, damping=0.0)
     assert sa == pytest.approx(2 * 0.2 * G, rel=1e-4)
 
 
 def test_response_spectrum_rejects_bad_input():
-    m = generators.harmonic(2.0, 0.5, duration=1.0)
+    m = generators.harmonic(2.0, horizontal=0.5 * G, duration=1.0)
     with pytest.raises(ValueError, match="periods"):
         signals.response_spectrum(m, [0.5, -1.0])
     with pytest.raises(ValueError, match="damping"):
@@ -462,7 +511,7 @@ def test_response_spectrum_rejects_bad_input():
 
 
 def test_fourier_amplitude_peak_at_harmonic_frequency():
-    m = generators.harmonic(2.0, 0.5, duration=10.0, dt=0.01)
+    m = generators.harmonic(2.0, horizontal=0.5 * G, duration=10.0, dt=0.01)
     frequency, amplitude = signals.fourier_amplitude(m)
     assert frequency[0] == 0.0 and frequency[-1] <= 50.0  # Nyquist 1 / (2 dt)
     assert frequency[1] == pytest.approx(1.0 / (m.t.size * 0.01))

@@ -23,7 +23,7 @@ from shaketable.scenes.run import run_scene
 
 def _ramped(amplitude_g=0.3, frequency=2.0, duration=12.0):
     # 2 s ramps at both ends so that the table starts and ends at rest
-    motion = harmonic(frequency, amplitude_g, duration=duration, dt=0.01, ramp=2.0)
+    motion = harmonic(frequency, horizontal=amplitude_g * G, duration=duration, dt=0.01, ramp=2.0)
     taper = np.clip((duration - motion.t) / 2.0, 0.0, 1.0)
     return Motion(motion.t, motion.horizontal * taper, name="ramped harmonic")
 

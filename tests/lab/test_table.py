@@ -112,7 +112,7 @@ def test_offset_block_below_the_harder_side_threshold_rocks_only_toward_plus():
 
 # ------------------------------------------------------------------ motion_at_block
 def test_motion_at_block_components_follow_the_derivation():
-    table = motions.harmonic(2.0, 0.3, 0.1, duration=1.0, dt=0.001)
+    table = motions.harmonic(2.0, horizontal=0.3 * G, vertical=0.1 * G, duration=1.0, dt=0.001)
     pitch = Pitch(seed=4)
     x, d = 0.8, 0.35
     felt = motion_at_block(table, pitch=pitch, block_position=x, axis_depth=d)
@@ -125,7 +125,7 @@ def test_motion_at_block_components_follow_the_derivation():
 
 
 def test_motion_at_block_adds_only_what_is_asked():
-    table = motions.harmonic(2.0, 0.3, duration=1.0, dt=0.001)
+    table = motions.harmonic(2.0, horizontal=0.3 * G, duration=1.0, dt=0.001)
     assert motion_at_block(table) is table                      # no pitch: unchanged
     at_axis = motion_at_block(table, pitch=Pitch(seed=1))
     assert at_axis.vertical is None                             # x = 0, no vertical
@@ -153,7 +153,7 @@ def test_harmonic_command_returns_to_rest_and_reproduces_the_target():
     # (table velocity ~0 there). Tolerance: 0.5 % of the PGA from 2 s after the start
     # to 2 s before the end (measured 0.08 %, from the 0.1 Hz high-pass and baseline).
     dt = 0.005
-    target = motions.harmonic(2.0, 0.5, duration=10.125, dt=dt, ramp=2.0)
+    target = motions.harmonic(2.0, horizontal=0.5 * G, duration=10.125, dt=dt, ramp=2.0)
     command = displacement_command(target)
     for series in (command.horizontal_displacement, command.horizontal_velocity):
         assert series[0] == 0.0 and abs(series[-1]) < 1e-12
@@ -184,7 +184,7 @@ def test_command_acceleration_is_the_exact_second_derivative_of_the_command():
 
 
 def test_command_has_a_vertical_axis_only_when_the_motion_has_one():
-    command = displacement_command(motions.harmonic(2.0, 0.38, 0.33, duration=4.125,
+    command = displacement_command(motions.harmonic(2.0, horizontal=0.38 * G, vertical=0.33 * G, duration=4.125,
                                                     dt=0.005, ramp=1.0))
     assert command.axes == ("horizontal", "vertical")
     assert abs(command.vertical_displacement[-1]) < 1e-12
@@ -194,7 +194,7 @@ def test_command_has_a_vertical_axis_only_when_the_motion_has_one():
 # ------------------------------------------------------------------ (iv) limits
 def test_limits_report_a_stroke_exceedance():
     # 0.5 Hz, 0.5 g needs a / w^2 = 0.497 m of stroke, far beyond +-5 in (0.127 m).
-    target = motions.harmonic(0.5, 0.5, duration=8.5, dt=0.01, ramp=2.0)
+    target = motions.harmonic(0.5, horizontal=0.5 * G, duration=8.5, dt=0.01, ramp=2.0)
     command = displacement_command(target)
     found = check_limits(command, TableLimits())
     strokes = [entry for entry in found if entry.quantity == "displacement"]
@@ -211,7 +211,7 @@ def test_limits_report_a_stroke_exceedance():
 
 
 def test_limits_empty_for_the_report_harmonic_and_custom_limits_apply():
-    command = displacement_command(motions.harmonic(2.0, 0.5, duration=10.125, dt=0.005,
+    command = displacement_command(motions.harmonic(2.0, horizontal=0.5 * G, duration=10.125, dt=0.005,
                                                     ramp=1.0))
     assert check_limits(command) == []
     tight = check_limits(command, TableLimits(horizontal_acceleration=0.4 * G))
@@ -260,7 +260,7 @@ def test_no_actuator_means_the_table_does_exactly_what_it_is_commanded():
     # Issue 4: "Everything a scene does not ask for stays out: ... no actuator model".
     # actuator=None is pass-through: the achieved acceleration IS the command's own
     # (the exact second derivative of the displacement command), bit for bit.
-    target = motions.harmonic(2.0, 0.5, 0.2, duration=2.125, dt=0.005, ramp=0.5)
+    target = motions.harmonic(2.0, horizontal=0.5 * G, vertical=0.2 * G, duration=2.125, dt=0.005, ramp=0.5)
     command = displacement_command(target)
     through = achieved(command)
     np.testing.assert_array_equal(through.horizontal, command.horizontal_acceleration)
@@ -320,21 +320,21 @@ def test_pitch_without_drift_is_the_exact_sine_and_histories_are_consistent():
     (lambda: Actuator(delay=-0.01), "delay"),
     (lambda: TableLimits(horizontal_stroke=0.0), "horizontal_stroke"),
     (lambda: TableLimits(vertical_velocity=float("inf")), "vertical_velocity"),
-    (lambda: displacement_command(motions.harmonic(2.0, 0.5, duration=1.0), highpass=-0.1),
+    (lambda: displacement_command(motions.harmonic(2.0, horizontal=0.5 * G, duration=1.0), highpass=-0.1),
      "highpass"),
-    (lambda: displacement_command(motions.harmonic(2.0, 0.5, duration=1.0, dt=0.01),
+    (lambda: displacement_command(motions.harmonic(2.0, horizontal=0.5 * G, duration=1.0, dt=0.01),
                                   highpass=60.0), "highpass"),
-    (lambda: displacement_command(motions.harmonic(2.0, 0.5, duration=1.0), order=0),
+    (lambda: displacement_command(motions.harmonic(2.0, horizontal=0.5 * G, duration=1.0), order=0),
      "order"),
     (lambda: displacement_command([0.0, 1.0]), "motion"),
     (lambda: displacement_command(Motion([0.0, 0.1, 0.3], [0.0, 1.0, 0.0])), "uniformly"),
-    (lambda: motion_at_block(motions.harmonic(2.0, 0.5, duration=1.0), pitch=Pitch(),
+    (lambda: motion_at_block(motions.harmonic(2.0, horizontal=0.5 * G, duration=1.0), pitch=Pitch(),
                              block_position=float("nan")), "block_position"),
-    (lambda: motion_at_block(motions.harmonic(2.0, 0.5, duration=1.0), pitch=Pitch(),
+    (lambda: motion_at_block(motions.harmonic(2.0, horizontal=0.5 * G, duration=1.0), pitch=Pitch(),
                              axis_depth="deep"), "axis_depth"),
-    (lambda: motion_at_block(motions.harmonic(2.0, 0.5, duration=1.0), pitch=0.22),
+    (lambda: motion_at_block(motions.harmonic(2.0, horizontal=0.5 * G, duration=1.0), pitch=0.22),
      "pitch"),
-    (lambda: check_limits(motions.harmonic(2.0, 0.5, duration=1.0)), "command"),
+    (lambda: check_limits(motions.harmonic(2.0, horizontal=0.5 * G, duration=1.0)), "command"),
     (lambda: achieved(sine_command(1.0, 0.01, 1.0, 0.01), actuator="fast"), "actuator"),
 ])
 def test_bad_input_raises_value_error_naming_the_parameter(build, name):
@@ -350,7 +350,7 @@ def test_plot_command_vs_achieved_draws_three_panels():
 
     from shaketable.plots.table import plot_command_vs_achieved
 
-    target = motions.harmonic(2.0, 0.5, duration=2.125, dt=0.005, ramp=0.5)
+    target = motions.harmonic(2.0, horizontal=0.5 * G, duration=2.125, dt=0.005, ramp=0.5)
     servo = achieved(displacement_command(target), Actuator())  # the assumed servo, explicitly
     felt = motion_at_block(servo, pitch=Pitch(seed=1), block_position=1.0)
     fig = plot_command_vs_achieved(target, servo, felt, window=(0.5, 1.5))

@@ -8,6 +8,7 @@ from PIL import Image
 
 import shaketable as st
 from shaketable.cli import main
+from shaketable.core.constants import G
 from shaketable.ground import generators as motions
 from shaketable.plots.animation import (
     animate,
@@ -48,7 +49,7 @@ def test_table_displacement_of_a_harmonic():
     # a sin(w t) is the acceleration of the displacement -a/w^2 sin(w t): 0.2 g at 2 Hz
     # -> amplitude 12.4 mm, in phase with -sin. The ramp-up leaves a slow drift of a
     # few mm (partly removed by the 0.1 Hz high-pass), fitted here by a quadratic.
-    motion = motions.harmonic(2.0, 0.2, duration=10.125, dt=0.005, ramp=2.0)
+    motion = motions.harmonic(2.0, horizontal=0.2 * G, duration=10.125, dt=0.005, ramp=2.0)
     times = np.linspace(4.0, 6.0, 401)
     omega = 4 * np.pi
     got = table_displacement(motion, times)

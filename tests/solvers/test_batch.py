@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import shaketable as st
+from shaketable.core.constants import G
 from shaketable.ground import generators as motions
 from shaketable.ground import records
 from shaketable.solvers import batch
@@ -89,7 +90,7 @@ def test_cartesian_product_equals_simulate_row_by_row(pacoima):
 def test_airborne_run_is_flagged_not_nan():
     # 1.2 g vertical at 2 Hz: g + v reaches zero at sin(4 pi t) = -1/1.2, i.e. at
     # t = (pi + asin(1/1.2)) / (4 pi) = 0.3266 s (first time after 0.25 s).
-    shaking = motions.harmonic(2.0, 0.3, 1.2, duration=2.0, dt=0.005)
+    shaking = motions.harmonic(2.0, horizontal=0.3 * G, vertical=1.2 * G, duration=2.0, dt=0.005)
     block = st.Block.parse("30x6in")
     frame = batch.simulate_many(block, shaking, 0.9)
     row = frame.iloc[0]
@@ -102,7 +103,7 @@ def test_airborne_run_is_flagged_not_nan():
 
 def test_explicit_cases_scales_and_other_methods(pacoima):
     block = st.Block.parse("6x3ft")
-    harmonic = motions.harmonic(2.0, 0.5, duration=4.0)          # Fig. 3.7 shaking
+    harmonic = motions.harmonic(2.0, horizontal=0.5 * G, duration=4.0)          # Fig. 3.7 shaking
     cases = [batch.Case(block, pacoima, 1.0, scale=0.5),
              batch.Case(st.Block.parse("30x6in"), harmonic, 0.925),
              batch.Case(block, pacoima, 0.9, scale=1.3)]
@@ -153,7 +154,7 @@ def test_every_method_flags_an_airborne_run():
     # 1.2 g vertical at 2 Hz: g + 1.2 g sin(4 pi t) = 0 first at
     # t = (pi + asin(1/1.2)) / (4 pi) = 0.32840 s (to the 5 ms linear sampling of the
     # input); every method must stop there and flag the run (linear once looped forever)
-    shaking = motions.harmonic(2.0, 0.3, 1.2, duration=2.0, dt=0.005)
+    shaking = motions.harmonic(2.0, horizontal=0.3 * G, vertical=1.2 * G, duration=2.0, dt=0.005)
     block = st.Block.parse("30x6in")
     for method in ("fast", "predictor-corrector", "linear"):
         frame = batch.simulate_many(block, shaking, 0.9, method=method, threads=1)

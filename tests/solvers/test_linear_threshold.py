@@ -14,6 +14,7 @@ import math
 import pytest
 
 import shaketable as st
+from shaketable.core.constants import G
 from shaketable.ground import generators
 
 BLOCK = st.Block.parse("30x6in")
@@ -26,7 +27,7 @@ BLOCK = st.Block.parse("30x6in")
 ])
 def test_linear_lifts_at_g_alpha_the_exact_methods_at_g_tan_alpha(amplitude, exact_rocks,
                                                                   linear_rocks):
-    motion = generators.harmonic(2.0, amplitude, duration=2.0)
+    motion = generators.harmonic(2.0, horizontal=amplitude * G, duration=2.0)
     for method, rocks in (("fast", exact_rocks), ("predictor-corrector", exact_rocks),
                           ("linear", linear_rocks)):
         result = st.simulate(BLOCK, motion, cor=0.9, method=method)
@@ -38,7 +39,7 @@ def test_linear_start_time_is_the_crossing_of_g_alpha():
     samples, the package's definition of a motion) first reaches g alpha."""
     import numpy as np
 
-    motion = generators.harmonic(2.0, 0.199, duration=1.0)
+    motion = generators.harmonic(2.0, horizontal=0.199 * G, duration=1.0)
     result = st.simulate(BLOCK, motion, cor=0.9, method="linear")
     level = st.G * BLOCK.alpha
     k = int(np.flatnonzero(motion.horizontal >= level)[0])

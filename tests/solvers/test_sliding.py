@@ -62,7 +62,7 @@ def test_energy_friction_work_equals_kinetic_energy_loss():
 def test_energy_balance_on_a_record():
     # d(v^2/2)/dt = -ug v - mu_d N |v|: over the run, sum of (inertial work - friction work)
     # equals the change of kinetic energy; integrals by the trapezoid rule on a fine grid
-    motion = generators.harmonic(2.0, 0.4, duration=3.0, dt=0.0005)
+    motion = generators.harmonic(2.0, horizontal=0.4 * G, duration=3.0, dt=0.0005)
     result = slide(motion, 0.2)
     v, ug = result.v, motion.horizontal
     power = -ug * v - 0.2 * G * np.abs(v)
@@ -72,7 +72,7 @@ def test_energy_balance_on_a_record():
 
 
 def test_harmonic_below_threshold_gives_exactly_zero_slip():
-    motion = generators.harmonic(3.0, 0.19, duration=5.0, dt=0.005)
+    motion = generators.harmonic(3.0, horizontal=0.19 * G, duration=5.0, dt=0.005)
     result = slide(motion, Friction(0.2, 0.1))
     assert np.all(result.x == 0.0) and np.all(result.v == 0.0)
     assert result.peak_slip == 0.0 and result.slip_episodes == 0
@@ -89,7 +89,7 @@ def test_mirrored_input_gives_mirrored_slip():
 
 
 def test_static_above_dynamic_starts_later_and_keeps_velocity_continuous():
-    motion = generators.harmonic(1.5, 0.3, duration=4.0, dt=0.01)
+    motion = generators.harmonic(1.5, horizontal=0.3 * G, duration=4.0, dt=0.01)
     low = slide(motion, Friction(0.2, 0.2))
     high = slide(motion, Friction(0.28, 0.2))
     assert high.t_first_slip > low.t_first_slip
@@ -130,12 +130,12 @@ def test_bad_motion_and_state():
 def test_section_2_1_mode_choice():
     # Eqs. (2-1), (2-2): the 16 x 4 ft block (B/H = 0.25)
     block = Block.from_feet(16, 4)
-    motion = generators.harmonic(2.0, 0.5, duration=3.0, dt=0.01)
+    motion = generators.harmonic(2.0, horizontal=0.5 * G, duration=3.0, dt=0.01)
     low, high = mode_choice(block, motion, 0.1), mode_choice(block, motion, 0.6)
     assert low["mode (Section 2.1)"] == "sliding"
     assert high["mode (Section 2.1)"] == "rocking"
     assert low["mode t_start [s]"] < high["mode t_start [s]"]
-    quiet = mode_choice(block, generators.harmonic(2.0, 0.05, duration=3.0), 0.6)
+    quiet = mode_choice(block, generators.harmonic(2.0, horizontal=0.05 * G, duration=3.0), 0.6)
     assert quiet["mode (Section 2.1)"] == "moves with the table"
     assert "outside this model" in low["mode note"]
     summary = slide(motion, 0.1, block=block).summary()
@@ -146,7 +146,7 @@ def test_respond_rocking_reports_required_friction():
     from shaketable.studies.sliding import respond
 
     block = Block.from_feet(16, 4)
-    motion = generators.harmonic(2.0, 0.4, duration=3.0, dt=0.01)
+    motion = generators.harmonic(2.0, horizontal=0.4 * G, duration=3.0, dt=0.01)
     rocking = respond(block, motion, 0.3)
     summary = rocking.summary()
     assert summary["mode (Section 2.1)"] == "rocking"
@@ -182,7 +182,7 @@ def test_a2_preset_is_another_realisation_of_a1():
 
 def test_frame_summary_plot(tmp_path):
     pytest.importorskip("matplotlib")
-    motion = generators.harmonic(2.0, 0.3, duration=2.0, dt=0.01)
+    motion = generators.harmonic(2.0, horizontal=0.3 * G, duration=2.0, dt=0.01)
     result = slide(motion, 0.2)
     frame = result.to_frame()
     assert list(frame.columns)[:2] == ["time [s]", "ground horizontal [g]"]

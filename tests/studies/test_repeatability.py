@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from shaketable import Block
+from shaketable.core.constants import G
 from shaketable.ground.generators import artificial, harmonic
 from shaketable.lab.pitch import Pitch
 from shaketable.lab.stage import TableSetup, run_table
@@ -24,7 +25,7 @@ BLOCK = Block.parse("30x6in")
 def test_without_pitch_amplitude_every_phase_is_the_same_run():
     # A pitch of zero amplitude is no pitch: every phase must give the reference
     # run exactly, and runs half a cycle apart do not differ at all.
-    motion = harmonic(2.0, 0.3, duration=4.0, dt=0.01, ramp=1.0)
+    motion = harmonic(2.0, horizontal=0.3 * G, duration=4.0, dt=0.01, ramp=1.0)
     result = pitch_repeatability(BLOCK, motion, cor=0.925, phases=4,
                                  pitch=Pitch(amplitude=0.0))
     for run in result.runs:
@@ -39,7 +40,7 @@ def test_phases_are_equally_spaced_and_change_a_small_earthquake_response():
     # Section 3.7 (2): "when the block starts rocking under earthquake motions, the
     # initial amplitude of rocking ... is relatively small, and hence the effect of
     # the rotation component of the table motion becomes more important".
-    motion = artificial("olive-view", seed=3, pga_g=0.25, vertical_pga_g=0.1, duration=8.0)
+    motion = artificial("olive-view", seed=3, pga=0.25 * G, vertical_pga=0.1 * G, duration=8.0)
     result = pitch_repeatability(BLOCK, motion, cor=0.925, phases=6)
     np.testing.assert_allclose(np.diff(result.phases), 2 * math.pi / 6)
     peaks = result.to_frame()["max theta/alpha [-]"].to_numpy()
@@ -49,7 +50,7 @@ def test_phases_are_equally_spaced_and_change_a_small_earthquake_response():
 
 def test_bad_phase_count():
     with pytest.raises(ValueError, match="phases"):
-        pitch_repeatability(BLOCK, harmonic(2.0, 0.3, duration=1.0, dt=0.01), cor=0.9,
+        pitch_repeatability(BLOCK, harmonic(2.0, horizontal=0.3 * G, duration=1.0, dt=0.01), cor=0.9,
                             phases=1)
 
 
@@ -60,7 +61,7 @@ def test_a_run_continues_past_the_record_until_its_verdict_is_final():
     # at rest a block beyond its block angle cannot come back (gravity's moment about
     # the pivot changes sign at |theta| = alpha, Eq. 2-13 without ground motion): it
     # must overturn, the way it leans.
-    motion = harmonic(2.0, 0.45, 0.26, duration=10.0, dt=0.01)
+    motion = harmonic(2.0, horizontal=0.45 * G, vertical=0.26 * G, duration=10.0, dt=0.01)
     felt = run_table(motion, TableSetup(pitch=Pitch(phase=4 * math.pi / 3))).felt
     cut = simulate(BLOCK, felt, cor=0.925)
     assert not cut.overturned and abs(cut.theta[-1]) > BLOCK.alpha and not is_final(cut)
@@ -70,7 +71,7 @@ def test_a_run_continues_past_the_record_until_its_verdict_is_final():
     assert final.t_overturn > motion.t[-1]
     # a run that comes to rest is final too: at rest on a table at rest (0.22 g is
     # above Eq. 2-1's B/H g = 0.2 g: the block rocks)
-    small = run_to_the_end(BLOCK, harmonic(2.0, 0.22, duration=2.0, dt=0.01, ramp=0.25),
+    small = run_to_the_end(BLOCK, harmonic(2.0, horizontal=0.22 * G, duration=2.0, dt=0.01, ramp=0.25),
                            cor=0.925)
     assert not small.overturned and small.max_theta_ratio > 0.1
     assert is_final(small) and small.theta[-1] == 0.0

@@ -78,7 +78,7 @@ def test_scaling_law_with_a_harmonic_and_time_stretched():
     # Similar blocks with R2 = 4 R1 (p2 = p1 / 2): the 2 Hz input for the small block
     # becomes 1 Hz for the large one, theta2(2 t) = theta1(t).
     small, large = st.Block.from_inches(30, 6), st.Block.from_inches(120, 24)
-    motion = motions.harmonic(2.0, 0.3, duration=3.0, dt=0.005)
+    motion = motions.harmonic(2.0, horizontal=0.3 * G, duration=3.0, dt=0.005)
     slow = teaching.time_stretched(motion, 2.0)
     np.testing.assert_array_equal(slow.t, 2.0 * motion.t)
     np.testing.assert_array_equal(slow.horizontal, motion.horizontal)
@@ -127,7 +127,7 @@ def test_gallery_errors_name_the_parameter():
     with pytest.raises(ValueError, match="vertical_g"):
         teaching.rocking_onset("30x6in", [-1.5])
     with pytest.raises(ValueError, match="factor"):
-        teaching.time_stretched(motions.harmonic(2, 0.1, duration=1), -1)
+        teaching.time_stretched(motions.harmonic(2, horizontal=0.1 * G, duration=1), -1)
     with pytest.raises(SceneError, match="study.item must be one of"):
         scene_from_dict({"name": "x", "source": "s", "study": {"kind": "teaching",
                                                               "item": "wobble"}}, "x.toml")

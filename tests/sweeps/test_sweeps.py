@@ -77,7 +77,7 @@ def test_rows_equal_independent_single_runs(reference_table):
         base = pacoima if row["record"] == "pacoima-dam-s16e" else realisations[row["seed"]]
         target_g = round(row["target_pga [m/s^2]"] / G, 12)         # 0.4 or 0.8, as written
         assert target_g in (0.4, 0.8)
-        motion = signals.scale_to_pga(base, target_g)
+        motion = signals.scale_to_pga(base, pga=target_g * G)
         block = st.Block(row["block_height [m]"], row["block_width [m]"])
         expected = st.simulate(block, motion, cor=row["cor [-]"], duration=6.0)
         assert row["max_abs_theta [rad]"] == expected.max_abs_theta, row["run"]
