@@ -671,11 +671,28 @@ def test_ctrl_c_stops_a_long_compiled_run_within_a_second(tmp_path):
          "--record", "pacoima-dam-s16e", "--method", "predictor-corrector",
          "--subdivisions", "400000", "--out", "out"],
         cwd=tmp_path, env=environment, stderr=subprocess.PIPE, text=True)
-    time.sleep(6.0)                       # imported, compiled or loaded, integrating
+    # Wait until the run is integrating: imported and compiled or loaded (a few seconds
+    # of CPU), measured as the process's CPU time where /proc has it, so that a busy
+    # machine does not send the signal while Python is still importing.
+    stat = Path(f"/proc/{process.pid}/stat")
+    started = time.perf_counter()
+    while time.perf_counter() - started < 60.0 and process.poll() is None:
+        if not stat.exists():
+            time.sleep(6.0)
+            break
+        fields = stat.read_text().rsplit(")", 1)[1].split()
+        if (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK") >= 6.0:
+            break
+        time.sleep(0.2)
     assert process.poll() is None, process.stderr.read()
     sent = time.perf_counter()
     process.send_signal(signal.SIGINT)
-    _, err = process.communicate(timeout=30)
+    try:
+        _, err = process.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        _, err = process.communicate()
+        pytest.fail(f"still running 30 s after Ctrl-C; stderr: {err}")
     assert time.perf_counter() - sent < 2.0
     assert process.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err

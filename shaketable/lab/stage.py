@@ -184,9 +184,13 @@ _TABLE_KEYS = {"command", "highpass", "limits", "actuator", "pitch", "block_posi
 
 _LIMIT_UNITS = {"stroke": "length", "velocity": "velocity", "acceleration": "acceleration"}
 
-_PITCH_KEYS = {"frequency", "amplitude", "phase", "seed", "frequency_drift", "amplitude_drift"}
+#: Keys of ``[table.pitch]`` and ``[table.actuator]`` -> what each holds: a quantity kind
+#: of :func:`shaketable.core.units.parse` (written with its unit), a plain ``"number"``
+#: or an ``"integer"``.
+_PITCH_KEYS = {"frequency": "frequency", "amplitude": "angular acceleration", "phase": "angle",
+               "seed": "integer", "frequency_drift": "number", "amplitude_drift": "number"}
 
-_ACTUATOR_KEYS = {"natural_frequency", "damping", "delay"}
+_ACTUATOR_KEYS = {"natural_frequency": "frequency", "delay": "time", "damping": "number"}
 
 
 def table_setup_from_dict(spec: dict, where: str = "<scene>") -> TableSetup:
@@ -239,63 +243,49 @@ def table_setup_from_dict(spec: dict, where: str = "<scene>") -> TableSetup:
                      "followed by stroke, velocity or acceleration")
             values[key] = parse(value, _LIMIT_UNITS[quantity], where=f"{where}: table.limits.{key}")
         options["limits"] = TableLimits(**values)
-    if "actuator" in spec:
-        actuator = spec["actuator"]
-        if actuator is True:
-            options["actuator"] = Actuator()
-        elif isinstance(actuator, dict):
-            unknown = sorted(set(actuator) - _ACTUATOR_KEYS)
-            if unknown:
-                fail(f"actuator.{unknown[0]}", f"unknown key; expected one of "
-                     f"{', '.join(sorted(_ACTUATOR_KEYS))}")
-            values = {}
-            if "natural_frequency" in actuator:
-                values["natural_frequency"] = parse(actuator["natural_frequency"], "frequency",
-                                                    where=f"{where}: table.actuator.natural_frequency")
-            if "delay" in actuator:
-                values["delay"] = parse(actuator["delay"], "time",
-                                        where=f"{where}: table.actuator.delay")
-            if "damping" in actuator:
-                values["damping"] = _plain_number(actuator["damping"], where, "actuator.damping")
-            options["actuator"] = Actuator(**values)
-        elif actuator is not False:
-            fail("actuator", f"must be true, false or a table, got {actuator!r}")
-    if "pitch" in spec:
-        pitch = spec["pitch"]
-        if pitch is True:
-            options["pitch"] = Pitch()
-        elif isinstance(pitch, dict):
-            unknown = sorted(set(pitch) - _PITCH_KEYS)
-            if unknown:
-                fail(f"pitch.{unknown[0]}", f"unknown key; expected one of "
-                     f"{', '.join(sorted(_PITCH_KEYS))}")
-            values = {}
-            if "frequency" in pitch:
-                values["frequency"] = parse(pitch["frequency"], "frequency",
-                                            where=f"{where}: table.pitch.frequency")
-            if "amplitude" in pitch:
-                values["amplitude"] = parse(pitch["amplitude"], "angular acceleration",
-                                            where=f"{where}: table.pitch.amplitude")
-            if "phase" in pitch:
-                values["phase"] = parse(pitch["phase"], "angle", where=f"{where}: table.pitch.phase")
-            if "seed" in pitch:
-                seed = pitch["seed"]
-                if isinstance(seed, bool) or not isinstance(seed, int):
-                    fail("pitch.seed", f"must be an integer, got {seed!r}")
-                values["seed"] = seed
-            for key in ("frequency_drift", "amplitude_drift"):
-                if key in pitch:
-                    values[key] = _plain_number(pitch[key], where, f"pitch.{key}")
-            try:
-                options["pitch"] = Pitch(**values)
-            except ValueError as error:
-                fail("pitch", str(error))
-        elif pitch is not False:
-            fail("pitch", f"must be true, false or a table, got {pitch!r}")
+    for name, kind, keys in (("actuator", Actuator, _ACTUATOR_KEYS),
+                             ("pitch", Pitch, _PITCH_KEYS)):
+        if name in spec:
+            part = _part_of_table(spec[name], name, kind, keys, where)
+            if part is not None:
+                options[name] = part
     try:
         return TableSetup(**options)
     except ValueError as error:
         raise ValueError(f"{where}: [table]: {error}") from None
+
+
+def _part_of_table(value: Any, name: str, kind: type, keys: dict[str, str],
+                   where: str) -> Any:
+    """A ``[table.actuator]`` or ``[table.pitch]`` entry: ``true`` (the defaults of
+    ``kind``), ``false`` (``None``: absent) or a table of ``keys``, each parsed as
+    ``keys`` says; errors name the file and the key."""
+    if value is False:
+        return None
+    if value is True:
+        return kind()
+    if not isinstance(value, dict):
+        raise ValueError(f"{where}: table.{name}: must be true, false or a table, got {value!r}")
+    unknown = sorted(set(value) - set(keys))
+    if unknown:
+        raise ValueError(f"{where}: table.{name}.{unknown[0]}: unknown key; expected one of "
+                         f"{', '.join(sorted(keys))}")
+    values: dict[str, Any] = {}
+    for key, given in value.items():
+        what = keys[key]
+        if what == "number":
+            values[key] = _plain_number(given, where, f"{name}.{key}")
+        elif what == "integer":
+            if isinstance(given, bool) or not isinstance(given, int):
+                raise ValueError(f"{where}: table.{name}.{key}: must be an integer, got "
+                                 f"{given!r}")
+            values[key] = given
+        else:
+            values[key] = parse(given, what, where=f"{where}: table.{name}.{key}")
+    try:
+        return kind(**values)
+    except ValueError as error:
+        raise ValueError(f"{where}: table.{name}: {error}") from None
 
 
 def _plain_number(value: Any, where: str, key: str) -> float:
