@@ -296,35 +296,83 @@ class Motion:
     # ------------------------------------------------------------------ ObsPy
     @classmethod
     def from_stream(cls, stream: Any, horizontal: str | int | None = None,
-                    vertical: str | int | None = None, **options: Any) -> "Motion":
-        """Build a motion from an ObsPy ``Stream`` (calib and units applied).
+                    vertical: str | int | None = None, *, units: str | None = None,
+                    inventory: Any = None, remove_mean: bool | None = None,
+                    vertical_positive: str = "up", name: str = "") -> "Motion":
+        """Build a motion from an ObsPy ``Stream`` (response or calib, and units applied).
 
         A thin delegate of :func:`shaketable.ground.readers.waveform.motion_from_stream`
-        (ObsPy is imported only there); see it for the parameters.
+        (ObsPy is imported only there; the amplitude rules are in the docstring
+        of :mod:`shaketable.ground.readers.waveform`).
+
+        Parameters
+        ----------
+        stream : obspy.Stream or obspy.Trace
+            The traces; not changed.
+        horizontal, vertical : str or int, optional
+            The traces to use: a channel code (``"HNE"``), a component letter
+            (``"E"``) or an index. Default: the only trace, and no vertical.
+        units : str, optional
+            Unit of ``data * calib`` (``g``, ``m/s2``, ``cm/s2``, ``gal``);
+            required unless a response or the format declares it.
+        inventory : obspy.Inventory, str or os.PathLike, optional
+            Station metadata, or a StationXML, dataless SEED or RESP file:
+            each trace's response (``inventory.get_response(trace.id,
+            trace.stats.starttime)``) divides its counts by the overall
+            sensitivity, and its input units (an acceleration) are the units.
+        remove_mean : bool, optional
+            Default: only where the format requires it (K-NET/KiK-net).
+        vertical_positive : {"up", "down"}, optional
+            Direction of the vertical trace's positive values (SEED ``Z``: up).
+        name : str, optional
+            Motion name; default from the trace ids.
+
+        Returns
+        -------
+        Motion
+            Accelerations [m/s^2]; station, channel and start time in ``metadata``.
+
+        Raises
+        ------
+        ValueError
+            Ambiguous trace choice, units missing or contradicting, a response
+            that is not an acceleration (velocity, displacement: convert with
+            ObsPy's ``remove_response(output="ACC")`` first) or a trace the
+            inventory has no response for.
         """
         from shaketable.ground.readers.waveform import motion_from_stream
 
-        return motion_from_stream(stream, horizontal=horizontal, vertical=vertical, **options)
+        return motion_from_stream(stream, horizontal=horizontal, vertical=vertical, units=units,
+                                  inventory=inventory, remove_mean=remove_mean,
+                                  vertical_positive=vertical_positive, name=name)
 
     @classmethod
-    def from_trace(cls, trace: Any, **options: Any) -> "Motion":
+    def from_trace(cls, trace: Any, *, units: str | None = None, inventory: Any = None,
+                   remove_mean: bool | None = None, name: str = "") -> "Motion":
         """Build a horizontal-only motion from one ObsPy ``Trace``.
 
-        A thin delegate of :func:`shaketable.ground.readers.waveform.motion_from_stream`.
+        A thin delegate of :func:`shaketable.ground.readers.waveform.motion_from_stream`;
+        the parameters are those of :meth:`from_stream`.
         """
         from shaketable.ground.readers.waveform import motion_from_stream
 
-        return motion_from_stream(trace, **options)
+        return motion_from_stream(trace, units=units, inventory=inventory,
+                                  remove_mean=remove_mean, name=name)
 
-    def to_stream(self, **options: Any) -> Any:
+    def to_stream(self, *, network: str | None = None, station: str | None = None,
+                  location: str | None = None, channels: Mapping[str, str] | None = None,
+                  starttime: Any = None) -> Any:
         """This motion as an ObsPy ``Stream`` of accelerations [m/s^2].
 
-        A thin delegate of :func:`shaketable.ground.readers.waveform.motion_to_stream`;
-        write the result with ``stream.write(path, format="MSEED")`` or ``"SAC"``.
+        A thin delegate of :func:`shaketable.ground.readers.waveform.motion_to_stream`
+        (see it for the parameters: SEED codes and the absolute start time,
+        default from ``metadata``); write the result with
+        ``stream.write(path, format="MSEED")`` or ``"SAC"``.
         """
         from shaketable.ground.readers.waveform import motion_to_stream
 
-        return motion_to_stream(self, **options)
+        return motion_to_stream(self, network=network, station=station, location=location,
+                                channels=channels, starttime=starttime)
 
     # ------------------------------------------------------------------ queries
     @property

@@ -9,7 +9,10 @@ Readers
   column plus one or more value columns.
 * :func:`read_obspy` -- any waveform format ObsPy reads (SAC, MiniSEED,
   K-NET, ...), or an ObsPy ``Trace``/``Stream`` in memory, with
-  ``trace.stats.calib`` applied (see :mod:`shaketable.ground.readers.waveform`).
+  ``trace.stats.calib`` applied, or the counts divided by the instrument
+  response's sensitivity from station metadata (``inventory=``: an
+  ``obspy.Inventory`` or a StationXML, dataless SEED or RESP file; see
+  :mod:`shaketable.ground.readers.waveform`).
 * :func:`~shaketable.ground.readers.strong_motion.read_strong_motion` -- COSMOS
   V1/V2, CSMIP, SMC, K-NET/KiK-net, ESM and the other formats USGS
   ``gmprocess`` reads (optional extra ``pip install shaketable[formats]``).
@@ -53,6 +56,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -66,6 +70,7 @@ from shaketable.ground.readers.common import (
 )
 from shaketable.ground.readers.text import read_text
 from shaketable.ground.readers.waveform import (
+    DECLARED_UNITS,
     UnknownToObspy,
     is_obspy_waveform,
     obspy_stream,
@@ -88,18 +93,22 @@ _TEXT_EXTENSIONS = {".csv", ".tsv", ".txt", ".dat"}
 
 _TEXT_OPTIONS = {"dt", "time_column", "value_column", "skiprows", "delimiter"}
 
-_OBSPY_OPTIONS = {"component", "format", "remove_mean"}
+_OBSPY_OPTIONS = {"component", "format", "remove_mean", "inventory"}
+
+#: Options that apply to an ObsPy Trace or Stream given in memory.
+_IN_MEMORY_OPTIONS = {"units", "component", "remove_mean", "inventory"}
 
 _READ_OPTIONS = _TEXT_OPTIONS | _OBSPY_OPTIONS | {"units"}
 
 
-def read(path, **options) -> Record:
+def read(path: Any, **options: Any) -> Record:
     """Read a record, choosing the reader from the file and the options.
 
     * an ObsPy ``Trace`` or ``Stream`` -> :func:`read_obspy` (options
-      ``units``, ``component``, ``remove_mean``);
+      ``units``, ``component``, ``remove_mean``, ``inventory``);
     * ``.at2`` -> :func:`read_at2` (option ``units``);
-    * ``format=`` or ``component=`` given, or a waveform extension
+    * ``format=``, ``component=``, ``remove_mean=`` or ``inventory=`` given,
+      or a waveform extension
       (``.sac``, ``.mseed``, ``.miniseed``, ``.msd``, ``.gse2``, ``.segy``,
       ``.sgy``, ``.su``, ``.seg2``, ``.sg2``) -> :func:`read_obspy`;
     * a text-only option given (``dt``, ``time_column``, ``value_column``,
@@ -115,8 +124,11 @@ def read(path, **options) -> Record:
     **options
         Passed to the chosen reader: ``units`` (all readers), ``dt``,
         ``time_column``, ``value_column``, ``skiprows``, ``delimiter`` (text),
-        ``component``, ``format``, ``remove_mean`` (ObsPy). An option given as ``None`` counts
-        as not given.
+        ``component``, ``format``, ``remove_mean``, ``inventory`` (ObsPy: an
+        ``obspy.Inventory`` or a StationXML, dataless SEED or RESP file whose
+        response for the trace gives the sensitivity and the units; see
+        :mod:`shaketable.ground.readers.waveform`). An option given as
+        ``None`` counts as not given.
 
     Returns
     -------
@@ -130,14 +142,18 @@ def read(path, **options) -> Record:
         fails too, the message gives both reasons.
     ValueError
         An unknown option, text and ObsPy options together, or a bad value;
-        the message names the option and the file.
+        the message names the option and the file. Units missing or
+        contradicting a response or the format, or a response that is not an
+        acceleration or not in the inventory (see :func:`read_obspy`).
+    TypeError
+        ``inventory`` is neither an ``obspy.Inventory`` nor a path.
     """
     options = {key: value for key, value in options.items() if value is not None}
     if not isinstance(path, (str, Path)) and is_obspy_waveform(path):
-        extra = sorted(set(options) - {"units", "component", "remove_mean"})
+        extra = sorted(set(options) - _IN_MEMORY_OPTIONS)
         if extra:
             raise ValueError(f"option {extra[0]!r} does not apply to an ObsPy Trace/Stream "
-                             "(read_obspy takes units=, component=, remove_mean=)")
+                             "(it takes units=, component=, remove_mean=, inventory=)")
         return read_obspy(path, **options)
     path = Path(path)
     unknown = sorted(set(options) - _READ_OPTIONS)
@@ -171,11 +187,15 @@ def read(path, **options) -> Record:
             return read_text(path, **options)
         except ValueError as text_error:
             raise RecordError(f"{obspy_error}; read as text: {text_error}") from None
-    if options.get("units") is None:
+    units = options.get("units")
+    formats = {str(trace.stats.get("_format", "")).upper() for trace in stream}
+    if units is None and not formats & set(DECLARED_UNITS):  # K-NET declares its units
         raise ValueError(f"{path}: ObsPy reads this file as a waveform, whose acceleration "
                          "units it does not state reliably; pass units= (one of 'g', 'm/s2', "
-                         "'cm/s2', 'gal')")
-    return record_from_stream(stream, path, units_argument(options["units"], path), None)
+                         "'cm/s2', 'gal'), or inventory= (station metadata with an "
+                         "acceleration response)")
+    return record_from_stream(stream, path, None if units is None
+                              else units_argument(units, path), None)
 
 
 def _vertical_sign_warning(vertical: Record) -> None:

@@ -40,7 +40,28 @@ def plot_measurement(measurement, fig: Figure | None = None,
                      title: str | None = None) -> Figure:
     """Angle (report's and exact) and the table accelerations of a :class:`Measurement`.
 
-    Returns the figure.
+    Draws the channels the measurement has: ``theta`` (with ``theta_exact``
+    dashed when it is there: a :class:`~shaketable.lab.sensors.Measurement`
+    built by hand may carry ``theta`` alone), ``table_horizontal`` and
+    ``table_vertical``, one panel each, over a shared time axis.
+
+    Parameters
+    ----------
+    measurement : shaketable.lab.sensors.Measurement
+        The record; ``t`` [s], angles [rad], accelerations [m/s^2].
+    fig : matplotlib.figure.Figure, optional
+        Figure to draw in (empty); default a new one.
+    title : str, optional
+        Figure title; default the block and the sample rate.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        The measurement has none of the three channels.
     """
     channels = [("theta", measurement.theta is not None),
                 ("horizontal", measurement.table_horizontal is not None),
@@ -50,14 +71,16 @@ def plot_measurement(measurement, fig: Figure | None = None,
         raise ValueError("the measurement has no channel to plot")
     fig, axes = _figure(fig, len(panels), figsize=(8.0, 2.2 * len(panels) + 0.8), sharex=True)
     alpha = measurement.block.alpha
+    angle_axis = None
     for ax, name in zip(axes[:, 0], panels):
         if name == "theta":
             ax.plot(measurement.t, measurement.theta / alpha, lw=0.9,
                     label="-top displacement / H (report)")
-            ax.plot(measurement.t, measurement.theta_exact / alpha, lw=0.9, ls="--",
-                    label="exact geometry")
+            if measurement.theta_exact is not None:
+                ax.plot(measurement.t, measurement.theta_exact / alpha, lw=0.9, ls="--",
+                        label="exact geometry")
             ax.set_ylabel(r"$\theta/\alpha$ [-]")
-            ax.legend(loc="upper right", fontsize=8)
+            angle_axis = ax
         elif name == "horizontal":
             ax.plot(measurement.t, measurement.table_horizontal / G, lw=0.8)
             ax.set_ylabel("table horizontal [g]")
@@ -67,6 +90,8 @@ def plot_measurement(measurement, fig: Figure | None = None,
         ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time [s]")
     fig.suptitle(title or f"{measurement.block.describe()} block, {measurement.rate:g} samples/s")
+    if angle_axis is not None:  # after the layout is complete: a corner free of data
+        place_legend(angle_axis, fontsize=8)
     return fig
 
 

@@ -38,6 +38,7 @@ from shaketable.sweeps.store import (
 
 if TYPE_CHECKING:
     import pandas as pd
+    from distributed import Client
 
     from shaketable.solvers.batch import Case
 
@@ -362,7 +363,7 @@ class SweepOutcome:
 
 
 def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[str], *,
-              workers: int | None = None, scheduler: str | None = None,
+              workers: int | None = None, scheduler: str | Client | None = None,
               resume: bool = False, progress: bool = True, max_chunks: int | None = None,
               on_chunk: Callable[[int, pd.DataFrame], object] | None = None,
               fmt: str | None = None) -> SweepOutcome:
@@ -379,9 +380,11 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
         Local: threads of the compiled batch loop (default all cores). With
         ``scheduler``: threads inside each Dask task (default 1; the cluster's
         own workers give the parallelism).
-    scheduler : str, optional
+    scheduler : str or distributed.Client, optional
         Address of a ``dask.distributed`` scheduler (``tcp://host:8786``), or
-        a ``distributed.Client``; the chunks become Dask tasks.
+        a connected ``distributed.Client`` (used as is and not closed at the
+        end; a client made from an address is closed); the chunks become Dask
+        tasks. Default: run locally.
     resume : bool
         Continue a sweep already in ``out`` (finished chunks are kept, not
         recomputed). Without it an existing sweep in ``out`` is an error.

@@ -48,7 +48,9 @@ class Record:
     metadata : mapping, optional
         Provenance of a record read through ObsPy or gmprocess: ``network``,
         ``station``, ``location``, ``channel``, ``starttime`` (ISO 8601, UTC),
-        ``format``, ``calib``, ``units_in_file``, ``mean_removed``. Read-only;
+        ``format``, ``calib``, ``units_in_file``, ``mean_removed``; through
+        ObsPy also ``units_source`` and ``sensitivity`` (the instrument
+        response's overall sensitivity divided by, 0.0 without one). Read-only;
         carried into the :class:`~shaketable.core.motion.Motion` by
         :func:`~shaketable.ground.records.combine`.
 
