@@ -41,6 +41,50 @@ def _short(label: str) -> str:
     return ""
 
 
+#: Height of a row of end labels [points] and their size [points].
+_ROW, _FONT = 8.0, 6.5
+
+
+def _annotate_ends(ax, ends):
+    """Write the end labels, each a row higher than an earlier one it would run into.
+
+    Labels of different methods often fall on one spot (every method at the error floor,
+    or two lines starting at the same time and error): a label is lifted by a row while
+    it shares the height of an earlier label within about a label's width of it
+    (positions in points on the panel as laid out when this is called). The time axis is
+    widened until every label lies inside the panel.
+    """
+    box = ax.get_window_extent()
+    points_per_pixel = 72.0 / ax.figure.dpi
+    height_points = box.height * points_per_pixel
+    width_points = box.width * points_per_pixel
+    (y0, y1) = np.log10(ax.get_ylim())
+    for _ in range(5):
+        x0, x1 = np.log10(ax.get_xlim())
+        placed = []  # (left, right, bottom, lift) in points from the panel's lower left
+        for time, error, text, align, _color in ends:
+            x = (math.log10(time) - x0) / (x1 - x0) * width_points
+            y = (math.log10(error) - y0) / (y1 - y0) * height_points
+            width = 0.62 * _FONT * len(text) + 3.0  # DejaVu Sans digits, the 3-point gap
+            left, right = (x - width, x) if align == "right" else (x, x + width)
+            lift = 3.0
+            while any(left < other_right and other_left < right
+                      and abs(y + lift - other_bottom) < _ROW
+                      for other_left, other_right, other_bottom, _ in placed):
+                lift += _ROW
+            placed.append((left, right, y + lift, lift))
+        over_left = max(0.0, -min(left for left, *_ in placed))
+        over_right = max(0.0, max(right for _, right, *_ in placed) - width_points)
+        if over_left == 0.0 and over_right == 0.0:
+            break
+        decades = (x1 - x0) / width_points  # per point
+        ax.set_xlim(10 ** (x0 - (over_left + 2.0) * decades),
+                    10 ** (x1 + (over_right + 2.0) * decades))
+    for (time, error, text, align, color), (*_, lift) in zip(ends, placed):
+        ax.annotate(text, (time, error), textcoords="offset points",
+                    xytext=(-3 if align == "right" else 3, lift), ha=align, fontsize=_FONT,
+                    color=color)
+
 def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     """Draw one case of a :func:`shaketable.studies.work_precision.work_precision` frame.
 
@@ -63,7 +107,10 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     if ax is None:
         _, ax = plt.subplots(figsize=(5, 4))
     rows = frame[frame["case"] == case]
-    for rank, (method, (color, marker)) in enumerate(STYLE.items()):
+    # room at both ends of the time axis for the labels written beside the end points
+    ax.margins(x=0.12)
+    ends = []  # (time, error, text, align, colour) of the labelled end points
+    for method, (color, marker) in STYLE.items():
         group = rows[rows["method"] == method]
         if group.empty:
             continue
@@ -82,15 +129,11 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
             # (the first setting is not always the fastest: "1e-81e-12" ran together)
             for index, align in ((int(order[0]), "right"), (int(order[-1]), "left")):
                 if np.isfinite(error[index]):
-                    # at the error floor every method's labels would share one line:
-                    # stack them, one row per method
-                    lift = 3 + 8 * rank if error[index] <= ERROR_FLOOR * (1 + 1e-9) else 3
-                    ax.annotate(_short(labels[index]), (time[index], error[index]),
-                                textcoords="offset points",
-                                xytext=(-3 if align == "right" else 3, lift),
-                                ha=align, fontsize=6.5, color=color)
-    ax.axhline(1e-8, color="0.6", linewidth=0.8, linestyle=":")
+                    ends.append((time[index], error[index], _short(labels[index]), align, color))
     ax.set_ylim(ERROR_FLOOR / 3, 10.0)
+    if ends:
+        _annotate_ends(ax, ends)
+    ax.axhline(1e-8, color="0.6", linewidth=0.8, linestyle=":")
     ax.set_title(case, fontsize=9)
     # minor ticks unlabelled: on a panel spanning about one decade matplotlib labels
     # them (2 x 10^-4, 4 x 10^-4, ...) and the labels overrun each other
@@ -141,7 +184,7 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None):
         ax.set_xlabel("median run time [s]", fontsize=8)
     handles = [Line2D([], [], color=color, marker=marker, label=method)
                for method, (color, marker) in STYLE.items() if (frame["method"] == method).any()]
-    handles += [Line2D([], [], color="k", marker="o", label="max |theta| (solid)"),
+    handles += [Line2D([], [], color="k", marker="o", label="max |θ| (solid)"),
                 Line2D([], [], color="k", marker="o", markerfacecolor="none", linestyle="--",
                        label="event times (dashed)"),
                 Line2D([], [], color="0.6", linestyle=":", label="1e-8 target")]

@@ -79,7 +79,7 @@ def plot_measurement(measurement, fig: Figure | None = None,
             if measurement.theta_exact is not None:
                 ax.plot(measurement.t, measurement.theta_exact / alpha, lw=0.9, ls="--",
                         label="exact geometry")
-            ax.set_ylabel(r"$\theta/\alpha$ [-]")
+            ax.set_ylabel("θ/α [-]")
             angle_axis = ax
         elif name == "horizontal":
             ax.plot(measurement.t, measurement.table_horizontal / G, lw=0.8)
@@ -141,7 +141,7 @@ def plot_cor_per_impact(peaks: PeakEstimate, ax: Axes | None = None) -> Axes:
     if np.isfinite(peaks.slope):
         v = np.linspace(np.min(peaks.impact_velocity), np.max(peaks.impact_velocity), 2)
         ax.plot(v, peaks.intercept + peaks.slope * v, color="C1", ls="--", lw=1.0,
-                label=f"linear trend: slope {peaks.slope:+.3f} +- {1.96 * peaks.slope_se:.3f} s/rad")
+                label=f"linear trend: slope {peaks.slope:+.3f} ± {1.96 * peaks.slope_se:.3f} s/rad")
     ax.set_xlabel("angular velocity before impact [rad/s]")
     ax.set_ylabel("COR of the impact [-]")
     ax.set_title("Section 3.7 (1): does the COR depend on the impact velocity?", fontsize=10)
@@ -162,7 +162,7 @@ def plot_periods(period_fit: PeriodFit, ax: Axes | None = None) -> Axes:
             label=f"record ({how})")
     grid_amplitudes = np.linspace(0.03, 0.9, 60) * period_fit.alpha
     ax.plot(grid_amplitudes * degrees, period_fit.curve(grid_amplitudes), color="C3", lw=1.0,
-            label=f"exact, fitted R = {period_fit.R:.4f} m, alpha = {period_fit.alpha:.4f}")
+            label=f"exact, fitted R = {period_fit.R:.4f} m, α = {period_fit.alpha:.4f}")
     if period_fit.nominal is not None:
         nominal = period_fit.nominal
         amplitudes = np.linspace(0.03, 0.9, 60) * nominal.alpha

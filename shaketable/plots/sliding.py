@@ -82,7 +82,7 @@ def sliding_vs_rocking_figure(sliding, rocking, fig=None, title: str | None = No
     for mu, style, label in ((sliding.choice["mode mu_s [-]"], "C1--", "slides"),
                              (rocking.choice["mode mu_s [-]"], "C0:", None)):
         axes[0].axhline(mu, color=style[:2], ls=style[2:], lw=0.8,
-                        label=f"mu_s = {mu:g}" + (f" ({label})" if label else "") + ", v = 0")
+                        label=f"μs = {mu:g}" + (f" ({label})" if label else "") + ", v = 0")
         axes[0].axhline(-mu, color=style[:2], ls=style[2:], lw=0.8)
     axes[0].axhline(ratio, color="k", lw=0.6, label=f"B/H = {ratio:.2f} (Eq. 2-1)")
     axes[0].axhline(-ratio, color="k", lw=0.6)
@@ -90,22 +90,22 @@ def sliding_vs_rocking_figure(sliding, rocking, fig=None, title: str | None = No
     axes[0].legend(loc="upper right", fontsize=7, ncol=3)
     axes[1].plot(slide_run.t, slide_run.x / INCH, color="C1", lw=1.0)
     axes[1].set_ylabel("slip [in]")
-    axes[1].set_title(f"low friction mu = {sliding.choice['mode mu_s [-]']:g} < B/H: "
+    axes[1].set_title(f"low friction μs = {sliding.choice['mode mu_s [-]']:g} < B/H: "
                       f"SLIDES from {sliding.choice['mode t_start [s]']:.2f} s, "
                       f"peak {slide_run.peak_slip_inches:.1f} in", fontsize=9)
     axes[2].plot(t, rock_run.theta / rock_run.block.alpha, color="C0", lw=1.0)
     axes[2].axhline(1.0, color="r", lw=0.5)
     axes[2].axhline(-1.0, color="r", lw=0.5)
     verdict = ("overturns" if rock_run.overturned else
-               f"max theta/alpha {rock_run.max_theta_ratio:.2f}")
+               f"max |θ|/α {rock_run.max_theta_ratio:.2f}")
     extra = ""
     when = rocking.combined.get("required friction exceeds mu_s at [s]")
     if when is not None and not np.isnan(when):
         extra = f"; would also slide at {when:.2f} s (outside the model)"
-    axes[2].set_title(f"high friction mu = {rocking.choice['mode mu_s [-]']:g} > B/H: ROCKS "
+    axes[2].set_title(f"high friction μs = {rocking.choice['mode mu_s [-]']:g} > B/H: ROCKS "
                       f"from {rocking.choice['mode t_start [s]']:.2f} s, {verdict}{extra}",
                       fontsize=9)
-    axes[2].set_ylabel("theta / alpha [-]")
+    axes[2].set_ylabel("θ/α [-]")
     axes[2].set_xlabel("time [s]")
     ends = [t[-1] if rock_run.overturned else rock_run.t_max]
     moving = np.abs(slide_run.x - slide_run.residual_slip) > 0.02 * max(slide_run.peak_slip,

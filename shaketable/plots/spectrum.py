@@ -69,20 +69,22 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
         for _, window in windows[windows["pulse"] == kind].iterrows():
             k = int(np.argmin(np.abs(ratios - window["omega/p [-]"])))
             low, high = window["from a/(g tan alpha) [-]"], window["to a/(g tan alpha) [-]"]
-            label = "flagged (see the CSV's note): a band or a possible window narrower than the scan"
+            label = ("flagged (see the CSV's note): a band or a possible window\n"
+                     "narrower than the scan")
             axis.add_patch(Rectangle((edges[k], low), edges[k + 1] - edges[k], high - low,
                                      fill=False, edgecolor="red", lw=1.2, ls="--"))
+            # not clipped: on the last strip the marker sits on the axis' right edge
             axis.plot([edges[k + 1]], [0.5 * (low + high)], marker="<", color="red", ms=7,
-                      ls="none", label=None if label in labelled else label)
+                      ls="none", clip_on=False, label=None if label in labelled else label)
             labelled.add(label)
         x = np.linspace(max(0.0, edges[0]), edges[-1], 200)
-        axis.plot(x, np.sqrt(1 + x ** 2), "k--", lw=1, label="Eq. (2-8) (Housner)")
+        axis.plot(x, np.sqrt(1 + x ** 2), "k--", lw=1, label="Eq. (2-8) (Housner): a/(g tan α) = √(1 + (ω/p)²)")
         axis.set_xlim(edges[0], edges[-1])
         axis.set_ylim(0, top)
-        axis.set_xlabel("omega / p [-]")
-        axis.set_ylabel("a / (g tan alpha) [-]")
+        axis.set_xlabel("ω / p [-]")
+        axis.set_ylabel("a / (g tan α) [-]")
         block = spectrum.block
-        axis.set_title(f"{kind}: alpha {block.alpha:.3g} rad, p {block.p:.3g} rad/s, "
+        axis.set_title(f"{kind}: α = {block.alpha:.3g} rad, p = {block.p:.3g} rad/s, "
                        f"COR {spectrum.cor:.3g}\n(white: safe)", fontsize=9)
         axis.grid(True, lw=0.3, alpha=0.6)
         axis.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1,

@@ -30,7 +30,7 @@ _RATIO = "max_theta_ratio [-]"
 _AXES = {
     "aspect": ("aspect_ratio [-]", "H/B [-]"),
     "slenderness": ("B/H [-]", "B/H [-]"),
-    "alpha": ("alpha [rad]", "alpha [rad]"),
+    "alpha": ("alpha [rad]", "α [rad]"),
     "width": ("block_width [m]", "width B [m]"),
     "height": ("block_height [m]", "height H [m]"),
     "R": ("R [m]", "size R [m]"),
@@ -160,7 +160,7 @@ def overturning_map(table, *, x="aspect", y="width", record=None, cor=None, ax=N
     ax.set_xlabel(x_label)
     ax.set_ylabel(y_label)
     bar = ax.figure.colorbar(image, ax=ax, extend="max")
-    bar.set_label("max |theta| / alpha [-]  (red, F: overturned)")
+    bar.set_label("max |θ|/α [-]  (red, F: overturned)")
     label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
     ax.set_title(f"{label}, COR {rows['cor [-]'].iloc[0]:g}: "
                  f"{int(overturned.sum())} of {int((seen > 0).sum())} overturn")
@@ -218,9 +218,9 @@ def rocking_spectrum(table, *, x="p", record=None, cor=None, group="aspect", ax=
     ticks = [tick for tick in ax.get_yticks() if 0 <= tick <= finite_top]
     ax.set_yticks(ticks + [top], [f"{tick:g}" for tick in ticks] + ["F (overturned)"])
     if x == "p":
-        x_label += "   (larger blocks to the left: p = sqrt(3g/4R))"
+        x_label += "   (larger blocks to the left: p = √(3g/4R))"
     ax.set_xlabel(x_label)
-    ax.set_ylabel("max |theta| / alpha [-]")
+    ax.set_ylabel("max |θ|/α [-]")
     label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
     ax.set_title(f"Rocking spectrum: {label}, COR {rows['cor [-]'].iloc[0]:g}")
     place_legend(ax, fontsize=7, ncol=2)
@@ -269,7 +269,7 @@ def fragility_curve(table, *, group="block", cor=None, pga="pga [g]", ax=None):
             continue
         fits[name] = fit
         ax.plot(grid, fit.probability(grid), "-", color=colour, lw=1.2,
-                label=f"{label}: lognormal, median {fit.median:.3g}, beta {fit.beta:.2f}")
+                label=f"{label}: lognormal, median {fit.median:.3g}, β {fit.beta:.2f}")
     ax.set_ylim(-0.03, 1.03)
     ax.set_xlabel("PGA [g]" if pga == "pga [g]" else pga)
     ax.set_ylabel("P(overturn) [-]")

@@ -184,3 +184,37 @@ def test_sliding_figure_zooms_on_the_slipping_and_says_so():
     assert legends_on_data(fig) == []
     text = svg_text(fig)
     assert "μs = 0.2" in text and "(shaded: sliding)" in text
+
+
+def test_work_precision_labels_stay_inside_their_panel_and_apart():
+    # the setting labels written at the ends of each line (rtol, n = subdivisions): on the
+    # committed bench data, none may cross its panel's frame or run into another label
+    # (before: "n=1" and "1e-9" printed over each other, "1e-7" over the y axis)
+    from pathlib import Path
+
+    import pandas as pd
+
+    from shaketable.plots.bench import work_precision_figure
+
+    frame = pd.read_csv(Path(__file__).resolve().parents[2] / "benchmarks" / "work_precision.csv")
+    fig = drawn(work_precision_figure(frame))
+    try:
+        renderer = fig.canvas.get_renderer()
+        problems = []
+        for axis in fig.axes:
+            if not axis.get_visible():
+                continue
+            frame_box = axis.get_window_extent(renderer)
+            boxes = [(text.get_text(), text.get_window_extent(renderer)) for text in axis.texts]
+            assert len(boxes) >= 2, axis.get_title()
+            for label, box in boxes:
+                if (box.x0 < frame_box.x0 - 0.5 or box.x1 > frame_box.x1 + 0.5
+                        or box.y0 < frame_box.y0 - 0.5 or box.y1 > frame_box.y1 + 0.5):
+                    problems.append(f"{axis.get_title()}: {label} outside")
+            for k, (label, box) in enumerate(boxes):
+                for other, other_box in boxes[:k]:
+                    if box.overlaps(other_box):
+                        problems.append(f"{axis.get_title()}: {label} on {other}")
+        assert problems == []
+    finally:
+        matplotlib.pyplot.close(fig)
