@@ -472,7 +472,7 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
     if figure:
         lines += ["## Work-precision figure", "", f"![work-precision]({figure})", "",
                   "Error against `reference` at rtol 2.5e-14 (the truth) versus median run "
-                  "time, one panel per case. Solid: relative error of max |theta|; dashed: "
+                  "time, one panel per case. Solid: relative error of max |θ|; dashed: "
                   "largest relative error of the event times (impacts before 20 s, start, "
                   "unstable, overturn, airborne).", ""]
     if pacoima is not None:
@@ -491,10 +491,11 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
                   f"({milliseconds:.3g} ms); at least {TARGET_SPEED_UP:g} times faster than "
                   f"`reference` in the same process: "
                   f"{'met' if ratio >= TARGET_SPEED_UP else 'NOT met'} ({ratio:.0f}x in this "
-                  f"measurement). The ratio spreads by about ±15 % between measurements on a "
-                  f"shared 2-core machine: both timings are medians, but the reference's "
-                  f"~0.2 s runs and the fast engine's ~0.4 ms runs feel other processes' load "
-                  f"differently (the README gives the range over five measurements)."]
+                  f"measurement). Both timings are medians, but the ratio still follows the "
+                  f"machine's load: the reference's ~{1e3 * pacoima['reference median [s]']:.0f} ms "
+                  f"runs are interrupted by other processes, the median of many "
+                  f"~{milliseconds:.2g} ms fast runs is not, so a busy machine raises the ratio "
+                  f"(the README gives the range over several measurements)."]
         lines.append("")
     if first_call is not None:
         lines += ["## First call in a fresh process", "", "| | import [s] | first simulate [s] "
@@ -514,7 +515,7 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
     if accuracy is not None:
         lines += [f"## Acceptance: fast (default rtol {DEFAULT_RTOL['fast']:g}) against reference "
                   f"(default rtol {DEFAULT_RTOL['reference']:g})", "",
-                  "Target: 1e-8 relative in max |theta| (or 1e-10 rad) and in the event "
+                  "Target: 1e-8 relative in max |θ| (or 1e-10 rad) and in the event "
                   "times, same impact count before 20 s and same verdict.", "",
                   markdown_table(accuracy, [c for c in accuracy.columns if c not in
                                             ("impacts truth",)]), ""]
