@@ -35,6 +35,15 @@ the step-size controller then rejected steps over and over while it crept up
 on every impact. The analytic continuation past theta = 0 makes every step
 smooth, and the impact is where the continued solution reaches zero.
 
+An impact can hide inside one step: theta dips below 0 and comes back before
+the step ends. With one turning point in the step, theta' changes sign and the
+driver locates the turning point and, when it lies past 0, the impact before
+it. With two (theta' of one sign at both ends, the ground acceleration ramping
+fast), :func:`_hidden_dip` searches the cubic Hermite interpolant of theta,
+theta' at the step ends and :func:`_dip_on_stepper` confirms the dip on the
+stepper itself; the same check makes a step that ends past 0 after three
+crossings stop at the first. Steps without such a dip are not changed.
+
 All three share the event logic: start of rocking at the exact crossing of
 Eq. (2-1) inside an interval, the impact map theta' -> cor * theta', the
 summation of the endless cascade of impacts of a decaying block
@@ -378,6 +387,72 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
     return c, xc, vc, ac, trials
 
 
+@njit(cache=True)
+def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_only):
+    """Where a step may hide a dip below theta = 0 between two turning points [s], else 0.
+
+    Called for a step whose ends have theta on the active side and theta' of
+    one sign, which no sign test flags. The cubic Hermite interpolant of theta,
+    theta' at both ends (exact when theta'' is linear in time, as the ground
+    acceleration is inside an input interval, up to the p^2 theta term) is
+    searched for two interior turning points; the time of its minimum of
+    side * theta is returned when that minimum is at or below ``threshold``
+    (the caller checks on the stepper itself, so a generous margin costs only
+    evaluations). With ``first_only`` (the end is already below 0), only a
+    minimum before the maximum counts: a crossing earlier than the one seen.
+    """
+    x0 = side * theta
+    x1 = side * theta_new
+    v0 = side * omega * h
+    v1 = side * omega_new * h
+    c2 = 3.0 * (x1 - x0) - 2.0 * v0 - v1
+    c3 = 2.0 * (x0 - x1) + v0 + v1
+    if c3 == 0.0:
+        return 0.0  # H' linear: no two interior roots with ends of one sign
+    discriminant = c2 * c2 - 3.0 * c3 * v0
+    if discriminant <= 0.0:
+        return 0.0
+    root = math.sqrt(discriminant)
+    s1 = (-c2 - root) / (3.0 * c3)
+    s2 = (-c2 + root) / (3.0 * c3)
+    if not (0.0 < s1 < 1.0 and 0.0 < s2 < 1.0):
+        return 0.0
+    s = s1 if 2.0 * c2 + 6.0 * c3 * s1 > 0.0 else s2  # the minimum of side * theta
+    if first_only and s > min(s1, s2):
+        return 0.0  # theta_new < 0: only a minimum before the maximum hides a crossing
+    lowest = x0 + s * (v0 + s * (c2 + s * c3))
+    if lowest > threshold:
+        return 0.0
+    return s * h
+
+
+@njit(cache=True)
+def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, tau, segment, parameters):
+    """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
+
+    Starts at the interpolant's minimum ``tau`` (:func:`_hidden_dip`) and
+    follows Newton's iteration on theta' = 0 (one step of the stepper from
+    ``t`` per trial, as :func:`_locate`) towards the stepper's turning point.
+    Returns that time (0 when none is found), theta, theta', theta'' there and
+    the number of trials.
+    """
+    x = v = acc = 0.0
+    trials = 0
+    for _ in range(12):
+        x, v, acc, _, _ = _advance(method, t, theta, omega, acceleration, side, tau, segment,
+                                   parameters)
+        trials += 1
+        if side * x <= 0.0:
+            return tau, x, v, acc, trials
+        if side * acc <= 0.0:
+            break  # not near a minimum of side * theta
+        following = tau - v / acc
+        if not (0.0 < following < h) or abs(following - tau) <= 1e-14 * h:
+            break
+        tau = following
+    return 0.0, x, v, acc, trials
+
+
 @njit(cache=True, nogil=True)  # nogil: a long run can go on in a thread (Ctrl-C, api.py)
 def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol, subdivisions,
               rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
@@ -600,11 +675,41 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                     evaluations += trials * per_step
                     kind = EVENT_IMPACT
             elif side * theta_new < 0.0 or (side * theta_new == 0.0 and side * omega_new < 0.0):
+                upper, x, v, acc = h, theta_new, omega_new, acceleration_new
+                if side * omega < 0.0 and side * omega_new < 0.0:
+                    # theta may have crossed 0 three times (down, up at a turning point
+                    # below 0, down again): bracket the first crossing
+                    tau_dip = _hidden_dip(side, h, theta, omega, theta_new, omega_new,
+                                          0.5 * side * theta, True)
+                    if tau_dip > 0.0:
+                        found, xd, vd, ad, trials = _dip_on_stepper(
+                            method, t, theta, omega, acceleration, side, h, tau_dip, segment,
+                            parameters)
+                        evaluations += trials * per_step
+                        if found > 0.0:
+                            upper, x, v, acc = found, xd, vd, ad
                 tau, theta_new, omega_new, acceleration_new, trials = _locate(
-                    EVENT_IMPACT, method, t, theta, omega, acceleration, side, h, theta_new,
-                    omega_new, acceleration_new, segment, parameters, 0.0)
+                    EVENT_IMPACT, method, t, theta, omega, acceleration, side, upper, x,
+                    v, acc, segment, parameters, 0.0)
                 evaluations += trials * per_step
                 kind = EVENT_IMPACT
+            elif omega * omega_new > 0.0 and side * theta_new > 0.0:
+                # theta' has the same sign at both ends, but it may have changed sign
+                # twice inside the step (the ground acceleration ramps fast enough):
+                # a dip below 0 between two turning points that no sign test sees
+                tau_dip = _hidden_dip(side, h, theta, omega, theta_new, omega_new,
+                                      0.5 * min(side * theta, side * theta_new), False)
+                if tau_dip > 0.0:
+                    found, x, v, acc, trials = _dip_on_stepper(
+                        method, t, theta, omega, acceleration, side, h, tau_dip, segment,
+                        parameters)
+                    evaluations += trials * per_step
+                    if found > 0.0:
+                        tau, theta_new, omega_new, acceleration_new, trials = _locate(
+                            EVENT_IMPACT, method, t, theta, omega, acceleration, side, found,
+                            x, v, acc, segment, parameters, 0.0)
+                        evaluations += trials * per_step
+                        kind = EVENT_IMPACT
             if side * theta_new >= 0.5 * math.pi:
                 tau, theta_new, omega_new, acceleration_new, trials = _locate(
                     EVENT_OVERTURN, method, t, theta, omega, acceleration, side, tau, theta_new,
