@@ -35,11 +35,11 @@ def _run(args) -> int:
     for run in result.runs:
         line = f"{scene.name}: {scene.block.describe()} block, COR {run.cor:g}: {run.verdict()}"
         if run.overturned:
-            line += (f" (largest rocking before instability "
-                     f"{run.max_theta_ratio_before_instability:.3f} alpha)")
+            line += (f" (largest |θ|/α before instability "
+                     f"{run.max_theta_ratio_before_instability:.3f})")
         print(line)
     for run in result.slides:
-        print(f"{scene.name}: sliding with mu_s {run.friction.static:g}, mu_d "
+        print(f"{scene.name}: sliding with μs {run.friction.static:g}, μd "
               f"{run.friction.dynamic:g}: peak slip {run.peak_slip_inches:.2f} in "
               f"({run.peak_slip:.4f} m), residual {run.residual_slip:+.4f} m, "
               f"{run.slip_episodes} slip episode(s); Section 2.1: "
