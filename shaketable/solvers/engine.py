@@ -50,7 +50,7 @@ summation of the endless cascade of impacts of a decaying block
 (:func:`shaketable.core.dynamics.cascade_rest_time`), unstable / overturned, and the
 block leaving the ground when g + vg <= 0.
 
-Size: one compiled unit on purpose (about 700 lines): numba inlines the steppers and
+Size: one compiled unit on purpose (about 820 lines): numba inlines the steppers and
 the event location into :func:`integrate`, and a module boundary would not change that.
 """
 
