@@ -427,10 +427,12 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
 
 
 @njit(cache=True)
-def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, tau, segment, parameters):
+def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
+                    threshold, first_only, segment, parameters):
     """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
 
-    Starts at the interpolant's minimum ``tau`` (:func:`_hidden_dip`) and
+    Asks :func:`_hidden_dip` (with ``threshold`` and ``first_only``) where the
+    step may hide a dip; if it may, starts at the interpolant's minimum and
     follows Newton's iteration on theta' = 0 (one step of the stepper from
     ``t`` per trial, as :func:`_locate`) towards the stepper's turning point.
     Returns that time (0 when none is found), theta, theta', theta'' there and
@@ -438,6 +440,9 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, tau, segment
     """
     x = v = acc = 0.0
     trials = 0
+    tau = _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_only)
+    if tau <= 0.0:
+        return 0.0, x, v, acc, trials
     for _ in range(12):
         x, v, acc, _, _ = _advance(method, t, theta, omega, acceleration, side, tau, segment,
                                    parameters)
@@ -679,15 +684,12 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 if side * omega < 0.0 and side * omega_new < 0.0:
                     # theta may have crossed 0 three times (down, up at a turning point
                     # below 0, down again): bracket the first crossing
-                    tau_dip = _hidden_dip(side, h, theta, omega, theta_new, omega_new,
-                                          0.5 * side * theta, True)
-                    if tau_dip > 0.0:
-                        found, xd, vd, ad, trials = _dip_on_stepper(
-                            method, t, theta, omega, acceleration, side, h, tau_dip, segment,
-                            parameters)
-                        evaluations += trials * per_step
-                        if found > 0.0:
-                            upper, x, v, acc = found, xd, vd, ad
+                    found, xd, vd, ad, trials = _dip_on_stepper(
+                        method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
+                        0.5 * side * theta, True, segment, parameters)
+                    evaluations += trials * per_step
+                    if found > 0.0:
+                        upper, x, v, acc = found, xd, vd, ad
                 tau, theta_new, omega_new, acceleration_new, trials = _locate(
                     EVENT_IMPACT, method, t, theta, omega, acceleration, side, upper, x,
                     v, acc, segment, parameters, 0.0)
@@ -697,19 +699,16 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 # theta' has the same sign at both ends, but it may have changed sign
                 # twice inside the step (the ground acceleration ramps fast enough):
                 # a dip below 0 between two turning points that no sign test sees
-                tau_dip = _hidden_dip(side, h, theta, omega, theta_new, omega_new,
-                                      0.5 * min(side * theta, side * theta_new), False)
-                if tau_dip > 0.0:
-                    found, x, v, acc, trials = _dip_on_stepper(
-                        method, t, theta, omega, acceleration, side, h, tau_dip, segment,
-                        parameters)
+                found, x, v, acc, trials = _dip_on_stepper(
+                    method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
+                    0.5 * min(side * theta, side * theta_new), False, segment, parameters)
+                evaluations += trials * per_step
+                if found > 0.0:
+                    tau, theta_new, omega_new, acceleration_new, trials = _locate(
+                        EVENT_IMPACT, method, t, theta, omega, acceleration, side, found,
+                        x, v, acc, segment, parameters, 0.0)
                     evaluations += trials * per_step
-                    if found > 0.0:
-                        tau, theta_new, omega_new, acceleration_new, trials = _locate(
-                            EVENT_IMPACT, method, t, theta, omega, acceleration, side, found,
-                            x, v, acc, segment, parameters, 0.0)
-                        evaluations += trials * per_step
-                        kind = EVENT_IMPACT
+                    kind = EVENT_IMPACT
             if side * theta_new >= 0.5 * math.pi:
                 tau, theta_new, omega_new, acceleration_new, trials = _locate(
                     EVENT_OVERTURN, method, t, theta, omega, acceleration, side, tau, theta_new,
