@@ -135,6 +135,38 @@ class RockingResult:
             return 0.0
         return float(np.max(np.abs(theta[:crossings[-1] + 1]))) / self.block.alpha
 
+    @property
+    def fate(self):
+        """Whether the block will overturn once the motion has ended, decided by energy.
+
+        The table is at rest after the motion; the state at the end of the run
+        settles the block's fate in closed form (:mod:`shaketable.core.fate`:
+        the exact model's energy for the exact methods, the linearised one's
+        for ``method="linear"``), so no free tail has to be simulated. An
+        overturned run has ``reason == "overturned"``; a run with prestress rods
+        or a block that left the ground is ``"undecided: ..."`` (the rules
+        assume a bare block; a constant top force is not known to the result
+        and is ignored).
+
+        Returns
+        -------
+        shaketable.core.fate.Fate
+        """
+        from shaketable.core.fate import Fate, fate_of
+
+        if self.overturned:
+            return Fate(True, 0, "overturned", math.nan)
+        if self.status == "airborne" or self.block.rods is not None:
+            why = "the block left the ground" if self.status == "airborne" else "prestress rods"
+            return Fate(False, 0, f"undecided: {why}", math.nan)
+        return fate_of(float(self.theta[-1]), float(self.theta_dot[-1]), self.block.alpha,
+                       self.block.p, self.cor, "linear" if self.method == "linear" else "exact")
+
+    @property
+    def will_overturn(self) -> bool:
+        """True when the block overturned or will overturn after the motion (:attr:`fate`)."""
+        return self.fate.will_overturn
+
     def verdict(self) -> str:
         """The run in words: "overturned (+) at 6.42 s", "max θ/α = 0.78", or the airborne time."""
         if self.overturned:

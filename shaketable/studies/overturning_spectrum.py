@@ -70,11 +70,12 @@ import numpy as np
 import pandas as pd
 
 from shaketable.core.constants import G
+from shaketable.core.fate import free_rocking_fate
 from shaketable.core.geometry import Block
 from shaketable.ground.pulses import Pulse, pulse_motion
 from shaketable.solvers.batch import Case, simulate_cases
 
-__all__ = ["COLUMNS", "WINDOW_COLUMNS", "OverturningSpectrum", "decide_after_pulse", "housner_cor",
+__all__ = ["COLUMNS", "METHODS", "WINDOW_COLUMNS", "OverturningSpectrum", "decide_after_pulse", "housner_cor",
            "overturn_verdicts", "overturning_spectrum", "threshold"]
 
 #: Columns of :meth:`OverturningSpectrum.to_frame`.
@@ -100,8 +101,12 @@ def _cor(block, cor):
     return float(cor)
 
 
-def decide_after_pulse(theta, theta_dot, alpha: float, p: float, cor: float):
+def decide_after_pulse(theta, theta_dot, alpha: float, p: float, cor: float,
+                       model: str = "exact"):
     """Fate of a block rocking freely from (theta, theta_dot) on a table at rest.
+
+    The rules, for the exact and the linearised model, are those of
+    :mod:`shaketable.core.fate` (:func:`~shaketable.core.fate.free_rocking_fate`).
 
     Parameters
     ----------
@@ -111,6 +116,8 @@ def decide_after_pulse(theta, theta_dot, alpha: float, p: float, cor: float):
         Block angle [rad] and frequency parameter [rad/s].
     cor : float
         Coefficient of restitution [-], theta' -> cor theta' at each impact.
+    model : {"exact", "linear"}
+        Eq. (2-3), or Housner's linearised Eq. (2-4) (the ``linear`` method).
 
     Returns
     -------
@@ -119,27 +126,12 @@ def decide_after_pulse(theta, theta_dot, alpha: float, p: float, cor: float):
         Impacts after the pulse before it overturns (0 or 1); for a block that
         does not overturn, 0.
     """
-    signed = np.asarray(theta, dtype=float)
-    omega = np.asarray(theta_dot, dtype=float) * np.sign(signed)   # > 0: moving outward
-    theta = np.abs(signed)
-    barrier = p * p * (1.0 - math.cos(alpha))
-    energy = 0.5 * omega ** 2 + p * p * (np.cos(alpha - np.minimum(theta, math.pi / 2))
-                                         - math.cos(alpha))
-    outward = omega > 0.0
-    past = theta > alpha
-    at_rest = (theta == 0.0) & (omega == 0.0)
-    # outward: over the barrier unless it falls back first
-    now = (outward & (past | (energy > barrier)))
-    # inward beyond alpha without the energy to come back over it: falls out
-    now |= (~outward) & past & (energy < barrier)
-    # otherwise it reaches theta = 0 with kinetic energy E and impacts
-    later = ~now & ~at_rest & (cor * cor * energy > barrier)
-    overturns = now | later
-    return overturns, np.where(later, 1, 0)
+    overturns, impacts, _, _ = free_rocking_fate(theta, theta_dot, alpha, p, cor, model)
+    return overturns, impacts
 
 
 def overturn_verdicts(block: Block, cor, pulses, amplitudes, *, samples_per_cycle: int = 8192,
-                      threads=None) -> pd.DataFrame:
+                      threads=None, method: str = "fast") -> pd.DataFrame:
     """Verdicts for (pulse, a/(g tan alpha)) pairs, one batch run each.
 
     Parameters
@@ -150,6 +142,10 @@ def overturn_verdicts(block: Block, cor, pulses, amplitudes, *, samples_per_cycl
         One per amplitude (the same object may repeat: it is sampled once).
     amplitudes : sequence of float
         a/(g tan alpha) [-], positive.
+    method : str
+        Solver (:data:`METHODS`): ``"fast"`` and ``"predictor-corrector"`` integrate
+        the exact Eq. (2-13), ``"linear"`` Housner's linearised Eq. (2-4); the verdict
+        after the pulse uses the energy of the same model.
 
     Returns
     -------
@@ -165,14 +161,28 @@ def overturn_verdicts(block: Block, cor, pulses, amplitudes, *, samples_per_cycl
         if shape not in motions:
             motions[shape] = pulse_motion(shape, unit, samples_per_cycle=samples_per_cycle)
         cases.append(Case(block, motions[shape], cor, scale=float(x)))
-    frame = simulate_cases(cases, threads=threads)
+    frame = simulate_cases(cases, threads=threads, method=_method(method))
     during = frame["overturned"].to_numpy()
     after, extra = decide_after_pulse(frame["theta_end [rad]"].to_numpy(),
                                       frame["theta_dot_end [rad/s]"].to_numpy(), block.alpha,
-                                      block.p, cor)
+                                      block.p, cor, _model(method))
     impacts = frame["n_impacts"].to_numpy() + np.where(during, 0, extra)
     return pd.DataFrame({"overturns": during | after, "impacts": impacts,
                          "max_theta_ratio [-]": frame["max_theta_ratio [-]"].to_numpy()})
+
+
+#: Solvers a spectrum or a threshold can use (``reference`` is one SciPy run at a time).
+METHODS = ("fast", "linear", "predictor-corrector")
+
+
+def _method(method):
+    if method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    return method
+
+
+def _model(method):
+    return "linear" if method == "linear" else "exact"
 
 
 def _classes(verdicts):
@@ -207,6 +217,8 @@ class OverturningSpectrum:
         The same places as amplitude intervals, columns :data:`WINDOW_COLUMNS`
         (``reason``: ``"band narrower than the scan"``, ``"mode change without
         a safe band"`` or ``"unstable but safe at both ends"``).
+    method : str
+        Solver of every run (``"linear"``: the linearised model).
     """
 
     block: Block
@@ -218,6 +230,7 @@ class OverturningSpectrum:
     flags: list = field(default_factory=list)
     runs: int = 0
     windows: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=WINDOW_COLUMNS))
+    method: str = "fast"
 
     def to_frame(self) -> pd.DataFrame:
         """The tidy band table (a copy)."""
@@ -230,6 +243,7 @@ class OverturningSpectrum:
                          f"{self.block.alpha:.8g} rad, p {self.block.p:.8g} rad/s, cor "
                          f"{self.cor:.8g}; scan step {self.scan_step:g}, edge tolerance "
                          f"{self.tolerance:g} relative, ceiling {self.ceiling:g}; "
+                         + ("" if self.method == "fast" else f"method {self.method}; ") +
                          "shaketable.studies.overturning_spectrum\n")
             for flag in self.flags:
                 handle.write(f"# flag: {flag}\n")
@@ -258,7 +272,7 @@ class OverturningSpectrum:
 def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4, 6, 8, 10), *,
                          cor="housner", ceiling: float | None = None, scan_step: float = 0.005,
                          tolerance: float = 1e-8, samples_per_cycle: int = 8192,
-                         threads=None) -> OverturningSpectrum:
+                         threads=None, method: str = "fast") -> OverturningSpectrum:
     """Every overturn/safe band in a/(g tan alpha) for pulses at several omega/p.
 
     Parameters
@@ -278,11 +292,18 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
         Relative step of the scan [-].
     tolerance : float
         Relative width [-] below which a bracket is an edge (its midpoint).
+    method : str
+        ``"fast"`` (default), ``"predictor-corrector"`` (the exact Eq. 2-13) or
+        ``"linear"`` (Housner's linearised Eq. 2-4, the model of the closed forms
+        :func:`shaketable.core.theory.linear_pulse_bands`); amplitudes stay in
+        a/(g tan alpha) for every method (the linearised literature's a/(g alpha)
+        is that times tan(alpha)/alpha).
 
     Returns
     -------
     OverturningSpectrum
     """
+    method = _method(method)
     if isinstance(pulses, str):
         pulses = [pulses]
     if not 0 < scan_step < 1:
@@ -304,7 +325,8 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
     flat_shapes = [shape for shape, grid in zip(shapes, grids) for _ in grid]
     flat_x = np.concatenate(grids)
     verdicts = overturn_verdicts(block, cor, flat_shapes, flat_x,
-                                 samples_per_cycle=samples_per_cycle, threads=threads)
+                                 samples_per_cycle=samples_per_cycle, threads=threads,
+                                 method=method)
     runs = len(flat_x)
     classes = _classes(verdicts)
     ratios_theta = verdicts["max_theta_ratio [-]"].to_numpy()
@@ -337,7 +359,8 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
             break
         middles = [math.sqrt(b[1] * b[2]) for b in active]
         result = overturn_verdicts(block, cor, [shapes[b[0]] for b in active], middles,
-                                   samples_per_cycle=samples_per_cycle, threads=threads)
+                                   samples_per_cycle=samples_per_cycle, threads=threads,
+                                   method=method)
         runs += len(active)
         brackets = []
         for b, x, c in zip(active, middles, _classes(result)):
@@ -391,11 +414,12 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
     window_frame = pd.DataFrame([(keys[w[0]][0], keys[w[0]][1], float(w[1]), float(w[2]), w[3])
                                  for w in windows], columns=WINDOW_COLUMNS)
     return OverturningSpectrum(block, cor, pd.DataFrame(rows, columns=COLUMNS), scan_step,
-                               tolerance, float(max(tops)), flags, runs, window_frame)
+                               tolerance, float(max(tops)), flags, runs, window_frame, method)
 
 
 def threshold(block: Block, shape: Pulse, *, cor, low: float, high: float,
-              tolerance: float = 1e-9, samples_per_cycle: int = 8192) -> float:
+              tolerance: float = 1e-9, samples_per_cycle: int = 8192,
+              method: str = "fast") -> float:
     """The one amplitude a/(g tan alpha) in [low, high] above which ``shape`` overturns [-].
 
     For pulses with a **single transition** (safe below, overturning above; the
@@ -407,6 +431,10 @@ def threshold(block: Block, shape: Pulse, *, cor, low: float, high: float,
     A safe window narrower than 1 % above the edge is not seen by the scan
     (:func:`overturning_spectrum` flags such places).
 
+    ``method`` is that of :func:`overturning_spectrum` (``"linear"``: the
+    linearised model, whose closed forms are
+    :func:`shaketable.core.theory.linear_pulse_threshold`).
+
     Raises
     ------
     ValueError
@@ -416,7 +444,8 @@ def threshold(block: Block, shape: Pulse, *, cor, low: float, high: float,
     grid = np.exp(np.linspace(math.log(low), math.log(high),
                               int(math.ceil(math.log(high / low) / math.log1p(0.01))) + 1))
     verdicts = overturn_verdicts(block, cor, [shape] * grid.size, grid,
-                                 samples_per_cycle=samples_per_cycle)["overturns"].to_numpy()
+                                 samples_per_cycle=samples_per_cycle,
+                                 method=_method(method))["overturns"].to_numpy()
     if verdicts[0] or not verdicts[-1]:
         raise ValueError(f"the bracket [{low:.6g}, {high:.6g}] does not hold the threshold")
     changes = np.flatnonzero(verdicts[1:] != verdicts[:-1])
@@ -430,7 +459,8 @@ def threshold(block: Block, shape: Pulse, *, cor, low: float, high: float,
     while hi / lo - 1 > tolerance:
         middle = math.sqrt(lo * hi)
         if overturn_verdicts(block, cor, [shape], [middle],
-                             samples_per_cycle=samples_per_cycle)["overturns"].iloc[0]:
+                             samples_per_cycle=samples_per_cycle,
+                             method=method)["overturns"].iloc[0]:
             hi = middle
         else:
             lo = middle
