@@ -402,7 +402,7 @@ def _spectrum_section(study: Study, folder: Path, lines: list) -> str:
     result = overturning_spectrum(settings.block, pulses=settings.pulses,
                                   ratios=settings.ratios, cor=settings.cor,
                                   ceiling=settings.ceiling, scan_step=settings.scan_step,
-                                  tolerance=settings.tolerance)
+                                  tolerance=settings.tolerance, method=settings.method)
     atomic_write(folder / "spectrum.csv", result.to_csv)
     save(result.plot().figure, folder / "spectrum.png")
     block = settings.block

@@ -43,19 +43,28 @@ def _spectrum(args) -> int:
     result = overturning_spectrum(block, pulses=args.pulse or ["half-sine"],
                                   ratios=parse_ratios(args.ratios), cor=cor_of(args.cor),
                                   ceiling=args.ceiling, scan_step=args.scan_step,
-                                  tolerance=args.tolerance)
+                                  tolerance=args.tolerance, method=args.method)
     elapsed = time.perf_counter() - start
     written = [out / "spectrum.csv"]
     atomic_write(written[0], result.to_csv)
     if args.parquet:
         written.append(out / "spectrum.parquet")
         write_parquet(written[-1], result.to_frame())
-    ax = result.plot()
+    overlay = None
+    if args.compare_linear and args.method != "linear":
+        overlay = overturning_spectrum(block, pulses=args.pulse or ["half-sine"],
+                                       ratios=parse_ratios(args.ratios), cor=cor_of(args.cor),
+                                       ceiling=args.ceiling, scan_step=args.scan_step,
+                                       tolerance=args.tolerance, method="linear")
+        written.append(out / "spectrum-linear.csv")
+        atomic_write(written[-1], overlay.to_csv)
+    ax = result.plot(overlay=overlay)
     written.append(out / f"spectrum.{args.format}")
     plots.save(ax.figure, written[-1])
     bands = result.to_frame()
     print(f"{block.describe()} block (alpha {block.alpha:.6g} rad, p {block.p:.6g} rad/s), "
-          f"COR {result.cor:.6g}: {len(bands)} bands, {result.runs} runs, {elapsed:.1f} s")
+          f"COR {result.cor:.6g}" + ("" if args.method == "fast" else f", method {args.method}")
+          + f": {len(bands)} bands, {result.runs} runs, {elapsed:.1f} s")
     for _, row in bands[bands["verdict"] == "overturns"].iterrows():
         print(f"  {row['pulse']:>10} omega/p {row['omega/p [-]']:g}: overturns "
               f"{row['how']} from {row['from a/(g tan alpha) [-]']:.7g} to "
@@ -87,6 +96,12 @@ def register(commands) -> None:
     spec.add_argument("--scan-step", type=float, default=0.005, help="relative scan step [-]")
     spec.add_argument("--tolerance", type=float, default=1e-8,
                       help="relative width of each band edge [-]")
+    spec.add_argument("--method", default="fast", choices=["fast", "linear", "predictor-corrector"],
+                      help="solver: fast (exact Eq. 2-13, default), linear (Housner's linearised "
+                           "Eq. 2-4, the closed forms' model) or predictor-corrector")
+    spec.add_argument("--compare-linear", action="store_true",
+                      help="also compute the linearised spectrum (spectrum-linear.csv) and "
+                           "outline its overturning bands on the figure")
     spec.add_argument("--parquet", action="store_true", help="also write spectrum.parquet")
     spec.add_argument("--format", default="png", choices=["png", "svg", "pdf"])
     spec.add_argument("--out", default="shaketable-out", help="output folder")

@@ -163,9 +163,17 @@ def half_sine_impulse_overturn_amplitude(block: Block, pulse_duration: float) ->
 
 
 def half_sine_overturn_amplitude(block: Block, pulse_period: float) -> float:
-    """Minimum amplitude of a sine pulse of period Ts that overturns a slender block, Eq. (2-8) [m/s^2].
+    """Housner's half-sine overturning amplitude, Eq. (2-8) [m/s^2]: an approximation, not the minimum.
 
     a / (g alpha) = sqrt(1 + (omega / p)^2), omega = 2 pi / Ts.
+
+    Section 2.4 derives it for a slender block (Eq. 2-4) asking theta to reach
+    alpha while the pulse still acts, and leaves out the uplift delay (the block
+    lifts only when a sin(omega t) reaches g alpha). The exact minimum of the same
+    linearised model is lower (:func:`linear_pulse_threshold`, Voyagaki,
+    Psycharis & Mylonakis 2013; Dimitrakopoulos & DeJong 2012): 2.7908 against
+    Eq. (2-8)'s 4.1231 at omega/p = 4, 4.7871 against 8.0623 at omega/p = 8;
+    ``docs/pulses.md`` compares both with the exact nonlinear thresholds.
     """
     omega = 2.0 * math.pi / pulse_period
     return G * block.alpha * math.sqrt(1.0 + (omega / block.p) ** 2)

@@ -9,7 +9,7 @@ from matplotlib.patches import Rectangle
 from shaketable.plots.base import pyplot
 
 
-def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
+def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None, overlay=None):
     """Overturn (shaded) and safe bands of one pulse of an :class:`OverturningSpectrum`.
 
     Each omega/p of the spectrum is a vertical strip (half-way to its
@@ -18,7 +18,9 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
     a band narrower than the scan step, a mode change without a safe band, safe but
     unstable scan points) are framed in dashed red with a red marker, not hidden.
     Housner's Eq. (2-8), a/(g tan alpha) = sqrt(1 + (omega/p)^2) (the half-sine
-    estimate), is drawn for comparison.
+    estimate), is drawn for comparison. ``overlay``, a second spectrum of the same
+    pulses (e.g. ``method="linear"``, Housner's linearised model, over the exact
+    one), draws its overturning bands as outlined boxes in the middle of each strip.
 
     Returns
     -------
@@ -77,6 +79,20 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
             axis.plot([edges[k + 1]], [0.5 * (low + high)], marker="<", color="red", ms=7,
                       ls="none", clip_on=False, label=None if label in labelled else label)
             labelled.add(label)
+        if overlay is not None:
+            others = overlay.bands[(overlay.bands["pulse"] == kind)
+                                   & (overlay.bands["verdict"] == "overturns")]
+            label = f"overturns, method {getattr(overlay, 'method', 'fast')} (outlined)"
+            for _, row in others.iterrows():
+                k = int(np.argmin(np.abs(ratios - row["omega/p [-]"])))
+                if not np.isclose(ratios[k], row["omega/p [-]"]):
+                    continue
+                width = edges[k + 1] - edges[k]
+                low, high = row["from a/(g tan alpha) [-]"], row["to a/(g tan alpha) [-]"]
+                axis.add_patch(Rectangle((edges[k] + 0.3 * width, low), 0.4 * width, high - low,
+                                         fill=False, edgecolor="#1b9e77", lw=1.4,
+                                         label=None if label in labelled else label))
+                labelled.add(label)
         x = np.linspace(max(0.0, edges[0]), edges[-1], 200)
         axis.plot(x, np.sqrt(1 + x ** 2), "k--", lw=1, label="Eq. (2-8) (Housner): a/(g tan α) = √(1 + (ω/p)²)")
         axis.set_xlim(edges[0], edges[-1])
@@ -84,8 +100,10 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None):
         axis.set_xlabel("ω / p [-]")
         axis.set_ylabel("a / (g tan α) [-]")
         block = spectrum.block
+        method = getattr(spectrum, "method", "fast")
         axis.set_title(f"{kind}: α = {block.alpha:.3g} rad, p = {block.p:.3g} rad/s, "
-                       f"COR {spectrum.cor:.3g}\n(white: safe)", fontsize=9)
+                       f"COR {spectrum.cor:.3g}" + ("" if method == "fast" else f", {method}")
+                       + "\n(white: safe)", fontsize=9)
         axis.grid(True, lw=0.3, alpha=0.6)
         axis.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1,
                     frameon=False)

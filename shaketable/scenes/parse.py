@@ -85,7 +85,8 @@ STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"
                "pitch-repeatability": {"phases"}, "teaching": {"item"},
                # issue 16; the keys are read by shaketable.scenes.spectrum
                "overturning-spectrum": {"pulse", "block", "alpha", "p", "cor", "omega_over_p",
-                                        "ceiling", "scan_step", "tolerance", "reference"}}
+                                        "ceiling", "scan_step", "tolerance", "reference",
+                                        "method"}}
 
 
 class SceneError(ValueError):

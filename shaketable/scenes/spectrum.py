@@ -15,6 +15,8 @@ A scene of this kind runs :func:`shaketable.studies.overturning_spectrum.overtur
     omega_over_p = [2, 3, 4]      # a list, or a range "1:10:0.5" (start:stop:step)
     # ceiling = 12.0              # largest a/(g tan alpha) examined (default per omega/p)
     # scan_step = 0.005           # relative scan step; tolerance = 1e-8 (edge width)
+    # method = "fast"             # or "linear" (Housner's linearised Eq. 2-4), or
+                                  # "predictor-corrector"
 
     [[study.reference]]           # optional: published edges to compare with
     pulse = "one-sine"
@@ -44,7 +46,7 @@ MAX_RATIOS = 1000
 
 #: Keys of an ``overturning-spectrum`` ``[study]`` (besides ``kind``).
 SPECTRUM_KEYS = {"pulse", "block", "alpha", "p", "cor", "omega_over_p", "ceiling", "scan_step",
-                 "tolerance", "reference"}
+                 "tolerance", "reference", "method"}
 
 #: Keys of each ``[[study.reference]]``.
 REFERENCE_KEYS = {"pulse", "omega_over_p", "edges", "tolerance", "source"}
@@ -92,6 +94,8 @@ class SpectrumSettings:
     scan_step, tolerance : float
         Relative scan step and relative edge width [-].
     references : tuple of SpectrumReference
+    method : str
+        Solver of the runs: ``"fast"``, ``"linear"`` or ``"predictor-corrector"``.
     """
 
     pulses: tuple
@@ -102,6 +106,7 @@ class SpectrumSettings:
     scan_step: float = 0.005
     tolerance: float = 1e-8
     references: tuple = ()
+    method: str = "fast"
 
 
 def parse_ratios(text, where: str = "--ratios") -> list:
@@ -217,6 +222,10 @@ def spectrum_settings(spec: dict, where: str) -> SpectrumSettings:
         ceiling = _number(spec["ceiling"], where, "ceiling (a/(g tan alpha))", 1.0)
     scan_step = _number(spec.get("scan_step", 0.005), where, "scan_step", 0.0, 0.999)
     tolerance = _number(spec.get("tolerance", 1e-8), where, "tolerance", 0.0, scan_step)
+    method = spec.get("method", "fast")
+    if method not in ("fast", "linear", "predictor-corrector"):
+        raise ValueError(f"{where}: study.method must be 'fast', 'linear' or "
+                         f"'predictor-corrector', got {method!r}")
     references = []
     given = spec.get("reference", [])
     if not isinstance(given, list) or not all(isinstance(item, dict) for item in given):
@@ -247,4 +256,4 @@ def spectrum_settings(spec: dict, where: str) -> SpectrumSettings:
             _number(item["tolerance"], where, f"reference[{k}].tolerance"),
             str(item.get("source", ""))))
     return SpectrumSettings(pulses, block, cor, ratios, ceiling, scan_step, tolerance,
-                            tuple(references))
+                            tuple(references), method)

@@ -263,7 +263,8 @@ class OverturningSpectrum:
         return float(rows["from a/(g tan alpha) [-]"].min()) if len(rows) else math.inf
 
     def plot(self, ax=None, **kwargs):
-        """Figure in the style of Zhang & Makris (see :mod:`shaketable.plots.spectrum`)."""
+        """Figure in the style of Zhang & Makris (see :mod:`shaketable.plots.spectrum`;
+        ``overlay=`` another spectrum, e.g. the linearised one, outlined on it)."""
         from shaketable.plots.spectrum import plot_spectrum
 
         return plot_spectrum(self, ax=ax, **kwargs)
