@@ -477,3 +477,33 @@ def rectangular_pulse_threshold(duration: float) -> float:
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise ValueError(f"duration must be a positive p t1 [-], got {duration!r}")
     return 0.5 * (1.0 + 1.0 / math.tanh(0.5 * duration))
+
+
+def linear_half_sine_threshold(ratio: float) -> float:
+    """Smallest a/(g alpha) [-] of a half-sine pulse that overturns the linearised block, explicitly.
+
+    The block lifts at p t0 = arcsin(1/x)/r (x = a/(g alpha), r = omega/p) and,
+    near the threshold, makes no impact before the pulse ends at p T = pi/r;
+    integrating Eq. (2-4) from rest at t0 (:func:`linear_pulse_response`'s
+    closed form) the condition of overturning after the pulse, u' + u = 1 at T
+    (the energy on the barrier, :mod:`shaketable.core.fate`), reduces to
+
+        r = sqrt(x^2 - 1) + x exp(-(pi - arcsin(1/x)) / r),
+
+    whose right-hand side grows with x from below r at x = 1 to above r at
+    x = sqrt(1 + r^2) (Eq. 2-8): one root, always below Eq. (2-8). With the
+    uplift delay of Voyagaki, Psycharis & Mylonakis (2013) and Dimitrakopoulos
+    & DeJong (2012). 2.7908 at r = 4 and 4.7871 at r = 8 (Eq. 2-8: 4.1231, 8.0623).
+    Independent of cor (no impact before overturning).
+    """
+    from scipy.optimize import brentq
+
+    if not (isinstance(ratio, (int, float)) and math.isfinite(ratio) and ratio > 0):
+        raise ValueError(f"ratio must be a positive omega/p [-], got {ratio!r}")
+    r = float(ratio)
+
+    def excess(x):
+        return math.sqrt(x * x - 1.0) + x * math.exp(-(math.pi - math.asin(1.0 / x)) / r) - r
+
+    # excess(1) = exp(-pi / (2 r)) - r < 0 and excess(sqrt(1 + r^2)) > 0 for every r > 0
+    return brentq(excess, 1.0, math.sqrt(1.0 + r * r), xtol=1e-15, rtol=8.9e-16)
