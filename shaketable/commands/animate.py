@@ -5,6 +5,7 @@ from __future__ import annotations
 
 def _animate(args) -> int:
     from shaketable.core.files import prepare_output_file
+    from shaketable.core.impulses import ImpulsiveMotion
     from shaketable.plots.animation import animate
     from shaketable.scenes.catalog import resolve_scene_path
     from shaketable.scenes.parse import Study, load_scene
@@ -24,7 +25,10 @@ def _animate(args) -> int:
                          f"CORs {', '.join(f'{run.cor:g}' for run in result.runs)}), "
                          f"got {args.run}")
     run = result.runs[args.run]
-    written = animate(run, motion=build_motion(scene), out=args.out, fps=args.fps,
+    motion = build_motion(scene)
+    if isinstance(motion, ImpulsiveMotion):   # its smooth part (the steps are in the run)
+        motion = motion.motion
+    written = animate(run, motion=motion, out=args.out, fps=args.fps,
                       speed=args.speed, start=args.start, end=args.end)
     verdict = (f"overturns at {run.t_overturn:.2f} s" if run.overturned
                else f"max theta/alpha = {run.max_theta_ratio:.3f}")

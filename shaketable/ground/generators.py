@@ -40,6 +40,7 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.constants import G
+from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion
 from shaketable.core.sampling import time_grid
 from shaketable.core.validation import nonnegative as _nonnegative
@@ -48,8 +49,8 @@ from shaketable.core.validation import positive as _positive
 from shaketable.core.validation import renamed_to_si
 from shaketable.ground.artificial import PRESETS, ArtificialPreset, artificial
 
-__all__ = ["PRESETS", "ArtificialPreset", "artificial", "constant_pulse",
-           "half_sine_pulse", "harmonic"]
+__all__ = ["PRESETS", "ArtificialPreset", "artificial", "constant_pulse", "double_impulse",
+           "half_sine_pulse", "harmonic", "velocity_steps"]
 
 # ------------------------------------------------------------------ harmonic
 #: Fewest samples per period a harmonic may have. Two or fewer alias (50 Hz at 0.01 s
@@ -255,3 +256,47 @@ def half_sine_pulse(*, amplitude: float, pulse_duration: float, duration: float,
     horizontal[inside] = sign * amplitude * np.sin(np.pi * t[inside] / pulse_duration)
     name = f"half-sine pulse {sign * amplitude / G:g} g, {pulse_duration:g} s"
     return Motion(t, horizontal, None, name=name)
+
+
+# ------------------------------------------------------------------ impulses
+def velocity_steps(times, steps, *, duration: float, dt: float = 0.01) -> ImpulsiveMotion:
+    """Steps of the table's horizontal velocity (ideal impulses) on a table otherwise at rest.
+
+    Parameters
+    ----------
+    times : sequence of float
+        Instants of the steps [s], strictly increasing, in (0, duration).
+    steps : sequence of float
+        Velocity change at each instant [m/s] (positive along +x), nonzero.
+    duration : float
+        Length of the run [s].
+    dt : float
+        Output interval of the smooth part (the table at rest) [s].
+
+    Returns
+    -------
+    ImpulsiveMotion
+        Applied exactly by :func:`shaketable.solvers.api.simulate`
+        (:mod:`shaketable.core.impulses` derives the jump of theta').
+    """
+    rest = Motion.at_rest(_positive("duration", duration), _positive("dt", dt))
+    return ImpulsiveMotion(Motion(rest.t, rest.horizontal, name="velocity steps"), tuple(times),
+                           tuple(steps))
+
+
+def double_impulse(velocity: float, interval: float, *, duration: float, start: float = 0.1,
+                   dt: float = 0.01) -> ImpulsiveMotion:
+    """The double impulse of Kojima & Takewaki (2015): +V at ``start``, -V ``interval`` later [m/s, s].
+
+    The idealised near-fault fling: the table's velocity steps by +V and back by
+    -V (Nabeshima, Taniguchi, Kojima & Takewaki 2016 give its critical
+    amplitude for a rocking block, V1 / (1 + cor) with the second step at the
+    first impact; ``tests/studies/test_linearised_model.py`` checks it).
+    """
+    velocity = _number("velocity", velocity)
+    if velocity == 0.0:
+        raise ValueError("velocity must be nonzero [m/s]")
+    start = _positive("start", start)
+    interval = _positive("interval", interval)
+    return velocity_steps((start, start + interval), (velocity, -velocity), duration=duration,
+                          dt=dt)

@@ -55,6 +55,8 @@ MOTION_KEYS = {
     "artificial": {"preset", "seed", "pga", "duration", "dt", "vertical_pga"},
     "half-sine": {"amplitude", "pulse_duration", "duration", "dt", "sign"},
     "constant-pulse": {"acceleration", "pulse_duration", "duration", "dt"},
+    # issue 30: steps of the table's velocity, applied exactly (shaketable.core.impulses)
+    "impulses": {"times", "velocity_steps", "duration", "dt"},
 }
 
 ROCKING_KEYS = {"cor", "theta0", "theta_dot0", "duration", "method", "subdivisions", "rtol"}
@@ -547,6 +549,9 @@ def _motion(table, where) -> dict:
                          "(a bundled record) or motion.file")
     if kind == "harmonic" and not {"frequency", "horizontal", "duration"} <= set(converted):
         raise SceneError(f"{where}: a harmonic motion needs frequency, horizontal and duration")
+    if kind == "impulses" and not {"times", "velocity_steps", "duration"} <= set(converted):
+        raise SceneError(f"{where}: an impulses motion needs times, velocity_steps (lists, "
+                         "e.g. ['0.1 s', '0.5 s'] and ['0.2 m/s', '-0.2 m/s']) and duration")
     if kind == "artificial" and not {"preset", "seed"} <= set(converted):
         raise SceneError(f"{where}: an artificial motion needs preset and seed")
     return converted

@@ -12,8 +12,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
+from shaketable.core.units import parse
 from shaketable.ground import generators
 from shaketable.lab.stage import TableRun, run_table
 from shaketable.scenes.compare import (
@@ -29,8 +31,9 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
-def build_motion(scene: Scene) -> Motion | None:
-    """The table motion a scene names [m/s^2], or ``None`` for free rocking."""
+def build_motion(scene: Scene) -> Motion | ImpulsiveMotion | None:
+    """The table motion a scene names [m/s^2], or ``None`` for free rocking (an
+    :class:`~shaketable.core.impulses.ImpulsiveMotion` for ``kind = "impulses"``)."""
     spec = dict(scene.motion)
     kind = spec.pop("kind")
     try:
@@ -52,6 +55,12 @@ def build_motion(scene: Scene) -> Motion | None:
                 acceleration=spec["acceleration"], pulse_duration=spec["pulse_duration"],
                 duration=spec["duration"],
                 dt=spec.get("dt", 0.001))
+        if kind == "impulses":     # times ["0.1 s", ...], velocity_steps ["0.2 m/s", ...]
+            return generators.velocity_steps(
+                [parse(x, "time", where=f"{scene.path}: motion.times") for x in spec["times"]],
+                [parse(x, "velocity", where=f"{scene.path}: motion.velocity_steps")
+                 for x in spec["velocity_steps"]],
+                duration=spec["duration"], dt=spec.get("dt", 0.01))
         if kind == "artificial":
             options = {"seed": spec["seed"], "dt": spec.get("dt", 0.01)}
             if "duration" in spec:
@@ -211,6 +220,8 @@ class SceneResult:
 def run_scene(scene: Scene) -> SceneResult:
     """Run every stage a scene names and compare with the report's values."""
     motion = build_motion(scene)
+    if isinstance(motion, ImpulsiveMotion):
+        return _run_impulses(scene, motion)
     table = None
     felt = motion
     if scene.table is not None:
@@ -236,6 +247,25 @@ def run_scene(scene: Scene) -> SceneResult:
     return SceneResult(scene=scene, motion=felt, runs=tuple(runs),
                        comparisons=tuple(comparisons), table=table,
                        slides=_run_sliding(scene, felt))
+
+
+def _run_impulses(scene: Scene, motion: ImpulsiveMotion) -> SceneResult:
+    """A ``kind = "impulses"`` scene: the rocking runs only (steps of the table's velocity
+    have no table, sensor or sliding stage)."""
+    if scene.table is not None or scene.sensors is not None or scene.sliding:
+        raise SceneError(f"{scene.path}: a motion of kind 'impulses' runs the rocking block "
+                         "only ([table], [sensors] and [sliding] need a sampled motion)")
+    runs = []
+    for cor in scene.cors:
+        try:
+            runs.append(simulate(scene.block, motion, cor=cor, theta0=scene.theta0,
+                                 theta_dot0=scene.theta_dot0, duration=scene.duration,
+                                 method=scene.method, **scene.options))
+        except ValueError as error:
+            raise SceneError(f"{scene.path}: [rocking]: {error}") from None
+    return SceneResult(scene=scene, motion=motion.motion, runs=tuple(runs),
+                       comparisons=tuple(compare_with_report(scene, runs[0])), table=None,
+                       slides=())
 
 
 def _run_sliding(scene: Scene, felt: Motion | None) -> tuple:

@@ -6,6 +6,7 @@ import numpy as np
 
 from shaketable.core.dynamics import block_parameters
 from shaketable.core.geometry import Block
+from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion, whole_number
 from shaketable.core.results import RockingResult
 from shaketable.core.validation import in_range
@@ -20,7 +21,7 @@ from shaketable.solvers.common import (
 )
 
 
-def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: float = 0.0,
+def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, cor: float, theta0: float = 0.0,
              theta_dot0: float = 0.0, duration: float | None = None, method: str = "fast",
              rtol: float | None = None, subdivisions: int = 4, output_dt: float = 0.005,
              rest_tolerance: float | None = None, max_recorded_impacts: int = 100_000,
@@ -31,8 +32,10 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     ----------
     block : Block
         The block (with optional prestress rods).
-    motion : Motion, optional
-        Ground accelerations [m/s^2]. ``None`` is free rocking on a table at
+    motion : Motion or ImpulsiveMotion, optional
+        Ground accelerations [m/s^2]; an :class:`~shaketable.core.impulses.ImpulsiveMotion`
+        adds steps of the table's velocity, applied exactly as jumps of theta'
+        (:mod:`shaketable.solvers.impulses`). ``None`` is free rocking on a table at
         rest (Figs. 2.9, 2.10, 3.4): give ``duration``.
     cor : float
         Coefficient of restitution [-] in [0, 1] (Section 2.7 (5)).
@@ -83,6 +86,14 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     """
     if not isinstance(block, Block):
         raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
+    if isinstance(motion, ImpulsiveMotion):   # velocity steps: split there (solvers.impulses)
+        from shaketable.solvers.impulses import simulate_impulsive
+
+        return simulate_impulsive(block, motion, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
+                                  duration=duration, method=method, rtol=rtol,
+                                  subdivisions=subdivisions, output_dt=output_dt,
+                                  rest_tolerance=rest_tolerance,
+                                  max_recorded_impacts=max_recorded_impacts, top_force=top_force)
     cor = in_range("cor", cor, 0.0, 1.0)
     options = run_options(method, theta0=theta0, theta_dot0=theta_dot0, duration=duration,
                           rtol=rtol, subdivisions=subdivisions, rest_tolerance=rest_tolerance,
