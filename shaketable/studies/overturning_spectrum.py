@@ -19,7 +19,21 @@ end of the pulse: the block overturns without a further impact when it moves
 outward with E above the barrier p^2 (1 - cos alpha) (or is already past
 alpha and cannot return), after one more impact when cor^2 E is above the
 barrier, and never otherwise. No run length has to be guessed (the old
-12/p tail missed slow overturns near the threshold).
+12/p tail missed slow overturns near the threshold). The rules, for the exact
+and for the linearised model, are written out in :mod:`shaketable.core.fate`.
+
+Methods
+-------
+``method="fast"`` (default) and ``"predictor-corrector"`` integrate the exact
+Eq. (2-13); ``"linear"`` integrates Housner's linearised Eq. (2-4) (uplift at
+a = g alpha, runaway past alpha) and decides after the pulse with that model's
+energy. Its band edges are those of the closed forms of
+:func:`shaketable.core.theory.linear_pulse_bands` (in a/(g alpha), for every
+alpha) to the chord-area limit of the sampled pulse, (2 pi / n)^2 / 12
+relative for ``samples_per_cycle`` n (4.9e-8 at the default 8192). The
+engine stops a linearised run at |theta| = pi/2; that is the linearised
+block's runaway exactly when pi/2 > alpha + a/g (true for slender blocks at
+the amplitudes of a spectrum).
 
 Scan and bisection
 ------------------

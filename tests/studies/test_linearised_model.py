@@ -179,3 +179,56 @@ def test_fate_rules_on_hand_states():
         over, _, _, _ = free_rocking_fate(u * alpha, factor * (1 - u) * p * alpha, alpha, p,
                                           0.0, "linear")
         assert bool(over) is expected
+
+
+def test_spectrum_command_with_method_linear_gives_the_closed_form_bands(tmp_path, capsys):
+    """The issue's 'done when': `shaketable spectrum --method linear` (one-sine, safe window
+    included) against the closed forms, to 1e-7 (the CSV's 9 digits)."""
+    import pandas as pd
+
+    from shaketable.cli import main
+
+    alpha = 0.1
+    block = block_from(alpha, P)
+    unit = block.alpha / math.tan(block.alpha)
+    assert main(["spectrum", "--alpha", str(alpha), "--p", str(P), "--pulse", "one-sine",
+                 "--ratios", "4", "--method", "linear", "--scan-step", "0.02",
+                 "--out", str(tmp_path)]) == 0
+    assert "method linear" in capsys.readouterr().out
+    frame = pd.read_csv(tmp_path / "spectrum.csv", comment="#")
+    closed = theory.linear_pulse_bands("one-sine", 4.0, housner_cor(block))
+    assert list(frame["impacts"]) == [b[2] for b in closed]
+    assert list(frame["from a/(g tan alpha) [-]"][1:] / unit) == pytest.approx(
+        [b[0] for b in closed[1:]], rel=1e-7)
+    assert "method linear" in (tmp_path / "spectrum.csv").read_text().splitlines()[0]
+
+
+def test_spectrum_scene_method_key(tmp_path):
+    from shaketable.scenes.parse import SceneError, load_scene
+
+    text = """name = "linearised"
+source = "issue 30"
+
+[study]
+kind = "overturning-spectrum"
+pulse = "half-sine"
+alpha = "0.1 rad"
+p = "2 rad/s"
+cor = 1
+omega_over_p = [4]
+method = "%s"
+"""
+    path = tmp_path / "scene.toml"
+    path.write_text(text % "linear")
+    assert load_scene(path).spectrum.method == "linear"
+    path.write_text(text % "exact")
+    with pytest.raises(SceneError, match="study.method"):
+        load_scene(path)
+
+
+def test_spectrum_and_threshold_refuse_an_unknown_method():
+    block = block_from(0.1, P)
+    with pytest.raises(ValueError, match="method"):
+        overturning_spectrum(block, ["half-sine"], [4.0], method="reference")
+    with pytest.raises(ValueError, match="method"):
+        threshold(block, Pulse("half-sine", 8.0), cor=1.0, low=2.0, high=4.0, method="exact")
