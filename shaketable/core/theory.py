@@ -322,7 +322,14 @@ def _first_return(flight, tau_end):
     if first == grid.size:
         return math.inf
     if first == 0:
-        return flight.tau0          # returns at once: a cascade (the caller treats it as rest)
+        # back within the first grid step: find a positive point closer to tau0 (a short
+        # excursion, e.g. an uplift while x f is about to fall below 1 again)
+        for k in range(1, 46):
+            trial = flight.tau0 + (grid[0] - flight.tau0) * 0.5 ** k
+            if g(trial) > 0.0:
+                return brentq(g, trial, flight.tau0 + (grid[0] - flight.tau0) * 0.5 ** (k - 1),
+                              xtol=1e-15, rtol=8.9e-16)
+        return flight.tau0          # returns at once: the caller treats it as rest
     return brentq(g, grid[first - 1], grid[first], xtol=1e-15, rtol=8.9e-16)
 
 
@@ -372,6 +379,11 @@ def linear_pulse_response(kind: str, ratio: float | None, amplitude: float, cor:
             lift = min(lift, tau)
         flight = _Flight(side, tau, u, w, K, r, phase)
         back = _first_return(flight, tau_end)
+        if back == tau and w == 0.0:
+            # an uplift that ends at once (x f leaves its band within rounding of tau):
+            # the block stays on the ground; look for the next uplift a little later
+            tau, side = tau + 1e-12 * max(1.0, tau), 0
+            continue
         if back == math.inf:
             u, w = float(flight.position(tau_end)), float(flight.velocity(tau_end))
             break
