@@ -146,7 +146,8 @@ class RockingResult:
         overturned run has ``reason == "overturned"``; a run with prestress rods
         or a block that left the ground is ``"undecided: ..."`` (the rules
         assume a bare block; a constant top force is not known to the result
-        and is ignored).
+        and is ignored). A run cut short of its motion by ``duration`` is judged
+        as if the table stopped where the run ends.
 
         Returns
         -------
