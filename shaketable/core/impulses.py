@@ -54,7 +54,8 @@ class ImpulsiveMotion:
         spans it.
     times : tuple of float
         Instants of the steps [s], strictly increasing, inside the motion
-        (after its first sample, before its last).
+        (from its first sample, before its last: a step at the first sample
+        acts on the initial state).
     velocity_steps : tuple of float
         Change of the table's horizontal velocity at each instant [m/s], nonzero.
     """
@@ -81,8 +82,8 @@ class ImpulsiveMotion:
                                                                                  times[1:])):
             raise ValueError(f"ImpulsiveMotion.times must be finite and strictly increasing "
                              f"[s], got {times}")
-        if times[0] <= t[0] or times[-1] >= t[-1]:
-            raise ValueError(f"ImpulsiveMotion.times must lie inside the motion ({t[0]:g} s, "
+        if times[0] < t[0] or times[-1] >= t[-1]:
+            raise ValueError(f"ImpulsiveMotion.times must lie inside the motion [{t[0]:g} s, "
                              f"{t[-1]:g} s), got {times}")
         object.__setattr__(self, "times", times)
         object.__setattr__(self, "velocity_steps", steps)

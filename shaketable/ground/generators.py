@@ -265,7 +265,7 @@ def velocity_steps(times, steps, *, duration: float, dt: float = 0.01) -> Impuls
     Parameters
     ----------
     times : sequence of float
-        Instants of the steps [s], strictly increasing, in (0, duration).
+        Instants of the steps [s], strictly increasing, in [0, duration).
     steps : sequence of float
         Velocity change at each instant [m/s] (positive along +x), nonzero.
     duration : float

@@ -73,6 +73,8 @@ def simulate_impulsive(block, motion: ImpulsiveMotion, *, cor: float, theta0: fl
         if k > 0:
             rate += theta_dot_jump(theta, motion.velocity_steps[k - 1], block.alpha, block.R,
                                    linear=method == "linear")
+        if bounds[k + 1] == bounds[k]:      # a step at the motion's first sample
+            continue
         result = simulate(block, _piece(base, bounds[k], bounds[k + 1]), cor=cor, theta0=theta,
                           theta_dot0=rate, method=method, **options)
         pieces.append((bounds[k], result))

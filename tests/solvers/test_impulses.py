@@ -91,6 +91,15 @@ def test_jump_matches_a_very_short_pulse_of_the_same_area():
     assert change == pytest.approx(expected, rel=2e-3)
 
 
+def test_a_step_at_the_first_sample_acts_on_the_initial_state():
+    step = generators.velocity_steps([0.0], [0.2], duration=1.0)
+    given = simulate(BLOCK, Motion.at_rest(1.0, 0.01), cor=0.8,
+                     theta_dot0=theta_dot_jump(0.0, 0.2, BLOCK.alpha, BLOCK.R))
+    result = simulate(BLOCK, step, cor=0.8)
+    assert np.array_equal(result.theta, given.theta)
+    assert result.t_start == 0.0
+
+
 def test_joined_result_has_the_jump_and_every_piece():
     motion = generators.velocity_steps([0.2, 0.7], [0.3, 0.1], duration=1.5, dt=0.01)
     result = simulate(BLOCK, motion, cor=0.8)
@@ -113,6 +122,8 @@ def test_bad_impulses_are_refused_with_the_parameter_named():
         ImpulsiveMotion(rest, (0.5, 0.4), (0.1, 0.1))
     with pytest.raises(ValueError, match="inside the motion"):
         ImpulsiveMotion(rest, (1.5,), (0.1,))
+    with pytest.raises(ValueError, match="inside the motion"):
+        ImpulsiveMotion(rest, (-0.1,), (0.1,))
     with pytest.raises(ValueError, match="velocity"):
         generators.double_impulse(0.0, 0.5, duration=2.0)
 
