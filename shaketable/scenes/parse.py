@@ -552,6 +552,10 @@ def _motion(table, where) -> dict:
     if kind == "impulses" and not {"times", "velocity_steps", "duration"} <= set(converted):
         raise SceneError(f"{where}: an impulses motion needs times, velocity_steps (lists, "
                          "e.g. ['0.1 s', '0.5 s'] and ['0.2 m/s', '-0.2 m/s']) and duration")
+    for key in ("times", "velocity_steps") if kind == "impulses" else ():
+        if not isinstance(converted[key], list) or not converted[key]:
+            raise SceneError(f"{where}: motion.{key} must be a list of values with units, "
+                             f"got {converted[key]!r}")
     if kind == "artificial" and not {"preset", "seed"} <= set(converted):
         raise SceneError(f"{where}: an artificial motion needs preset and seed")
     return converted

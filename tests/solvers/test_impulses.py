@@ -146,3 +146,6 @@ def test_impulses_scene_runs_and_converts_its_units(tmp_path):
     bad = dict(data, motion={"kind": "impulses", "times": ["0.1 s"], "duration": "2 s"})
     with pytest.raises(SceneError, match="velocity_steps"):
         scene_from_dict(bad, "impulses.toml")
+    bad = dict(data, motion=dict(data["motion"], times="0.1 s"))
+    with pytest.raises(SceneError, match="motion.times must be a list"):
+        scene_from_dict(bad, "impulses.toml")
