@@ -402,6 +402,13 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
         periods = period_fit(record, block, offset=float(x[3]), t_release=release, sigma=sigma)
     except CalibrationError as error:
         notes.append(f"period fit: {error}")
+    periods_held = None
+    if periods is not None:
+        try:
+            periods_held = period_fit(record, block, offset=float(x[3]), t_release=release,
+                                      sigma=sigma, fit_alpha=False)
+        except CalibrationError:
+            periods_held = None
     scatter = None
     if peaks is not None:
         try:
@@ -410,7 +417,7 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
             notes.append(f"scatter model: {error}")
     warnings = diagnose(rate=record.rate, anti_alias=mode, filter_cutoff=float(cutoff),
                         residual_lag1=lag1, cor=float(x[0]), cor_se=float(se[0]), peaks=peaks,
-                        scatter=scatter, periods=periods)
+                        scatter=scatter, periods=periods_held)
     goodness = {
         "rms": float(np.sqrt(np.mean(res**2))),
         "noise_estimate": float(sigma if record.quantity == "angle"
@@ -428,10 +435,13 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
                        t_release=float(t_release), t_release_se=float(t_release_se),
                        offset=float(x[3]), offset_se=float(se[3]), covariance=covariance,
                        interval_method=method, fitted=fitted, residuals=res, goodness=goodness,
-                       peaks=peaks, periods=periods, bootstrap_interval=boot_interval,
+                       peaks=peaks, periods=periods, periods_alpha_held=periods_held,
+                       bootstrap_interval=boot_interval,
                        bootstrap_cors=boot,
-                       notes=tuple(notes + [f"WARNING: {warning}" for warning in warnings]),
-                       warnings=tuple(warnings), scatter=scatter, anti_alias=mode,
+                       notes=tuple(notes + [f"WARNING: {message}" for _, message in warnings]),
+                       warnings=tuple(message for _, message in warnings),
+                       warning_kinds=tuple(kind for kind, _ in warnings), scatter=scatter,
+                       anti_alias=mode,
                        filter_order=int(model.order),
                        filter_cutoff=float(cutoff), filter_delay=float(delay),
                        t_release_apparent=float(apparent),

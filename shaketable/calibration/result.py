@@ -67,7 +67,11 @@ class Calibration:
     peaks : PeakEstimate or None
         The independent peak-amplitude estimate (None if it failed).
     periods : PeriodFit or None
-        The period fit (None if it failed).
+        The period fit for R and alpha (None if it failed).
+    periods_alpha_held : PeriodFit or None
+        The period fit for R alone, alpha held at the nominal block's: R is
+        then determined 10-20 times better (R and alpha are strongly
+        correlated in the free fit), and this R is what the size warning tests.
     notes : tuple of str
         Notes (parameters at a bound, failed side methods) and the
         ``warnings``, each prefixed ``WARNING:``.
@@ -77,6 +81,8 @@ class Calibration:
         disagree, a COR that scatters or depends on the impact velocity, a
         period-fit size off the nominal block. Empty on a record that obeys
         the constant-COR model.
+    warning_kinds : tuple of str
+        The kind of each warning (:data:`~shaketable.calibration.diagnostics.KINDS`).
     scatter : CorScatter or None
         The random-effects model of the per-impact CORs: the block's mean COR
         with its interval and the impact-to-impact scatter sigma with its
@@ -119,10 +125,12 @@ class Calibration:
     goodness: dict[str, Any]
     peaks: PeakEstimate | None = None
     periods: PeriodFit | None = None
+    periods_alpha_held: PeriodFit | None = None
     bootstrap_interval: tuple[float, float] | None = None
     bootstrap_cors: np.ndarray | None = None
     notes: tuple[str, ...] = field(default_factory=tuple)
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    warning_kinds: tuple[str, ...] = field(default_factory=tuple)
     scatter: CorScatter | None = None
     anti_alias: str = "none"
     filter_order: int = 4
@@ -187,8 +195,7 @@ class Calibration:
             effective = self.periods.block
             height_se, width_se = self.periods.size_se()
             data.update({"period_fit_height_se [m]": height_se,
-                         "period_fit_width_se [m]": width_se,
-                         "period_fit_R_discrepancy [se]": self.periods.nominal_discrepancy()})
+                         "period_fit_width_se [m]": width_se})
             data.update({"period_fit_R [m]": self.periods.R,
                          "period_fit_R_se [m]": self.periods.R_se,
                          "period_fit_alpha [rad]": self.periods.alpha,
@@ -196,8 +203,14 @@ class Calibration:
                          "period_fit_height [m]": effective.height,
                          "period_fit_width [m]": effective.width,
                          "period_fit_rms [s]": self.periods.rms})
+        if self.periods_alpha_held is not None:
+            held = self.periods_alpha_held
+            data.update({"period_fit_alpha_held_R [m]": held.R,
+                         "period_fit_alpha_held_R_se [m]": held.R_se,
+                         "period_fit_alpha_held_R_discrepancy [se]": held.nominal_discrepancy()})
         data["notes"] = list(self.notes)
         data["warnings"] = list(self.warnings)
+        data["warning_kinds"] = list(self.warning_kinds)
         return {key: json_ready(value) for key, value in data.items()}
 
     def to_json(self, path: str | os.PathLike[str] | None = None) -> str:
@@ -267,7 +280,11 @@ class Calibration:
                          f"alpha = {self.periods.alpha:.4f} +- {self.periods.alpha_se:.4f} rad "
                          f"-> {e.height / INCH:.2f} +- {height_se / INCH:.2f} x "
                          f"{e.width / INCH:.2f} +- {width_se / INCH:.2f} in (standard errors; "
-                         f"nominal {self.block.describe()})")
+                         f"nominal {self.block.describe()})"
+                         + (f"; at the nominal alpha R = {self.periods_alpha_held.R:.4f} +- "
+                            f"{self.periods_alpha_held.R_se:.4f} m (nominal "
+                            f"{self.block.R:.4f} m)" if self.periods_alpha_held is not None
+                            else ""))
         lines.extend(note if note.startswith("WARNING: ") else f"note: {note}"
                      for note in self.notes)
         return "\n".join(lines)
