@@ -32,6 +32,13 @@ def _filter_order(text: str):
             from None
 
 
+def _column(text: str | None) -> str | int | None:
+    """A --column / --time-column value: a 0-based index if it is an integer, else a name."""
+    if text is not None and text.strip().lstrip("-").isdigit():
+        return int(text)
+    return text
+
+
 def bundled_free_rocking() -> dict:
     """Bundled free-rocking records: name -> path (``shaketable/data/free_rocking``)."""
     from importlib.resources import files
@@ -61,11 +68,9 @@ def _calibrate(args) -> int:
     height = None
     if args.height is not None:
         height = parse(args.height, "length", where="--height")
-    column = args.column
-    if column is not None and column.strip().lstrip("-").isdigit():
-        column = int(column)
-    record = read_record(_record_path(args.record), column=column, units=args.units, rate=args.rate,
-                         height=height)
+    record = read_record(_record_path(args.record), column=_column(args.column),
+                         units=args.units, rate=args.rate, height=height,
+                         time_column=_column(args.time_column))
     order = _filter_order(args.filter_order)
     from shaketable.commands.common import notice_first_compile
 
@@ -108,9 +113,12 @@ def register(commands) -> None:
     parser.add_argument("--block", required=True, help="block size, height x width, e.g. 30x6in")
     parser.add_argument("--column", help="the measured column, by name or 0-based index "
                                          "(default: the only non-time one)")
+    parser.add_argument("--time-column", help="the time column, by name or 0-based index "
+                                              "(default: the column named time, t, Zeit... "
+                                              "in s, ms or us as its header says)")
     parser.add_argument("--units", help="unit of the column: rad, deg, mrad (angle) or m, cm, "
                                         "mm, in, ft (top displacement); default from '[unit]' "
-                                        "in its name")
+                                        "in its name (a contradicting --units is refused)")
     parser.add_argument("--rate", type=float, help="samples per second, without a time column")
     parser.add_argument("--height", help="height of the potentiometer wire, e.g. '30 in' "
                                          "(default: the block's height)")
