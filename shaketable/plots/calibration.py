@@ -213,3 +213,32 @@ def plot_calibration(calibration: Calibration, fig: Figure | None = None,
         if axis.get_legend() is not None:
             place_legend(axis, fontsize=8)
     return fig
+
+
+def plot_calibrated_ensemble(ensemble, ax: Axes | None = None) -> Axes:
+    """max |theta|/alpha of each member against its COR (overturned members at the top).
+
+    ``ensemble`` is a :class:`~shaketable.calibration.uncertainty.CalibratedEnsemble`.
+    Returns the axes.
+    """
+    if ax is None:
+        _, grid = _figure(None, 1, figsize=(6.5, 4.2))
+        ax = grid[0, 0]
+    frame = ensemble.members
+    cors = frame["cor [-]"].to_numpy()
+    ratio = frame["max_theta_ratio [-]"].to_numpy()
+    overturned = frame["overturned"].to_numpy(dtype=bool)
+    ax.plot(cors[~overturned], ratio[~overturned], "o", ms=3, label="stands")
+    if np.any(overturned):
+        ax.plot(cors[overturned], np.full(np.count_nonzero(overturned), 1.0), "x", ms=4,
+                color="C3", label="overturns (drawn at 1)")
+    ax.axvline(ensemble.cor.mean, color="0.4", lw=0.8, ls="--",
+               label=f"calibrated mean COR {ensemble.cor.mean:.4f}")
+    s = ensemble.summary
+    ax.set_title(f"P(overturn) = {s['P(overturn) [-]']:.3f} ({s['P low [-]']:.3f} to "
+                 f"{s['P high [-]']:.3f}), {s['members']} members", fontsize=10)
+    ax.set_xlabel("COR of the member [-]")
+    ax.set_ylabel("max |θ|/α [-]")
+    place_legend(ax, fontsize=8)
+    ax.grid(alpha=0.3)
+    return ax
