@@ -233,3 +233,29 @@ def test_simulate_with_a_calibration_file_reports_the_spread(tmp_path, capsys):
                                    duration=6.0)
     assert ensemble.members["max_theta_ratio [-]"].iloc[0] == pytest.approx(
         plain.max_theta_ratio, rel=1e-6, nan_ok=True)
+
+
+def test_scene_takes_a_calibration_file(tmp_path, capsys):
+    from shaketable.scenes.parse import SceneError, load_scene
+
+    (tmp_path / "lab").mkdir()
+    # a calibration.json as `shaketable calibrate` writes it (the keys CalibratedCor reads)
+    (tmp_path / "lab" / "calibration.json").write_text(json.dumps({
+        "cor [-]": 0.905, "cor_se [-]": 1e-4, "cor_mean [-]": 0.90, "cor_mean_se [-]": 0.006,
+        "cor_mean_dof": 10, "cor_scatter_sigma [-]": 0.02}))
+    scene = tmp_path / "scene.toml"
+    scene.write_text('name = "calibrated"\n[block]\nsize = "30x6in"\n'
+                     '[motion]\nkind = "record"\nname = "pacoima-dam-s16e"\nscale = 0.3\n'
+                     '[rocking]\ncor = "lab/calibration.json"\nduration = "6 s"\n')
+    parsed = load_scene(scene)
+    assert parsed.cors == (0.90,) and parsed.calibrated_cor.sigma == 0.02
+    out = tmp_path / "out"
+    assert main(["run", str(scene), "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "calibrated COR 0.9000 (95 % interval" in printed and "P(overturn) = " in printed
+    summary = json.loads((out / "summary.json").read_text())
+    ensemble = summary["calibrated COR ensemble"]
+    assert ensemble["members"] == 200 and ensemble["cor p05 [-]"] < 0.90 < ensemble["cor p95 [-]"]
+    scene.write_text(scene.read_text().replace("lab/calibration.json", "lab/missing.json"))
+    with pytest.raises(SceneError, match=r"rocking.cor 'lab/missing.json'.*no such calibration"):
+        load_scene(scene)
