@@ -96,10 +96,16 @@ def _calibrate(args) -> int:
 
 def cor_argument(text: str) -> float | str:
     """A ``--cor`` value: a number, or the path of a ``calibration.json``."""
+    import argparse
+
     try:
         return float(text)
     except ValueError:
-        return text
+        if text.strip().lower().endswith(".json") or Path(text).is_file():
+            return text
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: give a number in [0, 1] or the path of a calibration.json of "
+            "`shaketable calibrate`") from None
 
 
 def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
@@ -116,7 +122,10 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
     from shaketable.core.files import json_ready_dict, write_csv, write_text
     from shaketable.plots import base as plots
 
-    cor = CalibratedCor.from_json(args.cor)
+    try:
+        cor = CalibratedCor.from_json(args.cor)
+    except (OSError, ValueError) as error:
+        raise ValueError(f"--cor {args.cor}: {error}") from None
     print(f"{block.describe()} block, calibrated {cor.describe()}")
     if motion is None:
         from shaketable.solvers.api import simulate
