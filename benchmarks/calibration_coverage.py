@@ -497,7 +497,14 @@ here. Example fit (docs/figures/calibration_fit.png): COR {example.cor:.5f}, 95 
 ![example fit](../docs/figures/calibration_fit.png)
 ![coverage](../docs/figures/calibration_coverage.png)
 """
-    (ROOT / "benchmarks" / "CALIBRATION.md").write_text(report)
+    target = ROOT / "benchmarks" / "CALIBRATION.md"
+    begin, end = "<!-- BEGIN benchmarks/calibration_scatter.py -->", \
+        "<!-- END benchmarks/calibration_scatter.py -->"
+    previous = target.read_text() if target.exists() else ""
+    if begin in previous and end in previous:       # calibration_scatter.py's section stays
+        report = (report.rstrip("\n") + "\n\n"
+                  + previous[previous.index(begin):previous.index(end) + len(end)] + "\n")
+    target.write_text(report)
     print(main_table)
     print(listed)
     print(f"wrote benchmarks/CALIBRATION.md and docs/figures/calibration_*.png in "

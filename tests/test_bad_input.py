@@ -255,6 +255,8 @@ CLI_CASES = [
     ("option", "cor-nan", ["simulate", "--block", "4x1ft", "--cor", "nan"], 2, "cor"),
     ("option", "cor-inf", ["simulate", "--block", "4x1ft", "--cor", "inf"], 2, "cor"),
     ("option", "cor-text", ["simulate", "--block", "4x1ft", "--cor", "abc"], 2, "--cor"),
+    ("option", "cor-no-calibration", ["simulate", "--block", "4x1ft", "--cor", "no.json"], 2,
+     "--cor no.json: no.json: no such calibration file"),
     ("option", "cor-missing", ["simulate", "--block", "4x1ft"], 2, "--cor"),
     ("option", "theta0-too-big", FREE + ["--theta0", "2rad"], 2, "theta0"),
     ("option", "theta0-words", FREE + ["--theta0", "abc"], 2, "theta0"),

@@ -75,6 +75,7 @@ import scipy.signal
 import scipy.stats
 
 from shaketable.calibration.covariance import bandwidth, sandwich_covariance
+from shaketable.calibration.diagnostics import diagnose
 from shaketable.calibration.filters import butterworth_delay
 from shaketable.calibration.model import (
     PARAMETERS,
@@ -96,6 +97,7 @@ from shaketable.calibration.record import (
     FreeRockingRecord,
 )
 from shaketable.calibration.result import Calibration
+from shaketable.calibration.scatter import cor_scatter
 from shaketable.core.geometry import Block
 from shaketable.core.theory import exact_period
 from shaketable.lab.digitizer import Digitizer
@@ -400,6 +402,22 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
         periods = period_fit(record, block, offset=float(x[3]), t_release=release, sigma=sigma)
     except CalibrationError as error:
         notes.append(f"period fit: {error}")
+    periods_held = None
+    if periods is not None:
+        try:
+            periods_held = period_fit(record, block, offset=float(x[3]), t_release=release,
+                                      sigma=sigma, fit_alpha=False)
+        except CalibrationError:
+            periods_held = None
+    scatter = None
+    if peaks is not None:
+        try:
+            scatter = cor_scatter(peaks)
+        except CalibrationError as error:
+            notes.append(f"scatter model: {error}")
+    warnings = diagnose(rate=record.rate, anti_alias=mode, filter_cutoff=float(cutoff),
+                        residual_lag1=lag1, cor=float(x[0]), cor_se=float(se[0]), peaks=peaks,
+                        scatter=scatter, periods=periods_held)
     goodness = {
         "rms": float(np.sqrt(np.mean(res**2))),
         "noise_estimate": float(sigma if record.quantity == "angle"
@@ -417,8 +435,13 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
                        t_release=float(t_release), t_release_se=float(t_release_se),
                        offset=float(x[3]), offset_se=float(se[3]), covariance=covariance,
                        interval_method=method, fitted=fitted, residuals=res, goodness=goodness,
-                       peaks=peaks, periods=periods, bootstrap_interval=boot_interval,
-                       bootstrap_cors=boot, notes=tuple(notes), anti_alias=mode,
+                       peaks=peaks, periods=periods, periods_alpha_held=periods_held,
+                       bootstrap_interval=boot_interval,
+                       bootstrap_cors=boot,
+                       notes=tuple(notes + [f"WARNING: {message}" for _, message in warnings]),
+                       warnings=tuple(message for _, message in warnings),
+                       warning_kinds=tuple(kind for kind, _ in warnings), scatter=scatter,
+                       anti_alias=mode,
                        filter_order=int(model.order),
                        filter_cutoff=float(cutoff), filter_delay=float(delay),
                        t_release_apparent=float(apparent),

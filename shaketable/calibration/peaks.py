@@ -159,6 +159,10 @@ class PeakEstimate:
         Weighted linear trend of the per-impact COR against the impact
         velocity [s/rad], its standard error, and the intercept [-]: a slope
         consistent with 0 supports the report's Section 3.7 (1).
+    log_energy_se : ndarray or None
+        Standard error of log E_n of each peak from the noise [-] (the
+        measurement covariance of the per-impact CORs is built from it:
+        successive CORs share a peak).
     """
 
     cor: float
@@ -171,11 +175,19 @@ class PeakEstimate:
     slope: float
     slope_se: float
     intercept: float
+    log_energy_se: np.ndarray | None = None
 
     @property
     def velocity_independent(self) -> bool:
         """True when the 95 % interval of the trend's slope contains 0."""
         return bool(abs(self.slope) <= 1.96 * self.slope_se) if np.isfinite(self.slope) else True
+
+    @property
+    def slope_z(self) -> float:
+        """Slope of the COR against the impact velocity in standard errors [-] (0 if none)."""
+        if not (np.isfinite(self.slope) and self.slope_se > 0):
+            return 0.0
+        return float(self.slope / self.slope_se)
 
 
 def peak_estimate(record: FreeRockingRecord, block: Block, *, offset: float = 0.0,
@@ -252,7 +264,7 @@ def peak_estimate(record: FreeRockingRecord, block: Block, *, offset: float = 0.
     return PeakEstimate(cor=cor, cor_interval=interval, peak_times=times, amplitudes=amplitudes,
                         cor_per_impact=per_impact, cor_per_impact_se=per_impact_se,
                         impact_velocity=velocity, slope=trend_slope, slope_se=trend_se,
-                        intercept=intercept)
+                        intercept=intercept, log_energy_se=log_se)
 
 
 @dataclass(frozen=True)
@@ -275,6 +287,9 @@ class PeriodFit:
         RMS of the period residuals [s].
     method : str
         How the periods were measured: ``"zeros"`` or ``"report"``.
+    covariance : ndarray or None
+        Covariance of (R, alpha) [m^2, m rad, rad^2] (1 x 1 of R with alpha
+        held).
     """
 
     amplitudes: np.ndarray
@@ -286,11 +301,30 @@ class PeriodFit:
     nominal: Block | None
     rms: float
     method: str = "zeros"
+    covariance: np.ndarray | None = None
 
     @property
     def block(self) -> Block:
         """The effective block: height 2 R cos(alpha), width 2 R sin(alpha)."""
         return Block.from_slenderness(self.R, self.alpha)
+
+    def size_se(self) -> tuple[float, float]:
+        """Standard errors of the effective height and width [m] (delta method, with the
+        covariance of R and alpha)."""
+        gradient = np.array([[2 * math.cos(self.alpha), -2 * self.R * math.sin(self.alpha)],
+                             [2 * math.sin(self.alpha), 2 * self.R * math.cos(self.alpha)]])
+        if self.covariance is not None and self.covariance.shape == (2, 2):
+            covariance = self.covariance
+        else:
+            covariance = np.diag([self.R_se**2, self.alpha_se**2])
+        size = gradient @ covariance @ gradient.T
+        return float(math.sqrt(max(size[0, 0], 0.0))), float(math.sqrt(max(size[1, 1], 0.0)))
+
+    def nominal_discrepancy(self) -> float:
+        """(fitted R - nominal R) / its standard error [-] (NaN without a nominal block)."""
+        if self.nominal is None or not (self.R_se > 0):
+            return math.nan
+        return (self.R - self.nominal.R) / self.R_se
 
     def curve(self, amplitudes: npt.ArrayLike, R: float | None = None,
               alpha: float | None = None) -> np.ndarray:
@@ -362,9 +396,11 @@ def period_fit(record: FreeRockingRecord, block: Block, *, offset: float = 0.0,
         cov = np.linalg.inv(solution.jac.T @ solution.jac) * s2
         se = np.sqrt(np.diag(cov))
     except np.linalg.LinAlgError:
+        cov = None
         se = np.full(len(x0), math.nan)
     return PeriodFit(amplitudes=amplitudes, periods=periods, R=float(solution.x[0]),
                      R_se=float(se[0]),
                      alpha=float(solution.x[1]) if fit_alpha else block.alpha,
                      alpha_se=float(se[1]) if fit_alpha else 0.0, nominal=block,
-                     rms=float(np.sqrt(np.mean(solution.fun**2))), method=method)
+                     rms=float(np.sqrt(np.mean(solution.fun**2))), method=method,
+                     covariance=cov)

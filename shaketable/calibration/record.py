@@ -184,14 +184,78 @@ def _unit_in_name(name: str) -> str | None:
     return None
 
 
+#: Time units accepted in a time column's header, name -> seconds.
+TIME_UNITS = {"s": 1.0, "sec": 1.0, "secs": 1.0, "second": 1.0, "seconds": 1.0,
+              "ms": 1e-3, "msec": 1e-3, "us": 1e-6, "µs": 1e-6, "μs": 1e-6, "usec": 1e-6,
+              "min": 60.0}
+
+#: Names of a time column (any language a lab exports in), before the unit.
+TIME_NAMES = ("time", "t", "zeit", "temps", "tiempo", "tempo", "tid", "czas", "tijd")
+
+
+def _base_name(name: str) -> str:
+    """A column name without its unit in brackets or parentheses, lower case."""
+    stripped = name.strip()
+    unit = _unit_in_name(stripped)
+    if unit is not None:
+        closing = stripped[-1]
+        opening = "[" if closing == "]" else "("
+        stripped = stripped[:stripped.rindex(opening)]
+    return stripped.strip().lower()
+
+
 def _is_time_name(name: str) -> bool:
-    lowered = name.strip().lower()
-    return lowered.startswith("time") or lowered.split(" ")[0] in ("t", "t[s]", "t(s)")
+    """``time``, ``Time (ms)``, ``Zeit [s]``, ``t [us]``, ``time_s``...: a time column."""
+    base = _base_name(name)
+    unit = _unit_in_name(name)
+    if base in TIME_NAMES or base.startswith("time"):
+        return True
+    return bool(unit is not None and unit.strip().lower() in TIME_UNITS
+                and base.split(" ")[0].split("_")[0] in TIME_NAMES)
+
+
+def time_factor(path: Path | str, name: str) -> float:
+    """Seconds per unit of the time column ``name`` (``time [ms]`` -> 1e-3; no unit -> 1).
+
+    Raises
+    ------
+    ValueError
+        A unit in the name that is not a time unit (naming the file and column).
+    """
+    unit = _unit_in_name(name)
+    if unit is None:
+        return 1.0
+    key = unit.strip().lower()
+    if key not in TIME_UNITS:
+        raise ValueError(f"{path}: time column {name!r} is in {unit!r}, not a time unit; "
+                         f"expected one of {sorted(set(TIME_UNITS))}")
+    return TIME_UNITS[key]
+
+
+def _checked_units(path: Path, column: str, units: str | None) -> str:
+    """The column's unit: ``units`` (``--units``) or the one in its header, refusing a clash."""
+    stated = _unit_in_name(column)
+    if units is None:
+        if stated is None:
+            raise ValueError(f"{path}: column {column!r} has no unit in brackets; give --units "
+                             f"(angle: {sorted(ANGLE_UNITS)}, length: {sorted(LENGTH_UNITS)})")
+        return stated
+    if stated is not None and _canonical_unit(stated) != _canonical_unit(units):
+        raise ValueError(f"{path}: --units {units!r} contradicts the unit {stated!r} in the "
+                         f"header of column {column!r}; drop --units (the header is read) or "
+                         "correct the file")
+    return units
+
+
+def _canonical_unit(unit: str) -> str:
+    key = unit.strip().lower()
+    return {"inch": "in", "inches": "in", "degree": "deg", "degrees": "deg",
+            "radian": "rad", "radians": "rad", "feet": "ft", "foot": "ft"}.get(key, key)
 
 
 def _record_from_columns(path: Path, t: np.ndarray, values: np.ndarray, units: str, column: str,
                          height: float | None) -> FreeRockingRecord:
-    unit_key = units.strip().lower()
+    unit_key = _canonical_unit(units)
     if unit_key in ANGLE_UNITS:
         return FreeRockingRecord.from_angle(t, values, units=unit_key, name=path.stem)
     if unit_key in LENGTH_UNITS:
@@ -222,7 +286,8 @@ def _is_csv_with_header(lines: list[str]) -> bool:
 
 
 def read_record(path: str | os.PathLike[str], *, column: str | int | None = None, units: str | None = None,
-                rate: float | None = None, height: float | None = None) -> FreeRockingRecord:
+                rate: float | None = None, height: float | None = None,
+                time_column: str | int | None = None) -> FreeRockingRecord:
     """Read a free-rocking record from a CSV or plain-text file.
 
     Two layouts are read:
@@ -248,10 +313,17 @@ def read_record(path: str | os.PathLike[str], *, column: str | int | None = None
         record, a length unit (m, cm, mm, in, ft) a top-displacement record.
         Default: the unit in brackets in the column's name, e.g.
         ``top displacement [in]``; required when the file does not state it.
+        A ``units`` that contradicts the header's unit is refused (ValueError
+        naming both).
     rate : float, optional
-        Samples per second [1/s], for a file without a time column
-        (a column named ``time ...`` or ``t ...``, in seconds; in a headerless
-        file of two or more columns, the first).
+        Samples per second [1/s], for a file without a time column.
+    time_column : str or int, optional
+        The time column, by name or 0-based index. Default: the column whose
+        name is a time name (:data:`TIME_NAMES`: ``time``, ``t``, ``Zeit``,
+        ... or any name starting with ``time``), with its unit in brackets or
+        parentheses (:data:`TIME_UNITS`: s, sec, ms, us, µs, min; none means
+        seconds): ``time [ms]``, ``Time (sec)``, ``Zeit [s]``; in a headerless
+        file of two or more columns, the first.
     height : float, optional
         Height of the wire [m] for a top displacement (default: the block's).
 
@@ -274,7 +346,7 @@ def read_record(path: str | os.PathLike[str], *, column: str | int | None = None
     lines = read_lines(path)
     if not _is_csv_with_header(lines):
         return _read_text_record(path, lines, column=column, units=units, rate=rate,
-                                 height=height)
+                                 height=height, time_column=time_column)
     import pandas as pd
 
     try:
@@ -284,23 +356,18 @@ def read_record(path: str | os.PathLike[str], *, column: str | int | None = None
     names = [str(name).strip() for name in frame.columns]
     frame.columns = names
     time_names = [name for name in names if _is_time_name(name)]
-    if isinstance(column, (int, np.integer)) and not isinstance(column, bool):
-        if not -len(names) <= column < len(names):
-            raise ValueError(f"{path}: column {column} but the file has {len(names)} columns "
-                             f"{names}")
-        column = names[column]
+    if time_column is not None:
+        time_names = [_named_column(path, names, time_column, "--time-column")]
+    if column is not None:
+        column = _named_column(path, names, column, "--column")
     if column is None:
         candidates = [name for name in names if name not in time_names]
         if len(candidates) != 1:
             raise ValueError(f"{path}: give --column, one of {candidates}")
         column = candidates[0]
-    if column not in names:
-        raise ValueError(f"{path}: no column {column!r}; columns are {names}")
-    if units is None:
-        units = _unit_in_name(column)
-        if units is None:
-            raise ValueError(f"{path}: column {column!r} has no unit in brackets; give --units "
-                             f"(angle: {sorted(ANGLE_UNITS)}, length: {sorted(LENGTH_UNITS)})")
+    if time_names and column == time_names[0]:
+        raise ValueError(f"{path}: --column {column!r} is the time column")
+    units = _checked_units(path, column, units)
 
     def numbers_of(name: str) -> np.ndarray:
         values = pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
@@ -313,7 +380,7 @@ def read_record(path: str | os.PathLike[str], *, column: str | int | None = None
 
     values = numbers_of(column)
     if time_names:
-        t = numbers_of(time_names[0])
+        t = numbers_of(time_names[0]) * time_factor(path, time_names[0])
     elif rate is not None:
         t = np.arange(values.size) / rate
     else:
@@ -321,8 +388,23 @@ def read_record(path: str | os.PathLike[str], *, column: str | int | None = None
     return _record_from_columns(path, t, values, units, column, height)
 
 
+def _named_column(path: Path, names: list[str], choice: str | int, option: str) -> str:
+    """The column ``choice`` (name, case-insensitive, or 0-based index) of a CSV header."""
+    if isinstance(choice, (int, np.integer)) and not isinstance(choice, bool):
+        if not -len(names) <= choice < len(names):
+            raise ValueError(f"{path}: {option} {choice} but the file has {len(names)} columns "
+                             f"{names}")
+        return names[int(choice)]
+    lowered = [name.lower() for name in names]
+    key = str(choice).strip().lower()
+    if key not in lowered:
+        raise ValueError(f"{path}: {option}: no column {choice!r}; columns are {names}")
+    return names[lowered.index(key)]
+
+
 def _read_text_record(path: Path, lines: list[str], *, column: str | int | None, units: str | None,
-                      rate: float | None, height: float | None) -> FreeRockingRecord:
+                      rate: float | None, height: float | None,
+                      time_column: str | int | None = None) -> FreeRockingRecord:
     """Headerless or whitespace-separated record, through shaketable.ground.records' text tokenizer."""
     from shaketable.ground.readers.text import (
         count_header_lines,
@@ -349,7 +431,16 @@ def _read_text_record(path: Path, lines: list[str], *, column: str | int | None,
     else:
         value_index = None
     time_index = None
-    if names:
+    if time_column is not None:
+        if isinstance(time_column, str):
+            if not names:
+                raise ValueError(f"{path}: --time-column {time_column!r}: the file has no "
+                                 "header line; give the column's index")
+            time_index = names.index(_named_column(path, names, time_column, "--time-column"))
+        else:
+            time_index = names.index(_named_column(path, names, time_column, "--time-column")) \
+                if names else _index_of(path, time_column, ncolumns, "--time-column")
+    elif names:
         timed = [index for index, name in enumerate(names) if _is_time_name(name)]
         time_index = timed[0] if timed else None
     elif rate is None and ncolumns >= 2:
@@ -363,6 +454,8 @@ def _read_text_record(path: Path, lines: list[str], *, column: str | int | None,
     if value_index == time_index:
         raise ValueError(f"{path}: the column {value_index} chosen is the time column")
     name = names[value_index] if names else f"column {value_index}"
+    if names and units is not None:
+        units = _checked_units(path, name, units)
     if units is None:
         units = _unit_in_name(name) if names else None
         if units is None:
@@ -374,7 +467,7 @@ def _read_text_record(path: Path, lines: list[str], *, column: str | int | None,
                 f"{sorted(LENGTH_UNITS)})")
     values = table[:, value_index]
     if time_index is not None:
-        t = table[:, time_index]
+        t = table[:, time_index] * (time_factor(path, names[time_index]) if names else 1.0)
         steps = np.diff(t)
         bad = np.flatnonzero(steps <= 0)
         if bad.size:
@@ -385,6 +478,12 @@ def _read_text_record(path: Path, lines: list[str], *, column: str | int | None,
     else:
         raise ValueError(f"{path}: no time column; give --rate (samples/s)")
     return _record_from_columns(path, t, values, units, name, height)
+
+
+def _index_of(path: Path, choice: int, ncolumns: int, option: str) -> int:
+    if isinstance(choice, bool) or not -ncolumns <= int(choice) < ncolumns:
+        raise ValueError(f"{path}: {option} {choice!r} but the file has {ncolumns} column(s)")
+    return int(choice) % ncolumns
 
 
 def _data_line(path: Path, row: int) -> int:

@@ -15,6 +15,7 @@ import numpy as np
 from shaketable.calibration.model import PARAMETERS
 from shaketable.calibration.peaks import PeakEstimate, PeriodFit
 from shaketable.calibration.record import FreeRockingRecord
+from shaketable.calibration.scatter import CorScatter
 from shaketable.core.constants import INCH
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
@@ -66,9 +67,26 @@ class Calibration:
     peaks : PeakEstimate or None
         The independent peak-amplitude estimate (None if it failed).
     periods : PeriodFit or None
-        The period fit (None if it failed).
+        The period fit for R and alpha (None if it failed).
+    periods_alpha_held : PeriodFit or None
+        The period fit for R alone, alpha held at the nominal block's: R is
+        then determined 10-20 times better (R and alpha are strongly
+        correlated in the free fit), and this R is what the size warning tests.
     notes : tuple of str
-        Warnings (parameters at a bound, failed side methods).
+        Notes (parameters at a bound, failed side methods) and the
+        ``warnings``, each prefixed ``WARNING:``.
+    warnings : tuple of str
+        The diagnostics that fired (:func:`~shaketable.calibration.diagnostics.diagnose`):
+        an implausible fitted filter, autocorrelated residuals, methods that
+        disagree, a COR that scatters or depends on the impact velocity, a
+        period-fit size off the nominal block. Empty on a record that obeys
+        the constant-COR model.
+    warning_kinds : tuple of str
+        The kind of each warning (:data:`~shaketable.calibration.diagnostics.KINDS`).
+    scatter : CorScatter or None
+        The random-effects model of the per-impact CORs: the block's mean COR
+        with its interval and the impact-to-impact scatter sigma with its
+        interval (:func:`~shaketable.calibration.scatter.cor_scatter`).
     anti_alias : str
         How the acquisition's filter was modelled: ``"fit"``, ``"known"`` or
         ``"none"`` (:data:`ANTI_ALIAS`).
@@ -107,9 +125,13 @@ class Calibration:
     goodness: dict[str, Any]
     peaks: PeakEstimate | None = None
     periods: PeriodFit | None = None
+    periods_alpha_held: PeriodFit | None = None
     bootstrap_interval: tuple[float, float] | None = None
     bootstrap_cors: np.ndarray | None = None
     notes: tuple[str, ...] = field(default_factory=tuple)
+    warnings: tuple[str, ...] = field(default_factory=tuple)
+    warning_kinds: tuple[str, ...] = field(default_factory=tuple)
+    scatter: CorScatter | None = None
     anti_alias: str = "none"
     filter_order: int = 4
     filter_cutoff: float = math.inf
@@ -167,8 +189,13 @@ class Calibration:
                          "cor_vs_velocity_slope [s/rad]": self.peaks.slope,
                          "cor_vs_velocity_slope_se [s/rad]": self.peaks.slope_se,
                          "cor_velocity_independent": self.peaks.velocity_independent})
+        if self.scatter is not None:
+            data.update(self.scatter.summary())
         if self.periods is not None:
             effective = self.periods.block
+            height_se, width_se = self.periods.size_se()
+            data.update({"period_fit_height_se [m]": height_se,
+                         "period_fit_width_se [m]": width_se})
             data.update({"period_fit_R [m]": self.periods.R,
                          "period_fit_R_se [m]": self.periods.R_se,
                          "period_fit_alpha [rad]": self.periods.alpha,
@@ -176,7 +203,14 @@ class Calibration:
                          "period_fit_height [m]": effective.height,
                          "period_fit_width [m]": effective.width,
                          "period_fit_rms [s]": self.periods.rms})
+        if self.periods_alpha_held is not None:
+            held = self.periods_alpha_held
+            data.update({"period_fit_alpha_held_R [m]": held.R,
+                         "period_fit_alpha_held_R_se [m]": held.R_se,
+                         "period_fit_alpha_held_R_discrepancy [se]": held.nominal_discrepancy()})
         data["notes"] = list(self.notes)
+        data["warnings"] = list(self.warnings)
+        data["warning_kinds"] = list(self.warning_kinds)
         return {key: json_ready(value) for key, value in data.items()}
 
     def to_json(self, path: str | os.PathLike[str] | None = None) -> str:
@@ -232,12 +266,27 @@ class Calibration:
                          f"{p.cor_interval[1]:.4f}) from {p.amplitudes.size} peaks; COR vs "
                          f"impact velocity slope {p.slope:+.4f} +- {1.96 * p.slope_se:.4f} s/rad"
                          + (" (no dependence)" if p.velocity_independent else " (DEPENDS)"))
+        if self.scatter is not None:
+            sc = self.scatter
+            lines.append(f"block's mean COR (random effects over {sc.impacts} impacts) = "
+                         f"{sc.mean:.4f} (95 % interval {sc.mean_interval[0]:.4f} to "
+                         f"{sc.mean_interval[1]:.4f}); impact-to-impact scatter sigma = "
+                         f"{sc.sigma:.4f} ({sc.sigma_interval[0]:.4f} to "
+                         f"{sc.sigma_interval[1]:.4f})")
         if self.periods is not None:
             e = self.periods.block
-            lines.append(f"period fit: R = {self.periods.R:.4f} m, alpha = "
-                         f"{self.periods.alpha:.4f} rad -> {e.height / INCH:.2f} x "
-                         f"{e.width / INCH:.2f} in (nominal {self.block.describe()})")
-        lines.extend(f"note: {note}" for note in self.notes)
+            height_se, width_se = self.periods.size_se()
+            lines.append(f"period fit: R = {self.periods.R:.4f} +- {self.periods.R_se:.4f} m, "
+                         f"alpha = {self.periods.alpha:.4f} +- {self.periods.alpha_se:.4f} rad "
+                         f"-> {e.height / INCH:.2f} +- {height_se / INCH:.2f} x "
+                         f"{e.width / INCH:.2f} +- {width_se / INCH:.2f} in (standard errors; "
+                         f"nominal {self.block.describe()})"
+                         + (f"; at the nominal alpha R = {self.periods_alpha_held.R:.4f} +- "
+                            f"{self.periods_alpha_held.R_se:.4f} m (nominal "
+                            f"{self.block.R:.4f} m)" if self.periods_alpha_held is not None
+                            else ""))
+        lines.extend(note if note.startswith("WARNING: ") else f"note: {note}"
+                     for note in self.notes)
         return "\n".join(lines)
 
 

@@ -32,6 +32,13 @@ def _filter_order(text: str):
             from None
 
 
+def _column(text: str | None) -> str | int | None:
+    """A --column / --time-column value: a 0-based index if it is an integer, else a name."""
+    if text is not None and text.strip().lstrip("-").isdigit():
+        return int(text)
+    return text
+
+
 def bundled_free_rocking() -> dict:
     """Bundled free-rocking records: name -> path (``shaketable/data/free_rocking``)."""
     from importlib.resources import files
@@ -61,11 +68,9 @@ def _calibrate(args) -> int:
     height = None
     if args.height is not None:
         height = parse(args.height, "length", where="--height")
-    column = args.column
-    if column is not None and column.strip().lstrip("-").isdigit():
-        column = int(column)
-    record = read_record(_record_path(args.record), column=column, units=args.units, rate=args.rate,
-                         height=height)
+    record = read_record(_record_path(args.record), column=_column(args.column),
+                         units=args.units, rate=args.rate, height=height,
+                         time_column=_column(args.time_column))
     order = _filter_order(args.filter_order)
     from shaketable.commands.common import notice_first_compile
 
@@ -89,6 +94,62 @@ def _calibrate(args) -> int:
     return 0
 
 
+def cor_argument(text: str) -> float | str:
+    """A ``--cor`` value: a number, or the path of a ``calibration.json``."""
+    import argparse
+
+    try:
+        return float(text)
+    except ValueError:
+        if text.strip().lower().endswith(".json") or Path(text).is_file():
+            return text
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: give a number in [0, 1] or the path of a calibration.json of "
+            "`shaketable calibrate`") from None
+
+
+def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
+    """``shaketable simulate --cor calibration.json``: the run over the calibrated COR.
+
+    With a ``--record``: an ensemble of ``--ensemble`` members (default 200), each with
+    a COR drawn from the calibration (:func:`shaketable.calibration.uncertainty.calibrated_ensemble`),
+    reporting P(overturn) and max theta/alpha with their intervals. Free rocking (no
+    record) cannot overturn from theta0 < alpha: one run with the mean COR.
+    """
+    import json
+
+    from shaketable.calibration.uncertainty import CalibratedCor, calibrated_ensemble
+    from shaketable.core.files import json_ready_dict, write_csv, write_text
+    from shaketable.plots import base as plots
+
+    try:
+        cor = CalibratedCor.from_json(args.cor)
+    except (OSError, ValueError) as error:
+        raise ValueError(f"--cor {args.cor}: {error}") from None
+    print(f"{block.describe()} block, calibrated {cor.describe()}")
+    if motion is None:
+        from shaketable.solvers.api import simulate
+
+        run = simulate(block, None, cor=cor.mean, theta0=theta0, duration=args.duration,
+                          method=args.method, subdivisions=args.subdivisions)
+        write_csv(out / "history.csv", run.to_frame())
+        write_text(out / "summary.json", json.dumps(run.summary(), indent=2))
+        print(f"free rocking with the mean COR {cor.mean:.4f}: {run.verdict()}")
+        print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}")
+        return 0
+    members = args.ensemble if args.ensemble else 200
+    ensemble = calibrated_ensemble(block, motion, cor, members=members, seed=args.seed,
+                                 duration=args.duration, method=args.method)
+    write_csv(out / "ensemble.csv", ensemble.to_frame())
+    write_text(out / "ensemble.json", json.dumps(json_ready_dict(ensemble.summary), indent=2,
+                                                 default=float))
+    plots.save(ensemble.plot().figure, out / f"ensemble.{args.format}")
+    print(ensemble.describe())
+    print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
+          f"{out / ('ensemble.' + args.format)}")
+    return 0
+
+
 def register(commands) -> None:
     """Add the ``calibrate`` subcommand."""
     # argparse %-formats the help= strings of arguments (a literal percent is written %%
@@ -108,9 +169,12 @@ def register(commands) -> None:
     parser.add_argument("--block", required=True, help="block size, height x width, e.g. 30x6in")
     parser.add_argument("--column", help="the measured column, by name or 0-based index "
                                          "(default: the only non-time one)")
+    parser.add_argument("--time-column", help="the time column, by name or 0-based index "
+                                              "(default: the column named time, t, Zeit... "
+                                              "in s, ms or us as its header says)")
     parser.add_argument("--units", help="unit of the column: rad, deg, mrad (angle) or m, cm, "
                                         "mm, in, ft (top displacement); default from '[unit]' "
-                                        "in its name")
+                                        "in its name (a contradicting --units is refused)")
     parser.add_argument("--rate", type=float, help="samples per second, without a time column")
     parser.add_argument("--height", help="height of the potentiometer wire, e.g. '30 in' "
                                          "(default: the block's height)")

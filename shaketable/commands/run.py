@@ -48,6 +48,9 @@ def _run(args) -> int:
         verdict = "agrees" if line.agrees else "differs"
         print(f"  {line.quantity}: the report gives {_words(line.report, line.unit)}, "
               f"reproduced {_words(line.reproduced, line.unit)}: {verdict}")
+    if result.calibrated is not None:          # rocking.cor = "calibration.json"
+        print(f"{scene.name}: calibrated {scene.calibrated_cor.describe()}: "
+              f"{result.calibrated.describe()}")
     if scene.report.get("note"):
         print(f"  note: {scene.report['note']}")
     if scene.ensemble:

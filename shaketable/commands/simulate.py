@@ -7,6 +7,7 @@ import dataclasses
 import json
 import math
 
+from shaketable.commands.calibrate import cor_argument
 from shaketable.commands.common import (
     add_record_arguments,
     load_motion,
@@ -40,6 +41,10 @@ def _simulate(args) -> int:
     theta0 = _resolve_angle(args.theta0, block)
     out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
     notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else ("engine",))
+    if isinstance(args.cor, str):           # a calibration.json: the calibrated COR's spread
+        from shaketable.commands.calibrate import simulate_calibrated
+
+        return simulate_calibrated(args, block, motion, theta0, out)
     if args.ensemble:
         return _ensemble(args, block, motion, out)
     result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
@@ -91,7 +96,9 @@ def register(commands: argparse._SubParsersAction) -> None:
         description="Simulate one block. Without --record the block rocks freely from --theta0.")
     sim.add_argument("--block", required=True,
                      help="HEIGHTxWIDTH with unit, height first, e.g. 30x6in or 16x4ft")
-    sim.add_argument("--cor", type=float, required=True, help="coefficient of restitution [0-1]")
+    sim.add_argument("--cor", type=cor_argument, required=True,
+                     help="coefficient of restitution [0-1], or a calibration.json of "
+                          "`shaketable calibrate` (an ensemble over the calibrated COR)")
     sim.add_argument("--theta0", default="0rad",
                      help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad)")
     add_record_arguments(sim)

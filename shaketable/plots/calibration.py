@@ -25,6 +25,7 @@ if TYPE_CHECKING:
 
     from shaketable.calibration.peaks import PeakEstimate, PeriodFit
     from shaketable.calibration.result import Calibration
+    from shaketable.calibration.scatter import CorScatter
 
 
 def _figure(fig, nrows, ncols=1, figsize=(8.0, 6.0), **kwargs):
@@ -130,14 +131,21 @@ def plot_fit(calibration: Calibration,
     return top, bottom
 
 
-def plot_cor_per_impact(peaks: PeakEstimate, ax: Axes | None = None) -> Axes:
-    """COR of each impact (from successive peaks) against the impact velocity. Returns the axes."""
+def plot_cor_per_impact(peaks: PeakEstimate, ax: Axes | None = None,
+                        scatter: CorScatter | None = None) -> Axes:
+    """COR of each impact (from successive peaks) against the impact velocity. Returns the axes.
+
+    With ``scatter`` (the random-effects model) its mean COR and 95 % interval are shaded.
+    """
     if ax is None:
         _, grid = _figure(None, 1, figsize=(6.0, 4.0))
         ax = grid[0, 0]
     ax.errorbar(peaks.impact_velocity, peaks.cor_per_impact, yerr=1.96 * peaks.cor_per_impact_se,
                 fmt="o", ms=4, capsize=2, label="per impact (95 %)")
     ax.axhline(peaks.cor, color="C3", lw=1.0, label=f"constant fit {peaks.cor:.4f}")
+    if scatter is not None:
+        ax.axhspan(*scatter.mean_interval, color="C2", alpha=0.2, lw=0,
+                   label=f"block mean {scatter.mean:.4f} (95 %), scatter σ {scatter.sigma:.3f}")
     if np.isfinite(peaks.slope):
         v = np.linspace(np.min(peaks.impact_velocity), np.max(peaks.impact_velocity), 2)
         ax.plot(v, peaks.intercept + peaks.slope * v, color="C1", ls="--", lw=1.0,
@@ -188,11 +196,49 @@ def plot_calibration(calibration: Calibration, fig: Figure | None = None,
     bottom = fig.add_subplot(grid[1, :], sharex=top)
     plot_fit(calibration, axes=(top, bottom))
     if calibration.peaks is not None:
-        plot_cor_per_impact(calibration.peaks, ax=fig.add_subplot(grid[2, 0]))
+        plot_cor_per_impact(calibration.peaks, ax=fig.add_subplot(grid[2, 0]),
+                            scatter=calibration.scatter)
     if calibration.periods is not None:
         plot_periods(calibration.periods, ax=fig.add_subplot(grid[2, 1]))
     fig.suptitle(title or f"COR calibration, {calibration.block.describe()} block")
+    warnings = getattr(calibration, "warnings", ())
+    if warnings:
+        import textwrap
+
+        text = "\n".join(textwrap.fill(f"WARNING: {warning}", 150) for warning in warnings)
+        fig.set_figheight(fig.get_figheight() + 0.14 * (text.count("\n") + 1))
+        # a figure-level x label: the constrained layout keeps room for it below the panels
+        fig.supxlabel(text, fontsize=7.5, color="C3", x=0.01, ha="left")
     for axis in fig.axes:  # the corners again, on the laid-out grid of all four panels
         if axis.get_legend() is not None:
             place_legend(axis, fontsize=8)
     return fig
+
+
+def plot_calibrated_ensemble(ensemble, ax: Axes | None = None) -> Axes:
+    """max |theta|/alpha of each member against its COR (overturned members at the top).
+
+    ``ensemble`` is a :class:`~shaketable.calibration.uncertainty.CalibratedEnsemble`.
+    Returns the axes.
+    """
+    if ax is None:
+        _, grid = _figure(None, 1, figsize=(6.5, 4.2))
+        ax = grid[0, 0]
+    frame = ensemble.members
+    cors = frame["cor [-]"].to_numpy()
+    ratio = frame["max_theta_ratio [-]"].to_numpy()
+    overturned = frame["overturned"].to_numpy(dtype=bool)
+    ax.plot(cors[~overturned], ratio[~overturned], "o", ms=3, label="stands")
+    if np.any(overturned):
+        ax.plot(cors[overturned], np.full(np.count_nonzero(overturned), 1.0), "x", ms=4,
+                color="C3", label="overturns (drawn at 1)")
+    ax.axvline(ensemble.cor.mean, color="0.4", lw=0.8, ls="--",
+               label=f"calibrated mean COR {ensemble.cor.mean:.4f}")
+    s = ensemble.summary
+    ax.set_title(f"P(overturn) = {s['P(overturn) [-]']:.3f} ({s['P low [-]']:.3f} to "
+                 f"{s['P high [-]']:.3f}), {s['members']} members", fontsize=10)
+    ax.set_xlabel("COR of the member [-]")
+    ax.set_ylabel("max |θ|/α [-]")
+    place_legend(ax, fontsize=8)
+    ax.grid(alpha=0.3)
+    return ax

@@ -107,7 +107,8 @@ class Scene:
     motion : dict
         The ``[motion]`` table with ``kind`` checked and values converted to SI.
     cors : tuple of float
-        Coefficients of restitution to run (one run each) [-].
+        Coefficients of restitution to run (one run each) [-]; with
+        ``cor = "calibration.json"`` the calibrated mean COR.
     theta0 : float
         Initial rotation [rad].
     theta_dot0 : float
@@ -137,6 +138,9 @@ class Scene:
         ``[sliding]``: the (mu_s, mu_d) pairs of the sliding runs (empty: none).
     path : str
         Where the scene was read from.
+    calibrated_cor : CalibratedCor or None
+        ``rocking.cor = "calibration.json"``: the calibrated COR, whose
+        distribution :mod:`shaketable.scenes.run` runs as an ensemble.
     """
 
     name: str
@@ -159,6 +163,7 @@ class Scene:
     sliding: tuple = ()
     path: str = ""
     ensemble: dict = field(default_factory=dict)
+    calibrated_cor: Any = None
 
     def mode(self) -> str | None:
         """Sliding or rocking by Section 2.1 (mu_s against B/H), when ``static_friction`` is given."""
@@ -285,7 +290,9 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
     _only(rocking, ROCKING_KEYS, where, "rocking")
     if "cor" not in rocking:
         raise SceneError(f"{where}: rocking.cor is missing (coefficient of restitution, 0-1)")
-    cors = rocking["cor"] if isinstance(rocking["cor"], list) else [rocking["cor"]]
+    calibrated = _calibrated_cor(rocking["cor"], where)     # cor = "calibration.json"
+    cors = ([calibrated.mean] if calibrated is not None else
+            rocking["cor"] if isinstance(rocking["cor"], list) else [rocking["cor"]])
     if not cors:
         raise SceneError(f"{where}: rocking.cor is an empty list; give a number in [0, 1] or a "
                          f"list of them")
@@ -338,7 +345,27 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
                  theory=_stage_section(data, "theory", where) if "sensors" in data else None,
                  static_friction=None if static_friction is None else float(static_friction),
                  sliding=_sliding(data, motion, where),
-                 path=where, ensemble=_ensemble_section(data, where))
+                 path=where, ensemble=_ensemble_section(data, where),
+                 calibrated_cor=calibrated)
+
+
+def _calibrated_cor(value: object, where: str):
+    """``rocking.cor = "path/calibration.json"`` (relative to the scene file): the
+    :class:`~shaketable.calibration.uncertainty.CalibratedCor`, else None."""
+    if not isinstance(value, str):
+        return None
+    from pathlib import Path
+
+    from shaketable.calibration.uncertainty import CalibratedCor
+
+    path = Path(value)
+    if not path.is_absolute() and Path(where).parent.is_dir():
+        path = Path(where).parent / path
+    try:
+        return CalibratedCor.from_json(path)
+    except (OSError, ValueError) as error:
+        raise SceneError(f"{where}: rocking.cor {value!r}: a number in [0, 1], a list of them, "
+                         f"or a calibration.json of `shaketable calibrate` ({error})") from None
 
 
 def _sliding(data: dict, motion: dict, where: str) -> tuple:

@@ -104,7 +104,12 @@ def _record_motion(spec: dict, scene: Scene) -> Motion:
 
 @dataclass(frozen=True)
 class SceneResult:
-    """The runs of one scene (one per COR) and their comparison with the report."""
+    """The runs of one scene (one per COR) and their comparison with the report.
+
+    ``calibrated`` is the ensemble over a calibrated COR
+    (:class:`~shaketable.calibration.uncertainty.CalibratedEnsemble`) when the scene's
+    ``rocking.cor`` names a calibration.json and the block feels a motion.
+    """
 
     scene: Scene
     motion: Motion | None
@@ -113,6 +118,7 @@ class SceneResult:
     table: TableRun | None = None
     tests: tuple = ()
     slides: tuple = ()
+    calibrated: Any = None
 
     @property
     def main(self) -> RockingResult:
@@ -148,6 +154,10 @@ class SceneResult:
             summary["test vs theory"] = [test.metrics() for test in self.tests]
         if self.slides:
             summary["sliding"] = [run.summary() for run in self.slides]
+        if self.calibrated is not None:
+            from shaketable.core.files import json_ready_dict
+
+            summary["calibrated COR ensemble"] = json_ready_dict(self.calibrated.summary)
         return summary
 
     def plot(self) -> Figure:
@@ -244,9 +254,17 @@ def run_scene(scene: Scene) -> SceneResult:
         except ValueError as error:
             raise SceneError(f"{scene.path}: [rocking]: {error}") from None
     comparisons = compare_with_report(scene, runs[0])
+    calibrated = None
+    if scene.calibrated_cor is not None and felt is not None:
+        from shaketable.calibration.uncertainty import calibrated_ensemble
+
+        members = int(scene.ensemble.get("members", 200))
+        calibrated = calibrated_ensemble(scene.block, felt, scene.calibrated_cor,
+                                         members=members, seed=int(scene.ensemble.get("seed", 0)),
+                                         duration=scene.duration, method=scene.method)
     return SceneResult(scene=scene, motion=felt, runs=tuple(runs),
                        comparisons=tuple(comparisons), table=table,
-                       slides=_run_sliding(scene, felt))
+                       slides=_run_sliding(scene, felt), calibrated=calibrated)
 
 
 def _run_impulses(scene: Scene, motion: ImpulsiveMotion) -> SceneResult:
