@@ -15,6 +15,7 @@ from shaketable.solvers.common import (
     call_interruptibly,
     check_fixed_steps,
     extended,
+    impact_buffers,
     result_from_info,
     run_options,
 )
@@ -106,10 +107,11 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     rg = np.ascontiguousarray(motion.rotation_or_zero)
     n = t_grid.size
     check_fixed_steps(method, n, subdivisions)
-    theta, omega, acceleration = np.zeros(n), np.zeros(n), np.zeros(n)
-    impact_times = np.zeros(max(1, whole_number("max_recorded_impacts", max_recorded_impacts,
-                                                minimum=0)))
-    impact_velocities = np.zeros_like(impact_times)
+    # filled up to info[INFO_N_OUTPUT] / the impact count and read only that far
+    theta, omega, acceleration = np.empty(n), np.empty(n), np.empty(n)
+    work = n * (subdivisions if method == "predictor-corrector" else 1)
+    impact_times, impact_velocities = impact_buffers(
+        max(1, whole_number("max_recorded_impacts", max_recorded_impacts, minimum=0)), work)
     info = np.zeros(engine.N_INFO)
     if method == "reference":
         from shaketable.solvers.reference import (
@@ -120,7 +122,6 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
                             theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
                             impact_velocities, info)
     else:
-        work = n * (subdivisions if method == "predictor-corrector" else 1)
         call_interruptibly(engine.integrate, (
             COMPILED_METHODS[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
             rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
