@@ -76,7 +76,7 @@ def measure(repeats: int = 30, block_runs: int = 20) -> dict:
     def engine_only():
         info = np.zeros(engine.N_INFO)
         empty = np.zeros(0)
-        engine.integrate(engine.METHOD_FAST, t, ug, vg, rg, parameters, 0.95, 0.0, 0.0, 1e-11,
+        engine.integrate(engine.METHOD_FAST, t, ug, vg, rg, 1.0, parameters, 0.95, 0.0, 0.0, 1e-11,
                          4, -1.0, np.zeros(n), np.zeros(n), np.zeros(n), empty, empty, info)
 
     rhs_loop(10, ug, vg, parameters)

@@ -14,6 +14,7 @@ from shaketable.solvers.common import (
     COMPILED_METHODS,
     call_interruptibly,
     check_fixed_steps,
+    engine_arrays,
     extended,
     impact_buffers,
     result_from_info,
@@ -101,10 +102,8 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
     theta0, theta_dot0, rest = options.theta0, options.theta_dot0, options.rest_tolerance
 
     parameters = block_parameters(block, options.top_force)
-    t_grid = np.ascontiguousarray(motion.t)
-    ug = np.ascontiguousarray(motion.horizontal)
-    vg = np.ascontiguousarray(motion.vertical_or_zero)
-    rg = np.ascontiguousarray(motion.rotation_or_zero)
+    t_grid, ug, vg, rg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero,
+                                       motion.rotation_or_zero)
     n = t_grid.size
     check_fixed_steps(method, n, subdivisions)
     # filled up to info[INFO_N_OUTPUT] / the impact count and read only that far
@@ -123,7 +122,7 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
                             impact_velocities, info)
     else:
         call_interruptibly(engine.integrate, (
-            COMPILED_METHODS[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
+            COMPILED_METHODS[method], t_grid, ug, vg, rg, 1.0, parameters, cor, theta0, theta_dot0,
             rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
             impact_velocities, info), work)
     return result_from_info(block, motion, cor, method, t_grid, theta, omega, acceleration,

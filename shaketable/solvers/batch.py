@@ -48,6 +48,7 @@ from shaketable.solvers import engine
 from shaketable.solvers.common import (
     COMPILED_METHODS,
     check_fixed_steps,
+    engine_arrays,
     extended,
     run_options,
 )
@@ -115,15 +116,11 @@ def _run_batch(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_
         m = case_motion[i]
         first = offsets[m]
         last = offsets[m + 1]
-        scale = case_scale[i]
-        t_grid = t_all[first:last]
-        ug = ug_all[first:last] * scale
-        vg = vg_all[first:last] * scale
-        rg = rg_all[first:last] * scale
         none = np.empty(0)
-        engine.integrate(method, t_grid, ug, vg, rg, parameters[case_block[i]], case_cor[i],
-                         theta0, omega0, rtol, subdivisions, rest_tolerance, none, none, none,
-                         none, none, info[i])
+        engine.integrate(method, t_all[first:last], ug_all[first:last], vg_all[first:last],
+                         rg_all[first:last], case_scale[i], parameters[case_block[i]],
+                         case_cor[i], theta0, omega0, rtol, subdivisions, rest_tolerance, none,
+                         none, none, none, none, info[i])
 
 
 @njit(cache=True)
@@ -139,12 +136,11 @@ def _run_batch_serial(method, t_all, ug_all, vg_all, rg_all, offsets, parameters
         m = case_motion[i]
         first = offsets[m]
         last = offsets[m + 1]
-        scale = case_scale[i]
         none = np.empty(0)
-        engine.integrate(method, t_all[first:last], ug_all[first:last] * scale,
-                         vg_all[first:last] * scale, rg_all[first:last] * scale,
-                         parameters[case_block[i]], case_cor[i], theta0, omega0, rtol,
-                         subdivisions, rest_tolerance, none, none, none, none, none, info[i])
+        engine.integrate(method, t_all[first:last], ug_all[first:last], vg_all[first:last],
+                         rg_all[first:last], case_scale[i], parameters[case_block[i]],
+                         case_cor[i], theta0, omega0, rtol, subdivisions, rest_tolerance, none,
+                         none, none, none, none, info[i])
 
 
 # --------------------------------------------------------------------------- public API
@@ -316,10 +312,12 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     check_fixed_steps(method, max(motion.t.size for motion in runs), subdivisions)
     offsets = np.zeros(len(runs) + 1, dtype=np.int64)
     offsets[1:] = np.cumsum([motion.t.size for motion in runs])
-    t_all = np.concatenate([motion.t for motion in runs])
-    ug_all = np.concatenate([motion.horizontal for motion in runs])
-    vg_all = np.concatenate([motion.vertical_or_zero for motion in runs])
-    rg_all = np.concatenate([motion.rotation_or_zero for motion in runs])
+    # read-only, as simulate's: one compiled signature of the engine (common.engine_arrays)
+    t_all, ug_all, vg_all, rg_all = engine_arrays(
+        np.concatenate([motion.t for motion in runs]),
+        np.concatenate([motion.horizontal for motion in runs]),
+        np.concatenate([motion.vertical_or_zero for motion in runs]),
+        np.concatenate([motion.rotation_or_zero for motion in runs]))
     parameters = np.empty((len(blocks), N_PARAMETERS))
     for j, block in enumerate(blocks):
         parameters[j] = block_parameters(block, top_force)

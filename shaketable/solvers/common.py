@@ -216,6 +216,25 @@ def result_from_info(block, motion, cor, method, t_grid, theta, omega, accelerat
     )
 
 
+def engine_arrays(*arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The arrays as the compiled engine takes its inputs: float64, C-contiguous, read-only.
+
+    ``simulate`` and the batch hand the engine arrays of one type (a motion's arrays
+    are read-only, ``Motion.rotation_or_zero`` may be a fresh writable array), so numba
+    compiles :func:`~shaketable.solvers.engine.integrate` once, whichever comes first
+    (an array's ``writeable`` flag is part of the compiled signature). Read-only views
+    are made without copying the data.
+    """
+    views = []
+    for values in arrays:
+        view = np.ascontiguousarray(values, dtype=np.float64)
+        if view.flags.writeable:
+            view = view.view()
+            view.flags.writeable = False
+        views.append(view)
+    return tuple(views)
+
+
 _SCRATCH = threading.local()
 
 

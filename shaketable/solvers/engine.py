@@ -459,8 +459,8 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, o
 
 
 @njit(cache=True, nogil=True)  # nogil: a long run can go on in a thread (Ctrl-C, api.py)
-def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol, subdivisions,
-              rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+              subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
               impact_velocities, info):
     """Integrate one run; fill the output arrays and ``info`` (see module constants).
 
@@ -471,6 +471,10 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
     t_grid, ug, vg, rg : ndarray
         Sample times [s], ground accelerations [m/s^2] (vertical upward) and
         table angular acceleration [rad/s^2].
+    scale : float
+        Factor [-] applied to every ground acceleration as it is read (the batch's
+        scale factors, without a scaled copy of the record per run; 1 for
+        ``simulate``: x * 1.0 is x, bit for bit).
     parameters : ndarray
         From :func:`shaketable.core.dynamics.block_parameters`.
     cor : float
@@ -558,7 +562,8 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
         if resting:
             out_acceleration[0] = 0.0
         else:
-            out_acceleration[0] = model_acceleration(method, theta, side, ug[0], vg[0], rg[0],
+            out_acceleration[0] = model_acceleration(method, theta, side, ug[0] * scale,
+                                                     vg[0] * scale, rg[0] * scale,
                                                      block)
     filled = 1
 
@@ -566,11 +571,13 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
         t0 = t_grid[k]
         t1 = t_grid[k + 1]
         # a tuple, not an array: passed by value, with no reference counting per call
-        segment = (t0, t1 - t0, ug[k], ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k], rg[k],
-                   rg[k + 1] - rg[k])
+        u0, u1 = ug[k] * scale, ug[k + 1] * scale
+        v0, v1 = vg[k] * scale, vg[k + 1] * scale
+        r0, r1 = rg[k] * scale, rg[k + 1] * scale
+        segment = (t0, t1 - t0, u0, u1 - u0, v0, v1 - v0, r0, r1 - r0)
         # The model needs contact: g + vg (+ rods' hold-down) must stay positive.
-        support_0 = G + vg[k] + hold_down
-        support_1 = G + vg[k + 1] + hold_down
+        support_0 = G + v0 + hold_down
+        support_1 = G + v1 + hold_down
         t_end = t1
         airborne = False
         if support_0 <= 0.0:
@@ -806,8 +813,8 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
             if resting:
                 out_acceleration[k + 1] = 0.0
             else:
-                out_acceleration[k + 1] = model_acceleration(method, theta, side, ug[k + 1],
-                                                             vg[k + 1], rg[k + 1], block)
+                out_acceleration[k + 1] = model_acceleration(method, theta, side, u1, v1, r1,
+                                                             block)
         filled = k + 2
 
     info[INFO_T_END] = t
