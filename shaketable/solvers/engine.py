@@ -58,7 +58,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
