@@ -160,10 +160,10 @@ def _worker_count(scenes: int) -> int:
 
 
 def _one_thread_each() -> None:
-    """A worker's batches on one numba thread: the workers share the cores already."""
-    import numba
+    """A worker's batches on one thread: the workers share the cores already."""
+    from shaketable.solvers.batch import set_default_threads
 
-    numba.set_num_threads(1)
+    set_default_threads(1)
 
 
 def _scene_outcome(name: str, out: Path) -> tuple[str, dict, bool]:

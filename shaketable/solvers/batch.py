@@ -124,6 +124,18 @@ def _run_cases(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_
                          none, none, none, none, info[i])
 
 
+def set_default_threads(threads: int) -> None:
+    """Threads a batch uses when it is not told (``threads=None``), in this process.
+
+    Parameters
+    ----------
+    threads : int
+        From 1 to :data:`numba.config.NUMBA_NUM_THREADS` (the cores numba found).
+    """
+    most = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]  # set at import
+    numba.set_num_threads(int(in_range("threads", threads, 1, most)))
+
+
 def _run_all(arguments: tuple, n_cases: int, threads: int) -> None:
     """Every case on ``threads`` threads, each taking the next chunk of cases when done.
 
