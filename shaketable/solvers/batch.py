@@ -153,26 +153,31 @@ def _run_all(arguments: tuple, n_cases: int, threads: int) -> None:
     chunk = max(1, min(64, n_cases // (16 * threads)))
     starts = iter(range(0, n_cases, chunk))
     lock = threading.Lock()
+    stop = threading.Event()
     errors: list[BaseException] = []
 
     def work():
         try:
-            while True:
+            while not stop.is_set():
                 with lock:
                     start = next(starts, None)
                 if start is None:
                     return
                 compiled(*arguments, start, min(start + chunk, n_cases))
-        except BaseException as error:  # handed to the caller below
+        except BaseException as error:  # Ctrl-C in the calling thread, too: handed back below
             errors.append(error)
+            stop.set()  # the other threads finish their chunk and take no other
 
     workers = [threading.Thread(target=work, name=f"shaketable-batch-{k}", daemon=True)
                for k in range(threads - 1)]
     for worker in workers:
         worker.start()
-    work()  # the calling thread is one of them
-    for worker in workers:
-        worker.join()
+    try:
+        work()  # the calling thread is one of them
+        for worker in workers:
+            worker.join()
+    finally:
+        stop.set()
     if errors:
         raise errors[0]
 
