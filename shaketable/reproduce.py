@@ -6,7 +6,7 @@ import math
 import os
 from collections.abc import Callable, Iterable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from shaketable.scenes.catalog import resolve_scene_path
 from shaketable.scenes.parse import Study, load_scene
@@ -107,18 +107,88 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         from tqdm import tqdm
 
         iterator = tqdm(names, desc="reproducing", unit="scene")
-    for name in iterator:
-        tally = ComparisonTally()
-        try:
-            section = _scene_section(name, out, tally)
-        except (ValueError, OSError) as error:
-            section = f"## {name}\n\n**Not reproduced:** {error}\n"
-            if failures is not None:
-                failures.append(name)
+
+    def record(name, section, counts, failed):
+        if failed and failures is not None:
+            failures.append(name)
         folder = prepare_output_folder(out / name, "out")
         write_text(folder / "section.md", section)
-        write_text(folder / "counts.json", json.dumps(tally.counts))
+        write_text(folder / "counts.json", json.dumps(counts))
+
+    workers = _worker_count(len(names))
+    if workers <= 1:
+        for name in iterator:
+            record(name, *_scene_outcome(name, out))
+        return _assemble(out, rerun=names)
+    # Scenes in processes of their own (each a fresh interpreter, numba's cache loaded
+    # once per process); a scene's outputs do not depend on the process it runs in, and
+    # the report is assembled in the catalogue's order whatever the order of completion.
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    bar: Any = iterator if progress else None
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
+                             initializer=_one_thread_each) as pool:
+        # the longest first (the report-table studies and their ensembles: a third of the
+        # work), so that the two processes end together; written in the catalogue's order
+        futures = {name: pool.submit(_scene_outcome, name, out)
+                   for name in sorted(names, key=_expected_share)}
+        try:
+            for name in names:
+                record(name, *futures[name].result())
+                if bar is not None:
+                    bar.update(1)
+        except BaseException:  # Ctrl-C or a scene's crash: start no further scene
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+    if bar is not None:
+        bar.close()
     return _assemble(out, rerun=names)
+
+
+#: Scenes below this count run in the calling process (starting a process costs ~1 s).
+PARALLEL_SCENES = 6
+
+
+def _worker_count(scenes: int) -> int:
+    """Processes for ``scenes`` scenes: the cores this process may use, at most 2 per the
+    brief's machine, 1 for a handful of scenes (``SHAKETABLE_REPRODUCE_WORKERS`` overrides)."""
+    chosen = os.environ.get("SHAKETABLE_REPRODUCE_WORKERS")
+    if chosen is not None:
+        return max(1, int(chosen))
+    if scenes < PARALLEL_SCENES:
+        return 1
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return max(1, min(2, cores or 1))
+
+
+def _expected_share(name: str) -> int:
+    """0 for the scenes known to take longest (report tables with their ensembles), then
+    1 for other studies and 2 for single scenes (a name that does not load: last)."""
+    try:
+        scene = load_scene(resolve_scene_path(name))
+    except (ValueError, OSError):
+        return 2
+    if isinstance(scene, Study):
+        return 0 if scene.kind == "report-table" else 1
+    return 2
+
+
+def _one_thread_each() -> None:
+    """A worker's batches on one thread: the workers share the cores already."""
+    from shaketable.solvers.batch import set_default_threads
+
+    set_default_threads(1)
+
+
+def _scene_outcome(name: str, out: Path) -> tuple[str, dict, bool]:
+    """One scene's section, its comparison counts and whether it failed."""
+    tally = ComparisonTally()
+    try:
+        section = _scene_section(name, out, tally)
+    except (ValueError, OSError) as error:
+        return f"## {name}\n\n**Not reproduced:** {error}\n", tally.counts, True
+    return section, tally.counts, False
 
 
 def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:

@@ -15,7 +15,9 @@ from shaketable.solvers.common import (
     COMPILED_METHODS,
     call_interruptibly,
     check_fixed_steps,
+    engine_arrays,
     extended,
+    impact_buffers,
     result_from_info,
     run_options,
 )
@@ -111,16 +113,15 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
     theta0, theta_dot0, rest = options.theta0, options.theta_dot0, options.rest_tolerance
 
     parameters = block_parameters(block, options.top_force)
-    t_grid = np.ascontiguousarray(motion.t)
-    ug = np.ascontiguousarray(motion.horizontal)
-    vg = np.ascontiguousarray(motion.vertical_or_zero)
-    rg = np.ascontiguousarray(motion.rotation_or_zero)
+    t_grid, ug, vg, rg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero,
+                                       motion.rotation_or_zero)
     n = t_grid.size
     check_fixed_steps(method, n, subdivisions)
-    theta, omega, acceleration = np.zeros(n), np.zeros(n), np.zeros(n)
-    impact_times = np.zeros(max(1, whole_number("max_recorded_impacts", max_recorded_impacts,
-                                                minimum=0)))
-    impact_velocities = np.zeros_like(impact_times)
+    # filled up to info[INFO_N_OUTPUT] / the impact count and read only that far
+    theta, omega, acceleration = np.empty(n), np.empty(n), np.empty(n)
+    work = n * (subdivisions if method == "predictor-corrector" else 1)
+    impact_times, impact_velocities = impact_buffers(
+        max(1, whole_number("max_recorded_impacts", max_recorded_impacts, minimum=0)), work)
     info = np.zeros(engine.N_INFO)
     if method == "reference":
         from shaketable.solvers.reference import (
@@ -131,9 +132,8 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
                             theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
                             impact_velocities, info)
     else:
-        work = n * (subdivisions if method == "predictor-corrector" else 1)
         call_interruptibly(engine.integrate, (
-            COMPILED_METHODS[method], t_grid, ug, vg, rg, parameters, cor, theta0, theta_dot0,
+            COMPILED_METHODS[method], t_grid, ug, vg, rg, 1.0, parameters, cor, theta0, theta_dot0,
             rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
             impact_velocities, info), work)
     return result_from_info(block, motion, cor, method, t_grid, theta, omega, acceleration,

@@ -3,8 +3,8 @@
 :func:`simulate_many` runs the Cartesian product of blocks, motions and
 coefficients of restitution; :func:`simulate_cases` runs an explicit list of
 :class:`Case`. Both hand every run to the compiled engine
-(:func:`shaketable.solvers.engine.integrate`) from one numba ``prange`` loop
-(``parallel=True``), with length-0 output arrays so that no time history is
+(:func:`shaketable.solvers.engine.integrate`) from one compiled loop run without the
+GIL on several Python threads, with length-0 output arrays so that no time history is
 stored: there is no Python work per run, only per batch. Each run gives
 exactly the scalar results of :func:`shaketable.solvers.api` with the same
 arguments (the same compiled code on the same numbers; ``tests/test_batch.py``
@@ -37,7 +37,7 @@ from typing import TYPE_CHECKING, Any
 
 import numba
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from shaketable.core.dynamics import N_PARAMETERS, block_parameters
 from shaketable.core.geometry import Block
@@ -48,6 +48,7 @@ from shaketable.solvers import engine
 from shaketable.solvers.common import (
     COMPILED_METHODS,
     check_fixed_steps,
+    engine_arrays,
     extended,
     run_options,
 )
@@ -100,51 +101,85 @@ class Case:
                                                         low_open=True))
 
 
-@njit(parallel=True, cache=True)
-def _run_batch(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
+@njit(cache=True, nogil=True)
+def _run_cases(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
                case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
-               rest_tolerance, info):
-    """Integrate every case; ``info[i]`` receives case i's scalar results.
+               rest_tolerance, info, first_case, last_case):
+    """Integrate cases ``first_case`` to ``last_case - 1``; ``info[i]`` gets case i's results.
 
     The motions are stored end to end in ``t_all`` ... ``rg_all``; motion m
     occupies ``offsets[m]:offsets[m + 1]``. ``parameters[j]`` is block j's
-    :func:`~shaketable.core.dynamics.block_parameters`.
+    :func:`~shaketable.core.dynamics.block_parameters`. Compiled without the GIL:
+    :func:`_run_all` calls it from several Python threads at once, on separate ranges
+    of cases (so do Dask workers, one batch each).
     """
-    n_cases = case_block.shape[0]
-    for i in prange(n_cases):
+    for i in range(first_case, last_case):
         m = case_motion[i]
         first = offsets[m]
         last = offsets[m + 1]
-        scale = case_scale[i]
-        t_grid = t_all[first:last]
-        ug = ug_all[first:last] * scale
-        vg = vg_all[first:last] * scale
-        rg = rg_all[first:last] * scale
         none = np.empty(0)
-        engine.integrate(method, t_grid, ug, vg, rg, parameters[case_block[i]], case_cor[i],
-                         theta0, omega0, rtol, subdivisions, rest_tolerance, none, none, none,
-                         none, none, info[i])
+        engine.integrate(method, t_all[first:last], ug_all[first:last], vg_all[first:last],
+                         rg_all[first:last], case_scale[i], parameters[case_block[i]],
+                         case_cor[i], theta0, omega0, rtol, subdivisions, rest_tolerance, none,
+                         none, none, none, none, info[i])
 
 
-@njit(cache=True)
-def _run_batch_serial(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
-                      case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
-                      rest_tolerance, info):
-    """:func:`_run_batch` on the calling thread only (``threads=1``).
+def set_default_threads(threads: int) -> None:
+    """Threads a batch uses when it is not told (``threads=None``), in this process.
 
-    Safe to call from several Python threads at once (Dask workers), which a
-    ``parallel=True`` function is not under numba's ``workqueue`` threading layer.
+    Parameters
+    ----------
+    threads : int
+        From 1 to :data:`numba.config.NUMBA_NUM_THREADS` (the cores numba found).
     """
-    for i in range(case_block.shape[0]):
-        m = case_motion[i]
-        first = offsets[m]
-        last = offsets[m + 1]
-        scale = case_scale[i]
-        none = np.empty(0)
-        engine.integrate(method, t_all[first:last], ug_all[first:last] * scale,
-                         vg_all[first:last] * scale, rg_all[first:last] * scale,
-                         parameters[case_block[i]], case_cor[i], theta0, omega0, rtol,
-                         subdivisions, rest_tolerance, none, none, none, none, none, info[i])
+    most = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]  # set at import
+    numba.set_num_threads(int(in_range("threads", threads, 1, most)))
+
+
+def _run_all(arguments: tuple, n_cases: int, threads: int) -> None:
+    """Every case on ``threads`` threads, each taking the next chunk of cases when done.
+
+    Dynamic scheduling in small chunks (run costs differ a lot: a block that never rocks
+    costs a hundredth of one that rocks to the end); the compiled loop runs without the
+    GIL, so the threads run in parallel. The results do not depend on the number of
+    threads: each case writes its own row of ``info``.
+    """
+    compiled: Any = _run_cases  # a numba dispatcher: its arguments are typed when called
+    if threads <= 1 or n_cases <= 1:
+        compiled(*arguments, 0, n_cases)
+        return
+    import threading
+
+    chunk = max(1, min(64, n_cases // (16 * threads)))
+    starts = iter(range(0, n_cases, chunk))
+    lock = threading.Lock()
+    stop = threading.Event()
+    errors: list[BaseException] = []
+
+    def work():
+        try:
+            while not stop.is_set():
+                with lock:
+                    start = next(starts, None)
+                if start is None:
+                    return
+                compiled(*arguments, start, min(start + chunk, n_cases))
+        except BaseException as error:  # Ctrl-C in the calling thread, too: handed back below
+            errors.append(error)
+            stop.set()  # the other threads finish their chunk and take no other
+
+    workers = [threading.Thread(target=work, name=f"shaketable-batch-{k}", daemon=True)
+               for k in range(threads - 1)]
+    for worker in workers:
+        worker.start()
+    try:
+        work()  # the calling thread is one of them
+        for worker in workers:
+            worker.join()
+    finally:
+        stop.set()
+    if errors:
+        raise errors[0]
 
 
 # --------------------------------------------------------------------------- public API
@@ -168,8 +203,8 @@ def simulate_many(blocks: Block | Iterable[Block] | Mapping[str, Block],
     scales : sequence of float
         Factors [-] multiplying every component of each motion (default 1).
     threads : int, optional
-        Number of threads (``numba.set_num_threads``; default all numba
-        may use, :data:`numba.config.NUMBA_NUM_THREADS`).
+        Number of threads, at most :data:`numba.config.NUMBA_NUM_THREADS`
+        (default ``numba.get_num_threads()``: all cores unless set lower).
     method : str
         ``"fast"`` (default), ``"predictor-corrector"`` or ``"linear"``
         (:data:`METHODS`).
@@ -316,10 +351,12 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     check_fixed_steps(method, max(motion.t.size for motion in runs), subdivisions)
     offsets = np.zeros(len(runs) + 1, dtype=np.int64)
     offsets[1:] = np.cumsum([motion.t.size for motion in runs])
-    t_all = np.concatenate([motion.t for motion in runs])
-    ug_all = np.concatenate([motion.horizontal for motion in runs])
-    vg_all = np.concatenate([motion.vertical_or_zero for motion in runs])
-    rg_all = np.concatenate([motion.rotation_or_zero for motion in runs])
+    # read-only, as simulate's: one compiled signature of the engine (common.engine_arrays)
+    t_all, ug_all, vg_all, rg_all = engine_arrays(
+        np.concatenate([motion.t for motion in runs]),
+        np.concatenate([motion.horizontal for motion in runs]),
+        np.concatenate([motion.vertical_or_zero for motion in runs]),
+        np.concatenate([motion.rotation_or_zero for motion in runs]))
     parameters = np.empty((len(blocks), N_PARAMETERS))
     for j, block in enumerate(blocks):
         parameters[j] = block_parameters(block, top_force)
@@ -342,18 +379,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     arguments = (COMPILED_METHODS[method], t_all, ug_all, vg_all, rg_all, offsets, parameters,
                  block_index, motion_index, cors, scales, theta0, theta_dot0, rtol,
                  subdivisions, rest, info)
-    if threads == 1:
-        _run_batch_serial(*arguments)
-    else:
-        previous = numba.get_num_threads()
-        try:
-            if threads is not None:
-                numba.set_num_threads(threads)
-            # dynamic scheduling, one run at a time: run costs differ a lot
-            with numba.parallel_chunksize(1):
-                _run_batch(*arguments)
-        finally:
-            numba.set_num_threads(previous)
+    _run_all(arguments, n, numba.get_num_threads() if threads is None else threads)
 
     return _frame(blocks, block_labels, runs, motion_labels, block_index, motion_index, cors,
                   scales, info, method, rtol, duration)

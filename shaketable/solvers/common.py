@@ -6,6 +6,7 @@ duration and the info array turned into a :class:`~shaketable.core.results.Rocki
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -172,15 +173,23 @@ def result_from_info(block, motion, cor, method, t_grid, theta, omega, accelerat
     filled = int(info[engine.INFO_N_OUTPUT])
     status = STATUSES[int(info[engine.INFO_STATUS])]
     t = t_grid[:filled]
-    theta, omega, acceleration = theta[:filled], omega[:filled], acceleration[:filled]
     t_end = info[engine.INFO_T_END]
     if status != "completed" and t_end > t[-1]:
-        t = np.append(t, t_end)
-        theta = np.append(theta, info[engine.INFO_THETA_END])
-        omega = np.append(omega, info[engine.INFO_THETA_DOT_END])
-        acceleration = np.append(acceleration, np.nan if status == "airborne" else 0.0)
+        # the end state after the last sample: written into the solver's own arrays when
+        # the run left room in them (it stopped early), rather than by np.append's copies
+        if filled >= theta.size:
+            theta, omega, acceleration = (np.append(x, 0.0) for x in
+                                          (theta, omega, acceleration))
+        t = np.empty(filled + 1)
+        t[:filled] = t_grid[:filled]
+        t[filled] = t_end
+        theta[filled] = info[engine.INFO_THETA_END]
+        omega[filled] = info[engine.INFO_THETA_DOT_END]
+        acceleration[filled] = np.nan if status == "airborne" else 0.0
+        filled += 1
         if status == "overturned":
-            acceleration[-1] = acceleration[-2]
+            acceleration[filled - 1] = acceleration[filled - 2]
+    theta, omega, acceleration = theta[:filled], omega[:filled], acceleration[:filled]
     if status == "airborne":
         acceleration[-1] = acceleration[-2] if acceleration.size > 1 else 0.0
     n_impacts = int(info[engine.INFO_N_IMPACTS])
@@ -207,6 +216,47 @@ def result_from_info(block, motion, cor, method, t_grid, theta, omega, accelerat
     )
 
 
+def engine_arrays(*arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    """The arrays as the compiled engine takes its inputs: float64, C-contiguous, read-only.
+
+    ``simulate`` and the batch hand the engine arrays of one type (a motion's arrays
+    are read-only, ``Motion.rotation_or_zero`` may be a fresh writable array), so numba
+    compiles :func:`~shaketable.solvers.engine.integrate` once, whichever comes first
+    (an array's ``writeable`` flag is part of the compiled signature). Read-only views
+    are made without copying the data.
+    """
+    views = []
+    for values in arrays:
+        view = np.ascontiguousarray(values, dtype=np.float64)
+        if view.flags.writeable:
+            view = view.view()
+            view.flags.writeable = False
+        views.append(view)
+    return tuple(views)
+
+
+_SCRATCH = threading.local()
+
+
+def impact_buffers(size: int, work: int) -> tuple[np.ndarray, np.ndarray]:
+    """Arrays of ``size`` for the impact times and velocities a run records.
+
+    The engine writes only the impacts it records and :func:`result_from_info` copies
+    those out, so a short run (``work`` up to :data:`INTERRUPTIBLE_WORK`) borrows this
+    thread's scratch pair, grown as needed: a fresh 100,000-entry pair (the default
+    ``max_recorded_impacts``) cost 0.1-0.2 ms a run in mmap, page faults and munmap,
+    more than a third of a typical run. A long run gets its own pair, which an
+    abandoned run (Ctrl-C, :func:`call_interruptibly`) may go on writing.
+    """
+    if work > INTERRUPTIBLE_WORK:
+        return np.zeros(size), np.zeros(size)
+    pair = getattr(_SCRATCH, "impacts", None)
+    if pair is None or pair[0].size < size:
+        pair = (np.zeros(size), np.zeros(size))
+        _SCRATCH.impacts = pair
+    return pair[0][:size], pair[1][:size]
+
+
 #: Runs with more work than this (sample intervals, or fixed steps) run in a worker
 #: thread so that Ctrl-C reaches Python within ~0.1 s; shorter runs (well under a
 #: second) are called directly and keep their microsecond overhead.
@@ -222,8 +272,6 @@ def call_interruptibly(function, arguments: tuple, work: int):
     abandoned thread finishes into arrays nobody reads; a CLI process exits). The
     arithmetic is the same either way: results are bit-identical.
     """
-    import threading
-
     if work <= INTERRUPTIBLE_WORK or threading.current_thread() is not threading.main_thread():
         return function(*arguments)
     outcome: dict = {}

@@ -58,7 +58,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
@@ -459,8 +458,8 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, o
 
 
 @njit(cache=True, nogil=True)  # nogil: a long run can go on in a thread (Ctrl-C, api.py)
-def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol, subdivisions,
-              rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+              subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
               impact_velocities, info):
     """Integrate one run; fill the output arrays and ``info`` (see module constants).
 
@@ -471,6 +470,10 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
     t_grid, ug, vg, rg : ndarray
         Sample times [s], ground accelerations [m/s^2] (vertical upward) and
         table angular acceleration [rad/s^2].
+    scale : float
+        Factor [-] applied to every ground acceleration as it is read (the batch's
+        scale factors, without a scaled copy of the record per run; 1 for
+        ``simulate``: x * 1.0 is x, bit for bit).
     parameters : ndarray
         From :func:`shaketable.core.dynamics.block_parameters`.
     cor : float
@@ -500,8 +503,13 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
     """
     n = t_grid.shape[0]
     store = out_theta.shape[0] >= n
-    alpha = parameters[ALPHA]
-    radius = math.sqrt(parameters[HALF_WIDTH] ** 2 + parameters[HALF_HEIGHT] ** 2)
+    # The block's parameters as a tuple of floats: every helper below takes them by value
+    # (an array argument costs an atomic reference-count increment and decrement per call,
+    # which were a third of the run time); the arithmetic is the same, bit for bit.
+    block = (parameters[0], parameters[1], parameters[2], parameters[3], parameters[4],
+             parameters[5], parameters[6], parameters[7], parameters[8], parameters[9])
+    alpha = block[ALPHA]
+    radius = math.sqrt(block[HALF_WIDTH] ** 2 + block[HALF_HEIGHT] ** 2)
     p = math.sqrt(3.0 * G / (4.0 * radius))
     atol_theta = rtol * alpha
     atol_omega = rtol * alpha * p
@@ -511,10 +519,9 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
     velocity_floor = 1e-13 * alpha * p
     if method == METHOD_FAST:
         velocity_floor = max(velocity_floor, 1e3 * atol_omega)
-    hold_down = parameters[HOLD_DOWN]
+    hold_down = block[HOLD_DOWN]
     max_recorded = impact_times.shape[0]
     per_step = _EVALUATIONS_PER_STEP[method]
-    segment = np.empty(8)
 
     for i in range(N_INFO):
         info[i] = math.nan
@@ -554,24 +561,22 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
         if resting:
             out_acceleration[0] = 0.0
         else:
-            out_acceleration[0] = model_acceleration(method, theta, side, ug[0], vg[0], rg[0],
-                                                     parameters)
+            out_acceleration[0] = model_acceleration(method, theta, side, ug[0] * scale,
+                                                     vg[0] * scale, rg[0] * scale,
+                                                     block)
     filled = 1
 
     for k in range(n - 1):
         t0 = t_grid[k]
         t1 = t_grid[k + 1]
-        segment[0] = t0
-        segment[1] = t1 - t0
-        segment[2] = ug[k]
-        segment[3] = ug[k + 1] - ug[k]
-        segment[4] = vg[k]
-        segment[5] = vg[k + 1] - vg[k]
-        segment[6] = rg[k]
-        segment[7] = rg[k + 1] - rg[k]
+        # a tuple, not an array: passed by value, with no reference counting per call
+        u0, u1 = ug[k] * scale, ug[k + 1] * scale
+        v0, v1 = vg[k] * scale, vg[k + 1] * scale
+        r0, r1 = rg[k] * scale, rg[k + 1] * scale
+        segment = (t0, t1 - t0, u0, u1 - u0, v0, v1 - v0, r0, r1 - r0)
         # The model needs contact: g + vg (+ rods' hold-down) must stay positive.
-        support_0 = G + vg[k] + hold_down
-        support_1 = G + vg[k + 1] + hold_down
+        support_0 = G + v0 + hold_down
+        support_1 = G + v1 + hold_down
         t_end = t1
         airborne = False
         if support_0 <= 0.0:
@@ -594,8 +599,8 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 start = math.inf
                 start_side = 0.0
                 for s in (1.0, -1.0):
-                    margin_a = s * model_acceleration(method, 0.0, s, ua, va, ra, parameters)
-                    margin_b = s * model_acceleration(method, 0.0, s, ub, vb, rb, parameters)
+                    margin_a = s * model_acceleration(method, 0.0, s, ua, va, ra, block)
+                    margin_b = s * model_acceleration(method, 0.0, s, ub, vb, rb, block)
                     if margin_a > 0.0:
                         candidate = t
                     elif margin_b > 0.0:
@@ -609,7 +614,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                     t = t_end
                     break
                 t = _first_positive_margin(method, start, t_end, start_side, segment,
-                                           parameters)
+                                           block)
                 side = start_side
                 theta = 0.0
                 omega = 0.0
@@ -622,7 +627,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
             if not known:
                 if method != METHOD_LINEAR:  # the closed form does not need it
                     acceleration = _start_acceleration(method, t, theta, side, segment,
-                                                       parameters)
+                                                       block)
                     evaluations += 1
                 known = True
 
@@ -637,7 +642,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
             else:
                 h = t_end - t
             theta_new, omega_new, acceleration_new, error_theta, error_omega = _advance(
-                method, t, theta, omega, acceleration, side, h, segment, parameters)
+                method, t, theta, omega, acceleration, side, h, segment, block)
             evaluations += per_step
             if method == METHOD_FAST:
                 error = max(abs(error_theta) / (atol_theta + rtol * max(abs(theta), abs(theta_new))),
@@ -671,12 +676,12 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 sign = 1.0 if omega > 0.0 else -1.0
                 tau_turn, x, v, acc, trials = _locate(
                     EVENT_PEAK, method, t, theta, omega, acceleration, side, h, theta_new,
-                    omega_new, acceleration_new, segment, parameters, sign)
+                    omega_new, acceleration_new, segment, block, sign)
                 evaluations += trials * per_step
                 if side * x <= 0.0:
                     tau, theta_new, omega_new, acceleration_new, trials = _locate(
                         EVENT_IMPACT, method, t, theta, omega, acceleration, side, tau_turn,
-                        x, v, acc, segment, parameters, 0.0)
+                        x, v, acc, segment, block, 0.0)
                     evaluations += trials * per_step
                     kind = EVENT_IMPACT
             elif side * theta_new < 0.0 or (side * theta_new == 0.0 and side * omega_new < 0.0):
@@ -686,13 +691,13 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                     # below 0, down again): bracket the first crossing
                     found, xd, vd, ad, trials = _dip_on_stepper(
                         method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                        0.5 * side * theta, True, segment, parameters)
+                        0.5 * side * theta, True, segment, block)
                     evaluations += trials * per_step
                     if found > 0.0:
                         upper, x, v, acc = found, xd, vd, ad
                 tau, theta_new, omega_new, acceleration_new, trials = _locate(
                     EVENT_IMPACT, method, t, theta, omega, acceleration, side, upper, x,
-                    v, acc, segment, parameters, 0.0)
+                    v, acc, segment, block, 0.0)
                 evaluations += trials * per_step
                 kind = EVENT_IMPACT
             elif omega * omega_new > 0.0 and side * theta_new > 0.0:
@@ -701,18 +706,18 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 # a dip below 0 between two turning points that no sign test sees
                 found, x, v, acc, trials = _dip_on_stepper(
                     method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                    0.5 * min(side * theta, side * theta_new), False, segment, parameters)
+                    0.5 * min(side * theta, side * theta_new), False, segment, block)
                 evaluations += trials * per_step
                 if found > 0.0:
                     tau, theta_new, omega_new, acceleration_new, trials = _locate(
                         EVENT_IMPACT, method, t, theta, omega, acceleration, side, found,
-                        x, v, acc, segment, parameters, 0.0)
+                        x, v, acc, segment, block, 0.0)
                     evaluations += trials * per_step
                     kind = EVENT_IMPACT
             if side * theta_new >= 0.5 * math.pi:
                 tau, theta_new, omega_new, acceleration_new, trials = _locate(
                     EVENT_OVERTURN, method, t, theta, omega, acceleration, side, tau, theta_new,
-                    omega_new, acceleration_new, segment, parameters, 0.0)
+                    omega_new, acceleration_new, segment, block, 0.0)
                 evaluations += trials * per_step
                 kind = EVENT_OVERTURN
             if kind == EVENT_IMPACT:
@@ -729,7 +734,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 sign = 1.0 if omega > 0.0 else -1.0
                 tau_peak, theta_peak, v_peak, acceleration_peak, trials = _locate(
                     EVENT_PEAK, method, t, theta, omega, acceleration, side, tau, theta_new,
-                    omega_new, acceleration_new, segment, parameters, sign)
+                    omega_new, acceleration_new, segment, block, sign)
                 evaluations += trials * per_step
                 if abs(theta_peak) > info[INFO_MAX_ABS_THETA]:
                     info[INFO_MAX_ABS_THETA] = abs(theta_peak)
@@ -747,7 +752,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                         upper, x, v, acc = tau, theta_new, omega_new, acceleration_new
                     tau_unstable, x, v, acc, trials = _locate(
                         EVENT_UNSTABLE, method, t, theta, omega, acceleration, side, upper, x, v,
-                        acc, segment, parameters, 0.0)
+                        acc, segment, block, 0.0)
                     evaluations += trials * per_step
                     info[INFO_T_UNSTABLE] = t + tau_unstable
                     info[INFO_UNSTABLE_DIRECTION] = side
@@ -777,7 +782,7 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
                 known = False
                 ux, vx, rx = _ground(segment, t)
                 deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, rx,
-                                                          parameters)
+                                                          block)
                 remaining = cascade_rest_time(omega, deceleration, cor)
                 if remaining == math.inf and cor >= 1.0 and deceleration > 0.0 and abs(
                         omega) <= velocity_floor:
@@ -807,8 +812,8 @@ def integrate(method, t_grid, ug, vg, rg, parameters, cor, theta0, omega0, rtol,
             if resting:
                 out_acceleration[k + 1] = 0.0
             else:
-                out_acceleration[k + 1] = model_acceleration(method, theta, side, ug[k + 1],
-                                                             vg[k + 1], rg[k + 1], parameters)
+                out_acceleration[k + 1] = model_acceleration(method, theta, side, u1, v1, r1,
+                                                             block)
         filled = k + 2
 
     info[INFO_T_END] = t

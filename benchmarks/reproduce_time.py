@@ -1,0 +1,73 @@
+"""``shaketable reproduce --all`` (issue 28, goal 4): wall and CPU time, and the CPU of
+each scene, from which the two-process wall time on two free cores follows.
+
+Runs the whole reproduction (warm numba cache) into a temporary folder (or ``--keep``)
+as the command does, timing wall clock and CPU (``resource.getrusage`` of this process
+and its worker processes); then, with ``--per-scene``, each scene alone in this process,
+CPU seconds each, and the time two workers need when they take the scenes in the pool's
+order (report tables first, then other studies, then single scenes), each the next one
+when free: the wall time on two free cores, whatever else a shared machine runs.
+Target: <= 30 s wall on 2 cores.
+
+    python3 benchmarks/reproduce_time.py [--per-scene] [--keep DIR]
+"""
+
+from __future__ import annotations
+
+import argparse
+import heapq
+import json
+import os
+import resource
+import tempfile
+import time
+from pathlib import Path
+
+
+def cpu_with_children() -> float:
+    own = resource.getrusage(resource.RUSAGE_SELF)
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--per-scene", action="store_true",
+                        help="also time each scene alone (one more full pass, in-process)")
+    parser.add_argument("--keep", default=None, help="write the reproduction here, not in a "
+                        "temporary folder (to compare it with another)")
+    args = parser.parse_args(argv)
+
+    from shaketable.reproduce import _expected_share, _scene_outcome, _worker_count, reproduce
+    from shaketable.scenes.catalog import scene_names
+
+    names = list(scene_names())
+    out: dict = {"scenes": len(names), "processes": _worker_count(len(names))}
+    with tempfile.TemporaryDirectory() as folder:
+        wall, cpu = time.perf_counter(), cpu_with_children()
+        reproduce(names, out=Path(args.keep or Path(folder) / "all"), progress=False)
+        out["wall [s]"] = time.perf_counter() - wall
+        out["CPU, with the worker processes [s]"] = cpu_with_children() - cpu
+        if args.per_scene:
+            seconds = {}
+            for name in names:
+                start = time.process_time()
+                _scene_outcome(name, Path(folder) / "one")
+                seconds[name] = time.process_time() - start
+            workers = [0.0] * 2
+            heapq.heapify(workers)
+            # the pool's order (longest kinds first); each worker takes the next when free
+            for name in sorted(names, key=_expected_share):
+                heapq.heappush(workers, heapq.heappop(workers) + seconds[name])
+            out["CPU of the scenes, one process [s]"] = sum(seconds.values())
+            out["two free cores, scenes as the pool schedules them [s]"] = max(workers)
+            out["slowest scenes [s]"] = dict(sorted(seconds.items(), key=lambda item:
+                                                    -item[1])[:8])
+    out["target wall [s]"] = 30
+    out["load average"] = os.getloadavg()
+    print(json.dumps(out, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
