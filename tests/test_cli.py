@@ -18,7 +18,7 @@ def test_every_subcommand_has_help(capsys):
 
 def test_simulate_free_rocking_writes_csv_json_and_figure(tmp_path, capsys):
     status = main(["simulate", "--block", "30x6in", "--cor", "0.925", "--theta0", "0.5alpha",
-                   "--duration", "8", "--out", str(tmp_path)])
+                   "--duration", "8s", "--out", str(tmp_path)])
     assert status == 0
     frame = pd.read_csv(tmp_path / "history.csv")
     assert "theta [rad]" in frame.columns and frame["time [s]"].iloc[-1] == pytest.approx(8.0)
@@ -37,9 +37,9 @@ def test_simulate_bundled_record(tmp_path):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["simulate", "--block", "30x6", "--cor", "0.9", "--duration", "1"], "no unit"),
-    (["simulate", "--block", "30x6in", "--cor", "1.2", "--duration", "1"], "cor"),
-    (["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.1", "--duration", "1"],
+    (["simulate", "--block", "30x6", "--cor", "0.9", "--duration", "1s"], "no unit"),
+    (["simulate", "--block", "30x6in", "--cor", "1.2", "--duration", "1s"], "cor"),
+    (["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.1", "--duration", "1s"],
      "theta0"),
     (["simulate", "--block", "30x6in", "--cor", "0.9", "--record", "no-such-record"],
      "no such file"),
@@ -47,6 +47,46 @@ def test_simulate_bundled_record(tmp_path):
 def test_simulate_bad_input_is_a_clear_error(argv, message, tmp_path, capsys):
     assert main(argv + ["--out", str(tmp_path)]) == 2
     assert message in capsys.readouterr().err
+
+
+#: Every dimensional option of every subcommand, with a value lacking its unit (issue 31).
+DIMENSIONAL_OPTIONS = [
+    (["simulate", "--block", "30x6in", "--cor", "0.9"], "--duration", "8", "time"),
+    (["simulate", "--block", "30x6in", "--cor", "0.9"], "--dt", "0.02", "time"),
+    (["animate", "fig-3-4", "--out", "x.gif"], "--start", "2", "time"),
+    (["animate", "fig-3-4", "--out", "x.gif"], "--end", "4", "time"),
+    (["spectrum"], "--alpha", "0.25", "angle"),
+    (["spectrum"], "--p", "2", "angular frequency"),
+    (["calibrate", "free.csv", "--block", "30x6in"], "--rate", "50", "frequency"),
+]
+
+
+@pytest.mark.parametrize("argv, option, bare, kind", DIMENSIONAL_OPTIONS)
+def test_dimensional_options_need_their_unit_and_say_so_in_one_line(argv, option, bare, kind,
+                                                                     capsys):
+    # `--duration 8` is refused like `--theta0 0.5`: one line naming the option, the value
+    # and the kind of quantity, exit status 2, no argparse usage dump
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv + [option, bare])
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "usage:" not in err
+    assert err.startswith(f"shaketable {argv[0]}: error: {option}: '{bare}' has no unit")
+    assert f"write the {kind} with its unit" in err
+
+
+def test_dimensional_options_take_their_unit():
+    # the same options with a unit are read in SI: 8 s, 20 ms, 0.25 rad, 3 deg, 2 rad/s, 50 Hz
+    from shaketable.cli import build_parser
+
+    parser = build_parser()
+    args = parser.parse_args(["simulate", "--block", "30x6in", "--cor", "0.9",
+                              "--duration", "8s", "--dt", "20 ms"])
+    assert (args.duration, args.dt) == (8.0, pytest.approx(0.02, rel=1e-15))
+    args = parser.parse_args(["spectrum", "--alpha", "3deg", "--p", "2rad/s"])
+    assert args.alpha == pytest.approx(3 * 3.141592653589793 / 180, rel=1e-15) and args.p == 2.0
+    args = parser.parse_args(["calibrate", "x.csv", "--block", "30x6in", "--rate", "50Hz"])
+    assert args.rate == 50.0
 
 
 def test_run_writes_parquet_and_svg_on_request(tmp_path, capsys):

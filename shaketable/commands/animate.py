@@ -36,6 +36,8 @@ def _animate(args) -> int:
 
 def register(commands) -> None:
     """Add the ``animate`` subcommand."""
+    from shaketable.commands.options import add_quantity
+
     parser = commands.add_parser(
         "animate", help="animated GIF: the block rocking on the moving table beside θ/α",
         description="Run a scene and write an animated GIF of the block (to scale, rocking "
@@ -49,6 +51,6 @@ def register(commands) -> None:
                         help="simulated seconds per GIF second (default 1: real time)")
     parser.add_argument("--run", type=int, default=0,
                         help="which of the scene's CORs to show, counted from 0 (default 0)")
-    parser.add_argument("--start", type=float, default=None, help="first time shown [s]")
-    parser.add_argument("--end", type=float, default=None, help="last time shown [s]")
+    add_quantity(parser, "--start", kind="time", example="2s", help="first time shown")
+    add_quantity(parser, "--end", kind="time", example="16s", help="last time shown")
     parser.set_defaults(handler=_animate)

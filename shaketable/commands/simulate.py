@@ -13,6 +13,7 @@ from shaketable.commands.common import (
     notice_first_compile,
     scaled,
 )
+from shaketable.commands.options import add_quantity
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -95,7 +96,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     sim.add_argument("--theta0", default="0rad",
                      help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad)")
     add_record_arguments(sim)
-    sim.add_argument("--duration", type=float, help="length of the run [s]")
+    add_quantity(sim, "--duration", kind="time", example="8s", help="length of the run")
     sim.add_argument("--method", default="fast",
                      choices=list(METHODS))
     sim.add_argument("--subdivisions", type=int, default=4,

@@ -29,6 +29,7 @@ Sections (``experiments/*.toml`` are the examples)::
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -256,7 +257,61 @@ def load_scene(path: str | Path) -> Scene | Study:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise SceneError(f"{path}: not valid TOML: {error}") from None
-    return scene_from_dict(data, where=str(path))
+    try:
+        return scene_from_dict(data, where=str(path))
+    except SceneError as error:
+        raise SceneError(with_line(str(error), str(path), text)) from None
+
+
+#: A key named in an error message: ``rocking.theta0``, ``[block]``, ``'colour' in [block]``.
+_KEY_IN_MESSAGE = re.compile(r"unknown key '([\w-]+)' in \[([\w.-]+)|\[([\w.-]+)\]|"
+                             r"\b((?:block|motion|rocking|report|outputs|table|sensors|theory|"
+                             r"sliding|ensemble|study)(?:\.[\w-]+)+)")
+_HEADER = re.compile(r"^\s*\[\[?\s*([\w.\"' -]+?)\s*\]\]?\s*(?:#.*)?$")
+_ASSIGNMENT = re.compile(r"^\s*([\w.\"' -]+?)\s*=")
+
+
+def with_line(message: str, where: str, text: str) -> str:
+    """``message`` (``"WHERE: rocking.cor ..."``) with the line of the key it names in ``text``.
+
+    ``"scene.toml: rocking.cor must be ..."`` becomes ``"scene.toml:9: rocking.cor must
+    be ..."``: the line where the key (or, failing that, its section) is written, found in
+    the TOML text. A message naming no key found in the text is returned as it is.
+    """
+    prefix = f"{where}: "
+    if not message.startswith(prefix):
+        return message
+    match = _KEY_IN_MESSAGE.search(message[len(prefix):])
+    if match is None:
+        return message
+    unknown, section, header, dotted = match.groups()
+    path = f"{section}.{unknown}" if unknown else (header or dotted)
+    line = key_line(text, path.split("."))
+    return message if line is None else f"{where}:{line}: {message[len(prefix):]}"
+
+
+def key_line(text: str, path: list) -> int | None:
+    """Line number (from 1) of the dotted key ``path`` in TOML ``text``, or of its longest
+    written prefix (a section header, an inline table); ``None`` when nothing of it is written."""
+    best, best_depth = None, 0
+    section: list = []
+    for number, line in enumerate(text.splitlines(), start=1):
+        header = _HEADER.match(line)
+        if header:
+            section = [part.strip().strip("\"'") for part in header.group(1).split(".")]
+            keys = section
+        else:
+            assignment = _ASSIGNMENT.match(line)
+            if not assignment:
+                continue
+            keys = section + [part.strip().strip("\"'")
+                              for part in assignment.group(1).split(".")]
+        depth = 0
+        while depth < min(len(keys), len(path)) and keys[depth] == path[depth]:
+            depth += 1
+        if depth == len(keys) and depth > best_depth:  # this line writes a prefix of path
+            best, best_depth = number, depth
+    return best
 
 
 def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:

@@ -88,7 +88,7 @@ def test_cli_animate_help_and_smoke_run(tmp_path, capsys):
                      '[motion]\nkind = "free"\n[rocking]\ncor = 0.925\n'
                      'theta0 = "0.5 alpha"\nduration = "2 s"\n')
     out = tmp_path / "fig.gif"
-    assert main(["animate", str(scene), "--out", str(out), "--fps", "4", "--end", "1"]) == 0
+    assert main(["animate", str(scene), "--out", str(out), "--fps", "4", "--end", "1s"]) == 0
     with Image.open(out) as gif:
         assert gif.n_frames == 5  # 0, 0.25, ..., 1 s
     assert "free: 30 x 6 in, COR 0.925" in capsys.readouterr().out

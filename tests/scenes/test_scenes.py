@@ -175,3 +175,44 @@ def test_harmonic_scenes_start_and_end_the_table_at_rest(name):
     assert drift == pytest.approx(amplitude / (2 * math.pi * frequency), rel=0.02)
     command = displacement_command(motion)
     assert np.max(np.abs(command.horizontal_displacement)) < 5 * INCH
+
+
+LINED = """name = "probe"
+# a comment, then a blank line
+
+[block]
+size = "30x6in"
+[motion]
+kind = "harmonic"
+frequency = "2 Hz"
+horizontal = "0.3 g"
+duration = "2 s"
+[rocking]
+cor = 0.9
+theta0 = "0.1 alpha"
+"""
+
+
+@pytest.mark.parametrize("change, line", [
+    # (replacement in LINED, the line of the offending key, counted by hand from 1)
+    (("size = \"30x6in\"", "size = \"30x6in\"\ncolour = \"red\""), 6),
+    (("horizontal = \"0.3 g\"", "horizontal = 0.3"), 9),
+    (("cor = 0.9", "cor = 1.5"), 12),
+    (("theta0 = \"0.1 alpha\"", "theta0 = \"half alpha\""), 13),
+    (("[block]\nsize = \"30x6in\"", "[block.rods]\nstiffness = 3"), 4),
+    (("kind = \"harmonic\"", "kind = \"wobble\""), 7),
+])
+def test_scene_errors_name_the_line(tmp_path, change, line):
+    # the README: "the message names the option, file and line" (issue 31)
+    path = write(tmp_path, LINED.replace(*change))
+    with pytest.raises(SceneError) as error:
+        load_scene(path)
+    assert str(error.value).startswith(f"{path}:{line}: "), str(error.value)
+
+
+def test_scene_error_on_a_missing_key_names_its_section_line(tmp_path):
+    # a missing key has no line of its own: the line of the section it belongs in
+    path = write(tmp_path, LINED.replace("cor = 0.9\n", ""))
+    with pytest.raises(SceneError) as error:
+        load_scene(path)
+    assert str(error.value).startswith(f"{path}:11: rocking.cor is missing")
