@@ -17,11 +17,15 @@ def describe_block(block) -> str:
 
     Feet when both dimensions are whole feet of at least 2 ft (Chapter 4's
     blocks), inches otherwise (Chapter 3's specimens); prestress rods with
-    their total stiffness K [W/in] and force F0 [W] (Section 2.8).
+    their total stiffness K [W/in] and force F0 [W] (Section 2.8). A block parsed
+    from the user's text (``--block 30x6in``, ``size = "4x0.8ft"``) is echoed in the
+    user's order and units: ``"H × B = 30 × 6 in"``, ``"H × B = 4 × 0.8 ft"``.
     """
     foot, inch = length_factor("ft"), length_factor("in")
     width_ft, height_ft = block.width / foot, block.height / foot
-    if min(width_ft, height_ft) >= 2 and np.allclose([width_ft, height_ft],
+    if getattr(block, "label", ""):
+        text = f"H × B = {block.label.replace(' x ', ' × ')}"
+    elif min(width_ft, height_ft) >= 2 and np.allclose([width_ft, height_ft],
                                                      np.round([width_ft, height_ft]), atol=1e-9):
         text = f"B × H = {width_ft:g} × {height_ft:g} ft"
     else:
