@@ -108,3 +108,52 @@ def test_run_writes_parquet_and_svg_on_request(tmp_path, capsys):
     assert main(["run", "fig-2-9", "--out", str(plain)]) == 0
     assert not (plain / "history.parquet").exists() and not (plain / "calcomp.svg").exists()
     capsys.readouterr()
+
+
+def test_simulate_harmonic_and_pulse_from_the_command_line(tmp_path, capsys):
+    # issue 31: table motions without a scene file. The ground column of history.csv is
+    # the closed form: 0.15 sin(2 pi 2 t) [g], and a half sine 0.5 sin(pi t / 0.2 s) then 0
+    import numpy as np
+
+    out = tmp_path / "harmonic"
+    assert main(["simulate", "--block", "30x6in", "--cor", "0.9", "--harmonic", "2Hz,0.15g",
+                 "--duration", "2s", "--out", str(out)]) == 0
+    frame = pd.read_csv(out / "history.csv")
+    t = frame["time [s]"].to_numpy()
+    assert t[-1] == pytest.approx(2.0)
+    assert np.allclose(frame["ground horizontal [g]"], 0.15 * np.sin(4 * np.pi * t), atol=1e-12)
+    # Eq. 2-1: 0.15 g is below B/H = 0.2 g, so the block never rocks
+    assert np.all(frame["theta [rad]"] == 0.0)
+    out = tmp_path / "pulse"
+    assert main(["simulate", "--block", "30x6in", "--cor", "0.9", "--pulse",
+                 "half-sine,0.5g,0.2s", "--duration", "2s", "--out", str(out)]) == 0
+    frame = pd.read_csv(out / "history.csv")
+    t, ground = frame["time [s]"].to_numpy(), frame["ground horizontal [g]"].to_numpy()
+    assert np.allclose(ground, np.where(t <= 0.2, 0.5 * np.sin(np.pi * t / 0.2), 0.0),
+                       atol=1e-12)
+    out = tmp_path / "one-cosine"
+    assert main(["simulate", "--block", "30x6in", "--cor", "0.9", "--pulse",
+                 "one-cosine,0.3g,0.5s", "--duration", "2s", "--out", str(out)]) == 0
+    frame = pd.read_csv(out / "history.csv")
+    t, ground = frame["time [s]"].to_numpy(), frame["ground horizontal [g]"].to_numpy()
+    inside = t < 0.5
+    # one cosine of period 0.5 s: 0.3 cos(2 pi t / 0.5 s) during the pulse, then nothing
+    assert np.allclose(ground[inside], 0.3 * np.cos(4 * np.pi * t[inside]), atol=1e-12)
+    assert np.all(ground[t > 0.5 + 1e-6] == 0.0)
+
+
+@pytest.mark.parametrize("motion, message", [
+    (["--harmonic", "2Hz,0.5g", "--record", "pacoima-dam-s16e", "--duration", "1s"],
+     "give one table motion"),
+    (["--harmonic", "2Hz,0.5g"], "--harmonic needs --duration"),
+    (["--harmonic", "2,0.5g", "--duration", "1s"], "'2' has no unit"),
+    (["--harmonic", "2Hz", "--duration", "1s"], "give 2 or 3 values"),
+    (["--pulse", "half-sine,0.5g", "--duration", "1s"], "--pulse 'half-sine,0.5g': give 2"),
+    (["--pulse", "wobble,0.5g,1s", "--duration", "2s"], "unknown pulse kind 'wobble'"),
+    (["--pulse", "half-sine,0.5g,3s", "--duration", "2s"], "--pulse"),
+])
+def test_simulate_motion_options_bad_input(motion, message, tmp_path, capsys):
+    assert main(["simulate", "--block", "30x6in", "--cor", "0.9", *motion,
+                 "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "usage:" not in err

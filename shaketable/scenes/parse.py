@@ -8,12 +8,13 @@ expected.
 Sections (``experiments/*.toml`` are the examples)::
 
     name, source, description       # top level: text
-    [block]      size = "30x6in"  or  height = "30 in", width = "6 in"
+    [block]      size = "30x6in" (or a list to compare, ["30x6in", "60x12in"])
+                 or  height = "30 in", width = "6 in"
     [block.rods] stiffness = "0.4 W/in", force = "0.4 W", edge_distance = "12 in"
                  (and block.static_friction = 0.6: the sliding/rocking check of Section 2.1)
     [motion]     kind = "free" | "harmonic" | "record" | "artificial" | "half-sine"
                  | "constant-pulse", and the keys of that kind
-    [rocking]    cor = 0.925 (or a list to compare), theta0 = "0.5 alpha",
+    [rocking]    cor = 0.925 (or a list to compare), theta0 = "0.5 alpha" (or a list),
                  duration = "8 s", method = "fast", subdivisions, rtol
     [report]     the report's values to compare with (see REPORT_KEYS)
     [outputs]    figure = true, csv = true, parquet = false, svg = false,
@@ -107,7 +108,13 @@ class Scene:
     cors : tuple of float
         Coefficients of restitution to run (one run each) [-].
     theta0 : float
-        Initial rotation [rad].
+        Initial rotation [rad] (the first of ``theta0s``).
+    blocks : tuple of Block
+        ``size = [...]``: every block to run (one run each); ``(block,)`` for one size.
+    theta0s : tuple of tuple of float
+        ``theta0 = [...]``: for each block of ``blocks``, every initial rotation to run
+        [rad] (``"0.5 alpha"`` is a multiple of that block's own alpha); ``()`` when
+        the scene gives one block and one theta0.
     theta_dot0 : float
         Initial angular velocity [rad/s].
     duration : float or None
@@ -157,6 +164,16 @@ class Scene:
     sliding: tuple = ()
     path: str = ""
     ensemble: dict = field(default_factory=dict)
+    blocks: tuple = ()
+    theta0s: tuple = ()
+
+    def variants(self) -> list:
+        """The runs a scene asks for: ``(block, theta0 [rad], cor)`` for every block, then
+        every initial rotation, then every COR (a single block and theta0: one per COR)."""
+        blocks = self.blocks or (self.block,)
+        starts = self.theta0s or ((self.theta0,),)
+        return [(block, theta0, cor) for index, block in enumerate(blocks)
+                for theta0 in starts[index] for cor in self.cors]
 
     def mode(self) -> str | None:
         """Sliding or rocking by Section 2.1 (mu_s against B/H), when ``static_friction`` is given."""
@@ -323,7 +340,8 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
         if key not in data:
             raise SceneError(f"{where}: missing [{key}]" if key != "name"
                              else f"{where}: missing 'name' at the top level")
-    block = _block(data["block"], where)
+    blocks = _blocks(data["block"], where)
+    block = blocks[0]
     static_friction = data["block"].get("static_friction")
     if static_friction is not None and (isinstance(static_friction, bool) or not isinstance(
             static_friction, (int, float)) or not 0 < static_friction < math.inf):
@@ -345,9 +363,16 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
         if isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0 <= cor <= 1:
             raise SceneError(f"{where}: rocking.cor must be a number in [0, 1] or a list of "
                              f"them, got {rocking['cor']!r}")
+    starts = rocking.get("theta0", "0 rad")
+    starts = starts if isinstance(starts, list) else [starts]
+    if not starts:
+        raise SceneError(f"{where}: rocking.theta0 is an empty list; give an angle such as "
+                         f"'0.5 alpha' or a list of them")
     try:
-        theta0 = parse_angle_or_ratio(rocking.get("theta0", "0 rad"), block.alpha,
-                                      where=f"{where}: rocking.theta0")
+        theta0s = tuple(tuple(parse_angle_or_ratio(start, each.alpha,
+                                                   where=f"{where}: rocking.theta0")
+                              for start in starts) for each in blocks)
+        theta0 = theta0s[0][0]
         theta_dot0 = 0.0
         if "theta_dot0" in rocking:
             theta_dot0 = parse(str(rocking["theta_dot0"]).replace("rad/s", "rad"), "angle",
@@ -390,7 +415,19 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
                  theory=_stage_section(data, "theory", where) if "sensors" in data else None,
                  static_friction=None if static_friction is None else float(static_friction),
                  sliding=_sliding(data, motion, where),
-                 path=where, ensemble=_ensemble_section(data, where))
+                 path=where, ensemble=_ensemble_section(data, where),
+                 **_variants(blocks, theta0s, data, where))
+
+
+def _variants(blocks: tuple, theta0s: tuple, data: dict, where: str) -> dict:
+    """``blocks`` and ``theta0s`` of a scene that lists several (empty for one of each)."""
+    if len(blocks) == 1 and len(theta0s[0]) == 1:
+        return {}
+    for section in ("ensemble", "sliding"):
+        if section in data:
+            raise SceneError(f"{where}: [{section}] runs one block from one theta0; a list "
+                             f"of block sizes or of theta0 cannot be combined with it")
+    return {"blocks": blocks, "theta0s": theta0s}
 
 
 def _sliding(data: dict, motion: dict, where: str) -> tuple:
@@ -536,6 +573,18 @@ def _only(table: dict, allowed: set, where: str, section: str) -> None:
     if unknown:
         raise SceneError(f"{where}: unknown key {unknown[0]!r} in [{section}]; expected one of "
                          f"{', '.join(sorted(allowed)) or '(none)'}")
+
+
+def _blocks(table, where) -> tuple:
+    """``[block]``: one block, or one per size of ``size = ["30x6in", "60x12in"]``."""
+    table = _table(table, where, "block")
+    sizes = table.get("size")
+    if not isinstance(sizes, list):
+        return (_block(table, where),)
+    if not sizes:
+        raise SceneError(f"{where}: block.size is an empty list; give a size such as "
+                         f"'30x6in' or a list of them")
+    return tuple(_block(dict(table, size=size), where) for size in sizes)
 
 
 def _block(table, where) -> Block:
