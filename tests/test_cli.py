@@ -157,3 +157,16 @@ def test_simulate_motion_options_bad_input(motion, message, tmp_path, capsys):
                  "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert message in err and "usage:" not in err
+
+
+def test_reproduce_ends_with_the_agree_differ_summary(tmp_path, capsys):
+    # issue 31: the console ends with the report's headline, the same counts as report.md's
+    out = tmp_path / "rep"
+    assert main(["reproduce", "fig-2-9", "--out", str(out)]) == 0
+    printed = capsys.readouterr().out.splitlines()
+    report = (out / "report.md").read_text()
+    summary = [line for line in printed if line.startswith(("Against", "By construction"))]
+    assert len(summary) == 3 and printed[-1].startswith("wrote ")
+    for line in summary:
+        assert f"**{line}**" in report
+    assert "comparisons agree" in summary[0]
