@@ -57,8 +57,8 @@ def _spectrum(args) -> int:
     print(f"{block.describe()} block (alpha {block.alpha:.6g} rad, p {block.p:.6g} rad/s), "
           f"COR {result.cor:.6g}: {len(bands)} bands, {result.runs} runs, {elapsed:.1f} s")
     for _, row in bands[bands["verdict"] == "overturns"].iterrows():
-        print(f"  {row['pulse']:>10} omega/p {row['omega/p [-]']:g}: overturns "
-              f"{row['how']} from {row['from a/(g tan alpha) [-]']:.7g} to "
+        print(f"  {row['pulse']:>10} at ω/p = {row['omega/p [-]']:g}: overturns "
+              f"{row['how']} for a/(g tan α) from {row['from a/(g tan alpha) [-]']:.7g} to "
               f"{row['to a/(g tan alpha) [-]']:.7g}")
     if result.flags:
         print(f"  {len(result.flags)} flag(s): windows narrower than the scan cannot be "
