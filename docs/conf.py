@@ -55,6 +55,13 @@ suppress_warnings = ["myst.xref_missing", "myst.header", "config.cache",
                      "ref.citation"]
 
 # -- API reference ------------------------------------------------------------
+# The summary tables cut a docstring's first sentence at ". ": the report's abbreviations
+# (Eqs. (2-13)/(2-14), Fig. 3.4, Sec.) do not end it.
+import sphinx.ext.autosummary as _autosummary  # noqa: E402
+
+_autosummary.WELL_KNOWN_ABBREVIATIONS = (*_autosummary.WELL_KNOWN_ABBREVIATIONS, " Eq.", " Eqs.",
+                                         " Fig.", " Figs.", " Sec.", " Secs.", "(Eq.", "(Eqs.",
+                                         "(Fig.", "(Figs.")
 autosummary_generate = True
 autosummary_imported_members = False
 autodoc_default_options = {"members": True, "show-inheritance": False}

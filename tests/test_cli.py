@@ -170,3 +170,22 @@ def test_reproduce_ends_with_the_agree_differ_summary(tmp_path, capsys):
     for line in summary:
         assert f"**{line}**" in report
     assert "comparisons agree" in summary[0]
+
+
+def test_examples_copies_the_gallery_scripts_out_of_the_package(tmp_path, capsys):
+    # issue 31: a pip user has no examples/ folder; the scripts are package data
+    from tests.helpers import REPOSITORY
+
+    out = tmp_path / "mine"
+    assert main(["examples", "--out", str(out)]) == 0
+    shipped = sorted(path.name for path in (REPOSITORY / "examples").glob("plot_*.py"))
+    copied = sorted(path.name for path in out.glob("plot_*.py"))
+    assert copied == shipped and len(copied) >= 10 and (out / "README.rst").is_file()
+    for name in copied:   # the same text as the repository's gallery
+        assert (out / name).read_bytes() == (REPOSITORY / "examples" / name).read_bytes()
+    capsys.readouterr()
+    assert main(["examples", "--out", str(out)]) == 2       # nothing overwritten silently
+    assert "--force" in capsys.readouterr().err
+    assert main(["examples", "--out", str(out), "--force"]) == 0
+    assert main(["examples", "--list"]) == 0
+    assert "plot_tutorial_rock_a_block.py" in capsys.readouterr().out
