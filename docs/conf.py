@@ -108,7 +108,14 @@ html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
 }
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+# wrapped code blocks and outputs (nothing cut at the right edge: docs/tools/check_site.py)
+html_css_files = ["shaketable.css"]
+# The pages of the top-level toctrees (user guide, reference pages) have no section of their
+# own to navigate: no primary sidebar there, rather than an empty "Section Navigation"
+# column; the API reference and the gallery keep theirs (their module and example lists).
+# ("*" matches the top-level pages only, not api/... or auto_examples/...)
+html_sidebars = {"*": []}
 
 
 # -- Docstrings: plain-text notation that reStructuredText would misread -------
