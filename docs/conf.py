@@ -59,9 +59,8 @@ suppress_warnings = ["myst.xref_missing", "myst.header", "config.cache",
 # (Eqs. (2-13)/(2-14), Fig. 3.4, Sec.) do not end it.
 import sphinx.ext.autosummary as _autosummary  # noqa: E402
 
-_autosummary.WELL_KNOWN_ABBREVIATIONS = (*_autosummary.WELL_KNOWN_ABBREVIATIONS, " Eq.", " Eqs.",
-                                         " Fig.", " Figs.", " Sec.", " Secs.", "(Eq.", "(Eqs.",
-                                         "(Fig.", "(Figs.")
+_autosummary.WELL_KNOWN_ABBREVIATIONS = (*_autosummary.WELL_KNOWN_ABBREVIATIONS, "Eq.", "Eqs.",
+                                         "Fig.", "Figs.", "Sec.", "Secs.")
 autosummary_generate = True
 autosummary_imported_members = False
 autodoc_default_options = {"members": True, "show-inheritance": False}

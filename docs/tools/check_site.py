@@ -5,10 +5,12 @@ Run by hand after a build (CI has no browser)::
     python -m sphinx -W -b html docs docs/_build/html
     python docs/tools/check_site.py [--screenshots DIR] [--width 1280]
 
-Two checks, each page of ``docs/_build/html``:
+Three checks, each page of ``docs/_build/html``:
 
 * **empty sidebar** (no browser needed): a primary sidebar ("Section Navigation")
   drawn without a single link in it;
+* **cut API summaries** (no browser needed): a summary cell of the API reference ending
+  at an abbreviation ("..., Eqs.") or holding a builtin's docstring (``float``'s);
 * **clipped code** (headless Chromium, when one is found): in a window ``--width``
   pixels wide, a code block or output (``pre``) wider than its box, whose end the reader
   would have to scroll to. Chromium loads a small page that frames each page of the
@@ -121,6 +123,20 @@ def clipped_code(site: Path, pages: list[Path], browser: str, width: int) -> lis
             for page, text in json.loads(html.unescape(match.group(1)))]
 
 
+def cut_summaries(site: Path) -> list[str]:
+    """API summary cells cut at an abbreviation ("Rocking response ..., Eqs.") or holding a
+    builtin's docstring (a constant such as ``shaketable.G`` summarised as ``float``)."""
+    found = []
+    cell = re.compile(r"<td><p>(.*?)</p></td>", flags=re.DOTALL)
+    for page in sorted((site / "api").rglob("*.html")):
+        for text in cell.findall(page.read_text(encoding="utf-8", errors="replace")):
+            plain = re.sub(r"<[^>]+>", "", text).strip()
+            if re.search(r"\b(Eqs?|Figs?|Secs?)\.$", plain) or plain.startswith(
+                    ("Convert a string or number to a floating", "int([x]) -> integer")):
+                found.append(f"{page.relative_to(site)}: {plain[:70]!r}")
+    return found
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--site", type=Path, default=SITE, help="the built site")
@@ -131,6 +147,7 @@ def main(argv=None) -> int:
         print(f"no built site in {args.site}; build it first", file=sys.stderr)
         return 2
     problems = [f"empty sidebar: {page}" for page in empty_sidebars(args.site)]
+    problems += [f"API summary cut or borrowed: {where}" for where in cut_summaries(args.site)]
     browser = next((shutil.which(name) for name in CHROMIUM if shutil.which(name)), None)
     pages = sorted(args.site.glob("*.html")) + sorted(args.site.glob("auto_examples/*.html"))
     pages = [page for page in pages if page.name not in ("search.html", "genindex.html",
