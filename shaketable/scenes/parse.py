@@ -291,9 +291,11 @@ _ASSIGNMENT = re.compile(r"^\s*([\w.\"' -]+?)\s*=")
 def with_line(message: str, where: str, text: str) -> str:
     """``message`` (``"WHERE: rocking.cor ..."``) with the line of the key it names in ``text``.
 
-    ``"scene.toml: rocking.cor must be ..."`` becomes ``"scene.toml:9: rocking.cor must
-    be ..."``: the line where the key (or, failing that, its section) is written, found in
-    the TOML text. A message naming no key found in the text is returned as it is.
+    ``"scene.toml: rocking.cor must be ..., got 1.5"`` becomes ``"scene.toml: rocking.cor
+    must be ..., got 1.5 (line 9)"``: the line where the key (or, failing that, its
+    section) is written, found in the TOML text. The line goes at the end so that the
+    message still begins with the file and the key. A message naming no key found in the
+    text is returned as it is.
     """
     prefix = f"{where}: "
     if not message.startswith(prefix):
@@ -304,7 +306,7 @@ def with_line(message: str, where: str, text: str) -> str:
     unknown, section, header, dotted = match.groups()
     path = f"{section}.{unknown}" if unknown else (header or dotted)
     line = key_line(text, path.split("."))
-    return message if line is None else f"{where}:{line}: {message[len(prefix):]}"
+    return message if line is None else f"{message} (line {line})"
 
 
 def key_line(text: str, path: list) -> int | None:

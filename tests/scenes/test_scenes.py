@@ -207,7 +207,8 @@ def test_scene_errors_name_the_line(tmp_path, change, line):
     path = write(tmp_path, LINED.replace(*change))
     with pytest.raises(SceneError) as error:
         load_scene(path)
-    assert str(error.value).startswith(f"{path}:{line}: "), str(error.value)
+    message = str(error.value)
+    assert message.startswith(f"{path}: ") and message.endswith(f" (line {line})"), message
 
 
 def test_scene_error_on_a_missing_key_names_its_section_line(tmp_path):
@@ -215,7 +216,8 @@ def test_scene_error_on_a_missing_key_names_its_section_line(tmp_path):
     path = write(tmp_path, LINED.replace("cor = 0.9\n", ""))
     with pytest.raises(SceneError) as error:
         load_scene(path)
-    assert str(error.value).startswith(f"{path}:11: rocking.cor is missing")
+    message = str(error.value)
+    assert message.startswith(f"{path}: rocking.cor is missing") and message.endswith("(line 11)")
 
 
 LISTS = """name = "lists"
