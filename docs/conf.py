@@ -55,6 +55,12 @@ suppress_warnings = ["myst.xref_missing", "myst.header", "config.cache",
                      "ref.citation"]
 
 # -- API reference ------------------------------------------------------------
+# The summary tables cut a docstring's first sentence at ". ": the report's abbreviations
+# (Eqs. (2-13)/(2-14), Fig. 3.4, Sec.) do not end it.
+import sphinx.ext.autosummary as _autosummary  # noqa: E402
+
+_autosummary.WELL_KNOWN_ABBREVIATIONS = (*_autosummary.WELL_KNOWN_ABBREVIATIONS, "Eq.", "Eqs.",
+                                         "Fig.", "Figs.", "Sec.", "Secs.")
 autosummary_generate = True
 autosummary_imported_members = False
 autodoc_default_options = {"members": True, "show-inheritance": False}
@@ -101,7 +107,14 @@ html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
 }
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+# wrapped code blocks and outputs (nothing cut at the right edge: docs/tools/check_site.py)
+html_css_files = ["shaketable.css"]
+# The pages of the top-level toctrees (user guide, reference pages) have no section of their
+# own to navigate: no primary sidebar there, rather than an empty "Section Navigation"
+# column; the API reference and the gallery keep theirs (their module and example lists).
+# ("*" matches the top-level pages only, not api/... or auto_examples/...)
+html_sidebars = {"*": []}
 
 
 # -- Docstrings: plain-text notation that reStructuredText would misread -------

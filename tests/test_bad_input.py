@@ -230,7 +230,7 @@ def run_cli(argv, cwd: Path) -> tuple[int, str, str]:
 
 SIM = ["simulate", "--block", "4x1ft", "--cor", "0.9"]
 FREE = ["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.5alpha",
-        "--duration", "1"]
+        "--duration", "1s"]
 
 
 def _record(name):
@@ -262,11 +262,12 @@ CLI_CASES = [
     ("option", "theta0-words", FREE + ["--theta0", "abc"], 2, "theta0"),
     ("option", "theta0-no-unit", FREE + ["--theta0", "0.5"], 2, "theta0"),
     ("option", "theta0-nan", FREE + ["--theta0", "nanrad"], 2, "theta0"),
-    ("option", "duration-negative", FREE + ["--duration", "-1"], 2, "duration"),
-    ("option", "duration-zero", FREE + ["--duration", "0"], 2, "duration"),
+    ("option", "duration-negative", FREE + ["--duration=-1s"], 2, "duration"),
+    ("option", "duration-zero", FREE + ["--duration", "0s"], 2, "duration"),
     ("option", "duration-nan", FREE + ["--duration", "nan"], 2, "duration"),
     ("option", "duration-inf", FREE + ["--duration", "inf"], 2, "duration"),
     ("option", "duration-text", FREE + ["--duration", "long"], 2, "--duration"),
+    ("option", "duration-no-unit", FREE + ["--duration", "8"], 2, "--duration: '8' has no unit"),
     ("option", "free-without-duration", ["simulate", "--block", "4x1ft", "--cor", "0.9",
                                          "--theta0", "0.1rad"], 2, "duration"),
     ("option", "scale-nan", SIM + ["--record", "pacoima-dam-s16e", "--scale", "nan"], 2, "scale"),
@@ -277,16 +278,16 @@ CLI_CASES = [
      "subdivisions"),
     ("option", "format-unknown", FREE + ["--format", "gif"], 2, "--format"),
     ("option", "units-unknown", _record("good.csv") + ["--units", "furlongs"], 2, "furlongs"),
-    ("option", "dt-negative", _record("one-column.txt") + ["--units", "g", "--dt", "-1"], 2, "dt"),
-    ("option", "dt-zero", _record("one-column.txt") + ["--units", "g", "--dt", "0"], 2, "dt"),
+    ("option", "dt-negative", _record("one-column.txt") + ["--units", "g", "--dt=-1s"], 2, "dt"),
+    ("option", "dt-zero", _record("one-column.txt") + ["--units", "g", "--dt", "0s"], 2, "dt"),
     ("option", "dt-missing", _record("one-column.txt") + ["--units", "g"], 2, "dt"),
     ("option", "unknown-command", ["levitate"], 2, "invalid choice"),
     ("option", "unknown-option", FREE + ["--colour", "red"], 2, "unrecognized"),
     ("option", "no-command", [], 2, "required"),
     # ---------------------------------------------------------------- work bounds (hangs)
-    ("bounds", "duration-huge", FREE[:-2] + ["--duration", "1e12"], 2, "limit"),
+    ("bounds", "duration-huge", FREE[:-2] + ["--duration", "1e12s"], 2, "limit"),
     ("bounds", "record-duration-huge", SIM + ["--record", "pacoima-dam-s16e", "--duration",
-                                              "1e9"], 2, "limit"),
+                                              "1e9s"], 2, "limit"),
     ("bounds", "subdivisions-huge", SIM + ["--record", "pacoima-dam-s16e", "--method",
                                            "predictor-corrector", "--subdivisions", "100000000"],
      2, "limit"),
@@ -316,7 +317,7 @@ CLI_CASES = [
     ("record", "at2-dt-negative", _record("dt-negative.AT2"), 2, "no-npts" if False else "DT"),
     ("record", "at2-bad-token", _record("bad-token.AT2"), 2, "x.1E-02"),
     ("record", "at2-junk", _record("junk.AT2"), 2, "junk.AT2"),
-    ("record", "at2-dt-given", SIM + ["--record", str(AT2), "--dt", "0.02"], 2, "dt"),
+    ("record", "at2-dt-given", SIM + ["--record", str(AT2), "--dt", "0.02s"], 2, "dt"),
     ("record", "unknown-bundled", SIM + ["--record", "kobe-1995"], 2, "bundled"),
     # ---------------------------------------------------------------- output paths
     ("output", "simulate-out-is-file", FREE + ["--out", "{corpus}/a-file"], 2, "a-file"),
@@ -426,7 +427,7 @@ CLI_CASES = [
     ("calibrate", "bad-units", ["calibrate", "{corpus}/cal-flat.csv", "--block", "30x6in",
                                 "--units", "parsec"], 2, "parsec"),
     ("calibrate", "bad-rate", ["calibrate", "{corpus}/one-column.txt", "--block", "30x6in",
-                               "--units", "rad", "--rate", "0"], 2, "rate"),
+                               "--units", "rad", "--rate", "0Hz"], 2, "rate"),
     ("calibrate", "filter-order", ["calibrate", "{corpus}/cal-flat.csv", "--block", "30x6in",
                                    "--filter-order", "99"], 2, "filter"),
     ("calibrate", "anti-alias", ["calibrate", "{corpus}/cal-flat.csv", "--block", "30x6in",

@@ -79,3 +79,6 @@ def test_readme_python_block_runs(index, tmp_path):
     done = subprocess.run([sys.executable, "-c", PYTHON_BLOCKS[index]], cwd=tmp_path,
                           env=_environment(), capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr
+    # run as a script, a block shows something and keeps something (issue 31)
+    assert done.stdout.strip(), "the block prints nothing"
+    assert any(tmp_path.iterdir()), "the block writes nothing"

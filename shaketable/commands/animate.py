@@ -1,17 +1,42 @@
-"""``shaketable animate SCENE.toml --out FILE.gif``: the block rocking on the moving table."""
+"""``shaketable animate SCENE --out FILE.mp4``: the block(s) rocking on the moving table."""
 
 from __future__ import annotations
+
+import re
+
+
+def _runs(text: str, count: int, cors: str) -> list:
+    """``--run``: ``all``, or run numbers from 0 separated by commas."""
+    if str(text).strip().lower() == "all":
+        return list(range(count))
+    try:
+        chosen = [int(part) for part in str(text).split(",")]
+    except ValueError:
+        chosen = [-1]
+    if not all(0 <= index < count for index in chosen):
+        raise ValueError(f"--run must be between 0 and {count - 1} (the scene's runs: "
+                         f"{cors}), or numbers separated by commas, or 'all'; got {text}")
+    return chosen
+
+
+def _size(text: str) -> tuple:
+    """``--size 1280x720``: width and height in pixels."""
+    match = re.fullmatch(r"\s*(\d+)\s*[x×]\s*(\d+)\s*(?:px)?\s*", str(text))
+    if not match:
+        raise ValueError(f"--size {text!r}: give WIDTHxHEIGHT in pixels, e.g. 1280x720")
+    return int(match[1]), int(match[2])
 
 
 def _animate(args) -> int:
     from shaketable.core.files import prepare_output_file
-    from shaketable.core.impulses import ImpulsiveMotion
     from shaketable.plots.animation import animate
+    from shaketable.plots.calcomp import run_labels
     from shaketable.scenes.catalog import resolve_scene_path
     from shaketable.scenes.parse import Study, load_scene
-    from shaketable.scenes.run import build_motion, run_scene
+    from shaketable.scenes.run import run_scene
 
-    prepare_output_file(args.out, "--out", suffixes=(".gif",))
+    size = _size(args.size)
+    prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
     scene = load_scene(resolve_scene_path(args.scene))
     if isinstance(scene, Study):
         raise ValueError(f"{scene.path}: a [study] has no single block to animate; give a "
@@ -20,39 +45,62 @@ def _animate(args) -> int:
 
     notice_first_compile(args.quiet)
     result = run_scene(scene)
-    if not 0 <= args.run < len(result.runs):
-        raise ValueError(f"--run must be between 0 and {len(result.runs) - 1} (the scene's "
-                         f"CORs {', '.join(f'{run.cor:g}' for run in result.runs)}), "
-                         f"got {args.run}")
-    run = result.runs[args.run]
-    motion = build_motion(scene)
-    if isinstance(motion, ImpulsiveMotion):   # its smooth part (the steps are in the run)
-        motion = motion.motion
-    written = animate(run, motion=motion, out=args.out, fps=args.fps,
-                      speed=args.speed, start=args.start, end=args.end)
-    verdict = (f"overturns at {run.t_overturn:.2f} s" if run.overturned
-               else f"max theta/alpha = {run.max_theta_ratio:.3f}")
-    print(f"{scene.name}: {scene.block.describe()}, COR {run.cor:g}: {verdict}")
-    print(f"wrote {written.path} ({written.n_frames} frames, {written.fps:g} fps, "
-          f"{written.t_first:g}-{written.t_last:g} s at speed {written.speed:g})")
+    labels = run_labels(result.runs)
+    chosen = _runs(args.run, len(result.runs), ", ".join(
+        f"{index}: {label}" for index, label in enumerate(labels)))
+    runs = [result.runs[index] for index in chosen]
+    written = animate(runs if len(runs) > 1 else runs[0], out=args.out, fps=args.fps,
+                      speed=args.speed, start=args.start, end=args.end, size=size, dpi=args.dpi,
+                      layout=args.layout, unit=args.unit,
+                      labels=[labels[index] for index in chosen] if len(runs) > 1 else None)
+    for index in chosen:
+        run = result.runs[index]
+        verdict = (f"overturns at {run.t_overturn:.2f} s" if run.overturned
+                   else f"max θ/α = {run.max_theta_ratio:.3f}")
+        label = labels[index] if len(result.runs) > 1 else f"COR {run.cor:g}"
+        if run.block.describe() not in label:
+            label = f"{run.block.describe()}, {label}"
+        print(f"{scene.name}: {label}: {verdict}")
+    if written.note:
+        print(f"note: {written.note}")
+    print(f"wrote {written.path} ({written.n_frames} frames of {written.size[0]} x "
+          f"{written.size[1]} pixels, {written.fps:g} fps, {written.t_first:g}-"
+          f"{written.t_last:g} s at speed {written.speed:g})")
     return 0
 
 
 def register(commands) -> None:
     """Add the ``animate`` subcommand."""
+    from shaketable.commands.options import add_quantity
+
     parser = commands.add_parser(
-        "animate", help="animated GIF: the block rocking on the moving table beside θ/α",
-        description="Run a scene and write an animated GIF of the block (to scale, rocking "
-                    "about its corner) on the moving table, beside θ/α with the ±1 lines "
-                    "and the ground acceleration.")
+        "animate", help="animation (MP4 or GIF): the blocks rocking on the moving table beside θ/α",
+        description="Run a scene and write an animation of its blocks (to scale, rocking "
+                    "about their corners) on the moving table, beside θ/α with the ±1 lines "
+                    "and the ground acceleration. A scene with several runs (cor, theta0 "
+                    "or block size given as a list) shows them side by side or overlaid. "
+                    "MP4 needs ffmpeg; without it a GIF is written.")
     parser.add_argument("scene", help="path to a scene .toml, or the name of a bundled scene")
-    parser.add_argument("--out", required=True, help="the GIF to write (FILE.gif)")
+    parser.add_argument("--out", required=True,
+                        help="the file to write: FILE.mp4 (with ffmpeg; otherwise FILE.gif "
+                             "is written) or FILE.gif")
     parser.add_argument("--fps", type=float, default=12.0,
-                        help="frames per second of the GIF (default 12)")
+                        help="frames per second of the animation (default 12)")
     parser.add_argument("--speed", type=float, default=1.0,
-                        help="simulated seconds per GIF second (default 1: real time)")
-    parser.add_argument("--run", type=int, default=0,
-                        help="which of the scene's CORs to show, counted from 0 (default 0)")
-    parser.add_argument("--start", type=float, default=None, help="first time shown [s]")
-    parser.add_argument("--end", type=float, default=None, help="last time shown [s]")
+                        help="simulated seconds per animation second (default 1: real time)")
+    parser.add_argument("--run", default="all",
+                        help="which of the scene's runs to show, counted from 0: 'all' "
+                             "(default), one (1) or several (0,1)")
+    parser.add_argument("--layout", choices=("side", "overlay"), default="side",
+                        help="several runs: each block on its own table side by side "
+                             "(default), or all on one table")
+    parser.add_argument("--size", default="1024x576",
+                        help="frame size WIDTHxHEIGHT in pixels (default 1024x576)")
+    parser.add_argument("--dpi", type=float, default=100.0,
+                        help="dots per inch: larger makes the fonts larger in the same frame "
+                             "(default 100)")
+    parser.add_argument("--unit", choices=("mm", "cm", "m", "in", "ft"),
+                        help="length unit of the drawing (default: the unit of the block size)")
+    add_quantity(parser, "--start", kind="time", example="2s", help="first time shown")
+    add_quantity(parser, "--end", kind="time", example="16s", help="last time shown")
     parser.set_defaults(handler=_animate)

@@ -7,16 +7,17 @@ from pathlib import Path
 
 def _anti_alias(text: str, record, order):
     """The ``--anti-alias`` value: 'fit', 'none' or a cutoff in Hz (a known filter)."""
+    from shaketable.core.units import parse
     from shaketable.lab.digitizer import Digitizer
 
     key = text.strip().lower()
     if key in ("fit", "none"):
         return key
     try:
-        cutoff = float(key.removesuffix("hz").strip())
+        cutoff = parse(text, "frequency", where="--anti-alias")
     except ValueError:
-        raise ValueError(f"--anti-alias {text!r}: give 'fit', 'none' or the cutoff in Hz, "
-                         "e.g. 20") from None
+        raise ValueError(f"--anti-alias {text!r}: give 'fit', 'none' or the cutoff with its "
+                         "unit, e.g. 20Hz") from None
     return Digitizer(rate=record.rate, cutoff=cutoff, filter_order=4 if order == "auto"
                      else int(order))
 
@@ -152,6 +153,8 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
 
 def register(commands) -> None:
     """Add the ``calibrate`` subcommand."""
+    from shaketable.commands.options import add_quantity
+
     # argparse %-formats the help= strings of arguments (a literal percent is written %%
     # there) but prints description= as it is
     parser = commands.add_parser(
@@ -175,14 +178,15 @@ def register(commands) -> None:
     parser.add_argument("--units", help="unit of the column: rad, deg, mrad (angle) or m, cm, "
                                         "mm, in, ft (top displacement); default from '[unit]' "
                                         "in its name (a contradicting --units is refused)")
-    parser.add_argument("--rate", type=float, help="samples per second, without a time column")
+    add_quantity(parser, "--rate", kind="frequency", example="50Hz",
+                 help="sampling rate (samples per second), without a time column")
     parser.add_argument("--height", help="height of the potentiometer wire, e.g. '30 in' "
                                          "(default: the block's height)")
-    parser.add_argument("--anti-alias", default="fit", metavar="fit|none|HZ",
+    parser.add_argument("--anti-alias", default="fit", metavar="fit|none|FREQUENCY",
                         help="the acquisition's anti-alias filter in the model: 'fit' "
                              "(default: a Butterworth low-pass whose cutoff is fitted), "
                              "'none' (a record known to be unfiltered) or the known cutoff "
-                             "in Hz of a Butterworth filter of --filter-order poles")
+                             "of a Butterworth filter of --filter-order poles, with its unit (e.g. 20Hz)")
     parser.add_argument("--filter-order", default="auto", metavar="auto|N",
                         help="poles of that filter (default auto: 1, 2, 4 and 8 are fitted "
                              "and the best kept; 4 for a known cutoff)")

@@ -15,7 +15,10 @@ def add_record_arguments(parser) -> None:
     parser.add_argument("--units", help="units of the record file: g, m/s2 or gal (needed for "
                                         "a text file, and for an AT2 whose header does not "
                                         "state them)")
-    parser.add_argument("--dt", type=float, help="sample interval of a one-column record [s]")
+    from shaketable.commands.options import add_quantity
+
+    add_quantity(parser, "--dt", kind="time", example="0.02s",
+                 help="sample interval of a one-column record")
     parser.add_argument("--scale", type=float, default=1.0, help="factor on the record [-]")
     parser.add_argument("--no-vertical", action="store_true",
                         help="drop the vertical component")

@@ -26,12 +26,28 @@ def _reproduce(args) -> int:
     notice_first_compile(args.quiet)
     failed: list = []
     report = reproduce(names, out=out, progress=not args.quiet, failures=failed)
+    for line in _summary(out):
+        print(line)
     print(f"wrote {report} (and gallery.md beside it)")
     if failed:
         print(f"shaketable reproduce: {len(failed)} scene(s) could not be reproduced: "
               f"{', '.join(failed)} (their sections in {report} say why)", file=sys.stderr)
         return 1
     return 0
+
+
+def _summary(out) -> list:
+    """The report's headline on the console: agree/differ counts of every section in ``out``."""
+    import json
+
+    from shaketable.studies.comparison import ComparisonTally
+
+    tally = ComparisonTally()
+    for path in sorted(out.glob("*/counts.json")):
+        for kind, (agree, differ) in json.loads(path.read_text()).items():
+            if kind in tally.counts:
+                tally.add_many(kind, agree, agree + differ)
+    return [line.strip("*") for line in tally.headline()]
 
 
 def register(commands) -> None:

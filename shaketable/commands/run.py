@@ -33,7 +33,10 @@ def _run(args) -> int:
         for line in result.table.warnings():
             print(f"{scene.name}: table limit exceeded: {line}")
     for run in result.runs:
-        line = f"{scene.name}: {scene.block.describe()} block, COR {run.cor:g}: {run.verdict()}"
+        several = any(len(starts) > 1 for starts in scene.theta0s)
+        start = f", from θ/α = {run.theta[0] / run.block.alpha:.3g}" if several else ""
+        line = (f"{scene.name}: {run.block.describe()} block{start}, COR {run.cor:g}: "
+                f"{run.verdict()}")
         if run.overturned:
             line += (f" (largest |θ|/α before instability "
                      f"{run.max_theta_ratio_before_instability:.3f})")

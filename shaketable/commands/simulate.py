@@ -14,6 +14,7 @@ from shaketable.commands.common import (
     notice_first_compile,
     scaled,
 )
+from shaketable.commands.options import add_motion_options, add_quantity, motion_from_options
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -35,7 +36,7 @@ def _simulate(args) -> int:
     from shaketable.solvers.api import simulate
 
     block = Block.parse(args.block)
-    motion = load_motion(args) if args.record else None
+    motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     if motion is not None:
         motion = scaled(motion, args.scale)
     theta0 = _resolve_angle(args.theta0, block)
@@ -93,7 +94,9 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``simulate`` subcommand to an argparse subparsers object."""
     sim = commands.add_parser(
         "simulate", help="one block, one motion (or free rocking): CSV, JSON and Calcomp figure",
-        description="Simulate one block. Without --record the block rocks freely from --theta0.")
+        description="Simulate one block under a record (--record), a harmonic motion "
+                    "(--harmonic 2Hz,0.5g) or a pulse (--pulse half-sine,0.5g,0.2s). Without "
+                    "any, the block rocks freely from --theta0.")
     sim.add_argument("--block", required=True,
                      help="HEIGHTxWIDTH with unit, height first, e.g. 30x6in or 16x4ft")
     sim.add_argument("--cor", type=cor_argument, required=True,
@@ -102,7 +105,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     sim.add_argument("--theta0", default="0rad",
                      help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad)")
     add_record_arguments(sim)
-    sim.add_argument("--duration", type=float, help="length of the run [s]")
+    add_motion_options(sim)
+    add_quantity(sim, "--duration", kind="time", example="8s", help="length of the run")
     sim.add_argument("--method", default="fast",
                      choices=list(METHODS))
     sim.add_argument("--subdivisions", type=int, default=4,

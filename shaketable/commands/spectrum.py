@@ -66,8 +66,8 @@ def _spectrum(args) -> int:
           f"COR {result.cor:.6g}" + ("" if args.method == "fast" else f", method {args.method}")
           + f": {len(bands)} bands, {result.runs} runs, {elapsed:.1f} s")
     for _, row in bands[bands["verdict"] == "overturns"].iterrows():
-        print(f"  {row['pulse']:>10} omega/p {row['omega/p [-]']:g}: overturns "
-              f"{row['how']} from {row['from a/(g tan alpha) [-]']:.7g} to "
+        print(f"  {row['pulse']:>10} at ω/p = {row['omega/p [-]']:g}: overturns "
+              f"{row['how']} for a/(g tan α) from {row['from a/(g tan alpha) [-]']:.7g} to "
               f"{row['to a/(g tan alpha) [-]']:.7g}")
     if result.flags:
         print(f"  {len(result.flags)} flag(s): windows narrower than the scan cannot be "
@@ -78,13 +78,17 @@ def _spectrum(args) -> int:
 
 def register(commands) -> None:
     """Add the ``spectrum`` subcommand to an argparse subparsers object."""
+    from shaketable.commands.options import add_quantity
+
     spec = commands.add_parser(
         "spectrum", help="overturning spectrum of pulses: every overturn/safe band, CSV and figure",
         description="Every overturn/safe band edge in a/(g tan alpha) of a block under pulses, "
                     "over omega/p (shaketable.studies.overturning_spectrum).")
     spec.add_argument("--block", help="HEIGHTxWIDTH with unit, e.g. 16x4ft")
-    spec.add_argument("--alpha", type=float, help="block angle alpha [rad] (with --p)")
-    spec.add_argument("--p", type=float, help="frequency parameter p [rad/s] (with --alpha)")
+    add_quantity(spec, "--alpha", kind="angle", example="0.25rad",
+                 help="block angle alpha (with --p)")
+    add_quantity(spec, "--p", kind="angular frequency", example="2rad/s",
+                 help="frequency parameter p (with --alpha)")
     spec.add_argument("--cor", default="housner",
                       help="coefficient of restitution [0-1] or 'housner' (1 - 1.5 sin^2 alpha)")
     spec.add_argument("--pulse", action="append",

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from shaketable.core.constants import G, length_factor
 from shaketable.core.validation import nonnegative, positive
@@ -95,6 +95,12 @@ class Block:
     rods : PrestressRods, optional
         Prestress rods tying the block down (Eq. 2-14); ``None`` for a
         free-standing block.
+    label : str
+        How the user wrote the size, height first, in the user's units
+        (``"30 x 6 in"`` for ``"30x6in"``, ``"4 x 0.8 ft"`` for ``"4x0.8ft"``), set
+        by :meth:`parse` and echoed by :meth:`describe` and the figures; ``""``
+        otherwise. Not part of equality: ``Block.parse("30x6in") ==
+        Block.from_inches(30, 6)``.
 
     Notes
     -----
@@ -105,6 +111,7 @@ class Block:
     height: float
     width: float
     rods: PrestressRods | None = None
+    label: str = field(default="", compare=False, repr=False)
 
     def __post_init__(self):
         for name in ("height", "width"):
@@ -146,8 +153,11 @@ class Block:
         if unit is None:
             raise ValueError(f"block size {text!r} has no unit; write e.g. '30x6in' or '16x4ft'")
         height_unit = match["hunit"] or unit
+        unit, height_unit = unit.lower(), height_unit.lower()
+        label = (f"{match['height']} x {match['width']} {unit}" if height_unit == unit
+                 else f"{match['height']} {height_unit} x {match['width']} {unit}")
         return cls(float(match["height"]) * length_factor(height_unit),
-                   float(match["width"]) * length_factor(unit), rods)
+                   float(match["width"]) * length_factor(unit), rods, label=label)
 
     @classmethod
     def from_inches(cls, height: float, width: float, rods=None) -> "Block":
@@ -218,15 +228,19 @@ class Block:
         return restoring / self.h
 
     def describe(self, unit: str | None = None) -> str:
-        """Short label in the report's units, height first: ``30 x 6 in``, ``16 x 4 ft``.
+        """Short label, height first: ``30 x 6 in``, ``16 x 4 ft``.
 
         Parameters
         ----------
         unit : {None, "in"}
-            ``None``: feet when both dimensions are whole feet (as the report writes
-            its Section 4 blocks), else inches. ``"in"``: always inches (the labels
-            of sweep tables, kept stable so that a resumed sweep matches its parts).
+            ``None``: the user's text when the block was parsed from it (:attr:`label`,
+            ``4 x 0.8 ft`` for ``"4x0.8ft"``), else feet when both dimensions are
+            whole feet (as the report writes its Section 4 blocks), else inches.
+            ``"in"``: always inches (the labels of sweep tables, kept stable so that
+            a resumed sweep matches its parts).
         """
+        if unit is None and self.label:
+            return self.label
         inch, foot = length_factor("in"), length_factor("ft")
         in_feet = [value / foot for value in (self.height, self.width)]
         if unit is None and all(abs(value - round(value)) < 1e-9 and round(value) >= 1 for value in in_feet):

@@ -24,6 +24,7 @@ UNITS = {
               "oz": 4.4482216152605 / 16.0},
     "angle": {"rad": 1.0, "deg": math.pi / 180.0},
     "angular acceleration": {"rad/s2": 1.0, "rad/s^2": 1.0},
+    "angular frequency": {"rad/s": 1.0, "1/s": 1.0},
     "stiffness": {"w/m": 1.0, "w/in": 1.0 / LENGTH_UNITS["in"], "w/ft": 1.0 / LENGTH_UNITS["ft"]},
     "weight": {"w": 1.0},
 }
@@ -56,7 +57,10 @@ def parse(value, kind: str, *, where: str = "value") -> float:
         raise ValueError(f"{where}: {value!r} has no unit; write the {kind} with its unit, "
                          f"e.g. '{_example(kind)}' (units: {', '.join(sorted(units))})")
     match = _NUMBER_UNIT.match(value)
-    if not match or not match.group(2):
+    if match and not match.group(2):
+        raise ValueError(f"{where}: {value!r} has no unit; write the {kind} with its unit, "
+                         f"e.g. '{_example(kind)}' (units: {', '.join(sorted(units))})")
+    if not match:
         raise ValueError(f"{where}: {value!r} is not a number with a unit; write e.g. "
                          f"'{_example(kind)}' (units: {', '.join(sorted(units))})")
     number, unit = float(match.group(1)), match.group(2).replace(" ", "").lower()
@@ -80,5 +84,6 @@ def parse_angle_or_ratio(value, alpha: float, *, where: str = "value") -> float:
 
 def _example(kind: str) -> str:
     return {"length": "30 in", "acceleration": "0.5 g", "time": "8 s", "frequency": "2 Hz",
-            "velocity": "25 in/s", "force": "20 oz", "angle": "0.05 rad", "angular acceleration": "0.22 rad/s2",
+            "velocity": "25 in/s", "force": "20 oz", "angle": "0.05 rad",
+            "angular frequency": "2 rad/s", "angular acceleration": "0.22 rad/s2",
             "stiffness": "0.4 W/in", "weight": "0.4 W"}[kind]

@@ -17,11 +17,15 @@ def describe_block(block) -> str:
 
     Feet when both dimensions are whole feet of at least 2 ft (Chapter 4's
     blocks), inches otherwise (Chapter 3's specimens); prestress rods with
-    their total stiffness K [W/in] and force F0 [W] (Section 2.8).
+    their total stiffness K [W/in] and force F0 [W] (Section 2.8). A block parsed
+    from the user's text (``--block 30x6in``, ``size = "4x0.8ft"``) is echoed in the
+    user's order and units: ``"H × B = 30 × 6 in"``, ``"H × B = 4 × 0.8 ft"``.
     """
     foot, inch = length_factor("ft"), length_factor("in")
     width_ft, height_ft = block.width / foot, block.height / foot
-    if min(width_ft, height_ft) >= 2 and np.allclose([width_ft, height_ft],
+    if getattr(block, "label", ""):
+        text = f"H × B = {block.label.replace(' x ', ' × ')}"
+    elif min(width_ft, height_ft) >= 2 and np.allclose([width_ft, height_ft],
                                                      np.round([width_ft, height_ft]), atol=1e-9):
         text = f"B × H = {width_ft:g} × {height_ft:g} ft"
     else:
@@ -118,7 +122,8 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
         axis.set_ylabel(label)
     rates, rotation = axes[-2], axes[-1]
     t_broken, acceleration = broken_at_sign_changes(result.t, result.theta, result.theta_ddot)
-    which = f", COR {result.cor:g} only" if others else ""
+    labels = run_labels((result, *others))
+    which = f", {labels[0]} only" if others else ""
     rates.plot(t_broken, acceleration, color=_ACCELERATION_COLOUR, lw=0.6,
                label=f"θ'' angular acceleration [rad/s²]\n(broken at impacts{which})")
     rates.plot(result.t, result.theta_dot, color=_VELOCITY_COLOUR, lw=0.9,
@@ -127,10 +132,10 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
     rates.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=True,
                  borderaxespad=0.0)
     rotation.plot(result.t, result.theta, color="k", lw=0.9,
-                  label=f"COR {result.cor:g}" if others else "θ")
+                  label=labels[0] if others else "θ")
     extremes = [float(np.max(np.abs(result.theta), initial=0.0))]
-    for other in others:
-        rotation.plot(other.t, other.theta, lw=0.9, label=f"COR {other.cor:g}")
+    for other, label in zip(others, labels[1:]):
+        rotation.plot(other.t, other.theta, lw=0.9, label=label)
         extremes.append(float(np.max(np.abs(other.theta), initial=0.0)))
     for sign in (1, -1):
         rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
@@ -177,13 +182,32 @@ def mark_overturn(axes, run, stop) -> None:
                       va="top" if run.overturn_direction < 0 else "bottom")
 
 
+def run_labels(runs) -> list[str]:
+    """Legend labels telling runs apart by what differs: ``COR 0.9`` when only the COR
+    does, ``30 x 6 in, θ0/α 0.2, COR 0.9`` when block sizes or release angles do too."""
+    blocks = [run.block.describe() for run in runs]
+    starts = [f"θ0/α {run.theta[0] / run.block.alpha:.3g}" for run in runs]
+    parts = [blocks] if len(set(blocks)) > 1 else []
+    parts += [starts] if len(set(starts)) > 1 else []
+    if len({run.cor for run in runs}) > 1 or not parts:
+        parts.append([f"COR {run.cor:g}" for run in runs])
+    return [", ".join(part[index] for part in parts) for index in range(len(runs))]
+
+
 def calcomp_caption(result, title: str | None = None, others=(), details=()) -> list[str]:
     """The caption lines of :func:`calcomp`: heading, block and COR, motion, verdict."""
     block, motion = result.block, result.motion
     free = not has_signal(motion.horizontal) and not has_signal(motion.vertical_or_zero)
     cors = ", ".join(f"{run.cor:g}" for run in (result, *others))
     lines = [] if not title else [title]
-    lines.append(f"{describe_block(block)}, α = {block.alpha:.4g} rad, COR {cors}")
+    if len({(run.block.height, run.block.width) for run in (result, *others)}) > 1:
+        cors = ", ".join(sorted({f"{run.cor:g}" for run in (result, *others)}))
+        names = list(dict.fromkeys(describe_block(run.block) for run in (result, *others)))
+        if all(name.startswith("H × B = ") for name in names):
+            names = ["H × B = " + ", ".join(name[8:] for name in names)]
+        lines.append(f"blocks {', '.join(names)}, COR {cors}")
+    else:
+        lines.append(f"{describe_block(block)}, α = {block.alpha:.4g} rad, COR {cors}")
     ground = describe_motion(motion, free)
     if not free and not has_signal(motion.vertical_or_zero):
         ground += " (no vertical motion: panel left out)"
@@ -192,7 +216,9 @@ def calcomp_caption(result, title: str | None = None, others=(), details=()) -> 
     lines.append(ground)
     lines.extend(details)
     if others:
-        lines.append("; ".join(f"COR {run.cor:g}: {run.verdict()}" for run in (result, *others)))
+        runs = (result, *others)
+        verdicts = [f"{label}: {run.verdict()}" for label, run in zip(run_labels(runs), runs)]
+        lines.append(("; " if len("; ".join(verdicts)) <= 100 else "\n").join(verdicts))
     else:
         lines.append(result.verdict())
     return lines

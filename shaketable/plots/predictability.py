@@ -11,7 +11,7 @@ from shaketable.plots.base import pyplot
 
 
 def plot_bundle(runs, ax=None, *, horizon: float = math.nan, threshold: float = 1e-3,
-                title: str | None = None):
+                title: str | None = None, members: int | None = None):
     """theta/alpha against time for every run (the first, nominal, in black).
 
     Parameters
@@ -23,6 +23,9 @@ def plot_bundle(runs, ax=None, *, horizon: float = math.nan, threshold: float = 
         Predictability horizon [s] to mark (NaN: none).
     threshold : float
         Its threshold [-] in units of alpha, for the label.
+    members : int, optional
+        The size of the ensemble the runs are drawn from, for the title (the runs
+        drawn are the nominal one and the horizon's perturbed copies, not all members).
 
     Returns
     -------
@@ -52,8 +55,11 @@ def plot_bundle(runs, ax=None, *, horizon: float = math.nan, threshold: float = 
     ax.set_xlabel("time [s]")
     ax.set_ylabel("θ/α [-]")
     first = runs[0]
+    count = (f"{len(runs)} runs" if members is None or members == len(runs) else
+             f"\n{len(runs)} of the {members} members drawn (the nominal run and the "
+             f"horizon's perturbed copies)")
     ax.set_title(title or f"{first.block.describe()} block, {first.motion.name}, COR "
-                          f"{first.cor:g}: {len(runs)} runs (x: overturned)", fontsize=9)
+                          f"{first.cor:g}: {count} (x: overturned)", fontsize=9)
     ax.grid(True, lw=0.3, alpha=0.6)
     ax.legend(fontsize=8, loc="lower left")
     return ax

@@ -8,13 +8,19 @@ from matplotlib.patches import Rectangle
 
 from shaketable.plots.base import pyplot
 
+#: Fewer omega/p values than this are drawn as bars at the computed values, not strips.
+DISCRETE_BELOW = 12
+
 
 def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None, overlay=None):
     """Overturn (shaded) and safe bands of one pulse of an :class:`OverturningSpectrum`.
 
     Each omega/p of the spectrum is a vertical strip (half-way to its
-    neighbours); overturning without impact and after impacts are shaded
-    differently. The places the spectrum flags (:attr:`OverturningSpectrum.windows`:
+    neighbours) when the values are many (:data:`DISCRETE_BELOW` or more); fewer are
+    drawn as narrow bars at the computed values with a point at each band edge, so
+    that three computed values do not read as a continuous scan. Overturning
+    without impact and after impacts are shaded differently. The places the spectrum
+    flags (:attr:`OverturningSpectrum.windows`:
     a band narrower than the scan step, a mode change without a safe band, safe but
     unstable scan points) are framed in dashed red with a red marker, not hidden.
     Housner's Eq. (2-8), a/(g tan alpha) = sqrt(1 + (omega/p)^2) (the half-sine
@@ -44,13 +50,20 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None, overlay=None):
                                  else ratios[0] + 0.5]])
         labelled = set()
         top = float(rows["to a/(g tan alpha) [-]"].max())
+        span = (edges[0], edges[-1])
+        discrete = ratios.size < DISCRETE_BELOW
+        if discrete:  # a narrow bar around each computed value
+            half = 0.06 * (float(np.min(np.diff(ratios))) if ratios.size > 1 else 1.0)
+            strips = [(ratio - half, ratio + half) for ratio in ratios]
+        else:
+            strips = list(zip(edges[:-1], edges[1:]))
         for k, ratio in enumerate(ratios):
             strip = rows[np.isclose(rows["omega/p [-]"], ratio)]
             # above this ratio's ceiling nothing was computed: grey, not the white of "safe"
             ceiling = float(strip["to a/(g tan alpha) [-]"].max())
             if ceiling < top:
                 label = "above the scan's ceiling (not computed)"
-                axis.fill_between([edges[k], edges[k + 1]], ceiling, top, color="0.85",
+                axis.fill_between(strips[k], ceiling, top, color="0.85",
                                   hatch="//", edgecolor="0.6", lw=0,
                                   label=None if label in labelled else label)
                 labelled.add(label)
@@ -59,11 +72,16 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None, overlay=None):
                     continue
                 without = row["impacts"] == 0
                 label = "overturns without impact" if without else "overturns after impact(s)"
-                axis.fill_between([edges[k], edges[k + 1]], row["from a/(g tan alpha) [-]"],
+                colour = "#d95f02" if without else "#7570b3"
+                axis.fill_between(strips[k], row["from a/(g tan alpha) [-]"],
                                   row["to a/(g tan alpha) [-]"],
-                                  color="#d95f02" if without else "#7570b3", alpha=0.55,
+                                  color=colour, alpha=0.55,
                                   lw=0, label=None if label in labelled else label)
                 labelled.add(label)
+                if discrete:  # the computed band edges as points
+                    axis.plot([ratio, ratio], [row["from a/(g tan alpha) [-]"],
+                                               min(row["to a/(g tan alpha) [-]"], top)],
+                              "o", color=colour, ms=4, clip_on=False)
         # flagged places (OverturningSpectrum.windows): where a window narrower than the
         # scan may hide, or a band narrower than the scan was found; a dashed red frame
         # and a marker at the strip's right edge (visible even when very thin)
@@ -73,10 +91,10 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None, overlay=None):
             low, high = window["from a/(g tan alpha) [-]"], window["to a/(g tan alpha) [-]"]
             label = ("flagged (see the CSV's note): a band or a possible window\n"
                      "narrower than the scan")
-            axis.add_patch(Rectangle((edges[k], low), edges[k + 1] - edges[k], high - low,
-                                     fill=False, edgecolor="red", lw=1.2, ls="--"))
+            axis.add_patch(Rectangle((strips[k][0], low), strips[k][1] - strips[k][0],
+                                     high - low, fill=False, edgecolor="red", lw=1.2, ls="--"))
             # not clipped: on the last strip the marker sits on the axis' right edge
-            axis.plot([edges[k + 1]], [0.5 * (low + high)], marker="<", color="red", ms=7,
+            axis.plot([strips[k][1]], [0.5 * (low + high)], marker="<", color="red", ms=7,
                       ls="none", clip_on=False, label=None if label in labelled else label)
             labelled.add(label)
         if overlay is not None:
@@ -87,15 +105,17 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None, overlay=None):
                 k = int(np.argmin(np.abs(ratios - row["omega/p [-]"])))
                 if not np.isclose(ratios[k], row["omega/p [-]"]):
                     continue
-                width = edges[k + 1] - edges[k]
+                width = strips[k][1] - strips[k][0]
                 low, high = row["from a/(g tan alpha) [-]"], row["to a/(g tan alpha) [-]"]
-                axis.add_patch(Rectangle((edges[k] + 0.3 * width, low), 0.4 * width, high - low,
-                                         fill=False, edgecolor="#1b9e77", lw=1.4,
+                axis.add_patch(Rectangle((strips[k][0] + 0.3 * width, low), 0.4 * width,
+                                         high - low, fill=False, edgecolor="#1b9e77", lw=1.4,
                                          label=None if label in labelled else label))
                 labelled.add(label)
-        x = np.linspace(max(0.0, edges[0]), edges[-1], 200)
+        x = np.linspace(max(0.0, span[0]), span[1], 200)
         axis.plot(x, np.sqrt(1 + x ** 2), "k--", lw=1, label="Eq. (2-8) (Housner): a/(g tan α) = √(1 + (ω/p)²)")
-        axis.set_xlim(edges[0], edges[-1])
+        axis.set_xlim(*span)
+        if discrete:
+            axis.set_xticks(ratios)
         axis.set_ylim(0, top)
         axis.set_xlabel("ω / p [-]")
         axis.set_ylabel("a / (g tan α) [-]")
@@ -103,7 +123,9 @@ def plot_spectrum(spectrum, ax=None, *, pulse: str | None = None, overlay=None):
         method = getattr(spectrum, "method", "fast")
         axis.set_title(f"{kind}: α = {block.alpha:.3g} rad, p = {block.p:.3g} rad/s, "
                        f"COR {spectrum.cor:.3g}" + ("" if method == "fast" else f", {method}")
-                       + "\n(white: safe)", fontsize=9)
+                       + "\n(white: safe"
+                       + (f"; computed at ω/p = {', '.join(f'{r:g}' for r in ratios)} only)"
+                          if discrete else ")"), fontsize=9)
         axis.grid(True, lw=0.3, alpha=0.6)
         axis.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1,
                     frameon=False)

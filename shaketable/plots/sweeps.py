@@ -346,6 +346,15 @@ def pitch_phase_spread(table, *, record=None, cor=None, ax=None):
                  f"{int(rows['pitch_phase [rad]'].round(9).nunique())} pitch phases "
                  "(Section 3.7 (2))", fontsize=9)
     ax.grid(alpha=0.3)
+    # what the markers and the dotted line are (the same at every level)
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], ls="none", marker="o", ms=3, color="tab:blue",
+                      label="one phase, standing: its max |θ|/α"),
+               Line2D([], [], ls="none", marker="x", ms=5, color="tab:red",
+                      label="one phase, overturned (F; count above)"),
+               Line2D([], [], ls=":", lw=0.8, color="0.4", label="|θ| = α")]
+    place_legend(ax, handles=handles, fontsize=7)
     return ax
 
 

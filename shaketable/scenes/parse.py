@@ -8,12 +8,13 @@ expected.
 Sections (``experiments/*.toml`` are the examples)::
 
     name, source, description       # top level: text
-    [block]      size = "30x6in"  or  height = "30 in", width = "6 in"
+    [block]      size = "30x6in" (or a list to compare, ["30x6in", "60x12in"])
+                 or  height = "30 in", width = "6 in"
     [block.rods] stiffness = "0.4 W/in", force = "0.4 W", edge_distance = "12 in"
                  (and block.static_friction = 0.6: the sliding/rocking check of Section 2.1)
     [motion]     kind = "free" | "harmonic" | "record" | "artificial" | "half-sine"
                  | "constant-pulse", and the keys of that kind
-    [rocking]    cor = 0.925 (or a list to compare), theta0 = "0.5 alpha",
+    [rocking]    cor = 0.925 (or a list to compare), theta0 = "0.5 alpha" (or a list),
                  duration = "8 s", method = "fast", subdivisions, rtol
     [report]     the report's values to compare with (see REPORT_KEYS)
     [outputs]    figure = true, csv = true, parquet = false, svg = false,
@@ -29,6 +30,7 @@ Sections (``experiments/*.toml`` are the examples)::
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -110,7 +112,13 @@ class Scene:
         Coefficients of restitution to run (one run each) [-]; with
         ``cor = "calibration.json"`` the calibrated mean COR.
     theta0 : float
-        Initial rotation [rad].
+        Initial rotation [rad] (the first of ``theta0s``).
+    blocks : tuple of Block
+        ``size = [...]``: every block to run (one run each); ``(block,)`` for one size.
+    theta0s : tuple of tuple of float
+        ``theta0 = [...]``: for each block of ``blocks``, every initial rotation to run
+        [rad] (``"0.5 alpha"`` is a multiple of that block's own alpha); ``()`` when
+        the scene gives one block and one theta0.
     theta_dot0 : float
         Initial angular velocity [rad/s].
     duration : float or None
@@ -164,6 +172,16 @@ class Scene:
     path: str = ""
     ensemble: dict = field(default_factory=dict)
     calibrated_cor: Any = None
+    blocks: tuple = ()
+    theta0s: tuple = ()
+
+    def variants(self) -> list:
+        """The runs a scene asks for: ``(block, theta0 [rad], cor)`` for every block, then
+        every initial rotation, then every COR (a single block and theta0: one per COR)."""
+        blocks = self.blocks or (self.block,)
+        starts = self.theta0s or ((self.theta0,),)
+        return [(block, theta0, cor) for index, block in enumerate(blocks)
+                for theta0 in starts[index] for cor in self.cors]
 
     def mode(self) -> str | None:
         """Sliding or rocking by Section 2.1 (mu_s against B/H), when ``static_friction`` is given."""
@@ -264,7 +282,63 @@ def load_scene(path: str | Path) -> Scene | Study:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise SceneError(f"{path}: not valid TOML: {error}") from None
-    return scene_from_dict(data, where=str(path))
+    try:
+        return scene_from_dict(data, where=str(path))
+    except SceneError as error:
+        raise SceneError(with_line(str(error), str(path), text)) from None
+
+
+#: A key named in an error message: ``rocking.theta0``, ``[block]``, ``'colour' in [block]``.
+_KEY_IN_MESSAGE = re.compile(r"unknown key '([\w-]+)' in \[([\w.-]+)|\[([\w.-]+)\]|"
+                             r"\b((?:block|motion|rocking|report|outputs|table|sensors|theory|"
+                             r"sliding|ensemble|study)(?:\.[\w-]+)+)")
+_HEADER = re.compile(r"^\s*\[\[?\s*([\w.\"' -]+?)\s*\]\]?\s*(?:#.*)?$")
+_ASSIGNMENT = re.compile(r"^\s*([\w.\"' -]+?)\s*=")
+
+
+def with_line(message: str, where: str, text: str) -> str:
+    """``message`` (``"WHERE: rocking.cor ..."``) with the line of the key it names in ``text``.
+
+    ``"scene.toml: rocking.cor must be ..., got 1.5"`` becomes ``"scene.toml: rocking.cor
+    must be ..., got 1.5 (line 9)"``: the line where the key (or, failing that, its
+    section) is written, found in the TOML text. The line goes at the end so that the
+    message still begins with the file and the key. A message naming no key found in the
+    text is returned as it is.
+    """
+    prefix = f"{where}: "
+    if not message.startswith(prefix):
+        return message
+    match = _KEY_IN_MESSAGE.search(message[len(prefix):])
+    if match is None:
+        return message
+    unknown, section, header, dotted = match.groups()
+    path = f"{section}.{unknown}" if unknown else (header or dotted)
+    line = key_line(text, path.split("."))
+    return message if line is None else f"{message} (line {line})"
+
+
+def key_line(text: str, path: list) -> int | None:
+    """Line number (from 1) of the dotted key ``path`` in TOML ``text``, or of its longest
+    written prefix (a section header, an inline table); ``None`` when nothing of it is written."""
+    best, best_depth = None, 0
+    section: list = []
+    for number, line in enumerate(text.splitlines(), start=1):
+        header = _HEADER.match(line)
+        if header:
+            section = [part.strip().strip("\"'") for part in header.group(1).split(".")]
+            keys = section
+        else:
+            assignment = _ASSIGNMENT.match(line)
+            if not assignment:
+                continue
+            keys = section + [part.strip().strip("\"'")
+                              for part in assignment.group(1).split(".")]
+        depth = 0
+        while depth < min(len(keys), len(path)) and keys[depth] == path[depth]:
+            depth += 1
+        if depth == len(keys) and depth > best_depth:  # this line writes a prefix of path
+            best, best_depth = number, depth
+    return best
 
 
 def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
@@ -276,7 +350,8 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
         if key not in data:
             raise SceneError(f"{where}: missing [{key}]" if key != "name"
                              else f"{where}: missing 'name' at the top level")
-    block = _block(data["block"], where)
+    blocks = _blocks(data["block"], where)
+    block = blocks[0]
     static_friction = data["block"].get("static_friction")
     if static_friction is not None and (isinstance(static_friction, bool) or not isinstance(
             static_friction, (int, float)) or not 0 < static_friction < math.inf):
@@ -300,9 +375,16 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
         if isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0 <= cor <= 1:
             raise SceneError(f"{where}: rocking.cor must be a number in [0, 1] or a list of "
                              f"them, got {rocking['cor']!r}")
+    starts = rocking.get("theta0", "0 rad")
+    starts = starts if isinstance(starts, list) else [starts]
+    if not starts:
+        raise SceneError(f"{where}: rocking.theta0 is an empty list; give an angle such as "
+                         f"'0.5 alpha' or a list of them")
     try:
-        theta0 = parse_angle_or_ratio(rocking.get("theta0", "0 rad"), block.alpha,
-                                      where=f"{where}: rocking.theta0")
+        theta0s = tuple(tuple(parse_angle_or_ratio(start, each.alpha,
+                                                   where=f"{where}: rocking.theta0")
+                              for start in starts) for each in blocks)
+        theta0 = theta0s[0][0]
         theta_dot0 = 0.0
         if "theta_dot0" in rocking:
             theta_dot0 = parse(str(rocking["theta_dot0"]).replace("rad/s", "rad"), "angle",
@@ -346,7 +428,8 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
                  static_friction=None if static_friction is None else float(static_friction),
                  sliding=_sliding(data, motion, where),
                  path=where, ensemble=_ensemble_section(data, where),
-                 calibrated_cor=calibrated)
+                 calibrated_cor=calibrated,
+                 **_variants(blocks, theta0s, data, where))
 
 
 def _calibrated_cor(value: object, where: str):
@@ -366,6 +449,17 @@ def _calibrated_cor(value: object, where: str):
     except (OSError, ValueError) as error:
         raise SceneError(f"{where}: rocking.cor {value!r}: a number in [0, 1], a list of them, "
                          f"or a calibration.json of `shaketable calibrate` ({error})") from None
+
+
+def _variants(blocks: tuple, theta0s: tuple, data: dict, where: str) -> dict:
+    """``blocks`` and ``theta0s`` of a scene that lists several (empty for one of each)."""
+    if len(blocks) == 1 and len(theta0s[0]) == 1:
+        return {}
+    for section in ("ensemble", "sliding"):
+        if section in data:
+            raise SceneError(f"{where}: [{section}] runs one block from one theta0; a list "
+                             f"of block sizes or of theta0 cannot be combined with it")
+    return {"blocks": blocks, "theta0s": theta0s}
 
 
 def _sliding(data: dict, motion: dict, where: str) -> tuple:
@@ -511,6 +605,18 @@ def _only(table: dict, allowed: set, where: str, section: str) -> None:
     if unknown:
         raise SceneError(f"{where}: unknown key {unknown[0]!r} in [{section}]; expected one of "
                          f"{', '.join(sorted(allowed)) or '(none)'}")
+
+
+def _blocks(table, where) -> tuple:
+    """``[block]``: one block, or one per size of ``size = ["30x6in", "60x12in"]``."""
+    table = _table(table, where, "block")
+    sizes = table.get("size")
+    if not isinstance(sizes, list):
+        return (_block(table, where),)
+    if not sizes:
+        raise SceneError(f"{where}: block.size is an empty list; give a size such as "
+                         f"'30x6in' or a list of them")
+    return tuple(_block(dict(table, size=size), where) for size in sizes)
 
 
 def _block(table, where) -> Block:

@@ -130,9 +130,13 @@ class SceneResult:
         import pandas as pd
 
         frames = []
+        several = bool(self.scene.blocks or self.scene.theta0s)  # lists of sizes or theta0
         for run in self.runs:
             frame = run.to_frame()
             frame.insert(0, "cor [-]", run.cor)
+            if several:
+                frame.insert(0, "theta0 [rad]", run.theta[0])
+                frame.insert(0, "block", run.block.describe())
             frames.append(frame)
         return pd.concat(frames, ignore_index=True)
 
@@ -246,9 +250,9 @@ def run_scene(scene: Scene) -> SceneResult:
                              "virtual instruments read a rocking block")
         return _run_virtual_tests(scene, motion, felt, table)
     runs = []
-    for cor in scene.cors:
+    for block, theta0, cor in scene.variants():
         try:
-            runs.append(simulate(scene.block, felt, cor=cor, theta0=scene.theta0,
+            runs.append(simulate(block, felt, cor=cor, theta0=theta0,
                                  theta_dot0=scene.theta_dot0, duration=scene.duration,
                                  method=scene.method, **scene.options))
         except ValueError as error:
@@ -318,11 +322,11 @@ def _run_virtual_tests(scene: Scene, commanded: Motion | None, felt: Motion | No
 
     sensors, theory = scene.sensors, scene.theory
     tests = []
-    for cor in scene.cors:
+    for block, theta0, cor in scene.variants():
         try:
-            tests.append(run_virtual_test(scene.block, felt, cor=cor, sensors=sensors,
+            tests.append(run_virtual_test(block, felt, cor=cor, sensors=sensors,
                                           theory=theory, commanded=commanded,
-                                          theta0=scene.theta0,
+                                          theta0=theta0,
                                           theta_dot0=scene.theta_dot0,
                                           duration=scene.duration,
                                           method=scene.method, **scene.options))

@@ -201,6 +201,7 @@ class EnsembleResult:
         """The theta(t)/alpha bundle of the horizon runs (:mod:`shaketable.plots.predictability`)."""
         from shaketable.plots.predictability import plot_bundle
 
+        kwargs.setdefault("members", len(self.members))
         return plot_bundle(self.runs, ax=ax, horizon=self.horizon, threshold=self.threshold,
                            **kwargs)
 

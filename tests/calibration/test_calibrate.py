@@ -413,7 +413,7 @@ def test_cli_calibrate_known_filter_and_help(tmp_path, capsys):
     path = tmp_path / "free.csv"
     _write_csv(path, record)
     out = tmp_path / "out"
-    assert main(["calibrate", str(path), "--block", "30x6in", "--anti-alias", "20",
+    assert main(["calibrate", str(path), "--block", "30x6in", "--anti-alias", "20Hz",
                  "--out", str(out)]) == 0
     summary = json.loads((out / "calibration.json").read_text())
     assert summary["anti_alias"] == "known" and summary["filter_cutoff [Hz]"] == 20.0

@@ -42,6 +42,22 @@ def test_parse_16x4ft_derived_quantities_by_hand(text):
     assert Block.parse("36x9in").describe() == "36 x 9 in"  # 3 x 0.75 ft: inches
 
 
+@pytest.mark.parametrize("text, label", [
+    ("30x6in", "30 x 6 in"), ("4x0.8ft", "4 x 0.8 ft"), ("16x4ft", "16 x 4 ft"),
+    ("36in x 9in", "36 x 9 in"), ("30in x 0.5ft", "30 in x 0.5 ft"), ("0.5x0.1m", "0.5 x 0.1 m"),
+])
+def test_a_parsed_block_is_echoed_in_the_users_order_and_units(text, label):
+    # issue 31: `--block 4x0.8ft` was echoed as 48 x 9.6 in; the label keeps the user's text
+    block = Block.parse(text)
+    assert block.label == label and block.describe() == label
+    # the label is not part of equality: the same block built in SI is equal, and the
+    # sweep tables' inch labels do not change
+    assert block == Block(block.height, block.width) and hash(block) == hash(
+        Block(block.height, block.width))
+    assert block.describe(unit="in") == Block(block.height, block.width).describe(unit="in")
+    assert Block.parse("4x0.8ft").height == pytest.approx(4 * 0.3048, rel=1e-15)
+
+
 def test_derived_quantities_are_consistent_with_each_other():
     # identities that hold for any block: b = R sin(alpha), h = R cos(alpha),
     # p^2 = g / (I0 / R) (= 3 g / 4R), and Eq. (2-1) threshold g b/h = g tan(alpha)

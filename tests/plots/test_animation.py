@@ -13,7 +13,10 @@ from shaketable.ground import generators as motions
 from shaketable.plots.animation import (
     animate,
     block_outline,
+    ffmpeg_available,
     frame_times,
+    snapshot,
+    stage_unit,
     table_displacement,
 )
 
@@ -64,14 +67,17 @@ def test_table_displacement_of_a_harmonic():
 def test_animate_writes_a_gif_with_the_expected_frames_and_size(tmp_path):
     block = st.Block.from_inches(30, 6)
     result = st.simulate(block, cor=0.925, theta0=0.5 * block.alpha, duration=1.0)
-    written = animate(result, block, out=tmp_path / "rock.gif", fps=6, speed=1.0, dpi=40)
+    written = animate(result, block, out=tmp_path / "rock.gif", fps=6, speed=1.0,
+                      size=(320, 180), dpi=40)
     # 1 s at 6 frames per second: frames at 0, 1/6, ..., 1 s
     assert written.n_frames == 7
     with Image.open(written.path) as gif:
         assert gif.n_frames == 7
-        assert gif.size == (320, 144)  # 8 x 3.6 in at 40 dpi
+        assert gif.size == (320, 180)  # the size asked for, in pixels
     assert written.path.stat().st_size < 2_000_000
-    with pytest.raises(ValueError, match="out must be a .gif"):
+    with Image.open(animate(result, out=tmp_path / "big.gif", fps=2, end=0.5).path) as gif:
+        assert gif.size == (1024, 576)  # the default: readable on a projector
+    with pytest.raises(ValueError, match="out must be a .gif or .mp4"):
         animate(result, out=tmp_path / "rock.png")
     with pytest.raises(ValueError, match="block .* is not the block of the result"):
         animate(result, st.Block.from_inches(36, 9), out=tmp_path / "x.gif")
@@ -88,7 +94,7 @@ def test_cli_animate_help_and_smoke_run(tmp_path, capsys):
                      '[motion]\nkind = "free"\n[rocking]\ncor = 0.925\n'
                      'theta0 = "0.5 alpha"\nduration = "2 s"\n')
     out = tmp_path / "fig.gif"
-    assert main(["animate", str(scene), "--out", str(out), "--fps", "4", "--end", "1"]) == 0
+    assert main(["animate", str(scene), "--out", str(out), "--fps", "4", "--end", "1s"]) == 0
     with Image.open(out) as gif:
         assert gif.n_frames == 5  # 0, 0.25, ..., 1 s
     assert "free: 30 x 6 in, COR 0.925" in capsys.readouterr().out
@@ -96,3 +102,87 @@ def test_cli_animate_help_and_smoke_run(tmp_path, capsys):
     assert "--run must be between 0 and 0" in capsys.readouterr().err
     assert main(["animate", "table-4-2", "--out", str(out)]) == 2
     assert "[study]" in capsys.readouterr().err
+
+
+def _two_cors():
+    # free rocking of Fig. 3.4's block from 0.5 alpha at two CORs: two runs to compare
+    block = st.Block.parse("30x6in")
+    return [st.simulate(block, cor=cor, theta0=0.5 * block.alpha, duration=1.0)
+            for cor in (0.925, 0.7)]
+
+
+def test_blitted_frames_are_the_fully_drawn_frames(tmp_path):
+    # the frames are drawn by blitting (the still parts once); each must look like the
+    # same frame drawn whole (snapshot), up to the GIF's 255-colour palette: no artist
+    # left behind from the previous frame, none missing
+    runs = _two_cors()
+    written = animate(runs, out=tmp_path / "two.gif", fps=4, size=(640, 360), dpi=60)
+    assert written.n_frames == 5 and written.size == (640, 360)
+    with Image.open(written.path) as gif:
+        gif.seek(3)                                   # t = 0.75 s
+        blitted = np.asarray(gif.convert("RGB"), dtype=float)
+    whole = snapshot(runs, 0.75, out=tmp_path / "whole.png", span=(0.0, 1.0),
+                     size=(640, 360), dpi=60)
+    with Image.open(whole) as image:
+        drawn = np.asarray(image.convert("RGB"), dtype=float)
+    assert blitted.shape == drawn.shape
+    differ = np.abs(blitted - drawn).max(axis=2) > 40  # beyond palette rounding
+    assert differ.mean() < 0.002, differ.mean()
+
+
+def test_several_runs_side_by_side_or_overlaid_in_one_unit(tmp_path):
+    runs = _two_cors()
+    for layout in ("side", "overlay"):
+        written = animate(runs, out=tmp_path / f"{layout}.gif", fps=2, end=0.5, layout=layout,
+                          size=(480, 270), dpi=50)
+        assert written.n_frames == 2
+    with pytest.raises(ValueError, match="layout"):
+        animate(runs, out=tmp_path / "x.gif", layout="stacked")
+    with pytest.raises(ValueError, match="one label per result"):
+        animate(runs, out=tmp_path / "x.gif", labels=["one"])
+    with pytest.raises(ValueError, match="block and motion are for one result"):
+        animate(runs, st.Block.parse("30x6in"), out=tmp_path / "x.gif")
+    # the drawing's length unit is the one the block was written in
+    assert stage_unit([st.Block.parse("6x2ft")]) == "ft"
+    assert stage_unit([st.Block.parse("30x6in")]) == "in"
+    assert stage_unit([st.Block(1.0, 0.2)]) == "m"
+
+
+def test_mp4_with_ffmpeg_and_gif_without(tmp_path, monkeypatch):
+    import shaketable.plots.animation as animation
+
+    (run,) = _two_cors()[:1]
+    if ffmpeg_available():
+        written = animate(run, out=tmp_path / "rock.mp4", fps=4, end=0.5, size=(320, 180))
+        head = written.path.read_bytes()[:12]
+        assert written.path.suffix == ".mp4" and head[4:8] == b"ftyp" and not written.note
+    monkeypatch.setattr(animation, "ffmpeg_available", lambda: False)
+    written = animate(run, out=tmp_path / "rock2.mp4", fps=4, end=0.5, size=(320, 180))
+    assert written.path == tmp_path / "rock2.gif" and "ffmpeg" in written.note
+    with Image.open(written.path) as gif:
+        assert gif.n_frames == 3
+
+
+def test_cli_animate_two_runs_of_a_scene(tmp_path, capsys):
+    # the classroom scenes: one command animates both runs side by side
+    out = tmp_path / "small.gif"
+    assert main(["animate", "teaching-period-grows", "--end", "0.5s", "--fps", "4",
+                 "--size", "480x270", "--dpi", "50", "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert "36 x 9 in, θ0/α 0.2" in printed and "36 x 9 in, θ0/α 0.8" in printed
+    with Image.open(out) as gif:
+        assert gif.size == (480, 270) and gif.n_frames == 3
+    assert main(["animate", "teaching-period-grows", "--size", "big", "--out", str(out)]) == 2
+    assert "--size 'big'" in capsys.readouterr().err
+
+
+def test_the_small_block_falls_first_scene_does_what_it_says():
+    # Teaching gallery (c) (docs/teaching.md): under Pacoima Dam S74W with the vertical at
+    # COR 0.9, the 4 ft block of H/B = 5 overturns and the 12 ft block peaks at 0.56 alpha
+    from shaketable.scenes.catalog import resolve_scene_path
+    from shaketable.scenes.parse import load_scene
+    from shaketable.scenes.run import run_scene
+
+    small, large = run_scene(load_scene(resolve_scene_path("teaching-small-block-falls"))).runs
+    assert small.overturned and not large.overturned
+    assert large.max_theta_ratio == pytest.approx(0.56, abs=0.005)

@@ -50,7 +50,8 @@ def test_overturned_run_reads_as_overturned_never_as_a_peak():
     assert 0.0 <= summary["max_theta_ratio_before_instability [-]"] <= 1.0
     text = svg_text(result.plot())
     assert "overturned (" in text and "max θ/α" not in text
-    assert "B × H = 4 × 16 ft" in text and "COR 1" in text and "Pacoima Dam S16E" in text
+    # the scene's size = "16x4ft", echoed in its order and units (issue 31)
+    assert "H × B = 16 × 4 ft" in text and "COR 1" in text and "Pacoima Dam S16E" in text
     # Figs. 4.1 and 4.2 share one time axis (their scenes' [outputs] time_range)
     other = load_scene(resolve_scene_path("fig-4-2"))
     assert scene.outputs["time_range"] == other.outputs["time_range"] == (0.0, 7.0)

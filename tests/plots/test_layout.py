@@ -165,8 +165,8 @@ def test_test_vs_theory_names_the_block_as_the_calcomp_caption():
 
     result = run_scene(load_scene(resolve_scene_path("fig-3-4")))
     text = svg_text(result.tests[0].plot(title="Fig. 3.4: virtual test vs theory"))
-    # the report's B x H (6 in wide, 30 in high), never the H x B of Block.describe()
-    assert "B × H = 6 × 30 in" in text and "30 x 6 in" not in text
+    # the scene's size = "30x6in" in its order and units, as the Calcomp caption gives it
+    assert "H × B = 30 × 6 in" in text and "B × H" not in text
     assert "virtual test (simulated potentiometers" in text
 
 

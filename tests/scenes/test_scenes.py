@@ -175,3 +175,102 @@ def test_harmonic_scenes_start_and_end_the_table_at_rest(name):
     assert drift == pytest.approx(amplitude / (2 * math.pi * frequency), rel=0.02)
     command = displacement_command(motion)
     assert np.max(np.abs(command.horizontal_displacement)) < 5 * INCH
+
+
+LINED = """name = "probe"
+# a comment, then a blank line
+
+[block]
+size = "30x6in"
+[motion]
+kind = "harmonic"
+frequency = "2 Hz"
+horizontal = "0.3 g"
+duration = "2 s"
+[rocking]
+cor = 0.9
+theta0 = "0.1 alpha"
+"""
+
+
+@pytest.mark.parametrize("change, line", [
+    # (replacement in LINED, the line of the offending key, counted by hand from 1)
+    (("size = \"30x6in\"", "size = \"30x6in\"\ncolour = \"red\""), 6),
+    (("horizontal = \"0.3 g\"", "horizontal = 0.3"), 9),
+    (("cor = 0.9", "cor = 1.5"), 12),
+    (("theta0 = \"0.1 alpha\"", "theta0 = \"half alpha\""), 13),
+    (("[block]\nsize = \"30x6in\"", "[block.rods]\nstiffness = 3"), 4),
+    (("kind = \"harmonic\"", "kind = \"wobble\""), 7),
+])
+def test_scene_errors_name_the_line(tmp_path, change, line):
+    # the README: "the message names the option, file and line" (issue 31)
+    path = write(tmp_path, LINED.replace(*change))
+    with pytest.raises(SceneError) as error:
+        load_scene(path)
+    message = str(error.value)
+    assert message.startswith(f"{path}: ") and message.endswith(f" (line {line})"), message
+
+
+def test_scene_error_on_a_missing_key_names_its_section_line(tmp_path):
+    # a missing key has no line of its own: the line of the section it belongs in
+    path = write(tmp_path, LINED.replace("cor = 0.9\n", ""))
+    with pytest.raises(SceneError) as error:
+        load_scene(path)
+    message = str(error.value)
+    assert message.startswith(f"{path}: rocking.cor is missing") and message.endswith("(line 11)")
+
+
+LISTS = """name = "lists"
+[block]
+size = ["30x6in", "60x12in"]
+[motion]
+kind = "free"
+[rocking]
+cor = 0.925
+theta0 = ["0.2 alpha", "0.8 alpha"]
+duration = "3 s"
+"""
+
+
+def test_theta0_and_block_size_may_be_lists_like_cor(tmp_path):
+    # issue 31: theta0 = ["0.2 alpha", "0.8 alpha"] was refused ("expected a angle");
+    # one run per block, then per theta0 (a multiple of that block's own alpha), then per COR
+    import shaketable as st
+
+    scene = load_scene(write(tmp_path, LISTS))
+    result = run_scene(scene)
+    small, large = st.Block.parse("30x6in"), st.Block.parse("60x12in")
+    expected = [(small, 0.2), (small, 0.8), (large, 0.2), (large, 0.8)]
+    assert len(result.runs) == 4
+    for run, (block, ratio) in zip(result.runs, expected):
+        assert run.block == block and run.theta[0] == ratio * block.alpha
+        # the same run as the Python API gives for that block and start
+        alone = st.simulate(block, None, cor=0.925, theta0=ratio * block.alpha, duration=3.0)
+        assert np.array_equal(run.theta, alone.theta)
+    # physics (Eq. 2-5): the period of free rocking grows with the amplitude, and with the
+    # block's size (p = sqrt(3g/4R)): the first impact comes later in both cases
+    first = [run.impact_times[0] for run in result.runs]
+    assert first[0] < first[1] and first[2] < first[3] and first[0] < first[2]
+    frame = result.to_frame()
+    assert set(frame["block"]) == {"30 x 6 in", "60 x 12 in"}
+    assert sorted(set(frame["theta0 [rad]"])) == sorted(
+        {0.2 * small.alpha, 0.8 * small.alpha, 0.2 * large.alpha, 0.8 * large.alpha})
+
+
+@pytest.mark.parametrize("change, message", [
+    (('size = ["30x6in", "60x12in"]', "size = []"), "block.size is an empty list"),
+    (('theta0 = ["0.2 alpha", "0.8 alpha"]', "theta0 = []"), "rocking.theta0 is an empty list"),
+    (('"0.8 alpha"', '"0.8"'), "rocking.theta0"),
+    (('"60x12in"', '"60x12"'), "no unit"),
+])
+def test_bad_lists_are_clear_errors(tmp_path, change, message):
+    path = write(tmp_path, LISTS.replace(*change))
+    with pytest.raises(SceneError, match=message):
+        load_scene(path)
+
+
+def test_a_single_block_and_theta0_scene_keeps_its_outputs(tmp_path):
+    # no list: no block/theta0 columns, and the runs are those of one block (unchanged)
+    result = run_scene(load_scene(write(tmp_path, GOOD)))
+    assert result.scene.blocks == () and result.scene.theta0s == ()
+    assert list(result.to_frame().columns)[0] == "cor [-]"

@@ -99,12 +99,12 @@ def test_simulate_ensemble_and_spectrum_from_the_command_line(tmp_path, capsys):
     from shaketable.cli import main
 
     assert main(["simulate", "--block", "4x1ft", "--cor", "0.9", "--record",
-                 "pacoima-dam-s16e", "--duration", "4", "--ensemble", "6", "--perturb", "0",
+                 "pacoima-dam-s16e", "--duration", "4s", "--ensemble", "6", "--perturb", "0",
                  "--perturb-cor", "0.01", "--out", str(tmp_path / "sim")]) == 0
     summary = json.loads((tmp_path / "sim" / "ensemble.json").read_text())
     assert summary["members"] == 6 and summary["perturbation [-]"]["cor"] == 0.01
     assert (tmp_path / "sim" / "ensemble.png").exists()
-    assert main(["spectrum", "--alpha", "0.25", "--p", "2", "--ratios", "2",
+    assert main(["spectrum", "--alpha", "0.25rad", "--p", "2rad/s", "--ratios", "2",
                  "--tolerance", "1e-6", "--out", str(tmp_path / "spec")]) == 0
     import pandas as pd
 

@@ -1,0 +1,1 @@
+"""The gallery scripts, installed as package data (``shaketable examples --out DIR``)."""

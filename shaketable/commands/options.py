@@ -1,0 +1,149 @@
+"""Dimensional command-line options: one unit rule for every subcommand.
+
+Every option that holds a dimensional value takes it with its unit (``--duration 8s``,
+``--dt 0.02s``, ``--alpha 0.25rad``), as scenes do (:mod:`shaketable.core.units`); a bare
+number is refused. The value is converted to SI when the command line is read, and a bad
+one ends the command with one short line naming the option (exit status 2), without
+argparse's usage dump::
+
+    shaketable simulate: error: --duration: '8' has no unit; write the time with its
+    unit, e.g. '8 s' (units: min, ms, s)
+"""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from shaketable.core.units import parse
+
+#: Exit status of bad usage or input (``shaketable.cli.EXIT_BAD_INPUT``).
+_BAD_INPUT = 2
+
+
+class Quantity(argparse.Action):
+    """An option holding a quantity of ``kind`` (a key of :data:`shaketable.core.units.UNITS`).
+
+    Use as ``parser.add_argument("--duration", action=Quantity, kind="time")``; the
+    namespace receives the value in SI units [s, m, m/s^2, Hz, rad, rad/s...].
+    """
+
+    def __init__(self, option_strings, dest, kind: str, **kwargs: Any) -> None:
+        self.kind = kind
+        super().__init__(option_strings, dest, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        try:
+            value = parse(values, self.kind, where=option_string or self.dest)
+        except ValueError as error:
+            parser.exit(_BAD_INPUT, f"{parser.prog}: error: {error}\n")
+        setattr(namespace, self.dest, value)
+
+
+def add_quantity(parser, *flags: str, kind: str, example: str, help: str, **kwargs: Any) -> None:
+    """Add a dimensional option: ``help`` gains the unit rule and an example (``8s``)."""
+    metavar = kwargs.pop("metavar", None) or kind.upper().replace(" ", "_")
+    parser.add_argument(*flags, action=Quantity, kind=kind, metavar=metavar,
+                        help=f"{help}, with its unit (e.g. {example})", **kwargs)
+
+
+#: ``--pulse`` shapes: the two of :mod:`shaketable.ground.generators` (as scenes write them)
+#: and those of :mod:`shaketable.ground.pulses` (as ``shaketable spectrum`` names them).
+GENERATED_PULSES = ("half-sine", "constant")
+
+
+def add_motion_options(parser) -> None:
+    """``--harmonic`` and ``--pulse``: a table motion given on the command line."""
+    parser.add_argument("--harmonic", metavar="FREQUENCY,AMPLITUDE[,VERTICAL]",
+                        help="harmonic table motion, each value with its unit: 2Hz,0.5g "
+                             "(horizontal), or 2Hz,0.5g,0.3g with a vertical amplitude in "
+                             "phase; it lasts --duration")
+    parser.add_argument("--pulse", metavar="SHAPE,AMPLITUDE,LENGTH",
+                        help="one pulse of table acceleration, then none: half-sine,0.5g,0.2s "
+                             "(a half sine lasting 0.2 s), constant,0.3g,0.5s, or one-sine, "
+                             "one-cosine, ricker, type-C1... with their whole length; the run "
+                             "lasts --duration")
+
+
+def _values(option: str, text: str, kinds: tuple, example: str) -> list:
+    """The comma-separated values of ``option``, each read with its unit."""
+    parts = [part.strip() for part in str(text).split(",")]
+    required = sum(1 for kind in kinds if not kind.endswith("?"))
+    if not required <= len(parts) <= len(kinds):
+        raise ValueError(f"{option} {text!r}: give {required}"
+                         f"{'' if required == len(kinds) else f' or {len(kinds)}'} values "
+                         f"separated by commas, e.g. {example}")
+    return [parse(part, kind.rstrip("?"), where=f"{option} {text!r}")
+            for part, kind in zip(parts, kinds)]
+
+
+def motion_from_options(args):
+    """The table motion of ``--harmonic`` or ``--pulse`` [m/s^2], or ``None`` for neither.
+
+    Raises
+    ------
+    ValueError
+        Both options, one with ``--record``, a missing ``--duration``, a value without
+        its unit or out of range; the message names the option.
+    """
+    given = [name for name in ("record", "harmonic", "pulse") if getattr(args, name, None)]
+    if len(given) > 1:
+        raise ValueError(f"give one table motion: --{given[0]} or --{given[1]}, not both")
+    if not given or given[0] == "record":
+        return None
+    option = f"--{given[0]}"
+    if getattr(args, "duration", None) is None:
+        raise ValueError(f"{option} needs --duration, the length of the run (e.g. 8s)")
+    from shaketable.ground import generators
+
+    duration = args.duration
+    if option == "--harmonic":
+        frequency, horizontal, *vertical = _values(
+            option, args.harmonic, ("frequency", "acceleration", "acceleration?"), "2Hz,0.5g")
+        try:
+            return generators.harmonic(frequency, horizontal=horizontal,
+                                       vertical=vertical[0] if vertical else 0.0,
+                                       duration=duration)
+        except ValueError as error:
+            raise ValueError(f"{option} {args.harmonic!r}: {error}") from None
+    shape, _, rest = str(args.pulse).partition(",")
+    shape = shape.strip()
+    try:
+        amplitude, length = _values(option, rest, ("acceleration", "time"),
+                                    "half-sine,0.5g,0.2s")
+    except ValueError as error:
+        raise ValueError(str(error).replace(f"{option} {rest!r}", f"{option} {args.pulse!r}")) \
+            from None
+    try:
+        if shape.lower() == "half-sine":
+            return generators.half_sine_pulse(amplitude=abs(amplitude), pulse_duration=length,
+                                              duration=duration, sign=-1 if amplitude < 0 else 1)
+        if shape.lower() == "constant":
+            return generators.constant_pulse(acceleration=amplitude, pulse_duration=length,
+                                             duration=duration)
+        from shaketable.core.validation import positive
+        from shaketable.ground.pulses import Pulse, pulse_motion
+
+        length = positive("the pulse length", length, " [s]")
+        unit = Pulse(shape, 1.0)  # its length at omega = 1 rad/s: omega from the length
+        form = Pulse(shape, unit.duration / length)
+        if length > duration:
+            raise ValueError(f"the pulse ({length:g} s) is longer than --duration "
+                             f"({duration:g} s)")
+        import numpy as np
+
+        from shaketable.core.motion import Motion
+
+        shaped = pulse_motion(form, amplitude, samples_per_cycle=2048)
+        # then the table at rest: a drop to zero within a millionth of the pulse (a pulse
+        # ending at a nonzero value, one-cosine or type-Cn) and samples every 10 ms
+        tail = np.unique(np.concatenate([[form.duration * (1 + 1e-6)],
+                                         np.arange(form.duration + 0.01, duration, 0.01),
+                                         [duration]]))
+        tail = tail[tail > form.duration * (1 + 1e-7)]
+        words = ", ".join(part.strip() for part in rest.split(","))
+        return Motion(np.concatenate([shaped.t, tail]),
+                      np.concatenate([shaped.horizontal, np.zeros(tail.size)]),
+                      name=f"{shape} pulse {words}")
+    except ValueError as error:
+        raise ValueError(f"{option} {args.pulse!r}: {error}") from None
