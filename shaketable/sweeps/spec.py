@@ -108,7 +108,8 @@ theta/alpha over the members that stand. ``chunk_size`` still counts cells
 The same spec (and seed) always gives the same table, whatever the number of
 workers, the chunking or the interruptions.
 
-Size: about 680 lines, half of them this docstring (the spec format's reference).
+Size: about 790 lines, half of them this docstring (the spec format's reference); the
+intensity settings and the target-spectrum reader are in :mod:`shaketable.sweeps.targets`.
 """
 
 from __future__ import annotations
@@ -131,6 +132,7 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
+from shaketable.sweeps.targets import IntensitySettings, read_spectrum
 
 if TYPE_CHECKING:
     from shaketable.lab.pitch import Pitch
@@ -155,9 +157,6 @@ RECORD_KEYS = {
 
 INTENSITY_KEYS = {"scale", "pga", "measure", "levels", "period", "period_range", "damping",
                   "spectrum"}
-
-#: Periods [s] of the Sa columns every row records (and ``period`` when given).
-RECORDED_PERIODS = (0.2, 0.5, 1.0, 2.0)
 
 PITCH_KEYS = {"phases", "random_phases", "frequency", "amplitude", "block_position",
               "axis_depth", "frequency_drift", "amplitude_drift"}
@@ -204,50 +203,6 @@ class RecordSpec:
     preset: str = ""
     seeds: tuple = (None,)
     suite: str = ""
-
-
-@dataclass(frozen=True)
-class IntensitySettings:
-    """The intensity-measure keys of ``[intensity]``.
-
-    Attributes
-    ----------
-    measure : str
-        Target measure (:data:`shaketable.ground.intensity.MEASURES`) when
-        ``SweepSpec.intensity == "measure"``, else ``""``.
-    period : float or None
-        Period of ``sa`` [s].
-    period_range : tuple of float
-        Range of ``sa_avg`` and of spectrum matching [s].
-    damping : float
-        Damping ratio of the spectra [-].
-    spectrum : tuple
-        Target spectrum as ((period [s], Sa [m/s^2]), ...) or ``()``.
-    """
-
-    measure: str = ""
-    period: float | None = None
-    period_range: tuple = (0.2, 2.0)
-    damping: float = 0.05
-    spectrum: tuple = ()
-
-    @property
-    def periods(self) -> tuple:
-        """Periods of the recorded Sa columns [s]."""
-        extra = () if self.period is None or self.period in RECORDED_PERIODS else (self.period,)
-        return RECORDED_PERIODS + extra
-
-    @property
-    def column(self) -> str:
-        """Table column of the target measure."""
-        from shaketable.ground.intensity import MEASURES, sa_avg_column, sa_column
-
-        if self.measure == "sa":
-            assert self.period is not None   # checked by the parser
-            return sa_column(self.period)
-        if self.measure == "sa_avg":
-            return sa_avg_column(*self.period_range)
-        return MEASURES[self.measure][0]
 
 
 @dataclass(frozen=True)
@@ -755,7 +710,7 @@ def _intensity(table, where, directory: Path | None = None):
         if "measure" in table or "pga" in table:
             raise SweepError(f"{where}: intensity.spectrum goes with scale factors (or none), "
                              "not with a target pga or measure")
-        settings["spectrum"] = _spectrum_file(table["spectrum"], where, directory)
+        settings["spectrum"] = read_spectrum(table["spectrum"], where, directory)
     if "measure" in table:
         measure = table["measure"]
         if measure not in MEASURES:
@@ -784,36 +739,6 @@ def _intensity(table, where, directory: Path | None = None):
         return "scale", _number_list(table["scale"], where, "intensity.scale", 0.0,
                                      low_open=True), IntensitySettings(**settings)
     return "scale", [1.0], IntensitySettings(**settings)
-
-
-def _spectrum_file(value, where, directory: Path | None) -> tuple:
-    """A target spectrum CSV (``period [s], sa [g]`` with a header): ((T, Sa [m/s^2]), ...)."""
-    from shaketable.core.constants import G
-
-    if not isinstance(value, str) or not value:
-        raise SweepError(f"{where}: intensity.spectrum must be a CSV file name")
-    path = Path(value)
-    path = path if path.is_absolute() or directory is None else directory / path
-    if not path.is_file():
-        raise SweepError(f"{where}: intensity.spectrum: no such file {str(path)!r}")
-    pairs = []
-    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
-        text = line.split("#")[0].strip()
-        if not text or number == 1:
-            continue
-        fields = [field.strip() for field in text.split(",")]
-        try:
-            period, sa = float(fields[0]), float(fields[1])
-        except (ValueError, IndexError):
-            raise SweepError(f"{path}:{number}: expected 'period [s], sa [g]', got "
-                             f"{line!r}") from None
-        if not (period > 0 and sa > 0 and math.isfinite(period) and math.isfinite(sa)):
-            raise SweepError(f"{path}:{number}: period and sa must be positive, got {line!r}")
-        pairs.append((period, sa * G))
-    if len(pairs) < 2 or any(b[0] <= a[0] for a, b in zip(pairs, pairs[1:])):
-        raise SweepError(f"{path}: a target spectrum needs at least two rows with increasing "
-                         "periods")
-    return tuple(pairs)
 
 
 def _pitch(table, where, seed):
