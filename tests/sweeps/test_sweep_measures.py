@@ -183,3 +183,30 @@ def test_similarity_law_is_an_identity_of_the_dimensionless_measures():
     assert pgv_large == pytest.approx(math.sqrt(k) * pgv_small, rel=1e-12)
     assert im.normalised_pgv(pgv_large, large.p, large.alpha) == pytest.approx(
         im.normalised_pgv(pgv_small, small.p, small.alpha), rel=1e-12)
+
+
+def test_measure_figures_are_drawn_from_a_measure_sweep(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from shaketable.plots.sweeps import sweep_figures
+    from shaketable.sweeps.fragility import fragility_fit
+
+    table = _run(tmp_path, 'measure = "pgv"\nlevels = ["0.1 m/s", "0.2 m/s", "0.3 m/s", '
+                           '"0.4 m/s", "0.6 m/s", "0.9 m/s"]')
+    written = sweep_figures(table, tmp_path / "figures")
+    names = {path.name for path in written}
+    assert {"fragility-pgv-cor0.9.png", "fragility-pga-cor0.9.png",
+            "fragility-pgv-star-cor0.9.png", "im-comparison-cor0.9.csv"} <= names
+    assert all(path.stat().st_size > 0 for path in written)
+    # a fit's own plot() draws its band (profile-likelihood envelope contains the curve)
+    rows = table[table["block"] == table["block"].iloc[0]]
+    try:
+        fit = fragility_fit(rows["pgv [m/s]"], rows["overturned"], measure="pgv [m/s]")
+    except ValueError:
+        pytest.skip("two records per level: outcomes separated for this block")
+    grid = np.geomspace(0.05, 2.0, 50)
+    low, high = fit.band(grid)
+    assert np.all(low <= fit.probability(grid) + 1e-12)
+    assert np.all(fit.probability(grid) <= high + 1e-12)
+    assert fit.plot() is not None
