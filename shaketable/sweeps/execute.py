@@ -63,17 +63,24 @@ def record_measures(record: RecordSpec, seed, measures) -> dict:
 
     :func:`shaketable.ground.intensity.intensity_measures` of the whole record, with the
     Sa periods, range and damping of ``measures`` (an
-    :class:`~shaketable.sweeps.spec.IntensitySettings`).
+    :class:`~shaketable.sweeps.targets.IntensitySettings`). A record without horizontal
+    motion (a vertical-only record) has NaN measures (and cannot be scaled to one).
     """
-    from shaketable.ground.intensity import intensity_measures
+    from shaketable.ground.intensity import (
+        intensity_measures,
+        sa_avg_column,
+        sa_column,
+    )
 
     base = _record_motion(record, seed)
-    try:
-        return intensity_measures(base, periods=measures.periods,
-                                  period_range=measures.period_range,
-                                  damping=measures.damping)
-    except ValueError as error:
-        raise SweepError(f"record {record.label!r}: {error}") from None
+    if base.pga == 0.0:
+        columns = (["pga [m/s^2]", "pgv [m/s]", "pgd [m]", "pgv/pga [s]"]
+                   + [sa_column(period) for period in measures.periods]
+                   + [sa_avg_column(*measures.period_range), "arias [m/s]", "cav [m/s]",
+                      "d5-95 [s]"])
+        return dict.fromkeys(columns, math.nan) | {"pga [m/s^2]": 0.0}
+    return intensity_measures(base, periods=measures.periods,
+                              period_range=measures.period_range, damping=measures.damping)
 
 
 @lru_cache(maxsize=64)

@@ -210,3 +210,17 @@ def test_measure_figures_are_drawn_from_a_measure_sweep(tmp_path):
     assert np.all(low <= fit.probability(grid) + 1e-12)
     assert np.all(fit.probability(grid) <= high + 1e-12)
     assert fit.plot() is not None
+
+
+def test_a_vertical_only_record_has_nan_measures_and_cannot_be_a_target():
+    from shaketable.sweeps.execute import build_motion, compute_chunk
+
+    base = {"name": "v", "blocks": {"sizes": ["24x6in"]},
+            "rocking": {"cor": 0.9, "duration": "2 s"},
+            "records": [{"name": "el-centro-1940-up"}]}
+    row = compute_chunk(sweeps.spec_from_dict(base), 0, threads=1).iloc[0]
+    assert row["pga [m/s^2]"] == 0.0 and math.isnan(row["pgv [m/s]"])
+    target = sweeps.spec_from_dict(base | {"intensity": {"measure": "pgv",
+                                                         "levels": ["0.5 m/s"]}})
+    with pytest.raises(sweeps.SweepError, match="el-centro-1940-up.*pgv"):
+        build_motion(target, 0)
