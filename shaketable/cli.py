@@ -21,6 +21,7 @@ import sys
 #: Subcommand modules in ``shaketable.commands``, in the order ``--help`` shows them.
 SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "animate",
                "slide", "spectrum", "examples"]
+SUBCOMMANDS.insert(SUBCOMMANDS.index("sweep") + 1, "risk")   # issue 29
 
 #: Exit statuses (documented in ``shaketable --help``).
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130

@@ -55,6 +55,13 @@ def _sweep(args: argparse.Namespace) -> int:
         print("note: pyarrow is not installed; the table is CSV, not Parquet "
               "(pip install 'shaketable[parquet]')")
     print(f"wrote {outcome.path}")
+    if "spectrum_scale [-]" in table:   # issue 29: the factors to the target spectrum
+        factors = table[["record", "seed", "spectrum_scale [-]"]].drop_duplicates()
+        from shaketable.core.files import write_csv
+
+        write_csv(out / "spectrum-scale-factors.csv", factors)
+        print(f"wrote {out / 'spectrum-scale-factors.csv'} (each record's factor to the "
+              "target spectrum)")
     if args.figures:
         from shaketable.plots.sweeps import sweep_figures
 
@@ -74,7 +81,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "a killed sweep continues with --resume.")
     parser.add_argument("spec", help="path to a sweep spec .toml, or the name of a bundled "
                                      "one (pacoima-overturning-map, artificial-fragility, "
-                                     "pitch-phase-repeatability)")
+                                     "pitch-phase-repeatability, im-fragility-collapse)")
     parser.add_argument("--out", help="output folder (default shaketable-out/<sweep name>)")
     parser.add_argument("--workers", type=int, default=None,
                         help="local threads (default all cores); with --scheduler, threads "
@@ -89,6 +96,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     parser.add_argument("--figures", action="store_true",
                         help="also draw what the table supports: overturning maps and rocking "
-                             "spectra per record and COR, fragility curves over PGA "
-                             "(OUT/figures/*.png)")
+                             "spectra per record and COR, fragility curves over PGA; for "
+                             "a sweep scaled to an intensity measure, fragility against it, "
+                             "PGA and PGV p/(g tan a) with confidence bands, the PGA-PGV "
+                             "surface and the IM comparison (OUT/figures/)")
     parser.set_defaults(handler=_sweep)

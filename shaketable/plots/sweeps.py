@@ -16,6 +16,10 @@ the axes. matplotlib is imported inside the plotting functions only;
 * :func:`pitch_phase_spread` -- the same block, record and PGA run at every phase
   of the table's pitch (Section 3.7 (2)): max |theta|/alpha of each phase and how
   many phases overturn.
+* :func:`fragility_by_measure` -- fragility against any intensity measure, one curve per
+  block with its confidence band (:func:`fragility_with_band` for one fit);
+  :func:`fragility_contours` -- the 2-D P(overturn | PGA, PGV) surface;
+  :func:`risk_curves` -- hazard curve, fragility and the risk integrand.
 """
 
 from __future__ import annotations
@@ -23,7 +27,12 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.plots.base import place_legend, pyplot
-from shaketable.sweeps.fragility import fragility_fit
+from shaketable.sweeps.fragility import (
+    MEASURE_LABELS,
+    fragility_fit,
+    fragility_surface,
+    measure_column,
+)
 
 _RATIO = "max_theta_ratio [-]"
 
@@ -415,6 +424,8 @@ def sweep_figures(table, out) -> list:
             axis.set_title(f"fragility, COR {cor:g}", fontsize=9)
             written.append(out / f"fragility-cor{cor:g}.png")
             save(figure, written[-1])
+    if "target_measure" in table:
+        written.extend(measure_figures(table, out))
     if "pitch_phase [rad]" in table:
         pitched = table[table["pitch_phase [rad]"].notna()]
         for (record, seed, block, cor), rows in pitched.groupby(
@@ -427,3 +438,272 @@ def sweep_figures(table, out) -> list:
             written.append(out / f"{name}.png")
             save(figure, written[-1])
     return written
+
+
+def _stripe_fractions(im, overturned, bins: int = 12):
+    """Fraction overturned in log-spaced bins of the IM (the points of a fragility figure):
+    bin centres, fractions and counts."""
+    im = np.asarray(im, dtype=float)
+    overturned = np.asarray(overturned, dtype=bool)
+    levels = np.unique(np.round(im, 12))
+    if levels.size <= bins:
+        groups = [np.round(im, 12) == level for level in levels]
+        centres = levels
+    else:
+        edges = np.geomspace(im.min(), im.max() * (1 + 1e-12), bins + 1)
+        index = np.clip(np.searchsorted(edges, im, side="right") - 1, 0, bins - 1)
+        groups = [index == k for k in range(bins)]
+        centres = np.sqrt(edges[:-1] * edges[1:])
+    keep = [k for k, pick in enumerate(groups) if pick.any()]
+    fractions = np.array([overturned[groups[k]].mean() for k in keep])
+    counts = np.array([int(groups[k].sum()) for k in keep])
+    return np.asarray(centres)[keep], fractions, counts
+
+
+def fragility_with_band(fit, *, ax=None, im=None, overturned=None, color="tab:blue",
+                        label=None, grid=None):
+    """One fragility fit: the lognormal curve, its pointwise confidence band and (given
+    ``im`` and ``overturned``) the fraction overturned in bins of the IM.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    plt = pyplot()
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7, 4.5))
+    if grid is None:
+        low = fit.median * np.exp(-3.0 * fit.beta)
+        high = fit.median * np.exp(3.0 * fit.beta)
+        if im is not None:
+            low, high = min(low, float(np.min(im))), max(high, float(np.max(im)))
+        grid = np.geomspace(low, high, 300)
+    lower, upper = fit.band(grid)
+    name = label if label is not None else (fit.measure or "fit")
+    ax.fill_between(grid, lower, upper, color=color, alpha=0.18, lw=0)
+    ax.plot(grid, fit.probability(grid), "-", color=color, lw=1.3,
+            label=f"{name}: median {fit.median:.3g} [{fit.median_interval[0]:.3g}, "
+                  f"{fit.median_interval[1]:.3g}], β {fit.beta:.2f} [{fit.beta_interval[0]:.2f}, "
+                  f"{fit.beta_interval[1]:.2f}]")
+    if im is not None and overturned is not None:
+        centres, fractions, _ = _stripe_fractions(im, overturned)
+        ax.plot(centres, fractions, "o", color=color, ms=4)
+    _log_axis(ax.xaxis)
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_ylabel("P(overturn) [-]")
+    ax.grid(alpha=0.3, which="both")
+    return ax
+
+
+def _log_axis(axis):
+    """A log axis labelled at 1, 2, 5 x 10^n in plain numbers (no crowded minor labels)."""
+    from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
+
+    axis.axes.set_xscale("log") if axis is axis.axes.xaxis else axis.axes.set_yscale("log")
+    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FormatStrFormatter("%g"))
+    axis.set_minor_formatter(NullFormatter())
+
+
+def fragility_by_measure(table, measure="pgv", *, group="block", cor=None, ax=None,
+                         confidence=0.95):
+    """Fragility against any intensity measure: one MSA fit per group (block) with its
+    profile-likelihood band (shaded) and the fraction overturned in bins of the IM.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sweep table with the intensity-measure columns.
+    measure : str
+        Short name (``pga``, ``pgv``, ``pga*``, ``pgv*``, ``sa(1)``, ``sa_avg``...) or column.
+    group : str
+        One curve per value of this column.
+    cor : float, optional
+        Select one COR.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        With ``ax.fragility_fits``: group -> FragilityFit (None where not identified).
+    """
+    plt = pyplot()
+
+    rows = _select(table, **{"cor [-]": cor})
+    _one(rows, "cor [-]")
+    column = measure_column(rows, measure)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.5, 4.8))
+    colours = plt.get_cmap("tab10")(np.arange(10))
+    fits = {}
+    values = rows[column].to_numpy(dtype=float)
+    grid = np.geomspace(values.min() * 0.8, values.max() * 1.25, 300)
+    for k, (name, part) in enumerate(rows.groupby(group, sort=False)):
+        try:
+            fit = fragility_fit(part[column], part["overturned"], confidence=confidence,
+                                measure=column)
+        except ValueError:
+            fits[name] = None
+            continue
+        fits[name] = fit
+        fragility_with_band(fit, ax=ax, im=part[column], overturned=part["overturned"],
+                            color=colours[k % 10], label=str(name), grid=grid)
+    ax.set_xlabel(MEASURE_LABELS.get(column, column) + "  (log scale)")
+    records = rows.groupby(["record", "seed"], dropna=False).ngroups if "record" in rows \
+        else rows["motion"].nunique()
+    ax.set_title(f"Fragility against {MEASURE_LABELS.get(column, column).split(' [')[0]}: "
+                 f"{records} motions, COR {rows['cor [-]'].iloc[0]:g} (bands: "
+                 f"{100 * confidence:g} % profile likelihood)", fontsize=9)
+    place_legend(ax, fontsize=7)
+    ax.fragility_fits = fits
+    return ax
+
+
+def fragility_contours(surface, *, ax=None, table=None, x_unit=1.0, y_unit=1.0,
+                       levels=(0.1, 0.3, 0.5, 0.7, 0.9)):
+    """The 2-D fragility ``P(overturn | x, y)`` as contours, with the runs (given a
+    ``table``: dots stand, crosses overturn), log axes.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    plt = pyplot()
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.5, 5))
+    if table is not None:
+        x = table[surface.x_measure].to_numpy(dtype=float)
+        y = table[surface.y_measure].to_numpy(dtype=float)
+        over = table["overturned"].to_numpy(dtype=bool)
+        x_range = (x.min() * 0.8, x.max() * 1.25)
+        y_range = (y.min() * 0.8, y.max() * 1.25)
+    else:
+        x_range, y_range = (0.1, 10.0), (0.01, 2.0)
+    xs = np.geomspace(*x_range, 200)
+    ys = np.geomspace(*y_range, 200)
+    grid_x, grid_y = np.meshgrid(xs, ys)
+    probability = surface.probability(grid_x, grid_y)
+    filled = ax.contourf(grid_x / x_unit, grid_y / y_unit, probability,
+                         levels=np.linspace(0, 1, 11), cmap="RdYlBu_r", alpha=0.75)
+    lines = ax.contour(grid_x / x_unit, grid_y / y_unit, probability, levels=list(levels),
+                       colors="k", linewidths=0.8)
+    ax.clabel(lines, fmt="%.1f", fontsize=7)
+    if table is not None:
+        ax.plot(x[~over] / x_unit, y[~over] / y_unit, "o", ms=2.5, mfc="none", mec="0.15",
+                mew=0.6, label="stands")
+        ax.plot(x[over] / x_unit, y[over] / y_unit, "x", ms=3, color="k", mew=0.7,
+                label="overturns")
+        place_legend(ax, fontsize=7)
+    _log_axis(ax.xaxis)
+    _log_axis(ax.yaxis)
+    ax.figure.colorbar(filled, ax=ax).set_label("P(overturn) [-]")
+    ax.set_xlabel(MEASURE_LABELS.get(surface.x_measure, surface.x_measure))
+    ax.set_ylabel(MEASURE_LABELS.get(surface.y_measure, surface.y_measure))
+    b0, b1, b2 = surface.coefficients
+    ax.set_title(f"P(overturn) = Φ({b0:.2f} + {b1:.2f} ln x + {b2:.2f} ln y), "
+                 f"{surface.n_runs} runs", fontsize=9)
+    return ax
+
+
+def risk_curves(fragility, hazard, result=None, *, ax=None):
+    """Hazard curve (annual rate of exceedance, log-log), the fragility on a second axis,
+    and the risk integrand ``P(overturn | im) |d lambda / d ln im|`` (shaded: where the
+    rate of overturning comes from).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        The hazard axis (the fragility's is ``ax.fragility_axis``).
+    """
+    plt = pyplot()
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.5, 4.8))
+    x = np.geomspace(hazard.im[0], hazard.im[-1], 400)
+    rate = hazard.rate_at(x)
+    ax.loglog(hazard.im, hazard.rate, "o", ms=3, color="tab:blue")
+    ax.loglog(x, rate, "-", color="tab:blue", label="hazard: annual rate of exceedance")
+    density = -np.gradient(rate, np.log(x)) * fragility.probability(x)
+    ax.fill_between(x, np.maximum(density, 1e-30), 1e-30, color="tab:red", alpha=0.3,
+                    label="P(overturn | im) |dλ/d ln im| (the integrand)")
+    ax.set_ylim(max(min(hazard.rate) * 0.5, density.max() * 1e-4), max(hazard.rate) * 2)
+    ax.set_xlabel(MEASURE_LABELS.get(hazard.column, hazard.column))
+    ax.set_ylabel("annual rate [1/yr]")
+    ax.grid(alpha=0.3, which="both")
+    other = ax.twinx()
+    other.plot(x, fragility.probability(x), "-", color="k", lw=1.2,
+               label=f"fragility: median {fragility.median:.3g}, β {fragility.beta:.2f}")
+    if getattr(fragility, "stripes", ()):
+        lower, upper = fragility.band(x)
+        other.fill_between(x, lower, upper, color="0.5", alpha=0.2, lw=0)
+    other.set_ylim(-0.02, 1.02)
+    other.set_ylabel("P(overturn) [-]")
+    handles = ax.get_legend_handles_labels()
+    more = other.get_legend_handles_labels()
+    ax.legend(handles[0] + more[0], handles[1] + more[1], fontsize=7, loc="lower left")
+    if result is not None:
+        ax.set_title(f"λ = {result.rate:.3g} /yr (±{result.error:.1g}), P(overturn in "
+                     f"{result.years:g} yr) = {result.probability:.3g}", fontsize=9)
+    ax.fragility_axis = other
+    return ax
+
+
+def measure_figures(table, out) -> list:
+    """The intensity-measure figures of a sweep scaled to a measure (``target_measure``
+    column), written to folder ``out``: fragility against the target measure, PGA and
+    PGV p/(g tan alpha) with bands, the 2-D PGA-PGV surface as contours, and the
+    comparison of the measures (``im-comparison.csv``). Their paths."""
+    from pathlib import Path
+
+    plt = pyplot()
+    from shaketable.plots.base import save
+    from shaketable.sweeps.fragility import compare_measures
+
+    out = Path(out)
+    written = []
+    target = str(table["target_measure"].iloc[0])
+    rows = table[table["pitch_phase [rad]"].isna()] if "pitch_phase [rad]" in table else table
+    for cor, part in rows.groupby("cor [-]", sort=False):
+        for measure in dict.fromkeys([target, "pga", "pgv*"]):
+            figure, axis = plt.subplots(figsize=(7.5, 4.8))
+            fragility_by_measure(part, measure, ax=axis)
+            name = measure.replace("*", "-star")
+            written.append(out / f"fragility-{name}-cor{cor:g}.png")
+            save(figure, written[-1])
+        blocks = list(part.groupby("block", sort=False))
+        if len(blocks) > 4:
+            blocks = [("all blocks", part)]
+        figure, axes = plt.subplots(1, len(blocks), figsize=(5.2 * len(blocks), 4.6),
+                                    squeeze=False)
+        drawn = 0
+        for axis, (block, rows_of_block) in zip(axes[0], blocks):
+            try:
+                surface = fragility_surface(rows_of_block["pga [m/s^2]"],
+                                            rows_of_block["pgv [m/s]"],
+                                            rows_of_block["overturned"])
+            except ValueError:
+                axis.set_axis_off()
+                axis.set_title(f"{block}: outcomes separated, no surface", fontsize=9)
+                continue
+            fragility_contours(surface, ax=axis, table=rows_of_block)
+            axis.set_title(f"{block}\n" + axis.get_title(), fontsize=8)
+            drawn += 1
+        if drawn:
+            figure.tight_layout()
+            written.append(out / f"fragility-pga-pgv-cor{cor:g}.png")
+            save(figure, written[-1])
+        else:
+            plt.close(figure)
+        if part["block"].nunique() > 1:
+            comparison = compare_measures(part, [m for m in ("pga", "pgv", "sa(1)", "sa_avg",
+                                                              "pga*", "pgv*")
+                                                 if _has_measure(part, m)])
+            written.append(out / f"im-comparison-cor{cor:g}.csv")
+            comparison.to_csv(written[-1], index=False)
+    return written
+
+
+def _has_measure(table, measure) -> bool:
+    try:
+        measure_column(table, measure)
+    except ValueError:
+        return False
+    return True

@@ -57,6 +57,54 @@ def _record_motion(record: RecordSpec, seed) -> Motion:
     return motions.artificial(record.preset, seed=seed, **options)
 
 
+@lru_cache(maxsize=64)
+def record_measures(record: RecordSpec, seed, measures) -> dict:
+    """Every intensity measure of the unscaled record (cached per process), SI.
+
+    :func:`shaketable.ground.intensity.intensity_measures` of the whole record, with the
+    Sa periods, range and damping of ``measures`` (an
+    :class:`~shaketable.sweeps.targets.IntensitySettings`). A record without horizontal
+    motion (a vertical-only record) has NaN measures (and cannot be scaled to one).
+    """
+    from shaketable.ground.intensity import (
+        intensity_measures,
+        sa_avg_column,
+        sa_column,
+    )
+
+    base = _record_motion(record, seed)
+    if base.pga == 0.0:
+        columns = (["pga [m/s^2]", "pgv [m/s]", "pgd [m]", "pgv/pga [s]"]
+                   + [sa_column(period) for period in measures.periods]
+                   + [sa_avg_column(*measures.period_range), "arias [m/s]", "cav [m/s]",
+                      "d5-95 [s]"])
+        return dict.fromkeys(columns, math.nan) | {"pga [m/s^2]": 0.0}
+    return intensity_measures(base, periods=measures.periods,
+                              period_range=measures.period_range, damping=measures.damping)
+
+
+@lru_cache(maxsize=64)
+def spectrum_factor(record: RecordSpec, seed, measures) -> float:
+    """Factor that scales a record to the target spectrum of ``measures`` [-].
+
+    The least-squares fit in logs over ``SA_AVG_POINTS`` log-spaced periods of
+    ``period_range``: ``ln f = mean_i ln(Sa_target(T_i) / Sa_record(T_i))``, the target
+    interpolated linearly in log-log between its rows (amplitude scaling of a suite
+    to a target spectrum, one factor per record).
+    """
+    from shaketable.ground.intensity import SA_AVG_POINTS, spectral_acceleration
+
+    low, high = measures.period_range
+    periods = np.geomspace(low, high, SA_AVG_POINTS)
+    target_t, target_sa = np.array(measures.spectrum).T
+    target = np.exp(np.interp(np.log(periods), np.log(target_t), np.log(target_sa)))
+    values = spectral_acceleration(_record_motion(record, seed), periods, measures.damping)
+    if np.any(values <= 0.0):
+        raise SweepError(f"record {record.label!r} has no horizontal motion; it cannot be "
+                         "scaled to a spectrum")
+    return float(np.exp(np.mean(np.log(target / values))))
+
+
 def build_motion(spec: SweepSpec, record_index: int, seed: int | None = None,
                  level_index: int = 0, phase_index: int | None = None) -> tuple[Motion, float]:
     """The motion of one run and its earthquake scale factor.
@@ -81,8 +129,10 @@ def build_motion(spec: SweepSpec, record_index: int, seed: int | None = None,
         :meth:`Motion.scaled`) and then put on the pitching table by
         :func:`shaketable.lab.pitch.motion_at_block`.
     factor : float
-        Scale factor of the earthquake [-]: the level itself, or target PGA /
-        record PGA (as :func:`shaketable.ground.signals.scale_to_pga`).
+        Scale factor of the earthquake [-]: the level itself (times the record's
+        spectrum factor with a target spectrum), target PGA / record PGA (as
+        :func:`shaketable.ground.signals.scale_to_pga`), or ``(level / IM) ** (1 / n)``
+        for a target measure with scale exponent ``n``.
     """
     base = _record_motion(spec.records[record_index], seed)
     level = spec.levels[level_index]
@@ -91,6 +141,17 @@ def build_motion(spec: SweepSpec, record_index: int, seed: int | None = None,
             raise SweepError(f"{spec.path}: record {spec.records[record_index].label!r} has "
                              "no horizontal motion; it cannot be scaled to a PGA")
         factor = level / base.pga
+    elif spec.intensity == "measure":
+        from shaketable.ground.intensity import scale_exponent
+
+        settings = spec.measures
+        value = record_measures(spec.records[record_index], seed, settings)[settings.column]
+        if not value > 0.0:
+            raise SweepError(f"{spec.path}: record {spec.records[record_index].label!r} has "
+                             f"{settings.column} = {value!r}; it cannot be scaled to it")
+        factor = (level / value) ** (1.0 / scale_exponent(settings.column))
+    elif spec.measures.spectrum:
+        factor = level * spectrum_factor(spec.records[record_index], seed, spec.measures)
     else:
         factor = level
     if spec.pitch is None:
@@ -197,7 +258,38 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd
         "block_index": inputs["block_index"].to_numpy(),
     })
     frame = frame.reset_index(drop=True)
-    return pd.concat([extra, frame] + ([] if statistics is None else [statistics]), axis=1)
+    measures = _measure_columns(spec, inputs, records, factors, level)
+    return pd.concat([extra, frame, measures] + ([] if statistics is None else [statistics]),
+                     axis=1)
+
+
+def _measure_columns(spec: SweepSpec, inputs, records, factors, level):
+    """The intensity measures of each row's scaled record, appended after the batch's
+    columns (the earlier columns keep their places; the ensemble's come after)."""
+    import pandas as pd
+
+    from shaketable.ground.intensity import normalised_pga, normalised_pgv, scale_exponent
+
+    rows = []
+    for k, (record, seed) in enumerate(zip(records, inputs["seed"])):
+        seed = None if pd.isna(seed) else int(seed)
+        base = record_measures(record, seed, spec.measures)
+        row = {column: value * factors[k] ** scale_exponent(column)
+               for column, value in base.items() if column != "pga [m/s^2]"}
+        block = spec.blocks[inputs["block_index"].iloc[k]]
+        row["pga/(g tan a) [-]"] = normalised_pga(base["pga [m/s^2]"] * factors[k], block.alpha)
+        row["pgv p/(g tan a) [-]"] = normalised_pgv(row["pgv [m/s]"], block.p, block.alpha)
+        rows.append(row)
+    table = pd.DataFrame(rows)
+    table["suite"] = [record.suite for record in records]
+    if spec.intensity == "measure":
+        table["target_measure"] = spec.measures.measure
+        table["target [SI]"] = level
+    if spec.measures.spectrum:
+        table["spectrum_scale [-]"] = [
+            spectrum_factor(record, None if pd.isna(seed) else int(seed), spec.measures)
+            for record, seed in zip(records, inputs["seed"])]
+    return table
 
 
 def _simulate(spec: SweepSpec, inputs, cases: list, threads):
@@ -312,7 +404,8 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
             old = json.loads(manifest_path.read_text())
         except (OSError, ValueError) as error:
             raise SweepError(f"{manifest_path}: unreadable manifest ({error})") from None
-        for key in ("fingerprint", "n_runs", "chunk_size", "format", "solver"):
+        for key in ("fingerprint", "n_runs", "chunk_size", "format", "format_version",
+                    "solver"):
             if old.get(key) != manifest[key]:
                 raise SweepError(
                     f"{out}: cannot resume: the sweep there differs from {spec.path} in "

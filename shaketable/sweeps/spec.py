@@ -34,9 +34,21 @@ dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``):
     # seed = 10                   # base seed of this entry (default: the top-level seed)
     # duration = "30 s", dt = "0.01 s", pga = "0.5 g", vertical_pga = "0.2 g"
 
+    [[records]]
+    folder = "my-suite"           # a suite: every file of a folder (NGA-West2 *.AT2 by default)
+    # pattern = "*.AT2"           #   one record per file, labelled by the file's stem
+    # suite = "far-field"         #   the suite's name (``suite`` column; default the folder's)
+
     [intensity]                   # optional; one of
     scale = [0.5, 1.0, 1.5]       #   factors [-] on every component of the record
     # pga = ["0.1 g", "0.2 g"]    #   target peak horizontal acceleration (both components scaled)
+    # measure = "pgv"             #   or any intensity measure as the target (below):
+    # levels = ["0.25 m/s", "0.5 m/s"]  pga, pgv, pgd, sa, sa_avg, arias, cav (with units)
+    # period = "1 s"              #   T of measure = "sa" (Sa(T, damping))
+    # period_range = ["0.2 s", "2 s"]   range of sa_avg and of spectrum matching
+    # damping = 0.05              #   of the spectra [-]
+    # spectrum = "target.csv"     #   scale each record to a target spectrum first (CSV:
+    #                             #   period [s], sa [g]) over period_range (with scale only)
 
     [pitch]                       # optional: the table pitches (shaketable.lab.pitch.Pitch)
     phases = 8                    # 8 phases evenly in [0, 2 pi); or a list ["0 deg", "90 deg"]
@@ -53,6 +65,16 @@ dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``):
 
     [run]
     chunk_size = 500              # runs (cells) per chunk (a part file each)
+
+Intensity measures (issue 29): every row records every measure of
+:func:`shaketable.ground.intensity.intensity_measures` of the scaled record (before the
+pitch, over the whole record): ``pgv [m/s]``, ``pgd [m]``, ``pgv/pga [s]``, ``sa(T s)
+[m/s^2]`` at 0.2, 0.5, 1 and 2 s (and ``period``), ``sa_avg(T1-T2 s) [m/s^2]`` over
+``period_range``, ``arias [m/s]``, ``cav [m/s]``, ``d5-95 [s]``, and the block-normalised
+``pga/(g tan a) [-]`` and ``pgv p/(g tan a) [-]``; with ``measure`` also
+``target_measure`` and ``target [SI]``; with ``spectrum`` the per-record
+``spectrum_scale [-]``. A measure scales as a power of the factor (Arias 2, the others
+1), so the factor to a target level is ``(level / IM) ** (1 / exponent)``.
 
 Order of the runs (the ``run`` column): record realisation, pitch phase,
 intensity, block, COR, the last varying fastest. A record is scaled first and
@@ -86,7 +108,8 @@ theta/alpha over the members that stand. ``chunk_size`` still counts cells
 The same spec (and seed) always gives the same table, whatever the number of
 workers, the chunking or the interruptions.
 
-Size: about 680 lines, half of them this docstring (the spec format's reference).
+Size: about 790 lines, half of them this docstring (the spec format's reference); the
+intensity settings and the target-spectrum reader are in :mod:`shaketable.sweeps.targets`.
 """
 
 from __future__ import annotations
@@ -109,6 +132,7 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
+from shaketable.sweeps.targets import IntensitySettings, read_spectrum
 
 if TYPE_CHECKING:
     from shaketable.lab.pitch import Pitch
@@ -128,9 +152,11 @@ RECORD_KEYS = {
     "bundled": {"name", "vertical", "label"},
     "file": {"file", "units", "dt", "column", "label"},
     "artificial": {"preset", "seed", "seeds", "duration", "dt", "pga", "vertical_pga", "label"},
+    "folder": {"folder", "pattern", "suite", "units"},
 }
 
-INTENSITY_KEYS = {"scale", "pga"}
+INTENSITY_KEYS = {"scale", "pga", "measure", "levels", "period", "period_range", "damping",
+                  "spectrum"}
 
 PITCH_KEYS = {"phases", "random_phases", "frequency", "amplitude", "block_position",
               "axis_depth", "frequency_drift", "amplitude_drift"}
@@ -176,6 +202,7 @@ class RecordSpec:
     options: tuple = ()
     preset: str = ""
     seeds: tuple = (None,)
+    suite: str = ""
 
 
 @dataclass(frozen=True)
@@ -223,9 +250,12 @@ class SweepSpec:
         Coefficients of restitution [-].
     records : tuple of RecordSpec
     intensity : str
-        ``"scale"`` (factors) or ``"pga"`` (target peak horizontal acceleration).
+        ``"scale"`` (factors), ``"pga"`` (target peak horizontal acceleration) or
+        ``"measure"`` (target of ``measures.measure``).
     levels : tuple of float
-        Scale factors [-] or target PGAs [m/s^2].
+        Scale factors [-], target PGAs [m/s^2] or target measures [SI].
+    measures : IntensitySettings
+        Periods, damping, target measure and target spectrum.
     pitch : PitchGrid or None
     duration : float or None
         Length of every run [s].
@@ -259,6 +289,7 @@ class SweepSpec:
     chunk_size: int = 500
     ensemble: dict | None = None
     path: str = "<spec>"
+    measures: IntensitySettings = IntensitySettings()
     raw: dict = field(default_factory=dict, compare=False, repr=False)
 
     # ------------------------------------------------------------ the grid
@@ -286,6 +317,8 @@ class SweepSpec:
         for record in self.records:
             if record.kind == "file":
                 digest.update(Path(record.file).read_bytes())
+        if self.measures.spectrum:   # the target spectrum file's values (not only its name)
+            digest.update(json.dumps(self.measures.spectrum).encode())
         return digest.hexdigest()
 
 
@@ -375,7 +408,7 @@ def spec_from_dict(data: dict, where: str = "<spec>",
         options["theta0"] = value
 
     records = _records(data["records"], where, directory, seed)
-    intensity, levels = _intensity(data.get("intensity", {}), where)
+    intensity, levels, measures = _intensity(data.get("intensity", {}), where, directory)
     pitch = _pitch(data.get("pitch"), where, seed)
     run = data.get("run", {})
     if not isinstance(run, dict):
@@ -390,7 +423,8 @@ def spec_from_dict(data: dict, where: str = "<spec>",
                      cors=cors, records=tuple(records), intensity=intensity,
                      levels=tuple(levels), pitch=pitch, duration=duration, method=method,
                      options=options, chunk_size=chunk_size,
-                     ensemble=_ensemble(data.get("ensemble"), where), path=where, raw=data)
+                     ensemble=_ensemble(data.get("ensemble"), where), path=where,
+                     measures=measures, raw=data)
 
 
 def _ensemble(table, where):
@@ -547,12 +581,17 @@ def _records(value, where, directory: Path, seed: int):
         if not isinstance(entry, dict):
             raise SweepError(f"{where}: {key} must be a table, got {entry!r}")
         kinds = [kind for kind, marker in (("bundled", "name"), ("file", "file"),
-                                            ("artificial", "preset")) if marker in entry]
+                                            ("artificial", "preset"), ("folder", "folder"))
+                 if marker in entry]
         if len(kinds) != 1:
             raise SweepError(f"{where}: {key} needs exactly one of 'name' (a bundled record), "
-                             "'file' (a record file) or 'preset' (an artificial record)")
+                             "'file' (a record file), 'preset' (an artificial record) or "
+                             "'folder' (a suite of record files)")
         kind = kinds[0]
         _only(entry, RECORD_KEYS[kind], where, f"{key} ({kind})")
+        if kind == "folder":
+            result.extend(_suite(entry, where, key, directory))
+            continue
         label = entry.get("label")
         if label is not None and (not isinstance(label, str) or not label):
             raise SweepError(f"{where}: {key}.label must be a non-empty string")
@@ -617,18 +656,89 @@ def _records(value, where, directory: Path, seed: int):
     return result
 
 
-def _intensity(table, where):
+def _suite(entry, where, key, directory: Path) -> list:
+    """``folder = ...``: one file record per matching file, in name order."""
+    folder = entry["folder"]
+    pattern = entry.get("pattern", "*.AT2")
+    for name in ("folder", "pattern"):
+        if not isinstance(entry.get(name, pattern), str) or not entry.get(name, pattern):
+            raise SweepError(f"{where}: {key}.{name} must be a non-empty string")
+    path = Path(folder)
+    path = path if path.is_absolute() else (directory / path)
+    if not path.is_dir():
+        raise SweepError(f"{where}: {key}.folder: no such folder {str(path)!r}")
+    files = sorted(p for p in path.glob(pattern) if p.is_file())
+    if not files:
+        raise SweepError(f"{where}: {key}.folder: no file matching {pattern!r} in "
+                         f"{str(path)!r}")
+    suite = entry.get("suite", path.name)
+    if not isinstance(suite, str) or not suite:
+        raise SweepError(f"{where}: {key}.suite must be a non-empty string")
+    options = (("units", str(entry["units"])),) if "units" in entry else ()
+    return [RecordSpec("file", file.stem, file=str(file.resolve()), options=options,
+                       suite=suite) for file in files]
+
+
+#: Intensity keys that go with ``measure`` (and ``spectrum``), not with ``pga``.
+_MEASURE_KEYS = {"measure", "levels", "period", "period_range", "damping", "spectrum"}
+
+
+def _intensity(table, where, directory: Path | None = None):
+    from shaketable.ground.intensity import MEASURES
+
     if not isinstance(table, dict):
         raise SweepError(f"{where}: [intensity] must be a table, got {table!r}")
     _only(table, INTENSITY_KEYS, where, "[intensity]")
-    if len(table) > 1:
-        raise SweepError(f"{where}: [intensity] gives both scale and pga; give one")
+    targets = [key for key in ("scale", "pga", "measure") if key in table]
+    if len(targets) > 1:
+        raise SweepError(f"{where}: [intensity] gives both {' and '.join(targets)}; give one")
+    settings: dict[str, Any] = {}
+    if "damping" in table:
+        settings["damping"] = _number_list(table["damping"], where, "intensity.damping",
+                                           0.0, 0.99)[0]
+    if "period_range" in table:
+        ends = _quantity_list(table["period_range"], "time", where, "intensity.period_range")
+        if len(ends) != 2 or not ends[0] < ends[1]:
+            raise SweepError(f"{where}: intensity.period_range must be two periods, the "
+                             f"shorter first, such as [\"0.2 s\", \"2 s\"], got "
+                             f"{table['period_range']!r}")
+        settings["period_range"] = tuple(ends)
+    if "period" in table:
+        settings["period"] = _quantity(table["period"], "time", where, "intensity.period",
+                                       positive=True)
+    if "spectrum" in table:
+        if "measure" in table or "pga" in table:
+            raise SweepError(f"{where}: intensity.spectrum goes with scale factors (or none), "
+                             "not with a target pga or measure")
+        settings["spectrum"] = read_spectrum(table["spectrum"], where, directory)
+    if "measure" in table:
+        measure = table["measure"]
+        if measure not in MEASURES:
+            raise SweepError(f"{where}: intensity.measure must be one of "
+                             f"{', '.join(MEASURES)}, got {measure!r}")
+        if "levels" not in table:
+            raise SweepError(f"{where}: intensity.measure = {measure!r} needs intensity.levels "
+                             "(the target values, with units)")
+        if measure == "sa" and "period" not in table:
+            raise SweepError(f"{where}: intensity.measure = 'sa' needs intensity.period "
+                             "(such as \"1 s\")")
+        kind = MEASURES[measure][1]
+        levels = _quantity_list(table["levels"], kind, where, "intensity.levels")
+        return "measure", levels, IntensitySettings(measure=measure, **settings)
+    if "levels" in table:
+        raise SweepError(f"{where}: intensity.levels needs intensity.measure (which measure "
+                         "the levels are of)")
     if "pga" in table:
-        return "pga", _quantity_list(table["pga"], "acceleration", where, "intensity.pga")
+        extra = sorted(set(table) & _MEASURE_KEYS)
+        if extra:
+            raise SweepError(f"{where}: intensity.{extra[0]} does not go with intensity.pga; "
+                             "use measure = \"pga\" with levels")
+        return "pga", _quantity_list(table["pga"], "acceleration", where, "intensity.pga"), \
+            IntensitySettings()
     if "scale" in table:
         return "scale", _number_list(table["scale"], where, "intensity.scale", 0.0,
-                                     low_open=True)
-    return "scale", [1.0]
+                                     low_open=True), IntensitySettings(**settings)
+    return "scale", [1.0], IntensitySettings(**settings)
 
 
 def _pitch(table, where, seed):

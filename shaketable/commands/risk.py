@@ -1,0 +1,104 @@
+"""``shaketable risk SWEEP_FOLDER --hazard CURVE.csv``: the annual rate of overturning at a
+site and the probability in a design life, from a sweep's fragility and a hazard curve."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import argparse
+
+#: ``--hazard example``: the bundled SYNTHETIC hazard curve (PGV).
+EXAMPLE_HAZARD = "example-hazard-pgv.csv"
+
+
+def hazard_path(text: str) -> Path:
+    """A hazard curve file, or ``example`` for the bundled synthetic one."""
+    if text == "example":
+        from shaketable.scenes.catalog import experiments_folder
+
+        return experiments_folder() / "sweeps" / EXAMPLE_HAZARD
+    return Path(text)
+
+
+def _risk(args: argparse.Namespace) -> int:
+    from shaketable.sweeps.fragility import fragility_fit, measure_column
+    from shaketable.sweeps.risk import overturning_rate, read_hazard_curve
+    from shaketable.sweeps.store import read_results
+
+    folder = Path(args.sweep)
+    if not (folder / "manifest.json").is_file():
+        raise FileNotFoundError(f"{folder}: not a sweep folder (no manifest.json); run "
+                                "'shaketable sweep SPEC --out FOLDER' first")
+    if not args.years > 0:
+        raise ValueError(f"--years must be positive, got {args.years!r}")
+    hazard = read_hazard_curve(hazard_path(args.hazard))
+    table = read_results(folder)
+    column = measure_column(table, hazard.column if args.measure is None else args.measure)
+    if column != hazard.column:
+        raise ValueError(f"--measure {args.measure!r} is column {column!r} but the hazard "
+                         f"curve {hazard.source} is of {hazard.column!r}")
+    if args.cor is not None:
+        table = table[table["cor [-]"].round(9) == round(args.cor, 9)]
+        if table.empty:
+            raise ValueError(f"--cor {args.cor:g}: no run of the sweep has this COR")
+    if args.block is not None:
+        table = table[table["block"] == args.block]
+        if table.empty:
+            raise ValueError(f"--block {args.block!r}: no such block in the sweep (blocks: "
+                             f"{', '.join(read_results(folder)['block'].unique())})")
+    print(f"hazard curve {hazard.source}: {hazard.column}, {len(hazard.im)} points from "
+          f"{hazard.im[0]:.3g} to {hazard.im[-1]:.3g}; design life {args.years:g} yr")
+    results = []
+    for (block, cor), rows in table.groupby(["block", "cor [-]"], sort=False):
+        try:
+            fit = fragility_fit(rows[column], rows["overturned"], measure=column)
+        except ValueError as error:
+            print(f"{block}, COR {cor:g}: no fragility ({error})")
+            continue
+        result = overturning_rate(fit, hazard, years=args.years)
+        results.append((block, cor, fit, result))
+        print(f"{block}, COR {cor:g}: {fit.summary()}")
+        print(f"    {result.summary()}")
+    if args.figure and results:
+        from shaketable.plots.base import pyplot, save
+        from shaketable.plots.sweeps import risk_curves
+
+        plt = pyplot()
+        figure, axes = plt.subplots(len(results), 1, figsize=(7.5, 3.6 * len(results)),
+                                    squeeze=False)
+        for axis, (block, cor, fit, result) in zip(axes[:, 0], results):
+            risk_curves(fit, hazard, result, ax=axis)
+            axis.set_title(f"{block}, COR {cor:g}: " + axis.get_title(), fontsize=8)
+        figure.tight_layout()
+        save(figure, args.figure)
+        print(f"wrote {args.figure}")
+    return 0
+
+
+def register(commands: argparse._SubParsersAction) -> None:
+    """Add the ``risk`` subcommand."""
+    parser = commands.add_parser(
+        "risk", help="annual rate of overturning at a site from a sweep and a hazard curve",
+        description="Fit a lognormal fragility (maximum likelihood, with profile-likelihood "
+                    "intervals) to a finished sweep against the hazard curve's intensity "
+                    "measure, per block and COR, and integrate it over the hazard curve: "
+                    "lambda = int P(overturn | im) |d lambda_IM|, with the integral's "
+                    "discretisation error, and P(overturn in the design life) = "
+                    "1 - exp(-lambda years).")
+    parser.add_argument("sweep", help="a sweep's output folder (shaketable sweep --out)")
+    parser.add_argument("--hazard", required=True,
+                        help="hazard curve CSV: header 'pgv [m/s], annual_rate [1/yr]' (or "
+                             "pga [g], sa(1 s) [g], ...), rows IM, rate; 'example' for the "
+                             "bundled SYNTHETIC PGV curve")
+    parser.add_argument("--measure", default=None,
+                        help="the table column (or short name) of the hazard's measure "
+                             "(default: from the hazard curve's header)")
+    parser.add_argument("--block", default=None, help="only this block (as in the table)")
+    parser.add_argument("--cor", type=float, default=None, help="only this COR [-]")
+    parser.add_argument("--years", type=float, default=50.0,
+                        help="design life [yr] (default 50)")
+    parser.add_argument("--figure", default=None,
+                        help="also draw hazard, fragility and risk integrand to this PNG")
+    parser.set_defaults(handler=_risk)
