@@ -35,7 +35,11 @@ Impacts (:func:`impact`): a plastic normal impulse at the striking corner k plus
 couple C = (rho - 1) H_k with H_k the angular momentum about k, rho = cor / c_H (c_H =
 1 - 1.5 sin^2(alpha), Housner's ratio) for a numeric COR and rho = 1 for Housner's law;
 sticking if the tangential impulse needed is within mu_s times the normal one, else
-slipping with mu_d. Kinetic energy never increases (rho capped, counted).
+slipping with mu_d toward sigma = -sign(sticking P_x). Decision beyond the model text:
+when the corner's velocity after that slipping impact does not have the sign sigma, the
+other direction is tried, and if neither is consistent the impact sticks (a plastic
+normal impact then has no Coulomb solution). Kinetic energy never increases (rho capped,
+counted).
 
 Every function here is compiled with numba and works on floats and the parameter
 array of :func:`shaketable.core.dynamics.block_parameters` (rods are refused upstream).
@@ -189,10 +193,28 @@ def _impact_post(x_dot, y_dot, omega, r_x, r_y, rho, force, mu_s, mu_d, paramete
     py = ys - y_dot
     if force == 1.0 or (force == 0.0 and py > 0.0 and abs(px) <= mu_s * py):
         return xs, ys, omega_stick, ROCK, 0.0
-    if force == 0.0:
-        sigma = 1.0 if px < 0.0 else -1.0
-    else:
-        sigma = 0.5 * force
+    if force != 0.0:
+        return _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple, 0.5 * force, mu_d,
+                                parameters)
+    # the corner slips the way the sticking impulse could not stop it; if its velocity
+    # after the impact does not have that sign, the other direction is tried; if neither
+    # is consistent (no Coulomb solution with a plastic normal impact), it sticks
+    sigma = 1.0 if px < 0.0 else -1.0
+    for trial in (sigma, -sigma):
+        xa, ya, wa, kind, _ = _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple, trial,
+                                               mu_d, parameters)
+        if kind == PAINLEVE:
+            return xa, ya, wa, kind, trial
+        if trial * (xa - wa * r_y) >= 0.0:
+            return xa, ya, wa, SLIDE_ROCK, trial
+    return xs, ys, omega_stick, ROCK, 0.0
+
+
+@njit(cache=True)
+def _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple, sigma, mu_d, parameters):
+    """Post-impact state of a corner slipping toward ``sigma``: P_x = -sigma mu_d P_y,
+    the couple, Y_k'+ = 0."""
+    inertia = centroidal_inertia(parameters)
     c = r_x + sigma * mu_d * r_y
     d = inertia + r_x * c
     if not d > 0.0:
@@ -262,11 +284,13 @@ def impact(theta, x_dot, y_dot, omega, side, rho, mu_s, mu_d, parameters):
         elif a1 != 0.0:
             u = min(1.0, max(0.0, -e1 / a1))
         rho_eff = 1.0 + u * (rho - 1.0)
-        xa, ya, wa, kind, sigma = _impact_post(x_dot, y_dot, omega, r_x, r_y, rho_eff, force,
+        # decided again with rho_eff (stick or slip, and the slip direction, may change)
+        xa, ya, wa, kind, sigma = _impact_post(x_dot, y_dot, omega, r_x, r_y, rho_eff, 0.0,
                                                mu_s, mu_d, parameters)
         after = kinetic_energy(xa, ya, wa, parameters)
-        if after > before:  # rounding at the root: the plastic (rho = 1) state
-            xa, ya, wa = x1, y1, w1
+        if after > before:  # rounding at the root, or another branch: rho = 1 (no couple)
+            xa, ya, wa, kind, sigma = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, 0.0,
+                                                   mu_s, mu_d, parameters)
             after = kinetic_energy(xa, ya, wa, parameters)
         capped = 1.0
     return xa, ya, wa, kind, sigma, before - after, capped

@@ -755,8 +755,12 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         entered = True
                         _record(ev, info, t, EV_MODE, ROCK, SLIDE_ROCK, z[1], q, parameters)
                     elif terminal == E_FRICTION:
+                        # the slip speed is zero to the located root: the (rounding-level)
+                        # kinetic energy taken out by zeroing it is counted as a loss
+                        before = kinetic_energy(q[3], q[4], q[5], parameters)
                         z[3] = 0.0
                         _q_from_z(z, side, q, parameters)
+                        loss += before - kinetic_energy(q[3], q[4], q[5], parameters)
                         _, _, _, friction, normal = rock_forces(z[0], z[1], side, u_now, v_now,
                                                                 parameters)
                         entered = True
