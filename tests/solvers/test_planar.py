@@ -389,3 +389,31 @@ def test_near_threshold_shaking_starts_exactly_at_the_threshold():
     coupled = simulate(block, motion, cor=0.9, friction=AMPLE)
     assert coupled.t_start == rocking.t_start
     assert coupled.max_abs_theta == pytest.approx(rocking.max_abs_theta, abs=1e-12)
+
+
+# ------------------------------------------------------------------ result and figure
+def test_result_frame_summary_and_figure(pacoima):
+    block = Block(height=8 * FOOT, width=4 * FOOT)
+    result = simulate(block, pacoima, cor=0.9, friction=Friction(0.6, 0.5))
+    frame = result.to_frame()
+    for column in ("time [s]", "x [m]", "y [m]", "theta [rad]", "slip [m]", "x_dot [m/s]",
+                   "theta_dot [rad/s]", "mode"):
+        assert column in frame.columns
+    assert set(frame["mode"]) <= {"rest", "slide", "rock", "slide-rock", "flight"}
+    summary = result.summary()
+    for key in ("verdict", "peak slip [m]", "residual slip [m]", "peak corner excursion [m]",
+                "max_theta_ratio [-]", "time slide-rock [s]", "impact losses [J/kg]",
+                "work of friction [J/kg]", "energy residual [J/kg]", "overturned"):
+        assert key in summary
+    assert summary["verdict"] == "slide-rocked"
+    # time in the modes adds up to the run's length
+    assert sum(result.time_in_mode.values()) == pytest.approx(result.t[-1] - result.t[0],
+                                                               abs=1e-9)
+    from shaketable.plots.planar import mode_spans
+
+    spans = mode_spans(result)
+    assert spans[0][0] == result.t[0] and spans[-1][1] == result.t[-1]
+    assert sum(stop - start for start, stop, code in spans if code == SLIDE_ROCK) \
+        == pytest.approx(result.time_in_mode["slide-rock"], abs=1e-9)
+    fig = result.plot(title="test")
+    assert len(fig.axes) == 6   # two ground panels, theta', theta, slip, mode band
