@@ -97,8 +97,8 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     slip.axhline(0.0, color="0.6", lw=0.5)
     if result.peak_slip > 0.0 and np.isfinite(result.t_peak_slip):
         at = int(np.argmin(np.abs(result.t - result.t_peak_slip)))
-        sign = 1.0 if result.slip[at] >= 0 else -1.0
-        slip.plot([result.t_peak_slip], [sign * result.peak_slip / INCH], "v", color="tab:red",
+        direction = 1.0 if result.slip[at] >= 0 else -1.0
+        slip.plot([result.t_peak_slip], [direction * result.peak_slip / INCH], "v", color="tab:red",
                   ms=5, label=f"peak {result.peak_slip / INCH:.3g} in")
     slip.set_ylabel("slip [in]")
     slip.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
