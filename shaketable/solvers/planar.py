@@ -79,13 +79,16 @@ from shaketable.solvers.planar_steps import (
     E_OVERTURN,
     KIND_ALPHA,
     KIND_PEAK,
+    KIND_RATE,
     KIND_TERMINAL,
     N_EVENTS,
+    N_RATES,
     N_STATE,
     dop853_step,
     events,
     flight_state,
     ground,
+    horizontal_rate,
     locate,
     lowest_corner,
     polynomial_work,
@@ -548,6 +551,37 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 elif landing >= 0.0:
                     span = landing
                     terminal = 1
+                # extrema of the slip and of the corners' X inside the flight (bisection on
+                # the closed form's rates, piece by piece)
+                for j in range(N_RATES):
+                    tau_a = 0.0
+                    _, _, tha, xda, _, _ = flight_state(0.0, x0, y0, th0, xd0, yd0, om0, ua, ka,
+                                                        va, kv)
+                    rate_a = horizontal_rate(j, tha, xda, om0, parameters)
+                    for piece in range(1, pieces + 1):
+                        tau_b = span * piece / pieces
+                        _, _, thb, xdb, _, _ = flight_state(tau_b, x0, y0, th0, xd0, yd0, om0,
+                                                            ua, ka, va, kv)
+                        rate_b = horizontal_rate(j, thb, xdb, om0, parameters)
+                        if rate_a * rate_b < 0.0:
+                            low = tau_a
+                            high = tau_b
+                            for _ in range(200):
+                                middle = 0.5 * (low + high)
+                                if middle <= low or middle >= high:
+                                    break
+                                _, _, thm, xdm, _, _ = flight_state(middle, x0, y0, th0, xd0,
+                                                                    yd0, om0, ua, ka, va, kv)
+                                if horizontal_rate(j, thm, xdm, om0, parameters) * rate_a > 0.0:
+                                    low = middle
+                                else:
+                                    high = middle
+                            xm, ym, thm, xdm, ydm, _ = flight_state(low, x0, y0, th0, xd0, yd0,
+                                                                    om0, ua, ka, va, kv)
+                            q[0], q[1], q[2], q[3], q[4] = xm, ym, thm, xdm, ydm
+                            _track(t + low, q, info, parameters)
+                        tau_a = tau_b
+                        rate_a = rate_b
                 xs, ys, ths, xds, yds, oms = flight_state(span, x0, y0, th0, xd0, yd0, om0, ua,
                                                           ka, va, kv)
                 w_table -= polynomial_work(ua, ka, xd0, -ua, -0.5 * ka, span)
@@ -704,6 +738,22 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         evaluations += 11 * trials
                         _q_from_z(z_turn, side, q, parameters)
                         _track(t + tau_peak, q, info, parameters)
+                    # extrema of the slip and of the corners' X (peak slip, excursion)
+                    _, ry0 = corner_vector(z[0], side, parameters)
+                    _, ry1 = corner_vector(z_new[0], side, parameters)
+                    for j in range(N_RATES):
+                        rate0 = horizontal_rate(j, z[0], z[3] + ry0 * z[1], z[1], parameters)
+                        rate1 = horizontal_rate(j, z_new[0], z_new[3] + ry1 * z_new[1],
+                                                z_new[1], parameters)
+                        if rate0 * rate1 < 0.0:
+                            tau_rate, trials = locate(KIND_RATE + j, mode, side, sigma, mu_s,
+                                                      mu_d, t, z, k1, tau, z_new, no_events,
+                                                      1.0 if rate0 > 0.0 else -1.0, segment,
+                                                      parameters, stages, scale_abs, rtol,
+                                                      z_turn)
+                            evaluations += 11 * trials
+                            _q_from_z(z_turn, side, q, parameters)
+                            _track(t + tau_rate, q, info, parameters)
                     if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
                             and abs(z[0]) <= alpha:
                         tau_unstable, trials = locate(KIND_ALPHA, mode, side, sigma, mu_s, mu_d,
