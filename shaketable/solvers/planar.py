@@ -297,6 +297,14 @@ def _enter(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
 
 
 @njit(cache=True)
+def _store(out, row, q, slip, mode):
+    for i in range(6):
+        out[row, i] = q[i]
+    out[row, OUT_SLIP] = slip
+    out[row, OUT_MODE] = mode
+
+
+@njit(cache=True)
 def _flat(q, x_dot, parameters):
     q[1] = parameters[HALF_HEIGHT]
     q[2] = 0.0
@@ -332,7 +340,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         Initial rotation [rad] and rate [rad/s]; both zero: the block stands at rest.
         Otherwise it rocks about the lower corner, which stands at its rest position.
     out : ndarray, shape (n, N_OUT)
-        State at the samples (columns OUT_*).
+        State at the samples (columns OUT_*); 0 rows: not stored (a batch).
     ev : ndarray, shape (capacity, EVENT_COLUMNS)
         The first events (all are counted in ``info[I_N_EVENTS]``).
     final : ndarray, shape (N_OUT,)
@@ -412,14 +420,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     evaluations = 0
     _track(t, q, info, parameters)
     slip, _ = _measures(q, parameters)
-    out[0, OUT_X] = q[0]
-    out[0, OUT_Y] = q[1]
-    out[0, OUT_THETA] = q[2]
-    out[0, OUT_X_DOT] = q[3]
-    out[0, OUT_Y_DOT] = q[4]
-    out[0, OUT_OMEGA] = q[5]
-    out[0, OUT_SLIP] = slip
-    out[0, OUT_MODE] = mode
+    store = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
+    if store:
+        _store(out, 0, q, slip, mode)
     filled = 1
 
     for k in range(n - 1):
@@ -981,15 +984,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         if status != STATUS_COMPLETED:
             break
         _track(t, q, info, parameters)
-        slip, _ = _measures(q, parameters)
-        out[k + 1, OUT_X] = q[0]
-        out[k + 1, OUT_Y] = q[1]
-        out[k + 1, OUT_THETA] = q[2]
-        out[k + 1, OUT_X_DOT] = q[3]
-        out[k + 1, OUT_Y_DOT] = q[4]
-        out[k + 1, OUT_OMEGA] = q[5]
-        out[k + 1, OUT_SLIP] = slip
-        out[k + 1, OUT_MODE] = mode
+        if store:
+            slip, _ = _measures(q, parameters)
+            _store(out, k + 1, q, slip, mode)
         filled = k + 2
 
     slip, _ = _measures(q, parameters)
