@@ -297,6 +297,44 @@ def _enter(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
 
 
 @njit(cache=True)
+def _quantity(which, q, parameters):
+    """The slip (``which`` 0) or the excursion X - X_rest of corner ``which`` (1..4, the
+    order of :func:`~shaketable.solvers.planar_steps.horizontal_rate`) [m]."""
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    if which == 0:
+        return q[0] + h * math.sin(q[2])
+    u = -b if which == 1 or which == 3 else b
+    w = -h if which <= 2 else h
+    return q[0] + u * math.cos(q[2]) - w * math.sin(q[2]) - u
+
+
+@njit(cache=True)
+def _hermite_peak(value0, value1, rate0, rate1, span):
+    """Largest |H| at the interior turning points of the cubic Hermite interpolant of
+    (value, rate) at both ends of a step of length ``span`` (0 if none)."""
+    v0 = rate0 * span
+    v1 = rate1 * span
+    c2 = 3.0 * (value1 - value0) - 2.0 * v0 - v1
+    c3 = 2.0 * (value0 - value1) + v0 + v1
+    largest = 0.0
+    if c3 == 0.0:
+        if c2 != 0.0:
+            root = -v0 / (2.0 * c2)
+            if 0.0 < root < 1.0:
+                largest = abs(value0 + root * (v0 + root * c2))
+        return largest
+    discriminant = c2 * c2 - 3.0 * c3 * v0
+    if discriminant < 0.0:
+        return largest
+    square_root = math.sqrt(discriminant)
+    for root in ((-c2 - square_root) / (3.0 * c3), (-c2 + square_root) / (3.0 * c3)):
+        if 0.0 < root < 1.0:
+            largest = max(largest, abs(value0 + root * (v0 + root * (c2 + root * c3))))
+    return largest
+
+
+@njit(cache=True)
 def _store(out, row, q, slip, mode):
     for i in range(6):
         out[row, i] = q[i]
@@ -367,6 +405,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     z_turn = np.zeros(N_STATE)
     k1 = np.zeros(N_STATE)
     q = np.zeros(6)
+    q_start = np.zeros(6)
+    q_end = np.zeros(6)
     g_start = np.zeros(N_EVENTS)
     g_end = np.zeros(N_EVENTS)
     armed = np.zeros(N_EVENTS, dtype=np.bool_)
@@ -769,8 +809,14 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             if armed[i] and g_end[i] < least:
                                 least = g_end[i]
                                 terminal = i
-                    # non-terminal: the turning point (largest |theta|) and instability
-                    if z[1] * z_new[1] < 0.0:
+                    # non-terminal: the turning point (largest |theta|) and instability;
+                    # an extremum is located on the stepper only where the step's cubic
+                    # Hermite interpolant says it may come within 10 % of the peak so far
+                    # (the interpolant's error is far smaller: the peaks stay exact)
+                    _q_from_z(z, side, q_start, parameters)
+                    _q_from_z(z_new, side, q_end, parameters)
+                    if z[1] * z_new[1] < 0.0 and _hermite_peak(
+                            z[0], z_new[0], z[1], z_new[1], tau) >= 0.9 * info[I_MAX_ABS_THETA]:
                         tau_peak, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
                                                   z, k1, tau, z_new, no_events,
                                                   1.0 if z[1] > 0.0 else -1.0, segment,
@@ -785,7 +831,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         rate0 = horizontal_rate(j, z[0], z[3] + ry0 * z[1], z[1], parameters)
                         rate1 = horizontal_rate(j, z_new[0], z_new[3] + ry1 * z_new[1],
                                                 z_new[1], parameters)
-                        if rate0 * rate1 < 0.0:
+                        peak = info[I_PEAK_SLIP] if j == 0 else info[I_PEAK_EXCURSION]
+                        if rate0 * rate1 < 0.0 and _hermite_peak(
+                                _quantity(j, q_start, parameters), _quantity(j, q_end, parameters),
+                                rate0, rate1, tau) >= 0.9 * peak:
                             tau_rate, trials = locate(KIND_RATE + j, mode, side, sigma, mu_s,
                                                       mu_d, t, z, k1, tau, z_new, no_events,
                                                       1.0 if rate0 > 0.0 else -1.0, segment,
