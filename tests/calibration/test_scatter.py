@@ -216,7 +216,7 @@ def test_simulate_with_a_calibration_file_reports_the_spread(tmp_path, capsys):
     result.to_json(path)
     out = tmp_path / "sim"
     assert main(["simulate", "--block", "30x6in", "--cor", str(path), "--record",
-                 "pacoima-dam-s16e", "--scale", "0.3", "--ensemble", "24", "--duration", "6",
+                 "pacoima-dam-s16e", "--scale", "0.3", "--ensemble", "24", "--duration", "6s",
                  "--out", str(out)]) == 0
     printed = capsys.readouterr().out
     assert "P(overturn) = " in printed and "Wilson 95 %" in printed and "5-95 %" in printed
