@@ -325,6 +325,8 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
         return _teaching_section(study, folder, lines)
     if study.kind == "overturning-spectrum":
         return _spectrum_section(study, folder, lines)
+    if study.kind == "mode-map":
+        return _mode_map_section(study, folder, lines)
     if study.kind == "report-figure":
         from shaketable.plots.base import save
         from shaketable.plots.studies import section_2_figure
@@ -528,6 +530,26 @@ def _spectrum_section(study: Study, folder: Path, lines: list) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _mode_map_section(study: Study, folder: Path, lines: list) -> str:
+    """The planar block's mode map and sliding limits against Section 2.1 (issue 25)."""
+    from shaketable.ground import records
+    from shaketable.plots.base import save
+    from shaketable.studies.mode_map import mode_map, mode_map_markdown, sliding_limits
+
+    settings = study.mode_map
+    assert settings is not None   # a "mode-map" study has its settings
+    motion = records.load(settings.record)
+    result = mode_map(motion, pga_levels=settings.pga_levels,
+                      aspect_ratios=settings.aspect_ratios, frictions=settings.frictions,
+                      height=settings.height, cor=settings.cor)
+    limits = sliding_limits(motion=motion, cor=settings.cor)
+    result.frame.to_csv(folder / "mode_map.csv", index=False)
+    limits.to_csv(folder / "sliding_limits.csv", index=False)
+    save(result.plot(), folder / "figure.png")
+    return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", "",
+                              mode_map_markdown(result, limits)]) + "\n"
+
+
 def _table_4_4_section(study: Study, folder: Path, lines: list, tally: ComparisonTally) -> str:
     """Table 4.4 (Section 4.5): maximum sliding displacement, report beside reproduced."""
     from shaketable.studies.sliding import table_4_4, table_4_4_markdown
@@ -545,7 +567,11 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
               "engine of the other sections. Counted in the headline: the Pacoima Dam cells "
               "against the report's inputs, the substitute columns as substitute comparisons "
               "(within ~10 %).", ""]
-    return "\n".join(lines) + body + "\n"
+    from shaketable.studies.mode_map import table_4_4_coupled, table_4_4_coupled_markdown
+
+    coupled = table_4_4_coupled()   # issue 25: the planar block beside the sliding model
+    coupled.to_csv(folder / "planar.csv", index=False)
+    return "\n".join(lines) + body + "\n" + table_4_4_coupled_markdown(coupled) + "\n"
 
 
 def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[int, int]]:

@@ -46,6 +46,7 @@ from shaketable.core.units import parse, parse_angle_or_ratio
 
 if TYPE_CHECKING:
     from shaketable.lab.stage import TableSetup
+    from shaketable.scenes.mode_map import ModeMapSettings
     from shaketable.scenes.spectrum import SpectrumSettings
 
 MOTION_KEYS = {
@@ -90,7 +91,9 @@ STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"
                # issue 16; the keys are read by shaketable.scenes.spectrum
                "overturning-spectrum": {"pulse", "block", "alpha", "p", "cor", "omega_over_p",
                                         "ceiling", "scan_step", "tolerance", "reference",
-                                        "method"}}
+                                        "method"},
+               # issue 25; the keys are read by shaketable.scenes.mode_map
+               "mode-map": {"record", "pga", "aspect_ratios", "frictions", "height", "cor"}}
 
 
 class SceneError(ValueError):
@@ -226,6 +229,9 @@ class Study:
     spectrum : SpectrumSettings or None
         ``"overturning-spectrum"``: its validated inputs
         (:class:`shaketable.scenes.spectrum.SpectrumSettings`).
+    mode_map : ModeMapSettings or None
+        ``"mode-map"``: its validated inputs
+        (:class:`shaketable.scenes.mode_map.ModeMapSettings`).
     """
 
     name: str
@@ -240,6 +246,7 @@ class Study:
     item: str = ""
     path: str = ""
     spectrum: SpectrumSettings | None = None
+    mode_map: ModeMapSettings | None = None
 
 
 #: Names a study kind accepts for its ``item`` key, registered by the studies
@@ -504,6 +511,13 @@ def _study(data: dict, where: str) -> Study:
 
         try:
             return Study(**common, spectrum=spectrum_settings(spec, where))
+        except ValueError as error:
+            raise SceneError(str(error)) from None
+    if kind == "mode-map":
+        from shaketable.scenes.mode_map import mode_map_settings
+
+        try:
+            return Study(**common, mode_map=mode_map_settings(spec, where))
         except ValueError as error:
             raise SceneError(str(error)) from None
     if kind == "pitch-repeatability":
