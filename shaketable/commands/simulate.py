@@ -46,16 +46,44 @@ def _simulate(args) -> int:
         from shaketable.commands.calibrate import simulate_calibrated
 
         return simulate_calibrated(args, block, motion, theta0, out)
+    friction = _friction(args.friction)
+    if friction is not None and args.ensemble:
+        raise ValueError("--friction runs one planar block; it cannot be combined with "
+                         "--ensemble")
     if args.ensemble:
         return _ensemble(args, block, motion, out)
-    result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
-                      method=args.method, subdivisions=args.subdivisions)
+    if friction is not None:   # issue 25: the planar block (rest, slide, rock, slide-rock, flight)
+        result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
+                          friction=friction)
+    else:
+        result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
+                          method=args.method, subdivisions=args.subdivisions)
     write_csv(out / "history.csv", result.to_frame())
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
     plots.save(result.plot(), out / f"calcomp.{args.format}")
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
     print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}, {out / ('calcomp.' + args.format)}")
     return 0
+
+
+def _friction(text: str | None):
+    """``--friction MU_S[,MU_D]``: a :class:`~shaketable.core.sliding_result.Friction` or None."""
+    if text is None:
+        return None
+    from shaketable.core.sliding_result import Friction
+
+    parts = text.split(",")
+    try:
+        values = [float(part) for part in parts]
+    except ValueError:
+        raise ValueError(f"--friction: {text!r} is not MU_S or MU_S,MU_D (numbers, e.g. 0.3 "
+                         "or 0.3,0.25)") from None
+    if len(values) not in (1, 2):
+        raise ValueError(f"--friction: {text!r} is not MU_S or MU_S,MU_D")
+    try:
+        return Friction(*values)
+    except ValueError as error:
+        raise ValueError(f"--friction: {error}") from None
 
 
 def _ensemble(args, block, motion, out) -> int:
@@ -107,6 +135,11 @@ def register(commands: argparse._SubParsersAction) -> None:
     add_record_arguments(sim)
     add_motion_options(sim)
     add_quantity(sim, "--duration", kind="time", example="8s", help="length of the run")
+    sim.add_argument("--friction", metavar="MU_S[,MU_D]",
+                     help="Coulomb friction between block and table (dimensionless): runs the "
+                          "planar block, which may rest, slide, rock, slide-rock and fly "
+                          "(docs/planar.md); without it the block rocks on a base that cannot "
+                          "slide, as in the report")
     sim.add_argument("--method", default="fast",
                      choices=list(METHODS))
     sim.add_argument("--subdivisions", type=int, default=4,

@@ -144,7 +144,11 @@ class Scene:
         ``[theory]``, parsed the same way; set (defaults included) whenever the
         scene has ``[sensors]``, ``None`` otherwise.
     static_friction : float or None
-        ``block.static_friction``: mu_s for Section 2.1's sliding-or-rocking check.
+        ``block.static_friction``: mu_s for Section 2.1's sliding-or-rocking check; with a
+        table motion the scene also runs the planar block (rest, slide, rock, slide-rock,
+        flight; issue 25) with this friction.
+    dynamic_friction : float or None
+        ``block.dynamic_friction``: mu_d of that planar run (default mu_s).
     sliding : tuple of (float, float)
         ``[sliding]``: the (mu_s, mu_d) pairs of the sliding runs (empty: none).
     path : str
@@ -171,6 +175,7 @@ class Scene:
     sensors: Any = None
     theory: Any = None
     static_friction: float | None = None
+    dynamic_friction: float | None = None
     sliding: tuple = ()
     path: str = ""
     ensemble: dict = field(default_factory=dict)
@@ -364,6 +369,16 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
             static_friction, (int, float)) or not 0 < static_friction < math.inf):
         raise SceneError(f"{where}: block.static_friction must be a positive number (the "
                          f"static coefficient of friction mu_s), got {static_friction!r}")
+    dynamic_friction = data["block"].get("dynamic_friction")
+    if dynamic_friction is not None:   # issue 25: with static_friction, the planar block runs
+        if static_friction is None:
+            raise SceneError(f"{where}: block.dynamic_friction needs block.static_friction "
+                             "(mu_s)")
+        if isinstance(dynamic_friction, bool) or not isinstance(dynamic_friction, (int, float)) \
+                or not 0 <= dynamic_friction <= static_friction:
+            raise SceneError(f"{where}: block.dynamic_friction must be a number in [0, "
+                             f"static_friction = {static_friction!r}] (mu_d), got "
+                             f"{dynamic_friction!r}")
     motion = _motion(data["motion"], where)
     if data.get("theory") and "sensors" not in data:
         raise SceneError(f"{where}: [theory] compares a virtual test with theory; it needs "
@@ -433,6 +448,7 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
                  sensors=_stage_section(data, "sensors", where) if "sensors" in data else None,
                  theory=_stage_section(data, "theory", where) if "sensors" in data else None,
                  static_friction=None if static_friction is None else float(static_friction),
+                 dynamic_friction=None if dynamic_friction is None else float(dynamic_friction),
                  sliding=_sliding(data, motion, where),
                  path=where, ensemble=_ensemble_section(data, where),
                  calibrated_cor=calibrated,
@@ -635,7 +651,8 @@ def _blocks(table, where) -> tuple:
 
 def _block(table, where) -> Block:
     table = _table(table, where, "block")
-    _only(table, {"size", "height", "width", "rods", "static_friction"}, where, "block")
+    _only(table, {"size", "height", "width", "rods", "static_friction", "dynamic_friction"},
+          where, "block")
     rods = None
     if "rods" in table:
         spec = _table(table["rods"], where, "block.rods")

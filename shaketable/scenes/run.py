@@ -119,6 +119,7 @@ class SceneResult:
     tests: tuple = ()
     slides: tuple = ()
     calibrated: Any = None
+    planar: tuple = ()
 
     @property
     def main(self) -> RockingResult:
@@ -158,6 +159,8 @@ class SceneResult:
             summary["test vs theory"] = [test.metrics() for test in self.tests]
         if self.slides:
             summary["sliding"] = [run.summary() for run in self.slides]
+        if self.planar:
+            summary["planar"] = [run.summary() for run in self.planar]
         if self.calibrated is not None:
             from shaketable.core.files import json_ready_dict
 
@@ -219,6 +222,16 @@ class SceneResult:
             label = "" if len(self.tests) == 1 else f"-{index + 1}"
             written.append(out / f"record{label}.csv")
             write_csv(written[-1], test.to_frame())
+        for index, run in enumerate(self.planar):
+            label = "" if len(self.planar) == 1 else f"-{index + 1}"
+            written.append(out / f"planar{label}.csv")
+            write_csv(written[-1], run.to_frame())
+            if outputs.get("figure", True):
+                written.append(out / f"planar{label}.png")
+                title = (f"{self.scene.source or self.scene.name}: the planar block, "
+                         f"μs {run.friction.static:g}, μd {run.friction.dynamic:g}, "
+                         f"COR {run.cor:g}")
+                save(run.plot(title=title), written[-1])
         for index, run in enumerate(self.slides):
             label = "" if len(self.slides) == 1 else f"-{index + 1}"
             written.append(out / f"sliding{label}.csv")
@@ -268,7 +281,8 @@ def run_scene(scene: Scene) -> SceneResult:
                                          duration=scene.duration, method=scene.method)
     return SceneResult(scene=scene, motion=felt, runs=tuple(runs),
                        comparisons=tuple(comparisons), table=table,
-                       slides=_run_sliding(scene, felt), calibrated=calibrated)
+                       slides=_run_sliding(scene, felt), calibrated=calibrated,
+                       planar=_run_planar(scene, felt))
 
 
 def _run_impulses(scene: Scene, motion: ImpulsiveMotion) -> SceneResult:
@@ -288,6 +302,29 @@ def _run_impulses(scene: Scene, motion: ImpulsiveMotion) -> SceneResult:
     return SceneResult(scene=scene, motion=motion.motion, runs=tuple(runs),
                        comparisons=tuple(compare_with_report(scene, runs[0])), table=None,
                        slides=())
+
+
+def _run_planar(scene: Scene, felt: Motion | None) -> tuple:
+    """``block.static_friction`` (and ``dynamic_friction``) with a table motion: the planar
+    block (rest, slide, rock, slide-rock, flight; issue 25), one run per COR."""
+    if scene.static_friction is None or felt is None:
+        return ()
+    from shaketable.core.sliding_result import Friction
+
+    if scene.block.rods is not None:
+        raise SceneError(f"{scene.path}: block.static_friction runs the planar block, which "
+                         "cannot have prestress rods (a rod hinged to the ground ties the "
+                         "block to the table); remove block.static_friction or the rods")
+    friction = Friction(scene.static_friction, scene.dynamic_friction)
+    runs = []
+    for cor in scene.cors:
+        try:
+            runs.append(simulate(scene.block, felt, cor=cor, friction=friction,
+                                 theta0=scene.theta0, theta_dot0=scene.theta_dot0,
+                                 duration=scene.duration))
+        except ValueError as error:
+            raise SceneError(f"{scene.path}: [block] friction: {error}") from None
+    return tuple(runs)
 
 
 def _run_sliding(scene: Scene, felt: Motion | None) -> tuple:
