@@ -22,11 +22,13 @@ _os.environ.setdefault("NUMBA_CACHE_DIR", _os.path.join(
 from shaketable.core.constants import FOOT, INCH, G  # noqa: E402
 from shaketable.core.geometry import Block, PrestressRods  # noqa: E402
 from shaketable.core.motion import Motion  # noqa: E402
+from shaketable.core.planar_result import PlanarResult  # noqa: E402
 from shaketable.core.results import RockingResult  # noqa: E402
+from shaketable.core.sliding_result import Friction  # noqa: E402
 from shaketable.version import __version__  # noqa: E402
 
-__all__ = ["Block", "PrestressRods", "Motion", "RockingResult", "simulate", "METHODS", "G",
-           "INCH", "FOOT", "__version__"]
+__all__ = ["Block", "PrestressRods", "Motion", "RockingResult", "Friction", "PlanarResult",
+           "simulate", "METHODS", "G", "INCH", "FOOT", "__version__"]
 
 _LAZY = {"simulate", "METHODS"}
 
