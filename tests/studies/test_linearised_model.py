@@ -191,7 +191,7 @@ def test_spectrum_command_with_method_linear_gives_the_closed_form_bands(tmp_pat
     alpha = 0.1
     block = block_from(alpha, P)
     unit = block.alpha / math.tan(block.alpha)
-    assert main(["spectrum", "--alpha", str(alpha), "--p", str(P), "--pulse", "one-sine",
+    assert main(["spectrum", "--alpha", f"{alpha!r}rad", "--p", f"{P!r}rad/s", "--pulse", "one-sine",
                  "--ratios", "4", "--method", "linear", "--scan-step", "0.02",
                  "--out", str(tmp_path)]) == 0
     assert "method linear" in capsys.readouterr().out
