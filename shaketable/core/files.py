@@ -153,6 +153,26 @@ def read_utf8(path, what: str, error: type = ValueError) -> str:
                     f"{problem.object[problem.start]:#04x}); save the {what} as UTF-8") from None
 
 
+def folder_name_problem(name: str) -> str | None:
+    """Why ``name`` cannot be used as one folder inside an output folder, or None.
+
+    A scene's or sweep spec's ``name`` becomes the default output folder
+    ``shaketable-out/<name>``: it must stay inside, so a name that is a path (a
+    separator ``/`` or ``\\``, ``.`` or ``..``, an absolute path) or holds
+    control characters is refused rather than sanitised -- the user sees which name
+    to change instead of finding the results under another name.
+    """
+    if name in (".", ".."):
+        return "is not a folder name"
+    if "/" in name or "\\" in name:
+        return "holds a path separator ('/' or '\\'); a name names one folder"
+    if any(ord(character) < 32 or ord(character) == 127 for character in name):
+        return "holds a control character"
+    if len(name.encode("utf-8")) > 200:
+        return "is longer than 200 bytes (too long for a folder name on most file systems)"
+    return None
+
+
 def json_ready(value):
     """A scalar as JSON can hold it: NaN and infinities as None, NumPy scalars as Python."""
     if isinstance(value, (bool, np.bool_)):
