@@ -70,3 +70,35 @@ def test_plain_names_with_dots_and_spaces_still_run(tmp_path):
     status, _, err = run_cli(["run", "s.toml", "-q"], tmp_path)
     assert status == 0, err
     assert (tmp_path / "shaketable-out" / "v1.2 probe" / "summary.json").is_file()
+
+
+# ----------------------------------------------------------------- file modes
+_MODES = """
+import os, stat, sys
+from pathlib import Path
+os.umask(int(sys.argv[1], 8))
+from shaketable.cli import main
+work = Path(sys.argv[2])
+os.chdir(work)
+(work / "w.toml").write_text(sys.argv[3], encoding="utf-8")
+assert main(["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.5alpha",
+             "--duration", "1", "--out", "sim", "-q"]) == 0
+assert main(["sweep", "w.toml", "--out", "swept", "-q", "--no-progress"]) == 0
+for path in sorted(work.rglob("*")):
+    if path.is_file() and path.name != "w.toml":
+        print(oct(stat.S_IMODE(path.stat().st_mode)), path.relative_to(work))
+"""
+
+
+@pytest.mark.parametrize("umask, expected", [("022", 0o644), ("027", 0o640), ("077", 0o600)])
+def test_outputs_get_the_mode_the_umask_gives(tmp_path, umask, expected):
+    # before: every output was 0600 (mkstemp's mode kept by the rename) whatever the umask
+    result = subprocess.run([sys.executable, "-c", _MODES, umask, str(tmp_path), SWEEP],
+                            capture_output=True, text=True, cwd=REPOSITORY)
+    assert result.returncode == 0, result.stderr
+    lines = [line.split() for line in result.stdout.splitlines()]
+    written = {name for _, name in lines}
+    # the simulate outputs, the sweep's manifest, part and result table are all there
+    assert {"sim/history.csv", "swept/manifest.json", "swept/parts/part-000000.parquet"} <= written
+    assert any(name.startswith("swept/results.") for name in written)
+    assert {mode for mode, _ in lines} == {oct(expected)}, lines

@@ -10,8 +10,10 @@ file or none, never a truncated one.
 
 from __future__ import annotations
 
+import errno
 import math
 import os
+import secrets
 import tempfile
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -119,9 +121,7 @@ def atomic_write(path, write: Callable[[Path], object]) -> Path:
         exception propagates: ``path`` keeps its previous content (or does not exist).
     """
     path = Path(path)
-    handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=path.suffix)
-    os.close(handle)
-    temporary = Path(name)
+    temporary = _new_temporary(path)
     try:
         write(temporary)
         os.replace(temporary, path)
@@ -129,6 +129,43 @@ def atomic_write(path, write: Callable[[Path], object]) -> Path:
         temporary.unlink(missing_ok=True)
         raise
     return path
+
+
+#: The mark in the name of a temporary file of :func:`atomic_write`:
+#: ``.<stem>.tmp-<random><suffix>`` beside its target (what a clean-up may remove).
+TEMPORARY_MARK = ".tmp-"
+
+
+def temporary_files(folder, stem: str = "*") -> list[Path]:
+    """The temporary files :func:`atomic_write` left in ``folder`` (a kill, a failed unlink).
+
+    Parameters
+    ----------
+    folder : Path
+    stem : str
+        The target's stem (a glob pattern), e.g. ``"part-*"``; default any.
+    """
+    return sorted(Path(folder).glob(f".{stem}{TEMPORARY_MARK}*"))
+
+
+def _new_temporary(path: Path) -> Path:
+    """A new empty file beside ``path``, with the mode the umask gives a normal file.
+
+    Created with ``os.open(..., 0o666)`` so the kernel applies the process's umask
+    (0644 under umask 022, 0640 under 027), as for a file written in place;
+    ``tempfile.mkstemp`` would give 0600 whatever the umask, and the rename would
+    keep that mode. Reading the umask (``os.umask``) would change it for a moment,
+    which is not safe while other threads create files.
+    """
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    for _ in range(100):
+        temporary = path.parent / f".{path.stem}{TEMPORARY_MARK}{secrets.token_hex(4)}{path.suffix}"
+        try:
+            os.close(os.open(temporary, flags, 0o666))
+        except FileExistsError:
+            continue
+        return temporary
+    raise FileExistsError(errno.EEXIST, "no free temporary file name", str(path.parent))
 
 
 def read_utf8(path, what: str, error: type = ValueError) -> str:
