@@ -102,3 +102,101 @@ def test_outputs_get_the_mode_the_umask_gives(tmp_path, umask, expected):
     assert {"sim/history.csv", "swept/manifest.json", "swept/parts/part-000000.parquet"} <= written
     assert any(name.startswith("swept/results.") for name in written)
     assert {mode for mode, _ in lines} == {oct(expected)}, lines
+
+
+# ----------------------------------------------------------------- sweep store
+def _swept(tmp_path) -> Path:
+    """A finished one-run sweep (SWEEP: 1 block, 1 COR, 1 record) in tmp_path/out."""
+    (tmp_path / "w.toml").write_text(SWEEP, encoding="utf-8")
+    status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "-q", "--no-progress"],
+                             tmp_path)
+    assert status == 0, err
+    return tmp_path / "out"
+
+
+def test_a_stray_part_is_not_joined_on_resume(tmp_path):
+    import pandas as pd
+
+    out = _swept(tmp_path)
+    parts = out / "parts"
+    (parts / "part-000999.parquet").write_bytes((parts / "part-000000.parquet").read_bytes())
+    with pytest.warns(UserWarning, match="part-000999"):
+        status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "--resume", "-q",
+                                  "--no-progress"], tmp_path)
+    assert status == 0, err
+    # before: 2 rows (the copy joined) for the sweep's 1 run
+    assert len(pd.read_parquet(out / "results.parquet")) == 1
+
+
+def test_temporary_files_of_a_killed_writer_are_removed_on_resume(tmp_path):
+    out = _swept(tmp_path)
+    # the names the atomic writer gives its temporary files (a kill leaves them)
+    left = [out / "parts" / ".part-000000.tmp-0a1b2c3d.parquet",
+            out / ".results.tmp-4e5f6a7b.parquet", out / ".manifest.tmp-00112233.json"]
+    for path in left:
+        path.write_bytes(b"half-written")
+    status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "--resume", "-q",
+                              "--no-progress"], tmp_path)
+    assert status == 0, err
+    assert not any(path.exists() for path in left)
+    assert (out / "parts" / "part-000000.parquet").is_file()
+
+
+_HOLD_LOCK = """
+import sys
+from shaketable.core.files import folder_lock
+with folder_lock(sys.argv[1]):
+    print("locked", flush=True)
+    sys.stdin.read()        # hold the lock until killed
+"""
+
+
+def test_a_second_process_on_a_sweep_folder_refuses_and_a_dead_owner_is_taken_over(tmp_path):
+    (tmp_path / "w.toml").write_text(SWEEP, encoding="utf-8")
+    out = tmp_path / "out"
+    out.mkdir()
+    holder = subprocess.Popen([sys.executable, "-c", _HOLD_LOCK, str(out)], cwd=REPOSITORY,
+                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "locked"
+        status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "-q", "--no-progress"],
+                                 tmp_path)
+        assert status == 2, err
+        assert "error: out: " in err and f"pid {holder.pid}" in err, err   # folder as given
+        assert not (out / "manifest.json").exists()     # refused before anything was written
+    finally:
+        holder.kill()           # SIGKILL: no clean-up; the lock file stays behind
+        holder.wait()
+    assert (out / ".shaketable.lock").exists()
+    status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "-q", "--no-progress"],
+                             tmp_path)
+    assert status == 0, err
+    assert (out / "results.parquet").is_file()
+
+
+def test_two_real_sweeps_on_one_folder_one_refuses(tmp_path):
+    # two `shaketable sweep` processes started together on one folder: one writes the
+    # sweep, the other either refuses (the folder is busy) or, if it came second, finds
+    # the finished sweep and refuses without --resume; never two writers at once
+    (tmp_path / "w.toml").write_text(SWEEP, encoding="utf-8")
+    command = [sys.executable, "-m", "shaketable", "sweep", "w.toml", "--out", "out", "-q",
+               "--no-progress"]
+    runs = [subprocess.Popen(command, cwd=tmp_path, stderr=subprocess.PIPE, text=True,
+                             env=dict(os.environ, PYTHONPATH=str(REPOSITORY)))
+            for _ in range(2)]
+    results = [(run.wait(), run.stderr.read()) for run in runs]
+    for run in runs:
+        run.stderr.close()
+    assert sorted(status for status, _ in results) == [0, 2], results
+    refusal = next(err for status, err in results if status == 2)
+    assert "in use by another shaketable process" in refusal or "already holds" in refusal
+    assert "Traceback" not in refusal
+
+
+def test_a_manifest_that_is_not_an_object_is_bad_input_naming_it(tmp_path):
+    out = _swept(tmp_path)
+    (out / "manifest.json").write_text("[]", encoding="utf-8")
+    status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "--resume", "-q",
+                              "--no-progress"], tmp_path)
+    assert status == 2, err                    # before: "internal error (AttributeError)", 1
+    assert "manifest.json" in err and "internal error" not in err, err

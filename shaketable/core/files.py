@@ -10,10 +10,12 @@ file or none, never a truncated one.
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import math
 import os
 import secrets
+import socket
 import tempfile
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -240,3 +242,68 @@ def write_csv(path, frame, **options) -> Path:
 def write_parquet(path, frame) -> Path:
     """Write a pandas DataFrame as Parquet atomically (needs pyarrow)."""
     return atomic_write(path, lambda temporary: frame.to_parquet(temporary, index=False))
+
+
+#: The lock file of an output folder (see :func:`folder_lock`).
+LOCK_NAME = ".shaketable.lock"
+
+
+class FolderBusyError(OutputPathError):
+    """Another process holds the output folder's lock; the message names it and the folder."""
+
+
+@contextlib.contextmanager
+def folder_lock(folder, what: str = "output folder"):
+    """Hold the lock of an output folder for the duration of a ``with`` block.
+
+    The lock is an advisory ``flock`` on ``folder/.shaketable.lock``, which also
+    holds the owner's pid and host for the message. The kernel releases it when its
+    process ends, however it ends (``kill -9``, a crash): a lock left by a dead
+    process is simply taken over, never stale. Two processes writing one sweep
+    folder would otherwise rely on timing (both write part files, both clean up
+    temporary files, both join the table); the second one now refuses.
+
+    Parameters
+    ----------
+    folder : Path
+        An existing folder.
+    what : str
+        What the folder is, for the message.
+
+    Raises
+    ------
+    FolderBusyError
+        Another process holds the lock (the message names the folder and its pid).
+
+    Notes
+    -----
+    Where ``fcntl`` is missing (Windows) the block runs without a lock.
+    """
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows: no advisory locks here
+        yield
+        return
+    path = Path(folder) / LOCK_NAME
+    handle = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as error:
+            if error.errno not in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK):
+                raise
+            owner = os.pread(handle, 200, 0).decode("utf-8", "replace").split()
+            who = (f"pid {owner[0]}" + (f" on {owner[1]}" if len(owner) > 1 else "")
+                   if owner else "another process")
+            raise FolderBusyError(f"{folder}: this {what} is in use by another shaketable "
+                                  f"process ({who}, lock file {path}); wait for it to "
+                                  f"finish, or choose another output folder") from None
+        os.ftruncate(handle, 0)
+        os.pwrite(handle, f"{os.getpid()} {socket.gethostname()}\n".encode(), 0)
+        try:
+            yield
+        finally:
+            os.ftruncate(handle, 0)
+            fcntl.flock(handle, fcntl.LOCK_UN)
+    finally:
+        os.close(handle)
