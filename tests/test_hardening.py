@@ -200,3 +200,117 @@ def test_a_manifest_that_is_not_an_object_is_bad_input_naming_it(tmp_path):
                               "--no-progress"], tmp_path)
     assert status == 2, err                    # before: "internal error (AttributeError)", 1
     assert "manifest.json" in err and "internal error" not in err, err
+
+
+# ----------------------------------------------------------------- API contracts
+def test_motion_never_changes_the_callers_arrays():
+    import numpy as np
+
+    import shaketable as st
+
+    t, horizontal, vertical = np.arange(5.0) * 0.01, np.ones(5), np.zeros(5)
+    motion = st.Motion(t, horizontal, vertical)
+    assert motion.horizontal is not horizontal and motion.t is not t
+    horizontal *= 2.0          # before: "assignment destination is read-only"
+    t += 1.0
+    vertical[0] = 5.0
+    assert horizontal.flags.writeable and t.flags.writeable
+    assert np.array_equal(motion.horizontal, np.ones(5))      # the motion kept its copy
+    assert motion.t[0] == 0.0 and motion.vertical[0] == 0.0
+    assert not motion.horizontal.flags.writeable              # and stays immutable
+
+
+@pytest.mark.parametrize("field", ["t", "horizontal", "vertical", "rotation"])
+def test_motion_refuses_datetime64_naming_the_field(field):
+    import numpy as np
+
+    import shaketable as st
+
+    values = {"t": np.arange(4.0) * 0.01, "horizontal": np.zeros(4), "vertical": None,
+              "rotation": None}
+    values[field] = np.datetime64("2024-01-01") + np.arange(4) * np.timedelta64(10, "ms")
+    with pytest.raises(ValueError, match=f"Motion.{field} .*datetime64"):
+        st.Motion(**values)
+
+
+@pytest.mark.parametrize("field", ["t", "horizontal", "vertical"])
+def test_motion_refuses_complex_values_naming_the_field(field):
+    import numpy as np
+
+    import shaketable as st
+
+    values = {"t": np.arange(4.0) * 0.01, "horizontal": np.zeros(4), "vertical": np.zeros(4)}
+    values[field] = values[field] + 1j    # before: the imaginary part silently dropped
+    with pytest.raises(ValueError, match=f"Motion.{field} .*complex"):
+        st.Motion(**values)
+    with pytest.raises(ValueError, match="Motion.horizontal .*complex"):
+        st.Motion([0.0, 0.01], [1 + 2j, 0.0])                  # a plain list too
+
+
+def _public_objects():
+    """One of each public input and result object, made through the public API."""
+    import numpy as np
+
+    import shaketable as st
+    from shaketable.calibration.fit import calibrate
+    from shaketable.calibration.free_rocking import virtual_free_rocking_record
+    from shaketable.core.ensemble import Perturbation
+    from shaketable.core.sliding_result import Friction
+    from shaketable.ground import records
+    from shaketable.lab.pitch import Pitch
+    from shaketable.scenes.catalog import resolve_scene_path, resolve_sweep_path
+    from shaketable.scenes.parse import load_scene
+    from shaketable.scenes.run import run_scene
+    from shaketable.solvers.sliding import slide
+    from shaketable.studies.predictability import ensemble
+    from shaketable.sweeps.spec import load_spec
+
+    block = st.Block.parse("30x6in")
+    motion = records.load("pacoima-dam-s16e")
+    record, _ = virtual_free_rocking_record(block, 0.92, 0.5 * block.alpha, seed=1,
+                                            before=1.3, duration=6.0)
+    scene = load_scene(resolve_scene_path("fig-3-4"))
+    return {
+        "Block": block,
+        "Block with rods": st.Block.parse("30x6in", rods=st.PrestressRods.from_inches(
+            0.4, 0.4, 2)),
+        "Motion": motion,
+        "Motion with metadata": st.Motion(np.arange(3.0), np.zeros(3),
+                                          metadata={"horizontal": {"station": "PAC"}}),
+        "Record": records.read(REPOSITORY / "shaketable" / "data" / "records"
+                               / "RSN77_SFERN_PUL164-hor1.AT2"),
+        "RockingResult": st.simulate(block, motion, cor=0.9),
+        "Friction": Friction(0.3, 0.2),
+        "SlidingResult": slide(motion, Friction(0.3, 0.2)),
+        "FreeRockingRecord": record,
+        "Calibration": calibrate(record, block),
+        "Perturbation": Perturbation(),
+        "EnsembleResult": ensemble(block, motion, cor=0.9, members=4),
+        "Pitch": Pitch(),
+        "Scene": scene,
+        "SceneResult": run_scene(scene),
+        "SweepSpec": load_spec(resolve_sweep_path("artificial-fragility")),
+    }
+
+
+def test_every_public_object_pickles_and_compares_equal(tmp_path):
+    import pickle
+
+    from shaketable.sweeps.execute import run_sweep
+    from shaketable.sweeps.spec import spec_from_dict
+
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+
+    objects = _public_objects()
+    objects["SweepOutcome"] = run_sweep(spec_from_dict(tomllib.loads(SWEEP)), tmp_path / "out",
+                                        progress=False)
+    for name, value in objects.items():
+        # before: "cannot pickle 'mappingproxy' object" for every object holding a Motion,
+        # and `==` raised "truth value of an array is ambiguous" for those holding arrays
+        back = pickle.loads(pickle.dumps(value))
+        assert type(back) is type(value), name
+        assert back == value, name
+        assert not (back != value), name

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from shaketable.core.equality import fields_equal
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
 from shaketable.ground import generators
@@ -96,6 +97,8 @@ def _record_motion(spec: dict, scene: Scene) -> Motion:
 @dataclass(frozen=True)
 class SceneResult:
     """The runs of one scene (one per COR) and their comparison with the report."""
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     scene: Scene
     motion: Motion | None

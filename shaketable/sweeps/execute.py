@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from shaketable.core.constants import G
+from shaketable.core.equality import fields_equal
 from shaketable.core.files import folder_lock, prepare_output_folder, temporary_files
 from shaketable.core.motion import Motion
 from shaketable.core.units import parse_angle_or_ratio
@@ -357,6 +358,8 @@ class SweepOutcome:
     format : str
         ``"parquet"`` or ``"csv"``.
     """
+
+    __eq__ = fields_equal   # the table compared by value; equal after a pickle round trip
 
     table: pd.DataFrame | None
     path: Path | None

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from shaketable.core.constants import acceleration_factor
+from shaketable.core.equality import fields_equal
 from shaketable.core.motion import frozen_metadata
 
 
@@ -58,6 +59,8 @@ class Record:
     -----
     The acceleration array is copied and made read-only.
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     dt: float
     acceleration: np.ndarray
