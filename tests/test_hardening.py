@@ -342,3 +342,52 @@ def test_a_clean_record_that_starts_at_the_release_calibrates(tmp_path):
     cor = json.loads((tmp_path / "cal" / "calibration.json").read_text())["cor [-]"]
     # the truth, to the accuracy the interpolation of the reference run allows
     assert abs(cor - 0.925) < 1e-3, cor
+
+
+# ----------------------------------------------------------------- messages that name things
+FREE = ["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.5alpha", "--duration",
+        "1"]
+
+
+def test_a_full_disk_names_the_file(tmp_path, monkeypatch):
+    import errno
+
+    import pandas as pd
+
+    def full(self, *args, **kwargs):   # what a full disk gives: no file name in the error
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(pd.DataFrame, "to_csv", full)
+    status, _, err = run_cli(FREE + ["--out", "out", "-q"], tmp_path)
+    assert status == 1, err
+    # before: "cannot read or write: No space left on device" (no file, no folder)
+    assert "No space left on device" in err and "history.csv" in err and "out" in err, err
+    assert "internal error" not in err
+    assert [path.name for path in (tmp_path / "out").iterdir()] == []   # no temporary left
+
+
+DEEP_TOML = "x = " + "[" * 3000 + "]" * 3000 + "\n"
+
+
+@pytest.mark.parametrize("kind", ["scene", "sweep"])
+def test_a_toml_nested_thousands_deep_is_bad_input_naming_the_file(tmp_path, kind):
+    (tmp_path / "deep.toml").write_text(DEEP_TOML, encoding="utf-8")
+    status, _, err = run_cli(["run" if kind == "scene" else "sweep", "deep.toml", "-q"],
+                             tmp_path)
+    assert status == 2, err            # before: "maximum recursion depth exceeded", exit 1
+    assert "deep.toml" in err and "nested too deeply" in err, err
+
+
+@pytest.mark.parametrize("argv", [FREE + ["--out", "a" * 300],
+                                  FREE + ["--out", "ok/" + "b" * 256 + "/c"],
+                                  ["animate", "fig-3-4", "--out", "c" * 250 + ".gif"]])
+def test_an_output_name_too_long_is_refused_before_any_work(tmp_path, argv, monkeypatch):
+    import shaketable.solvers.api as api
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("the run started before --out was checked")
+
+    monkeypatch.setattr(api, "simulate", no_work)
+    status, _, err = run_cli(argv, tmp_path)
+    assert status == 2, err            # before: exit 1 after the run, naming no option
+    assert "--out" in err and "Traceback" not in err, err

@@ -51,6 +51,46 @@ def prepare_output_folder(path, option: str = "--out") -> Path:
     folder = Path(path)
     if str(path).strip() == "":
         raise OutputPathError(f"{option}: the output folder is empty; give a folder name")
+    try:
+        _check_name_lengths(folder, option, path)
+        return _prepare_folder(folder, option, path)
+    except OSError as error:  # e.g. a name too long, found by a stat: before any work
+        raise OutputPathError(f"{option} {str(path)!r}: cannot use this folder "
+                              f"({error.strerror or error})") from None
+
+
+#: Characters :func:`atomic_write` adds to a file's name for its temporary file.
+_TEMPORARY_EXTRA = len(".") + len(".tmp-") + 8
+
+
+def _check_name_lengths(path: Path, option: str, given, extra: int = 0) -> None:
+    """Refuse a path whose name (or one of its folders' names) the file system cannot hold.
+
+    ``extra`` characters are added to the last name (the atomic writer's temporary
+    name); the limit is the file system's (``os.pathconf``), else 255.
+    """
+    def exists(candidate: Path) -> bool:
+        try:
+            return candidate.exists()
+        except OSError:  # a name too long to even look up
+            return False
+
+    existing = next((parent for parent in [path, *path.parents] if exists(parent)), Path("."))
+    try:
+        name_max = os.pathconf(existing, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        name_max = 255
+    parts = path.parts
+    for index, part in enumerate(parts):
+        limit = name_max - (extra if index == len(parts) - 1 else 0)
+        if len(os.fsencode(part)) > limit:
+            raise OutputPathError(f"{option} {str(given)!r}: the name {part[:40]!r}... is "
+                                  f"{len(os.fsencode(part))} bytes long; this file system "
+                                  f"holds names of at most {limit} bytes here; give a "
+                                  f"shorter name")
+
+
+def _prepare_folder(folder: Path, option: str, path) -> Path:
     if folder.exists() and not folder.is_dir():
         raise OutputPathError(f"{option} {str(path)!r}: is an existing file, not a folder; "
                               f"give a folder name")
@@ -95,6 +135,7 @@ def prepare_output_file(path, option: str = "--out", suffixes: tuple = ()) -> Pa
     file = Path(path)
     if str(path).strip() == "":
         raise OutputPathError(f"{option}: the output file name is empty")
+    _check_name_lengths(file, option, path, extra=_TEMPORARY_EXTRA)
     if file.is_dir():
         raise OutputPathError(f"{option} {str(path)!r}: is an existing folder; give a file name")
     if suffixes and file.suffix.lower() not in suffixes:
@@ -123,10 +164,18 @@ def atomic_write(path, write: Callable[[Path], object]) -> Path:
         exception propagates: ``path`` keeps its previous content (or does not exist).
     """
     path = Path(path)
-    temporary = _new_temporary(path)
+    try:
+        temporary = _new_temporary(path)
+    except OSError as error:
+        raise OSError(error.errno, error.strerror or str(error), str(path)) from error
     try:
         write(temporary)
         os.replace(temporary, path)
+    except OSError as error:  # a full disk, a quota: say which file (not its temporary)
+        temporary.unlink(missing_ok=True)
+        if error.filename is not None and str(error.filename) != str(temporary):
+            raise
+        raise OSError(error.errno, error.strerror or str(error), str(path)) from error
     except BaseException:
         temporary.unlink(missing_ok=True)
         raise
