@@ -391,3 +391,18 @@ def test_an_output_name_too_long_is_refused_before_any_work(tmp_path, argv, monk
     status, _, err = run_cli(argv, tmp_path)
     assert status == 2, err            # before: exit 1 after the run, naming no option
     assert "--out" in err and "Traceback" not in err, err
+
+
+# ----------------------------------------------------------------- a closed pipe
+def test_a_closed_pipe_ends_quietly():
+    # `shaketable reproduce --list | head -1`: the reader is gone before the writer
+    # writes; made deterministic by closing the pipe's reading end before the child starts
+    # printing. Before: "cannot read or write: Broken pipe", exit 1 (and Python's
+    # "Exception ignored ... BrokenPipeError" at exit).
+    child = subprocess.Popen([sys.executable, "-m", "shaketable", "reproduce", "--list"],
+                             cwd=REPOSITORY, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    child.stdout.close()
+    err = child.stderr.read().decode()
+    child.stderr.close()
+    assert child.wait() == 141, err     # 128 + SIGPIPE, the status of a Unix tool cut off so
+    assert err == ""
