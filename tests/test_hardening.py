@@ -406,3 +406,28 @@ def test_a_closed_pipe_ends_quietly():
     child.stderr.close()
     assert child.wait() == 141, err     # 128 + SIGPIPE, the status of a Unix tool cut off so
     assert err == ""
+
+
+# ----------------------------------------------------------------- numba's cache folder
+def test_the_cache_folder_holds_when_numba_is_imported_first(tmp_path):
+    # A notebook that used numba before shaketable: before, numba had read an empty
+    # NUMBA_CACHE_DIR, the engine compiled into the package's own __pycache__
+    # (shaketable/solvers/__pycache__/*.nbi) and the user's cache stayed empty.
+    import time
+
+    started = time.time()
+    env = {key: value for key, value in os.environ.items() if not key.startswith("NUMBA_")}
+    env.update(HOME=str(tmp_path / "home"), XDG_CACHE_HOME=str(tmp_path / "cache"))
+    code = ("import numba, numpy as np\n"
+            "import shaketable as st\n"
+            "block = st.Block.parse('30x6in')\n"
+            "print(st.simulate(block, None, cor=0.9, theta0=0.5 * block.alpha, "
+            "duration=1.0).verdict())\n")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            cwd=REPOSITORY, env=env)
+    assert result.returncode == 0, result.stderr
+    cache = tmp_path / "cache" / "shaketable" / "numba"
+    assert any(cache.rglob("*.nbi")), "the user's cache folder stayed empty"
+    in_package = [path for path in (REPOSITORY / "shaketable").rglob("*.nbi")
+                  if path.stat().st_mtime >= started - 1]
+    assert in_package == [], in_package
