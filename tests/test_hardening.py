@@ -431,3 +431,122 @@ def test_the_cache_folder_holds_when_numba_is_imported_first(tmp_path):
     in_package = [path for path in (REPOSITORY / "shaketable").rglob("*.nbi")
                   if path.stat().st_mtime >= started - 1]
     assert in_package == [], in_package
+
+
+# ----------------------------------------------------------------- large inputs through the CLI
+def _big_table(path: Path, rows: int, layout: str) -> None:
+    import numpy as np
+
+    rng = np.random.default_rng(7)
+    t = np.arange(rows) * 0.005
+    values = rng.standard_normal(rows) * 10.0 ** rng.integers(-6, 1, rows)
+    if layout == "comma":
+        text = "time [s],acc [g]\n" + "".join(f"{float(a)!r},{float(b)!r}\n"
+                                               for a, b in zip(t, values))
+    elif layout == "whitespace":
+        text = "".join(f"  {a:.3f}\t {b:.6e} \n" for a, b in zip(t, values))
+    else:   # one column, CRLF
+        text = "".join(f"{b:.17g}\r\n" for b in values)
+    path.write_bytes(text.encode())
+
+
+@pytest.mark.parametrize("layout", ["comma", "whitespace", "one"])
+def test_the_fast_text_path_reads_the_same_bits(tmp_path, layout, monkeypatch):
+    import numpy as np
+
+    from shaketable.ground.readers import text
+
+    path = tmp_path / "big.txt"
+    _big_table(path, 2 * text.FAST_PATH_LINES, layout)
+    options = {"units": "g"} | ({"dt": 0.005} if layout == "one" else {})
+    fast = text.read_text(path, **options)
+    monkeypatch.setattr(text, "FAST_PATH_LINES", 10 ** 9)      # the line-by-line parser
+    exact = text.read_text(path, **options)
+    assert np.array_equal(fast.acceleration, exact.acceleration)   # bit for bit
+    assert (fast.dt, fast.t0, fast.component) == (exact.dt, exact.t0, exact.component)
+
+
+@pytest.mark.parametrize("fault, message", [
+    ("-inf", "line 79: '-inf' is not a finite number"),
+    ("nan", "line 79: 'nan' is not a finite number"),
+    ("0.1 0.2", "line 79: 3 column(s), but the data start with 2"),
+    ("1.5D-3", None),           # a Fortran exponent: read (by the exact parser)
+    ("# a comment", None),      # skipped
+    ("", None),                 # a blank line: skipped
+])
+def test_a_fault_in_a_long_record_is_reported_on_its_line(tmp_path, fault, message):
+    # -inf on line 79 of a long CSV: before, "line 1001: no numeric data found" was reported
+    from shaketable.ground.readers import text
+
+    path = tmp_path / "big.csv"
+    _big_table(path, 2 * text.FAST_PATH_LINES, "comma")
+    lines = path.read_text().splitlines()
+    if fault in ("", "# a comment"):
+        lines.insert(78, fault)      # line 79 is not data; the samples go on after it
+    elif fault == "0.1 0.2":
+        lines[78] = "0.385,0.1,0.2"
+    else:
+        lines[78] = f"{lines[78].split(',')[0]},{fault}"
+    path.write_text("\n".join(lines) + "\n")
+    if message is None:
+        record = text.read_text(path, units="g")
+        data = 2 * text.FAST_PATH_LINES
+        assert record.acceleration.size == data
+        if fault == "1.5D-3":
+            assert record.acceleration[77] == 1.5e-3 * 9.80665
+    else:
+        with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
+            text.read_text(path, units="g")
+
+
+def test_history_choices_of_simulate(tmp_path):
+    import numpy as np
+    import pandas as pd
+
+    import shaketable as st
+
+    base = FREE[:-1] + ["4"]
+    runs = {}
+    for choice in ("auto", "full", "peaks", "none"):
+        status, out, err = run_cli(base + ["--history", choice, "--out", choice], tmp_path)
+        assert status == 0, err
+        runs[choice] = tmp_path / choice / "history.csv"
+    # a short run: auto is full, byte for byte what simulate wrote before --history existed
+    assert runs["auto"].read_bytes() == runs["full"].read_bytes()
+    assert not runs["none"].exists() and (tmp_path / "none" / "summary.json").is_file()
+    full, peaks = pd.read_csv(runs["full"]), pd.read_csv(runs["peaks"])
+    # peaks: a subset of the full rows, holding the first and last rows, every largest
+    # |theta| between impacts and every impact (the sign changes of theta, both sides)
+    assert 2 < len(peaks) < len(full) / 4
+    assert peaks.merge(full, how="left", indicator=True)["_merge"].eq("both").all()
+    theta = full["theta [rad]"].to_numpy()
+    assert full["time [s]"].iloc[[0, -1]].isin(peaks["time [s]"]).all()
+    crossings = np.flatnonzero(np.signbit(theta[1:]) != np.signbit(theta[:-1]))
+    assert len(crossings) > 3      # free rocking from 0.5 alpha: several impacts in 4 s
+    assert full["time [s]"].iloc[np.r_[crossings, crossings + 1]].isin(peaks["time [s]"]).all()
+    for start, stop in zip(crossings[:-1], crossings[1:]):   # each half-cycle's peak
+        peak = start + 1 + int(np.argmax(np.abs(theta[start + 1:stop + 1])))
+        assert full["time [s]"].iloc[peak] in set(peaks["time [s]"])
+    del st
+
+
+def test_a_long_run_is_drawn_from_its_envelope(monkeypatch):
+    import numpy as np
+
+    import shaketable as st
+    from shaketable.commands import history
+
+    block = st.Block.parse("30x6in")
+    t = np.arange(60_001) * 0.005
+    motion = st.Motion(t, 0.25 * st.G * np.sin(2 * np.pi * 4.0 * t) * (t < 30.0))
+    result = st.simulate(block, motion, cor=0.9)
+    assert history.for_figure(result) is result          # short: every sample drawn
+    monkeypatch.setattr(history, "FULL_HISTORY_ROWS", 10_000)
+    drawn = history.for_figure(result)
+    assert drawn.t.size < result.t.size and drawn.motion.t.size < motion.t.size
+    # every extreme the figure shows is kept: the same extent on every curve
+    for name in ("theta", "theta_dot", "theta_ddot"):
+        assert getattr(drawn, name).max() == getattr(result, name).max()
+        assert getattr(drawn, name).min() == getattr(result, name).min()
+    assert drawn.motion.horizontal.max() == motion.horizontal.max()
+    assert drawn.summary() == result.summary()           # scalars untouched

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -228,7 +228,7 @@ def is_number(token: str) -> bool:
     return True
 
 
-def uniform_time_step(times: np.ndarray, line_numbers: list[int], path: Path) -> float:
+def uniform_time_step(times: np.ndarray, line_numbers: Sequence[int], path: Path) -> float:
     """Sample interval [s] of a time column; every step must be within 1 % of
     the median step."""
     if times.size < 2:
