@@ -550,3 +550,42 @@ def test_a_long_run_is_drawn_from_its_envelope(monkeypatch):
         assert getattr(drawn, name).min() == getattr(result, name).min()
     assert drawn.motion.horizontal.max() == motion.horizontal.max()
     assert drawn.summary() == result.summary()           # scalars untouched
+
+
+# ----------------------------------------------------------------- European CSV
+EURO_ROWS = [(0.005 * k, 0.1 * ((-1) ** k) * (k % 7) / 7) for k in range(400)]
+
+
+def _euro(values, header: str = "") -> str:
+    return header + "".join(f"{t:.3f};{a:.4f}\n".replace(".", ",") for t, a in values)
+
+
+@pytest.mark.parametrize("header", ["", "time [s];acc [g]\n"])
+def test_a_european_csv_is_recognised(tmp_path, header):
+    # semicolons between fields and a decimal comma, as a spreadsheet in a European locale
+    # exports; before: "has 4 columns; choose ... value_column=" (an API-only keyword)
+    import numpy as np
+
+    from shaketable.core.constants import G
+    from shaketable.ground import records
+
+    (tmp_path / "euro.csv").write_text(_euro(EURO_ROWS, header), encoding="utf-8")
+    record = records.read(tmp_path / "euro.csv", units="g")
+    assert record.dt == pytest.approx(0.005)
+    expected = np.array([float(f"{a:.4f}") for _, a in EURO_ROWS]) * G
+    assert np.array_equal(record.acceleration, expected)
+    status, out, err = run_cli(["simulate", "--block", "30x6in", "--cor", "0.9", "--record",
+                                "euro.csv", "--units", "g", "--out", "o", "-q"], tmp_path)
+    assert status == 0, err
+
+
+def test_several_columns_name_the_cli_option(tmp_path):
+    text = "t;a;b\n" + "".join(f"{t:.3f};{a:.4f};{-a:.4f}\n".replace(".", ",")
+                                for t, a in EURO_ROWS)
+    (tmp_path / "three.csv").write_text(text, encoding="utf-8")
+    argv = ["simulate", "--block", "30x6in", "--cor", "0.9", "--record", "three.csv",
+            "--units", "g", "--out", "o", "-q"]
+    status, _, err = run_cli(argv, tmp_path)
+    assert status == 2 and "three.csv has 3 columns" in err and "--column" in err, err
+    status, _, err = run_cli(argv + ["--column", "b"], tmp_path)
+    assert status == 0, err

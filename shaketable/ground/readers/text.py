@@ -94,6 +94,24 @@ def _fast_rows(lines: list[str], first: int, delimiter: str | None) -> np.ndarra
     return table
 
 
+def _decimal_comma(lines: list[str], first: int, sample: int = 50) -> bool:
+    """Whether the data lines are a European CSV: ``0,005;0,1`` (``;`` between fields,
+    ``,`` the decimal mark, no ``.``), judged on the first ``sample`` data lines."""
+    seen = 0
+    for line in lines[first:]:
+        if _is_comment_or_blank(line):
+            continue
+        if ";" not in line or "." in line:
+            return False
+        fields = [field.strip().replace(",", ".") for field in line.split(";")]
+        if not all(is_number(field) for field in fields if field):
+            return False
+        seen += 1
+        if seen == sample:
+            break
+    return seen > 0 and any("," in line for line in lines[first:first + 4 * sample])
+
+
 def text_rows(lines: list[str], first: int, delimiter: str | None,
               path: Path) -> tuple[np.ndarray, Sequence[int]]:
     """Parse the numeric table below the header; return ``(array, line_numbers)``.
@@ -165,7 +183,8 @@ def _choose_columns(ncolumns: int, dt: float | None, time_column: str | int | No
         if len(others) != 1:
             raise ValueError(
                 f"{path} has {ncolumns} columns{f' {names}' if names else ''}; "
-                "choose the acceleration column with value_column=<index or name>"
+                "choose the acceleration column with value_column=<index or name> "
+                "(command line: --column)"
             )
         return time_index, others[0]
     value_index = _column_index(value_column, names, ncolumns, "value_column", path)
@@ -228,7 +247,8 @@ def read_text(path: str | os.PathLike[str], *, dt: float | None = None, units: s
     not start with a number are a header (or give ``skiprows``); a header such
     as ``time,acc (g)`` states the units. Lines starting with ``#`` or ``%`` are
     skipped. Fields are split on whitespace, commas or semicolons unless
-    ``delimiter`` is given.
+    ``delimiter`` is given; a European export (``0,005;0,1``: semicolons between
+    fields, a decimal comma and no decimal point) is recognised.
 
     Parameters
     ----------
@@ -279,6 +299,11 @@ def read_text(path: str | os.PathLike[str], *, dt: float | None = None, units: s
         units = units_argument(units, path)
     lines = read_lines(path)
     header_length = count_header_lines(lines, skiprows, delimiter)
+    if delimiter in (None, ";") and _decimal_comma(lines, header_length):
+        # the common European export: ';' between fields, ',' as the decimal mark
+        lines = lines[:header_length] + [line.replace(",", ".") for line in
+                                         lines[header_length:]]
+        delimiter = ";"
     header = lines[:header_length]
     table, line_numbers = text_rows(lines, header_length, delimiter, path)
     ncolumns = table.shape[1]
