@@ -589,3 +589,18 @@ def test_several_columns_name_the_cli_option(tmp_path):
     assert status == 2 and "three.csv has 3 columns" in err and "--column" in err, err
     status, _, err = run_cli(argv + ["--column", "b"], tmp_path)
     assert status == 0, err
+
+
+def test_a_full_disk_under_calibrate_names_the_file(tmp_path, monkeypatch):
+    import errno
+
+    import matplotlib.figure
+
+    def full(self, *args, **kwargs):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", full)
+    status, _, err = run_cli(["calibrate", "virtual-fig-3-4", "--block", "30x6in", "--out",
+                              "cal", "-q"], tmp_path)
+    assert status == 1, err
+    assert "calibration.png" in err and "No space left on device" in err, err
