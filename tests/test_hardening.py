@@ -289,6 +289,11 @@ def _public_objects():
         "Pitch": Pitch(),
         "Scene": scene,
         "SceneResult": run_scene(scene),
+        # a virtual test: TableRun (the table's command, servo, pitch) and VirtualTestResult
+        "SceneResult with table and sensors": run_scene(load_scene(resolve_scene_path(
+            "fig-3-7"))),
+        "SceneResult with sliding": run_scene(load_scene(resolve_scene_path(
+            "teaching-slide-or-rock"))),
         "SweepSpec": load_spec(resolve_sweep_path("artificial-fragility")),
     }
 
