@@ -8,6 +8,7 @@ import json
 import math
 import os
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
@@ -30,10 +31,12 @@ from shaketable.sweeps.spec import (
 )
 from shaketable.sweeps.store import (
     FORMAT_VERSION,
+    SweepStoreWarning,
     finished_chunks,
     parquet_available,
     part_path,
     read_results,
+    stray_parts_message,
     write_atomic,
     write_text_atomic,
 )
@@ -480,7 +483,13 @@ def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk
     complete = len(finished_chunks(spec, out, fmt)) == spec.n_chunks
     table = path = None
     if complete:
-        table = read_results(out, fmt=fmt, parts_only=True, n_chunks=spec.n_chunks)
+        stray = stray_parts_message(out, fmt, spec.n_chunks)
+        if stray:   # said once, as the CSV note above, not as a Python warning
+            import sys
+            print(f"shaketable sweep: warning: {stray}", file=sys.stderr)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SweepStoreWarning)
+            table = read_results(out, fmt=fmt, parts_only=True, n_chunks=spec.n_chunks)
         path = out / f"results.{'parquet' if fmt == 'parquet' else 'csv'}"
         write_atomic(table, path, fmt)
     return SweepOutcome(table=table, path=path, out=out, computed_runs=computed,

@@ -107,16 +107,26 @@ def read_results(out, *, fmt: str | None = None, parts_only: bool = False,
         return _read(final, fmt)
     expected = {part_path(out, chunk, fmt).name for chunk in range(int(n_chunks))}
     found = sorted((out / "parts").glob(f"part-*.{suffix}"))
-    stray = [path.name for path in found if path.name not in expected]
-    if stray:
-        warnings.warn(f"{out / 'parts'}: left out {len(stray)} file(s) that are not parts of "
-                      f"this sweep's {n_chunks} chunk(s): {', '.join(stray[:5])}"
-                      f"{' ...' if len(stray) > 5 else ''}", SweepStoreWarning, stacklevel=2)
+    if message := stray_parts_message(out, fmt, int(n_chunks)):
+        warnings.warn(message, SweepStoreWarning, stacklevel=2)
     parts = [path for path in found if path.name in expected]
     if not parts:
         raise SweepError(f"{out}: no finished chunks yet")
     table = pd.concat([_read(path, fmt) for path in parts], ignore_index=True)
     return table.sort_values("run", kind="stable").reset_index(drop=True)
+
+
+def stray_parts_message(out: Path, fmt: str, n_chunks: int) -> str | None:
+    """What is left out of the table: files named like parts that are not the sweep's."""
+    suffix = "parquet" if fmt == "parquet" else "csv"
+    expected = {part_path(out, chunk, fmt).name for chunk in range(n_chunks)}
+    stray = [path.name for path in sorted((out / "parts").glob(f"part-*.{suffix}"))
+             if path.name not in expected]
+    if not stray:
+        return None
+    return (f"{out / 'parts'}: left out {len(stray)} file(s) that are not parts of this "
+            f"sweep's {n_chunks} chunk(s): {', '.join(stray[:5])}"
+            f"{' ...' if len(stray) > 5 else ''}")
 
 
 class SweepStoreWarning(UserWarning):
