@@ -455,12 +455,23 @@ def _big_table(path: Path, rows: int, layout: str) -> None:
                                                for a, b in zip(t, values))
     elif layout == "whitespace":
         text = "".join(f"  {a:.3f}\t {b:.6e} \n" for a, b in zip(t, values))
-    else:   # one column, CRLF
+    elif layout == "one":   # one column, CRLF
         text = "".join(f"{b:.17g}\r\n" for b in values)
+    else:   # a header of comments and names, CRLF, blank lines at the end
+        text = ("# station XYZ\r\n% units g\r\n\r\ntime  acc\r\n"
+                + "".join(f"{a:.3f} {b:.9f}\r\n" for a, b in zip(t, values)) + "\r\n\r\n")
     path.write_bytes(text.encode())
 
 
-@pytest.mark.parametrize("layout", ["comma", "whitespace", "one"])
+def _split_as_read_text(path: Path):
+    from shaketable.ground.readers import text
+
+    content = text.read_text_file(path)
+    lines = content.splitlines()
+    return content, lines[:text.count_header_lines(lines, None, None)]
+
+
+@pytest.mark.parametrize("layout", ["comma", "whitespace", "one", "header"])
 def test_the_fast_text_path_reads_the_same_bits(tmp_path, layout, monkeypatch):
     import numpy as np
 
@@ -470,6 +481,8 @@ def test_the_fast_text_path_reads_the_same_bits(tmp_path, layout, monkeypatch):
     _big_table(path, 2 * text.FAST_PATH_LINES, layout)
     options = {"units": "g"} | ({"dt": 0.005} if layout == "one" else {})
     fast = text.read_text(path, **options)
+    assert text._fast_body(*_split_as_read_text(path), delimiter=None, european=False) \
+        is not None                                       # the compiled parser did read it
     monkeypatch.setattr(text, "FAST_PATH_LINES", 10 ** 9)      # the line-by-line parser
     exact = text.read_text(path, **options)
     assert np.array_equal(fast.acceleration, exact.acceleration)   # bit for bit

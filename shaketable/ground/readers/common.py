@@ -163,11 +163,16 @@ def missing_file_message(path: Path) -> str:
 
 def read_lines(path: Path) -> list[str]:
     """Lines of a text file, CRLF or LF, without line endings."""
+    return read_text_file(path).splitlines()
+
+
+def read_text_file(path: Path) -> str:
+    """The text of a file, CRLF and CR read as LF (undecodable bytes replaced)."""
     if not Path(path).is_file():
         raise RecordError(missing_file_message(path))
     try:
         with open(path, encoding="utf-8", errors="replace", newline=None) as stream:
-            return stream.read().splitlines()
+            return stream.read()
     except OSError as error:
         raise RecordError(f"{path}: cannot read the file: {error.strerror or error}") from None
 

@@ -23,7 +23,7 @@ from shaketable.ground.readers.common import (
     option_integer,
     optional_positive,
     parse_number,
-    read_lines,
+    read_text_file,
     split_fields,
     uniform_time_step,
     units_argument,
@@ -65,12 +65,16 @@ def _fast_rows(lines: list[str], first: int, delimiter: str | None) -> np.ndarra
     converted exactly as ``float()`` does (``float_precision="round_trip"``), so
     both paths give the same bits.
     """
+    return _fast_table("\n".join(lines[first:]), len(lines) - first, delimiter)
+
+
+def _fast_table(body: str, rows: int, delimiter: str | None) -> np.ndarray | None:
+    """:func:`_fast_rows` of the text ``body`` of ``rows`` lines (LF line ends)."""
     import io
     import warnings
 
     import pandas as pd
 
-    body = "\n".join(lines[first:])
     if any(mark in body for mark in "#%dD"):   # comments, Fortran exponents: the exact parser
         return None                            # (blank lines: NaN rows, refused below)
     if delimiter is None:
@@ -89,9 +93,29 @@ def _fast_rows(lines: list[str], first: int, delimiter: str | None) -> np.ndarra
     except Exception:  # anything unusual: the exact parser says what
         return None
     table = frame.to_numpy(dtype=float)
-    if table.shape[0] != len(lines) - first or not np.isfinite(table).all():
+    if table.shape[0] != rows or not np.isfinite(table).all():
         return None
     return table
+
+
+#: Characters of a text record read to find its header (the body is parsed whole).
+_HEAD_CHARACTERS = 1 << 16
+
+
+def _fast_body(content: str, header: list[str], delimiter: str | None,
+               european: bool) -> np.ndarray | None:
+    """The table after ``header`` in ``content`` by the compiled parser, or None (too short
+    for it, a line break other than LF, or anything :func:`_fast_table` refuses)."""
+    start = sum(len(line) + 1 for line in header)
+    if header and content[:start] != "\n".join(header) + "\n":
+        return None   # other line breaks (\f, \x1c, ...) in the header: the exact parser
+    body = content[start:].rstrip()   # trailing blank lines are no rows
+    rows = body.count("\n") + 1
+    if rows < FAST_PATH_LINES:
+        return None
+    if european:
+        body = body.replace(",", ".")
+    return _fast_table(body, rows, delimiter)
 
 
 def _decimal_comma(lines: list[str], first: int, sample: int = 50) -> bool:
@@ -297,15 +321,26 @@ def read_text(path: str | os.PathLike[str], *, dt: float | None = None, units: s
         raise ValueError(f"{path}: delimiter must be a non-empty string, got {delimiter!r}")
     if units is not None:
         units = units_argument(units, path)
-    lines = read_lines(path)
+    content = read_text_file(path)
+    # the header from the first lines only: a long record's body goes to the compiled
+    # parser as one string, never split into millions of Python lines (issue 27)
+    lines = content[:_HEAD_CHARACTERS].splitlines()
     header_length = count_header_lines(lines, skiprows, delimiter)
-    if delimiter in (None, ";") and _decimal_comma(lines, header_length):
-        # the common European export: ';' between fields, ',' as the decimal mark
-        lines = lines[:header_length] + [line.replace(",", ".") for line in
-                                         lines[header_length:]]
+    if header_length >= len(lines) - 1:   # the head holds no complete data line: all of it
+        lines = content.splitlines()
+        header_length = count_header_lines(lines, skiprows, delimiter)
+    european = delimiter in (None, ";") and _decimal_comma(lines, header_length)
+    if european:  # the common European export: ';' between fields, ',' the decimal mark
         delimiter = ";"
     header = lines[:header_length]
-    table, line_numbers = text_rows(lines, header_length, delimiter, path)
+    table = _fast_body(content, header, delimiter, european)
+    if table is not None:
+        line_numbers: Sequence[int] = range(header_length + 1, header_length + 1 + len(table))
+    else:
+        lines = content.splitlines()
+        if european:
+            lines = header + [line.replace(",", ".") for line in lines[header_length:]]
+        table, line_numbers = text_rows(lines, header_length, delimiter, path)
     ncolumns = table.shape[1]
     names = header_column_names(header, ncolumns, delimiter)
     time_index, value_index = _choose_columns(ncolumns, dt, time_column, value_column, names, path)
