@@ -18,10 +18,14 @@ and prints the times and the ratio CLI / API (goal: within 3x).
 The engine is compiled (numba cache) before the timings. The machine is shared:
 run it alone, once, and read the numbers as such.
 
-Measured (issue 27, 2-core shared VM, nice 5, default ``--history auto`` = peaks; the
-block stays at rest): API simulate 6.65 s, API read + simulate 17.3 s, CLI 19.1 s:
-CLI / API = 2.9 (goal 3). Before: about 90 s (the text parsed line by line, 79 s for
-reading alone; then a 350 MB history CSV and a figure of 10 million points, 17 s).
+Measured (issue 27, the shared 2-core VM, nice 5, block at rest; five runs at load
+averages 3 to 8): CLI (default --history auto = peaks) 7.7 to 19.9 s, against the
+API's simulate alone 1.9 to 6.7 s (CLI / API 2.9 to 4.2) and the API's read +
+simulate 4.8 to 17.3 s (CLI / that 1.1 to 1.9). Before: about 90 s (79 s reading the
+text line by line, then a 350 MB history and a figure of 10 million points). What the
+CLI adds to the engine: Python and the imports (~1 s), reading (~1.9 s), building the
+Motion (0.8 s), the figure (1.4 s, drawn from the envelope). With --history full the
+411 MB CSV alone takes about 2 minutes (pandas' to_csv): hence the peaks default.
 """
 
 from __future__ import annotations

@@ -78,7 +78,8 @@ def _fast_table(body: str, rows: int, delimiter: str | None) -> np.ndarray | Non
     if any(mark in body for mark in "#%dD"):   # comments, Fortran exponents: the exact parser
         return None                            # (blank lines: NaN rows, refused below)
     if delimiter is None:
-        body = body.translate(str.maketrans(",;", "  "))
+        if "," in body or ";" in body:
+            body = body.translate(str.maketrans(",;", "  "))
         options: dict = {"sep": r"\s+"}
     elif len(delimiter) == 1 and not delimiter.isspace():
         options = {"sep": delimiter}
