@@ -19,6 +19,22 @@ _os.environ.setdefault("NUMBA_CACHE_DIR", _os.path.join(
     _os.environ.get("XDG_CACHE_HOME") or _os.path.join(_os.path.expanduser("~"), ".cache"),
     "shaketable", "numba"))
 
+
+def _numba_sees_the_cache_folder() -> None:
+    """numba reads ``NUMBA_CACHE_DIR`` when it is imported: if it was imported before us (a
+    notebook that used numba first), have it read the environment again now, before the
+    engine's cached functions are defined, or it would compile into the package's
+    ``__pycache__`` (issue 27). numba itself is not imported here (only ``core`` and
+    ``solvers`` import it)."""
+    import sys
+
+    config = sys.modules.get("numba.core.config")
+    if config is not None and hasattr(config, "reload_config"):
+        config.reload_config()
+
+
+_numba_sees_the_cache_folder()
+
 from shaketable.core.constants import FOOT, INCH, G  # noqa: E402
 from shaketable.core.geometry import Block, PrestressRods  # noqa: E402
 from shaketable.core.motion import Motion  # noqa: E402

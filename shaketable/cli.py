@@ -5,7 +5,7 @@ Each subcommand lives in ``shaketable/commands/<name>.py`` and exposes
 
 Exit status: 0 success, 1 a run that failed (a scene that could not be
 reproduced, a file that could not be written, not enough memory, an internal
-error, 130 interrupted with Ctrl-C), 2 bad usage or bad input (an unknown
+error, 130 interrupted with Ctrl-C, 141 the output pipe closed: quietly), 2 bad usage or bad input (an unknown
 option, a malformed value, a missing or malformed file, an unusable output path).
 """
 
@@ -29,7 +29,8 @@ EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 EPILOG = ("exit status: 0 success; 1 a run that failed (e.g. a scene that could not be "
           "reproduced, a file that could not be written, not enough memory); 2 bad usage or "
           "input (unknown option, malformed value, missing or malformed file, unusable output "
-          "path); 130 interrupted (Ctrl-C). Set SHAKETABLE_TRACEBACK=1 to see Python "
+          "path); 130 interrupted (Ctrl-C); 141 the output pipe was closed (e.g. by "
+          "head). Set SHAKETABLE_TRACEBACK=1 to see Python "
           "tracebacks of unexpected errors.")
 
 
@@ -61,11 +62,15 @@ def main(argv=None) -> int:
     quiet = getattr(args, "quiet", False)
     try:
         with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
-            return int(args.handler(args) or 0)
+            status = int(args.handler(args) or 0)
+        sys.stdout.flush()   # a closed pipe shows here, not in Python's flush at exit
+        return status
     except KeyboardInterrupt:
         print(f"shaketable {args.command}: interrupted; files already written are complete",
               file=sys.stderr)
         return EXIT_INTERRUPTED
+    except BrokenPipeError:  # `shaketable ... | head -1`: the reader left; end quietly
+        return _closed_pipe()
     except (ValueError, FileNotFoundError, NotADirectoryError, IsADirectoryError) as error:
         print(f"{prefix} {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -88,6 +93,21 @@ def main(argv=None) -> int:
               f"shaketable; please report it with the command you ran (SHAKETABLE_TRACEBACK=1 "
               f"shows the traceback)", file=sys.stderr)
         return EXIT_FAILED
+
+
+#: Exit status after the output pipe was closed (128 + SIGPIPE, as a Unix tool killed by it).
+EXIT_BROKEN_PIPE = 141
+
+
+def _closed_pipe() -> int:
+    """Point stdout at /dev/null (Python's flush at exit would fail again) and give 141."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):  # no real stdout (redirected in-process)
+        pass
+    return EXIT_BROKEN_PIPE
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -17,7 +17,7 @@ from shaketable.calibration.filters import (
 )
 from shaketable.calibration.record import FreeRockingRecord
 from shaketable.core.geometry import Block
-from shaketable.core.motion import Motion
+from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion
 from shaketable.lab.digitizer import Digitizer
 from shaketable.solvers.api import simulate
 
@@ -75,7 +75,11 @@ class FreeRockingModel:
         """Rotation [rad] at ``times`` [s] (held at theta0 before the release)."""
         self.evaluations += 1
         tau = times - t_release
-        after = tau > 0
+        # a sample within MIN_SAMPLE_INTERVAL (1 ns) after the release is still at theta0
+        # (it moves by theta''.tau^2/2 < 1e-16 rad there); simulating it would ask for a
+        # motion with an interval below the shortest a Motion accepts: a record starting at
+        # the release, t[0] = t_release to within the fit's rounding, failed so (issue 27)
+        after = tau > MIN_SAMPLE_INTERVAL
         out = np.full(times.shape, theta0)
         if not np.any(after):
             return out

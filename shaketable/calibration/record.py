@@ -14,6 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from shaketable.core.constants import INCH, LENGTH_UNITS
+from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import Block
 from shaketable.lab.sensors import (
     Measurement,
@@ -54,6 +55,8 @@ class FreeRockingRecord:
     name : str
         Label.
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     t: np.ndarray
     values: np.ndarray

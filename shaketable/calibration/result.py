@@ -17,6 +17,7 @@ from shaketable.calibration.peaks import PeakEstimate, PeriodFit
 from shaketable.calibration.record import FreeRockingRecord
 from shaketable.calibration.scatter import CorScatter
 from shaketable.core.constants import INCH
+from shaketable.core.equality import fields_equal
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
@@ -106,6 +107,8 @@ class Calibration:
         unit], from which ``covariance`` was made (:func:`covariance_of`
         recomputes it another way).
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     record: FreeRockingRecord
     block: Block

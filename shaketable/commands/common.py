@@ -10,7 +10,7 @@ from pathlib import Path
 
 def add_record_arguments(parser) -> None:
     """The options :func:`load_motion` and :func:`scaled` read: --record, --units, --dt,
-    --scale, --no-vertical."""
+    --column, --scale, --no-vertical."""
     parser.add_argument("--record", help="bundled record name (e.g. pacoima-dam-s16e) or a file")
     parser.add_argument("--units", help="units of the record file: g, m/s2 or gal (needed for "
                                         "a text file, and for an AT2 whose header does not "
@@ -19,6 +19,8 @@ def add_record_arguments(parser) -> None:
 
     add_quantity(parser, "--dt", kind="time", example="0.02s",
                  help="sample interval of a one-column record")
+    parser.add_argument("--column", help="the acceleration column of a text record with "
+                                         "several, by 0-based index or header name")
     parser.add_argument("--scale", type=float, default=1.0, help="factor on the record [-]")
     parser.add_argument("--no-vertical", action="store_true",
                         help="drop the vertical component")
@@ -40,7 +42,10 @@ def load_motion(args):
     # an AT2 states its step and (usually) its units in its header: --units is checked
     # against it or supplies what it does not say, --dt is refused for it with a clear
     # message; records.read ignores options left at None
-    record = records.read(path, units=args.units, dt=args.dt)
+    column = getattr(args, "column", None)
+    if column is not None and column.strip().lstrip("-").isdigit():
+        column = int(column)
+    record = records.read(path, units=args.units, dt=args.dt, value_column=column)
     try:
         return records.combine(record, name=path.stem)
     except ValueError as error:  # e.g. values beyond any earthquake: say which file

@@ -58,11 +58,22 @@ def _simulate(args) -> int:
     else:
         result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
                           method=args.method, subdivisions=args.subdivisions)
-    write_csv(out / "history.csv", result.to_frame())
+    from shaketable.commands.history import for_figure, history_frame, history_mode
+
+    history = history_mode(args.history, result.t.size)   # --history (issue 27)
+    if friction is not None and history == "peaks":
+        history = "full"   # the planar block's history has no peaks selection: all of it
+    if history != "none":
+        write_csv(out / "history.csv", history_frame(result, history))
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
-    plots.save(result.plot(), out / f"calcomp.{args.format}")
+    plots.save((result if friction is not None else for_figure(result)).plot(),
+               out / f"calcomp.{args.format}")
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
-    print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}, {out / ('calcomp.' + args.format)}")
+    if args.history == "auto" and history != "full":
+        print(f"history.csv: {history} ({result.t.size} samples; --history full writes all)")
+    written = ([out / "history.csv"] if history != "none" else []) + [
+        out / "summary.json", out / f"calcomp.{args.format}"]
+    print("wrote " + ", ".join(str(path) for path in written))
     return 0
 
 
@@ -160,4 +171,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                      help="horizon: |d theta| above this many alpha (default 1e-3)")
     sim.add_argument("--format", default="png", choices=["png", "svg", "pdf"])
     sim.add_argument("--out", default="shaketable-out", help="output folder")
+    sim.add_argument("--history", choices=("auto", "full", "peaks", "none"), default="auto",
+                     help="what history.csv holds: every sample (full), the first and last "
+                          "samples, impacts and turning points (peaks), or no file (none); "
+                          "default auto: full up to 1,000,000 samples, peaks beyond")
     sim.set_defaults(handler=_simulate)

@@ -10,8 +10,12 @@ file or none, never a truncated one.
 
 from __future__ import annotations
 
+import contextlib
+import errno
 import math
 import os
+import secrets
+import socket
 import tempfile
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -47,6 +51,46 @@ def prepare_output_folder(path, option: str = "--out") -> Path:
     folder = Path(path)
     if str(path).strip() == "":
         raise OutputPathError(f"{option}: the output folder is empty; give a folder name")
+    try:
+        _check_name_lengths(folder, option, path)
+        return _prepare_folder(folder, option, path)
+    except OSError as error:  # e.g. a name too long, found by a stat: before any work
+        raise OutputPathError(f"{option} {str(path)!r}: cannot use this folder "
+                              f"({error.strerror or error})") from None
+
+
+#: Characters :func:`atomic_write` adds to a file's name for its temporary file.
+_TEMPORARY_EXTRA = len(".") + len(".tmp-") + 8
+
+
+def _check_name_lengths(path: Path, option: str, given, extra: int = 0) -> None:
+    """Refuse a path whose name (or one of its folders' names) the file system cannot hold.
+
+    ``extra`` characters are added to the last name (the atomic writer's temporary
+    name); the limit is the file system's (``os.pathconf``), else 255.
+    """
+    def exists(candidate: Path) -> bool:
+        try:
+            return candidate.exists()
+        except OSError:  # a name too long to even look up
+            return False
+
+    existing = next((parent for parent in [path, *path.parents] if exists(parent)), Path("."))
+    try:
+        name_max = os.pathconf(existing, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):
+        name_max = 255
+    parts = path.parts
+    for index, part in enumerate(parts):
+        limit = name_max - (extra if index == len(parts) - 1 else 0)
+        if len(os.fsencode(part)) > limit:
+            raise OutputPathError(f"{option} {str(given)!r}: the name {part[:40]!r}... is "
+                                  f"{len(os.fsencode(part))} bytes long; this file system "
+                                  f"holds names of at most {limit} bytes here; give a "
+                                  f"shorter name")
+
+
+def _prepare_folder(folder: Path, option: str, path) -> Path:
     if folder.exists() and not folder.is_dir():
         raise OutputPathError(f"{option} {str(path)!r}: is an existing file, not a folder; "
                               f"give a folder name")
@@ -91,6 +135,7 @@ def prepare_output_file(path, option: str = "--out", suffixes: tuple = ()) -> Pa
     file = Path(path)
     if str(path).strip() == "":
         raise OutputPathError(f"{option}: the output file name is empty")
+    _check_name_lengths(file, option, path, extra=_TEMPORARY_EXTRA)
     if file.is_dir():
         raise OutputPathError(f"{option} {str(path)!r}: is an existing folder; give a file name")
     if suffixes and file.suffix.lower() not in suffixes:
@@ -119,16 +164,59 @@ def atomic_write(path, write: Callable[[Path], object]) -> Path:
         exception propagates: ``path`` keeps its previous content (or does not exist).
     """
     path = Path(path)
-    handle, name = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=path.suffix)
-    os.close(handle)
-    temporary = Path(name)
+    try:
+        temporary = _new_temporary(path)
+    except OSError as error:
+        raise OSError(error.errno, error.strerror or str(error), str(path)) from error
     try:
         write(temporary)
         os.replace(temporary, path)
+    except OSError as error:  # a full disk, a quota: say which file (not its temporary)
+        temporary.unlink(missing_ok=True)
+        if error.filename is not None and str(error.filename) != str(temporary):
+            raise
+        raise OSError(error.errno, error.strerror or str(error), str(path)) from error
     except BaseException:
         temporary.unlink(missing_ok=True)
         raise
     return path
+
+
+#: The mark in the name of a temporary file of :func:`atomic_write`:
+#: ``.<stem>.tmp-<random><suffix>`` beside its target (what a clean-up may remove).
+TEMPORARY_MARK = ".tmp-"
+
+
+def temporary_files(folder, stem: str = "*") -> list[Path]:
+    """The temporary files :func:`atomic_write` left in ``folder`` (a kill, a failed unlink).
+
+    Parameters
+    ----------
+    folder : Path
+    stem : str
+        The target's stem (a glob pattern), e.g. ``"part-*"``; default any.
+    """
+    return sorted(Path(folder).glob(f".{stem}{TEMPORARY_MARK}*"))
+
+
+def _new_temporary(path: Path) -> Path:
+    """A new empty file beside ``path``, with the mode the umask gives a normal file.
+
+    Created with ``os.open(..., 0o666)`` so the kernel applies the process's umask
+    (0644 under umask 022, 0640 under 027), as for a file written in place;
+    ``tempfile.mkstemp`` would give 0600 whatever the umask, and the rename would
+    keep that mode. Reading the umask (``os.umask``) would change it for a moment,
+    which is not safe while other threads create files.
+    """
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    for _ in range(100):
+        temporary = path.parent / f".{path.stem}{TEMPORARY_MARK}{secrets.token_hex(4)}{path.suffix}"
+        try:
+            os.close(os.open(temporary, flags, 0o666))
+        except FileExistsError:
+            continue
+        return temporary
+    raise FileExistsError(errno.EEXIST, "no free temporary file name", str(path.parent))
 
 
 def read_utf8(path, what: str, error: type = ValueError) -> str:
@@ -151,6 +239,26 @@ def read_utf8(path, what: str, error: type = ValueError) -> str:
         line = path.read_bytes()[:problem.start].count(b"\n") + 1
         raise error(f"{path}, line {line}: not UTF-8 text (byte "
                     f"{problem.object[problem.start]:#04x}); save the {what} as UTF-8") from None
+
+
+def folder_name_problem(name: str) -> str | None:
+    """Why ``name`` cannot be used as one folder inside an output folder, or None.
+
+    A scene's or sweep spec's ``name`` becomes the default output folder
+    ``shaketable-out/<name>``: it must stay inside, so a name that is a path (a
+    separator ``/`` or ``\\``, ``.`` or ``..``, an absolute path) or holds
+    control characters is refused rather than sanitised -- the user sees which name
+    to change instead of finding the results under another name.
+    """
+    if name in (".", ".."):
+        return "is not a folder name"
+    if "/" in name or "\\" in name:
+        return "holds a path separator ('/' or '\\'); a name names one folder"
+    if any(ord(character) < 32 or ord(character) == 127 for character in name):
+        return "holds a control character"
+    if len(name.encode("utf-8")) > 200:
+        return "is longer than 200 bytes (too long for a folder name on most file systems)"
+    return None
 
 
 def json_ready(value):
@@ -183,3 +291,68 @@ def write_csv(path, frame, **options) -> Path:
 def write_parquet(path, frame) -> Path:
     """Write a pandas DataFrame as Parquet atomically (needs pyarrow)."""
     return atomic_write(path, lambda temporary: frame.to_parquet(temporary, index=False))
+
+
+#: The lock file of an output folder (see :func:`folder_lock`).
+LOCK_NAME = ".shaketable.lock"
+
+
+class FolderBusyError(OutputPathError):
+    """Another process holds the output folder's lock; the message names it and the folder."""
+
+
+@contextlib.contextmanager
+def folder_lock(folder, what: str = "output folder"):
+    """Hold the lock of an output folder for the duration of a ``with`` block.
+
+    The lock is an advisory ``flock`` on ``folder/.shaketable.lock``, which also
+    holds the owner's pid and host for the message. The kernel releases it when its
+    process ends, however it ends (``kill -9``, a crash): a lock left by a dead
+    process is simply taken over, never stale. Two processes writing one sweep
+    folder would otherwise rely on timing (both write part files, both clean up
+    temporary files, both join the table); the second one now refuses.
+
+    Parameters
+    ----------
+    folder : Path
+        An existing folder.
+    what : str
+        What the folder is, for the message.
+
+    Raises
+    ------
+    FolderBusyError
+        Another process holds the lock (the message names the folder and its pid).
+
+    Notes
+    -----
+    Where ``fcntl`` is missing (Windows) the block runs without a lock.
+    """
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows: no advisory locks here
+        yield
+        return
+    path = Path(folder) / LOCK_NAME
+    handle = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as error:
+            if error.errno not in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK):
+                raise
+            owner = os.pread(handle, 200, 0).decode("utf-8", "replace").split()
+            who = (f"pid {owner[0]}" + (f" on {owner[1]}" if len(owner) > 1 else "")
+                   if owner else "another process")
+            raise FolderBusyError(f"{folder}: this {what} is in use by another shaketable "
+                                  f"process ({who}, lock file {path}); wait for it to "
+                                  f"finish, or choose another output folder") from None
+        os.ftruncate(handle, 0)
+        os.pwrite(handle, f"{os.getpid()} {socket.gethostname()}\n".encode(), 0)
+        try:
+            yield
+        finally:
+            os.ftruncate(handle, 0)
+            fcntl.flock(handle, fcntl.LOCK_UN)
+    finally:
+        os.close(handle)

@@ -14,12 +14,12 @@ import math
 import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
 from shaketable.core.constants import G
+from shaketable.core.equality import fields_equal
 
 #: Shortest sample interval a motion accepts [s] (1 ns). Digitised records
 #: are sampled at 0.005-0.02 s and the report's subdivision (Section 2.8)
@@ -87,8 +87,22 @@ def _component(name: str, values, unit: str, samples: int) -> np.ndarray:
 
 
 def _as_float_array(name: str, values) -> np.ndarray:
+    """``values`` as a new float array (never the caller's own array), checked."""
+    kind = getattr(getattr(values, "dtype", None), "kind", None)
+    if kind is None:
+        try:
+            kind = np.asarray(values).dtype.kind
+        except (TypeError, ValueError):
+            kind = None
+    if kind in ("M", "m"):
+        raise ValueError(f"{name} must be numbers (seconds or m/s^2), got datetime64/"
+                         f"timedelta64 values; convert them, e.g. times in seconds as "
+                         f"(t - t[0]) / np.timedelta64(1, 's')")
+    if kind == "c":
+        raise ValueError(f"{name} must be real numbers, got complex values (their imaginary "
+                         f"part would be dropped); pass the real part if that is meant")
     try:
-        array = np.asarray(values, dtype=float)
+        array = np.array(values, dtype=float)   # a copy: the caller's array stays writable
     except (TypeError, ValueError) as error:
         raise ValueError(f"{name} must be an array of numbers: {error}") from None
     if array.ndim != 1:
@@ -144,9 +158,13 @@ class Motion:
 
     Notes
     -----
-    The arrays are copied and made read-only: a motion never changes after it
-    is built, and running a simulation never changes it.
+    The arrays are copied and the copies made read-only: a motion never changes
+    after it is built, running a simulation never changes it, and the caller's own
+    arrays are never touched. A motion pickles (``metadata`` as a
+    :class:`FrozenMapping`).
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     t: np.ndarray
     horizontal: np.ndarray
@@ -505,14 +523,45 @@ class Motion:
                       name=self.name, rotation=resample(self.rotation), metadata=self.metadata)
 
 
+class FrozenMapping(Mapping):
+    """A read-only mapping that pickles (``types.MappingProxyType`` does not).
+
+    Compares equal to any mapping with the same items; unhashable, like a dict.
+    """
+
+    __slots__ = ("_items",)
+    _items: dict[str, Any]
+
+    def __init__(self, items: Mapping[str, Any] | None = None) -> None:
+        object.__setattr__(self, "_items", dict(items or {}))
+
+    def __getitem__(self, key):
+        return self._items[key]
+
+    def __iter__(self):
+        return iter(self._items)
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __setattr__(self, key, value):
+        raise AttributeError("a FrozenMapping is read-only")
+
+    def __reduce__(self):
+        return (type(self), (self._items,))
+
+    def __repr__(self) -> str:
+        return f"FrozenMapping({self._items!r})"
+
+
 def frozen_metadata(metadata: Mapping[str, Any] | None) -> Mapping[str, Any]:
     """A read-only copy of ``metadata`` (nested mappings frozen too); empty for ``None``."""
     if metadata is None:
-        return MappingProxyType({})
+        return FrozenMapping()
     if not isinstance(metadata, Mapping):
         raise ValueError(f"metadata must be a mapping, got {type(metadata).__name__}")
-    return MappingProxyType({str(key): frozen_metadata(value) if isinstance(value, Mapping)
-                             else value for key, value in metadata.items()})
+    return FrozenMapping({str(key): frozen_metadata(value) if isinstance(value, Mapping)
+                          else value for key, value in metadata.items()})
 
 
 def motion_argument(name: str, motion) -> Motion:

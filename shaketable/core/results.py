@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 
@@ -68,6 +69,8 @@ class RockingResult:
     statistics : dict
         Solver work: steps, rejected steps, right-hand-side evaluations.
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     block: Block
     motion: Motion

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from shaketable.core.constants import INCH
+from shaketable.core.equality import fields_equal
 from shaketable.core.motion import Motion
 from shaketable.core.validation import nonnegative
 
@@ -137,6 +138,8 @@ class SlidingResult:
         :func:`shaketable.solvers.sliding.slide`): which mode the model used
         and when each threshold was first reached.
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     motion: Motion
     friction: Friction

@@ -7,7 +7,9 @@ expected.
 
 Sections (``experiments/*.toml`` are the examples)::
 
-    name, source, description       # top level: text
+    name, source, description       # top level: text (name is one folder name: the
+                                    # default output folder shaketable-out/<name>, so no
+                                    # '/', '\\', '..' -- refused, never sanitised)
     [block]      size = "30x6in" (or a list to compare, ["30x6in", "60x12in"])
                  or  height = "30 in", width = "6 in"
     [block.rods] stiffness = "0.4 W/in", force = "0.4 W", edge_distance = "12 in"
@@ -294,6 +296,9 @@ def load_scene(path: str | Path) -> Scene | Study:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise SceneError(f"{path}: not valid TOML: {error}") from None
+    except RecursionError:  # an array nested thousands deep: the parser's recursion
+        raise SceneError(f"{path}: arrays or tables nested too deeply to read (a scene "
+                         f"needs a few levels)") from None
     try:
         return scene_from_dict(data, where=str(path))
     except SceneError as error:
@@ -439,6 +444,7 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
     name = data["name"]
     if not isinstance(name, str) or not name:
         raise SceneError(f"{where}: 'name' must be a non-empty string")
+    _check_folder_name(name, where)
     return Scene(name=name, source=str(data.get("source", "")),
                  description=str(data.get("description", "")), block=block, motion=motion,
                  cors=tuple(float(c) for c in cors), theta0=theta0, theta_dot0=theta_dot0,
@@ -512,6 +518,16 @@ def _sliding(data: dict, motion: dict, where: str) -> tuple:
     return tuple((float(static), float(d)) for d in dynamics)
 
 
+def _check_folder_name(name: str, where: str) -> None:
+    """The scene's name names its output folder: a path there could write anywhere."""
+    from shaketable.core.files import folder_name_problem
+
+    problem = folder_name_problem(name) if name else None
+    if problem:
+        raise SceneError(f"{where}: 'name' {name!r} {problem} (the name is the default output "
+                         f"folder shaketable-out/<name>; use letters, digits, '-', '_', '.')")
+
+
 def _study(data: dict, where: str) -> Study:
     _only(data, {"name", "source", "description", "study"}, where, "top level of a study")
     spec = _table(data["study"], where, "study")
@@ -520,6 +536,7 @@ def _study(data: dict, where: str) -> Study:
         raise SceneError(f"{where}: study.kind must be one of {', '.join(STUDY_KINDS)}, "
                          f"got {kind!r}")
     _only({k: v for k, v in spec.items() if k != "kind"}, STUDY_KINDS[kind], where, "study")
+    _check_folder_name(str(data.get("name", "")), where)
     common = dict(name=str(data.get("name", "")), source=str(data.get("source", "")),
                   description=str(data.get("description", "")), kind=kind, path=where)
     if kind == "overturning-spectrum":

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from shaketable.core.equality import fields_equal
 from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
@@ -110,6 +111,8 @@ class SceneResult:
     (:class:`~shaketable.calibration.uncertainty.CalibratedEnsemble`) when the scene's
     ``rocking.cor`` names a calibration.json and the block feels a motion.
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     scene: Scene
     motion: Motion | None

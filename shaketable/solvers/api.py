@@ -103,6 +103,9 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
         if top_force != 0.0:
             raise ValueError("top_force is not offered with friction (the coupled model has "
                              "no top force)")
+        if isinstance(motion, ImpulsiveMotion):
+            raise ValueError("impulses (velocity steps) are not offered with friction: the "
+                             "coupled model takes a sampled motion")
         return simulate_planar(block, motion, cor=cor, friction=friction, theta0=theta0,
                                theta_dot0=theta_dot0, duration=duration, rtol=rtol,
                                output_dt=output_dt, rest_tolerance=rest_tolerance,

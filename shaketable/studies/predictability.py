@@ -57,6 +57,7 @@ from shaketable.core.ensemble import (  # the solver-free part, shared with the 
     verdict_statistics,
     wilson_interval,
 )
+from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.solvers.batch import Case, simulate_cases
@@ -154,6 +155,8 @@ class EnsembleResult:
     runs : tuple
         The full runs used for the horizon (nominal first), for :meth:`plot`.
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     block: Block
     motion: Motion

@@ -8,6 +8,7 @@ import json
 import math
 import os
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
@@ -17,6 +18,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from shaketable.core.constants import G
+from shaketable.core.equality import fields_equal
+from shaketable.core.files import folder_lock, prepare_output_folder, temporary_files
 from shaketable.core.motion import Motion
 from shaketable.core.units import parse_angle_or_ratio
 from shaketable.sweeps.spec import (
@@ -28,10 +31,12 @@ from shaketable.sweeps.spec import (
 )
 from shaketable.sweeps.store import (
     FORMAT_VERSION,
+    SweepStoreWarning,
     finished_chunks,
     parquet_available,
     part_path,
     read_results,
+    stray_parts_message,
     write_atomic,
     write_text_atomic,
 )
@@ -404,6 +409,9 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
             old = json.loads(manifest_path.read_text())
         except (OSError, ValueError) as error:
             raise SweepError(f"{manifest_path}: unreadable manifest ({error})") from None
+        if not isinstance(old, dict):
+            raise SweepError(f"{manifest_path}: not a sweep manifest (a JSON "
+                             f"{type(old).__name__}, not an object); use another output folder")
         for key in ("fingerprint", "n_runs", "chunk_size", "format", "format_version",
                     "solver"):
             if old.get(key) != manifest[key]:
@@ -411,8 +419,10 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                     f"{out}: cannot resume: the sweep there differs from {spec.path} in "
                     f"{key} ({old.get(key)!r} there, {manifest[key]!r} now); use another "
                     "output folder")
-        for stray in (out / "parts").glob(".*.tmp"):
-            stray.unlink()
+        # temporary files of a killed writer (atomic_write's .<stem>.tmp-<random><suffix>);
+        # the folder lock is held, so none belongs to a live process
+        for stray in temporary_files(out / "parts") + temporary_files(out):
+            stray.unlink(missing_ok=True)
         return finished_chunks(spec, out, fmt)
     (out / "parts").mkdir(parents=True, exist_ok=True)
     existing = [p for p in (out / "parts").iterdir() if not p.name.startswith(".")]
@@ -444,6 +454,8 @@ class SweepOutcome:
     format : str
         ``"parquet"`` or ``"csv"``.
     """
+
+    __eq__ = fields_equal   # the table compared by value; equal after a pickle round trip
 
     table: pd.DataFrame | None
     path: Path | None
@@ -520,8 +532,10 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
     own_client: bool
     client, own_client = (None, False) if scheduler is None else _connect(scheduler)
     try:
-        return _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk,
-                    began)
+        prepare_output_folder(out, "out")
+        with folder_lock(out, "sweep folder"):  # a second process on `out` refuses
+            return _run(spec, out, fmt, resume, max_chunks, workers, client, progress,
+                        on_chunk, began)
     finally:
         if own_client:
             client.close()
@@ -562,7 +576,13 @@ def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk
     complete = len(finished_chunks(spec, out, fmt)) == spec.n_chunks
     table = path = None
     if complete:
-        table = read_results(out, fmt=fmt, parts_only=True)
+        stray = stray_parts_message(out, fmt, spec.n_chunks)
+        if stray:   # said once, as the CSV note above, not as a Python warning
+            import sys
+            print(f"shaketable sweep: warning: {stray}", file=sys.stderr)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SweepStoreWarning)
+            table = read_results(out, fmt=fmt, parts_only=True, n_chunks=spec.n_chunks)
         path = out / f"results.{'parquet' if fmt == 'parquet' else 'csv'}"
         write_atomic(table, path, fmt)
     return SweepOutcome(table=table, path=path, out=out, computed_runs=computed,

@@ -339,6 +339,9 @@ def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise SweepError(f"{path}: not valid TOML: {error}") from None
+    except RecursionError:  # an array nested thousands deep: the parser's recursion
+        raise SweepError(f"{path}: arrays or tables nested too deeply to read (a sweep spec "
+                         f"needs a few levels)") from None
     return spec_from_dict(data, where=str(path), directory=path.parent)
 
 
@@ -364,6 +367,11 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     name = data["name"]
     if not isinstance(name, str) or not name.strip():
         raise SweepError(f"{where}: 'name' must be a non-empty string, got {name!r}")
+    from shaketable.core.files import folder_name_problem
+
+    if problem := folder_name_problem(name.strip()):
+        raise SweepError(f"{where}: 'name' {name!r} {problem} (the name is the default output "
+                         f"folder shaketable-out/<name>; use letters, digits, '-', '_', '.')")
     seed = data.get("seed", 1)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise SweepError(f"{where}: 'seed' must be a non-negative integer, got {seed!r}")

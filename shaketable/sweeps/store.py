@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -74,21 +75,72 @@ def write_text_atomic(path: Path, text: str) -> None:
     write_text(path, text)
 
 
-def read_results(out, *, fmt: str | None = None, parts_only: bool = False):
+def read_results(out, *, fmt: str | None = None, parts_only: bool = False,
+                 n_chunks: int | None = None):
     """The result table of a sweep folder: ``results.*`` or, if absent, the parts so far.
 
-    Rows are in run order. A partial sweep gives the finished chunks only.
+    Rows are in run order. A partial sweep gives the finished chunks only. Only the
+    parts of the sweep's own chunks are joined (``part-000000`` to the manifest's
+    ``n_chunks - 1``): any other file named like a part (a copy, a part of a larger
+    sweep) is left out, with a warning naming it.
+
+    Parameters
+    ----------
+    out : path
+        The sweep folder.
+    fmt : {"parquet", "csv"}, optional
+        Default: the manifest's.
+    parts_only : bool
+        Join the parts even when ``results.*`` exists.
+    n_chunks : int, optional
+        The sweep's number of chunks; default the manifest's.
     """
     import pandas as pd
 
     out = Path(out)
-    if fmt is None:
-        fmt = json.loads((out / "manifest.json").read_text())["format"]
-    final = out / f"results.{'parquet' if fmt == 'parquet' else 'csv'}"
+    if fmt is None or n_chunks is None:
+        manifest = read_manifest(out)
+        fmt = manifest["format"] if fmt is None else fmt
+        n_chunks = manifest["n_chunks"] if n_chunks is None else n_chunks
+    suffix = "parquet" if fmt == "parquet" else "csv"
+    final = out / f"results.{suffix}"
     if final.exists() and not parts_only:
         return _read(final, fmt)
-    parts = sorted((out / "parts").glob(f"part-*.{'parquet' if fmt == 'parquet' else 'csv'}"))
+    expected = {part_path(out, chunk, fmt).name for chunk in range(int(n_chunks))}
+    found = sorted((out / "parts").glob(f"part-*.{suffix}"))
+    if message := stray_parts_message(out, fmt, int(n_chunks)):
+        warnings.warn(message, SweepStoreWarning, stacklevel=2)
+    parts = [path for path in found if path.name in expected]
     if not parts:
         raise SweepError(f"{out}: no finished chunks yet")
     table = pd.concat([_read(path, fmt) for path in parts], ignore_index=True)
     return table.sort_values("run", kind="stable").reset_index(drop=True)
+
+
+def stray_parts_message(out: Path, fmt: str, n_chunks: int) -> str | None:
+    """What is left out of the table: files named like parts that are not the sweep's."""
+    suffix = "parquet" if fmt == "parquet" else "csv"
+    expected = {part_path(out, chunk, fmt).name for chunk in range(n_chunks)}
+    stray = [path.name for path in sorted((out / "parts").glob(f"part-*.{suffix}"))
+             if path.name not in expected]
+    if not stray:
+        return None
+    return (f"{out / 'parts'}: left out {len(stray)} file(s) that are not parts of this "
+            f"sweep's {n_chunks} chunk(s): {', '.join(stray[:5])}"
+            f"{' ...' if len(stray) > 5 else ''}")
+
+
+class SweepStoreWarning(UserWarning):
+    """Something in a sweep folder that is not the sweep's was left out."""
+
+
+def read_manifest(out) -> dict:
+    """The manifest of the sweep folder ``out``, or a SweepError naming it."""
+    path = Path(out) / "manifest.json"
+    try:
+        manifest = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as error:
+        raise SweepError(f"{path}: unreadable manifest ({error})") from None
+    if not isinstance(manifest, dict) or not {"format", "n_chunks"} <= manifest.keys():
+        raise SweepError(f"{path}: not a sweep manifest (no 'format' and 'n_chunks')")
+    return manifest

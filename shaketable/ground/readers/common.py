@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from shaketable.core.constants import acceleration_factor
+from shaketable.core.equality import fields_equal
 from shaketable.core.motion import frozen_metadata
 
 
@@ -58,6 +59,8 @@ class Record:
     -----
     The acceleration array is copied and made read-only.
     """
+
+    __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
 
     dt: float
     acceleration: np.ndarray
@@ -160,11 +163,16 @@ def missing_file_message(path: Path) -> str:
 
 def read_lines(path: Path) -> list[str]:
     """Lines of a text file, CRLF or LF, without line endings."""
+    return read_text_file(path).splitlines()
+
+
+def read_text_file(path: Path) -> str:
+    """The text of a file, CRLF and CR read as LF (undecodable bytes replaced)."""
     if not Path(path).is_file():
         raise RecordError(missing_file_message(path))
     try:
         with open(path, encoding="utf-8", errors="replace", newline=None) as stream:
-            return stream.read().splitlines()
+            return stream.read()
     except OSError as error:
         raise RecordError(f"{path}: cannot read the file: {error.strerror or error}") from None
 
@@ -225,7 +233,7 @@ def is_number(token: str) -> bool:
     return True
 
 
-def uniform_time_step(times: np.ndarray, line_numbers: list[int], path: Path) -> float:
+def uniform_time_step(times: np.ndarray, line_numbers: Sequence[int], path: Path) -> float:
     """Sample interval [s] of a time column; every step must be within 1 % of
     the median step."""
     if times.size < 2:

@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import os
 import re
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +23,7 @@ from shaketable.ground.readers.common import (
     option_integer,
     optional_positive,
     parse_number,
-    read_lines,
+    read_text_file,
     split_fields,
     uniform_time_step,
     units_argument,
@@ -50,9 +51,104 @@ def count_header_lines(lines: list[str], skiprows: int | None, delimiter: str | 
     return len(lines)
 
 
+#: Data lines from which :func:`text_rows` tries the compiled parser first.
+FAST_PATH_LINES = 10_000
+
+
+def _fast_rows(lines: list[str], first: int, delimiter: str | None) -> np.ndarray | None:
+    """The table below the header through pandas' compiled CSV parser, or None.
+
+    Only for a clean table: no comment or blank line inside, the same number of
+    fields on every line, every value a finite number in a notation ``float``
+    reads (so no Fortran ``D`` exponent). Anything else (and any failure) gives
+    None, and the line-by-line parser then names the line at fault. Numbers are
+    converted exactly as ``float()`` does (``float_precision="round_trip"``), so
+    both paths give the same bits.
+    """
+    return _fast_table("\n".join(lines[first:]), len(lines) - first, delimiter)
+
+
+def _fast_table(body: str, rows: int, delimiter: str | None) -> np.ndarray | None:
+    """:func:`_fast_rows` of the text ``body`` of ``rows`` lines (LF line ends)."""
+    import io
+    import warnings
+
+    import pandas as pd
+
+    if any(mark in body for mark in "#%dD"):   # comments, Fortran exponents: the exact parser
+        return None                            # (blank lines: NaN rows, refused below)
+    if delimiter is None:
+        if "," in body or ";" in body:
+            body = body.translate(str.maketrans(",;", "  "))
+        options: dict = {"sep": r"\s+"}
+    elif len(delimiter) == 1 and not delimiter.isspace():
+        options = {"sep": delimiter}
+    else:
+        return None
+    try:
+        with warnings.catch_warnings():   # pandas 3 deprecates the option, keeps its meaning
+            warnings.simplefilter("ignore")
+            frame = pd.read_csv(io.StringIO(body), header=None, dtype=float, engine="c",
+                                float_precision="round_trip", skip_blank_lines=False,
+                                **options)
+    except Exception:  # anything unusual: the exact parser says what
+        return None
+    table = frame.to_numpy(dtype=float)
+    if table.shape[0] != rows or not np.isfinite(table).all():
+        return None
+    return table
+
+
+#: Characters of a text record read to find its header (the body is parsed whole).
+_HEAD_CHARACTERS = 1 << 16
+
+
+def _fast_body(content: str, header: list[str], delimiter: str | None,
+               european: bool) -> np.ndarray | None:
+    """The table after ``header`` in ``content`` by the compiled parser, or None (too short
+    for it, a line break other than LF, or anything :func:`_fast_table` refuses)."""
+    start = sum(len(line) + 1 for line in header)
+    if header and content[:start] != "\n".join(header) + "\n":
+        return None   # other line breaks (\f, \x1c, ...) in the header: the exact parser
+    body = content[start:].rstrip()   # trailing blank lines are no rows
+    rows = body.count("\n") + 1
+    if rows < FAST_PATH_LINES:
+        return None
+    if european:
+        body = body.replace(",", ".")
+    return _fast_table(body, rows, delimiter)
+
+
+def _decimal_comma(lines: list[str], first: int, sample: int = 50) -> bool:
+    """Whether the data lines are a European CSV: ``0,005;0,1`` (``;`` between fields,
+    ``,`` the decimal mark, no ``.``), judged on the first ``sample`` data lines."""
+    seen = 0
+    for line in lines[first:]:
+        if _is_comment_or_blank(line):
+            continue
+        if ";" not in line or "." in line:
+            return False
+        fields = [field.strip().replace(",", ".") for field in line.split(";")]
+        if not all(is_number(field) for field in fields if field):
+            return False
+        seen += 1
+        if seen == sample:
+            break
+    return seen > 0 and any("," in line for line in lines[first:first + 4 * sample])
+
+
 def text_rows(lines: list[str], first: int, delimiter: str | None,
-              path: Path) -> tuple[np.ndarray, list[int]]:
-    """Parse the numeric table below the header; return ``(array, line_numbers)``."""
+              path: Path) -> tuple[np.ndarray, Sequence[int]]:
+    """Parse the numeric table below the header; return ``(array, line_numbers)``.
+
+    Long tables (:data:`FAST_PATH_LINES` lines or more) go through the compiled
+    parser when they are clean (:func:`_fast_rows`, about 40 times faster); the
+    line-by-line parser reads the rest and names the line of any fault.
+    """
+    if len(lines) - first >= FAST_PATH_LINES:
+        table = _fast_rows(lines, first, delimiter)
+        if table is not None:
+            return table, range(first + 1, len(lines) + 1)
     rows: list[list[float]] = []
     line_numbers: list[int] = []
     for index in range(first, len(lines)):
@@ -112,7 +208,8 @@ def _choose_columns(ncolumns: int, dt: float | None, time_column: str | int | No
         if len(others) != 1:
             raise ValueError(
                 f"{path} has {ncolumns} columns{f' {names}' if names else ''}; "
-                "choose the acceleration column with value_column=<index or name>"
+                "choose the acceleration column with value_column=<index or name> "
+                "(command line: --column)"
             )
         return time_index, others[0]
     value_index = _column_index(value_column, names, ncolumns, "value_column", path)
@@ -175,7 +272,8 @@ def read_text(path: str | os.PathLike[str], *, dt: float | None = None, units: s
     not start with a number are a header (or give ``skiprows``); a header such
     as ``time,acc (g)`` states the units. Lines starting with ``#`` or ``%`` are
     skipped. Fields are split on whitespace, commas or semicolons unless
-    ``delimiter`` is given.
+    ``delimiter`` is given; a European export (``0,005;0,1``: semicolons between
+    fields, a decimal comma and no decimal point) is recognised.
 
     Parameters
     ----------
@@ -224,10 +322,26 @@ def read_text(path: str | os.PathLike[str], *, dt: float | None = None, units: s
         raise ValueError(f"{path}: delimiter must be a non-empty string, got {delimiter!r}")
     if units is not None:
         units = units_argument(units, path)
-    lines = read_lines(path)
+    content = read_text_file(path)
+    # the header from the first lines only: a long record's body goes to the compiled
+    # parser as one string, never split into millions of Python lines (issue 27)
+    lines = content[:_HEAD_CHARACTERS].splitlines()
     header_length = count_header_lines(lines, skiprows, delimiter)
+    if header_length >= len(lines) - 1:   # the head holds no complete data line: all of it
+        lines = content.splitlines()
+        header_length = count_header_lines(lines, skiprows, delimiter)
+    european = delimiter in (None, ";") and _decimal_comma(lines, header_length)
+    if european:  # the common European export: ';' between fields, ',' the decimal mark
+        delimiter = ";"
     header = lines[:header_length]
-    table, line_numbers = text_rows(lines, header_length, delimiter, path)
+    table = _fast_body(content, header, delimiter, european)
+    if table is not None:
+        line_numbers: Sequence[int] = range(header_length + 1, header_length + 1 + len(table))
+    else:
+        lines = content.splitlines()
+        if european:
+            lines = header + [line.replace(",", ".") for line in lines[header_length:]]
+        table, line_numbers = text_rows(lines, header_length, delimiter, path)
     ncolumns = table.shape[1]
     names = header_column_names(header, ncolumns, delimiter)
     time_index, value_index = _choose_columns(ncolumns, dt, time_column, value_column, names, path)
