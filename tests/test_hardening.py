@@ -82,7 +82,7 @@ work = Path(sys.argv[2])
 os.chdir(work)
 (work / "w.toml").write_text(sys.argv[3], encoding="utf-8")
 assert main(["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.5alpha",
-             "--duration", "1", "--out", "sim", "-q"]) == 0
+             "--duration", "1s", "--out", "sim", "-q"]) == 0
 assert main(["sweep", "w.toml", "--out", "swept", "-q", "--no-progress"]) == 0
 for path in sorted(work.rglob("*")):
     if path.is_file() and path.name != "w.toml":
@@ -356,7 +356,7 @@ def test_a_clean_record_that_starts_at_the_release_calibrates(tmp_path):
 
 # ----------------------------------------------------------------- messages that name things
 FREE = ["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.5alpha", "--duration",
-        "1"]
+        "1s"]
 
 
 def test_a_full_disk_names_the_file(tmp_path, monkeypatch):
@@ -528,7 +528,7 @@ def test_history_choices_of_simulate(tmp_path):
 
     import shaketable as st
 
-    base = FREE[:-1] + ["4"]
+    base = FREE[:-1] + ["4s"]
     runs = {}
     for choice in ("auto", "full", "peaks", "none"):
         status, out, err = run_cli(base + ["--history", choice, "--out", choice], tmp_path)
