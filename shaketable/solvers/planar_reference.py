@@ -1,0 +1,924 @@
+"""Independent SciPy reference of the planar rigid block: rest, slide, rock, slide-rock, flight.
+
+The model is the one of ``PLANAR_SPEC.md`` (issue 25); this module is a second,
+independent implementation of it, used to validate the compiled engine. It
+shares with the rest of the package only the closed-form cascade sum
+(:func:`shaketable.core.dynamics.cascade_rest_time`) and the mode codes of
+:mod:`shaketable.core.shenton`.
+
+Formulation
+-----------
+Newton-Euler in the table frame, per unit mass, in the full coordinates
+q = (x, y, theta) of the centre and the rotation, in every mode:
+
+    M q'' = f + W(theta) lambda,   M = diag(1, 1, Ic),  f = (-ug, -(g + vg), 0),
+
+with W the generalised direction of each contact force (a force (Fx, Fy) at
+the corner r = (r_x, r_y) from the centre acts as (Fx, Fy, r_x Fy - r_y Fx)).
+In each mode the unknown accelerations and contact forces are found together
+from a small linear system (``numpy.linalg.solve``), the constraints written
+on accelerations (a corner fixed: X'' = x'' - r_y theta'' - r_x theta'^2 = 0,
+Y'' = y'' + r_x theta'' - r_y theta'^2 = 0):
+
+* ROCK: unknowns (x'', y'', theta'', F, N), both corner constraints (5 x 5);
+* SLIDE_ROCK: unknowns (x'', y'', theta'', N), F = -sigma mu_d N, Y'' = 0 (4 x 4);
+  Painleve's case (a normal "effective mass" <= 0) stops the run;
+* SLIDE: y'' = theta'' = 0, N = g + vg, F = -sigma mu_d N;
+* FLIGHT: q'' = f; REST: nothing moves (the rest conditions are linear in time
+  between samples and their first violation is a root of a linear function).
+
+The six-component state (x, y, theta, x', y', theta') plus two quadratures
+(friction work and the work of the table's inertial forces) is integrated by
+SciPy's DOP853 at ``rtol`` (default 1e-12), one ``solve_ivp`` call per input
+interval (accelerations linear between samples, Section 2.8 of the report)
+and per mode, every transition and impact of the spec located by SciPy's event
+location and the integration restarted there. The constraints hold on
+accelerations only; at every restart the positions and velocities are
+projected back onto them (theta and theta' are not changed by the projection:
+in ROCK and SLIDE_ROCK theta'' depends on theta, theta' and the input only).
+A turning point of theta on the wrong side of theta = 0 means an impact was
+passed inside a step; it is found on the dense output (Brent's method), as
+:mod:`shaketable.solvers.reference` does for the rocking model.
+
+Choices where the spec is silent (documented here, reported to the lead)
+-------------------------------------------------------------------------
+* A slipping corner reaching zero slip velocity whose ROCK forces need more
+  than mu_s N slips on toward -sign(F_rock) (the ROCK -> SLIDE_ROCK rule);
+  this is the spec's "slip reverses" when F_rock opposes the old slip, and
+  keeps the slip direction in the marginal case mu_d = mu_s just after a slip
+  started (a sign the spec does not fix).
+* The energy cap of an impact keeps the branch (stick or slip) chosen with
+  the given rho.
+* The cascade sum (``cascade_rest_time``) is applied after a sticking impact at
+  theta = 0 that leaves the block in ROCK, with the numeric cor (c_H for
+  ``"housner"``), as the rocking engine does; the energy the cascade absorbs
+  (the kinetic energy at its first impact) is counted as impact loss.
+* x is the centre's displacement from its initial position (x(0) = 0 also when
+  theta0 != 0); ``x_dot0`` is the initial slip velocity of the base (flat) or
+  of the pivot corner (theta0 != 0 or theta_dot0 != 0).
+
+References
+----------
+.. [1] M. Aslam, W. G. Godden and D. T. Scalise, "Rocking and overturning
+   response of rigid bodies to earthquake motions", Lawrence Berkeley
+   Laboratory, University of California, Berkeley.
+.. [2] H. W. Shenton III, "Criteria for initiation of slide, rock, and
+   slide-rock rigid-body modes", J. Eng. Mech. 122(7), 1996.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+from shaketable.core.constants import G
+from shaketable.core.dynamics import cascade_rest_time
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
+from shaketable.core.shenton import FLIGHT, MODE_NAMES, REST, ROCK, SLIDE, SLIDE_ROCK
+from shaketable.core.sliding_result import Friction
+
+#: Consecutive segments that may end where they began before the solver gives up.
+MAX_STALLED_SEGMENTS = 100
+
+#: Segments (solve_ivp calls) allowed inside one input interval.
+MAX_SEGMENTS_PER_INTERVAL = 100_000
+
+STATUSES = ("completed", "overturned", "painleve", "inconsistent")
+
+
+class PlanarReferenceError(RuntimeError):
+    """SciPy's integrator gave up, or the event loop stopped advancing in time."""
+
+
+@dataclass(frozen=True)
+class PlanarReferenceResult:
+    """Time history, events and scalar results of one reference run.
+
+    Attributes
+    ----------
+    block : Block
+    motion : Motion
+        Table accelerations [m/s^2].
+    cor : float or str
+        Coefficient of restitution [-] or ``"housner"``.
+    friction : Friction
+    t : ndarray
+        Output times [s] (the motion's samples, up to the end of the run).
+    x, y, theta : ndarray
+        Centre's horizontal displacement from its start [m], centre's height
+        above the table [m], rotation [rad] at ``t``.
+    x_dot, y_dot, theta_dot : ndarray
+        Their rates [m/s], [m/s], [rad/s].
+    mode : ndarray of int
+        Mode at ``t`` (codes of :mod:`shaketable.core.shenton`).
+    event_times : ndarray
+        Times of the located events [s].
+    event_kinds : tuple of str
+        "start", "stick", "slip", "reverse", "lift-off", "landing", "impact",
+        "flat landing", "cascade", "unstable", "overturn", "painleve".
+    event_mode_before, event_mode_after : ndarray of int
+        Mode codes on both sides of each event.
+    impact_times, impact_velocities : ndarray
+        Time [s] and pre-impact theta' [rad/s] of each corner impact.
+    peak_slip, t_peak_slip, residual_slip : float
+        Largest |slip| of the base midpoint (x + h sin(theta)) [m], its time [s],
+        and the slip at the end [m].
+    max_abs_theta, t_max : float
+        Largest |theta| [rad] and its time [s].
+    t_unstable, t_overturn : float
+        First |theta| = alpha [s]; overturn (|theta| = pi/2) [s]; NaN if never.
+    friction_work, input_work, impact_loss : float
+        Work of friction on the block (<= 0), work of the table's inertial
+        forces -m ug, -m vg on the block, and kinetic energy lost in impacts
+        (>= 0), per unit mass [J/kg].
+    energy_start, energy_end : float
+        Kinetic + potential energy per mass, 0.5 (x'^2 + y'^2 + Ic theta'^2)
+        + g (y - h) [J/kg]; energy_end - energy_start = friction_work +
+        input_work - impact_loss.
+    capped_impacts : int
+        Impacts whose rho was lowered so as not to add energy.
+    time_in_mode : dict
+        Seconds spent in each mode, by name.
+    status : str
+        One of :data:`STATUSES`.
+    message : str
+        Why a run stopped early (empty otherwise).
+    """
+
+    block: Block
+    motion: Motion
+    cor: float | str
+    friction: Friction
+    t: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    theta: np.ndarray
+    x_dot: np.ndarray
+    y_dot: np.ndarray
+    theta_dot: np.ndarray
+    mode: np.ndarray
+    event_times: np.ndarray
+    event_kinds: tuple
+    event_mode_before: np.ndarray
+    event_mode_after: np.ndarray
+    impact_times: np.ndarray
+    impact_velocities: np.ndarray
+    peak_slip: float
+    t_peak_slip: float
+    residual_slip: float
+    max_abs_theta: float
+    t_max: float
+    t_unstable: float
+    t_overturn: float
+    friction_work: float
+    input_work: float
+    impact_loss: float
+    energy_start: float
+    energy_end: float
+    capped_impacts: int
+    status: str
+    message: str = ""
+    time_in_mode: dict = field(default_factory=dict)
+
+    @property
+    def overturned(self) -> bool:
+        """Whether the block overturned (|theta| reached pi/2)."""
+        return self.status == "overturned"
+
+    @property
+    def max_theta_over_alpha(self) -> float:
+        """max |theta| / alpha [-]."""
+        return self.max_abs_theta / self.block.alpha
+
+    @property
+    def slip(self) -> np.ndarray:
+        """Slip of the base midpoint relative to the table, x + h sin(theta) [m]."""
+        return self.x + self.block.h * np.sin(self.theta)
+
+    def events_of(self, kind: str) -> np.ndarray:
+        """Times [s] of the events of one kind."""
+        return np.array([t for t, k in zip(self.event_times, self.event_kinds) if k == kind])
+
+    def to_frame(self):
+        """Time history as a :class:`pandas.DataFrame`, units in the column names."""
+        import pandas as pd
+
+        return pd.DataFrame({
+            "time [s]": self.t, "x [m]": self.x, "y [m]": self.y, "theta [rad]": self.theta,
+            "x' [m/s]": self.x_dot, "y' [m/s]": self.y_dot, "theta' [rad/s]": self.theta_dot,
+            "slip [m]": self.slip, "mode": [MODE_NAMES[int(m)] for m in self.mode]})
+
+    def summary(self) -> dict:
+        """Scalar results as a JSON-ready dict."""
+        from shaketable.core.files import json_ready_dict
+
+        data = {"model": "planar reference (SciPy DOP853)", "status": self.status,
+                "cor": self.cor, "static friction mu_s [-]": self.friction.static,
+                "dynamic friction mu_d [-]": self.friction.dynamic,
+                "peak slip [m]": self.peak_slip, "residual slip [m]": self.residual_slip,
+                "max |theta|/alpha [-]": self.max_theta_over_alpha,
+                "t_overturn [s]": self.t_overturn, "impacts": len(self.impact_times),
+                "friction work [J/kg]": self.friction_work,
+                "impact loss [J/kg]": self.impact_loss,
+                "capped impacts": self.capped_impacts}
+        data.update({f"time {name} [s]": value for name, value in self.time_in_mode.items()})
+        return json_ready_dict(data)
+
+
+# --------------------------------------------------------------------- physics
+
+class _Geometry:
+    """b, h [m], Ic, I0 [m^2] per mass, alpha [rad], Housner's c_H [-]."""
+
+    def __init__(self, block: Block):
+        self.b, self.h = block.b, block.h
+        self.Ic = (self.b ** 2 + self.h ** 2) / 3.0
+        self.I0 = 4.0 * self.Ic
+        self.alpha = block.alpha
+        self.c_housner = 1.0 - 1.5 * math.sin(self.alpha) ** 2
+
+    def arm(self, side, theta):
+        """(r_x, r_y): centre to the bottom corner ``side`` [m]."""
+        c, s = math.cos(theta), math.sin(theta)
+        return -side * self.b * c + self.h * s, -side * self.b * s - self.h * c
+
+
+def rock_solution(geometry, side, theta, omega, ug, vg):
+    """ROCK about corner ``side``: (x'', y'', theta'', F, N) from the 5 x 5 Newton-Euler system."""
+    r_x, r_y = geometry.arm(side, theta)
+    matrix = np.array([[1.0, 0.0, 0.0, -1.0, 0.0],
+                       [0.0, 1.0, 0.0, 0.0, -1.0],
+                       [0.0, 0.0, geometry.Ic, r_y, -r_x],
+                       [1.0, 0.0, -r_y, 0.0, 0.0],
+                       [0.0, 1.0, r_x, 0.0, 0.0]])
+    rhs = np.array([-ug, -(G + vg), 0.0, r_x * omega * omega, r_y * omega * omega])
+    return np.linalg.solve(matrix, rhs)
+
+
+def slide_rock_effective_mass(geometry, side, sigma, theta, mu_d):
+    """Normal 'effective mass' 1 + r_x (r_x + sigma mu_d r_y) / Ic [-]; <= 0: Painleve."""
+    r_x, r_y = geometry.arm(side, theta)
+    return 1.0 + r_x * (r_x + sigma * mu_d * r_y) / geometry.Ic
+
+
+def slide_rock_solution(geometry, side, sigma, theta, omega, ug, vg, mu_d):
+    """SLIDE_ROCK about ``side`` slipping ``sigma``: (x'', y'', theta'', F, N), 4 x 4 system."""
+    r_x, r_y = geometry.arm(side, theta)
+    matrix = np.array([[1.0, 0.0, 0.0, sigma * mu_d],
+                       [0.0, 1.0, 0.0, -1.0],
+                       [0.0, 0.0, geometry.Ic, -(r_x + sigma * mu_d * r_y)],
+                       [0.0, 1.0, r_x, 0.0]])
+    rhs = np.array([-ug, -(G + vg), 0.0, r_y * omega * omega])
+    xdd, ydd, thdd, normal = np.linalg.solve(matrix, rhs)
+    return np.array([xdd, ydd, thdd, -sigma * mu_d * normal, normal])
+
+
+def mode_solution(geometry, mode, side, sigma, theta, omega, ug, vg, mu_d):
+    """(x'', y'', theta'', F, N) of any mode [m/s^2, rad/s^2, m/s^2]."""
+    if mode == ROCK:
+        return rock_solution(geometry, side, theta, omega, ug, vg)
+    if mode == SLIDE_ROCK:
+        return slide_rock_solution(geometry, side, sigma, theta, omega, ug, vg, mu_d)
+    if mode == SLIDE:
+        normal = G + vg
+        return np.array([-ug - sigma * mu_d * normal, 0.0, 0.0, -sigma * mu_d * normal, normal])
+    if mode == FLIGHT:
+        return np.array([-ug, -(G + vg), 0.0, 0.0, 0.0])
+    return np.array([0.0, 0.0, 0.0, ug, G + vg])
+
+
+def kinetic_energy(geometry, state) -> float:
+    """0.5 (x'^2 + y'^2 + Ic theta'^2) per mass [J/kg]."""
+    return 0.5 * (state[3] ** 2 + state[4] ** 2 + geometry.Ic * state[5] ** 2)
+
+
+def impact_map(geometry, state, corner, rho, mu_s, mu_d):
+    """Post-impact velocities of a corner impact (spec, "Impacts").
+
+    Solves, for (x'+, y'+, theta'+, P_x, P_y), the 5 x 5 linear system of the
+    impulse-momentum balance with the couple C = (rho - 1) H_k, the plastic
+    normal condition Y_k'+ = 0, and either X_k'+ = 0 (sticking, tried first,
+    accepted if P_y > 0 and |P_x| <= mu_s P_y) or P_x = -sigma mu_d P_y
+    (slipping, sigma = -sign of the sticking P_x).
+
+    Returns
+    -------
+    (velocities, impulse, sigma, capped)
+        ``velocities`` (x'+, y'+, theta'+); ``sigma`` 0 for a sticking impact;
+        ``capped`` whether rho was lowered so that kinetic energy does not grow.
+    """
+    x, y, theta, x_dot, y_dot, omega = state[:6]
+    r_x, r_y = geometry.arm(corner, theta)
+    angular_momentum = geometry.Ic * omega - r_x * y_dot + r_y * x_dot
+
+    def solve(rho_value, sigma):
+        couple = (rho_value - 1.0) * angular_momentum
+        matrix = np.array([[1.0, 0.0, 0.0, -1.0, 0.0],
+                           [0.0, 1.0, 0.0, 0.0, -1.0],
+                           [0.0, 0.0, geometry.Ic, r_y, -r_x],
+                           [1.0, 0.0, -r_y, 0.0, 0.0] if sigma == 0 else
+                           [0.0, 0.0, 0.0, 1.0, sigma * mu_d],
+                           [0.0, 1.0, r_x, 0.0, 0.0]])
+        rhs = np.array([x_dot, y_dot, geometry.Ic * omega + couple, 0.0, 0.0])
+        return np.linalg.solve(matrix, rhs)
+
+    post = solve(rho, 0)
+    sigma = 0
+    if not (post[4] > 0.0 and abs(post[3]) <= mu_s * post[4]):
+        sigma = -1 if post[3] > 0.0 else 1
+        post = solve(rho, sigma)
+    before = kinetic_energy(geometry, state)
+    capped = False
+    if rho > 1.0 and kinetic_energy(geometry, np.r_[0, 0, 0, post[:3]]) > before:
+        # the post state is affine in rho: find the largest rho_eff in [1, rho]
+        one = solve(1.0, sigma)
+        weight = np.array([1.0, 1.0, math.sqrt(geometry.Ic)])
+        base, step = one[:3] * weight, (post[:3] - one[:3]) * weight
+        qa, qb, qc = step @ step, 2.0 * base @ step, base @ base - 2.0 * before
+        if qa > 0.0:
+            root = (-qb + math.sqrt(max(qb * qb - 4 * qa * qc, 0.0))) / (2 * qa)
+            fraction = min(max(root, 0.0), 1.0)
+        else:
+            fraction = 0.0
+        post = solve(1.0 + fraction * (rho - 1.0), sigma)
+        capped = True
+    return post[:3], post[3:], sigma, capped
+
+
+# ----------------------------------------------------------------- the solver
+
+def _check(block, motion, cor, friction, rtol, duration, output_dt):
+    if not isinstance(block, Block):
+        raise ValueError(f"block must be a shaketable Block, got {type(block).__name__}")
+    if block.rods is not None:
+        raise ValueError("rods: the planar (sliding) model refuses a block with prestress rods "
+                         "(a rod hinged to the ground ties the block to the table)")
+    if motion is None:
+        if duration is None:
+            raise ValueError("duration [s] is required for free motion (motion=None)")
+        motion = Motion.at_rest(duration, dt=output_dt)
+    elif not isinstance(motion, Motion):
+        raise ValueError(f"motion must be a shaketable Motion or None, got "
+                         f"{type(motion).__name__}")
+    if motion.pitched:
+        raise ValueError("motion: the planar model takes horizontal and vertical table "
+                         "acceleration only (no table rotation)")
+    if isinstance(cor, str):
+        if cor != "housner":
+            raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
+    elif isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0 <= cor <= 1:
+        raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
+    if not isinstance(friction, Friction):
+        raise ValueError(f"friction must be a Friction, got {type(friction).__name__}")
+    if not (isinstance(rtol, float) and 1e-14 <= rtol <= 1e-3):
+        raise ValueError(f"rtol must be a float in [1e-14, 1e-3], got {rtol!r}")
+    return motion
+
+
+def simulate_reference(block: Block, motion: Motion | None = None, *, cor, friction: Friction,
+                       theta0: float = 0.0, theta_dot0: float = 0.0, x_dot0: float = 0.0,
+                       duration: float | None = None, rtol: float = 1e-12,
+                       output_dt: float = 0.005,
+                       rest_tolerance: float | None = None) -> PlanarReferenceResult:
+    """Planar block (rest, slide, rock, slide-rock, flight) by SciPy DOP853 with events.
+
+    Parameters
+    ----------
+    block : Block
+        The block (no prestress rods).
+    motion : Motion, optional
+        Horizontal (+x) and vertical (up) table accelerations [m/s^2], linear
+        between samples. ``None``: a table at rest for ``duration``.
+    cor : float or "housner"
+        Coefficient of restitution [-] (Section 2.7 (5)), rho = cor / c_H; or
+        Housner's law (rho = 1).
+    friction : Friction
+        mu_s and mu_d [-].
+    theta0, theta_dot0 : float
+        Initial rotation [rad] and rate [rad/s].
+    x_dot0 : float
+        Initial slip velocity [m/s] of the base (flat start) or pivot corner.
+    duration : float, optional
+        Length of a free run [s] (``motion=None``).
+    rtol : float
+        DOP853 relative tolerance [-]; absolute tolerances are rtol/100 times
+        alpha (theta), alpha R (x, y) and their rates times p.
+    output_dt : float
+        Output interval of a free run [s].
+    rest_tolerance : float, optional
+        A cascade of impacts lasting less than this is summed [s]; default
+        1e-6 / p (the rocking engine's).
+
+    Returns
+    -------
+    PlanarReferenceResult
+
+    Raises
+    ------
+    ValueError
+        Bad input (naming the parameter), a block with rods.
+    PlanarReferenceError
+        SciPy failed or the event loop stalled.
+    """
+    motion = _check(block, motion, cor, friction, rtol, duration, output_dt)
+    return _Run(block, motion, cor, friction, rtol, rest_tolerance).run(
+        float(theta0), float(theta_dot0), float(x_dot0))
+
+
+class _Stop(Exception):
+    def __init__(self, status, message):
+        super().__init__(message)
+        self.status, self.message = status, message
+
+
+class _Run:
+    """The event loop of one run (mutable state; see the module docstring)."""
+
+    def __init__(self, block, motion, cor, friction, rtol, rest_tolerance):
+        self.block, self.motion, self.cor, self.friction = block, motion, cor, friction
+        self.geometry = geometry = _Geometry(block)
+        self.mu_s, self.mu_d = friction.static, friction.dynamic
+        self.rho = 1.0 if cor == "housner" else cor / geometry.c_housner
+        self.cascade_cor = geometry.c_housner if cor == "housner" else float(cor)
+        self.rtol = rtol
+        p, alpha, size = block.p, block.alpha, block.R
+        self.atol = 1e-2 * rtol * np.array([alpha * size, alpha * size, alpha,
+                                            alpha * size * p, alpha * size * p, alpha * p,
+                                            G * size * alpha, G * size * alpha])
+        self.velocity_floor = 1e3 * self.atol[5]
+        self.rest_tolerance = 1e-6 / p if rest_tolerance is None else rest_tolerance
+        self.events: list = []
+        self.impacts: list = []
+        self.capped = 0
+        self.impact_loss = 0.0
+        self.max_abs_theta, self.t_max = 0.0, float(motion.t[0])
+        self.peak_slip, self.t_peak_slip = 0.0, float(motion.t[0])
+        self.t_unstable = math.nan
+        self.time_in_mode = dict.fromkeys(MODE_NAMES, 0.0)
+
+    # ------------------------------------------------------------ bookkeeping
+    def record(self, t, kind, before, after):
+        self.events.append((t, kind, before, after))
+
+    def note(self, t, state):
+        """Track max |theta| and |slip| at a point of the trajectory."""
+        theta = state[2]
+        if abs(theta) > self.max_abs_theta:
+            self.max_abs_theta, self.t_max = abs(theta), t
+        slip = state[0] + self.geometry.h * math.sin(theta)
+        if abs(slip) > self.peak_slip:
+            self.peak_slip, self.t_peak_slip = abs(slip), t
+
+    def ground(self, time):
+        u0, u1, v0, v1, t0, t1 = self.interval
+        fraction = (time - t0) / (t1 - t0)
+        return u0 + (u1 - u0) * fraction, v0 + (v1 - v0) * fraction
+
+    def solution(self, time, state, mode=None):
+        ug, vg = self.ground(time)
+        return mode_solution(self.geometry, self.mode if mode is None else mode, self.side,
+                             self.sigma, state[2], state[5], ug, vg, self.mu_d)
+
+    def project(self):
+        """Put positions and velocities back on the active constraints."""
+        state, geometry = self.state, self.geometry
+        if self.mode in (ROCK, SLIDE_ROCK):
+            r_x, r_y = geometry.arm(self.side, state[2])
+            state[1], state[4] = -r_y, -r_x * state[5]
+            if self.mode == ROCK:
+                state[0], state[3] = self.pivot - r_x, r_y * state[5]
+        elif self.mode in (REST, SLIDE):
+            state[1], state[2], state[4], state[5] = geometry.h, 0.0, 0.0, 0.0
+            if self.mode == REST:
+                state[3] = 0.0
+
+    def corner_slip_velocity(self, state):
+        r_x, r_y = self.geometry.arm(self.side, state[2])
+        return state[3] - r_y * state[5]
+
+    def energy(self):
+        return kinetic_energy(self.geometry, self.state) + G * (self.state[1] - self.geometry.h)
+
+    # ----------------------------------------------------------- mode choice
+    def set_mode(self, t, mode, side=None, sigma=None, kind=None):
+        before = self.mode
+        self.mode = mode
+        if side is not None:
+            self.side = side
+        if sigma is not None:
+            self.sigma = sigma
+        if mode == ROCK:
+            r_x, _ = self.geometry.arm(self.side, self.state[2])
+            self.pivot = self.state[0] + r_x
+        self.project()
+        if kind is not None:
+            self.record(t, kind, before, mode)
+
+    def enter_contact(self, t, mode, side, sigma, kind, before):
+        """Enter ROCK or SLIDE_ROCK (from mode ``before``), redirected to SLIDE_ROCK or
+        FLIGHT when its contact forces are inconsistent; record the event."""
+        for _ in range(4):
+            self.set_mode(t, mode, side, sigma)
+            if mode == SLIDE_ROCK and slide_rock_effective_mass(
+                    self.geometry, side, sigma, self.state[2], self.mu_d) <= 0.0:
+                raise _Stop("painleve", f"Painleve's paradox at t = {t!r} s: slide-rock about "
+                            f"corner {side:+d} with mu_d = {self.mu_d} has no consistent "
+                            "normal force")
+            _, _, _, force, normal = self.solution(t, self.state)
+            if normal <= 0.0:
+                mode = FLIGHT
+                break
+            if mode == ROCK and abs(force) > self.mu_s * normal:
+                mode, sigma = SLIDE_ROCK, (-1 if force > 0 else 1)
+                continue
+            break
+        self.set_mode(t, mode, side, sigma)
+        self.record(t, kind, before, mode)
+
+    def start_rules(self, t):
+        """Spec "Leaving REST": the mode of a flat block with x' = 0 at time t."""
+        ug, vg = self.ground(t)
+        normal = G + vg
+        geometry = self.geometry
+        if normal <= 0.0:
+            return FLIGHT, self.side, self.sigma
+        if abs(ug) * geometry.h > geometry.b * normal:
+            side = 1 if ug > 0 else -1
+            sigma = -side
+            _, _, _, force, rock_normal = rock_solution(geometry, side, 0.0, 0.0, ug, vg)
+            if rock_normal > 0.0 and abs(force) <= self.mu_s * rock_normal:
+                return ROCK, side, sigma
+            if slide_rock_effective_mass(geometry, side, sigma, 0.0, self.mu_d) > 0.0:
+                xdd, _, thdd, _, sr_normal = slide_rock_solution(geometry, side, sigma, 0.0,
+                                                                 0.0, ug, vg, self.mu_d)
+                r_x, r_y = geometry.arm(side, 0.0)
+                if sr_normal > 0.0 and side * thdd > 0.0 and sigma * (xdd - r_y * thdd) > 0.0:
+                    return SLIDE_ROCK, side, sigma
+        if abs(ug) > self.mu_s * normal and self.mu_d <= geometry.b / geometry.h:
+            return SLIDE, self.side, (-1 if ug > 0 else 1)
+        raise _Stop("inconsistent", f"no consistent mode for the flat block at t = {t!r} s "
+                    f"(ug = {ug!r}, vg = {vg!r} m/s^2)")
+
+    def rest_holds(self, t):
+        ug, vg = self.ground(t)
+        normal = G + vg
+        return (normal > 0.0 and abs(ug) <= self.mu_s * normal
+                and abs(ug) * self.geometry.h <= self.geometry.b * normal)
+
+    def leave_flat(self, t, kind):
+        """A flat block at rest at t whose rest conditions fail: apply the start rules."""
+        mode, side, sigma = self.start_rules(t)
+        self.state[3] = 0.0
+        if mode in (ROCK, SLIDE_ROCK):
+            before = self.mode
+            self.set_mode(t, REST)
+            self.enter_contact(t, mode, side, sigma, kind, before)
+        else:
+            self.set_mode(t, mode, side, sigma, kind)
+
+    # -------------------------------------------------------------- REST
+    def rest_until_failure(self, t, t_end):
+        """First time in [t, t_end] at which the rest conditions fail, else None."""
+        u0, u1, v0, v1, t0, t1 = self.interval
+        geometry, mu_s = self.geometry, self.mu_s
+        # each condition g(time) > 0 means "rest fails"; g is linear in time
+        conditions = [lambda u, v: -(G + v),
+                      lambda u, v: u - mu_s * (G + v), lambda u, v: -u - mu_s * (G + v),
+                      lambda u, v: u * geometry.h - geometry.b * (G + v),
+                      lambda u, v: -u * geometry.h - geometry.b * (G + v)]
+        best = None
+        for index, condition in enumerate(conditions):
+            def value(time, condition=condition):
+                return condition(*self.ground(time))
+            start, end = value(t), value(t_end)
+            failing = (lambda g: g >= 0.0) if index == 0 else (lambda g: g > 0.0)
+            if failing(start):
+                candidate = t
+            elif failing(end):
+                candidate = t + (t_end - t) * (-start) / (end - start)
+                low, high = max(t, min(candidate, t_end)), t_end
+                if not failing(value(low)):
+                    for _ in range(200):  # the first float at which it fails
+                        middle = 0.5 * (low + high)
+                        if middle <= low or middle >= high:
+                            break
+                        if failing(value(middle)):
+                            high = middle
+                        else:
+                            low = middle
+                    candidate = high
+                else:
+                    candidate = low
+            else:
+                continue
+            if best is None or candidate < best:
+                best = candidate
+        return best
+
+    # ------------------------------------------------------------- a segment
+    def event_functions(self):
+        """(functions, names) of the events of the current mode."""
+        mode, side, geometry = self.mode, self.side, self.geometry
+        functions, names = [], []
+
+        def add(function, name, terminal, direction):
+            function.terminal, function.direction = terminal, direction
+            functions.append(function)
+            names.append(name)
+
+        if mode in (ROCK, SLIDE_ROCK):
+            add(lambda t, z: side * z[2], "impact", True, -1)
+            add(lambda t, z: self.solution(t, z)[4], "lift-off", True, -1)
+            if mode == ROCK:
+                add(lambda t, z: self.mu_s * self.solution(t, z)[4]
+                    - abs(self.solution(t, z)[3]), "slip", True, -1)
+            else:
+                add(lambda t, z: self.sigma * self.corner_slip_velocity(z), "stick", True, -1)
+            add(lambda t, z: 0.5 * math.pi - side * z[2], "overturn", True, -1)
+            add(lambda t, z: z[5], "peak", False, 0)
+        if mode in (ROCK, SLIDE_ROCK, FLIGHT):
+            add(lambda t, z: geometry.alpha - abs(z[2]), "unstable", False, -1)
+        elif mode == SLIDE:
+            add(lambda t, z: self.sigma * z[3], "stick", True, -1)
+            add(lambda t, z: G + self.ground(t)[1], "lift-off", True, -1)
+        elif mode == FLIGHT:
+            for corner in (1, -1):
+                add(lambda t, z, c=corner: z[1] + geometry.arm(c, z[2])[1], f"landing{corner:+d}",
+                    True, -1)
+            add(lambda t, z: 0.5 * math.pi - abs(z[2]), "overturn", True, -1)
+        add(lambda t, z: z[3] + geometry.h * math.cos(z[2]) * z[5], "slip turn", False, 0)
+        return functions, names
+
+    def rhs(self, t, z):
+        ug, vg = self.ground(t)
+        xdd, ydd, thdd, force, _ = mode_solution(self.geometry, self.mode, self.side,
+                                                 self.sigma, z[2], z[5], ug, vg, self.mu_d)
+        if self.mode == SLIDE:
+            friction_power = force * z[3]
+        elif self.mode == SLIDE_ROCK:
+            friction_power = force * self.corner_slip_velocity(z)
+        else:
+            friction_power = 0.0
+        return [z[3], z[4], z[5], xdd, ydd, thdd, friction_power, -ug * z[3] - vg * z[4]]
+
+    def passed_impact(self, solution, names, t_segment):
+        """An impact a step passed without seeing it (a turning point with side*theta < 0)."""
+        side = self.side
+        peaks = solution.t_events[names.index("peak")]
+        states = solution.y_events[names.index("peak")]
+        t_last = float(solution.t[-1])
+        for time, z in zip(peaks, states):
+            if time >= t_last and solution.status == 1:
+                break
+            if side * z[2] >= 0.0:
+                continue
+            steps = solution.t[solution.t < time]
+            low = float(steps[-1]) if steps.size else t_segment
+            theta_of = lambda s: side * float(solution.sol(s)[2])  # noqa: E731
+            if theta_of(low) <= 0.0:
+                low = float(np.nextafter(low, time))
+                if theta_of(low) <= 0.0:
+                    return low
+            return brentq(theta_of, low, float(time), xtol=1e-15,
+                          rtol=4 * np.finfo(float).eps, maxiter=200)
+        return None
+
+    def integrate_segment(self, t, t_end):
+        """Integrate the current mode from t to t_end or its first terminal event.
+
+        Returns (time reached, name of the terminal event or None).
+        """
+        functions, names = self.event_functions()
+        z0 = np.r_[self.state, self.work]
+        solution = solve_ivp(self.rhs, (t, t_end), z0, method="DOP853", rtol=self.rtol,
+                             atol=self.atol, events=functions, dense_output=True)
+        if solution.status == -1:
+            raise PlanarReferenceError(f"planar reference (DOP853, rtol {self.rtol:g}) failed at "
+                                       f"t = {solution.t[-1]!r} s: {solution.message}")
+        end, terminal = float(solution.t[-1]), None
+        if solution.status == 1:
+            for index, name in enumerate(names):
+                if functions[index].terminal and len(solution.t_events[index]) \
+                        and solution.t_events[index][-1] == end:
+                    terminal = name
+                    break
+        if "peak" in names:
+            passed = self.passed_impact(solution, names, t)
+            if passed is not None and passed <= end:
+                end, terminal = passed, "impact"
+        for index, name in enumerate(names):
+            if name == "unstable" and len(solution.t_events[index]) \
+                    and solution.t_events[index][0] <= end and math.isnan(self.t_unstable):
+                self.t_unstable = float(solution.t_events[index][0])
+            if name in ("peak", "slip turn"):
+                for time, z in zip(solution.t_events[index], solution.y_events[index]):
+                    if time <= end:
+                        self.note(float(time), z)
+        final = solution.sol(end) if end != float(solution.t[-1]) else solution.y[:, -1]
+        self.time_in_mode[MODE_NAMES[self.mode]] += end - t
+        self.state, self.work = np.array(final[:6], dtype=float), np.array(final[6:], dtype=float)
+        if terminal == "impact":
+            self.state[2] = 0.0
+        self.project()
+        self.note(end, self.state)
+        return end, terminal
+
+    # ------------------------------------------------------------ transitions
+    def impact(self, t, corner):
+        """A corner impact at t (spec, "Impacts")."""
+        before = self.mode
+        pre = self.state.copy()
+        energy_before = kinetic_energy(self.geometry, pre)
+        self.impacts.append((t, pre[5]))
+        velocities, _, sigma, capped = impact_map(self.geometry, pre, corner, self.rho,
+                                                   self.mu_s, self.mu_d)
+        self.capped += capped
+        self.state[3:6] = velocities
+        self.side = corner
+        if sigma == 0:
+            self.enter_contact(t, ROCK, corner, self.sigma, "impact", before)
+        else:
+            self.sigma = sigma
+            if self.sigma * self.corner_slip_velocity(self.state) < 0.0:
+                raise _Stop("inconsistent", f"slipping impact at t = {t!r} s: the corner "
+                            "slips against the assumed direction")
+            self.enter_contact(t, SLIDE_ROCK, corner, sigma, "impact", before)
+        self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
+        if sigma == 0 and self.mode == ROCK and self.state[2] == 0.0:
+            self.cascade(t)
+
+    def cascade(self, t):
+        """The endless cascade of impacts of a decaying block, summed (as the rocking engine)."""
+        omega = self.state[5]
+        ug, vg = self.ground(t)
+        deceleration = -self.side * rock_solution(self.geometry, self.side, 0.0, 0.0, ug, vg)[2]
+        remaining = cascade_rest_time(omega, deceleration, self.cascade_cor)
+        if (remaining == math.inf and self.cascade_cor >= 1.0 and deceleration > 0.0
+                and abs(omega) <= self.velocity_floor):
+            remaining = 0.0
+        if omega == 0.0 or remaining <= self.rest_tolerance or (
+                abs(omega) <= self.velocity_floor and remaining < math.inf):
+            self.impact_loss += kinetic_energy(self.geometry, self.state)
+            self.state[3:6] = 0.0
+            self.set_mode(t, REST, kind="cascade")
+            self.rest_until = t + remaining
+
+    def flat_landing(self, t):
+        before = self.mode
+        energy_before = kinetic_energy(self.geometry, self.state)
+        x_dot, y_dot = self.state[3], self.state[4]
+        self.state[4] = self.state[5] = 0.0
+        if abs(x_dot) <= self.mu_s * abs(y_dot):
+            self.state[3] = 0.0
+            self.set_mode(t, REST)
+        else:
+            direction = 1 if x_dot > 0 else -1
+            self.state[3] = x_dot - direction * self.mu_d * abs(y_dot)
+            self.set_mode(t, SLIDE, sigma=direction)
+        self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
+        self.record(t, "flat landing", before, self.mode)
+
+    def after_event(self, t, terminal):
+        """Apply the transition of a terminal event."""
+        mode = self.mode
+        if terminal == "overturn":
+            self.record(t, "overturn", mode, mode)
+            raise _Stop("overturned", "")
+        if terminal == "lift-off":
+            self.set_mode(t, FLIGHT, kind="lift-off")
+        elif terminal == "impact":
+            self.impact(t, -self.side)
+        elif terminal == "slip":
+            _, _, _, force, _ = self.solution(t, self.state)
+            self.enter_contact(t, SLIDE_ROCK, self.side, -1 if force > 0 else 1, "slip", mode)
+        elif terminal == "stick" and mode == SLIDE:
+            self.state[3] = 0.0
+            if self.rest_holds(t):
+                self.set_mode(t, REST, kind="stick")
+            else:
+                self.leave_flat(t, "reverse")
+        elif terminal == "stick":  # SLIDE_ROCK: the corner stops slipping
+            r_x, r_y = self.geometry.arm(self.side, self.state[2])
+            self.state[3] = r_y * self.state[5]
+            _, _, _, force, normal = self.solution(t, self.state, ROCK)
+            if abs(force) <= self.mu_s * normal:
+                self.enter_contact(t, ROCK, self.side, self.sigma, "stick", mode)
+            else:
+                self.enter_contact(t, SLIDE_ROCK, self.side, -1 if force > 0 else 1, "reverse",
+                                   mode)
+        elif terminal is not None and terminal.startswith("landing"):
+            if self.state[2] == 0.0 and self.state[5] == 0.0:
+                self.flat_landing(t)
+            else:
+                self.impact(t, int(terminal[len("landing"):]))
+
+    # ------------------------------------------------------------------ run
+    def run(self, theta0, theta_dot0, x_dot0):
+        motion, geometry = self.motion, self.geometry
+        t_grid = motion.t
+        ug_all, vg_all = motion.horizontal, motion.vertical_or_zero
+        n = t_grid.size
+        self.state = np.zeros(6)
+        self.work = np.zeros(2)
+        self.side, self.sigma, self.pivot = 1, 1, 0.0
+        self.rest_until = -math.inf
+        self.mode = REST
+        self.interval = (ug_all[0], ug_all[min(1, n - 1)], vg_all[0], vg_all[min(1, n - 1)],
+                         t_grid[0], t_grid[min(1, n - 1)])
+        r_x, r_y = geometry.arm(1, 0.0)
+        self.state[:] = [0.0, geometry.h, 0.0, 0.0, 0.0, 0.0]
+        t = float(t_grid[0])
+        status, message = "completed", ""
+        if theta0 != 0.0 or theta_dot0 != 0.0:
+            side = 1 if theta0 > 0 or (theta0 == 0 and theta_dot0 > 0) else -1
+            r_x, r_y = geometry.arm(side, theta0)
+            self.state[:] = [0.0, -r_y, theta0, r_y * theta_dot0 + x_dot0, -r_x * theta_dot0,
+                             theta_dot0]
+            self.side = side
+            mode = SLIDE_ROCK if x_dot0 != 0.0 else ROCK
+            self.sigma = 1 if x_dot0 > 0 else -1
+            self.pivot = r_x
+            self.mode = mode
+        elif x_dot0 != 0.0:
+            self.state[3] = x_dot0
+            self.mode, self.sigma = SLIDE, (1 if x_dot0 > 0 else -1)
+        energy_start = self.energy()
+        if abs(theta0) >= geometry.alpha:
+            self.t_unstable = t
+        self.note(t, self.state)
+        out = np.zeros((n, 6))
+        modes = np.zeros(n, dtype=int)
+        out[0], modes[0] = self.state, self.mode
+        filled = 1
+        started = False
+        try:
+            for k in range(n - 1):
+                t0, t1 = float(t_grid[k]), float(t_grid[k + 1])
+                self.interval = (ug_all[k], ug_all[k + 1], vg_all[k], vg_all[k + 1], t0, t1)
+                if not started:
+                    started = True
+                    if self.mode in (ROCK, SLIDE_ROCK):
+                        self.enter_contact(t, self.mode, self.side, self.sigma, "start", REST)
+                stalled = segments = 0
+                while t < t1:
+                    segments += 1
+                    if segments > MAX_SEGMENTS_PER_INTERVAL:
+                        raise PlanarReferenceError(
+                            f"planar reference: more than {MAX_SEGMENTS_PER_INTERVAL} segments "
+                            f"in the input interval [{t0!r}, {t1!r}] s")
+                    if self.mode == REST:
+                        begin = max(t, self.rest_until)
+                        if begin >= t1:
+                            self.time_in_mode["rest"] += t1 - t
+                            t = t1
+                            break
+                        failure = self.rest_until_failure(begin, t1)
+                        if failure is None:
+                            self.time_in_mode["rest"] += t1 - t
+                            t = t1
+                            break
+                        self.time_in_mode["rest"] += failure - t
+                        t = failure
+                        self.leave_flat(t, "start")
+                        continue
+                    end, terminal = self.integrate_segment(t, t1)
+                    stalled = stalled + 1 if end <= t else 0
+                    if stalled > MAX_STALLED_SEGMENTS:
+                        raise PlanarReferenceError(
+                            f"planar reference made no progress at t = {t!r} s "
+                            f"({MAX_STALLED_SEGMENTS} segments ended where they began)")
+                    t = end
+                    self.after_event(t, terminal)
+                out[k + 1], modes[k + 1] = self.state, self.mode
+                filled = k + 2
+        except _Stop as stop:
+            status, message = stop.status, stop.message
+            if status != "overturned":
+                self.record(t, status, self.mode, self.mode)
+        t_overturn = t if status == "overturned" else math.nan
+        events = self.events
+        slip_end = self.state[0] + geometry.h * math.sin(self.state[2])
+        return PlanarReferenceResult(
+            block=self.block, motion=motion, cor=self.cor, friction=self.friction,
+            t=np.array(t_grid[:filled], dtype=float), x=out[:filled, 0], y=out[:filled, 1],
+            theta=out[:filled, 2], x_dot=out[:filled, 3], y_dot=out[:filled, 4],
+            theta_dot=out[:filled, 5], mode=modes[:filled],
+            event_times=np.array([e[0] for e in events], dtype=float),
+            event_kinds=tuple(e[1] for e in events),
+            event_mode_before=np.array([e[2] for e in events], dtype=int),
+            event_mode_after=np.array([e[3] for e in events], dtype=int),
+            impact_times=np.array([i[0] for i in self.impacts], dtype=float),
+            impact_velocities=np.array([i[1] for i in self.impacts], dtype=float),
+            peak_slip=float(self.peak_slip), t_peak_slip=float(self.t_peak_slip),
+            residual_slip=float(slip_end), max_abs_theta=float(self.max_abs_theta),
+            t_max=float(self.t_max), t_unstable=float(self.t_unstable),
+            t_overturn=float(t_overturn), friction_work=float(self.work[0]),
+            input_work=float(self.work[1]), impact_loss=float(self.impact_loss),
+            energy_start=float(energy_start), energy_end=float(self.energy()),
+            capped_impacts=int(self.capped), status=status, message=message,
+            time_in_mode=dict(self.time_in_mode))
