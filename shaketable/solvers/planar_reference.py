@@ -453,6 +453,7 @@ class _Run:
         self.velocity_floor = 1e3 * self.atol[5]
         self.rest_tolerance = 1e-6 / p if rest_tolerance is None else rest_tolerance
         self.events: list = []
+        self.fresh: set = set()
         self.impacts: list = []
         self.capped = 0
         self.impact_loss = 0.0
@@ -464,6 +465,9 @@ class _Run:
     # ------------------------------------------------------------ bookkeeping
     def record(self, t, kind, before, after):
         self.events.append((t, kind, before, after))
+        # the next segment starts on the zero of these event functions
+        self.fresh = {"stick", "landing+1", "landing-1"} | (
+            {"impact"} if self.state[2] == 0.0 else set())
 
     def note(self, t, state):
         """Track max |theta| and |slip| at a point of the trajectory."""
@@ -621,36 +625,59 @@ class _Run:
         return best
 
     # ------------------------------------------------------------- a segment
-    def event_functions(self):
-        """(functions, names) of the events of the current mode."""
-        mode, side, geometry = self.mode, self.side, self.geometry
+    def event_functions(self, t_segment):
+        """(functions, names) of the events of the current mode.
+
+        An event function that is zero at the segment's start (theta = 0 after an
+        impact, a slip velocity 0 after a start of slip, the corner that just lifted
+        off) is divided by the elapsed time (its limit, the rate, at the start), so
+        that the start itself is not taken for its root (the rocking reference's rule).
+        """
+        mode, side, sigma, geometry = self.mode, self.side, self.sigma, self.geometry
+        fresh, self.fresh = self.fresh, set()
         functions, names = [], []
 
-        def add(function, name, terminal, direction):
+        def add(function, name, terminal, direction, rate=None):
+            if name in fresh and rate is not None:
+                raw = function
+
+                def function(t, z):
+                    elapsed = t - t_segment
+                    if elapsed > 0.0:
+                        return raw(t, z) / elapsed
+                    value = raw(t, z)
+                    return value if value != 0.0 else rate(t, z)
             function.terminal, function.direction = terminal, direction
             functions.append(function)
             names.append(name)
 
+        def corner_slip_acceleration(t, z):
+            xdd, _, thdd, _, _ = self.solution(t, z)
+            r_x, r_y = geometry.arm(side, z[2])
+            return xdd - r_y * thdd - r_x * z[5] ** 2
+
         if mode in (ROCK, SLIDE_ROCK):
-            add(lambda t, z: side * z[2], "impact", True, -1)
+            add(lambda t, z: side * z[2], "impact", True, -1, lambda t, z: side * z[5])
             add(lambda t, z: self.solution(t, z)[4], "lift-off", True, -1)
             if mode == ROCK:
                 add(lambda t, z: self.mu_s * self.solution(t, z)[4]
                     - abs(self.solution(t, z)[3]), "slip", True, -1)
             else:
-                add(lambda t, z: self.sigma * self.corner_slip_velocity(z), "stick", True, -1)
+                add(lambda t, z: sigma * self.corner_slip_velocity(z), "stick", True, -1,
+                    lambda t, z: sigma * corner_slip_acceleration(t, z))
             add(lambda t, z: 0.5 * math.pi - side * z[2], "overturn", True, -1)
             add(lambda t, z: z[5], "peak", False, 0)
-        if mode in (ROCK, SLIDE_ROCK, FLIGHT):
-            add(lambda t, z: geometry.alpha - abs(z[2]), "unstable", False, -1)
         elif mode == SLIDE:
-            add(lambda t, z: self.sigma * z[3], "stick", True, -1)
+            add(lambda t, z: sigma * z[3], "stick", True, -1,
+                lambda t, z: sigma * self.solution(t, z)[0])
             add(lambda t, z: G + self.ground(t)[1], "lift-off", True, -1)
         elif mode == FLIGHT:
             for corner in (1, -1):
-                add(lambda t, z, c=corner: z[1] + geometry.arm(c, z[2])[1], f"landing{corner:+d}",
-                    True, -1)
+                add(lambda t, z, c=corner: z[1] + geometry.arm(c, z[2])[1],
+                    f"landing{corner:+d}", True, -1, lambda t, z: 1.0)
             add(lambda t, z: 0.5 * math.pi - abs(z[2]), "overturn", True, -1)
+        if mode in (ROCK, SLIDE_ROCK, FLIGHT):
+            add(lambda t, z: geometry.alpha - abs(z[2]), "unstable", False, -1)
         add(lambda t, z: z[3] + geometry.h * math.cos(z[2]) * z[5], "slip turn", False, 0)
         return functions, names
 
@@ -693,7 +720,7 @@ class _Run:
 
         Returns (time reached, name of the terminal event or None).
         """
-        functions, names = self.event_functions()
+        functions, names = self.event_functions(t)
         z0 = np.r_[self.state, self.work]
         solution = solve_ivp(self.rhs, (t, t_end), z0, method="DOP853", rtol=self.rtol,
                              atol=self.atol, events=functions, dense_output=True)
@@ -749,24 +776,35 @@ class _Run:
                             "slips against the assumed direction")
             self.enter_contact(t, SLIDE_ROCK, corner, sigma, "impact", before)
         self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
-        if sigma == 0 and self.mode == ROCK and self.state[2] == 0.0:
-            self.cascade(t)
+        if self.state[2] == 0.0 and self.mode in (ROCK, SLIDE_ROCK) and pre[5] != 0.0:
+            sticking = sigma == 0 and self.mode == ROCK
+            self.cascade(t, self.cascade_cor if sticking else abs(self.state[5] / pre[5]))
 
-    def cascade(self, t):
-        """The endless cascade of impacts of a decaying block, summed (as the rocking engine)."""
+    def cascade(self, t, ratio):
+        """The endless cascade of impacts of a decaying block, summed (as the rocking engine).
+
+        ``ratio``: |theta'+ / theta'-| of each impact of the cascade (the cor of a
+        sticking rock -> rock impact, exactly as the rocking engine; the ratio of
+        this impact for a slipping one, e.g. frictionless). The cascade of a
+        slipping corner ends flat, sliding on with its x' (REST if x' = 0).
+        """
         omega = self.state[5]
-        ug, vg = self.ground(t)
-        deceleration = -self.side * rock_solution(self.geometry, self.side, 0.0, 0.0, ug, vg)[2]
-        remaining = cascade_rest_time(omega, deceleration, self.cascade_cor)
-        if (remaining == math.inf and self.cascade_cor >= 1.0 and deceleration > 0.0
+        deceleration = -self.side * self.solution(t, np.r_[self.state[:2], 0.0, 0.0, 0.0,
+                                                           0.0])[2]
+        remaining = cascade_rest_time(omega, deceleration, ratio)
+        if (remaining == math.inf and ratio >= 1.0 and deceleration > 0.0
                 and abs(omega) <= self.velocity_floor):
             remaining = 0.0
         if omega == 0.0 or remaining <= self.rest_tolerance or (
                 abs(omega) <= self.velocity_floor and remaining < math.inf):
-            self.impact_loss += kinetic_energy(self.geometry, self.state)
-            self.state[3:6] = 0.0
-            self.set_mode(t, REST, kind="cascade")
-            self.rest_until = t + remaining
+            x_dot = self.state[3] if self.mode == SLIDE_ROCK else 0.0
+            self.impact_loss += kinetic_energy(self.geometry, self.state) - 0.5 * x_dot ** 2
+            self.state[3:6] = [x_dot, 0.0, 0.0]
+            if x_dot == 0.0:
+                self.set_mode(t, REST, kind="cascade")
+                self.rest_until = t + remaining
+            else:
+                self.set_mode(t, SLIDE, sigma=1 if x_dot > 0 else -1, kind="cascade")
 
     def flat_landing(self, t):
         before = self.mode
