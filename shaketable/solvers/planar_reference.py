@@ -132,6 +132,8 @@ class PlanarReferenceResult:
         Largest |theta| [rad] and its time [s].
     t_unstable, t_overturn : float
         First |theta| = alpha [s]; overturn (|theta| = pi/2) [s]; NaN if never.
+    t_rest : float
+        End of the last summed cascade of impacts [s] (NaN if none).
     friction_work, input_work, impact_loss : float
         Work of friction on the block (<= 0), work of the table's inertial
         forces -m ug, -m vg on the block, and kinetic energy lost in impacts
@@ -175,6 +177,7 @@ class PlanarReferenceResult:
     t_max: float
     t_unstable: float
     t_overturn: float
+    t_rest: float
     friction_work: float
     input_work: float
     impact_loss: float
@@ -232,7 +235,7 @@ class PlanarReferenceResult:
 
 # --------------------------------------------------------------------- physics
 
-class _Geometry:
+class PlanarGeometry:
     """b, h [m], Ic, I0 [m^2] per mass, alpha [rad], Housner's c_H [-]."""
 
     def __init__(self, block: Block):
@@ -441,7 +444,7 @@ class _Run:
 
     def __init__(self, block, motion, cor, friction, rtol, rest_tolerance):
         self.block, self.motion, self.cor, self.friction = block, motion, cor, friction
-        self.geometry = geometry = _Geometry(block)
+        self.geometry = geometry = PlanarGeometry(block)
         self.mu_s, self.mu_d = friction.static, friction.dynamic
         self.rho = 1.0 if cor == "housner" else cor / geometry.c_housner
         self.cascade_cor = geometry.c_housner if cor == "housner" else float(cor)
@@ -460,6 +463,7 @@ class _Run:
         self.max_abs_theta, self.t_max = 0.0, float(motion.t[0])
         self.peak_slip, self.t_peak_slip = 0.0, float(motion.t[0])
         self.t_unstable = math.nan
+        self.t_rest = math.nan
         self.time_in_mode = dict.fromkeys(MODE_NAMES, 0.0)
 
     # ------------------------------------------------------------ bookkeeping
@@ -803,6 +807,7 @@ class _Run:
             if x_dot == 0.0:
                 self.set_mode(t, REST, kind="cascade")
                 self.rest_until = t + remaining
+                self.t_rest = self.rest_until
             else:
                 self.set_mode(t, SLIDE, sigma=1 if x_dot > 0 else -1, kind="cascade")
 
@@ -955,7 +960,7 @@ class _Run:
             peak_slip=float(self.peak_slip), t_peak_slip=float(self.t_peak_slip),
             residual_slip=float(slip_end), max_abs_theta=float(self.max_abs_theta),
             t_max=float(self.t_max), t_unstable=float(self.t_unstable),
-            t_overturn=float(t_overturn), friction_work=float(self.work[0]),
+            t_overturn=float(t_overturn), t_rest=float(self.t_rest), friction_work=float(self.work[0]),
             input_work=float(self.work[1]), impact_loss=float(self.impact_loss),
             energy_start=float(energy_start), energy_end=float(self.energy()),
             capped_impacts=int(self.capped), status=status, message=message,
