@@ -48,7 +48,10 @@ Choices where the spec is silent (documented here, reported to the lead)
   keeps the slip direction in the marginal case mu_d = mu_s just after a slip
   started (a sign the spec does not fix).
 * The energy cap of an impact keeps the branch (stick or slip) chosen with
-  the given rho.
+  the given rho, and applies to rho < 1 as well: with a slipping corner the
+  couple C = (rho - 1) H_k can add energy for rho < 1 too (e.g. cor = 0, mu = 0,
+  theta = 0, x' = 1 m/s, theta' = -1 rad/s on a square block), so rho is moved
+  toward 1 until KE+ = KE- whatever side of 1 it is on.
 * The cascade sum (``cascade_rest_time``) is applied after a sticking impact at
   theta = 0 that leaves the block in ROCK, with the numeric cor (c_H for
   ``"housner"``), as the rocking engine does; the energy the cascade absorbs
@@ -307,13 +310,16 @@ def impact_map(geometry, state, corner, rho, mu_s, mu_d):
     impulse-momentum balance with the couple C = (rho - 1) H_k, the plastic
     normal condition Y_k'+ = 0, and either X_k'+ = 0 (sticking, tried first,
     accepted if P_y > 0 and |P_x| <= mu_s P_y) or P_x = -sigma mu_d P_y
-    (slipping, sigma = -sign of the sticking P_x).
+    (slipping, sigma = -sign of the sticking P_x, accepted if X_k'+ has the sign
+    sigma; else the other sigma; if neither is consistent the corner sticks).
+    If the kinetic energy grows, rho is moved toward 1 until it does not (the
+    branch decided again at the new rho).
 
     Returns
     -------
     (velocities, impulse, sigma, capped)
         ``velocities`` (x'+, y'+, theta'+); ``sigma`` 0 for a sticking impact;
-        ``capped`` whether rho was lowered so that kinetic energy does not grow.
+        ``capped`` whether rho was moved toward 1 so that kinetic energy does not grow.
     """
     x, y, theta, x_dot, y_dot, omega = state[:6]
     r_x, r_y = geometry.arm(corner, theta)
@@ -330,25 +336,39 @@ def impact_map(geometry, state, corner, rho, mu_s, mu_d):
         rhs = np.array([x_dot, y_dot, geometry.Ic * omega + couple, 0.0, 0.0])
         return np.linalg.solve(matrix, rhs)
 
-    post = solve(rho, 0)
-    sigma = 0
-    if not (post[4] > 0.0 and abs(post[3]) <= mu_s * post[4]):
-        sigma = -1 if post[3] > 0.0 else 1
-        post = solve(rho, sigma)
+    def decide(rho_value):
+        """The branch at rho_value: stick if it can; else slip the way the corner goes."""
+        stick = solve(rho_value, 0)
+        if stick[4] > 0.0 and abs(stick[3]) <= mu_s * stick[4]:
+            return stick, 0
+        first = -1 if stick[3] > 0.0 else 1
+        for sigma in (first, -first):
+            slipping = solve(rho_value, sigma)
+            if sigma * (slipping[0] - r_y * slipping[2]) >= 0.0:
+                return slipping, sigma
+        return stick, 0  # no slip direction is consistent: the corner sticks
+
     before = kinetic_energy(geometry, state)
+    rho_eff = rho
+    post, sigma = decide(rho_eff)
     capped = False
-    if rho > 1.0 and kinetic_energy(geometry, np.r_[0, 0, 0, post[:3]]) > before:
-        # the post state is affine in rho: find the largest rho_eff in [1, rho]
+    for _ in range(8):
+        if rho_eff == 1.0 or kinetic_energy(geometry, np.r_[0, 0, 0, post[:3]]) <= before:
+            break
+        # the post state is affine in rho (in one branch): the rho_eff nearest rho between
+        # 1 and rho with KE+ = KE- (the spec's rule for rho > 1; extended here to rho < 1,
+        # where the couple can add energy too: DISAGREEMENTS.md); then the branch is
+        # decided again at rho_eff
         one = solve(1.0, sigma)
         weight = np.array([1.0, 1.0, math.sqrt(geometry.Ic)])
         base, step = one[:3] * weight, (post[:3] - one[:3]) * weight
         qa, qb, qc = step @ step, 2.0 * base @ step, base @ base - 2.0 * before
-        if qa > 0.0:
+        fraction = 0.0
+        if qa > 0.0 and qc <= 0.0:
             root = (-qb + math.sqrt(max(qb * qb - 4 * qa * qc, 0.0))) / (2 * qa)
             fraction = min(max(root, 0.0), 1.0)
-        else:
-            fraction = 0.0
-        post = solve(1.0 + fraction * (rho - 1.0), sigma)
+        rho_eff = 1.0 + fraction * (rho_eff - 1.0)
+        post, sigma = decide(rho_eff)
         capped = True
     return post[:3], post[3:], sigma, capped
 
@@ -775,9 +795,6 @@ class _Run:
             self.enter_contact(t, ROCK, corner, self.sigma, "impact", before)
         else:
             self.sigma = sigma
-            if self.sigma * self.corner_slip_velocity(self.state) < 0.0:
-                raise _Stop("inconsistent", f"slipping impact at t = {t!r} s: the corner "
-                            "slips against the assumed direction")
             self.enter_contact(t, SLIDE_ROCK, corner, sigma, "impact", before)
         self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
         if self.state[2] == 0.0 and self.mode in (ROCK, SLIDE_ROCK) and pre[5] != 0.0:
