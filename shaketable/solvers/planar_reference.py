@@ -72,7 +72,6 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -82,8 +81,18 @@ from shaketable.core.constants import G
 from shaketable.core.dynamics import cascade_rest_time
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.core.planar_reference_result import PlanarReferenceResult
 from shaketable.core.shenton import FLIGHT, MODE_NAMES, REST, ROCK, SLIDE, SLIDE_ROCK
 from shaketable.core.sliding_result import Friction
+from shaketable.solvers.planar_contact import (
+    PlanarGeometry,
+    impact_map,
+    kinetic_energy,
+    mode_solution,
+    rock_solution,
+    slide_rock_effective_mass,
+    slide_rock_solution,
+)
 
 #: Consecutive segments that may end where they began before the solver gives up.
 MAX_STALLED_SEGMENTS = 100
@@ -91,286 +100,8 @@ MAX_STALLED_SEGMENTS = 100
 #: Segments (solve_ivp calls) allowed inside one input interval.
 MAX_SEGMENTS_PER_INTERVAL = 100_000
 
-STATUSES = ("completed", "overturned", "painleve", "inconsistent")
-
-
 class PlanarReferenceError(RuntimeError):
     """SciPy's integrator gave up, or the event loop stopped advancing in time."""
-
-
-@dataclass(frozen=True)
-class PlanarReferenceResult:
-    """Time history, events and scalar results of one reference run.
-
-    Attributes
-    ----------
-    block : Block
-    motion : Motion
-        Table accelerations [m/s^2].
-    cor : float or str
-        Coefficient of restitution [-] or ``"housner"``.
-    friction : Friction
-    t : ndarray
-        Output times [s] (the motion's samples, up to the end of the run).
-    x, y, theta : ndarray
-        Centre's horizontal displacement from its start [m], centre's height
-        above the table [m], rotation [rad] at ``t``.
-    x_dot, y_dot, theta_dot : ndarray
-        Their rates [m/s], [m/s], [rad/s].
-    mode : ndarray of int
-        Mode at ``t`` (codes of :mod:`shaketable.core.shenton`).
-    event_times : ndarray
-        Times of the located events [s].
-    event_kinds : tuple of str
-        "start", "stick", "slip", "reverse", "lift-off", "landing", "impact",
-        "flat landing", "cascade", "unstable", "overturn", "painleve".
-    event_mode_before, event_mode_after : ndarray of int
-        Mode codes on both sides of each event.
-    impact_times, impact_velocities : ndarray
-        Time [s] and pre-impact theta' [rad/s] of each corner impact.
-    peak_slip, t_peak_slip, residual_slip : float
-        Largest |slip| of the base midpoint (x + h sin(theta)) [m], its time [s],
-        and the slip at the end [m].
-    max_abs_theta, t_max : float
-        Largest |theta| [rad] and its time [s].
-    t_unstable, t_overturn : float
-        First |theta| = alpha [s]; overturn (|theta| = pi/2) [s]; NaN if never.
-    t_rest : float
-        End of the last summed cascade of impacts [s] (NaN if none).
-    friction_work, input_work, impact_loss : float
-        Work of friction on the block (<= 0), work of the table's inertial
-        forces -m ug, -m vg on the block, and kinetic energy lost in impacts
-        (>= 0), per unit mass [J/kg].
-    energy_start, energy_end : float
-        Kinetic + potential energy per mass, 0.5 (x'^2 + y'^2 + Ic theta'^2)
-        + g (y - h) [J/kg]; energy_end - energy_start = friction_work +
-        input_work - impact_loss.
-    capped_impacts : int
-        Impacts whose rho was lowered so as not to add energy.
-    time_in_mode : dict
-        Seconds spent in each mode, by name.
-    status : str
-        One of :data:`STATUSES`.
-    message : str
-        Why a run stopped early (empty otherwise).
-    """
-
-    block: Block
-    motion: Motion
-    cor: float | str
-    friction: Friction
-    t: np.ndarray
-    x: np.ndarray
-    y: np.ndarray
-    theta: np.ndarray
-    x_dot: np.ndarray
-    y_dot: np.ndarray
-    theta_dot: np.ndarray
-    mode: np.ndarray
-    event_times: np.ndarray
-    event_kinds: tuple
-    event_mode_before: np.ndarray
-    event_mode_after: np.ndarray
-    impact_times: np.ndarray
-    impact_velocities: np.ndarray
-    peak_slip: float
-    t_peak_slip: float
-    residual_slip: float
-    max_abs_theta: float
-    t_max: float
-    t_unstable: float
-    t_overturn: float
-    t_rest: float
-    friction_work: float
-    input_work: float
-    impact_loss: float
-    energy_start: float
-    energy_end: float
-    capped_impacts: int
-    status: str
-    message: str = ""
-    time_in_mode: dict = field(default_factory=dict)
-
-    @property
-    def overturned(self) -> bool:
-        """Whether the block overturned (|theta| reached pi/2)."""
-        return self.status == "overturned"
-
-    @property
-    def max_theta_over_alpha(self) -> float:
-        """max |theta| / alpha [-]."""
-        return self.max_abs_theta / self.block.alpha
-
-    @property
-    def slip(self) -> np.ndarray:
-        """Slip of the base midpoint relative to the table, x + h sin(theta) [m]."""
-        return self.x + self.block.h * np.sin(self.theta)
-
-    def events_of(self, kind: str) -> np.ndarray:
-        """Times [s] of the events of one kind."""
-        return np.array([t for t, k in zip(self.event_times, self.event_kinds) if k == kind])
-
-    def to_frame(self):
-        """Time history as a :class:`pandas.DataFrame`, units in the column names."""
-        import pandas as pd
-
-        return pd.DataFrame({
-            "time [s]": self.t, "x [m]": self.x, "y [m]": self.y, "theta [rad]": self.theta,
-            "x' [m/s]": self.x_dot, "y' [m/s]": self.y_dot, "theta' [rad/s]": self.theta_dot,
-            "slip [m]": self.slip, "mode": [MODE_NAMES[int(m)] for m in self.mode]})
-
-    def summary(self) -> dict:
-        """Scalar results as a JSON-ready dict."""
-        from shaketable.core.files import json_ready_dict
-
-        data = {"model": "planar reference (SciPy DOP853)", "status": self.status,
-                "cor": self.cor, "static friction mu_s [-]": self.friction.static,
-                "dynamic friction mu_d [-]": self.friction.dynamic,
-                "peak slip [m]": self.peak_slip, "residual slip [m]": self.residual_slip,
-                "max |theta|/alpha [-]": self.max_theta_over_alpha,
-                "t_overturn [s]": self.t_overturn, "impacts": len(self.impact_times),
-                "friction work [J/kg]": self.friction_work,
-                "impact loss [J/kg]": self.impact_loss,
-                "capped impacts": self.capped_impacts}
-        data.update({f"time {name} [s]": value for name, value in self.time_in_mode.items()})
-        return json_ready_dict(data)
-
-
-# --------------------------------------------------------------------- physics
-
-class PlanarGeometry:
-    """b, h [m], Ic, I0 [m^2] per mass, alpha [rad], Housner's c_H [-]."""
-
-    def __init__(self, block: Block):
-        self.b, self.h = block.b, block.h
-        self.Ic = (self.b ** 2 + self.h ** 2) / 3.0
-        self.I0 = 4.0 * self.Ic
-        self.alpha = block.alpha
-        self.c_housner = 1.0 - 1.5 * math.sin(self.alpha) ** 2
-
-    def arm(self, side, theta):
-        """(r_x, r_y): centre to the bottom corner ``side`` [m]."""
-        c, s = math.cos(theta), math.sin(theta)
-        return -side * self.b * c + self.h * s, -side * self.b * s - self.h * c
-
-
-def rock_solution(geometry, side, theta, omega, ug, vg):
-    """ROCK about corner ``side``: (x'', y'', theta'', F, N) from the 5 x 5 Newton-Euler system."""
-    r_x, r_y = geometry.arm(side, theta)
-    matrix = np.array([[1.0, 0.0, 0.0, -1.0, 0.0],
-                       [0.0, 1.0, 0.0, 0.0, -1.0],
-                       [0.0, 0.0, geometry.Ic, r_y, -r_x],
-                       [1.0, 0.0, -r_y, 0.0, 0.0],
-                       [0.0, 1.0, r_x, 0.0, 0.0]])
-    rhs = np.array([-ug, -(G + vg), 0.0, r_x * omega * omega, r_y * omega * omega])
-    return np.linalg.solve(matrix, rhs)
-
-
-def slide_rock_effective_mass(geometry, side, sigma, theta, mu_d):
-    """Normal 'effective mass' 1 + r_x (r_x + sigma mu_d r_y) / Ic [-]; <= 0: Painleve."""
-    r_x, r_y = geometry.arm(side, theta)
-    return 1.0 + r_x * (r_x + sigma * mu_d * r_y) / geometry.Ic
-
-
-def slide_rock_solution(geometry, side, sigma, theta, omega, ug, vg, mu_d):
-    """SLIDE_ROCK about ``side`` slipping ``sigma``: (x'', y'', theta'', F, N), 4 x 4 system."""
-    r_x, r_y = geometry.arm(side, theta)
-    matrix = np.array([[1.0, 0.0, 0.0, sigma * mu_d],
-                       [0.0, 1.0, 0.0, -1.0],
-                       [0.0, 0.0, geometry.Ic, -(r_x + sigma * mu_d * r_y)],
-                       [0.0, 1.0, r_x, 0.0]])
-    rhs = np.array([-ug, -(G + vg), 0.0, r_y * omega * omega])
-    xdd, ydd, thdd, normal = np.linalg.solve(matrix, rhs)
-    return np.array([xdd, ydd, thdd, -sigma * mu_d * normal, normal])
-
-
-def mode_solution(geometry, mode, side, sigma, theta, omega, ug, vg, mu_d):
-    """(x'', y'', theta'', F, N) of any mode [m/s^2, rad/s^2, m/s^2]."""
-    if mode == ROCK:
-        return rock_solution(geometry, side, theta, omega, ug, vg)
-    if mode == SLIDE_ROCK:
-        return slide_rock_solution(geometry, side, sigma, theta, omega, ug, vg, mu_d)
-    if mode == SLIDE:
-        normal = G + vg
-        return np.array([-ug - sigma * mu_d * normal, 0.0, 0.0, -sigma * mu_d * normal, normal])
-    if mode == FLIGHT:
-        return np.array([-ug, -(G + vg), 0.0, 0.0, 0.0])
-    return np.array([0.0, 0.0, 0.0, ug, G + vg])
-
-
-def kinetic_energy(geometry, state) -> float:
-    """0.5 (x'^2 + y'^2 + Ic theta'^2) per mass [J/kg]."""
-    return 0.5 * (state[3] ** 2 + state[4] ** 2 + geometry.Ic * state[5] ** 2)
-
-
-def impact_map(geometry, state, corner, rho, mu_s, mu_d):
-    """Post-impact velocities of a corner impact (spec, "Impacts").
-
-    Solves, for (x'+, y'+, theta'+, P_x, P_y), the 5 x 5 linear system of the
-    impulse-momentum balance with the couple C = (rho - 1) H_k, the plastic
-    normal condition Y_k'+ = 0, and either X_k'+ = 0 (sticking, tried first,
-    accepted if P_y > 0 and |P_x| <= mu_s P_y) or P_x = -sigma mu_d P_y
-    (slipping, sigma = -sign of the sticking P_x, accepted if X_k'+ has the sign
-    sigma; else the other sigma; if neither is consistent the corner sticks).
-    If the kinetic energy grows, rho is moved toward 1 until it does not (the
-    branch decided again at the new rho).
-
-    Returns
-    -------
-    (velocities, impulse, sigma, capped)
-        ``velocities`` (x'+, y'+, theta'+); ``sigma`` 0 for a sticking impact;
-        ``capped`` whether rho was moved toward 1 so that kinetic energy does not grow.
-    """
-    x, y, theta, x_dot, y_dot, omega = state[:6]
-    r_x, r_y = geometry.arm(corner, theta)
-    angular_momentum = geometry.Ic * omega - r_x * y_dot + r_y * x_dot
-
-    def solve(rho_value, sigma):
-        couple = (rho_value - 1.0) * angular_momentum
-        matrix = np.array([[1.0, 0.0, 0.0, -1.0, 0.0],
-                           [0.0, 1.0, 0.0, 0.0, -1.0],
-                           [0.0, 0.0, geometry.Ic, r_y, -r_x],
-                           [1.0, 0.0, -r_y, 0.0, 0.0] if sigma == 0 else
-                           [0.0, 0.0, 0.0, 1.0, sigma * mu_d],
-                           [0.0, 1.0, r_x, 0.0, 0.0]])
-        rhs = np.array([x_dot, y_dot, geometry.Ic * omega + couple, 0.0, 0.0])
-        return np.linalg.solve(matrix, rhs)
-
-    def decide(rho_value):
-        """The branch at rho_value: stick if it can; else slip the way the corner goes."""
-        stick = solve(rho_value, 0)
-        if stick[4] > 0.0 and abs(stick[3]) <= mu_s * stick[4]:
-            return stick, 0
-        first = -1 if stick[3] > 0.0 else 1
-        for sigma in (first, -first):
-            slipping = solve(rho_value, sigma)
-            if sigma * (slipping[0] - r_y * slipping[2]) >= 0.0:
-                return slipping, sigma
-        return stick, 0  # no slip direction is consistent: the corner sticks
-
-    before = kinetic_energy(geometry, state)
-    rho_eff = rho
-    post, sigma = decide(rho_eff)
-    capped = False
-    for _ in range(8):
-        if rho_eff == 1.0 or kinetic_energy(geometry, np.r_[0, 0, 0, post[:3]]) <= before:
-            break
-        # the post state is affine in rho (in one branch): the rho_eff nearest rho between
-        # 1 and rho with KE+ = KE- (the spec's rule for rho > 1; extended here to rho < 1,
-        # where the couple can add energy too: DISAGREEMENTS.md); then the branch is
-        # decided again at rho_eff
-        one = solve(1.0, sigma)
-        weight = np.array([1.0, 1.0, math.sqrt(geometry.Ic)])
-        base, step = one[:3] * weight, (post[:3] - one[:3]) * weight
-        qa, qb, qc = step @ step, 2.0 * base @ step, base @ base - 2.0 * before
-        fraction = 0.0
-        if qa > 0.0 and qc <= 0.0:
-            root = (-qb + math.sqrt(max(qb * qb - 4 * qa * qc, 0.0))) / (2 * qa)
-            fraction = min(max(root, 0.0), 1.0)
-        rho_eff = 1.0 + fraction * (rho_eff - 1.0)
-        post, sigma = decide(rho_eff)
-        capped = True
-    return post[:3], post[3:], sigma, capped
 
 
 # ----------------------------------------------------------------- the solver

@@ -31,7 +31,8 @@ from shaketable.core.shenton import (
     initial_mode,
 )
 from shaketable.core.sliding_result import Friction
-from shaketable.solvers.planar_reference import PlanarGeometry, rock_solution, simulate_reference
+from shaketable.solvers.planar_contact import PlanarGeometry, rock_solution
+from shaketable.solvers.planar_reference import simulate_reference
 
 
 def test_critical_friction_is_the_force_ratio_of_the_newton_euler_rock_solution():

@@ -19,16 +19,12 @@ from hypothesis import strategies as st
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.shenton import FLIGHT, REST, ROCK, SLIDE, SLIDE_ROCK
+from shaketable.core.shenton import FLIGHT, REST, SLIDE
 from shaketable.core.sliding_result import Friction
 from shaketable.ground.generators import harmonic
 from shaketable.solvers.api import simulate
-from shaketable.solvers.planar_reference import (
-    PlanarGeometry,
-    impact_map,
-    kinetic_energy,
-    simulate_reference,
-)
+from shaketable.solvers.planar_contact import PlanarGeometry, impact_map, kinetic_energy
+from shaketable.solvers.planar_reference import simulate_reference
 from shaketable.solvers.sliding import slide
 
 #: Friction no rocking run can exceed away from overturning (the rocking limit).
