@@ -56,9 +56,10 @@ Choices where the spec is silent (documented here, reported to the lead)
   theta = 0 that leaves the block in ROCK, with the numeric cor (c_H for
   ``"housner"``), as the rocking engine does; the energy the cascade absorbs
   (the kinetic energy at its first impact) is counted as impact loss.
-* x is the centre's displacement from its initial position (x(0) = 0 also when
-  theta0 != 0); ``x_dot0`` is the initial slip velocity of the base (flat) or
-  of the pivot corner (theta0 != 0 or theta_dot0 != 0).
+* x is the centre's displacement from its position at rest; a block started
+  tilted (theta0 != 0) stands on its corner s = sign(theta0) at that corner's
+  rest position X_s = -s b (so x(0) = -s b - r_x(theta0)); ``x_dot0`` is the
+  initial slip velocity of the base (flat) or of the pivot corner.
 
 References
 ----------
@@ -538,7 +539,7 @@ class _Run:
         ``ratio``: |theta'+ / theta'-| of each impact of the cascade (the cor of a
         sticking rock -> rock impact, exactly as the rocking engine; the ratio of
         this impact for a slipping one, e.g. frictionless). The cascade of a
-        slipping corner ends flat, sliding on with its x' (REST if x' = 0).
+        slipping corner ends flat at once, sliding at the corner's slip speed (REST if 0).
         """
         omega = self.state[5]
         deceleration = -self.side * self.solution(t, np.r_[self.state[:2], 0.0, 0.0, 0.0,
@@ -549,7 +550,8 @@ class _Run:
             remaining = 0.0
         if omega == 0.0 or remaining <= self.rest_tolerance or (
                 abs(omega) <= self.velocity_floor and remaining < math.inf):
-            x_dot = self.state[3] if self.mode == SLIDE_ROCK else 0.0
+            # a slipping corner's cascade ends sliding flat at the corner's slip speed
+            x_dot = self.corner_slip_velocity(self.state) if self.mode == SLIDE_ROCK else 0.0
             self.impact_loss += kinetic_energy(self.geometry, self.state) - 0.5 * x_dot ** 2
             self.state[3:6] = [x_dot, 0.0, 0.0]
             if x_dot == 0.0:
@@ -628,12 +630,13 @@ class _Run:
         if theta0 != 0.0 or theta_dot0 != 0.0:
             side = 1 if theta0 > 0 or (theta0 == 0 and theta_dot0 > 0) else -1
             r_x, r_y = geometry.arm(side, theta0)
-            self.state[:] = [0.0, -r_y, theta0, r_y * theta_dot0 + x_dot0, -r_x * theta_dot0,
-                             theta_dot0]
+            # tilted about its corner standing at its rest position X_s = -s b
+            self.pivot = -side * geometry.b
+            self.state[:] = [self.pivot - r_x, -r_y, theta0, r_y * theta_dot0 + x_dot0,
+                             -r_x * theta_dot0, theta_dot0]
             self.side = side
             mode = SLIDE_ROCK if x_dot0 != 0.0 else ROCK
             self.sigma = 1 if x_dot0 > 0 else -1
-            self.pivot = r_x
             self.mode = mode
         elif x_dot0 != 0.0:
             self.state[3] = x_dot0
