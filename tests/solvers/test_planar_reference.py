@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.shenton import FLIGHT, REST, SLIDE
+from shaketable.core.shenton import FLIGHT, REST, ROCK, SLIDE, SLIDE_ROCK
 from shaketable.core.sliding_result import Friction
 from shaketable.ground.generators import harmonic
 from shaketable.solvers.api import simulate
@@ -294,3 +294,44 @@ def test_bad_input_names_the_parameter():
     with pytest.raises(ValueError, match="rods"):
         simulate_reference(Block(1.0, 0.5, PrestressRods(1.0, 0.1, 0.1)), None, cor=0.9,
                            friction=Friction(0.5), duration=1.0)
+
+
+# ------------------------------------------------------------------ symmetry, convergence
+
+def _coupled_motion():
+    # 3 Hz, 0.6 g horizontal, 3 s: with mu_s = 0.25, mu_d = 0.22 the 30 x 6 in block
+    # rocks, slide-rocks and impacts (about 19 impacts) and stays up
+    return harmonic(3.0, horizontal=0.6 * G, duration=3.0, dt=0.005, ramp=0.25)
+
+
+def test_mirrored_input_gives_the_mirrored_response():
+    # the model is symmetric under x -> -x: theta -> -theta, x -> -x, same events
+    block, friction = Block.from_inches(30, 6), Friction(0.25, 0.22)
+    motion = _coupled_motion()
+    direct = simulate_reference(block, motion, cor=0.9, friction=friction)
+    mirror = simulate_reference(block, motion.mirrored(), cor=0.9, friction=friction)
+    assert {SLIDE_ROCK, ROCK} <= set(direct.event_mode_after.tolist())
+    assert len(direct.impact_times) > 10
+    np.testing.assert_allclose(mirror.event_times, direct.event_times, atol=1e-9)
+    assert mirror.event_kinds == direct.event_kinds
+    np.testing.assert_allclose(mirror.theta, -direct.theta, atol=1e-9)
+    np.testing.assert_allclose(mirror.x, -direct.x, atol=1e-9)
+
+
+def test_the_reference_converges_as_rtol_shrinks():
+    # a coupled run (rock, slide-rock, impacts) at rtol 1e-10 and 1e-12 against 1e-13:
+    # the error falls with rtol and is below 1e-8 at the default
+    block, friction = Block.from_inches(30, 6), Friction(0.25, 0.22)
+    motion = _coupled_motion()
+    runs = {rtol: simulate_reference(block, motion, cor=0.9, friction=friction, rtol=rtol)
+            for rtol in (1e-10, 1e-12, 1e-13)}
+    best = runs[1e-13]
+    errors = {}
+    for rtol in (1e-10, 1e-12):
+        run = runs[rtol]
+        assert run.event_kinds == best.event_kinds
+        errors[rtol] = max(np.abs(run.event_times - best.event_times).max(),
+                           np.abs(run.theta - best.theta).max(),
+                           np.abs(run.x - best.x).max())
+    assert errors[1e-12] < 1e-8
+    assert errors[1e-12] < errors[1e-10]
