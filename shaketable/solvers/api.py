@@ -7,7 +7,7 @@ import numpy as np
 from shaketable.core.dynamics import block_parameters
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion, whole_number
-from shaketable.core.results import RockingResult
+from shaketable.core.sliding_result import Friction
 from shaketable.core.validation import in_range
 from shaketable.solvers import engine
 from shaketable.solvers.common import (
@@ -24,7 +24,7 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
              theta_dot0: float = 0.0, duration: float | None = None, method: str = "fast",
              rtol: float | None = None, subdivisions: int = 4, output_dt: float = 0.005,
              rest_tolerance: float | None = None, max_recorded_impacts: int = 100_000,
-             top_force: float = 0.0) -> RockingResult:
+             top_force: float = 0.0, friction: Friction | None = None):
     """Rocking response of a rigid block, Eqs. (2-13)/(2-14) with impacts.
 
     Parameters
@@ -68,10 +68,18 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
         Constant horizontal force at the middle of the top of the block per
         unit mass [m/s^2], positive along +x: one potentiometer wire
         (Section 3.3); two opposite wires cancel.
+    friction : Friction, optional
+        Coulomb friction between block and table: runs the coupled planar model
+        (rest, slide, rock, slide-rock, free flight;
+        :func:`shaketable.solvers.planar_run.simulate_planar`) and returns a
+        :class:`~shaketable.core.planar_result.PlanarResult`. ``cor`` may then also be
+        ``"housner"``; ``method`` must be ``"fast"`` (its own compiled engine),
+        ``top_force`` 0, ``subdivisions`` unused, no rods. Without it nothing changes.
 
     Returns
     -------
     RockingResult
+        (:class:`~shaketable.core.planar_result.PlanarResult` when ``friction`` is given)
 
     Raises
     ------
@@ -81,6 +89,19 @@ def simulate(block: Block, motion: Motion | None = None, *, cor: float, theta0: 
         ``method="reference"`` only: SciPy's integrator gave up or made no
         progress.
     """
+    if friction is not None:
+        from shaketable.solvers.planar_run import simulate_planar  # compiled on first use
+
+        if method != "fast":
+            raise ValueError(f"method {method!r} is not offered with friction: the coupled "
+                             "model has its own engine (give method='fast')")
+        if top_force != 0.0:
+            raise ValueError("top_force is not offered with friction (the coupled model has "
+                             "no top force)")
+        return simulate_planar(block, motion, cor=cor, friction=friction, theta0=theta0,
+                               theta_dot0=theta_dot0, duration=duration, rtol=rtol,
+                               output_dt=output_dt, rest_tolerance=rest_tolerance,
+                               max_recorded_events=max_recorded_impacts)
     if not isinstance(block, Block):
         raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
     cor = in_range("cor", cor, 0.0, 1.0)

@@ -1,0 +1,243 @@
+"""The result of one run of the planar block (issue 25): slip, rocking and flight in one model."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
+from shaketable.core.sliding_result import Friction
+
+#: Mode names by code (the codes of :mod:`shaketable.core.planar_dynamics`).
+MODES = ("rest", "slide", "rock", "slide-rock", "flight")
+
+#: The verdict for the largest mode visited (same order as the codes).
+VERDICTS = ("stayed", "slid", "rocked", "slide-rocked", "flew")
+
+#: Event kinds by code (:data:`shaketable.solvers.planar.EVENT_KINDS`).
+EVENT_KINDS = ("mode change", "impact", "slip reverses", "cascade summed", "unstable",
+               "overturned", "flat landing")
+
+#: Why a run stopped, with what it means.
+STATUS_MESSAGES = {
+    "completed": "the run reached its end",
+    "overturned": "|theta| reached pi/2",
+    "painleve": ("Painleve's paradox: slipping on one corner, the effective mass "
+                 "Ic + r_x (r_x + sigma mu_d r_y) is not positive (mu_d too large for the "
+                 "block's h/b); the rigid-body Coulomb model has no solution here"),
+    "inconsistent": "no contact mode is consistent with the start rules (please report)",
+    "chatter": "more than 200 mode changes at one instant (please report the case)",
+    "stalled": "the step size fell below 1e-14 s (please report the case)",
+}
+
+
+@dataclass(frozen=True)
+class PlanarResult:
+    """Time history and scalar results of one run of the planar block.
+
+    Coordinates are relative to the table (see :mod:`shaketable.core.planar_dynamics`):
+    ``x`` the horizontal displacement of the centre of mass from its initial position
+    [m], ``y`` its height above the table [m], ``theta`` the package's rotation [rad]
+    (positive: pivot on the corner at -x). ``slip`` is the horizontal displacement of the
+    base's midpoint, ``x + h sin(theta)`` [m].
+
+    Attributes
+    ----------
+    block, motion, cor, friction
+        The inputs (``cor`` a number or ``"housner"``).
+    t : ndarray
+        Output times [s]: the motion's samples up to the end of the run; a run that
+        stopped early ends with the instant it stopped.
+    x, y, theta, x_dot, y_dot, theta_dot, slip : ndarray
+        The state at the output times [m, m, rad, m/s, m/s, rad/s, m].
+    mode : ndarray of int
+        Mode at each output time (the one entered at that instant), codes of :data:`MODES`.
+    events : ndarray, shape (k, 6)
+        Time [s], kind (:data:`EVENT_KINDS`), mode before, mode after, theta' [rad/s]
+        (before an impact), slip [m]; the first ``max_recorded_events`` events.
+    n_events : int
+        All events counted.
+    time_in_mode : dict
+        Seconds spent in each mode [s].
+    modes_visited : tuple of str
+        Modes the block was in at any time.
+    peak_slip, t_peak_slip, residual_slip : float
+        Largest |slip| [m], when [s], slip at the end [m].
+    peak_excursion : float
+        Largest |X - X_rest| over time and over the four corners [m]: the clearance the
+        block needs from its neighbours.
+    max_abs_theta, t_max : float
+        Largest |theta| [rad] and when [s].
+    t_start, t_unstable, t_overturn, t_rest : float
+        First departure from rest, first |theta| > alpha, overturning, last rest after a
+        summed cascade [s] (NaN: never).
+    unstable_direction, overturn_direction : int
+        Sign of theta then (0: never).
+    n_impacts, capped_impacts, cascades : int
+        Corner impacts resolved; impacts whose couple ratio was lowered so as not to add
+        kinetic energy; endless cascades summed in closed form.
+    work_table, work_friction, impact_loss : float
+        Per unit mass [J/kg = m^2/s^2]: work of the table's inertial force (-ug, -vg), of
+        friction (<= 0) and the kinetic energy lost in impacts (>= 0).
+    energy_start, energy_end : float
+        Kinetic + potential energy per unit mass, g y [m^2/s^2].
+    status : str
+        A key of :data:`STATUS_MESSAGES`.
+    statistics : dict
+        Solver work: steps, rejected steps, right-hand-side evaluations.
+    """
+
+    block: Block
+    motion: Motion
+    cor: float | str
+    friction: Friction
+    t: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    theta: np.ndarray
+    x_dot: np.ndarray
+    y_dot: np.ndarray
+    theta_dot: np.ndarray
+    slip: np.ndarray
+    mode: np.ndarray
+    events: np.ndarray
+    n_events: int
+    time_in_mode: dict
+    modes_visited: tuple
+    peak_slip: float
+    t_peak_slip: float
+    residual_slip: float
+    peak_excursion: float
+    max_abs_theta: float
+    t_max: float
+    t_start: float
+    t_unstable: float
+    unstable_direction: int
+    t_overturn: float
+    overturn_direction: int
+    t_rest: float
+    n_impacts: int
+    capped_impacts: int
+    cascades: int
+    work_table: float
+    work_friction: float
+    impact_loss: float
+    energy_start: float
+    energy_end: float
+    status: str
+    statistics: dict = field(default_factory=dict)
+
+    @property
+    def overturned(self) -> bool:
+        """True when |theta| reached pi/2."""
+        return self.status == "overturned"
+
+    @property
+    def message(self) -> str:
+        """What the status means."""
+        return STATUS_MESSAGES[self.status]
+
+    @property
+    def max_theta_ratio(self) -> float:
+        """max |theta| / alpha [-]; NaN for an overturned run (the report's "F"), as
+        :attr:`shaketable.core.results.RockingResult.max_theta_ratio`."""
+        if self.overturned:
+            return math.nan
+        return self.max_abs_theta / self.block.alpha
+
+    @property
+    def impact_times(self) -> np.ndarray:
+        """Times of the recorded corner impacts [s]."""
+        return self.events[self.events[:, 1] == EVENT_KINDS.index("impact"), 0]
+
+    @property
+    def energy_residual(self) -> float:
+        """E_end - E_start - (W_table + W_friction - impact losses) [m^2/s^2]: zero up to
+        the integration error."""
+        return (self.energy_end - self.energy_start
+                - (self.work_table + self.work_friction - self.impact_loss))
+
+    def verdict(self) -> str:
+        """The largest mode visited in words: stayed < slid < rocked < slide-rocked < flew,
+        and overturned above all."""
+        if self.overturned:
+            return "overturned"
+        largest = max(MODES.index(name) for name in self.modes_visited)
+        return VERDICTS[largest]
+
+    def events_frame(self):
+        """The recorded events as a :class:`pandas.DataFrame`."""
+        import pandas as pd
+
+        e = self.events
+        return pd.DataFrame({
+            "time [s]": e[:, 0],
+            "event": [EVENT_KINDS[int(k)] for k in e[:, 1]],
+            "mode before": [MODES[int(k)] for k in e[:, 2]],
+            "mode after": [MODES[int(k)] for k in e[:, 3]],
+            "theta_dot [rad/s]": e[:, 4],
+            "slip [m]": e[:, 5],
+        })
+
+    def to_frame(self):
+        """Time history as a :class:`pandas.DataFrame` with units in the column names."""
+        import pandas as pd
+
+        return pd.DataFrame({
+            "time [s]": self.t,
+            **self.motion.columns_in_g(self.t),
+            "x [m]": self.x,
+            "y [m]": self.y,
+            "theta [rad]": self.theta,
+            "x_dot [m/s]": self.x_dot,
+            "y_dot [m/s]": self.y_dot,
+            "theta_dot [rad/s]": self.theta_dot,
+            "slip [m]": self.slip,
+            "theta/alpha [-]": self.theta / self.block.alpha,
+            "mode": [MODES[int(k)] for k in self.mode],
+        })
+
+    def summary(self) -> dict:
+        """Scalar results as a JSON-ready dict (NaN written as None)."""
+        from shaketable.core.files import json_ready_dict
+
+        block = self.block
+        data = {
+            "response mode": "planar (rest, slide, rock, slide-rock, flight)",
+            "block_height [m]": block.height, "block_width [m]": block.width,
+            "alpha [rad]": block.alpha, "p [rad/s]": block.p, "cor [-]": self.cor,
+            "static friction mu_s [-]": self.friction.static,
+            "dynamic friction mu_d [-]": self.friction.dynamic,
+            "motion": self.motion.name, "status": self.status, "verdict": self.verdict(),
+            "overturned": self.overturned, "max_theta_ratio [-]": self.max_theta_ratio,
+            "max_abs_theta [rad]": self.max_abs_theta, "t_max [s]": self.t_max,
+            "peak slip [m]": self.peak_slip, "t_peak_slip [s]": self.t_peak_slip,
+            "residual slip [m]": self.residual_slip,
+            "peak corner excursion [m]": self.peak_excursion,
+            "t_start [s]": self.t_start, "t_unstable [s]": self.t_unstable,
+            "unstable_direction": self.unstable_direction,
+            "t_overturn [s]": self.t_overturn, "overturn_direction": self.overturn_direction,
+            "t_rest [s]": self.t_rest, "n_impacts": self.n_impacts,
+            "capped_impacts": self.capped_impacts, "cascades": self.cascades,
+            "n_events": self.n_events,
+            "modes visited": ", ".join(self.modes_visited),
+            **{f"time {name} [s]": value for name, value in self.time_in_mode.items()},
+            "work of the table [J/kg]": self.work_table,
+            "work of friction [J/kg]": self.work_friction,
+            "impact losses [J/kg]": self.impact_loss,
+            "energy residual [J/kg]": self.energy_residual,
+        }
+        if self.status != "completed":
+            data["status message"] = self.message
+        data.update({f"solver {key}": value for key, value in self.statistics.items()})
+        return json_ready_dict(data)
+
+    def plot(self, fig=None, title: str | None = None):
+        """The Calcomp layout with a slip panel and a mode band; see
+        :func:`shaketable.plots.planar.planar_figure`."""
+        from shaketable.plots.planar import planar_figure
+
+        return planar_figure(self, fig=fig, title=title)

@@ -1,0 +1,889 @@
+"""The compiled event-driven engine of the planar block: rest, slide, rock, slide-rock, flight.
+
+:func:`integrate` walks the table's samples interval by interval (the accelerations are
+linear inside one, Section 2.8 of the report) and advances the block in its current
+mode (:mod:`shaketable.core.planar_dynamics` states the physics once):
+
+* REST: nothing moves; the first instant a rest condition fails (N > 0, Eq. (2-2)'s
+  |ug| <= mu_s N, Eq. (2-1)'s |ug| h <= b N; each affine in time) is found in closed form
+  and, as in the rocking engine, moved to the first representable time at which it fails
+  strictly; the start rules (:func:`~shaketable.core.planar_dynamics.start_mode`) choose
+  the next mode there.
+* SLIDE: the cubic pieces of :func:`shaketable.solvers.sliding.slide` (its root
+  finders), ending where x' returns to 0 (rest, reversal or a rocking mode by the start
+  rules) or N reaches 0 (flight).
+* ROCK, SLIDE_ROCK: DOP853 steps (:mod:`shaketable.solvers.planar_steps`) with error
+  control, each step ending inside the interval; the terminal events (impact at theta = 0,
+  N = 0, the friction limit |F| = mu_s N or the slip speed's return to 0, overturn at
+  pi/2, Painleve's D = 0) are located on the stepper's own solution; a turning point on the
+  far side of theta = 0 inside one step is an impact passed in that step and is found.
+* FLIGHT: the exact ballistic path; landing where the lower bottom corner reaches the
+  table, searched on pieces of at most 0.02 rad of rotation (at least 8 per interval) by
+  the sign of the corner's height and of its rate (a touch-down between two pieces
+  shows as a minimum), then bisected to the ulp.
+
+Impacts use :func:`~shaketable.core.planar_dynamics.impact`; after a sticking impact
+at theta = 0 the endless cascade of a decaying block is summed in closed form exactly
+as the rocking engine does (:func:`~shaketable.core.dynamics.cascade_rest_time`, the
+same default rest tolerance 1e-6/p and the same velocity floor 1e-8 alpha p); after a
+slipping one (a slide-rocking block that settles while it slides) the cascade, once
+summable by the same rule, ends in SLIDE at that instant with the corner's slip
+velocity (the summed micro-rocking, shorter than the rest tolerance, is not resolved).
+
+The engine never produces NaN: a run that cannot go on stops with a status
+(overturned, painleve, inconsistent, chatter: more than 200 transitions without time
+advancing, stalled: a step below 1e-14 s) and the state before it.
+
+The work of the table's inertial force and of friction and the kinetic energy lost in
+impacts are accumulated (closed forms in REST, SLIDE and FLIGHT; integrated with the
+state in the contact modes), so that E_end - E_0 = W_table + W_friction - losses.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from shaketable.core.constants import G
+from shaketable.core.dynamics import (
+    ALPHA,
+    HALF_HEIGHT,
+    HALF_WIDTH,
+    cascade_rest_time,
+    flight_acceleration,
+)
+from shaketable.core.planar_dynamics import (
+    FLIGHT,
+    INCONSISTENT,
+    PAINLEVE,
+    REST,
+    ROCK,
+    SLIDE,
+    SLIDE_ROCK,
+    corner_height,
+    corner_height_rate,
+    corner_vector,
+    flat_landing,
+    impact,
+    kinetic_energy,
+    rock_forces,
+    slide_rock_accelerations,
+    start_mode,
+)
+from shaketable.solvers.planar_steps import (
+    E_FRICTION,
+    E_IMPACT,
+    E_MASS,
+    E_NORMAL,
+    E_OVERTURN,
+    KIND_ALPHA,
+    KIND_PEAK,
+    KIND_TERMINAL,
+    N_EVENTS,
+    N_STATE,
+    dop853_step,
+    events,
+    flight_state,
+    ground,
+    locate,
+    lowest_corner,
+    polynomial_work,
+    rhs,
+)
+from shaketable.solvers.sliding import first_up_crossing, first_velocity_zero
+
+#: Why a run stopped (index = status code).
+STATUSES = ("completed", "overturned", "painleve", "inconsistent", "chatter", "stalled")
+STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_PAINLEVE, STATUS_INCONSISTENT, STATUS_CHATTER, \
+    STATUS_STALLED = range(6)
+
+#: Event kinds (index = code): a mode change that is not an impact, a corner impact,
+#: a reversal of the slip, the end of a summed cascade of impacts, |theta| first
+#: exceeding alpha, overturning, a flat landing of the whole base.
+EVENT_KINDS = ("mode change", "impact", "slip reverses", "cascade summed", "unstable",
+               "overturned", "flat landing")
+EV_MODE, EV_IMPACT, EV_REVERSAL, EV_CASCADE, EV_UNSTABLE, EV_OVERTURN, EV_LANDING = range(7)
+
+#: Columns of the event array: time [s], kind, mode before, mode after, theta' [rad/s]
+#: (before an impact; else at the event), slip of the base midpoint [m].
+EVENT_COLUMNS = 6
+
+#: Columns of the output array.
+OUT_X, OUT_Y, OUT_THETA, OUT_X_DOT, OUT_Y_DOT, OUT_OMEGA, OUT_SLIP, OUT_MODE = range(8)
+N_OUT = 8
+
+#: Layout of the info array.
+(I_STATUS, I_T_END, I_N_IMPACTS, I_CAPPED, I_CASCADES, I_T_START, I_T_UNSTABLE,
+ I_UNSTABLE_DIRECTION, I_T_OVERTURN, I_OVERTURN_DIRECTION, I_MAX_ABS_THETA, I_T_MAX,
+ I_PEAK_SLIP, I_T_PEAK_SLIP, I_PEAK_EXCURSION, I_W_TABLE, I_W_FRICTION, I_IMPACT_LOSS,
+ I_STEPS, I_REJECTED, I_EVALUATIONS, I_N_EVENTS, I_N_OUTPUT, I_TIME_REST, I_TIME_SLIDE,
+ I_TIME_ROCK, I_TIME_SLIDE_ROCK, I_TIME_FLIGHT, I_VISITED, I_T_REST, I_E0, I_E_END,
+ I_FAILED_MODE) = range(33)
+N_INFO = 33
+
+#: Transitions allowed at one instant before the run stops with status "chatter".
+MAX_TRANSITIONS_AT_ONE_TIME = 200
+
+
+@njit(cache=True)
+def _z_from_q(q, side, z, parameters):
+    """Contact-mode state z from the full state q = (x, y, theta, x', y', theta')."""
+    r_x, r_y = corner_vector(q[2], side, parameters)
+    z[0] = q[2]
+    z[1] = q[5]
+    z[2] = q[0] + r_x
+    z[3] = q[3] - r_y * q[5]
+    z[4] = 0.0
+    z[5] = 0.0
+
+
+@njit(cache=True)
+def _q_from_z(z, side, q, parameters):
+    """Full state q from a contact-mode state z (the corner on the table)."""
+    r_x, r_y = corner_vector(z[0], side, parameters)
+    q[0] = z[2] - r_x
+    q[1] = -r_y
+    q[2] = z[0]
+    q[3] = z[3] + r_y * z[1]
+    q[4] = -r_x * z[1]
+    q[5] = z[1]
+
+
+@njit(cache=True)
+def _measures(q, parameters):
+    """Slip of the base midpoint [m] and the largest corner excursion |X - X_rest| [m]."""
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    cosine = math.cos(q[2])
+    sine = math.sin(q[2])
+    slip = q[0] + h * sine
+    largest = 0.0
+    for u in (-b, b):
+        for w in (-h, h):
+            excursion = abs(q[0] + u * cosine - w * sine - u)
+            if excursion > largest:
+                largest = excursion
+    return slip, largest
+
+
+@njit(cache=True)
+def _track(t, q, info, parameters):
+    slip, excursion = _measures(q, parameters)
+    if abs(slip) > info[I_PEAK_SLIP]:
+        info[I_PEAK_SLIP] = abs(slip)
+        info[I_T_PEAK_SLIP] = t
+    if excursion > info[I_PEAK_EXCURSION]:
+        info[I_PEAK_EXCURSION] = excursion
+    if abs(q[2]) > info[I_MAX_ABS_THETA]:
+        info[I_MAX_ABS_THETA] = abs(q[2])
+        info[I_T_MAX] = t
+
+
+@njit(cache=True)
+def _record(ev, info, t, kind, before, after, omega, q, parameters):
+    index = int(info[I_N_EVENTS])
+    if index < ev.shape[0]:
+        slip, _ = _measures(q, parameters)
+        ev[index, 0] = t
+        ev[index, 1] = kind
+        ev[index, 2] = before
+        ev[index, 3] = after
+        ev[index, 4] = omega
+        ev[index, 5] = slip
+    info[I_N_EVENTS] = index + 1
+
+
+@njit(cache=True)
+def _rest_margin(condition, ug, vg, mu_s, parameters):
+    """Margin of a rest condition, positive when it fails: 0 lift-off, 1/2 slip toward
+    -/+x driven by ug > 0 / < 0, 3/4 tipping onto side +1 / -1 (the rocking engine's test)."""
+    if condition == 0:
+        return -(G + vg)
+    if condition == 1:
+        return ug - mu_s * (G + vg)
+    if condition == 2:
+        return -ug - mu_s * (G + vg)
+    if condition == 3:
+        return flight_acceleration(0.0, 1.0, ug, vg, 0.0, parameters)
+    return -flight_acceleration(0.0, -1.0, ug, vg, 0.0, parameters)
+
+
+@njit(cache=True)
+def _first_failure(t, t_end, segment, mu_s, parameters):
+    """First time in [t, t_end] at which a rest condition fails strictly [s]; inf if none.
+
+    Each margin is affine in time: the crossing by linear interpolation, then (as the
+    rocking engine's start of rocking) bisection to the first representable time with a
+    positive margin.
+    """
+    ua, va = ground(segment, t)
+    ub, vb = ground(segment, t_end)
+    best = math.inf
+    for condition in range(5):
+        margin_a = _rest_margin(condition, ua, va, mu_s, parameters)
+        margin_b = _rest_margin(condition, ub, vb, mu_s, parameters)
+        if margin_a > 0.0:
+            candidate = t
+        elif margin_b > 0.0:
+            candidate = t + (t_end - t) * (-margin_a) / (margin_b - margin_a)
+            uc, vc = ground(segment, candidate)
+            if not _rest_margin(condition, uc, vc, mu_s, parameters) > 0.0:
+                low = candidate
+                high = t_end
+                for _ in range(200):
+                    middle = 0.5 * (low + high)
+                    if middle <= low or middle >= high:
+                        break
+                    um, vm = ground(segment, middle)
+                    if _rest_margin(condition, um, vm, mu_s, parameters) > 0.0:
+                        high = middle
+                    else:
+                        low = middle
+                candidate = high
+        else:
+            continue
+        if candidate < best:
+            best = candidate
+    return best
+
+
+@njit(cache=True)
+def _flat(q, x_dot, parameters):
+    q[1] = parameters[HALF_HEIGHT]
+    q[2] = 0.0
+    q[3] = x_dot
+    q[4] = 0.0
+    q[5] = 0.0
+
+
+@njit(cache=True, nogil=True)
+def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, rest_tolerance,
+              theta0, omega0, out, ev, final, info):
+    """Integrate one run of the planar block; fill ``out``, ``ev``, ``final`` and ``info``.
+
+    Parameters
+    ----------
+    t_grid, ug, vg : ndarray
+        Sample times [s], horizontal (+x) and vertical (up) table accelerations [m/s^2].
+    parameters : ndarray
+        :func:`shaketable.core.dynamics.block_parameters` of a block without rods.
+    rho : float
+        Impact couple ratio [-]: cor / c_H, or 1 for Housner's law.
+    cor_cascade : float
+        theta' ratio of a rock-to-rock impact [-] (cor, or c_H for Housner), used to sum
+        the cascade.
+    mu_s, mu_d : float
+        Static and dynamic friction [-].
+    rtol : float
+        Relative tolerance of DOP853 [-]; absolute ones rtol alpha [rad], rtol alpha p
+        [rad/s], rtol R [m], rtol R p [m/s], rtol g R [m^2/s^2].
+    rest_tolerance : float
+        Summed cascade duration below which a cascade is summed [s]; < 0: 1e-6 / p.
+    theta0, omega0 : float
+        Initial rotation [rad] and rate [rad/s]; both zero: the block stands at rest.
+        Otherwise it rocks about the lower corner, which stands at its rest position.
+    out : ndarray, shape (n, N_OUT)
+        State at the samples (columns OUT_*).
+    ev : ndarray, shape (capacity, EVENT_COLUMNS)
+        The first events (all are counted in ``info[I_N_EVENTS]``).
+    final : ndarray, shape (N_OUT,)
+        The state where the run ended.
+    info : ndarray, shape (N_INFO,)
+        Scalar results (I_* layout).
+    """
+    n = t_grid.shape[0]
+    b = parameters[HALF_WIDTH]
+    hh = parameters[HALF_HEIGHT]
+    alpha = parameters[ALPHA]
+    radius = math.sqrt(b * b + hh * hh)
+    p = math.sqrt(3.0 * G / (4.0 * radius))
+    if rest_tolerance < 0.0:
+        rest_tolerance = 1e-6 / p
+    velocity_floor = 1e-8 * alpha * p
+    scale_abs = np.array([rtol * alpha, rtol * alpha * p, rtol * radius, rtol * radius * p,
+                          rtol * G * radius, rtol * G * radius])
+    segment = np.empty(6)
+    stages = np.empty((12, N_STATE))
+    z = np.zeros(N_STATE)
+    z_new = np.zeros(N_STATE)
+    z_event = np.zeros(N_STATE)
+    z_turn = np.zeros(N_STATE)
+    k1 = np.zeros(N_STATE)
+    q = np.zeros(6)
+    g_start = np.zeros(N_EVENTS)
+    g_end = np.zeros(N_EVENTS)
+    armed = np.zeros(N_EVENTS, dtype=np.bool_)
+    fresh = np.zeros(N_EVENTS, dtype=np.bool_)
+    no_events = np.zeros(N_EVENTS, dtype=np.bool_)
+
+    for i in range(N_INFO):
+        info[i] = 0.0
+    for i in (I_T_START, I_T_UNSTABLE, I_T_OVERTURN, I_T_REST):
+        info[i] = math.nan
+    status = STATUS_COMPLETED
+    t = t_grid[0]
+    side = 1.0
+    sigma = 0.0
+    if theta0 == 0.0 and omega0 == 0.0:
+        mode = REST
+        q[1] = hh
+    else:
+        mode = ROCK
+        if theta0 < 0.0 or (theta0 == 0.0 and omega0 < 0.0):
+            side = -1.0
+        r_x, r_y = corner_vector(theta0, side, parameters)
+        q[0] = -side * b - r_x
+        q[1] = -r_y
+        q[2] = theta0
+        q[3] = r_y * omega0
+        q[4] = -r_x * omega0
+        q[5] = omega0
+        _z_from_q(q, side, z, parameters)
+        info[I_T_START] = t
+        if abs(theta0) > alpha:
+            info[I_T_UNSTABLE] = t
+            info[I_UNSTABLE_DIRECTION] = side
+    entered = True
+    visited = 1 << mode
+    rest_until = t
+    info[I_E0] = kinetic_energy(q[3], q[4], q[5], parameters) + G * q[1]
+    w_table = 0.0
+    w_friction = 0.0
+    loss = 0.0
+    step_size = 0.1 / p
+    just_rejected = False
+    last_impact = t
+    last_transition = t
+    transitions = 0
+    n_impacts = 0
+    capped = 0
+    cascades = 0
+    steps = 0
+    rejected = 0
+    evaluations = 0
+    _track(t, q, info, parameters)
+    slip, _ = _measures(q, parameters)
+    out[0, OUT_X] = q[0]
+    out[0, OUT_Y] = q[1]
+    out[0, OUT_THETA] = q[2]
+    out[0, OUT_X_DOT] = q[3]
+    out[0, OUT_Y_DOT] = q[4]
+    out[0, OUT_OMEGA] = q[5]
+    out[0, OUT_SLIP] = slip
+    out[0, OUT_MODE] = mode
+    filled = 1
+
+    for k in range(n - 1):
+        t0 = t_grid[k]
+        t1 = t_grid[k + 1]
+        segment[0] = t0
+        segment[1] = t1 - t0
+        segment[2] = ug[k]
+        segment[3] = ug[k + 1] - ug[k]
+        segment[4] = vg[k]
+        segment[5] = vg[k + 1] - vg[k]
+        ka = segment[3] / segment[1]
+        kv = segment[5] / segment[1]
+        t_end = t1
+        while t < t_end and status == STATUS_COMPLETED:
+            previous_mode = mode
+            transition = False
+            if mode == REST:
+                if rest_until >= t_end:
+                    info[I_TIME_REST] += t_end - t
+                    t = t_end
+                    break
+                if rest_until > t:
+                    info[I_TIME_REST] += rest_until - t
+                    t = rest_until
+                when = _first_failure(t, t_end, segment, mu_s, parameters)
+                if when == math.inf:
+                    info[I_TIME_REST] += t_end - t
+                    t = t_end
+                    break
+                info[I_TIME_REST] += when - t
+                t = when
+                u_now, v_now = ground(segment, t)
+                new_mode, new_side, new_sigma = start_mode(u_now, v_now, mu_s, mu_d, parameters)
+                if new_mode == INCONSISTENT:
+                    status = STATUS_INCONSISTENT
+                    info[I_FAILED_MODE] = REST
+                    break
+                transition = True
+                if new_mode != REST:
+                    mode = new_mode
+                    side = new_side
+                    sigma = new_sigma
+                    if math.isnan(info[I_T_START]):
+                        info[I_T_START] = t
+                    if mode == ROCK or mode == SLIDE_ROCK:
+                        _z_from_q(q, side, z, parameters)
+                        entered = True
+                    _record(ev, info, t, EV_MODE, REST, mode, 0.0, q, parameters)
+            elif mode == SLIDE:
+                length = t_end - t
+                ua, va = ground(segment, t)
+                na = G + va
+                v = q[3]
+                t_air = first_up_crossing(-na, -kv, length)
+                end = length if t_air < 0.0 else t_air
+                c0 = -ua - sigma * mu_d * na
+                c1 = -ka - sigma * mu_d * kv
+                tr = first_velocity_zero(sigma * v, sigma * c0, 0.5 * sigma * c1, end)
+                span = end if tr < 0.0 else tr
+                w_table -= polynomial_work(ua, ka, v, c0, 0.5 * c1, span)
+                w_friction -= sigma * mu_d * polynomial_work(na, kv, v, c0, 0.5 * c1, span)
+                q[0] += v * span + 0.5 * c0 * span * span + c1 * span * span * span / 6.0
+                q[3] = v + c0 * span + 0.5 * c1 * span * span
+                info[I_TIME_SLIDE] += span
+                if tr < 0.0 and t_air < 0.0:
+                    t = t_end
+                else:
+                    t = t + span
+                _track(t, q, info, parameters)
+                if tr >= 0.0:
+                    q[3] = 0.0
+                    transition = True
+                    u_now, v_now = ground(segment, t)
+                    new_mode, new_side, new_sigma = start_mode(u_now, v_now, mu_s, mu_d,
+                                                               parameters)
+                    if new_mode == INCONSISTENT:
+                        status = STATUS_INCONSISTENT
+                        info[I_FAILED_MODE] = SLIDE
+                        break
+                    if new_mode == SLIDE:
+                        kind = EV_REVERSAL if new_sigma != sigma else EV_MODE
+                        sigma = new_sigma
+                        _record(ev, info, t, kind, SLIDE, SLIDE, 0.0, q, parameters)
+                    else:
+                        mode = new_mode
+                        side = new_side
+                        sigma = new_sigma
+                        if mode == ROCK or mode == SLIDE_ROCK:
+                            _z_from_q(q, side, z, parameters)
+                            entered = True
+                        _record(ev, info, t, EV_MODE, SLIDE, mode, 0.0, q, parameters)
+                elif t_air >= 0.0:
+                    transition = True
+                    mode = FLIGHT
+                    _record(ev, info, t, EV_MODE, SLIDE, FLIGHT, 0.0, q, parameters)
+            elif mode == FLIGHT:
+                length = t_end - t
+                ua, va = ground(segment, t)
+                x0, y0, th0, xd0, yd0, om0 = q[0], q[1], q[2], q[3], q[4], q[5]
+                pieces = int(min(1e6, max(8.0, math.ceil(abs(om0) * length / 0.02))))
+                lowest0, _ = lowest_corner(y0, th0, parameters)
+                positive_at_start = lowest0 > 0.0
+                tau_a = 0.0
+                landing = -1.0
+                overturn = -1.0
+                for j in range(1, pieces + 1):
+                    tau_b = length if j == pieces else length * j / pieces
+                    _, yb, thb, _, ydb, _ = flight_state(tau_b, x0, y0, th0, xd0, yd0, om0, ua,
+                                                         ka, va, kv)
+                    if abs(thb) >= 0.5 * math.pi:
+                        overturn = (math.copysign(0.5 * math.pi, thb) - th0) / om0
+                    low_b, _ = lowest_corner(yb, thb, parameters)
+                    upper = -1.0
+                    if low_b <= 0.0:
+                        upper = tau_b
+                    elif positive_at_start or tau_a > 0.0:
+                        # a touch-down hidden between the piece ends: a minimum of a
+                        # corner's height below 0 (not looked for in the first piece of a
+                        # flight that leaves the table: the corner just released starts at
+                        # zero height with zero rate and rises)
+                        _, ya, tha, _, yda, _ = flight_state(tau_a, x0, y0, th0, xd0, yd0,
+                                                             om0, ua, ka, va, kv)
+                        for s in (1.0, -1.0):
+                            rate_a = corner_height_rate(yda, tha, om0, s, parameters)
+                            rate_b = corner_height_rate(ydb, thb, om0, s, parameters)
+                            if rate_a < 0.0 and rate_b > 0.0:
+                                low = tau_a
+                                high = tau_b
+                                for _ in range(200):
+                                    middle = 0.5 * (low + high)
+                                    if middle <= low or middle >= high:
+                                        break
+                                    _, ym, thm, _, ydm, _ = flight_state(
+                                        middle, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv)
+                                    if corner_height_rate(ydm, thm, om0, s, parameters) < 0.0:
+                                        low = middle
+                                    else:
+                                        high = middle
+                                _, ym, thm, _, _, _ = flight_state(high, x0, y0, th0, xd0, yd0,
+                                                                   om0, ua, ka, va, kv)
+                                if corner_height(ym, thm, s, parameters) <= 0.0 and (
+                                        upper < 0.0 or high < upper):
+                                    upper = high
+                    if upper >= 0.0:
+                        low = tau_a
+                        high = upper
+                        for _ in range(400):
+                            middle = 0.5 * (low + high)
+                            if middle <= low or middle >= high:
+                                break
+                            _, ym, thm, _, _, _ = flight_state(middle, x0, y0, th0, xd0, yd0,
+                                                               om0, ua, ka, va, kv)
+                            lm, _ = lowest_corner(ym, thm, parameters)
+                            if lm > 0.0:
+                                low = middle
+                            else:
+                                high = middle
+                        landing = high
+                    if landing >= 0.0 or overturn >= 0.0:
+                        break
+                    tau_a = tau_b
+                span = length
+                terminal = 0
+                if overturn >= 0.0 and (landing < 0.0 or overturn <= landing):
+                    span = overturn
+                    terminal = 2
+                elif landing >= 0.0:
+                    span = landing
+                    terminal = 1
+                xs, ys, ths, xds, yds, oms = flight_state(span, x0, y0, th0, xd0, yd0, om0, ua,
+                                                          ka, va, kv)
+                w_table -= polynomial_work(ua, ka, xd0, -ua, -0.5 * ka, span)
+                w_table -= polynomial_work(va, kv, yd0, -(G + va), -0.5 * kv, span)
+                if math.isnan(info[I_T_UNSTABLE]) and abs(ths) > alpha:
+                    info[I_T_UNSTABLE] = t + (math.copysign(alpha, ths) - th0) / om0
+                    info[I_UNSTABLE_DIRECTION] = 1.0 if ths > 0.0 else -1.0
+                    _record(ev, info, info[I_T_UNSTABLE], EV_UNSTABLE, FLIGHT, FLIGHT, om0, q,
+                            parameters)
+                q[0], q[1], q[2], q[3], q[4], q[5] = xs, ys, ths, xds, yds, oms
+                info[I_TIME_FLIGHT] += span
+                t = t_end if terminal == 0 else t + span
+                _track(t, q, info, parameters)
+                if terminal == 2:
+                    status = STATUS_OVERTURNED
+                    q[2] = math.copysign(0.5 * math.pi, ths)
+                    info[I_T_OVERTURN] = t
+                    info[I_OVERTURN_DIRECTION] = 1.0 if ths > 0.0 else -1.0
+                    _record(ev, info, t, EV_OVERTURN, FLIGHT, FLIGHT, oms, q, parameters)
+                    break
+                if terminal == 1:
+                    transition = True
+                    _, corner_side = lowest_corner(q[1], q[2], parameters)
+                    if q[2] == 0.0 and q[5] == 0.0:
+                        before = kinetic_energy(q[3], q[4], 0.0, parameters)
+                        x_dot, mode = flat_landing(q[3], q[4], mu_s, mu_d)
+                        _flat(q, x_dot, parameters)
+                        loss += before - kinetic_energy(x_dot, 0.0, 0.0, parameters)
+                        sigma = 0.0 if x_dot == 0.0 else math.copysign(1.0, x_dot)
+                        _record(ev, info, t, EV_LANDING, FLIGHT, mode, 0.0, q, parameters)
+                    else:
+                        side = corner_side
+                        # the corner on the table (the root is located to the ulp)
+                        r_x, r_y = corner_vector(q[2], side, parameters)
+                        q[1] = -r_y
+                        omega_before = q[5]
+                        x_dot, y_dot, omega, kind, new_sigma, lost, cap = impact(
+                            q[2], q[3], q[4], q[5], side, rho, mu_s, mu_d, parameters)
+                        n_impacts += 1
+                        capped += int(cap)
+                        if kind == PAINLEVE:
+                            status = STATUS_PAINLEVE
+                            info[I_FAILED_MODE] = FLIGHT
+                            break
+                        loss += lost
+                        q[3], q[4], q[5] = x_dot, y_dot, omega
+                        mode = int(kind)
+                        sigma = new_sigma
+                        _z_from_q(q, side, z, parameters)
+                        entered = True
+                        _record(ev, info, t, EV_IMPACT, FLIGHT, mode, omega_before, q,
+                                parameters)
+            else:
+                # ---------------------------------------------------------------- contact
+                if entered:
+                    ua, va = ground(segment, t)
+                    if mode == ROCK:
+                        z[3] = 0.0   # the pivot sticks (a sticking impact leaves rounding)
+                    _q_from_z(z, side, q, parameters)
+                    events(mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, g_start)
+                    if mode == SLIDE_ROCK and not g_start[E_MASS] > 0.0:
+                        status = STATUS_PAINLEVE
+                        info[I_FAILED_MODE] = SLIDE_ROCK
+                        break
+                    if not g_start[E_NORMAL] > 0.0:
+                        _q_from_z(z, side, q, parameters)
+                        mode = FLIGHT
+                        _record(ev, info, t, EV_MODE, previous_mode, FLIGHT, q[5], q,
+                                parameters)
+                        transition = True
+                    elif mode == ROCK and g_start[E_FRICTION] < 0.0:
+                        _, _, _, friction, _ = rock_forces(z[0], z[1], side, ua, va,
+                                                           parameters)
+                        sigma = -1.0 if friction > 0.0 else 1.0
+                        mode = SLIDE_ROCK
+                        _q_from_z(z, side, q, parameters)
+                        _record(ev, info, t, EV_MODE, ROCK, SLIDE_ROCK, z[1], q, parameters)
+                        transition = True
+                    else:
+                        for i in range(N_EVENTS):
+                            fresh[i] = (i == E_IMPACT or i == E_FRICTION) and g_start[i] <= 0.0
+                        entered = False
+                        rhs(mode, side, sigma, mu_d, t, z, segment, parameters, k1)
+                        evaluations += 1
+                else:
+                    step = min(step_size, t_end - t)
+                    if step < 1e-14 * (abs(t) + 1.0) and step < t_end - t:
+                        status = STATUS_STALLED
+                        info[I_FAILED_MODE] = mode
+                        break
+                    error = dop853_step(mode, side, sigma, mu_d, t, z, k1, step, segment,
+                                        parameters, stages, z_new, scale_abs, rtol)
+                    evaluations += 11
+                    if not error <= 1.0:
+                        if error != error:
+                            error = 1e10
+                        step_size = step * max(0.2, 0.9 * error ** -0.125)
+                        rejected += 1
+                        just_rejected = True
+                        continue
+                    growth = min(10.0, max(0.2, 0.9 * max(error, 1e-10) ** -0.125))
+                    if just_rejected:
+                        growth = min(growth, 1.0)
+                        just_rejected = False
+                    if step < step_size:
+                        step_size = max(step_size, step * growth)
+                    else:
+                        step_size = step * growth
+                    steps += 1
+                    for i in range(N_EVENTS):
+                        armed[i] = g_start[i] > 0.0 or fresh[i]
+                    events(mode, side, sigma, mu_s, mu_d, t + step, z_new, segment, parameters,
+                           g_end)
+                    tau = step
+                    upper = step
+                    for i in range(N_STATE):
+                        z_event[i] = z_new[i]
+                    fire = False
+                    for i in range(N_EVENTS):
+                        if armed[i] and g_end[i] <= 0.0:
+                            fire = True
+                    if not fire and side * z[1] < 0.0 and side * z_new[1] > 0.0:
+                        # theta turned back away from 0 inside the step: did it pass 0?
+                        tau_turn, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
+                                                  z, k1, step, z_new, no_events, -side,
+                                                  segment, parameters, stages, scale_abs, rtol,
+                                                  z_turn)
+                        evaluations += 11 * trials
+                        if side * z_turn[0] <= 0.0:
+                            fire = True
+                            upper = tau_turn
+                            for i in range(N_STATE):
+                                z_event[i] = z_turn[i]
+                    terminal = -1
+                    if fire:
+                        armed[E_IMPACT] = True
+                        tau, trials = locate(KIND_TERMINAL, mode, side, sigma, mu_s, mu_d, t, z,
+                                             k1, upper, z_event, armed, 0.0, segment,
+                                             parameters, stages, scale_abs, rtol, z_new)
+                        evaluations += 11 * trials
+                        events(mode, side, sigma, mu_s, mu_d, t + tau, z_new, segment,
+                               parameters, g_end)
+                        least = math.inf
+                        for i in range(N_EVENTS):
+                            if armed[i] and g_end[i] < least:
+                                least = g_end[i]
+                                terminal = i
+                    # non-terminal: the turning point (largest |theta|) and instability
+                    if z[1] * z_new[1] < 0.0:
+                        tau_peak, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
+                                                  z, k1, tau, z_new, no_events,
+                                                  1.0 if z[1] > 0.0 else -1.0, segment,
+                                                  parameters, stages, scale_abs, rtol, z_turn)
+                        evaluations += 11 * trials
+                        _q_from_z(z_turn, side, q, parameters)
+                        _track(t + tau_peak, q, info, parameters)
+                    if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
+                            and abs(z[0]) <= alpha:
+                        tau_unstable, trials = locate(KIND_ALPHA, mode, side, sigma, mu_s, mu_d,
+                                                      t, z, k1, tau, z_new, no_events, 0.0,
+                                                      segment, parameters, stages, scale_abs,
+                                                      rtol, z_turn)
+                        evaluations += 11 * trials
+                        info[I_T_UNSTABLE] = t + tau_unstable
+                        info[I_UNSTABLE_DIRECTION] = 1.0 if z_new[0] > 0.0 else -1.0
+                        _q_from_z(z_turn, side, q, parameters)
+                        _record(ev, info, t + tau_unstable, EV_UNSTABLE, mode, mode, z_turn[1],
+                                q, parameters)
+                    w_table += z_new[4] - z[4]
+                    w_friction += z_new[5] - z[5]
+                    if mode == ROCK:
+                        info[I_TIME_ROCK] += tau
+                    else:
+                        info[I_TIME_SLIDE_ROCK] += tau
+                    t = t_end if (terminal < 0 and tau == t_end - t) else t + tau
+                    for i in range(N_STATE):
+                        z[i] = z_new[i]
+                    _q_from_z(z, side, q, parameters)
+                    _track(t, q, info, parameters)
+                    if terminal < 0:
+                        for i in range(N_EVENTS):
+                            g_start[i] = g_end[i]
+                            fresh[i] = fresh[i] and g_end[i] <= 0.0
+                        rhs(mode, side, sigma, mu_d, t, z, segment, parameters, k1)
+                        evaluations += 1
+                        continue
+                    transition = True
+                    u_now, v_now = ground(segment, t)
+                    if terminal == E_OVERTURN:
+                        status = STATUS_OVERTURNED
+                        z[0] = side * 0.5 * math.pi
+                        _q_from_z(z, side, q, parameters)
+                        info[I_T_OVERTURN] = t
+                        info[I_OVERTURN_DIRECTION] = side
+                        _record(ev, info, t, EV_OVERTURN, mode, mode, z[1], q, parameters)
+                        break
+                    if terminal == E_MASS:
+                        status = STATUS_PAINLEVE
+                        info[I_FAILED_MODE] = mode
+                        break
+                    if terminal == E_NORMAL:
+                        mode = FLIGHT
+                        _record(ev, info, t, EV_MODE, previous_mode, FLIGHT, z[1], q,
+                                parameters)
+                    elif terminal == E_FRICTION and mode == ROCK:
+                        _, _, _, friction, _ = rock_forces(z[0], z[1], side, u_now, v_now,
+                                                           parameters)
+                        sigma = -1.0 if friction > 0.0 else 1.0
+                        mode = SLIDE_ROCK
+                        entered = True
+                        _record(ev, info, t, EV_MODE, ROCK, SLIDE_ROCK, z[1], q, parameters)
+                    elif terminal == E_FRICTION:
+                        # the slip speed is zero to the located root: the (rounding-level)
+                        # kinetic energy taken out by zeroing it is counted as a loss
+                        before = kinetic_energy(q[3], q[4], q[5], parameters)
+                        z[3] = 0.0
+                        _q_from_z(z, side, q, parameters)
+                        loss += before - kinetic_energy(q[3], q[4], q[5], parameters)
+                        _, _, _, friction, normal = rock_forces(z[0], z[1], side, u_now, v_now,
+                                                                parameters)
+                        entered = True
+                        if normal > 0.0 and abs(friction) <= mu_s * normal:
+                            mode = ROCK
+                            _record(ev, info, t, EV_MODE, SLIDE_ROCK, ROCK, z[1], q,
+                                    parameters)
+                        else:
+                            sigma = -sigma
+                            _record(ev, info, t, EV_REVERSAL, SLIDE_ROCK, SLIDE_ROCK, z[1], q,
+                                    parameters)
+                    else:
+                        # ---- impact of the other corner at theta = 0
+                        z[0] = 0.0
+                        _q_from_z(z, side, q, parameters)
+                        omega_before = q[5]
+                        striking = -side
+                        x_dot, y_dot, omega, kind, new_sigma, lost, cap = impact(
+                            0.0, q[3], q[4], q[5], striking, rho, mu_s, mu_d, parameters)
+                        n_impacts += 1
+                        capped += int(cap)
+                        if kind == PAINLEVE:
+                            status = STATUS_PAINLEVE
+                            info[I_FAILED_MODE] = mode
+                            break
+                        loss += lost
+                        step_size = min(step_size, max(t - last_impact, 1e-3 * step_size))
+                        last_impact = t
+                        side = striking
+                        q[3], q[4], q[5] = x_dot, y_dot, omega
+                        new_mode = int(kind)
+                        sigma = new_sigma
+                        if new_mode == ROCK:
+                            deceleration = -side * flight_acceleration(0.0, side, u_now, v_now,
+                                                                       0.0, parameters)
+                        else:
+                            acceleration, _, _, _, _ = slide_rock_accelerations(
+                                0.0, 0.0, side, sigma, mu_d, u_now, v_now, parameters)
+                            deceleration = -side * acceleration
+                        remaining = cascade_rest_time(omega, deceleration, cor_cascade)
+                        if remaining == math.inf and cor_cascade >= 1.0 and deceleration > 0.0 \
+                                and abs(omega) <= velocity_floor:
+                            remaining = 0.0
+                        settles = omega == 0.0 or remaining <= rest_tolerance or (
+                            abs(omega) <= velocity_floor and remaining < math.inf)
+                        if settles and new_mode == ROCK:
+                            loss += kinetic_energy(x_dot, y_dot, omega, parameters)
+                            _flat(q, 0.0, parameters)
+                            mode = REST
+                            if omega != 0.0:
+                                cascades += 1
+                            rest_until = t + (0.0 if omega == 0.0 else remaining)
+                            info[I_T_REST] = rest_until
+                            _record(ev, info, t, EV_IMPACT, previous_mode, REST, omega_before,
+                                    q, parameters)
+                        elif settles:
+                            # the corner's slip velocity becomes the base's
+                            _, r_y = corner_vector(0.0, side, parameters)
+                            base = x_dot - r_y * omega
+                            loss += kinetic_energy(x_dot, y_dot, omega, parameters) \
+                                - 0.5 * base * base
+                            if omega != 0.0:
+                                cascades += 1
+                            _flat(q, base, parameters)
+                            mode = SLIDE
+                            sigma = 1.0 if base > 0.0 else -1.0
+                            if base == 0.0:
+                                mode = REST
+                                rest_until = t
+                            _record(ev, info, t, EV_IMPACT, previous_mode, mode, omega_before,
+                                    q, parameters)
+                        else:
+                            mode = new_mode
+                            _z_from_q(q, side, z, parameters)
+                            entered = True
+                            _record(ev, info, t, EV_IMPACT, previous_mode, mode, omega_before,
+                                    q, parameters)
+            if mode != previous_mode:
+                visited |= 1 << mode
+            if transition:
+                if t == last_transition:
+                    transitions += 1
+                    if transitions > MAX_TRANSITIONS_AT_ONE_TIME:
+                        status = STATUS_CHATTER
+                        info[I_FAILED_MODE] = mode
+                        break
+                else:
+                    transitions = 0
+                    last_transition = t
+        if status != STATUS_COMPLETED:
+            break
+        _track(t, q, info, parameters)
+        slip, _ = _measures(q, parameters)
+        out[k + 1, OUT_X] = q[0]
+        out[k + 1, OUT_Y] = q[1]
+        out[k + 1, OUT_THETA] = q[2]
+        out[k + 1, OUT_X_DOT] = q[3]
+        out[k + 1, OUT_Y_DOT] = q[4]
+        out[k + 1, OUT_OMEGA] = q[5]
+        out[k + 1, OUT_SLIP] = slip
+        out[k + 1, OUT_MODE] = mode
+        filled = k + 2
+
+    slip, _ = _measures(q, parameters)
+    final[OUT_X] = q[0]
+    final[OUT_Y] = q[1]
+    final[OUT_THETA] = q[2]
+    final[OUT_X_DOT] = q[3]
+    final[OUT_Y_DOT] = q[4]
+    final[OUT_OMEGA] = q[5]
+    final[OUT_SLIP] = slip
+    final[OUT_MODE] = mode
+    info[I_STATUS] = status
+    info[I_T_END] = t
+    info[I_N_IMPACTS] = n_impacts
+    info[I_CAPPED] = capped
+    info[I_CASCADES] = cascades
+    info[I_W_TABLE] = w_table
+    info[I_W_FRICTION] = w_friction
+    info[I_IMPACT_LOSS] = loss
+    info[I_STEPS] = steps
+    info[I_REJECTED] = rejected
+    info[I_EVALUATIONS] = evaluations
+    info[I_N_OUTPUT] = filled
+    info[I_VISITED] = visited
+    info[I_E_END] = kinetic_energy(q[3], q[4], q[5], parameters) + G * q[1]

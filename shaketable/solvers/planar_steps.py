@@ -1,0 +1,320 @@
+"""The steppers of the planar engine (:mod:`shaketable.solvers.planar`), compiled with numba.
+
+* ROCK and SLIDE_ROCK: the state z = [theta, theta', X_s, X_s', W_ground, W_friction]
+  (X_s the active corner's horizontal position [m], fixed in ROCK; W the work per unit
+  mass of the table's inertial force and of friction [m^2/s^2], integrated with the
+  motion) advanced by the explicit Runge-Kutta pair DOP853 of Dormand & Prince (order 8,
+  error estimators of orders 5 and 3; Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.10),
+  with the physics of :mod:`shaketable.core.planar_dynamics`. (The Nystrom pair of the
+  rocking engine needs theta'' = f(t, theta); SLIDE_ROCK has theta'^2 terms.)
+* Events are zeros of event functions of the state, located on the stepper itself
+  (each trial is one step from the step's start, as in the rocking engine) by the
+  Illinois variant of regula falsi, safeguarded by bisection, to a bracket of a few ulps.
+* REST, SLIDE and FLIGHT are closed forms (the table accelerations are linear between
+  samples): the polynomial helpers here.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from shaketable.core.constants import G
+from shaketable.core.dynamics import ALPHA, HALF_HEIGHT, HALF_WIDTH, flight_acceleration
+from shaketable.core.planar_dynamics import (
+    ROCK,
+    corner_vector,
+    rock_forces,
+    slide_rock_accelerations,
+)
+
+# DOP853 tableau (Hairer, Norsett & Wanner; the numbers of SciPy's dop853_coefficients.py)
+_C = np.array([
+    0.0, 0.05260015195876773, 0.0789002279381516, 0.1183503419072274,
+    0.2816496580927726, 0.3333333333333333, 0.25, 0.3076923076923077,
+    0.6512820512820513, 0.6, 0.8571428571428571, 1.0])
+_B = np.array([
+    0.054293734116568765, 0.0, 0.0, 0.0, 0.0, 4.450312892752409,
+    1.8915178993145003, -5.801203960010585, 0.3111643669578199,
+    -0.1521609496625161, 0.20136540080403034, 0.04471061572777259])
+_E3 = np.array([
+    -0.18980075407240762, 0.0, 0.0, 0.0, 0.0, 4.450312892752409,
+    1.8915178993145003, -5.801203960010585, -0.4226823213237919,
+    -0.1521609496625161, 0.20136540080403034, 0.02265179219836082])
+_E5 = np.array([
+    0.01312004499419488, 0.0, 0.0, 0.0, 0.0, -1.2251564463762044,
+    -0.4957589496572502, 1.6643771824549864, -0.35032884874997366,
+    0.3341791187130175, 0.08192320648511571, -0.022355307863886294])
+_A = np.zeros((12, 12))
+_A[1, 0] = 0.05260015195876773
+_A[2, 0] = 0.0197250569845379
+_A[2, 1] = 0.0591751709536137
+_A[3, 0] = 0.02958758547680685
+_A[3, 2] = 0.08876275643042054
+_A[4, 0] = 0.2413651341592667
+_A[4, 2] = -0.8845494793282861
+_A[4, 3] = 0.924834003261792
+_A[5, 0] = 0.037037037037037035
+_A[5, 3] = 0.17082860872947386
+_A[5, 4] = 0.12546768756682242
+_A[6, 0] = 0.037109375
+_A[6, 3] = 0.17025221101954405
+_A[6, 4] = 0.06021653898045596
+_A[6, 5] = -0.017578125
+_A[7, 0] = 0.03709200011850479
+_A[7, 3] = 0.17038392571223998
+_A[7, 4] = 0.10726203044637328
+_A[7, 5] = -0.015319437748624402
+_A[7, 6] = 0.008273789163814023
+_A[8, 0] = 0.6241109587160757
+_A[8, 3] = -3.3608926294469414
+_A[8, 4] = -0.868219346841726
+_A[8, 5] = 27.59209969944671
+_A[8, 6] = 20.154067550477894
+_A[8, 7] = -43.48988418106996
+_A[9, 0] = 0.47766253643826434
+_A[9, 3] = -2.4881146199716677
+_A[9, 4] = -0.590290826836843
+_A[9, 5] = 21.230051448181193
+_A[9, 6] = 15.279233632882423
+_A[9, 7] = -33.28821096898486
+_A[9, 8] = -0.020331201708508627
+_A[10, 0] = -0.9371424300859873
+_A[10, 3] = 5.186372428844064
+_A[10, 4] = 1.0914373489967295
+_A[10, 5] = -8.149787010746927
+_A[10, 6] = -18.52006565999696
+_A[10, 7] = 22.739487099350505
+_A[10, 8] = 2.4936055526796523
+_A[10, 9] = -3.0467644718982196
+_A[11, 0] = 2.273310147516538
+_A[11, 3] = -10.53449546673725
+_A[11, 4] = -2.0008720582248625
+_A[11, 5] = -17.9589318631188
+_A[11, 6] = 27.94888452941996
+_A[11, 7] = -2.8589982771350235
+_A[11, 8] = -8.87285693353063
+_A[11, 9] = 12.360567175794303
+_A[11, 10] = 0.6433927460157636
+
+#: Components of the integrated state.
+N_STATE = 6
+
+#: Event-function kinds for :func:`locate`.
+KIND_TERMINAL, KIND_PEAK, KIND_ALPHA = 0.0, 1.0, 2.0
+
+#: Terminal events of the contact modes (indices of :func:`events`).
+E_IMPACT, E_NORMAL, E_FRICTION, E_OVERTURN, E_MASS = 0, 1, 2, 3, 4
+N_EVENTS = 5
+
+
+@njit(cache=True)
+def ground(segment, time):
+    """Horizontal and vertical table acceleration [m/s^2] at ``time`` (linear in the interval)."""
+    fraction = (time - segment[0]) / segment[1]
+    return segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction
+
+
+@njit(cache=True)
+def rhs(mode, side, sigma, mu_d, t, z, segment, parameters, out):
+    """z' of ROCK or SLIDE_ROCK into ``out``."""
+    ug, vg = ground(segment, t)
+    theta = z[0]
+    omega = z[1]
+    velocity = z[3]
+    r_x, r_y = corner_vector(theta, side, parameters)
+    friction_power = 0.0
+    if mode == ROCK:
+        acceleration = flight_acceleration(theta, side, ug, vg, 0.0, parameters)
+        corner_dd = 0.0
+    else:
+        acceleration, corner_dd, friction, _, _ = slide_rock_accelerations(
+            theta, omega, side, sigma, mu_d, ug, vg, parameters)
+        friction_power = friction * velocity
+    x_dot = velocity + r_y * omega
+    y_dot = -r_x * omega
+    out[0] = omega
+    out[1] = acceleration
+    out[2] = velocity
+    out[3] = corner_dd
+    out[4] = -ug * x_dot - vg * y_dot
+    out[5] = friction_power
+
+
+@njit(cache=True)
+def dop853_step(mode, side, sigma, mu_d, t, z, k1, h, segment, parameters, stages, z_new,
+                scale_abs, rtol):
+    """One DOP853 step of size ``h`` from (t, z) with z'(t) = ``k1``; z(t + h) into ``z_new``.
+
+    Returns the error norm (<= 1: accepted) of Hairer's DOP853 estimator on the
+    mixed absolute (``scale_abs``) / relative (``rtol``) scale.
+    """
+    work = np.empty(N_STATE)
+    for i in range(N_STATE):
+        stages[0, i] = k1[i]
+    for s in range(1, 12):
+        for i in range(N_STATE):
+            total = 0.0
+            for j in range(s):
+                total += _A[s, j] * stages[j, i]
+            work[i] = z[i] + h * total
+        row = stages[s]
+        rhs(mode, side, sigma, mu_d, t + _C[s] * h, work, segment, parameters, row)
+    err5 = 0.0
+    err3 = 0.0
+    for i in range(N_STATE):
+        total = 0.0
+        e5 = 0.0
+        e3 = 0.0
+        for s in range(12):
+            total += _B[s] * stages[s, i]
+            e5 += _E5[s] * stages[s, i]
+            e3 += _E3[s] * stages[s, i]
+        z_new[i] = z[i] + h * total
+        scale = scale_abs[i] + rtol * max(abs(z[i]), abs(z_new[i]))
+        err5 += (e5 / scale) ** 2
+        err3 += (e3 / scale) ** 2
+    if err5 == 0.0 and err3 == 0.0:
+        return 0.0
+    return abs(h) * err5 / math.sqrt((err5 + 0.01 * err3) * N_STATE)
+
+
+@njit(cache=True)
+def events(mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, out):
+    """The terminal event functions of ROCK / SLIDE_ROCK at (t, z) into ``out``; each is
+    positive while the mode holds: side theta (impact), N (lift-off), the friction margin
+    mu_s N - |F| (ROCK) or the slip speed sigma X_s' (SLIDE_ROCK), pi/2 - side theta
+    (overturn), the effective mass D (SLIDE_ROCK; Painleve)."""
+    ug, vg = ground(segment, t)
+    theta = z[0]
+    omega = z[1]
+    out[E_IMPACT] = side * theta
+    out[E_OVERTURN] = 0.5 * math.pi - side * theta
+    if mode == ROCK:
+        _, _, _, friction, normal = rock_forces(theta, omega, side, ug, vg, parameters)
+        out[E_NORMAL] = normal
+        out[E_FRICTION] = min(mu_s * normal - friction, mu_s * normal + friction)
+        out[E_MASS] = 1.0
+    else:
+        _, _, _, normal, d = slide_rock_accelerations(theta, omega, side, sigma, mu_d, ug, vg,
+                                                      parameters)
+        out[E_NORMAL] = normal if d > 0.0 else 0.0
+        out[E_FRICTION] = sigma * z[3]
+        out[E_MASS] = d
+
+
+@njit(cache=True)
+def event_value(kind, mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, armed, sign,
+                values):
+    """The event function of ``kind`` at (t, z): positive before the event, <= 0 at and after.
+
+    KIND_TERMINAL: the least of the armed terminal events (the first to fire);
+    KIND_PEAK: sign * theta' (a turning point); KIND_ALPHA: alpha - |theta|.
+    """
+    if kind == KIND_PEAK:
+        return sign * z[1]
+    if kind == KIND_ALPHA:
+        return parameters[ALPHA] - abs(z[0])
+    events(mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, values)
+    least = math.inf
+    for i in range(N_EVENTS):
+        if armed[i] and values[i] < least:
+            least = values[i]
+    return least
+
+
+@njit(cache=True)
+def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, k1, upper, z_upper, armed, sign,
+           segment, parameters, stages, scale_abs, rtol, z_out):
+    """First zero of an event function on (0, upper] on the stepper itself.
+
+    The function is taken as positive at tau = 0 (an event armed at the step start, or
+    one zero there by construction, e.g. theta = 0 when rocking begins) and is <= 0 at
+    ``upper`` (state ``z_upper``). Illinois regula falsi on trial steps from (t, z),
+    bisection when it stalls, until the bracket is a few ulps of t wide. The state at the
+    right end of the bracket (the event has happened) goes into ``z_out``.
+
+    Returns tau and the number of trial steps.
+    """
+    values = np.empty(N_EVENTS)
+    trial = np.empty(N_STATE)
+    for i in range(N_STATE):
+        z_out[i] = z_upper[i]
+    a = 0.0
+    b = upper
+    gb = event_value(kind, mode, side, sigma, mu_s, mu_d, t + upper, z_upper, segment,
+                     parameters, armed, sign, values)
+    ga = event_value(kind, mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, armed,
+                     sign, values)
+    known = ga > 0.0
+    tolerance = 4e-16 * (abs(t) + upper) + 1e-300
+    trials = 0
+    kept = 0
+    for _ in range(300):
+        if b - a <= tolerance or gb == 0.0:
+            break
+        if known and ga != gb:
+            candidate = b - gb * (b - a) / (gb - ga)
+            if not (a < candidate < b):
+                candidate = 0.5 * (a + b)
+        else:
+            candidate = 0.5 * (a + b)
+        if trials % 8 == 7:
+            candidate = 0.5 * (a + b)   # guarantees the bracket shrinks
+        dop853_step(mode, side, sigma, mu_d, t, z, k1, candidate, segment, parameters, stages,
+                    trial, scale_abs, rtol)
+        trials += 1
+        g = event_value(kind, mode, side, sigma, mu_s, mu_d, t + candidate, trial, segment,
+                        parameters, armed, sign, values)
+        if g > 0.0:
+            a = candidate
+            ga = g
+            known = True
+            if kept == 1:
+                gb *= 0.5
+            kept = 1
+        else:
+            b = candidate
+            gb = g
+            for i in range(N_STATE):
+                z_out[i] = trial[i]
+            if kept == -1:
+                ga *= 0.5
+            kept = -1
+    return b, trials
+
+
+@njit(cache=True)
+def polynomial_work(p0, p1, q0, q1, q2, span):
+    """Integral over [0, span] of (p0 + p1 tau)(q0 + q1 tau + q2 tau^2)."""
+    return (p0 * q0 * span + (p0 * q1 + p1 * q0) * span ** 2 / 2.0
+            + (p0 * q2 + p1 * q1) * span ** 3 / 3.0 + p1 * q2 * span ** 4 / 4.0)
+
+
+@njit(cache=True)
+def flight_state(tau, x, y, theta, x_dot, y_dot, omega, ua, ka, va, kv):
+    """Ballistic state after ``tau`` [s] (x'' = -ug, y'' = -(g + vg), theta'' = 0, the table
+    accelerations ua + ka tau, va + kv tau)."""
+    gravity = G + va
+    return (x + x_dot * tau - ua * tau * tau / 2.0 - ka * tau ** 3 / 6.0,
+            y + y_dot * tau - gravity * tau * tau / 2.0 - kv * tau ** 3 / 6.0,
+            theta + omega * tau,
+            x_dot - ua * tau - ka * tau * tau / 2.0,
+            y_dot - gravity * tau - kv * tau * tau / 2.0,
+            omega)
+
+
+@njit(cache=True)
+def lowest_corner(y, theta, parameters):
+    """Height of the lower bottom corner [m] and its side."""
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    sine = math.sin(theta)
+    cosine = math.cos(theta)
+    plus = y - b * sine - h * cosine
+    minus = y + b * sine - h * cosine
+    if plus <= minus:
+        return plus, 1.0
+    return minus, -1.0
