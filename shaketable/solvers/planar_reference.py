@@ -280,8 +280,9 @@ class _Run:
             self.record(t, kind, before, mode)
 
     def enter_contact(self, t, mode, side, sigma, kind, before):
-        """Enter ROCK or SLIDE_ROCK (from mode ``before``), redirected to SLIDE_ROCK or
-        FLIGHT when its contact forces are inconsistent; record the event."""
+        """Enter ROCK or SLIDE_ROCK (from mode ``before``), redirected to SLIDE_ROCK,
+        FLIGHT, or (flat, theta = theta' = 0, not tipping) SLIDE or REST when its contact
+        forces are inconsistent; record the event."""
         for _ in range(4):
             self.set_mode(t, mode, side, sigma)
             if mode == SLIDE_ROCK and slide_rock_effective_mass(
@@ -289,9 +290,17 @@ class _Run:
                 raise _Stop("painleve", f"Painleve's paradox at t = {t!r} s: slide-rock about "
                             f"corner {side:+d} with mu_d = {self.mu_d} has no consistent "
                             "normal force")
-            _, _, _, force, normal = self.solution(t, self.state)
+            _, _, thdd, force, normal = self.solution(t, self.state)
             if normal <= 0.0:
                 mode = FLIGHT
+                break
+            if self.state[2] == 0.0 and self.state[5] == 0.0 and side * thdd <= 0.0:
+                # a flat block at rest on both corners that does not tip onto this one
+                # (a marginal start, e.g. mu_s = B/H): it stays flat, sliding if it slips
+                if mode == SLIDE_ROCK and self.mu_d > self.geometry.b / self.geometry.h:
+                    raise _Stop("inconsistent", f"no consistent mode at t = {t!r} s: "
+                                "slide-rock does not tip and mu_d > B/H forbids a flat slide")
+                mode = SLIDE if mode == SLIDE_ROCK else REST
                 break
             if mode == ROCK and abs(force) > self.mu_s * normal:
                 mode, sigma = SLIDE_ROCK, (-1 if force > 0 else 1)
