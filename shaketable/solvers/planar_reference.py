@@ -316,7 +316,7 @@ class _Run:
         geometry = self.geometry
         if normal <= 0.0:
             return FLIGHT, self.side, self.sigma
-        if abs(ug) * geometry.h > geometry.b * normal:
+        if self.tipping(1, ug, vg) > 0.0 or self.tipping(-1, ug, vg) > 0.0:
             side = 1 if ug > 0 else -1
             sigma = -side
             _, _, _, force, rock_normal = rock_solution(geometry, side, 0.0, 0.0, ug, vg)
@@ -337,7 +337,16 @@ class _Run:
         ug, vg = self.ground(t)
         normal = G + vg
         return (normal > 0.0 and abs(ug) <= self.mu_s * normal
-                and abs(ug) * self.geometry.h <= self.geometry.b * normal)
+                and self.tipping(1, ug, vg) <= 0.0 and self.tipping(-1, ug, vg) <= 0.0)
+
+    def tipping(self, side, ug, vg):
+        """side * theta'' of ROCK about ``side`` at theta = theta' = 0 [rad/s^2].
+
+        Positive iff side ug h > b (g + vg) (Eq. 2-1), here from the same Newton-Euler
+        solve as the ROCK mode itself, so that "the block tips" and "ROCK turns the
+        block onto that corner" never disagree by rounding.
+        """
+        return side * rock_solution(self.geometry, side, 0.0, 0.0, ug, vg)[2]
 
     def leave_flat(self, t, kind):
         """A flat block at rest at t whose rest conditions fail: apply the start rules."""
@@ -354,12 +363,11 @@ class _Run:
     def rest_until_failure(self, t, t_end):
         """First time in [t, t_end] at which the rest conditions fail, else None."""
         u0, u1, v0, v1, t0, t1 = self.interval
-        geometry, mu_s = self.geometry, self.mu_s
-        # each condition g(time) > 0 means "rest fails"; g is linear in time
+        mu_s = self.mu_s
+        # each condition g(time) > 0 means "rest fails"; g is linear in time (to rounding)
         conditions = [lambda u, v: -(G + v),
                       lambda u, v: u - mu_s * (G + v), lambda u, v: -u - mu_s * (G + v),
-                      lambda u, v: u * geometry.h - geometry.b * (G + v),
-                      lambda u, v: -u * geometry.h - geometry.b * (G + v)]
+                      lambda u, v: self.tipping(1, u, v), lambda u, v: self.tipping(-1, u, v)]
         best = None
         for index, condition in enumerate(conditions):
             def value(time, condition=condition):
@@ -666,7 +674,10 @@ class _Run:
                 if not started:
                     started = True
                     if self.mode in (ROCK, SLIDE_ROCK):
-                        self.enter_contact(t, self.mode, self.side, self.sigma, "start", REST)
+                        initial = self.mode
+                        self.enter_contact(t, initial, self.side, self.sigma, "start", initial)
+                        if self.mode == initial:
+                            self.events.pop()  # the initial state is no transition
                 stalled = segments = 0
                 while t < t1:
                     segments += 1

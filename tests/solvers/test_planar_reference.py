@@ -319,19 +319,21 @@ def test_mirrored_input_gives_the_mirrored_response():
 
 
 def test_the_reference_converges_as_rtol_shrinks():
-    # a coupled run (rock, slide-rock, impacts) at rtol 1e-10 and 1e-12 against 1e-13:
-    # the error falls with rtol and is below 1e-8 at the default
+    # the coupled run with the input sampled every 0.05 s (with 5 ms samples one DOP853
+    # step per sample is exact to rounding at any rtol), at rtol 1e-8 and 1e-12 against
+    # 1e-13: the error falls with rtol and is below 1e-10 at the default
     block, friction = Block.from_inches(30, 6), Friction(0.25, 0.22)
-    motion = _coupled_motion()
+    motion = harmonic(3.0, horizontal=0.6 * G, duration=3.0, dt=0.05, ramp=0.25)
     runs = {rtol: simulate_reference(block, motion, cor=0.9, friction=friction, rtol=rtol)
-            for rtol in (1e-10, 1e-12, 1e-13)}
+            for rtol in (1e-8, 1e-12, 1e-13)}
     best = runs[1e-13]
+    assert len(best.impact_times) > 10
     errors = {}
-    for rtol in (1e-10, 1e-12):
+    for rtol in (1e-8, 1e-12):
         run = runs[rtol]
         assert run.event_kinds == best.event_kinds
         errors[rtol] = max(np.abs(run.event_times - best.event_times).max(),
                            np.abs(run.theta - best.theta).max(),
                            np.abs(run.x - best.x).max())
-    assert errors[1e-12] < 1e-8
-    assert errors[1e-12] < errors[1e-10]
+    assert errors[1e-12] < 1e-10
+    assert errors[1e-12] < 0.1 * errors[1e-8]

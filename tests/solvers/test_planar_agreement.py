@@ -1,0 +1,149 @@
+"""The compiled planar model (``solvers.planar_run``) against the independent reference.
+
+Issue 25, check 6: the compiled engine (branch ``planar``) and the SciPy reference of
+``solvers/planar_reference.py`` (a different formulation: Newton-Euler linear solves in
+(x, y, theta) per mode, DOP853 with SciPy's event location, restarted at every event)
+must agree to 1e-8 on runs that visit every mode: event times (with the modes on both
+sides), impact times, max |theta|/alpha, peak and residual slip. Each case is designed
+to visit the modes named in its id (checked in the test, on the reference's run).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from shaketable.core.constants import G
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
+from shaketable.core.shenton import FLIGHT, REST, ROCK, SLIDE, SLIDE_ROCK
+from shaketable.core.sliding_result import Friction
+from shaketable.ground.generators import half_sine_pulse, harmonic
+from shaketable.solvers.planar_reference import simulate_reference
+from shaketable.solvers.planar_run import simulate_planar
+
+TOLERANCE = 1e-8
+
+#: Event kind of the compiled result that marks |theta| = alpha (not an event of the
+#: reference, which reports t_unstable instead): NOTES_FOR_REF.md of branch planar.
+UNSTABLE_KIND = 4
+
+
+def _ramped(duration, horizontal, vertical):
+    """Sine table accelerations (amplitude [m/s^2], frequency [Hz]) ramped in over 0.5 s."""
+    t = np.arange(0.0, duration + 1e-9, 0.005)
+    ramp = np.minimum(t / 0.5, 1.0)
+    (a_h, f_h), (a_v, f_v) = horizontal, vertical
+    return Motion(t, ramp * a_h * np.sin(2 * np.pi * f_h * t),
+                  ramp * a_v * np.sin(2 * np.pi * f_v * t))
+
+
+CASES = {
+    # a stocky block (B/H = 1 > mu) on a strong half-sine pulse: rest, slide, stick
+    "slide": dict(block=Block(1.0, 1.0), cor=0.9, friction=Friction(0.3, 0.25),
+                  motion=half_sine_pulse(amplitude=0.8 * G, pulse_duration=0.3,
+                                         duration=2.0, dt=0.005),
+                  modes={REST, SLIDE}),
+    # the 30 x 6 in block with B/H = 0.2 < mu_d < mu_s < mu_cr: rock, slide-rock, impacts
+    "rock+slide-rock": dict(block=Block.from_inches(30, 6), cor=0.9,
+                            friction=Friction(0.25, 0.22),
+                            motion=harmonic(3.0, horizontal=0.6 * G, duration=3.0, dt=0.005,
+                                            ramp=0.25),
+                            modes={REST, ROCK, SLIDE_ROCK}),
+    # a harmonic drive with ample friction: rocks with impacts (Section 2.7)
+    "rock": dict(block=Block.from_inches(30, 6), cor=0.925, friction=Friction(1.0),
+                 motion=harmonic(2.0, horizontal=0.35 * G, duration=4.0, dt=0.01, ramp=0.25),
+                 modes={REST, ROCK}),
+    # vertical 1.3 g: vg < -g twice a cycle, the flat block flies and lands flat
+    "flat flight": dict(block=Block(1.0, 0.5), cor=0.8, friction=Friction(0.45, 0.4),
+                        motion=harmonic(2.0, horizontal=0.3 * G, vertical=1.3 * G,
+                                        duration=2.0, dt=0.005),
+                        modes={REST, SLIDE, FLIGHT}),
+    # a rocking block thrown off the table by vg < -g lands on a corner: every contact mode
+    "rock+slide-rock+flight": dict(block=Block(1.0, 0.4), cor=0.8,
+                                   friction=Friction(0.6, 0.54),
+                                   motion=_ramped(3.0, (0.5 * G, 2.0), (1.2 * G, 2.0)),
+                                   modes={REST, ROCK, SLIDE_ROCK, FLIGHT}),
+    "slender flight": dict(block=Block.from_inches(30, 6), cor=0.8,
+                           friction=Friction(0.5, 0.45),
+                           motion=_ramped(3.0, (0.4 * G, 2.0), (1.3 * G, 3.0)),
+                           modes={REST, ROCK, SLIDE_ROCK, FLIGHT}),
+    # ... and overturns after flights (the overturn check in contact and in flight)
+    "overturn": dict(block=Block(1.0, 0.5), cor=0.8, friction=Friction(0.8, 0.72),
+                     motion=_ramped(3.0, (0.45 * G, 1.5), (1.2 * G, 3.0)),
+                     modes={REST, ROCK, SLIDE_ROCK, FLIGHT}),
+    # free rocking released at 0.15 rad with mu in the wedge: each impact slips
+    "free release": dict(block=Block.from_inches(30, 6), cor=0.9,
+                         friction=Friction(0.25, 0.22), motion=None,
+                         extra=dict(theta0=0.15, duration=3.0), modes={ROCK, SLIDE_ROCK}),
+}
+
+
+def _transitions(events):
+    """(time, mode before, mode after) of the compiled result's events, |theta| = alpha out."""
+    events = np.asarray(events)
+    kept = events[events[:, 1] != UNSTABLE_KIND]
+    return kept[:, 0], kept[:, 2].astype(int), kept[:, 3].astype(int)
+
+
+@pytest.fixture(scope="module")
+def runs():
+    found = {}
+    for name, case in CASES.items():
+        extra = case.get("extra", {})
+        arguments = (case["block"], case["motion"])
+        keywords = dict(cor=case["cor"], friction=case["friction"], **extra)
+        found[name] = (simulate_reference(*arguments, **keywords),
+                       simulate_planar(*arguments, **keywords))
+    return found
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_the_case_visits_its_modes(runs, name):
+    reference, _ = runs[name]
+    visited = {mode for mode, seconds in zip((REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT),
+                                             reference.time_in_mode.values()) if seconds > 0}
+    assert CASES[name]["modes"] <= visited
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_events_agree(runs, name):
+    reference, planar = runs[name]
+    times, before, after = _transitions(planar.events)
+    assert planar.status == reference.status
+    np.testing.assert_array_equal(before, reference.event_mode_before)
+    np.testing.assert_array_equal(after, reference.event_mode_after)
+    np.testing.assert_allclose(times, reference.event_times, rtol=0, atol=TOLERANCE)
+    assert planar.n_impacts == len(reference.impact_times)
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_scalars_agree(runs, name):
+    reference, planar = runs[name]
+    block = CASES[name]["block"]
+    assert planar.max_abs_theta / block.alpha == pytest.approx(
+        reference.max_abs_theta / block.alpha, abs=TOLERANCE)
+    assert planar.peak_slip == pytest.approx(reference.peak_slip, abs=TOLERANCE)
+    assert planar.residual_slip == pytest.approx(reference.residual_slip, abs=TOLERANCE)
+    for field in ("t_overturn", "t_unstable", "t_rest"):
+        mine, theirs = getattr(reference, field), getattr(planar, field)
+        assert (np.isnan(mine) and np.isnan(theirs)) or theirs == pytest.approx(
+            mine, abs=TOLERANCE), field
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_time_histories_agree(runs, name):
+    reference, planar = runs[name]
+    samples = reference.t.size
+    if reference.overturned:
+        # the compiled result ends with the overturn instant as its last sample; the
+        # reference stops at the last sample before it
+        assert planar.t.size == samples + 1
+        assert planar.t[-1] == pytest.approx(reference.t_overturn, abs=TOLERANCE)
+    else:
+        assert planar.t.size == samples
+    np.testing.assert_array_equal(planar.t[:samples], reference.t)
+    np.testing.assert_array_equal(planar.mode[:samples], reference.mode)
+    for field in ("x", "y", "theta"):
+        np.testing.assert_allclose(getattr(planar, field)[:samples], getattr(reference, field),
+                                   rtol=0, atol=TOLERANCE, err_msg=field)
