@@ -28,6 +28,9 @@ TOLERANCE = 1e-8
 #: reference, which reports t_unstable instead): NOTES_FOR_REF.md of branch planar.
 UNSTABLE_KIND = 4
 
+#: Event kind of an impact in the compiled result.
+IMPACT_KIND = 1
+
 
 def _ramped(duration, horizontal, vertical):
     """Sine table accelerations (amplitude [m/s^2], frequency [Hz]) ramped in over 0.5 s."""
@@ -79,11 +82,90 @@ CASES = {
 }
 
 
+def _harmonic_pair(block, cor, friction, horizontal, vertical, phase):
+    """A fuzz-found case: ramped sines (amplitude [m/s^2], frequency [Hz]), 3 s at 5 ms."""
+    t = np.arange(0.0, 3.0 + 1e-9, 0.005)
+    ramp = np.minimum(t / 0.5, 1.0)
+    (a_h, f_h), (a_v, f_v) = horizontal, vertical
+    motion = Motion(t, ramp * a_h * np.sin(2 * np.pi * f_h * t),
+                    ramp * a_v * np.sin(2 * np.pi * f_v * t + phase))
+    return dict(block=block, cor=cor, friction=friction, motion=motion)
+
+
+# Cases found by random runs of both models (seed 1 of a fuzz over blocks, friction, cor and
+# harmonic inputs; DISAGREEMENTS.md, make(i)), kept for what each exercises.
+CASES.update({
+    # a summed cascade of sticking impacts in a coupled run (Housner's law)
+    "fuzz 7: cascade": dict(modes={REST, ROCK}, **_harmonic_pair(
+        Block(0.6035721928964323, 0.2452959971648366), "housner",
+        Friction(0.42118881422895527, 0.42118881422895527),
+        (4.507777806103052, 3.763822721343075), (0.0, 4.0962630608761685),
+        3.971822082429291)),
+    # a landing whose contact has no normal force flies on at once
+    "fuzz 14: landing into flight": dict(modes={REST, ROCK, SLIDE_ROCK, FLIGHT}, **_harmonic_pair(
+        Block(0.6557777724502353, 0.2744495641704678), 0.924522260929636,
+        Friction(0.9990258823239375, 0.9990258823239375),
+        (3.869331576603031, 4.127160683872056), (11.937262934936976, 3.9667476549391303),
+        0.1664073285407182)),
+    # the peak slip reached in flight (a located turning point of the slip)
+    "fuzz 12: peak slip in flight": dict(modes={REST, ROCK, SLIDE_ROCK, FLIGHT}, **_harmonic_pair(
+        Block(0.6193020623612961, 0.1348514961394617), "housner",
+        Friction(0.39007455193986174, 0.3851387071019621),
+        (4.175461707688109, 2.846863049595879), (14.763859602295343, 2.1993250949157512),
+        1.2641969945507168)),
+    # a Zeno cascade of slipping impacts (impact -> slide-rock, stick -> rock, ...)
+    "fuzz 2: slipping cascade": dict(modes={REST, ROCK, SLIDE_ROCK}, **_harmonic_pair(
+        Block(1.2200856544306382, 0.22335786121119897), 0.8117448777687502,
+        Friction(0.5160685855478787, 0.2879315941446539),
+        (0.8591923097420547, 3.258514854738682), (8.293903837678226, 5.545137376349965),
+        2.8860924704059316)),
+})
+
+#: Disagreements reported to branch planar (DISAGREEMENTS.md) and not resolved in time:
+#: (test, case) -> reason. Strict: a fix makes these tests fail until the mark is removed.
+_STALL = ("planar stalls ('step size fell below 1e-14 s') on a Zeno cascade of slipping "
+          "impacts that the reference sums (DISAGREEMENTS.md 1)")
+_PEAK = ("planar's peak slip is not located between samples in flight/contact modes; it "
+         "converges to the reference's located value on a subdivided input (DISAGREEMENTS.md 2)")
+KNOWN = {("events", "fuzz 2: slipping cascade"): _STALL,
+         ("scalars", "fuzz 2: slipping cascade"): _STALL,
+         ("time histories", "fuzz 2: slipping cascade"): _STALL,
+         ("scalars", "fuzz 12: peak slip in flight"): _PEAK,
+         ("scalars", "fuzz 14: landing into flight"): _PEAK}
+
+
+def _known(request, test, name):
+    if (test, name) in KNOWN:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=KNOWN[(test, name)]))
+
+
+def _merged(times, before, after):
+    """Events at one instant merged into one (first mode before, last mode after).
+
+    The two results write some instants differently, with the same physics: a summed
+    cascade is ``impact 2->2`` + ``cascade 2->0`` in the reference and one ``impact 2->0``
+    in the compiled result; a landing whose contact has no normal force is ``impact 4->4``
+    in the reference and ``impact 4->2`` + ``2->4`` in the compiled one.
+    """
+    merged: list[list] = []
+    for time, first, last in zip(times, before, after):
+        if merged and abs(time - merged[-1][0]) <= 1e-12:
+            merged[-1][2] = int(last)
+        else:
+            merged.append([float(time), int(first), int(last)])
+    found = np.array(merged, dtype=float).reshape(-1, 3)
+    return found[:, 0], found[:, 1].astype(int), found[:, 2].astype(int)
+
+
 def _transitions(events):
-    """(time, mode before, mode after) of the compiled result's events, |theta| = alpha out."""
-    events = np.asarray(events)
+    """Merged (time, mode before, mode after) of the compiled result, |theta| = alpha out."""
+    events = np.asarray(events).reshape(-1, 6)
     kept = events[events[:, 1] != UNSTABLE_KIND]
-    return kept[:, 0], kept[:, 2].astype(int), kept[:, 3].astype(int)
+    return _merged(kept[:, 0], kept[:, 2], kept[:, 3])
+
+
+def _reference_transitions(result):
+    return _merged(result.event_times, result.event_mode_before, result.event_mode_after)
 
 
 @pytest.fixture(scope="module")
@@ -107,18 +189,24 @@ def test_the_case_visits_its_modes(runs, name):
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_events_agree(runs, name):
+def test_events_agree(runs, name, request):
+    _known(request, "events", name)
     reference, planar = runs[name]
     times, before, after = _transitions(planar.events)
+    reference_times, reference_before, reference_after = _reference_transitions(reference)
     assert planar.status == reference.status
-    np.testing.assert_array_equal(before, reference.event_mode_before)
-    np.testing.assert_array_equal(after, reference.event_mode_after)
-    np.testing.assert_allclose(times, reference.event_times, rtol=0, atol=TOLERANCE)
+    np.testing.assert_array_equal(before, reference_before)
+    np.testing.assert_array_equal(after, reference_after)
+    np.testing.assert_allclose(times, reference_times, rtol=0, atol=TOLERANCE)
     assert planar.n_impacts == len(reference.impact_times)
+    events = np.asarray(planar.events).reshape(-1, 6)
+    np.testing.assert_allclose(events[events[:, 1] == IMPACT_KIND, 0], reference.impact_times,
+                               rtol=0, atol=TOLERANCE)
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_scalars_agree(runs, name):
+def test_scalars_agree(runs, name, request):
+    _known(request, "scalars", name)
     reference, planar = runs[name]
     block = CASES[name]["block"]
     assert planar.max_abs_theta / block.alpha == pytest.approx(
@@ -132,7 +220,8 @@ def test_scalars_agree(runs, name):
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_time_histories_agree(runs, name):
+def test_time_histories_agree(runs, name, request):
+    _known(request, "time histories", name)
     reference, planar = runs[name]
     samples = reference.t.size
     if reference.overturned:
