@@ -98,6 +98,9 @@ from shaketable.solvers.planar_contact import (
 #: Consecutive segments that may end where they began before the solver gives up.
 MAX_STALLED_SEGMENTS = 100
 
+#: Impacts at one instant (each turning the block onto the corner that struck before).
+MAX_IMMEDIATE_IMPACTS = 1000
+
 #: Segments (solve_ivp calls) allowed inside one input interval.
 MAX_SEGMENTS_PER_INTERVAL = 100_000
 
@@ -603,6 +606,16 @@ class _Run:
             self.set_mode(t, FLIGHT, kind="lift-off")
         elif terminal == "impact":
             self.impact(t, -self.side)
+            # a plastic impact at theta = 0 can leave the block turning onto the corner that
+            # struck first (side * theta'+ < 0): that corner strikes again at once
+            for _ in range(MAX_IMMEDIATE_IMPACTS):
+                if not (self.mode in (ROCK, SLIDE_ROCK) and self.state[2] == 0.0
+                        and self.side * self.state[5] < 0.0):
+                    break
+                self.impact(t, -self.side)
+            else:
+                raise _Stop("inconsistent", f"more than {MAX_IMMEDIATE_IMPACTS} impacts at "
+                            f"t = {t!r} s, each turning the block onto the other corner")
         elif terminal == "slip":
             _, _, _, force, _ = self.solution(t, self.state)
             self.enter_contact(t, SLIDE_ROCK, self.side, -1 if force > 0 else 1, "slip", mode)
