@@ -83,6 +83,29 @@ def test_fig_3_7_harmonic_run_equals_the_rocking_model_while_the_corner_holds(me
     assert 0 < rocking.t_overturn - leaves_rock < 0.05
 
 
+@pytest.mark.parametrize("method", ["reference", "fast"])
+def test_pacoima_s16e_with_vertical_equals_the_rocking_model_while_the_corner_holds(method):
+    # issue 25 check 1: the bundled Pacoima Dam S16E record with its vertical, a 16 x 4 ft
+    # block, COR 0.95. It overturns; in the final fall (after the last impact) N -> 0
+    # and the planar corner slips at 6.717 s (as in Fig. 3.7): compare up to there
+    from shaketable.ground import records
+
+    block = Block.from_feet(16, 4)
+    motion = records.load("pacoima-dam-s16e", vertical=True)
+    rocking = simulate(block, motion, cor=0.95, method=method)
+    planar = simulate_reference(block, motion, cor=0.95, friction=AMPLE)
+    slips = planar.events_of("slip")
+    assert rocking.status == "overturned" and planar.overturned
+    assert slips.size and slips[0] > planar.impact_times[-1]
+    assert rocking.n_impacts == len(planar.impact_times) > 20
+    np.testing.assert_allclose(planar.impact_times, rocking.impact_times, rtol=0, atol=1e-9)
+    assert planar.event_times[0] == pytest.approx(rocking.t_start, abs=1e-9)
+    assert planar.t_unstable == pytest.approx(rocking.t_unstable, abs=1e-9)
+    assert planar.max_abs_theta / block.alpha == pytest.approx(
+        rocking.max_abs_theta / block.alpha, abs=1e-9)
+    assert abs(planar.t_overturn - rocking.t_overturn) < 0.01
+
+
 # ------------------------------------------------------------------ sliding limit
 
 @pytest.mark.parametrize("mu", [0.1, 0.2, 0.3])
