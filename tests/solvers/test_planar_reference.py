@@ -278,6 +278,24 @@ def test_housner_impact_ratio():
                                               rel=1e-14)
 
 
+def test_an_energy_adding_impact_is_capped_at_the_largest_rho_with_no_gain():
+    # the second of two impacts at one instant in a coupled run (agreement case "fuzz3 3"):
+    # rho = cor / c_H = 1.1513 would add 1.3e-7 J/kg. The spec's cap, solved in 50-digit
+    # arithmetic (mpmath) on the same linear systems: rho_eff = 1.148975991223909,
+    # still slipping (sigma = -1), theta'+ = 0.0171982092612, KE+ = KE-
+    block = Block(0.6718162217669676, 0.23444106148738691)
+    geometry = PlanarGeometry(block)
+    state = np.array([-8.620684832408027e-05, 0.3359081108834838, 0.0, -0.012604073409668678,
+                      -0.00040989330766536794, 0.00349677061744084])
+    rho = 0.9638058191732378 / geometry.c_housner
+    velocities, _, sigma, capped = impact_map(geometry, state, 1, rho, 0.37263257257333005,
+                                              0.26616639821864474)
+    assert capped and sigma == -1
+    assert velocities[2] == pytest.approx(0.0171982092612, rel=1e-10)
+    assert kinetic_energy(geometry, np.r_[0.0, 0.0, 0.0, velocities]) == pytest.approx(
+        kinetic_energy(geometry, state), rel=1e-12)
+
+
 @settings(max_examples=300, deadline=None)
 @given(theta=st.floats(-1.2, 1.2), x_dot=st.floats(-2, 2), y_dot=st.floats(-2, 0),
        omega=st.floats(-5, 5), aspect=st.floats(0.1, 2.0),
