@@ -378,3 +378,18 @@ def test_the_reference_converges_as_rtol_shrinks():
                            np.abs(run.x - best.x).max())
     assert errors[1e-12] < 1e-10
     assert errors[1e-12] < 0.1 * errors[1e-8]
+
+
+def test_the_result_has_a_frame_and_a_json_summary():
+    import json
+
+    block = Block.from_inches(30, 6)
+    result = simulate_reference(block, None, cor="housner", friction=Friction(0.25, 0.22),
+                                theta0=0.1, duration=1.0)
+    frame = result.to_frame()
+    assert list(frame.columns)[:4] == ["time [s]", "x [m]", "y [m]", "theta [rad]"]
+    assert len(frame) == result.t.size and set(frame["mode"]) <= {"rock", "slide-rock"}
+    summary = json.loads(json.dumps(result.summary()))
+    assert summary["cor"] == "housner" and summary["impacts"] == len(result.impact_times)
+    # a block tilted on its corner: the base midpoint starts at -s b (1 - cos(theta0))
+    assert result.slip[0] == pytest.approx(-block.b * (1 - math.cos(0.1)), rel=1e-12)
