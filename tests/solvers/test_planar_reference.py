@@ -246,6 +246,21 @@ def test_energy_balance_on_a_coupled_harmonic_run(mu_s, mu_d):
         result.friction_work + result.input_work - result.impact_loss, abs=1e-9 * scale)
 
 
+def test_energy_balance_over_a_pacoima_run():
+    # issue 25 check 5: Pacoima Dam S16E with its vertical, the 16 x 4 ft block, COR 0.95,
+    # mu_s 0.28, mu_d 0.26 (just above B/H = 0.25): rocks and slide-rocks with over 100
+    # impacts. The balance of the equations of motion holds to 1e-9 of g R
+    from shaketable.ground import records
+
+    block = Block.from_feet(16, 4)
+    motion = records.load("pacoima-dam-s16e", vertical=True)
+    result = simulate_reference(block, motion, cor=0.95, friction=Friction(0.28, 0.26))
+    assert len(result.impact_times) > 100 and result.time_in_mode["slide-rock"] > 0.1
+    assert result.friction_work < 0 and result.impact_loss > 0
+    assert result.energy_end - result.energy_start == pytest.approx(
+        result.friction_work + result.input_work - result.impact_loss, abs=1e-9 * G * block.R)
+
+
 # ------------------------------------------------------------------ impact law
 
 def _rock_state(geometry, side, omega):
