@@ -408,3 +408,14 @@ def test_the_result_has_a_frame_and_a_json_summary():
     assert summary["cor"] == "housner" and summary["impacts"] == len(result.impact_times)
     # a block tilted on its corner: the base midpoint starts at -s b (1 - cos(theta0))
     assert result.slip[0] == pytest.approx(-block.b * (1 - math.cos(0.1)), rel=1e-12)
+
+
+def test_painleve_stops_the_run_with_a_status_and_no_nan():
+    # slide-rock about corner +1 slipping toward -x with mu_d = 2.5 on a block with
+    # b/h = 0.2: the normal effective mass 1 - b (mu_d h - b) / Ic = 1 - 0.1 (2.5 - 0.2)
+    # / (1.04 / 12) < 0 (spec: Painleve's paradox, the run stops with status "painleve")
+    block = Block(1.0, 0.2)
+    result = simulate_reference(block, None, cor=0.9, friction=Friction(2.5), theta0=0.05,
+                                x_dot0=-0.1, duration=0.5)
+    assert result.status == "painleve" and "Painleve" in result.message
+    assert np.all(np.isfinite(result.x)) and np.all(np.isfinite(result.theta))
