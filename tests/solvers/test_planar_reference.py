@@ -412,8 +412,9 @@ def test_the_result_has_a_frame_and_a_json_summary():
 
 def test_painleve_stops_the_run_with_a_status_and_no_nan():
     # slide-rock about corner +1 slipping toward -x with mu_d = 2.5 on a block with
-    # b/h = 0.2: the normal effective mass 1 - b (mu_d h - b) / Ic = 1 - 0.1 (2.5 - 0.2)
-    # / (1.04 / 12) < 0 (spec: Painleve's paradox, the run stops with status "painleve")
+    # b/h = 0.2: at theta = 0 the normal effective mass is 1 - b h (mu_d - b/h) / Ic
+    # = 1 - 0.05 (2.5 - 0.2) / (0.26 / 3) = -0.33 < 0 (core/shenton.py's derivation;
+    # spec: Painleve's paradox, the run stops with status "painleve")
     block = Block(1.0, 0.2)
     result = simulate_reference(block, None, cor=0.9, friction=Friction(2.5), theta0=0.05,
                                 x_dot0=-0.1, duration=0.5)
