@@ -47,15 +47,28 @@ Choices where the spec is silent (documented here, reported to the lead)
   this is the spec's "slip reverses" when F_rock opposes the old slip, and
   keeps the slip direction in the marginal case mu_d = mu_s just after a slip
   started (a sign the spec does not fix).
-* The energy cap of an impact keeps the branch (stick or slip) chosen with
-  the given rho, and applies to rho < 1 as well: with a slipping corner the
-  couple C = (rho - 1) H_k can add energy for rho < 1 too (e.g. cor = 0, mu = 0,
-  theta = 0, x' = 1 m/s, theta' = -1 rad/s on a square block), so rho is moved
-  toward 1 until KE+ = KE- whatever side of 1 it is on.
-* The cascade sum (``cascade_rest_time``) is applied after a sticking impact at
-  theta = 0 that leaves the block in ROCK, with the numeric cor (c_H for
-  ``"housner"``), as the rocking engine does; the energy the cascade absorbs
-  (the kinetic energy at its first impact) is counted as impact loss.
+* Impacts (``planar_contact.impact_map``): a slipping impact slips the way
+  its corner goes (sigma = -sign of the sticking P_x, else the other sigma,
+  else it sticks). The energy cap applies to rho < 1 as well: with a slipping
+  corner the couple C = (rho - 1) H_k can add energy for rho < 1 too (e.g.
+  cor = 0, mu = 0, theta = 0, x' = 1 m/s, theta' = -1 rad/s on a square block),
+  so rho is moved toward 1 until KE+ = KE- whatever side of 1 it is on, and
+  the branch is decided again at the new rho.
+* A plastic impact at theta = 0 that leaves the block turning onto the corner
+  that struck before (side * theta'+ < 0; both corners are on the table) is
+  followed, at the same instant, by that corner's impact.
+* The cascade sum (``cascade_rest_time``) is applied after every impact at
+  theta = 0: after a sticking impact that leaves the block in ROCK with the
+  numeric cor (c_H for ``"housner"``), exactly as the rocking engine; after a
+  slipping one with that impact's ratio |theta'+ / theta'-| and the
+  deceleration of SLIDE_ROCK at theta = theta' = 0, the block then sliding flat
+  at the corner's slip speed (REST if 0). The kinetic energy the cascade
+  absorbs is counted as impact loss.
+* "The block tips" (Eq. 2-1) is decided by the sign of ROCK's theta'' at
+  theta = theta' = 0 from the same linear solve as the ROCK mode, and a flat
+  block whose chosen corner does not tip (a marginal start such as mu_s = B/H)
+  stays flat (SLIDE or REST), so that rounding cannot start a mode that turns
+  the block the wrong way.
 * x is the centre's displacement from its position at rest; a block started
   tilted (theta0 != 0) stands on its corner s = sign(theta0) at that corner's
   rest position X_s = -s b (so x(0) = -s b - r_x(theta0)); ``x_dot0`` is the
@@ -103,6 +116,7 @@ MAX_IMMEDIATE_IMPACTS = 1000
 
 #: Segments (solve_ivp calls) allowed inside one input interval.
 MAX_SEGMENTS_PER_INTERVAL = 100_000
+
 
 class PlanarReferenceError(RuntimeError):
     """SciPy's integrator gave up, or the event loop stopped advancing in time."""
@@ -184,6 +198,13 @@ def simulate_reference(block: Block, motion: Motion | None = None, *, cor, frict
         SciPy failed or the event loop stalled.
     """
     motion = _check(block, motion, cor, friction, rtol, duration, output_dt)
+    for name, value, unit in (("theta0", theta0, "rad"), ("theta_dot0", theta_dot0, "rad/s"),
+                              ("x_dot0", x_dot0, "m/s")):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                or not math.isfinite(value):
+            raise ValueError(f"{name} must be a finite number [{unit}], got {value!r}")
+    if not abs(theta0) < 0.5 * math.pi:
+        raise ValueError(f"theta0 must be within (-pi/2, pi/2) [rad], got {theta0!r}")
     return _Run(block, motion, cor, friction, rtol, rest_tolerance).run(
         float(theta0), float(theta_dot0), float(x_dot0))
 

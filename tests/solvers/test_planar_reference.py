@@ -343,6 +343,12 @@ def test_bad_input_names_the_parameter():
         simulate_reference(block, None, cor=1.5, friction=Friction(0.5), duration=1.0)
     with pytest.raises(ValueError, match="duration"):
         simulate_reference(block, None, cor=0.9, friction=Friction(0.5))
+    with pytest.raises(ValueError, match="theta0"):
+        simulate_reference(block, None, cor=0.9, friction=Friction(0.5), duration=1.0,
+                           theta0=float("nan"))
+    with pytest.raises(ValueError, match="x_dot0"):
+        simulate_reference(block, None, cor=0.9, friction=Friction(0.5), duration=1.0,
+                           x_dot0=float("inf"))
     with pytest.raises(ValueError, match="friction"):
         simulate_reference(block, None, cor=0.9, friction=0.5, duration=1.0)
     from shaketable.core.geometry import PrestressRods
