@@ -86,7 +86,7 @@ def _entered_mode(width, height, mu_s, mu_d, a_g, v_g):
     return int(result.event_mode_after[0])
 
 
-def _grid():
+def shenton_grid():
     cells = []
     for mu_s, ratio, a_g, v_g in itertools.product((0.1, 0.3, 0.5, 0.8), (0.25, 0.5, 1.0),
                                                    (0.05, 0.2, 0.4, 0.7, 1.2),
@@ -107,7 +107,7 @@ def _grid():
     return cells
 
 
-def _near_a_boundary(ratio, mu_s, mu_d, a_g, v_g):
+def near_a_boundary(ratio, mu_s, mu_d, a_g, v_g):
     if v_g <= -1:
         return False
     A = a_g / (1 + v_g)
@@ -117,7 +117,7 @@ def _near_a_boundary(ratio, mu_s, mu_d, a_g, v_g):
 
 
 def test_the_reference_enters_the_mode_shenton_predicts():
-    cells = [cell for cell in _grid() if not _near_a_boundary(*cell)]
+    cells = [cell for cell in shenton_grid() if not near_a_boundary(*cell)]
     predicted = [int(initial_mode(ratio, 1.0, mu_s, mu_d, a_g * G, v_g * G))
                  for ratio, mu_s, mu_d, a_g, v_g in cells]
     entered = [_entered_mode(ratio, 1.0, mu_s, mu_d, a_g, v_g)

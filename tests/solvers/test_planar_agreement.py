@@ -274,3 +274,24 @@ def test_time_histories_agree(runs, name, request):
     for field in ("x", "y", "theta"):
         np.testing.assert_allclose(getattr(planar, field)[:samples], getattr(reference, field),
                                    rtol=0, atol=TOLERANCE, err_msg=field)
+
+
+def test_the_compiled_model_enters_the_mode_shenton_predicts():
+    # the grid of tests/core/test_shenton.py (mu_s, B/H, a/g, vg/g, the slide-rock wedge,
+    # mu_d < mu_s, flight), now for the compiled model: from rest under constant table
+    # accelerations it enters the mode of the closed form (core/shenton.py)
+    from shaketable.core.shenton import MODE_NAMES, initial_mode
+    from tests.core.test_shenton import shenton_grid, near_a_boundary
+
+    wrong = []
+    for ratio, mu_s, mu_d, a_g, v_g in (c for c in shenton_grid() if not near_a_boundary(*c)):
+        motion = Motion.uniform(0.01, [a_g * G] * 2, [v_g * G] * 2)
+        result = simulate_planar(Block(1.0, ratio), motion, cor=0.9,
+                                 friction=Friction(mu_s, mu_d))
+        events = np.asarray(result.events).reshape(-1, 6)
+        entered = REST if events.size == 0 else int(events[0, 3])
+        predicted = int(initial_mode(ratio, 1.0, mu_s, mu_d, a_g * G, v_g * G))
+        if entered != predicted:
+            wrong.append(((ratio, mu_s, mu_d, a_g, v_g), MODE_NAMES[predicted],
+                          MODE_NAMES[entered]))
+    assert wrong == []
