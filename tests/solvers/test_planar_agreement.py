@@ -281,7 +281,7 @@ def test_the_compiled_model_enters_the_mode_shenton_predicts():
     # mu_d < mu_s, flight), now for the compiled model: from rest under constant table
     # accelerations it enters the mode of the closed form (core/shenton.py)
     from shaketable.core.shenton import MODE_NAMES, initial_mode
-    from tests.core.test_shenton import shenton_grid, near_a_boundary
+    from tests.core.test_shenton import near_a_boundary, shenton_grid
 
     wrong = []
     for ratio, mu_s, mu_d, a_g, v_g in (c for c in shenton_grid() if not near_a_boundary(*c)):
