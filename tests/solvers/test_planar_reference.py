@@ -108,7 +108,7 @@ def test_pacoima_s16e_with_vertical_equals_the_rocking_model_while_the_corner_ho
 
 # ------------------------------------------------------------------ sliding limit
 
-@pytest.mark.parametrize("mu", [0.1, 0.2, 0.3])
+@pytest.mark.parametrize("mu", [0.1, 0.2, 0.3, (0.3, 0.15)])
 def test_sliding_limit_equals_the_stick_slip_model_on_table_4_4_pacoima(mu):
     # Table 4.4's Pacoima S16E with its recorded vertical (studies/sliding.py); a block
     # with B/H = 4 cannot tip under it (max |ug| / (g + vg) = 1.33 < 4) and slides flat
@@ -117,8 +117,9 @@ def test_sliding_limit_equals_the_stick_slip_model_on_table_4_4_pacoima(mu):
 
     motion = table_4_4_motion("pacoima S16E")
     assert (np.abs(motion.horizontal) / (G + motion.vertical_or_zero)).max() < 4
-    planar = simulate_reference(Block(0.5, 2.0), motion, cor=0.9, friction=Friction(mu))
-    sliding = slide(motion, Friction(mu))
+    friction = Friction(*mu) if isinstance(mu, tuple) else Friction(mu)   # (mu_s, mu_d) too
+    planar = simulate_reference(Block(0.5, 2.0), motion, cor=0.9, friction=friction)
+    sliding = slide(motion, friction)
     assert set(np.unique(planar.mode)) <= {REST, SLIDE}
     assert planar.peak_slip == pytest.approx(sliding.peak_slip, abs=1e-9)
     assert planar.residual_slip == pytest.approx(sliding.residual_slip, abs=1e-9)
