@@ -259,9 +259,10 @@ def impact(theta, x_dot, y_dot, omega, side, rho, mu_s, mu_d, parameters):
         return xa, ya, wa, PAINLEVE, sigma, 0.0, 0.0
     after = kinetic_energy(xa, ya, wa, parameters)
     capped = 0.0
-    if after > before and rho > 1.0:
-        # KE+ is a quadratic in rho along the same branch: the largest rho in [1, rho]
-        # that does not add energy
+    if after > before and rho != 1.0:
+        # KE+ is a quadratic in rho along the same branch: the rho nearest the given one
+        # on the segment [1, rho] that does not add energy (rho > 1: cor > c_H; rho < 0:
+        # a block with B/H > sqrt(2), where c_H < 0)
         force = 1.0 if kind == ROCK else 2.0 * sigma
         x1, y1, w1, _, _ = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, force, mu_s,
                                         mu_d, parameters)

@@ -29,7 +29,8 @@ STATUS_MESSAGES = {
                  "Ic + r_x (r_x + sigma mu_d r_y) is not positive (mu_d too large for the "
                  "block's h/b); the rigid-body Coulomb model has no solution here"),
     "inconsistent": "no contact mode is consistent with the start rules (please report)",
-    "chatter": "more than 200 mode changes at one instant (please report the case)",
+    "chatter": ("more than 200 mode changes at one instant, or 100 000 in one sample "
+                "interval (please report the case)"),
     "stalled": "the step size fell below 1e-14 s (please report the case)",
 }
 

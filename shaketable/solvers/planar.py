@@ -27,12 +27,12 @@ at theta = 0 the endless cascade of a decaying block is summed in closed form ex
 as the rocking engine does (:func:`~shaketable.core.dynamics.cascade_rest_time`, the
 same default rest tolerance 1e-6/p and the same velocity floor 1e-8 alpha p); after a
 slipping one (a slide-rocking block that settles while it slides) the cascade, once
-summable by the same rule, ends in SLIDE at that instant with the corner's slip
+summable by the same rule (with the rocking deceleration), ends in SLIDE at that instant with the corner's slip
 velocity (the summed micro-rocking, shorter than the rest tolerance, is not resolved).
 
 The engine never produces NaN: a run that cannot go on stops with a status
 (overturned, painleve, inconsistent, chatter: more than 200 transitions without time
-advancing, stalled: a step below 1e-14 s) and the state before it.
+advancing or 100 000 in one sample interval, stalled: a step below 1e-14 s) and the state before it.
 
 The work of the table's inertial force and of friction and the kinetic energy lost in
 impacts are accumulated (closed forms in REST, SLIDE and FLIGHT; integrated with the
@@ -69,7 +69,6 @@ from shaketable.core.planar_dynamics import (
     impact,
     kinetic_energy,
     rock_forces,
-    slide_rock_accelerations,
     start_mode,
 )
 from shaketable.solvers.planar_steps import (
@@ -80,13 +79,16 @@ from shaketable.solvers.planar_steps import (
     E_OVERTURN,
     KIND_ALPHA,
     KIND_PEAK,
+    KIND_RATE,
     KIND_TERMINAL,
     N_EVENTS,
+    N_RATES,
     N_STATE,
     dop853_step,
     events,
     flight_state,
     ground,
+    horizontal_rate,
     locate,
     lowest_corner,
     polynomial_work,
@@ -125,6 +127,11 @@ N_INFO = 33
 
 #: Transitions allowed at one instant before the run stops with status "chatter".
 MAX_TRANSITIONS_AT_ONE_TIME = 200
+
+#: Transitions allowed in one sample interval before the run stops with status "chatter"
+#: (a safeguard against a Zeno sequence the cascade rule does not sum; never reached in
+#: the tests).
+MAX_TRANSITIONS_PER_INTERVAL = 100_000
 
 
 @njit(cache=True)
@@ -387,6 +394,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         ka = segment[3] / segment[1]
         kv = segment[5] / segment[1]
         t_end = t1
+        interval_transitions = 0
         while t < t_end and status == STATUS_COMPLETED:
             previous_mode = mode
             transition = False
@@ -543,6 +551,37 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 elif landing >= 0.0:
                     span = landing
                     terminal = 1
+                # extrema of the slip and of the corners' X inside the flight (bisection on
+                # the closed form's rates, piece by piece)
+                for j in range(N_RATES):
+                    tau_a = 0.0
+                    _, _, tha, xda, _, _ = flight_state(0.0, x0, y0, th0, xd0, yd0, om0, ua, ka,
+                                                        va, kv)
+                    rate_a = horizontal_rate(j, tha, xda, om0, parameters)
+                    for piece in range(1, pieces + 1):
+                        tau_b = span * piece / pieces
+                        _, _, thb, xdb, _, _ = flight_state(tau_b, x0, y0, th0, xd0, yd0, om0,
+                                                            ua, ka, va, kv)
+                        rate_b = horizontal_rate(j, thb, xdb, om0, parameters)
+                        if rate_a * rate_b < 0.0:
+                            low = tau_a
+                            high = tau_b
+                            for _ in range(200):
+                                middle = 0.5 * (low + high)
+                                if middle <= low or middle >= high:
+                                    break
+                                _, _, thm, xdm, _, _ = flight_state(middle, x0, y0, th0, xd0,
+                                                                    yd0, om0, ua, ka, va, kv)
+                                if horizontal_rate(j, thm, xdm, om0, parameters) * rate_a > 0.0:
+                                    low = middle
+                                else:
+                                    high = middle
+                            xm, ym, thm, xdm, ydm, _ = flight_state(low, x0, y0, th0, xd0, yd0,
+                                                                    om0, ua, ka, va, kv)
+                            q[0], q[1], q[2], q[3], q[4] = xm, ym, thm, xdm, ydm
+                            _track(t + low, q, info, parameters)
+                        tau_a = tau_b
+                        rate_a = rate_b
                 xs, ys, ths, xds, yds, oms = flight_state(span, x0, y0, th0, xd0, yd0, om0, ua,
                                                           ka, va, kv)
                 w_table -= polynomial_work(ua, ka, xd0, -ua, -0.5 * ka, span)
@@ -699,6 +738,22 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         evaluations += 11 * trials
                         _q_from_z(z_turn, side, q, parameters)
                         _track(t + tau_peak, q, info, parameters)
+                    # extrema of the slip and of the corners' X (peak slip, excursion)
+                    _, ry0 = corner_vector(z[0], side, parameters)
+                    _, ry1 = corner_vector(z_new[0], side, parameters)
+                    for j in range(N_RATES):
+                        rate0 = horizontal_rate(j, z[0], z[3] + ry0 * z[1], z[1], parameters)
+                        rate1 = horizontal_rate(j, z_new[0], z_new[3] + ry1 * z_new[1],
+                                                z_new[1], parameters)
+                        if rate0 * rate1 < 0.0:
+                            tau_rate, trials = locate(KIND_RATE + j, mode, side, sigma, mu_s,
+                                                      mu_d, t, z, k1, tau, z_new, no_events,
+                                                      1.0 if rate0 > 0.0 else -1.0, segment,
+                                                      parameters, stages, scale_abs, rtol,
+                                                      z_turn)
+                            evaluations += 11 * trials
+                            _q_from_z(z_turn, side, q, parameters)
+                            _track(t + tau_rate, q, info, parameters)
                     if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
                             and abs(z[0]) <= alpha:
                         tau_unstable, trials = locate(KIND_ALPHA, mode, side, sigma, mu_s, mu_d,
@@ -793,13 +848,12 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         q[3], q[4], q[5] = x_dot, y_dot, omega
                         new_mode = int(kind)
                         sigma = new_sigma
-                        if new_mode == ROCK:
-                            deceleration = -side * flight_acceleration(0.0, side, u_now, v_now,
-                                                                       0.0, parameters)
-                        else:
-                            acceleration, _, _, _, _ = slide_rock_accelerations(
-                                0.0, 0.0, side, sigma, mu_d, u_now, v_now, parameters)
-                            deceleration = -side * acceleration
+                        # the cascade rule of the rocking engine, with the rocking
+                        # deceleration also after a slipping impact (its slip stops within
+                        # microseconds and the block falls back rocking: the slide-rock
+                        # theta'' at rest may point away from 0 and never sum the cascade)
+                        deceleration = -side * flight_acceleration(0.0, side, u_now, v_now,
+                                                                   0.0, parameters)
                         remaining = cascade_rest_time(omega, deceleration, cor_cascade)
                         if remaining == math.inf and cor_cascade >= 1.0 and deceleration > 0.0 \
                                 and abs(omega) <= velocity_floor:
@@ -841,6 +895,11 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
             if mode != previous_mode:
                 visited |= 1 << mode
             if transition:
+                interval_transitions += 1
+                if interval_transitions > MAX_TRANSITIONS_PER_INTERVAL:
+                    status = STATUS_CHATTER
+                    info[I_FAILED_MODE] = mode
+                    break
                 if t == last_transition:
                     transitions += 1
                     if transitions > MAX_TRANSITIONS_AT_ONE_TIME:

@@ -102,8 +102,10 @@ _A[11, 10] = 0.6433927460157636
 #: Components of the integrated state.
 N_STATE = 6
 
-#: Event-function kinds for :func:`locate`.
-KIND_TERMINAL, KIND_PEAK, KIND_ALPHA = 0.0, 1.0, 2.0
+#: Event-function kinds for :func:`locate`; KIND_RATE + j (j = 0..4): the rate of the
+#: slip (j = 0) or of a corner's X (j = 1..4, :func:`horizontal_rate`), for their extrema.
+KIND_TERMINAL, KIND_PEAK, KIND_ALPHA, KIND_RATE = 0.0, 1.0, 2.0, 3.0
+N_RATES = 5
 
 #: Terminal events of the contact modes (indices of :func:`events`).
 E_IMPACT, E_NORMAL, E_FRICTION, E_OVERTURN, E_MASS = 0, 1, 2, 3, 4
@@ -217,6 +219,10 @@ def event_value(kind, mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, 
         return sign * z[1]
     if kind == KIND_ALPHA:
         return parameters[ALPHA] - abs(z[0])
+    if kind >= KIND_RATE:
+        _, r_y = corner_vector(z[0], side, parameters)
+        return sign * horizontal_rate(int(kind - KIND_RATE), z[0], z[3] + r_y * z[1], z[1],
+                                      parameters)
     events(mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, values)
     least = math.inf
     for i in range(N_EVENTS):
@@ -318,3 +324,16 @@ def lowest_corner(y, theta, parameters):
     if plus <= minus:
         return plus, 1.0
     return minus, -1.0
+
+
+@njit(cache=True)
+def horizontal_rate(which, theta, x_dot, omega, parameters):
+    """d/dt of the slip of the base's midpoint (``which`` 0) or of the X of a corner
+    (1..4: body points (-b, -h), (b, -h), (-b, h), (b, h)) [m/s]: zero at their extrema."""
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    if which == 0:
+        return x_dot + h * math.cos(theta) * omega
+    u = -b if which == 1 or which == 3 else b
+    w = -h if which <= 2 else h
+    return x_dot - omega * (u * math.sin(theta) + w * math.cos(theta))

@@ -1,0 +1,151 @@
+"""The planar block's figure: the report's Calcomp layout with a slip panel and a mode band."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shaketable.core.constants import INCH, G
+from shaketable.plots.base import pyplot
+from shaketable.plots.calcomp import (
+    describe_block,
+    describe_motion,
+    has_signal,
+    mark_overturn,
+)
+
+#: Colours of the modes shown in the band (rest and rock are the report's own model: blank).
+MODE_COLOURS = {1: ("slide", "tab:orange"), 3: ("slide-rock", "tab:purple"),
+                4: ("flight", "tab:cyan")}
+
+
+def mode_spans(result):
+    """(start, end, mode code) of every stretch of one mode [s], from the located events
+    (exact instants), the samples where the recorded events ran out."""
+    events = result.events
+    end = float(result.t[-1])
+    changes = [(float(result.t[0]), int(result.mode[0]))]
+    complete = result.n_events <= events.shape[0]
+    for time, after in zip(events[:, 0], events[:, 3]):
+        if int(after) != changes[-1][1]:
+            changes.append((float(time), int(after)))
+    if not complete:
+        last = changes[-1][0]
+        for time, code in zip(result.t, result.mode):
+            if time > last and int(code) != changes[-1][1]:
+                changes.append((float(time), int(code)))
+    spans = []
+    for (start, code), (stop, _) in zip(changes, changes[1:] + [(end, -1)]):
+        if stop > start:
+            spans.append((start, stop, code))
+    return spans
+
+
+def planar_figure(result, fig=None, title: str | None = None, time_range=None):
+    """Ground, angular velocity, rotation (with +-alpha), slip of the base and a mode band.
+
+    The Calcomp layout of :func:`shaketable.plots.calcomp.calcomp` (ground panels left
+    out when a channel is zero), with the angular velocity alone on its panel (the
+    coupled model's theta'' has no single formula across modes), then the slip of the
+    base's midpoint relative to the table [in] with its peak marked, and a band that is
+    coloured only where the block slides, slide-rocks or flies (rest and rocking, the
+    report's own model, are left blank).
+
+    Parameters
+    ----------
+    result : PlanarResult
+    fig : matplotlib.figure.Figure, optional
+    title : str, optional
+        First caption line; the block, COR and friction, motion and verdict follow.
+    time_range : (float, float), optional
+        Time axis limits [s].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    plt = pyplot()
+    block, motion = result.block, result.motion
+    end = result.t[-1]
+    shown = motion.t <= end + 1e-12
+    horizontal = motion.horizontal[shown] / G
+    vertical = motion.vertical_or_zero[shown] / G
+    ground = [(label, values) for label, values in (
+        ("horizontal\nground acc. [g]", horizontal), ("vertical\nground acc. [g]", vertical))
+        if has_signal(values)]
+    ratios = [1.0] * len(ground) + [1.0, 1.4, 1.2, 0.28]
+    if fig is None:
+        fig = plt.figure(figsize=(8.5, 3.4 + 1.7 * len(ratios)), layout="constrained")
+    else:
+        fig.set_layout_engine("constrained")
+    axes = fig.subplots(len(ratios), 1, sharex=True, gridspec_kw={"height_ratios": ratios})
+    for axis, (label, values) in zip(axes, ground):
+        axis.plot(motion.t[shown], values, color="k", lw=0.7)
+        axis.set_ylabel(label)
+    rates, rotation, slip, band = axes[-4], axes[-3], axes[-2], axes[-1]
+    rates.plot(result.t, result.theta_dot, color="tab:blue", lw=0.9)
+    rates.set_ylabel("θ' [rad/s]")
+    rotation.plot(result.t, result.theta, color="k", lw=0.9, label="θ")
+    for sign in (1, -1):
+        rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
+                         label="±α (stability limit)" if sign > 0 else None)
+    limit = max(1.3 * block.alpha, 1.1 * float(np.max(np.abs(result.theta), initial=0.0)))
+    rotation.set_ylim(-limit, limit)
+    rotation.set_ylabel("θ [rad]")
+    rotation.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
+                    borderaxespad=0.0)
+    slip.plot(result.t, result.slip / INCH, color="tab:red", lw=0.9, label="slip of the base")
+    slip.axhline(0.0, color="0.6", lw=0.5)
+    if result.peak_slip > 0.0 and np.isfinite(result.t_peak_slip):
+        at = int(np.argmin(np.abs(result.t - result.t_peak_slip)))
+        direction = 1.0 if result.slip[at] >= 0 else -1.0
+        slip.plot([result.t_peak_slip], [direction * result.peak_slip / INCH], "v", color="tab:red",
+                  ms=5, label=f"peak {result.peak_slip / INCH:.3g} in")
+    slip.set_ylabel("slip [in]")
+    slip.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
+    shown_modes = set()
+    for start, stop, code in mode_spans(result):
+        if code in MODE_COLOURS:
+            name, colour = MODE_COLOURS[code]
+            band.axvspan(start, stop, color=colour, lw=0,
+                         label=None if code in shown_modes else name)
+            shown_modes.add(code)
+    band.set_yticks([])
+    band.set_ylabel("mode", rotation=0, ha="right", va="center")
+    if shown_modes:
+        band.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
+                    borderaxespad=0.0)
+    else:
+        band.text(0.5, 0.5, "rest and rocking only", transform=band.transAxes, ha="center",
+                  va="center", fontsize=7, color="0.4")
+    band.set_xlabel("time [s]")
+    start, stop = (motion.t[0], max(end, motion.t[0] + 1e-9)) if time_range is None \
+        else time_range
+    for axis in axes:
+        if axis is not band:
+            axis.grid(True, lw=0.3, alpha=0.5)
+        axis.set_xlim(start, stop)
+    mark_overturn(axes[:-1], result, stop)
+    fig.suptitle("\n".join(planar_caption(result, title)), fontsize=9.5)
+    fig.align_ylabels(axes)
+    return fig
+
+
+def planar_caption(result, title: str | None = None) -> list[str]:
+    """Caption lines: heading, block, COR and friction, motion, verdict and the measures."""
+    block, motion = result.block, result.motion
+    free = not has_signal(motion.horizontal) and not has_signal(motion.vertical_or_zero)
+    cor = result.cor if isinstance(result.cor, str) else f"{result.cor:g}"
+    lines = [] if not title else [title]
+    lines.append(f"{describe_block(block)}, α = {block.alpha:.4g} rad, COR {cor}, "
+                 f"μs = {result.friction.static:g}, μd = {result.friction.dynamic:g}")
+    lines.append(describe_motion(motion, free))
+    ratio = ("F" if result.overturned else f"{result.max_theta_ratio:.2f}")
+    verdict = result.verdict()
+    if result.overturned:
+        side = "+" if result.overturn_direction > 0 else "−"
+        verdict = f"overturned ({side}) at {result.t_overturn:.2f} s"
+    lines.append(f"{verdict}; max |θ|/α = {ratio}, peak slip {result.peak_slip / INCH:.3g} in, "
+                 f"corner excursion {result.peak_excursion / INCH:.3g} in")
+    if result.status not in ("completed", "overturned"):
+        lines.append(f"stopped: {result.message}")
+    return lines
