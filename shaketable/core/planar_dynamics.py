@@ -38,8 +38,10 @@ sticking if the tangential impulse needed is within mu_s times the normal one, e
 slipping with mu_d toward sigma = -sign(sticking P_x). Decision beyond the model text:
 when the corner's velocity after that slipping impact does not have the sign sigma, the
 other direction is tried, and if neither is consistent the impact sticks (a plastic
-normal impact then has no Coulomb solution). Kinetic energy never increases (rho capped,
-counted).
+normal impact then has no Coulomb solution). Kinetic energy never increases: if it
+would, rho is moved toward 1 (from either side) to where KE+ = KE-, the branch decided
+again there (at most 8 times; counted as capped). A slipping branch is not checked for P_y > 0 (the energy cap
+is the guard), as in the reference solver.
 
 Every function here is compiled with numba and works on floats and the parameter
 array of :func:`shaketable.core.dynamics.block_parameters` (rods are refused upstream).
@@ -259,40 +261,32 @@ def impact(theta, x_dot, y_dot, omega, side, rho, mu_s, mu_d, parameters):
         return xa, ya, wa, PAINLEVE, sigma, 0.0, 0.0
     after = kinetic_energy(xa, ya, wa, parameters)
     capped = 0.0
-    if after > before and rho != 1.0:
-        # KE+ is a quadratic in rho along the same branch: the rho nearest the given one
-        # on the segment [1, rho] that does not add energy (rho > 1: cor > c_H; rho < 0:
-        # a block with B/H > sqrt(2), where c_H < 0)
+    rho_eff = rho
+    inertia_root = math.sqrt(centroidal_inertia(parameters))
+    for _ in range(8):
+        if rho_eff == 1.0 or after <= before:
+            break
+        # the post state is affine in rho along one branch: move rho toward 1 (from
+        # either side: rho > 1 when cor > c_H, rho < 1 when the couple with a slipping
+        # corner adds energy) to where KE+ = KE-, and decide the branch again there
         force = 1.0 if kind == ROCK else 2.0 * sigma
         x1, y1, w1, _, _ = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, force, mu_s,
                                         mu_d, parameters)
-        xm, ym, wm, _, _ = _impact_post(x_dot, y_dot, omega, r_x, r_y, 0.5 * (1.0 + rho),
-                                        force, mu_s, mu_d, parameters)
-        e1 = kinetic_energy(x1, y1, w1, parameters) - before
-        em = kinetic_energy(xm, ym, wm, parameters) - before
-        e2 = after - before
-        # e(u) = e1 + a u + c u^2 with u in [0, 1] along rho = 1 + u (rho - 1)
-        c2 = 2.0 * (e2 - 2.0 * em + e1)
-        a1 = e2 - e1 - c2
-        u = 0.0
-        if c2 != 0.0:
-            disc = a1 * a1 - 4.0 * c2 * e1
-            if disc >= 0.0:
-                root = math.sqrt(disc)
-                for candidate in ((-a1 + root) / (2.0 * c2), (-a1 - root) / (2.0 * c2)):
-                    if 0.0 <= candidate <= 1.0 and candidate > u:
-                        u = candidate
-        elif a1 != 0.0:
-            u = min(1.0, max(0.0, -e1 / a1))
-        rho_eff = 1.0 + u * (rho - 1.0)
-        # decided again with rho_eff (stick or slip, and the slip direction, may change)
+        b0, b1, b2 = x1, y1, inertia_root * w1
+        d0, d1, d2 = xa - x1, ya - y1, inertia_root * (wa - w1)
+        qa = d0 * d0 + d1 * d1 + d2 * d2
+        qb = 2.0 * (b0 * d0 + b1 * d1 + b2 * d2)
+        qc = b0 * b0 + b1 * b1 + b2 * b2 - 2.0 * before
+        fraction = 0.0
+        if qa > 0.0 and qc <= 0.0:
+            root = (-qb + math.sqrt(max(qb * qb - 4.0 * qa * qc, 0.0))) / (2.0 * qa)
+            fraction = min(max(root, 0.0), 1.0)
+        rho_eff = 1.0 + fraction * (rho_eff - 1.0)
         xa, ya, wa, kind, sigma = _impact_post(x_dot, y_dot, omega, r_x, r_y, rho_eff, 0.0,
                                                mu_s, mu_d, parameters)
+        if kind == PAINLEVE:
+            return xa, ya, wa, PAINLEVE, sigma, 0.0, 1.0
         after = kinetic_energy(xa, ya, wa, parameters)
-        if after > before:  # rounding at the root, or another branch: rho = 1 (no couple)
-            xa, ya, wa, kind, sigma = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, 0.0,
-                                                   mu_s, mu_d, parameters)
-            after = kinetic_energy(xa, ya, wa, parameters)
         capped = 1.0
     return xa, ya, wa, kind, sigma, before - after, capped
 

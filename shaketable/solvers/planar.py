@@ -69,6 +69,7 @@ from shaketable.core.planar_dynamics import (
     impact,
     kinetic_energy,
     rock_forces,
+    slide_rock_accelerations,
     start_mode,
 )
 from shaketable.solvers.planar_steps import (
@@ -127,6 +128,10 @@ N_INFO = 33
 
 #: Transitions allowed at one instant before the run stops with status "chatter".
 MAX_TRANSITIONS_AT_ONE_TIME = 200
+
+#: Impacts at one instant (each turning the block onto the other corner) before the run
+#: stops with status "inconsistent".
+MAX_IMMEDIATE_IMPACTS = 1000
 
 #: Transitions allowed in one sample interval before the run stops with status "chatter"
 #: (a safeguard against a Zeno sequence the cascade rule does not sum; never reached in
@@ -257,6 +262,87 @@ def _first_failure(t, t_end, segment, mu_s, parameters):
 
 
 @njit(cache=True)
+def _enter(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
+    """The mode a block entering ROCK or SLIDE_ROCK about ``side`` (state q) is really in.
+
+    SLIDE_ROCK with D <= 0: PAINLEVE; N <= 0: FLIGHT; a flat block at rest (theta =
+    theta' = 0) that does not tip onto ``side``: REST (or SLIDE from SLIDE_ROCK, unless
+    mu_d > b/h: INCONSISTENT); ROCK needing |F| > mu_s N: SLIDE_ROCK with sigma = -sign(F)
+    (checked again). Returns (mode, sigma).
+    """
+    ug, vg = ground(segment, t)
+    for _ in range(4):
+        if mode == ROCK:
+            acceleration, _, _, friction, normal = rock_forces(q[2], q[5], side, ug, vg,
+                                                               parameters)
+        else:
+            acceleration, _, friction, normal, d = slide_rock_accelerations(
+                q[2], q[5], side, sigma, mu_d, ug, vg, parameters)
+            if not d > 0.0:
+                return PAINLEVE, sigma
+        if normal <= 0.0:
+            return FLIGHT, sigma
+        if q[2] == 0.0 and q[5] == 0.0 and side * acceleration <= 0.0:
+            if mode == SLIDE_ROCK:
+                if mu_d > parameters[HALF_WIDTH] / parameters[HALF_HEIGHT]:
+                    return INCONSISTENT, sigma
+                return SLIDE, sigma
+            return REST, sigma
+        if mode == ROCK and abs(friction) > mu_s * normal:
+            mode = SLIDE_ROCK
+            sigma = -1.0 if friction > 0.0 else 1.0
+            continue
+        break
+    return mode, sigma
+
+
+@njit(cache=True)
+def _quantity(which, q, parameters):
+    """The slip (``which`` 0) or the excursion X - X_rest of corner ``which`` (1..4, the
+    order of :func:`~shaketable.solvers.planar_steps.horizontal_rate`) [m]."""
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    if which == 0:
+        return q[0] + h * math.sin(q[2])
+    u = -b if which == 1 or which == 3 else b
+    w = -h if which <= 2 else h
+    return q[0] + u * math.cos(q[2]) - w * math.sin(q[2]) - u
+
+
+@njit(cache=True)
+def _hermite_peak(value0, value1, rate0, rate1, span):
+    """Largest |H| at the interior turning points of the cubic Hermite interpolant of
+    (value, rate) at both ends of a step of length ``span`` (0 if none)."""
+    v0 = rate0 * span
+    v1 = rate1 * span
+    c2 = 3.0 * (value1 - value0) - 2.0 * v0 - v1
+    c3 = 2.0 * (value0 - value1) + v0 + v1
+    largest = 0.0
+    if c3 == 0.0:
+        if c2 != 0.0:
+            root = -v0 / (2.0 * c2)
+            if 0.0 < root < 1.0:
+                largest = abs(value0 + root * (v0 + root * c2))
+        return largest
+    discriminant = c2 * c2 - 3.0 * c3 * v0
+    if discriminant < 0.0:
+        return largest
+    square_root = math.sqrt(discriminant)
+    for root in ((-c2 - square_root) / (3.0 * c3), (-c2 + square_root) / (3.0 * c3)):
+        if 0.0 < root < 1.0:
+            largest = max(largest, abs(value0 + root * (v0 + root * (c2 + root * c3))))
+    return largest
+
+
+@njit(cache=True)
+def _store(out, row, q, slip, mode):
+    for i in range(6):
+        out[row, i] = q[i]
+    out[row, OUT_SLIP] = slip
+    out[row, OUT_MODE] = mode
+
+
+@njit(cache=True)
 def _flat(q, x_dot, parameters):
     q[1] = parameters[HALF_HEIGHT]
     q[2] = 0.0
@@ -292,7 +378,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         Initial rotation [rad] and rate [rad/s]; both zero: the block stands at rest.
         Otherwise it rocks about the lower corner, which stands at its rest position.
     out : ndarray, shape (n, N_OUT)
-        State at the samples (columns OUT_*).
+        State at the samples (columns OUT_*); 0 rows: not stored (a batch).
     ev : ndarray, shape (capacity, EVENT_COLUMNS)
         The first events (all are counted in ``info[I_N_EVENTS]``).
     final : ndarray, shape (N_OUT,)
@@ -319,6 +405,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     z_turn = np.zeros(N_STATE)
     k1 = np.zeros(N_STATE)
     q = np.zeros(6)
+    q_start = np.zeros(6)
+    q_end = np.zeros(6)
     g_start = np.zeros(N_EVENTS)
     g_end = np.zeros(N_EVENTS)
     armed = np.zeros(N_EVENTS, dtype=np.bool_)
@@ -372,14 +460,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     evaluations = 0
     _track(t, q, info, parameters)
     slip, _ = _measures(q, parameters)
-    out[0, OUT_X] = q[0]
-    out[0, OUT_Y] = q[1]
-    out[0, OUT_THETA] = q[2]
-    out[0, OUT_X_DOT] = q[3]
-    out[0, OUT_Y_DOT] = q[4]
-    out[0, OUT_OMEGA] = q[5]
-    out[0, OUT_SLIP] = slip
-    out[0, OUT_MODE] = mode
+    store = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
+    if store:
+        _store(out, 0, q, slip, mode)
     filled = 1
 
     for k in range(n - 1):
@@ -637,30 +720,27 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
             else:
                 # ---------------------------------------------------------------- contact
                 if entered:
-                    ua, va = ground(segment, t)
                     if mode == ROCK:
                         z[3] = 0.0   # the pivot sticks (a sticking impact leaves rounding)
                     _q_from_z(z, side, q, parameters)
-                    events(mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, g_start)
-                    if mode == SLIDE_ROCK and not g_start[E_MASS] > 0.0:
-                        status = STATUS_PAINLEVE
-                        info[I_FAILED_MODE] = SLIDE_ROCK
+                    new_mode, new_sigma = _enter(mode, side, sigma, t, q, segment, mu_s, mu_d,
+                                                 parameters)
+                    if new_mode == PAINLEVE or new_mode == INCONSISTENT:
+                        status = STATUS_PAINLEVE if new_mode == PAINLEVE \
+                            else STATUS_INCONSISTENT
+                        info[I_FAILED_MODE] = mode
                         break
-                    if not g_start[E_NORMAL] > 0.0:
-                        _q_from_z(z, side, q, parameters)
-                        mode = FLIGHT
-                        _record(ev, info, t, EV_MODE, previous_mode, FLIGHT, q[5], q,
-                                parameters)
+                    if new_mode != mode or new_sigma != sigma:
                         transition = True
-                    elif mode == ROCK and g_start[E_FRICTION] < 0.0:
-                        _, _, _, friction, _ = rock_forces(z[0], z[1], side, ua, va,
-                                                           parameters)
-                        sigma = -1.0 if friction > 0.0 else 1.0
-                        mode = SLIDE_ROCK
-                        _q_from_z(z, side, q, parameters)
-                        _record(ev, info, t, EV_MODE, ROCK, SLIDE_ROCK, z[1], q, parameters)
-                        transition = True
+                        _record(ev, info, t, EV_REVERSAL if new_mode == mode else EV_MODE, mode,
+                                new_mode, q[5], q, parameters)
+                        if new_mode == REST or new_mode == SLIDE:
+                            _flat(q, q[3] if new_mode == SLIDE else 0.0, parameters)
+                            rest_until = t
+                        mode = new_mode
+                        sigma = new_sigma
                     else:
+                        events(mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, g_start)
                         for i in range(N_EVENTS):
                             fresh[i] = (i == E_IMPACT or i == E_FRICTION) and g_start[i] <= 0.0
                         entered = False
@@ -729,8 +809,14 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             if armed[i] and g_end[i] < least:
                                 least = g_end[i]
                                 terminal = i
-                    # non-terminal: the turning point (largest |theta|) and instability
-                    if z[1] * z_new[1] < 0.0:
+                    # non-terminal: the turning point (largest |theta|) and instability;
+                    # an extremum is located on the stepper only where the step's cubic
+                    # Hermite interpolant says it may come within 10 % of the peak so far
+                    # (the interpolant's error is far smaller: the peaks stay exact)
+                    _q_from_z(z, side, q_start, parameters)
+                    _q_from_z(z_new, side, q_end, parameters)
+                    if z[1] * z_new[1] < 0.0 and _hermite_peak(
+                            z[0], z_new[0], z[1], z_new[1], tau) >= 0.9 * info[I_MAX_ABS_THETA]:
                         tau_peak, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
                                                   z, k1, tau, z_new, no_events,
                                                   1.0 if z[1] > 0.0 else -1.0, segment,
@@ -745,7 +831,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         rate0 = horizontal_rate(j, z[0], z[3] + ry0 * z[1], z[1], parameters)
                         rate1 = horizontal_rate(j, z_new[0], z_new[3] + ry1 * z_new[1],
                                                 z_new[1], parameters)
-                        if rate0 * rate1 < 0.0:
+                        peak = info[I_PEAK_SLIP] if j == 0 else info[I_PEAK_EXCURSION]
+                        if rate0 * rate1 < 0.0 and _hermite_peak(
+                                _quantity(j, q_start, parameters), _quantity(j, q_end, parameters),
+                                rate0, rate1, tau) >= 0.9 * peak:
                             tau_rate, trials = locate(KIND_RATE + j, mode, side, sigma, mu_s,
                                                       mu_d, t, z, k1, tau, z_new, no_events,
                                                       1.0 if rate0 > 0.0 else -1.0, segment,
@@ -819,79 +908,111 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         _, _, _, friction, normal = rock_forces(z[0], z[1], side, u_now, v_now,
                                                                 parameters)
                         entered = True
-                        if normal > 0.0 and abs(friction) <= mu_s * normal:
+                        if abs(friction) <= mu_s * normal:
                             mode = ROCK
                             _record(ev, info, t, EV_MODE, SLIDE_ROCK, ROCK, z[1], q,
                                     parameters)
                         else:
-                            sigma = -sigma
+                            sigma = -1.0 if friction > 0.0 else 1.0
                             _record(ev, info, t, EV_REVERSAL, SLIDE_ROCK, SLIDE_ROCK, z[1], q,
                                     parameters)
                     else:
-                        # ---- impact of the other corner at theta = 0
+                        # ---- impact of the other corner at theta = 0; a plastic impact
+                        # there can leave the block turning onto the corner that struck
+                        # first (side * theta'+ < 0): it strikes again at once (bounded)
                         z[0] = 0.0
                         _q_from_z(z, side, q, parameters)
-                        omega_before = q[5]
-                        striking = -side
-                        x_dot, y_dot, omega, kind, new_sigma, lost, cap = impact(
-                            0.0, q[3], q[4], q[5], striking, rho, mu_s, mu_d, parameters)
-                        n_impacts += 1
-                        capped += int(cap)
-                        if kind == PAINLEVE:
-                            status = STATUS_PAINLEVE
-                            info[I_FAILED_MODE] = mode
-                            break
-                        loss += lost
                         step_size = min(step_size, max(t - last_impact, 1e-3 * step_size))
                         last_impact = t
-                        side = striking
-                        q[3], q[4], q[5] = x_dot, y_dot, omega
-                        new_mode = int(kind)
-                        sigma = new_sigma
-                        # the cascade rule of the rocking engine, with the rocking
-                        # deceleration also after a slipping impact (its slip stops within
-                        # microseconds and the block falls back rocking: the slide-rock
-                        # theta'' at rest may point away from 0 and never sum the cascade)
-                        deceleration = -side * flight_acceleration(0.0, side, u_now, v_now,
-                                                                   0.0, parameters)
-                        remaining = cascade_rest_time(omega, deceleration, cor_cascade)
-                        if remaining == math.inf and cor_cascade >= 1.0 and deceleration > 0.0 \
-                                and abs(omega) <= velocity_floor:
-                            remaining = 0.0
-                        settles = omega == 0.0 or remaining <= rest_tolerance or (
-                            abs(omega) <= velocity_floor and remaining < math.inf)
-                        if settles and new_mode == ROCK:
-                            loss += kinetic_energy(x_dot, y_dot, omega, parameters)
-                            _flat(q, 0.0, parameters)
-                            mode = REST
-                            if omega != 0.0:
-                                cascades += 1
-                            rest_until = t + (0.0 if omega == 0.0 else remaining)
-                            info[I_T_REST] = rest_until
-                            _record(ev, info, t, EV_IMPACT, previous_mode, REST, omega_before,
-                                    q, parameters)
-                        elif settles:
-                            # the corner's slip velocity becomes the base's
-                            _, r_y = corner_vector(0.0, side, parameters)
-                            base = x_dot - r_y * omega
-                            loss += kinetic_energy(x_dot, y_dot, omega, parameters) \
-                                - 0.5 * base * base
-                            if omega != 0.0:
-                                cascades += 1
-                            _flat(q, base, parameters)
-                            mode = SLIDE
-                            sigma = 1.0 if base > 0.0 else -1.0
-                            if base == 0.0:
-                                mode = REST
+                        for repeat in range(MAX_IMMEDIATE_IMPACTS + 1):
+                            if repeat == MAX_IMMEDIATE_IMPACTS:
+                                status = STATUS_INCONSISTENT
+                                info[I_FAILED_MODE] = mode
+                                break
+                            before_mode = mode
+                            omega_before = q[5]
+                            striking = -side
+                            x_dot, y_dot, omega, kind, new_sigma, lost, cap = impact(
+                                0.0, q[3], q[4], q[5], striking, rho, mu_s, mu_d, parameters)
+                            n_impacts += 1
+                            capped += int(cap)
+                            if kind == PAINLEVE:
+                                status = STATUS_PAINLEVE
+                                info[I_FAILED_MODE] = mode
+                                break
+                            loss += lost
+                            side = striking
+                            q[3], q[4], q[5] = x_dot, y_dot, omega
+                            sticking = kind == ROCK
+                            mode, sigma = _enter(int(kind), side, new_sigma, t, q, segment,
+                                                 mu_s, mu_d, parameters)
+                            if mode >= 0:
+                                visited |= 1 << mode
+                            if mode == PAINLEVE or mode == INCONSISTENT:
+                                status = STATUS_PAINLEVE if mode == PAINLEVE \
+                                    else STATUS_INCONSISTENT
+                                info[I_FAILED_MODE] = before_mode
+                                mode = before_mode
+                                break
+                            if mode == REST or mode == SLIDE:
+                                _flat(q, q[3] if mode == SLIDE else 0.0, parameters)
                                 rest_until = t
-                            _record(ev, info, t, EV_IMPACT, previous_mode, mode, omega_before,
-                                    q, parameters)
-                        else:
-                            mode = new_mode
+                            _record(ev, info, t, EV_IMPACT, before_mode, mode, omega_before, q,
+                                    parameters)
+                            if mode != ROCK and mode != SLIDE_ROCK:
+                                break
+                            # the cascade rule of the rocking engine: a sticking rock-to-rock
+                            # impact's ratio is cor; a slipping one's is its own |w+/w-|; the
+                            # deceleration is that of the mode entered, at theta = theta' = 0
+                            ratio = cor_cascade if (sticking and mode == ROCK) \
+                                else abs(omega / omega_before)
+                            if mode == ROCK:
+                                deceleration = -side * flight_acceleration(
+                                    0.0, side, u_now, v_now, 0.0, parameters)
+                            else:
+                                acceleration, _, _, _, _ = slide_rock_accelerations(
+                                    0.0, 0.0, side, sigma, mu_d, u_now, v_now, parameters)
+                                deceleration = -side * acceleration
+                                if not deceleration > 0.0:
+                                    # slide-rock at rest tips away: its slip stops within
+                                    # microseconds and the block falls back rocking (a
+                                    # slender block whose every impact slips); without
+                                    # this the Zeno sequence is never summed
+                                    deceleration = -side * flight_acceleration(
+                                        0.0, side, u_now, v_now, 0.0, parameters)
+                            remaining = cascade_rest_time(omega, deceleration, ratio)
+                            if remaining == math.inf and ratio >= 1.0 and deceleration > 0.0 \
+                                    and abs(omega) <= velocity_floor:
+                                remaining = 0.0
+                            if omega == 0.0 or remaining <= rest_tolerance or (
+                                    abs(omega) <= velocity_floor and remaining < math.inf):
+                                # settles flat: sliding at the corner's slip speed (REST if 0)
+                                base = 0.0
+                                if mode == SLIDE_ROCK:
+                                    _, r_y = corner_vector(0.0, side, parameters)
+                                    base = q[3] - r_y * q[5]
+                                loss += kinetic_energy(q[3], q[4], q[5], parameters) \
+                                    - 0.5 * base * base
+                                if omega != 0.0:
+                                    cascades += 1
+                                _flat(q, base, parameters)
+                                if base == 0.0:
+                                    mode = REST
+                                    rest_until = t + remaining
+                                    info[I_T_REST] = rest_until
+                                else:
+                                    mode = SLIDE
+                                    sigma = 1.0 if base > 0.0 else -1.0
+                                _record(ev, info, t, EV_CASCADE, SLIDE_ROCK if base != 0.0
+                                        else ROCK, mode, omega, q, parameters)
+                                break
+                            if side * q[5] >= 0.0:
+                                break
+                        if status != STATUS_COMPLETED:
+                            break
+                        if mode == ROCK or mode == SLIDE_ROCK:
                             _z_from_q(q, side, z, parameters)
                             entered = True
-                            _record(ev, info, t, EV_IMPACT, previous_mode, mode, omega_before,
-                                    q, parameters)
             if mode != previous_mode:
                 visited |= 1 << mode
             if transition:
@@ -912,15 +1033,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         if status != STATUS_COMPLETED:
             break
         _track(t, q, info, parameters)
-        slip, _ = _measures(q, parameters)
-        out[k + 1, OUT_X] = q[0]
-        out[k + 1, OUT_Y] = q[1]
-        out[k + 1, OUT_THETA] = q[2]
-        out[k + 1, OUT_X_DOT] = q[3]
-        out[k + 1, OUT_Y_DOT] = q[4]
-        out[k + 1, OUT_OMEGA] = q[5]
-        out[k + 1, OUT_SLIP] = slip
-        out[k + 1, OUT_MODE] = mode
+        if store:
+            slip, _ = _measures(q, parameters)
+            _store(out, k + 1, q, slip, mode)
         filled = k + 2
 
     slip, _ = _measures(q, parameters)

@@ -238,8 +238,10 @@ def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, k1, upper, z_upper, armed,
 
     The function is taken as positive at tau = 0 (an event armed at the step start, or
     one zero there by construction, e.g. theta = 0 when rocking begins) and is <= 0 at
-    ``upper`` (state ``z_upper``). Illinois regula falsi on trial steps from (t, z),
-    bisection when it stalls, until the bracket is a few ulps of t wide. The state at the
+    ``upper`` (state ``z_upper``). Trial steps from (t, z): Newton's step where the
+    impact event decides (its rate is side theta'), else Illinois regula falsi, and
+    bisection when two trials did not halve the bracket, until the bracket is a few ulps
+    of t wide. The state at the
     right end of the bracket (the event has happened) goes into ``z_out``.
 
     Returns tau and the number of trial steps.
@@ -258,22 +260,32 @@ def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, k1, upper, z_upper, armed,
     tolerance = 4e-16 * (abs(t) + upper) + 1e-300
     trials = 0
     kept = 0
+    # Newton on the impact event (its rate side * theta' is known) from the last trial,
+    # else Illinois regula falsi; bisection whenever two trials did not halve the bracket
+    newton = math.nan
+    if kind == KIND_TERMINAL and gb == side * z_upper[0] and z_upper[1] != 0.0:
+        newton = upper - gb / (side * z_upper[1])
+    widths = np.array([math.inf, math.inf])
     for _ in range(300):
         if b - a <= tolerance or gb == 0.0:
             break
-        if known and ga != gb:
+        candidate = math.nan
+        if newton == newton and a < newton < b:
+            candidate = newton
+        elif known and ga != gb:
             candidate = b - gb * (b - a) / (gb - ga)
-            if not (a < candidate < b):
-                candidate = 0.5 * (a + b)
-        else:
+        if not (a < candidate < b) or (b - a) > 0.5 * widths[0]:
             candidate = 0.5 * (a + b)
-        if trials % 8 == 7:
-            candidate = 0.5 * (a + b)   # guarantees the bracket shrinks
+        widths[0] = widths[1]
+        widths[1] = b - a
         dop853_step(mode, side, sigma, mu_d, t, z, k1, candidate, segment, parameters, stages,
                     trial, scale_abs, rtol)
         trials += 1
         g = event_value(kind, mode, side, sigma, mu_s, mu_d, t + candidate, trial, segment,
                         parameters, armed, sign, values)
+        newton = math.nan
+        if kind == KIND_TERMINAL and g == side * trial[0] and trial[1] != 0.0:
+            newton = candidate - g / (side * trial[1])
         if g > 0.0:
             a = candidate
             ga = g

@@ -417,3 +417,21 @@ def test_result_frame_summary_and_figure(pacoima):
         == pytest.approx(result.time_in_mode["slide-rock"], abs=1e-9)
     fig = result.plot(title="test")
     assert len(fig.axes) == 6   # two ground panels, theta', theta, slip, mode band
+
+
+# ------------------------------------------------------------------ the batch
+def test_the_batch_equals_single_runs(pacoima):
+    # reference: simulate(..., friction=) run by run (same engine, full output arrays)
+    from shaketable.solvers.planar_batch import simulate_many_planar
+
+    blocks = [Block(height=16 * FOOT, width=4 * FOOT), Block(height=0.5, width=2.0)]
+    frictions = [Friction(0.3, 0.25), Friction(0.6, 0.5)]
+    frame = simulate_many_planar(blocks, pacoima, frictions, [0.9])
+    assert len(frame) == 4
+    for row, (block, friction) in zip(frame.itertuples(index=False),
+                                      [(b, f) for b in blocks for f in frictions]):
+        single = simulate(block, pacoima, cor=0.9, friction=friction).summary()
+        assert row.verdict == single["verdict"] and row.status == single["status"]
+        assert row[frame.columns.get_loc("peak slip [m]")] == single["peak slip [m]"]
+        assert row[frame.columns.get_loc("residual slip [m]")] == single["residual slip [m]"]
+        assert row.n_impacts == single["n_impacts"]
