@@ -61,8 +61,8 @@ Choices where the spec is silent (documented here, reported to the lead)
   theta = 0: after a sticking impact that leaves the block in ROCK with the
   numeric cor (c_H for ``"housner"``), exactly as the rocking engine; after a
   slipping one with that impact's ratio |theta'+ / theta'-| and the
-  deceleration of SLIDE_ROCK at theta = theta' = 0, the block then sliding flat
-  at the corner's slip speed (REST if 0). The kinetic energy the cascade
+  deceleration of SLIDE_ROCK at theta = theta' = 0 (ROCK's where SLIDE_ROCK tips
+  away from 0), the block then sliding flat at the corner's slip speed (REST if 0). The kinetic energy the cascade
   absorbs is counted as impact loss.
 * "The block tips" (Eq. 2-1) is decided by the sign of ROCK's theta'' at
   theta = theta' = 0 from the same linear solve as the ROCK mode, and a flat
@@ -585,6 +585,12 @@ class _Run:
         omega = self.state[5]
         deceleration = -self.side * self.solution(t, np.r_[self.state[:2], 0.0, 0.0, 0.0,
                                                            0.0])[2]
+        if self.mode == SLIDE_ROCK and deceleration <= 0.0:
+            # slide-rock tips away from theta = 0: the slip stops first and the block
+            # returns to the table rocking (the pattern of a slipping cascade), so the
+            # rocking deceleration (agreed with branch planar, 18:40)
+            ug, vg = self.ground(t)
+            deceleration = -self.tipping(self.side, ug, vg)
         remaining = cascade_rest_time(omega, deceleration, ratio)
         if (remaining == math.inf and ratio >= 1.0 and deceleration > 0.0
                 and abs(omega) <= self.velocity_floor):
