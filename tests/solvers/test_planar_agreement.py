@@ -141,7 +141,27 @@ CASES.update({
         Friction(0.3932512465772816, 0.3932512465772816),
         (6.2903887666072045, 3.857484480297845), (4.041352926421438, 1.1792780374148515),
         5.634135966668964)),
+    # a stocky block sliding when g + vg reaches 0: it lifts off flat while sliding and
+    # lands flat, sliding on (seed 8, run 14)
+    "fuzz8 14: lift-off while sliding": dict(modes={REST, SLIDE, FLIGHT}, **_harmonic_pair(
+        Block(0.587788435075826, 0.7547638456325072), "housner",
+        Friction(0.5101917823797952, 0.3846761381049062),
+        (9.533002895869783, 4.243263143416135), (11.080387451748187, 3.2347721262439606),
+        2.8548493482800215)),
 })
+
+#: Disagreements reported to branch planar (DISAGREEMENTS.md) and not resolved by 19:20:
+#: (test, case) -> reason. Strict: a fix makes these tests fail until the mark is removed.
+_LIFT_OFF = ("planar: a flat block lifting off while sliding lands at the instant it lifts "
+             "off, again and again (status 'chatter' at 0.9949929080382367 s); the reference "
+             "flies until 1.0916252047820298 s (DISAGREEMENTS.md 5)")
+KNOWN = {(test, "fuzz8 14: lift-off while sliding"): _LIFT_OFF
+         for test in ("events", "scalars", "time histories")}
+
+
+def _known(request, test, name):
+    if (test, name) in KNOWN:
+        request.applymarker(pytest.mark.xfail(strict=True, reason=KNOWN[(test, name)]))
 
 
 def _merged(times, before, after):
@@ -194,7 +214,8 @@ def test_the_case_visits_its_modes(runs, name):
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_events_agree(runs, name):
+def test_events_agree(runs, name, request):
+    _known(request, "events", name)
     reference, planar = runs[name]
     times, before, after = _transitions(planar.events)
     reference_times, reference_before, reference_after = _reference_transitions(reference)
@@ -209,7 +230,8 @@ def test_events_agree(runs, name):
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_scalars_agree(runs, name):
+def test_scalars_agree(runs, name, request):
+    _known(request, "scalars", name)
     reference, planar = runs[name]
     block = CASES[name]["block"]
     assert planar.max_abs_theta / block.alpha == pytest.approx(
@@ -223,7 +245,8 @@ def test_scalars_agree(runs, name):
 
 
 @pytest.mark.parametrize("name", list(CASES))
-def test_time_histories_agree(runs, name):
+def test_time_histories_agree(runs, name, request):
+    _known(request, "time histories", name)
     reference, planar = runs[name]
     samples = reference.t.size
     if reference.overturned:
