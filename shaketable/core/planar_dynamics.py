@@ -1,6 +1,6 @@
 """The planar rigid block on a moving table: five contact modes, their forces, start rules
-and the impact law (issue 25; the model text is ``PLANAR_SPEC.md``, the docs page
-``docs/planar.md``).
+and the impact law (issue 25; the model that the compiled engine and the SciPy reference
+solver both follow).
 
 Everything is per unit mass, in the table's (non-inertial) frame, with the package's
 sign convention (:mod:`shaketable.core.dynamics`): ``theta > 0`` pivots on the bottom

@@ -37,6 +37,10 @@ advancing or 100 000 in one sample interval, stalled: a step below 1e-14 s) and 
 The work of the table's inertial force and of friction and the kinetic energy lost in
 impacts are accumulated (closed forms in REST, SLIDE and FLIGHT; integrated with the
 state in the contact modes), so that E_end - E_0 = W_table + W_friction - losses.
+
+Size: about 890 lines, most of them :func:`integrate`, one compiled driver (as the rocking
+engine); its steppers and event location are in :mod:`~shaketable.solvers.planar_steps`,
+its helpers in :mod:`~shaketable.solvers.planar_modes`.
 """
 
 from __future__ import annotations
@@ -71,6 +75,26 @@ from shaketable.core.planar_dynamics import (
     rock_forces,
     slide_rock_accelerations,
     start_mode,
+)
+from shaketable.solvers.planar_modes import (  # N_OUT: the output layout, re-exported
+    N_OUT,  # noqa: F401
+    OUT_MODE,
+    OUT_OMEGA,
+    OUT_SLIP,
+    OUT_THETA,
+    OUT_X,
+    OUT_X_DOT,
+    OUT_Y,
+    OUT_Y_DOT,
+    enter_contact,
+    first_failure,
+    flat,
+    hermite_peak,
+    measures,
+    q_from_z,
+    quantity,
+    store,
+    z_from_q,
 )
 from shaketable.solvers.planar_steps import (
     E_FRICTION,
@@ -113,9 +137,6 @@ EV_MODE, EV_IMPACT, EV_REVERSAL, EV_CASCADE, EV_UNSTABLE, EV_OVERTURN, EV_LANDIN
 #: (before an impact; else at the event), slip of the base midpoint [m].
 EVENT_COLUMNS = 6
 
-#: Columns of the output array.
-OUT_X, OUT_Y, OUT_THETA, OUT_X_DOT, OUT_Y_DOT, OUT_OMEGA, OUT_SLIP, OUT_MODE = range(8)
-N_OUT = 8
 
 #: Layout of the info array.
 (I_STATUS, I_T_END, I_N_IMPACTS, I_CAPPED, I_CASCADES, I_T_START, I_T_UNSTABLE,
@@ -140,49 +161,8 @@ MAX_TRANSITIONS_PER_INTERVAL = 100_000
 
 
 @njit(cache=True)
-def _z_from_q(q, side, z, parameters):
-    """Contact-mode state z from the full state q = (x, y, theta, x', y', theta')."""
-    r_x, r_y = corner_vector(q[2], side, parameters)
-    z[0] = q[2]
-    z[1] = q[5]
-    z[2] = q[0] + r_x
-    z[3] = q[3] - r_y * q[5]
-    z[4] = 0.0
-    z[5] = 0.0
-
-
-@njit(cache=True)
-def _q_from_z(z, side, q, parameters):
-    """Full state q from a contact-mode state z (the corner on the table)."""
-    r_x, r_y = corner_vector(z[0], side, parameters)
-    q[0] = z[2] - r_x
-    q[1] = -r_y
-    q[2] = z[0]
-    q[3] = z[3] + r_y * z[1]
-    q[4] = -r_x * z[1]
-    q[5] = z[1]
-
-
-@njit(cache=True)
-def _measures(q, parameters):
-    """Slip of the base midpoint [m] and the largest corner excursion |X - X_rest| [m]."""
-    b = parameters[HALF_WIDTH]
-    h = parameters[HALF_HEIGHT]
-    cosine = math.cos(q[2])
-    sine = math.sin(q[2])
-    slip = q[0] + h * sine
-    largest = 0.0
-    for u in (-b, b):
-        for w in (-h, h):
-            excursion = abs(q[0] + u * cosine - w * sine - u)
-            if excursion > largest:
-                largest = excursion
-    return slip, largest
-
-
-@njit(cache=True)
 def _track(t, q, info, parameters):
-    slip, excursion = _measures(q, parameters)
+    slip, excursion = measures(q, parameters)
     if abs(slip) > info[I_PEAK_SLIP]:
         info[I_PEAK_SLIP] = abs(slip)
         info[I_T_PEAK_SLIP] = t
@@ -197,7 +177,7 @@ def _track(t, q, info, parameters):
 def _record(ev, info, t, kind, before, after, omega, q, parameters):
     index = int(info[I_N_EVENTS])
     if index < ev.shape[0]:
-        slip, _ = _measures(q, parameters)
+        slip, _ = measures(q, parameters)
         ev[index, 0] = t
         ev[index, 1] = kind
         ev[index, 2] = before
@@ -205,150 +185,6 @@ def _record(ev, info, t, kind, before, after, omega, q, parameters):
         ev[index, 4] = omega
         ev[index, 5] = slip
     info[I_N_EVENTS] = index + 1
-
-
-@njit(cache=True)
-def _rest_margin(condition, ug, vg, mu_s, parameters):
-    """Margin of a rest condition, positive when it fails: 0 lift-off, 1/2 slip toward
-    -/+x driven by ug > 0 / < 0, 3/4 tipping onto side +1 / -1 (the rocking engine's test)."""
-    if condition == 0:
-        return -(G + vg)
-    if condition == 1:
-        return ug - mu_s * (G + vg)
-    if condition == 2:
-        return -ug - mu_s * (G + vg)
-    if condition == 3:
-        return flight_acceleration(0.0, 1.0, ug, vg, 0.0, parameters)
-    return -flight_acceleration(0.0, -1.0, ug, vg, 0.0, parameters)
-
-
-@njit(cache=True)
-def _first_failure(t, t_end, segment, mu_s, parameters):
-    """First time in [t, t_end] at which a rest condition fails strictly [s]; inf if none.
-
-    Each margin is affine in time: the crossing by linear interpolation, then (as the
-    rocking engine's start of rocking) bisection to the first representable time with a
-    positive margin.
-    """
-    ua, va = ground(segment, t)
-    ub, vb = ground(segment, t_end)
-    best = math.inf
-    for condition in range(5):
-        margin_a = _rest_margin(condition, ua, va, mu_s, parameters)
-        margin_b = _rest_margin(condition, ub, vb, mu_s, parameters)
-        if margin_a > 0.0:
-            candidate = t
-        elif margin_b > 0.0:
-            candidate = t + (t_end - t) * (-margin_a) / (margin_b - margin_a)
-            uc, vc = ground(segment, candidate)
-            if not _rest_margin(condition, uc, vc, mu_s, parameters) > 0.0:
-                low = candidate
-                high = t_end
-                for _ in range(200):
-                    middle = 0.5 * (low + high)
-                    if middle <= low or middle >= high:
-                        break
-                    um, vm = ground(segment, middle)
-                    if _rest_margin(condition, um, vm, mu_s, parameters) > 0.0:
-                        high = middle
-                    else:
-                        low = middle
-                candidate = high
-        else:
-            continue
-        if candidate < best:
-            best = candidate
-    return best
-
-
-@njit(cache=True)
-def _enter(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
-    """The mode a block entering ROCK or SLIDE_ROCK about ``side`` (state q) is really in.
-
-    SLIDE_ROCK with D <= 0: PAINLEVE; N <= 0: FLIGHT; a flat block at rest (theta =
-    theta' = 0) that does not tip onto ``side``: REST (or SLIDE from SLIDE_ROCK, unless
-    mu_d > b/h: INCONSISTENT); ROCK needing |F| > mu_s N: SLIDE_ROCK with sigma = -sign(F)
-    (checked again). Returns (mode, sigma).
-    """
-    ug, vg = ground(segment, t)
-    for _ in range(4):
-        if mode == ROCK:
-            acceleration, _, _, friction, normal = rock_forces(q[2], q[5], side, ug, vg,
-                                                               parameters)
-        else:
-            acceleration, _, friction, normal, d = slide_rock_accelerations(
-                q[2], q[5], side, sigma, mu_d, ug, vg, parameters)
-            if not d > 0.0:
-                return PAINLEVE, sigma
-        if normal <= 0.0:
-            return FLIGHT, sigma
-        if q[2] == 0.0 and q[5] == 0.0 and side * acceleration <= 0.0:
-            if mode == SLIDE_ROCK:
-                if mu_d > parameters[HALF_WIDTH] / parameters[HALF_HEIGHT]:
-                    return INCONSISTENT, sigma
-                return SLIDE, sigma
-            return REST, sigma
-        if mode == ROCK and abs(friction) > mu_s * normal:
-            mode = SLIDE_ROCK
-            sigma = -1.0 if friction > 0.0 else 1.0
-            continue
-        break
-    return mode, sigma
-
-
-@njit(cache=True)
-def _quantity(which, q, parameters):
-    """The slip (``which`` 0) or the excursion X - X_rest of corner ``which`` (1..4, the
-    order of :func:`~shaketable.solvers.planar_steps.horizontal_rate`) [m]."""
-    b = parameters[HALF_WIDTH]
-    h = parameters[HALF_HEIGHT]
-    if which == 0:
-        return q[0] + h * math.sin(q[2])
-    u = -b if which == 1 or which == 3 else b
-    w = -h if which <= 2 else h
-    return q[0] + u * math.cos(q[2]) - w * math.sin(q[2]) - u
-
-
-@njit(cache=True)
-def _hermite_peak(value0, value1, rate0, rate1, span):
-    """Largest |H| at the interior turning points of the cubic Hermite interpolant of
-    (value, rate) at both ends of a step of length ``span`` (0 if none)."""
-    v0 = rate0 * span
-    v1 = rate1 * span
-    c2 = 3.0 * (value1 - value0) - 2.0 * v0 - v1
-    c3 = 2.0 * (value0 - value1) + v0 + v1
-    largest = 0.0
-    if c3 == 0.0:
-        if c2 != 0.0:
-            root = -v0 / (2.0 * c2)
-            if 0.0 < root < 1.0:
-                largest = abs(value0 + root * (v0 + root * c2))
-        return largest
-    discriminant = c2 * c2 - 3.0 * c3 * v0
-    if discriminant < 0.0:
-        return largest
-    square_root = math.sqrt(discriminant)
-    for root in ((-c2 - square_root) / (3.0 * c3), (-c2 + square_root) / (3.0 * c3)):
-        if 0.0 < root < 1.0:
-            largest = max(largest, abs(value0 + root * (v0 + root * (c2 + root * c3))))
-    return largest
-
-
-@njit(cache=True)
-def _store(out, row, q, slip, mode):
-    for i in range(6):
-        out[row, i] = q[i]
-    out[row, OUT_SLIP] = slip
-    out[row, OUT_MODE] = mode
-
-
-@njit(cache=True)
-def _flat(q, x_dot, parameters):
-    q[1] = parameters[HALF_HEIGHT]
-    q[2] = 0.0
-    q[3] = x_dot
-    q[4] = 0.0
-    q[5] = 0.0
 
 
 @njit(cache=True, nogil=True)
@@ -435,7 +271,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         q[3] = r_y * omega0
         q[4] = -r_x * omega0
         q[5] = omega0
-        _z_from_q(q, side, z, parameters)
+        z_from_q(q, side, z, parameters)
         info[I_T_START] = t
         if abs(theta0) > alpha:
             info[I_T_UNSTABLE] = t
@@ -459,10 +295,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     rejected = 0
     evaluations = 0
     _track(t, q, info, parameters)
-    slip, _ = _measures(q, parameters)
-    store = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
-    if store:
-        _store(out, 0, q, slip, mode)
+    slip, _ = measures(q, parameters)
+    keep_rows = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
+    if keep_rows:
+        store(out, 0, q, slip, mode)
     filled = 1
 
     for k in range(n - 1):
@@ -489,7 +325,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 if rest_until > t:
                     info[I_TIME_REST] += rest_until - t
                     t = rest_until
-                when = _first_failure(t, t_end, segment, mu_s, parameters)
+                when = first_failure(t, t_end, segment, mu_s, parameters)
                 if when == math.inf:
                     info[I_TIME_REST] += t_end - t
                     t = t_end
@@ -510,7 +346,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     if math.isnan(info[I_T_START]):
                         info[I_T_START] = t
                     if mode == ROCK or mode == SLIDE_ROCK:
-                        _z_from_q(q, side, z, parameters)
+                        z_from_q(q, side, z, parameters)
                         entered = True
                     _record(ev, info, t, EV_MODE, REST, mode, 0.0, q, parameters)
             elif mode == SLIDE:
@@ -553,7 +389,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         side = new_side
                         sigma = new_sigma
                         if mode == ROCK or mode == SLIDE_ROCK:
-                            _z_from_q(q, side, z, parameters)
+                            z_from_q(q, side, z, parameters)
                             entered = True
                         _record(ev, info, t, EV_MODE, SLIDE, mode, 0.0, q, parameters)
                 elif t_air >= 0.0:
@@ -691,7 +527,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     if q[2] == 0.0 and q[5] == 0.0:
                         before = kinetic_energy(q[3], q[4], 0.0, parameters)
                         x_dot, mode = flat_landing(q[3], q[4], mu_s, mu_d)
-                        _flat(q, x_dot, parameters)
+                        flat(q, x_dot, parameters)
                         loss += before - kinetic_energy(x_dot, 0.0, 0.0, parameters)
                         sigma = 0.0 if x_dot == 0.0 else math.copysign(1.0, x_dot)
                         _record(ev, info, t, EV_LANDING, FLIGHT, mode, 0.0, q, parameters)
@@ -713,7 +549,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         q[3], q[4], q[5] = x_dot, y_dot, omega
                         mode = int(kind)
                         sigma = new_sigma
-                        _z_from_q(q, side, z, parameters)
+                        z_from_q(q, side, z, parameters)
                         entered = True
                         _record(ev, info, t, EV_IMPACT, FLIGHT, mode, omega_before, q,
                                 parameters)
@@ -722,8 +558,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 if entered:
                     if mode == ROCK:
                         z[3] = 0.0   # the pivot sticks (a sticking impact leaves rounding)
-                    _q_from_z(z, side, q, parameters)
-                    new_mode, new_sigma = _enter(mode, side, sigma, t, q, segment, mu_s, mu_d,
+                    q_from_z(z, side, q, parameters)
+                    new_mode, new_sigma = enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d,
                                                  parameters)
                     if new_mode == PAINLEVE or new_mode == INCONSISTENT:
                         status = STATUS_PAINLEVE if new_mode == PAINLEVE \
@@ -735,7 +571,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         _record(ev, info, t, EV_REVERSAL if new_mode == mode else EV_MODE, mode,
                                 new_mode, q[5], q, parameters)
                         if new_mode == REST or new_mode == SLIDE:
-                            _flat(q, q[3] if new_mode == SLIDE else 0.0, parameters)
+                            flat(q, q[3] if new_mode == SLIDE else 0.0, parameters)
                             rest_until = t
                         mode = new_mode
                         sigma = new_sigma
@@ -813,16 +649,16 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     # an extremum is located on the stepper only where the step's cubic
                     # Hermite interpolant says it may come within 10 % of the peak so far
                     # (the interpolant's error is far smaller: the peaks stay exact)
-                    _q_from_z(z, side, q_start, parameters)
-                    _q_from_z(z_new, side, q_end, parameters)
-                    if z[1] * z_new[1] < 0.0 and _hermite_peak(
+                    q_from_z(z, side, q_start, parameters)
+                    q_from_z(z_new, side, q_end, parameters)
+                    if z[1] * z_new[1] < 0.0 and hermite_peak(
                             z[0], z_new[0], z[1], z_new[1], tau) >= 0.9 * info[I_MAX_ABS_THETA]:
                         tau_peak, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
                                                   z, k1, tau, z_new, no_events,
                                                   1.0 if z[1] > 0.0 else -1.0, segment,
                                                   parameters, stages, scale_abs, rtol, z_turn)
                         evaluations += 11 * trials
-                        _q_from_z(z_turn, side, q, parameters)
+                        q_from_z(z_turn, side, q, parameters)
                         _track(t + tau_peak, q, info, parameters)
                     # extrema of the slip and of the corners' X (peak slip, excursion)
                     _, ry0 = corner_vector(z[0], side, parameters)
@@ -832,8 +668,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         rate1 = horizontal_rate(j, z_new[0], z_new[3] + ry1 * z_new[1],
                                                 z_new[1], parameters)
                         peak = info[I_PEAK_SLIP] if j == 0 else info[I_PEAK_EXCURSION]
-                        if rate0 * rate1 < 0.0 and _hermite_peak(
-                                _quantity(j, q_start, parameters), _quantity(j, q_end, parameters),
+                        if rate0 * rate1 < 0.0 and hermite_peak(
+                                quantity(j, q_start, parameters), quantity(j, q_end, parameters),
                                 rate0, rate1, tau) >= 0.9 * peak:
                             tau_rate, trials = locate(KIND_RATE + j, mode, side, sigma, mu_s,
                                                       mu_d, t, z, k1, tau, z_new, no_events,
@@ -841,7 +677,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                                       parameters, stages, scale_abs, rtol,
                                                       z_turn)
                             evaluations += 11 * trials
-                            _q_from_z(z_turn, side, q, parameters)
+                            q_from_z(z_turn, side, q, parameters)
                             _track(t + tau_rate, q, info, parameters)
                     if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
                             and abs(z[0]) <= alpha:
@@ -852,7 +688,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         evaluations += 11 * trials
                         info[I_T_UNSTABLE] = t + tau_unstable
                         info[I_UNSTABLE_DIRECTION] = 1.0 if z_new[0] > 0.0 else -1.0
-                        _q_from_z(z_turn, side, q, parameters)
+                        q_from_z(z_turn, side, q, parameters)
                         _record(ev, info, t + tau_unstable, EV_UNSTABLE, mode, mode, z_turn[1],
                                 q, parameters)
                     w_table += z_new[4] - z[4]
@@ -864,7 +700,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     t = t_end if (terminal < 0 and tau == t_end - t) else t + tau
                     for i in range(N_STATE):
                         z[i] = z_new[i]
-                    _q_from_z(z, side, q, parameters)
+                    q_from_z(z, side, q, parameters)
                     _track(t, q, info, parameters)
                     if terminal < 0:
                         for i in range(N_EVENTS):
@@ -878,7 +714,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     if terminal == E_OVERTURN:
                         status = STATUS_OVERTURNED
                         z[0] = side * 0.5 * math.pi
-                        _q_from_z(z, side, q, parameters)
+                        q_from_z(z, side, q, parameters)
                         info[I_T_OVERTURN] = t
                         info[I_OVERTURN_DIRECTION] = side
                         _record(ev, info, t, EV_OVERTURN, mode, mode, z[1], q, parameters)
@@ -903,7 +739,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         # kinetic energy taken out by zeroing it is counted as a loss
                         before = kinetic_energy(q[3], q[4], q[5], parameters)
                         z[3] = 0.0
-                        _q_from_z(z, side, q, parameters)
+                        q_from_z(z, side, q, parameters)
                         loss += before - kinetic_energy(q[3], q[4], q[5], parameters)
                         _, _, _, friction, normal = rock_forces(z[0], z[1], side, u_now, v_now,
                                                                 parameters)
@@ -921,7 +757,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         # there can leave the block turning onto the corner that struck
                         # first (side * theta'+ < 0): it strikes again at once (bounded)
                         z[0] = 0.0
-                        _q_from_z(z, side, q, parameters)
+                        q_from_z(z, side, q, parameters)
                         step_size = min(step_size, max(t - last_impact, 1e-3 * step_size))
                         last_impact = t
                         for repeat in range(MAX_IMMEDIATE_IMPACTS + 1):
@@ -944,7 +780,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             side = striking
                             q[3], q[4], q[5] = x_dot, y_dot, omega
                             sticking = kind == ROCK
-                            mode, sigma = _enter(int(kind), side, new_sigma, t, q, segment,
+                            mode, sigma = enter_contact(int(kind), side, new_sigma, t, q, segment,
                                                  mu_s, mu_d, parameters)
                             if mode >= 0:
                                 visited |= 1 << mode
@@ -955,7 +791,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 mode = before_mode
                                 break
                             if mode == REST or mode == SLIDE:
-                                _flat(q, q[3] if mode == SLIDE else 0.0, parameters)
+                                flat(q, q[3] if mode == SLIDE else 0.0, parameters)
                                 rest_until = t
                             _record(ev, info, t, EV_IMPACT, before_mode, mode, omega_before, q,
                                     parameters)
@@ -995,7 +831,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                     - 0.5 * base * base
                                 if omega != 0.0:
                                     cascades += 1
-                                _flat(q, base, parameters)
+                                flat(q, base, parameters)
                                 if base == 0.0:
                                     mode = REST
                                     rest_until = t + remaining
@@ -1011,7 +847,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         if status != STATUS_COMPLETED:
                             break
                         if mode == ROCK or mode == SLIDE_ROCK:
-                            _z_from_q(q, side, z, parameters)
+                            z_from_q(q, side, z, parameters)
                             entered = True
             if mode != previous_mode:
                 visited |= 1 << mode
@@ -1033,12 +869,12 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         if status != STATUS_COMPLETED:
             break
         _track(t, q, info, parameters)
-        if store:
-            slip, _ = _measures(q, parameters)
-            _store(out, k + 1, q, slip, mode)
+        if keep_rows:
+            slip, _ = measures(q, parameters)
+            store(out, k + 1, q, slip, mode)
         filled = k + 2
 
-    slip, _ = _measures(q, parameters)
+    slip, _ = measures(q, parameters)
     final[OUT_X] = q[0]
     final[OUT_Y] = q[1]
     final[OUT_THETA] = q[2]

@@ -28,7 +28,9 @@ def impact_ratios(block: Block, cor: float | str) -> tuple[float, float]:
     """(rho, cor of a rock-to-rock impact) for a numeric COR or ``"housner"``.
 
     rho = cor / c_H scales the angular momentum about the striking corner; Housner's law
-    (rho = 1) gives theta' -> c_H theta', c_H = 1 - 1.5 sin^2(alpha).
+    (rho = 1) gives theta' -> c_H theta', c_H = 1 - 1.5 sin^2(alpha). For B/H > sqrt(2)
+    c_H < 0 and rho < 0 (a rock-to-rock impact still gives theta' -> cor theta'; the energy
+    cap of :func:`~shaketable.core.planar_dynamics.impact` guards the other states).
     """
     c_h = 1.0 - 1.5 * math.sin(block.alpha) ** 2
     if isinstance(cor, str):
@@ -36,6 +38,10 @@ def impact_ratios(block: Block, cor: float | str) -> tuple[float, float]:
             raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
         return 1.0, c_h
     value = in_range("cor", cor, 0.0, 1.0)
+    if c_h == 0.0:
+        raise ValueError("cor: a numeric COR is cor / c_H times the angular momentum about "
+                         "the corner, and c_H = 1 - 1.5 sin^2(alpha) is 0 for this block "
+                         "(B/H = sqrt(2)); give cor='housner' or change B/H")
     return value / c_h, value
 
 
