@@ -145,6 +145,10 @@ def _check(block, motion, cor, friction, rtol, duration, output_dt):
             raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
     elif isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0 <= cor <= 1:
         raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
+    if not isinstance(cor, str) and 1.0 - 1.5 * math.sin(block.alpha) ** 2 == 0.0:
+        raise ValueError(f"cor: a numeric cor ({cor!r}) needs Housner's ratio c_H = 1 - 1.5 "
+                         "sin^2(alpha) != 0 (rho = cor / c_H); this block has B/H = sqrt(2), "
+                         "c_H = 0: use cor='housner'")
     if not isinstance(friction, Friction):
         raise ValueError(f"friction must be a Friction, got {type(friction).__name__}")
     if not (isinstance(rtol, float) and 1e-14 <= rtol <= 1e-3):

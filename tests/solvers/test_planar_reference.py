@@ -344,6 +344,10 @@ def test_bad_input_names_the_parameter():
         simulate_reference(block, None, cor=1.5, friction=Friction(0.5), duration=1.0)
     with pytest.raises(ValueError, match="duration"):
         simulate_reference(block, None, cor=0.9, friction=Friction(0.5))
+    square_root_2 = Block(1.0, math.sqrt(2.0))   # B/H = sqrt(2): c_H = 0, rho = cor / 0
+    assert 1.0 - 1.5 * math.sin(square_root_2.alpha) ** 2 == 0.0
+    with pytest.raises(ValueError, match="cor"):
+        simulate_reference(square_root_2, None, cor=0.9, friction=Friction(0.5), duration=1.0)
     with pytest.raises(ValueError, match="theta0"):
         simulate_reference(block, None, cor=0.9, friction=Friction(0.5), duration=1.0,
                            theta0=float("nan"))
