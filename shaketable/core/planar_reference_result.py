@@ -1,0 +1,157 @@
+"""Result of the planar reference solver (:mod:`shaketable.solvers.planar_reference`).
+
+The planar block of issue 25 (``PLANAR_SPEC.md``): rest, slide, rock, slide-rock and
+free flight; mode codes and names of :mod:`shaketable.core.shenton`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
+from shaketable.core.shenton import MODE_NAMES
+from shaketable.core.sliding_result import Friction
+
+#: Statuses of a run.
+STATUSES = ("completed", "overturned", "painleve", "inconsistent")
+
+
+@dataclass(frozen=True)
+class PlanarReferenceResult:
+    """Time history, events and scalar results of one reference run.
+
+    Attributes
+    ----------
+    block : Block
+    motion : Motion
+        Table accelerations [m/s^2].
+    cor : float or str
+        Coefficient of restitution [-] or ``"housner"``.
+    friction : Friction
+    t : ndarray
+        Output times [s] (the motion's samples, up to the end of the run).
+    x, y, theta : ndarray
+        Centre's horizontal displacement from its start [m], centre's height
+        above the table [m], rotation [rad] at ``t``.
+    x_dot, y_dot, theta_dot : ndarray
+        Their rates [m/s], [m/s], [rad/s].
+    mode : ndarray of int
+        Mode at ``t`` (codes of :mod:`shaketable.core.shenton`).
+    event_times : ndarray
+        Times of the located events [s].
+    event_kinds : tuple of str
+        "start", "stick", "slip", "reverse", "lift-off", "landing", "impact",
+        "flat landing", "cascade", "unstable", "overturn", "painleve".
+    event_mode_before, event_mode_after : ndarray of int
+        Mode codes on both sides of each event.
+    impact_times, impact_velocities : ndarray
+        Time [s] and pre-impact theta' [rad/s] of each corner impact.
+    peak_slip, t_peak_slip, residual_slip : float
+        Largest |slip| of the base midpoint (x + h sin(theta)) [m], its time [s],
+        and the slip at the end [m].
+    max_abs_theta, t_max : float
+        Largest |theta| [rad] and its time [s].
+    t_unstable, t_overturn : float
+        First |theta| = alpha [s]; overturn (|theta| = pi/2) [s]; NaN if never.
+    t_rest : float
+        End of the last summed cascade of impacts [s] (NaN if none).
+    friction_work, input_work, impact_loss : float
+        Work of friction on the block (<= 0), work of the table's inertial
+        forces -m ug, -m vg on the block, and kinetic energy lost in impacts
+        (>= 0), per unit mass [J/kg].
+    energy_start, energy_end : float
+        Kinetic + potential energy per mass, 0.5 (x'^2 + y'^2 + Ic theta'^2)
+        + g (y - h) [J/kg]; energy_end - energy_start = friction_work +
+        input_work - impact_loss.
+    capped_impacts : int
+        Impacts whose rho was lowered so as not to add energy.
+    time_in_mode : dict
+        Seconds spent in each mode, by name.
+    status : str
+        One of :data:`STATUSES`.
+    message : str
+        Why a run stopped early (empty otherwise).
+    """
+
+    block: Block
+    motion: Motion
+    cor: float | str
+    friction: Friction
+    t: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    theta: np.ndarray
+    x_dot: np.ndarray
+    y_dot: np.ndarray
+    theta_dot: np.ndarray
+    mode: np.ndarray
+    event_times: np.ndarray
+    event_kinds: tuple
+    event_mode_before: np.ndarray
+    event_mode_after: np.ndarray
+    impact_times: np.ndarray
+    impact_velocities: np.ndarray
+    peak_slip: float
+    t_peak_slip: float
+    residual_slip: float
+    max_abs_theta: float
+    t_max: float
+    t_unstable: float
+    t_overturn: float
+    t_rest: float
+    friction_work: float
+    input_work: float
+    impact_loss: float
+    energy_start: float
+    energy_end: float
+    capped_impacts: int
+    status: str
+    message: str = ""
+    time_in_mode: dict = field(default_factory=dict)
+
+    @property
+    def overturned(self) -> bool:
+        """Whether the block overturned (|theta| reached pi/2)."""
+        return self.status == "overturned"
+
+    @property
+    def max_theta_over_alpha(self) -> float:
+        """max |theta| / alpha [-]."""
+        return self.max_abs_theta / self.block.alpha
+
+    @property
+    def slip(self) -> np.ndarray:
+        """Slip of the base midpoint relative to the table, x + h sin(theta) [m]."""
+        return self.x + self.block.h * np.sin(self.theta)
+
+    def events_of(self, kind: str) -> np.ndarray:
+        """Times [s] of the events of one kind."""
+        return np.array([t for t, k in zip(self.event_times, self.event_kinds) if k == kind])
+
+    def to_frame(self):
+        """Time history as a :class:`pandas.DataFrame`, units in the column names."""
+        import pandas as pd
+
+        return pd.DataFrame({
+            "time [s]": self.t, "x [m]": self.x, "y [m]": self.y, "theta [rad]": self.theta,
+            "x' [m/s]": self.x_dot, "y' [m/s]": self.y_dot, "theta' [rad/s]": self.theta_dot,
+            "slip [m]": self.slip, "mode": [MODE_NAMES[int(m)] for m in self.mode]})
+
+    def summary(self) -> dict:
+        """Scalar results as a JSON-ready dict."""
+        from shaketable.core.files import json_ready_dict
+
+        data = {"model": "planar reference (SciPy DOP853)", "status": self.status,
+                "cor": self.cor, "static friction mu_s [-]": self.friction.static,
+                "dynamic friction mu_d [-]": self.friction.dynamic,
+                "peak slip [m]": self.peak_slip, "residual slip [m]": self.residual_slip,
+                "max |theta|/alpha [-]": self.max_theta_over_alpha,
+                "t_overturn [s]": self.t_overturn, "impacts": len(self.impact_times),
+                "friction work [J/kg]": self.friction_work,
+                "impact loss [J/kg]": self.impact_loss,
+                "capped impacts": self.capped_impacts}
+        data.update({f"time {name} [s]": value for name, value in self.time_in_mode.items()})
+        return json_ready_dict(data)
