@@ -46,16 +46,17 @@ from shaketable.version import __version__  # noqa: E402
 __all__ = ["Block", "PrestressRods", "Motion", "RockingResult", "Friction", "PlanarResult",
            "simulate", "METHODS", "G", "INCH", "FOOT", "__version__"]
 
-_LAZY = {"simulate", "METHODS"}
+#: The names loaded on first use, and the module each comes from.
+_LAZY = {"simulate": "shaketable.solvers.api", "METHODS": "shaketable.solvers.layout"}
 
 
 def __getattr__(name):
     if name in _LAZY:
-        from shaketable.solvers import api
+        from importlib import import_module
 
-        return getattr(api, name)
+        return getattr(import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'shaketable' has no attribute {name!r}")
 
 
 def __dir__():
-    return sorted(set(globals()) | _LAZY)
+    return sorted(set(globals()) | set(_LAZY))

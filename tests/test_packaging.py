@@ -64,3 +64,24 @@ def test_version_is_written_once():
     assert re.search(r'^version\s*=\s*"', pyproject, re.MULTILINE) is None
     assert 'version = { attr = "shaketable.version.__version__" }' in pyproject
     assert re.fullmatch(r"\d+\.\d+\.\d+(\.dev\d+)?", shaketable.__version__)
+
+
+def test_every_name_of_the_front_door_loads_from_outside_the_repository(tmp_path):
+    """``import shaketable`` and ``from shaketable import *`` from a folder outside the
+    checkout: every name of ``__all__`` resolves (``simulate`` and ``METHODS`` on first use,
+    from ``solvers.api`` and ``solvers.layout``), and the import itself loads no numba.
+    ``shaketable.METHODS`` raised AttributeError before (it was looked up in ``api``)."""
+    code = (
+        "import sys\n"
+        "import shaketable\n"
+        "light = 'numba' not in sys.modules\n"
+        "from shaketable import *\n"
+        "missing = [n for n in shaketable.__all__ if getattr(shaketable, n, None) is None]\n"
+        "print(light, missing, sorted(shaketable.METHODS), simulate.__module__,\n"
+        "      set(shaketable.__all__) <= set(dir(shaketable)))\n"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split("\n")[0] == ("True [] ['fast', 'linear', 'predictor-corrector', "
+                                           "'reference'] shaketable.solvers.api True")
