@@ -48,6 +48,32 @@ def has_signal(values) -> bool:
     return bool(np.any(np.asarray(values) != 0.0))
 
 
+def ground_panels(motion, end: float, ratios, fig=None, height=(3.6, 1.9)):
+    """The Calcomp layout's figure: a panel for each ground component that is not zero
+    (acceleration [g] up to ``end`` [s]) above the panels of height ``ratios``.
+
+    Returns ``(fig, axes)``, every panel sharing the time axis; the figure is
+    ``height[0] + height[1] * panels`` inches high, laid out by matplotlib's constrained
+    layout.
+    """
+    plt = pyplot()
+    shown = motion.t <= end + 1e-12
+    ground = [(label, values) for label, values in (
+        ("horizontal\nground acc. [g]", motion.horizontal[shown] / G),
+        ("vertical\nground acc. [g]", motion.vertical_or_zero[shown] / G)) if has_signal(values)]
+    heights = [1.0] * len(ground) + list(ratios)
+    if fig is None:
+        fig = plt.figure(figsize=(8.5, height[0] + height[1] * len(heights)),
+                         layout="constrained")
+    else:
+        fig.set_layout_engine("constrained")
+    axes = fig.subplots(len(heights), 1, sharex=True, gridspec_kw={"height_ratios": heights})
+    for axis, (label, values) in zip(axes, ground):
+        axis.plot(motion.t[shown], values, color="k", lw=0.7)
+        axis.set_ylabel(label)
+    return fig, axes
+
+
 def broken_at_sign_changes(t, theta, values):
     """``(t, values)`` with NaN inserted where theta changes sign (an impact).
 
@@ -100,26 +126,10 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
     -------
     matplotlib.figure.Figure
     """
-    plt = pyplot()
     block = result.block
     motion = result.motion
     end = result.t[-1]
-    shown = motion.t <= end + 1e-12
-    horizontal = motion.horizontal[shown] / G
-    vertical = motion.vertical_or_zero[shown] / G
-    with_horizontal, with_vertical = has_signal(horizontal), has_signal(vertical)
-    ground = [(label, values) for label, values, present in (
-        ("horizontal\nground acc. [g]", horizontal, with_horizontal),
-        ("vertical\nground acc. [g]", vertical, with_vertical)) if present]
-    ratios = [1.0] * len(ground) + [1.3, 1.5]
-    if fig is None:
-        fig = plt.figure(figsize=(8.5, 3.6 + 1.9 * len(ratios)), layout="constrained")
-    else:
-        fig.set_layout_engine("constrained")
-    axes = fig.subplots(len(ratios), 1, sharex=True, gridspec_kw={"height_ratios": ratios})
-    for axis, (label, values) in zip(axes, ground):
-        axis.plot(motion.t[shown], values, color="k", lw=0.7)
-        axis.set_ylabel(label)
+    fig, axes = ground_panels(motion, end, (1.3, 1.5), fig, height=(3.6, 1.9))
     rates, rotation = axes[-2], axes[-1]
     t_broken, acceleration = broken_at_sign_changes(result.t, result.theta, result.theta_ddot)
     labels = run_labels((result, *others))

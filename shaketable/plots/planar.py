@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from shaketable.core.constants import INCH, G
-from shaketable.plots.base import pyplot
+from shaketable.core.constants import INCH
 from shaketable.plots.calcomp import (
     describe_block,
     describe_motion,
+    ground_panels,
     has_signal,
     mark_overturn,
 )
@@ -63,24 +63,9 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     -------
     matplotlib.figure.Figure
     """
-    plt = pyplot()
     block, motion = result.block, result.motion
     end = result.t[-1]
-    shown = motion.t <= end + 1e-12
-    horizontal = motion.horizontal[shown] / G
-    vertical = motion.vertical_or_zero[shown] / G
-    ground = [(label, values) for label, values in (
-        ("horizontal\nground acc. [g]", horizontal), ("vertical\nground acc. [g]", vertical))
-        if has_signal(values)]
-    ratios = [1.0] * len(ground) + [1.0, 1.4, 1.2, 0.28]
-    if fig is None:
-        fig = plt.figure(figsize=(8.5, 3.4 + 1.7 * len(ratios)), layout="constrained")
-    else:
-        fig.set_layout_engine("constrained")
-    axes = fig.subplots(len(ratios), 1, sharex=True, gridspec_kw={"height_ratios": ratios})
-    for axis, (label, values) in zip(axes, ground):
-        axis.plot(motion.t[shown], values, color="k", lw=0.7)
-        axis.set_ylabel(label)
+    fig, axes = ground_panels(motion, end, (1.0, 1.4, 1.2, 0.28), fig, height=(3.4, 1.7))
     rates, rotation, slip, band = axes[-4], axes[-3], axes[-2], axes[-1]
     rates.plot(result.t, result.theta_dot, color="tab:blue", lw=0.9)
     rates.set_ylabel("θ' [rad/s]")

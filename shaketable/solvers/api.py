@@ -16,9 +16,9 @@ from shaketable.solvers.common import (
     call_interruptibly,
     check_fixed_steps,
     engine_arrays,
-    extended,
     impact_buffers,
     result_from_info,
+    run_motion,
     run_options,
 )
 
@@ -124,15 +124,7 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
     options = run_options(method, theta0=theta0, theta_dot0=theta_dot0, duration=duration,
                           rtol=rtol, subdivisions=subdivisions, rest_tolerance=rest_tolerance,
                           top_force=top_force)
-    if motion is None:
-        if options.duration is None:
-            raise ValueError("free rocking (motion=None) needs a duration [s]")
-        motion = Motion.at_rest(options.duration, in_range("output_dt", output_dt, 0.0,
-                                                                low_open=True))
-    elif not isinstance(motion, Motion):
-        raise ValueError(f"motion must be a shaketable.Motion or None, got {type(motion).__name__}")
-    else:
-        motion = extended(motion, options.duration)
+    motion = run_motion(motion, options.duration, output_dt)
     method, rtol, subdivisions = options.method, options.rtol, options.subdivisions
     theta0, theta_dot0, rest = options.theta0, options.theta_dot0, options.rest_tolerance
 

@@ -111,6 +111,19 @@ def starting_at_zero(motion: Motion) -> Motion:
                   rotation=motion.rotation, metadata=metadata)
 
 
+def run_motion(motion: Motion | None, duration: float | None, output_dt: float) -> Motion:
+    """The motion a run integrates: free rocking (``motion=None``) on a table at rest for
+    ``duration`` with output every ``output_dt`` [s], else the motion cut or padded to
+    ``duration`` (:func:`extended`); ValueError naming what is wrong."""
+    if motion is None:
+        if duration is None:
+            raise ValueError("free rocking (motion=None) needs a duration [s]")
+        return Motion.at_rest(duration, in_range("output_dt", output_dt, 0.0, low_open=True))
+    if not isinstance(motion, Motion):
+        raise ValueError(f"motion must be a shaketable.Motion or None, got {type(motion).__name__}")
+    return extended(motion, duration)
+
+
 def extended(motion: Motion, duration: float | None) -> Motion:
     """The motion cut or padded with zeros (table at rest) to end at exactly ``duration``.
 

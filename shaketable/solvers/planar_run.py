@@ -18,7 +18,7 @@ from shaketable.core.planar_result import MODES, PlanarResult
 from shaketable.core.sliding_result import Friction
 from shaketable.core.validation import in_range
 from shaketable.solvers import planar
-from shaketable.solvers.common import call_interruptibly, extended, run_options
+from shaketable.solvers.common import call_interruptibly, run_motion, run_options
 
 #: Default relative tolerance of the planar engine's DOP853 steps [-].
 DEFAULT_PLANAR_RTOL = 1e-12
@@ -109,15 +109,7 @@ def simulate_planar(block: Block, motion: Motion | None = None, *, cor: float | 
     options = run_options("fast", theta0=theta0, theta_dot0=theta_dot0, duration=duration,
                           rtol=DEFAULT_PLANAR_RTOL if rtol is None else rtol,
                           rest_tolerance=rest_tolerance)
-    if motion is None:
-        if options.duration is None:
-            raise ValueError("free rocking (motion=None) needs a duration [s]")
-        motion = Motion.at_rest(options.duration, in_range("output_dt", output_dt, 0.0,
-                                                                low_open=True))
-    elif not isinstance(motion, Motion):
-        raise ValueError(f"motion must be a shaketable.Motion or None, got {type(motion).__name__}")
-    else:
-        motion = extended(motion, options.duration)
+    motion = run_motion(motion, options.duration, output_dt)
     if motion.rotation is not None and np.any(motion.rotation != 0.0):
         raise ValueError("motion: the coupled model (friction=...) has no table rotation "
                          "(pitch); give a motion without rotation")
