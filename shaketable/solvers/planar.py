@@ -414,7 +414,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         overturn = (math.copysign(0.5 * math.pi, thb) - th0) / om0
                     low_b, _ = lowest_corner(yb, thb, parameters)
                     upper = -1.0
-                    if low_b <= 0.0:
+                    # strictly below: a gap of exactly 0 (the rise of a block just lifted
+                    # off, below half an ulp of y) is no landing (docs/planar.md, lift-off)
+                    if low_b < 0.0:
                         upper = tau_b
                     elif positive_at_start or tau_a > 0.0:
                         # a touch-down hidden between the piece ends: a minimum of a

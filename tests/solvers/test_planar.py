@@ -173,6 +173,32 @@ def test_a_block_lifted_flat_flies_on_the_ballistic_path_and_lands_flat():
     assert result.time_in_mode["flight"] == pytest.approx(landing - t_lift, abs=1e-10)
 
 
+def test_a_sliding_block_lifted_just_before_a_sample_flies_and_lands_flat():
+    # g + vg reaches 0 while the block slides, 5 us before a sample (the case of
+    # tests/solvers/test_planar_agreement.py "fuzz8 14", which stopped with status
+    # "chatter": the first flight piece, 0.6 us long, rose by less than half an ulp of y,
+    # and a gap of exactly 0 was taken for a landing). Reference: the closed form of
+    # _height_gain, landing where it returns to zero (brentq); no flight before t_lift.
+    block = Block(height=0.4, width=0.5)   # B/H 1.25 > mu_d: sliding never tips it
+    ramp = 0.1
+    motion = _lift_motion(depth=ramp / (0.05 - 5e-6), ramp=ramp)
+    motion = Motion(motion.t, np.full_like(motion.t, 0.6 * G), motion.vertical, name="lift")
+    result = simulate(block, motion, cor=0.9, friction=Friction(0.3, 0.25))
+    assert result.status == "completed"
+    landing = brentq(lambda s: _height_gain(s, motion)[0], 0.06, 0.9)
+    _, _, t_lift = _height_gain(landing, motion)
+    events = result.events_frame()
+    assert list(zip(events["mode before"], events["mode after"])) == [
+        ("rest", "slide"), ("slide", "flight"), ("flight", "slide")]
+    assert events["time [s]"].iloc[1] == pytest.approx(t_lift, abs=1e-12)
+    assert events["event"].iloc[2] == "flat landing"
+    assert events["time [s]"].iloc[2] == pytest.approx(landing, abs=1e-10)
+    flying = (result.t > t_lift) & (result.t < landing)
+    expected = np.array([_height_gain(s, motion)[0] for s in result.t[flying]])
+    np.testing.assert_allclose(result.y[flying] - block.height / 2, expected, rtol=0, atol=1e-12)
+    assert np.all(result.theta == 0.0)
+
+
 def test_a_rocking_block_thrown_off_flies_with_constant_rate_and_lands_on_its_corner():
     # the table drops at 2 g from t = 0 (constant for 0.3 s): a block released tilted and
     # rotating has N < 0 at once and flies: theta linear, the centre on a parabola relative

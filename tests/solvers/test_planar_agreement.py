@@ -150,13 +150,12 @@ CASES.update({
         2.8548493482800215)),
 })
 
-#: Disagreements reported to branch planar (DISAGREEMENTS.md) and not resolved by 19:20:
-#: (test, case) -> reason. Strict: a fix makes these tests fail until the mark is removed.
-_LIFT_OFF = ("planar: a flat block lifting off while sliding lands at the instant it lifts "
-             "off, again and again (status 'chatter' at 0.9949929080382367 s); the reference "
-             "flies until 1.0916252047820298 s (DISAGREEMENTS.md 5)")
-KNOWN = {(test, "fuzz8 14: lift-off while sliding"): _LIFT_OFF
-         for test in ("events", "scalars", "time histories")}
+#: Disagreements reported to branch planar (DISAGREEMENTS.md) and not yet resolved:
+#: (test, case) -> reason, marked xfail(strict=True) (a fix makes these tests fail until
+#: the mark is removed). None is open: the last one, "fuzz8 14" (a flat landing found at
+#: the instant of lift-off, again and again: status 'chatter'), was fixed on branch
+#: planar-chatter (docs/planar.md, "Lift-off from the flat base").
+KNOWN: dict[tuple[str, str], str] = {}
 
 
 def _known(request, test, name):
