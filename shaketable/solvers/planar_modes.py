@@ -130,7 +130,8 @@ def first_failure(t, t_end, segment, mu_s, parameters):
 def enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
     """The mode a block entering ROCK or SLIDE_ROCK about ``side`` (state q) is really in.
 
-    SLIDE_ROCK with D <= 0: PAINLEVE; N <= 0: FLIGHT; a flat block at rest (theta =
+    SLIDE_ROCK with D <= 0: PAINLEVE; N <= 0: FLIGHT (ROCK: only if the corner's free
+    acceleration leaves the table, else SLIDE_ROCK with sigma = -sign(F)); a flat block at rest (theta =
     theta' = 0) that does not tip onto ``side``: REST (or SLIDE from SLIDE_ROCK, unless
     mu_d > b/h: INCONSISTENT); ROCK needing |F| > mu_s N: SLIDE_ROCK with sigma = -sign(F)
     (checked again). Returns (mode, sigma).
@@ -146,6 +147,14 @@ def enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
             if not d > 0.0:
                 return PAINLEVE, sigma
         if normal <= 0.0:
+            # the held corner would have to pull: it flies only if its free acceleration
+            # leaves the table, Y_s'' = -(g + vg) - r_y theta'^2 >= 0; otherwise it slips
+            # (SLIDE_ROCK's N = -Y_s'' Ic / D > 0; docs/planar.md, "Entering a contact")
+            _, r_y = corner_vector(q[2], side, parameters)
+            if mode == ROCK and G + vg + r_y * q[5] * q[5] > 0.0:
+                mode = SLIDE_ROCK
+                sigma = -1.0 if friction > 0.0 else 1.0
+                continue
             return FLIGHT, sigma
         if q[2] == 0.0 and q[5] == 0.0 and side * acceleration <= 0.0:
             if mode == SLIDE_ROCK:

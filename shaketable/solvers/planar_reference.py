@@ -320,6 +320,13 @@ class _Run:
                             "normal force")
             _, _, thdd, force, normal = self.solution(t, self.state)
             if normal <= 0.0:
+                # a sticking corner that would have to pull flies only if its free vertical
+                # acceleration -(g + vg) - r_y theta'^2 is >= 0; otherwise it slips
+                _, vg = self.ground(t)
+                _, r_y = self.geometry.arm(side, self.state[2])
+                if mode == ROCK and G + vg + r_y * self.state[5] ** 2 > 0.0:
+                    mode, sigma = SLIDE_ROCK, (-1 if force > 0 else 1)
+                    continue
                 mode = FLIGHT
                 break
             if self.state[2] == 0.0 and self.state[5] == 0.0 and side * thdd <= 0.0:

@@ -21,6 +21,7 @@ from shaketable.core.dynamics import block_parameters
 from shaketable.core.geometry import PrestressRods
 from shaketable.core.motion import Motion
 from shaketable.core.planar_dynamics import (
+    FLIGHT,
     ROCK,
     SLIDE_ROCK,
     corner_vector,
@@ -28,10 +29,12 @@ from shaketable.core.planar_dynamics import (
     impact,
     kinetic_energy,
     rock_forces,
+    slide_rock_accelerations,
 )
 from shaketable.core.sliding_result import Friction
 from shaketable.ground import generators, records
 from shaketable.solvers.api import simulate
+from shaketable.solvers.planar_modes import enter_contact
 from shaketable.solvers.sliding import slide
 from shaketable.studies.sliding import TABLE_4_4_COLUMNS, TABLE_4_4_FRICTIONS, table_4_4_motion
 
@@ -334,6 +337,30 @@ def test_impact_reduces_to_the_report_cor_and_to_housner_with_ample_friction():
         assert omega_after == pytest.approx(expected * omega, rel=1e-14)  # Section 2.7 (5)
         assert lost == pytest.approx(0.5 * parameters[2] * omega ** 2 * (1 - expected ** 2),
                                      rel=1e-12)
+
+
+@pytest.mark.parametrize("omega", [0.2, 0.5])
+def test_a_corner_that_cannot_be_held_flies_only_if_it_leaves_the_table_by_itself(omega):
+    # docs/planar.md, "Entering a contact": a corner on the table (theta = 0, Y' = 0)
+    # whose ROCK forces need N < 0 flies if its free vertical acceleration
+    # -(g + vg) + h theta'^2 (r_y = -h at theta = 0, written here) is >= 0, else it
+    # slide-rocks with N > 0. g + vg = 0.05 m/s^2, h = 0.5 m: omega 0.2 -> -0.03 (slips),
+    # omega 0.5 -> +0.075 (flies).
+    block = Block(height=1.0, width=0.8)
+    parameters = block_parameters(block)
+    ug, vg = -5.0, -G + 0.05
+    b, h = block.width / 2, block.height / 2
+    q = np.array([b, h, 0.0, -h * omega, b * omega, omega])   # about the corner at -x
+    segment = np.array([0.0, 0.01, ug, 0.0, vg, 0.0])
+    assert rock_forces(0.0, omega, 1.0, ug, vg, parameters)[4] < 0.0
+    mode, sigma = enter_contact(ROCK, 1.0, 0.0, 0.0, q, segment, 0.5, 0.5, parameters)
+    free = -(G + vg) + h * omega ** 2
+    if free < 0.0:
+        assert mode == SLIDE_ROCK
+        assert slide_rock_accelerations(0.0, omega, 1.0, sigma, 0.5, ug, vg,
+                                        parameters)[3] > 0.0
+    else:
+        assert mode == FLIGHT
 
 
 def test_impact_never_adds_energy_and_is_plastic():

@@ -148,6 +148,15 @@ CASES.update({
         Friction(0.5101917823797952, 0.3846761381049062),
         (9.533002895869783, 4.243263143416135), (11.080387451748187, 3.2347721262439606),
         2.8548493482800215)),
+    # a sticking impact whose ROCK needs N < 0 while the corner's free acceleration still
+    # points into the table (g + vg > h theta'^2 for 85 us): slide-rock, then lift-off
+    # (seed 12, run 3; docs/planar.md, "Entering a contact")
+    "fuzz12 3: impact into a contact that cannot fly": dict(
+        modes={REST, ROCK, SLIDE_ROCK, FLIGHT}, **_harmonic_pair(
+            Block(1.3201874854003217, 0.99843740801167), "housner",
+            Friction(0.7803828012931048, 0.7803828012931048),
+            (5.691309673482435, 3.70154241634365), (14.217035816323746, 3.448487335811363),
+            1.7758820747473298)),
 })
 
 #: Disagreements reported to branch planar (DISAGREEMENTS.md) and not yet resolved:
