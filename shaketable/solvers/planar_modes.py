@@ -131,10 +131,10 @@ def enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
     """The mode a block entering ROCK or SLIDE_ROCK about ``side`` (state q) is really in.
 
     SLIDE_ROCK with D <= 0: PAINLEVE; N <= 0: FLIGHT (ROCK: only if the corner's free
-    acceleration leaves the table, else SLIDE_ROCK with sigma = -sign(F)); a flat block at rest (theta =
-    theta' = 0) that does not tip onto ``side``: REST (or SLIDE from SLIDE_ROCK, unless
-    mu_d > b/h: INCONSISTENT); ROCK needing |F| > mu_s N: SLIDE_ROCK with sigma = -sign(F)
-    (checked again). Returns (mode, sigma).
+    acceleration leaves the table, else SLIDE_ROCK with sigma = -sign(F)); a flat block
+    at rest (theta = theta' = 0) that does not tip onto ``side``: REST (or SLIDE from
+    SLIDE_ROCK, unless mu_d > b/h: INCONSISTENT); ROCK needing |F| > mu_s N: SLIDE_ROCK
+    with sigma = -sign(F) (checked again). Returns (mode, sigma).
     """
     ug, vg = ground(segment, t)
     for _ in range(4):
