@@ -425,8 +425,11 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                              f"{type(old).__name__}, not an object); use another output folder")
         if old.get("friction") != manifest.get("friction"):
             def friction(entry):
-                return (f"[friction] (mu_s, mu_d) = {entry.get('pairs (mu_s, mu_d)')}"
-                        if isinstance(entry, dict) else "no [friction] (the rocking model)")
+                if not isinstance(entry, dict):
+                    return "no [friction] (the rocking model)"
+                pairs = entry.get("pairs (mu_s, mu_d)") or []
+                return "[friction] (mu_s, mu_d) = " + ", ".join(
+                    f"({mu_s:.6g}, {mu_d:.6g})" for mu_s, mu_d in pairs)
             raise SweepError(f"{out}: cannot resume: the sweep there has "
                              f"{friction(old.get('friction'))} and {spec.path} has "
                              f"{friction(manifest.get('friction'))}; use another output folder")
