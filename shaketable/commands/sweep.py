@@ -91,13 +91,15 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``sweep`` subcommand."""
     parser = commands.add_parser(
         "sweep", help="run a parameter sweep (TOML spec) into a Parquet table, resumable",
-        description="Run every combination of blocks, COR, records, PGA levels and pitch "
-                    "phases named in a sweep spec (see shaketable.sweeps.spec) and write one row "
-                    "per run to OUT/results.parquet. Finished chunks are kept on disk: "
-                    "a killed sweep continues with --resume.")
+        description="Run every combination of blocks, COR, records, PGA levels, pitch "
+                    "phases and friction coefficients named in a sweep spec (see "
+                    "shaketable.sweeps.spec) and write one row per run to "
+                    "OUT/results.parquet. Finished chunks are kept on disk: a killed sweep "
+                    "continues with --resume.")
     parser.add_argument("spec", help="path to a sweep spec .toml, or the name of a bundled "
                                      "one (pacoima-overturning-map, artificial-fragility, "
-                                     "pitch-phase-repeatability, im-fragility-collapse)")
+                                     "pitch-phase-repeatability, im-fragility-collapse, "
+                                     "pacoima-friction)")
     parser.add_argument("--out", help="output folder (default shaketable-out/<sweep name>)")
     parser.add_argument("--workers", type=int, default=None,
                         help="local threads (default all cores); with --scheduler, threads "
@@ -115,5 +117,6 @@ def register(commands: argparse._SubParsersAction) -> None:
                              "spectra per record and COR, fragility curves over PGA; for "
                              "a sweep scaled to an intensity measure, fragility against it, "
                              "PGA and PGV p/(g tan a) with confidence bands, the PGA-PGV "
-                             "surface and the IM comparison (OUT/figures/)")
+                             "surface and the IM comparison (OUT/figures/; a [friction] "
+                             "sweep: one folder per friction pair)")
     parser.set_defaults(handler=_sweep)
