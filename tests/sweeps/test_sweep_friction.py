@@ -277,3 +277,19 @@ def test_measure_comparison_refuses_to_pool_frictions(friction_table):
     capacities, censored = ida_capacities(friction_table, "pga")
     assert len(capacities) + censored == 2 * 2 * 2 * 4
     assert np.all(capacities > 0)
+
+
+def test_risk_command_fits_each_friction_pair_apart(tmp_path, capsys):
+    # one block, two friction pairs, six PGV levels: `shaketable risk` fits per block, COR
+    # and friction pair (here, four pairs would be pooled into one fit without it)
+    text = SPEC.replace('sizes = ["30x6in", "4x1ft"]', 'sizes = ["30x6in"]').replace(
+        "cor = [0.9, 0.8]", "cor = 0.9").replace(
+        'pga = ["0.3 g", "0.6 g"]', 'scale = [0.25, 0.5, 0.75, 1.0, 1.5, 2.0]').replace(
+        "dynamic_ratio = [1.0, 0.8]\n", "")
+    out = tmp_path / "out"
+    assert main(["sweep", str(write(tmp_path, text)), "--out", str(out), "--no-progress"]) == 0
+    capsys.readouterr()
+    assert main(["risk", str(out), "--hazard", "example"]) == 0
+    printed = capsys.readouterr().out
+    assert printed.count("30 x 6 in, COR 0.9, mu_s 0.2, mu_d 0.2:") == 1
+    assert printed.count("30 x 6 in, COR 0.9, mu_s 0.5, mu_d 0.5:") == 1
