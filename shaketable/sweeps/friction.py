@@ -233,11 +233,9 @@ def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.
     for k, case in enumerate(cases):
         groups.setdefault((id(case.motion), case.scale), []).append(k)
     rows: list[dict | None] = [None] * len(cases)
-    motions = []
     for motion_index, members in enumerate(groups.values()):
         first = cases[members[0]]
         motion = first.motion if first.scale == 1.0 else first.motion.scaled(first.scale)
-        motions.append(motion)
         blocks = sorted({int(block_of[k]) for k in members})
         frictions = sorted({int(friction_of[k]) for k in members})
         cors = sorted({float(cases[k].cor) for k in members})

@@ -57,13 +57,18 @@ def write(tmp_path, text, name="spec.toml"):
 
 
 @pytest.fixture(scope="module")
-def friction_table(tmp_path_factory):
+def friction_outcome(tmp_path_factory):
     """The tiny friction sweep run once, uninterrupted."""
     folder = tmp_path_factory.mktemp("friction")
     outcome = sweeps.run_sweep(sweeps.load_spec(write(folder, SPEC)), folder / "out",
                               progress=False)
     assert outcome.complete and outcome.computed_runs == 64
-    return outcome.table
+    return outcome
+
+
+@pytest.fixture(scope="module")
+def friction_table(friction_outcome):
+    return friction_outcome.table
 
 
 def same(a, b) -> bool:
@@ -129,7 +134,8 @@ def test_dynamic_friction_as_its_own_axis_and_same_as_static_by_default(tmp_path
 
 
 # --------------------------------------------------------------------------- resume
-def test_interrupted_friction_sweep_resumes_to_the_same_store(tmp_path, friction_table):
+def test_interrupted_friction_sweep_resumes_to_the_same_store(tmp_path, friction_outcome):
+    friction_table = friction_outcome.table
     spec = sweeps.load_spec(write(tmp_path, SPEC))
     out = tmp_path / "out"
 
@@ -144,6 +150,8 @@ def test_interrupted_friction_sweep_resumes_to_the_same_store(tmp_path, friction
     resumed = sweeps.run_sweep(spec, out, progress=False, resume=True)
     assert resumed.skipped_runs == 21 and resumed.computed_runs == 43
     pd.testing.assert_frame_equal(resumed.table, friction_table)
+    # the same store, byte for byte, as the uninterrupted sweep's
+    assert (out / "results.parquet").read_bytes() == friction_outcome.path.read_bytes()
     manifest = json.loads((out / "manifest.json").read_text())
     assert manifest["friction"]["pairs (mu_s, mu_d)"] == [[0.2, 0.2], [0.2, 0.2 * 0.8],
                                                           [0.5, 0.5], [0.5, 0.5 * 0.8]]
