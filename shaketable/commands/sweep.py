@@ -48,9 +48,11 @@ def _sweep(args: argparse.Namespace) -> int:
     table = outcome.table
     assert table is not None   # complete: the joined table was read
     if spec.friction is not None:
-        from shaketable.sweeps.friction import verdict_counts
+        from shaketable.sweeps.friction import friction_summary, verdict_counts
 
         print(f"{spec.name}: verdicts of the {len(table)} runs: {verdict_counts(table)}")
+        for line in friction_summary(table):
+            print(f"    {line}")
         stopped = table[~table["status"].isin(["completed", "overturned"])]
         if len(stopped):
             print(f"{spec.name}: warning: {len(stopped)} run(s) stopped early (status "

@@ -276,6 +276,21 @@ def verdict_counts(table) -> str:
     return ", ".join(f"{int(counts[name])} {name}" for name in VERDICT_ORDER if name in counts)
 
 
+def friction_summary(table) -> list:
+    """One line per friction pair of a friction sweep's table: its verdicts and, over its
+    runs that stay standing (a toppled block's slip and corner are no clearance), the
+    largest peak slip and peak corner excursion [m]."""
+    lines = []
+    for mu_s, mu_d in friction_pairs(table):
+        rows = friction_rows(table, mu_s, mu_d)
+        standing = rows[~rows["overturned"].astype(bool)]
+        extent = "no run stands" if standing.empty else (
+            f"standing runs: largest peak slip {standing['peak slip [m]'].max():.3g} m, "
+            f"largest peak corner excursion {standing['peak corner excursion [m]'].max():.3g} m")
+        lines.append(f"mu_s {mu_s:g}, mu_d {mu_d:g}: {verdict_counts(rows)}; {extent}")
+    return lines
+
+
 def friction_pairs(table) -> list:
     """The distinct (mu_s, mu_d) of a table, in order of first appearance (none: [])."""
     if STATIC_COLUMN not in table:

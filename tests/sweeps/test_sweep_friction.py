@@ -269,6 +269,16 @@ def test_sweep_command_prints_verdicts_and_draws_figures_per_friction(tmp_path, 
     assert ", ".join(f"{counts[v]} {v}" for v in ("stayed", "slid", "rocked", "slide-rocked",
                                                   "flew", "overturned") if v in counts) \
         in printed
+    for mu_s, mu_d in [(0.2, 0.2), (0.2, 0.16), (0.5, 0.5), (0.5, 0.4)]:
+        rows = table[np.isclose(table["static friction mu_s [-]"], mu_s)
+                     & np.isclose(table["dynamic friction mu_d [-]"], mu_d)]
+        standing = rows[~rows["overturned"]]
+        assert len(rows) == 8
+        line = f"mu_s {mu_s:g}, mu_d {mu_d:g}: "
+        assert line in printed
+        if len(standing):
+            assert (f"largest peak slip {standing['peak slip [m]'].max():.3g} m"
+                    in printed.split(line)[1].splitlines()[0])
     folders = sorted(p.name for p in (out / "figures").iterdir())
     assert folders == ["friction-mus0.2-mud0.16", "friction-mus0.2-mud0.2",
                        "friction-mus0.5-mud0.4", "friction-mus0.5-mud0.5"]
