@@ -74,38 +74,47 @@ Intensity measures (issue 29): every row records every measure of
 pitch, over the whole record): ``pgv [m/s]``, ``pgd [m]``, ``pgv/pga [s]``, ``sa(T s)
 [m/s^2]`` at 0.2, 0.5, 1 and 2 s (and ``period``), ``sa_avg(T1-T2 s) [m/s^2]`` over
 ``period_range``, ``arias [m/s]``, ``cav [m/s]``, ``d5-95 [s]``, and the block-normalised
-``pga/(g tan a) [-]`` and ``pgv p/(g tan a) [-]``; with ``measure`` also ``target_measure``
-and ``target [SI]``; with ``spectrum`` the per-record ``spectrum_scale [-]``. A measure
-scales as a power of the factor (Arias 2, the others 1), so the factor to a target level is
-``(level / IM) ** (1 / exponent)``.
+``pga/(g tan a) [-]`` and ``pgv p/(g tan a) [-]``; with ``measure`` also
+``target_measure`` and ``target [SI]``; with ``spectrum`` the per-record
+``spectrum_scale [-]``. A measure scales as a power of the factor (Arias 2, the others
+1), so the factor to a target level is ``(level / IM) ** (1 / exponent)``.
 
-Order of the runs (the ``run`` column): record realisation, pitch phase, intensity, block,
-friction (with ``[friction]``), COR, the last varying fastest. A record is scaled first and
-then put on the pitching table (:func:`shaketable.lab.pitch.motion_at_block`): the pitch is
-the table's, not the earthquake's, and is not scaled.
+Order of the runs (the ``run`` column): record realisation, pitch phase,
+intensity, block, friction (with ``[friction]``), COR, the last varying fastest. A record is scaled first and
+then put on the pitching table (:func:`shaketable.lab.pitch.motion_at_block`): the
+pitch is the table's, not the earthquake's, and is not scaled.
 
-Execution (:func:`run_sweep`): the runs are cut into chunks of ``chunk_size``; each finished
-chunk is written atomically (a temporary file renamed) to its own part file under
-``OUT/parts/``, so a sweep that is killed loses nothing already written; run again with
-``resume=True`` it skips the chunks on disk and repeats none. When every chunk is on disk
-the parts are joined into ``OUT/results.parquet`` (``results.csv`` when pyarrow is missing,
-with a note). Locally the chunks run one after the other, each spread over ``workers``
-threads by the compiled batch loop; with ``scheduler`` they are Dask tasks on a
-``distributed`` cluster (the workers must have shaketable installed and see record files at
-the same path).
+Execution (:func:`run_sweep`): the runs are cut into chunks of ``chunk_size``;
+each finished chunk is written atomically (a temporary file renamed) to its own
+part file under ``OUT/parts/``, so a sweep that is killed loses nothing already
+written; run again with ``resume=True`` it skips the chunks on disk and repeats
+none. When every chunk is on disk the parts are joined into ``OUT/results.parquet``
+(``results.csv`` when pyarrow is missing, with a note). Locally the chunks run
+one after the other, each spread over ``workers`` threads by the compiled batch
+loop; with ``scheduler`` they are Dask tasks on a ``distributed`` cluster (the
+workers must have shaketable installed and see record files at the same path).
 
 With ``[ensemble]`` (the keys of a scene's ``[ensemble]``, read by
-:func:`shaketable.core.ensemble.ensemble_options`; no horizon) each cell is run ``members``
-times, member 0 its own run and member k perturbed by the k-th draw of
-:func:`shaketable.core.ensemble.perturbed_members` (the same in every cell); the row gains
-the ensemble's verdict (``docs/sweeps.md``); ``chunk_size`` still counts cells.
+:func:`shaketable.core.ensemble.ensemble_options`, except ``horizon_threshold``:
+a sweep computes no horizon) each cell is run ``members`` times: member 0 is
+the cell's own run (its row is the row the sweep writes without
+``[ensemble]``), member k has the amplitude, COR, block height and width and
+the record's start perturbed by the k-th draw of
+:func:`shaketable.core.ensemble.perturbed_members` (the same draw in every
+cell). The row gains the ensemble's verdict: ``members``, ``overturned
+members``, ``P(overturn) [-]`` with its Wilson 95 % interval (``P low [-]``,
+``P high [-]``), ``robust`` (every member agrees) and ``mark``
+(``robust`` / ``fragile``), and the median and 5-95 % range of max
+theta/alpha over the members that stand. ``chunk_size`` still counts cells
+(a chunk runs ``chunk_size * members`` simulations).
 
-The same spec (and seed) always gives the same table, whatever the number of workers, the
-chunking or the interruptions.
+The same spec (and seed) always gives the same table, whatever the number of
+workers, the chunking or the interruptions.
 
-Size: about 780 lines, half of them docstring; the intensity settings are in
-:mod:`shaketable.sweeps.targets`, record suites in :mod:`~shaketable.sweeps.suites`, the
-friction axis in :mod:`~shaketable.sweeps.friction`.
+Size: about 790 lines, half of them this docstring (the spec format's reference); the
+intensity settings and the target-spectrum reader are in :mod:`shaketable.sweeps.targets`,
+record suites in :mod:`shaketable.sweeps.suites`, the friction axis (``[friction]``, the
+coupled planar model) in :mod:`shaketable.sweeps.friction`.
 """
 
 from __future__ import annotations
