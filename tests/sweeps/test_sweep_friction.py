@@ -157,6 +157,24 @@ def test_interrupted_friction_sweep_resumes_to_the_same_store(tmp_path, friction
                                                           [0.5, 0.5], [0.5, 0.5 * 0.8]]
 
 
+def test_the_table_does_not_depend_on_the_chunking_or_a_pickle_round_trip(tmp_path,
+                                                                           friction_table):
+    # chunks of 5 and 64 cut the (block x friction x COR) grid of a motion elsewhere than 7
+    for size in (5, 64):
+        spec = sweeps.load_spec(write(tmp_path, SPEC.replace("chunk_size = 7",
+                                                             f"chunk_size = {size}"),
+                                      f"spec{size}.toml"))
+        table = sweeps.run_sweep(spec, tmp_path / f"out{size}", progress=False).table
+        pd.testing.assert_frame_equal(table.drop(columns="chunk"),
+                                      friction_table.drop(columns="chunk"))
+    # what a Dask worker receives: the spec pickled
+    import pickle
+
+    spec = sweeps.load_spec(write(tmp_path, SPEC))
+    chunk = execute.compute_chunk(pickle.loads(pickle.dumps(spec)), 3)
+    pd.testing.assert_frame_equal(chunk, friction_table.iloc[21:28].reset_index(drop=True))
+
+
 @pytest.mark.parametrize("other, there, now", [
     (SPEC.replace("static = [0.2, 0.5]", "static = [0.2, 0.4]"),
      r"\[friction\] \(mu_s, mu_d\) = \(0.2, 0.2\), \(0.2, 0.16\), \(0.5, 0.5\), \(0.5, 0.4\)",
