@@ -185,6 +185,9 @@ def _files() -> dict:
         "sweep-width-no-unit.toml": SWEEP.replace('["1 ft"]', '["1"]'),
         "sweep-invalid-toml.toml": "name = [\n",
         "sweep-latin1.toml": SWEEP.replace("probe", "caf\xe9").encode("latin-1") + b"\xff\n",
+        "sweep-friction-dynamic-above-static.toml": SWEEP + "[friction]\nstatic = 0.3\n"
+                                                            "dynamic = 0.4\n",
+        "sweep-friction-negative.toml": SWEEP + "[friction]\nstatic = -0.3\n",
         # calibration records
         "cal-empty.csv": "",
         "cal-short.csv": "time [s],theta [rad]\n0,0.01\n0.02,0.009\n",
@@ -402,6 +405,8 @@ CLI_CASES = [
          ("sweep-no-records.toml", "records"), ("sweep-unknown-record.toml", "kobe-1995"),
          ("sweep-width-no-unit.toml", "width"), ("sweep-invalid-toml.toml", "TOML"),
          ("sweep-latin1.toml", "UTF-8"),
+         ("sweep-friction-dynamic-above-static.toml", "friction.dynamic 0.4 exceeds"),
+         ("sweep-friction-negative.toml", "friction.static"),
      ]] + [
     # ---------------------------------------------------------------- calibration
     ("calibrate", "missing", ["calibrate", "{corpus}/nothing.csv", "--block", "30x6in"], 2,

@@ -51,15 +51,24 @@ def _risk(args: argparse.Namespace) -> int:
     print(f"hazard curve {hazard.source}: {hazard.column}, {len(hazard.im)} points from "
           f"{hazard.im[0]:.3g} to {hazard.im[-1]:.3g}; design life {args.years:g} yr")
     results = []
-    for (block, cor), rows in table.groupby(["block", "cor [-]"], sort=False):
+    from shaketable.sweeps.friction import friction_pairs, friction_rows
+
+    # a friction sweep: one fragility per friction pair too (the pairs are not pooled)
+    pairs = friction_pairs(table) or [None]
+    groups = [(block, f"COR {cor:g}" + ("" if pair is None else
+                                         f", mu_s {pair[0]:g}, mu_d {pair[1]:g}"), rows)
+              for pair in pairs
+              for (block, cor), rows in (table if pair is None else friction_rows(
+                  table, *pair)).groupby(["block", "cor [-]"], sort=False)]
+    for block, label, rows in groups:
         try:
             fit = fragility_fit(rows[column], rows["overturned"], measure=column)
         except ValueError as error:
-            print(f"{block}, COR {cor:g}: no fragility ({error})")
+            print(f"{block}, {label}: no fragility ({error})")
             continue
         result = overturning_rate(fit, hazard, years=args.years)
-        results.append((block, cor, fit, result))
-        print(f"{block}, COR {cor:g}: {fit.summary()}")
+        results.append((block, label, fit, result))
+        print(f"{block}, {label}: {fit.summary()}")
         print(f"    {result.summary()}")
     if args.figure and results:
         from shaketable.plots.base import pyplot, save
@@ -68,9 +77,9 @@ def _risk(args: argparse.Namespace) -> int:
         plt = pyplot()
         figure, axes = plt.subplots(len(results), 1, figsize=(7.5, 3.6 * len(results)),
                                     squeeze=False)
-        for axis, (block, cor, fit, result) in zip(axes[:, 0], results):
+        for axis, (block, label, fit, result) in zip(axes[:, 0], results):
             risk_curves(fit, hazard, result, ax=axis)
-            axis.set_title(f"{block}, COR {cor:g}: " + axis.get_title(), fontsize=8)
+            axis.set_title(f"{block}, {label}: " + axis.get_title(), fontsize=8)
         figure.tight_layout()
         save(figure, args.figure)
         print(f"wrote {args.figure}")

@@ -29,8 +29,12 @@ def _sweep(args: argparse.Namespace) -> int:
     if spec.ensemble is not None:
         print(f"{spec.name}: each run is an ensemble of {spec.ensemble['members']} perturbed "
               f"copies ([ensemble]: {spec.n_runs * spec.ensemble['members']} simulations)")
+    if spec.friction is not None:
+        print(f"{spec.name}: [friction]: the coupled planar model (rest, slide, rock, "
+              f"slide-rock, flight), {len(spec.friction.pairs)} friction pair(s) (mu_s, mu_d)")
     if not args.scheduler:
-        notice_first_compile(args.quiet, which=("batch",))
+        notice_first_compile(args.quiet, which=("batch",) if spec.friction is None
+                             else ("planar batch",))
     outcome = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler,
                         resume=args.resume, progress=not (args.no_progress or args.quiet),
                         max_chunks=args.max_chunks)
@@ -43,8 +47,20 @@ def _sweep(args: argparse.Namespace) -> int:
         return 0
     table = outcome.table
     assert table is not None   # complete: the joined table was read
-    print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
-          f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")
+    if spec.friction is not None:
+        from shaketable.sweeps.friction import friction_summary, verdict_counts
+
+        print(f"{spec.name}: verdicts of the {len(table)} runs: {verdict_counts(table)}")
+        for line in friction_summary(table):
+            print(f"    {line}")
+        stopped = table[~table["status"].isin(["completed", "overturned"])]
+        if len(stopped):
+            print(f"{spec.name}: warning: {len(stopped)} run(s) stopped early (status "
+                  f"{', '.join(sorted(stopped['status'].unique()))}; see the 'status' column "
+                  "and docs/planar.md); their results cover the run up to the stop")
+    else:
+        print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
+              f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")
     if "mark" in table:
         assert spec.ensemble is not None   # the mark column comes from [ensemble]
         fragile = table[table["mark"] == "fragile"]
@@ -64,8 +80,10 @@ def _sweep(args: argparse.Namespace) -> int:
               "target spectrum)")
     if args.figures:
         from shaketable.plots.sweeps import sweep_figures
+        from shaketable.sweeps.friction import friction_figure_sets
 
-        paths = sweep_figures(table, out / "figures")
+        paths = [path for rows, folder in friction_figure_sets(table, out / "figures")
+                 for path in sweep_figures(rows, folder)]
         print("wrote " + (", ".join(str(path) for path in paths) if paths else
                           "no figure (the table has no grid of blocks or of PGA to draw)"))
     return 0
@@ -75,13 +93,15 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``sweep`` subcommand."""
     parser = commands.add_parser(
         "sweep", help="run a parameter sweep (TOML spec) into a Parquet table, resumable",
-        description="Run every combination of blocks, COR, records, PGA levels and pitch "
-                    "phases named in a sweep spec (see shaketable.sweeps.spec) and write one row "
-                    "per run to OUT/results.parquet. Finished chunks are kept on disk: "
-                    "a killed sweep continues with --resume.")
+        description="Run every combination of blocks, COR, records, PGA levels, pitch "
+                    "phases and friction coefficients named in a sweep spec (see "
+                    "shaketable.sweeps.spec) and write one row per run to "
+                    "OUT/results.parquet. Finished chunks are kept on disk: a killed sweep "
+                    "continues with --resume.")
     parser.add_argument("spec", help="path to a sweep spec .toml, or the name of a bundled "
                                      "one (pacoima-overturning-map, artificial-fragility, "
-                                     "pitch-phase-repeatability, im-fragility-collapse)")
+                                     "pitch-phase-repeatability, im-fragility-collapse, "
+                                     "pacoima-friction)")
     parser.add_argument("--out", help="output folder (default shaketable-out/<sweep name>)")
     parser.add_argument("--workers", type=int, default=None,
                         help="local threads (default all cores); with --scheduler, threads "
@@ -99,5 +119,6 @@ def register(commands: argparse._SubParsersAction) -> None:
                              "spectra per record and COR, fragility curves over PGA; for "
                              "a sweep scaled to an intensity measure, fragility against it, "
                              "PGA and PGV p/(g tan a) with confidence bands, the PGA-PGV "
-                             "surface and the IM comparison (OUT/figures/)")
+                             "surface and the IM comparison (OUT/figures/; a [friction] "
+                             "sweep: one folder per friction pair)")
     parser.set_defaults(handler=_sweep)

@@ -3,7 +3,8 @@
 :mod:`~shaketable.sweeps.spec` reads and checks the spec, :mod:`~shaketable.sweeps.execute`
 runs it (locally or on a Dask cluster) and :mod:`~shaketable.sweeps.store` writes the
 Parquet/CSV parts that make a sweep resumable; :mod:`~shaketable.sweeps.fragility` fits
-fragility curves to the table.
+fragility curves to the table; :mod:`~shaketable.sweeps.friction` makes friction an axis
+(the coupled planar model).
 """
 
 from shaketable.sweeps.execute import (

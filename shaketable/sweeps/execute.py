@@ -175,18 +175,23 @@ def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None) -> pd.D
     """The inputs of runs ``start`` to ``stop`` (the grid, before running), one row each.
 
     Columns: ``run``, ``record_index``, ``seed``, ``phase_index``,
-    ``level_index``, ``block_index``, ``cor [-]``.
+    ``level_index``, ``block_index``, ``cor [-]``; with ``[friction]`` also
+    ``friction_index`` (into ``spec.friction.pairs``; between block and COR in run order).
     """
     import pandas as pd
 
     stop = spec.n_runs if stop is None else min(stop, spec.n_runs)
     runs = np.arange(start, stop, dtype=np.int64)
     n_cor, n_block, n_level = len(spec.cors), len(spec.blocks), len(spec.levels)
+    n_friction = 1 if spec.friction is None else len(spec.friction.pairs)
     cor_index = runs % n_cor
+    friction_index = (runs // n_cor) % n_friction
+    n_cor = n_cor * n_friction   # the runs of one block (frictions x CORs)
     block_index = (runs // n_cor) % n_block
     level_index = (runs // (n_cor * n_block)) % n_level
     variant_index = runs // (n_cor * n_block * n_level)
     variants = spec.motion_variants
+    frictions = {} if spec.friction is None else {"friction_index": friction_index}
     return pd.DataFrame({
         "run": runs,
         "variant": variant_index,
@@ -195,6 +200,7 @@ def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None) -> pd.D
         "phase_index": pd.array([variants[v][2] for v in variant_index], dtype="Int64"),
         "level_index": level_index,
         "block_index": block_index,
+        **frictions,
         "cor [-]": np.array(spec.cors)[cor_index],
     })
 
@@ -232,7 +238,10 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd
         factor_list.append(factor)
         pga_list.append(_record_motion(record, seed).pga)
     statistics = None
-    if spec.ensemble is None:
+    if spec.friction is not None:   # the coupled planar model (shaketable.sweeps.friction)
+        from shaketable.sweeps.friction import simulate_friction
+        frame = simulate_friction(spec, inputs, cases)
+    elif spec.ensemble is None:
         frame = _simulate(spec, inputs, cases, threads)
     else:
         frame, statistics = _simulate_ensembles(spec, inputs, cases, threads)
@@ -401,6 +410,8 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                 "solver": solver_identity()}
     if spec.ensemble is not None:
         manifest["ensemble"] = spec.ensemble
+    if spec.friction is not None:   # a folder without the key: a sweep without friction
+        manifest["friction"] = spec.friction.manifest()
     if manifest_path.exists():
         if not resume:
             raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
@@ -412,6 +423,16 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
         if not isinstance(old, dict):
             raise SweepError(f"{manifest_path}: not a sweep manifest (a JSON "
                              f"{type(old).__name__}, not an object); use another output folder")
+        if old.get("friction") != manifest.get("friction"):
+            def friction(entry):
+                if not isinstance(entry, dict):
+                    return "no [friction] (the rocking model)"
+                pairs = entry.get("pairs (mu_s, mu_d)") or []
+                return "[friction] (mu_s, mu_d) = " + ", ".join(
+                    f"({mu_s:.6g}, {mu_d:.6g})" for mu_s, mu_d in pairs)
+            raise SweepError(f"{out}: cannot resume: the sweep there has "
+                             f"{friction(old.get('friction'))} and {spec.path} has "
+                             f"{friction(manifest.get('friction'))}; use another output folder")
         for key in ("fingerprint", "n_runs", "chunk_size", "format", "format_version",
                     "solver"):
             if old.get(key) != manifest[key]:

@@ -344,10 +344,13 @@ def ida_fit(capacities, *, confidence: float = 0.95, measure: str = "") -> Fragi
                         method="ida", measure=measure)
 
 
-def ida_capacities(table, measure: str, *, by=("record", "seed", "block", "cor [-]")):
+def ida_capacities(table, measure: str, *, by=("record", "seed", "block", "cor [-]",
+                                               "static friction mu_s [-]",
+                                               "dynamic friction mu_d [-]")):
     """Overturning capacity of each motion, from a sweep run at several levels per record.
 
-    For each group of ``by`` (one record realisation on one block and COR), the
+    For each group of ``by`` (one record realisation on one block, COR and, in a friction
+    sweep, friction pair; the columns of ``by`` the table has), the
     smallest IM (column of ``measure``) at which the run overturns: IDA's capacity, to
     within the spacing of the levels. Groups that never overturn are left out (their
     capacity is above the last level; say so); a group that overturns and then stands at
@@ -482,6 +485,9 @@ def compare_measures(table, measures=("pga", "pgv", "pga*", "pgv*"), *, group="b
     """
     import pandas as pd
 
+    from shaketable.sweeps.friction import refuse_mixed_friction
+
+    refuse_mixed_friction(table, "compare_measures")
     rows = []
     for measure in measures:
         column = measure_column(table, measure)

@@ -63,6 +63,9 @@ dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``):
     # perturb_amplitude, perturb_cor, perturb_size, perturb_start (sample intervals)
     # seed = 0                    # of the draws (member k is the same in every cell)
 
+    [friction]                    # optional: the coupled planar model (shaketable.sweeps.friction)
+    static = [0.2, 0.3]           # mu_s [-], plain numbers; dynamic = [...] or dynamic_ratio
+
     [run]
     chunk_size = 500              # runs (cells) per chunk (a part file each)
 
@@ -77,7 +80,7 @@ pitch, over the whole record): ``pgv [m/s]``, ``pgd [m]``, ``pgv/pga [s]``, ``sa
 1), so the factor to a target level is ``(level / IM) ** (1 / exponent)``.
 
 Order of the runs (the ``run`` column): record realisation, pitch phase,
-intensity, block, COR, the last varying fastest. A record is scaled first and
+intensity, block, friction (with ``[friction]``), COR, the last varying fastest. A record is scaled first and
 then put on the pitching table (:func:`shaketable.lab.pitch.motion_at_block`): the
 pitch is the table's, not the earthquake's, and is not scaled.
 
@@ -109,7 +112,9 @@ The same spec (and seed) always gives the same table, whatever the number of
 workers, the chunking or the interruptions.
 
 Size: about 790 lines, half of them this docstring (the spec format's reference); the
-intensity settings and the target-spectrum reader are in :mod:`shaketable.sweeps.targets`.
+intensity settings and the target-spectrum reader are in :mod:`shaketable.sweeps.targets`,
+record suites in :mod:`shaketable.sweeps.suites`, the friction axis (``[friction]``, the
+coupled planar model) in :mod:`shaketable.sweeps.friction`.
 """
 
 from __future__ import annotations
@@ -138,7 +143,7 @@ if TYPE_CHECKING:
     from shaketable.lab.pitch import Pitch
 
 TOP_KEYS = {"name", "description", "seed", "blocks", "rocking", "records", "intensity",
-            "pitch", "run", "ensemble"}
+            "pitch", "run", "ensemble", "friction"}
 
 BLOCK_KEYS = {"height", "width", "aspect", "R", "alpha", "sizes", "rods"}
 
@@ -267,6 +272,8 @@ class SweepSpec:
     ensemble : dict or None
         ``[ensemble]``: :func:`shaketable.core.ensemble.ensemble_options`
         (``members``, ``seed``, ``spreads``); None runs each cell once.
+    friction : shaketable.sweeps.friction.FrictionGrid or None
+        ``[friction]``: the (mu_s, mu_d) axis of the coupled planar model; None: rocking.
     path : str
         Where the spec was read from (for messages and relative record files).
     raw : dict
@@ -290,6 +297,7 @@ class SweepSpec:
     ensemble: dict | None = None
     path: str = "<spec>"
     measures: IntensitySettings = IntensitySettings()
+    friction: Any = None
     raw: dict = field(default_factory=dict, compare=False, repr=False)
 
     # ------------------------------------------------------------ the grid
@@ -304,7 +312,7 @@ class SweepSpec:
     def n_runs(self) -> int:
         """Number of runs (rows of the table)."""
         return (len(self.motion_variants) * len(self.levels) * len(self.blocks)
-                * len(self.cors))
+                * len(self.cors) * (1 if self.friction is None else len(self.friction.pairs)))
 
     @property
     def n_chunks(self) -> int:
@@ -342,7 +350,11 @@ def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
     except RecursionError:  # an array nested thousands deep: the parser's recursion
         raise SweepError(f"{path}: arrays or tables nested too deeply to read (a sweep spec "
                          f"needs a few levels)") from None
-    return spec_from_dict(data, where=str(path), directory=path.parent)
+    try:
+        return spec_from_dict(data, where=str(path), directory=path.parent)
+    except SweepError as error:   # a [friction] key: its line, as the scenes give it
+        from shaketable.sweeps import friction
+        raise SweepError(friction.with_friction_line(str(error), str(path), text)) from None
 
 
 def spec_from_dict(data: dict, where: str = "<spec>",
@@ -426,13 +438,17 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
         raise SweepError(f"{where}: run.chunk_size must be a positive integer, got "
                          f"{chunk_size!r}")
-    return SweepSpec(name=name.strip(), description=str(data.get("description", "")),
+    from shaketable.sweeps.friction import check_friction_spec, friction_grid
+    spec = SweepSpec(name=name.strip(), description=str(data.get("description", "")),
                      seed=seed, blocks=tuple(blocks), block_inputs=tuple(block_inputs),
                      cors=cors, records=tuple(records), intensity=intensity,
                      levels=tuple(levels), pitch=pitch, duration=duration, method=method,
                      options=options, chunk_size=chunk_size,
                      ensemble=_ensemble(data.get("ensemble"), where), path=where,
-                     measures=measures, raw=data)
+                     measures=measures, friction=friction_grid(data.get("friction"), where),
+                     raw=data)
+    check_friction_spec(spec, rocking)   # with [friction]: what the planar model refuses
+    return spec
 
 
 def _ensemble(table, where):
@@ -598,7 +614,8 @@ def _records(value, where, directory: Path, seed: int):
         kind = kinds[0]
         _only(entry, RECORD_KEYS[kind], where, f"{key} ({kind})")
         if kind == "folder":
-            result.extend(_suite(entry, where, key, directory))
+            from shaketable.sweeps.suites import suite_records
+            result.extend(suite_records(entry, where, key, directory))
             continue
         label = entry.get("label")
         if label is not None and (not isinstance(label, str) or not label):
@@ -662,29 +679,6 @@ def _records(value, where, directory: Path, seed: int):
         raise SweepError(f"{where}: two [[records]] are both labelled {duplicated[0]!r}; give "
                          "one of them a 'label'")
     return result
-
-
-def _suite(entry, where, key, directory: Path) -> list:
-    """``folder = ...``: one file record per matching file, in name order."""
-    folder = entry["folder"]
-    pattern = entry.get("pattern", "*.AT2")
-    for name in ("folder", "pattern"):
-        if not isinstance(entry.get(name, pattern), str) or not entry.get(name, pattern):
-            raise SweepError(f"{where}: {key}.{name} must be a non-empty string")
-    path = Path(folder)
-    path = path if path.is_absolute() else (directory / path)
-    if not path.is_dir():
-        raise SweepError(f"{where}: {key}.folder: no such folder {str(path)!r}")
-    files = sorted(p for p in path.glob(pattern) if p.is_file())
-    if not files:
-        raise SweepError(f"{where}: {key}.folder: no file matching {pattern!r} in "
-                         f"{str(path)!r}")
-    suite = entry.get("suite", path.name)
-    if not isinstance(suite, str) or not suite:
-        raise SweepError(f"{where}: {key}.suite must be a non-empty string")
-    options = (("units", str(entry["units"])),) if "units" in entry else ()
-    return [RecordSpec("file", file.stem, file=str(file.resolve()), options=options,
-                       suite=suite) for file in files]
 
 
 #: Intensity keys that go with ``measure`` (and ``spectrum``), not with ``pga``.

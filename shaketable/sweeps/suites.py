@@ -1,0 +1,35 @@
+"""Record suites of a sweep spec: ``[[records]] folder = ...`` (issue 29), every file of a
+folder (``pattern``, default NGA-West2 ``*.AT2``) as one record, labelled by its stem.
+Parsed for :mod:`shaketable.sweeps.spec`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from shaketable.sweeps.spec import RecordSpec, SweepError
+
+
+def suite_records(entry: dict, where: str, key: str, directory: Path) -> list:
+    """``folder = ...`` of a ``[[records]]`` entry: one file record per matching file, in
+    name order (:class:`~shaketable.sweeps.spec.RecordSpec`, ``kind="file"``, its
+    ``suite`` the entry's ``suite`` or the folder's name); SweepError naming ``key``."""
+    folder = entry["folder"]
+    pattern = entry.get("pattern", "*.AT2")
+    for name in ("folder", "pattern"):
+        if not isinstance(entry.get(name, pattern), str) or not entry.get(name, pattern):
+            raise SweepError(f"{where}: {key}.{name} must be a non-empty string")
+    path = Path(folder)
+    path = path if path.is_absolute() else (directory / path)
+    if not path.is_dir():
+        raise SweepError(f"{where}: {key}.folder: no such folder {str(path)!r}")
+    files = sorted(p for p in path.glob(pattern) if p.is_file())
+    if not files:
+        raise SweepError(f"{where}: {key}.folder: no file matching {pattern!r} in "
+                         f"{str(path)!r}")
+    suite = entry.get("suite", path.name)
+    if not isinstance(suite, str) or not suite:
+        raise SweepError(f"{where}: {key}.suite must be a non-empty string")
+    options = (("units", str(entry["units"])),) if "units" in entry else ()
+    return [RecordSpec("file", file.stem, file=str(file.resolve()), options=options,
+                       suite=suite) for file in files]
