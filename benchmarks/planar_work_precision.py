@@ -16,8 +16,8 @@ samples one DOP853 step per sample is exact to rounding at any rtol, which says 
 the first coupled case is sampled every 0.05 s so that the tolerance sets the steps; on
 Pacoima Dam (10 ms samples) both solvers are at rounding at every rtol.
 
-Measured on this machine (2 shared cores, median of 5 engine runs and 2 reference runs; 53 s
-in all), the coupled case ``slide-rock-3hz``:
+Measured on this machine (2 shared cores; medians of 5 engine runs and of 2 reference runs,
+where the study now runs the reference once; 53 s in all), the coupled case ``slide-rock-3hz``:
 
 | method | rtol | run time [s] | error max theta [-] | error events [-] | error peak slip [-] |
 |---|---|---|---|---|---|

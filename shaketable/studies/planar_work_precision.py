@@ -281,11 +281,11 @@ def method_settings(quick: bool = False) -> list[tuple[str, str, dict[str, Any]]
 
 def _timed(run: Callable[[], Any], method: str, repeats: int) -> tuple[Any, float]:
     """The result of ``run`` and its median wall time [s]; the compiled engine gets an
-    untimed first call (numba cache load), the SciPy reference runs ``repeats`` // 5 + 1
-    times (each call is a tenth of a second or more)."""
+    untimed first call (numba cache load) and ``repeats`` timed ones, the SciPy reference
+    one (each call is a tenth of a second or more; the rocking study's ``reference`` too)."""
     if method == "planar":
         run()
-    count = max(1, repeats) if method == "planar" else max(1, repeats // 5 + 1)
+    count = max(1, repeats) if method == "planar" else 1
     times, result = [], None
     for _ in range(count):
         start = time.perf_counter()
@@ -363,7 +363,7 @@ def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
         Default :func:`method_settings`.
     repeats : int
         Timed repetitions of the compiled engine (median reported) [-]; the reference
-        runs ``repeats // 5 + 1`` times.
+        runs once.
     progress : callable, optional
         Called with each case's name.
     cache : dict, optional

@@ -164,3 +164,18 @@ def test_figure_has_a_panel_per_case_and_the_planar_lines(coupled):
                                    np.maximum(expected["error peak slip [-]"], 1e-16))
     finally:
         pyplot().close(fig)
+
+
+def test_cli_bench_offers_no_planar(capsys):
+    from shaketable.cli import main
+
+    with pytest.raises(SystemExit):
+        main(["bench", "--help"])
+    assert "--no-planar" in capsys.readouterr().out
+
+
+def test_bench_refuses_a_planar_case_without_the_planar_model(tmp_path):
+    from shaketable.bench import run_study
+
+    with pytest.raises(ValueError, match="no-planar"):
+        run_study(cases=["slide-rock-3hz"], out=tmp_path, speed=False, planar=False)
