@@ -11,7 +11,9 @@ Markdown tables:
 * the rocking limit (``free-rocking``: Fig. 3.4's free rocking of the 30 x 6 in block with
   mu_s = mu_d = 10) against the rocking ``reference`` at rtol 2.5e-14.
 
-Run: ``python benchmarks/planar_work_precision.py`` (about 40 s on one core). With 5 ms
+Run: ``python benchmarks/planar_work_precision.py [--figure docs/figures/planar_work_precision.png]``
+(about a minute on one core); ``--figure`` also draws the three panels as ``shaketable bench``
+does (the free-rocking panel with the rocking methods too), the figure of docs/planar.md. With 5 ms
 samples one DOP853 step per sample is exact to rounding at any rtol, which says nothing:
 the first coupled case is sampled every 0.05 s so that the tolerance sets the steps; on
 Pacoima Dam (10 ms samples) both solvers are at rounding at every rtol.
@@ -36,6 +38,8 @@ and 1e-8 ends the cascade early (146 and 205 impacts), from 1e-10 on all 218 (2.
 
 from __future__ import annotations
 
+import argparse
+
 import pandas as pd
 
 from shaketable.studies import benchmark_cases, planar_work_precision, work_precision
@@ -44,17 +48,28 @@ COLUMNS = ["case", "method", "setting", "time [s]", "error max_theta [-]",
            "error events [-]", "error peak slip [-]", "events", "events truth", "same events"]
 
 
-def main():
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--figure", help="also write the work-precision panels here (PNG)")
+    args = parser.parse_args(argv)
     coupled = planar_work_precision.planar_work_precision(repeats=5, progress=print)
     print()
     print(work_precision.markdown_table(coupled, COLUMNS))
     case = benchmark_cases.benchmark_cases(names=[planar_work_precision.ROCKING_LIMIT_CASE])[0]
-    rows = planar_work_precision.rocking_limit_rows(case, work_precision.truth_run(case),
+    cache: dict = {}
+    rows = planar_work_precision.rocking_limit_rows(case, work_precision.truth_run(case, cache),
                                                     repeats=5)
     print()
     print(work_precision.markdown_table(pd.DataFrame(rows), [
         "case", "method", "setting", "time [s]", "error max_theta [-]", "error events [-]",
         "impacts", "impacts truth", "same verdict"]))
+    if args.figure:
+        from shaketable.plots.bench import save_work_precision_figure
+
+        rocking = work_precision.work_precision([case], repeats=5, cache=cache)
+        frame = pd.concat([rocking, pd.DataFrame(rows)], ignore_index=True)
+        save_work_precision_figure(frame, args.figure, planar=coupled)
+        print(f"wrote {args.figure}")
 
 
 if __name__ == "__main__":
