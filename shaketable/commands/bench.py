@@ -8,7 +8,7 @@ from shaketable.bench import run_study
 def _bench(args) -> int:
     written = run_study(cases=args.cases, quick=args.quick,
                         repeats=args.repeats if args.repeats else (3 if args.quick else 5),
-                        out=args.out, speed=not args.no_speed)
+                        out=args.out, speed=not args.no_speed, planar=not args.no_planar)
     print("wrote " + ", ".join(str(path) for path in written))
     return 0
 
@@ -32,7 +32,10 @@ def register(commands) -> None:
         description="Work-precision study: each method (fast at several rtol, the report's "
                     "predictor-corrector at 1..64 subdivisions, linear, reference at several "
                     "rtol) against reference at rtol 2.5e-14, on the report's cases and the "
-                    "extreme ones; writes work_precision.csv, work_precision.png and "
+                    "extreme ones; the coupled planar model (engine and SciPy reference at "
+                    "several rtol) on the rocking-limit case (free-rocking, ample friction) "
+                    "and on coupled cases against the planar reference at rtol 1e-13; writes "
+                    "work_precision.csv, planar_work_precision.csv, work_precision.png and "
                     "RESULTS.md (with the Pacoima Dam speed and first-call times).")
     parser.add_argument("--cases", nargs="+", metavar="NAME",
                         help="only these cases (default: all; an unknown name lists them)")
@@ -43,4 +46,6 @@ def register(commands) -> None:
     parser.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
     parser.add_argument("--no-speed", action="store_true",
                         help="skip the Pacoima Dam timing, first-call and batch measurements")
+    parser.add_argument("--no-planar", action="store_true",
+                        help="skip the coupled planar model (its rows, CSV and panels)")
     parser.set_defaults(handler=_bench)

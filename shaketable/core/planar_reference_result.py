@@ -6,12 +6,14 @@ free flight; mode codes and names of :mod:`shaketable.core.shenton`.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.core.planar_result import VERDICTS
 from shaketable.core.shenton import MODE_NAMES
 from shaketable.core.sliding_result import Friction
 
@@ -123,6 +125,37 @@ class PlanarReferenceResult:
         return self.max_abs_theta / self.block.alpha
 
     @property
+    def max_theta_ratio(self) -> float:
+        """max |theta| / alpha [-]; NaN for an overturned run (the report's "F"), as
+        :attr:`shaketable.core.planar_result.PlanarResult.max_theta_ratio`."""
+        if self.overturned:
+            return math.nan
+        return self.max_theta_over_alpha
+
+    @property
+    def overturn_direction(self) -> int:
+        """Sign of theta at the overturn (0: did not overturn) [-]."""
+        if not self.overturned or self.theta.size == 0:
+            return 0
+        return 1 if self.theta[-1] > 0 else -1
+
+    @property
+    def modes_visited(self) -> tuple:
+        """Modes the block was in for some time, or entered (names, in code order)."""
+        entered = {int(code) for code in self.mode} | {int(c) for c in self.event_mode_after}
+        return tuple(name for code, name in enumerate(MODE_NAMES)
+                     if code in entered or self.time_in_mode.get(name, 0.0) > 0.0)
+
+    def verdict(self) -> str:
+        """The largest mode visited in words, as
+        :meth:`shaketable.core.planar_result.PlanarResult.verdict`: stayed < slid < rocked
+        < slide-rocked < flew, and overturned above all."""
+        if self.overturned:
+            return "overturned"
+        largest = max(MODE_NAMES.index(name) for name in self.modes_visited)
+        return VERDICTS[largest]
+
+    @property
     def slip(self) -> np.ndarray:
         """Slip of the base midpoint relative to the table, x + h sin(theta) [m]."""
         return self.x + self.block.h * np.sin(self.theta)
@@ -132,19 +165,39 @@ class PlanarReferenceResult:
         return np.array([t for t, k in zip(self.event_times, self.event_kinds) if k == kind])
 
     def to_frame(self):
-        """Time history as a :class:`pandas.DataFrame`, units in the column names."""
+        """Time history as a :class:`pandas.DataFrame`, units in the column names: the
+        columns of :meth:`shaketable.core.planar_result.PlanarResult.to_frame` (ground
+        acceleration [g], x, y, theta, their rates, slip, theta/alpha, mode name)."""
         import pandas as pd
 
         return pd.DataFrame({
-            "time [s]": self.t, "x [m]": self.x, "y [m]": self.y, "theta [rad]": self.theta,
-            "x' [m/s]": self.x_dot, "y' [m/s]": self.y_dot, "theta' [rad/s]": self.theta_dot,
-            "slip [m]": self.slip, "mode": [MODE_NAMES[int(m)] for m in self.mode]})
+            "time [s]": self.t,
+            **self.motion.columns_in_g(self.t),
+            "x [m]": self.x,
+            "y [m]": self.y,
+            "theta [rad]": self.theta,
+            "x_dot [m/s]": self.x_dot,
+            "y_dot [m/s]": self.y_dot,
+            "theta_dot [rad/s]": self.theta_dot,
+            "slip [m]": self.slip,
+            "theta/alpha [-]": self.theta / self.block.alpha,
+            "mode": [MODE_NAMES[int(m)] for m in self.mode],
+        })
+
+    def plot(self, fig=None, title: str | None = None):
+        """The Calcomp layout with a slip panel and a mode band, the figure of
+        :meth:`shaketable.core.planar_result.PlanarResult.plot`; see
+        :func:`shaketable.plots.planar.planar_figure`."""
+        from shaketable.plots.planar import planar_figure
+
+        return planar_figure(self, fig=fig, title=title)
 
     def summary(self) -> dict:
         """Scalar results as a JSON-ready dict."""
         from shaketable.core.files import json_ready_dict
 
         data = {"model": "planar reference (SciPy DOP853)", "status": self.status,
+                "verdict": self.verdict(),
                 "cor": self.cor, "static friction mu_s [-]": self.friction.static,
                 "dynamic friction mu_d [-]": self.friction.dynamic,
                 "peak slip [m]": self.peak_slip, "residual slip [m]": self.residual_slip,

@@ -8,6 +8,12 @@ with open markers: largest relative error of the event times (impacts before
 swept over its setting; the first and last settings are written at the ends
 of the max |theta| line (rtol for ``fast`` and ``reference``, subdivisions
 for ``predictor-corrector``).
+
+The coupled planar model (issue 25) joins it: its compiled engine (``planar``) and its
+SciPy reference (``planar-reference``) are lines on the rocking-limit case's panel (ample
+friction, against that case's rocking truth), and each coupled case of
+:mod:`shaketable.studies.planar_work_precision` gets a panel of its own (against the planar
+reference at rtol 1e-13), where a dash-dotted line adds the error of the peak slip.
 """
 
 from __future__ import annotations
@@ -17,6 +23,7 @@ import math
 import numpy as np
 
 from shaketable.plots.base import pyplot
+from shaketable.studies.planar_work_precision import AMPLE_FRICTION, PLANAR_TRUTH_RTOL
 
 #: Colour and marker of each method.
 STYLE = {
@@ -24,7 +31,18 @@ STYLE = {
     "predictor-corrector": ("tab:orange", "s"),
     "linear": ("tab:green", "D"),
     "reference": ("tab:red", "^"),
+    "planar": ("tab:purple", "P"),
+    "planar-reference": ("tab:brown", "v"),
 }
+
+#: Title of a coupled case's panel: its truth is not the rocking one.
+PLANAR_TRUTH_NOTE = f"vs planar-reference {PLANAR_TRUTH_RTOL:g}"
+
+#: Title of the rocking-limit panel's second line.
+PLANAR_LIMIT_NOTE = (f"planar: μs = μd = {AMPLE_FRICTION.static:g}"
+                     if AMPLE_FRICTION.static == AMPLE_FRICTION.dynamic
+                     else f"planar: μs = {AMPLE_FRICTION.static:g}, "
+                          f"μd = {AMPLE_FRICTION.dynamic:g}")
 
 #: Errors below this are drawn on it (an error of exactly 0 has no logarithm) [-].
 ERROR_FLOOR = 1e-16
@@ -116,8 +134,10 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
             continue
         time = group["time [s]"].to_numpy(dtype=float)
         order = np.argsort(time) if method != "linear" else np.arange(time.size)
-        for column, style, face in (("error max_theta [-]", "-", color),
-                                    ("error events [-]", "--", "none")):
+        lines = [("error max_theta [-]", "-", color), ("error events [-]", "--", "none")]
+        if "error peak slip [-]" in group and group["error peak slip [-]"].notna().any():
+            lines.append(("error peak slip [-]", "-.", "white"))
+        for column, style, face in lines:
             error = np.maximum(group[column].to_numpy(dtype=float), ERROR_FLOOR)
             error = np.where(np.isfinite(error), error, np.nan)
             ax.loglog(time[order], error[order], style, color=color, marker=marker,
@@ -134,7 +154,11 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     if ends:
         _annotate_ends(ax, ends)
     ax.axhline(1e-8, color="0.6", linewidth=0.8, linestyle=":")
-    ax.set_title(case, fontsize=9)
+    coupled = "truth" in rows and (rows["truth"] == "planar-reference").any()
+    limit = not coupled and rows["method"].isin(["planar", "planar-reference"]).any()
+    title = (f"{case}\n({PLANAR_TRUTH_NOTE})" if coupled
+             else f"{case}\n({PLANAR_LIMIT_NOTE})" if limit else case)
+    ax.set_title(title, fontsize=9)
     # minor ticks unlabelled: on a panel spanning about one decade matplotlib labels
     # them (2 x 10^-4, 4 x 10^-4, ...) and the labels overrun each other
     from matplotlib.ticker import NullFormatter
@@ -145,19 +169,23 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     return ax
 
 
-def work_precision_figure(frame, cases=None, columns: int = 4, fig=None):
+def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=None):
     """The work-precision grid: one panel per case, shared legend.
 
     Parameters
     ----------
     frame : pandas.DataFrame
-        Output of :func:`shaketable.studies.work_precision.work_precision`.
+        Output of :func:`shaketable.studies.work_precision.work_precision` (with the
+        planar rows of the rocking-limit case, if any).
     cases : list of str, optional
         Cases in panel order (default: as they appear in ``frame``).
     columns : int
         Panels per row.
     fig : matplotlib.figure.Figure, optional
         Figure to draw into (a new one, sized to the grid, otherwise).
+    planar : pandas.DataFrame, optional
+        Output of :func:`shaketable.studies.planar_work_precision.planar_work_precision`:
+        a panel per coupled case after the rocking ones.
 
     Returns
     -------
@@ -166,42 +194,62 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None):
     plt = pyplot()
     from matplotlib.lines import Line2D
 
-    cases = list(dict.fromkeys(frame["case"])) if cases is None else list(cases)
-    if not cases:
+    if cases is None:
+        cases = list(dict.fromkeys(frame["case"])) if "case" in frame else []
+    panels = [(frame, case) for case in cases]
+    if planar is not None and not planar.empty:
+        panels += [(planar, case) for case in dict.fromkeys(planar["case"])]
+    if not panels:
         raise ValueError("frame has no cases to draw")
-    columns = max(1, min(int(columns), len(cases)))
-    rows = int(math.ceil(len(cases) / columns))
+    columns = max(1, min(int(columns), len(panels)))
+    rows = int(math.ceil(len(panels) / columns))
     if fig is None:
         fig = plt.figure(figsize=(3.3 * columns + 0.6, 2.75 * rows + 1.1))
     axes = fig.subplots(rows, columns, squeeze=False)
-    for ax, case in zip(axes.flat, cases):
-        work_precision_panel(frame, case, ax=ax)
-    for ax in axes.flat[len(cases):]:
+    for ax, (source, case) in zip(axes.flat, panels):
+        work_precision_panel(source, case, ax=ax)
+    for ax in axes.flat[len(panels):]:
         ax.set_visible(False)
     for ax in axes[:, 0]:
         ax.set_ylabel("error vs truth [-]", fontsize=8)
     for ax in axes[-1, :]:
         ax.set_xlabel("median run time [s]", fontsize=8)
+    methods = set(frame["method"]) if "method" in frame else set()
+    if planar is not None and not planar.empty:
+        methods |= set(planar["method"])
     handles = [Line2D([], [], color=color, marker=marker, label=method)
-               for method, (color, marker) in STYLE.items() if (frame["method"] == method).any()]
+               for method, (color, marker) in STYLE.items() if method in methods]
     handles += [Line2D([], [], color="k", marker="o", label="max |θ| (solid)"),
                 Line2D([], [], color="k", marker="o", markerfacecolor="none", linestyle="--",
-                       label="event times (dashed)"),
-                Line2D([], [], color="0.6", linestyle=":", label="1e-8 target")]
-    fig.legend(handles=handles, loc="upper center", ncol=len(handles), fontsize=8,
+                       label="event times (dashed)")]
+    caption = ("Work-precision: error against the reference at rtol 2.5e-14 "
+               "(labels: rtol of fast/reference, n = predictor-corrector subdivisions; "
+               f"errors below {ERROR_FLOOR:g} drawn at it)")
+    if planar is not None and not planar.empty:
+        handles.append(Line2D([], [], color="k", marker="o", markerfacecolor="white",
+                              linestyle="-.", label="peak slip (dash-dot)"))
+        caption = ("Work-precision: error against the rocking reference at rtol 2.5e-14 "
+                   f"({PLANAR_LIMIT_NOTE} on the rocking-limit panel); the coupled "
+                   "panels (planar block with friction)\nagainst the planar reference at rtol "
+                   f"{PLANAR_TRUTH_RTOL:g} (labels: rtol, n = predictor-corrector subdivisions; "
+                   f"errors below {ERROR_FLOOR:g} drawn at it)")
+    handles.append(Line2D([], [], color="0.6", linestyle=":", label="1e-8 target"))
+    legend_columns = len(handles) if len(handles) <= 9 else int(math.ceil(len(handles) / 2))
+    fig.legend(handles=handles, loc="upper center", ncol=legend_columns, fontsize=8,
                frameon=False)
-    fig.suptitle("Work-precision: error against the reference at rtol 2.5e-14 "
-                 "(labels: rtol of fast/reference, n = predictor-corrector subdivisions; "
-                 f"errors below {ERROR_FLOOR:g} drawn at it)", fontsize=8.5, y=0.005,
-                 va="bottom")
-    fig.tight_layout(rect=(0, 0.03, 1, 1 - 0.22 / (2.75 * rows + 1.1)))
+    fig.suptitle(caption, fontsize=8.5, y=0.005, va="bottom")
+    height = 2.75 * rows + 1.1
+    legend_rows = 1 if len(handles) == legend_columns else 2
+    caption_rows = caption.count("\n") + 1
+    fig.tight_layout(rect=(0, 0.03 if caption_rows == 1 else 0.3 / height, 1,
+                           1 - (0.22 if legend_rows == 1 else 0.34) / height))
     return fig
 
 
-def save_work_precision_figure(frame, path, cases=None, dpi: int = 110) -> None:
+def save_work_precision_figure(frame, path, cases=None, dpi: int = 110, planar=None) -> None:
     """Draw :func:`work_precision_figure` and write it to ``path`` (PNG, SVG... by suffix)."""
     plt = pyplot()
-    fig = work_precision_figure(frame, cases=cases)
+    fig = work_precision_figure(frame, cases=cases, planar=planar)
     try:
         fig.savefig(path, dpi=dpi)
     finally:

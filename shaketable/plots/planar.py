@@ -18,14 +18,25 @@ MODE_COLOURS = {1: ("slide", "tab:orange"), 3: ("slide-rock", "tab:purple"),
                 4: ("flight", "tab:cyan")}
 
 
+def mode_changes(result):
+    """(event times [s], mode codes after them, whether every event is recorded) of either
+    planar result: :class:`~shaketable.core.planar_result.PlanarResult` (its ``events``,
+    the first ``max_recorded_events`` of ``n_events``) or
+    :class:`~shaketable.core.planar_reference_result.PlanarReferenceResult` (every event)."""
+    if hasattr(result, "events"):
+        events = result.events
+        return events[:, 0], events[:, 3], result.n_events <= events.shape[0]
+    return result.event_times, result.event_mode_after, True
+
+
 def mode_spans(result):
     """(start, end, mode code) of every stretch of one mode [s], from the located events
-    (exact instants), the samples where the recorded events ran out."""
-    events = result.events
+    (exact instants), the samples where the recorded events ran out; ``result`` either
+    planar result (:func:`mode_changes`)."""
     end = float(result.t[-1])
     changes = [(float(result.t[0]), int(result.mode[0]))]
-    complete = result.n_events <= events.shape[0]
-    for time, after in zip(events[:, 0], events[:, 3]):
+    times, modes_after, complete = mode_changes(result)
+    for time, after in zip(times, modes_after):
         if int(after) != changes[-1][1]:
             changes.append((float(time), int(after)))
     if not complete:
@@ -50,9 +61,15 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     coloured only where the block slides, slide-rocks or flies (rest and rocking, the
     report's own model, are left blank).
 
+    The traces are the columns of ``result.to_frame()``, which the compiled engine's
+    :class:`~shaketable.core.planar_result.PlanarResult` and the SciPy reference's
+    :class:`~shaketable.core.planar_reference_result.PlanarReferenceResult` share, so one
+    figure serves both (the reference computes no corner excursion: its caption leaves
+    it out).
+
     Parameters
     ----------
-    result : PlanarResult
+    result : PlanarResult or PlanarReferenceResult
     fig : matplotlib.figure.Figure, optional
     title : str, optional
         First caption line; the block, COR and friction, motion and verdict follow.
@@ -64,25 +81,29 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     matplotlib.figure.Figure
     """
     block, motion = result.block, result.motion
-    end = result.t[-1]
+    frame = result.to_frame()
+    t = frame["time [s]"].to_numpy()
+    theta = frame["theta [rad]"].to_numpy()
+    slip_values = frame["slip [m]"].to_numpy()
+    end = t[-1]
     fig, axes = ground_panels(motion, end, (1.0, 1.4, 1.2, 0.28), fig, height=(3.4, 1.7))
     rates, rotation, slip, band = axes[-4], axes[-3], axes[-2], axes[-1]
-    rates.plot(result.t, result.theta_dot, color="tab:blue", lw=0.9)
+    rates.plot(t, frame["theta_dot [rad/s]"].to_numpy(), color="tab:blue", lw=0.9)
     rates.set_ylabel("θ' [rad/s]")
-    rotation.plot(result.t, result.theta, color="k", lw=0.9, label="θ")
+    rotation.plot(t, theta, color="k", lw=0.9, label="θ")
     for sign in (1, -1):
         rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
                          label="±α (stability limit)" if sign > 0 else None)
-    limit = max(1.3 * block.alpha, 1.1 * float(np.max(np.abs(result.theta), initial=0.0)))
+    limit = max(1.3 * block.alpha, 1.1 * float(np.max(np.abs(theta), initial=0.0)))
     rotation.set_ylim(-limit, limit)
     rotation.set_ylabel("θ [rad]")
     rotation.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
                     borderaxespad=0.0)
-    slip.plot(result.t, result.slip / INCH, color="tab:red", lw=0.9, label="slip of the base")
+    slip.plot(t, slip_values / INCH, color="tab:red", lw=0.9, label="slip of the base")
     slip.axhline(0.0, color="0.6", lw=0.5)
     if result.peak_slip > 0.0 and np.isfinite(result.t_peak_slip):
-        at = int(np.argmin(np.abs(result.t - result.t_peak_slip)))
-        direction = 1.0 if result.slip[at] >= 0 else -1.0
+        at = int(np.argmin(np.abs(t - result.t_peak_slip)))
+        direction = 1.0 if slip_values[at] >= 0 else -1.0
         slip.plot([result.t_peak_slip], [direction * result.peak_slip / INCH], "v", color="tab:red",
                   ms=5, label=f"peak {result.peak_slip / INCH:.3g} in")
     slip.set_ylabel("slip [in]")
@@ -121,16 +142,19 @@ def planar_caption(result, title: str | None = None) -> list[str]:
     free = not has_signal(motion.horizontal) and not has_signal(motion.vertical_or_zero)
     cor = result.cor if isinstance(result.cor, str) else f"{result.cor:g}"
     lines = [] if not title else [title]
+    model = "" if hasattr(result, "events") else " (independent SciPy reference)"
     lines.append(f"{describe_block(block)}, α = {block.alpha:.4g} rad, COR {cor}, "
-                 f"μs = {result.friction.static:g}, μd = {result.friction.dynamic:g}")
+                 f"μs = {result.friction.static:g}, μd = {result.friction.dynamic:g}{model}")
     lines.append(describe_motion(motion, free))
     ratio = ("F" if result.overturned else f"{result.max_theta_ratio:.2f}")
     verdict = result.verdict()
     if result.overturned:
         side = "+" if result.overturn_direction > 0 else "−"
         verdict = f"overturned ({side}) at {result.t_overturn:.2f} s"
-    lines.append(f"{verdict}; max |θ|/α = {ratio}, peak slip {result.peak_slip / INCH:.3g} in, "
-                 f"corner excursion {result.peak_excursion / INCH:.3g} in")
+    measures = f"{verdict}; max |θ|/α = {ratio}, peak slip {result.peak_slip / INCH:.3g} in"
+    excursion = getattr(result, "peak_excursion", None)  # the reference computes none
+    lines.append(measures if excursion is None
+                 else f"{measures}, corner excursion {excursion / INCH:.3g} in")
     if result.status not in ("completed", "overturned"):
         lines.append(f"stopped: {result.message}")
     return lines

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -242,14 +242,37 @@ def _select(cases: list[Case], names: Sequence[str] | None) -> list[Case]:
 
 
 # --------------------------------------------------------------------------- comparisons
-def _events(result: RockingResult, window: float = IMPACT_WINDOW) -> np.ndarray:
+class RockingLike(Protocol):
+    """What :func:`compare` reads of a run: a RockingResult, or a planar run in the rocking
+    limit (:class:`shaketable.studies.planar_work_precision.RockingView`)."""
+
+    @property
+    def max_abs_theta(self) -> float: ...
+    @property
+    def impact_times(self) -> np.ndarray: ...
+    @property
+    def t_start(self) -> float: ...
+    @property
+    def t_unstable(self) -> float: ...
+    @property
+    def t_overturn(self) -> float: ...
+    @property
+    def t_rest(self) -> float: ...
+    @property
+    def t_airborne(self) -> float: ...
+    @property
+    def overturned(self) -> bool: ...
+
+
+def _events(result: RockingLike, window: float = IMPACT_WINDOW) -> np.ndarray:
     times = result.impact_times[result.impact_times < window]
     return times
 
 
-def compare(result: RockingResult, truth: RockingResult,
+def compare(result: RockingLike, truth: RockingLike,
             window: float = IMPACT_WINDOW) -> dict[str, Any]:
-    """Errors of ``result`` against ``truth`` (two RockingResults of one case).
+    """Errors of ``result`` against ``truth`` (two RockingResults of one case, or a
+    :class:`RockingLike` view of another model's run).
 
     Returns the relative error of max |theta| (and the absolute one [rad]), the
     largest relative error of the event times (impacts before 20 s, start,

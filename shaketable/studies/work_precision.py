@@ -456,15 +456,18 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
                      frame: pd.DataFrame | None = None, pacoima: dict[str, Any] | None = None,
                      first_call: dict[str, dict[str, float]] | None = None,
                      batch: dict[str, Any] | None = None, figure: str = "docs/figures/work_precision.png",
-                     command: str = "python3 benchmarks/work_precision.py") -> str:
+                     command: str = "python3 benchmarks/work_precision.py",
+                     planar: pd.DataFrame | None = None) -> str:
     """The README-ready Markdown of the benchmark results.
 
     Every argument is optional; the sections present are written: the figure
     path, the work-precision summary (best fast and predictor-corrector
     settings per case), the acceptance table (:func:`accuracy_table`), the
     measured orders (:func:`convergence_orders`), the Pacoima Dam speed
-    (:func:`pacoima_timing`), the first-call times (:func:`first_call_seconds`)
-    and the batch throughput (:func:`batch_throughput`).
+    (:func:`pacoima_timing`), the first-call times (:func:`first_call_seconds`),
+    the batch throughput (:func:`batch_throughput`) and the coupled planar model's rows
+    (``frame``'s planar methods on the rocking-limit case, and ``planar``, the frame of
+    :func:`shaketable.studies.planar_work_precision.planar_work_precision`).
     """
     lines = ["# Benchmarks: accuracy against run time", "",
              f"Made by `{command}` (shaketable.studies.benchmark_cases); machine: {os.cpu_count()} cores "
@@ -475,6 +478,13 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
                   "time, one panel per case. Solid: relative error of max |θ|; dashed: "
                   "largest relative error of the event times (impacts before 20 s, start, "
                   "unstable, overturn, airborne).", ""]
+        if planar is not None and not planar.empty:
+            lines[-1:-1] = ["", "The coupled planar model (`planar`: the compiled engine; "
+                            "`planar-reference`: its SciPy reference) is on the free-rocking "
+                            "panel with friction that cannot be exceeded (against the same "
+                            "rocking truth) and has a panel per coupled case, against the "
+                            "planar reference at rtol 1e-13 (dash-dotted: the peak slip's "
+                            "relative error)."]
     if pacoima is not None:
         lines += ["## Speed: Pacoima Dam S16E + vertical, 16 x 4 ft, COR 0.95", "",
                   "| quantity | value |", "|---|---|"]
@@ -519,12 +529,16 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
                   "times, same impact count before 20 s and same verdict.", "",
                   markdown_table(accuracy, [c for c in accuracy.columns if c not in
                                             ("impacts truth",)]), ""]
-    if frame is not None:
+    if frame is not None and "method" in frame:
         best = frame[frame["method"].isin(["fast", "predictor-corrector", "linear"])]
         lines += ["## Work-precision table (every setting; the CSV has all columns)", "",
                   markdown_table(best, ["case", "method", "setting", "time [s]",
                                         "error max_theta [-]", "error events [-]",
                                         "same impacts", "same verdict"]), ""]
+    planar_limit = (None if frame is None or "method" not in frame
+                    else frame[frame["method"].isin(["planar", "planar-reference"])])
+    if planar is not None or (planar_limit is not None and not planar_limit.empty):
+        lines += _planar_markdown(planar_limit, planar)
     if orders is not None:
         lines += ["## Measured orders of convergence", "",
                   "Least-squares slope of log10(error) against log10(mean step), over the "
@@ -535,3 +549,26 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
                   "tested in tests/test_engine.py (measured 5.99, 6.01, 6.18).", "",
                   markdown_table(orders), ""]
     return "\n".join(lines) + "\n"
+
+
+def _planar_markdown(limit: pd.DataFrame | None, coupled: pd.DataFrame | None) -> list[str]:
+    """The section of the coupled planar model (issue 25): rocking limit and coupled cases."""
+    lines = ["## Coupled planar model (issue 25): engine and independent reference", "",
+             "`planar`: the compiled engine (`simulate(..., friction=...)`) at its rtol; "
+             "`planar-reference`: the SciPy reference (`solvers.planar_reference`, Newton-Euler "
+             "linear solves per mode, DOP853 with event location) at its rtol.", ""]
+    if limit is not None and not limit.empty:
+        lines += ["Rocking limit (mu_s = mu_d = 10, friction never reached): against the case's "
+                  "rocking truth (`reference` at rtol 2.5e-14), the rocking study's errors.", "",
+                  markdown_table(limit, ["case", "method", "setting", "time [s]",
+                                         "error max_theta [-]", "error events [-]",
+                                         "impacts", "impacts truth", "same verdict"]), ""]
+    if coupled is not None and not coupled.empty:
+        lines += ["Coupled cases (rock, slide-rock, impacts): against the planar reference at "
+                  "rtol 1e-13; event times are the mode changes and impacts, compared while "
+                  "their modes agree (a missing or extra event: inf).", "",
+                  markdown_table(coupled, ["case", "method", "setting", "time [s]",
+                                           "error max_theta [-]", "error events [-]",
+                                           "error peak slip [-]", "events", "events truth",
+                                           "same events", "same verdict"]), ""]
+    return lines

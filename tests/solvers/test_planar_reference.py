@@ -413,7 +413,8 @@ def test_the_result_has_a_frame_and_a_json_summary():
     result = simulate_reference(block, None, cor="housner", friction=Friction(0.25, 0.22),
                                 theta0=0.1, duration=1.0)
     frame = result.to_frame()
-    assert list(frame.columns)[:4] == ["time [s]", "x [m]", "y [m]", "theta [rad]"]
+    assert list(frame.columns)[:6] == ["time [s]", "ground horizontal [g]",
+                                       "ground vertical [g]", "x [m]", "y [m]", "theta [rad]"]
     assert len(frame) == result.t.size and set(frame["mode"]) <= {"rock", "slide-rock"}
     summary = json.loads(json.dumps(result.summary()))
     assert summary["cor"] == "housner" and summary["impacts"] == len(result.impact_times)
