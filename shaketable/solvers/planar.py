@@ -234,7 +234,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     scale_abs = np.array([rtol * alpha, rtol * alpha * p, rtol * radius, rtol * radius * p,
                           rtol * G * radius, rtol * G * radius])
     segment = np.empty(6)
-    stages = np.empty((12, N_STATE))
+    stages = np.empty((16, N_STATE))
+    dense = np.empty((7, N_STATE))
+    ready = np.zeros(1, dtype=np.bool_)
     z = np.zeros(N_STATE)
     z_new = np.zeros(N_STATE)
     z_event = np.zeros(N_STATE)
@@ -607,6 +609,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     else:
                         step_size = step * growth
                     steps += 1
+                    ready[0] = False
                     for i in range(N_EVENTS):
                         armed[i] = g_start[i] > 0.0 or fresh[i]
                     events(mode, side, sigma, mu_s, mu_d, t + step, z_new, segment, parameters,
@@ -621,11 +624,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             fire = True
                     if not fire and side * z[1] < 0.0 and side * z_new[1] > 0.0:
                         # theta turned back away from 0 inside the step: did it pass 0?
-                        tau_turn, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
-                                                  z, k1, step, z_new, no_events, -side,
-                                                  segment, parameters, stages, scale_abs, rtol,
-                                                  z_turn)
-                        evaluations += 11 * trials
+                        tau_turn, used = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t, z,
+                                                step, z_new, stages, dense, ready, step, z_new,
+                                                no_events, -side, segment, parameters, z_turn)
+                        evaluations += used
                         if side * z_turn[0] <= 0.0:
                             fire = True
                             upper = tau_turn
@@ -634,10 +636,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     terminal = -1
                     if fire:
                         armed[E_IMPACT] = True
-                        tau, trials = locate(KIND_TERMINAL, mode, side, sigma, mu_s, mu_d, t, z,
-                                             k1, upper, z_event, armed, 0.0, segment,
-                                             parameters, stages, scale_abs, rtol, z_new)
-                        evaluations += 11 * trials
+                        tau, used = locate(KIND_TERMINAL, mode, side, sigma, mu_s, mu_d, t, z,
+                                           step, z_new, stages, dense, ready, upper, z_event,
+                                           armed, 0.0, segment, parameters, z_new)
+                        evaluations += used
                         events(mode, side, sigma, mu_s, mu_d, t + tau, z_new, segment,
                                parameters, g_end)
                         least = math.inf
@@ -646,18 +648,18 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 least = g_end[i]
                                 terminal = i
                     # non-terminal: the turning point (largest |theta|) and instability;
-                    # an extremum is located on the stepper only where the step's cubic
+                    # an extremum is located (on the continuous extension) only where the cubic
                     # Hermite interpolant says it may come within 10 % of the peak so far
                     # (the interpolant's error is far smaller: the peaks stay exact)
                     q_from_z(z, side, q_start, parameters)
                     q_from_z(z_new, side, q_end, parameters)
                     if z[1] * z_new[1] < 0.0 and hermite_peak(
                             z[0], z_new[0], z[1], z_new[1], tau) >= 0.9 * info[I_MAX_ABS_THETA]:
-                        tau_peak, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
-                                                  z, k1, tau, z_new, no_events,
-                                                  1.0 if z[1] > 0.0 else -1.0, segment,
-                                                  parameters, stages, scale_abs, rtol, z_turn)
-                        evaluations += 11 * trials
+                        tau_peak, used = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t, z,
+                                                step, z_new, stages, dense, ready, tau, z_new,
+                                                no_events, 1.0 if z[1] > 0.0 else -1.0, segment,
+                                                parameters, z_turn)
+                        evaluations += used
                         q_from_z(z_turn, side, q, parameters)
                         _track(t + tau_peak, q, info, parameters)
                     # extrema of the slip and of the corners' X (peak slip, excursion)
@@ -671,21 +673,21 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         if rate0 * rate1 < 0.0 and hermite_peak(
                                 quantity(j, q_start, parameters), quantity(j, q_end, parameters),
                                 rate0, rate1, tau) >= 0.9 * peak:
-                            tau_rate, trials = locate(KIND_RATE + j, mode, side, sigma, mu_s,
-                                                      mu_d, t, z, k1, tau, z_new, no_events,
-                                                      1.0 if rate0 > 0.0 else -1.0, segment,
-                                                      parameters, stages, scale_abs, rtol,
-                                                      z_turn)
-                            evaluations += 11 * trials
+                            tau_rate, used = locate(KIND_RATE + j, mode, side, sigma, mu_s,
+                                                    mu_d, t, z, step, z_new, stages, dense, ready,
+                                                    tau, z_new, no_events,
+                                                    1.0 if rate0 > 0.0 else -1.0, segment,
+                                                    parameters, z_turn)
+                            evaluations += used
                             q_from_z(z_turn, side, q, parameters)
                             _track(t + tau_rate, q, info, parameters)
                     if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
                             and abs(z[0]) <= alpha:
-                        tau_unstable, trials = locate(KIND_ALPHA, mode, side, sigma, mu_s, mu_d,
-                                                      t, z, k1, tau, z_new, no_events, 0.0,
-                                                      segment, parameters, stages, scale_abs,
-                                                      rtol, z_turn)
-                        evaluations += 11 * trials
+                        tau_unstable, used = locate(KIND_ALPHA, mode, side, sigma, mu_s, mu_d,
+                                                    t, z, step, z_new, stages, dense, ready, tau,
+                                                    z_new, no_events, 0.0, segment, parameters,
+                                                    z_turn)
+                        evaluations += used
                         info[I_T_UNSTABLE] = t + tau_unstable
                         info[I_UNSTABLE_DIRECTION] = 1.0 if z_new[0] > 0.0 else -1.0
                         q_from_z(z_turn, side, q, parameters)
