@@ -432,6 +432,56 @@ def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, step, z_step, stages, dens
 
 
 @njit(cache=True)
+def terminal_event(mode, side, sigma, mu_s, mu_d, t, z, step, z_new, stages, dense, ready,
+                   segment, parameters, armed, g_end, z_event, z_turn, no_events):
+    """The first of the ``armed`` terminal events in the accepted contact step (t, z) ->
+    (t + ``step``, ``z_new``), or an impact passed inside it (theta turned back away from 0
+    on the far side of 0), located by :func:`locate`.
+
+    Returns (the event's index, -1 if none; tau [s]; right-hand-side evaluations made). On
+    an event, ``z_new`` becomes the state at t + tau; ``g_end`` holds the event functions
+    at t + tau; ``z_event`` and ``z_turn`` are work arrays, ``no_events`` all False.
+    """
+    evaluations = 0
+    events(mode, side, sigma, mu_s, mu_d, t + step, z_new, segment, parameters,
+           g_end)
+    tau = step
+    upper = step
+    for i in range(N_STATE):
+        z_event[i] = z_new[i]
+    fire = False
+    for i in range(N_EVENTS):
+        if armed[i] and g_end[i] <= 0.0:
+            fire = True
+    if not fire and side * z[1] < 0.0 and side * z_new[1] > 0.0:
+        # theta turned back away from 0 inside the step: did it pass 0?
+        tau_turn, used = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t, z,
+                                step, z_new, stages, dense, ready, step, z_new,
+                                no_events, -side, segment, parameters, z_turn)
+        evaluations += used
+        if side * z_turn[0] <= 0.0:
+            fire = True
+            upper = tau_turn
+            for i in range(N_STATE):
+                z_event[i] = z_turn[i]
+    terminal = -1
+    if fire:
+        armed[E_IMPACT] = True
+        tau, used = locate(KIND_TERMINAL, mode, side, sigma, mu_s, mu_d, t, z,
+                           step, z_new, stages, dense, ready, upper, z_event,
+                           armed, 0.0, segment, parameters, z_new)
+        evaluations += used
+        events(mode, side, sigma, mu_s, mu_d, t + tau, z_new, segment,
+               parameters, g_end)
+        least = math.inf
+        for i in range(N_EVENTS):
+            if armed[i] and g_end[i] < least:
+                least = g_end[i]
+                terminal = i
+    return terminal, tau, evaluations
+
+
+@njit(cache=True)
 def polynomial_work(p0, p1, q0, q1, q2, span):
     """Integral over [0, span] of (p0 + p1 tau)(q0 + q1 tau + q2 tau^2)."""
     return (p0 * q0 * span + (p0 * q1 + p1 * q0) * span ** 2 / 2.0
