@@ -156,12 +156,12 @@ MAX_TRANSITIONS_PER_INTERVAL = 100_000
 
 @njit(cache=True)
 def _track(t, q, info, parameters):
-    track(t, q, info[I_MAX_ABS_THETA:I_PEAK_EXCURSION + 1], parameters)   # planar_track's P_*
+    track(t, q, info, I_MAX_ABS_THETA, parameters)   # planar_track's P_* from I_MAX_ABS_THETA
 
 
 @njit(cache=True)
 def _record(ev, info, t, kind, before, after, omega, q, parameters):
-    record(ev, info[I_N_EVENTS:I_N_EVENTS + 1], t, kind, before, after, omega, q, parameters)
+    record(ev, info, I_N_EVENTS, t, kind, before, after, omega, q, parameters)
 
 
 @njit(cache=True, nogil=True)
@@ -449,8 +449,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 elif landing >= 0.0:
                     span = landing
                     terminal = 1
-                flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q,
-                               info[I_MAX_ABS_THETA:I_PEAK_EXCURSION + 1], parameters)
+                flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q, info,
+                               I_MAX_ABS_THETA, parameters)
                 xs, ys, ths, xds, yds, oms = flight_state(span, x0, y0, th0, xd0, yd0, om0, ua,
                                                           ka, va, kv)
                 w_table -= polynomial_work(ua, ka, xd0, -ua, -0.5 * ka, span)
@@ -568,8 +568,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     # and of the corners' X (planar_track), and instability
                     evaluations += contact_extrema(
                         mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, ready, tau,
-                        z_new, segment, parameters, info[I_MAX_ABS_THETA:I_PEAK_EXCURSION + 1],
-                        q, q_start, q_end, z_turn, no_events)
+                        z_new, segment, parameters, info, I_MAX_ABS_THETA, q, q_start, q_end,
+                        z_turn, no_events)
                     if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
                             and abs(z[0]) <= alpha:
                         tau_unstable, used = locate(KIND_ALPHA, mode, side, sigma, mu_s, mu_d,

@@ -519,10 +519,17 @@ def lowest_corner(y, theta, parameters):
 def horizontal_rate(which, theta, x_dot, omega, parameters):
     """d/dt of the slip of the base's midpoint (``which`` 0) or of the X of a corner
     (1..4: body points (-b, -h), (b, -h), (-b, h), (b, h)) [m/s]: zero at their extrema."""
+    return horizontal_rate_at(which, math.cos(theta), math.sin(theta), x_dot, omega,
+                              parameters)
+
+
+@njit(cache=True)
+def horizontal_rate_at(which, cosine, sine, x_dot, omega, parameters):
+    """:func:`horizontal_rate` with cos(theta) and sin(theta) given."""
     b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     if which == 0:
-        return x_dot + h * math.cos(theta) * omega
+        return x_dot + h * cosine * omega
     u = -b if which == 1 or which == 3 else b
     w = -h if which <= 2 else h
-    return x_dot - omega * (u * math.sin(theta) + w * math.cos(theta))
+    return x_dot - omega * (u * sine + w * cosine)

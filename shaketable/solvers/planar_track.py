@@ -5,15 +5,18 @@ located inside a contact step (on the step's continuous extension,
 :func:`~shaketable.solvers.planar_steps.locate`) and inside a flight (on the closed form);
 :func:`record` writes the rows of the engine's event array.
 
-They are kept in ``peaks``, a view of the engine's info array (layout P_*: its slots
-I_MAX_ABS_THETA, I_T_MAX, I_PEAK_SLIP, I_T_PEAK_SLIP, I_PEAK_EXCURSION in this order).
+They are kept in the engine's info array from slot ``first`` on (layout P_*, relative to
+``first``: the engine's I_MAX_ABS_THETA, I_T_MAX, I_PEAK_SLIP, I_T_PEAK_SLIP,
+I_PEAK_EXCURSION in this order).
 """
 
 from __future__ import annotations
 
+import math
+
 from numba import njit
 
-from shaketable.core.planar_dynamics import corner_vector
+from shaketable.core.dynamics import HALF_HEIGHT, HALF_WIDTH
 from shaketable.solvers.planar_modes import hermite_peak, measures, q_from_z, quantity
 from shaketable.solvers.planar_steps import (
     KIND_PEAK,
@@ -21,34 +24,35 @@ from shaketable.solvers.planar_steps import (
     N_RATES,
     flight_state,
     horizontal_rate,
+    horizontal_rate_at,
     locate,
 )
 
-#: Layout of ``peaks``: largest |theta| [rad] and its time [s], peak |slip| [m] and its
-#: time [s], peak corner excursion [m].
+#: Layout of the peaks (from ``first``): largest |theta| [rad] and its time [s], peak
+#: |slip| [m] and its time [s], peak corner excursion [m].
 P_MAX_ABS_THETA, P_T_MAX, P_PEAK_SLIP, P_T_PEAK_SLIP, P_PEAK_EXCURSION = range(5)
 N_PEAKS = 5
 
 
-@njit(cache=True)
-def track(t, q, peaks, parameters):
-    """Update ``peaks`` with the full state q = (x, y, theta, x', y', theta') at ``t``."""
+@njit(cache=True, inline="always")
+def track(t, q, info, first, parameters):
+    """Update the peaks in ``info`` with the state q = (x, y, theta, x', y', theta') at t."""
     slip, excursion = measures(q, parameters)
-    if abs(slip) > peaks[P_PEAK_SLIP]:
-        peaks[P_PEAK_SLIP] = abs(slip)
-        peaks[P_T_PEAK_SLIP] = t
-    if excursion > peaks[P_PEAK_EXCURSION]:
-        peaks[P_PEAK_EXCURSION] = excursion
-    if abs(q[2]) > peaks[P_MAX_ABS_THETA]:
-        peaks[P_MAX_ABS_THETA] = abs(q[2])
-        peaks[P_T_MAX] = t
+    if abs(slip) > info[first + P_PEAK_SLIP]:
+        info[first + P_PEAK_SLIP] = abs(slip)
+        info[first + P_T_PEAK_SLIP] = t
+    if excursion > info[first + P_PEAK_EXCURSION]:
+        info[first + P_PEAK_EXCURSION] = excursion
+    if abs(q[2]) > info[first + P_MAX_ABS_THETA]:
+        info[first + P_MAX_ABS_THETA] = abs(q[2])
+        info[first + P_T_MAX] = t
 
 
-@njit(cache=True)
-def record(ev, count, t, kind, before, after, omega, q, parameters):
-    """Event ``count[0]`` (time [s], kind, mode before and after, theta' [rad/s], slip of
-    the state q [m]) into row ``count[0]`` of ``ev`` if it has room; count it."""
-    index = int(count[0])
+@njit(cache=True, inline="always")
+def record(ev, info, slot, t, kind, before, after, omega, q, parameters):
+    """An event (time [s], kind, mode before and after, theta' [rad/s], slip of the state
+    q [m]) into row ``info[slot]`` of ``ev`` if it has room; count it in ``info[slot]``."""
+    index = int(info[slot])
     if index < ev.shape[0]:
         slip, _ = measures(q, parameters)
         ev[index, 0] = t
@@ -57,12 +61,12 @@ def record(ev, count, t, kind, before, after, omega, q, parameters):
         ev[index, 3] = after
         ev[index, 4] = omega
         ev[index, 5] = slip
-    count[0] = index + 1
+    info[slot] = index + 1
 
 
 @njit(cache=True)
 def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, ready, tau, z_new,
-                    segment, parameters, peaks, q, q_start, q_end, z_turn, no_events):
+                    segment, parameters, info, first, q, q_start, q_end, z_turn, no_events):
     """Track the turning point of theta and the extrema of the slip and of the corners' X
     inside the accepted contact step (t, z) -> (t + tau, ``z_new``) of a step of size
     ``step`` (the arguments of :func:`~shaketable.solvers.planar_steps.locate`).
@@ -74,28 +78,36 @@ def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, re
     right-hand-side evaluations made.
     """
     evaluations = 0
-    q_from_z(z, side, q_start, parameters)
-    q_from_z(z_new, side, q_end, parameters)
     if z[1] * z_new[1] < 0.0 and hermite_peak(
-            z[0], z_new[0], z[1], z_new[1], tau) >= 0.9 * peaks[P_MAX_ABS_THETA]:
+            z[0], z_new[0], z[1], z_new[1], tau) >= 0.9 * info[first + P_MAX_ABS_THETA]:
         tau_peak, used = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t, z,
                                 step, z_new, stages, dense, ready, tau, z_new,
                                 no_events, 1.0 if z[1] > 0.0 else -1.0, segment,
                                 parameters, z_turn)
         evaluations += used
         q_from_z(z_turn, side, q, parameters)
-        track(t + tau_peak, q, peaks, parameters)
+        track(t + tau_peak, q, info, first, parameters)
     # extrema of the slip and of the corners' X (peak slip, excursion)
-    _, ry0 = corner_vector(z[0], side, parameters)
-    _, ry1 = corner_vector(z_new[0], side, parameters)
+    # (cos and sin of theta at both ends once: corner_vector's r_y and the rates)
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    cos0, sin0 = math.cos(z[0]), math.sin(z[0])
+    cos1, sin1 = math.cos(z_new[0]), math.sin(z_new[0])
+    x_dot0 = z[3] + (-side * b * sin0 - h * cos0) * z[1]
+    x_dot1 = z_new[3] + (-side * b * sin1 - h * cos1) * z_new[1]
+    have_states = False
     for j in range(N_RATES):
-        rate0 = horizontal_rate(j, z[0], z[3] + ry0 * z[1], z[1], parameters)
-        rate1 = horizontal_rate(j, z_new[0], z_new[3] + ry1 * z_new[1],
-                                z_new[1], parameters)
-        peak = peaks[P_PEAK_SLIP] if j == 0 else peaks[P_PEAK_EXCURSION]
-        if rate0 * rate1 < 0.0 and hermite_peak(
-                quantity(j, q_start, parameters), quantity(j, q_end, parameters),
-                rate0, rate1, tau) >= 0.9 * peak:
+        rate0 = horizontal_rate_at(j, cos0, sin0, x_dot0, z[1], parameters)
+        rate1 = horizontal_rate_at(j, cos1, sin1, x_dot1, z_new[1], parameters)
+        peak = info[first + P_PEAK_SLIP] if j == 0 else info[first + P_PEAK_EXCURSION]
+        if not rate0 * rate1 < 0.0:
+            continue
+        if not have_states:   # the full states at the step's ends, once
+            q_from_z(z, side, q_start, parameters)
+            q_from_z(z_new, side, q_end, parameters)
+            have_states = True
+        if hermite_peak(quantity(j, q_start, parameters), quantity(j, q_end, parameters),
+                        rate0, rate1, tau) >= 0.9 * peak:
             tau_rate, used = locate(KIND_RATE + j, mode, side, sigma, mu_s,
                                     mu_d, t, z, step, z_new, stages, dense, ready,
                                     tau, z_new, no_events,
@@ -103,13 +115,13 @@ def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, re
                                     parameters, z_turn)
             evaluations += used
             q_from_z(z_turn, side, q, parameters)
-            track(t + tau_rate, q, peaks, parameters)
+            track(t + tau_rate, q, info, first, parameters)
     return evaluations
 
 
 @njit(cache=True)
-def flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q, peaks,
-                   parameters):
+def flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q, info,
+                   first, parameters):
     """Track the extrema of the slip and of the corners' X inside a flight of ``span`` [s]
     from (x0, y0, th0, xd0, yd0, om0) at ``t`` (the table accelerations ua + ka tau,
     va + kv tau): bisection on the closed form's rates, piece by piece (``pieces``). The
@@ -140,6 +152,6 @@ def flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, 
                 xm, ym, thm, xdm, ydm, _ = flight_state(low, x0, y0, th0, xd0, yd0,
                                                         om0, ua, ka, va, kv)
                 q[0], q[1], q[2], q[3], q[4] = xm, ym, thm, xdm, ydm
-                track(t + low, q, peaks, parameters)
+                track(t + low, q, info, first, parameters)
             tau_a = tau_b
             rate_a = rate_b
