@@ -210,7 +210,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     velocity_floor = 1e-8 * alpha * p
     scale_abs = np.array([rtol * alpha, rtol * alpha * p, rtol * radius, rtol * radius * p,
                           rtol * G * radius, rtol * G * radius])
-    segment = np.empty(6)
+    segment = np.empty(8)
     stages = np.empty((16, N_STATE))
     dense = np.empty((7, N_STATE))
     ready = np.zeros(1, dtype=np.bool_)
@@ -291,6 +291,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         segment[5] = vg[k + 1] - vg[k]
         ka = segment[3] / segment[1]
         kv = segment[5] / segment[1]
+        segment[6] = ka
+        segment[7] = kv
         t_end = t1
         interval_transitions = 0
         while t < t_end and status == STATUS_COMPLETED:

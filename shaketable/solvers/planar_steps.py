@@ -193,15 +193,26 @@ N_EVENTS = 5
 
 @njit(cache=True)
 def ground(segment, time):
-    """Horizontal and vertical table acceleration [m/s^2] at ``time`` (linear in the interval)."""
+    """Horizontal and vertical table acceleration [m/s^2] at ``time`` (linear in the interval).
+
+    ``segment``: start [s], length [s], ug at the start [m/s^2] and its change, vg and its
+    change, then (for :func:`slopes_ground`) the slopes of ug and vg [m/s^3]."""
     fraction = (time - segment[0]) / segment[1]
     return segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction
 
 
 @njit(cache=True)
+def slopes_ground(segment, time):
+    """:func:`ground` from the slopes ``segment[6:8]`` [m/s^3] (no division: the
+    right-hand side's; the rest and start rules keep :func:`ground`, the rocking engine's)."""
+    elapsed = time - segment[0]
+    return segment[2] + segment[6] * elapsed, segment[4] + segment[7] * elapsed
+
+
+@njit(cache=True)
 def rhs(mode, side, sigma, mu_d, t, z, segment, parameters, out):
     """z' of ROCK or SLIDE_ROCK into ``out``."""
-    ug, vg = ground(segment, t)
+    ug, vg = slopes_ground(segment, t)
     theta = z[0]
     omega = z[1]
     velocity = z[3]
@@ -232,7 +243,7 @@ def dop853_step(mode, side, sigma, mu_d, t, z, k1, h, segment, parameters, stage
     Returns the error norm (<= 1: accepted) of Hairer's DOP853 estimator on the
     mixed absolute (``scale_abs``) / relative (``rtol``) scale.
     """
-    work = np.empty(N_STATE)
+    work = stages[15]   # free during a step (the continuous extension's last stage)
     for i in range(N_STATE):
         stages[0, i] = k1[i]
     for s in range(1, 12):
