@@ -241,7 +241,9 @@ def dop853_step(mode, side, sigma, mu_d, t, z, k1, h, segment, parameters, stage
     """One DOP853 step of size ``h`` from (t, z) with z'(t) = ``k1``; z(t + h) into ``z_new``.
 
     Returns the error norm (<= 1: accepted) of Hairer's DOP853 estimator on the
-    mixed absolute (``scale_abs``) / relative (``rtol``) scale.
+    mixed absolute (``scale_abs``) / relative (``rtol``) scale. ``stages`` (16 rows)
+    receives the 12 stages; its row 15 is the work array (the continuous extension,
+    :func:`dense_output`, fills rows 12-15 after the step).
     """
     work = stages[15]   # free during a step (the continuous extension's last stage)
     for i in range(N_STATE):
