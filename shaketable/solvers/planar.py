@@ -15,8 +15,9 @@ mode (:mod:`shaketable.core.planar_dynamics` states the physics once):
 * ROCK, SLIDE_ROCK: DOP853 steps (:mod:`shaketable.solvers.planar_steps`) with error
   control, each step ending inside the interval; the terminal events (impact at theta = 0,
   N = 0, the friction limit |F| = mu_s N or the slip speed's return to 0, overturn at
-  pi/2, Painleve's D = 0) are located on the stepper's own solution; a turning point on the
-  far side of theta = 0 inside one step is an impact passed in that step and is found.
+  pi/2, Painleve's D = 0; a turning point on the far side of theta = 0 is an impact passed
+  inside the step) and the peaks (:mod:`~shaketable.solvers.planar_track`) are located on
+  the step's continuous extension of order 7.
 * FLIGHT: the exact ballistic path; landing where the lower bottom corner reaches the
   table, searched on pieces of at most 0.02 rad of rotation (at least 8 per interval) by
   the sign of the corner's height and of its rate (a touch-down between two pieces
@@ -27,20 +28,19 @@ at theta = 0 the endless cascade of a decaying block is summed in closed form ex
 as the rocking engine does (:func:`~shaketable.core.dynamics.cascade_rest_time`, the
 same default rest tolerance 1e-6/p and the same velocity floor 1e-8 alpha p); after a
 slipping one (a slide-rocking block that settles while it slides) the cascade, once
-summable by the same rule (with the rocking deceleration), ends in SLIDE at that instant with the corner's slip
-velocity (the summed micro-rocking, shorter than the rest tolerance, is not resolved).
+summable by the same rule (with the rocking deceleration), ends in SLIDE at that instant
+with the corner's slip velocity (the summed micro-rocking is not resolved).
 
-The engine never produces NaN: a run that cannot go on stops with a status
-(overturned, painleve, inconsistent, chatter: more than 200 transitions without time
-advancing or 100 000 in one sample interval, stalled: a step below 1e-14 s) and the state before it.
-
+The engine never produces NaN: a run that cannot go on stops with a status (overturned,
+painleve, inconsistent, chatter: more than 200 transitions without time advancing or
+100 000 in one sample interval, stalled: a step below 1e-14 s) and the state before it.
 The work of the table's inertial force and of friction and the kinetic energy lost in
 impacts are accumulated (closed forms in REST, SLIDE and FLIGHT; integrated with the
 state in the contact modes), so that E_end - E_0 = W_table + W_friction - losses.
 
-Size: about 890 lines, most of them :func:`integrate`, one compiled driver (as the rocking
-engine); its steppers and event location are in :mod:`~shaketable.solvers.planar_steps`,
-its helpers in :mod:`~shaketable.solvers.planar_modes`.
+One compiled driver (as the rocking engine); its steppers and event location are in
+:mod:`~shaketable.solvers.planar_steps`, its helpers in :mod:`~shaketable.solvers.planar_modes`
+and :mod:`~shaketable.solvers.planar_track`.
 """
 
 from __future__ import annotations
@@ -89,10 +89,8 @@ from shaketable.solvers.planar_modes import (  # N_OUT: the output layout, re-ex
     enter_contact,
     first_failure,
     flat,
-    hermite_peak,
     measures,
     q_from_z,
-    quantity,
     store,
     z_from_q,
 )
@@ -103,22 +101,19 @@ from shaketable.solvers.planar_steps import (
     E_NORMAL,
     E_OVERTURN,
     KIND_ALPHA,
-    KIND_PEAK,
-    KIND_RATE,
-    KIND_TERMINAL,
     N_EVENTS,
-    N_RATES,
     N_STATE,
     dop853_step,
     events,
     flight_state,
     ground,
-    horizontal_rate,
     locate,
     lowest_corner,
     polynomial_work,
     rhs,
+    terminal_event,
 )
+from shaketable.solvers.planar_track import contact_extrema, flight_extrema, record, track
 from shaketable.solvers.sliding import first_up_crossing, first_velocity_zero
 
 #: Why a run stopped (index = status code).
@@ -136,7 +131,6 @@ EV_MODE, EV_IMPACT, EV_REVERSAL, EV_CASCADE, EV_UNSTABLE, EV_OVERTURN, EV_LANDIN
 #: Columns of the event array: time [s], kind, mode before, mode after, theta' [rad/s]
 #: (before an impact; else at the event), slip of the base midpoint [m].
 EVENT_COLUMNS = 6
-
 
 #: Layout of the info array.
 (I_STATUS, I_T_END, I_N_IMPACTS, I_CAPPED, I_CASCADES, I_T_START, I_T_UNSTABLE,
@@ -162,29 +156,12 @@ MAX_TRANSITIONS_PER_INTERVAL = 100_000
 
 @njit(cache=True)
 def _track(t, q, info, parameters):
-    slip, excursion = measures(q, parameters)
-    if abs(slip) > info[I_PEAK_SLIP]:
-        info[I_PEAK_SLIP] = abs(slip)
-        info[I_T_PEAK_SLIP] = t
-    if excursion > info[I_PEAK_EXCURSION]:
-        info[I_PEAK_EXCURSION] = excursion
-    if abs(q[2]) > info[I_MAX_ABS_THETA]:
-        info[I_MAX_ABS_THETA] = abs(q[2])
-        info[I_T_MAX] = t
+    track(t, q, info, I_MAX_ABS_THETA, parameters)   # planar_track's P_* from I_MAX_ABS_THETA
 
 
 @njit(cache=True)
 def _record(ev, info, t, kind, before, after, omega, q, parameters):
-    index = int(info[I_N_EVENTS])
-    if index < ev.shape[0]:
-        slip, _ = measures(q, parameters)
-        ev[index, 0] = t
-        ev[index, 1] = kind
-        ev[index, 2] = before
-        ev[index, 3] = after
-        ev[index, 4] = omega
-        ev[index, 5] = slip
-    info[I_N_EVENTS] = index + 1
+    record(ev, info, I_N_EVENTS, t, kind, before, after, omega, q, parameters)
 
 
 @njit(cache=True, nogil=True)
@@ -233,8 +210,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     velocity_floor = 1e-8 * alpha * p
     scale_abs = np.array([rtol * alpha, rtol * alpha * p, rtol * radius, rtol * radius * p,
                           rtol * G * radius, rtol * G * radius])
-    segment = np.empty(6)
-    stages = np.empty((12, N_STATE))
+    segment = np.empty(8)
+    stages = np.empty((16, N_STATE))
+    dense = np.empty((7, N_STATE))
+    ready = np.zeros(1, dtype=np.bool_)
     z = np.zeros(N_STATE)
     z_new = np.zeros(N_STATE)
     z_event = np.zeros(N_STATE)
@@ -312,6 +291,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         segment[5] = vg[k + 1] - vg[k]
         ka = segment[3] / segment[1]
         kv = segment[5] / segment[1]
+        segment[6] = ka
+        segment[7] = kv
         t_end = t1
         interval_transitions = 0
         while t < t_end and status == STATUS_COMPLETED:
@@ -472,37 +453,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 elif landing >= 0.0:
                     span = landing
                     terminal = 1
-                # extrema of the slip and of the corners' X inside the flight (bisection on
-                # the closed form's rates, piece by piece)
-                for j in range(N_RATES):
-                    tau_a = 0.0
-                    _, _, tha, xda, _, _ = flight_state(0.0, x0, y0, th0, xd0, yd0, om0, ua, ka,
-                                                        va, kv)
-                    rate_a = horizontal_rate(j, tha, xda, om0, parameters)
-                    for piece in range(1, pieces + 1):
-                        tau_b = span * piece / pieces
-                        _, _, thb, xdb, _, _ = flight_state(tau_b, x0, y0, th0, xd0, yd0, om0,
-                                                            ua, ka, va, kv)
-                        rate_b = horizontal_rate(j, thb, xdb, om0, parameters)
-                        if rate_a * rate_b < 0.0:
-                            low = tau_a
-                            high = tau_b
-                            for _ in range(200):
-                                middle = 0.5 * (low + high)
-                                if middle <= low or middle >= high:
-                                    break
-                                _, _, thm, xdm, _, _ = flight_state(middle, x0, y0, th0, xd0,
-                                                                    yd0, om0, ua, ka, va, kv)
-                                if horizontal_rate(j, thm, xdm, om0, parameters) * rate_a > 0.0:
-                                    low = middle
-                                else:
-                                    high = middle
-                            xm, ym, thm, xdm, ydm, _ = flight_state(low, x0, y0, th0, xd0, yd0,
-                                                                    om0, ua, ka, va, kv)
-                            q[0], q[1], q[2], q[3], q[4] = xm, ym, thm, xdm, ydm
-                            _track(t + low, q, info, parameters)
-                        tau_a = tau_b
-                        rate_a = rate_b
+                flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q, info,
+                               I_MAX_ABS_THETA, parameters)
                 xs, ys, ths, xds, yds, oms = flight_state(span, x0, y0, th0, xd0, yd0, om0, ua,
                                                           ka, va, kv)
                 w_table -= polynomial_work(ua, ka, xd0, -ua, -0.5 * ka, span)
@@ -609,85 +561,26 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     else:
                         step_size = step * growth
                     steps += 1
+                    ready[0] = False
                     for i in range(N_EVENTS):
                         armed[i] = g_start[i] > 0.0 or fresh[i]
-                    events(mode, side, sigma, mu_s, mu_d, t + step, z_new, segment, parameters,
-                           g_end)
-                    tau = step
-                    upper = step
-                    for i in range(N_STATE):
-                        z_event[i] = z_new[i]
-                    fire = False
-                    for i in range(N_EVENTS):
-                        if armed[i] and g_end[i] <= 0.0:
-                            fire = True
-                    if not fire and side * z[1] < 0.0 and side * z_new[1] > 0.0:
-                        # theta turned back away from 0 inside the step: did it pass 0?
-                        tau_turn, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
-                                                  z, k1, step, z_new, no_events, -side,
-                                                  segment, parameters, stages, scale_abs, rtol,
-                                                  z_turn)
-                        evaluations += 11 * trials
-                        if side * z_turn[0] <= 0.0:
-                            fire = True
-                            upper = tau_turn
-                            for i in range(N_STATE):
-                                z_event[i] = z_turn[i]
-                    terminal = -1
-                    if fire:
-                        armed[E_IMPACT] = True
-                        tau, trials = locate(KIND_TERMINAL, mode, side, sigma, mu_s, mu_d, t, z,
-                                             k1, upper, z_event, armed, 0.0, segment,
-                                             parameters, stages, scale_abs, rtol, z_new)
-                        evaluations += 11 * trials
-                        events(mode, side, sigma, mu_s, mu_d, t + tau, z_new, segment,
-                               parameters, g_end)
-                        least = math.inf
-                        for i in range(N_EVENTS):
-                            if armed[i] and g_end[i] < least:
-                                least = g_end[i]
-                                terminal = i
-                    # non-terminal: the turning point (largest |theta|) and instability;
-                    # an extremum is located on the stepper only where the step's cubic
-                    # Hermite interpolant says it may come within 10 % of the peak so far
-                    # (the interpolant's error is far smaller: the peaks stay exact)
-                    q_from_z(z, side, q_start, parameters)
-                    q_from_z(z_new, side, q_end, parameters)
-                    if z[1] * z_new[1] < 0.0 and hermite_peak(
-                            z[0], z_new[0], z[1], z_new[1], tau) >= 0.9 * info[I_MAX_ABS_THETA]:
-                        tau_peak, trials = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t,
-                                                  z, k1, tau, z_new, no_events,
-                                                  1.0 if z[1] > 0.0 else -1.0, segment,
-                                                  parameters, stages, scale_abs, rtol, z_turn)
-                        evaluations += 11 * trials
-                        q_from_z(z_turn, side, q, parameters)
-                        _track(t + tau_peak, q, info, parameters)
-                    # extrema of the slip and of the corners' X (peak slip, excursion)
-                    _, ry0 = corner_vector(z[0], side, parameters)
-                    _, ry1 = corner_vector(z_new[0], side, parameters)
-                    for j in range(N_RATES):
-                        rate0 = horizontal_rate(j, z[0], z[3] + ry0 * z[1], z[1], parameters)
-                        rate1 = horizontal_rate(j, z_new[0], z_new[3] + ry1 * z_new[1],
-                                                z_new[1], parameters)
-                        peak = info[I_PEAK_SLIP] if j == 0 else info[I_PEAK_EXCURSION]
-                        if rate0 * rate1 < 0.0 and hermite_peak(
-                                quantity(j, q_start, parameters), quantity(j, q_end, parameters),
-                                rate0, rate1, tau) >= 0.9 * peak:
-                            tau_rate, trials = locate(KIND_RATE + j, mode, side, sigma, mu_s,
-                                                      mu_d, t, z, k1, tau, z_new, no_events,
-                                                      1.0 if rate0 > 0.0 else -1.0, segment,
-                                                      parameters, stages, scale_abs, rtol,
-                                                      z_turn)
-                            evaluations += 11 * trials
-                            q_from_z(z_turn, side, q, parameters)
-                            _track(t + tau_rate, q, info, parameters)
+                    terminal, tau, used = terminal_event(
+                        mode, side, sigma, mu_s, mu_d, t, z, step, z_new, stages, dense, ready,
+                        segment, parameters, armed, g_end, z_event, z_turn, no_events)
+                    evaluations += used
+                    # non-terminal: the turning point (largest |theta|), the extrema of the slip
+                    # and of the corners' X (planar_track), and instability
+                    evaluations += contact_extrema(
+                        mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, ready, tau,
+                        z_new, segment, parameters, info, I_MAX_ABS_THETA, q, q_start, q_end,
+                        z_turn, no_events)
                     if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
                             and abs(z[0]) <= alpha:
-                        tau_unstable, trials = locate(KIND_ALPHA, mode, side, sigma, mu_s, mu_d,
-                                                      t, z, k1, tau, z_new, no_events, 0.0,
-                                                      segment, parameters, stages, scale_abs,
-                                                      rtol, z_turn)
-                        evaluations += 11 * trials
+                        tau_unstable, used = locate(KIND_ALPHA, mode, side, sigma, mu_s, mu_d,
+                                                    t, z, step, z_new, stages, dense, ready, tau,
+                                                    z_new, no_events, 0.0, segment, parameters,
+                                                    z_turn)
+                        evaluations += used
                         info[I_T_UNSTABLE] = t + tau_unstable
                         info[I_UNSTABLE_DIRECTION] = 1.0 if z_new[0] > 0.0 else -1.0
                         q_from_z(z_turn, side, q, parameters)

@@ -13,7 +13,7 @@ import itertools
 from collections.abc import Iterable
 
 import numpy as np
-from numba import njit, prange
+from numba import njit, prange, set_parallel_chunksize
 
 from shaketable.core.dynamics import N_PARAMETERS, block_parameters
 from shaketable.core.geometry import Block
@@ -85,11 +85,18 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
         mu_s[i], mu_d[i] = friction.static, friction.dynamic
     info = np.zeros((m, planar.N_INFO))
     final = np.zeros((m, planar.N_OUT))
-    _run_planar_batch(np.ascontiguousarray(motion.t, dtype=float),
-                      np.ascontiguousarray(motion.horizontal, dtype=float),
-                      np.ascontiguousarray(motion.vertical_or_zero, dtype=float), parameters,
-                      rho, cor_cascade, mu_s, mu_d,
-                      DEFAULT_PLANAR_RTOL if rtol is None else float(rtol), -1.0, info, final)
+    # the cases are handed out one at a time (run costs differ a lot: a block that
+    # overturns early is cheap), as the rocking batch does
+    previous = set_parallel_chunksize(1)
+    try:
+        _run_planar_batch(np.ascontiguousarray(motion.t, dtype=float),
+                          np.ascontiguousarray(motion.horizontal, dtype=float),
+                          np.ascontiguousarray(motion.vertical_or_zero, dtype=float),
+                          parameters, rho, cor_cascade, mu_s, mu_d,
+                          DEFAULT_PLANAR_RTOL if rtol is None else float(rtol), -1.0, info,
+                          final)
+    finally:
+        set_parallel_chunksize(previous)
     rows = []
     for i, (b, f, c) in enumerate(cases):
         row = info[i]

@@ -7,9 +7,10 @@
   error estimators of orders 5 and 3; Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.10),
   with the physics of :mod:`shaketable.core.planar_dynamics`. (The Nystrom pair of the
   rocking engine needs theta'' = f(t, theta); SLIDE_ROCK has theta'^2 terms.)
-* Events are zeros of event functions of the state, located on the stepper itself
-  (each trial is one step from the step's start, as in the rocking engine) by the
-  Illinois variant of regula falsi, safeguarded by bisection, to a bracket of a few ulps.
+* Events are zeros of event functions of the state, located on the accepted step's
+  continuous extension of order 7 (Hairer's contd8: three more stages, built only for a
+  step in which an event is looked for) by Newton's step or the Illinois variant of
+  regula falsi, safeguarded by bisection, to a bracket of a few ulps.
 * REST, SLIDE and FLIGHT are closed forms (the table accelerations are linear between
   samples): the polynomial helpers here.
 """
@@ -99,6 +100,84 @@ _A[11, 8] = -8.87285693353063
 _A[11, 9] = 12.360567175794303
 _A[11, 10] = 0.6433927460157636
 
+# DOP853's continuous extension of order 7 (Hairer's contd8; SciPy's dop853_coefficients.py):
+# stage 13 is z' at the step's end (the A row is _B), stages 14-16 the three extra ones
+_C_EXTRA = np.array([0.1, 0.2, 0.7777777777777778])
+_A_EXTRA = np.zeros((3, 16))
+_A_EXTRA[0, 0] = 0.056167502283047954
+_A_EXTRA[0, 6] = 0.25350021021662483
+_A_EXTRA[0, 7] = -0.2462390374708025
+_A_EXTRA[0, 8] = -0.12419142326381637
+_A_EXTRA[0, 9] = 0.15329179827876568
+_A_EXTRA[0, 10] = 0.00820105229563469
+_A_EXTRA[0, 11] = 0.007567897660545699
+_A_EXTRA[0, 12] = -0.008298
+_A_EXTRA[1, 0] = 0.03183464816350214
+_A_EXTRA[1, 5] = 0.028300909672366776
+_A_EXTRA[1, 6] = 0.053541988307438566
+_A_EXTRA[1, 7] = -0.05492374857139099
+_A_EXTRA[1, 10] = -0.00010834732869724932
+_A_EXTRA[1, 11] = 0.0003825710908356584
+_A_EXTRA[1, 12] = -0.00034046500868740456
+_A_EXTRA[1, 13] = 0.1413124436746325
+_A_EXTRA[2, 0] = -0.42889630158379194
+_A_EXTRA[2, 5] = -4.697621415361164
+_A_EXTRA[2, 6] = 7.683421196062599
+_A_EXTRA[2, 7] = 4.06898981839711
+_A_EXTRA[2, 8] = 0.3567271874552811
+_A_EXTRA[2, 12] = -0.0013990241651590145
+_A_EXTRA[2, 13] = 2.9475147891527724
+_A_EXTRA[2, 14] = -9.15095847217987
+_D = np.zeros((4, 16))
+_D[0, 0] = -8.428938276109013
+_D[0, 5] = 0.5667149535193777
+_D[0, 6] = -3.0689499459498917
+_D[0, 7] = 2.38466765651207
+_D[0, 8] = 2.117034582445028
+_D[0, 9] = -0.871391583777973
+_D[0, 10] = 2.2404374302607883
+_D[0, 11] = 0.6315787787694688
+_D[0, 12] = -0.08899033645133331
+_D[0, 13] = 18.148505520854727
+_D[0, 14] = -9.194632392478356
+_D[0, 15] = -4.436036387594894
+_D[1, 0] = 10.427508642579134
+_D[1, 5] = 242.28349177525817
+_D[1, 6] = 165.20045171727028
+_D[1, 7] = -374.5467547226902
+_D[1, 8] = -22.113666853125306
+_D[1, 9] = 7.733432668472264
+_D[1, 10] = -30.674084731089398
+_D[1, 11] = -9.332130526430229
+_D[1, 12] = 15.697238121770845
+_D[1, 13] = -31.139403219565178
+_D[1, 14] = -9.35292435884448
+_D[1, 15] = 35.81684148639408
+_D[2, 0] = 19.985053242002433
+_D[2, 5] = -387.0373087493518
+_D[2, 6] = -189.17813819516758
+_D[2, 7] = 527.8081592054236
+_D[2, 8] = -11.57390253995963
+_D[2, 9] = 6.8812326946963
+_D[2, 10] = -1.0006050966910838
+_D[2, 11] = 0.7777137798053443
+_D[2, 12] = -2.778205752353508
+_D[2, 13] = -60.19669523126412
+_D[2, 14] = 84.32040550667716
+_D[2, 15] = 11.99229113618279
+_D[3, 0] = -25.69393346270375
+_D[3, 5] = -154.18974869023643
+_D[3, 6] = -231.5293791760455
+_D[3, 7] = 357.6391179106141
+_D[3, 8] = 93.40532418362432
+_D[3, 9] = -37.45832313645163
+_D[3, 10] = 104.0996495089623
+_D[3, 11] = 29.8402934266605
+_D[3, 12] = -43.53345659001114
+_D[3, 13] = 96.32455395918828
+_D[3, 14] = -39.17726167561544
+_D[3, 15] = -149.72683625798564
+
 #: Components of the integrated state.
 N_STATE = 6
 
@@ -114,15 +193,26 @@ N_EVENTS = 5
 
 @njit(cache=True)
 def ground(segment, time):
-    """Horizontal and vertical table acceleration [m/s^2] at ``time`` (linear in the interval)."""
+    """Horizontal and vertical table acceleration [m/s^2] at ``time`` (linear in the interval).
+
+    ``segment``: start [s], length [s], ug at the start [m/s^2] and its change, vg and its
+    change, then (for :func:`slopes_ground`) the slopes of ug and vg [m/s^3]."""
     fraction = (time - segment[0]) / segment[1]
     return segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction
 
 
 @njit(cache=True)
+def slopes_ground(segment, time):
+    """:func:`ground` from the slopes ``segment[6:8]`` [m/s^3] (no division: the
+    right-hand side's; the rest and start rules keep :func:`ground`, the rocking engine's)."""
+    elapsed = time - segment[0]
+    return segment[2] + segment[6] * elapsed, segment[4] + segment[7] * elapsed
+
+
+@njit(cache=True)
 def rhs(mode, side, sigma, mu_d, t, z, segment, parameters, out):
     """z' of ROCK or SLIDE_ROCK into ``out``."""
-    ug, vg = ground(segment, t)
+    ug, vg = slopes_ground(segment, t)
     theta = z[0]
     omega = z[1]
     velocity = z[3]
@@ -151,9 +241,11 @@ def dop853_step(mode, side, sigma, mu_d, t, z, k1, h, segment, parameters, stage
     """One DOP853 step of size ``h`` from (t, z) with z'(t) = ``k1``; z(t + h) into ``z_new``.
 
     Returns the error norm (<= 1: accepted) of Hairer's DOP853 estimator on the
-    mixed absolute (``scale_abs``) / relative (``rtol``) scale.
+    mixed absolute (``scale_abs``) / relative (``rtol``) scale. ``stages`` (16 rows)
+    receives the 12 stages; its row 15 is the work array (the continuous extension,
+    :func:`dense_output`, fills rows 12-15 after the step).
     """
-    work = np.empty(N_STATE)
+    work = stages[15]   # free during a step (the continuous extension's last stage)
     for i in range(N_STATE):
         stages[0, i] = k1[i]
     for s in range(1, 12):
@@ -232,20 +324,70 @@ def event_value(kind, mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, 
 
 
 @njit(cache=True)
-def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, k1, upper, z_upper, armed, sign,
-           segment, parameters, stages, scale_abs, rtol, z_out):
-    """First zero of an event function on (0, upper] on the stepper itself.
+def dense_output(mode, side, sigma, mu_d, t, z, z_end, h, segment, parameters, stages, dense):
+    """DOP853's continuous extension of order 7 on the accepted step (t, z) -> (t + h,
+    ``z_end``) into ``dense`` (7, N_STATE), for :func:`dense_state`.
 
-    The function is taken as positive at tau = 0 (an event armed at the step start, or
-    one zero there by construction, e.g. theta = 0 when rocking begins) and is <= 0 at
-    ``upper`` (state ``z_upper``). Trial steps from (t, z): Newton's step where the
-    impact event decides (its rate is side theta'), else Illinois regula falsi, and
-    bisection when two trials did not halve the bracket, until the bracket is a few ulps
-    of t wide. The state at the
-    right end of the bracket (the event has happened) goes into ``z_out``.
-
-    Returns tau and the number of trial steps.
+    ``stages`` (16 rows) holds the step's 12 stages (:func:`dop853_step`); the
+    extension adds z'(t + h) and three more stages (Hairer, Norsett & Wanner, Sec. II.6,
+    their code's contd8). Returns the right-hand-side evaluations made (4).
     """
+    work = np.empty(N_STATE)
+    rhs(mode, side, sigma, mu_d, t + h, z_end, segment, parameters, stages[12])
+    for s in range(13, 16):
+        for i in range(N_STATE):
+            total = 0.0
+            for j in range(s):
+                total += _A_EXTRA[s - 13, j] * stages[j, i]
+            work[i] = z[i] + h * total
+        rhs(mode, side, sigma, mu_d, t + _C_EXTRA[s - 13] * h, work, segment, parameters,
+            stages[s])
+    for i in range(N_STATE):
+        delta = z_end[i] - z[i]
+        dense[0, i] = delta
+        dense[1, i] = h * stages[0, i] - delta
+        dense[2, i] = 2.0 * delta - h * (stages[12, i] + stages[0, i])
+        for row in range(4):
+            total = 0.0
+            for s in range(16):
+                total += _D[row, s] * stages[s, i]
+            dense[3 + row, i] = h * total
+    return 4
+
+
+@njit(cache=True)
+def dense_state(dense, z, fraction, out):
+    """The state at ``fraction`` (0..1) of the step from z on the continuous extension."""
+    for i in range(N_STATE):
+        value = 0.0
+        for row in range(6, -1, -1):
+            value += dense[row, i]
+            value *= fraction if row % 2 == 0 else 1.0 - fraction
+        out[i] = z[i] + value
+
+
+@njit(cache=True)
+def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, step, z_step, stages, dense, ready,
+           upper, z_upper, armed, sign, segment, parameters, z_out):
+    """First zero of an event function on (0, upper] of the accepted step (t, z) ->
+    (t + ``step``, ``z_step``), on the step's continuous extension of order 7.
+
+    The extension is built on the first call for the step (``ready[0]`` False; ``z_step``
+    is read before ``z_out`` is written, so they may be the same array). The function is
+    taken as positive at tau = 0 (an event armed at the step start, or one zero there by
+    construction, e.g. theta = 0 when rocking begins) and is <= 0 at ``upper`` (state
+    ``z_upper``). Trials on the extension: Newton's step where the impact event decides
+    (its rate is side theta'), else Illinois regula falsi, and bisection when two trials
+    did not halve the bracket, until the bracket is a few ulps of t wide. The state at
+    the right end of the bracket (the event has happened) goes into ``z_out``.
+
+    Returns tau and the right-hand-side evaluations made (4 if the extension was built).
+    """
+    evaluations = 0
+    if not ready[0]:
+        evaluations = dense_output(mode, side, sigma, mu_d, t, z, z_step, step, segment,
+                                   parameters, stages, dense)
+        ready[0] = True
     values = np.empty(N_EVENTS)
     trial = np.empty(N_STATE)
     for i in range(N_STATE):
@@ -258,14 +400,14 @@ def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, k1, upper, z_upper, armed,
                      sign, values)
     known = ga > 0.0
     tolerance = 4e-16 * (abs(t) + upper) + 1e-300
-    trials = 0
     kept = 0
     # Newton on the impact event (its rate side * theta' is known) from the last trial,
     # else Illinois regula falsi; bisection whenever two trials did not halve the bracket
     newton = math.nan
     if kind == KIND_TERMINAL and gb == side * z_upper[0] and z_upper[1] != 0.0:
         newton = upper - gb / (side * z_upper[1])
-    widths = np.array([math.inf, math.inf])
+    width_before = math.inf
+    width_last = math.inf
     for _ in range(300):
         if b - a <= tolerance or gb == 0.0:
             break
@@ -274,13 +416,11 @@ def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, k1, upper, z_upper, armed,
             candidate = newton
         elif known and ga != gb:
             candidate = b - gb * (b - a) / (gb - ga)
-        if not (a < candidate < b) or (b - a) > 0.5 * widths[0]:
+        if not (a < candidate < b) or (b - a) > 0.5 * width_before:
             candidate = 0.5 * (a + b)
-        widths[0] = widths[1]
-        widths[1] = b - a
-        dop853_step(mode, side, sigma, mu_d, t, z, k1, candidate, segment, parameters, stages,
-                    trial, scale_abs, rtol)
-        trials += 1
+        width_before = width_last
+        width_last = b - a
+        dense_state(dense, z, candidate / step, trial)
         g = event_value(kind, mode, side, sigma, mu_s, mu_d, t + candidate, trial, segment,
                         parameters, armed, sign, values)
         newton = math.nan
@@ -301,7 +441,57 @@ def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, k1, upper, z_upper, armed,
             if kept == -1:
                 ga *= 0.5
             kept = -1
-    return b, trials
+    return b, evaluations
+
+
+@njit(cache=True)
+def terminal_event(mode, side, sigma, mu_s, mu_d, t, z, step, z_new, stages, dense, ready,
+                   segment, parameters, armed, g_end, z_event, z_turn, no_events):
+    """The first of the ``armed`` terminal events in the accepted contact step (t, z) ->
+    (t + ``step``, ``z_new``), or an impact passed inside it (theta turned back away from 0
+    on the far side of 0), located by :func:`locate`.
+
+    Returns (the event's index, -1 if none; tau [s]; right-hand-side evaluations made). On
+    an event, ``z_new`` becomes the state at t + tau; ``g_end`` holds the event functions
+    at t + tau; ``z_event`` and ``z_turn`` are work arrays, ``no_events`` all False.
+    """
+    evaluations = 0
+    events(mode, side, sigma, mu_s, mu_d, t + step, z_new, segment, parameters,
+           g_end)
+    tau = step
+    upper = step
+    for i in range(N_STATE):
+        z_event[i] = z_new[i]
+    fire = False
+    for i in range(N_EVENTS):
+        if armed[i] and g_end[i] <= 0.0:
+            fire = True
+    if not fire and side * z[1] < 0.0 and side * z_new[1] > 0.0:
+        # theta turned back away from 0 inside the step: did it pass 0?
+        tau_turn, used = locate(KIND_PEAK, mode, side, sigma, mu_s, mu_d, t, z,
+                                step, z_new, stages, dense, ready, step, z_new,
+                                no_events, -side, segment, parameters, z_turn)
+        evaluations += used
+        if side * z_turn[0] <= 0.0:
+            fire = True
+            upper = tau_turn
+            for i in range(N_STATE):
+                z_event[i] = z_turn[i]
+    terminal = -1
+    if fire:
+        armed[E_IMPACT] = True
+        tau, used = locate(KIND_TERMINAL, mode, side, sigma, mu_s, mu_d, t, z,
+                           step, z_new, stages, dense, ready, upper, z_event,
+                           armed, 0.0, segment, parameters, z_new)
+        evaluations += used
+        events(mode, side, sigma, mu_s, mu_d, t + tau, z_new, segment,
+               parameters, g_end)
+        least = math.inf
+        for i in range(N_EVENTS):
+            if armed[i] and g_end[i] < least:
+                least = g_end[i]
+                terminal = i
+    return terminal, tau, evaluations
 
 
 @njit(cache=True)
@@ -342,10 +532,17 @@ def lowest_corner(y, theta, parameters):
 def horizontal_rate(which, theta, x_dot, omega, parameters):
     """d/dt of the slip of the base's midpoint (``which`` 0) or of the X of a corner
     (1..4: body points (-b, -h), (b, -h), (-b, h), (b, h)) [m/s]: zero at their extrema."""
+    return horizontal_rate_at(which, math.cos(theta), math.sin(theta), x_dot, omega,
+                              parameters)
+
+
+@njit(cache=True)
+def horizontal_rate_at(which, cosine, sine, x_dot, omega, parameters):
+    """:func:`horizontal_rate` with cos(theta) and sin(theta) given."""
     b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     if which == 0:
-        return x_dot + h * math.cos(theta) * omega
+        return x_dot + h * cosine * omega
     u = -b if which == 1 or which == 3 else b
     w = -h if which <= 2 else h
-    return x_dot - omega * (u * math.sin(theta) + w * math.cos(theta))
+    return x_dot - omega * (u * sine + w * cosine)
