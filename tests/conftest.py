@@ -13,11 +13,20 @@ the largest of them plus start-up.
 
 from __future__ import annotations
 
+import os
 import resource
 
 import pytest
 
 from tests.helpers import REPOSITORY, SHARED_RECORDS
+
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    # One BLAS thread per xdist worker (read when numpy loads, after this): with two workers
+    # on two cores, each worker's second OpenBLAS thread waits for a core the other worker
+    # holds; measured on the 2-core machine under load, a 400 x 400 Cholesky took 1.0 s
+    # with two threads and 3.5 ms with one (tests/calibration/test_scatter.py: 84 s vs 1 s).
+    for _variable in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_variable, "1")
 
 
 @pytest.fixture(scope="session")
