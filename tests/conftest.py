@@ -28,8 +28,8 @@ if os.environ.get("PYTEST_XDIST_WORKER"):
     # One BLAS thread per xdist worker (read when numpy loads, after this): with two workers
     # on two cores, each worker's second OpenBLAS thread waits for a core the other worker
     # holds; measured on the 2-core machine under load, a 400 x 400 Cholesky took 1.0 s
-    # with two threads and 3.5 ms with one (test_random_effects_recovers_sigma... in tests/calibration/test_scatter.py:
-    # 46 s in the suite before, under 4 s after).
+    # with two threads and 3.5 ms with one (a test of tests/calibration/test_scatter.py
+    # took 46 s in the suite before, under 4 s after).
     for _variable in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(_variable, "1")
 
