@@ -24,14 +24,14 @@ except ImportError:   # not on Windows: no CPU report there
 
 from tests.helpers import REPOSITORY, SHARED_RECORDS
 
-if os.environ.get("PYTEST_XDIST_WORKER"):
-    # One BLAS thread per xdist worker (read when numpy loads, after this): with two workers
-    # on two cores, each worker's second OpenBLAS thread waits for a core the other worker
-    # holds; measured on the 2-core machine under load, a 400 x 400 Cholesky took 1.0 s
-    # with two threads and 3.5 ms with one (a test of tests/calibration/test_scatter.py
-    # took 46 s in the suite before, under 4 s after).
-    for _variable in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(_variable, "1")
+# One BLAS thread per test process (read when numpy loads, after this; a value set in the
+# environment wins): with two xdist workers on two cores, or other work on the machine,
+# a second OpenBLAS thread waits for a core someone else holds. Measured on the 2-core
+# machine under load, a 400 x 400 Cholesky took 1.0 s with two threads and 3.5 ms with one
+# (a test of tests/calibration/test_scatter.py took 46 s in the suite before, under 4 s after).
+# The same in one process and on the workers, so that both runs compute the same numbers.
+for _variable in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
 
 
 @pytest.fixture(scope="session")
