@@ -664,35 +664,66 @@ def test_at2_cut_in_its_last_number_is_refused(tmp_path):
 
 
 # -------------------------------------------------------------------- no hangs
+def _process_cpu_seconds(proc: Path) -> float:
+    """CPU time [s] used so far by all the threads of the process ``/proc/PID``."""
+    fields = (proc / "stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _busiest_other_thread_cpu_seconds(pid: int) -> float:
+    """CPU time [s] of the busiest thread of process ``pid`` other than its main thread."""
+    busiest = 0.0
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        if task.name != str(pid):
+            try:
+                busiest = max(busiest, _process_cpu_seconds(task))
+            except OSError:   # the thread ended meanwhile
+                pass
+    return busiest
+
+
 @pytest.mark.slow
 def test_ctrl_c_stops_a_long_compiled_run_within_a_second(tmp_path):
     """A predictor-corrector run of 1.7e9 steps (about a minute) stops on Ctrl-C: exit 130,
-    a one-line message, no traceback (the compiled loop runs in a worker thread)."""
+    a one-line message, no traceback (the compiled loop runs in a worker thread), and the
+    process spends under a second of CPU after the signal (the minute's run does not go on).
+
+    The bound is on the CPU time the process uses after the signal, not on the wall time,
+    so that a busy machine (other tests on the other worker, other users) cannot fail it;
+    the wall time is still bounded, generously, for a process that would hang idle."""
+    import resource
     import signal
     import subprocess
     import sys
     import time
 
+    def children_cpu() -> float:
+        usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return usage.ru_utime + usage.ru_stime
+
     environment = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(REPOSITORY))
+    cpu_before = children_cpu()
     process = subprocess.Popen(
         [sys.executable, "-m", "shaketable", "simulate", "--block", "16x4ft", "--cor", "0.9",
          "--record", "pacoima-dam-s16e", "--method", "predictor-corrector",
          "--subdivisions", "400000", "--out", "out"],
         cwd=tmp_path, env=environment, stderr=subprocess.PIPE, text=True)
-    # Wait until the run is integrating: imported and compiled or loaded (a few seconds
-    # of CPU), measured as the process's CPU time where /proc has it, so that a busy
-    # machine does not send the signal while Python is still importing.
-    stat = Path(f"/proc/{process.pid}/stat")
+    # Wait until the run is integrating: the engine runs in a thread of its own while the
+    # main thread waits, so wait until a thread other than the main one has used 2 s of CPU
+    # (loading the compiled engine from numba's cache takes well under 1 s of it); measured
+    # per thread where /proc has it, so that a busy machine does not send the signal while
+    # Python is still importing.
+    proc = Path(f"/proc/{process.pid}")
     started = time.perf_counter()
-    while time.perf_counter() - started < 60.0 and process.poll() is None:
-        if not stat.exists():
+    while time.perf_counter() - started < 120.0 and process.poll() is None:
+        if not proc.is_dir():
             time.sleep(6.0)
             break
-        fields = stat.read_text().rsplit(")", 1)[1].split()
-        if (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK") >= 6.0:
+        if _busiest_other_thread_cpu_seconds(process.pid) >= 2.0:
             break
-        time.sleep(0.2)
+        time.sleep(0.1)
     assert process.poll() is None, process.stderr.read()
+    at_signal = _process_cpu_seconds(proc) if proc.is_dir() else None   # all its threads
     sent = time.perf_counter()
     process.send_signal(signal.SIGINT)
     try:
@@ -701,6 +732,11 @@ def test_ctrl_c_stops_a_long_compiled_run_within_a_second(tmp_path):
         process.kill()
         _, err = process.communicate()
         pytest.fail(f"still running 30 s after Ctrl-C; stderr: {err}")
-    assert time.perf_counter() - sent < 2.0
+    waited = time.perf_counter() - sent
     assert process.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
+    assert waited < 10.0, waited
+    if at_signal is not None:
+        # all the process's threads, from the signal to its exit
+        after_signal = children_cpu() - cpu_before - at_signal
+        assert after_signal < 1.0, after_signal

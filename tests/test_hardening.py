@@ -76,32 +76,42 @@ def test_plain_names_with_dots_and_spaces_still_run(tmp_path):
 _MODES = """
 import os, stat, sys
 from pathlib import Path
-os.umask(int(sys.argv[1], 8))
+umasks = sys.argv[1].split(",")
+os.umask(int(umasks[0], 8))   # the first before the package is imported, the others after
 from shaketable.cli import main
-work = Path(sys.argv[2])
-os.chdir(work)
-(work / "w.toml").write_text(sys.argv[3], encoding="utf-8")
-assert main(["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.5alpha",
-             "--duration", "1s", "--out", "sim", "-q"]) == 0
-assert main(["sweep", "w.toml", "--out", "swept", "-q", "--no-progress"]) == 0
-for path in sorted(work.rglob("*")):
-    if path.is_file() and path.name != "w.toml":
-        print(oct(stat.S_IMODE(path.stat().st_mode)), path.relative_to(work))
+for umask in umasks:
+    os.umask(int(umask, 8))
+    work = Path(sys.argv[2]) / umask
+    work.mkdir()
+    os.chdir(work)
+    (work / "w.toml").write_text(sys.argv[3], encoding="utf-8")
+    assert main(["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "0.5alpha",
+                 "--duration", "1s", "--out", "sim", "-q"]) == 0
+    assert main(["sweep", "w.toml", "--out", "swept", "-q", "--no-progress"]) == 0
+    for path in sorted(work.rglob("*")):
+        if path.is_file() and path.name != "w.toml":
+            print(umask, oct(stat.S_IMODE(path.stat().st_mode)), path.relative_to(work))
 """
 
+UMASKS = {"022": 0o644, "027": 0o640, "077": 0o600}
 
-@pytest.mark.parametrize("umask, expected", [("022", 0o644), ("027", 0o640), ("077", 0o600)])
-def test_outputs_get_the_mode_the_umask_gives(tmp_path, umask, expected):
-    # before: every output was 0600 (mkstemp's mode kept by the rename) whatever the umask
-    result = subprocess.run([sys.executable, "-c", _MODES, umask, str(tmp_path), SWEEP],
-                            capture_output=True, text=True, cwd=REPOSITORY)
+
+def test_outputs_get_the_mode_the_umask_gives(tmp_path):
+    # before: every output was 0600 (mkstemp's mode kept by the rename) whatever the umask.
+    # The three umasks in one process (one start-up instead of three), one after another.
+    result = subprocess.run([sys.executable, "-c", _MODES, ",".join(UMASKS), str(tmp_path),
+                             SWEEP], capture_output=True, text=True, cwd=REPOSITORY)
     assert result.returncode == 0, result.stderr
-    lines = [line.split() for line in result.stdout.splitlines()]
-    written = {name for _, name in lines}
-    # the simulate outputs, the sweep's manifest, part and result table are all there
-    assert {"sim/history.csv", "swept/manifest.json", "swept/parts/part-000000.parquet"} <= written
-    assert any(name.startswith("swept/results.") for name in written)
-    assert {mode for mode, _ in lines} == {oct(expected)}, lines
+    rows = [line.split() for line in result.stdout.splitlines()]
+    assert {umask for umask, _, _ in rows} == set(UMASKS)
+    for umask, expected in UMASKS.items():
+        lines = [(mode, name) for row_umask, mode, name in rows if row_umask == umask]
+        written = {name for _, name in lines}
+        # the simulate outputs, the sweep's manifest, part and result table are all there
+        assert {"sim/history.csv", "swept/manifest.json",
+                "swept/parts/part-000000.parquet"} <= written, umask
+        assert any(name.startswith("swept/results.") for name in written), umask
+        assert {mode for mode, _ in lines} == {oct(expected)}, (umask, lines)
 
 
 # ----------------------------------------------------------------- sweep store

@@ -39,6 +39,12 @@ def _commands() -> list[str]:
 COMMANDS = _commands()
 PYTHON_BLOCKS = _blocks("python")
 
+#: The bundled scenes the README runs as plain ``shaketable run NAME``: this file checks
+#: them as ``tests/scenes/test_every_scene_runs.py`` checks every other scene (which
+#: leaves them out, so that no scene runs twice for the same checks).
+README_RUN_SCENES = [command.split()[2] for command in COMMANDS
+                     if len(command.split()) == 3 and command.split()[1] == "run"]
+
 
 def _environment():
     environment = dict(os.environ, MPLBACKEND="Agg")
@@ -72,6 +78,12 @@ def test_readme_command_runs_verbatim_from_an_empty_folder(command, user_folder)
     assert "Traceback" not in done.stderr, done.stderr
     assert done.returncode == 0, done.stderr
     assert _files(user_folder) != before, "the command wrote nothing"
+    words = command.split()
+    if words[1] == "run" and words[2] in README_RUN_SCENES:
+        # the checks of tests/scenes/test_every_scene_runs.py on this bundled scene
+        assert "internal error" not in done.stderr, done.stderr
+        assert "wrote" in done.stdout
+        assert any((user_folder / "shaketable-out" / words[2]).iterdir())
 
 
 @pytest.mark.parametrize("index", range(len(PYTHON_BLOCKS)))

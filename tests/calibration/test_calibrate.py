@@ -55,6 +55,8 @@ def _virtual(cor, seed, theta0_ratio=0.5, shift=3.7, duration=10.0):
 
 
 _CACHE = {}
+# the tests that read _CACHE run on one pytest-xdist worker, so each record is fitted once
+pytestmark = pytest.mark.xdist_group("tests/calibration/test_calibrate.py")
 
 
 def _calibrated(cor, seed):
