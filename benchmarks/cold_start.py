@@ -45,7 +45,7 @@ from shaketable.solvers import engine
 print(json.dumps({"import [s]": imported - start, "first simulate [s]": first - imported,
                   "first batch after it [s]": batch - first,
                   "batch on one thread after that [s]": serial - batch,
-                  "engine signatures": len(engine.integrate.signatures)}))
+                  "engine signatures": len(engine.integrate_fast.signatures)}))
 """
 
 

@@ -59,6 +59,7 @@ from __future__ import annotations
 import math
 
 from numba import njit
+from numba.extending import overload
 
 from shaketable.core.constants import G
 from shaketable.core.dynamics import (
@@ -72,7 +73,6 @@ from shaketable.core.dynamics import (
     ROD_FORCE,
     ROD_STIFFNESS,
     TOP_FORCE,
-    angular_acceleration,
     cascade_rest_time,
     flight_acceleration,
 )
@@ -110,11 +110,38 @@ from shaketable.solvers.layout import (
     STATUS_OVERTURNED,
 )
 
+# The compiled helpers below are compiled without the Python entry numba makes for a
+# function called from Python (no_cpython_wrapper, no_cfunc_wrapper): they are only called
+# from compiled code, and that entry's code generation was a third of each helper's
+# first compile (about 50 ms each, 1 s in all). Calling one from Python crashes; only
+# `_nystrom` (tested on its own) and the integrators keep theirs. Nor are they cached:
+# numba caches the integrators whole, with every helper they call linked in.
+_HELPER_OPTIONS = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+_helper = njit(**_HELPER_OPTIONS)
+
+# Eq. (2-13)/(2-14) as the engine's own compiled helpers (the same Python functions as
+# shaketable.core.dynamics', whose compiled versions keep their Python entry).
+_flight_acceleration = _helper(flight_acceleration.py_func)
+_cascade_rest_time = _helper(cascade_rest_time.py_func)
+
+
+def _for_method(method, implementations):
+    """The implementation for a literal ``method`` type (a compile-time constant), else None.
+
+    Every integrator passes its method as a constant (:func:`_drive`), which numba
+    types as a literal: the functions overloaded with this choose that method's code
+    at compile time, so that the default method's first compile types and optimises
+    neither the predictor-corrector's nor the linear model's code (the branches of a
+    run-time ``if method == ...`` are all compiled).
+    """
+    value = getattr(method, "literal_value", None)
+    return implementations.get(value) if isinstance(value, int) else None
+
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
 _EVALUATIONS_PER_STEP = (5, 2, 1)
 
 
-@njit(cache=True)
+@_helper
 def _linear_flight_acceleration(theta, side, ug, vg, rg, parameters):
     """Slender-block linearisation (Eq. 2-4) about the corner ``side``, analytic in theta."""
     s = side
@@ -130,7 +157,7 @@ def _linear_flight_acceleration(theta, side, ug, vg, rg, parameters):
     return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods - top) / inertia - rg
 
 
-@njit(cache=True)
+@_helper
 def _linear_acceleration(theta, side, ug, vg, rg, parameters):
     """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4)."""
     s = side
@@ -141,15 +168,39 @@ def _linear_acceleration(theta, side, ug, vg, rg, parameters):
     return _linear_flight_acceleration(theta, s, ug, vg, rg, parameters)
 
 
-@njit(cache=True)
+@_helper
+def _angular_acceleration(theta, side, ug, vg, rg, parameters):
+    """Eq. (2-13)/(2-14) on the corner the block stands on (as
+    :func:`shaketable.core.dynamics.angular_acceleration`)."""
+    s = side
+    if theta > 0.0:
+        s = 1.0
+    elif theta < 0.0:
+        s = -1.0
+    return _flight_acceleration(theta, s, ug, vg, rg, parameters)
+
+
 def model_acceleration(method, theta, side, ug, vg, rg, parameters):
-    """theta'' of the model a method integrates: exact, or linearised for METHOD_LINEAR."""
-    if method == METHOD_LINEAR:
+    """theta'' of the model a method integrates: exact, or linearised for METHOD_LINEAR.
+
+    Compiled code only, with ``method`` a constant (:func:`_for_method`).
+    """
+    raise NotImplementedError("compiled code only")
+
+
+@overload(model_acceleration, prefer_literal=True, jit_options=_HELPER_OPTIONS)
+def _model_acceleration(method, theta, side, ug, vg, rg, parameters):
+    def exact(method, theta, side, ug, vg, rg, parameters):
+        return _angular_acceleration(theta, side, ug, vg, rg, parameters)
+
+    def linear(method, theta, side, ug, vg, rg, parameters):
         return _linear_acceleration(theta, side, ug, vg, rg, parameters)
-    return angular_acceleration(theta, side, ug, vg, rg, parameters)
+
+    return _for_method(method, {METHOD_FAST: exact, METHOD_PREDICTOR_CORRECTOR: exact,
+                                METHOD_LINEAR: linear})
 
 
-@njit(cache=True)
+@_helper
 def _ground(segment, time):
     """Horizontal, vertical [m/s^2] and rotational [rad/s^2] table acceleration at ``time``."""
     fraction = (time - segment[0]) / segment[1]
@@ -157,16 +208,26 @@ def _ground(segment, time):
             segment[6] + segment[7] * fraction)
 
 
-@njit(cache=True)
 def _start_acceleration(method, t, theta, side, segment, parameters):
     """theta'' of the flight model at the start of a flight or of an interval."""
-    ug, vg, rg = _ground(segment, t)
-    if method == METHOD_LINEAR:
+    raise NotImplementedError("compiled code only")
+
+
+@overload(_start_acceleration, prefer_literal=True, jit_options=_HELPER_OPTIONS)
+def _start_acceleration_for(method, t, theta, side, segment, parameters):
+    def exact(method, t, theta, side, segment, parameters):
+        ug, vg, rg = _ground(segment, t)
+        return _flight_acceleration(theta, side, ug, vg, rg, parameters)
+
+    def linear(method, t, theta, side, segment, parameters):
+        ug, vg, rg = _ground(segment, t)
         return _linear_flight_acceleration(theta, side, ug, vg, rg, parameters)
-    return flight_acceleration(theta, side, ug, vg, rg, parameters)
+
+    return _for_method(method, {METHOD_FAST: exact, METHOD_PREDICTOR_CORRECTOR: exact,
+                                METHOD_LINEAR: linear})
 
 
-@njit(cache=True)
+@_helper
 def _first_positive_margin(method, start, t_end, side, segment, parameters):
     """The first time in [start, t_end] at which rocking onto ``side`` really begins [s].
 
@@ -196,7 +257,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
     return high
 
 
-@njit(cache=True)
+@njit  # with its Python entry: tests/solvers/test_engine.py calls it on its own
 def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
     """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``k1``.
 
@@ -215,7 +276,7 @@ def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
     """
     def f(time, x):
         ug, vg, rg = _ground(segment, time)
-        return flight_acceleration(x, side, ug, vg, rg, parameters)
+        return _flight_acceleration(x, side, ug, vg, rg, parameters)
 
     hh = h * h
     k2 = f(t + 0.1 * h, theta + 0.1 * h * omega + hh * (1.0 / 200.0) * k1)
@@ -247,7 +308,7 @@ def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
     return theta_new, omega_new, k6, error_theta, error_omega
 
 
-@njit(cache=True)
+@_helper
 def _heun(t, theta, omega, acceleration, side, h, segment, parameters):
     """The report's predictor-corrector step (Section 2.8): Euler predictor, trapezoidal corrector.
 
@@ -256,14 +317,14 @@ def _heun(t, theta, omega, acceleration, side, h, segment, parameters):
     """
     theta_predicted = theta + h * omega
     ug, vg, rg = _ground(segment, t + h)
-    acceleration_predicted = flight_acceleration(theta_predicted, side, ug, vg, rg, parameters)
+    acceleration_predicted = _flight_acceleration(theta_predicted, side, ug, vg, rg, parameters)
     omega_new = omega + 0.5 * h * (acceleration + acceleration_predicted)
     theta_new = theta + 0.5 * h * (omega + omega_new)
-    acceleration_new = flight_acceleration(theta_new, side, ug, vg, rg, parameters)
+    acceleration_new = _flight_acceleration(theta_new, side, ug, vg, rg, parameters)
     return theta_new, omega_new, acceleration_new, 0.0, 0.0
 
 
-@njit(cache=True)
+@_helper
 def _closed_form(t, theta, omega, side, h, segment, parameters):
     """Exact solution of the linearised equation over a time ``h`` (METHOD_LINEAR)."""
     span, du, v0, dv, dr = segment[1], segment[3], segment[4], segment[5], segment[7]
@@ -311,17 +372,29 @@ def _closed_form(t, theta, omega, side, h, segment, parameters):
     return theta_new, omega_new, mu * theta_new + c0 + c1 * h, 0.0, 0.0
 
 
-@njit(cache=True)
 def _advance(method, t, theta, omega, acceleration, side, h, segment, parameters):
     """One step of ``method``: theta, omega, theta'' at ``t + h`` and error estimates."""
-    if method == METHOD_FAST:
+    raise NotImplementedError("compiled code only")
+
+
+@overload(_advance, prefer_literal=True, jit_options=_HELPER_OPTIONS)
+def _advance_for(method, t, theta, omega, acceleration, side, h, segment, parameters):
+    def fast(method, t, theta, omega, acceleration, side, h, segment, parameters):
         return _nystrom(t, theta, omega, acceleration, side, h, segment, parameters)
-    if method == METHOD_PREDICTOR_CORRECTOR:
+
+    def predictor_corrector(method, t, theta, omega, acceleration, side, h, segment,
+                            parameters):
         return _heun(t, theta, omega, acceleration, side, h, segment, parameters)
-    return _closed_form(t, theta, omega, side, h, segment, parameters)
+
+    def linear(method, t, theta, omega, acceleration, side, h, segment, parameters):
+        return _closed_form(t, theta, omega, side, h, segment, parameters)
+
+    return _for_method(method, {METHOD_FAST: fast,
+                                METHOD_PREDICTOR_CORRECTOR: predictor_corrector,
+                                METHOD_LINEAR: linear})
 
 
-@njit(cache=True)
+@_helper
 def _event(kind, x, v, a, side, sign, alpha):
     """Event function (positive before the event, <= 0 at and after it) and its rate."""
     if kind == EVENT_IMPACT:
@@ -335,7 +408,7 @@ def _event(kind, x, v, a, side, sign, alpha):
     return alpha + x, v
 
 
-@njit(cache=True)
+@_helper
 def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
             a_upper, segment, parameters, sign):
     """First root of an event function on (0, upper], by a safeguarded Newton iteration.
@@ -386,7 +459,7 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
     return c, xc, vc, ac, trials
 
 
-@njit(cache=True)
+@_helper
 def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_only):
     """Where a step may hide a dip below theta = 0 between two turning points [s], else 0.
 
@@ -417,7 +490,7 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     if not (0.0 < s1 < 1.0 and 0.0 < s2 < 1.0):
         return 0.0
     s = s1 if 2.0 * c2 + 6.0 * c3 * s1 > 0.0 else s2  # the minimum of side * theta
-    if first_only and s > min(s1, s2):
+    if first_only > 0.0 and s > min(s1, s2):
         return 0.0  # theta_new < 0: only a minimum before the maximum hides a crossing
     lowest = x0 + s * (v0 + s * (c2 + s * c3))
     if lowest > threshold:
@@ -425,7 +498,7 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     return s * h
 
 
-@njit(cache=True)
+@_helper
 def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
                     threshold, first_only, segment, parameters):
     """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
@@ -457,11 +530,17 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, o
     return 0.0, x, v, acc, trials
 
 
-@njit(cache=True, nogil=True)  # nogil: a long run can go on in a thread (Ctrl-C, api.py)
 def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
               subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
               impact_velocities, info):
     """Integrate one run; fill the output arrays and ``info`` (see module constants).
+
+    Each method has its own compiled integrator (:data:`INTEGRATORS`:
+    :func:`integrate_fast`, :func:`integrate_predictor_corrector`,
+    :func:`integrate_linear`), compiled and cached on its first use: the default
+    method's first compile does not include the other two. From Python this calls
+    the method's integrator; compiled code (the batch) may call it with a constant
+    ``method``, which compiles to a call of that integrator.
 
     Parameters
     ----------
@@ -501,6 +580,16 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
         Filled with the scalar results. ``INFO_EVALUATIONS`` counts every
         right-hand-side evaluation, those of event location included.
     """
+    return INTEGRATORS[method](t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0,
+                               rtol, subdivisions, rest_tolerance, out_theta, out_omega,
+                               out_acceleration, impact_times, impact_velocities, info)
+
+
+@_helper
+def _drive(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+           subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+           impact_velocities, info):
+    """:func:`integrate` for a constant ``method`` (see :func:`_for_method`)."""
     n = t_grid.shape[0]
     store = out_theta.shape[0] >= n
     # The block's parameters as a tuple of floats: every helper below takes them by value
@@ -691,7 +780,7 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                     # below 0, down again): bracket the first crossing
                     found, xd, vd, ad, trials = _dip_on_stepper(
                         method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                        0.5 * side * theta, True, segment, block)
+                        0.5 * side * theta, 1.0, segment, block)
                     evaluations += trials * per_step
                     if found > 0.0:
                         upper, x, v, acc = found, xd, vd, ad
@@ -706,7 +795,7 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                 # a dip below 0 between two turning points that no sign test sees
                 found, x, v, acc, trials = _dip_on_stepper(
                     method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                    0.5 * min(side * theta, side * theta_new), False, segment, block)
+                    0.5 * min(side * theta, side * theta_new), 0.0, segment, block)
                 evaluations += trials * per_step
                 if found > 0.0:
                     tau, theta_new, omega_new, acceleration_new, trials = _locate(
@@ -783,7 +872,7 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                 ux, vx, rx = _ground(segment, t)
                 deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, rx,
                                                           block)
-                remaining = cascade_rest_time(omega, deceleration, cor)
+                remaining = _cascade_rest_time(omega, deceleration, cor)
                 if remaining == math.inf and cor >= 1.0 and deceleration > 0.0 and abs(
                         omega) <= velocity_floor:
                     # COR = 1 never ends a cascade by itself: bounces of the same tiny
@@ -826,3 +915,60 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
     info[INFO_STATUS] = status
     info[INFO_N_IMPACTS] = n_impacts
     info[INFO_N_OUTPUT] = filled
+
+
+# nogil: a long run can go on in a thread (Ctrl-C, solvers.common.call_interruptibly), and
+# the batch runs them on several threads.
+@njit(cache=True, nogil=True)
+def integrate_fast(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+                   subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration,
+                   impact_times, impact_velocities, info):
+    """:func:`integrate` with METHOD_FAST (the default)."""
+    _drive(METHOD_FAST, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+           subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+           impact_velocities, info)
+
+
+@njit(cache=True, nogil=True)
+def integrate_predictor_corrector(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0,
+                                  rtol, subdivisions, rest_tolerance, out_theta, out_omega,
+                                  out_acceleration, impact_times, impact_velocities, info):
+    """:func:`integrate` with METHOD_PREDICTOR_CORRECTOR."""
+    _drive(METHOD_PREDICTOR_CORRECTOR, t_grid, ug, vg, rg, scale, parameters, cor, theta0,
+           omega0, rtol, subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration,
+           impact_times, impact_velocities, info)
+
+
+@njit(cache=True, nogil=True)
+def integrate_linear(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+                     subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration,
+                     impact_times, impact_velocities, info):
+    """:func:`integrate` with METHOD_LINEAR."""
+    _drive(METHOD_LINEAR, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+           subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+           impact_velocities, info)
+
+
+#: The compiled integrator of each method code.
+INTEGRATORS = {METHOD_FAST: integrate_fast,
+               METHOD_PREDICTOR_CORRECTOR: integrate_predictor_corrector,
+               METHOD_LINEAR: integrate_linear}
+
+
+@overload(integrate, prefer_literal=True, jit_options=_HELPER_OPTIONS, inline="always")
+def _integrate_compiled(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0,
+                        rtol, subdivisions, rest_tolerance, out_theta, out_omega,
+                        out_acceleration, impact_times, impact_velocities, info):
+    value = getattr(method, "literal_value", None)
+    if value not in INTEGRATORS:
+        return None
+    integrator = INTEGRATORS[value]
+
+    def call(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+             subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+             impact_velocities, info):
+        integrator(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
+                   subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration,
+                   impact_times, impact_velocities, info)
+
+    return call
