@@ -138,7 +138,7 @@ def _for_method(method, implementations):
     return implementations.get(value) if isinstance(value, int) else None
 
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
-_EVALUATIONS_PER_STEP = (5, 2, 1)
+_EVALUATIONS_FAST, _EVALUATIONS_PREDICTOR_CORRECTOR, _EVALUATIONS_LINEAR = 5, 2, 1
 
 
 @_helper
@@ -157,8 +157,10 @@ def _linear_flight_acceleration(theta, side, ug, vg, rg, parameters):
     return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods - top) / inertia - rg
 
 
-@_helper
-def _linear_acceleration(theta, side, ug, vg, rg, parameters):
+# The implementations the overloads below return are plain functions with the overloaded
+# function's arguments: numba compiles each as the implementation itself, with no extra
+# compiled layer (each layer links and optimises its callees again).
+def _linear_acceleration(method, theta, side, ug, vg, rg, parameters):
     """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4)."""
     s = side
     if theta > 0.0:
@@ -168,8 +170,7 @@ def _linear_acceleration(theta, side, ug, vg, rg, parameters):
     return _linear_flight_acceleration(theta, s, ug, vg, rg, parameters)
 
 
-@_helper
-def _angular_acceleration(theta, side, ug, vg, rg, parameters):
+def _angular_acceleration(method, theta, side, ug, vg, rg, parameters):
     """Eq. (2-13)/(2-14) on the corner the block stands on (as
     :func:`shaketable.core.dynamics.angular_acceleration`)."""
     s = side
@@ -190,14 +191,9 @@ def model_acceleration(method, theta, side, ug, vg, rg, parameters):
 
 @overload(model_acceleration, prefer_literal=True, jit_options=_HELPER_OPTIONS)
 def _model_acceleration(method, theta, side, ug, vg, rg, parameters):
-    def exact(method, theta, side, ug, vg, rg, parameters):
-        return _angular_acceleration(theta, side, ug, vg, rg, parameters)
-
-    def linear(method, theta, side, ug, vg, rg, parameters):
-        return _linear_acceleration(theta, side, ug, vg, rg, parameters)
-
-    return _for_method(method, {METHOD_FAST: exact, METHOD_PREDICTOR_CORRECTOR: exact,
-                                METHOD_LINEAR: linear})
+    return _for_method(method, {METHOD_FAST: _angular_acceleration,
+                                METHOD_PREDICTOR_CORRECTOR: _angular_acceleration,
+                                METHOD_LINEAR: _linear_acceleration})
 
 
 @_helper
@@ -257,9 +253,8 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
     return high
 
 
-@njit  # with its Python entry: tests/solvers/test_engine.py calls it on its own
-def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
-    """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``k1``.
+def _nystrom_step(method, t, theta, omega, acceleration, side, h, segment, parameters):
+    """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``acceleration`` (k1).
 
     Eq. (2-13)/(2-14) is a special second-order equation, theta'' = f(t, theta)
     with no theta' term, which Nystrom formulas integrate directly: the pair
@@ -278,6 +273,7 @@ def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
         ug, vg, rg = _ground(segment, time)
         return _flight_acceleration(x, side, ug, vg, rg, parameters)
 
+    k1 = acceleration
     hh = h * h
     k2 = f(t + 0.1 * h, theta + 0.1 * h * omega + hh * (1.0 / 200.0) * k1)
     k3 = f(t + 0.3 * h, theta + 0.3 * h * omega
@@ -379,9 +375,6 @@ def _advance(method, t, theta, omega, acceleration, side, h, segment, parameters
 
 @overload(_advance, prefer_literal=True, jit_options=_HELPER_OPTIONS)
 def _advance_for(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    def fast(method, t, theta, omega, acceleration, side, h, segment, parameters):
-        return _nystrom(t, theta, omega, acceleration, side, h, segment, parameters)
-
     def predictor_corrector(method, t, theta, omega, acceleration, side, h, segment,
                             parameters):
         return _heun(t, theta, omega, acceleration, side, h, segment, parameters)
@@ -389,9 +382,15 @@ def _advance_for(method, t, theta, omega, acceleration, side, h, segment, parame
     def linear(method, t, theta, omega, acceleration, side, h, segment, parameters):
         return _closed_form(t, theta, omega, side, h, segment, parameters)
 
-    return _for_method(method, {METHOD_FAST: fast,
+    return _for_method(method, {METHOD_FAST: _nystrom_step,
                                 METHOD_PREDICTOR_CORRECTOR: predictor_corrector,
                                 METHOD_LINEAR: linear})
+
+
+@njit  # with its Python entry: tests/solvers/test_engine.py calls it on its own
+def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
+    """One Runge-Kutta-Nystrom 6(4) step (:func:`_nystrom_step`) from theta''(t) = ``k1``."""
+    return _advance(METHOD_FAST, t, theta, omega, k1, side, h, segment, parameters)
 
 
 @_helper
@@ -610,7 +609,11 @@ def _drive(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, r
         velocity_floor = max(velocity_floor, 1e3 * atol_omega)
     hold_down = block[HOLD_DOWN]
     max_recorded = impact_times.shape[0]
-    per_step = _EVALUATIONS_PER_STEP[method]
+    per_step = _EVALUATIONS_LINEAR
+    if method == METHOD_FAST:
+        per_step = _EVALUATIONS_FAST
+    elif method == METHOD_PREDICTOR_CORRECTOR:
+        per_step = _EVALUATIONS_PREDICTOR_CORRECTOR
 
     for i in range(N_INFO):
         info[i] = math.nan
