@@ -50,13 +50,20 @@ summation of the endless cascade of impacts of a decaying block
 (:func:`shaketable.core.dynamics.cascade_rest_time`), unstable / overturned, and the
 block leaving the ground when g + vg <= 0.
 
-Size: one compiled unit on purpose (about 820 lines): numba inlines the steppers and
-the event location into :func:`integrate`, and a module boundary would not change that.
+Size: one compiled unit on purpose (about 900 lines): numba inlines the steppers and
+the event location into the integrators, and a module boundary would not change that.
+
+First compile (issue 28): each method has its own compiled integrator, the driver's
+code with the method a compile-time constant (:func:`_integrator`), so the default
+method's first compile types and optimises only the Nystrom stepper and the exact
+model; the helpers have no Python entry; ``benchmarks/cold_start.py --breakdown``
+shows where the rest goes.
 """
 
 from __future__ import annotations
 
 import math
+import types
 
 from numba import njit
 from numba.extending import overload
@@ -128,7 +135,7 @@ _cascade_rest_time = _helper(cascade_rest_time.py_func)
 def _for_method(method, implementations):
     """The implementation for a literal ``method`` type (a compile-time constant), else None.
 
-    Every integrator passes its method as a constant (:func:`_drive`), which numba
+    Every integrator passes its method as a constant (:func:`_integrator`), which numba
     types as a literal: the functions overloaded with this choose that method's code
     at compile time, so that the default method's first compile types and optimises
     neither the predictor-corrector's nor the linear model's code (the branches of a
@@ -181,19 +188,25 @@ def _angular_acceleration(method, theta, side, ug, vg, rg, parameters):
     return _flight_acceleration(theta, s, ug, vg, rg, parameters)
 
 
-def model_acceleration(method, theta, side, ug, vg, rg, parameters):
-    """theta'' of the model a method integrates: exact, or linearised for METHOD_LINEAR.
-
-    Compiled code only, with ``method`` a constant (:func:`_for_method`).
-    """
+def _model_acceleration_code(method, theta, side, ug, vg, rg, parameters):
+    """The code of :func:`model_acceleration` for a constant ``method`` (compiled code only)."""
     raise NotImplementedError("compiled code only")
 
 
-@overload(model_acceleration, prefer_literal=True, jit_options=_HELPER_OPTIONS)
+@overload(_model_acceleration_code, prefer_literal=True, jit_options=_HELPER_OPTIONS)
 def _model_acceleration(method, theta, side, ug, vg, rg, parameters):
     return _for_method(method, {METHOD_FAST: _angular_acceleration,
                                 METHOD_PREDICTOR_CORRECTOR: _angular_acceleration,
                                 METHOD_LINEAR: _linear_acceleration})
+
+
+# The overloaded functions are called through these helpers: numba compiles an overload's
+# implementation once per caller's compile options (the integrators' differ from the
+# helpers'), so called from both it would be compiled twice.
+@_helper
+def model_acceleration(method, theta, side, ug, vg, rg, parameters):
+    """theta'' of the model a method integrates: exact, or linearised for METHOD_LINEAR."""
+    return _model_acceleration_code(method, theta, side, ug, vg, rg, parameters)
 
 
 @_helper
@@ -204,12 +217,12 @@ def _ground(segment, time):
             segment[6] + segment[7] * fraction)
 
 
-def _start_acceleration(method, t, theta, side, segment, parameters):
-    """theta'' of the flight model at the start of a flight or of an interval."""
+def _start_acceleration_code(method, t, theta, side, segment, parameters):
+    """The code of :func:`_start_acceleration` for a constant ``method`` (compiled only)."""
     raise NotImplementedError("compiled code only")
 
 
-@overload(_start_acceleration, prefer_literal=True, jit_options=_HELPER_OPTIONS)
+@overload(_start_acceleration_code, prefer_literal=True, jit_options=_HELPER_OPTIONS)
 def _start_acceleration_for(method, t, theta, side, segment, parameters):
     def exact(method, t, theta, side, segment, parameters):
         ug, vg, rg = _ground(segment, t)
@@ -221,6 +234,12 @@ def _start_acceleration_for(method, t, theta, side, segment, parameters):
 
     return _for_method(method, {METHOD_FAST: exact, METHOD_PREDICTOR_CORRECTOR: exact,
                                 METHOD_LINEAR: linear})
+
+
+@_helper
+def _start_acceleration(method, t, theta, side, segment, parameters):
+    """theta'' of the flight model at the start of a flight or of an interval."""
+    return _start_acceleration_code(method, t, theta, side, segment, parameters)
 
 
 @_helper
@@ -368,12 +387,12 @@ def _closed_form(t, theta, omega, side, h, segment, parameters):
     return theta_new, omega_new, mu * theta_new + c0 + c1 * h, 0.0, 0.0
 
 
-def _advance(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    """One step of ``method``: theta, omega, theta'' at ``t + h`` and error estimates."""
+def _advance_code(method, t, theta, omega, acceleration, side, h, segment, parameters):
+    """The code of :func:`_advance` for a constant ``method`` (compiled code only)."""
     raise NotImplementedError("compiled code only")
 
 
-@overload(_advance, prefer_literal=True, jit_options=_HELPER_OPTIONS)
+@overload(_advance_code, prefer_literal=True, jit_options=_HELPER_OPTIONS)
 def _advance_for(method, t, theta, omega, acceleration, side, h, segment, parameters):
     def predictor_corrector(method, t, theta, omega, acceleration, side, h, segment,
                             parameters):
@@ -385,6 +404,12 @@ def _advance_for(method, t, theta, omega, acceleration, side, h, segment, parame
     return _for_method(method, {METHOD_FAST: _nystrom_step,
                                 METHOD_PREDICTOR_CORRECTOR: predictor_corrector,
                                 METHOD_LINEAR: linear})
+
+
+@_helper
+def _advance(method, t, theta, omega, acceleration, side, h, segment, parameters):
+    """One step of ``method``: theta, omega, theta'' at ``t + h`` and error estimates."""
+    return _advance_code(method, t, theta, omega, acceleration, side, h, segment, parameters)
 
 
 @njit  # with its Python entry: tests/solvers/test_engine.py calls it on its own
@@ -584,11 +609,15 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                                out_acceleration, impact_times, impact_velocities, info)
 
 
-@_helper
-def _drive(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
-           subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+_METHOD = METHOD_FAST  # each integrator's own value: see _integrator
+
+
+def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, subdivisions,
+           rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
            impact_velocities, info):
-    """:func:`integrate` for a constant ``method`` (see :func:`_for_method`)."""
+    """:func:`integrate` for the method ``_METHOD`` (a compile-time constant, see
+    :func:`_integrator`)."""
+    method = _METHOD
     n = t_grid.shape[0]
     store = out_theta.shape[0] >= n
     # The block's parameters as a tuple of floats: every helper below takes them by value
@@ -920,37 +949,31 @@ def _drive(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, r
     info[INFO_N_OUTPUT] = filled
 
 
-# nogil: a long run can go on in a thread (Ctrl-C, solvers.common.call_interruptibly), and
-# the batch runs them on several threads.
-@njit(cache=True, nogil=True)
-def integrate_fast(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
-                   subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration,
-                   impact_times, impact_velocities, info):
-    """:func:`integrate` with METHOD_FAST (the default)."""
-    _drive(METHOD_FAST, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
-           subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
-           impact_velocities, info)
+def _integrator(method, name):
+    """:func:`_drive` compiled for ``method`` (cached): one compiled integrator per method.
+
+    The same Python code, with ``_METHOD`` = ``method`` in its own copy of this module's
+    namespace. numba reads ``method == METHOD_...`` as a comparison of two constants and
+    drops the other methods' branches before typing, and passes ``method`` on as a
+    constant to the helpers (:func:`_for_method`): the default method's first compile
+    neither types nor optimises the others' code. The body is compiled into the
+    integrator itself, not called from a thin compiled wrapper, which compiled (and
+    optimised) it twice.
+
+    nogil: a long run can go on in a thread (Ctrl-C, solvers.common.call_interruptibly),
+    and the batch runs them on several threads.
+    """
+    namespace = dict(_drive.__globals__, _METHOD=method)
+    function = types.FunctionType(_drive.__code__, namespace, name)
+    function.__qualname__ = name
+    function.__doc__ = f":func:`integrate` with method code {method}."
+    return njit(cache=True, nogil=True)(function)
 
 
-@njit(cache=True, nogil=True)
-def integrate_predictor_corrector(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0,
-                                  rtol, subdivisions, rest_tolerance, out_theta, out_omega,
-                                  out_acceleration, impact_times, impact_velocities, info):
-    """:func:`integrate` with METHOD_PREDICTOR_CORRECTOR."""
-    _drive(METHOD_PREDICTOR_CORRECTOR, t_grid, ug, vg, rg, scale, parameters, cor, theta0,
-           omega0, rtol, subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration,
-           impact_times, impact_velocities, info)
-
-
-@njit(cache=True, nogil=True)
-def integrate_linear(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
-                     subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration,
-                     impact_times, impact_velocities, info):
-    """:func:`integrate` with METHOD_LINEAR."""
-    _drive(METHOD_LINEAR, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
-           subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
-           impact_velocities, info)
-
+integrate_fast = _integrator(METHOD_FAST, "integrate_fast")
+integrate_predictor_corrector = _integrator(METHOD_PREDICTOR_CORRECTOR,
+                                            "integrate_predictor_corrector")
+integrate_linear = _integrator(METHOD_LINEAR, "integrate_linear")
 
 #: The compiled integrator of each method code.
 INTEGRATORS = {METHOD_FAST: integrate_fast,
