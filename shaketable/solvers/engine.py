@@ -64,6 +64,7 @@ from __future__ import annotations
 
 import math
 import types
+from typing import Any
 
 from numba import njit
 from numba.extending import overload
@@ -123,7 +124,8 @@ from shaketable.solvers.layout import (
 # first compile (about 50 ms each, 1 s in all). Calling one from Python crashes; only
 # `_nystrom` (tested on its own) and the integrators keep theirs. Nor are they cached:
 # numba caches the integrators whole, with every helper they call linked in.
-_HELPER_OPTIONS = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+# (options numba accepts beyond those its type stubs list: typed Any for mypy)
+_HELPER_OPTIONS: Any = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
 _helper = njit(**_HELPER_OPTIONS)
 
 # Eq. (2-13)/(2-14) as the engine's own compiled helpers (the same Python functions as
