@@ -64,7 +64,6 @@ from __future__ import annotations
 
 import math
 import types
-from typing import Any
 
 from numba import njit
 from numba.extending import overload
@@ -75,14 +74,7 @@ from shaketable.core.dynamics import (
     HALF_HEIGHT,
     HALF_WIDTH,
     HOLD_DOWN,
-    INERTIA,
-    ROD_ARM_1,
-    ROD_ARM_2,
-    ROD_FORCE,
-    ROD_STIFFNESS,
-    TOP_FORCE,
     cascade_rest_time,
-    flight_acceleration,
 )
 from shaketable.solvers.layout import (
     EVENT_IMPACT,
@@ -117,134 +109,25 @@ from shaketable.solvers.layout import (
     STATUS_COMPLETED,
     STATUS_OVERTURNED,
 )
+from shaketable.solvers.steppers import (
+    HELPER_OPTIONS,
+    advance,
+    ground,
+    helper,
+    model_acceleration,
+    start_acceleration,
+)
 
-# The compiled helpers below are compiled without the Python entry numba makes for a
-# function called from Python (no_cpython_wrapper, no_cfunc_wrapper): they are only called
-# from compiled code, and that entry's code generation was a third of each helper's
-# first compile (about 50 ms each, 1 s in all). Calling one from Python crashes; only
-# `_nystrom` (tested on its own) and the integrators keep theirs. Nor are they cached:
-# numba caches the integrators whole, with every helper they call linked in.
-# (options numba accepts beyond those its type stubs list: typed Any for mypy)
-_HELPER_OPTIONS: Any = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
-_helper = njit(**_HELPER_OPTIONS)
+# Eq. (2-13)/(2-14)'s cascade sum as a compiled helper (shaketable.core.dynamics' keeps its
+# Python entry; see shaketable.solvers.steppers).
+_cascade_rest_time = helper(cascade_rest_time.py_func)
 
-# Eq. (2-13)/(2-14) as the engine's own compiled helpers (the same Python functions as
-# shaketable.core.dynamics', whose compiled versions keep their Python entry).
-_flight_acceleration = _helper(flight_acceleration.py_func)
-_cascade_rest_time = _helper(cascade_rest_time.py_func)
-
-
-def _for_method(method, implementations):
-    """The implementation for a literal ``method`` type (a compile-time constant), else None.
-
-    Every integrator passes its method as a constant (:func:`_integrator`), which numba
-    types as a literal: the functions overloaded with this choose that method's code
-    at compile time, so that the default method's first compile types and optimises
-    neither the predictor-corrector's nor the linear model's code (the branches of a
-    run-time ``if method == ...`` are all compiled).
-    """
-    value = getattr(method, "literal_value", None)
-    return implementations.get(value) if isinstance(value, int) else None
 
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
 _EVALUATIONS_FAST, _EVALUATIONS_PREDICTOR_CORRECTOR, _EVALUATIONS_LINEAR = 5, 2, 1
 
 
-@_helper
-def _linear_flight_acceleration(theta, side, ug, vg, rg, parameters):
-    """Slender-block linearisation (Eq. 2-4) about the corner ``side``, analytic in theta."""
-    s = side
-    b = parameters[HALF_WIDTH]
-    h = parameters[HALF_HEIGHT]
-    radius = math.sqrt(b * b + h * h)
-    inertia = parameters[INERTIA]
-    arm_1 = parameters[ROD_ARM_1]
-    arm_2 = parameters[ROD_ARM_2]
-    rods = (parameters[ROD_FORCE] * (arm_1 + arm_2)
-            + parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) * s * theta)
-    top = parameters[TOP_FORCE] * 2.0 * parameters[HALF_HEIGHT]
-    return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods - top) / inertia - rg
-
-
-# The implementations the overloads below return are plain functions with the overloaded
-# function's arguments: numba compiles each as the implementation itself, with no extra
-# compiled layer (each layer links and optimises its callees again).
-def _linear_acceleration(method, theta, side, ug, vg, rg, parameters):
-    """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4)."""
-    s = side
-    if theta > 0.0:
-        s = 1.0
-    elif theta < 0.0:
-        s = -1.0
-    return _linear_flight_acceleration(theta, s, ug, vg, rg, parameters)
-
-
-def _angular_acceleration(method, theta, side, ug, vg, rg, parameters):
-    """Eq. (2-13)/(2-14) on the corner the block stands on (as
-    :func:`shaketable.core.dynamics.angular_acceleration`)."""
-    s = side
-    if theta > 0.0:
-        s = 1.0
-    elif theta < 0.0:
-        s = -1.0
-    return _flight_acceleration(theta, s, ug, vg, rg, parameters)
-
-
-def _model_acceleration_code(method, theta, side, ug, vg, rg, parameters):
-    """The code of :func:`model_acceleration` for a constant ``method`` (compiled code only)."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(_model_acceleration_code, prefer_literal=True, jit_options=_HELPER_OPTIONS)
-def _model_acceleration(method, theta, side, ug, vg, rg, parameters):
-    return _for_method(method, {METHOD_FAST: _angular_acceleration,
-                                METHOD_PREDICTOR_CORRECTOR: _angular_acceleration,
-                                METHOD_LINEAR: _linear_acceleration})
-
-
-# The overloaded functions are called through these helpers: numba compiles an overload's
-# implementation once per caller's compile options (the integrators' differ from the
-# helpers'), so called from both it would be compiled twice.
-@_helper
-def model_acceleration(method, theta, side, ug, vg, rg, parameters):
-    """theta'' of the model a method integrates: exact, or linearised for METHOD_LINEAR."""
-    return _model_acceleration_code(method, theta, side, ug, vg, rg, parameters)
-
-
-@_helper
-def _ground(segment, time):
-    """Horizontal, vertical [m/s^2] and rotational [rad/s^2] table acceleration at ``time``."""
-    fraction = (time - segment[0]) / segment[1]
-    return (segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction,
-            segment[6] + segment[7] * fraction)
-
-
-def _start_acceleration_code(method, t, theta, side, segment, parameters):
-    """The code of :func:`_start_acceleration` for a constant ``method`` (compiled only)."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(_start_acceleration_code, prefer_literal=True, jit_options=_HELPER_OPTIONS)
-def _start_acceleration_for(method, t, theta, side, segment, parameters):
-    def exact(method, t, theta, side, segment, parameters):
-        ug, vg, rg = _ground(segment, t)
-        return _flight_acceleration(theta, side, ug, vg, rg, parameters)
-
-    def linear(method, t, theta, side, segment, parameters):
-        ug, vg, rg = _ground(segment, t)
-        return _linear_flight_acceleration(theta, side, ug, vg, rg, parameters)
-
-    return _for_method(method, {METHOD_FAST: exact, METHOD_PREDICTOR_CORRECTOR: exact,
-                                METHOD_LINEAR: linear})
-
-
-@_helper
-def _start_acceleration(method, t, theta, side, segment, parameters):
-    """theta'' of the flight model at the start of a flight or of an interval."""
-    return _start_acceleration_code(method, t, theta, side, segment, parameters)
-
-
-@_helper
+@helper
 def _first_positive_margin(method, start, t_end, side, segment, parameters):
     """The first time in [start, t_end] at which rocking onto ``side`` really begins [s].
 
@@ -257,7 +140,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
     the crossing was found), so bisection gives the first representable time
     with a positive margin, a few ulps after ``start``.
     """
-    ua, va, ra = _ground(segment, start)
+    ua, va, ra = ground(segment, start)
     if side * model_acceleration(method, 0.0, side, ua, va, ra, parameters) > 0.0:
         return start
     low = start
@@ -266,7 +149,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
         middle = 0.5 * (low + high)
         if middle <= low or middle >= high:
             break
-        um, vm, rm = _ground(segment, middle)
+        um, vm, rm = ground(segment, middle)
         if side * model_acceleration(method, 0.0, side, um, vm, rm, parameters) > 0.0:
             high = middle
         else:
@@ -274,153 +157,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
     return high
 
 
-def _nystrom_step(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``acceleration`` (k1).
-
-    Eq. (2-13)/(2-14) is a special second-order equation, theta'' = f(t, theta)
-    with no theta' term, which Nystrom formulas integrate directly: the pair
-    RKN6(4)6FM of Dormand, El-Mikkawy and Prince (IMA J. Numer. Anal. 7 (1987)
-    235-250) is of order 6 with an embedded order-4 estimate, and its sixth
-    stage is f(t + h, theta_new), reused as the next step's first (five new
-    evaluations per step against Dormand-Prince 5(4)'s six, at one order more).
-    Stages: theta_i = theta + c_i h omega + h^2 sum_j a_ij k_j,
-    k_i = f(t + c_i h, theta_i); theta_new = theta + h omega + h^2 sum b_i k_i,
-    omega_new = omega + h sum b'_i k_i.
-
-    Returns theta, omega and theta'' at ``t + h`` and the error estimates of
-    theta and omega (main minus embedded formula).
-    """
-    def f(time, x):
-        ug, vg, rg = _ground(segment, time)
-        return _flight_acceleration(x, side, ug, vg, rg, parameters)
-
-    k1 = acceleration
-    hh = h * h
-    k2 = f(t + 0.1 * h, theta + 0.1 * h * omega + hh * (1.0 / 200.0) * k1)
-    k3 = f(t + 0.3 * h, theta + 0.3 * h * omega
-           + hh * (-1.0 / 2200.0 * k1 + 1.0 / 22.0 * k2))
-    k4 = f(t + 0.7 * h, theta + 0.7 * h * omega
-           + hh * (637.0 / 6600.0 * k1 - 7.0 / 110.0 * k2 + 7.0 / 33.0 * k3))
-    k5 = f(t + 0.68 * h, theta + 0.68 * h * omega
-           + hh * (225437.0 / 1968750.0 * k1 - 30073.0 / 281250.0 * k2
-                   + 65569.0 / 281250.0 * k3 - 9367.0 / 984375.0 * k4))
-    theta_new = theta + h * omega + hh * (151.0 / 2142.0 * k1 + 5.0 / 116.0 * k2
-                                          + 385.0 / 1368.0 * k3 + 55.0 / 168.0 * k4
-                                          - 6250.0 / 28101.0 * k5)
-    k6 = f(t + h, theta_new)
-    omega_new = omega + h * (151.0 / 2142.0 * k1 + 25.0 / 522.0 * k2 + 275.0 / 684.0 * k3
-                             + 275.0 / 252.0 * k4 - 78125.0 / 112404.0 * k5 + 1.0 / 12.0 * k6)
-    # main minus embedded weights (the embedded formula's are 1349/157500,
-    # 7873/50000, 192199/900000, 521683/2100000, -16/125 for theta and 1349/157500,
-    # 7873/45000, 27457/90000, 521683/630000, -2/5, 1/12 for omega)
-    e1 = 151.0 / 2142.0 - 1349.0 / 157500.0
-    error_theta = hh * (e1 * k1 + (5.0 / 116.0 - 7873.0 / 50000.0) * k2
-                        + (385.0 / 1368.0 - 192199.0 / 900000.0) * k3
-                        + (55.0 / 168.0 - 521683.0 / 2100000.0) * k4
-                        + (-6250.0 / 28101.0 + 16.0 / 125.0) * k5)
-    error_omega = h * (e1 * k1 + (25.0 / 522.0 - 7873.0 / 45000.0) * k2
-                       + (275.0 / 684.0 - 27457.0 / 90000.0) * k3
-                       + (275.0 / 252.0 - 521683.0 / 630000.0) * k4
-                       + (-78125.0 / 112404.0 + 2.0 / 5.0) * k5)
-    return theta_new, omega_new, k6, error_theta, error_omega
-
-
-@_helper
-def _heun(t, theta, omega, acceleration, side, h, segment, parameters):
-    """The report's predictor-corrector step (Section 2.8): Euler predictor, trapezoidal corrector.
-
-    ``acceleration`` is theta'' at the start; theta'' at the end is returned
-    for the next step.
-    """
-    theta_predicted = theta + h * omega
-    ug, vg, rg = _ground(segment, t + h)
-    acceleration_predicted = _flight_acceleration(theta_predicted, side, ug, vg, rg, parameters)
-    omega_new = omega + 0.5 * h * (acceleration + acceleration_predicted)
-    theta_new = theta + 0.5 * h * (omega + omega_new)
-    acceleration_new = _flight_acceleration(theta_new, side, ug, vg, rg, parameters)
-    return theta_new, omega_new, acceleration_new, 0.0, 0.0
-
-
-@_helper
-def _closed_form(t, theta, omega, side, h, segment, parameters):
-    """Exact solution of the linearised equation over a time ``h`` (METHOD_LINEAR)."""
-    span, du, v0, dv, dr = segment[1], segment[3], segment[4], segment[5], segment[7]
-    b = parameters[HALF_WIDTH]
-    hh = parameters[HALF_HEIGHT]
-    radius = math.sqrt(b * b + hh * hh)
-    inertia = parameters[INERTIA]
-    q = radius / inertia  # = 3 / (4 R)
-    s = side
-    arm_1 = parameters[ROD_ARM_1]
-    arm_2 = parameters[ROD_ARM_2]
-    # held at its value at the middle of the step (not of the input interval): as
-    # h -> 0 the closed form's theta'' tends to the model's at t, so a start of
-    # rocking found with v(t) never turns into an impact at zero elapsed time
-    # (which looped forever when v changed fast near -g)
-    vertical = v0 + dv * ((t - segment[0]) + 0.5 * h) / span
-    mu = q * (G + vertical) - parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) / inertia
-    ug_here, _, rg_here = _ground(segment, t)
-    c0 = (q * ug_here - q * (G + vertical) * s * parameters[ALPHA]
-          - s * parameters[ROD_FORCE] * (arm_1 + arm_2) / inertia
-          - parameters[TOP_FORCE] * 2.0 * hh / inertia - rg_here)
-    c1 = q * du / span - dr / span
-    if abs(mu) * h * h < 1e-12:
-        theta_new = theta + omega * h + c0 * h * h / 2.0 + c1 * h * h * h / 6.0 + mu * theta * h * h / 2.0
-        omega_new = omega + c0 * h + c1 * h * h / 2.0 + mu * theta * h
-    else:
-        particular = -c0 / mu
-        particular_rate = -c1 / mu
-        a = theta - particular
-        if mu > 0.0:
-            lam = math.sqrt(mu)
-            bb = (omega - particular_rate) / lam
-            ch = math.cosh(lam * h)
-            sh = math.sinh(lam * h)
-            theta_new = a * ch + bb * sh + particular + particular_rate * h
-            omega_new = lam * (a * sh + bb * ch) + particular_rate
-        else:
-            lam = math.sqrt(-mu)
-            bb = (omega - particular_rate) / lam
-            co = math.cos(lam * h)
-            si = math.sin(lam * h)
-            theta_new = a * co + bb * si + particular + particular_rate * h
-            omega_new = lam * (-a * si + bb * co) + particular_rate
-    # theta'' = mu theta + c0 + c1 tau exactly along the closed form
-    return theta_new, omega_new, mu * theta_new + c0 + c1 * h, 0.0, 0.0
-
-
-def _advance_code(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    """The code of :func:`_advance` for a constant ``method`` (compiled code only)."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(_advance_code, prefer_literal=True, jit_options=_HELPER_OPTIONS)
-def _advance_for(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    def predictor_corrector(method, t, theta, omega, acceleration, side, h, segment,
-                            parameters):
-        return _heun(t, theta, omega, acceleration, side, h, segment, parameters)
-
-    def linear(method, t, theta, omega, acceleration, side, h, segment, parameters):
-        return _closed_form(t, theta, omega, side, h, segment, parameters)
-
-    return _for_method(method, {METHOD_FAST: _nystrom_step,
-                                METHOD_PREDICTOR_CORRECTOR: predictor_corrector,
-                                METHOD_LINEAR: linear})
-
-
-@_helper
-def _advance(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    """One step of ``method``: theta, omega, theta'' at ``t + h`` and error estimates."""
-    return _advance_code(method, t, theta, omega, acceleration, side, h, segment, parameters)
-
-
-@njit  # with its Python entry: tests/solvers/test_engine.py calls it on its own
-def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
-    """One Runge-Kutta-Nystrom 6(4) step (:func:`_nystrom_step`) from theta''(t) = ``k1``."""
-    return _advance(METHOD_FAST, t, theta, omega, k1, side, h, segment, parameters)
-
-
-@_helper
+@helper
 def _event(kind, x, v, a, side, sign, alpha):
     """Event function (positive before the event, <= 0 at and after it) and its rate."""
     if kind == EVENT_IMPACT:
@@ -434,7 +171,7 @@ def _event(kind, x, v, a, side, sign, alpha):
     return alpha + x, v
 
 
-@_helper
+@helper
 def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
             a_upper, segment, parameters, sign):
     """First root of an event function on (0, upper], by a safeguarded Newton iteration.
@@ -470,7 +207,7 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
         if abs(newton) <= tolerance:
             break  # c is the root to within rounding
         previous = change
-        x, v, acc, _, _ = _advance(method, t, theta, omega, acceleration, side, candidate,
+        x, v, acc, _, _ = advance(method, t, theta, omega, acceleration, side, candidate,
                                    segment, parameters)
         trials += 1
         g, dg = _event(kind, x, v, acc, side, sign, alpha)
@@ -485,7 +222,7 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
     return c, xc, vc, ac, trials
 
 
-@_helper
+@helper
 def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_only):
     """Where a step may hide a dip below theta = 0 between two turning points [s], else 0.
 
@@ -524,7 +261,7 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     return s * h
 
 
-@_helper
+@helper
 def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
                     threshold, first_only, segment, parameters):
     """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
@@ -542,7 +279,7 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, o
     if tau <= 0.0:
         return 0.0, x, v, acc, trials
     for _ in range(12):
-        x, v, acc, _, _ = _advance(method, t, theta, omega, acceleration, side, tau, segment,
+        x, v, acc, _, _ = advance(method, t, theta, omega, acceleration, side, tau, segment,
                                    parameters)
         trials += 1
         if side * x <= 0.0:
@@ -717,8 +454,8 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                     break
                 if rest_until > t:
                     t = rest_until
-                ua, va, ra = _ground(segment, t)
-                ub, vb, rb = _ground(segment, t_end)
+                ua, va, ra = ground(segment, t)
+                ub, vb, rb = ground(segment, t_end)
                 start = math.inf
                 start_side = 0.0
                 for s in (1.0, -1.0):
@@ -749,7 +486,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
 
             if not known:
                 if method != METHOD_LINEAR:  # the closed form does not need it
-                    acceleration = _start_acceleration(method, t, theta, side, segment,
+                    acceleration = start_acceleration(method, t, theta, side, segment,
                                                        block)
                     evaluations += 1
                 known = True
@@ -764,7 +501,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                     h = min(substep, t_end - t)
             else:
                 h = t_end - t
-            theta_new, omega_new, acceleration_new, error_theta, error_omega = _advance(
+            theta_new, omega_new, acceleration_new, error_theta, error_omega = advance(
                 method, t, theta, omega, acceleration, side, h, segment, block)
             evaluations += per_step
             if method == METHOD_FAST:
@@ -903,7 +640,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 side = -side
                 theta = 0.0
                 known = False
-                ux, vx, rx = _ground(segment, t)
+                ux, vx, rx = ground(segment, t)
                 deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, rx,
                                                           block)
                 remaining = _cascade_rest_time(omega, deceleration, cor)
@@ -957,7 +694,7 @@ def _integrator(method, name):
     The same Python code, with ``_METHOD`` = ``method`` in its own copy of this module's
     namespace. numba reads ``method == METHOD_...`` as a comparison of two constants and
     drops the other methods' branches before typing, and passes ``method`` on as a
-    constant to the helpers (:func:`_for_method`): the default method's first compile
+    constant to the helpers (:func:`for_method`): the default method's first compile
     neither types nor optimises the others' code. The body is compiled into the
     integrator itself, not called from a thin compiled wrapper, which compiled (and
     optimised) it twice.
@@ -983,7 +720,7 @@ INTEGRATORS = {METHOD_FAST: integrate_fast,
                METHOD_LINEAR: integrate_linear}
 
 
-@overload(integrate, prefer_literal=True, jit_options=_HELPER_OPTIONS, inline="always")
+@overload(integrate, prefer_literal=True, jit_options=HELPER_OPTIONS, inline="always")
 def _integrate_compiled(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0,
                         rtol, subdivisions, rest_tolerance, out_theta, out_omega,
                         out_acceleration, impact_times, impact_velocities, info):
