@@ -112,17 +112,25 @@ def _cases(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_bloc
     occupies ``offsets[m]:offsets[m + 1]``. ``parameters[j]`` is block j's
     :func:`~shaketable.core.dynamics.block_parameters`. ``method`` is a constant (one
     compiled loop per method, :data:`_RUN_CASES`), so each loop calls that method's
-    compiled integrator, the one :func:`~shaketable.solvers.api.simulate` uses.
+    compiled integrator, the one :func:`~shaketable.solvers.api.simulate` uses: inlined
+    into the loop, the comparisons below are of two constants, and numba drops the
+    other branches before typing.
     """
+    if method == METHOD_FAST:
+        integrator = engine.integrate_fast
+    elif method == METHOD_PREDICTOR_CORRECTOR:
+        integrator = engine.integrate_predictor_corrector
+    else:
+        integrator = engine.integrate_linear
     for i in range(first_case, last_case):
         m = case_motion[i]
         first = offsets[m]
         last = offsets[m + 1]
         none = np.empty(0)
-        engine.integrate(method, t_all[first:last], ug_all[first:last], vg_all[first:last],
-                         rg_all[first:last], case_scale[i], parameters[case_block[i]],
-                         case_cor[i], theta0, omega0, rtol, subdivisions, rest_tolerance, none,
-                         none, none, none, none, info[i])
+        integrator(t_all[first:last], ug_all[first:last], vg_all[first:last],
+                   rg_all[first:last], case_scale[i], parameters[case_block[i]], case_cor[i],
+                   theta0, omega0, rtol, subdivisions, rest_tolerance, none, none, none, none,
+                   none, info[i])
 
 
 # Compiled without the GIL: _run_all calls them from several Python threads at once, on

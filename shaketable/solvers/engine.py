@@ -66,7 +66,6 @@ import math
 import types
 
 from numba import njit
-from numba.extending import overload
 
 from shaketable.core.constants import G
 from shaketable.core.dynamics import (
@@ -110,7 +109,6 @@ from shaketable.solvers.layout import (
     STATUS_OVERTURNED,
 )
 from shaketable.solvers.steppers import (
-    HELPER_OPTIONS,
     advance,
     ground,
     helper,
@@ -301,9 +299,8 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
     Each method has its own compiled integrator (:data:`INTEGRATORS`:
     :func:`integrate_fast`, :func:`integrate_predictor_corrector`,
     :func:`integrate_linear`), compiled and cached on its first use: the default
-    method's first compile does not include the other two. From Python this calls
-    the method's integrator; compiled code (the batch) may call it with a constant
-    ``method``, which compiles to a call of that integrator.
+    method's first compile does not include the other two. This calls the method's
+    integrator; compiled code (the batch) calls the integrator itself.
 
     Parameters
     ----------
@@ -718,22 +715,3 @@ integrate_linear = _integrator(METHOD_LINEAR, "integrate_linear")
 INTEGRATORS = {METHOD_FAST: integrate_fast,
                METHOD_PREDICTOR_CORRECTOR: integrate_predictor_corrector,
                METHOD_LINEAR: integrate_linear}
-
-
-@overload(integrate, prefer_literal=True, jit_options=HELPER_OPTIONS, inline="always")
-def _integrate_compiled(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0,
-                        rtol, subdivisions, rest_tolerance, out_theta, out_omega,
-                        out_acceleration, impact_times, impact_velocities, info):
-    value = getattr(method, "literal_value", None)
-    if value not in INTEGRATORS:
-        return None
-    integrator = INTEGRATORS[value]
-
-    def call(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
-             subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
-             impact_velocities, info):
-        integrator(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
-                   subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration,
-                   impact_times, impact_velocities, info)
-
-    return call
