@@ -362,7 +362,10 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
     block = (parameters[0], parameters[1], parameters[2], parameters[3], parameters[4],
              parameters[5], parameters[6], parameters[7], parameters[8], parameters[9])
     alpha = block[ALPHA]
-    radius = math.sqrt(block[HALF_WIDTH] ** 2 + block[HALF_HEIGHT] ** 2)
+    # x * x, not x ** 2: the same number (numba's power by a constant 2 is 1.0 * (x * x)),
+    # without compiling numba's integer-power routine on a first run
+    radius = math.sqrt(block[HALF_WIDTH] * block[HALF_WIDTH]
+                       + block[HALF_HEIGHT] * block[HALF_HEIGHT])
     p = math.sqrt(3.0 * G / (4.0 * radius))
     atol_theta = rtol * alpha
     atol_omega = rtol * alpha * p
