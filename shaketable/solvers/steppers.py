@@ -157,6 +157,14 @@ def start_acceleration(method, t, theta, side, segment, parameters):
 
 
 
+@helper
+def _stage(segment, side, parameters, time, x):
+    """theta'' = f(time, x) of one Nystrom stage (a function called six times, not a
+    closure that numba copies into each call)."""
+    ug, vg, rg = ground(segment, time)
+    return flight_acceleration(x, side, ug, vg, rg, parameters)
+
+
 def nystrom_step(method, t, theta, omega, acceleration, side, h, segment, parameters):
     """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``acceleration`` (k1).
 
@@ -173,24 +181,21 @@ def nystrom_step(method, t, theta, omega, acceleration, side, h, segment, parame
     Returns theta, omega and theta'' at ``t + h`` and the error estimates of
     theta and omega (main minus embedded formula).
     """
-    def f(time, x):
-        ug, vg, rg = ground(segment, time)
-        return flight_acceleration(x, side, ug, vg, rg, parameters)
-
     k1 = acceleration
     hh = h * h
-    k2 = f(t + 0.1 * h, theta + 0.1 * h * omega + hh * (1.0 / 200.0) * k1)
-    k3 = f(t + 0.3 * h, theta + 0.3 * h * omega
-           + hh * (-1.0 / 2200.0 * k1 + 1.0 / 22.0 * k2))
-    k4 = f(t + 0.7 * h, theta + 0.7 * h * omega
-           + hh * (637.0 / 6600.0 * k1 - 7.0 / 110.0 * k2 + 7.0 / 33.0 * k3))
-    k5 = f(t + 0.68 * h, theta + 0.68 * h * omega
-           + hh * (225437.0 / 1968750.0 * k1 - 30073.0 / 281250.0 * k2
-                   + 65569.0 / 281250.0 * k3 - 9367.0 / 984375.0 * k4))
+    k2 = _stage(segment, side, parameters, t + 0.1 * h,
+                theta + 0.1 * h * omega + hh * (1.0 / 200.0) * k1)
+    k3 = _stage(segment, side, parameters, t + 0.3 * h,
+                theta + 0.3 * h * omega + hh * (-1.0 / 2200.0 * k1 + 1.0 / 22.0 * k2))
+    k4 = _stage(segment, side, parameters, t + 0.7 * h, theta + 0.7 * h * omega
+                + hh * (637.0 / 6600.0 * k1 - 7.0 / 110.0 * k2 + 7.0 / 33.0 * k3))
+    k5 = _stage(segment, side, parameters, t + 0.68 * h, theta + 0.68 * h * omega
+                + hh * (225437.0 / 1968750.0 * k1 - 30073.0 / 281250.0 * k2
+                        + 65569.0 / 281250.0 * k3 - 9367.0 / 984375.0 * k4))
     theta_new = theta + h * omega + hh * (151.0 / 2142.0 * k1 + 5.0 / 116.0 * k2
                                           + 385.0 / 1368.0 * k3 + 55.0 / 168.0 * k4
                                           - 6250.0 / 28101.0 * k5)
-    k6 = f(t + h, theta_new)
+    k6 = _stage(segment, side, parameters, t + h, theta_new)
     omega_new = omega + h * (151.0 / 2142.0 * k1 + 25.0 / 522.0 * k2 + 275.0 / 684.0 * k3
                              + 275.0 / 252.0 * k4 - 78125.0 / 112404.0 * k5 + 1.0 / 12.0 * k6)
     # main minus embedded weights (the embedded formula's are 1349/157500,
