@@ -694,10 +694,12 @@ def _integrator(method, name):
     The same Python code, with ``_METHOD`` = ``method`` in its own copy of this module's
     namespace. numba reads ``method == METHOD_...`` as a comparison of two constants and
     drops the other methods' branches before typing, and passes ``method`` on as a
-    constant to the helpers (:func:`for_method`): the default method's first compile
-    neither types nor optimises the others' code. The body is compiled into the
-    integrator itself, not called from a thin compiled wrapper, which compiled (and
-    optimised) it twice.
+    constant to the helpers (:func:`~shaketable.solvers.steppers.for_method`): the default
+    method's first compile neither types nor optimises the others' code. The body is
+    compiled into the integrator itself, not called from a thin compiled wrapper, which
+    compiled (and optimised) it twice. The copied namespace is this module's when the
+    integrators are made (at import): replacing a helper in the module afterwards does
+    not change them.
 
     nogil: a long run can go on in a thread (Ctrl-C, solvers.common.call_interruptibly),
     and the batch runs them on several threads.
