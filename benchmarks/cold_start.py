@@ -11,7 +11,15 @@ signatures of the engine (one: ``simulate`` and the batch share it) and, for com
 the same first call with the cache warm. Targets: first simulate <= 3 s CPU, first batch
 <= 2 s more.
 
-    python3 benchmarks/cold_start.py [--repeats 2]
+``--breakdown`` prints, for one cold first ``simulate``, where its CPU time goes: importing
+numba, and for every function numba compiles (nested as numba compiles them) its own CPU
+time (its typing, lowering and numba passes, excluding the functions it calls) and the
+part of it spent in LLVM (optimisation and machine code, under numba's ``numba:llvm_lock``
+event), from numba's compile events (``numba.core.event``) timed with the process's CPU
+clock; ``outside compiles`` is the rest of the first call (numba's target context built on
+first use, loading, the run itself), which a warm first call pays too.
+
+    python3 benchmarks/cold_start.py [--repeats 2] [--breakdown]
 """
 
 from __future__ import annotations
@@ -45,15 +53,81 @@ from shaketable.solvers import engine
 print(json.dumps({"import [s]": imported - start, "first simulate [s]": first - imported,
                   "first batch after it [s]": batch - first,
                   "batch on one thread after that [s]": serial - batch,
-                  "engine signatures": len(engine.integrate.signatures)}))
+                  "engine signatures": len(engine.integrate_fast.signatures)}))
 """
 
 
-def once(cold: bool, cache: str | None = None) -> dict:
+BREAKDOWN = r"""
+import json, time
+cpu = time.process_time
+start = cpu()
+import shaketable as st
+from shaketable.ground import records
+block = st.Block.parse("16x4ft")
+motion = records.load("pacoima-dam-s16e")
+imported = cpu()
+import numba
+from numba.core import event
+numba_imported = cpu()
+from shaketable.solvers import api  # noqa: F401  (the solvers' modules)
+solvers = cpu()
+
+
+class Clock(event.Listener):
+    def __init__(self):
+        self.marks = []
+
+    def on_start(self, ev):
+        self.marks.append((cpu(), True, ev))
+
+    def on_end(self, ev):
+        self.marks.append((cpu(), False, ev))
+
+
+compiles, llvm = Clock(), Clock()
+event.register("numba:compile", compiles)
+event.register("numba:llvm_lock", llvm)
+before = cpu()
+st.simulate(block, motion, cor=0.95)
+after = cpu()
+marks = sorted([(t, 0, s, e) for t, s, e in compiles.marks] + [(t, 1, s, e) for t, s, e in llvm.marks],
+               key=lambda mark: mark[0])
+stack, rows, llvm_started = [], [], 0.0
+for t, kind, starting, ev in marks:
+    if kind == 1:
+        if starting:
+            llvm_started = t
+        elif stack:
+            stack[-1][3] += t - llvm_started
+        continue
+    if starting:
+        function = ev.data["dispatcher"].py_func
+        stack.append([t, function.__qualname__.replace(".<locals>", ""), 0.0, 0.0, len(stack)])
+    else:
+        began, name, nested, in_llvm, depth = stack.pop()
+        total = t - began
+        if stack:
+            stack[-1][2] += total
+        rows.append({"function": "  " * depth + name, "self [s]": round(total - nested, 3),
+                     "of which LLVM [s]": round(in_llvm, 3), "with callees [s]": round(total, 3)})
+compiled = sum(row["self [s]"] for row in rows)
+print(json.dumps({"import shaketable + a record [s]": imported - start,
+                  "import numba [s]": numba_imported - imported,
+                  "import the solvers [s]": solvers - numba_imported,
+                  "first simulate [s]": after - before,
+                  "  compiles [s]": compiled,
+                  "  of which LLVM [s]": sum(row["of which LLVM [s]"] for row in rows),
+                  "  outside compiles [s]": after - before - compiled,
+                  "functions compiled": len(rows),
+                  "per function, outermost first": rows[::-1]}))
+"""
+
+
+def once(cold: bool, cache: str | None = None, child: str = CHILD) -> dict:
     env = dict(os.environ)
     with tempfile.TemporaryDirectory() as folder:
         env["NUMBA_CACHE_DIR"] = folder if cold else (cache or env.get("NUMBA_CACHE_DIR", ""))
-        output = subprocess.run([sys.executable, "-c", CHILD], capture_output=True, text=True,
+        output = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True,
                                 env=env, check=True).stdout
     return json.loads(output.strip().splitlines()[-1])
 
@@ -61,7 +135,13 @@ def once(cold: bool, cache: str | None = None) -> dict:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--breakdown", action="store_true",
+                        help="where one cold first simulate's CPU time goes, per function")
     args = parser.parse_args(argv)
+    if args.breakdown:
+        print(json.dumps({**once(cold=True, child=BREAKDOWN), "load average": os.getloadavg()},
+                         indent=1))
+        return 0
     runs = [once(cold=True) for _ in range(args.repeats)]
     keys = runs[0].keys()
     best = {key: min(run[key] for run in runs) for key in keys}

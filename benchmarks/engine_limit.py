@@ -4,7 +4,7 @@
 The limit is the cost of the run's right-hand-side evaluations alone: the same number of
 calls of :func:`shaketable.core.dynamics.flight_acceleration` (the run's own
 ``statistics["evaluations"]``) in a tight compiled loop, measured in the same process.
-Printed: CPU time per run [ms] of ``simulate``, of ``engine.integrate`` called directly
+Printed: CPU time per run [ms] of ``simulate``, of ``engine.integrate_fast`` called directly
 (no Python wrapper), of the limit loop, and the two ratios (target: simulate <= 2.0 x the
 limit). Times are CPU time (``time.process_time``) of a block of runs, the minimum over
 repeats, so that other processes on a shared machine count as little as possible.
@@ -76,8 +76,8 @@ def measure(repeats: int = 30, block_runs: int = 20) -> dict:
     def engine_only():
         info = np.zeros(engine.N_INFO)
         empty = np.zeros(0)
-        engine.integrate(engine.METHOD_FAST, t, ug, vg, rg, 1.0, parameters, 0.95, 0.0, 0.0, 1e-11,
-                         4, -1.0, np.zeros(n), np.zeros(n), np.zeros(n), empty, empty, info)
+        engine.integrate_fast(t, ug, vg, rg, 1.0, parameters, 0.95, 0.0, 0.0, 1e-11, 4, -1.0,
+                              np.zeros(n), np.zeros(n), np.zeros(n), empty, empty, info)
 
     rhs_loop(10, ug, vg, parameters)
     engine_only()

@@ -148,9 +148,8 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
                             theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
                             impact_velocities, info)
     else:
-        call_interruptibly(engine.integrate, (
-            COMPILED_METHODS[method], t_grid, ug, vg, rg, 1.0, parameters, cor, theta0, theta_dot0,
-            rtol, subdivisions, rest, theta, omega, acceleration, impact_times,
-            impact_velocities, info), work)
+        call_interruptibly(engine.INTEGRATORS[COMPILED_METHODS[method]], (
+            t_grid, ug, vg, rg, 1.0, parameters, cor, theta0, theta_dot0, rtol, subdivisions,
+            rest, theta, omega, acceleration, impact_times, impact_velocities, info), work)
     return result_from_info(block, motion, cor, method, t_grid, theta, omega, acceleration,
                    impact_times, impact_velocities, info)

@@ -52,6 +52,7 @@ from shaketable.solvers.common import (
     extended,
     run_options,
 )
+from shaketable.solvers.layout import METHOD_FAST, METHOD_LINEAR, METHOD_PREDICTOR_CORRECTOR
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -101,27 +102,80 @@ class Case:
                                                         low_open=True))
 
 
-@njit(cache=True, nogil=True)
-def _run_cases(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
-               case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
-               rest_tolerance, info, first_case, last_case):
+@njit(inline="always")
+def _cases(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
+           case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
+           rest_tolerance, info, first_case, last_case):
     """Integrate cases ``first_case`` to ``last_case - 1``; ``info[i]`` gets case i's results.
 
     The motions are stored end to end in ``t_all`` ... ``rg_all``; motion m
     occupies ``offsets[m]:offsets[m + 1]``. ``parameters[j]`` is block j's
-    :func:`~shaketable.core.dynamics.block_parameters`. Compiled without the GIL:
-    :func:`_run_all` calls it from several Python threads at once, on separate ranges
-    of cases (so do Dask workers, one batch each).
+    :func:`~shaketable.core.dynamics.block_parameters`. ``method`` is a constant (one
+    compiled loop per method, :data:`_RUN_CASES`), so each loop calls that method's
+    compiled integrator, the one :func:`~shaketable.solvers.api.simulate` uses: inlined
+    into the loop, the comparisons below are of two constants, and numba drops the
+    other branches before typing.
     """
+    if method == METHOD_FAST:
+        integrator = engine.integrate_fast
+    elif method == METHOD_PREDICTOR_CORRECTOR:
+        integrator = engine.integrate_predictor_corrector
+    else:
+        integrator = engine.integrate_linear
     for i in range(first_case, last_case):
         m = case_motion[i]
         first = offsets[m]
         last = offsets[m + 1]
         none = np.empty(0)
-        engine.integrate(method, t_all[first:last], ug_all[first:last], vg_all[first:last],
-                         rg_all[first:last], case_scale[i], parameters[case_block[i]],
-                         case_cor[i], theta0, omega0, rtol, subdivisions, rest_tolerance, none,
-                         none, none, none, none, info[i])
+        integrator(t_all[first:last], ug_all[first:last], vg_all[first:last],
+                   rg_all[first:last], case_scale[i], parameters[case_block[i]], case_cor[i],
+                   theta0, omega0, rtol, subdivisions, rest_tolerance, none, none, none, none,
+                   none, info[i])
+
+
+# Compiled without the GIL: _run_all calls them from several Python threads at once, on
+# separate ranges of cases (so do Dask workers, one batch each).
+@njit(cache=True, nogil=True)
+def _run_cases_fast(t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block, case_motion,
+                    case_cor, case_scale, theta0, omega0, rtol, subdivisions, rest_tolerance,
+                    info, first_case, last_case):
+    """:func:`_cases` with METHOD_FAST."""
+    _cases(METHOD_FAST, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
+           case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
+           rest_tolerance, info, first_case, last_case)
+
+
+@njit(cache=True, nogil=True)
+def _run_cases_predictor_corrector(t_all, ug_all, vg_all, rg_all, offsets, parameters,
+                                   case_block, case_motion, case_cor, case_scale, theta0, omega0,
+                                   rtol, subdivisions, rest_tolerance, info, first_case,
+                                   last_case):
+    """:func:`_cases` with METHOD_PREDICTOR_CORRECTOR."""
+    _cases(METHOD_PREDICTOR_CORRECTOR, t_all, ug_all, vg_all, rg_all, offsets,
+           parameters, case_block, case_motion, case_cor, case_scale, theta0, omega0, rtol,
+           subdivisions, rest_tolerance, info, first_case, last_case)
+
+
+@njit(cache=True, nogil=True)
+def _run_cases_linear(t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
+                      case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
+                      rest_tolerance, info, first_case, last_case):
+    """:func:`_cases` with METHOD_LINEAR."""
+    _cases(METHOD_LINEAR, t_all, ug_all, vg_all, rg_all, offsets, parameters,
+           case_block, case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
+           rest_tolerance, info, first_case, last_case)
+
+
+#: The compiled loop of each method code.
+_RUN_CASES = {METHOD_FAST: _run_cases_fast,
+              METHOD_PREDICTOR_CORRECTOR: _run_cases_predictor_corrector,
+              METHOD_LINEAR: _run_cases_linear}
+
+
+def _run_cases(method: int, *arguments: Any) -> None:
+    """Cases ``arguments[-2]`` to ``arguments[-1] - 1`` in the compiled loop of ``method``."""
+    loop: Any = _RUN_CASES[method]  # a numba dispatcher: its arguments are typed when called
+    loop(*arguments)
 
 
 def set_default_threads(threads: int) -> None:
@@ -144,7 +198,7 @@ def _run_all(arguments: tuple, n_cases: int, threads: int) -> None:
     GIL, so the threads run in parallel. The results do not depend on the number of
     threads: each case writes its own row of ``info``.
     """
-    compiled: Any = _run_cases  # a numba dispatcher: its arguments are typed when called
+    compiled = _run_cases
     if threads <= 1 or n_cases <= 1:
         compiled(*arguments, 0, n_cases)
         return

@@ -50,13 +50,20 @@ summation of the endless cascade of impacts of a decaying block
 (:func:`shaketable.core.dynamics.cascade_rest_time`), unstable / overturned, and the
 block leaving the ground when g + vg <= 0.
 
-Size: one compiled unit on purpose (about 820 lines): numba inlines the steppers and
-the event location into :func:`integrate`, and a module boundary would not change that.
+Size: one compiled unit on purpose (about 900 lines): numba inlines the steppers and
+the event location into the integrators, and a module boundary would not change that.
+
+First compile (issue 28): each method has its own compiled integrator, the driver's
+code with the method a compile-time constant (:func:`_integrator`), so the default
+method's first compile types and optimises only the Nystrom stepper and the exact
+model; the helpers have no Python entry; ``benchmarks/cold_start.py --breakdown``
+shows where the rest goes.
 """
 
 from __future__ import annotations
 
 import math
+import types
 
 from numba import njit
 
@@ -66,15 +73,7 @@ from shaketable.core.dynamics import (
     HALF_HEIGHT,
     HALF_WIDTH,
     HOLD_DOWN,
-    INERTIA,
-    ROD_ARM_1,
-    ROD_ARM_2,
-    ROD_FORCE,
-    ROD_STIFFNESS,
-    TOP_FORCE,
-    angular_acceleration,
     cascade_rest_time,
-    flight_acceleration,
 )
 from shaketable.solvers.layout import (
     EVENT_IMPACT,
@@ -109,64 +108,24 @@ from shaketable.solvers.layout import (
     STATUS_COMPLETED,
     STATUS_OVERTURNED,
 )
+from shaketable.solvers.steppers import (
+    advance,
+    ground,
+    helper,
+    model_acceleration,
+    start_acceleration,
+)
+
+# Eq. (2-13)/(2-14)'s cascade sum as a compiled helper (shaketable.core.dynamics' keeps its
+# Python entry; see shaketable.solvers.steppers).
+_cascade_rest_time = helper(cascade_rest_time.py_func)
+
 
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
-_EVALUATIONS_PER_STEP = (5, 2, 1)
+_EVALUATIONS_FAST, _EVALUATIONS_PREDICTOR_CORRECTOR, _EVALUATIONS_LINEAR = 5, 2, 1
 
 
-@njit(cache=True)
-def _linear_flight_acceleration(theta, side, ug, vg, rg, parameters):
-    """Slender-block linearisation (Eq. 2-4) about the corner ``side``, analytic in theta."""
-    s = side
-    b = parameters[HALF_WIDTH]
-    h = parameters[HALF_HEIGHT]
-    radius = math.sqrt(b * b + h * h)
-    inertia = parameters[INERTIA]
-    arm_1 = parameters[ROD_ARM_1]
-    arm_2 = parameters[ROD_ARM_2]
-    rods = (parameters[ROD_FORCE] * (arm_1 + arm_2)
-            + parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) * s * theta)
-    top = parameters[TOP_FORCE] * 2.0 * parameters[HALF_HEIGHT]
-    return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods - top) / inertia - rg
-
-
-@njit(cache=True)
-def _linear_acceleration(theta, side, ug, vg, rg, parameters):
-    """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4)."""
-    s = side
-    if theta > 0.0:
-        s = 1.0
-    elif theta < 0.0:
-        s = -1.0
-    return _linear_flight_acceleration(theta, s, ug, vg, rg, parameters)
-
-
-@njit(cache=True)
-def model_acceleration(method, theta, side, ug, vg, rg, parameters):
-    """theta'' of the model a method integrates: exact, or linearised for METHOD_LINEAR."""
-    if method == METHOD_LINEAR:
-        return _linear_acceleration(theta, side, ug, vg, rg, parameters)
-    return angular_acceleration(theta, side, ug, vg, rg, parameters)
-
-
-@njit(cache=True)
-def _ground(segment, time):
-    """Horizontal, vertical [m/s^2] and rotational [rad/s^2] table acceleration at ``time``."""
-    fraction = (time - segment[0]) / segment[1]
-    return (segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction,
-            segment[6] + segment[7] * fraction)
-
-
-@njit(cache=True)
-def _start_acceleration(method, t, theta, side, segment, parameters):
-    """theta'' of the flight model at the start of a flight or of an interval."""
-    ug, vg, rg = _ground(segment, t)
-    if method == METHOD_LINEAR:
-        return _linear_flight_acceleration(theta, side, ug, vg, rg, parameters)
-    return flight_acceleration(theta, side, ug, vg, rg, parameters)
-
-
-@njit(cache=True)
+@helper
 def _first_positive_margin(method, start, t_end, side, segment, parameters):
     """The first time in [start, t_end] at which rocking onto ``side`` really begins [s].
 
@@ -179,7 +138,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
     the crossing was found), so bisection gives the first representable time
     with a positive margin, a few ulps after ``start``.
     """
-    ua, va, ra = _ground(segment, start)
+    ua, va, ra = ground(segment, start)
     if side * model_acceleration(method, 0.0, side, ua, va, ra, parameters) > 0.0:
         return start
     low = start
@@ -188,7 +147,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
         middle = 0.5 * (low + high)
         if middle <= low or middle >= high:
             break
-        um, vm, rm = _ground(segment, middle)
+        um, vm, rm = ground(segment, middle)
         if side * model_acceleration(method, 0.0, side, um, vm, rm, parameters) > 0.0:
             high = middle
         else:
@@ -196,132 +155,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
     return high
 
 
-@njit(cache=True)
-def _nystrom(t, theta, omega, k1, side, h, segment, parameters):
-    """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``k1``.
-
-    Eq. (2-13)/(2-14) is a special second-order equation, theta'' = f(t, theta)
-    with no theta' term, which Nystrom formulas integrate directly: the pair
-    RKN6(4)6FM of Dormand, El-Mikkawy and Prince (IMA J. Numer. Anal. 7 (1987)
-    235-250) is of order 6 with an embedded order-4 estimate, and its sixth
-    stage is f(t + h, theta_new), reused as the next step's first (five new
-    evaluations per step against Dormand-Prince 5(4)'s six, at one order more).
-    Stages: theta_i = theta + c_i h omega + h^2 sum_j a_ij k_j,
-    k_i = f(t + c_i h, theta_i); theta_new = theta + h omega + h^2 sum b_i k_i,
-    omega_new = omega + h sum b'_i k_i.
-
-    Returns theta, omega and theta'' at ``t + h`` and the error estimates of
-    theta and omega (main minus embedded formula).
-    """
-    def f(time, x):
-        ug, vg, rg = _ground(segment, time)
-        return flight_acceleration(x, side, ug, vg, rg, parameters)
-
-    hh = h * h
-    k2 = f(t + 0.1 * h, theta + 0.1 * h * omega + hh * (1.0 / 200.0) * k1)
-    k3 = f(t + 0.3 * h, theta + 0.3 * h * omega
-           + hh * (-1.0 / 2200.0 * k1 + 1.0 / 22.0 * k2))
-    k4 = f(t + 0.7 * h, theta + 0.7 * h * omega
-           + hh * (637.0 / 6600.0 * k1 - 7.0 / 110.0 * k2 + 7.0 / 33.0 * k3))
-    k5 = f(t + 0.68 * h, theta + 0.68 * h * omega
-           + hh * (225437.0 / 1968750.0 * k1 - 30073.0 / 281250.0 * k2
-                   + 65569.0 / 281250.0 * k3 - 9367.0 / 984375.0 * k4))
-    theta_new = theta + h * omega + hh * (151.0 / 2142.0 * k1 + 5.0 / 116.0 * k2
-                                          + 385.0 / 1368.0 * k3 + 55.0 / 168.0 * k4
-                                          - 6250.0 / 28101.0 * k5)
-    k6 = f(t + h, theta_new)
-    omega_new = omega + h * (151.0 / 2142.0 * k1 + 25.0 / 522.0 * k2 + 275.0 / 684.0 * k3
-                             + 275.0 / 252.0 * k4 - 78125.0 / 112404.0 * k5 + 1.0 / 12.0 * k6)
-    # main minus embedded weights (the embedded formula's are 1349/157500,
-    # 7873/50000, 192199/900000, 521683/2100000, -16/125 for theta and 1349/157500,
-    # 7873/45000, 27457/90000, 521683/630000, -2/5, 1/12 for omega)
-    e1 = 151.0 / 2142.0 - 1349.0 / 157500.0
-    error_theta = hh * (e1 * k1 + (5.0 / 116.0 - 7873.0 / 50000.0) * k2
-                        + (385.0 / 1368.0 - 192199.0 / 900000.0) * k3
-                        + (55.0 / 168.0 - 521683.0 / 2100000.0) * k4
-                        + (-6250.0 / 28101.0 + 16.0 / 125.0) * k5)
-    error_omega = h * (e1 * k1 + (25.0 / 522.0 - 7873.0 / 45000.0) * k2
-                       + (275.0 / 684.0 - 27457.0 / 90000.0) * k3
-                       + (275.0 / 252.0 - 521683.0 / 630000.0) * k4
-                       + (-78125.0 / 112404.0 + 2.0 / 5.0) * k5)
-    return theta_new, omega_new, k6, error_theta, error_omega
-
-
-@njit(cache=True)
-def _heun(t, theta, omega, acceleration, side, h, segment, parameters):
-    """The report's predictor-corrector step (Section 2.8): Euler predictor, trapezoidal corrector.
-
-    ``acceleration`` is theta'' at the start; theta'' at the end is returned
-    for the next step.
-    """
-    theta_predicted = theta + h * omega
-    ug, vg, rg = _ground(segment, t + h)
-    acceleration_predicted = flight_acceleration(theta_predicted, side, ug, vg, rg, parameters)
-    omega_new = omega + 0.5 * h * (acceleration + acceleration_predicted)
-    theta_new = theta + 0.5 * h * (omega + omega_new)
-    acceleration_new = flight_acceleration(theta_new, side, ug, vg, rg, parameters)
-    return theta_new, omega_new, acceleration_new, 0.0, 0.0
-
-
-@njit(cache=True)
-def _closed_form(t, theta, omega, side, h, segment, parameters):
-    """Exact solution of the linearised equation over a time ``h`` (METHOD_LINEAR)."""
-    span, du, v0, dv, dr = segment[1], segment[3], segment[4], segment[5], segment[7]
-    b = parameters[HALF_WIDTH]
-    hh = parameters[HALF_HEIGHT]
-    radius = math.sqrt(b * b + hh * hh)
-    inertia = parameters[INERTIA]
-    q = radius / inertia  # = 3 / (4 R)
-    s = side
-    arm_1 = parameters[ROD_ARM_1]
-    arm_2 = parameters[ROD_ARM_2]
-    # held at its value at the middle of the step (not of the input interval): as
-    # h -> 0 the closed form's theta'' tends to the model's at t, so a start of
-    # rocking found with v(t) never turns into an impact at zero elapsed time
-    # (which looped forever when v changed fast near -g)
-    vertical = v0 + dv * ((t - segment[0]) + 0.5 * h) / span
-    mu = q * (G + vertical) - parameters[ROD_STIFFNESS] * (arm_1 * arm_1 + arm_2 * arm_2) / inertia
-    ug_here, _, rg_here = _ground(segment, t)
-    c0 = (q * ug_here - q * (G + vertical) * s * parameters[ALPHA]
-          - s * parameters[ROD_FORCE] * (arm_1 + arm_2) / inertia
-          - parameters[TOP_FORCE] * 2.0 * hh / inertia - rg_here)
-    c1 = q * du / span - dr / span
-    if abs(mu) * h * h < 1e-12:
-        theta_new = theta + omega * h + c0 * h * h / 2.0 + c1 * h * h * h / 6.0 + mu * theta * h * h / 2.0
-        omega_new = omega + c0 * h + c1 * h * h / 2.0 + mu * theta * h
-    else:
-        particular = -c0 / mu
-        particular_rate = -c1 / mu
-        a = theta - particular
-        if mu > 0.0:
-            lam = math.sqrt(mu)
-            bb = (omega - particular_rate) / lam
-            ch = math.cosh(lam * h)
-            sh = math.sinh(lam * h)
-            theta_new = a * ch + bb * sh + particular + particular_rate * h
-            omega_new = lam * (a * sh + bb * ch) + particular_rate
-        else:
-            lam = math.sqrt(-mu)
-            bb = (omega - particular_rate) / lam
-            co = math.cos(lam * h)
-            si = math.sin(lam * h)
-            theta_new = a * co + bb * si + particular + particular_rate * h
-            omega_new = lam * (-a * si + bb * co) + particular_rate
-    # theta'' = mu theta + c0 + c1 tau exactly along the closed form
-    return theta_new, omega_new, mu * theta_new + c0 + c1 * h, 0.0, 0.0
-
-
-@njit(cache=True)
-def _advance(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    """One step of ``method``: theta, omega, theta'' at ``t + h`` and error estimates."""
-    if method == METHOD_FAST:
-        return _nystrom(t, theta, omega, acceleration, side, h, segment, parameters)
-    if method == METHOD_PREDICTOR_CORRECTOR:
-        return _heun(t, theta, omega, acceleration, side, h, segment, parameters)
-    return _closed_form(t, theta, omega, side, h, segment, parameters)
-
-
-@njit(cache=True)
+@helper
 def _event(kind, x, v, a, side, sign, alpha):
     """Event function (positive before the event, <= 0 at and after it) and its rate."""
     if kind == EVENT_IMPACT:
@@ -335,7 +169,7 @@ def _event(kind, x, v, a, side, sign, alpha):
     return alpha + x, v
 
 
-@njit(cache=True)
+@helper
 def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
             a_upper, segment, parameters, sign):
     """First root of an event function on (0, upper], by a safeguarded Newton iteration.
@@ -371,7 +205,7 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
         if abs(newton) <= tolerance:
             break  # c is the root to within rounding
         previous = change
-        x, v, acc, _, _ = _advance(method, t, theta, omega, acceleration, side, candidate,
+        x, v, acc, _, _ = advance(method, t, theta, omega, acceleration, side, candidate,
                                    segment, parameters)
         trials += 1
         g, dg = _event(kind, x, v, acc, side, sign, alpha)
@@ -386,7 +220,7 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
     return c, xc, vc, ac, trials
 
 
-@njit(cache=True)
+@helper
 def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_only):
     """Where a step may hide a dip below theta = 0 between two turning points [s], else 0.
 
@@ -417,7 +251,7 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     if not (0.0 < s1 < 1.0 and 0.0 < s2 < 1.0):
         return 0.0
     s = s1 if 2.0 * c2 + 6.0 * c3 * s1 > 0.0 else s2  # the minimum of side * theta
-    if first_only and s > min(s1, s2):
+    if first_only > 0.0 and s > min(s1, s2):
         return 0.0  # theta_new < 0: only a minimum before the maximum hides a crossing
     lowest = x0 + s * (v0 + s * (c2 + s * c3))
     if lowest > threshold:
@@ -425,7 +259,7 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     return s * h
 
 
-@njit(cache=True)
+@helper
 def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
                     threshold, first_only, segment, parameters):
     """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
@@ -443,7 +277,7 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, o
     if tau <= 0.0:
         return 0.0, x, v, acc, trials
     for _ in range(12):
-        x, v, acc, _, _ = _advance(method, t, theta, omega, acceleration, side, tau, segment,
+        x, v, acc, _, _ = advance(method, t, theta, omega, acceleration, side, tau, segment,
                                    parameters)
         trials += 1
         if side * x <= 0.0:
@@ -457,11 +291,16 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, o
     return 0.0, x, v, acc, trials
 
 
-@njit(cache=True, nogil=True)  # nogil: a long run can go on in a thread (Ctrl-C, api.py)
 def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
               subdivisions, rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
               impact_velocities, info):
     """Integrate one run; fill the output arrays and ``info`` (see module constants).
+
+    Each method has its own compiled integrator (:data:`INTEGRATORS`:
+    :func:`integrate_fast`, :func:`integrate_predictor_corrector`,
+    :func:`integrate_linear`), compiled and cached on its first use: the default
+    method's first compile does not include the other two. This calls the method's
+    integrator; compiled code (the batch) calls the integrator itself.
 
     Parameters
     ----------
@@ -501,6 +340,20 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
         Filled with the scalar results. ``INFO_EVALUATIONS`` counts every
         right-hand-side evaluation, those of event location included.
     """
+    return INTEGRATORS[method](t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0,
+                               rtol, subdivisions, rest_tolerance, out_theta, out_omega,
+                               out_acceleration, impact_times, impact_velocities, info)
+
+
+_METHOD = METHOD_FAST  # each integrator's own value: see _integrator
+
+
+def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, subdivisions,
+           rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+           impact_velocities, info):
+    """:func:`integrate` for the method ``_METHOD`` (a compile-time constant, see
+    :func:`_integrator`)."""
+    method = _METHOD
     n = t_grid.shape[0]
     store = out_theta.shape[0] >= n
     # The block's parameters as a tuple of floats: every helper below takes them by value
@@ -509,7 +362,10 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
     block = (parameters[0], parameters[1], parameters[2], parameters[3], parameters[4],
              parameters[5], parameters[6], parameters[7], parameters[8], parameters[9])
     alpha = block[ALPHA]
-    radius = math.sqrt(block[HALF_WIDTH] ** 2 + block[HALF_HEIGHT] ** 2)
+    # x * x, not x ** 2: the same number (numba's power by a constant 2 is 1.0 * (x * x)),
+    # without compiling numba's integer-power routine on a first run
+    radius = math.sqrt(block[HALF_WIDTH] * block[HALF_WIDTH]
+                       + block[HALF_HEIGHT] * block[HALF_HEIGHT])
     p = math.sqrt(3.0 * G / (4.0 * radius))
     atol_theta = rtol * alpha
     atol_omega = rtol * alpha * p
@@ -521,7 +377,11 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
         velocity_floor = max(velocity_floor, 1e3 * atol_omega)
     hold_down = block[HOLD_DOWN]
     max_recorded = impact_times.shape[0]
-    per_step = _EVALUATIONS_PER_STEP[method]
+    per_step = _EVALUATIONS_LINEAR
+    if method == METHOD_FAST:
+        per_step = _EVALUATIONS_FAST
+    elif method == METHOD_PREDICTOR_CORRECTOR:
+        per_step = _EVALUATIONS_PREDICTOR_CORRECTOR
 
     for i in range(N_INFO):
         info[i] = math.nan
@@ -594,8 +454,8 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                     break
                 if rest_until > t:
                     t = rest_until
-                ua, va, ra = _ground(segment, t)
-                ub, vb, rb = _ground(segment, t_end)
+                ua, va, ra = ground(segment, t)
+                ub, vb, rb = ground(segment, t_end)
                 start = math.inf
                 start_side = 0.0
                 for s in (1.0, -1.0):
@@ -626,7 +486,7 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
 
             if not known:
                 if method != METHOD_LINEAR:  # the closed form does not need it
-                    acceleration = _start_acceleration(method, t, theta, side, segment,
+                    acceleration = start_acceleration(method, t, theta, side, segment,
                                                        block)
                     evaluations += 1
                 known = True
@@ -641,7 +501,7 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                     h = min(substep, t_end - t)
             else:
                 h = t_end - t
-            theta_new, omega_new, acceleration_new, error_theta, error_omega = _advance(
+            theta_new, omega_new, acceleration_new, error_theta, error_omega = advance(
                 method, t, theta, omega, acceleration, side, h, segment, block)
             evaluations += per_step
             if method == METHOD_FAST:
@@ -691,7 +551,7 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                     # below 0, down again): bracket the first crossing
                     found, xd, vd, ad, trials = _dip_on_stepper(
                         method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                        0.5 * side * theta, True, segment, block)
+                        0.5 * side * theta, 1.0, segment, block)
                     evaluations += trials * per_step
                     if found > 0.0:
                         upper, x, v, acc = found, xd, vd, ad
@@ -706,7 +566,7 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                 # a dip below 0 between two turning points that no sign test sees
                 found, x, v, acc, trials = _dip_on_stepper(
                     method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                    0.5 * min(side * theta, side * theta_new), False, segment, block)
+                    0.5 * min(side * theta, side * theta_new), 0.0, segment, block)
                 evaluations += trials * per_step
                 if found > 0.0:
                     tau, theta_new, omega_new, acceleration_new, trials = _locate(
@@ -780,10 +640,10 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
                 side = -side
                 theta = 0.0
                 known = False
-                ux, vx, rx = _ground(segment, t)
+                ux, vx, rx = ground(segment, t)
                 deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, rx,
                                                           block)
-                remaining = cascade_rest_time(omega, deceleration, cor)
+                remaining = _cascade_rest_time(omega, deceleration, cor)
                 if remaining == math.inf and cor >= 1.0 and deceleration > 0.0 and abs(
                         omega) <= velocity_floor:
                     # COR = 1 never ends a cascade by itself: bounces of the same tiny
@@ -826,3 +686,37 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
     info[INFO_STATUS] = status
     info[INFO_N_IMPACTS] = n_impacts
     info[INFO_N_OUTPUT] = filled
+
+
+def _integrator(method, name):
+    """:func:`_drive` compiled for ``method`` (cached): one compiled integrator per method.
+
+    The same Python code, with ``_METHOD`` = ``method`` in its own copy of this module's
+    namespace. numba reads ``method == METHOD_...`` as a comparison of two constants and
+    drops the other methods' branches before typing, and passes ``method`` on as a
+    constant to the helpers (:func:`~shaketable.solvers.steppers.for_method`): the default
+    method's first compile neither types nor optimises the others' code. The body is
+    compiled into the integrator itself, not called from a thin compiled wrapper, which
+    compiled (and optimised) it twice. The copied namespace is this module's when the
+    integrators are made (at import): replacing a helper in the module afterwards does
+    not change them.
+
+    nogil: a long run can go on in a thread (Ctrl-C, solvers.common.call_interruptibly),
+    and the batch runs them on several threads.
+    """
+    namespace = dict(_drive.__globals__, _METHOD=method)
+    function = types.FunctionType(_drive.__code__, namespace, name)
+    function.__qualname__ = name
+    function.__doc__ = f":func:`integrate` with method code {method}."
+    return njit(cache=True, nogil=True)(function)
+
+
+integrate_fast = _integrator(METHOD_FAST, "integrate_fast")
+integrate_predictor_corrector = _integrator(METHOD_PREDICTOR_CORRECTOR,
+                                            "integrate_predictor_corrector")
+integrate_linear = _integrator(METHOD_LINEAR, "integrate_linear")
+
+#: The compiled integrator of each method code.
+INTEGRATORS = {METHOD_FAST: integrate_fast,
+               METHOD_PREDICTOR_CORRECTOR: integrate_predictor_corrector,
+               METHOD_LINEAR: integrate_linear}

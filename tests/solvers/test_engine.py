@@ -581,7 +581,7 @@ def test_fast_stepper_is_sixth_order_with_a_fifth_order_local_error_estimate():
 
     from shaketable.core.constants import G
     from shaketable.core.dynamics import block_parameters, flight_acceleration
-    from shaketable.solvers.engine import _nystrom
+    from shaketable.solvers.steppers import nystrom as _nystrom
 
     block = st.Block.parse("16x4ft")
     parameters = block_parameters(block)
