@@ -637,3 +637,31 @@ def test_a_full_disk_under_calibrate_names_the_file(tmp_path, monkeypatch):
                               "cal", "-q"], tmp_path)
     assert status == 1, err
     assert "calibration.png" in err and "No space left on device" in err, err
+
+
+def test_an_edit_of_an_inlined_helper_moves_the_default_cache_folder(tmp_path):
+    # numba's cache index checks only the file that defines a cached function: an edit of
+    # solvers/steppers.py (inlined into engine.py's integrators) would leave stale machine
+    # code in the cache. The default folder is keyed by the compiled modules' source.
+    import shutil
+
+    copy = tmp_path / "copy"
+    shutil.copytree(REPOSITORY / "shaketable", copy / "shaketable",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    env = {key: value for key, value in os.environ.items() if not key.startswith("NUMBA_")}
+    env.update(XDG_CACHE_HOME=str(tmp_path / "cache"), PYTHONPATH=str(copy))
+    code = "import os, shaketable; print(os.environ['NUMBA_CACHE_DIR'])"
+
+    def folder() -> str:
+        result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                                cwd=tmp_path, env=env, check=True)
+        return result.stdout.strip()
+
+    before = folder()
+    assert before.startswith(str(tmp_path / "cache" / "shaketable" / "numba"))
+    assert folder() == before                       # the same sources, the same folder
+    with open(copy / "shaketable" / "solvers" / "steppers.py", "a") as source:
+        source.write("\n# an edit\n")
+    assert folder() != before
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "mine")  # a folder the user chose stays as it is
+    assert folder() == str(tmp_path / "mine")
