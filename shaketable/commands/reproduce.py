@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from shaketable.commands.common import notice_first_compile
+from shaketable.commands.common import notice_first_compile, scene_uses_planar
 
 
 def _reproduce(args) -> int:
@@ -23,7 +23,10 @@ def _reproduce(args) -> int:
     from shaketable.core.files import prepare_output_folder
 
     out = prepare_output_folder(args.out)
-    notice_first_compile(args.quiet)
+    from shaketable.scenes.catalog import resolve_scene_path
+
+    planar = any(scene_uses_planar(resolve_scene_path(name)) for name in names)
+    notice_first_compile(args.quiet, which=("engine", "planar") if planar else ("engine",))
     failed: list = []
     report = reproduce(names, out=out, progress=not args.quiet, failures=failed)
     for line in _summary(out):

@@ -6,7 +6,7 @@ from pathlib import Path
 
 
 def _run(args) -> int:
-    from shaketable.commands.common import notice_first_compile
+    from shaketable.commands.common import notice_first_compile, scene_uses_planar
     from shaketable.core.files import prepare_output_folder
     from shaketable.scenes.catalog import is_sweep_spec, resolve_scene_path
     from shaketable.scenes.parse import Study, load_scene
@@ -16,7 +16,8 @@ def _run(args) -> int:
                          f"`shaketable sweep {args.scene}`")
     scene = load_scene(resolve_scene_path(args.scene))
     out = prepare_output_folder(args.out or Path("shaketable-out") / scene.name)
-    notice_first_compile(args.quiet)
+    notice_first_compile(args.quiet, which=("engine", "planar")
+                         if scene_uses_planar(resolve_scene_path(args.scene)) else ("engine",))
     if isinstance(scene, Study):
         return _run_study(scene, out)
     from shaketable.scenes.run import run_scene

@@ -41,7 +41,8 @@ def _simulate(args) -> int:
         motion = scaled(motion, args.scale)
     theta0 = _resolve_angle(args.theta0, block)
     out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
-    notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else ("engine",))
+    notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else
+                         ("planar",) if args.friction is not None else ("engine",))
     if isinstance(args.cor, str):           # a calibration.json: the calibrated COR's spread
         from shaketable.commands.calibrate import simulate_calibrated
 

@@ -34,7 +34,7 @@ def _sweep(args: argparse.Namespace) -> int:
               f"slide-rock, flight), {len(spec.friction.pairs)} friction pair(s) (mu_s, mu_d)")
     if not args.scheduler:
         notice_first_compile(args.quiet, which=("batch",) if spec.friction is None
-                             else ("planar batch",))
+                             else ("planar", "planar batch"))
     outcome = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler,
                         resume=args.resume, progress=not (args.no_progress or args.quiet),
                         max_chunks=args.max_chunks)

@@ -1,0 +1,41 @@
+"""The one-line notice before a first compile names what will compile (issue 28).
+
+The planar engine costs ~19 s of CPU to compile (measured, `commands/common.py`), four
+times the rocking engine: a command that will run it must say so before the wait.
+"""
+
+from shaketable.commands import common
+from shaketable.scenes.catalog import resolve_scene_path, scene_names
+
+
+def test_the_scenes_that_run_the_planar_block_are_found_from_their_toml():
+    uses = {name for name in scene_names() if common.scene_uses_planar(resolve_scene_path(name))}
+    # block.static_friction (teaching-slide-or-rock), a mode-map study, Table 4.4's section
+    assert {"teaching-slide-or-rock", "mode-map-pacoima", "table-4-4"} <= uses
+    assert "fig-3-7" not in uses and "table-4-1" not in uses
+
+
+def test_an_empty_cache_names_each_engine_that_will_compile(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    common.notice_first_compile(which=("engine", "planar"))
+    message = capsys.readouterr().err
+    assert "the engine (~4 s)" in message and "the planar engine (~19 s)" in message
+    common.notice_first_compile(quiet=True, which=("planar",))
+    assert capsys.readouterr().err == ""
+
+
+def test_a_compiled_engine_is_found_in_the_cache(tmp_path, monkeypatch):
+    import hashlib
+    import os
+    import sys
+
+    import shaketable.solvers as solvers
+
+    folder = os.path.dirname(os.path.abspath(solvers.__file__))
+    cache = tmp_path / f"solvers_{hashlib.sha1(folder.encode()).hexdigest()}"
+    cache.mkdir()
+    tag = f"py{sys.version_info.major}{sys.version_info.minor}"
+    (cache / f"planar.integrate-191.{tag}.nbi").write_bytes(b"")
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    assert common.compiled_before("planar")
+    assert not common.compiled_before("engine")
