@@ -30,9 +30,34 @@ def save(fig, path, dpi: int = 110) -> None:
 
     plt = pyplot()
     try:
-        atomic_write(path, lambda temporary: fig.savefig(temporary, dpi=dpi, bbox_inches="tight"))
+        atomic_write(path, lambda temporary: save_tight(fig, temporary, dpi))
     finally:
         plt.close(fig)
+
+
+def save_tight(fig, target, dpi: int = 110) -> None:
+    """``fig.savefig(target, dpi=dpi, bbox_inches="tight")``, the same file drawn once.
+
+    For ``bbox_inches="tight"`` matplotlib draws the whole figure once without
+    rendering to find the box, then again to render it. A PNG of a figure without
+    a layout engine (tight_layout already applied, or none) on the Agg canvas
+    does not need the first draw: its box is measured directly, at the same dpi
+    and with the same padding, and the file is byte-identical (every figure of
+    ``shaketable reproduce --all`` checked; issue 28). Any other figure or format
+    goes through ``savefig`` unchanged (a constrained layout is laid out by that
+    first draw).
+    """
+    import matplotlib
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    if (fig.get_layout_engine() is not None or type(fig.canvas) is not FigureCanvasAgg
+            or not str(target).lower().endswith(".png")):
+        fig.savefig(target, dpi=dpi, bbox_inches="tight")
+        return
+    fig.dpi = dpi   # as savefig sets it while it measures and draws
+    box = fig.get_tightbbox(fig.canvas.get_renderer())
+    fig.savefig(target, dpi=dpi,
+                bbox_inches=box.padded(matplotlib.rcParams["savefig.pad_inches"]))
 
 
 #: Where :func:`place_legend` tries a legend inside the axes, in this order.
