@@ -143,8 +143,9 @@ def place_legend(axis, corners=LEGEND_CORNERS, **options):
     matplotlib.legend.Legend
     """
     figure = axis.figure
-    if figure.get_layout_engine() is not None:
-        figure.draw_without_rendering()  # the layout first: corners of the final axes
+    engine = figure.get_layout_engine()
+    if engine is not None and figure.axes:
+        engine.execute(figure)  # the layout first: corners of the final axes
     renderer = figure.canvas.get_renderer()
     points = plotted_points(axis)
     to_axes = axis.transAxes.inverted()
