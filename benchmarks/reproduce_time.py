@@ -12,6 +12,9 @@ each, and the time two workers need when they take the scenes in the pool's orde
 free. Target: <= 30 s wall on 2 cores.
 
     python3 benchmarks/reproduce_time.py [--per-scene] [--keep DIR]
+
+A faster reproduction must write the same files: ``--keep`` a run before and after, then
+``python3 benchmarks/compare_reproduce.py BEFORE AFTER``.
 """
 
 from __future__ import annotations
