@@ -79,3 +79,23 @@ def experiments_folder() -> Path:
     from importlib.resources import files
 
     return Path(str(files("shaketable.experiments")))
+
+
+def study_kind(name_or_path: str) -> str | None:
+    """The ``[study] kind`` of a scene file (``None`` for a single scene), read without
+    parsing the scene: no pipeline module is imported (the table stage's SciPy).
+
+    Raises
+    ------
+    SceneError
+        No such scene, or a file that is not TOML (:func:`resolve_scene_path`).
+    """
+    from shaketable.scenes.parse import tomllib
+
+    path = resolve_scene_path(name_or_path)
+    try:
+        with open(path, "rb") as file:
+            study = tomllib.load(file).get("study")
+    except (OSError, tomllib.TOMLDecodeError) as error:
+        raise SceneError(f"{path}: {error}") from error
+    return str(study.get("kind")) if isinstance(study, dict) else None
