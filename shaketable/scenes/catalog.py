@@ -99,3 +99,30 @@ def study_kind(name_or_path: str) -> str | None:
     except (OSError, tomllib.TOMLDecodeError) as error:
         raise SceneError(f"{path}: {error}") from error
     return str(study.get("kind")) if isinstance(study, dict) else None
+
+
+#: Scenes whose section of the report runs the planar block beside the scene itself.
+_PLANAR_SECTIONS = {"table-4-4"}
+
+
+def uses_planar(name_or_path: str) -> bool:
+    """Whether a scene runs the planar block (issue 25), read from its TOML alone.
+
+    True for ``block.static_friction`` (the planar run per COR), a ``mode-map`` study, and
+    the scenes whose report section recomputes with the planar block (Table 4.4): the
+    first-compile notice names the planar engine for them. An unreadable file is left to
+    the scene parser to report (``False`` here).
+    """
+    from shaketable.scenes.parse import tomllib
+
+    try:
+        path = resolve_scene_path(name_or_path)
+        with open(path, "rb") as file:
+            scene = tomllib.load(file)
+    except (OSError, SceneError, tomllib.TOMLDecodeError):
+        return False
+    if path.stem in _PLANAR_SECTIONS:
+        return True
+    block, study = scene.get("block"), scene.get("study")
+    return (isinstance(block, dict) and "static_friction" in block) or (
+        isinstance(study, dict) and study.get("kind") == "mode-map")
