@@ -93,7 +93,9 @@ def notice_first_compile(quiet: bool = False, which=("engine",)) -> None:
     missing = [name for name in which if not compiled_before(name)]
     if missing:
         parts = [f"{_COMPILED[name][1]} ({_COMPILED[name][2]})" for name in missing]
-        print(f"shaketable: compiling {' and '.join(parts)} once; later runs load "
-              f"{'it' if len(missing) == 1 else 'them'} from the cache in {os.environ.get('NUMBA_CACHE_DIR')}", file=sys.stderr, flush=True)
+        them = "it" if len(missing) == 1 else "them"
+        print(f"shaketable: compiling {' and '.join(parts)} once; later runs load {them} "
+              f"from the cache in {os.environ.get('NUMBA_CACHE_DIR')}", file=sys.stderr,
+              flush=True)
 
 
