@@ -123,20 +123,23 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
     # once per process); a scene's outputs do not depend on the process it runs in, and
     # the report is assembled in the catalogue's order whatever the order of completion.
     import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures import ProcessPoolExecutor, as_completed
 
     bar: Any = iterator if progress else None
     with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
                              initializer=_one_thread_each) as pool:
         # the longest expected first (the report-table studies and their ensembles: half
-        # of the work), so that the processes end together; written in the catalogue's
-        # order. Each result carries its worker's CPU so far (the load balance).
-        futures = {name: pool.submit(_pooled_outcome, name, out)
+        # of the work), so that the processes end together; each scene's section is
+        # written as it completes (the progress bar moves with the work), the report in
+        # the catalogue's order. Each result carries its worker's CPU so far (the load
+        # balance).
+        futures = {pool.submit(_pooled_outcome, name, out): name
                    for name in sorted(names, key=_expected_cost, reverse=True)}
         WORKER_CPU.clear()
         try:
-            for name in names:
-                outcome, worker, cpu = futures[name].result()
+            for future in as_completed(futures):
+                name = futures[future]
+                outcome, worker, cpu = future.result()
                 WORKER_CPU[worker] = max(cpu, WORKER_CPU.get(worker, 0.0))
                 record(name, *outcome)
                 if bar is not None:
@@ -146,6 +149,8 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
             raise
     if bar is not None:
         bar.close()
+    if failures is not None:   # in the catalogue's order, whatever the order of completion
+        failures.sort(key=lambda name: names.index(name) if name in names else len(names))
     return _assemble(out, rerun=names)
 
 
