@@ -126,7 +126,13 @@ STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_PAINLEVE, STATUS_INCONSISTENT, STATU
 #: exceeding alpha, overturning, a flat landing of the whole base.
 EVENT_KINDS = ("mode change", "impact", "slip reverses", "cascade summed", "unstable",
                "overturned", "flat landing")
-EV_MODE, EV_IMPACT, EV_REVERSAL, EV_CASCADE, EV_UNSTABLE, EV_OVERTURN, EV_LANDING = range(7)
+# int64 values, not Python ints: numba types a module's int constants as literals and
+# compiles a helper once for every distinct literal it is called with (_record was
+# compiled 16 times on a cold cache); so are the mode codes _record is given below
+EV_MODE, EV_IMPACT, EV_REVERSAL, EV_CASCADE, EV_UNSTABLE, EV_OVERTURN, EV_LANDING = (
+    np.int64(code) for code in range(7))
+_REST, _SLIDE, _ROCK, _SLIDE_ROCK, _FLIGHT = (
+    np.int64(code) for code in (REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT))
 
 #: Columns of the event array: time [s], kind, mode before, mode after, theta' [rad/s]
 #: (before an impact; else at the event), slip of the base midpoint [m].
@@ -154,12 +160,12 @@ MAX_IMMEDIATE_IMPACTS = 1000
 MAX_TRANSITIONS_PER_INTERVAL = 100_000
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _track(t, q, info, parameters):
     track(t, q, info, I_MAX_ABS_THETA, parameters)   # planar_track's P_* from I_MAX_ABS_THETA
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _record(ev, info, t, kind, before, after, omega, q, parameters):
     record(ev, info, I_N_EVENTS, t, kind, before, after, omega, q, parameters)
 
@@ -276,9 +282,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     _track(t, q, info, parameters)
     slip, _ = measures(q, parameters)
     keep_rows = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
-    if keep_rows:
-        store(out, 0, q, slip, mode)
     filled = 1
+    if keep_rows:
+        store(out, filled - 1, q, slip, mode)   # row 0 as an int64, not a literal 0: store
+        # is compiled once for both its calls
 
     for k in range(n - 1):
         t0 = t_grid[k]
@@ -329,7 +336,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     if mode == ROCK or mode == SLIDE_ROCK:
                         z_from_q(q, side, z, parameters)
                         entered = True
-                    _record(ev, info, t, EV_MODE, REST, mode, 0.0, q, parameters)
+                    _record(ev, info, t, EV_MODE, _REST, mode, 0.0, q, parameters)
             elif mode == SLIDE:
                 length = t_end - t
                 ua, va = ground(segment, t)
@@ -364,7 +371,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     if new_mode == SLIDE:
                         kind = EV_REVERSAL if new_sigma != sigma else EV_MODE
                         sigma = new_sigma
-                        _record(ev, info, t, kind, SLIDE, SLIDE, 0.0, q, parameters)
+                        _record(ev, info, t, kind, _SLIDE, _SLIDE, 0.0, q, parameters)
                     else:
                         mode = new_mode
                         side = new_side
@@ -372,11 +379,11 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         if mode == ROCK or mode == SLIDE_ROCK:
                             z_from_q(q, side, z, parameters)
                             entered = True
-                        _record(ev, info, t, EV_MODE, SLIDE, mode, 0.0, q, parameters)
+                        _record(ev, info, t, EV_MODE, _SLIDE, mode, 0.0, q, parameters)
                 elif t_air >= 0.0:
                     transition = True
                     mode = FLIGHT
-                    _record(ev, info, t, EV_MODE, SLIDE, FLIGHT, 0.0, q, parameters)
+                    _record(ev, info, t, EV_MODE, _SLIDE, _FLIGHT, 0.0, q, parameters)
             elif mode == FLIGHT:
                 length = t_end - t
                 ua, va = ground(segment, t)
@@ -462,7 +469,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 if math.isnan(info[I_T_UNSTABLE]) and abs(ths) > alpha:
                     info[I_T_UNSTABLE] = t + (math.copysign(alpha, ths) - th0) / om0
                     info[I_UNSTABLE_DIRECTION] = 1.0 if ths > 0.0 else -1.0
-                    _record(ev, info, info[I_T_UNSTABLE], EV_UNSTABLE, FLIGHT, FLIGHT, om0, q,
+                    _record(ev, info, info[I_T_UNSTABLE], EV_UNSTABLE, _FLIGHT, _FLIGHT, om0, q,
                             parameters)
                 q[0], q[1], q[2], q[3], q[4], q[5] = xs, ys, ths, xds, yds, oms
                 info[I_TIME_FLIGHT] += span
@@ -473,7 +480,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     q[2] = math.copysign(0.5 * math.pi, ths)
                     info[I_T_OVERTURN] = t
                     info[I_OVERTURN_DIRECTION] = 1.0 if ths > 0.0 else -1.0
-                    _record(ev, info, t, EV_OVERTURN, FLIGHT, FLIGHT, oms, q, parameters)
+                    _record(ev, info, t, EV_OVERTURN, _FLIGHT, _FLIGHT, oms, q, parameters)
                     break
                 if terminal == 1:
                     transition = True
@@ -484,7 +491,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         flat(q, x_dot, parameters)
                         loss += before - kinetic_energy(x_dot, 0.0, 0.0, parameters)
                         sigma = 0.0 if x_dot == 0.0 else math.copysign(1.0, x_dot)
-                        _record(ev, info, t, EV_LANDING, FLIGHT, mode, 0.0, q, parameters)
+                        _record(ev, info, t, EV_LANDING, _FLIGHT, mode, 0.0, q, parameters)
                     else:
                         side = corner_side
                         # the corner on the table (the root is located to the ulp)
@@ -505,7 +512,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         sigma = new_sigma
                         z_from_q(q, side, z, parameters)
                         entered = True
-                        _record(ev, info, t, EV_IMPACT, FLIGHT, mode, omega_before, q,
+                        _record(ev, info, t, EV_IMPACT, _FLIGHT, mode, omega_before, q,
                                 parameters)
             else:
                 # ---------------------------------------------------------------- contact
@@ -620,7 +627,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         break
                     if terminal == E_NORMAL:
                         mode = FLIGHT
-                        _record(ev, info, t, EV_MODE, previous_mode, FLIGHT, z[1], q,
+                        _record(ev, info, t, EV_MODE, previous_mode, _FLIGHT, z[1], q,
                                 parameters)
                     elif terminal == E_FRICTION and mode == ROCK:
                         _, _, _, friction, _ = rock_forces(z[0], z[1], side, u_now, v_now,
@@ -628,7 +635,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         sigma = -1.0 if friction > 0.0 else 1.0
                         mode = SLIDE_ROCK
                         entered = True
-                        _record(ev, info, t, EV_MODE, ROCK, SLIDE_ROCK, z[1], q, parameters)
+                        _record(ev, info, t, EV_MODE, _ROCK, _SLIDE_ROCK, z[1], q, parameters)
                     elif terminal == E_FRICTION:
                         # the slip speed is zero to the located root: the (rounding-level)
                         # kinetic energy taken out by zeroing it is counted as a loss
@@ -641,11 +648,11 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         entered = True
                         if abs(friction) <= mu_s * normal:
                             mode = ROCK
-                            _record(ev, info, t, EV_MODE, SLIDE_ROCK, ROCK, z[1], q,
+                            _record(ev, info, t, EV_MODE, _SLIDE_ROCK, _ROCK, z[1], q,
                                     parameters)
                         else:
                             sigma = -1.0 if friction > 0.0 else 1.0
-                            _record(ev, info, t, EV_REVERSAL, SLIDE_ROCK, SLIDE_ROCK, z[1], q,
+                            _record(ev, info, t, EV_REVERSAL, _SLIDE_ROCK, _SLIDE_ROCK, z[1], q,
                                     parameters)
                     else:
                         # ---- impact of the other corner at theta = 0; a plastic impact
@@ -734,8 +741,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 else:
                                     mode = SLIDE
                                     sigma = 1.0 if base > 0.0 else -1.0
-                                _record(ev, info, t, EV_CASCADE, SLIDE_ROCK if base != 0.0
-                                        else ROCK, mode, omega, q, parameters)
+                                _record(ev, info, t, EV_CASCADE, _SLIDE_ROCK if base != 0.0
+                                        else _ROCK, mode, omega, q, parameters)
                                 break
                             if side * q[5] >= 0.0:
                                 break

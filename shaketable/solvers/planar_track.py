@@ -64,7 +64,7 @@ def record(ev, info, slot, t, kind, before, after, omega, q, parameters):
     info[slot] = index + 1
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, ready, tau, z_new,
                     segment, parameters, info, first, q, q_start, q_end, z_turn, no_events):
     """Track the turning point of theta and the extrema of the slip and of the corners' X
@@ -119,7 +119,7 @@ def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, re
     return evaluations
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q, info,
                    first, parameters):
     """Track the extrema of the slip and of the corners' X inside a flight of ``span`` [s]
