@@ -147,6 +147,13 @@ EVENT_COLUMNS = 6
  I_FAILED_MODE) = range(33)
 N_INFO = 33
 
+#: Where planar_track's peaks start in info, as an int64 (track is compiled for the type
+#: its callers give ``first``: a literal would compile it once more).
+_PEAKS = np.int64(I_MAX_ABS_THETA)
+
+#: The sizes of the engine's work arrays, as int64 for the same reason (_zeros, _falses).
+_ONE, _SIX, _STATE, _EVENTS = np.int64(1), np.int64(6), np.int64(N_STATE), np.int64(N_EVENTS)
+
 #: Transitions allowed at one instant before the run stops with status "chatter".
 MAX_TRANSITIONS_AT_ONE_TIME = 200
 
@@ -161,8 +168,26 @@ MAX_TRANSITIONS_PER_INTERVAL = 100_000
 
 
 @njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _zeros(n):
+    """A float array of n zeros (np.empty: compiled once for all the engine's arrays)."""
+    array = np.empty(n)
+    for i in range(n):
+        array[i] = 0.0
+    return array
+
+
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _falses(n):
+    """A bool array of n False."""
+    array = np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        array[i] = False
+    return array
+
+
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _track(t, q, info, parameters):
-    track(t, q, info, I_MAX_ABS_THETA, parameters)   # planar_track's P_* from I_MAX_ABS_THETA
+    track(t, q, info, _PEAKS, parameters)   # planar_track's P_* from I_MAX_ABS_THETA
 
 
 @njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
@@ -214,25 +239,31 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     if rest_tolerance < 0.0:
         rest_tolerance = 1e-6 / p
     velocity_floor = 1e-8 * alpha * p
-    scale_abs = np.array([rtol * alpha, rtol * alpha * p, rtol * radius, rtol * radius * p,
-                          rtol * G * radius, rtol * G * radius])
+    scale_abs = np.empty(6)   # (np.empty, not np.array or np.zeros: one numpy routine less
+    # to compile on a cold cache; the work arrays below are zeroed by _zeros and _falses)
+    scale_abs[0] = rtol * alpha
+    scale_abs[1] = rtol * alpha * p
+    scale_abs[2] = rtol * radius
+    scale_abs[3] = rtol * radius * p
+    scale_abs[4] = rtol * G * radius
+    scale_abs[5] = rtol * G * radius
     segment = np.empty(8)
     stages = np.empty((16, N_STATE))
     dense = np.empty((7, N_STATE))
-    ready = np.zeros(1, dtype=np.bool_)
-    z = np.zeros(N_STATE)
-    z_new = np.zeros(N_STATE)
-    z_event = np.zeros(N_STATE)
-    z_turn = np.zeros(N_STATE)
-    k1 = np.zeros(N_STATE)
-    q = np.zeros(6)
-    q_start = np.zeros(6)
-    q_end = np.zeros(6)
-    g_start = np.zeros(N_EVENTS)
-    g_end = np.zeros(N_EVENTS)
-    armed = np.zeros(N_EVENTS, dtype=np.bool_)
-    fresh = np.zeros(N_EVENTS, dtype=np.bool_)
-    no_events = np.zeros(N_EVENTS, dtype=np.bool_)
+    ready = _falses(_ONE)
+    z = _zeros(_STATE)
+    z_new = _zeros(_STATE)
+    z_event = _zeros(_STATE)
+    z_turn = _zeros(_STATE)
+    k1 = _zeros(_STATE)
+    q = _zeros(_SIX)
+    q_start = _zeros(_SIX)
+    q_end = _zeros(_SIX)
+    g_start = _zeros(_EVENTS)
+    g_end = _zeros(_EVENTS)
+    armed = _falses(_EVENTS)
+    fresh = _falses(_EVENTS)
+    no_events = _falses(_EVENTS)
 
     for i in range(N_INFO):
         info[i] = 0.0
@@ -461,7 +492,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     span = landing
                     terminal = 1
                 flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q, info,
-                               I_MAX_ABS_THETA, parameters)
+                               _PEAKS, parameters)
                 xs, ys, ths, xds, yds, oms = flight_state(span, x0, y0, th0, xd0, yd0, om0, ua,
                                                           ka, va, kv)
                 w_table -= polynomial_work(ua, ka, xd0, -ua, -0.5 * ka, span)
@@ -579,7 +610,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     # and of the corners' X (planar_track), and instability
                     evaluations += contact_extrema(
                         mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, ready, tau,
-                        z_new, segment, parameters, info, I_MAX_ABS_THETA, q, q_start, q_end,
+                        z_new, segment, parameters, info, _PEAKS, q, q_start, q_end,
                         z_turn, no_events)
                     if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
                             and abs(z[0]) <= alpha:

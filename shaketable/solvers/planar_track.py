@@ -34,7 +34,9 @@ P_MAX_ABS_THETA, P_T_MAX, P_PEAK_SLIP, P_T_PEAK_SLIP, P_PEAK_EXCURSION = range(5
 N_PEAKS = 5
 
 
-@njit(cache=True, inline="always")
+# one compiled function (not inlined: a copy of it in each of its four callers cost more
+# to compile); the callers pass ``first`` as an int64 so that it is compiled once
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def track(t, q, info, first, parameters):
     """Update the peaks in ``info`` with the state q = (x, y, theta, x', y', theta') at t."""
     slip, excursion = measures(q, parameters)
