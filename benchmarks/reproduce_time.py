@@ -3,13 +3,18 @@ each scene, from which the two-process wall time on two free cores follows.
 
 Runs the whole reproduction (warm numba cache) into a temporary folder (or ``--keep``)
 as the command does, timing wall clock and CPU (``resource.getrusage`` of this process
-and its worker processes); then, with ``--per-scene``, each scene alone in this process,
-CPU seconds each, and the time two workers need when they take the scenes in the pool's
-order (report tables first, then other studies, then single scenes), each the next one
-when free: the wall time on two free cores, whatever else a shared machine runs.
-Target: <= 30 s wall on 2 cores.
+and its worker processes), the CPU of each worker process (start-up included) and of
+this process, and from them the wall time on two quiet cores: the busiest worker plus
+this process's own CPU (imports, scheduling, assembling the report), whatever else a
+shared machine runs. With ``--per-scene``, each scene alone in this process, CPU seconds
+each, and the time two workers need when they take the scenes in the pool's order
+(longest expected first, ``shaketable.reproduce.SCENE_CPU``), each the next one when
+free. Target: <= 30 s wall on 2 cores.
 
     python3 benchmarks/reproduce_time.py [--per-scene] [--keep DIR]
+
+A faster reproduction must write the same files: ``--keep`` a run before and after, then
+``python3 benchmarks/compare_reproduce.py BEFORE AFTER``.
 """
 
 from __future__ import annotations
@@ -37,17 +42,26 @@ def main(argv=None) -> int:
     parser.add_argument("--keep", default=None, help="write the reproduction here, not in a "
                         "temporary folder (to compare it with another)")
     args = parser.parse_args(argv)
+    imports = time.process_time()
 
-    from shaketable.reproduce import _expected_share, _scene_outcome, _worker_count, reproduce
+    from shaketable.reproduce import WORKER_CPU, _expected_cost, _scene_outcome, _worker_count, reproduce
     from shaketable.scenes.catalog import scene_names
 
     names = list(scene_names())
+    imports = time.process_time() - imports
     out: dict = {"scenes": len(names), "processes": _worker_count(len(names))}
     with tempfile.TemporaryDirectory() as folder:
-        wall, cpu = time.perf_counter(), cpu_with_children()
+        wall, cpu, own = time.perf_counter(), cpu_with_children(), time.process_time()
         reproduce(names, out=Path(args.keep or Path(folder) / "all"), progress=False)
         out["wall [s]"] = time.perf_counter() - wall
         out["CPU, with the worker processes [s]"] = cpu_with_children() - cpu
+        own = time.process_time() - own + imports
+        out["CPU of this process, imports included [s]"] = own
+        workers = sorted(WORKER_CPU.values(), reverse=True)
+        out["CPU of each worker process, start-up included [s]"] = workers
+        if workers:
+            out["wall on two quiet cores (busiest worker + this process) [s]"] = \
+                workers[0] + own
         if args.per_scene:
             seconds = {}
             for name in names:
@@ -56,8 +70,8 @@ def main(argv=None) -> int:
                 seconds[name] = time.process_time() - start
             workers = [0.0] * 2
             heapq.heapify(workers)
-            # the pool's order (longest kinds first); each worker takes the next when free
-            for name in sorted(names, key=_expected_share):
+            # the pool's order (longest expected first); each takes the next when free
+            for name in sorted(names, key=_expected_cost, reverse=True):
                 heapq.heappush(workers, heapq.heappop(workers) + seconds[name])
             out["CPU of the scenes, one process [s]"] = sum(seconds.values())
             out["two free cores, scenes as the pool schedules them [s]"] = max(workers)

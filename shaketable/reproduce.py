@@ -8,9 +8,8 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from shaketable.scenes.catalog import resolve_scene_path
+from shaketable.scenes.catalog import resolve_scene_path, study_kind
 from shaketable.scenes.parse import Study, load_scene
-from shaketable.scenes.run import run_scene
 from shaketable.studies.comparison import ComparisonTally
 
 if TYPE_CHECKING:
@@ -129,13 +128,17 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
     bar: Any = iterator if progress else None
     with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
                              initializer=_one_thread_each) as pool:
-        # the longest first (the report-table studies and their ensembles: a third of the
-        # work), so that the two processes end together; written in the catalogue's order
-        futures = {name: pool.submit(_scene_outcome, name, out)
-                   for name in sorted(names, key=_expected_share)}
+        # the longest expected first (the report-table studies and their ensembles: half
+        # of the work), so that the processes end together; written in the catalogue's
+        # order. Each result carries its worker's CPU so far (the load balance).
+        futures = {name: pool.submit(_pooled_outcome, name, out)
+                   for name in sorted(names, key=_expected_cost, reverse=True)}
+        WORKER_CPU.clear()
         try:
             for name in names:
-                record(name, *futures[name].result())
+                outcome, worker, cpu = futures[name].result()
+                WORKER_CPU[worker] = max(cpu, WORKER_CPU.get(worker, 0.0))
+                record(name, *outcome)
                 if bar is not None:
                     bar.update(1)
         except BaseException:  # Ctrl-C or a scene's crash: start no further scene
@@ -162,16 +165,37 @@ def _worker_count(scenes: int) -> int:
     return max(1, min(2, cores or 1))
 
 
-def _expected_share(name: str) -> int:
-    """0 for the scenes known to take longest (report tables with their ensembles), then
-    1 for other studies and 2 for single scenes (a name that does not load: last)."""
-    try:
-        scene = load_scene(resolve_scene_path(name))
+#: CPU seconds of the slowest scenes in one worker (warm numba cache; measured with
+#: ``benchmarks/reproduce_time.py --per-scene``): the pool starts the longest first
+#: (longest processing time first), so that the two processes end together.
+SCENE_CPU = {"table-4-3": 11.3, "table-4-2": 9.7, "table-4-1": 8.6,
+             "teaching-slide-or-rock": 4.4, "fig-2-6": 4.0, "mode-map-pacoima": 3.5,
+             "spectrum-one-sine": 3.1, "section-3-7-pitch": 2.1, "fig-3-8": 1.9,
+             "fig-2-3": 1.9, "fig-3-9": 1.8, "fig-3-5": 1.7, "fig-3-7": 1.5,
+             "section-4-3-4": 1.5, "fig-2-4": 1.4, "teaching-lower-cor": 1.3,
+             "table-3-1": 0.3, "table-4-4": 0.2}
+
+#: The estimate for any other scene, by kind: a report-table study, another study, a
+#: single scene (a name that does not load: 0, last).
+KIND_CPU = {"report-table": 8.0, "study": 1.0, "scene": 0.9}
+
+#: CPU seconds [s] each worker process of the last parallel :func:`reproduce` had used
+#: when it handed back its last scene (start-up and imports included), by process id:
+#: what ``benchmarks/reproduce_time.py`` reports as the load balance.
+WORKER_CPU: dict[int, float] = {}
+
+
+def _expected_cost(name: str) -> float:
+    """The CPU seconds a scene is expected to take (:data:`SCENE_CPU`, else :data:`KIND_CPU`)."""
+    if name in SCENE_CPU:
+        return SCENE_CPU[name]
+    try:   # the scene file's [study] kind only: parsing the scene would import its
+        kind = study_kind(name)   # pipeline (SciPy) in the process that only schedules
     except (ValueError, OSError):
-        return 2
-    if isinstance(scene, Study):
-        return 0 if scene.kind == "report-table" else 1
-    return 2
+        return 0.0
+    if kind is not None:
+        return KIND_CPU["report-table" if kind == "report-table" else "study"]
+    return KIND_CPU["scene"]
 
 
 def _one_thread_each() -> None:
@@ -179,6 +203,13 @@ def _one_thread_each() -> None:
     from shaketable.solvers.batch import set_default_threads
 
     set_default_threads(1)
+
+
+def _pooled_outcome(name: str, out: Path) -> tuple[tuple[str, dict, bool], int, float]:
+    """:func:`_scene_outcome` in a worker, with the worker's id and its CPU seconds so far."""
+    outcome = _scene_outcome(name, out)
+    times = os.times()
+    return outcome, os.getpid(), times.user + times.system
 
 
 def _scene_outcome(name: str, out: Path) -> tuple[str, dict, bool]:
@@ -193,6 +224,10 @@ def _scene_outcome(name: str, out: Path) -> tuple[str, dict, bool]:
 
 def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
     """Run one scene into ``out/<name>/``; its Markdown section (counts into ``tally``)."""
+    # imported here: the process that only hands scenes to the workers never loads the
+    # pipeline (the table stage's SciPy signal tools: ~1 s before the first worker starts)
+    from shaketable.scenes.run import run_scene
+
     scene = load_scene(resolve_scene_path(name))
     if isinstance(scene, Study):
         return _study_section(scene, out, tally)

@@ -5,11 +5,11 @@ times the rocking engine: a command that will run it must say so before the wait
 """
 
 from shaketable.commands import common
-from shaketable.scenes.catalog import resolve_scene_path, scene_names
+from shaketable.scenes.catalog import scene_names, uses_planar
 
 
 def test_the_scenes_that_run_the_planar_block_are_found_from_their_toml():
-    uses = {name for name in scene_names() if common.scene_uses_planar(resolve_scene_path(name))}
+    uses = {name for name in scene_names() if uses_planar(name)}
     # block.static_friction (teaching-slide-or-rock), a mode-map study, Table 4.4's section
     assert {"teaching-slide-or-rock", "mode-map-pacoima", "table-4-4"} <= uses
     assert "fig-3-7" not in uses and "table-4-1" not in uses

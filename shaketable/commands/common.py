@@ -68,31 +68,6 @@ _COMPILED = {"engine": ("engine.integrate_fast-", "the engine", "~4 s"),
              "planar batch": ("planar_batch._run_planar_batch-", "the planar batch engine",
                               "~5 s")}
 
-#: Scenes whose section of the report runs the planar block beside the scene itself.
-_PLANAR_SECTIONS = {"table-4-4"}
-
-
-def scene_uses_planar(path) -> bool:
-    """Whether a scene file runs the planar block (issue 25), read from its TOML alone.
-
-    True for ``block.static_friction`` (the planar run per COR), a ``mode-map`` study, and
-    the scenes whose report section recomputes with the planar block (Table 4.4); an
-    unreadable file is left to the scene parser to report.
-    """
-    import tomllib
-
-    path = Path(path)
-    if path.stem in _PLANAR_SECTIONS:
-        return True
-    try:
-        with open(path, "rb") as handle:
-            scene = tomllib.load(handle)
-    except (OSError, tomllib.TOMLDecodeError):
-        return False
-    block, study = scene.get("block", {}), scene.get("study", {})
-    return (isinstance(block, dict) and "static_friction" in block) or (
-        isinstance(study, dict) and study.get("kind") == "mode-map")
-
 
 def compiled_before(which: str = "engine") -> bool:
     """Whether numba's on-disk cache holds the compiled ``which`` (engine or batch).
@@ -118,7 +93,9 @@ def notice_first_compile(quiet: bool = False, which=("engine",)) -> None:
     missing = [name for name in which if not compiled_before(name)]
     if missing:
         parts = [f"{_COMPILED[name][1]} ({_COMPILED[name][2]})" for name in missing]
-        print(f"shaketable: compiling {' and '.join(parts)} once; later runs load it from "
-              f"the cache in {os.environ.get('NUMBA_CACHE_DIR')}", file=sys.stderr, flush=True)
+        them = "it" if len(missing) == 1 else "them"
+        print(f"shaketable: compiling {' and '.join(parts)} once; later runs load {them} "
+              f"from the cache in {os.environ.get('NUMBA_CACHE_DIR')}", file=sys.stderr,
+              flush=True)
 
 

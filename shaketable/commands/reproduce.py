@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from shaketable.commands.common import notice_first_compile, scene_uses_planar
+from shaketable.commands.common import notice_first_compile
 
 
 def _reproduce(args) -> int:
@@ -23,9 +23,9 @@ def _reproduce(args) -> int:
     from shaketable.core.files import prepare_output_folder
 
     out = prepare_output_folder(args.out)
-    from shaketable.scenes.catalog import resolve_scene_path
+    from shaketable.scenes.catalog import uses_planar
 
-    planar = any(scene_uses_planar(resolve_scene_path(name)) for name in names)
+    planar = any(uses_planar(name) for name in names)
     notice_first_compile(args.quiet, which=("engine", "planar") if planar else ("engine",))
     failed: list = []
     report = reproduce(names, out=out, progress=not args.quiet, failures=failed)

@@ -6,9 +6,9 @@ from pathlib import Path
 
 
 def _run(args) -> int:
-    from shaketable.commands.common import notice_first_compile, scene_uses_planar
+    from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import prepare_output_folder
-    from shaketable.scenes.catalog import is_sweep_spec, resolve_scene_path
+    from shaketable.scenes.catalog import is_sweep_spec, resolve_scene_path, uses_planar
     from shaketable.scenes.parse import Study, load_scene
 
     if is_sweep_spec(args.scene):
@@ -17,7 +17,7 @@ def _run(args) -> int:
     scene = load_scene(resolve_scene_path(args.scene))
     out = prepare_output_folder(args.out or Path("shaketable-out") / scene.name)
     notice_first_compile(args.quiet, which=("engine", "planar")
-                         if scene_uses_planar(resolve_scene_path(args.scene)) else ("engine",))
+                         if uses_planar(args.scene) else ("engine",))
     if isinstance(scene, Study):
         return _run_study(scene, out)
     from shaketable.scenes.run import run_scene

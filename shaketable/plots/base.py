@@ -30,9 +30,49 @@ def save(fig, path, dpi: int = 110) -> None:
 
     plt = pyplot()
     try:
-        atomic_write(path, lambda temporary: fig.savefig(temporary, dpi=dpi, bbox_inches="tight"))
+        atomic_write(path, lambda temporary: save_tight(fig, temporary, dpi))
     finally:
         plt.close(fig)
+
+
+def save_tight(fig, target, dpi: int = 110) -> None:
+    """``fig.savefig(target, dpi=dpi, bbox_inches="tight")``, the same file drawn once.
+
+    For ``bbox_inches="tight"`` matplotlib draws the whole figure once without
+    rendering (laying it out when it has a layout engine) to find the box, then
+    again to render it. For a PNG on the Agg canvas the first draw is not needed:
+    the figure is laid out as that draw would lay it out, its box measured at the
+    same dpi with the same padding, and the file is byte-identical
+    (``tests/plots/test_save_tight.py``; every figure of ``shaketable reproduce
+    --all`` checked, issue 28): ~10 % of the time of a Calcomp figure. Any other
+    format or canvas goes through ``savefig`` unchanged.
+    """
+    import matplotlib
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    engine = fig.get_layout_engine()
+    if (type(fig.canvas) is not FigureCanvasAgg or not str(target).lower().endswith(".png")
+            or (engine is not None and not hasattr(fig, "_layout_engine"))):
+        fig.savefig(target, dpi=dpi, bbox_inches="tight")
+        return
+    fig.dpi = dpi   # as savefig sets it while it measures and draws
+    renderer = fig.canvas.get_renderer()
+    if engine is not None:
+        if fig.axes:
+            try:   # what Figure.draw does first
+                engine.execute(fig)
+            except ValueError:   # matplotlib's draw goes on without the layout too
+                pass
+        # laid out: savefig must neither lay it out again nor draw it to measure it
+        # (it does both whenever the figure has an engine; set_layout_engine("none")
+        # leaves a placeholder engine, hence matplotlib's attribute)
+        fig._layout_engine = None
+    try:
+        box = fig.get_tightbbox(renderer)
+        fig.savefig(target, dpi=dpi,
+                    bbox_inches=box.padded(matplotlib.rcParams["savefig.pad_inches"]))
+    finally:
+        fig._layout_engine = engine   # the figure keeps its engine (None if it had none)
 
 
 #: Where :func:`place_legend` tries a legend inside the axes, in this order.
@@ -103,8 +143,9 @@ def place_legend(axis, corners=LEGEND_CORNERS, **options):
     matplotlib.legend.Legend
     """
     figure = axis.figure
-    if figure.get_layout_engine() is not None:
-        figure.draw_without_rendering()  # the layout first: corners of the final axes
+    engine = figure.get_layout_engine()
+    if engine is not None and figure.axes:
+        engine.execute(figure)  # the layout first: corners of the final axes
     renderer = figure.canvas.get_renderer()
     points = plotted_points(axis)
     to_axes = axis.transAxes.inverted()

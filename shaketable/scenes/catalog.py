@@ -79,3 +79,50 @@ def experiments_folder() -> Path:
     from importlib.resources import files
 
     return Path(str(files("shaketable.experiments")))
+
+
+def study_kind(name_or_path: str) -> str | None:
+    """The ``[study] kind`` of a scene file (``None`` for a single scene), read without
+    parsing the scene: no pipeline module is imported (the table stage's SciPy).
+
+    Raises
+    ------
+    SceneError
+        No such scene, or a file that is not TOML (:func:`resolve_scene_path`).
+    """
+    from shaketable.scenes.parse import tomllib
+
+    path = resolve_scene_path(name_or_path)
+    try:
+        with open(path, "rb") as file:
+            study = tomllib.load(file).get("study")
+    except (OSError, tomllib.TOMLDecodeError) as error:
+        raise SceneError(f"{path}: {error}") from error
+    return str(study.get("kind")) if isinstance(study, dict) else None
+
+
+#: Scenes whose section of the report runs the planar block beside the scene itself.
+_PLANAR_SECTIONS = {"table-4-4"}
+
+
+def uses_planar(name_or_path: str) -> bool:
+    """Whether a scene runs the planar block (issue 25), read from its TOML alone.
+
+    True for ``block.static_friction`` (the planar run per COR), a ``mode-map`` study, and
+    the scenes whose report section recomputes with the planar block (Table 4.4): the
+    first-compile notice names the planar engine for them. An unreadable file is left to
+    the scene parser to report (``False`` here).
+    """
+    from shaketable.scenes.parse import tomllib
+
+    try:
+        path = resolve_scene_path(name_or_path)
+        with open(path, "rb") as file:
+            scene = tomllib.load(file)
+    except (OSError, SceneError, tomllib.TOMLDecodeError):
+        return False
+    if path.stem in _PLANAR_SECTIONS:
+        return True
+    block, study = scene.get("block"), scene.get("study")
+    return (isinstance(block, dict) and "static_friction" in block) or (
+        isinstance(study, dict) and study.get("kind") == "mode-map")
