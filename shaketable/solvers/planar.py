@@ -60,6 +60,7 @@ from shaketable.core.dynamics import (
 )
 from shaketable.core.planar_dynamics import (
     FLIGHT,
+    HELPER,
     INCONSISTENT,
     PAINLEVE,
     REST,
@@ -167,7 +168,7 @@ MAX_IMMEDIATE_IMPACTS = 1000
 MAX_TRANSITIONS_PER_INTERVAL = 100_000
 
 
-@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+@njit(**HELPER)
 def _zeros(n):
     """A float array of n zeros (np.empty: compiled once for all the engine's arrays)."""
     array = np.empty(n)
@@ -176,7 +177,7 @@ def _zeros(n):
     return array
 
 
-@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+@njit(**HELPER)
 def _falses(n):
     """A bool array of n False."""
     array = np.empty(n, dtype=np.bool_)
@@ -185,12 +186,12 @@ def _falses(n):
     return array
 
 
-@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+@njit(**HELPER)
 def _track(t, q, info, parameters):
     track(t, q, info, _PEAKS, parameters)   # planar_track's P_* from I_MAX_ABS_THETA
 
 
-@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+@njit(**HELPER)
 def _record(ev, info, t, kind, before, after, omega, q, parameters):
     record(ev, info, I_N_EVENTS, t, kind, before, after, omega, q, parameters)
 
