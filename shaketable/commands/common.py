@@ -65,8 +65,8 @@ def scaled(motion, factor, option: str = "--scale"):
 _COMPILED = {"engine": ("engine.integrate_fast-", "the engine", "~4 s"),
              "batch": ("batch._run_cases_fast-", "the batch engine", "~1 s"),
              "planar": ("planar.integrate-", "the planar engine", "~14 s"),
-             "planar batch": ("planar.integrate-", "the planar batch engine",
-                              "no more: it calls the planar engine")}
+             "planar batch": ("planar_batch._run_planar_batch-", "the planar batch engine",
+                              "~5 s")}
 
 
 def compiled_before(which: str = "engine") -> bool:

@@ -1,6 +1,5 @@
 """Many runs of the planar block at once: blocks x frictions x COR on one motion, compiled,
-in parallel (Python threads, each calling the compiled engine without the GIL), scalar
-results only (no time histories).
+in parallel (numba ``prange``), scalar results only (no time histories).
 
 The batch of the rocking model is :mod:`shaketable.solvers.batch`; this one calls the
 planar engine (:func:`shaketable.solvers.planar.integrate`) with length-0 output arrays,
@@ -13,8 +12,8 @@ from __future__ import annotations
 import itertools
 from collections.abc import Iterable
 
-import numba
 import numpy as np
+from numba import njit, prange, set_parallel_chunksize
 
 from shaketable.core.dynamics import N_PARAMETERS, block_parameters
 from shaketable.core.geometry import Block
@@ -26,63 +25,17 @@ from shaketable.solvers.common import extended
 from shaketable.solvers.planar_run import DEFAULT_PLANAR_RTOL, check_planar_inputs, impact_ratios
 
 
-def _run_cases(arguments: tuple, n_cases: int, threads: int) -> None:
-    """Case i of ``arguments`` (per-case arrays, indexed by i) for every i, on ``threads``
-    Python threads, each taking the next case when done.
-
-    Each case is one call of the compiled engine :func:`~shaketable.solvers.planar.integrate`
-    (compiled without the GIL, so the threads run in parallel) with the very argument types
-    :func:`~shaketable.solvers.planar_run.simulate_planar` gives it: the batch compiles
-    nothing of its own (a compiled ``prange`` loop around the engine compiled and optimised
-    the whole engine a second time, ~4.6 s of CPU on a cold cache). The cases are handed
-    out one at a time (run costs differ a lot: a block that overturns early is cheap); the
-    results do not depend on the number of threads (each case writes its own rows).
-    """
-    (t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, rest_tolerance, info,
-     final) = arguments
-    none = np.empty((0, planar.N_OUT))
-    no_events = np.empty((0, planar.EVENT_COLUMNS))
-
-    def run(i):
+@njit(parallel=True, cache=True)
+def _run_planar_batch(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol,
+                      rest_tolerance, info, final):
+    """Integrate every case i (its block's parameters, rho, cor and friction); ``info[i]``
+    and ``final[i]`` receive its scalar results and end state."""
+    for i in prange(parameters.shape[0]):
+        none = np.empty((0, planar.N_OUT))
+        no_events = np.empty((0, planar.EVENT_COLUMNS))
         planar.integrate(t_grid, ug, vg, parameters[i], rho[i], cor_cascade[i], mu_s[i],
                          mu_d[i], rtol, rest_tolerance, 0.0, 0.0, none, no_events, final[i],
                          info[i])
-
-    if threads <= 1 or n_cases <= 1:
-        for i in range(n_cases):
-            run(i)
-        return
-    import threading
-
-    cases = iter(range(n_cases))
-    lock = threading.Lock()
-    stop = threading.Event()
-    errors: list[BaseException] = []
-
-    def work():
-        try:
-            while not stop.is_set():
-                with lock:
-                    i = next(cases, None)
-                if i is None:
-                    return
-                run(i)
-        except BaseException as error:  # Ctrl-C in the calling thread, too: handed back below
-            errors.append(error)
-            stop.set()  # the other threads finish their case and take no other
-
-    workers = [threading.Thread(target=work, name=f"shaketable-planar-batch-{k}", daemon=True)
-               for k in range(min(threads, n_cases) - 1)]
-    for worker in workers:
-        worker.start()
-    try:
-        work()  # the calling thread is one of them
-        for worker in workers:
-            worker.join()
-    finally:
-        stop.set()
-    if errors:
-        raise errors[0]
 
 
 def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
@@ -132,12 +85,18 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
         mu_s[i], mu_d[i] = friction.static, friction.dynamic
     info = np.zeros((m, planar.N_INFO))
     final = np.zeros((m, planar.N_OUT))
-    _run_cases((np.ascontiguousarray(motion.t, dtype=float),
-                np.ascontiguousarray(motion.horizontal, dtype=float),
-                np.ascontiguousarray(motion.vertical_or_zero, dtype=float),
-                parameters, rho, cor_cascade, mu_s, mu_d,
-                DEFAULT_PLANAR_RTOL if rtol is None else float(rtol), -1.0, info, final),
-               m, numba.get_num_threads())
+    # the cases are handed out one at a time (run costs differ a lot: a block that
+    # overturns early is cheap), as the rocking batch does
+    previous = set_parallel_chunksize(1)
+    try:
+        _run_planar_batch(np.ascontiguousarray(motion.t, dtype=float),
+                          np.ascontiguousarray(motion.horizontal, dtype=float),
+                          np.ascontiguousarray(motion.vertical_or_zero, dtype=float),
+                          parameters, rho, cor_cascade, mu_s, mu_d,
+                          DEFAULT_PLANAR_RTOL if rtol is None else float(rtol), -1.0, info,
+                          final)
+    finally:
+        set_parallel_chunksize(previous)
     rows = []
     for i, (b, f, c) in enumerate(cases):
         row = info[i]
