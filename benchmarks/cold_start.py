@@ -11,6 +11,10 @@ signatures of the engine (one: ``simulate`` and the batch share it) and, for com
 the same first call with the cache warm. Targets: first simulate <= 3 s CPU, first batch
 <= 2 s more.
 
+``--planar`` measures the planar engine instead (``friction=``; block 30 x 6 in, COR 0.9,
+mu 0.3, one second of Pacoima S16E): its first simulate and its first batch
+(``simulate_many_planar``) after it, and with ``--breakdown`` both of them per function.
+
 ``--breakdown`` prints, for one cold first ``simulate``, where its CPU time goes: importing
 numba, and for every function numba compiles (nested as numba compiles them) its own CPU
 time (its typing, lowering and numba passes, excluding the functions it calls) and the
@@ -19,7 +23,7 @@ event), from numba's compile events (``numba.core.event``) timed with the proces
 clock; ``outside compiles`` is the rest of the first call (numba's target context built on
 first use, loading, the run itself), which a warm first call pays too.
 
-    python3 benchmarks/cold_start.py [--repeats 2] [--breakdown]
+    python3 benchmarks/cold_start.py [--repeats 2] [--breakdown] [--planar]
 """
 
 from __future__ import annotations
@@ -88,7 +92,7 @@ compiles, llvm = Clock(), Clock()
 event.register("numba:compile", compiles)
 event.register("numba:llvm_lock", llvm)
 before = cpu()
-st.simulate(block, motion, cor=0.95)
+FIRST_CALL
 after = cpu()
 marks = sorted([(t, 0, s, e) for t, s, e in compiles.marks] + [(t, 1, s, e) for t, s, e in llvm.marks],
                key=lambda mark: mark[0])
@@ -123,6 +127,36 @@ print(json.dumps({"import shaketable + a record [s]": imported - start,
 """
 
 
+#: The first call that --breakdown times: the rocking engine's, or with --planar the planar
+#: engine's first simulate and then its first batch (both counted).
+ROCKING_CALL = "st.simulate(block, motion, cor=0.95)"
+PLANAR_CALL = ("st.simulate(block, motion, cor=0.9, friction=st.Friction(0.3), duration=1.0); "
+               "from shaketable.solvers.planar_batch import simulate_many_planar; "
+               "simulate_many_planar([block], motion, st.Friction(0.3), [0.9], duration=1.0)")
+
+PLANAR = r"""
+import json, resource
+def cpu():
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+start = cpu()
+import shaketable as st
+from shaketable.ground import records
+block = st.Block.parse("30x6in")
+motion = records.load("pacoima-dam-s16e")
+imported = cpu()
+st.simulate(block, motion, cor=0.9, friction=st.Friction(0.3), duration=1.0)
+first = cpu()
+from shaketable.solvers.planar_batch import simulate_many_planar
+simulate_many_planar([block], motion, st.Friction(0.3), [0.9], duration=1.0)
+batch = cpu()
+from shaketable.solvers import planar
+print(json.dumps({"import [s]": imported - start, "first planar simulate [s]": first - imported,
+                  "first planar batch after it [s]": batch - first,
+                  "planar engine signatures": len(planar.integrate.signatures)}))
+"""
+
+
 def once(cold: bool, cache: str | None = None, child: str = CHILD) -> dict:
     env = dict(os.environ)
     with tempfile.TemporaryDirectory() as folder:
@@ -137,10 +171,23 @@ def main(argv=None) -> int:
     parser.add_argument("--repeats", type=int, default=2)
     parser.add_argument("--breakdown", action="store_true",
                         help="where one cold first simulate's CPU time goes, per function")
+    parser.add_argument("--planar", action="store_true",
+                        help="the planar engine's first simulate (friction=) and first batch "
+                             "instead of the rocking engine's")
     args = parser.parse_args(argv)
     if args.breakdown:
-        print(json.dumps({**once(cold=True, child=BREAKDOWN), "load average": os.getloadavg()},
+        child = BREAKDOWN.replace("FIRST_CALL", PLANAR_CALL if args.planar else ROCKING_CALL)
+        print(json.dumps({**once(cold=True, child=child), "load average": os.getloadavg()},
                          indent=1))
+        return 0
+    if args.planar:
+        runs = [once(cold=True, child=PLANAR) for _ in range(args.repeats)]
+        best = {key: min(run[key] for run in runs) for key in runs[0].keys()}
+        with tempfile.TemporaryDirectory() as cache:
+            once(cold=False, cache=cache, child=PLANAR)          # fills this cache
+            warm = once(cold=False, cache=cache, child=PLANAR)   # and reads it
+        print(json.dumps({"cold, best of repeats": best, "cold, every repeat": runs,
+                          "warm cache": warm, "load average": os.getloadavg()}, indent=1))
         return 0
     runs = [once(cold=True) for _ in range(args.repeats)]
     keys = runs[0].keys()

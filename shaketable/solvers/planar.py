@@ -60,6 +60,7 @@ from shaketable.core.dynamics import (
 )
 from shaketable.core.planar_dynamics import (
     FLIGHT,
+    HELPER,
     INCONSISTENT,
     PAINLEVE,
     REST,
@@ -126,7 +127,13 @@ STATUS_COMPLETED, STATUS_OVERTURNED, STATUS_PAINLEVE, STATUS_INCONSISTENT, STATU
 #: exceeding alpha, overturning, a flat landing of the whole base.
 EVENT_KINDS = ("mode change", "impact", "slip reverses", "cascade summed", "unstable",
                "overturned", "flat landing")
-EV_MODE, EV_IMPACT, EV_REVERSAL, EV_CASCADE, EV_UNSTABLE, EV_OVERTURN, EV_LANDING = range(7)
+# int64 values, not Python ints: numba types a module's int constants as literals and
+# compiles a helper once for every distinct literal it is called with (_record was
+# compiled 16 times on a cold cache); so are the mode codes _record is given below
+EV_MODE, EV_IMPACT, EV_REVERSAL, EV_CASCADE, EV_UNSTABLE, EV_OVERTURN, EV_LANDING = (
+    np.int64(code) for code in range(7))
+_REST, _SLIDE, _ROCK, _SLIDE_ROCK, _FLIGHT = (
+    np.int64(code) for code in (REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT))
 
 #: Columns of the event array: time [s], kind, mode before, mode after, theta' [rad/s]
 #: (before an impact; else at the event), slip of the base midpoint [m].
@@ -141,6 +148,13 @@ EVENT_COLUMNS = 6
  I_FAILED_MODE) = range(33)
 N_INFO = 33
 
+#: Where planar_track's peaks start in info, as an int64 (track is compiled for the type
+#: its callers give ``first``: a literal would compile it once more).
+_PEAKS = np.int64(I_MAX_ABS_THETA)
+
+#: The sizes of the engine's work arrays, as int64 for the same reason (_zeros, _falses).
+_ONE, _SIX, _STATE, _EVENTS = np.int64(1), np.int64(6), np.int64(N_STATE), np.int64(N_EVENTS)
+
 #: Transitions allowed at one instant before the run stops with status "chatter".
 MAX_TRANSITIONS_AT_ONE_TIME = 200
 
@@ -154,12 +168,30 @@ MAX_IMMEDIATE_IMPACTS = 1000
 MAX_TRANSITIONS_PER_INTERVAL = 100_000
 
 
-@njit(cache=True)
+@njit(**HELPER)
+def _zeros(n):
+    """A float array of n zeros (np.empty: compiled once for all the engine's arrays)."""
+    array = np.empty(n)
+    for i in range(n):
+        array[i] = 0.0
+    return array
+
+
+@njit(**HELPER)
+def _falses(n):
+    """A bool array of n False."""
+    array = np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        array[i] = False
+    return array
+
+
+@njit(**HELPER)
 def _track(t, q, info, parameters):
-    track(t, q, info, I_MAX_ABS_THETA, parameters)   # planar_track's P_* from I_MAX_ABS_THETA
+    track(t, q, info, _PEAKS, parameters)   # planar_track's P_* from I_MAX_ABS_THETA
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def _record(ev, info, t, kind, before, after, omega, q, parameters):
     record(ev, info, I_N_EVENTS, t, kind, before, after, omega, q, parameters)
 
@@ -208,25 +240,31 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     if rest_tolerance < 0.0:
         rest_tolerance = 1e-6 / p
     velocity_floor = 1e-8 * alpha * p
-    scale_abs = np.array([rtol * alpha, rtol * alpha * p, rtol * radius, rtol * radius * p,
-                          rtol * G * radius, rtol * G * radius])
+    scale_abs = np.empty(6)   # (np.empty, not np.array or np.zeros: one numpy routine less
+    # to compile on a cold cache; the work arrays below are zeroed by _zeros and _falses)
+    scale_abs[0] = rtol * alpha
+    scale_abs[1] = rtol * alpha * p
+    scale_abs[2] = rtol * radius
+    scale_abs[3] = rtol * radius * p
+    scale_abs[4] = rtol * G * radius
+    scale_abs[5] = rtol * G * radius
     segment = np.empty(8)
     stages = np.empty((16, N_STATE))
     dense = np.empty((7, N_STATE))
-    ready = np.zeros(1, dtype=np.bool_)
-    z = np.zeros(N_STATE)
-    z_new = np.zeros(N_STATE)
-    z_event = np.zeros(N_STATE)
-    z_turn = np.zeros(N_STATE)
-    k1 = np.zeros(N_STATE)
-    q = np.zeros(6)
-    q_start = np.zeros(6)
-    q_end = np.zeros(6)
-    g_start = np.zeros(N_EVENTS)
-    g_end = np.zeros(N_EVENTS)
-    armed = np.zeros(N_EVENTS, dtype=np.bool_)
-    fresh = np.zeros(N_EVENTS, dtype=np.bool_)
-    no_events = np.zeros(N_EVENTS, dtype=np.bool_)
+    ready = _falses(_ONE)
+    z = _zeros(_STATE)
+    z_new = _zeros(_STATE)
+    z_event = _zeros(_STATE)
+    z_turn = _zeros(_STATE)
+    k1 = _zeros(_STATE)
+    q = _zeros(_SIX)
+    q_start = _zeros(_SIX)
+    q_end = _zeros(_SIX)
+    g_start = _zeros(_EVENTS)
+    g_end = _zeros(_EVENTS)
+    armed = _falses(_EVENTS)
+    fresh = _falses(_EVENTS)
+    no_events = _falses(_EVENTS)
 
     for i in range(N_INFO):
         info[i] = 0.0
@@ -276,9 +314,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     _track(t, q, info, parameters)
     slip, _ = measures(q, parameters)
     keep_rows = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
-    if keep_rows:
-        store(out, 0, q, slip, mode)
     filled = 1
+    if keep_rows:
+        store(out, filled - 1, q, slip, mode)   # row 0 as an int64, not a literal 0: store
+        # is compiled once for both its calls
 
     for k in range(n - 1):
         t0 = t_grid[k]
@@ -329,7 +368,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     if mode == ROCK or mode == SLIDE_ROCK:
                         z_from_q(q, side, z, parameters)
                         entered = True
-                    _record(ev, info, t, EV_MODE, REST, mode, 0.0, q, parameters)
+                    _record(ev, info, t, EV_MODE, _REST, mode, 0.0, q, parameters)
             elif mode == SLIDE:
                 length = t_end - t
                 ua, va = ground(segment, t)
@@ -364,7 +403,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     if new_mode == SLIDE:
                         kind = EV_REVERSAL if new_sigma != sigma else EV_MODE
                         sigma = new_sigma
-                        _record(ev, info, t, kind, SLIDE, SLIDE, 0.0, q, parameters)
+                        _record(ev, info, t, kind, _SLIDE, _SLIDE, 0.0, q, parameters)
                     else:
                         mode = new_mode
                         side = new_side
@@ -372,11 +411,11 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         if mode == ROCK or mode == SLIDE_ROCK:
                             z_from_q(q, side, z, parameters)
                             entered = True
-                        _record(ev, info, t, EV_MODE, SLIDE, mode, 0.0, q, parameters)
+                        _record(ev, info, t, EV_MODE, _SLIDE, mode, 0.0, q, parameters)
                 elif t_air >= 0.0:
                     transition = True
                     mode = FLIGHT
-                    _record(ev, info, t, EV_MODE, SLIDE, FLIGHT, 0.0, q, parameters)
+                    _record(ev, info, t, EV_MODE, _SLIDE, _FLIGHT, 0.0, q, parameters)
             elif mode == FLIGHT:
                 length = t_end - t
                 ua, va = ground(segment, t)
@@ -454,7 +493,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     span = landing
                     terminal = 1
                 flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q, info,
-                               I_MAX_ABS_THETA, parameters)
+                               _PEAKS, parameters)
                 xs, ys, ths, xds, yds, oms = flight_state(span, x0, y0, th0, xd0, yd0, om0, ua,
                                                           ka, va, kv)
                 w_table -= polynomial_work(ua, ka, xd0, -ua, -0.5 * ka, span)
@@ -462,7 +501,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 if math.isnan(info[I_T_UNSTABLE]) and abs(ths) > alpha:
                     info[I_T_UNSTABLE] = t + (math.copysign(alpha, ths) - th0) / om0
                     info[I_UNSTABLE_DIRECTION] = 1.0 if ths > 0.0 else -1.0
-                    _record(ev, info, info[I_T_UNSTABLE], EV_UNSTABLE, FLIGHT, FLIGHT, om0, q,
+                    _record(ev, info, info[I_T_UNSTABLE], EV_UNSTABLE, _FLIGHT, _FLIGHT, om0, q,
                             parameters)
                 q[0], q[1], q[2], q[3], q[4], q[5] = xs, ys, ths, xds, yds, oms
                 info[I_TIME_FLIGHT] += span
@@ -473,7 +512,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     q[2] = math.copysign(0.5 * math.pi, ths)
                     info[I_T_OVERTURN] = t
                     info[I_OVERTURN_DIRECTION] = 1.0 if ths > 0.0 else -1.0
-                    _record(ev, info, t, EV_OVERTURN, FLIGHT, FLIGHT, oms, q, parameters)
+                    _record(ev, info, t, EV_OVERTURN, _FLIGHT, _FLIGHT, oms, q, parameters)
                     break
                 if terminal == 1:
                     transition = True
@@ -484,7 +523,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         flat(q, x_dot, parameters)
                         loss += before - kinetic_energy(x_dot, 0.0, 0.0, parameters)
                         sigma = 0.0 if x_dot == 0.0 else math.copysign(1.0, x_dot)
-                        _record(ev, info, t, EV_LANDING, FLIGHT, mode, 0.0, q, parameters)
+                        _record(ev, info, t, EV_LANDING, _FLIGHT, mode, 0.0, q, parameters)
                     else:
                         side = corner_side
                         # the corner on the table (the root is located to the ulp)
@@ -505,7 +544,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         sigma = new_sigma
                         z_from_q(q, side, z, parameters)
                         entered = True
-                        _record(ev, info, t, EV_IMPACT, FLIGHT, mode, omega_before, q,
+                        _record(ev, info, t, EV_IMPACT, _FLIGHT, mode, omega_before, q,
                                 parameters)
             else:
                 # ---------------------------------------------------------------- contact
@@ -572,7 +611,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     # and of the corners' X (planar_track), and instability
                     evaluations += contact_extrema(
                         mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, ready, tau,
-                        z_new, segment, parameters, info, I_MAX_ABS_THETA, q, q_start, q_end,
+                        z_new, segment, parameters, info, _PEAKS, q, q_start, q_end,
                         z_turn, no_events)
                     if math.isnan(info[I_T_UNSTABLE]) and abs(z_new[0]) > alpha \
                             and abs(z[0]) <= alpha:
@@ -620,7 +659,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         break
                     if terminal == E_NORMAL:
                         mode = FLIGHT
-                        _record(ev, info, t, EV_MODE, previous_mode, FLIGHT, z[1], q,
+                        _record(ev, info, t, EV_MODE, previous_mode, _FLIGHT, z[1], q,
                                 parameters)
                     elif terminal == E_FRICTION and mode == ROCK:
                         _, _, _, friction, _ = rock_forces(z[0], z[1], side, u_now, v_now,
@@ -628,7 +667,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         sigma = -1.0 if friction > 0.0 else 1.0
                         mode = SLIDE_ROCK
                         entered = True
-                        _record(ev, info, t, EV_MODE, ROCK, SLIDE_ROCK, z[1], q, parameters)
+                        _record(ev, info, t, EV_MODE, _ROCK, _SLIDE_ROCK, z[1], q, parameters)
                     elif terminal == E_FRICTION:
                         # the slip speed is zero to the located root: the (rounding-level)
                         # kinetic energy taken out by zeroing it is counted as a loss
@@ -641,11 +680,11 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         entered = True
                         if abs(friction) <= mu_s * normal:
                             mode = ROCK
-                            _record(ev, info, t, EV_MODE, SLIDE_ROCK, ROCK, z[1], q,
+                            _record(ev, info, t, EV_MODE, _SLIDE_ROCK, _ROCK, z[1], q,
                                     parameters)
                         else:
                             sigma = -1.0 if friction > 0.0 else 1.0
-                            _record(ev, info, t, EV_REVERSAL, SLIDE_ROCK, SLIDE_ROCK, z[1], q,
+                            _record(ev, info, t, EV_REVERSAL, _SLIDE_ROCK, _SLIDE_ROCK, z[1], q,
                                     parameters)
                     else:
                         # ---- impact of the other corner at theta = 0; a plastic impact
@@ -734,8 +773,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 else:
                                     mode = SLIDE
                                     sigma = 1.0 if base > 0.0 else -1.0
-                                _record(ev, info, t, EV_CASCADE, SLIDE_ROCK if base != 0.0
-                                        else ROCK, mode, omega, q, parameters)
+                                _record(ev, info, t, EV_CASCADE, _SLIDE_ROCK if base != 0.0
+                                        else _ROCK, mode, omega, q, parameters)
                                 break
                             if side * q[5] >= 0.0:
                                 break

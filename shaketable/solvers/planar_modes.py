@@ -14,6 +14,7 @@ from shaketable.core.constants import G
 from shaketable.core.dynamics import HALF_HEIGHT, HALF_WIDTH, flight_acceleration
 from shaketable.core.planar_dynamics import (
     FLIGHT,
+    HELPER,
     INCONSISTENT,
     PAINLEVE,
     REST,
@@ -31,7 +32,7 @@ OUT_X, OUT_Y, OUT_THETA, OUT_X_DOT, OUT_Y_DOT, OUT_OMEGA, OUT_SLIP, OUT_MODE = r
 N_OUT = 8
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def z_from_q(q, side, z, parameters):
     """Contact-mode state z from the full state q = (x, y, theta, x', y', theta')."""
     r_x, r_y = corner_vector(q[2], side, parameters)
@@ -43,7 +44,7 @@ def z_from_q(q, side, z, parameters):
     z[5] = 0.0
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def q_from_z(z, side, q, parameters):
     """Full state q from a contact-mode state z (the corner on the table)."""
     r_x, r_y = corner_vector(z[0], side, parameters)
@@ -55,7 +56,7 @@ def q_from_z(z, side, q, parameters):
     q[5] = z[1]
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def measures(q, parameters):
     """Slip of the base midpoint [m] and the largest corner excursion |X - X_rest| [m]."""
     b = parameters[HALF_WIDTH]
@@ -72,7 +73,7 @@ def measures(q, parameters):
     return slip, largest
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def rest_margin(condition, ug, vg, mu_s, parameters):
     """Margin of a rest condition, positive when it fails: 0 lift-off, 1/2 slip toward
     -/+x driven by ug > 0 / < 0, 3/4 tipping onto side +1 / -1 (the rocking engine's test)."""
@@ -87,7 +88,7 @@ def rest_margin(condition, ug, vg, mu_s, parameters):
     return -flight_acceleration(0.0, -1.0, ug, vg, 0.0, parameters)
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def first_failure(t, t_end, segment, mu_s, parameters):
     """First time in [t, t_end] at which a rest condition fails strictly [s]; inf if none.
 
@@ -170,7 +171,7 @@ def enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
     return mode, sigma
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def quantity(which, q, parameters):
     """The slip (``which`` 0) or the excursion X - X_rest of corner ``which`` (1..4, the
     order of :func:`~shaketable.solvers.planar_steps.horizontal_rate`) [m]."""
@@ -183,7 +184,7 @@ def quantity(which, q, parameters):
     return q[0] + u * math.cos(q[2]) - w * math.sin(q[2]) - u
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def hermite_peak(value0, value1, rate0, rate1, span):
     """Largest |H| at the interior turning points of the cubic Hermite interpolant of
     (value, rate) at both ends of a step of length ``span`` (0 if none)."""
@@ -208,7 +209,7 @@ def hermite_peak(value0, value1, rate0, rate1, span):
     return largest
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def store(out, row, q, slip, mode):
     for i in range(6):
         out[row, i] = q[i]
@@ -216,7 +217,7 @@ def store(out, row, q, slip, mode):
     out[row, OUT_MODE] = mode
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def flat(q, x_dot, parameters):
     q[1] = parameters[HALF_HEIGHT]
     q[2] = 0.0

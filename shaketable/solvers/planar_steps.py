@@ -25,6 +25,7 @@ from numba import njit
 from shaketable.core.constants import G
 from shaketable.core.dynamics import ALPHA, HALF_HEIGHT, HALF_WIDTH, flight_acceleration
 from shaketable.core.planar_dynamics import (
+    HELPER,
     ROCK,
     corner_vector,
     rock_forces,
@@ -191,7 +192,7 @@ E_IMPACT, E_NORMAL, E_FRICTION, E_OVERTURN, E_MASS = 0, 1, 2, 3, 4
 N_EVENTS = 5
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def ground(segment, time):
     """Horizontal and vertical table acceleration [m/s^2] at ``time`` (linear in the interval).
 
@@ -201,7 +202,7 @@ def ground(segment, time):
     return segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def slopes_ground(segment, time):
     """:func:`ground` from the slopes ``segment[6:8]`` [m/s^3] (no division: the
     right-hand side's; the rest and start rules keep :func:`ground`, the rocking engine's)."""
@@ -209,7 +210,7 @@ def slopes_ground(segment, time):
     return segment[2] + segment[6] * elapsed, segment[4] + segment[7] * elapsed
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def rhs(mode, side, sigma, mu_d, t, z, segment, parameters, out):
     """z' of ROCK or SLIDE_ROCK into ``out``."""
     ug, vg = slopes_ground(segment, t)
@@ -235,7 +236,7 @@ def rhs(mode, side, sigma, mu_d, t, z, segment, parameters, out):
     out[5] = friction_power
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def dop853_step(mode, side, sigma, mu_d, t, z, k1, h, segment, parameters, stages, z_new,
                 scale_abs, rtol):
     """One DOP853 step of size ``h`` from (t, z) with z'(t) = ``k1``; z(t + h) into ``z_new``.
@@ -275,7 +276,7 @@ def dop853_step(mode, side, sigma, mu_d, t, z, k1, h, segment, parameters, stage
     return abs(h) * err5 / math.sqrt((err5 + 0.01 * err3) * N_STATE)
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def events(mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, out):
     """The terminal event functions of ROCK / SLIDE_ROCK at (t, z) into ``out``; each is
     positive while the mode holds: side theta (impact), N (lift-off), the friction margin
@@ -299,7 +300,7 @@ def events(mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, out):
         out[E_MASS] = d
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def event_value(kind, mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, armed, sign,
                 values):
     """The event function of ``kind`` at (t, z): positive before the event, <= 0 at and after.
@@ -323,7 +324,7 @@ def event_value(kind, mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, 
     return least
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def dense_output(mode, side, sigma, mu_d, t, z, z_end, h, segment, parameters, stages, dense):
     """DOP853's continuous extension of order 7 on the accepted step (t, z) -> (t + h,
     ``z_end``) into ``dense`` (7, N_STATE), for :func:`dense_state`.
@@ -355,7 +356,7 @@ def dense_output(mode, side, sigma, mu_d, t, z, z_end, h, segment, parameters, s
     return 4
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def dense_state(dense, z, fraction, out):
     """The state at ``fraction`` (0..1) of the step from z on the continuous extension."""
     for i in range(N_STATE):
@@ -366,7 +367,7 @@ def dense_state(dense, z, fraction, out):
         out[i] = z[i] + value
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, step, z_step, stages, dense, ready,
            upper, z_upper, armed, sign, segment, parameters, z_out):
     """First zero of an event function on (0, upper] of the accepted step (t, z) ->
@@ -444,7 +445,7 @@ def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, step, z_step, stages, dens
     return b, evaluations
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def terminal_event(mode, side, sigma, mu_s, mu_d, t, z, step, z_new, stages, dense, ready,
                    segment, parameters, armed, g_end, z_event, z_turn, no_events):
     """The first of the ``armed`` terminal events in the accepted contact step (t, z) ->
@@ -494,14 +495,14 @@ def terminal_event(mode, side, sigma, mu_s, mu_d, t, z, step, z_new, stages, den
     return terminal, tau, evaluations
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def polynomial_work(p0, p1, q0, q1, q2, span):
     """Integral over [0, span] of (p0 + p1 tau)(q0 + q1 tau + q2 tau^2)."""
     return (p0 * q0 * span + (p0 * q1 + p1 * q0) * span ** 2 / 2.0
             + (p0 * q2 + p1 * q1) * span ** 3 / 3.0 + p1 * q2 * span ** 4 / 4.0)
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def flight_state(tau, x, y, theta, x_dot, y_dot, omega, ua, ka, va, kv):
     """Ballistic state after ``tau`` [s] (x'' = -ug, y'' = -(g + vg), theta'' = 0, the table
     accelerations ua + ka tau, va + kv tau)."""
@@ -514,7 +515,7 @@ def flight_state(tau, x, y, theta, x_dot, y_dot, omega, ua, ka, va, kv):
             omega)
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def lowest_corner(y, theta, parameters):
     """Height of the lower bottom corner [m] and its side."""
     b = parameters[HALF_WIDTH]
@@ -528,7 +529,7 @@ def lowest_corner(y, theta, parameters):
     return minus, -1.0
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def horizontal_rate(which, theta, x_dot, omega, parameters):
     """d/dt of the slip of the base's midpoint (``which`` 0) or of the X of a corner
     (1..4: body points (-b, -h), (b, -h), (-b, h), (b, h)) [m/s]: zero at their extrema."""
@@ -536,7 +537,7 @@ def horizontal_rate(which, theta, x_dot, omega, parameters):
                               parameters)
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def horizontal_rate_at(which, cosine, sine, x_dot, omega, parameters):
     """:func:`horizontal_rate` with cos(theta) and sin(theta) given."""
     b = parameters[HALF_WIDTH]

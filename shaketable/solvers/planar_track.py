@@ -17,6 +17,7 @@ import math
 from numba import njit
 
 from shaketable.core.dynamics import HALF_HEIGHT, HALF_WIDTH
+from shaketable.core.planar_dynamics import HELPER
 from shaketable.solvers.planar_modes import hermite_peak, measures, q_from_z, quantity
 from shaketable.solvers.planar_steps import (
     KIND_PEAK,
@@ -34,7 +35,9 @@ P_MAX_ABS_THETA, P_T_MAX, P_PEAK_SLIP, P_T_PEAK_SLIP, P_PEAK_EXCURSION = range(5
 N_PEAKS = 5
 
 
-@njit(cache=True, inline="always")
+# one compiled function (not inlined: a copy of it in each of its four callers cost more
+# to compile); the callers pass ``first`` as an int64 so that it is compiled once
+@njit(**HELPER)
 def track(t, q, info, first, parameters):
     """Update the peaks in ``info`` with the state q = (x, y, theta, x', y', theta') at t."""
     slip, excursion = measures(q, parameters)
@@ -64,7 +67,7 @@ def record(ev, info, slot, t, kind, before, after, omega, q, parameters):
     info[slot] = index + 1
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, ready, tau, z_new,
                     segment, parameters, info, first, q, q_start, q_end, z_turn, no_events):
     """Track the turning point of theta and the extrema of the slip and of the corners' X
@@ -119,7 +122,7 @@ def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, re
     return evaluations
 
 
-@njit(cache=True)
+@njit(**HELPER)
 def flight_extrema(t, span, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, q, info,
                    first, parameters):
     """Track the extrema of the slip and of the corners' X inside a flight of ``span`` [s]
