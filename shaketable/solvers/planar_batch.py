@@ -21,7 +21,7 @@ from shaketable.core.motion import Motion
 from shaketable.core.planar_result import MODES, VERDICTS
 from shaketable.core.sliding_result import Friction
 from shaketable.solvers import planar
-from shaketable.solvers.common import extended
+from shaketable.solvers.common import engine_arrays, extended
 from shaketable.solvers.planar_run import DEFAULT_PLANAR_RTOL, check_planar_inputs, impact_ratios
 
 
@@ -89,9 +89,7 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
     # overturns early is cheap), as the rocking batch does
     previous = set_parallel_chunksize(1)
     try:
-        _run_planar_batch(np.ascontiguousarray(motion.t, dtype=float),
-                          np.ascontiguousarray(motion.horizontal, dtype=float),
-                          np.ascontiguousarray(motion.vertical_or_zero, dtype=float),
+        _run_planar_batch(*engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero),
                           parameters, rho, cor_cascade, mu_s, mu_d,
                           DEFAULT_PLANAR_RTOL if rtol is None else float(rtol), -1.0, info,
                           final)

@@ -18,7 +18,7 @@ from shaketable.core.planar_result import MODES, PlanarResult
 from shaketable.core.sliding_result import Friction
 from shaketable.core.validation import in_range
 from shaketable.solvers import planar
-from shaketable.solvers.common import call_interruptibly, run_motion, run_options
+from shaketable.solvers.common import call_interruptibly, engine_arrays, run_motion, run_options
 
 #: Default relative tolerance of the planar engine's DOP853 steps [-].
 DEFAULT_PLANAR_RTOL = 1e-12
@@ -115,9 +115,9 @@ def simulate_planar(block: Block, motion: Motion | None = None, *, cor: float | 
                          "(pitch); give a motion without rotation")
     capacity = max(1, whole_number("max_recorded_events", max_recorded_events, minimum=0))
     parameters = block_parameters(block)
-    t_grid = np.ascontiguousarray(motion.t, dtype=float)
-    ug = np.ascontiguousarray(motion.horizontal, dtype=float)
-    vg = np.ascontiguousarray(motion.vertical_or_zero, dtype=float)
+    # read-only float64 views whatever the motion (a motion without a vertical gives a
+    # fresh writable array of zeros): one compiled signature for every run and the batch
+    t_grid, ug, vg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero)
     n = t_grid.size
     out = np.zeros((n, planar.N_OUT))
     events = np.zeros((capacity, planar.EVENT_COLUMNS))
