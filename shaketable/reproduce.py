@@ -136,7 +136,7 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         if any(uses_planar(name) for name in names):
             # one worker compiles (or loads) the planar engine first while the other starts
             # the longest scene: the planar scenes come after the report tables, so the
-            # two processes never both compile it (~19 s of CPU each, cold cache)
+            # two processes never both compile it (~15 s of CPU each, cold cache)
             pool.submit(_load_the_planar_engine)
         futures = {pool.submit(_pooled_outcome, name, out): name
                    for name in sorted(names, key=_expected_cost, reverse=True)}
