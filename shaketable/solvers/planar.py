@@ -23,20 +23,17 @@ mode (:mod:`shaketable.core.planar_dynamics` states the physics once):
   the sign of the corner's height and of its rate (a touch-down between two pieces
   shows as a minimum), then bisected to the ulp.
 
-Impacts use :func:`~shaketable.core.planar_dynamics.impact`; after a sticking impact
-at theta = 0 the endless cascade of a decaying block is summed in closed form exactly
-as the rocking engine does (:func:`~shaketable.core.dynamics.cascade_rest_time`, the
-same default rest tolerance 1e-6/p and the same velocity floor 1e-8 alpha p); after a
-slipping one (a slide-rocking block that settles while it slides) the cascade, once
-summable by the same rule (with the rocking deceleration), ends in SLIDE at that instant
-with the corner's slip velocity (the summed micro-rocking is not resolved).
+Impacts use :func:`~shaketable.core.planar_dynamics.impact`; after a sticking impact at
+theta = 0 the endless cascade of a decaying block is summed in closed form as the rocking
+engine does (:func:`~shaketable.core.dynamics.cascade_rest_time`, the same rest tolerance
+and velocity floor); after a slipping one, once summable by the same rule, it ends in SLIDE
+with the corner's slip velocity (docs/planar.md, "Impacts").
 
 The engine never produces NaN: a run that cannot go on stops with a status (overturned,
-painleve, inconsistent, chatter: more than 200 transitions without time advancing or
-100 000 in one sample interval, stalled: a step below 1e-14 s) and the state before it.
-The work of the table's inertial force and of friction and the kinetic energy lost in
-impacts are accumulated (closed forms in REST, SLIDE and FLIGHT; integrated with the
-state in the contact modes), so that E_end - E_0 = W_table + W_friction - losses.
+painleve, inconsistent, chatter, stalled: :data:`STATUSES`) and the state before it. The
+work of the table's inertial force and of friction and the impact losses are accumulated
+(closed forms in REST, SLIDE and FLIGHT; integrated with the state in the contact
+modes), so that E_end - E_0 = W_table + W_friction - losses.
 
 One compiled driver (as the rocking engine); its steppers and event location are in
 :mod:`~shaketable.solvers.planar_steps`, its helpers in :mod:`~shaketable.solvers.planar_modes`
@@ -106,6 +103,7 @@ from shaketable.solvers.planar_steps import (
     N_STATE,
     dop853_step,
     events,
+    falses,
     flight_state,
     ground,
     locate,
@@ -113,6 +111,7 @@ from shaketable.solvers.planar_steps import (
     polynomial_work,
     rhs,
     terminal_event,
+    zeros,
 )
 from shaketable.solvers.planar_track import contact_extrema, flight_extrema, record, track
 from shaketable.solvers.sliding import first_up_crossing, first_velocity_zero
@@ -152,7 +151,7 @@ N_INFO = 33
 #: its callers give ``first``: a literal would compile it once more).
 _PEAKS = np.int64(I_MAX_ABS_THETA)
 
-#: The sizes of the engine's work arrays, as int64 for the same reason (_zeros, _falses).
+#: The sizes of the engine's work arrays, as int64 for the same reason (zeros, falses).
 _ONE, _SIX, _STATE, _EVENTS = np.int64(1), np.int64(6), np.int64(N_STATE), np.int64(N_EVENTS)
 
 #: Transitions allowed at one instant before the run stops with status "chatter".
@@ -166,24 +165,6 @@ MAX_IMMEDIATE_IMPACTS = 1000
 #: (a safeguard against a Zeno sequence the cascade rule does not sum; never reached in
 #: the tests).
 MAX_TRANSITIONS_PER_INTERVAL = 100_000
-
-
-@njit(**HELPER)
-def _zeros(n):
-    """A float array of n zeros (np.empty: compiled once for all the engine's arrays)."""
-    array = np.empty(n)
-    for i in range(n):
-        array[i] = 0.0
-    return array
-
-
-@njit(**HELPER)
-def _falses(n):
-    """A bool array of n False."""
-    array = np.empty(n, dtype=np.bool_)
-    for i in range(n):
-        array[i] = False
-    return array
 
 
 @njit(**HELPER)
@@ -241,7 +222,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         rest_tolerance = 1e-6 / p
     velocity_floor = 1e-8 * alpha * p
     scale_abs = np.empty(6)   # (np.empty, not np.array or np.zeros: one numpy routine less
-    # to compile on a cold cache; the work arrays below are zeroed by _zeros and _falses)
+    # to compile on a cold cache; the work arrays below are zeroed by zeros and falses)
     scale_abs[0] = rtol * alpha
     scale_abs[1] = rtol * alpha * p
     scale_abs[2] = rtol * radius
@@ -251,20 +232,20 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     segment = np.empty(8)
     stages = np.empty((16, N_STATE))
     dense = np.empty((7, N_STATE))
-    ready = _falses(_ONE)
-    z = _zeros(_STATE)
-    z_new = _zeros(_STATE)
-    z_event = _zeros(_STATE)
-    z_turn = _zeros(_STATE)
-    k1 = _zeros(_STATE)
-    q = _zeros(_SIX)
-    q_start = _zeros(_SIX)
-    q_end = _zeros(_SIX)
-    g_start = _zeros(_EVENTS)
-    g_end = _zeros(_EVENTS)
-    armed = _falses(_EVENTS)
-    fresh = _falses(_EVENTS)
-    no_events = _falses(_EVENTS)
+    ready = falses(_ONE)
+    z = zeros(_STATE)
+    z_new = zeros(_STATE)
+    z_event = zeros(_STATE)
+    z_turn = zeros(_STATE)
+    k1 = zeros(_STATE)
+    q = zeros(_SIX)
+    q_start = zeros(_SIX)
+    q_end = zeros(_SIX)
+    g_start = zeros(_EVENTS)
+    g_end = zeros(_EVENTS)
+    armed = falses(_EVENTS)
+    fresh = falses(_EVENTS)
+    no_events = falses(_EVENTS)
 
     for i in range(N_INFO):
         info[i] = 0.0

@@ -85,12 +85,12 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
         mu_s[i], mu_d[i] = friction.static, friction.dynamic
     info = np.zeros((m, planar.N_INFO))
     final = np.zeros((m, planar.N_OUT))
+    t_grid, ug, vg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero)
     # the cases are handed out one at a time (run costs differ a lot: a block that
     # overturns early is cheap), as the rocking batch does
     previous = set_parallel_chunksize(1)
     try:
-        _run_planar_batch(*engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero),
-                          parameters, rho, cor_cascade, mu_s, mu_d,
+        _run_planar_batch(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d,
                           DEFAULT_PLANAR_RTOL if rtol is None else float(rtol), -1.0, info,
                           final)
     finally:

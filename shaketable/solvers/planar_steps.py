@@ -547,3 +547,21 @@ def horizontal_rate_at(which, cosine, sine, x_dot, omega, parameters):
     u = -b if which == 1 or which == 3 else b
     w = -h if which <= 2 else h
     return x_dot - omega * (u * sine + w * cosine)
+
+
+@njit(**HELPER)
+def zeros(n):
+    """A float array of n zeros (np.empty: compiled once for all the engine's arrays)."""
+    array = np.empty(n)
+    for i in range(n):
+        array[i] = 0.0
+    return array
+
+
+@njit(**HELPER)
+def falses(n):
+    """A bool array of n False."""
+    array = np.empty(n, dtype=np.bool_)
+    for i in range(n):
+        array[i] = False
+    return array
