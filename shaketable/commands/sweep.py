@@ -10,7 +10,7 @@ if TYPE_CHECKING:
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from shaketable.commands.common import notice_first_compile
+    from shaketable.commands.common import compiled_before, notice_first_compile
     from shaketable.core.files import prepare_output_folder
     from shaketable.scenes.catalog import resolve_sweep_path
     from shaketable.sweeps.execute import run_sweep
@@ -32,6 +32,8 @@ def _sweep(args: argparse.Namespace) -> int:
     if spec.friction is not None:
         print(f"{spec.name}: [friction]: the coupled planar model (rest, slide, rock, "
               f"slide-rock, flight), {len(spec.friction.pairs)} friction pair(s) (mu_s, mu_d)")
+    compiling = not args.scheduler and not compiled_before(
+        "batch" if spec.friction is None else "planar batch")
     if not args.scheduler:
         notice_first_compile(args.quiet, which=("batch",) if spec.friction is None
                              else ("planar", "planar batch"))
@@ -40,7 +42,8 @@ def _sweep(args: argparse.Namespace) -> int:
                         max_chunks=args.max_chunks)
     rate = outcome.computed_runs / outcome.seconds if outcome.seconds > 0 else float("nan")
     print(f"{spec.name}: computed {outcome.computed_runs} runs in {outcome.seconds:.1f} s "
-          f"({rate:.0f} runs/s); {outcome.skipped_runs} were already on disk")
+          f"({rate:.3g} runs/s{', the first compile included' if compiling else ''}); "
+          f"{outcome.skipped_runs} were already on disk")
     if not outcome.complete:
         print(f"{spec.name}: stopped before the end; run again with --resume to finish "
               f"(finished chunks are in {out / 'parts'})")
