@@ -32,13 +32,18 @@ def _compiled_sources_fingerprint() -> str:
 
     digest = hashlib.sha256()
     here = _os.path.dirname(_os.path.abspath(__file__))
-    for layer in ("core", "solvers"):
-        folder = _os.path.join(here, layer)
-        for name in sorted(_os.listdir(folder)):
-            if name.endswith(".py"):
-                digest.update(name.encode())
-                with open(_os.path.join(folder, name), "rb") as source:
-                    digest.update(source.read())
+    try:
+        for layer in ("core", "solvers"):
+            folder = _os.path.join(here, layer)
+            for name in sorted(_os.listdir(folder)):
+                if name.endswith(".py"):
+                    digest.update(name.encode())
+                    with open(_os.path.join(folder, name), "rb") as source:
+                        digest.update(source.read())
+    except OSError:   # sources not readable as files (a zipped or frozen install)
+        from shaketable.version import __version__
+
+        return "version-" + __version__
     return digest.hexdigest()[:16]
 
 

@@ -68,7 +68,7 @@ def _format(value) -> str:
 
 
 def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out", progress: bool = True,
-              failures: list | None = None) -> Path:
+              failures: list | None = None, compile_planar_first: bool = False) -> Path:
     """Run the named scenes; write ``out/report.md`` with figures and comparison tables.
 
     Each scene's outputs go to ``out/<name>/``, with its Markdown section
@@ -89,6 +89,10 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         Show a progress bar (tqdm, on stderr).
     failures : list, optional
         Receives the names of the scenes that could not be reproduced.
+    compile_planar_first : bool
+        The planar engine is not in numba's cache yet: with scenes in two processes, one
+        compiles it first (unless the first scene to start is a planar one), so that the
+        two never both compile it (~15 s of CPU each).
 
     Returns
     -------
@@ -133,13 +137,13 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         # written as it completes (the progress bar moves with the work), the report in
         # the catalogue's order. Each result carries its worker's CPU so far (the load
         # balance).
-        if any(uses_planar(name) for name in names):
-            # one worker compiles (or loads) the planar engine first while the other starts
-            # the longest scene: the planar scenes come after the report tables, so the
-            # two processes never both compile it (~15 s of CPU each, cold cache)
+        order = sorted(names, key=_expected_cost, reverse=True)
+        if compile_planar_first and not uses_planar(order[0]) and any(map(uses_planar, order)):
+            # one worker compiles the planar engine while the other starts the longest
+            # scene; the planar scenes come after the report tables (an error here is
+            # the planar scene's own to report)
             pool.submit(_load_the_planar_engine)
-        futures = {pool.submit(_pooled_outcome, name, out): name
-                   for name in sorted(names, key=_expected_cost, reverse=True)}
+        futures = {pool.submit(_pooled_outcome, name, out): name for name in order}
         WORKER_CPU.clear()
         try:
             for future in as_completed(futures):

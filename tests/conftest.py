@@ -97,3 +97,12 @@ def pytest_terminal_summary(terminalreporter):
     for worker, (own, children) in sorted(_WORKER_CPU.items()):
         terminalreporter.write_line(f"worker {worker}: {own + children:.1f} s CPU "
                                     f"({own:.1f} s its own, {children:.1f} s in subprocesses)")
+
+
+def pytest_addoption(parser, pluginmanager):
+    """pyproject's addopts ask for ``--dist loadgroup`` (pytest-xdist, the test extras); a
+    developer without pytest-xdist (or with ``-p no:xdist``) still runs the suite in one
+    process: the option is accepted and ignored then."""
+    if not pluginmanager.has_plugin("xdist") and not pluginmanager.has_plugin("xdist.plugin"):
+        parser.addoption("--dist", default="no",
+                         help="pytest-xdist's distribution mode (not installed: ignored)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from shaketable.commands.common import notice_first_compile
+from shaketable.commands.common import compiled_before, notice_first_compile
 
 
 def _reproduce(args) -> int:
@@ -28,7 +28,8 @@ def _reproduce(args) -> int:
     planar = any(uses_planar(name) for name in names)
     notice_first_compile(args.quiet, which=("engine", "planar") if planar else ("engine",))
     failed: list = []
-    report = reproduce(names, out=out, progress=not args.quiet, failures=failed)
+    report = reproduce(names, out=out, progress=not args.quiet, failures=failed,
+                       compile_planar_first=planar and not compiled_before("planar"))
     for line in _summary(out):
         print(line)
     print(f"wrote {report} (and gallery.md beside it)")

@@ -138,8 +138,9 @@ def friction_grid(table, where: str) -> FrictionGrid | None:
                          "given; give one (or neither: mu_d = mu_s)")
     if "dynamic_ratio" in table:
         ratios = _coefficients(table["dynamic_ratio"], where, "friction.dynamic_ratio", 1.0)
-        return FrictionGrid(tuple((mu_s, ratio * mu_s) for mu_s in statics
-                                  for ratio in ratios), "ratio")
+        # mu_s = 0 gives the pair (0, 0) for every ratio: each pair is run once
+        return FrictionGrid(tuple(dict.fromkeys((mu_s, ratio * mu_s) for mu_s in statics
+                                                for ratio in ratios)), "ratio")
     if "dynamic" not in table:
         return FrictionGrid(tuple((mu_s, mu_s) for mu_s in statics), "same")
     dynamics = _coefficients(table["dynamic"], where, "friction.dynamic")

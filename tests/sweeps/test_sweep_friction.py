@@ -131,6 +131,10 @@ def test_dynamic_friction_as_its_own_axis_and_same_as_static_by_default(tmp_path
                                      "b.toml"))
     assert default.friction.pairs == ((0.2, 0.2), (0.5, 0.5))
     assert default.n_runs == 32
+    # mu_s = 0 with a list of ratios: the pair (0, 0) once, not once per ratio (review)
+    frictionless = sweeps.load_spec(write(tmp_path, SPEC.replace(
+        "static = [0.2, 0.5]", "static = [0.0, 0.5]"), "c.toml"))
+    assert frictionless.friction.pairs == ((0.0, 0.0), (0.5, 0.5), (0.5, 0.4))
 
 
 # --------------------------------------------------------------------------- resume
