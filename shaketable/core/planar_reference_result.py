@@ -13,7 +13,7 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.planar_result import VERDICTS
+from shaketable.core.planar_result import VERDICTS, planar_frame
 from shaketable.core.shenton import MODE_NAMES
 from shaketable.core.sliding_result import Friction
 
@@ -168,21 +168,7 @@ class PlanarReferenceResult:
         """Time history as a :class:`pandas.DataFrame`, units in the column names: the
         columns of :meth:`shaketable.core.planar_result.PlanarResult.to_frame` (ground
         acceleration [g], x, y, theta, their rates, slip, theta/alpha, mode name)."""
-        import pandas as pd
-
-        return pd.DataFrame({
-            "time [s]": self.t,
-            **self.motion.columns_in_g(self.t),
-            "x [m]": self.x,
-            "y [m]": self.y,
-            "theta [rad]": self.theta,
-            "x_dot [m/s]": self.x_dot,
-            "y_dot [m/s]": self.y_dot,
-            "theta_dot [rad/s]": self.theta_dot,
-            "slip [m]": self.slip,
-            "theta/alpha [-]": self.theta / self.block.alpha,
-            "mode": [MODE_NAMES[int(m)] for m in self.mode],
-        })
+        return planar_frame(self)
 
     def plot(self, fig=None, title: str | None = None):
         """The Calcomp layout with a slip panel and a mode band, the figure of

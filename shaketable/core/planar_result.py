@@ -185,21 +185,7 @@ class PlanarResult:
 
     def to_frame(self):
         """Time history as a :class:`pandas.DataFrame` with units in the column names."""
-        import pandas as pd
-
-        return pd.DataFrame({
-            "time [s]": self.t,
-            **self.motion.columns_in_g(self.t),
-            "x [m]": self.x,
-            "y [m]": self.y,
-            "theta [rad]": self.theta,
-            "x_dot [m/s]": self.x_dot,
-            "y_dot [m/s]": self.y_dot,
-            "theta_dot [rad/s]": self.theta_dot,
-            "slip [m]": self.slip,
-            "theta/alpha [-]": self.theta / self.block.alpha,
-            "mode": [MODES[int(k)] for k in self.mode],
-        })
+        return planar_frame(self)
 
     def summary(self) -> dict:
         """Scalar results as a JSON-ready dict (NaN written as None)."""
@@ -242,3 +228,25 @@ class PlanarResult:
         from shaketable.plots.planar import planar_figure
 
         return planar_figure(self, fig=fig, title=title)
+
+
+def planar_frame(result):
+    """The time history of a planar result (the compiled engine's or the reference's) as a
+    :class:`pandas.DataFrame`: ground acceleration [g], x, y [m], theta [rad], their rates,
+    the slip [m], theta/alpha [-] and the mode's name; one set of columns for both results,
+    which the planar figure (:func:`shaketable.plots.planar.planar_figure`) reads."""
+    import pandas as pd
+
+    return pd.DataFrame({
+        "time [s]": result.t,
+        **result.motion.columns_in_g(result.t),
+        "x [m]": result.x,
+        "y [m]": result.y,
+        "theta [rad]": result.theta,
+        "x_dot [m/s]": result.x_dot,
+        "y_dot [m/s]": result.y_dot,
+        "theta_dot [rad/s]": result.theta_dot,
+        "slip [m]": result.slip,
+        "theta/alpha [-]": result.theta / result.block.alpha,
+        "mode": [MODES[int(k)] for k in result.mode],
+    })
