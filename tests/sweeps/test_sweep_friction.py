@@ -23,6 +23,7 @@ from shaketable.core.sliding_result import Friction
 from shaketable.ground import generators, records, signals
 from shaketable.sweeps import execute
 from tests.sweeps.test_sweeps import SPEC as ROCKING_SPEC
+from tests.sweeps.test_sweeps import write
 
 SPEC = """
 name = "tiny-friction"
@@ -48,12 +49,6 @@ chunk_size = 7
 """
 # 2 blocks x 4 friction pairs x 2 COR x 2 records x 2 PGA levels: 64 runs, 10 chunks (the
 # last one short, and chunk edges inside a block's friction x COR grid).
-
-
-def write(tmp_path, text, name="spec.toml"):
-    path = tmp_path / name
-    path.write_text(text)
-    return path
 
 
 @pytest.fixture(scope="module")
