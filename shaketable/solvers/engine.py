@@ -54,9 +54,16 @@ Size: one compiled unit on purpose (about 900 lines): numba inlines the steppers
 the event location into the integrators, and a module boundary would not change that.
 
 First compile (issue 28): each method has its own compiled integrator, the driver's
-code with the method a compile-time constant (:func:`_integrator`), so the default
-method's first compile types and optimises only the Nystrom stepper and the exact
-model; the helpers have no Python entry; ``benchmarks/cold_start.py --breakdown``
+code with the method a compile-time constant and the method's functions bound to the
+names it calls (:func:`_integrator`), so the default method's first compile types and
+optimises only the Nystrom stepper and the exact model, with no compiled layer that
+chooses a method's function; the helpers have no Python entry and no reference
+counting. numba's first compile costs about 0.3 ms of CPU per statement of its IR, and
+every compiled function about 25 ms more (its own LLVM module, optimised and turned into
+machine code, then again inside each caller): the terminal events of a step are a
+function of their own (:func:`_terminal_event`), which made the driver's first compile
+shorter by more than that function costs; splitting further did not (each split links
+and optimises the event location once more). ``benchmarks/cold_start.py --breakdown``
 shows where the rest goes.
 """
 
@@ -65,7 +72,7 @@ from __future__ import annotations
 import math
 import types
 
-from numba import njit
+from numba import boolean, int64, njit
 
 from shaketable.core.constants import G
 from shaketable.core.dynamics import (
@@ -109,11 +116,12 @@ from shaketable.solvers.layout import (
     STATUS_OVERTURNED,
 )
 from shaketable.solvers.steppers import (
-    advance,
+    METHOD_FUNCTIONS,
+    angular_acceleration,
+    flight_acceleration,
     ground,
     helper,
-    model_acceleration,
-    start_acceleration,
+    nystrom_step,
 )
 
 # Eq. (2-13)/(2-14)'s cascade sum as a compiled helper (shaketable.core.dynamics' keeps its
@@ -121,12 +129,18 @@ from shaketable.solvers.steppers import (
 _cascade_rest_time = helper(cascade_rest_time.py_func)
 
 
+# The functions of the method that the code below calls by these names (those of
+# steppers.METHOD_FUNCTIONS): here the fast method's; each integrator binds its own
+# method's in its own namespace (_integrator).
+model_acceleration = angular_acceleration
+flight_model = flight_acceleration
+advance = nystrom_step
+
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
 _EVALUATIONS_FAST, _EVALUATIONS_PREDICTOR_CORRECTOR, _EVALUATIONS_LINEAR = 5, 2, 1
 
 
-@helper
-def _first_positive_margin(method, start, t_end, side, segment, parameters):
+def _first_positive_margin(start, t_end, side, segment, parameters):
     """The first time in [start, t_end] at which rocking onto ``side`` really begins [s].
 
     ``start`` is the crossing of Eq. (2-1) located by linear interpolation of
@@ -139,7 +153,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
     with a positive margin, a few ulps after ``start``.
     """
     ua, va, ra = ground(segment, start)
-    if side * model_acceleration(method, 0.0, side, ua, va, ra, parameters) > 0.0:
+    if side * model_acceleration(0.0, side, ua, va, ra, parameters) > 0.0:
         return start
     low = start
     high = t_end
@@ -148,7 +162,7 @@ def _first_positive_margin(method, start, t_end, side, segment, parameters):
         if middle <= low or middle >= high:
             break
         um, vm, rm = ground(segment, middle)
-        if side * model_acceleration(method, 0.0, side, um, vm, rm, parameters) > 0.0:
+        if side * model_acceleration(0.0, side, um, vm, rm, parameters) > 0.0:
             high = middle
         else:
             low = middle
@@ -169,8 +183,7 @@ def _event(kind, x, v, a, side, sign, alpha):
     return alpha + x, v
 
 
-@helper
-def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
+def _locate(kind, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
             a_upper, segment, parameters, sign):
     """First root of an event function on (0, upper], by a safeguarded Newton iteration.
 
@@ -195,7 +208,7 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
         return upper, xc, vc, ac, 0
     tolerance = 2e-16 * (abs(t) + upper) + 1e-300
     previous = math.inf
-    trials = 0
+    trials = int64(0)  # not a literal 0: see _drive
     for _ in range(100):
         newton = math.inf if dgc == 0.0 else gc / dgc
         candidate = c - newton
@@ -205,7 +218,7 @@ def _locate(kind, method, t, theta, omega, acceleration, side, upper, x_upper, v
         if abs(newton) <= tolerance:
             break  # c is the root to within rounding
         previous = change
-        x, v, acc, _, _ = advance(method, t, theta, omega, acceleration, side, candidate,
+        x, v, acc, _, _ = advance(t, theta, omega, acceleration, side, candidate,
                                    segment, parameters)
         trials += 1
         g, dg = _event(kind, x, v, acc, side, sign, alpha)
@@ -259,8 +272,7 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     return s * h
 
 
-@helper
-def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
+def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new,
                     threshold, first_only, segment, parameters):
     """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
 
@@ -272,12 +284,12 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, o
     the number of trials.
     """
     x = v = acc = 0.0
-    trials = 0
+    trials = int64(0)  # not a literal 0: see _drive
     tau = _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_only)
     if tau <= 0.0:
         return 0.0, x, v, acc, trials
     for _ in range(12):
-        x, v, acc, _, _ = advance(method, t, theta, omega, acceleration, side, tau, segment,
+        x, v, acc, _, _ = advance(t, theta, omega, acceleration, side, tau, segment,
                                    parameters)
         trials += 1
         if side * x <= 0.0:
@@ -289,6 +301,89 @@ def _dip_on_stepper(method, t, theta, omega, acceleration, side, h, theta_new, o
             break
         tau = following
     return 0.0, x, v, acc, trials
+
+
+def _terminal_event(t, theta, omega, acceleration, side, h, theta_new, omega_new,
+                    acceleration_new, segment, parameters):
+    """Whether a step of free flight from ``t`` to ``t + h`` ends early, at an impact or overturn.
+
+    The step's end (``theta_new``, ``omega_new``, ``acceleration_new``) is known. An
+    impact is looked for where theta reached 0 (also inside the step: a turning point
+    past 0 after touching it, or a dip between two turning points, :func:`_dip_on_stepper`)
+    and an overturn where |theta| reached pi/2; each is located on the stepper
+    (:func:`_locate`). A function of its own, not part of the driver: numba's first
+    compile of the two is shorter than of the driver with this inside (issue 28).
+
+    Returns
+    -------
+    tau : float
+        Where the step ends [s after ``t``]: ``h``, or the event.
+    kind : float
+        EVENT_IMPACT, EVENT_OVERTURN, or -1 (no event).
+    theta, omega, acceleration : float
+        The state there [rad, rad/s, rad/s^2]: theta is exactly 0 at an impact and
+        side * pi / 2 at an overturn.
+    located : int
+        Trial steps made to locate the events.
+    """
+    tau = h
+    kind = -1.0
+    located = int64(0)  # trial steps of event location (not a literal 0: see _drive)
+    if side * omega < 0.0 and side * omega_new > 0.0 and side * theta_new > 0.0:
+        # theta turned back away from 0 inside the step: did it touch 0 first?
+        sign = 1.0 if omega > 0.0 else -1.0
+        tau_turn, x, v, acc, trials = _locate(
+            EVENT_PEAK, t, theta, omega, acceleration, side, h, theta_new,
+            omega_new, acceleration_new, segment, parameters, sign)
+        located += trials
+        if side * x <= 0.0:
+            tau, theta_new, omega_new, acceleration_new, trials = _locate(
+                EVENT_IMPACT, t, theta, omega, acceleration, side, tau_turn,
+                x, v, acc, segment, parameters, 0.0)
+            located += trials
+            kind = EVENT_IMPACT
+    elif side * theta_new < 0.0 or (side * theta_new == 0.0 and side * omega_new < 0.0):
+        upper, x, v, acc = h, theta_new, omega_new, acceleration_new
+        if side * omega < 0.0 and side * omega_new < 0.0:
+            # theta may have crossed 0 three times (down, up at a turning point
+            # below 0, down again): bracket the first crossing
+            found, xd, vd, ad, trials = _dip_on_stepper(
+                t, theta, omega, acceleration, side, h, theta_new, omega_new,
+                0.5 * side * theta, 1.0, segment, parameters)
+            located += trials
+            if found > 0.0:
+                upper, x, v, acc = found, xd, vd, ad
+        tau, theta_new, omega_new, acceleration_new, trials = _locate(
+            EVENT_IMPACT, t, theta, omega, acceleration, side, upper, x,
+            v, acc, segment, parameters, 0.0)
+        located += trials
+        kind = EVENT_IMPACT
+    elif omega * omega_new > 0.0 and side * theta_new > 0.0:
+        # theta' has the same sign at both ends, but it may have changed sign
+        # twice inside the step (the ground acceleration ramps fast enough):
+        # a dip below 0 between two turning points that no sign test sees
+        found, x, v, acc, trials = _dip_on_stepper(
+            t, theta, omega, acceleration, side, h, theta_new, omega_new,
+            0.5 * min(side * theta, side * theta_new), 0.0, segment, parameters)
+        located += trials
+        if found > 0.0:
+            tau, theta_new, omega_new, acceleration_new, trials = _locate(
+                EVENT_IMPACT, t, theta, omega, acceleration, side, found,
+                x, v, acc, segment, parameters, 0.0)
+            located += trials
+            kind = EVENT_IMPACT
+    if side * theta_new >= 0.5 * math.pi:
+        tau, theta_new, omega_new, acceleration_new, trials = _locate(
+            EVENT_OVERTURN, t, theta, omega, acceleration, side, tau, theta_new,
+            omega_new, acceleration_new, segment, parameters, 0.0)
+        located += trials
+        kind = EVENT_OVERTURN
+    if kind == EVENT_IMPACT:
+        theta_new = 0.0
+    elif kind == EVENT_OVERTURN:
+        theta_new = side * 0.5 * math.pi
+
+    return tau, kind, theta_new, omega_new, acceleration_new, located
 
 
 def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
@@ -388,12 +483,16 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
     info[INFO_MAX_ABS_THETA] = abs(theta0)
     info[INFO_T_MAX] = t_grid[0]
     info[INFO_THETA_AT_MAX] = theta0
-    n_impacts = 0
-    steps = 0
-    evaluations = 0
-    rejected = 0
-    cascades = 0
-    status = STATUS_COMPLETED
+    # Loop-carried counters and flags start as int64(0) and boolean(False), not 0 and False:
+    # numba types a bare constant as a literal, which the loop's later assignments widen,
+    # and each widening costs the whole driver one more pass of type inference at its
+    # first compile (four instead of two).
+    n_impacts = int64(0)
+    steps = int64(0)
+    evaluations = int64(0)
+    rejected = int64(0)
+    cascades = int64(0)
+    status = int64(STATUS_COMPLETED)
 
     theta = theta0
     omega = omega0
@@ -412,8 +511,8 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
     step_size = 0.1 / p
     previous_error = 1e-4  # PI controller memory
     acceleration = 0.0     # theta'' of the flight model at (t, theta), when known
-    known = False
-    just_rejected = False
+    known = boolean(False)
+    just_rejected = boolean(False)
 
     if store:
         out_theta[0] = theta
@@ -421,10 +520,10 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
         if resting:
             out_acceleration[0] = 0.0
         else:
-            out_acceleration[0] = model_acceleration(method, theta, side, ug[0] * scale,
+            out_acceleration[0] = model_acceleration(theta, side, ug[0] * scale,
                                                      vg[0] * scale, rg[0] * scale,
                                                      block)
-    filled = 1
+    filled = int64(1)
 
     for k in range(n - 1):
         t0 = t_grid[k]
@@ -459,8 +558,8 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 start = math.inf
                 start_side = 0.0
                 for s in (1.0, -1.0):
-                    margin_a = s * model_acceleration(method, 0.0, s, ua, va, ra, block)
-                    margin_b = s * model_acceleration(method, 0.0, s, ub, vb, rb, block)
+                    margin_a = s * model_acceleration(0.0, s, ua, va, ra, block)
+                    margin_b = s * model_acceleration(0.0, s, ub, vb, rb, block)
                     if margin_a > 0.0:
                         candidate = t
                     elif margin_b > 0.0:
@@ -473,7 +572,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 if start_side == 0.0:
                     t = t_end
                     break
-                t = _first_positive_margin(method, start, t_end, start_side, segment,
+                t = _first_positive_margin(start, t_end, start_side, segment,
                                            block)
                 side = start_side
                 theta = 0.0
@@ -486,8 +585,8 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
 
             if not known:
                 if method != METHOD_LINEAR:  # the closed form does not need it
-                    acceleration = start_acceleration(method, t, theta, side, segment,
-                                                       block)
+                    ua, va, ra = ground(segment, t)
+                    acceleration = flight_model(theta, side, ua, va, ra, block)
                     evaluations += 1
                 known = True
 
@@ -502,7 +601,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
             else:
                 h = t_end - t
             theta_new, omega_new, acceleration_new, error_theta, error_omega = advance(
-                method, t, theta, omega, acceleration, side, h, segment, block)
+                t, theta, omega, acceleration, side, h, segment, block)
             evaluations += per_step
             if method == METHOD_FAST:
                 error = max(abs(error_theta) / (atol_theta + rtol * max(abs(theta), abs(theta_new))),
@@ -529,61 +628,10 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                     step_size = h * growth
 
             # ---- terminal events inside the step
-            tau = h
-            kind = -1.0
-            if side * omega < 0.0 and side * omega_new > 0.0 and side * theta_new > 0.0:
-                # theta turned back away from 0 inside the step: did it touch 0 first?
-                sign = 1.0 if omega > 0.0 else -1.0
-                tau_turn, x, v, acc, trials = _locate(
-                    EVENT_PEAK, method, t, theta, omega, acceleration, side, h, theta_new,
-                    omega_new, acceleration_new, segment, block, sign)
-                evaluations += trials * per_step
-                if side * x <= 0.0:
-                    tau, theta_new, omega_new, acceleration_new, trials = _locate(
-                        EVENT_IMPACT, method, t, theta, omega, acceleration, side, tau_turn,
-                        x, v, acc, segment, block, 0.0)
-                    evaluations += trials * per_step
-                    kind = EVENT_IMPACT
-            elif side * theta_new < 0.0 or (side * theta_new == 0.0 and side * omega_new < 0.0):
-                upper, x, v, acc = h, theta_new, omega_new, acceleration_new
-                if side * omega < 0.0 and side * omega_new < 0.0:
-                    # theta may have crossed 0 three times (down, up at a turning point
-                    # below 0, down again): bracket the first crossing
-                    found, xd, vd, ad, trials = _dip_on_stepper(
-                        method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                        0.5 * side * theta, 1.0, segment, block)
-                    evaluations += trials * per_step
-                    if found > 0.0:
-                        upper, x, v, acc = found, xd, vd, ad
-                tau, theta_new, omega_new, acceleration_new, trials = _locate(
-                    EVENT_IMPACT, method, t, theta, omega, acceleration, side, upper, x,
-                    v, acc, segment, block, 0.0)
-                evaluations += trials * per_step
-                kind = EVENT_IMPACT
-            elif omega * omega_new > 0.0 and side * theta_new > 0.0:
-                # theta' has the same sign at both ends, but it may have changed sign
-                # twice inside the step (the ground acceleration ramps fast enough):
-                # a dip below 0 between two turning points that no sign test sees
-                found, x, v, acc, trials = _dip_on_stepper(
-                    method, t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                    0.5 * min(side * theta, side * theta_new), 0.0, segment, block)
-                evaluations += trials * per_step
-                if found > 0.0:
-                    tau, theta_new, omega_new, acceleration_new, trials = _locate(
-                        EVENT_IMPACT, method, t, theta, omega, acceleration, side, found,
-                        x, v, acc, segment, block, 0.0)
-                    evaluations += trials * per_step
-                    kind = EVENT_IMPACT
-            if side * theta_new >= 0.5 * math.pi:
-                tau, theta_new, omega_new, acceleration_new, trials = _locate(
-                    EVENT_OVERTURN, method, t, theta, omega, acceleration, side, tau, theta_new,
-                    omega_new, acceleration_new, segment, block, 0.0)
-                evaluations += trials * per_step
-                kind = EVENT_OVERTURN
-            if kind == EVENT_IMPACT:
-                theta_new = 0.0
-            elif kind == EVENT_OVERTURN:
-                theta_new = side * 0.5 * math.pi
+            tau, kind, theta_new, omega_new, acceleration_new, located = _terminal_event(
+                t, theta, omega, acceleration, side, h, theta_new, omega_new,
+                acceleration_new, segment, block)
+            evaluations += located * per_step
 
             # ---- non-terminal events: turning point (max |theta|) and instability
             tau_peak = tau
@@ -593,7 +641,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
             if omega * omega_new < 0.0 and side * omega > 0.0:
                 sign = 1.0 if omega > 0.0 else -1.0
                 tau_peak, theta_peak, v_peak, acceleration_peak, trials = _locate(
-                    EVENT_PEAK, method, t, theta, omega, acceleration, side, tau, theta_new,
+                    EVENT_PEAK, t, theta, omega, acceleration, side, tau, theta_new,
                     omega_new, acceleration_new, segment, block, sign)
                 evaluations += trials * per_step
                 if abs(theta_peak) > info[INFO_MAX_ABS_THETA]:
@@ -611,7 +659,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                     else:
                         upper, x, v, acc = tau, theta_new, omega_new, acceleration_new
                     tau_unstable, x, v, acc, trials = _locate(
-                        EVENT_UNSTABLE, method, t, theta, omega, acceleration, side, upper, x, v,
+                        EVENT_UNSTABLE, t, theta, omega, acceleration, side, upper, x, v,
                         acc, segment, block, 0.0)
                     evaluations += trials * per_step
                     info[INFO_T_UNSTABLE] = t + tau_unstable
@@ -641,7 +689,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 theta = 0.0
                 known = False
                 ux, vx, rx = ground(segment, t)
-                deceleration = -side * model_acceleration(method, 0.0, side, ux, vx, rx,
+                deceleration = -side * model_acceleration(0.0, side, ux, vx, rx,
                                                           block)
                 remaining = _cascade_rest_time(omega, deceleration, cor)
                 if remaining == math.inf and cor >= 1.0 and deceleration > 0.0 and abs(
@@ -672,7 +720,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
             if resting:
                 out_acceleration[k + 1] = 0.0
             else:
-                out_acceleration[k + 1] = model_acceleration(method, theta, side, u1, v1, r1,
+                out_acceleration[k + 1] = model_acceleration(theta, side, u1, v1, r1,
                                                              block)
         filled = k + 2
 
@@ -688,27 +736,38 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
     info[INFO_N_OUTPUT] = filled
 
 
+# The helpers that call the method's functions: each integrator compiles its own copies.
+_METHOD_HELPERS = ("_first_positive_margin", "_locate", "_dip_on_stepper", "_terminal_event")
+
+
 def _integrator(method, name):
     """:func:`_drive` compiled for ``method`` (cached): one compiled integrator per method.
 
-    The same Python code, with ``_METHOD`` = ``method`` in its own copy of this module's
-    namespace. numba reads ``method == METHOD_...`` as a comparison of two constants and
-    drops the other methods' branches before typing, and passes ``method`` on as a
-    constant to the helpers (:func:`~shaketable.solvers.steppers.for_method`): the default
-    method's first compile neither types nor optimises the others' code. The body is
-    compiled into the integrator itself, not called from a thin compiled wrapper, which
-    compiled (and optimised) it twice. The copied namespace is this module's when the
-    integrators are made (at import): replacing a helper in the module afterwards does
-    not change them.
+    The same Python code, in its own copy of this module's namespace in which ``_METHOD``
+    is ``method`` and ``model_acceleration``, ``flight_model`` and ``advance`` are the
+    method's functions (:data:`~shaketable.solvers.steppers.METHOD_FUNCTIONS`); the helpers
+    that call those (:data:`_METHOD_HELPERS`) are compiled from the same namespace. numba
+    reads ``method == METHOD_...`` as a comparison of two constants and drops the other
+    methods' branches before typing, and each call goes straight to the method's function:
+    the default method's first compile neither types nor optimises the others' code, and
+    compiles no layer that would choose a method's function. The body is compiled into
+    the integrator itself, not called from a thin compiled wrapper, which compiled (and
+    optimised) it twice. The namespace is copied when the integrators are made (at
+    import): replacing a helper in the module afterwards does not change them.
 
-    nogil: a long run can go on in a thread (Ctrl-C, solvers.common.call_interruptibly),
-    and the batch runs them on several threads.
+    The integrator takes arrays but allocates none: it is compiled without numba's
+    reference counting (``_nrt=False``), whose increments and decrements of its array
+    arguments were a tenth of its first compile. nogil: a long run can go on in a thread
+    (Ctrl-C, solvers.common.call_interruptibly), and the batch runs them on several threads.
     """
-    namespace = dict(_drive.__globals__, _METHOD=method)
+    namespace = dict(_drive.__globals__, _METHOD=method, **METHOD_FUNCTIONS[method])
+    for helper_name in _METHOD_HELPERS:
+        code = globals()[helper_name]
+        namespace[helper_name] = helper(types.FunctionType(code.__code__, namespace, helper_name))
     function = types.FunctionType(_drive.__code__, namespace, name)
     function.__qualname__ = name
     function.__doc__ = f":func:`integrate` with method code {method}."
-    return njit(cache=True, nogil=True)(function)
+    return njit(cache=True, nogil=True, _nrt=False)(function)
 
 
 integrate_fast = _integrator(METHOD_FAST, "integrate_fast")

@@ -6,8 +6,12 @@ integrates (Eq. 2-13/2-14, or its slender-block linearisation Eq. 2-4 for
 method (the Runge-Kutta-Nystrom pair RKN6(4) for ``fast``, the report's
 predictor-corrector, Section 2.8, and the linear model's closed form).
 
-The functions that depend on the method take it as a compile-time constant and compile
-only that method's code (:func:`for_method`); they are called from compiled code only.
+Each method's three functions are in :data:`METHOD_FUNCTIONS`, under the names the engine's
+driver calls them by (``model_acceleration``, ``flight_model``, ``advance``): the engine
+compiles one integrator per method with that method's functions bound to those names, so the
+default method's first compile neither types nor optimises the others' code, and a call goes
+straight to the method's function (no compiled layer that chooses it). They are called from
+compiled code only.
 """
 
 from __future__ import annotations
@@ -16,7 +20,6 @@ import math
 from typing import Any
 
 from numba import njit
-from numba.extending import overload
 
 from shaketable.core import dynamics
 from shaketable.core.constants import G
@@ -38,27 +41,15 @@ from shaketable.solvers.layout import METHOD_FAST, METHOD_LINEAR, METHOD_PREDICT
 # from compiled code, and that entry's code generation was a third of each helper's
 # first compile (about 50 ms each, 1 s in all). Calling one from Python crashes; only
 # `nystrom` (tested on its own) and the integrators keep theirs. Nor are they cached:
-# numba caches the integrators whole, with every helper they call linked in.
+# numba caches the integrators whole, with every helper they call linked in. Nor do they
+# use numba's reference counting (_nrt=False): they take numbers and tuples, no arrays.
 # (options numba accepts beyond those its type stubs list: typed Any for mypy)
-HELPER_OPTIONS: Any = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+HELPER_OPTIONS: Any = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True, "_nrt": False}
 helper = njit(**HELPER_OPTIONS)
 
 # Eq. (2-13)/(2-14) as the engine's own compiled helpers (the same Python functions as
 # shaketable.core.dynamics', whose compiled versions keep their Python entry).
 flight_acceleration = helper(dynamics.flight_acceleration.py_func)
-
-
-def for_method(method, implementations):
-    """The implementation for a literal ``method`` type (a compile-time constant), else None.
-
-    Every integrator of :mod:`shaketable.solvers.engine` passes its method as a constant,
-    which numba types as a literal: the functions overloaded with this choose that method's code
-    at compile time, so that the default method's first compile types and optimises
-    neither the predictor-corrector's nor the linear model's code (the branches of a
-    run-time ``if method == ...`` are all compiled).
-    """
-    value = getattr(method, "literal_value", None)
-    return implementations.get(value) if isinstance(value, int) else None
 
 
 @helper
@@ -77,11 +68,10 @@ def linear_flight_acceleration(theta, side, ug, vg, rg, parameters):
     return (radius * (ug - (G + vg) * (s * parameters[ALPHA] - theta)) - s * rods - top) / inertia - rg
 
 
-# The implementations the overloads below return are plain functions with the overloaded
-# function's arguments: numba compiles each as the implementation itself, with no extra
-# compiled layer (each layer links and optimises its callees again).
-def linear_acceleration(method, theta, side, ug, vg, rg, parameters):
-    """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4)."""
+@helper
+def linear_acceleration(theta, side, ug, vg, rg, parameters):
+    """Slender-block linearisation of Eq. (2-13)/(2-14) [rad/s^2] (Eq. 2-4) on the corner
+    theta stands on (``side`` at theta = 0)."""
     s = side
     if theta > 0.0:
         s = 1.0
@@ -90,36 +80,16 @@ def linear_acceleration(method, theta, side, ug, vg, rg, parameters):
     return linear_flight_acceleration(theta, s, ug, vg, rg, parameters)
 
 
-def angular_acceleration(method, theta, side, ug, vg, rg, parameters):
+@helper
+def angular_acceleration(theta, side, ug, vg, rg, parameters):
     """Eq. (2-13)/(2-14) on the corner the block stands on (as
-    :func:`shaketable.core.dynamics.angular_acceleration`)."""
+    :func:`shaketable.core.dynamics.angular_acceleration`; ``side`` at theta = 0)."""
     s = side
     if theta > 0.0:
         s = 1.0
     elif theta < 0.0:
         s = -1.0
     return flight_acceleration(theta, s, ug, vg, rg, parameters)
-
-
-def _model_acceleration_code(method, theta, side, ug, vg, rg, parameters):
-    """The code of :func:`model_acceleration` for a constant ``method`` (compiled code only)."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(_model_acceleration_code, prefer_literal=True, jit_options=HELPER_OPTIONS)
-def _model_acceleration(method, theta, side, ug, vg, rg, parameters):
-    return for_method(method, {METHOD_FAST: angular_acceleration,
-                                METHOD_PREDICTOR_CORRECTOR: angular_acceleration,
-                                METHOD_LINEAR: linear_acceleration})
-
-
-# The overloaded functions are called through these helpers: numba compiles an overload's
-# implementation once per caller's compile options (the integrators' differ from the
-# helpers'), so called from both it would be compiled twice.
-@helper
-def model_acceleration(method, theta, side, ug, vg, rg, parameters):
-    """theta'' of the model a method integrates: exact, or linearised for METHOD_LINEAR."""
-    return _model_acceleration_code(method, theta, side, ug, vg, rg, parameters)
 
 
 @helper
@@ -130,33 +100,6 @@ def ground(segment, time):
             segment[6] + segment[7] * fraction)
 
 
-def _start_acceleration_code(method, t, theta, side, segment, parameters):
-    """The code of :func:`start_acceleration` for a constant ``method`` (compiled only)."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(_start_acceleration_code, prefer_literal=True, jit_options=HELPER_OPTIONS)
-def _start_acceleration_for(method, t, theta, side, segment, parameters):
-    def exact(method, t, theta, side, segment, parameters):
-        ug, vg, rg = ground(segment, t)
-        return flight_acceleration(theta, side, ug, vg, rg, parameters)
-
-    def linear(method, t, theta, side, segment, parameters):
-        ug, vg, rg = ground(segment, t)
-        return linear_flight_acceleration(theta, side, ug, vg, rg, parameters)
-
-    return for_method(method, {METHOD_FAST: exact, METHOD_PREDICTOR_CORRECTOR: exact,
-                                METHOD_LINEAR: linear})
-
-
-@helper
-def start_acceleration(method, t, theta, side, segment, parameters):
-    """theta'' of the flight model at the start of a flight or of an interval."""
-    return _start_acceleration_code(method, t, theta, side, segment, parameters)
-
-
-
-
 @helper
 def _stage(segment, side, parameters, time, x):
     """theta'' = f(time, x) of one Nystrom stage (a function called six times, not a
@@ -165,7 +108,8 @@ def _stage(segment, side, parameters, time, x):
     return flight_acceleration(x, side, ug, vg, rg, parameters)
 
 
-def nystrom_step(method, t, theta, omega, acceleration, side, h, segment, parameters):
+@helper
+def nystrom_step(t, theta, omega, acceleration, side, h, segment, parameters):
     """One Runge-Kutta-Nystrom 6(4) step from a known theta''(t) = ``acceleration`` (k1).
 
     Eq. (2-13)/(2-14) is a special second-order equation, theta'' = f(t, theta)
@@ -230,8 +174,12 @@ def heun(t, theta, omega, acceleration, side, h, segment, parameters):
 
 
 @helper
-def closed_form(t, theta, omega, side, h, segment, parameters):
-    """Exact solution of the linearised equation over a time ``h`` (METHOD_LINEAR)."""
+def closed_form(t, theta, omega, acceleration, side, h, segment, parameters):
+    """Exact solution of the linearised equation over a time ``h`` (METHOD_LINEAR).
+
+    ``acceleration`` (theta'' at ``t``) is not used: the closed form needs none. It is an
+    argument so that the three steppers are called alike.
+    """
     span, du, v0, dv, dr = segment[1], segment[3], segment[4], segment[5], segment[7]
     b = parameters[HALF_WIDTH]
     hh = parameters[HALF_HEIGHT]
@@ -277,32 +225,21 @@ def closed_form(t, theta, omega, side, h, segment, parameters):
     return theta_new, omega_new, mu * theta_new + c0 + c1 * h, 0.0, 0.0
 
 
-def _advance_code(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    """The code of :func:`advance` for a constant ``method`` (compiled code only)."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(_advance_code, prefer_literal=True, jit_options=HELPER_OPTIONS)
-def _advance_for(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    def predictor_corrector(method, t, theta, omega, acceleration, side, h, segment,
-                            parameters):
-        return heun(t, theta, omega, acceleration, side, h, segment, parameters)
-
-    def linear(method, t, theta, omega, acceleration, side, h, segment, parameters):
-        return closed_form(t, theta, omega, side, h, segment, parameters)
-
-    return for_method(method, {METHOD_FAST: nystrom_step,
-                                METHOD_PREDICTOR_CORRECTOR: predictor_corrector,
-                                METHOD_LINEAR: linear})
-
-
-@helper
-def advance(method, t, theta, omega, acceleration, side, h, segment, parameters):
-    """One step of ``method``: theta, omega, theta'' at ``t + h`` and error estimates."""
-    return _advance_code(method, t, theta, omega, acceleration, side, h, segment, parameters)
+#: Each method's functions, under the names the engine's driver calls them by:
+#: ``model_acceleration`` (theta'' of the model on the corner theta stands on),
+#: ``flight_model`` (theta'' of the flight model about a given corner, analytic in theta)
+#: and ``advance`` (one step: theta, theta', theta'' at ``t + h`` and two error estimates).
+METHOD_FUNCTIONS = {
+    METHOD_FAST: {"model_acceleration": angular_acceleration,
+                  "flight_model": flight_acceleration, "advance": nystrom_step},
+    METHOD_PREDICTOR_CORRECTOR: {"model_acceleration": angular_acceleration,
+                                 "flight_model": flight_acceleration, "advance": heun},
+    METHOD_LINEAR: {"model_acceleration": linear_acceleration,
+                    "flight_model": linear_flight_acceleration, "advance": closed_form},
+}
 
 
 @njit  # with its Python entry: tests/solvers/test_engine.py calls it on its own
 def nystrom(t, theta, omega, k1, side, h, segment, parameters):
     """One Runge-Kutta-Nystrom 6(4) step (:func:`nystrom_step`) from theta''(t) = ``k1``."""
-    return advance(METHOD_FAST, t, theta, omega, k1, side, h, segment, parameters)
+    return nystrom_step(t, theta, omega, k1, side, h, segment, parameters)

@@ -16,7 +16,7 @@ import json
 import numpy as np
 import pytest
 
-from shaketable.core.constants import G, INCH
+from shaketable.core.constants import INCH, G
 from shaketable.core.geometry import Block
 from shaketable.core.sliding_result import Friction
 from shaketable.ground.generators import harmonic
