@@ -61,7 +61,7 @@ chooses a method's function; the helpers have no Python entry and no reference
 counting. numba's first compile costs about 0.3 ms of CPU per statement of its IR, and
 every compiled function about 25 ms more (its own LLVM module, optimised and turned into
 machine code, then again inside each caller): the terminal events of a step are a
-function of their own (:func:`_terminal_event`), which made the driver's first compile
+function of their own (:func:`_step_events`), which made the driver's first compile
 shorter by more than that function costs; splitting further did not (each split links
 and optimises the event location once more). ``benchmarks/cold_start.py --breakdown``
 shows where the rest goes.
@@ -264,7 +264,7 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     if not (0.0 < s1 < 1.0 and 0.0 < s2 < 1.0):
         return 0.0
     s = s1 if 2.0 * c2 + 6.0 * c3 * s1 > 0.0 else s2  # the minimum of side * theta
-    if first_only > 0.0 and s > min(s1, s2):
+    if first_only > 0.0 and s > (s2 if s2 < s1 else s1):  # s > min(s1, s2)
         return 0.0  # theta_new < 0: only a minimum before the maximum hides a crossing
     lowest = x0 + s * (v0 + s * (c2 + s * c3))
     if lowest > threshold:
@@ -303,23 +303,31 @@ def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new
     return 0.0, x, v, acc, trials
 
 
-def _terminal_event(t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                    acceleration_new, segment, parameters):
-    """Whether a step of free flight from ``t`` to ``t + h`` ends early, at an impact or overturn.
+def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
+                    acceleration_new, segment, parameters, info):
+    """The events inside a step of free flight from ``t`` to ``t + h``.
 
-    The step's end (``theta_new``, ``omega_new``, ``acceleration_new``) is known. An
-    impact is looked for where theta reached 0 (also inside the step: a turning point
-    past 0 after touching it, or a dip between two turning points, :func:`_dip_on_stepper`)
-    and an overturn where |theta| reached pi/2; each is located on the stepper
-    (:func:`_locate`). A function of its own, not part of the driver: numba's first
-    compile of the two is shorter than of the driver with this inside (issue 28).
+    The step's end (``theta_new``, ``omega_new``, ``acceleration_new``) is known.
+
+    - Terminal events, where the step ends early: an impact where theta reached 0 (also
+      inside the step: a turning point past 0 after touching it, or a dip between two
+      turning points, :func:`_dip_on_stepper`), and an overturn where |theta| reached
+      pi/2.
+    - Non-terminal events, recorded in ``info``: the turning point (theta' changes sign
+      away from 0), which with the step's end updates the largest |theta| so far
+      (``INFO_MAX_ABS_THETA``, ``INFO_T_MAX``, ``INFO_THETA_AT_MAX``), and the first
+      time |theta| passes alpha (``INFO_T_UNSTABLE``, ``INFO_UNSTABLE_DIRECTION``).
+
+    Each is located on the stepper (:func:`_locate`). A function of its own, not part of
+    the driver: numba's first compile of the two is shorter than of the driver with this
+    inside (issue 28).
 
     Returns
     -------
     tau : float
-        Where the step ends [s after ``t``]: ``h``, or the event.
+        Where the step ends [s after ``t``]: ``h``, or the terminal event.
     kind : float
-        EVENT_IMPACT, EVENT_OVERTURN, or -1 (no event).
+        EVENT_IMPACT, EVENT_OVERTURN, or -1 (no terminal event).
     theta, omega, acceleration : float
         The state there [rad, rad/s, rad/s^2]: theta is exactly 0 at an impact and
         side * pi / 2 at an overturn.
@@ -329,21 +337,19 @@ def _terminal_event(t, theta, omega, acceleration, side, h, theta_new, omega_new
     tau = h
     kind = -1.0
     located = int64(0)  # trial steps of event location (not a literal 0: see _drive)
+    # an impact is located (once, below) in (0, upper], with the state there x, v, acc
+    impact = False
+    upper, x, v, acc = h, theta_new, omega_new, acceleration_new
     if side * omega < 0.0 and side * omega_new > 0.0 and side * theta_new > 0.0:
         # theta turned back away from 0 inside the step: did it touch 0 first?
         sign = 1.0 if omega > 0.0 else -1.0
-        tau_turn, x, v, acc, trials = _locate(
+        upper, x, v, acc, trials = _locate(
             EVENT_PEAK, t, theta, omega, acceleration, side, h, theta_new,
             omega_new, acceleration_new, segment, parameters, sign)
         located += trials
-        if side * x <= 0.0:
-            tau, theta_new, omega_new, acceleration_new, trials = _locate(
-                EVENT_IMPACT, t, theta, omega, acceleration, side, tau_turn,
-                x, v, acc, segment, parameters, 0.0)
-            located += trials
-            kind = EVENT_IMPACT
+        impact = side * x <= 0.0
     elif side * theta_new < 0.0 or (side * theta_new == 0.0 and side * omega_new < 0.0):
-        upper, x, v, acc = h, theta_new, omega_new, acceleration_new
+        impact = True
         if side * omega < 0.0 and side * omega_new < 0.0:
             # theta may have crossed 0 three times (down, up at a turning point
             # below 0, down again): bracket the first crossing
@@ -353,25 +359,24 @@ def _terminal_event(t, theta, omega, acceleration, side, h, theta_new, omega_new
             located += trials
             if found > 0.0:
                 upper, x, v, acc = found, xd, vd, ad
-        tau, theta_new, omega_new, acceleration_new, trials = _locate(
-            EVENT_IMPACT, t, theta, omega, acceleration, side, upper, x,
-            v, acc, segment, parameters, 0.0)
-        located += trials
-        kind = EVENT_IMPACT
     elif omega * omega_new > 0.0 and side * theta_new > 0.0:
         # theta' has the same sign at both ends, but it may have changed sign
         # twice inside the step (the ground acceleration ramps fast enough):
         # a dip below 0 between two turning points that no sign test sees
-        found, x, v, acc, trials = _dip_on_stepper(
-            t, theta, omega, acceleration, side, h, theta_new, omega_new,
-            0.5 * min(side * theta, side * theta_new), 0.0, segment, parameters)
+        lower = side * theta_new if side * theta_new < side * theta else side * theta
+        found, xd, vd, ad, trials = _dip_on_stepper(
+            t, theta, omega, acceleration, side, h, theta_new, omega_new, 0.5 * lower, 0.0,
+            segment, parameters)
         located += trials
         if found > 0.0:
-            tau, theta_new, omega_new, acceleration_new, trials = _locate(
-                EVENT_IMPACT, t, theta, omega, acceleration, side, found,
-                x, v, acc, segment, parameters, 0.0)
-            located += trials
-            kind = EVENT_IMPACT
+            impact = True
+            upper, x, v, acc = found, xd, vd, ad
+    if impact:
+        tau, theta_new, omega_new, acceleration_new, trials = _locate(
+            EVENT_IMPACT, t, theta, omega, acceleration, side, upper, x, v, acc, segment,
+            parameters, 0.0)
+        located += trials
+        kind = EVENT_IMPACT
     if side * theta_new >= 0.5 * math.pi:
         tau, theta_new, omega_new, acceleration_new, trials = _locate(
             EVENT_OVERTURN, t, theta, omega, acceleration, side, tau, theta_new,
@@ -383,7 +388,66 @@ def _terminal_event(t, theta, omega, acceleration, side, h, theta_new, omega_new
     elif kind == EVENT_OVERTURN:
         theta_new = side * 0.5 * math.pi
 
+    # non-terminal events: the turning point (max |theta|) and the first instability
+    alpha = parameters[ALPHA]
+    tau_peak = tau
+    theta_peak = theta_new
+    v_peak = omega_new
+    acceleration_peak = acceleration_new
+    if omega * omega_new < 0.0 and side * omega > 0.0:
+        sign = 1.0 if omega > 0.0 else -1.0
+        tau_peak, theta_peak, v_peak, acceleration_peak, trials = _locate(
+            EVENT_PEAK, t, theta, omega, acceleration, side, tau, theta_new,
+            omega_new, acceleration_new, segment, parameters, sign)
+        located += trials
+        if abs(theta_peak) > info[INFO_MAX_ABS_THETA]:
+            info[INFO_MAX_ABS_THETA] = abs(theta_peak)
+            info[INFO_T_MAX] = t + tau_peak
+            info[INFO_THETA_AT_MAX] = theta_peak
+    if abs(theta_new) > info[INFO_MAX_ABS_THETA]:
+        info[INFO_MAX_ABS_THETA] = abs(theta_new)
+        info[INFO_T_MAX] = t + tau
+        info[INFO_THETA_AT_MAX] = theta_new
+    if math.isnan(info[INFO_T_UNSTABLE]):
+        if abs(theta_peak) > alpha or abs(theta_new) > alpha:
+            if abs(theta_peak) > alpha:
+                upper, x, v, acc = tau_peak, theta_peak, v_peak, acceleration_peak
+            else:
+                upper, x, v, acc = tau, theta_new, omega_new, acceleration_new
+            tau_unstable, x, v, acc, trials = _locate(
+                EVENT_UNSTABLE, t, theta, omega, acceleration, side, upper, x, v,
+                acc, segment, parameters, 0.0)
+            located += trials
+            info[INFO_T_UNSTABLE] = t + tau_unstable
+            info[INFO_UNSTABLE_DIRECTION] = side
     return tau, kind, theta_new, omega_new, acceleration_new, located
+
+
+def _rest_after_impact(t, omega, side, segment, parameters, cor, rest_tolerance,
+                       velocity_floor):
+    """Whether the block rests after an impact at ``t``: the time it takes to [s], else -1.
+
+    ``omega`` is theta' just after the impact [rad/s] and ``side`` the corner the block now
+    turns about. The endless cascade of impacts that follows is summed in closed form
+    (Eq. 2-13/2-14 near theta = 0, :func:`shaketable.core.dynamics.cascade_rest_time`)
+    and the block put to rest at its end when it is shorter than ``rest_tolerance`` [s],
+    or when the impact velocity is below ``velocity_floor`` [rad/s]; without an impact
+    velocity it rests at once (0).
+    """
+    ux, vx, rx = ground(segment, t)
+    deceleration = -side * model_acceleration(0.0, side, ux, vx, rx, parameters)
+    remaining = _cascade_rest_time(omega, deceleration, cor)
+    if remaining == math.inf and cor >= 1.0 and deceleration > 0.0 and abs(
+            omega) <= velocity_floor:
+        # COR = 1 never ends a cascade by itself: bounces of the same tiny velocity,
+        # 2|w|/a0 long each, would go on forever (millions per second). Below the velocity
+        # floor a bounce rises w^2/(2 a0), far below the integration error: the block is
+        # at rest.
+        remaining = 0.0
+    if omega == 0.0 or remaining <= rest_tolerance or (
+            abs(omega) <= velocity_floor and remaining < math.inf):
+        return 0.0 if omega == 0.0 else remaining
+    return -1.0
 
 
 def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol,
@@ -627,43 +691,11 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 else:
                     step_size = h * growth
 
-            # ---- terminal events inside the step
-            tau, kind, theta_new, omega_new, acceleration_new, located = _terminal_event(
+            # ---- events inside the step: impact, overturn (terminal), peak, instability
+            tau, kind, theta_new, omega_new, acceleration_new, located = _step_events(
                 t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                acceleration_new, segment, block)
+                acceleration_new, segment, block, info)
             evaluations += located * per_step
-
-            # ---- non-terminal events: turning point (max |theta|) and instability
-            tau_peak = tau
-            theta_peak = theta_new
-            v_peak = omega_new
-            acceleration_peak = acceleration_new
-            if omega * omega_new < 0.0 and side * omega > 0.0:
-                sign = 1.0 if omega > 0.0 else -1.0
-                tau_peak, theta_peak, v_peak, acceleration_peak, trials = _locate(
-                    EVENT_PEAK, t, theta, omega, acceleration, side, tau, theta_new,
-                    omega_new, acceleration_new, segment, block, sign)
-                evaluations += trials * per_step
-                if abs(theta_peak) > info[INFO_MAX_ABS_THETA]:
-                    info[INFO_MAX_ABS_THETA] = abs(theta_peak)
-                    info[INFO_T_MAX] = t + tau_peak
-                    info[INFO_THETA_AT_MAX] = theta_peak
-            if abs(theta_new) > info[INFO_MAX_ABS_THETA]:
-                info[INFO_MAX_ABS_THETA] = abs(theta_new)
-                info[INFO_T_MAX] = t + tau
-                info[INFO_THETA_AT_MAX] = theta_new
-            if math.isnan(info[INFO_T_UNSTABLE]):
-                if abs(theta_peak) > alpha or abs(theta_new) > alpha:
-                    if abs(theta_peak) > alpha:
-                        upper, x, v, acc = tau_peak, theta_peak, v_peak, acceleration_peak
-                    else:
-                        upper, x, v, acc = tau, theta_new, omega_new, acceleration_new
-                    tau_unstable, x, v, acc, trials = _locate(
-                        EVENT_UNSTABLE, t, theta, omega, acceleration, side, upper, x, v,
-                        acc, segment, block, 0.0)
-                    evaluations += trials * per_step
-                    info[INFO_T_UNSTABLE] = t + tau_unstable
-                    info[INFO_UNSTABLE_DIRECTION] = side
 
             t = t + tau
             theta = theta_new
@@ -688,23 +720,13 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 side = -side
                 theta = 0.0
                 known = False
-                ux, vx, rx = ground(segment, t)
-                deceleration = -side * model_acceleration(0.0, side, ux, vx, rx,
-                                                          block)
-                remaining = _cascade_rest_time(omega, deceleration, cor)
-                if remaining == math.inf and cor >= 1.0 and deceleration > 0.0 and abs(
-                        omega) <= velocity_floor:
-                    # COR = 1 never ends a cascade by itself: bounces of the same tiny
-                    # velocity, 2|w|/a0 long each, would go on forever (millions per
-                    # second). Below the velocity floor a bounce rises w^2/(2 a0), far
-                    # below the integration error: the block is at rest.
-                    remaining = 0.0
-                if omega == 0.0 or remaining <= rest_tolerance or (
-                        abs(omega) <= velocity_floor and remaining < math.inf):
+                remaining = _rest_after_impact(t, omega, side, segment, block, cor,
+                                               rest_tolerance, velocity_floor)
+                if remaining >= 0.0:
                     if omega != 0.0:
                         cascades += 1
                     resting = True
-                    rest_until = t + (0.0 if omega == 0.0 else remaining)
+                    rest_until = t + remaining
                     info[INFO_T_REST] = rest_until
                     omega = 0.0
 
@@ -737,7 +759,8 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
 
 
 # The helpers that call the method's functions: each integrator compiles its own copies.
-_METHOD_HELPERS = ("_first_positive_margin", "_locate", "_dip_on_stepper", "_terminal_event")
+_METHOD_HELPERS = ("_first_positive_margin", "_locate", "_dip_on_stepper", "_step_events",
+                   "_rest_after_impact")
 
 
 def _integrator(method, name):
@@ -767,7 +790,7 @@ def _integrator(method, name):
     function = types.FunctionType(_drive.__code__, namespace, name)
     function.__qualname__ = name
     function.__doc__ = f":func:`integrate` with method code {method}."
-    return njit(cache=True, nogil=True, _nrt=False)(function)
+    return njit(cache=True, nogil=True, _nrt=False, no_cfunc_wrapper=True)(function)
 
 
 integrate_fast = _integrator(METHOD_FAST, "integrate_fast")
