@@ -23,7 +23,12 @@ event), from numba's compile events (``numba.core.event``) timed with the proces
 clock; ``outside compiles`` is the rest of the first call (numba's target context built on
 first use, loading, the run itself), which a warm first call pays too.
 
-    python3 benchmarks/cold_start.py [--repeats 2] [--breakdown] [--planar]
+``--constructs`` prints what numba's first compile costs per statement of each kind (a
+float operation, a tuple item, a call of a helper, a branch, ...), from functions of 20 and
+120 copies of it compiled as the engine's helpers are: the figures
+:mod:`shaketable.solvers.engine` is shaped by.
+
+    python3 benchmarks/cold_start.py [--repeats 2] [--breakdown] [--planar] [--constructs]
 """
 
 from __future__ import annotations
@@ -157,6 +162,49 @@ print(json.dumps({"import [s]": imported - start, "first planar simulate [s]": f
 """
 
 
+#: --constructs: the first-compile CPU time of one statement of each kind, from functions of
+#: 20 and 120 copies of it compiled as the engine's helpers are (the difference / 100), in
+#: a process whose numba target is already built.
+CONSTRUCTS = r"""
+import json, os, time
+import shaketable  # noqa: F401  (numba's settings, as the engine's)
+from numba import njit
+helper = njit(no_cpython_wrapper=True, no_cfunc_wrapper=True, _nrt=False)
+@helper
+def pair(a, b):
+    return a + b, a - b, a * b
+pair.compile("UniTuple(float64, 3)(float64, float64)")
+BODIES = {
+    "float operation (x = x * b)": "    x = x * b",
+    "tuple item (x = t[3])": "    x = t[3]",
+    "abs (x = abs(x))": "    x = abs(x)",
+    "min of two floats": "    x = min(x, b)",
+    "call of a helper returning 3 floats": "    x, y, z = pair(x, b)",
+    "branch (if x > b: y = b)": "    if x > b:\n        y = b",
+    "branch on two comparisons with and": "    if x > b and x < a:\n        y = b",
+    "branch on two comparisons with &": "    if (x > b) & (x < a):\n        y = b",
+    "conditional expression": "    x = b if x > b else x",
+}
+def function(body, copies):
+    lines = ["def f(a, b, t):", "    x = y = z = a"] + [body] * copies + ["    return x + y + z"]
+    namespace = {"pair": pair}
+    exec("\n".join(lines), namespace)
+    return helper(namespace["f"])
+njit(lambda a, b: a * b)(1.0, 2.0)  # numba's target context, built once
+signature = "float64(float64, float64, UniTuple(float64, 10))"
+costs = {}
+for name, body in BODIES.items():
+    seconds = []
+    for copies in (20, 120):
+        compiled = function(body, copies)
+        start = time.process_time()
+        compiled.compile(signature)
+        seconds.append(time.process_time() - start)
+    costs[name + " [ms]"] = round((seconds[1] - seconds[0]) / 100 * 1e3, 2)
+print(json.dumps(costs))
+"""
+
+
 def once(cold: bool, cache: str | None = None, child: str = CHILD) -> dict:
     env = dict(os.environ)
     with tempfile.TemporaryDirectory() as folder:
@@ -171,10 +219,18 @@ def main(argv=None) -> int:
     parser.add_argument("--repeats", type=int, default=2)
     parser.add_argument("--breakdown", action="store_true",
                         help="where one cold first simulate's CPU time goes, per function")
+    parser.add_argument("--constructs", action="store_true",
+                        help="numba's first-compile CPU time per statement of each kind")
     parser.add_argument("--planar", action="store_true",
                         help="the planar engine's first simulate (friction=) and first batch "
                              "instead of the rocking engine's")
     args = parser.parse_args(argv)
+    if args.constructs:
+        runs = [once(cold=True, child=CONSTRUCTS) for _ in range(args.repeats)]
+        best = {key: min(run[key] for run in runs) for key in runs[0].keys()}
+        print(json.dumps({"per statement, best of repeats": best,
+                          "load average": os.getloadavg()}, indent=1))
+        return 0
     if args.breakdown:
         child = BREAKDOWN.replace("FIRST_CALL", PLANAR_CALL if args.planar else ROCKING_CALL)
         print(json.dumps({**once(cold=True, child=child), "load average": os.getloadavg()},

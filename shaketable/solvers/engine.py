@@ -50,21 +50,27 @@ summation of the endless cascade of impacts of a decaying block
 (:func:`shaketable.core.dynamics.cascade_rest_time`), unstable / overturned, and the
 block leaving the ground when g + vg <= 0.
 
-Size: one compiled unit on purpose (about 900 lines): numba inlines the steppers and
-the event location into the integrators, and a module boundary would not change that.
+Size: one compiled unit on purpose (about 1,000 lines with
+:mod:`~shaketable.solvers.steppers`): numba inlines the steppers and the event location
+into the integrators, and a module boundary would not change that.
 
 First compile (issue 28): each method has its own compiled integrator, the driver's
 code with the method a compile-time constant and the method's functions bound to the
 names it calls (:func:`_integrator`), so the default method's first compile types and
 optimises only the Nystrom stepper and the exact model, with no compiled layer that
 chooses a method's function; the helpers have no Python entry and no reference
-counting. numba's first compile costs about 0.3 ms of CPU per statement of its IR, and
-every compiled function about 25 ms more (its own LLVM module, optimised and turned into
-machine code, then again inside each caller): the terminal events of a step are a
-function of their own (:func:`_step_events`), which made the driver's first compile
-shorter by more than that function costs; splitting further did not (each split links
-and optimises the event location once more). ``benchmarks/cold_start.py --breakdown``
-shows where the rest goes.
+counting. What numba's first compile costs here (numba 0.68, measured in isolation): a
+float operation about 1 ms of CPU (typed twice and once more while lowered, each time
+trying NumPy's array rules first), a branch about 4 ms, a call of a helper returning a
+tuple about 3.5 ms, and every compiled function about 25 ms more (its own LLVM module,
+optimised and turned into machine code, then again inside each caller). Hence: the
+events of a step (:func:`_step_events`) and the rest after an impact
+(:func:`_rest_after_impact`) are functions of their own, which made the driver's compile
+shorter by more than they cost (splitting further did not: each split links and
+optimises the event location once more); an impact is located from one call site; and
+conditions of several comparisons are combined with ``&`` and ``|`` (bools, no
+short-circuit branch). ``benchmarks/cold_start.py --breakdown`` shows where the rest
+goes.
 """
 
 from __future__ import annotations
@@ -261,7 +267,7 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     root = math.sqrt(discriminant)
     s1 = (-c2 - root) / (3.0 * c3)
     s2 = (-c2 + root) / (3.0 * c3)
-    if not (0.0 < s1 < 1.0 and 0.0 < s2 < 1.0):
+    if not ((0.0 < s1) & (s1 < 1.0) & (0.0 < s2) & (s2 < 1.0)):
         return 0.0
     s = s1 if 2.0 * c2 + 6.0 * c3 * s1 > 0.0 else s2  # the minimum of side * theta
     if first_only > 0.0 and s > (s2 if s2 < s1 else s1):  # s > min(s1, s2)
@@ -340,7 +346,7 @@ def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
     # an impact is located (once, below) in (0, upper], with the state there x, v, acc
     impact = False
     upper, x, v, acc = h, theta_new, omega_new, acceleration_new
-    if side * omega < 0.0 and side * omega_new > 0.0 and side * theta_new > 0.0:
+    if (side * omega < 0.0) & (side * omega_new > 0.0) & (side * theta_new > 0.0):
         # theta turned back away from 0 inside the step: did it touch 0 first?
         sign = 1.0 if omega > 0.0 else -1.0
         upper, x, v, acc, trials = _locate(
@@ -348,9 +354,9 @@ def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
             omega_new, acceleration_new, segment, parameters, sign)
         located += trials
         impact = side * x <= 0.0
-    elif side * theta_new < 0.0 or (side * theta_new == 0.0 and side * omega_new < 0.0):
+    elif (side * theta_new < 0.0) | ((side * theta_new == 0.0) & (side * omega_new < 0.0)):
         impact = True
-        if side * omega < 0.0 and side * omega_new < 0.0:
+        if (side * omega < 0.0) & (side * omega_new < 0.0):
             # theta may have crossed 0 three times (down, up at a turning point
             # below 0, down again): bracket the first crossing
             found, xd, vd, ad, trials = _dip_on_stepper(
@@ -359,7 +365,7 @@ def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
             located += trials
             if found > 0.0:
                 upper, x, v, acc = found, xd, vd, ad
-    elif omega * omega_new > 0.0 and side * theta_new > 0.0:
+    elif (omega * omega_new > 0.0) & (side * theta_new > 0.0):
         # theta' has the same sign at both ends, but it may have changed sign
         # twice inside the step (the ground acceleration ramps fast enough):
         # a dip below 0 between two turning points that no sign test sees
@@ -394,7 +400,7 @@ def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
     theta_peak = theta_new
     v_peak = omega_new
     acceleration_peak = acceleration_new
-    if omega * omega_new < 0.0 and side * omega > 0.0:
+    if (omega * omega_new < 0.0) & (side * omega > 0.0):
         sign = 1.0 if omega > 0.0 else -1.0
         tau_peak, theta_peak, v_peak, acceleration_peak, trials = _locate(
             EVENT_PEAK, t, theta, omega, acceleration, side, tau, theta_new,
@@ -409,7 +415,7 @@ def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
         info[INFO_T_MAX] = t + tau
         info[INFO_THETA_AT_MAX] = theta_new
     if math.isnan(info[INFO_T_UNSTABLE]):
-        if abs(theta_peak) > alpha or abs(theta_new) > alpha:
+        if (abs(theta_peak) > alpha) | (abs(theta_new) > alpha):
             if abs(theta_peak) > alpha:
                 upper, x, v, acc = tau_peak, theta_peak, v_peak, acceleration_peak
             else:
@@ -437,15 +443,15 @@ def _rest_after_impact(t, omega, side, segment, parameters, cor, rest_tolerance,
     ux, vx, rx = ground(segment, t)
     deceleration = -side * model_acceleration(0.0, side, ux, vx, rx, parameters)
     remaining = _cascade_rest_time(omega, deceleration, cor)
-    if remaining == math.inf and cor >= 1.0 and deceleration > 0.0 and abs(
-            omega) <= velocity_floor:
+    if ((remaining == math.inf) & (cor >= 1.0) & (deceleration > 0.0)
+            & (abs(omega) <= velocity_floor)):
         # COR = 1 never ends a cascade by itself: bounces of the same tiny velocity,
         # 2|w|/a0 long each, would go on forever (millions per second). Below the velocity
         # floor a bounce rises w^2/(2 a0), far below the integration error: the block is
         # at rest.
         remaining = 0.0
-    if omega == 0.0 or remaining <= rest_tolerance or (
-            abs(omega) <= velocity_floor and remaining < math.inf):
+    if ((omega == 0.0) | (remaining <= rest_tolerance)
+            | ((abs(omega) <= velocity_floor) & (remaining < math.inf))):
         return 0.0 if omega == 0.0 else remaining
     return -1.0
 
