@@ -39,10 +39,10 @@ An impact can hide inside one step: theta dips below 0 and comes back before
 the step ends. With one turning point in the step, theta' changes sign and the
 driver locates the turning point and, when it lies past 0, the impact before
 it. With two (theta' of one sign at both ends, the ground acceleration ramping
-fast), :func:`_hidden_dip` searches the cubic Hermite interpolant of theta,
-theta' at the step ends and :func:`_dip_on_stepper` confirms the dip on the
-stepper itself; the same check makes a step that ends past 0 after three
-crossings stop at the first. Steps without such a dip are not changed.
+fast), :func:`_dip_on_stepper` searches the cubic Hermite interpolant of theta,
+theta' at the step ends and confirms the dip on the stepper itself; the same
+check makes a step that ends past 0 after three crossings stop at the first.
+Steps without such a dip are not changed.
 
 All three share the event logic: start of rocking at the exact crossing of
 Eq. (2-1) inside an interval, the impact map theta' -> cor * theta', the
@@ -239,20 +239,32 @@ def _locate(kind, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
     return c, xc, vc, ac, trials
 
 
-@helper
-def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_only):
-    """Where a step may hide a dip below theta = 0 between two turning points [s], else 0.
+def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new,
+                    threshold, first_only, segment, parameters):
+    """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
 
     Called for a step whose ends have theta on the active side and theta' of
-    one sign, which no sign test flags. The cubic Hermite interpolant of theta,
-    theta' at both ends (exact when theta'' is linear in time, as the ground
-    acceleration is inside an input interval, up to the p^2 theta term) is
-    searched for two interior turning points; the time of its minimum of
-    side * theta is returned when that minimum is at or below ``threshold``
-    (the caller checks on the stepper itself, so a generous margin costs only
-    evaluations). With ``first_only`` (the end is already below 0), only a
-    minimum before the maximum counts: a crossing earlier than the one seen.
+    one sign, which no sign test flags (with ``first_only``: a step that ends
+    past 0, whose theta' kept one sign). First, where the step may hide a dip:
+    the cubic Hermite interpolant of theta, theta' at both ends (exact when
+    theta'' is linear in time, as the ground acceleration is inside an input
+    interval, up to the p^2 theta term) is searched for two interior turning
+    points, and its minimum of side * theta counts when it is at or below
+    ``threshold`` (checked next on the stepper itself, so a generous margin
+    costs only evaluations). With ``first_only`` (the end is already below 0),
+    only a minimum before the maximum counts: a crossing earlier than the one
+    seen. Then, from the interpolant's minimum, Newton's iteration on
+    theta' = 0 (one step of the stepper from ``t`` per trial, as
+    :func:`_locate`) goes towards the stepper's turning point.
+
+    Returns that time (0 when none is found), theta, theta', theta'' there and
+    the number of trials. (One function with the interpolant's search: a
+    compiled function of its own costs numba's first compile more than it
+    saves, issue 28.)
     """
+    x = v = acc = 0.0
+    trials = int64(0)  # not a literal 0: see _drive
+    # where the cubic Hermite interpolant may hide a dip
     x0 = side * theta
     x1 = side * theta_new
     v0 = side * omega * h
@@ -260,38 +272,24 @@ def _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_on
     c2 = 3.0 * (x1 - x0) - 2.0 * v0 - v1
     c3 = 2.0 * (x0 - x1) + v0 + v1
     if c3 == 0.0:
-        return 0.0  # H' linear: no two interior roots with ends of one sign
+        # H' linear: no two interior roots with ends of one sign
+        return 0.0, x, v, acc, trials
     discriminant = c2 * c2 - 3.0 * c3 * v0
     if discriminant <= 0.0:
-        return 0.0
+        return 0.0, x, v, acc, trials
     root = math.sqrt(discriminant)
     s1 = (-c2 - root) / (3.0 * c3)
     s2 = (-c2 + root) / (3.0 * c3)
     if not ((0.0 < s1) & (s1 < 1.0) & (0.0 < s2) & (s2 < 1.0)):
-        return 0.0
+        return 0.0, x, v, acc, trials
     s = s1 if 2.0 * c2 + 6.0 * c3 * s1 > 0.0 else s2  # the minimum of side * theta
     if first_only > 0.0 and s > (s2 if s2 < s1 else s1):  # s > min(s1, s2)
-        return 0.0  # theta_new < 0: only a minimum before the maximum hides a crossing
+        # theta_new < 0: only a minimum before the maximum hides a crossing
+        return 0.0, x, v, acc, trials
     lowest = x0 + s * (v0 + s * (c2 + s * c3))
     if lowest > threshold:
-        return 0.0
-    return s * h
-
-
-def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                    threshold, first_only, segment, parameters):
-    """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
-
-    Asks :func:`_hidden_dip` (with ``threshold`` and ``first_only``) where the
-    step may hide a dip; if it may, starts at the interpolant's minimum and
-    follows Newton's iteration on theta' = 0 (one step of the stepper from
-    ``t`` per trial, as :func:`_locate`) towards the stepper's turning point.
-    Returns that time (0 when none is found), theta, theta', theta'' there and
-    the number of trials.
-    """
-    x = v = acc = 0.0
-    trials = int64(0)  # not a literal 0: see _drive
-    tau = _hidden_dip(side, h, theta, omega, theta_new, omega_new, threshold, first_only)
+        return 0.0, x, v, acc, trials
+    tau = s * h
     if tau <= 0.0:
         return 0.0, x, v, acc, trials
     for _ in range(12):
