@@ -64,10 +64,11 @@ float operation about 1 ms of CPU (typed twice and once more while lowered, each
 trying NumPy's array rules first), a branch about 4 ms, a call of a helper returning a
 tuple about 3.5 ms, and every compiled function about 25 ms more (its own LLVM module,
 optimised and turned into machine code, then again inside each caller). Hence: the
-events of a step (:func:`_step_events`) and the rest after an impact
-(:func:`_rest_after_impact`) are functions of their own, which made the driver's compile
-shorter by more than they cost (splitting further did not: each split links and
-optimises the event location once more); an impact is located from one call site; and
+events of a step (:func:`_step_events`, which LLVM still inlines into the driver) and the
+rest after an impact (:func:`_rest_after_impact`) are functions of their own, which made
+the driver's compile shorter by more than they cost (splitting further did not: each
+split links and optimises the event location once more); an impact is located from one
+call site; the search for a hidden dip is one function with its confirmation; and
 conditions of several comparisons are combined with ``&`` and ``|`` (bools, no
 short-circuit branch). ``benchmarks/cold_start.py --breakdown`` shows where the rest
 goes.
@@ -122,6 +123,7 @@ from shaketable.solvers.layout import (
     STATUS_OVERTURNED,
 )
 from shaketable.solvers.steppers import (
+    HELPER_OPTIONS,
     METHOD_FUNCTIONS,
     angular_acceleration,
     flight_acceleration,
@@ -765,6 +767,12 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
 # The helpers that call the method's functions: each integrator compiles its own copies.
 _METHOD_HELPERS = ("_first_positive_margin", "_locate", "_dip_on_stepper", "_step_events",
                    "_rest_after_impact")
+# Those that LLVM inlines into the driver (forceinline: LLVM's alwaysinline): part of its
+# body, called at every step, compiled apart only to keep numba's first compile short
+# (issue 28). Called instead, it made the batch 2 % slower (0.61 against 0.60 ms of CPU
+# per run, benchmarks/batch_rate.py); inlined, the first compile is 0.05 s longer.
+_INLINED_HELPERS = ("_step_events",)
+_INLINED_HELPER = njit(**HELPER_OPTIONS, forceinline=True)
 
 
 def _integrator(method, name):
@@ -790,7 +798,9 @@ def _integrator(method, name):
     namespace = dict(_drive.__globals__, _METHOD=method, **METHOD_FUNCTIONS[method])
     for helper_name in _METHOD_HELPERS:
         code = globals()[helper_name]
-        namespace[helper_name] = helper(types.FunctionType(code.__code__, namespace, helper_name))
+        compile_as = _INLINED_HELPER if helper_name in _INLINED_HELPERS else helper
+        namespace[helper_name] = compile_as(types.FunctionType(code.__code__, namespace,
+                                                               helper_name))
     function = types.FunctionType(_drive.__code__, namespace, name)
     function.__qualname__ = name
     function.__doc__ = f":func:`integrate` with method code {method}."
