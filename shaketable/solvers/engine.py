@@ -50,28 +50,18 @@ summation of the endless cascade of impacts of a decaying block
 (:func:`shaketable.core.dynamics.cascade_rest_time`), unstable / overturned, and the
 block leaving the ground when g + vg <= 0.
 
-Size: one compiled unit on purpose (about 1,000 lines with
-:mod:`~shaketable.solvers.steppers`): numba inlines the steppers and the event location
-into the integrators, and a module boundary would not change that.
-
-First compile (issue 28): each method has its own compiled integrator, the driver's
-code with the method a compile-time constant and the method's functions bound to the
-names it calls (:func:`_integrator`), so the default method's first compile types and
-optimises only the Nystrom stepper and the exact model, with no compiled layer that
-chooses a method's function; the helpers have no Python entry and no reference
-counting. What numba's first compile costs here (numba 0.68, measured in isolation): a
-float operation about 1 ms of CPU (typed twice and once more while lowered, each time
-trying NumPy's array rules first), a branch about 4 ms, a call of a helper returning a
-tuple about 3.5 ms, and every compiled function about 25 ms more (its own LLVM module,
-optimised and turned into machine code, then again inside each caller). Hence: the
-events of a step (:func:`_step_events`, which LLVM still inlines into the driver) and the
-rest after an impact (:func:`_rest_after_impact`) are functions of their own, which made
-the driver's compile shorter by more than they cost (splitting further did not: each
-split links and optimises the event location once more); an impact is located from one
-call site; the search for a hidden dip is one function with its confirmation; and
-conditions of several comparisons are combined with ``&`` and ``|`` (bools, no
-short-circuit branch). ``benchmarks/cold_start.py --breakdown`` shows where the rest
-goes.
+First compile (issue 28): each method has its own compiled integrator, the driver's code
+with the method a compile-time constant and the method's functions bound to the names it
+calls (:func:`_integrator`), so the default method's first compile types and optimises
+only its own code, with no compiled layer that chooses a method's function. numba's first
+compile costs about 1 ms of CPU per float operation, 4 ms per branch, 3.5 ms per call of
+a helper returning a tuple and 25 ms per compiled function (``benchmarks/cold_start.py
+--constructs``): hence the events of a step (:func:`_step_events`, which LLVM still
+inlines) and the rest after an impact (:func:`_rest_after_impact`) are compiled apart
+from the driver (splitting further did not pay: each split links and optimises the event
+location once more), an impact is located from one call site, and conditions of several
+comparisons are combined with ``&`` and ``|`` (no short-circuit branches).
+``--breakdown`` shows where the rest goes.
 """
 
 from __future__ import annotations
@@ -125,11 +115,8 @@ from shaketable.solvers.layout import (
 from shaketable.solvers.steppers import (
     HELPER_OPTIONS,
     METHOD_FUNCTIONS,
-    angular_acceleration,
-    flight_acceleration,
     ground,
     helper,
-    nystrom_step,
 )
 
 # Eq. (2-13)/(2-14)'s cascade sum as a compiled helper (shaketable.core.dynamics' keeps its
@@ -137,12 +124,16 @@ from shaketable.solvers.steppers import (
 _cascade_rest_time = helper(cascade_rest_time.py_func)
 
 
-# The functions of the method that the code below calls by these names (those of
-# steppers.METHOD_FUNCTIONS): here the fast method's; each integrator binds its own
-# method's in its own namespace (_integrator).
-model_acceleration = angular_acceleration
-flight_model = flight_acceleration
-advance = nystrom_step
+def _bound_per_method(*arguments):
+    """Stands for the method's function each integrator binds to this name (:func:`_integrator`).
+
+    Not compiled: a helper that calls one of these names without being one of
+    :data:`_METHOD_HELPERS` fails numba's typing instead of calling another method's one.
+    """
+    raise NotImplementedError("bound to the method's function by engine._integrator")
+
+
+model_acceleration = flight_model = advance = _bound_per_method
 
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
 _EVALUATIONS_FAST, _EVALUATIONS_PREDICTOR_CORRECTOR, _EVALUATIONS_LINEAR = 5, 2, 1
@@ -226,8 +217,8 @@ def _locate(kind, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
         if abs(newton) <= tolerance:
             break  # c is the root to within rounding
         previous = change
-        x, v, acc, _, _ = advance(t, theta, omega, acceleration, side, candidate,
-                                   segment, parameters)
+        x, v, acc, _, _ = advance(t, theta, omega, acceleration, side, candidate, segment,
+                                  parameters)
         trials += 1
         g, dg = _event(kind, x, v, acc, side, sign, alpha)
         c, xc, vc, ac, gc, dgc = candidate, x, v, acc, g, dg
@@ -260,9 +251,7 @@ def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new
     :func:`_locate`) goes towards the stepper's turning point.
 
     Returns that time (0 when none is found), theta, theta', theta'' there and
-    the number of trials. (One function with the interpolant's search: a
-    compiled function of its own costs numba's first compile more than it
-    saves, issue 28.)
+    the number of trials.
     """
     x = v = acc = 0.0
     trials = int64(0)  # not a literal 0: see _drive
@@ -285,7 +274,8 @@ def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new
     if not ((0.0 < s1) & (s1 < 1.0) & (0.0 < s2) & (s2 < 1.0)):
         return 0.0, x, v, acc, trials
     s = s1 if 2.0 * c2 + 6.0 * c3 * s1 > 0.0 else s2  # the minimum of side * theta
-    if first_only > 0.0 and s > (s2 if s2 < s1 else s1):  # s > min(s1, s2)
+    # s > min(s1, s2), as numba's min() computes it: min() here would be compiled once more
+    if first_only > 0.0 and s > (s2 if s2 < s1 else s1):
         # theta_new < 0: only a minimum before the maximum hides a crossing
         return 0.0, x, v, acc, trials
     lowest = x0 + s * (v0 + s * (c2 + s * c3))
@@ -296,7 +286,7 @@ def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new
         return 0.0, x, v, acc, trials
     for _ in range(12):
         x, v, acc, _, _ = advance(t, theta, omega, acceleration, side, tau, segment,
-                                   parameters)
+                                  parameters)
         trials += 1
         if side * x <= 0.0:
             return tau, x, v, acc, trials
@@ -310,7 +300,7 @@ def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new
 
 
 def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                    acceleration_new, segment, parameters, info):
+                 acceleration_new, segment, parameters, info):
     """The events inside a step of free flight from ``t`` to ``t + h``.
 
     The step's end (``theta_new``, ``omega_new``, ``acceleration_new``) is known.
@@ -324,9 +314,7 @@ def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
       (``INFO_MAX_ABS_THETA``, ``INFO_T_MAX``, ``INFO_THETA_AT_MAX``), and the first
       time |theta| passes alpha (``INFO_T_UNSTABLE``, ``INFO_UNSTABLE_DIRECTION``).
 
-    Each is located on the stepper (:func:`_locate`). A function of its own, not part of
-    the driver: numba's first compile of the two is shorter than of the driver with this
-    inside (issue 28).
+    Each is located on the stepper (:func:`_locate`).
 
     Returns
     -------
@@ -369,7 +357,7 @@ def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
         # theta' has the same sign at both ends, but it may have changed sign
         # twice inside the step (the ground acceleration ramps fast enough):
         # a dip below 0 between two turning points that no sign test sees
-        lower = side * theta_new if side * theta_new < side * theta else side * theta
+        lower = side * theta_new if side * theta_new < side * theta else side * theta  # min()
         found, xd, vd, ad, trials = _dip_on_stepper(
             t, theta, omega, acceleration, side, h, theta_new, omega_new, 0.5 * lower, 0.0,
             segment, parameters)
@@ -438,7 +426,7 @@ def _rest_after_impact(t, omega, side, segment, parameters, cor, rest_tolerance,
     (Eq. 2-13/2-14 near theta = 0, :func:`shaketable.core.dynamics.cascade_rest_time`)
     and the block put to rest at its end when it is shorter than ``rest_tolerance`` [s],
     or when the impact velocity is below ``velocity_floor`` [rad/s]; without an impact
-    velocity it rests at once (0).
+    velocity it rests at once (0). (-1 is free: the cascade's duration is >= 0 or inf.)
     """
     ux, vx, rx = ground(segment, t)
     deceleration = -side * model_acceleration(0.0, side, ux, vx, rx, parameters)
@@ -554,9 +542,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
     info[INFO_T_MAX] = t_grid[0]
     info[INFO_THETA_AT_MAX] = theta0
     # Loop-carried counters and flags start as int64(0) and boolean(False), not 0 and False:
-    # numba types a bare constant as a literal, which the loop's later assignments widen,
-    # and each widening costs the whole driver one more pass of type inference at its
-    # first compile (four instead of two).
+    # a literal, widened later in the loop, cost the first compile two more typing passes.
     n_impacts = int64(0)
     steps = int64(0)
     evaluations = int64(0)
@@ -642,8 +628,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 if start_side == 0.0:
                     t = t_end
                     break
-                t = _first_positive_margin(start, t_end, start_side, segment,
-                                           block)
+                t = _first_positive_margin(start, t_end, start_side, segment, block)
                 side = start_side
                 theta = 0.0
                 omega = 0.0
@@ -772,35 +757,35 @@ _METHOD_HELPERS = ("_first_positive_margin", "_locate", "_dip_on_stepper", "_ste
 # (issue 28). Called instead, it made the batch 2 % slower (0.61 against 0.60 ms of CPU
 # per run, benchmarks/batch_rate.py); inlined, the first compile is 0.05 s longer.
 _INLINED_HELPERS = ("_step_events",)
-_INLINED_HELPER = njit(**HELPER_OPTIONS, forceinline=True)
+_INLINED_HELPER = njit(**{**HELPER_OPTIONS, "forceinline": True})
 
 
 def _integrator(method, name):
     """:func:`_drive` compiled for ``method`` (cached): one compiled integrator per method.
 
-    The same Python code, in its own copy of this module's namespace in which ``_METHOD``
-    is ``method`` and ``model_acceleration``, ``flight_model`` and ``advance`` are the
+    The same Python code, in a copy of this module's namespace in which ``_METHOD`` is
+    ``method`` and ``model_acceleration``, ``flight_model`` and ``advance`` are the
     method's functions (:data:`~shaketable.solvers.steppers.METHOD_FUNCTIONS`); the helpers
-    that call those (:data:`_METHOD_HELPERS`) are compiled from the same namespace. numba
-    reads ``method == METHOD_...`` as a comparison of two constants and drops the other
-    methods' branches before typing, and each call goes straight to the method's function:
-    the default method's first compile neither types nor optimises the others' code, and
-    compiles no layer that would choose a method's function. The body is compiled into
-    the integrator itself, not called from a thin compiled wrapper, which compiled (and
-    optimised) it twice. The namespace is copied when the integrators are made (at
-    import): replacing a helper in the module afterwards does not change them.
+    that call those (:data:`_METHOD_HELPERS`) are compiled from it too, each under a name
+    of its own. numba reads ``method == METHOD_...`` as a comparison of two constants and
+    drops the other methods' branches before typing. The namespace is copied at import:
+    replacing a helper in the module afterwards does not change the integrators.
 
-    The integrator takes arrays but allocates none: it is compiled without numba's
-    reference counting (``_nrt=False``), whose increments and decrements of its array
-    arguments were a tenth of its first compile. nogil: a long run can go on in a thread
-    (Ctrl-C, solvers.common.call_interruptibly), and the batch runs them on several threads.
+    The integrator allocates no array: it is compiled without numba's reference counting
+    (``_nrt=False``). nogil: a long run can go on in a thread (Ctrl-C,
+    solvers.common.call_interruptibly), and the batch runs them on several threads.
     """
     namespace = dict(_drive.__globals__, _METHOD=method, **METHOD_FUNCTIONS[method])
     for helper_name in _METHOD_HELPERS:
         code = globals()[helper_name]
+        copy = types.FunctionType(code.__code__, namespace, helper_name)
+        # a name of its own: numba names the compiled symbol after the qualified name and the
+        # argument types, and the integrators link their helpers in as weak symbols, so
+        # that two integrators loaded from the cache into one process would otherwise share
+        # one method's copy
+        copy.__qualname__ = f"{name}.{helper_name}"
         compile_as = _INLINED_HELPER if helper_name in _INLINED_HELPERS else helper
-        namespace[helper_name] = compile_as(types.FunctionType(code.__code__, namespace,
-                                                               helper_name))
+        namespace[helper_name] = compile_as(copy)
     function = types.FunctionType(_drive.__code__, namespace, name)
     function.__qualname__ = name
     function.__doc__ = f":func:`integrate` with method code {method}."

@@ -42,9 +42,13 @@ from shaketable.solvers.layout import METHOD_FAST, METHOD_LINEAR, METHOD_PREDICT
 # first compile (about 50 ms each, 1 s in all). Calling one from Python crashes; only
 # `nystrom` (tested on its own) and the integrators keep theirs. Nor are they cached:
 # numba caches the integrators whole, with every helper they call linked in. Nor do they
-# use numba's reference counting (_nrt=False): they take numbers and tuples, no arrays.
-# (options numba accepts beyond those its type stubs list: typed Any for mypy)
-HELPER_OPTIONS: Any = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True, "_nrt": False}
+# use numba's reference counting (_nrt=False): they take numbers and tuples (one takes the
+# integrator's info array, which its caller holds) and allocate nothing. forceinline is
+# False so that a helper first compiled by one that LLVM must inline (the engine's
+# _step_events) does not inherit it. (options numba accepts beyond those its type stubs
+# list: typed Any for mypy)
+HELPER_OPTIONS: Any = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True, "_nrt": False,
+                       "forceinline": False}
 helper = njit(**HELPER_OPTIONS)
 
 # Eq. (2-13)/(2-14) as the engine's own compiled helpers (the same Python functions as
