@@ -276,6 +276,13 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
                      f"{run.residual_slip:+.3f} m, {run.slip_episodes} slip episodes "
                      f"(Section 2.1: {run.mode_choice.get('mode (Section 2.1)', 'n/a')})")
         lines.append(f"\n![sliding]({scene.name}/sliding{label}.png)\n")
+    for index, run in enumerate(result.planar):
+        label = "" if len(result.planar) == 1 else f"-{index + 1}"
+        summary = run.summary()
+        lines.append(f"* the planar block, μs {run.friction.static:g}, μd "
+                     f"{run.friction.dynamic:g}, COR {run.cor:g}: {summary['verdict']}; modes "
+                     f"{summary['modes visited']}; peak slip {summary['peak slip [m]']:.3f} m")
+        lines.append(f"\n![planar]({scene.name}/planar{label}.png)\n")
     if scene.mode() is not None:
         lines.append(f"* Section 2.1: {scene.mode()}")
     if result.tests:

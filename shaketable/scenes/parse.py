@@ -203,7 +203,7 @@ class Scene:
                     "(Section 2.1): the block rocks before it can slide")
         return (f"SLIDING: static friction {self.static_friction:g} <= B/H = {ratio:.3f} "
                 "(Section 2.1, Eq. 2-2): the block slides before it rocks; the rocking "
-                "results below assume a base that cannot slide")
+                "runs assume a base that cannot slide")
 
 
 @dataclass(frozen=True)
