@@ -85,3 +85,20 @@ def test_every_name_of_the_front_door_loads_from_outside_the_repository(tmp_path
     assert result.returncode == 0, result.stderr
     assert result.stdout.split("\n")[0] == ("True [] ['fast', 'linear', 'predictor-corrector', "
                                            "'reference'] shaketable.solvers.api True")
+
+
+def test_the_package_loads_from_the_folder_that_holds_a_checkout_named_shaketable(tmp_path):
+    """A clone is named ``shaketable`` and used from its parent folder: that folder is on
+    ``sys.path`` first and the checkout (no ``__init__.py`` at its root) would be taken as a
+    namespace package ``shaketable`` with no ``simulate`` if the editable install found the
+    package through an import hook, which Python consults after its path search (setuptools
+    does so for a flat layout). ``package-dir = {"" = "."}`` in pyproject.toml makes it a
+    plain path entry instead, where the search finds the real package. (Installed from the
+    wheel or from a path entry this holds too; under a hook-based editable install, as
+    setuptools made before, this failed.)"""
+    (tmp_path / "shaketable").symlink_to(ROOT, target_is_directory=True)
+    code = "from shaketable import simulate, METHODS; print(simulate.__module__)"
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "shaketable.solvers.api"
