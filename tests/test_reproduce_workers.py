@@ -31,3 +31,22 @@ def test_two_processes_write_the_same_report_as_one(tmp_path, monkeypatch):
     assert "report.md" in outputs["1"] and "fig-2-10/section.md" in outputs["1"]
     for key in outputs["1"]:
         assert outputs["1"][key] == outputs["2"][key], key
+
+
+def test_progress_bar_moves_by_expected_cost_and_counts_scenes(capsys):
+    # The scenes' expected CPU seconds are reproduce.SCENE_CPU (measured); the longest
+    # runs first, so a bar counting scenes would extrapolate the time left from it.
+    from shaketable.reproduce import SCENE_CPU, _ProgressBar
+
+    bar = _ProgressBar(["table-4-3", "table-3-1", "no-such-scene"])
+    total = SCENE_CPU["table-4-3"] + SCENE_CPU["table-3-1"] + 0.1   # 0.1: the floor
+    assert bar.tqdm.total == total
+    bar.done("table-4-3")
+    assert bar.tqdm.n == SCENE_CPU["table-4-3"]
+    assert bar.tqdm.desc == "1/3 scenes"
+    bar.done("table-3-1")
+    bar.done("no-such-scene")
+    bar.close()
+    assert bar.tqdm.n == total
+    shown = capsys.readouterr().err.replace("\r", "\n").splitlines()[-1]
+    assert shown.startswith("reproducing: 100%") and "3/3 scenes" in shown

@@ -13,9 +13,9 @@ from shaketable.plots.calcomp import (
     mark_overturn,
 )
 
-#: Colours of the modes shown in the band (rest and rock are the report's own model: blank).
-MODE_COLOURS = {1: ("slide", "tab:orange"), 3: ("slide-rock", "tab:purple"),
-                4: ("flight", "tab:cyan")}
+#: Colours of the modes shown in the band, by mode code (rest is left blank).
+MODE_COLOURS = {1: ("slide", "tab:orange"), 2: ("rock", "#a8d8a8"),
+                3: ("slide-rock", "tab:purple"), 4: ("flight", "tab:cyan")}
 
 
 def mode_changes(result):
@@ -57,9 +57,8 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     The Calcomp layout of :func:`shaketable.plots.calcomp.calcomp` (ground panels left
     out when a channel is zero), with the angular velocity alone on its panel (the
     coupled model's theta'' has no single formula across modes), then the slip of the
-    base's midpoint relative to the table [in] with its peak marked, and a band that is
-    coloured only where the block slides, slide-rocks or flies (rest and rocking, the
-    report's own model, are left blank).
+    base's midpoint relative to the table [in] with its peak marked, and a band coloured
+    by the mode the block is in (slide, rock, slide-rock, flight; left blank at rest).
 
     The traces are the columns of ``result.to_frame()``, which the compiled engine's
     :class:`~shaketable.core.planar_result.PlanarResult` and the SciPy reference's
@@ -121,7 +120,7 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
         band.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
                     borderaxespad=0.0)
     else:
-        band.text(0.5, 0.5, "rest and rocking only", transform=band.transAxes, ha="center",
+        band.text(0.5, 0.5, "at rest throughout", transform=band.transAxes, ha="center",
                   va="center", fontsize=7, color="0.4")
     band.set_xlabel("time [s]")
     start, stop = (motion.t[0], max(end, motion.t[0] + 1e-9)) if time_range is None \

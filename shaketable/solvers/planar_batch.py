@@ -12,6 +12,7 @@ from __future__ import annotations
 import itertools
 from collections.abc import Iterable
 
+import numba
 import numpy as np
 from numba import njit, prange, set_parallel_chunksize
 
@@ -20,6 +21,7 @@ from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.planar_result import MODES, VERDICTS
 from shaketable.core.sliding_result import Friction
+from shaketable.core.validation import in_range
 from shaketable.solvers import planar
 from shaketable.solvers.common import engine_arrays, extended
 from shaketable.solvers.planar_run import DEFAULT_PLANAR_RTOL, check_planar_inputs, impact_ratios
@@ -40,7 +42,8 @@ def _run_planar_batch(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, 
 
 def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
                          frictions: Friction | Iterable[Friction], cors, *,
-                         rtol: float | None = None, duration: float | None = None):
+                         rtol: float | None = None, duration: float | None = None,
+                         threads: int | None = None):
     """Every combination of blocks, frictions and COR on one motion, from rest, in parallel.
 
     Parameters
@@ -55,6 +58,12 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
         DOP853 relative tolerance [-] (default 1e-12).
     duration : float, optional
         Length of the runs [s].
+    threads : int, optional
+        numba threads of the parallel loop, at most
+        :data:`numba.config.NUMBA_NUM_THREADS` (default ``numba.get_num_threads()``:
+        all cores unless set lower); the calling thread's setting is restored after.
+        One thread runs the cases in the calling thread, outside numba's threading layer
+        (safe in concurrent tasks). The results do not depend on it.
 
     Returns
     -------
@@ -72,6 +81,9 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
         raise ValueError(f"motion must be a shaketable.Motion, got {type(motion).__name__}")
     if motion.rotation is not None and np.any(motion.rotation != 0.0):
         raise ValueError("motion: the coupled model (friction=...) has no table rotation")
+    if threads is not None:
+        most = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]  # set at import
+        threads = int(in_range("threads", threads, 1, most))
     motion = extended(motion, duration)
     cases = list(itertools.product(range(len(blocks)), range(len(frictions)), range(len(cors))))
     m = len(cases)
@@ -86,15 +98,30 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
     info = np.zeros((m, planar.N_INFO))
     final = np.zeros((m, planar.N_OUT))
     t_grid, ug, vg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero)
-    # the cases are handed out one at a time (run costs differ a lot: a block that
-    # overturns early is cheap), as the rocking batch does
-    previous = set_parallel_chunksize(1)
-    try:
-        _run_planar_batch(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d,
-                          DEFAULT_PLANAR_RTOL if rtol is None else float(rtol), -1.0, info,
-                          final)
-    finally:
-        set_parallel_chunksize(previous)
+    rtol = DEFAULT_PLANAR_RTOL if rtol is None else float(rtol)
+    if threads == 1:
+        # One thread: the cases one after the other in this thread, through the engine's
+        # own compiled entry point (simulate_planar's signature: nothing more to compile).
+        # No call of numba's threading layer, so that concurrent batches (a Dask worker's
+        # tasks) are safe whatever the layer; the same arithmetic, bit for bit.
+        none, no_events = np.empty((0, planar.N_OUT)), np.empty((0, planar.EVENT_COLUMNS))
+        for i in range(m):
+            planar.integrate(t_grid, ug, vg, parameters[i], float(rho[i]),
+                             float(cor_cascade[i]), float(mu_s[i]), float(mu_d[i]), rtol, -1.0,
+                             0.0, 0.0, none, no_events, final[i], info[i])
+    else:
+        # the cases are handed out one at a time (run costs differ a lot: a block that
+        # overturns early is cheap), as the rocking batch does
+        previous = set_parallel_chunksize(1)
+        previous_threads = numba.get_num_threads()
+        try:
+            if threads is not None:
+                numba.set_num_threads(threads)
+            _run_planar_batch(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol,
+                              -1.0, info, final)
+        finally:
+            set_parallel_chunksize(previous)
+            numba.set_num_threads(previous_threads)
     rows = []
     for i, (b, f, c) in enumerate(cases):
         row = info[i]

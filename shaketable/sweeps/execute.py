@@ -240,7 +240,7 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd
     statistics = None
     if spec.friction is not None:   # the coupled planar model (shaketable.sweeps.friction)
         from shaketable.sweeps.friction import simulate_friction
-        frame = simulate_friction(spec, inputs, cases)
+        frame = simulate_friction(spec, inputs, cases, threads)
     elif spec.ensemble is None:
         frame = _simulate(spec, inputs, cases, threads)
     else:

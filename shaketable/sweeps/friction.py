@@ -190,7 +190,8 @@ def check_friction_spec(spec: SweepSpec, rocking: dict) -> None:
                                  f"{block.describe(unit='in')}: {error}") from None
 
 
-def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.DataFrame:
+def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list,
+                      threads: int | None = None) -> pd.DataFrame:
     """The rows of a chunk of a friction sweep (one per row of ``inputs``), in order.
 
     Parameters
@@ -201,6 +202,8 @@ def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.
         :func:`shaketable.sweeps.execute.runs_table` of the chunk (``friction_index``).
     cases : list of shaketable.solvers.batch.Case
         The chunk's runs: block, unscaled motion, COR and scale factor.
+    threads : int, optional
+        Threads of the planar batch (:func:`~shaketable.solvers.planar_batch.simulate_many_planar`).
 
     Returns
     -------
@@ -216,8 +219,8 @@ def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.
     friction pairs and CORs the chunk holds for it (its product; the few extra runs at a
     chunk's edges are discarded). A run does not depend on the others of its call, so a
     row equals ``simulate(block, motion.scaled(scale), cor=cor, friction=Friction(mu_s,
-    mu_d), duration=duration)`` whatever the chunking. The batch runs on numba's threads
-    (``NUMBA_NUM_THREADS``); ``--workers`` does not apply to it.
+    mu_d), duration=duration)`` whatever the chunking. The batch runs on ``threads``
+    numba threads (``--workers``; default all cores).
     """
     import pandas as pd
 
@@ -242,7 +245,7 @@ def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.
         cors = sorted({float(cases[k].cor) for k in members})
         frame = simulate_many_planar([spec.blocks[b] for b in blocks], motion,
                                      [Friction(*pairs[f]) for f in frictions], cors,
-                                     rtol=rtol, duration=spec.duration)
+                                     rtol=rtol, duration=spec.duration, threads=threads)
         columns = frame.to_dict("records")
         duration = spec.duration if spec.duration is not None else motion.duration
         for k in members:

@@ -83,6 +83,11 @@ def test_the_figure_has_the_panels_of_the_compiled_result(runs):
             np.testing.assert_allclose(mine.get_x(), theirs.get_x(), atol=1e-8)
             np.testing.assert_allclose(mine.get_width(), theirs.get_width(), atol=1e-8)
             assert mine.get_facecolor() == theirs.get_facecolor()
+        # every mode the run visited is in the band's legend, rest excepted (left blank)
+        for axis in (band, planar_axes[-1]):
+            labels = {text.get_text() for text in axis.get_legend().get_texts()}
+            assert labels == set(planar.modes_visited) - {"rest"}
+            assert "rock" in labels and "slide-rock" in labels
         # the caption: the same verdict line up to the corner excursion (the reference
         # computes none) and the model named
         caption = fig._suptitle.get_text()

@@ -328,3 +328,41 @@ def test_risk_command_fits_each_friction_pair_apart(tmp_path, capsys):
     printed = capsys.readouterr().out
     assert printed.count("30 x 6 in, COR 0.9, mu_s 0.2, mu_d 0.2:") == 1
     assert printed.count("30 x 6 in, COR 0.9, mu_s 0.5, mu_d 0.5:") == 1
+
+
+def test_workers_sets_the_planar_batch_threads_and_not_the_table(tmp_path, friction_table):
+    # --workers (run_sweep's workers=) is the planar batch's thread count, as the rocking
+    # batch's; the rows do not depend on it, and the caller's numba setting is restored
+    import numba
+
+    before = numba.get_num_threads()
+    spec = sweeps.load_spec(write(tmp_path, SPEC))
+    for threads in (1, 2):
+        chunk = execute.compute_chunk(spec, 3, threads=threads)
+        pd.testing.assert_frame_equal(chunk, friction_table.iloc[21:28].reset_index(drop=True),
+                                      check_exact=True)
+        assert numba.get_num_threads() == before
+    table = sweeps.run_sweep(spec, tmp_path / "one-thread", workers=1, progress=False).table
+    pd.testing.assert_frame_equal(table, friction_table, check_exact=True)
+
+
+def test_planar_batch_threads_out_of_range_is_refused_by_name():
+    from shaketable.solvers.planar_batch import simulate_many_planar
+
+    block, motion = st.Block.parse("30x6in"), records.load("pacoima-dam-s16e")
+    with pytest.raises(ValueError, match="threads"):
+        simulate_many_planar(block, motion, Friction(0.3, 0.3), 0.9, threads=0)
+
+
+def test_friction_sweep_on_a_local_dask_cluster_gives_the_same_table(tmp_path, friction_table):
+    # two tasks at once in one worker process (threads_per_worker=2): each chunk's planar
+    # batch runs on one thread there (workers default to 1 inside a Dask task), outside
+    # numba's threading layer (its workqueue layer aborts on concurrent parallel calls)
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        outcome = sweeps.run_sweep(sweeps.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
+                                  scheduler=client, progress=False)
+    assert outcome.complete
+    pd.testing.assert_frame_equal(outcome.table, friction_table, check_exact=True)
