@@ -65,5 +65,5 @@ def register(commands) -> None:
     parser.add_argument("--all", action="store_true", help="every scene")
     parser.add_argument("--list", action="store_true", help="list the scenes and stop")
     parser.add_argument("--out", default="reproduce-out", help="output folder")
-    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     parser.set_defaults(handler=_reproduce)

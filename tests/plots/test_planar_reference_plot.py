@@ -52,8 +52,19 @@ def test_summary_is_json_ready_with_the_verdict(runs):
     reference, planar = runs
     summary = json.loads(json.dumps(reference.summary()))
     assert summary["verdict"] == planar.verdict() == "slide-rocked"
-    assert summary["impacts"] == planar.n_impacts
+    assert summary["n_impacts"] == planar.n_impacts
     assert reference.modes_visited == planar.modes_visited
+    # the keys of the compiled result's summary for what both compute, and equal values
+    # there (independent implementations at rtol 1e-12: to 1e-6 relative)
+    compiled = json.loads(json.dumps(planar.summary()))
+    assert set(summary) - set(compiled) == {"model"}
+    for key in ("block_height [m]", "cor [-]", "static friction mu_s [-]", "motion",
+                "status", "verdict", "overturned", "modes visited", "n_impacts"):
+        assert summary[key] == compiled[key], key
+    for key in ("max_theta_ratio [-]", "max_abs_theta [rad]", "peak slip [m]",
+                "residual slip [m]", "work of the table [J/kg]", "work of friction [J/kg]",
+                "impact losses [J/kg]", "time slide-rock [s]"):
+        assert summary[key] == pytest.approx(compiled[key], rel=1e-6, abs=1e-9), key
 
 
 def test_the_figure_has_the_panels_of_the_compiled_result(runs):

@@ -417,7 +417,9 @@ def test_the_result_has_a_frame_and_a_json_summary():
                                        "ground vertical [g]", "x [m]", "y [m]", "theta [rad]"]
     assert len(frame) == result.t.size and set(frame["mode"]) <= {"rock", "slide-rock"}
     summary = json.loads(json.dumps(result.summary()))
-    assert summary["cor"] == "housner" and summary["impacts"] == len(result.impact_times)
+    assert summary["cor [-]"] == "housner" and summary["n_impacts"] == len(result.impact_times)
+    # E_end - E_0 = W_table + W_friction - losses, up to the integration error (rtol 1e-12)
+    assert abs(summary["energy residual [J/kg]"]) < 1e-9
     # a block tilted on its corner: the base midpoint starts at -s b (1 - cos(theta0))
     assert result.slip[0] == pytest.approx(-block.b * (1 - math.cos(0.1)), rel=1e-12)
 
