@@ -169,18 +169,21 @@ class _ProgressBar:
     The scenes differ 50-fold in cost and the longest run first: a bar that moved one
     step per scene would estimate the time left from the slowest scenes (and the first
     compile) and say minutes for a job of seconds. This one's fraction and estimate are
-    of the expected CPU seconds done (:func:`_expected_cost`); it shows the scenes
-    done as ``12/45 scenes``.
+    of the expected CPU done (:func:`_expected_cost`, in hundredths of a second, at
+    least 0.1 s a scene); it shows the scenes done as ``12/45 scenes``.
     """
 
     def __init__(self, names: list[str]) -> None:
         from tqdm import tqdm
 
-        self.costs = {name: max(_expected_cost(name), 0.1) for name in names}
+        # whole hundredths of a second: float sums in another order than the total's
+        # would end a few ulps past it (tqdm then warns that it clamps the bar)
+        self.costs = {name: max(round(100 * _expected_cost(name)), 10) for name in names}
         self.scenes = len(names)
         self.finished = 0
         # the scenes done in the description: tqdm puts ", " before a postfix
-        self.tqdm: Any = tqdm(total=sum(self.costs.values()), desc=f"0/{self.scenes} scenes",
+        self.tqdm: Any = tqdm(total=sum(self.costs[name] for name in names),  # repeats too
+                              desc=f"0/{self.scenes} scenes",
                               bar_format="reproducing: {percentage:3.0f}%|{bar}| {desc} "
                                          "[{elapsed}<{remaining}]")
 
@@ -188,7 +191,7 @@ class _ProgressBar:
         """Count the scene ``name`` as done."""
         self.finished += 1
         self.tqdm.set_description_str(f"{self.finished}/{self.scenes} scenes", refresh=False)
-        self.tqdm.update(self.costs.get(name, 0.1))
+        self.tqdm.update(self.costs.get(name, 10))
 
     def close(self) -> None:
         self.tqdm.close()

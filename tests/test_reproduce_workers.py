@@ -33,16 +33,17 @@ def test_two_processes_write_the_same_report_as_one(tmp_path, monkeypatch):
         assert outputs["1"][key] == outputs["2"][key], key
 
 
-def test_progress_bar_moves_by_expected_cost_and_counts_scenes(capsys):
+def test_progress_bar_moves_by_expected_cost_and_counts_scenes(capsys, recwarn):
     # The scenes' expected CPU seconds are reproduce.SCENE_CPU (measured); the longest
     # runs first, so a bar counting scenes would extrapolate the time left from it.
     from shaketable.reproduce import SCENE_CPU, _ProgressBar
 
     bar = _ProgressBar(["table-4-3", "table-3-1", "no-such-scene"])
-    total = SCENE_CPU["table-4-3"] + SCENE_CPU["table-3-1"] + 0.1   # 0.1: the floor
+    # in hundredths of a second; 0.1 s: the floor (an unknown scene costs 0)
+    total = round(100 * SCENE_CPU["table-4-3"]) + round(100 * SCENE_CPU["table-3-1"]) + 10
     assert bar.tqdm.total == total
     bar.done("table-4-3")
-    assert bar.tqdm.n == SCENE_CPU["table-4-3"]
+    assert bar.tqdm.n == round(100 * SCENE_CPU["table-4-3"])
     assert bar.tqdm.desc == "1/3 scenes"
     bar.done("table-3-1")
     bar.done("no-such-scene")
@@ -50,3 +51,16 @@ def test_progress_bar_moves_by_expected_cost_and_counts_scenes(capsys):
     assert bar.tqdm.n == total
     shown = capsys.readouterr().err.replace("\r", "\n").splitlines()[-1]
     assert shown.startswith("reproducing: 100%") and "3/3 scenes" in shown
+    assert not [w for w in recwarn if "clamping" in str(w.message)]   # tqdm's, past 100 %
+
+
+def test_progress_bar_counts_a_repeated_scene_each_time(capsys):
+    from shaketable.reproduce import SCENE_CPU, _ProgressBar
+
+    bar = _ProgressBar(["fig-3-7", "fig-3-7"])
+    assert bar.tqdm.total == 2 * round(100 * SCENE_CPU["fig-3-7"])
+    bar.done("fig-3-7")
+    bar.done("fig-3-7")
+    bar.close()
+    assert bar.tqdm.n == bar.tqdm.total
+    assert "100%" in capsys.readouterr().err.replace("\r", "\n").splitlines()[-1]

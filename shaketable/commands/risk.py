@@ -48,7 +48,10 @@ def _risk(args: argparse.Namespace) -> int:
         if table.empty:
             raise ValueError(f"--block {args.block!r}: no such block in the sweep (blocks: "
                              f"{', '.join(read_results(folder)['block'].unique())})")
-    print(f"hazard curve {hazard.source}: {hazard.column}, {len(hazard.im)} points from "
+    synthetic = args.hazard == "example"
+    source = ("the bundled SYNTHETIC example (not a real site)" if synthetic
+              else str(hazard.source))
+    print(f"hazard curve {source}: {hazard.column}, {len(hazard.im)} points from "
           f"{hazard.im[0]:.3g} to {hazard.im[-1]:.3g}; design life {args.years:g} yr")
     results = []
     from shaketable.sweeps.friction import friction_pairs, friction_rows
@@ -80,6 +83,9 @@ def _risk(args: argparse.Namespace) -> int:
         for axis, (block, label, fit, result) in zip(axes[:, 0], results):
             risk_curves(fit, hazard, result, ax=axis)
             axis.set_title(f"{block}, {label}: " + axis.get_title(), fontsize=8)
+        if synthetic:
+            figure.suptitle("SYNTHETIC example hazard curve (not a real site)", fontsize=9,
+                            color="tab:red")
         figure.tight_layout()
         save(figure, args.figure)
         print(f"wrote {args.figure}")

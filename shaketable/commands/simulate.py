@@ -15,6 +15,7 @@ from shaketable.commands.common import (
     scaled,
 )
 from shaketable.commands.options import add_motion_options, add_quantity, motion_from_options
+from shaketable.core.constants import INCH
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -70,6 +71,11 @@ def _simulate(args) -> int:
     plots.save((result if friction is not None else for_figure(result)).plot(),
                out / f"calcomp.{args.format}")
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
+    if friction is not None:   # as `run` says it of a scene's planar block
+        print(f"peak slip {result.peak_slip / INCH:.3g} in ({result.peak_slip:.4f} m), residual "
+              f"{result.residual_slip / INCH:+.3g} in; "
+              + ", ".join(f"{name} {seconds:.2f} s" for name, seconds in
+                          result.time_in_mode.items() if seconds > 0))
     if args.history == "auto" and history != "full":
         print(f"history.csv: {history} ({result.t.size} samples; --history full writes all)")
     written = ([out / "history.csv"] if history != "none" else []) + [

@@ -23,6 +23,7 @@ def _slide(args) -> int:
         write_csv(out / "table_4_4.csv", frame)
         write_text(out / "table_4_4.md", table_4_4_markdown(frame))
         print(table_4_4_markdown(frame))
+        print(f"wrote {out / 'table_4_4.csv'} and {out / 'table_4_4.md'}")
         return 0
     if not args.record:
         raise ValueError("--record is required (or give --table-4-4)")
@@ -32,6 +33,7 @@ def _slide(args) -> int:
         frame = peak_slips(motion, args.sweep)
         write_csv(out / "sweep.csv", frame)
         print(frame[["mu_d [-]", "peak slip [in]", "residual slip [m]"]].to_string(index=False))
+        print(f"wrote {out / 'sweep.csv'}")
         return 0
     static = args.static_friction
     dynamic = args.dynamic_friction if args.dynamic_friction is not None else static
@@ -46,6 +48,8 @@ def _slide(args) -> int:
     if block is not None:
         print(f"Section 2.1: {result.mode_choice['mode (Section 2.1)']} "
               f"(B/H = {result.mode_choice['B/H [-]']:.3f}, mu_s = {static:g})")
+    print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}, "
+          f"{out / f'sliding.{args.format}'}")
     return 0
 
 

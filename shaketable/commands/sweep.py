@@ -33,10 +33,10 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"{spec.name}: [friction]: the coupled planar model (rest, slide, rock, "
               f"slide-rock, flight), {len(spec.friction.pairs)} friction pair(s) (mu_s, mu_d)")
     compiling = not args.scheduler and not compiled_before(
-        "batch" if spec.friction is None else "planar batch")
+        "batch" if spec.friction is None else "planar")
     if not args.scheduler:
         notice_first_compile(args.quiet, which=("batch",) if spec.friction is None
-                             else ("planar", "planar batch"))
+                             else ("planar",))
     outcome = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler,
                         resume=args.resume, progress=not (args.no_progress or args.quiet),
                         max_chunks=args.max_chunks)
@@ -70,10 +70,9 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"{spec.name}: {len(fragile)} of {len(table)} verdicts are fragile (some of the "
               f"{spec.ensemble['members']} perturbed copies disagree; see 'P(overturn) [-]'), "
               f"{len(table) - len(fragile)} robust")
-    if outcome.format == "csv":
-        print("note: pyarrow is not installed; the table is CSV, not Parquet "
-              "(pip install 'shaketable[parquet]')")
-    print(f"wrote {outcome.path}")
+    # (run_sweep noted at the start that pyarrow is missing)
+    print(f"wrote {outcome.path}" + (" (CSV: pyarrow is not installed)"
+                                     if outcome.format == "csv" else ""))
     if "spectrum_scale [-]" in table:   # issue 29: the factors to the target spectrum
         factors = table[["record", "seed", "spectrum_scale [-]"]].drop_duplicates()
         from shaketable.core.files import write_csv

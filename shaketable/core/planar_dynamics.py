@@ -55,13 +55,18 @@ from typing import Any
 from numba import njit
 
 from shaketable.core.constants import G
-from shaketable.core.dynamics import ALPHA, HALF_HEIGHT, HALF_WIDTH, INERTIA, flight_acceleration
+from shaketable.core.dynamics import (
+    ALPHA,
+    ERROR_MODEL,
+    HALF_HEIGHT,
+    HALF_WIDTH,
+    INERTIA,
+    flight_acceleration,
+)
 
-#: Mode codes, in the order of the model text.
+#: Mode codes, in the order of the model text (their names:
+#: :data:`shaketable.core.planar_result.MODES`).
 REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT = 0, 1, 2, 3, 4
-
-#: Mode names by code.
-MODE_NAMES = ("rest", "slide", "rock", "slide-rock", "flight")
 
 #: Outcome of :func:`start_mode` when no mode is consistent.
 INCONSISTENT = -1
@@ -72,7 +77,8 @@ PAINLEVE = -2
 #: numba options of the compiled functions that only compiled code calls (here and in the
 #: planar engine's modules): no Python entry point (nor C callback) is built for them,
 #: about 0.05 s less of a first compile each. Those that Python calls keep ``cache=True``.
-HELPER: Any = {"cache": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+HELPER: Any = {"cache": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": True,
+               "error_model": ERROR_MODEL}
 
 
 @njit(**HELPER)
@@ -81,7 +87,7 @@ def centroidal_inertia(parameters):
     return 0.25 * parameters[INERTIA]
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def corner_vector(theta, side, parameters):
     """(r_x, r_y) [m]: from the centre of mass to the bottom corner of ``side``."""
     b = parameters[HALF_WIDTH]
@@ -91,7 +97,7 @@ def corner_vector(theta, side, parameters):
     return -side * b * cosine + h * sine, -side * b * sine - h * cosine
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def rock_forces(theta, omega, side, ug, vg, parameters):
     """ROCK about ``side``: theta'' [rad/s^2] (Eq. 2-13), the centre's x'', y'' [m/s^2]
     and the contact force F, N per unit mass [m/s^2] that hold the pivot."""
@@ -103,7 +109,7 @@ def rock_forces(theta, omega, side, ug, vg, parameters):
     return acceleration, x_dd, y_dd, x_dd + ug, y_dd + G + vg
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def slide_rock_accelerations(theta, omega, side, sigma, mu_d, ug, vg, parameters):
     """SLIDE_ROCK about ``side`` slipping toward ``sigma``.
 
@@ -171,14 +177,14 @@ def start_mode(ug, vg, mu_s, mu_d, parameters):
     return REST, side, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def housner_ratio(parameters):
     """c_H = 1 - 1.5 sin^2(alpha) [-]: angular velocity ratio of Housner's impact."""
     sine = math.sin(parameters[ALPHA])
     return 1.0 - 1.5 * sine * sine
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def kinetic_energy(x_dot, y_dot, omega, parameters):
     """Kinetic energy per unit mass [m^2/s^2]."""
     return 0.5 * (x_dot * x_dot + y_dot * y_dot
@@ -235,7 +241,7 @@ def _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple, sigma, mu_d, paramet
     return x_new, y_new, omega_new, SLIDE_ROCK, sigma
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def impact(theta, x_dot, y_dot, omega, side, rho, mu_s, mu_d, parameters):
     """Impact of the bottom corner ``side`` (striking with Y' < 0) on the table.
 

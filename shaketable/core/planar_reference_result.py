@@ -13,7 +13,7 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.planar_result import VERDICTS, planar_frame
+from shaketable.core.planar_result import VERDICTS, planar_frame, planar_summary
 from shaketable.core.shenton import MODE_NAMES
 from shaketable.core.sliding_result import Friction
 
@@ -133,6 +133,29 @@ class PlanarReferenceResult:
         return self.max_theta_over_alpha
 
     @property
+    def n_impacts(self) -> int:
+        """Number of corner impacts."""
+        return len(self.impact_times)
+
+    @property
+    def work_table(self) -> float:
+        """Work of the table's inertial forces on the block [J/kg] (:attr:`input_work`, the
+        name of :attr:`shaketable.core.planar_result.PlanarResult.work_table`)."""
+        return self.input_work
+
+    @property
+    def work_friction(self) -> float:
+        """Work of friction on the block [J/kg], <= 0 (:attr:`friction_work`)."""
+        return self.friction_work
+
+    @property
+    def energy_residual(self) -> float:
+        """E_end - E_start - (W_table + W_friction - impact losses) [J/kg]: zero up to the
+        integration error, as :attr:`shaketable.core.planar_result.PlanarResult.energy_residual`."""
+        return (self.energy_end - self.energy_start
+                - (self.work_table + self.work_friction - self.impact_loss))
+
+    @property
     def overturn_direction(self) -> int:
         """Sign of theta at the overturn (0: did not overturn) [-]."""
         if not self.overturned or self.theta.size == 0:
@@ -179,41 +202,7 @@ class PlanarReferenceResult:
         return planar_figure(self, fig=fig, title=title)
 
     def summary(self) -> dict:
-        """Scalar results as a JSON-ready dict (NaN written as None).
-
-        The keys are those of :meth:`shaketable.core.planar_result.PlanarResult.summary`
-        for every quantity both compute (so the two summaries of a run can be compared
-        key by key); the engine's own counts (events, cascades, solver statistics) and
-        the corner excursion are not computed by the reference.
-        """
-        from shaketable.core.files import json_ready_dict
-
-        block = self.block
-        data = {
-            "response mode": "planar (rest, slide, rock, slide-rock, flight)",
-            "model": "planar reference (SciPy DOP853)",
-            "block_height [m]": block.height, "block_width [m]": block.width,
-            "alpha [rad]": block.alpha, "p [rad/s]": block.p, "cor [-]": self.cor,
-            "static friction mu_s [-]": self.friction.static,
-            "dynamic friction mu_d [-]": self.friction.dynamic,
-            "motion": None if self.motion is None else self.motion.name,
-            "status": self.status, "verdict": self.verdict(),
-            "overturned": self.overturned, "max_theta_ratio [-]": self.max_theta_ratio,
-            "max_abs_theta [rad]": self.max_abs_theta, "t_max [s]": self.t_max,
-            "peak slip [m]": self.peak_slip, "t_peak_slip [s]": self.t_peak_slip,
-            "residual slip [m]": self.residual_slip,
-            "t_unstable [s]": self.t_unstable,
-            "t_overturn [s]": self.t_overturn, "overturn_direction": self.overturn_direction,
-            "t_rest [s]": self.t_rest, "n_impacts": len(self.impact_times),
-            "capped_impacts": self.capped_impacts,
-            "modes visited": ", ".join(self.modes_visited),
-            **{f"time {name} [s]": value for name, value in self.time_in_mode.items()},
-            "work of the table [J/kg]": self.input_work,
-            "work of friction [J/kg]": self.friction_work,
-            "impact losses [J/kg]": self.impact_loss,
-            "energy residual [J/kg]": (self.energy_end - self.energy_start)
-            - (self.input_work + self.friction_work - self.impact_loss),
-        }
-        if self.status != "completed":
-            data["status message"] = self.message
-        return json_ready_dict(data)
+        """Scalar results as a JSON-ready dict (NaN written as None): the keys of
+        :meth:`shaketable.core.planar_result.PlanarResult.summary` for every quantity both
+        compute (:func:`~shaketable.core.planar_result.planar_summary`), and ``model``."""
+        return planar_summary(self, model="planar reference (SciPy DOP853)")

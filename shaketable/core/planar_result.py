@@ -188,39 +188,8 @@ class PlanarResult:
         return planar_frame(self)
 
     def summary(self) -> dict:
-        """Scalar results as a JSON-ready dict (NaN written as None)."""
-        from shaketable.core.files import json_ready_dict
-
-        block = self.block
-        data = {
-            "response mode": "planar (rest, slide, rock, slide-rock, flight)",
-            "block_height [m]": block.height, "block_width [m]": block.width,
-            "alpha [rad]": block.alpha, "p [rad/s]": block.p, "cor [-]": self.cor,
-            "static friction mu_s [-]": self.friction.static,
-            "dynamic friction mu_d [-]": self.friction.dynamic,
-            "motion": self.motion.name, "status": self.status, "verdict": self.verdict(),
-            "overturned": self.overturned, "max_theta_ratio [-]": self.max_theta_ratio,
-            "max_abs_theta [rad]": self.max_abs_theta, "t_max [s]": self.t_max,
-            "peak slip [m]": self.peak_slip, "t_peak_slip [s]": self.t_peak_slip,
-            "residual slip [m]": self.residual_slip,
-            "peak corner excursion [m]": self.peak_excursion,
-            "t_start [s]": self.t_start, "t_unstable [s]": self.t_unstable,
-            "unstable_direction": self.unstable_direction,
-            "t_overturn [s]": self.t_overturn, "overturn_direction": self.overturn_direction,
-            "t_rest [s]": self.t_rest, "n_impacts": self.n_impacts,
-            "capped_impacts": self.capped_impacts, "cascades": self.cascades,
-            "n_events": self.n_events,
-            "modes visited": ", ".join(self.modes_visited),
-            **{f"time {name} [s]": value for name, value in self.time_in_mode.items()},
-            "work of the table [J/kg]": self.work_table,
-            "work of friction [J/kg]": self.work_friction,
-            "impact losses [J/kg]": self.impact_loss,
-            "energy residual [J/kg]": self.energy_residual,
-        }
-        if self.status != "completed":
-            data["status message"] = self.message
-        data.update({f"solver {key}": value for key, value in self.statistics.items()})
-        return json_ready_dict(data)
+        """Scalar results as a JSON-ready dict (NaN written as None): :func:`planar_summary`."""
+        return planar_summary(self)
 
     def plot(self, fig=None, title: str | None = None):
         """The Calcomp layout with a slip panel and a mode band; see
@@ -228,6 +197,72 @@ class PlanarResult:
         from shaketable.plots.planar import planar_figure
 
         return planar_figure(self, fig=fig, title=title)
+
+
+#: The rows of a planar run's summary, in order: (key, attribute of the result). A result
+#: without the attribute leaves the row out: the SciPy reference
+#: (:class:`~shaketable.core.planar_reference_result.PlanarReferenceResult`) computes no
+#: corner excursion, start of rocking, event counts or solver statistics.
+_SUMMARY_ROWS = (
+    ("peak slip [m]", "peak_slip"), ("t_peak_slip [s]", "t_peak_slip"),
+    ("residual slip [m]", "residual_slip"), ("peak corner excursion [m]", "peak_excursion"),
+    ("t_start [s]", "t_start"), ("t_unstable [s]", "t_unstable"),
+    ("unstable_direction", "unstable_direction"), ("t_overturn [s]", "t_overturn"),
+    ("overturn_direction", "overturn_direction"), ("t_rest [s]", "t_rest"),
+    ("n_impacts", "n_impacts"), ("capped_impacts", "capped_impacts"),
+    ("cascades", "cascades"), ("n_events", "n_events"),
+)
+
+
+def planar_summary(result, model: str | None = None) -> dict:
+    """The scalar results of a planar run (the compiled engine's or the reference's) as a
+    JSON-ready dict (NaN written as None), with the same key for the same quantity.
+
+    Parameters
+    ----------
+    result : PlanarResult or PlanarReferenceResult
+    model : str, optional
+        Written under ``model`` after the response mode (the reference names itself).
+
+    Returns
+    -------
+    dict
+        Block [m, rad, rad/s], COR, friction, motion, status and verdict, peaks [m, rad]
+        and times [s], counts, the time in each mode [s], the work and loss terms and the
+        energy residual [J/kg]; then the status message (a run that did not complete) and
+        the solver statistics, where the result has them.
+    """
+    from shaketable.core.files import json_ready_dict
+
+    block = result.block
+    data: dict = {"response mode": "planar (rest, slide, rock, slide-rock, flight)"}
+    if model is not None:
+        data["model"] = model
+    data.update({
+        "block_height [m]": block.height, "block_width [m]": block.width,
+        "alpha [rad]": block.alpha, "p [rad/s]": block.p, "cor [-]": result.cor,
+        "static friction mu_s [-]": result.friction.static,
+        "dynamic friction mu_d [-]": result.friction.dynamic,
+        "motion": None if result.motion is None else result.motion.name,
+        "status": result.status, "verdict": result.verdict(),
+        "overturned": result.overturned, "max_theta_ratio [-]": result.max_theta_ratio,
+        "max_abs_theta [rad]": result.max_abs_theta, "t_max [s]": result.t_max,
+    })
+    data.update({key: getattr(result, name) for key, name in _SUMMARY_ROWS
+                 if hasattr(result, name)})
+    data.update({
+        "modes visited": ", ".join(result.modes_visited),
+        **{f"time {name} [s]": value for name, value in result.time_in_mode.items()},
+        "work of the table [J/kg]": result.work_table,
+        "work of friction [J/kg]": result.work_friction,
+        "impact losses [J/kg]": result.impact_loss,
+        "energy residual [J/kg]": result.energy_residual,
+    })
+    if result.status != "completed":
+        data["status message"] = result.message
+    data.update({f"solver {key}": value
+                 for key, value in getattr(result, "statistics", {}).items()})
+    return json_ready_dict(data)
 
 
 def planar_frame(result):

@@ -12,10 +12,13 @@ from shaketable.plots.calcomp import (
     has_signal,
     mark_overturn,
 )
+from shaketable.plots.mode_map import VERDICT_COLOURS
 
-#: Colours of the modes shown in the band, by mode code (rest is left blank).
-MODE_COLOURS = {1: ("slide", "tab:orange"), 2: ("rock", "#a8d8a8"),
-                3: ("slide-rock", "tab:purple"), 4: ("flight", "tab:cyan")}
+#: Colours of the modes shown in the band, by mode code (rest is left blank): those of the
+#: verdicts in the mode map (:data:`shaketable.plots.mode_map.VERDICT_COLOURS`).
+MODE_COLOURS = {1: ("slide", VERDICT_COLOURS["slid"]), 2: ("rock", VERDICT_COLOURS["rocked"]),
+                3: ("slide-rock", VERDICT_COLOURS["slide-rocked"]),
+                4: ("flight", VERDICT_COLOURS["flew"])}
 
 
 def mode_changes(result):

@@ -605,9 +605,10 @@ def fragility_contours(surface, *, ax=None, table=None, x_unit=1.0, y_unit=1.0,
 
 
 def risk_curves(fragility, hazard, result=None, *, ax=None):
-    """Hazard curve (annual rate of exceedance, log-log), the fragility on a second axis,
-    and the risk integrand ``P(overturn | im) |d lambda / d ln im|`` (shaded: where the
-    rate of overturning comes from).
+    """Hazard curve (annual rate of exceedance, log-log), the fragility on a second axis
+    (with its confidence band and the fraction overturned at each level of a
+    multiple-stripe fit), and the risk integrand ``P(overturn | im) |d lambda / d ln im|``
+    (shaded: where the rate of overturning comes from).
 
     Returns
     -------
@@ -633,7 +634,11 @@ def risk_curves(fragility, hazard, result=None, *, ax=None):
                label=f"fragility: median {fragility.median:.3g}, β {fragility.beta:.2f}")
     if getattr(fragility, "stripes", ()):
         lower, upper = fragility.band(x)
-        other.fill_between(x, lower, upper, color="0.5", alpha=0.2, lw=0)
+        other.fill_between(x, lower, upper, color="0.5", alpha=0.2, lw=0,
+                           label=f"{fragility.confidence:.0%} band (profile likelihood)")
+        levels, runs, failures = (np.asarray(part, dtype=float) for part in fragility.stripes)
+        other.plot(levels, failures / runs, "s", ms=3.5, mfc="white", mec="k", mew=0.8,
+                   label="fraction overturned at each level (the data fitted)")
     other.set_ylim(-0.02, 1.02)
     other.set_ylabel("P(overturn) [-]")
     handles = ax.get_legend_handles_labels()

@@ -50,7 +50,9 @@ from shaketable.solvers.common import (
     check_fixed_steps,
     engine_arrays,
     extended,
+    run_in_chunks,
     run_options,
+    thread_count,
 )
 from shaketable.solvers.layout import METHOD_FAST, METHOD_LINEAR, METHOD_PREDICTOR_CORRECTOR
 
@@ -186,54 +188,16 @@ def set_default_threads(threads: int) -> None:
     threads : int
         From 1 to :data:`numba.config.NUMBA_NUM_THREADS` (the cores numba found).
     """
-    most = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]  # set at import
-    numba.set_num_threads(int(in_range("threads", threads, 1, most)))
+    numba.set_num_threads(thread_count(threads))
 
 
 def _run_all(arguments: tuple, n_cases: int, threads: int) -> None:
-    """Every case on ``threads`` threads, each taking the next chunk of cases when done.
-
-    Dynamic scheduling in small chunks (run costs differ a lot: a block that never rocks
-    costs a hundredth of one that rocks to the end); the compiled loop runs without the
-    GIL, so the threads run in parallel. The results do not depend on the number of
-    threads: each case writes its own row of ``info``.
-    """
-    compiled = _run_cases
-    if threads <= 1 or n_cases <= 1:
-        compiled(*arguments, 0, n_cases)
-        return
-    import threading
-
+    """Every case on ``threads`` threads (:func:`~shaketable.solvers.common.run_in_chunks`),
+    in chunks of at most 64 cases, 16 per thread or more. The results do not depend on the
+    number of threads: each case writes its own row of ``info``."""
     chunk = max(1, min(64, n_cases // (16 * threads)))
-    starts = iter(range(0, n_cases, chunk))
-    lock = threading.Lock()
-    stop = threading.Event()
-    errors: list[BaseException] = []
-
-    def work():
-        try:
-            while not stop.is_set():
-                with lock:
-                    start = next(starts, None)
-                if start is None:
-                    return
-                compiled(*arguments, start, min(start + chunk, n_cases))
-        except BaseException as error:  # Ctrl-C in the calling thread, too: handed back below
-            errors.append(error)
-            stop.set()  # the other threads finish their chunk and take no other
-
-    workers = [threading.Thread(target=work, name=f"shaketable-batch-{k}", daemon=True)
-               for k in range(threads - 1)]
-    for worker in workers:
-        worker.start()
-    try:
-        work()  # the calling thread is one of them
-        for worker in workers:
-            worker.join()
-    finally:
-        stop.set()
-    if errors:
-        raise errors[0]
+    run_in_chunks(lambda start, stop: _run_cases(*arguments, start, stop), n_cases, threads,
+                  chunk)
 
 
 # --------------------------------------------------------------------------- public API
@@ -397,8 +361,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     theta0, theta_dot0 = checked.theta0, checked.theta_dot0
     subdivisions, rest, top_force = (checked.subdivisions, checked.rest_tolerance,
                                      checked.top_force)
-    if threads is not None:
-        threads = int(in_range("threads", threads, 1, numba.config.NUMBA_NUM_THREADS))
+    threads = thread_count(threads)
 
     # motions end to end (each cut or padded to `duration` exactly as simulate does)
     runs = [extended(motion, duration) for motion in motions]
@@ -433,7 +396,7 @@ def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_ind
     arguments = (COMPILED_METHODS[method], t_all, ug_all, vg_all, rg_all, offsets, parameters,
                  block_index, motion_index, cors, scales, theta0, theta_dot0, rtol,
                  subdivisions, rest, info)
-    _run_all(arguments, n, numba.get_num_threads() if threads is None else threads)
+    _run_all(arguments, n, threads)
 
     return _frame(blocks, block_labels, runs, motion_labels, block_index, motion_index, cors,
                   scales, info, method, rtol, duration)

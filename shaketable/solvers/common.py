@@ -7,8 +7,10 @@ from __future__ import annotations
 
 import math
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion, whole_number
@@ -318,3 +320,75 @@ def check_fixed_steps(method: str, samples: int, subdivisions: int) -> None:
                          f"{steps:.3g} predictor-corrector steps; the limit is "
                          f"{MAX_FIXED_STEPS:.3g} per run (use fewer subdivisions, or "
                          f"method='fast', which chooses its own steps)")
+
+
+def thread_count(threads) -> int:
+    """The threads of a batch: ``threads`` checked, or numba's setting when it is None.
+
+    Parameters
+    ----------
+    threads : int or None
+        A whole number from 1 to :data:`numba.config.NUMBA_NUM_THREADS` (the cores numba
+        found; ``2.0`` is 2, ``1.5`` is refused); None: ``numba.get_num_threads()`` (all
+        cores unless set lower, e.g. by :func:`shaketable.solvers.batch.set_default_threads`).
+
+    Raises
+    ------
+    ValueError
+        Naming ``threads``.
+    """
+    if threads is None:
+        return int(numba.get_num_threads())
+    most = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]  # set at import
+    count = whole_number("threads", threads)
+    if count > most:
+        raise ValueError(f"threads must be an integer from 1 to {most} (the cores numba "
+                         f"found), got {threads!r}")
+    return count
+
+
+def run_in_chunks(run: Callable[[int, int], None], n_cases: int, threads: int,
+                  chunk: int) -> None:
+    """``run(start, stop)`` over the cases 0 to ``n_cases - 1`` on ``threads`` threads.
+
+    Each thread (the calling one is one of them) takes the next ``chunk`` cases when it is
+    done with its last: dynamic scheduling, since run costs differ a lot (a block that never
+    rocks costs a hundredth of one that rocks to the end). ``run`` calls compiled code
+    that releases the GIL (``nogil``), so the threads run in parallel; these are Python
+    threads, not numba's threading layer, so batches may run at once in several threads of
+    one process (a Dask worker's tasks). On one thread, or one chunk, ``run(0, n_cases)``
+    in the calling thread. An exception in any thread (Ctrl-C in the calling one, too)
+    lets the others finish their chunk and take no other, and is raised here.
+    """
+    if threads <= 1 or n_cases <= chunk:
+        run(0, n_cases)
+        return
+    starts = iter(range(0, n_cases, chunk))
+    lock = threading.Lock()
+    stop = threading.Event()
+    errors: list[BaseException] = []
+
+    def work():
+        try:
+            while not stop.is_set():
+                with lock:
+                    start = next(starts, None)
+                if start is None:
+                    return
+                run(start, min(start + chunk, n_cases))
+        except BaseException as error:  # Ctrl-C in the calling thread, too: handed back below
+            errors.append(error)
+            stop.set()  # the other threads finish their chunk and take no other
+
+    workers = [threading.Thread(target=work, name=f"shaketable-batch-{k}", daemon=True)
+               for k in range(threads - 1)]
+    for worker in workers:
+        worker.start()
+    try:
+        work()  # the calling thread is one of them
+        for worker in workers:
+            worker.join()
+    finally:
+        stop.set()
+    if errors:
+        raise errors[0]

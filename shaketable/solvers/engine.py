@@ -74,6 +74,7 @@ from numba import boolean, int64, njit
 from shaketable.core.constants import G
 from shaketable.core.dynamics import (
     ALPHA,
+    ERROR_MODEL,
     HALF_HEIGHT,
     HALF_WIDTH,
     HOLD_DOWN,
@@ -789,7 +790,7 @@ def _integrator(method, name):
     function = types.FunctionType(_drive.__code__, namespace, name)
     function.__qualname__ = name
     function.__doc__ = f":func:`integrate` with method code {method}."
-    return njit(cache=True, nogil=True, _nrt=False, no_cfunc_wrapper=True)(function)
+    return njit(cache=True, nogil=True, _nrt=False, no_cfunc_wrapper=True, error_model=ERROR_MODEL)(function)
 
 
 integrate_fast = _integrator(METHOD_FAST, "integrate_fast")

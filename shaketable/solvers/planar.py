@@ -50,6 +50,7 @@ from numba import njit
 from shaketable.core.constants import G
 from shaketable.core.dynamics import (
     ALPHA,
+    ERROR_MODEL,
     HALF_HEIGHT,
     HALF_WIDTH,
     cascade_rest_time,
@@ -177,7 +178,7 @@ def _record(ev, info, t, kind, before, after, omega, q, parameters):
     record(ev, info, I_N_EVENTS, t, kind, before, after, omega, q, parameters)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model=ERROR_MODEL)
 def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, rest_tolerance,
               theta0, omega0, out, ev, final, info):
     """Integrate one run of the planar block; fill ``out``, ``ev``, ``final`` and ``info``.

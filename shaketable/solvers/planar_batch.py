@@ -1,10 +1,13 @@
 """Many runs of the planar block at once: blocks x frictions x COR on one motion, compiled,
-in parallel (numba ``prange``), scalar results only (no time histories).
+in parallel, scalar results only (no time histories).
 
 The batch of the rocking model is :mod:`shaketable.solvers.batch`; this one calls the
-planar engine (:func:`shaketable.solvers.planar.integrate`) with length-0 output arrays,
-exactly as :func:`~shaketable.solvers.planar_run.simulate_planar` does with full ones, so
-a row equals that run's summary on the columns they share.
+planar engine (:func:`shaketable.solvers.planar.integrate`, compiled without the GIL) with
+length-0 output arrays, exactly as :func:`~shaketable.solvers.planar_run.simulate_planar`
+does with full ones, so a row equals that run's summary on the columns they share; the
+cases are shared among Python threads as the rocking batch's
+(:func:`~shaketable.solvers.common.run_in_chunks`). The batch therefore compiles nothing
+of its own.
 """
 
 from __future__ import annotations
@@ -12,32 +15,16 @@ from __future__ import annotations
 import itertools
 from collections.abc import Iterable
 
-import numba
 import numpy as np
-from numba import njit, prange, set_parallel_chunksize
 
 from shaketable.core.dynamics import N_PARAMETERS, block_parameters
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.planar_result import MODES, VERDICTS
 from shaketable.core.sliding_result import Friction
-from shaketable.core.validation import in_range
 from shaketable.solvers import planar
-from shaketable.solvers.common import engine_arrays, extended
+from shaketable.solvers.common import engine_arrays, extended, run_in_chunks, thread_count
 from shaketable.solvers.planar_run import DEFAULT_PLANAR_RTOL, check_planar_inputs, impact_ratios
-
-
-@njit(parallel=True, cache=True)
-def _run_planar_batch(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol,
-                      rest_tolerance, info, final):
-    """Integrate every case i (its block's parameters, rho, cor and friction); ``info[i]``
-    and ``final[i]`` receive its scalar results and end state."""
-    for i in prange(parameters.shape[0]):
-        none = np.empty((0, planar.N_OUT))
-        no_events = np.empty((0, planar.EVENT_COLUMNS))
-        planar.integrate(t_grid, ug, vg, parameters[i], rho[i], cor_cascade[i], mu_s[i],
-                         mu_d[i], rtol, rest_tolerance, 0.0, 0.0, none, no_events, final[i],
-                         info[i])
 
 
 def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
@@ -59,11 +46,9 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
     duration : float, optional
         Length of the runs [s].
     threads : int, optional
-        numba threads of the parallel loop, at most
-        :data:`numba.config.NUMBA_NUM_THREADS` (default ``numba.get_num_threads()``:
-        all cores unless set lower); the calling thread's setting is restored after.
-        One thread runs the cases in the calling thread, outside numba's threading layer
-        (safe in concurrent tasks). The results do not depend on it.
+        Number of threads, at most :data:`numba.config.NUMBA_NUM_THREADS` (default
+        ``numba.get_num_threads()``: all cores unless set lower); one runs the cases in the
+        calling thread. The results do not depend on it.
 
     Returns
     -------
@@ -81,9 +66,7 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
         raise ValueError(f"motion must be a shaketable.Motion, got {type(motion).__name__}")
     if motion.rotation is not None and np.any(motion.rotation != 0.0):
         raise ValueError("motion: the coupled model (friction=...) has no table rotation")
-    if threads is not None:
-        most = numba.config.NUMBA_NUM_THREADS  # type: ignore[attr-defined]  # set at import
-        threads = int(in_range("threads", threads, 1, most))
+    threads = thread_count(threads)
     motion = extended(motion, duration)
     cases = list(itertools.product(range(len(blocks)), range(len(frictions)), range(len(cors))))
     m = len(cases)
@@ -99,29 +82,19 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
     final = np.zeros((m, planar.N_OUT))
     t_grid, ug, vg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero)
     rtol = DEFAULT_PLANAR_RTOL if rtol is None else float(rtol)
-    if threads == 1:
-        # One thread: the cases one after the other in this thread, through the engine's
-        # own compiled entry point (simulate_planar's signature: nothing more to compile).
-        # No call of numba's threading layer, so that concurrent batches (a Dask worker's
-        # tasks) are safe whatever the layer; the same arithmetic, bit for bit.
-        none, no_events = np.empty((0, planar.N_OUT)), np.empty((0, planar.EVENT_COLUMNS))
-        for i in range(m):
+    none, no_events = np.empty((0, planar.N_OUT)), np.empty((0, planar.EVENT_COLUMNS))
+
+    def run(start: int, stop: int) -> None:
+        # the engine's own compiled entry point, with simulate_planar's argument types
+        # (floats, not NumPy scalars): one compiled signature for both
+        for i in range(start, stop):
             planar.integrate(t_grid, ug, vg, parameters[i], float(rho[i]),
                              float(cor_cascade[i]), float(mu_s[i]), float(mu_d[i]), rtol, -1.0,
                              0.0, 0.0, none, no_events, final[i], info[i])
-    else:
-        # the cases are handed out one at a time (run costs differ a lot: a block that
-        # overturns early is cheap), as the rocking batch does
-        previous = set_parallel_chunksize(1)
-        previous_threads = numba.get_num_threads()
-        try:
-            if threads is not None:
-                numba.set_num_threads(threads)
-            _run_planar_batch(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol,
-                              -1.0, info, final)
-        finally:
-            set_parallel_chunksize(previous)
-            numba.set_num_threads(previous_threads)
+
+    # one case at a time: run costs differ a lot (a block that overturns early is cheap),
+    # and a call costs microseconds against the milliseconds of a run
+    run_in_chunks(run, m, threads, 1)
     rows = []
     for i, (b, f, c) in enumerate(cases):
         row = info[i]

@@ -11,7 +11,7 @@ import math
 from numba import njit
 
 from shaketable.core.constants import G
-from shaketable.core.dynamics import HALF_HEIGHT, HALF_WIDTH, flight_acceleration
+from shaketable.core.dynamics import ERROR_MODEL, HALF_HEIGHT, HALF_WIDTH, flight_acceleration
 from shaketable.core.planar_dynamics import (
     FLIGHT,
     HELPER,
@@ -127,7 +127,7 @@ def first_failure(t, t_end, segment, mu_s, parameters):
     return best
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
     """The mode a block entering ROCK or SLIDE_ROCK about ``side`` (state q) is really in.
 

@@ -16,7 +16,7 @@ import math
 
 from numba import njit
 
-from shaketable.core.dynamics import HALF_HEIGHT, HALF_WIDTH
+from shaketable.core.dynamics import ERROR_MODEL, HALF_HEIGHT, HALF_WIDTH
 from shaketable.core.planar_dynamics import HELPER
 from shaketable.solvers.planar_modes import hermite_peak, measures, q_from_z, quantity
 from shaketable.solvers.planar_steps import (
@@ -51,7 +51,7 @@ def track(t, q, info, first, parameters):
         info[first + P_T_MAX] = t
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, inline="always", error_model=ERROR_MODEL)
 def record(ev, info, slot, t, kind, before, after, omega, q, parameters):
     """An event (time [s], kind, mode before and after, theta' [rad/s], slip of the state
     q [m]) into row ``info[slot]`` of ``ev`` if it has room; count it in ``info[slot]``."""

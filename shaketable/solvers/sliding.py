@@ -38,6 +38,7 @@ import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
+from shaketable.core.dynamics import ERROR_MODEL
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.sliding_result import Friction, SlidingResult
@@ -50,7 +51,7 @@ EV_START, EV_STICK, EV_REVERSE, EV_LIFTOFF, EV_LAND = 1, 2, 3, 4, 5
 MAX_PIECES_PER_INTERVAL = 10_000
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def first_up_crossing(f0, slope, length):
     """First tau in [0, length] where the linear f0 + slope tau becomes positive.
 
@@ -67,7 +68,7 @@ def first_up_crossing(f0, slope, length):
     return -1.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def first_velocity_zero(w0, d0, d2, length):
     """First tau in (0, length] where w0 + d0 tau + d2 tau^2 reaches zero (w0 >= 0).
 
@@ -103,7 +104,7 @@ def first_velocity_zero(w0, d0, d2, length):
     return best if best <= length else -1.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model=ERROR_MODEL)
 def stick_slip_kernel(t, ug, vg, mu_s, mu_d, gravity, x0, v0, state0, x_out, v_out,
                       state_out, ev_t, ev_k, ev_x):
     """Exact piecewise integration of the stick-slip block (see the module docstring).

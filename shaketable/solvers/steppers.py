@@ -25,6 +25,7 @@ from shaketable.core import dynamics
 from shaketable.core.constants import G
 from shaketable.core.dynamics import (
     ALPHA,
+    ERROR_MODEL,
     HALF_HEIGHT,
     HALF_WIDTH,
     INERTIA,
@@ -48,7 +49,7 @@ from shaketable.solvers.layout import METHOD_FAST, METHOD_LINEAR, METHOD_PREDICT
 # _step_events) does not inherit it. (options numba accepts beyond those its type stubs
 # list: typed Any for mypy)
 HELPER_OPTIONS: Any = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True, "_nrt": False,
-                       "forceinline": False}
+                       "forceinline": False, "error_model": ERROR_MODEL}
 helper = njit(**HELPER_OPTIONS)
 
 # Eq. (2-13)/(2-14) as the engine's own compiled helpers (the same Python functions as
@@ -243,7 +244,7 @@ METHOD_FUNCTIONS = {
 }
 
 
-@njit  # with its Python entry: tests/solvers/test_engine.py calls it on its own
+@njit(error_model=ERROR_MODEL)  # with its Python entry: tests/solvers/test_engine.py calls it
 def nystrom(t, theta, omega, k1, side, h, segment, parameters):
     """One Runge-Kutta-Nystrom 6(4) step (:func:`nystrom_step`) from theta''(t) = ``k1``."""
     return nystrom_step(t, theta, omega, k1, side, h, segment, parameters)

@@ -330,39 +330,104 @@ def test_risk_command_fits_each_friction_pair_apart(tmp_path, capsys):
     assert printed.count("30 x 6 in, COR 0.9, mu_s 0.5, mu_d 0.5:") == 1
 
 
-def test_workers_sets_the_planar_batch_threads_and_not_the_table(tmp_path, friction_table):
+def test_workers_sets_the_planar_batch_threads_and_not_the_table(tmp_path, friction_table,
+                                                                 monkeypatch):
     # --workers (run_sweep's workers=) is the planar batch's thread count, as the rocking
-    # batch's; the rows do not depend on it, and the caller's numba setting is restored
+    # batch's; the rows do not depend on it
     import numba
 
-    before = numba.get_num_threads()
+    from shaketable.solvers import planar_batch
+
+    seen = []
+    original = planar_batch.simulate_many_planar
+
+    def spy(*arguments, **options):
+        seen.append(options.get("threads"))
+        return original(*arguments, **options)
+
+    monkeypatch.setattr(planar_batch, "simulate_many_planar", spy)
     spec = sweeps.load_spec(write(tmp_path, SPEC))
-    for threads in (1, 2):
+    for threads in sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)}):
+        seen.clear()
         chunk = execute.compute_chunk(spec, 3, threads=threads)
+        assert seen and set(seen) == {threads}
         pd.testing.assert_frame_equal(chunk, friction_table.iloc[21:28].reset_index(drop=True),
                                       check_exact=True)
-        assert numba.get_num_threads() == before
     table = sweeps.run_sweep(spec, tmp_path / "one-thread", workers=1, progress=False).table
     pd.testing.assert_frame_equal(table, friction_table, check_exact=True)
 
 
-def test_planar_batch_threads_out_of_range_is_refused_by_name():
+@pytest.mark.parametrize("threads", [0, 1.5, "2", True, 10**6])
+def test_planar_batch_threads_out_of_range_is_refused_by_name(threads):
     from shaketable.solvers.planar_batch import simulate_many_planar
 
     block, motion = st.Block.parse("30x6in"), records.load("pacoima-dam-s16e")
     with pytest.raises(ValueError, match="threads"):
-        simulate_many_planar(block, motion, Friction(0.3, 0.3), 0.9, threads=0)
+        simulate_many_planar(block, motion, Friction(0.3, 0.3), 0.9, threads=threads)
 
 
-def test_friction_sweep_on_a_local_dask_cluster_gives_the_same_table(tmp_path, friction_table):
-    # two tasks at once in one worker process (threads_per_worker=2): each chunk's planar
-    # batch runs on one thread there (workers default to 1 inside a Dask task), outside
-    # numba's threading layer (its workqueue layer aborts on concurrent parallel calls)
+def test_friction_sweep_on_a_local_dask_cluster_gives_the_same_table(tmp_path, friction_table,
+                                                                     monkeypatch):
+    # two tasks at once in one worker process (threads_per_worker=2), each chunk's planar
+    # batch on one thread there (workers default to 1 inside a Dask task)
     distributed = pytest.importorskip("distributed")
+    from shaketable.solvers import planar_batch
+
+    seen = []
+    original = planar_batch.simulate_many_planar
+
+    def spy(*arguments, **options):
+        seen.append(options.get("threads"))
+        return original(*arguments, **options)
+
+    monkeypatch.setattr(planar_batch, "simulate_many_planar", spy)
     with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
         outcome = sweeps.run_sweep(sweeps.load_spec(write(tmp_path, SPEC)), tmp_path / "out",
                                   scheduler=client, progress=False)
-    assert outcome.complete
+    assert outcome.complete and seen and set(seen) == {1}
     pd.testing.assert_frame_equal(outcome.table, friction_table, check_exact=True)
+
+
+_CONCURRENT_BATCHES = """
+import threading
+import pandas as pd
+import shaketable as st
+from shaketable.core.sliding_result import Friction
+from shaketable.ground import records
+from shaketable.solvers.planar_batch import simulate_many_planar
+
+blocks = [st.Block.parse("30x6in"), st.Block.parse("2x1ft")]
+motion = records.load("pacoima-dam-s16e")
+frictions = [Friction(0.3, 0.3), Friction(0.5, 0.4)]
+alone = simulate_many_planar(blocks, motion, frictions, 0.9, duration=4.0, threads=2)
+frames = [None] * 3
+
+def batch(k):
+    frames[k] = simulate_many_planar(blocks, motion, frictions, 0.9, duration=4.0, threads=2)
+
+threads = [threading.Thread(target=batch, args=(k,)) for k in range(3)]
+for thread in threads:
+    thread.start()
+for thread in threads:
+    thread.join()
+for frame in frames:
+    pd.testing.assert_frame_equal(frame, alone, check_exact=True)
+print("ok")
+"""
+
+
+def test_planar_batches_at_once_in_threads_under_numbas_workqueue_layer():
+    # Dask runs tasks in threads of one process. numba's workqueue threading layer (used
+    # where neither OpenMP nor TBB is found, as on a bare machine) aborts the process on
+    # concurrent parallel calls; the planar batch shares its cases among Python threads
+    # instead, so three batches of two threads each at once run, with the same rows.
+    import os
+    import subprocess
+    import sys
+
+    environment = dict(os.environ, NUMBA_THREADING_LAYER="workqueue", NUMBA_NUM_THREADS="2")
+    done = subprocess.run([sys.executable, "-c", _CONCURRENT_BATCHES], env=environment,
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr[-2000:]
