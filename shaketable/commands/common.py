@@ -64,7 +64,7 @@ def scaled(motion, factor, option: str = "--scale"):
 #: before, and what their first compilation costs on the 2-core CI machine (measured, README).
 _COMPILED = {"engine": ("engine.integrate_fast-", "the engine", "~3 s"),
              "batch": ("batch._run_cases_fast-", "the batch engine", "~1 s"),
-             "planar": ("planar.integrate-", "the planar engine", "~15 s")}
+             "planar": ("planar.integrate-", "the planar engine", "~13 s")}
 
 
 def compiled_before(which: str = "engine") -> bool:
