@@ -557,6 +557,9 @@ def _api_cases():
                                                       method="euler"), "euler"),
         ("api", "rtol-zero", lambda: st.simulate(block, cor=0.9, theta0=0.1, duration=1, rtol=0),
          "rtol"),
+        # below the unit roundoff: the tolerances underflowed and the run never ended
+        ("api", "rtol-denormal", lambda: st.simulate(block, cor=0.9, theta0=0.1, duration=1,
+                                                     rtol=1e-320), "rtol"),
         ("api", "motion-nan", lambda: Motion(np.arange(3) * 0.01, [0.0, math.nan, 0.0]),
          "horizontal"),
         ("api", "motion-decreasing", lambda: Motion(np.array([0.0, 0.02, 0.01]), [0, 0, 0]),

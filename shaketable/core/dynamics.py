@@ -62,7 +62,10 @@ N_PARAMETERS = 10
 #: shorter. Given explicitly to each function, not left to numba's inheritance from the
 #: caller: numba's cache keys and its compiled overloads ignore the options, so a helper
 #: first compiled for a Python caller would otherwise be linked into an engine compiled
-#: after it.
+#: after it. For the same reason numba's on-disk cache does not see a change of this value
+#: (nor of the option dicts ``HELPER``, ``HELPER_OPTIONS`` that carry it) in a module that
+#: only imports it: such a change must touch every module that compiles with it, or the
+#: cache be cleared (``tests/solvers/test_error_model.py`` checks every engine function).
 ERROR_MODEL: Final = "numpy"
 
 

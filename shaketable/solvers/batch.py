@@ -39,7 +39,7 @@ import numba
 import numpy as np
 from numba import njit
 
-from shaketable.core.dynamics import N_PARAMETERS, block_parameters
+from shaketable.core.dynamics import ERROR_MODEL, N_PARAMETERS, block_parameters
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.results import STATUSES
@@ -104,7 +104,7 @@ class Case:
                                                         low_open=True))
 
 
-@njit(inline="always")
+@njit(inline="always", error_model=ERROR_MODEL)
 def _cases(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
            case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
            rest_tolerance, info, first_case, last_case):
@@ -137,7 +137,7 @@ def _cases(method, t_all, ug_all, vg_all, rg_all, offsets, parameters, case_bloc
 
 # Compiled without the GIL: _run_all calls them from several Python threads at once, on
 # separate ranges of cases (so do Dask workers, one batch each).
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model=ERROR_MODEL)
 def _run_cases_fast(t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block, case_motion,
                     case_cor, case_scale, theta0, omega0, rtol, subdivisions, rest_tolerance,
                     info, first_case, last_case):
@@ -147,7 +147,7 @@ def _run_cases_fast(t_all, ug_all, vg_all, rg_all, offsets, parameters, case_blo
            rest_tolerance, info, first_case, last_case)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model=ERROR_MODEL)
 def _run_cases_predictor_corrector(t_all, ug_all, vg_all, rg_all, offsets, parameters,
                                    case_block, case_motion, case_cor, case_scale, theta0, omega0,
                                    rtol, subdivisions, rest_tolerance, info, first_case,
@@ -158,7 +158,7 @@ def _run_cases_predictor_corrector(t_all, ug_all, vg_all, rg_all, offsets, param
            subdivisions, rest_tolerance, info, first_case, last_case)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model=ERROR_MODEL)
 def _run_cases_linear(t_all, ug_all, vg_all, rg_all, offsets, parameters, case_block,
                       case_motion, case_cor, case_scale, theta0, omega0, rtol, subdivisions,
                       rest_tolerance, info, first_case, last_case):

@@ -21,6 +21,10 @@ from shaketable.solvers.layout import METHODS
 
 DEFAULT_RTOL = {"fast": 1e-11, "reference": 1e-12}
 
+#: The smallest relative tolerance accepted [-]: double precision's unit roundoff (a smaller
+#: one cannot be met, and one of 1e-320 made the tolerances underflow and the run endless).
+MIN_RTOL = 1e-16
+
 COMPILED_METHODS = {"fast": engine.METHOD_FAST,
              "predictor-corrector": engine.METHOD_PREDICTOR_CORRECTOR,
              "linear": engine.METHOD_LINEAR}
@@ -95,7 +99,7 @@ def run_options(method: str = "fast", *, methods=METHODS, theta0: float = 0.0,
         rtol = DEFAULT_RTOL.get(method, 1e-10)
     return RunOptions(
         method=method, theta0=theta0, theta_dot0=in_range("theta_dot0", theta_dot0),
-        duration=duration, rtol=in_range("rtol", rtol, 0.0, 1.0, low_open=True),
+        duration=duration, rtol=in_range("rtol", rtol, MIN_RTOL, 1.0),
         subdivisions=whole_number("subdivisions", subdivisions),
         rest_tolerance=(-1.0 if rest_tolerance is None
                         else in_range("rest_tolerance", rest_tolerance, 0.0)),

@@ -790,7 +790,8 @@ def _integrator(method, name):
     function = types.FunctionType(_drive.__code__, namespace, name)
     function.__qualname__ = name
     function.__doc__ = f":func:`integrate` with method code {method}."
-    return njit(cache=True, nogil=True, _nrt=False, no_cfunc_wrapper=True, error_model=ERROR_MODEL)(function)
+    return njit(cache=True, nogil=True, _nrt=False, no_cfunc_wrapper=True,
+                error_model=ERROR_MODEL)(function)
 
 
 integrate_fast = _integrator(METHOD_FAST, "integrate_fast")

@@ -750,7 +750,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 flat(q, base, parameters)
                                 if base == 0.0:
                                     mode = REST
-                                    rest_until = t + remaining
+                                    # a plastic impact (omega = 0) rests at once, as the
+                                    # rocking engine's: its cascade time is inf when the
+                                    # table tips the block onto the striking corner
+                                    rest_until = t + (0.0 if omega == 0.0 else remaining)
                                     info[I_T_REST] = rest_until
                                 else:
                                     mode = SLIDE

@@ -22,8 +22,15 @@ from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.planar_result import MODES, VERDICTS
 from shaketable.core.sliding_result import Friction
+from shaketable.core.validation import in_range
 from shaketable.solvers import planar
-from shaketable.solvers.common import engine_arrays, extended, run_in_chunks, thread_count
+from shaketable.solvers.common import (
+    MIN_RTOL,
+    engine_arrays,
+    extended,
+    run_in_chunks,
+    thread_count,
+)
 from shaketable.solvers.planar_run import DEFAULT_PLANAR_RTOL, check_planar_inputs, impact_ratios
 
 
@@ -81,7 +88,7 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
     info = np.zeros((m, planar.N_INFO))
     final = np.zeros((m, planar.N_OUT))
     t_grid, ug, vg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero)
-    rtol = DEFAULT_PLANAR_RTOL if rtol is None else float(rtol)
+    rtol = DEFAULT_PLANAR_RTOL if rtol is None else in_range("rtol", rtol, MIN_RTOL, 1.0)
     none, no_events = np.empty((0, planar.N_OUT)), np.empty((0, planar.EVENT_COLUMNS))
 
     def run(start: int, stop: int) -> None:

@@ -13,6 +13,9 @@
   regula falsi, safeguarded by bisection, to a bracket of a few ulps.
 * REST, SLIDE and FLIGHT are closed forms (the table accelerations are linear between
   samples): the polynomial helpers here.
+
+Every function is compiled with :data:`~shaketable.core.planar_dynamics.HELPER`'s options,
+the error model :data:`~shaketable.core.dynamics.ERROR_MODEL` included.
 """
 
 from __future__ import annotations

@@ -407,8 +407,12 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     options: dict[str, Any] = {}
     if "rtol" in rocking:
         rtol = rocking["rtol"]
-        if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) or not 0 < rtol < 1:
-            raise SweepError(f"{where}: rocking.rtol must be a number in (0, 1), got {rtol!r}")
+        from shaketable.solvers.common import MIN_RTOL
+
+        if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) \
+                or not MIN_RTOL <= rtol < 1:
+            raise SweepError(f"{where}: rocking.rtol must be a number in [{MIN_RTOL:g}, 1), "
+                             f"got {rtol!r}")
         options["rtol"] = float(rtol)
     if "subdivisions" in rocking:
         value = rocking["subdivisions"]

@@ -111,6 +111,22 @@ def test_free_rocking_limit_with_its_cascade():
     assert coupled.modes_visited == ("rest", "rock") and coupled.verdict() == "rocked"
 
 
+def test_a_plastic_impact_rests_and_rocks_again_as_in_the_rocking_engine():
+    # reference: the rocking engine (cor = 0: every impact plastic). The table tips the
+    # block back onto the striking corner at some impacts; the planar engine summed an
+    # infinite cascade there and froze the block for the rest of the run (t_rest = inf,
+    # 1 impact), where the block rests at once and rocks again (9 impacts).
+    block = Block(height=1e3, width=100.0)
+    motion = generators.harmonic(2.0, horizontal=0.5 * G, duration=4.0)
+    rocking = simulate(block, motion, cor=0.0)
+    coupled = simulate(block, motion, cor=0.0, friction=AMPLE)
+    assert rocking.n_impacts == coupled.n_impacts == 9
+    np.testing.assert_allclose(coupled.impact_times, rocking.impact_times, rtol=0, atol=1e-9)
+    assert math.isfinite(coupled.t_rest)
+    assert coupled.t_rest == pytest.approx(rocking.t_rest, abs=1e-9)
+    assert coupled.max_abs_theta == pytest.approx(rocking.max_abs_theta, rel=1e-9)
+
+
 # ------------------------------------------------------------------ (b) sliding limit
 @pytest.mark.parametrize("column", list(TABLE_4_4_COLUMNS))
 def test_sliding_limit_equals_slide_on_the_table_4_4_records(column):

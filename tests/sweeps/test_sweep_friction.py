@@ -366,6 +366,17 @@ def test_planar_batch_threads_out_of_range_is_refused_by_name(threads):
         simulate_many_planar(block, motion, Friction(0.3, 0.3), 0.9, threads=threads)
 
 
+@pytest.mark.parametrize("rtol", [0.0, 1e-320, -1e-9, float("nan"), 2.0])
+def test_planar_batch_rtol_out_of_range_is_refused_by_name(rtol):
+    # rtol 0 gave a zero error scale: a division 0/0 in the DOP853 step (a wrong "stalled"
+    # run under numba's numpy error model, not an error)
+    from shaketable.solvers.planar_batch import simulate_many_planar
+
+    block, motion = st.Block.parse("30x6in"), records.load("pacoima-dam-s16e")
+    with pytest.raises(ValueError, match="rtol"):
+        simulate_many_planar(block, motion, Friction(0.3, 0.3), 0.9, rtol=rtol)
+
+
 def test_friction_sweep_on_a_local_dask_cluster_gives_the_same_table(tmp_path, friction_table,
                                                                      monkeypatch):
     # two tasks at once in one worker process (threads_per_worker=2), each chunk's planar
