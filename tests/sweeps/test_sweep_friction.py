@@ -330,12 +330,10 @@ def test_risk_command_fits_each_friction_pair_apart(tmp_path, capsys):
     assert printed.count("30 x 6 in, COR 0.9, mu_s 0.5, mu_d 0.5:") == 1
 
 
-def test_workers_sets_the_planar_batch_threads_and_not_the_table(tmp_path, friction_table,
-                                                                 monkeypatch):
-    # --workers (run_sweep's workers=) is the planar batch's thread count, as the rocking
-    # batch's; the rows do not depend on it
-    import numba
-
+@pytest.fixture
+def batch_threads(monkeypatch):
+    """The ``threads`` of every planar batch a sweep calls, in order (a spy on
+    simulate_many_planar, which still runs)."""
     from shaketable.solvers import planar_batch
 
     seen = []
@@ -346,6 +344,16 @@ def test_workers_sets_the_planar_batch_threads_and_not_the_table(tmp_path, frict
         return original(*arguments, **options)
 
     monkeypatch.setattr(planar_batch, "simulate_many_planar", spy)
+    return seen
+
+
+def test_workers_sets_the_planar_batch_threads_and_not_the_table(tmp_path, friction_table,
+                                                                 batch_threads):
+    # --workers (run_sweep's workers=) is the planar batch's thread count, as the rocking
+    # batch's; the rows do not depend on it
+    import numba
+
+    seen = batch_threads
     spec = sweeps.load_spec(write(tmp_path, SPEC))
     for threads in sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)}):
         seen.clear()
@@ -378,20 +386,11 @@ def test_planar_batch_rtol_out_of_range_is_refused_by_name(rtol):
 
 
 def test_friction_sweep_on_a_local_dask_cluster_gives_the_same_table(tmp_path, friction_table,
-                                                                     monkeypatch):
+                                                                     batch_threads):
     # two tasks at once in one worker process (threads_per_worker=2), each chunk's planar
     # batch on one thread there (workers default to 1 inside a Dask task)
     distributed = pytest.importorskip("distributed")
-    from shaketable.solvers import planar_batch
-
-    seen = []
-    original = planar_batch.simulate_many_planar
-
-    def spy(*arguments, **options):
-        seen.append(options.get("threads"))
-        return original(*arguments, **options)
-
-    monkeypatch.setattr(planar_batch, "simulate_many_planar", spy)
+    seen = batch_threads
     with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
