@@ -359,7 +359,8 @@ def _assemble(out: Path, rerun) -> Path:
                     tally.add_many(kind, agree, agree + differ)
     rerun = [name for name in rerun if name in order]
     kept = [name for name in order if name not in rerun]
-    scope = (f"{len(order)} sections, all rerun now." if not kept else
+    sections_word = "section" if len(order) == 1 else "sections"
+    scope = (f"{len(order)} {sections_word}, all rerun now." if not kept else
              f"{len(order)} sections: {len(rerun)} rerun now ({', '.join(rerun)}), "
              f"{len(kept)} kept from an earlier run into this folder.")
     header = ["# shaketable: the report reproduced", "",

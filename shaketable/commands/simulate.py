@@ -72,8 +72,8 @@ def _simulate(args) -> int:
                out / f"calcomp.{args.format}")
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
     if friction is not None:   # as `run` says it of a scene's planar block
-        print(f"peak slip {result.peak_slip / INCH:.3g} in ({result.peak_slip:.4f} m), residual "
-              f"{result.residual_slip / INCH:+.3g} in; "
+        print(f"peak slip {result.peak_slip / INCH:.3g} in, residual "
+              f"{result.residual_slip / INCH:+.3g} in ({result.residual_slip:+.4f} m); "
               + ", ".join(f"{name} {seconds:.2f} s" for name, seconds in
                           result.time_in_mode.items() if seconds > 0))
     if args.history == "auto" and history != "full":

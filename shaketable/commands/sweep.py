@@ -70,9 +70,8 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"{spec.name}: {len(fragile)} of {len(table)} verdicts are fragile (some of the "
               f"{spec.ensemble['members']} perturbed copies disagree; see 'P(overturn) [-]'), "
               f"{len(table) - len(fragile)} robust")
-    # (run_sweep noted at the start that pyarrow is missing)
-    print(f"wrote {outcome.path}" + (" (CSV: pyarrow is not installed)"
-                                     if outcome.format == "csv" else ""))
+    # (a CSV table: run_sweep said at the start that pyarrow is missing)
+    print(f"wrote {outcome.path}")
     if "spectrum_scale [-]" in table:   # issue 29: the factors to the target spectrum
         factors = table[["record", "seed", "spectrum_scale [-]"]].drop_duplicates()
         from shaketable.core.files import write_csv

@@ -604,6 +604,19 @@ def fragility_contours(surface, *, ax=None, table=None, x_unit=1.0, y_unit=1.0,
     return ax
 
 
+def _merged_stripes(stripes, rtol: float = 1e-9):
+    """(levels, runs, overturned runs) of a fit's stripes, levels within ``rtol`` of each
+    other merged: motions scaled to one target measure reach it only to a few ulps, and
+    each distinct value is a stripe of the fit (whose likelihood does not depend on how
+    the runs are grouped), but one level of the analysis on a figure."""
+    levels, runs, failures = (np.asarray(part, dtype=float) for part in stripes)
+    order = np.argsort(levels)
+    levels, runs, failures = levels[order], runs[order], failures[order]
+    starts = np.flatnonzero(np.r_[True, levels[1:] > levels[:-1] * (1.0 + rtol)])
+    return (np.add.reduceat(levels * runs, starts) / np.add.reduceat(runs, starts),
+            np.add.reduceat(runs, starts), np.add.reduceat(failures, starts))
+
+
 def risk_curves(fragility, hazard, result=None, *, ax=None):
     """Hazard curve (annual rate of exceedance, log-log), the fragility on a second axis
     (with its confidence band and the fraction overturned at each level of a
@@ -636,7 +649,7 @@ def risk_curves(fragility, hazard, result=None, *, ax=None):
         lower, upper = fragility.band(x)
         other.fill_between(x, lower, upper, color="0.5", alpha=0.2, lw=0,
                            label=f"{fragility.confidence:.0%} band (profile likelihood)")
-        levels, runs, failures = (np.asarray(part, dtype=float) for part in fragility.stripes)
+        levels, runs, failures = _merged_stripes(fragility.stripes)
         other.plot(levels, failures / runs, "s", ms=3.5, mfc="white", mec="k", mew=0.8,
                    label="fraction overturned at each level (the data fitted)")
     other.set_ylim(-0.02, 1.02)

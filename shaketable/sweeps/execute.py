@@ -415,7 +415,7 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
     if manifest_path.exists():
         if not resume:
             raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
-                             "(resume=True) to continue it, or choose another output folder")
+                             "(resume=True from Python) to continue it, or choose another output folder")
         try:
             old = json.loads(manifest_path.read_text())
         except (OSError, ValueError) as error:
@@ -537,11 +537,11 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
         if fmt == "csv":
             import sys
             print("shaketable sweep: note: pyarrow is not installed, writing CSV instead of "
-                  "Parquet (pip install 'shaketable[parquet]')", file=sys.stderr)
+                  "Parquet (pip install pyarrow: the 'parquet' extra)", file=sys.stderr)
     if fmt not in ("parquet", "csv"):
         raise ValueError(f"fmt must be 'parquet' or 'csv', got {fmt!r}")
     if fmt == "parquet" and not parquet_available():
-        raise ValueError("fmt='parquet' needs pyarrow (pip install 'shaketable[parquet]')")
+        raise ValueError("fmt='parquet' needs pyarrow (pip install pyarrow: the 'parquet' extra)")
     if max_chunks is not None and (isinstance(max_chunks, bool) or int(max_chunks) < 0):
         raise ValueError(f"max_chunks must be a non-negative integer, got {max_chunks!r}")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)

@@ -99,3 +99,18 @@ def test_animation_labels_use_the_blocks_unit(text, unit, tmp_path):
     assert f"x [{unit}]" in saved["labels"]
     clock = [t for t in saved["texts"] if t.startswith("t = ")]
     assert clock and clock[0].endswith(f" {unit}")
+
+
+def test_risk_figure_merges_stripes_a_few_ulps_apart():
+    # Motions scaled to one target PGV reach it only to a few ulps (0.3969999..., 0.397,
+    # 0.3970000...1): one level of the analysis, drawn as one marker with the fraction of
+    # all its runs (here 1 of 12 overturned, not three markers at 0, 1 and 0).
+    from shaketable.plots.sweeps import _merged_stripes
+
+    target = 0.397
+    below, above = np.nextafter(target, 0.0), np.nextafter(np.nextafter(target, 1.0), 1.0)
+    stripes = ((0.5, above, target, below), (12.0, 1.0, 10.0, 1.0), (6.0, 1.0, 0.0, 0.0))
+    levels, runs, failures = _merged_stripes(stripes)
+    np.testing.assert_allclose(levels, [target, 0.5], rtol=1e-15)
+    np.testing.assert_array_equal(runs, [12.0, 12.0])
+    np.testing.assert_array_equal(failures, [1.0, 6.0])
