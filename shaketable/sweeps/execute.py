@@ -415,7 +415,8 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
     if manifest_path.exists():
         if not resume:
             raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
-                             "(resume=True from Python) to continue it, or choose another output folder")
+                             "(resume=True from Python) to continue it, or choose another "
+                             "output folder")
         try:
             old = json.loads(manifest_path.read_text())
         except (OSError, ValueError) as error:
