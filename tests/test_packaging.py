@@ -102,3 +102,28 @@ def test_the_package_loads_from_the_folder_that_holds_a_checkout_named_shaketabl
                             cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "shaketable.solvers.api"
+
+
+def test_the_first_versions_module_path_shaketable_simulate_still_imports(tmp_path):
+    """The first version had a module ``shaketable.simulate`` (``from shaketable.simulate
+    import simulate, METHODS``); the project's set-up check imports it from outside the
+    checkout. Importing it binds ``shaketable.simulate`` to the module, which is callable as
+    the function: a run gives the same result before and after (bit for bit), and a bare
+    ``import shaketable`` still loads no numba."""
+    code = (
+        "import sys\n"
+        "import shaketable as st\n"
+        "light = 'numba' not in sys.modules\n"
+        "block = st.Block.parse('30x6in')\n"
+        "before = st.simulate(block, cor=0.925, theta0=0.05, duration=2)\n"
+        "import shaketable.simulate\n"
+        "after = st.simulate(block, cor=0.925, theta0=0.05, duration=2)\n"
+        "from shaketable.simulate import METHODS, simulate\n"
+        "from shaketable.solvers import api\n"
+        "print(light, simulate is api.simulate, sorted(METHODS) == sorted(st.METHODS),\n"
+        "      bool((before.theta == after.theta).all()), before.n_impacts == after.n_impacts)\n"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == ["True"] * 5
