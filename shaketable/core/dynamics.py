@@ -58,14 +58,16 @@ N_PARAMETERS = 10
 #: The engines' divisions are guarded (the divisor tested, or positive by construction) and
 #: the results are the same bit for bit as with numba's default "python" (every rocking
 #: result array of ``benchmarks``' cases, 143 planar and 13 sliding runs compared); the
-#: planar engine runs a third faster and the rocking engine's first compile is 0.1-0.2 s
-#: shorter. Given explicitly to each function, not left to numba's inheritance from the
-#: caller: numba's cache keys and its compiled overloads ignore the options, so a helper
-#: first compiled for a Python caller would otherwise be linked into an engine compiled
-#: after it. For the same reason numba's on-disk cache does not see a change of this value
-#: (nor of the option dicts ``HELPER``, ``HELPER_OPTIONS`` that carry it) in a module that
-#: only imports it: such a change must touch every module that compiles with it, or the
-#: cache be cleared (``tests/solvers/test_error_model.py`` checks every engine function).
+#: planar engine runs a third faster and the rocking engine's first compile is a few
+#: hundredths of a second shorter. Given explicitly to each function
+#: (``tests/solvers/test_error_model.py`` checks every one), not left to numba's
+#: inheritance from the caller: numba's cache keys and its compiled overloads ignore the
+#: options, so a helper first compiled for a Python caller would otherwise be linked into
+#: an engine compiled after it. numba's cache does not see a change of this value in a
+#: module that only imports it either; the package's own cache folder is keyed by the
+#: sources of ``core`` and ``solvers`` (``shaketable/__init__.py``), so such a change
+#: compiles afresh there, but a cache folder set by hand (``NUMBA_CACHE_DIR``) must be
+#: cleared.
 ERROR_MODEL: Final = "numpy"
 
 

@@ -219,8 +219,8 @@ def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list,
     friction pairs and CORs the chunk holds for it (its product; the few extra runs at a
     chunk's edges are discarded). A run does not depend on the others of its call, so a
     row equals ``simulate(block, motion.scaled(scale), cor=cor, friction=Friction(mu_s,
-    mu_d), duration=duration)`` whatever the chunking. The batch runs on ``threads``
-    numba threads (``--workers``; default all cores).
+    mu_d), duration=duration)`` whatever the chunking. The batch shares its runs among
+    ``threads`` threads (``--workers``; default all cores).
     """
     import pandas as pd
 
