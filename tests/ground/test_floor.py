@@ -105,7 +105,6 @@ def test_exact_for_piecewise_linear_input_against_scipy():
     # same piecewise-linear ground, one interval at a time (no kink inside a step)
     rng = np.random.default_rng(3)
     dt, n, period, zeta = 0.02, 150, 0.7, 0.05
-    t = np.arange(n) * dt
     ground = rng.normal(size=n)
     ground[0] = 0.4
     w = 2 * math.pi / period
