@@ -51,6 +51,9 @@ from shaketable.sweeps.risk import HazardCurve, overturning_rate
 #: Friction coefficients of the mode map's strip (mu_s = mu_d) [-], besides the object's.
 MAP_FRICTIONS = tuple(np.round(np.arange(0.05, 0.801, 0.05), 3))
 
+#: Fewest demand levels a fragility is fitted to (two stripes identify no lognormal shape).
+MIN_FIT_LEVELS = 3
+
 #: Default record suite: the bundled horizontal records of the report's Section 4 events.
 DEFAULT_RECORDS = ("pacoima-dam-s16e", "pacoima-dam-s74w", "el-centro-1940-180",
                    "el-centro-1940-270")
@@ -192,30 +195,34 @@ class Assessment:
                 f"{self.building.shape} mode shape, {self.building.damping:.0%} damping)")
 
 
-def ground_motions(demand: Demand) -> list[Motion]:
-    """The suite's ground motions, unscaled (records with their vertical, then artificial)."""
-    motions = [records.load(name) for name in demand.records]
+def ground_motions(demand: Demand) -> dict[str, Motion]:
+    """The suite's ground motions, unscaled, by a short name (the bundled record's name,
+    ``PRESET-seedN`` for the artificial ones)."""
+    motions = {name: records.load(name) for name in demand.records}
     if demand.artificial_preset is not None:
-        motions += [artificial(demand.artificial_preset, seed=seed)
-                    for seed in range(1, demand.artificial_count + 1)]
+        for seed in range(1, demand.artificial_count + 1):
+            motions[f"{demand.artificial_preset}-seed{seed}"] = artificial(
+                demand.artificial_preset, seed=seed)
     return motions
 
 
 def demand_motions(spec: Assessment) -> dict:
     """``{(level index, record name): motion where the object stands}`` [m/s^2]."""
     result = {}
-    for motion in ground_motions(spec.demand):
+    for name, motion in ground_motions(spec.demand).items():
         for k, level in enumerate(spec.demand.levels):
             scaled = scale_to_pga(motion, pga=level)
             if not spec.at_grade:
                 assert spec.building is not None
                 scaled = floor_motion(scaled, spec.building, floor=spec.floor)
-            result[(k, motion.name)] = scaled
+            result[(k, name)] = scaled
     return result
 
 
 def _stats(values) -> dict:
     values = np.asarray(values, dtype=float)
+    if values.size == 0:
+        return {key: math.nan for key in ("median", "p84", "min", "max")}
     return {"median": float(np.median(values)), "p84": float(np.percentile(values, 84)),
             "min": float(np.min(values)), "max": float(np.max(values))}
 
@@ -234,7 +241,8 @@ class AssessmentResult:
         object stands).
     free : pandas.DataFrame
         Per level and friction (the object's two ends and the let-it-slide value):
-        P(overturn) and its Wilson 95 % interval, excursion and slip statistics [m].
+        P(overturn) and its Wilson 95 % interval, excursion and slip statistics [m] over
+        the records that did not overturn it (NaN when all did).
     anchored : pandas.DataFrame
         Per level: peak floor acceleration, base shear, overturning moment and uplift
         (median and 84th percentile over records) [m/s^2, N, N m, N] beside ASCE 7 Fp.
@@ -298,8 +306,9 @@ def _free_statistics(spec: Assessment, runs: pd.DataFrame) -> pd.DataFrame:
             n = len(cells)
             over = int(cells["overturned"].sum())
             low, high = wilson_interval(over, n)
-            excursion = _stats(cells["peak corner excursion [m]"])
-            slip = _stats(cells["peak slip [m]"])
+            standing = cells[~cells["overturned"].astype(bool)]  # a fallen block has no excursion
+            excursion = _stats(standing["peak corner excursion [m]"])
+            slip = _stats(standing["peak slip [m]"])
             verdicts = cells["verdict"].value_counts()
             rows.append({
                 "level": k, "level name": name, "ground pga [g]": spec.demand.levels[k] / G,
@@ -317,6 +326,11 @@ def _fragility_and_risk(spec: Assessment, runs: pd.DataFrame) -> tuple[dict, dic
     fragility, risk = {}, {}
     for case, mu in (("low", spec.obj.frictions[0]), ("high", spec.obj.frictions[1])):
         cells = runs[np.isclose(runs["mu [-]"], mu)]
+        if len(spec.demand.levels) < MIN_FIT_LEVELS:
+            fragility[case] = {"mu [-]": mu, "fit": None, "why not": (
+                f"{len(spec.demand.levels)} levels; a fragility fit needs at least "
+                f"{MIN_FIT_LEVELS}")}
+            continue
         try:
             try:
                 fit = fragility_fit(cells["ground pga [g]"] * G, cells["overturned"],
@@ -465,11 +479,15 @@ def _recommend(spec: Assessment, free: pd.DataFrame, anchored: pd.DataFrame) -> 
                 f"{acceptable:g} (95 % interval [{row['P low [-]']:.2f}, "
                 f"{row['P high [-]']:.2f}] with {row['records']} records)")
         if clearance is not None:
-            fits = row["excursion p84 [m]"] <= clearance
+            fits = bool(row["excursion p84 [m]"] <= clearance)
             ok = ok and fits
-            text += (f"; corner excursion 84th percentile {row['excursion p84 [m]'] * 1000:.0f}"
-                     f" mm {'within' if fits else 'beyond'} the clearance "
-                     f"{clearance * 1000:.0f} mm")
+            if math.isnan(row["excursion p84 [m]"]):
+                text += "; no record leaves it standing"
+            else:
+                text += (f"; corner excursion 84th percentile (records it survives) "
+                         f"{row['excursion p84 [m]'] * 1000:.0f} mm "
+                         f"{'within' if fits else 'beyond'} the clearance "
+                         f"{clearance * 1000:.0f} mm")
         return bool(ok), text
 
     free_ok_low, text_low = verdict("low")
