@@ -148,3 +148,32 @@ def test_cli_style_run_writes_the_report(tmp_path):
     data = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert data["recommendation"]["choice"] == result.recommendation["choice"]
     assert "Recommendation" in (tmp_path / "out" / "report.md").read_text()
+
+
+def test_fragility_is_the_package_fit_of_direct_runs(monkeypatch):
+    # the report's 16 x 4 ft block, the four Section 4 records at 0.3, 0.6 and 1.2 g; the
+    # outcomes recomputed here with simulate itself, fitted by sweeps.fragility
+    import shaketable.studies.assess as study
+    from shaketable.core.sliding_result import Friction
+    from shaketable.solvers.api import simulate
+    from shaketable.sweeps.fragility import fragility_fit
+
+    monkeypatch.setattr(study, "MAP_FRICTIONS", ())  # only the object's frictions
+    names = ("pacoima-dam-s16e", "pacoima-dam-s74w", "el-centro-1940-180",
+             "el-centro-1940-270")
+    levels = (0.3 * G, 0.6 * G, 1.2 * G)
+    block = Block.from_feet(16, 4)
+    spec = Assessment("block", AssessedObject(block, 17400.0, (0.2, 0.4), 0.95),
+                      Demand(records=names, levels=levels, level_names=("a", "b", "c")),
+                      Criteria(slide_friction=0.15))
+    result = run_assessment(spec)
+    im, outcome = [], []
+    for name in names:
+        for level in levels:
+            motion = scale_to_pga(records.load(name), pga=level)
+            im.append(level)
+            outcome.append(simulate(block, motion, cor=0.95, friction=Friction(0.4)).overturned)
+    expected = fragility_fit(np.array(im), np.array(outcome), measure="pga [m/s^2]")
+    fit = result.fragility["high"]["fit"]
+    assert sum(outcome) > 0  # the fit exists: some runs overturn
+    assert (fit.median, fit.beta) == (expected.median, expected.beta)
