@@ -151,6 +151,9 @@ def report_markdown(result: AssessmentResult, figure_files=()) -> str:
                      f" /yr (at most {entry['lambda upper [1/yr]']:.3g}); P(overturn in "
                      f"{entry['years']:g} yr) = {entry['P(overturn in life) [-]']:.3g}.")
     lines += ["", "## 4. Anchored", "",
+              "The dynamics' forces are elastic (a rigid object fixed to its floor, m a(t)); "
+              "ASCE 7-16's Fp includes the reduction R_p / I_p (and anchors in concrete are "
+              "designed with the further rules of Section 13.4.2).", "",
               "| level | PFA median / 84th [g] | base shear median / 84th [kN] | uplift median"
               " / 84th [kN] | ASCE 7-16 Fp [kN] | Fp uplift [kN] |",
               "|---|---|---|---|---|---|"]

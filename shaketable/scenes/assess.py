@@ -256,7 +256,7 @@ def _demand(table: dict) -> Demand:
         if not levels or any(not v > 0 for v in levels) or list(levels) != sorted(levels):
             raise _Error("demand.pga", "must be positive accelerations, increasing")
         default_names = tuple(f"{v / G:.3g} g" for v in levels)
-    elif s_ds is not None:  # ASCE 7-16 Eq. 11.4-5 at T = 0; MCE_R = 1.5 x design (Eq. 11.4-3)
+    elif s_ds is not None:  # ASCE 7-16 Eq. 11.4-5 at T = 0; MCE_R = 1.5 x design (11.4.7)
         levels = (0.4 * s_ds * G, 0.6 * s_ds * G)
         default_names = ("design", "MCE")
     else:
