@@ -26,6 +26,7 @@ Errors name the file, the key and its line.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 try:  # Python >= 3.11
@@ -312,3 +313,36 @@ def _criteria(table: dict, code: dict, folder: Path) -> Criteria:
                     r_p=_number(code.get("R_p", 2.5), "codes.R_p", 0.0, 20.0, low_open=True),
                     i_p=_number(code.get("I_p", 1.0), "codes.I_p", 0.0, 5.0, low_open=True),
                     fc=_number(code.get("FC", 1.0), "codes.FC", 1.0, 5.0))
+
+
+@dataclass(frozen=True)
+class FloorSetup:
+    """A scene's ``[floor]``: the block stands on ``floor`` of ``building``."""
+
+    building: Building
+    floor: int
+
+
+#: Keys of a scene's ``[floor]`` section: the floor and the building's keys.
+FLOOR_KEYS = {"floor"} | SECTIONS["building"]
+
+
+def floor_from_dict(section: dict, where: str) -> FloorSetup:
+    """A scene's ``[floor]`` (``floor = 3``, ``period = "0.6 s"``, ``height = "17.5 m"``,
+    ``storeys = 5``, ``damping``, ``shape``, ``modes``): errors name ``floor.KEY``."""
+    unknown = sorted(set(section) - FLOOR_KEYS)
+    if unknown:
+        raise SceneError(f"{where}: unknown key {unknown[0]!r} in [floor]; expected one of "
+                         f"{', '.join(sorted(FLOOR_KEYS))}")
+    if "floor" not in section:
+        raise SceneError(f"{where}: floor.floor is missing (the floor the block stands on, "
+                         f"1..storeys)")
+    data = {"location": {"floor": section["floor"]},
+            "building": {k: v for k, v in section.items() if k != "floor"}}
+    try:
+        building, floor = _building(data)
+    except _Error as error:
+        key = "floor." + error.key.split(".")[-1] if "." in error.key else "floor"
+        raise SceneError(f"{where}: {key}: {error}") from None
+    assert building is not None
+    return FloorSetup(building, floor)
