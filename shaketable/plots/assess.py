@@ -84,12 +84,16 @@ def _demands(result, fig):
     free = result.free
     spec = result.spec
     axes = fig.subplots(1, 3)
-    for case, cells in free.groupby("case", sort=False):
+    levels = free["ground pga [g]"].to_numpy()
+    shift = 0.012 * max(levels.max() - levels.min(), 0.1 * levels.max())
+    for index, (case, cells) in enumerate(free.groupby("case", sort=False)):
         colour = _CASE_COLOURS[case]
         x = cells["ground pga [g]"].to_numpy()
         label = f"{case} (μ = {cells['mu [-]'].iloc[0]:.3g})"
         p = cells["P(overturn) [-]"].to_numpy()
-        axes[0].errorbar(x, p, yerr=[p - cells["P low [-]"], cells["P high [-]"] - p],
+        # the three cases side by side (a small shift in x) so that none hides another
+        axes[0].errorbar(x + (index - 1) * shift, p,
+                         yerr=[p - cells["P low [-]"], cells["P high [-]"] - p],
                          color=colour, marker="o", capsize=3, label=label)
         for axis, what in ((axes[1], "excursion"), (axes[2], "slip")):
             axis.plot(x, cells[f"{what} median [m]"] * 1000, "o-", color=colour, label=label)
