@@ -50,22 +50,20 @@ def test_bad_floor_names_the_key_and_line(tmp_path, old, new, match):
 
 
 def test_simulate_on_a_floor_from_the_command_line(tmp_path, capsys):
-    import json
+    import argparse
 
     from shaketable.cli import main
-    from shaketable.core.geometry import Block
+    from shaketable.commands.simulate import _on_floor
     from shaketable.ground import records
-    from shaketable.solvers.api import simulate
 
-    out = tmp_path / "run"
-    assert main(["simulate", "--block", "2x0.5m", "--cor", "0.9", "--record",
-                 "el-centro-chopra", "--floor", "3", "--building", "0.6s,17.5m,5",
-                 "--out", str(out), "-q"]) == 0
-    summary = json.loads((out / "summary.json").read_text())
-    motion = floor_motion(records.load("el-centro-chopra"), Building(0.6, 17.5, 5), floor=3)
-    expected = simulate(Block(2.0, 0.5), motion, cor=0.9)
-    assert summary["overturned"] == expected.overturned
+    ground = records.load("el-centro-chopra")
+    args = argparse.Namespace(floor=3, building="0.6s,17.5m,5")
+    expected = floor_motion(ground, Building(0.6, 17.5, 5), floor=3)
+    np.testing.assert_array_equal(_on_floor(args, ground).horizontal, expected.horizontal)
     assert main(["simulate", "--block", "2x0.5m", "--cor", "0.9", "--record",
                  "el-centro-chopra", "--floor", "6", "--building", "0.6s,17.5m,5",
                  "--out", str(tmp_path / "bad")]) == 2
     assert "--floor 6" in capsys.readouterr().err
+    assert main(["simulate", "--block", "2x0.5m", "--cor", "0.9", "--record",
+                 "el-centro-chopra", "--floor", "2", "--out", str(tmp_path / "bad")]) == 2
+    assert "go together" in capsys.readouterr().err
