@@ -147,9 +147,13 @@ def report_markdown(result: AssessmentResult, figure_files=()) -> str:
             lines.append(f"* {case} friction: median {entry['median pga [g]']:.3g} g "
                          f"({interval}), beta {entry['beta [-]']:.3g}.")
     for case, entry in result.risk.items():
+        span = entry["lambda over the median's interval [1/yr]"]
+        spread = ("" if span is None else
+                  f"; {span[0]:.3g} to {span[1]:.3g} /yr over the median's 95 % interval")
         lines.append(f"* {case} friction, site hazard: lambda = {entry['lambda [1/yr]']:.3g}"
-                     f" /yr (at most {entry['lambda upper [1/yr]']:.3g}); P(overturn in "
-                     f"{entry['years']:g} yr) = {entry['P(overturn in life) [-]']:.3g}.")
+                     f" /yr (with the tails at most {entry['lambda upper [1/yr]']:.3g}"
+                     f"{spread}); P(overturn in {entry['years']:g} yr) = "
+                     f"{entry['P(overturn in life) [-]']:.3g}.")
     lines += ["", "## 4. Anchored", "",
               "The dynamics' forces are elastic (a rigid object fixed to its floor, m a(t)); "
               "ASCE 7-16's Fp includes the reduction R_p / I_p (and anchors in concrete are "

@@ -30,7 +30,7 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
@@ -349,8 +349,14 @@ def _fragility_and_risk(spec: Assessment, runs: pd.DataFrame) -> tuple[dict, dic
             "beta interval [-]": list(fit.beta_interval)}
         if spec.criteria.hazard is not None:
             result = overturning_rate(fit, spec.criteria.hazard, years=spec.criteria.years)
+            # the fit's uncertainty: lambda at the ends of the median's interval (beta kept)
+            ends = [overturning_rate(replace(fit, median=median), spec.criteria.hazard,
+                                     years=spec.criteria.years).rate
+                    for median in fit.median_interval if math.isfinite(median)]
             risk[case] = {"mu [-]": mu, "lambda [1/yr]": result.rate,
                           "lambda upper [1/yr]": result.upper,
+                          "lambda over the median's interval [1/yr]":
+                              [min(ends), max(ends)] if len(ends) == 2 else None,
                           "years": result.years,
                           "P(overturn in life) [-]": result.probability,
                           "P upper [-]": result.probability_upper}
@@ -464,7 +470,8 @@ def _codes(spec: Assessment, anchored: pd.DataFrame, spectra: dict) -> dict:
     return result
 
 
-def _recommend(spec: Assessment, free: pd.DataFrame, anchored: pd.DataFrame) -> dict:
+def _recommend(spec: Assessment, free: pd.DataFrame, anchored: pd.DataFrame,
+               risk: dict) -> dict:
     """The choice at the highest level, with its reasons."""
     top = len(spec.demand.levels) - 1
     name = spec.demand.level_names[top]
@@ -496,6 +503,10 @@ def _recommend(spec: Assessment, free: pd.DataFrame, anchored: pd.DataFrame) -> 
     free_ok_high, text_high = verdict("high")
     slide_ok, text_slide = verdict("let it slide")
     reasons += [text_low, text_high, text_slide]
+    for case, entry in risk.items():
+        reasons.append(f"with the site hazard, {case} friction: P(overturn in "
+                       f"{entry['years']:g} yr) = {entry['P(overturn in life) [-]']:.2g} "
+                       f"(lambda = {entry['lambda [1/yr]']:.2g} /yr)")
     if free_ok_low and free_ok_high:
         choice = "leave it free-standing"
     elif slide_ok:
@@ -531,6 +542,6 @@ def run_assessment(spec: Assessment) -> AssessmentResult:
     anchored = _anchored(spec, motions)
     spectra = _floor_spectra(motions, spec.demand.levels)
     checks = _codes(spec, anchored, spectra)
-    recommendation = _recommend(spec, free, anchored)
+    recommendation = _recommend(spec, free, anchored, risk)
     return AssessmentResult(spec, runs, free, anchored, checks, fragility, risk, spectra,
                             recommendation)
