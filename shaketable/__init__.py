@@ -85,10 +85,11 @@ from shaketable.core.sliding_result import Friction  # noqa: E402
 from shaketable.version import __version__  # noqa: E402
 
 __all__ = ["Block", "PrestressRods", "Motion", "RockingResult", "Friction", "PlanarResult",
-           "simulate", "METHODS", "G", "INCH", "FOOT", "__version__"]
+           "simulate", "METHODS", "assess", "G", "INCH", "FOOT", "__version__"]
 
 #: The names loaded on first use, and the module each comes from.
-_LAZY = {"simulate": "shaketable.solvers.api", "METHODS": "shaketable.solvers.layout"}
+_LAZY = {"simulate": "shaketable.solvers.api", "METHODS": "shaketable.solvers.layout",
+         "assess": "shaketable.assessment"}
 
 
 def __getattr__(name):

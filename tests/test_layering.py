@@ -22,6 +22,7 @@ from tests.helpers import REPOSITORY
 #: from a layer of lower rank, or from its own folder.
 RANK = {"core": 0, "solvers": 1, "ground": 1, "lab": 2, "calibration": 3, "sweeps": 3,
         "studies": 4, "scenes": 5, "plots": 6, "reproduce": 7, "bench": 7, "commands": 8, "cli": 9,
+        "assessment": 7,
         "__init__": 10, "__main__": 10, "simulate": 10, "version": 0}
 
 #: Third-party modules and the layers allowed to import them.

@@ -31,6 +31,31 @@ def _resolve_angle(text: str, block: Block) -> float:
     raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg or 0.5alpha")
 
 
+def _on_floor(args, motion):
+    """``--floor K --building PERIOD,HEIGHT,STOREYS``: the motion at floor K of the building."""
+    if args.floor is None and args.building is None:
+        return motion
+    if args.floor is None or args.building is None:
+        raise ValueError("--floor and --building go together (e.g. --floor 3 --building "
+                         "0.6s,17.5m,5)")
+    if motion is None:
+        raise ValueError("--floor needs a ground motion (--record, --harmonic or --pulse)")
+    from shaketable.core.units import parse
+    from shaketable.ground.floor import Building, floor_motion
+
+    parts = [part.strip() for part in args.building.split(",")]
+    if len(parts) != 3 or not parts[2].isdigit():
+        raise ValueError(f"--building {args.building!r}: give PERIOD,HEIGHT,STOREYS with the "
+                         f"units, e.g. 0.6s,17.5m,5")
+    where = f"--building {args.building!r}"
+    building = Building(parse(parts[0], "time", where=where),
+                        parse(parts[1], "length", where=where), int(parts[2]))
+    if not 0 <= args.floor <= building.storeys:
+        raise ValueError(f"--floor {args.floor}: the building has floors 0 (the ground) to "
+                         f"{building.storeys} (the roof)")
+    return floor_motion(motion, building, floor=args.floor)
+
+
 def _simulate(args) -> int:
     from shaketable.core.files import prepare_output_folder, write_csv, write_text
     from shaketable.plots import base as plots
@@ -40,6 +65,7 @@ def _simulate(args) -> int:
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     if motion is not None:
         motion = scaled(motion, args.scale)
+    motion = _on_floor(args, motion)
     theta0 = _resolve_angle(args.theta0, block)
     out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
     notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else
@@ -153,6 +179,12 @@ def register(commands: argparse._SubParsersAction) -> None:
     add_record_arguments(sim)
     add_motion_options(sim)
     add_quantity(sim, "--duration", kind="time", example="8s", help="length of the run")
+    sim.add_argument("--floor", type=int, metavar="K",
+                     help="the block stands on floor K of --building (0: the ground): the "
+                          "motion is the ground's, filtered by the building's first mode")
+    sim.add_argument("--building", metavar="PERIOD,HEIGHT,STOREYS",
+                     help="a regular building for --floor, e.g. 0.6s,17.5m,5 (first mode "
+                          "linear in height, 5 %% damping; shaketable.ground.floor)")
     sim.add_argument("--friction", metavar="MU_S[,MU_D]",
                      help="Coulomb friction between block and table (dimensionless): runs the "
                           "planar block, which may rest, slide, rock, slide-rock and fly "

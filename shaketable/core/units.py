@@ -27,6 +27,8 @@ UNITS = {
     "angular frequency": {"rad/s": 1.0, "1/s": 1.0},
     "stiffness": {"w/m": 1.0, "w/in": 1.0 / LENGTH_UNITS["in"], "w/ft": 1.0 / LENGTH_UNITS["ft"]},
     "weight": {"w": 1.0},
+    "mass": {"kg": 1.0, "t": 1000.0, "lb": 0.45359237},
+    "density": {"kg/m3": 1.0, "kg/m^3": 1.0, "t/m3": 1000.0, "t/m^3": 1000.0},
 }
 
 
@@ -86,4 +88,5 @@ def _example(kind: str) -> str:
     return {"length": "30 in", "acceleration": "0.5 g", "time": "8 s", "frequency": "2 Hz",
             "velocity": "25 in/s", "force": "20 oz", "angle": "0.05 rad",
             "angular frequency": "2 rad/s", "angular acceleration": "0.22 rad/s2",
-            "stiffness": "0.4 W/in", "weight": "0.4 W"}[kind]
+            "stiffness": "0.4 W/in", "weight": "0.4 W", "mass": "400 kg",
+            "density": "2400 kg/m3"}[kind]

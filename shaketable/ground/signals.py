@@ -307,7 +307,7 @@ def strong_motion_duration(motion, low=0.05, high=0.95, component="horizontal") 
     return crossing(high) - crossing(low)
 
 
-def _oscillator_maps(omega: np.ndarray, damping: float, dt: float):
+def oscillator_maps(omega: np.ndarray, damping: float, dt: float):
     """Exact one-step maps of u'' + 2 z w u' + w^2 u = -p, p linear in the step.
 
     Returns ``A`` (n, 2, 2), ``B0`` and ``B1`` (n, 2) such that
@@ -374,7 +374,7 @@ def response_spectrum(motion, periods, damping=0.05, component="horizontal"):
     dt = uniform_step(motion, "response_spectrum")
     p = motion_component(motion, component)
     omega = 2.0 * np.pi / flat
-    a, b0, b1 = _oscillator_maps(omega, damping, dt)
+    a, b0, b1 = oscillator_maps(omega, damping, dt)
 
     # u as output of x_{i+1} = A x_i + B0 p_i + B1 p_{i+1}:
     # U(z) / P(z) = [(z - a22)(B0u + B1u z) + a12 (B0v + B1v z)] / det(zI - A)

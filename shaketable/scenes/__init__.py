@@ -36,5 +36,12 @@ def _theory(section: dict, where: str) -> Any:
     return theory_from_dict(section, where)
 
 
+def _floor(section: dict, where: str) -> Any:
+    from shaketable.scenes.assess import floor_from_dict
+
+    return floor_from_dict(section, where)
+
+
 register_section_parser("sensors", _sensors)
 register_section_parser("theory", _theory)
+register_section_parser("floor", _floor)

@@ -27,6 +27,9 @@ Sections (``experiments/*.toml`` are the examples)::
     [sliding]    static_friction = 0.3, dynamic_friction = 0.2 (or a list to compare): the
                  same block and table motion also run sliding (Coulomb stick-slip,
                  Section 4.5), beside the rocking runs, with Section 2.1's choice
+    [floor]      floor = 3, period = "0.6 s", height = "17.5 m", storeys = 5 (damping,
+                 shape, modes): the block stands on that floor; [motion] is the ground's
+                 (shaketable.ground.floor, parsed by shaketable.scenes.assess)
 """
 
 from __future__ import annotations
@@ -82,7 +85,7 @@ OUTPUT_KEYS = {"figure", "csv", "parquet", "svg", "time_range"}
 REPORT_FIGURES = ("2.3", "2.4", "2.5", "2.6", "4.3.4")
 
 TOP_KEYS = {"name", "source", "description", "block", "motion", "rocking", "report", "outputs",
-            "table", "sensors", "theory", "sliding", "ensemble"}
+            "table", "sensors", "theory", "sliding", "ensemble", "floor"}
 
 #: Keys of a scene's ``[sliding]`` section (friction coefficients, dimensionless).
 SLIDING_KEYS = {"static_friction", "dynamic_friction"}
@@ -158,6 +161,9 @@ class Scene:
     calibrated_cor : CalibratedCor or None
         ``rocking.cor = "calibration.json"``: the calibrated COR, whose
         distribution :mod:`shaketable.scenes.run` runs as an ensemble.
+    floor : shaketable.scenes.assess.FloorSetup or None
+        ``[floor]``: the block stands on a floor of a building; the table motion is the
+        ground motion and the block feels :func:`shaketable.ground.floor.floor_motion`.
     """
 
     name: str
@@ -184,6 +190,7 @@ class Scene:
     calibrated_cor: Any = None
     blocks: tuple = ()
     theta0s: tuple = ()
+    floor: Any = None
 
     def variants(self) -> list:
         """The runs a scene asks for: ``(block, theta0 [rad], cor)`` for every block, then
@@ -308,7 +315,7 @@ def load_scene(path: str | Path) -> Scene | Study:
 #: A key named in an error message: ``rocking.theta0``, ``[block]``, ``'colour' in [block]``.
 _KEY_IN_MESSAGE = re.compile(r"unknown key '([\w-]+)' in \[([\w.-]+)|\[([\w.-]+)\]|"
                              r"\b((?:block|motion|rocking|report|outputs|table|sensors|theory|"
-                             r"sliding|ensemble|study)(?:\.[\w-]+)+)")
+                             r"sliding|ensemble|study|floor)(?:\.[\w-]+)+)")
 _HEADER = re.compile(r"^\s*\[\[?\s*([\w.\"' -]+?)\s*\]\]?\s*(?:#.*)?$")
 _ASSIGNMENT = re.compile(r"^\s*([\w.\"' -]+?)\s*=")
 
@@ -458,6 +465,7 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
                  sliding=_sliding(data, motion, where),
                  path=where, ensemble=_ensemble_section(data, where),
                  calibrated_cor=calibrated,
+                 floor=_stage_section(data, "floor", where) if "floor" in data else None,
                  **_variants(blocks, theta0s, data, where))
 
 

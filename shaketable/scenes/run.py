@@ -34,7 +34,23 @@ if TYPE_CHECKING:
 
 def build_motion(scene: Scene) -> Motion | ImpulsiveMotion | None:
     """The table motion a scene names [m/s^2], or ``None`` for free rocking (an
-    :class:`~shaketable.core.impulses.ImpulsiveMotion` for ``kind = "impulses"``)."""
+    :class:`~shaketable.core.impulses.ImpulsiveMotion` for ``kind = "impulses"``); with
+    ``[floor]``, the motion at that floor of the building (the ``[motion]`` is the ground's)."""
+    motion = _ground_motion(scene)
+    if scene.floor is None:
+        return motion
+    if not isinstance(motion, Motion):
+        raise SceneError(f"{scene.path}: [floor] needs a ground motion (a [motion] of kind "
+                         f"harmonic, record, artificial or a pulse), not {scene.motion['kind']!r}")
+    from shaketable.ground.floor import floor_motion
+
+    try:
+        return floor_motion(motion, scene.floor.building, floor=scene.floor.floor)
+    except ValueError as error:
+        raise SceneError(f"{scene.path}: [floor]: {error}") from None
+
+
+def _ground_motion(scene: Scene) -> Motion | ImpulsiveMotion | None:
     spec = dict(scene.motion)
     kind = spec.pop("kind")
     try:

@@ -1,0 +1,63 @@
+"""``shaketable assess OBJECT.toml --out FOLDER``: rock, slide or anchor? One assessment of
+an object at grade or on a floor of a building, with the codes' checks beside the dynamics."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import argparse
+
+
+def object_path(text: str) -> Path:
+    """An object file, or the name of a bundled example (``experiments/assess``)."""
+    path = Path(text)
+    if path.suffix == ".toml" or path.exists():
+        return path
+    from shaketable.scenes.catalog import experiments_folder
+
+    bundled = experiments_folder() / "assess" / f"{text}.toml"
+    if bundled.is_file():
+        return bundled
+    names = sorted(p.stem for p in (experiments_folder() / "assess").glob("*.toml"))
+    raise FileNotFoundError(f"OBJECT {text!r}: no such file, nor a bundled example (bundled: "
+                            f"{', '.join(names)})")
+
+
+def _assess(args: argparse.Namespace) -> int:
+    import time
+
+    from shaketable.assessment import assess
+    from shaketable.commands.common import notice_first_compile
+    from shaketable.core.files import prepare_output_folder
+    from shaketable.scenes.assess import load_assessment
+
+    spec = load_assessment(object_path(args.object))
+    out = prepare_output_folder(args.out if args.out is not None
+                                else Path("shaketable-out") / spec.name)
+    notice_first_compile(args.quiet, which=("engine", "planar"))
+    start = time.perf_counter()
+    result = assess(spec, out, figures=not args.no_figures)
+    print(f"{spec.name} {spec.where}: {result.recommendation['choice']}")
+    for reason in result.recommendation["reasons"]:
+        print(f"  - {reason}")
+    print(f"wrote {out / 'report.md'} and summary.json ({time.perf_counter() - start:.1f} s)")
+    return 0
+
+
+def register(subparsers) -> None:
+    """Add ``assess`` to the command line."""
+    parser = subparsers.add_parser(
+        "assess", help="rock, slide or anchor: assess an object (at grade or on a floor)",
+        description="Assess a free-standing object described in a TOML file (size, mass, "
+                    "friction range, COR; ground or a floor of a building; records and "
+                    "levels or S_DS; clearance, hazard): the mode map, P(overturn), corner "
+                    "excursion and slip, let it slide, the anchor forces beside ASCE 7-16 "
+                    "Fp, the codes' checks and a recommendation, as report.md with figures "
+                    "and summary.json.")
+    parser.add_argument("object", help="object file (.toml) or a bundled example: "
+                                       "shielding-block, lab-cabinet, transformer")
+    parser.add_argument("--out", help="output folder (default shaketable-out/NAME)")
+    parser.add_argument("--no-figures", action="store_true", help="write no figures")
+    parser.set_defaults(handler=_assess)

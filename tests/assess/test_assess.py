@@ -1,0 +1,179 @@
+"""The assessment orchestrates the package's own studies: it reproduces them exactly, and
+its object files fail loudly, naming the key and the line."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from shaketable.assessment import assess
+from shaketable.core.constants import INCH, G
+from shaketable.core.geometry import Block
+from shaketable.ground import records
+from shaketable.ground.floor import Building, floor_motion
+from shaketable.ground.signals import scale_to_pga
+from shaketable.scenes.assess import load_assessment
+from shaketable.scenes.parse import SceneError
+from shaketable.studies import codes
+from shaketable.studies.assess import (
+    AssessedObject,
+    Assessment,
+    Criteria,
+    Demand,
+    run_assessment,
+)
+from shaketable.studies.mode_map import mode_map, table_4_4_coupled
+
+
+@pytest.fixture(scope="module")
+def shielding():
+    """The report's 16 x 4 ft block at grade under Pacoima S16E as recorded (Table 4.4)."""
+    motion = records.load("pacoima-dam-s16e")
+    spec = Assessment("shielding", AssessedObject(Block.from_feet(16, 4), 17400.0, (0.1, 0.3),
+                                                  0.95),
+                      Demand(records=("pacoima-dam-s16e",), levels=(motion.pga,),
+                             level_names=("as recorded",)),
+                      Criteria(clearance=0.3, slide_friction=0.2))
+    return spec, run_assessment(spec), motion
+
+
+def test_mode_map_is_the_package_mode_map(shielding):
+    spec, result, motion = shielding
+    frictions = sorted(result.runs["mu [-]"].unique())
+    block = spec.obj.block
+    expected = mode_map(motion, pga_levels=(motion.pga,), aspect_ratios=(0.25,),
+                        frictions=frictions, height=block.height, cor=0.95).frame
+    ours = result.runs.drop(columns=["level", "level name", "ground pga [g]", "record"])
+    pd.testing.assert_frame_equal(ours.reset_index(drop=True), expected, check_exact=True)
+
+
+def test_table_4_4_coupled_slips_reproduced(shielding):
+    _, result, _ = shielding
+    table = table_4_4_coupled(blocks_ft=((16.0, 4.0),), columns=("pacoima-dam-s16e",),
+                              frictions=(0.1, 0.2, 0.3))
+    for row in table.itertuples(index=False):
+        ours = result.runs[np.isclose(result.runs["mu [-]"], row[1])].iloc[0]
+        assert ours["verdict"] == row[5]
+        # the mode map builds its block as (B/H) H, Table 4.4 from feet: the same width
+        # here (1.2192 m both ways), so the slips agree to the last digit
+        assert ours["peak slip [m]"] / INCH == row[6]
+
+
+def test_free_standing_statistics_from_the_runs(shielding):
+    _, result, _ = shielding
+    low = result.free[result.free["case"] == "low"].iloc[0]
+    run = result.runs[np.isclose(result.runs["mu [-]"], 0.1)].iloc[0]
+    assert low["records"] == 1
+    assert low["P(overturn) [-]"] == float(run["overturned"])
+    if not run["overturned"]:
+        assert low["excursion median [m]"] == run["peak corner excursion [m]"]
+
+
+def test_floor_anchored_forces_and_fp():
+    building = Building(period=0.5, height=12.0, storeys=4)
+    spec = Assessment("cab", AssessedObject(Block(1.8, 0.45), 300.0, (0.4, 0.4), 0.9),
+                      Demand(records=("el-centro-chopra",), levels=(0.25 * G,),
+                             level_names=("d",), s_ds=0.9),
+                      Criteria(), building, floor=2)
+    result = run_assessment(spec)
+    floor = floor_motion(scale_to_pga(records.load("el-centro-chopra"), pga=0.25 * G),
+                         building, floor=2)
+    row = result.anchored.iloc[0]
+    peak = np.max(np.abs(floor.horizontal))
+    assert row["base shear median [N]"] == pytest.approx(300.0 * peak, rel=1e-15)
+    # no vertical: uplift = m (a H/2 - g B/2) / B at the peak (moments about one edge)
+    assert row["uplift median [N]"] == pytest.approx(
+        max(0.0, 300.0 * (peak * 0.9 - G * 0.225) / 0.45), rel=1e-12)
+    fp = codes.asce7_fp(300.0 * G, 0.9, z_over_h=0.5)  # floor 2 of 4
+    assert row["Fp [N]"] == fp.fp
+
+
+def _write(tmp_path, text, name="object.toml"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+GOOD = """name = "thing"
+[object]
+size = "2x0.5m"
+mass = "400 kg"
+friction = [0.3, 0.5]
+cor = 0.9
+[location]
+floor = 3
+[building]
+period = "0.6 s"
+height = "17.5 m"
+storeys = 5
+[demand]
+records = ["el-centro-chopra"]
+pga = ["0.2 g"]
+[criteria]
+clearance = "100 mm"
+"""
+
+
+@pytest.mark.parametrize("old, new, key, line", [
+    ("floor = 3", "floor = 6", "location.floor", 8),
+    ('period = "0.6 s"', 'period = "0 s"', "building.period", 10),
+    ('clearance = "100 mm"', "clearance = 0.1", "criteria.clearance", 17),
+    ("friction = [0.3, 0.5]", "friction = [0.3, 2.5]", "object.friction", 5),
+    ('pga = ["0.2 g"]', 'pga = ["0.2"]', "demand.pga", 15),
+    ('records = ["el-centro-chopra"]', 'records = ["nowhere"]', "demand.records", 14),
+])
+def test_bad_input_names_the_key_and_line(tmp_path, old, new, key, line):
+    assert old in GOOD
+    path = _write(tmp_path, GOOD.replace(old, new))
+    with pytest.raises(SceneError, match=rf"{path}: {key}: .*\(line {line}\)"):
+        load_assessment(path)
+
+
+def test_calibration_of_another_block(tmp_path):
+    _write(tmp_path, json.dumps({"cor [-]": 0.9, "cor_se [-]": 0.01, "fit samples": 100,
+                                 "block_height [m]": 0.762, "block_width [m]": 0.1524}),
+           "calibration.json")
+    path = _write(tmp_path, GOOD.replace("cor = 0.9", 'cor = "calibration.json"'))
+    with pytest.raises(SceneError, match=r"object.cor: .*another block.*\(line 6\)"):
+        load_assessment(path)
+
+
+def test_cli_style_run_writes_the_report(tmp_path):
+    path = _write(tmp_path, GOOD)
+    result = assess(path, tmp_path / "out")
+    written = {p.name for p in (tmp_path / "out").iterdir()}
+    assert {"report.md", "summary.json", "runs.csv", "mode-map.png", "demands.png",
+            "anchored.png", "spectra.png"} <= written
+    data = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert data["recommendation"]["choice"] == result.recommendation["choice"]
+    assert "Recommendation" in (tmp_path / "out" / "report.md").read_text()
+
+
+def test_fragility_is_the_package_fit_of_direct_runs(monkeypatch):
+    # the report's 16 x 4 ft block, the four Section 4 records at 0.3, 0.6 and 1.2 g; the
+    # outcomes recomputed here with simulate itself, fitted by sweeps.fragility
+    import shaketable.studies.assess as study
+    from shaketable.core.sliding_result import Friction
+    from shaketable.solvers.api import simulate
+    from shaketable.sweeps.fragility import fragility_fit
+
+    monkeypatch.setattr(study, "MAP_FRICTIONS", ())  # only the object's frictions
+    names = ("pacoima-dam-s16e", "pacoima-dam-s74w", "el-centro-1940-180",
+             "el-centro-1940-270")
+    levels = (0.3 * G, 0.6 * G, 1.2 * G)
+    block = Block.from_feet(16, 4)
+    spec = Assessment("block", AssessedObject(block, 17400.0, (0.2, 0.4), 0.95),
+                      Demand(records=names, levels=levels, level_names=("a", "b", "c")),
+                      Criteria(slide_friction=0.15))
+    result = run_assessment(spec)
+    im, outcome = [], []
+    for name in names:
+        for level in levels:
+            motion = scale_to_pga(records.load(name), pga=level)
+            im.append(level)
+            outcome.append(simulate(block, motion, cor=0.95, friction=Friction(0.4)).overturned)
+    expected = fragility_fit(np.array(im), np.array(outcome), measure="pga [m/s^2]")
+    fit = result.fragility["high"]["fit"]
+    assert sum(outcome) > 0  # the fit exists: some runs overturn
+    assert (fit.median, fit.beta) == (expected.median, expected.beta)
