@@ -90,6 +90,11 @@ def _clean(value):
     return json_ready(value)
 
 
+def _level(name: str, pga: float) -> str:
+    value = f"{pga / G:.3g} g"
+    return value if name == value else f"{name} = {value}"
+
+
 def _mm(value: float) -> str:
     return "-" if math.isnan(value) else f"{value * 1000:.0f}"
 
@@ -112,7 +117,7 @@ def report_markdown(result: AssessmentResult, figure_files=()) -> str:
               f"{spec.obj.cor:g} ({spec.obj.cor_source}).",
               f"* Where: {spec.where}.",
               f"* Records: {', '.join(sorted(result.runs['record'].unique()))}; levels (ground "
-              "PGA): " + ", ".join(f"{n} = {v / G:.3g} g" for n, v in
+              "PGA): " + ", ".join(_level(n, v) for n, v in
                                    zip(spec.demand.level_names, spec.demand.levels)) + ".",
               ""]
     lines += ["## 1. Mode map", "",
