@@ -168,7 +168,19 @@ class Criteria:
 class Assessment:
     """One assessment: the object, where it stands, the demand and the criteria.
 
-    ``building`` None (or ``floor`` 0) puts the object at grade.
+    Attributes
+    ----------
+    name : str
+        A short name (the report's title and folder name).
+    obj : AssessedObject
+    demand : Demand
+    criteria : Criteria
+    building : Building or None
+        The building the object stands in; None (or ``floor`` 0) puts it at grade.
+    floor : int
+        The floor it stands on, 0 (the ground) to ``building.storeys`` (the roof).
+    description : str
+        One line for the report.
     """
 
     name: str
