@@ -190,3 +190,16 @@ def test_recommendation_says_when_the_suite_is_too_small(shielding):
     np.testing.assert_allclose(rows["P high [-]"].to_numpy(), z2 / (1 + z2), rtol=1e-6)
     within = [r for r in result.recommendation["reasons"] if "0 of 1 records" in r]
     assert within and all("cannot show that P(overturn) is within it" in r for r in within)
+
+
+def test_a_bundled_name_beside_a_folder_of_that_name(tmp_path, monkeypatch):
+    # `shaketable assess transformer --out transformer` run twice: the second time the
+    # folder of the first run's report must not be taken for the object file
+    from shaketable.commands.assess import object_path
+    from shaketable.scenes.catalog import experiments_folder
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "transformer").mkdir()
+    assert object_path("transformer") == experiments_folder() / "assess" / "transformer.toml"
+    with pytest.raises(FileNotFoundError, match="bundled: lab-cabinet"):
+        object_path("no-such-object")
