@@ -181,7 +181,11 @@ def report_markdown(result: AssessmentResult, figure_files=()) -> str:
             text = "; ".join(f"{k} {_format(v)}" for k, v in values.items())
             lines.append(f"* {code}: {text}")
         lines.append("")
-    lines += ["Sources, and what was left out: docs/assess.md.", "", "## Figures", ""]
+    lines += ["Not computed: the Circolare's demand side (the behaviour factor q, the floor "
+              "spectrum with psi(Z) and gamma) and its displacement-based check; ASCE 43-05's "
+              "sliding distance (Eq. A-3) and rocking procedure (Section A.2); ASCE 7-16's "
+              "anchorage rules (Section 13.4). Each formula's source: docs/assess.md.", "",
+              "## Figures", ""]
     for (name, file, caption) in FIGURES:
         if file in figure_files:
             lines += [f"![{name}]({file})", "", f"*{caption}*", ""]
