@@ -486,6 +486,10 @@ def _codes(spec: Assessment, anchored: pd.DataFrame, spectra: dict) -> dict:
     return result
 
 
+def _count(records: int) -> str:
+    return f"{records} record" + ("" if records == 1 else "s")
+
+
 def _recommend(spec: Assessment, free: pd.DataFrame, anchored: pd.DataFrame,
                risk: dict) -> dict:
     """The choice at the highest level, with its reasons."""
@@ -499,12 +503,12 @@ def _recommend(spec: Assessment, free: pd.DataFrame, anchored: pd.DataFrame,
         row = free[(free["level"] == top) & (free["case"] == case)].iloc[0]
         ok = row["P(overturn) [-]"] <= acceptable
         text = (f"{case} friction (mu = {row['mu [-]']:.3g}) at the {name} level: "
-                f"{row['overturned']} of {row['records']} records overturn it, P(overturn) = "
+                f"{row['overturned']} of {_count(row['records'])} overturn it, P(overturn) = "
                 f"{row['P(overturn) [-]']:.2f} {'within' if ok else 'above'} the acceptable "
                 f"{acceptable:g} (95 % interval [{row['P low [-]']:.2f}, "
-                f"{row['P high [-]']:.2f}] with {row['records']} records)")
+                f"{row['P high [-]']:.2f}] with {_count(row['records'])})")
         if ok and row["P high [-]"] > acceptable:
-            text += (f"; the interval reaches above {acceptable:g}: {row['records']} records "
+            text += (f"; the interval reaches above {acceptable:g}: {_count(row['records'])} "
                      f"cannot show that P(overturn) is within it")
         if clearance is not None:
             fits = bool(row["excursion p84 [m]"] <= clearance)

@@ -188,7 +188,7 @@ def test_recommendation_says_when_the_suite_is_too_small(shielding):
     assert len(rows) > 0
     z2 = 1.959963984540054 ** 2
     np.testing.assert_allclose(rows["P high [-]"].to_numpy(), z2 / (1 + z2), rtol=1e-6)
-    within = [r for r in result.recommendation["reasons"] if "0 of 1 records" in r]
+    within = [r for r in result.recommendation["reasons"] if "0 of 1 record " in r]
     assert within and all("cannot show that P(overturn) is within it" in r for r in within)
 
 
