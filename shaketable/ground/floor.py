@@ -251,8 +251,9 @@ def floor_motion(motion: Motion, building: Building, floor: int | None = None, *
     -------
     Motion
         ``u''_g + sum_n Gamma_n phi_n(z) u''_n`` at the motion's samples [m/s^2] (exact
-        there), the vertical unchanged; its name says the floor and ``metadata`` the
-        building.
+        there; between samples it is their linear interpolant, as for any record, so the
+        samples should resolve the shortest period used), the vertical unchanged; its
+        name says the floor and ``metadata`` the building.
 
     Raises
     ------
