@@ -90,6 +90,11 @@ def _clean(value):
     return json_ready(value)
 
 
+def _level(name: str, pga: float) -> str:
+    value = f"{pga / G:.3g} g"
+    return value if name == value else f"{name} = {value}"
+
+
 def _mm(value: float) -> str:
     return "-" if math.isnan(value) else f"{value * 1000:.0f}"
 
@@ -112,7 +117,7 @@ def report_markdown(result: AssessmentResult, figure_files=()) -> str:
               f"{spec.obj.cor:g} ({spec.obj.cor_source}).",
               f"* Where: {spec.where}.",
               f"* Records: {', '.join(sorted(result.runs['record'].unique()))}; levels (ground "
-              "PGA): " + ", ".join(f"{n} = {v / G:.3g} g" for n, v in
+              "PGA): " + ", ".join(_level(n, v) for n, v in
                                    zip(spec.demand.level_names, spec.demand.levels)) + ".",
               ""]
     lines += ["## 1. Mode map", "",
@@ -176,7 +181,11 @@ def report_markdown(result: AssessmentResult, figure_files=()) -> str:
             text = "; ".join(f"{k} {_format(v)}" for k, v in values.items())
             lines.append(f"* {code}: {text}")
         lines.append("")
-    lines += ["Sources, and what was left out: docs/assess.md.", "", "## Figures", ""]
+    lines += ["Not computed: the Circolare's demand side (the behaviour factor q, the floor "
+              "spectrum with psi(Z) and gamma) and its displacement-based check; ASCE 43-05's "
+              "sliding distance (Eq. A-3) and rocking procedure (Section A.2); ASCE 7-16's "
+              "anchorage rules (Section 13.4). Each formula's source: docs/assess.md.", "",
+              "## Figures", ""]
     for (name, file, caption) in FIGURES:
         if file in figure_files:
             lines += [f"![{name}]({file})", "", f"*{caption}*", ""]

@@ -13,8 +13,8 @@ if TYPE_CHECKING:
 def object_path(text: str) -> Path:
     """An object file, or the name of a bundled example (``experiments/assess``)."""
     path = Path(text)
-    if path.suffix == ".toml" or path.exists():
-        return path
+    if path.suffix == ".toml" or path.is_file():
+        return path  # a folder of the same name (an earlier --out) is not an object file
     from shaketable.scenes.catalog import experiments_folder
 
     bundled = experiments_folder() / "assess" / f"{text}.toml"
@@ -39,6 +39,8 @@ def _assess(args: argparse.Namespace) -> int:
     notice_first_compile(args.quiet, which=("engine", "planar"))
     start = time.perf_counter()
     result = assess(spec, out, figures=not args.no_figures)
+    if getattr(args, "quiet", False):
+        return 0
     print(f"{spec.name} {spec.where}: {result.recommendation['choice']}")
     for reason in result.recommendation["reasons"]:
         print(f"  - {reason}")

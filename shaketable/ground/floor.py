@@ -20,9 +20,13 @@ Defaults for a regular building of ``N`` storeys of equal mass lumped at the flo
   factor is ``Gamma = sum phi_k / sum phi_k^2 = 3N / (2N + 1)`` (the same factor as the
   floor amplification of NTC 2018's Circolare and of Eurocode 8's equivalent lateral
   force shape).
-* ``"shear-beam"`` -- the modes of a uniform shear cantilever,
-  ``phi_n(z) = sin((2n - 1) pi z / (2H))``, ``T_n = T_1 / (2n - 1)``, with the
-  participation factors of the lumped floor masses.
+* ``"shear-beam"`` -- the exact modes of a uniform shear building: N equal floor masses
+  on N storeys of equal lateral stiffness, ``phi_n(k) = sin((2n - 1) pi k / (2N + 1))``
+  at floor k and ``T_n = T_1 sin(pi / (2(2N + 1))) / sin((2n - 1) pi / (2(2N + 1)))``
+  (the eigenvectors of the tridiagonal stiffness matrix). They are orthogonal with the
+  equal masses, so the N modes' ``Gamma_n phi_n`` add up to 1 at every floor, and they
+  tend to the continuous shear cantilever's ``sin((2n - 1) pi z / (2H))`` and
+  ``T_1 / (2n - 1)`` as N grows (the roof's ``Gamma_1 phi_1`` to 4/pi).
 
 The vertical component passes unchanged (a building is taken as rigid vertically).
 
@@ -168,22 +172,17 @@ class Building:
         if self.modes is not None:
             return self.modes
         n = self.storeys
-        z = np.arange(1, n + 1) / n
+        floors = np.arange(1, n + 1)
         if self.shape == "linear":
-            shapes = [(self.period, z)]
+            shapes = [(self.period, floors / n)]
         else:
-            shapes = [(self.period / (2 * k - 1), np.sin((2 * k - 1) * math.pi * z / 2.0))
-                      for k in range(1, self.n_modes + 1)]
+            # uniform shear building: omega_m proportional to sin((2m - 1) pi / (2(2N + 1)))
+            first = math.sin(math.pi / (2 * (2 * n + 1)))
+            shapes = [(self.period * first / math.sin((2 * m - 1) * math.pi / (2 * (2 * n + 1))),
+                       np.sin((2 * m - 1) * math.pi * floors / (2 * n + 1)))
+                      for m in range(1, self.n_modes + 1)]
         return tuple(Mode(period, self.damping, tuple(participation(phi) * phi))
                      for period, phi in shapes)
-
-    def amplification(self, floor: int) -> float:
-        """``sum_n |Gamma_n phi_n|`` at ``floor`` [-]: 1 plus it bounds the peak floor
-        acceleration over the peak ground acceleration of a rigid building (T -> 0)."""
-        floor = integer("floor", floor, 0, self.storeys)
-        if floor == 0:
-            return 0.0
-        return float(sum(abs(mode.participation[floor - 1]) for mode in self.mode_list()))
 
 
 def relative_acceleration(ground: np.ndarray, dt: float, period: float,
@@ -252,8 +251,9 @@ def floor_motion(motion: Motion, building: Building, floor: int | None = None, *
     -------
     Motion
         ``u''_g + sum_n Gamma_n phi_n(z) u''_n`` at the motion's samples [m/s^2] (exact
-        there), the vertical unchanged; its name says the floor and ``metadata`` the
-        building.
+        there; between samples it is their linear interpolant, as for any record, so the
+        samples should resolve the shortest period used), the vertical unchanged; its
+        name says the floor and ``metadata`` the building.
 
     Raises
     ------

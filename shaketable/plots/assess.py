@@ -94,7 +94,7 @@ def _demands(result, fig):
         # the three cases side by side (a small shift in x) so that none hides another
         axes[0].errorbar(x + (index - 1) * shift, p,
                          yerr=[p - cells["P low [-]"], cells["P high [-]"] - p],
-                         color=colour, marker="o", capsize=3, label=label)
+                         color=colour, marker="o", linestyle="none", capsize=3, label=label)
         for axis, what in ((axes[1], "excursion"), (axes[2], "slip")):
             axis.plot(x, cells[f"{what} median [m]"] * 1000, "o-", color=colour, label=label)
             axis.plot(x, cells[f"{what} p84 [m]"] * 1000, "s--", color=colour,
@@ -108,7 +108,9 @@ def _demands(result, fig):
                          alpha=0.7)
     axes[0].axhline(spec.criteria.acceptable, color="grey", linestyle=":")
     axes[0].set_ylim(-0.03, 1.03)
-    axes[0].set_ylabel("P(overturn) [-] (Wilson 95 %; line: lognormal fit)")
+    fitted = any(entry.get("fit") is not None for entry in result.fragility.values())
+    axes[0].set_ylabel("P(overturn) [-] (Wilson 95 %" + ("; line: lognormal fit)" if fitted
+                                                          else ")"))
     axes[1].set_ylabel("peak corner excursion [mm] (o median, □ 84th)")
     axes[2].set_ylabel("peak slip [mm] (band: range over records)")
     if spec.criteria.clearance is not None:

@@ -177,3 +177,29 @@ def test_fragility_is_the_package_fit_of_direct_runs(monkeypatch):
     fit = result.fragility["high"]["fit"]
     assert sum(outcome) > 0  # the fit exists: some runs overturn
     assert (fit.median, fit.beta) == (expected.median, expected.beta)
+
+
+def test_recommendation_says_when_the_suite_is_too_small(shielding):
+    # one record: the Wilson 95 % interval of 0/1 is [0, z^2 / (1 + z^2)] = [0, 0.7935]
+    # (z = 1.95996; the package rounds it to 1.959964), far above the acceptable 0.05:
+    # a point estimate of 0 shows nothing
+    _, result, _ = shielding
+    rows = result.free[result.free["overturned"] == 0]
+    assert len(rows) > 0
+    z2 = 1.959963984540054 ** 2
+    np.testing.assert_allclose(rows["P high [-]"].to_numpy(), z2 / (1 + z2), rtol=1e-6)
+    within = [r for r in result.recommendation["reasons"] if "0 of 1 record " in r]
+    assert within and all("cannot show that P(overturn) is within it" in r for r in within)
+
+
+def test_a_bundled_name_beside_a_folder_of_that_name(tmp_path, monkeypatch):
+    # `shaketable assess transformer --out transformer` run twice: the second time the
+    # folder of the first run's report must not be taken for the object file
+    from shaketable.commands.assess import object_path
+    from shaketable.scenes.catalog import experiments_folder
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "transformer").mkdir()
+    assert object_path("transformer") == experiments_folder() / "assess" / "transformer.toml"
+    with pytest.raises(FileNotFoundError, match="bundled: lab-cabinet"):
+        object_path("no-such-object")

@@ -90,14 +90,33 @@ def test_linear_mode_participation_is_3n_over_2n_plus_1(storeys):
     assert participation(phi) == pytest.approx(3 * storeys / (2 * storeys + 1), rel=1e-14)
 
 
-def test_shear_beam_participation_tends_to_4_over_pi():
-    # continuous uniform shear beam: Gamma_1 = int sin / int sin^2 = (2/pi) / (1/2) = 4/pi
-    building = Building(period=1.0, height=600.0, storeys=200, shape="shear-beam")
-    # the floors' sums are one-sided Riemann sums of the integrals: error O(1/N)
-    assert building.mode_list()[0].participation[-1] == pytest.approx(4 / math.pi, rel=2 / 200)
-    # higher modes at T_1 / (2n - 1)
-    three = Building(period=0.9, height=30.0, storeys=10, shape="shear-beam", n_modes=3)
-    assert [mode.period for mode in three.mode_list()] == pytest.approx([0.9, 0.3, 0.18])
+def test_shear_beam_modes_are_the_uniform_shear_building_eigenmodes():
+    # an independent eigen-solution: N equal masses m on N equal storey stiffnesses k,
+    # K = k tridiag(-1, 2, -1) with K[N, N] = k (the roof), M = m I; Gamma_n phi_n at each
+    # floor and T_n / T_1 = omega_1 / omega_n from numpy's symmetric eigensolver
+    n = 7
+    stiffness = 2.0 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)
+    stiffness[-1, -1] = 1.0
+    eigenvalues, vectors = np.linalg.eigh(stiffness)
+    building = Building(period=0.9, height=21.0, storeys=n, shape="shear-beam", n_modes=n)
+    modes = building.mode_list()
+    for mode, value, phi in zip(modes, eigenvalues, vectors.T):
+        gamma_phi = phi.sum() / (phi @ phi) * phi
+        np.testing.assert_allclose(mode.participation, gamma_phi, rtol=0, atol=1e-13)
+        assert mode.period == pytest.approx(0.9 * math.sqrt(eigenvalues[0] / value), rel=1e-13)
+    # orthogonal modes with equal masses: all N together carry the whole mass, so their
+    # Gamma_n phi_n add up to 1 at every floor (a rigid building moves with the ground)
+    total = np.sum([mode.participation for mode in modes], axis=0)
+    np.testing.assert_allclose(total, np.ones(n), rtol=0, atol=1e-13)
+
+
+def test_shear_beam_tends_to_the_continuous_cantilever():
+    # continuous uniform shear beam: Gamma_1 phi_1(H) = int sin / int sin^2 = (2/pi) / (1/2)
+    # = 4/pi, and T_n = T_1 / (2n - 1)
+    building = Building(period=1.0, height=600.0, storeys=200, shape="shear-beam", n_modes=3)
+    modes = building.mode_list()
+    assert modes[0].participation[-1] == pytest.approx(4 / math.pi, rel=1e-4)
+    assert [mode.period for mode in modes] == pytest.approx([1.0, 1 / 3, 1 / 5], rel=1e-3)
 
 
 def test_exact_for_piecewise_linear_input_against_scipy():
@@ -121,7 +140,7 @@ def test_exact_for_piecewise_linear_input_against_scipy():
                           atol=1e-14).y[:, -1]
         reference[i + 1] = -ground[i + 1] - 2 * zeta * w * state[1] - w * w * state[0]
     computed = relative_acceleration(ground, dt, period, zeta)
-    assert np.max(np.abs(computed - reference)) <= 1e-8 * np.max(np.abs(reference))
+    assert np.max(np.abs(computed - reference)) <= 1e-9 * np.max(np.abs(reference))
 
 
 def test_ground_floor_is_the_ground_and_height_interpolates():
