@@ -98,7 +98,10 @@ class CalibratedCor:
 
     @classmethod
     def from_summary(cls, data: dict[str, Any], source: str = "") -> CalibratedCor:
-        """From :meth:`Calibration.summary` (the scatter model's mean if it is there)."""
+        """From :meth:`Calibration.summary`: its headline COR (``cor [-]``, ``cor_se [-]``,
+        ``cor_dof``, ``cor_sigma [-]``, with ``cor_source``); a summary without
+        ``cor_source`` (written by earlier versions) gives the scatter model's mean if it is
+        there, else the least-squares COR."""
         where = source or "calibration summary"
 
         def number(key: str) -> float:
@@ -109,6 +112,11 @@ class CalibratedCor:
                                  "a calibration.json written by `shaketable calibrate`?")
             return float(value)
 
+        if "cor_source" in data:       # the headline keys: the COR that the calibration leads with
+            sigma = number("cor_sigma [-]") if "cor_sigma [-]" in data else 0.0
+            return cls(number("cor [-]"), number("cor_se [-]"), int(number("cor_dof")), sigma,
+                       source)
+        # files written before the headline keys: the scatter model's mean if it is there
         if "cor_mean [-]" in data:
             return cls(number("cor_mean [-]"), number("cor_mean_se [-]"),
                        int(number("cor_mean_dof")), number("cor_scatter_sigma [-]"), source)
