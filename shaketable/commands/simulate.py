@@ -15,7 +15,6 @@ from shaketable.commands.common import (
     scaled,
 )
 from shaketable.commands.options import add_motion_options, add_quantity, motion_from_options
-from shaketable.core.constants import INCH
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -70,12 +69,12 @@ def _simulate(args) -> int:
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
     plots.save((result if friction is not None else for_figure(result)).plot(),
                out / f"calcomp.{args.format}")
+    from shaketable.commands.answers import planar_answer, rocking_answer
+
+    # the answer first, in the block's units; then the files
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
-    if friction is not None:   # as `run` says it of a scene's planar block
-        print(f"peak slip {result.peak_slip / INCH:.3g} in, residual "
-              f"{result.residual_slip / INCH:+.3g} in ({result.residual_slip:+.4f} m); "
-              + ", ".join(f"{name} {seconds:.2f} s" for name, seconds in
-                          result.time_in_mode.items() if seconds > 0))
+    for line in (planar_answer(result) if friction is not None else rocking_answer(result)):
+        print("  " + line)
     if args.history == "auto" and history != "full":
         print(f"history.csv: {history} ({result.t.size} samples; --history full writes all)")
     written = ([out / "history.csv"] if history != "none" else []) + [

@@ -42,9 +42,17 @@ def _slide(args) -> int:
     write_csv(out / "history.csv", result.to_frame())
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
     save(result.plot(), out / f"sliding.{args.format}")
-    print(f"{result.status}: peak slip {result.peak_slip_inches:.2f} in, residual "
-          f"{result.residual_slip / INCH:+.2f} in ({result.residual_slip:+.4f} m), "
-          f"{result.slip_episodes} slip episodes")
+    if block is not None:    # in the unit the block was given in
+        from shaketable.core.units import format_length
+
+        unit = block.length_unit
+        print(f"{result.status}: peak slip {format_length(result.peak_slip, unit)}, residual "
+              f"{format_length(result.residual_slip, unit, signed=True)}, "
+              f"{result.slip_episodes} slip episodes")
+    else:
+        print(f"{result.status}: peak slip {result.peak_slip_inches:.2f} in, residual "
+              f"{result.residual_slip / INCH:+.2f} in ({result.residual_slip:+.4f} m), "
+              f"{result.slip_episodes} slip episodes")
     if block is not None:
         print(f"Section 2.1: {result.mode_choice['mode (Section 2.1)']} "
               f"(B/H = {result.mode_choice['B/H [-]']:.3f}, mu_s = {static:g})")
