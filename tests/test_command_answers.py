@@ -54,3 +54,22 @@ def test_simulate_friction_leads_with_the_answer_in_metres(tmp_path, capsys):
     assert " in" not in "\n".join(planar[:6]).replace(" in each", "")
     assert rocking[1:3] == ["  max theta/alpha 0.5 at t = 0.00 s; did not overturn",
                             f"  came to rest at t = {rest:.2f} s"]
+
+
+def test_sweeps_label_blocks_in_the_users_units(tmp_path):
+    from shaketable import sweeps
+
+    def blocks(table):
+        spec = sweeps.spec_from_dict(
+            {"name": "u", "blocks": table, "rocking": {"cor": 0.9, "duration": "1 s"},
+             "records": [{"name": "el-centro-chopra"}],
+             "intensity": {"measure": "pga", "levels": ["0.1 g"]}}, directory=tmp_path)
+        return spec, [block.describe() for block in spec.blocks]
+
+    assert blocks({"sizes": ["2x0.5m", "16x4ft"]})[1] == ["2 x 0.5 m", "16 x 4 ft"]
+    assert blocks({"height": ["2 m"], "width": ["0.5 m", "0.25 m"]})[1] == [
+        "2 x 0.5 m", "2 x 0.25 m"]
+    assert blocks({"height": ["4 ft"], "aspect": [4.0]})[1] == ["4 x 1 ft"]
+    spec, _ = blocks({"sizes": ["2x0.5m"]})
+    table = sweeps.run_sweep(spec, tmp_path / "out", workers=1, progress=False).table
+    assert list(table["block"]) == ["2 x 0.5 m"]

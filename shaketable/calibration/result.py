@@ -16,7 +16,7 @@ from shaketable.calibration.model import PARAMETERS
 from shaketable.calibration.peaks import PeakEstimate, PeriodFit
 from shaketable.calibration.record import FreeRockingRecord
 from shaketable.calibration.scatter import CorScatter
-from shaketable.core.constants import INCH
+from shaketable.core.constants import length_factor
 from shaketable.core.equality import fields_equal
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
@@ -363,10 +363,12 @@ class Calibration:
         if self.periods is not None:
             e = self.periods.block
             height_se, width_se = self.periods.size_se()
+            size_unit = self.block.length_unit     # the size in the unit the block was given in
+            scale = length_factor(size_unit)
             lines.append(f"period fit: R = {self.periods.R:.4f} +- {self.periods.R_se:.4f} m, "
                          f"alpha = {self.periods.alpha:.4f} +- {self.periods.alpha_se:.4f} rad "
-                         f"-> {e.height / INCH:.2f} +- {height_se / INCH:.2f} x "
-                         f"{e.width / INCH:.2f} +- {width_se / INCH:.2f} in (standard errors; "
+                         f"-> {e.height / scale:.4g} +- {height_se / scale:.2g} x "
+                         f"{e.width / scale:.4g} +- {width_se / scale:.2g} {size_unit} (standard errors; "
                          f"nominal {self.block.describe()})"
                          + (f"; at the nominal alpha R = {self.periods_alpha_held.R:.4f} +- "
                             f"{self.periods_alpha_held.R_se:.4f} m (nominal "

@@ -187,7 +187,7 @@ def check_friction_spec(spec: SweepSpec, rocking: dict) -> None:
                 impact_ratios(block, cor)
             except ValueError as error:
                 raise SweepError(f"{where}: rocking.cor with [friction], block "
-                                 f"{block.describe(unit='in')}: {error}") from None
+                                 f"{block.describe()}: {error}") from None
 
 
 def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list,

@@ -202,7 +202,7 @@ def test_a_rocking_store_refuses_a_friction_spec_and_keeps_its_format(tmp_path):
                              "n_chunks", "format", "format_version", "solver"}
     assert manifest["fingerprint"] == \
         "da7b7957bfe1432d658337882c1c918c96ee9e704fbf391ca976917b35380e55"
-    assert manifest["format_version"] == 2
+    assert manifest["format_version"] == 3
     with_friction = ROCKING_SPEC.replace("[run]", "[friction]\nstatic = 0.6\n[run]")
     with pytest.raises(sweeps.SweepError, match=r"has no \[friction\] \(the rocking model\) "
                                                 r"and .* has \[friction\]"):
