@@ -12,7 +12,7 @@ from shaketable.commands.common import (
     add_record_arguments,
     load_motion,
     notice_first_compile,
-    scaled,
+    scaled_record,
 )
 from shaketable.commands.options import add_motion_options, add_quantity, motion_from_options
 from shaketable.core.geometry import Block
@@ -37,8 +37,7 @@ def _simulate(args) -> int:
 
     block = Block.parse(args.block)
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
-    if motion is not None:
-        motion = scaled(motion, args.scale)
+    motion, scale_note = scaled_record(motion, args)
     theta0 = _resolve_angle(args.theta0, block)
     out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
     notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else
@@ -46,13 +45,23 @@ def _simulate(args) -> int:
     if isinstance(args.cor, str):           # a calibration.json: the calibrated COR's spread
         from shaketable.commands.calibrate import simulate_calibrated
 
-        return simulate_calibrated(args, block, motion, theta0, out)
+        status = simulate_calibrated(args, block, motion, theta0, out)
+        if scale_note:
+            print(scale_note)
+        return status
     friction = _friction(args.friction)
     if friction is not None and args.ensemble:
-        raise ValueError("--friction runs one planar block; it cannot be combined with "
-                         "--ensemble")
+        raise ValueError(
+            "--friction with --ensemble: the ensemble perturbs the inputs of the rocking "
+            "model's batch engine (amplitude, COR, size, start; no friction, no sliding), "
+            "and there is no ensemble of the planar (friction) model; run --friction without "
+            "--ensemble, --ensemble without --friction (the base cannot slide), or a sweep "
+            "with [friction] over the values you doubt (shaketable sweep, docs/sweeps.md)")
     if args.ensemble:
-        return _ensemble(args, block, motion, out)
+        status = _ensemble(args, block, motion, out)
+        if scale_note:
+            print(scale_note)
+        return status
     if friction is not None:   # issue 25: the planar block (rest, slide, rock, slide-rock, flight)
         result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
                           friction=friction)
@@ -75,6 +84,8 @@ def _simulate(args) -> int:
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
     for line in (planar_answer(result) if friction is not None else rocking_answer(result)):
         print("  " + line)
+    if scale_note:
+        print(scale_note)
     if args.history == "auto" and history != "full":
         print(f"history.csv: {history} ({result.t.size} samples; --history full writes all)")
     written = ([out / "history.csv"] if history != "none" else []) + [

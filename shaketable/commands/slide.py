@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from shaketable.commands.common import add_record_arguments, load_motion, scaled
+from shaketable.commands.common import add_record_arguments, load_motion, scaled_record
 from shaketable.core.constants import INCH
 
 
@@ -28,11 +28,13 @@ def _slide(args) -> int:
     if not args.record:
         raise ValueError("--record is required (or give --table-4-4)")
     motion = load_motion(args)
-    motion = scaled(motion, args.scale)
+    motion, scale_note = scaled_record(motion, args)
     if args.sweep:
         frame = peak_slips(motion, args.sweep)
         write_csv(out / "sweep.csv", frame)
         print(frame[["mu_d [-]", "peak slip [in]", "residual slip [m]"]].to_string(index=False))
+        if scale_note:
+            print(scale_note)
         print(f"wrote {out / 'sweep.csv'}")
         return 0
     static = args.static_friction
@@ -53,6 +55,8 @@ def _slide(args) -> int:
         print(f"{result.status}: peak slip {result.peak_slip_inches:.2f} in, residual "
               f"{result.residual_slip / INCH:+.2f} in ({result.residual_slip:+.4f} m), "
               f"{result.slip_episodes} slip episodes")
+    if scale_note:
+        print(scale_note)
     if block is not None:
         print(f"Section 2.1: {result.mode_choice['mode (Section 2.1)']} "
               f"(B/H = {result.mode_choice['B/H [-]']:.3f}, mu_s = {static:g})")
