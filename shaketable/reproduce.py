@@ -26,7 +26,8 @@ TIMING_NOTE = ("*Times:* the run lines give the exact block's times (events loca
 
 
 def run_line(run: RockingResult) -> str:
-    """One run in words and units for report.md: verdict, instability, impacts, rods."""
+    """One run in words and units for report.md: which block, from which angle and at which
+    COR, then the verdict, instability, impacts and rods."""
     if run.overturned:
         side = "+" if run.overturn_direction > 0 else "−"
         verdict = (f"**F**: overturns ({side}) at {run.t_overturn:.2f} s; largest rocking "
@@ -42,7 +43,10 @@ def run_line(run: RockingResult) -> str:
                     "summed in closed form (endless impacts to rest)")
     rods = ("" if run.block.rods is None else
             f"; largest rod force {run.max_rod_force:.3g} W (Section 4.4)")
-    return f"* COR {run.cor:g}: {verdict}; {unstable}; {impacts}{rods}"
+    start = (f"from θ0 = {run.theta[0] / run.block.alpha:.3g} α" if run.theta[0] != 0.0
+             else "from rest")
+    return (f"* {run.block.describe()} block, {start}, COR {run.cor:g}: {verdict}; {unstable}; "
+            f"{impacts}{rods}")
 
 
 def comparison_kind(scene: Scene, quantity_key: str | None = None) -> str:
@@ -363,6 +367,7 @@ def _assemble(out: Path, rerun) -> Path:
     scope = (f"{len(order)} {sections_word}, all rerun now." if not kept else
              f"{len(order)} sections: {len(rerun)} rerun now ({', '.join(rerun)}), "
              f"{len(kept)} kept from an earlier run into this folder.")
+    contents, differing = _contents(order, sections)
     header = ["# shaketable: the report reproduced", "",
               "Aslam, Godden & Scalise, *Rocking and overturning response of rigid bodies to "
               "earthquake motions* (BLOKROC). Each section reruns one figure or table as a "
@@ -372,10 +377,53 @@ def _assemble(out: Path, rerun) -> Path:
               "An overturned run is the report's **F** everywhere (its peak before "
               "instability is given beside it, never (π/2)/α as a peak). Table 4.4 (sliding) "
               "is computed by the Coulomb stick-slip block, outside the rocking model "
-              "(section `table-4-4`).", ""]
-    path = write_text(out / "report.md", "\n".join(header + sections))
+              "(section `table-4-4`).", "", *differing, *contents]
+    anchored = [f'<a id="{name}"></a>\n\n{section}' for name, section in zip(order, sections)]
+    path = write_text(out / "report.md", "\n".join(header + anchored))
     write_gallery(out)
     return path
+
+
+def _table_rows_marked_no(section: str) -> list[str]:
+    """The rows of a section's Markdown tables whose verdict is **no**, each as
+    ``column: value; ...`` (the verdict column left out)."""
+    rows, header = [], None
+    lines = section.splitlines()
+    for index, line in enumerate(lines):
+        if not line.startswith("|") or line.startswith("|---"):
+            continue
+        cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
+        if index + 1 < len(lines) and lines[index + 1].startswith("|---"):
+            header = cells
+            continue
+        if any(cell.startswith("**no**") for cell in cells):
+            named = [f"{name}: {cell}" if name else cell for name, cell in
+                     zip(header or [""] * len(cells), cells)
+                     if cell and not cell.startswith("**no**")]
+            rows.append("; ".join(named))
+    return rows
+
+
+def _contents(order: list[str], sections: list[str]) -> tuple[list[str], list[str]]:
+    """The report's table of contents and its list of the comparisons that differ (the
+    table rows marked **no**), both linking to the sections' anchors."""
+    contents = ["## Contents", ""]
+    differing: list[str] = []
+    for name, section in zip(order, sections):
+        heading = next((line[3:].strip() for line in section.splitlines()
+                        if line.startswith("## ")), name)
+        rows = _table_rows_marked_no(section)
+        contents.append(f"- [{heading}](#{name})"
+                        + (f" ({len(rows)} differ)" if rows else ""))
+        differing += [f"- [`{name}`](#{name}): {row}" for row in rows]
+    if differing:
+        differing = ([f"## The {len(differing)} comparisons that differ", "",
+                      "Every table row of the sections below marked **no**, by section:", ""]
+                     + differing + [""])
+    else:
+        differing = ["## The comparisons that differ", "", "None: every comparison agrees.",
+                     ""]
+    return contents + [""], differing
 
 
 def write_gallery(out: str | os.PathLike[str]) -> Path:

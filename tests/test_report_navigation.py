@@ -1,0 +1,110 @@
+"""The reproduction report can be navigated, and its figures show what they are about:
+a table of contents and the list of the comparisons that differ at the top, run lines that
+say which block and starting angle they describe, an overlay figure that runs to the end of
+its longest run, a sliding-only planar figure without flat rotation panels, and a package
+docstring that starts with an example.
+"""
+
+from __future__ import annotations
+
+import doctest
+import json
+
+import matplotlib
+import pytest
+
+import shaketable as st
+from shaketable.ground import records
+
+matplotlib.use("Agg")
+
+SECTION_A = """## Fig. 9.9 — `aaa-scene`
+
+| quantity | report | reproduced | unit | agrees |
+|---|---|---|---|---|
+| t overturn | 4 | 4.1 | s | yes |
+| max theta/alpha | 0.5 | 0.8 | - | **no** |
+"""
+
+SECTION_B = """## Table 9.9 — `bbb-scene`
+
+| block | COR | report | reproduced | agrees |
+|---|---|---|---|---|
+| 4 x 1 ft | 0.9 | F | 0.3 | **no** |
+| 8 x 2 ft | 0.9 | 0.2 | 0.21 | yes |
+"""
+
+
+def test_report_has_contents_and_the_differing_comparisons_first(tmp_path):
+    from shaketable.reproduce import _assemble
+
+    for name, section, counts in (("aaa-scene", SECTION_A, [1, 1]),
+                                  ("bbb-scene", SECTION_B, [1, 1])):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "section.md").write_text(section)
+        (tmp_path / name / "counts.json").write_text(json.dumps({"report inputs": counts}))
+    text = _assemble(tmp_path, rerun=["aaa-scene", "bbb-scene"]).read_text()
+    differ = text.index("## The 2 comparisons that differ")
+    contents = text.index("## Contents")
+    first_section = text.index("## Fig. 9.9")
+    assert differ < contents < first_section
+    assert ("- [`aaa-scene`](#aaa-scene): quantity: max theta/alpha; report: 0.5; "
+            "reproduced: 0.8; unit: -") in text
+    assert "- [`bbb-scene`](#bbb-scene): block: 4 x 1 ft; COR: 0.9; report: F; reproduced: 0.3" \
+        in text
+    assert "- [Fig. 9.9 — `aaa-scene`](#aaa-scene) (1 differ)" in text
+    assert '<a id="aaa-scene"></a>' in text and '<a id="bbb-scene"></a>' in text
+    # the headline's count of differing comparisons is the list's length
+    assert "2 differ.**" in text
+
+
+def test_run_lines_name_the_block_and_the_starting_angle():
+    from shaketable.reproduce import run_line
+
+    block = st.Block.parse("30x6in")
+    run = st.simulate(block, None, cor=0.925, theta0=0.5 * block.alpha, duration=1.0)
+    assert run_line(run).startswith("* 30 x 6 in block, from θ0 = 0.5 α, COR 0.925: ")
+    still = st.simulate(block, records.load("pacoima-dam-s16e").scaled(0.05), cor=0.9,
+                        duration=1.0)
+    assert run_line(still).startswith("* 30 x 6 in block, from rest, COR 0.9: ")
+
+
+def test_overlay_figure_runs_to_the_end_of_its_longest_run():
+    import matplotlib.pyplot as plt
+
+    # the teaching scene: 4 x 0.8 ft overturns, 12 x 2.4 ft survives (Section 2.4 (1))
+    motion = records.load("pacoima-dam-s74w")
+    small = st.simulate(st.Block.parse("4x0.8ft"), motion, cor=0.9)
+    large = st.simulate(st.Block.parse("12x2.4ft"), motion, cor=0.9)
+    assert small.overturned and not large.overturned
+    # the figure used to stop where the small block fell (4.28 s): that the large block
+    # survives the rest of the record (41.7 s) was off the axis
+    from shaketable.plots.calcomp import calcomp
+
+    figure = calcomp(small, others=[large])
+    assert figure.axes[-1].get_xlim()[1] == pytest.approx(large.t[-1])
+    assert large.t[-1] == pytest.approx(motion.t[-1]) and large.t[-1] > 9 * small.t_overturn
+    plt.close(figure)
+
+
+def test_a_block_that_never_rocks_gets_no_flat_rotation_panels():
+    import matplotlib.pyplot as plt
+
+    # mu_s 0.2 < B/H 0.25: the block only slides (Section 2.1)
+    motion = records.load("el-centro-chopra").scaled(1.5)
+    run = st.simulate(st.Block.parse("2x0.5m"), motion, cor=0.9, friction=st.Friction(0.2),
+                      duration=6.0)
+    assert run.verdict() == "slid" and run.max_abs_theta == 0.0
+    figure = run.plot()
+    labels = [axis.get_ylabel() for axis in figure.axes]
+    assert "θ [rad]" not in labels and "θ' [rad/s]" not in labels
+    assert "slip velocity [mm/s]" in labels and "slip [mm]" in labels
+    assert "never rocked" in figure._suptitle.get_text()
+    plt.close(figure)
+
+
+def test_help_starts_with_an_example_that_runs():
+    lines = st.__doc__.splitlines()
+    assert lines[2].startswith("Example") and lines[4].startswith(">>> import shaketable")
+    result = doctest.testmod(st, verbose=False)
+    assert result.attempted >= 5 and result.failed == 0
