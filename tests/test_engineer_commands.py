@@ -52,6 +52,11 @@ def test_pga_target_scales_the_record_and_says_by_how_much(tmp_path, capsys):
     factor = float(line.split("scaled by ")[1].split(" ")[0])
     assert own == pytest.approx(0.319, abs=5e-4)
     assert factor == pytest.approx(0.5 / own, rel=1e-3)
+    assert main(["slide", "--block", "2x0.5m", "--record", "el-centro-chopra", "--pga", "0.4g",
+                 "--static-friction", "0.2", "--out", str(tmp_path / "s")]) == 0
+    first, second = capsys.readouterr().out.splitlines()[:2]
+    assert first.startswith("slid: peak slip ") and " mm, residual " in first
+    assert second.startswith("record el-centro-chopra: own PGA 0.3188 g, scaled by 1.255")
     with pytest.raises(SystemExit) as refused:       # argparse: mutually exclusive
         main(["simulate", "--block", "2x0.5m", "--record", "el-centro-chopra", "--pga",
               "0.5g", "--scale", "2", "--cor", "0.9", "--out", str(out)])

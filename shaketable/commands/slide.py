@@ -43,7 +43,8 @@ def _slide(args) -> int:
     result = slide(motion, Friction(static, dynamic), block=block)
     write_csv(out / "history.csv", result.to_frame())
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
-    save(result.plot(), out / f"sliding.{args.format}")
+    save(result.plot(length_unit=block.length_unit if block is not None else "in"),
+         out / f"sliding.{args.format}")
     if block is not None:    # in the unit the block was given in
         from shaketable.core.units import format_length
 
