@@ -126,6 +126,8 @@ def format_length(value: float, unit: str, *, digits: int = 3, signed: bool = Fa
         return "n/a"
     unit = display_length_unit(value, unit)
     factor = LENGTH_UNITS[unit]
-    number = f"{value / factor:{'+' if signed else ''}.{digits}g}"
+    # significant zeros kept (8.30 in), no bare trailing point (225 mm)
+    number = f"{value / factor:{'+' if signed else ''}#.{digits}g}".replace(".e", "e")
+    number = number[:-1] if number.endswith(".") else number
     return f"{number} {unit}"
 
