@@ -94,3 +94,31 @@ def test_modemap_of_the_users_block_and_record(tmp_path, capsys):
     frame = pd.read_csv(out / "mode_map.csv")
     assert sorted(frame["B/H [-]"].unique()) == [0.25, 0.5]     # the user's B/H added
     assert (out / "mode_map.png").stat().st_size > 0
+
+
+def test_friction_sweep_slip_figure_draws_median_and_84th_percentile():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import pandas as pd
+
+    from shaketable.plots.sweep_slip import slip_against_intensity
+
+    # three records at two levels; at 0.4 g one of them overturns (left out)
+    slips = {0.2: [0.001, 0.002, 0.004], 0.4: [0.010, 0.030, 0.5]}
+    rows = pd.DataFrame([{"block": "2 x 0.5 m", "cor [-]": 0.9, "record": f"r{k}",
+                          "pga [g]": level, "peak slip [m]": value,
+                          "peak corner excursion [m]": 2 * value,
+                          "overturned": level == 0.4 and k == 2}
+                         for level, values in slips.items() for k, value in enumerate(values)])
+    figure = slip_against_intensity(rows)
+    slip_axis = figure.axes[0]
+    lines = {line.get_label(): line for line in slip_axis.get_lines()}
+    assert slip_axis.get_ylabel() == "peak slip of the base [mm]"
+    # median and 84th percentile (linear interpolation) of the standing runs, in mm
+    assert list(lines["median"].get_ydata()) == pytest.approx([2.0, 20.0])
+    assert list(lines["84th percentile"].get_ydata()) == pytest.approx(
+        [2.0 + 0.68 * 2.0, 10.0 + 0.84 * 20.0])
+    assert any(text.get_text() == "1/3\nfell" for text in slip_axis.texts)
+    plt.close(figure)

@@ -294,7 +294,10 @@ def test_sweep_command_prints_verdicts_and_draws_figures_per_friction(tmp_path, 
         line = f"mu_s {mu_s:g}, mu_d {mu_d:g}: "
         assert line in printed
         if len(standing):
-            assert (f"largest peak slip {standing['peak slip [m]'].max():.3g} m"
+            # blocks in in and ft: lengths in m (mm below 1 m), 3 significant digits
+            from shaketable.core.units import format_length
+
+            assert (f"largest peak slip {format_length(standing['peak slip [m]'].max(), 'm')}"
                     in printed.split(line)[1].splitlines()[0])
     folders = sorted(p.name for p in (out / "figures").iterdir())
     assert folders == ["friction-mus0.2-mud0.16", "friction-mus0.2-mud0.2",
