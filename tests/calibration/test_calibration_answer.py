@@ -106,3 +106,17 @@ def test_a_fitted_cutoff_above_nyquist_reads_no_filter(scattered):
     assert "40 Hz" not in above.headline() or "no filter" in above.headline()
     below = dataclasses.replace(scattered, anti_alias="fit", filter_cutoff=20.0)
     assert below.filter_text() == f"fitted {scattered.filter_order}-pole filter at 20 Hz"
+
+
+def test_a_record_in_mm_is_shown_in_mm(tmp_path):
+    from shaketable.calibration import read_record
+
+    path = tmp_path / "lab.csv"
+    path.write_text("time [s],top displacement [mm]\n" + "\n".join(
+        f"{0.02 * k:.2f},{-50.0 * (0.9 ** k):.4f}" for k in range(50)) + "\n")
+    record = read_record(path)
+    assert record.display_scale() == (pytest.approx(1000.0), "mm")
+    assert record.values[0] == pytest.approx(-0.050)          # SI inside: metres
+    # a record made in memory keeps the report's inches
+    assert FreeRockingRecord.from_top_displacement([0.0, 0.1], [0.0, 0.01]).display_scale() \
+        == (pytest.approx(1 / 0.0254), "in")
