@@ -50,10 +50,13 @@ def _run(args) -> int:
               f"{run.verdict()}")
         for answer in planar_answer(run):
             print(f"  {answer}")
-    for run in result.slides:
+    for run in result.slides:   # in the unit the scene's block was given in
+        from shaketable.core.units import format_length
+
+        unit = scene.block.length_unit
         print(f"{scene.name}: sliding with μs {run.friction.static:g}, μd "
-              f"{run.friction.dynamic:g}: peak slip {run.peak_slip_inches:.2f} in "
-              f"({run.peak_slip:.4f} m), residual {run.residual_slip:+.4f} m, "
+              f"{run.friction.dynamic:g}: peak slip {format_length(run.peak_slip, unit)}, "
+              f"residual {format_length(run.residual_slip, unit, signed=True)}, "
               f"{run.slip_episodes} slip episode(s); Section 2.1: "
               f"{run.mode_choice.get('mode (Section 2.1)', 'n/a')}")
     for line in result.comparisons:
