@@ -140,8 +140,11 @@ class CalibratedCor:
         import scipy.stats
 
         half = float(scipy.stats.t.ppf(0.975, self.dof)) * self.mean_se
-        return (f"COR {self.mean:.4f} (95 % interval {self.mean - half:.4f} to "
-                f"{self.mean + half:.4f}), impact-to-impact scatter sigma {self.sigma:.4f}"
+        # one decimal beyond the interval's half-width, at least 4
+        digits = max(4, int(math.ceil(-math.log10(half))) + 1) if half > 0 else 6
+        return (f"COR {self.mean:.{digits}f} (95 % interval {self.mean - half:.{digits}f} to "
+                f"{self.mean + half:.{digits}f}), impact-to-impact scatter sigma "
+                f"{self.sigma:.4f}"
                 + (f", from {self.source}" if self.source else ""))
 
 
