@@ -338,9 +338,9 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
                   "|---|---|---|---|---|"]
         for line in result.comparisons:
             kind = comparison_kind(scene, line.key)
+            unit = "" if line.unit in ("", "-") else f" {line.unit}"
             tally.add(kind, line.agrees, what=f"{line.quantity}: the report gives "
-                      f"{_format(line.report)}, reproduced {_format(line.reproduced)} "
-                      f"{line.unit}".rstrip())
+                      f"{_format(line.report)}, reproduced {_format(line.reproduced)}{unit}")
             mark = "yes" if line.agrees else "**no**"
             if kind == "by construction":
                 mark += " (by construction)"
@@ -433,8 +433,9 @@ def _contents(order: list[str], sections: list[str],
         counted = tally.counts.get(kind, [0, 0])[1]
         if not counted and not items:
             continue
-        lists += [f"## The {counted} comparisons {DIFFERING_HEADINGS.get(kind, kind)} that "
-                  "differ", ""] + items
+        things = ("comparison", "differs") if counted == 1 else ("comparisons", "differ")
+        lists += [f"## The {counted} {things[0]} {DIFFERING_HEADINGS.get(kind, kind)} that "
+                  f"{things[1]}", ""] + items
         if len(items) != counted:   # sections kept from a run of an earlier version
             lists.append(f"- ({counted - len(items)} more in sections written by an earlier "
                          "version, which do not list them: rerun those sections)")
@@ -606,10 +607,13 @@ def _repeatability_section(study: Study, folder: Path, lines: list, tally: Compa
               "| quantity | report | reproduced | unit | agrees |", "|---|---|---|---|---|"]
     # every case row is a comparison with the report's finding ('agrees' column); the
     # earthquake-type cases run on the SUBSTITUTE accelerogram, as do the contrast lines
-    for row in frame.itertuples(index=False):
-        kind = "substitute" if "substitute" in row.case else "report inputs"
-        tally.add(kind, row.agrees == "yes" if isinstance(row.agrees, str) else bool(row.agrees),
-                  what=f"{row.case}: not as the report found")
+    for _, row in frame.iterrows():
+        kind = "substitute" if "substitute" in row["case"] else "report inputs"
+        agrees = row["agrees"]
+        tally.add(kind, agrees == "yes" if isinstance(agrees, str) else bool(agrees),
+                  what=f"{row['case']}: the report found "
+                       f"'{row.get('report (Section 3.7 (2))', '—')}', reproduced "
+                       f"'{row.get('reproduced', '—')}'")
     for line in section_3_7_contrast(cases):
         tally.add("substitute", line.agrees, what=f"{line.quantity}: the report gives "
                   f"{_format(line.report)}, reproduced {_format(line.reproduced)}")

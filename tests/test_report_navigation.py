@@ -24,7 +24,7 @@ SECTION_A = """## Fig. 9.9 — `aaa-scene`
 |---|---|---|---|---|
 | t overturn | 4 | 4.1 | s | yes |
 | max theta/alpha | 0.5 | 0.8 | - | **no** |
-<!-- differs: report inputs | max theta/alpha: the report gives 0.5, reproduced 0.8 - -->
+<!-- differs: report inputs | max theta/alpha: the report gives 0.5, reproduced 0.8 -->
 """
 
 SECTION_B = """## Table 9.9 — `bbb-scene`
@@ -43,13 +43,13 @@ def test_report_has_contents_and_the_differing_comparisons_first(tmp_path):
         (tmp_path / name / "section.md").write_text(section)
         (tmp_path / name / "counts.json").write_text(json.dumps(counts))
     text = _assemble(tmp_path, rerun=["aaa-scene", "bbb-scene"]).read_text()
-    differ = text.index("## The 1 comparisons against the report's own inputs that differ")
-    substitute = text.index("## The 1 comparisons against SUBSTITUTE accelerograms")
+    differ = text.index("## The 1 comparison against the report's own inputs that differs")
+    substitute = text.index("## The 1 comparison against SUBSTITUTE accelerograms")
     contents = text.index("## Contents")
     first_section = text.index("## Fig. 9.9")
     assert differ < substitute < contents < first_section
     assert ("- [`aaa-scene`](#aaa-scene): max theta/alpha: the report gives 0.5, reproduced "
-            "0.8 -") in text
+            "0.8") in text
     assert ("- [`bbb-scene`](#bbb-scene): 4 x 1 ft, COR 0.9, A-1: the report gives F, "
             "reproduced 0.3") in text
     assert "- [Fig. 9.9 — `aaa-scene`](#aaa-scene) (1 differ)" in text
@@ -70,7 +70,7 @@ def test_a_scene_lists_what_differs_as_many_as_the_headline_counts(tmp_path):
     assert differ == len(listed) == 2
     assert "## The 2 comparisons against the report's own inputs that differ" in text
     assert "- [`fig-4-2`](#fig-4-2): max θ/α (±10 %): the report gives 0.78, reproduced F " \
-        "(overturns) -" in listed
+        "(overturns)" in listed
 
 
 def test_run_lines_name_the_block_and_the_starting_angle():
