@@ -67,12 +67,32 @@ def test_pga_target_scales_the_record_and_says_by_how_much(tmp_path, capsys):
     assert "--pga 0.5g: scales a --record" in capsys.readouterr().err
 
 
-def test_friction_with_ensemble_is_refused_with_the_reason(tmp_path, capsys):
-    assert main(["simulate", "--block", "2x0.5m", "--record", "el-centro-chopra", "--cor",
-                 "0.9", "--friction", "0.3", "--ensemble", "4", "--out",
-                 str(tmp_path / "e")]) == 2
-    error = capsys.readouterr().err
-    assert "no ensemble of the planar (friction) model" in error and "[friction]" in error
+def test_friction_with_ensemble_runs_the_planar_model(tmp_path, capsys):
+    import pandas as pd
+
+    import shaketable as st
+    from shaketable.ground import records
+
+    out = tmp_path / "e"
+    assert main(["simulate", "--block", "2x0.5m", "--record", "el-centro-chopra", "--pga",
+                 "0.5g", "--cor", "0.9", "--friction", "0.3", "--ensemble", "3", "--perturb",
+                 "0.01", "--duration", "4s", "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert printed.startswith("2 x 0.5 m block, COR 0.9, μs 0.3, μd 0.3, 3 members (planar "
+                              "model): P(overturn) = ")
+    members = pd.read_csv(out / "ensemble.csv")
+    # member 0 is the nominal run: the plain planar run of the same inputs, bit for bit
+    motion = records.load("el-centro-chopra")
+    motion = motion.scaled(0.5 * st.G / motion.pga)
+    plain = st.simulate(st.Block.parse("2x0.5m"), motion, cor=0.9, friction=st.Friction(0.3),
+                        duration=4.0)
+    assert members["peak slip [m]"].iloc[0] == plain.peak_slip
+    assert members["peak corner excursion [m]"].iloc[0] == plain.peak_excursion
+    assert members["verdict"].iloc[0] == plain.verdict()
+    # the others are perturbed copies: their factors within the spread
+    assert (members["amplitude factor [-]"] - 1).abs().max() <= 0.01
+    summary = json.loads((out / "ensemble.json").read_text())
+    assert summary["members"] == 3 and summary["P low [-]"] <= summary["P(overturn) [-]"]
 
 
 def test_modemap_of_the_users_block_and_record(tmp_path, capsys):

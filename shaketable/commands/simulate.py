@@ -40,8 +40,8 @@ def _simulate(args) -> int:
     motion, scale_note = scaled_record(motion, args)
     theta0 = _resolve_angle(args.theta0, block)
     out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
-    notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else
-                         ("planar",) if args.friction is not None else ("engine",))
+    notice_first_compile(args.quiet, which=("planar",) if args.friction is not None else
+                         ("engine", "batch") if args.ensemble else ("engine",))
     if isinstance(args.cor, str):           # a calibration.json: the calibrated COR's spread
         from shaketable.commands.calibrate import simulate_calibrated
 
@@ -50,13 +50,13 @@ def _simulate(args) -> int:
             print(scale_note)
         return status
     friction = _friction(args.friction)
-    if friction is not None and args.ensemble:
-        raise ValueError(
-            "--friction with --ensemble: the ensemble perturbs the inputs of the rocking "
-            "model's batch engine (amplitude, COR, size, start; no friction, no sliding), "
-            "and there is no ensemble of the planar (friction) model; run --friction without "
-            "--ensemble, --ensemble without --friction (the base cannot slide), or a sweep "
-            "with [friction] over the values you doubt (shaketable sweep, docs/sweeps.md)")
+    if friction is not None and args.ensemble:   # the planar model's ensemble
+        from shaketable.commands.friction_ensemble import friction_ensemble
+
+        status = friction_ensemble(args, block, motion, friction, out)
+        if scale_note:
+            print(scale_note)
+        return status
     if args.ensemble:
         status = _ensemble(args, block, motion, out)
         if scale_note:

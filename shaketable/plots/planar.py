@@ -192,3 +192,37 @@ def planar_caption(result, title: str | None = None) -> list[str]:
     if result.status not in ("completed", "overturned"):
         lines.append(f"stopped: {result.message}")
     return lines
+
+
+def planar_ensemble_axes(ensemble, ax=None):
+    """Peak slip and corner excursion of each member of a planar ensemble
+    (:class:`~shaketable.studies.planar_ensemble.PlanarEnsemble`) against the member, in
+    the unit the block was given in; members that overturned are marked on the axis.
+    Returns the axes."""
+    from shaketable.plots.base import pyplot
+
+    if ax is None:
+        _, ax = pyplot().subplots(figsize=(7.5, 4.2), layout="constrained")
+    frame = ensemble.members
+    standing = frame[~frame["overturned"]]
+    largest = float(standing["peak corner excursion [m]"].max()) if len(standing) else 0.0
+    unit = display_length_unit(largest, ensemble.block.length_unit)
+    scale = LENGTH_UNITS[unit]
+    ax.plot(standing["member"], standing["peak slip [m]"] / scale, "o", ms=3.5,
+            color="tab:red", label="peak slip")
+    ax.plot(standing["member"], standing["peak corner excursion [m]"] / scale, "s", ms=3,
+            mfc="none", color="tab:blue", label="peak corner excursion (clearance)")
+    fallen = frame[frame["overturned"]]
+    if len(fallen):
+        ax.plot(fallen["member"], np.zeros(len(fallen)), "x", color="black",
+                label=f"overturned ({len(fallen)})")
+    ax.set_xlabel("member (0: nominal)")
+    ax.set_ylabel(f"peak slip, corner excursion [{unit}]")
+    summary = ensemble.summary
+    ax.set_title(f"{ensemble.block.describe()}, COR {ensemble.cor:g}, μs "
+                 f"{ensemble.friction.static:g}, μd {ensemble.friction.dynamic:g}: "
+                 f"P(overturn) = {summary['P(overturn) [-]']:.3f} ({summary['P low [-]']:.3f}"
+                 f" to {summary['P high [-]']:.3f})", fontsize=9)
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="upper left")
+    return ax
