@@ -181,8 +181,9 @@ class Calibration:
         source = f"calibration of {self.record.name}"
         sigma = self.scatter.sigma if self.scatter is not None else 0.0
         if self.mean_cor_leads and self.scatter is not None:
-            return CalibratedCor(self.scatter.mean, self.scatter.mean_se, self.scatter.dof,
-                                 sigma, source)
+            # a noisy record's mean may pass 1, which no block restores: kept in (0, 1]
+            return CalibratedCor(min(max(self.scatter.mean, 1e-9), 1.0), self.scatter.mean_se,
+                                 self.scatter.dof, sigma, source)
         dof = max(int(self.goodness.get("samples", 1000)) - len(self.parameters), 1)
         return CalibratedCor(min(max(self.cor, 1e-9), 1.0), self.cor_se, dof, sigma, source)
 
