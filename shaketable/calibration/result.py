@@ -51,7 +51,9 @@ class Calibration:
     record : FreeRockingRecord
     block : Block
     cor : float
-        Least-squares COR [-].
+        Least-squares COR [-]: the answer on a record that obeys one COR, a diagnostic
+        when the COR scatters (then :attr:`answer` is the block's mean COR; see
+        :attr:`mean_cor_leads`).
     cor_interval : tuple of float
         95 % interval of the COR [-] (``interval_method``).
     cor_se : float
