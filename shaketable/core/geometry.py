@@ -227,6 +227,13 @@ class Block:
             restoring += G * self.rods.force * self.b  # the pair's resultant acts at mid-width
         return restoring / self.h
 
+    @property
+    def length_unit(self) -> str:
+        """The length unit of the block's label (:meth:`describe`): the user's unit when
+        the block was parsed from text (``"m"`` for ``"2x0.5m"``), else ft or in."""
+        unit = self.describe().rsplit(" ", 1)[-1]
+        return unit if unit in ("m", "cm", "mm", "in", "ft") else "in"
+
     def describe(self, unit: str | None = None) -> str:
         """Short label, height first: ``30 x 6 in``, ``16 x 4 ft``.
 
