@@ -109,19 +109,20 @@ def _rk4(theta, omega, side, start, tau, u0, du, v0, dv, plus, minus):
 
 
 @njit(cache=True, error_model=ERROR_MODEL, nogil=True)
-def _locate_impact(theta, omega, side, start, upper, theta_upper, omega_upper, u0, du, v0, dv,
-                   plus, minus, scale_t):
-    """Step length in (0, upper] at which side * theta reaches 0, and theta' there.
+def _locate(theta, omega, side, start, upper, theta_upper, omega_upper, u0, du, v0, dv,
+            plus, minus, scale_t, level, sign):
+    """Step length in (0, upper] at which side * theta reaches ``level``, and theta' there.
 
-    side * theta is positive just after 0 (the flight's start) and <= 0 at ``upper``;
-    Newton on the step length (the rate is side * theta' of the same trial step),
+    g = sign (side * theta - level) is positive at 0 (an impact: level 0, sign +1, just
+    after the flight's start; an overturn: level pi/2, sign -1) and <= 0 at ``upper``;
+    Newton on the step length (the rate is sign side theta' of the same trial step),
     replaced by bisection outside the bracket.
     """
     a = 0.0
     b = upper
     c = upper
-    gc = side * theta_upper
-    dgc = side * omega_upper
+    gc = sign * (side * theta_upper - level)
+    dgc = sign * side * omega_upper
     wc = omega_upper
     tolerance = 4e-16 * scale_t + 1e-300
     trials = 0
@@ -134,7 +135,7 @@ def _locate_impact(theta, omega, side, start, upper, theta_upper, omega_upper, u
             break
         x, w = _rk4(theta, omega, side, start, candidate, u0, du, v0, dv, plus, minus)
         trials += 1
-        c, gc, dgc, wc = candidate, side * x, side * w, w
+        c, gc, dgc, wc = candidate, sign * (side * x - level), sign * side * w, w
         if gc > 0.0:
             a = candidate
         else:
@@ -255,8 +256,8 @@ def integrate_asymmetric(t, ug, vg, scale, plus, minus, cor_onto_plus, cor_onto_
             x, w = _rk4(theta, omega, side, tt - t0, tau, u0, du, v0, dv, plus, minus)
             steps += 1
             if side * x <= 0.0:
-                tau, w, used = _locate_impact(theta, omega, side, tt - t0, tau, x, w, u0, du,
-                                              v0, dv, plus, minus, scale_t)
+                tau, w, used = _locate(theta, omega, side, tt - t0, tau, x, w, u0, du, v0, dv,
+                                       plus, minus, scale_t, 0.0, 1.0)
                 trials += used
                 stalled = stalled + 1 if tau <= 0.0 else 0
                 tt = tt + tau
@@ -280,6 +281,8 @@ def integrate_asymmetric(t, ug, vg, scale, plus, minus, cor_onto_plus, cor_onto_
                     info[INFO_T_REST] = rest_until
                     omega = 0.0
                 continue
+            theta_before = theta
+            omega_before = omega
             tt = tt + tau
             theta = x
             omega = w
@@ -292,6 +295,11 @@ def integrate_asymmetric(t, ug, vg, scale, plus, minus, cor_onto_plus, cor_onto_
                 info[INFO_T_UNSTABLE] = tt
                 info[INFO_UNSTABLE_DIRECTION] = side
             if side * theta >= 0.5 * math.pi:
+                back, _, used = _locate(theta_before, omega_before, side, tt - tau - t0, tau,
+                                        x, w, u0, du, v0, dv, plus, minus, scale_t,
+                                        0.5 * math.pi, -1.0)
+                trials += used
+                tt = tt - tau + back
                 status = STATUS_OVERTURNED
                 info[INFO_MAX_ABS_THETA] = 0.5 * math.pi  # as the engine: the run stops there
                 info[INFO_THETA_AT_MAX] = side * 0.5 * math.pi
