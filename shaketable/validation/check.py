@@ -38,7 +38,7 @@ def cross_validate(overturned: np.ndarray, outcomes, candidates: Sequence[Equiva
 
     Parameters
     ----------
-    overturned : ndarray of bool, shape (candidates, tests)
+    overturned : ndarray of bool, shape (candidates, tests, scales)
     outcomes : array_like of int
     candidates : sequence of EquivalentBlock
     pgv : array_like
@@ -102,7 +102,7 @@ def bootstrap_coverage(overturned: np.ndarray, outcomes, candidates: Sequence[Eq
         rows = rng.integers(0, y.size, y.size)
         best = fit(overturned[:, rows], y[rows], candidates, intervals=False).best
         for axis in AXES:
-            value = getattr(best, axis)
+            value = best.sigma if axis == "sigma" else getattr(best.block, axis)
             accepted = intervals[axis]
             if axis in ("cor", "sign"):
                 inside[axis] += value in accepted

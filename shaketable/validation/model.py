@@ -29,6 +29,13 @@ from shaketable.solvers.layout import INFO_STATUS, INFO_T_OVERTURN, STATUS_OVERT
 #: record decides its fate (a block with p ~ 5 rad/s rocks out in a few seconds).
 FATE_PADDING = 8.0
 
+#: Natural logarithms of the amplitude factors each candidate runs at [-]: the verdict at
+#: e^beta times the recorded motion. P(overturn) of a candidate is the verdict averaged over
+#: beta ~ N(0, sigma^2) (discretised on these points): a probit link on the logarithm of the
+#: factor by which the motion must be scaled to overturn the block (its margin), sigma
+#: calibrated with the block.
+LOG_SCALES = (-0.6, -0.4, -0.2, 0.0, 0.2, 0.4, 0.6)
+
 
 @dataclass(frozen=True)
 class EquivalentBlock:
@@ -122,8 +129,9 @@ class CandidateGrid:
         Coefficients of restitution.
     """
 
-    alphas: tuple[float, ...] = (0.04, 0.055, 0.07, 0.085, 0.1, 0.12, 0.14, 0.17, 0.2, 0.25)
-    ratios: tuple[float, ...] = (1.0, 1.5, 2.5)
+    alphas: tuple[float, ...] = (0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.1, 0.11, 0.12, 0.13,
+                                 0.14, 0.16, 0.19)
+    ratios: tuple[float, ...] = (1.0, 2.0)
     heights: tuple[float, ...] = (0.3,)
     cors: tuple[float | str, ...] = ("housner", 0.9, 0.8)
 
@@ -143,8 +151,9 @@ class CandidateGrid:
 
 
 def verdicts(candidates: Sequence[EquivalentBlock], motions, *, threads: int | None = None,
-             padding: float = FATE_PADDING) -> tuple[np.ndarray, np.ndarray]:
-    """Simulated verdict of every candidate on every motion.
+             padding: float = FATE_PADDING,
+             log_scales=LOG_SCALES) -> tuple[np.ndarray, np.ndarray]:
+    """Simulated verdict of every candidate on every motion, at each amplitude scale.
 
     Parameters
     ----------
@@ -155,11 +164,14 @@ def verdicts(candidates: Sequence[EquivalentBlock], motions, *, threads: int | N
         Threads of the batch.
     padding : float
         Table at rest appended to each motion [s] (the fate after the record).
+    log_scales : sequence of float
+        Natural logarithms of the factors on the motion's amplitude [-]
+        (:data:`LOG_SCALES`; the likelihood's probit link on the log margin).
 
     Returns
     -------
-    overturned : ndarray of bool, shape (candidates, motions)
-    t_overturn : ndarray, shape (candidates, motions)
+    overturned : ndarray of bool, shape (candidates, motions, scales)
+    t_overturn : ndarray, shape (candidates, motions, scales)
         When it overturned [s] from the motion's start; NaN if it did not.
     """
     motions = list(motions)
@@ -179,15 +191,17 @@ def verdicts(candidates: Sequence[EquivalentBlock], motions, *, threads: int | N
             index[key] = len(blocks)
             blocks.append(candidate.block())
         block_of[k] = index[key]
-    n_c, n_m = len(candidates), len(runs)
-    cases = np.empty((n_c * n_m, 2), dtype=np.int64)
-    cases[:, 0] = np.repeat(block_of, n_m)
-    cases[:, 1] = np.tile(np.arange(n_m), n_c)
-    cors = [candidate.cor for candidate in candidates for _ in range(n_m)]
-    scales = np.repeat([float(candidate.sign) for candidate in candidates], n_m)
+    factors = np.exp(np.asarray(log_scales, dtype=float))
+    n_c, n_m, n_s = len(candidates), len(runs), factors.size
+    cases = np.empty((n_c * n_m * n_s, 2), dtype=np.int64)
+    cases[:, 0] = np.repeat(block_of, n_m * n_s)
+    cases[:, 1] = np.tile(np.repeat(np.arange(n_m), n_s), n_c)
+    cors = [candidate.cor for candidate in candidates for _ in range(n_m * n_s)]
+    scales = (np.repeat([float(candidate.sign) for candidate in candidates], n_m * n_s)
+              * np.tile(factors, n_c * n_m))
     info = simulate_many_asymmetric(blocks, runs, cases, cors, scales=scales, threads=threads)
-    overturned = (info[:, INFO_STATUS] == STATUS_OVERTURNED).reshape(n_c, n_m)
-    return overturned, info[:, INFO_T_OVERTURN].reshape(n_c, n_m)
+    overturned = (info[:, INFO_STATUS] == STATUS_OVERTURNED).reshape(n_c, n_m, n_s)
+    return overturned, info[:, INFO_T_OVERTURN].reshape(n_c, n_m, n_s)
 
 
 def scan_block(geometry, specimen: str, direction: str = "x") -> AsymmetricBlock:

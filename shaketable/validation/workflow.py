@@ -6,9 +6,9 @@ import json
 
 import numpy as np
 
-from shaketable.validation.fit import Calibration, ensemble_probability, fit
+from shaketable.validation.fit import Calibration, fit
 from shaketable.validation.folder import TestFolder
-from shaketable.validation.model import CandidateGrid, verdicts
+from shaketable.validation.model import LOG_SCALES, CandidateGrid, verdicts
 from shaketable.validation.score import fragility, reliability, scores
 
 #: Format tag of a calibration file.
@@ -23,7 +23,7 @@ def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
     -------
     calibrations : dict
         Specimen -> :class:`Calibration`.
-    overturned : ndarray of bool, shape (candidates, tests)
+    overturned : ndarray of bool, shape (candidates, tests, scales)
         The candidates' verdicts (for cross-validation and the bootstrap).
     candidates : list of EquivalentBlock
     """
@@ -96,17 +96,18 @@ def predict_folder(folder: TestFolder, calibrations: dict, *, threads: int | Non
     frames = []
     for name in specimens:
         calibration = calibrations[name]
-        members = list(dict.fromkeys([calibration.best, *calibration.members]))
-        overturned, t_overturn = verdicts(members, motions, threads=threads)
-        p = ensemble_probability(calibration, members, overturned)
-        best_time = t_overturn[0]
-        fate = np.where(~overturned[0], "stands",
+        overturned, t_overturn = verdicts(calibration.blocks(), motions, threads=threads)
+        p = calibration.probability(overturned)
+        recorded = LOG_SCALES.index(0.0)
+        best = overturned[0, :, recorded]
+        best_time = t_overturn[0, :, recorded]
+        fate = np.where(~best, "stands",
                         np.where(best_time <= durations + 1e-9, "overturns during the motion",
                                  "overturns after the motion"))
         frames.append(pd.DataFrame({
             "test": folder.metadata["test"].to_numpy(),  # type: ignore[index]
             "specimen": name, "p_overturn": p, "predicted_overturned": (p >= 0.5).astype(int),
-            "best_overturned": overturned[0].astype(int), "fate": fate,
+            "best_overturned": best.astype(int), "fate": fate,
             "t_overturn [s]": best_time}))
     frame = pd.concat(frames, ignore_index=True)
     frame.attrs["missing"] = missing
@@ -185,9 +186,11 @@ def score_folder(predictions, folder: TestFolder, *, pga_edges=None, ratio_edges
 
 def describe_calibration(calibration: Calibration) -> str:
     """A few lines: the best block, its training accuracy and the 95 % sets."""
-    lines = [f"{calibration.specimen}: {calibration.best.describe()}",
-             f"  training accuracy {calibration.accuracy:.3f} ({calibration.errors} of "
-             f"{calibration.n} wrong), epsilon {calibration.epsilon:.3f}"]
+    best = calibration.best
+    lines = [f"{calibration.specimen}: {best.block.describe()}",
+             f"  link: sigma {best.sigma:g} (of ln amplitude), epsilon {best.epsilon:g}; "
+             f"log likelihood {calibration.log_likelihood:.2f} on {calibration.n} tests",
+             f"  training accuracy of the ensemble {calibration.accuracy:.3f}"]
     for axis, accepted in calibration.intervals.items():
         lines.append(f"  95 % profile-likelihood set of {axis}: {accepted}")
     return "\n".join(lines)
