@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from shaketable.plots.base import pyplot
 
 
@@ -61,8 +63,8 @@ def fragility_figure(table, measure: str, log: bool = True, fig=None, title: str
     ax = fig.add_subplot(1, 1, 1)
     centre = table["centre"].to_numpy()
     ax.errorbar(centre, table["measured"],
-                yerr=[table["measured"] - table["measured_low"],
-                      table["measured_high"] - table["measured"]],
+                yerr=[np.maximum(table["measured"] - table["measured_low"], 0.0),
+                      np.maximum(table["measured_high"] - table["measured"], 0.0)],
                 fmt="o", color="k", ms=4, capsize=3, lw=0.8, label="measured (Wilson 95 %)")
     ax.plot(centre, table["predicted"], "s-", color="C3", ms=4, lw=1.0,
             label="predicted (mean P in the bin)")
