@@ -83,7 +83,7 @@ def test_scale_weights():
 
 def test_fit_recovers_the_candidate_that_made_the_outcomes():
     rng = np.random.default_rng(3)
-    n_c, n_t, n_s = 6, 120, len(LOG_SCALES)
+    n_c, n_t = 6, 120
     candidates = [EquivalentBlock(0.05 + 0.02 * k, 0.05 + 0.02 * k, 0.3, 0.9) for k in range(n_c)]
     # candidate k overturns in test i at scale s when the test's intensity exceeds its
     # threshold: a monotone toy with a known truth (candidate 2, sigma 0)
