@@ -43,7 +43,12 @@ def _grid(args):
 
 def _calibrate(args) -> int:
     from shaketable.core.files import prepare_output_file, write_text
-    from shaketable.validation.check import bootstrap_coverage, cross_validate
+    from shaketable.validation.check import (
+        bootstrap_refits,
+        bootstrap_sets,
+        coverage,
+        cross_validate,
+    )
     from shaketable.validation.folder import read_folder
     from shaketable.validation.workflow import (
         calibrate_folder,
@@ -57,7 +62,8 @@ def _calibrate(args) -> int:
     if not args.quiet:
         print(f"{len(folder.tests)} tests, specimens {', '.join(folder.specimens)}; "
               f"{len(grid.candidates())} candidate blocks")
-    calibrations, overturned, candidates = calibrate_folder(folder, grid, threads=args.threads)
+    calibrations, overturned, candidates = calibrate_folder(folder, grid, threads=args.threads,
+                                                            cache=args.verdicts)
     pgv = folder.metadata["pgv [m/s]"].to_numpy()  # type: ignore[index]
     checks: dict = {}
     for name, calibration in calibrations.items():
@@ -74,9 +80,17 @@ def _calibrate(args) -> int:
             entry["cross_validation"]["folds"] = args.folds
             entry["cross_validation"]["repeats"] = args.repeats
         if args.bootstrap:
-            entry["bootstrap_coverage"] = bootstrap_coverage(
-                overturned, outcomes, candidates, calibration.intervals,
-                resamples=args.bootstrap, seed=args.seed)
+            # one bootstrap gives the percentile sets; an independent one checks them and
+            # the profile-likelihood sets
+            refits = bootstrap_refits(overturned, outcomes, candidates,
+                                      resamples=args.bootstrap, seed=args.seed)
+            check = bootstrap_refits(overturned, outcomes, candidates,
+                                     resamples=args.bootstrap, seed=args.seed + 1)
+            sets = bootstrap_sets(refits)
+            entry["bootstrap"] = {"resamples": args.bootstrap, "sets": sets,
+                                  "coverage_of_profile_sets": coverage(
+                                      check, calibration.intervals),
+                                  "coverage_of_bootstrap_sets": coverage(check, sets)}
         checks[name] = entry
         if not args.quiet:
             print(describe_calibration(calibration))
@@ -86,8 +100,13 @@ def _calibrate(args) -> int:
                     print(f"  {args.folds}-fold CV accuracy, {model}: {accuracy['mean']:.3f} "
                           f"+- {accuracy['std']:.3f} (log loss {values['log_loss']['mean']:.3f}, "
                           f"Brier {values['brier']['mean']:.3f})")
-            if "bootstrap_coverage" in entry:
-                print(f"  bootstrap refits inside the 95 % sets: {entry['bootstrap_coverage']}")
+            if "bootstrap" in entry:
+                boot = entry["bootstrap"]
+                print(f"  95 % bootstrap sets: {boot['sets']}")
+                print(f"  independent refits inside the profile sets: "
+                      f"{boot['coverage_of_profile_sets']}")
+                print(f"  independent refits inside the bootstrap sets: "
+                      f"{boot['coverage_of_bootstrap_sets']}")
     write_text(out, calibration_json(calibrations, {"folder": str(folder.path),
                                                     "grid": {"alphas": grid.alphas,
                                                              "ratios": grid.ratios,
@@ -102,12 +121,24 @@ def _calibrate(args) -> int:
 def _predict(args) -> int:
     from shaketable.core.files import prepare_output_file, write_csv
     from shaketable.validation.folder import read_folder
-    from shaketable.validation.workflow import predict_folder, read_calibration
+    from shaketable.validation.workflow import (
+        predict_folder,
+        predict_from_geometry,
+        read_calibration,
+    )
 
+    if (args.calibration is None) == (args.geometry is None):
+        raise ValueError("give --calibration (a calibrated block) or --geometry (the "
+                         "specimens' measured geometry), one of them")
     folder = read_folder(args.folder)
-    calibrations = read_calibration(args.calibration)
     out = prepare_output_file(args.out, "--out", suffixes=(".csv",))
-    frame = predict_folder(folder, calibrations, threads=args.threads)
+    if args.geometry is not None:
+        import pandas as pd
+
+        geometry = pd.read_csv(args.geometry)
+        frame = predict_from_geometry(folder, geometry, sign=args.sign, threads=args.threads)
+    else:
+        frame = predict_folder(folder, read_calibration(args.calibration), threads=args.threads)
     write_csv(out, frame, index=False)
     if not args.quiet:
         for name in frame.attrs.get("missing", []):
@@ -188,12 +219,21 @@ def register(commands) -> None:
     calibrate.add_argument("--bootstrap", type=int, default=200,
                            help="bootstrap refits checking the intervals (0: none; default 200)")
     calibrate.add_argument("--seed", type=int, default=0, help="seed of folds and bootstrap")
+    calibrate.add_argument("--verdicts", help="cache of the simulated verdicts (.npz): reused "
+                                              "when it matches the grid and the tests")
     calibrate.add_argument("--threads", type=int, help="threads of the simulations")
     calibrate.set_defaults(handler=_calibrate)
 
     predict = steps.add_parser("predict", help="P(overturn) and verdicts of a folder's tests")
     predict.add_argument("folder", help="folder of tests (outcome columns not needed)")
-    predict.add_argument("--calibration", required=True, help="calibration file (.json)")
+    predict.add_argument("--calibration", help="calibration file (.json)")
+    predict.add_argument("--geometry", help="instead of a calibration: the specimens' geometry "
+                                            "CSV (columns specimen, direction, side, b_m, h_m, "
+                                            "R_m, I_O_over_mR2): the scan-based block, "
+                                            "Housner's COR per pivot")
+    predict.add_argument("--sign", type=int, choices=(1, -1), default=1,
+                         help="with --geometry: +1 if a positive recorded acceleration tips "
+                              "the block over its +x side, -1 the other way (default 1)")
     predict.add_argument("--out", required=True, help="predictions to write (.csv)")
     predict.add_argument("--threads", type=int, help="threads of the simulations")
     predict.set_defaults(handler=_predict)

@@ -81,31 +81,66 @@ def summary(frame) -> "object":
             .agg(["mean", "std"]))
 
 
-def bootstrap_coverage(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock],
-                       intervals: dict, *, resamples: int = 200, seed: int = 0) -> dict:
-    """Fraction of bootstrap refits whose best candidate lies in the calibration's sets.
+def bootstrap_refits(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock],
+                     *, resamples: int = 200, seed: int = 0) -> list:
+    """The best member of refits on ``resamples`` bootstrap resamples of the tests.
 
-    The tests are resampled with replacement ``resamples`` times; each resample is refitted
-    (:func:`fit`) and each axis of its best candidate checked against ``intervals``
-    (the profile-likelihood sets of the fit on all tests). A 95 % set should hold about 95 %
-    of the refits (more at a coarse grid).
+    The tests are drawn with replacement; each resample is refitted (:func:`fit`).
 
     Returns
     -------
-    dict
-        Axis -> fraction of refits inside [-].
+    list of Member
     """
     y = np.asarray(outcomes, dtype=int)
     rng = np.random.default_rng(seed)
-    inside = {axis: 0 for axis in AXES}
+    refits = []
     for _ in range(resamples):
         rows = rng.integers(0, y.size, y.size)
-        best = fit(overturned[:, rows], y[rows], candidates, intervals=False).best
+        refits.append(fit(overturned[:, rows], y[rows], candidates, intervals=False).best)
+    return refits
+
+
+def _value(member, axis: str):
+    return member.sigma if axis == "sigma" else getattr(member.block, axis)
+
+
+def bootstrap_sets(refits: list, level: float = 0.95) -> dict:
+    """Percentile sets of the refits: ``[low, high]`` holding ``level`` of them for numbers,
+    the values at least (1 - level) / 2 of them chose for the COR and the sign."""
+    tail = 0.5 * (1.0 - level)
+    sets: dict = {}
+    for axis in AXES:
+        values = [_value(member, axis) for member in refits]
+        if axis in ("cor", "sign"):
+            counts = {value: values.count(value) for value in dict.fromkeys(values)}
+            sets[axis] = [value for value, count in counts.items()
+                          if count >= tail * len(values)]
+        else:
+            numbers = np.asarray(values, dtype=float)
+            sets[axis] = [float(np.quantile(numbers, tail, method="inverted_cdf")),
+                          float(np.quantile(numbers, 1.0 - tail, method="inverted_cdf"))]
+    return sets
+
+
+def coverage(refits: list, sets: dict) -> dict:
+    """Fraction of the refits whose value lies in ``sets``, per axis [-].
+
+    A 95 % set should hold about 95 % of independent refits (more at a coarse grid).
+    """
+    inside = {axis: 0 for axis in AXES}
+    for member in refits:
         for axis in AXES:
-            value = best.sigma if axis == "sigma" else getattr(best.block, axis)
-            accepted = intervals[axis]
+            value = _value(member, axis)
+            accepted = sets[axis]
             if axis in ("cor", "sign"):
                 inside[axis] += value in accepted
             else:
                 inside[axis] += accepted[0] <= value <= accepted[1]
-    return {axis: count / resamples for axis, count in inside.items()}
+    return {axis: count / len(refits) for axis, count in inside.items()}
+
+
+def bootstrap_coverage(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock],
+                       intervals: dict, *, resamples: int = 200, seed: int = 0) -> dict:
+    """Fraction of bootstrap refits whose best candidate lies in ``intervals``, per axis."""
+    return coverage(bootstrap_refits(overturned, outcomes, candidates, resamples=resamples,
+                                     seed=seed), intervals)

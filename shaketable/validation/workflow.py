@@ -16,8 +16,12 @@ FORMAT = "shaketable-validation-calibration/1"
 
 
 def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
-                     threads: int | None = None) -> tuple[dict, np.ndarray, list]:
+                     threads: int | None = None, cache=None) -> tuple[dict, np.ndarray, list]:
     """Calibrate an equivalent block for every specimen with outcomes in ``folder``.
+
+    ``cache``: an ``.npz`` file of the candidates' verdicts: read when it holds the same
+    candidates, tests and amplitude factors, else computed and written there (the
+    simulations are the expensive part; the fits, cross-validation and bootstrap reuse them).
 
     Returns
     -------
@@ -33,10 +37,31 @@ def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
     if not specimens:
         raise ValueError(f"{folder.path / 'metadata.csv'}: no outcome column "
                          "('<specimen>_overturned'): nothing to calibrate on")
-    overturned, _ = verdicts(candidates, folder.motions(), threads=threads)
+    overturned = _cached_verdicts(cache, candidates, folder, threads)
     calibrations = {name: fit(overturned, folder.outcomes(name), candidates, name)
                     for name in specimens}
     return calibrations, overturned, candidates
+
+
+def _cached_verdicts(cache, candidates, folder: TestFolder, threads) -> np.ndarray:
+    from pathlib import Path
+
+    key = json.dumps({"candidates": [candidate.to_dict() for candidate in candidates],
+                      "tests": folder.tests, "log_scales": list(LOG_SCALES)})
+    if cache is not None and Path(cache).is_file():
+        with np.load(cache) as data:
+            if str(data["key"]) == key:
+                return data["overturned"]
+    overturned, _ = verdicts(candidates, folder.motions(), threads=threads)
+    if cache is not None:
+        from shaketable.core.files import atomic_write
+
+        def write(temporary):
+            with open(temporary, "wb") as handle:
+                np.savez_compressed(handle, overturned=overturned, key=np.array(key))
+
+        atomic_write(cache, write)
+    return overturned
 
 
 def calibration_json(calibrations: dict, extra: dict | None = None) -> str:
@@ -198,3 +223,49 @@ def describe_calibration(calibration: Calibration) -> str:
 
 __all__ = ["calibrate_folder", "calibration_json", "describe_calibration",
            "predict_folder", "read_calibration", "read_predictions", "score_folder"]
+
+
+def predict_from_geometry(folder: TestFolder, geometry, *, sign: int = 1,
+                          cor: float | str = "housner", threads: int | None = None):
+    """Verdicts of every test and specimen from each specimen's measured geometry (its scan).
+
+    ``geometry`` is the table of :func:`shaketable.validation.model.scan_block`; the block's
+    +x side is tipped by a positive recorded acceleration when ``sign`` is +1 (by a negative
+    one when -1: the orientation of a specimen on the table is often unknown, so try both).
+    A deterministic model: ``p_overturn`` is its verdict, 0 or 1.
+
+    Returns
+    -------
+    pandas.DataFrame
+        :func:`predict_folder`'s columns.
+    """
+    import pandas as pd
+
+    from shaketable.solvers.asymmetric import simulate_many_asymmetric
+    from shaketable.solvers.common import extended
+    from shaketable.solvers.layout import INFO_STATUS, INFO_T_OVERTURN, STATUS_OVERTURNED
+    from shaketable.validation.model import FATE_PADDING, scan_block
+
+    if sign not in (1, -1):
+        raise ValueError(f"sign must be +1 or -1, got {sign!r}")
+    motions = [extended(motion, motion.duration + FATE_PADDING) for motion in folder.motions()]
+    durations = np.array([motion.duration for motion in folder.motions()])
+    frames = []
+    for name in folder.specimens:
+        block = scan_block(geometry, name)
+        cases = np.column_stack([np.zeros(len(motions), dtype=np.int64),
+                                 np.arange(len(motions))])
+        info = simulate_many_asymmetric([block], motions, cases, [cor] * len(motions),
+                                        scales=np.full(len(motions), float(sign)),
+                                        threads=threads)
+        overturned = info[:, INFO_STATUS] == STATUS_OVERTURNED
+        when = info[:, INFO_T_OVERTURN]
+        fate = np.where(~overturned, "stands",
+                        np.where(when <= durations + 1e-9, "overturns during the motion",
+                                 "overturns after the motion"))
+        frames.append(pd.DataFrame({
+            "test": folder.metadata["test"].to_numpy(),  # type: ignore[index]
+            "specimen": name, "p_overturn": overturned.astype(float),
+            "predicted_overturned": overturned.astype(int),
+            "best_overturned": overturned.astype(int), "fate": fate, "t_overturn [s]": when}))
+    return pd.concat(frames, ignore_index=True)

@@ -139,6 +139,7 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
     saved = json.loads(out.read_text())
     assert saved["specimens"]["a"]["best"]["block"]["alpha_weak"] == 0.1
     assert "cross_validation" in saved["checks"]["a"]
+    assert set(saved["checks"]["a"]["bootstrap"]["sets"]) >= {"alpha_weak", "cor"}
     # predict a folder without outcome columns: one row per test and specimen
     predictions = tmp_path / "predictions.csv"
     assert main(["validate", "predict", str(folder), "--calibration", str(out), "--out",
