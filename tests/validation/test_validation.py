@@ -135,7 +135,9 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
     out = tmp_path / "cal.json"
     assert main(["validate", "calibrate", str(data), "--out", str(out), "--alphas",
                  "0.05,0.1,0.2", "--ratios", "1", "--cors", "0.9", "--folds", "2",
-                 "--repeats", "1", "--bootstrap", "5", "--threads", "1"]) == 0
+                 "--repeats", "1", "--bootstrap", "5", "--threads", "1", "--verdicts",
+                 str(tmp_path / "verdicts.npz")]) == 0
+    assert (tmp_path / "verdicts.npz").is_file()
     saved = json.loads(out.read_text())
     assert saved["specimens"]["a"]["best"]["block"]["alpha_weak"] == 0.1
     assert "cross_validation" in saved["checks"]["a"]
