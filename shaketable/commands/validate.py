@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+import argparse
 import json
 from pathlib import Path
 
@@ -42,12 +43,15 @@ def _grid(args):
 
 
 def _calibrate(args) -> int:
-    from shaketable.core.files import prepare_output_file, write_text
+    import pandas as pd
+
+    from shaketable.core.files import prepare_output_file, write_csv, write_text
     from shaketable.validation.check import (
         bootstrap_refits,
         bootstrap_sets,
         coverage,
         cross_validate,
+        out_of_fold,
     )
     from shaketable.validation.folder import read_folder
     from shaketable.validation.workflow import (
@@ -66,6 +70,7 @@ def _calibrate(args) -> int:
                                                             cache=args.verdicts)
     pgv = folder.metadata["pgv [m/s]"].to_numpy()  # type: ignore[index]
     checks: dict = {}
+    held_out = []
     for name, calibration in calibrations.items():
         outcomes = folder.outcomes(name)
         entry: dict = {}
@@ -79,6 +84,11 @@ def _calibrate(args) -> int:
                 for model, part in frame.groupby("model")}
             entry["cross_validation"]["folds"] = args.folds
             entry["cross_validation"]["repeats"] = args.repeats
+            if args.cv_predictions:
+                p = out_of_fold(overturned, outcomes, candidates, k=args.folds, seed=args.seed)
+                held_out.append(pd.DataFrame({"test": folder.metadata["test"],  # type: ignore[index]
+                                              "specimen": name, "p_overturn": p,
+                                              "predicted_overturned": (p >= 0.5).astype(int)}))
         if args.bootstrap:
             # one bootstrap gives the percentile sets; an independent one checks them and
             # the profile-likelihood sets
@@ -107,6 +117,9 @@ def _calibrate(args) -> int:
                       f"{boot['coverage_of_profile_sets']}")
                 print(f"  independent refits inside the bootstrap sets: "
                       f"{boot['coverage_of_bootstrap_sets']}")
+    if held_out:
+        write_csv(prepare_output_file(args.cv_predictions, "--cv-predictions", (".csv",)),
+                  pd.concat(held_out, ignore_index=True), index=False)
     write_text(out, calibration_json(calibrations, {"folder": str(folder.path),
                                                     "grid": {"alphas": grid.alphas,
                                                              "ratios": grid.ratios,
@@ -219,6 +232,9 @@ def register(commands) -> None:
     calibrate.add_argument("--bootstrap", type=int, default=200,
                            help="bootstrap refits checking the intervals (0: none; default 200)")
     calibrate.add_argument("--seed", type=int, default=0, help="seed of folds and bootstrap")
+    calibrate.add_argument("--cv-predictions", metavar="CSV",
+                           help="write the out-of-fold predictions (each test predicted by the "
+                                "calibration on the other folds) for 'validate score'")
     calibrate.add_argument("--verdicts", help="cache of the simulated verdicts (.npz): reused "
                                               "when it matches the grid and the tests")
     calibrate.add_argument("--threads", type=int, help="threads of the simulations")
@@ -244,3 +260,7 @@ def register(commands) -> None:
     score.add_argument("--json", help="write the scores to this JSON file")
     score.add_argument("--figures", help="folder for the reliability and fragility figures")
     score.set_defaults(handler=_score)
+    for step in (calibrate, predict, score):
+        # after the step too; SUPPRESS: a step's default must not undo `validate -q STEP`
+        step.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS,
+                          help="print nothing but errors")

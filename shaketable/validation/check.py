@@ -144,3 +144,20 @@ def bootstrap_coverage(overturned: np.ndarray, outcomes, candidates: Sequence[Eq
     """Fraction of bootstrap refits whose best candidate lies in ``intervals``, per axis."""
     return coverage(bootstrap_refits(overturned, outcomes, candidates, resamples=resamples,
                                      seed=seed), intervals)
+
+
+def out_of_fold(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock], *,
+                k: int = 5, seed: int = 0) -> np.ndarray:
+    """P(overturn) of every test from the calibration on the other folds (never its own).
+
+    The honest counterpart of a calibration's in-sample predictions: score it with
+    :func:`shaketable.validation.score.scores`, or draw its reliability and fragility.
+    """
+    y = np.asarray(outcomes, dtype=int)
+    fold = folds(y, k, seed)
+    p = np.empty(y.size)
+    for f in range(k):
+        train, test = fold != f, fold == f
+        calibration = fit(overturned[:, train], y[train], candidates, intervals=False)
+        p[test] = ensemble_probability(calibration, candidates, overturned[:, test])
+    return p
