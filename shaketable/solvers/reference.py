@@ -89,6 +89,22 @@ def _passed_impact(solution, side, t_segment):
     return None
 
 
+def _pivots(parameters, alpha, cor, sides):
+    """(parameters, alpha, COR of an impact onto it) of a pivot, as functions of its side.
+
+    ``sides`` None: the symmetric block's one set for both; else ``(rows, cors)``.
+    """
+    if sides is None:
+        return (lambda side: parameters), (lambda side: alpha), (lambda side: cor)
+    rows, cors = sides
+
+    def par(side):
+        return rows[0] if side > 0 else rows[1]
+
+    return (par, (lambda side: float(par(side)[ALPHA])),
+            (lambda side: float(cors[0] if side > 0 else cors[1])))
+
+
 class ReferenceSolverError(RuntimeError):
     """SciPy's integrator gave up, or the event loop stopped advancing in time.
 
@@ -119,27 +135,8 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
     and ``p`` are then the smaller angle and the larger p (the tolerances), ``cor`` and
     ``parameters`` unused. ``None``: the symmetric block, every number as before.
     """
-    if sides is None:
-        def par(side):
-            return parameters
-
-        def alpha_of(side):
-            return alpha
-
-        def cor_onto(side):
-            return cor
-    else:
-        rows, cors = sides
-        parameters = rows[0]
-
-        def par(side):
-            return rows[0] if side > 0 else rows[1]
-
-        def alpha_of(side):
-            return float(par(side)[ALPHA])
-
-        def cor_onto(side):
-            return float(cors[0] if side > 0 else cors[1])
+    par, alpha_of, cor_onto = _pivots(parameters, alpha, cor, sides)
+    parameters = par(1.0)
     atol = np.array([rtol * alpha, rtol * alpha * p]) * 1e-2
     if rest_tolerance < 0:
         rest_tolerance = 1e-6 / p
