@@ -93,15 +93,15 @@ def _numba_sees_the_cache_folder() -> None:
 _numba_sees_the_cache_folder()
 
 from shaketable.core.constants import FOOT, INCH, G  # noqa: E402
-from shaketable.core.geometry import Block, PrestressRods  # noqa: E402
+from shaketable.core.geometry import AsymmetricBlock, Block, PrestressRods  # noqa: E402
 from shaketable.core.motion import Motion  # noqa: E402
 from shaketable.core.planar_result import PlanarResult  # noqa: E402
 from shaketable.core.results import RockingResult  # noqa: E402
 from shaketable.core.sliding_result import Friction  # noqa: E402
 from shaketable.version import __version__  # noqa: E402
 
-__all__ = ["Block", "PrestressRods", "Motion", "RockingResult", "Friction", "PlanarResult",
-           "simulate", "METHODS", "assess", "G", "INCH", "FOOT", "__version__"]
+__all__ = ["Block", "AsymmetricBlock", "PrestressRods", "Motion", "RockingResult", "Friction",
+           "PlanarResult", "simulate", "METHODS", "assess", "G", "INCH", "FOOT", "__version__"]
 
 #: The names loaded on first use, and the module each comes from.
 _LAZY = {"simulate": "shaketable.solvers.api", "METHODS": "shaketable.solvers.layout",

@@ -21,6 +21,7 @@ from tests.helpers import REPOSITORY
 #: Layer of each top-level folder or module of the package: a module may import
 #: from a layer of lower rank, or from its own folder.
 RANK = {"core": 0, "solvers": 1, "ground": 1, "lab": 2, "calibration": 3, "sweeps": 3,
+        "validation": 3,
         "studies": 4, "scenes": 5, "plots": 6, "reproduce": 7, "bench": 7, "commands": 8, "cli": 9,
         "assessment": 7,
         "__init__": 10, "__main__": 10, "simulate": 10, "version": 0}

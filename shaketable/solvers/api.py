@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.dynamics import block_parameters
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion, whole_number
 from shaketable.core.sliding_result import Friction
@@ -23,7 +23,8 @@ from shaketable.solvers.common import (
 )
 
 
-def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, cor: float, theta0: float = 0.0,
+def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | None = None, *,
+             cor: float, theta0: float = 0.0,
              theta_dot0: float = 0.0, duration: float | None = None, method: str = "fast",
              rtol: float | None = None, subdivisions: int = 4, output_dt: float = 0.005,
              rest_tolerance: float | None = None, max_recorded_impacts: int = 100_000,
@@ -32,8 +33,12 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
 
     Parameters
     ----------
-    block : Block
-        The block (with optional prestress rods).
+    block : Block or AsymmetricBlock
+        The block (with optional prestress rods); an
+        :class:`~shaketable.core.geometry.AsymmetricBlock` runs
+        :func:`shaketable.solvers.asymmetric.simulate_asymmetric` (``method`` "fast" or
+        "reference", ``cor`` a number or ``"housner"``, no friction, rods, impulses or top
+        force) and returns an :class:`~shaketable.core.asymmetric_result.AsymmetricResult`.
     motion : Motion or ImpulsiveMotion, optional
         Ground accelerations [m/s^2]; an :class:`~shaketable.core.impulses.ImpulsiveMotion`
         adds steps of the table's velocity, applied exactly as jumps of theta'
@@ -94,6 +99,18 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
         ``method="reference"`` only: SciPy's integrator gave up or made no
         progress.
     """
+    if isinstance(block, AsymmetricBlock):
+        if friction is not None:
+            raise ValueError("block: the planar model (friction=...) is symmetric; an "
+                             "AsymmetricBlock rocks without friction only")
+        if isinstance(motion, ImpulsiveMotion) or top_force != 0.0:
+            raise ValueError("block: impulses and top_force are not offered for an "
+                             "AsymmetricBlock")
+        from shaketable.solvers.asymmetric import simulate_asymmetric
+
+        return simulate_asymmetric(block, motion, cor=cor, theta0=theta0,
+                                   theta_dot0=theta_dot0, duration=duration, method=method,
+                                   rtol=1e-12 if rtol is None else rtol, output_dt=output_dt)
     if friction is not None:
         from shaketable.solvers.planar_run import simulate_planar  # compiled on first use
 
