@@ -1,0 +1,336 @@
+"""The stack's event-driven integration: DOP853 (SciPy) between events, events located.
+
+Between two input samples the table's acceleration is linear, so each input interval is
+integrated on its own (``solve_ivp``, DOP853) and its right-hand side is smooth. Inside an
+interval a pattern runs until an event: an open interface landing (``s_j phi_j = 0``: the
+impact law, then the pattern chosen afresh), a flat interface's corner force reaching
+zero (uplift: the pattern chosen afresh), an interface's rotation reaching pi/2 (the
+block above it overturned: the run stops). The rest pattern has no motion to integrate:
+its corner forces are linear in time inside an interval and their zero is found exactly.
+
+Choosing a pattern (acceleration-level complementarity)
+-------------------------------------------------------
+At an uplift the closing force is zero and the flat and the opened patterns have the same
+accelerations, so the choice is made just after the event, at ``t + delta``
+(``delta = 1e-8 / p_max``) with the state carried along the current pattern: a candidate
+is consistent when every flat corner's normal force is >= -tol (``tol = 1e-12`` times the
+weight of the stack) and every interface it opens accelerates open (``s_j phi_j'' > 0``).
+The uplift events fire at a corner force of -tol, so that a force touching zero and
+recovering (grazing) starts nothing. The consistent candidate with the fewest open
+interfaces is kept; how many were consistent is recorded with the event.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from shaketable.core.constants import G
+from shaketable.core.dynamics import cascade_rest_time
+from shaketable.models.stack.impact import cor_impact, plastic_impact
+from shaketable.models.stack.physics import (
+    Chain,
+    accelerations,
+    candidates,
+    energy,
+    state_forces,
+)
+
+#: Relative force tolerance of the rest and flat contacts (times the stack's weight).
+FORCE_TOLERANCE = 1e-12
+#: Look-ahead of the pattern choice, times 1 / p_max [s].
+LOOKAHEAD = 1e-8
+#: Events in a row at one instant before the run is declared stalled.
+MAX_EVENTS_AT_ONE_INSTANT = 200
+
+
+class StackStalled(RuntimeError):
+    """The stack's integration made no progress (events without end at one instant)."""
+
+
+class Ground:
+    """The table's accelerations inside one input interval (linear) [m/s^2]."""
+
+    def __init__(self, t0, t1, u0, u1, v0, v1) -> None:
+        self.t0, self.span = t0, t1 - t0
+        self.u0, self.du, self.v0, self.dv = u0, u1 - u0, v0, v1 - v0
+
+    def __call__(self, t):
+        x = (t - self.t0) / self.span
+        return self.u0 + self.du * x, self.v0 + self.dv * x
+
+
+def pattern_of(phi, phi_dot):
+    """The pattern a state implies: the sign of phi, or of phi' where phi is zero."""
+    pattern = []
+    for angle, rate in zip(phi, phi_dot):
+        value = angle if angle != 0.0 else rate
+        pattern.append(0 if value == 0.0 else (1 if value > 0 else -1))
+    return tuple(pattern)
+
+
+class Run:
+    """One run's state, its records and the event handling (see the module's docstring)."""
+
+    def __init__(self, stack, motion, law: str, cor: float, theta0, theta_dot0, rtol: float,
+                 rest_tolerance: float, max_recorded_events: int) -> None:
+        self.chain = Chain.of(stack)
+        self.n = self.chain.n
+        self.law, self.cor, self.rtol = law, cor, rtol
+        self.rest_tolerance = rest_tolerance
+        self.max_recorded = max_recorded_events
+        self.delta = LOOKAHEAD / stack.p_max
+        self.tol_force = FORCE_TOLERANCE * stack.weight
+        scale = stack.alpha_min
+        self.atol = np.concatenate([np.full(self.n, rtol * scale),
+                                    np.full(self.n, rtol * scale * stack.p_max)])
+        self.t = motion.t
+        self.ug = motion.horizontal
+        self.vg = motion.vertical_or_zero
+        self.phi = np.diff(np.asarray(theta0, dtype=float), prepend=0.0)
+        self.phi_dot = np.diff(np.asarray(theta_dot0, dtype=float), prepend=0.0)
+        self.pattern = pattern_of(self.phi, self.phi_dot)
+        self.events: list[dict] = []
+        self.n_events = 0
+        self.status = "completed"
+        self.t_overturn = math.nan
+        self.overturned_block = -1
+        self.t_airborne = math.nan
+        self.t_tension = math.nan
+        self.rest_until = -math.inf
+        self.steps = self.evaluations = 0
+        self.stalled = 0
+        self.energy_reference = stack.weight * float(np.hypot(stack.b, stack.h).max())
+
+    # ----------------------------------------------------------------- records
+    def record(self, time, kind, interface=-1, before=None, after=None, **values) -> None:
+        self.n_events += 1
+        if len(self.events) < self.max_recorded:
+            self.events.append(dict(t=time, kind=kind, interface=interface,
+                                    pattern_before=before, pattern_after=after, **values))
+
+    # ----------------------------------------------------------------- choice
+    def choose(self, time, ground, reason: str, interface: int = -1) -> None:
+        """Choose the pattern at ``time`` among the candidates (module docstring)."""
+        free = [j for j in range(self.n) if self.pattern[j] == 0]
+        if not free:
+            return
+        acceleration, _ = accelerations(self.chain, self.phi, self.phi_dot, self.pattern,
+                                        *ground(time))
+        delta = self.delta
+        phi = self.phi + self.phi_dot * delta + 0.5 * acceleration * delta ** 2
+        phi_dot = self.phi_dot + acceleration * delta
+        ug, vg = ground(time + delta)
+        consistent = []
+        for candidate in candidates(self.pattern, free):
+            phi_ddot, forces = state_forces(self.chain, phi, phi_dot, candidate, ug, vg)
+            good = all(candidate[j] * phi_ddot[j] > 0.0 for j in free if candidate[j] != 0)
+            good = good and all(forces[j, 2] >= -self.tol_force and forces[j, 3] >= -self.tol_force
+                                for j in free if candidate[j] == 0)
+            if good:
+                consistent.append(candidate)
+        if not consistent:
+            raise StackStalled(f"stack model: no consistent contact pattern at t = {time!r} s "
+                               f"(from {self.pattern}); the input is outside the model")
+        best = min(consistent, key=lambda c: sum(s != 0 for s in c))
+        if best != self.pattern:
+            self.record(time, "uplift", interface, self.pattern, best,
+                        solutions=len(consistent), reason=reason)
+            self.pattern = best
+
+    # ----------------------------------------------------------------- impact
+    def impact(self, time, ground, interface: int) -> None:
+        before = self.pattern
+        energy_before = sum(energy(self.chain, self.phi, self.phi_dot, before))
+        rate_before = self.phi_dot[interface]
+        self.phi[interface] = 0.0
+        if self.law == "plastic":
+            phi_dot, pattern, solutions, _ = plastic_impact(self.chain, self.phi, self.phi_dot,
+                                                            before, interface)
+        else:
+            phi_dot, pattern = cor_impact(self.chain, self.phi, self.phi_dot, before, interface,
+                                          self.cor)
+            solutions = 1
+        self.phi_dot, self.pattern = phi_dot, pattern
+        energy_after = sum(energy(self.chain, self.phi, self.phi_dot, pattern))
+        self.record(time, "impact", interface, before, pattern, rate_before=rate_before,
+                    rate_after=phi_dot[interface], energy_before=energy_before,
+                    energy_after=energy_after, solutions=solutions)
+        # an endless cascade (one interface rocking, the rest flat), summed in closed form
+        if (pattern[interface] != 0 and sum(s != 0 for s in pattern) == 1
+                and rate_before != 0.0):
+            ratio = abs(phi_dot[interface] / rate_before)
+            phi_ddot, _ = accelerations(self.chain, self.phi, self.phi_dot, pattern,
+                                        *ground(time))
+            deceleration = -pattern[interface] * phi_ddot[interface]
+            remaining = cascade_rest_time(phi_dot[interface], deceleration, ratio)
+            if remaining <= self.rest_tolerance:
+                self.phi_dot = np.zeros(self.n)
+                self.pattern = (0,) * self.n
+                self.rest_until = time + remaining
+                self.record(time + remaining, "rest", interface, pattern, self.pattern,
+                            cascade=True)
+                return
+        if all(s == 0 for s in self.pattern):
+            self.phi_dot = np.zeros(self.n)
+        self.choose(time, ground, "after impact", interface)
+
+    # ----------------------------------------------------------------- rest
+    def rest_uplift(self, t, t_end, ground):
+        """The first time in [t, t_end] a rest corner force reaches -tol, or None."""
+        zero = np.zeros(self.n)
+        _, start = state_forces(self.chain, zero, zero, self.pattern, *ground(t))
+        _, end = state_forces(self.chain, zero, zero, self.pattern, *ground(t_end))
+        first = None
+        for j in range(self.n):
+            for corner in (2, 3):
+                a, b = start[j, corner] + self.tol_force, end[j, corner] + self.tol_force
+                if b >= 0.0:
+                    continue
+                time = t if a <= 0.0 else t + (t_end - t) * a / (a - b)
+                if first is None or time < first[0]:
+                    first = (time, j)
+        return first
+
+    # ----------------------------------------------------------------- one interval
+    def segment(self, t, t_end, ground):
+        """Integrate the current (moving) pattern from ``t`` to the first event or ``t_end``."""
+        chain, pattern, n = self.chain, self.pattern, self.n
+        open_ = [j for j in range(n) if pattern[j] != 0]
+        flat = [j for j in range(n) if pattern[j] == 0]
+        cache: dict = {}
+
+        def evaluate(time, y):
+            key = (time, y.tobytes())
+            if key not in cache:
+                if len(cache) > 64:
+                    cache.clear()
+                ug, vg = ground(time)
+                cache[key] = state_forces(chain, y[:n], y[n:], pattern, ug, vg) if flat else \
+                    (accelerations(chain, y[:n], y[n:], pattern, ug, vg)[0], None)
+            return cache[key]
+
+        def rhs(time, y):
+            return np.concatenate([y[n:], evaluate(time, y)[0]])
+
+        events, meaning = [], []
+        for j in open_:
+            s = pattern[j]
+            landing = (lambda time, y, j=j, s=s: s * y[j])
+            landing.terminal, landing.direction = True, -1
+            falling = (lambda time, y, j=j, s=s: 0.5 * math.pi - s * y[j])
+            falling.terminal, falling.direction = True, -1
+            events += [landing, falling]
+            meaning += [("impact", j), ("overturn", j)]
+        for j in flat:
+            for corner in (2, 3):
+                lift = (lambda time, y, j=j, c=corner: evaluate(time, y)[1][j, c] + self.tol_force)
+                lift.terminal, lift.direction = True, -1
+                events.append(lift)
+                meaning.append(("lift", j))
+        y0 = np.concatenate([self.phi, self.phi_dot])
+        solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol, atol=self.atol,
+                             events=events)
+        if solution.status == -1:
+            raise StackStalled(f"stack model: DOP853 failed at t = {solution.t[-1]!r} s: "
+                               f"{solution.message}")
+        self.steps += len(solution.t) - 1
+        self.evaluations += solution.nfev
+        if solution.status == 1:
+            fired = [(times[0], index) for index, times in enumerate(solution.t_events) if len(times)]
+            time, index = min(fired)
+            y = solution.y_events[index][0]
+            self.phi, self.phi_dot = y[:n].copy(), y[n:].copy()
+            return time, meaning[index]
+        self.phi, self.phi_dot = solution.y[:n, -1].copy(), solution.y[n:, -1].copy()
+        return t_end, None
+
+    def interval(self, k: int) -> bool:
+        """Advance over the input interval k; False when the run stops."""
+        t0, t1 = float(self.t[k]), float(self.t[k + 1])
+        ground = Ground(t0, t1, self.ug[k], self.ug[k + 1], self.vg[k], self.vg[k + 1])
+        support0, support1 = G + self.vg[k], G + self.vg[k + 1]
+        if support0 <= 0.0 or support1 <= 0.0:
+            self.status = "airborne"
+            self.t_airborne = t0 if support0 <= 0.0 else t0 + (t1 - t0) * support0 / (support0 - support1)
+            self.record(self.t_airborne, "airborne")
+            return False
+        t = t0
+        while t < t1:
+            if self.rest_until > t:
+                if self.rest_until >= t1:
+                    return True
+                t = self.rest_until
+            if self.rest_until > -math.inf and t >= self.rest_until:
+                self.rest_until = -math.inf
+                self.choose(t, ground, "after rest")
+            if all(s == 0 for s in self.pattern):
+                found = self.rest_uplift(t, t1, ground)
+                if found is None:
+                    return True
+                t_new, interface = found
+                self.progress(t, t_new)
+                t = t_new
+                self.choose(t, ground, "uplift", interface)
+                continue
+            t_new, what = self.segment(t, t1, ground)
+            self.progress(t, t_new)
+            t = t_new
+            if what is None:
+                continue
+            kind, interface = what
+            if kind == "impact":
+                self.impact(t, ground, interface)
+            elif kind == "overturn":
+                self.status = "overturned"
+                self.t_overturn = t
+                self.overturned_block = interface
+                self.record(t, "overturn", interface, self.pattern, self.pattern)
+                return False
+            else:
+                self.choose(t, ground, "uplift", interface)
+        return True
+
+    def progress(self, t, t_new) -> None:
+        self.stalled = self.stalled + 1 if t_new <= t else 0
+        if self.stalled > MAX_EVENTS_AT_ONE_INSTANT:
+            raise StackStalled(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
+                               f"t = {t!r} s without progress")
+
+    def sample(self, k):
+        """theta, theta', theta'' of every block, the pattern and the contact forces at
+        t[k]."""
+        ug, vg = self.ug[k], self.vg[k]
+        phi_ddot, forces = state_forces(self.chain, self.phi, self.phi_dot, self.pattern, ug, vg)
+        return (np.cumsum(self.phi), np.cumsum(self.phi_dot), np.cumsum(phi_ddot),
+                np.array(self.pattern), forces)
+
+
+def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: float,
+              rest_tolerance: float, max_recorded_events: int) -> dict:
+    """Run the stack over ``motion``: the sampled histories and the events (a dict)."""
+    run = Run(stack, motion, law, cor, theta0, theta_dot0, rtol, rest_tolerance,
+              max_recorded_events)
+    count = motion.t.size
+    n = run.n
+    theta, rate, acceleration = np.zeros((count, n)), np.zeros((count, n)), np.zeros((count, n))
+    patterns = np.zeros((count, n), dtype=np.int8)
+    forces = np.zeros((count, n, 4))
+    first = Ground(float(motion.t[0]), float(motion.t[1]), run.ug[0], run.ug[1], run.vg[0],
+                   run.vg[1])
+    run.choose(float(motion.t[0]), first, "start")
+    filled = 0
+    theta[0], rate[0], acceleration[0], patterns[0], forces[0] = run.sample(0)
+    filled = 1
+    for k in range(count - 1):
+        going = run.interval(k)
+        if not going:
+            break
+        theta[k + 1], rate[k + 1], acceleration[k + 1], patterns[k + 1], forces[k + 1] = \
+            run.sample(k + 1)
+        filled = k + 2
+    return dict(run=run, filled=filled, theta=theta[:filled], rate=rate[:filled],
+                acceleration=acceleration[:filled], patterns=patterns[:filled],
+                forces=forces[:filled])
