@@ -35,6 +35,7 @@ from shaketable.models.stack.physics import (
     accelerations,
     candidates,
     energy,
+    interface_forces,
     state_forces,
 )
 
@@ -84,8 +85,10 @@ class Run:
         self.delta = LOOKAHEAD / stack.p_max
         self.tol_force = FORCE_TOLERANCE * stack.weight
         scale = stack.alpha_min
+        self.work = 0.0   # the table's work on the blocks since the start [J]
         self.atol = np.concatenate([np.full(self.n, rtol * scale),
-                                    np.full(self.n, rtol * scale * stack.p_max)])
+                                    np.full(self.n, rtol * scale * stack.p_max),
+                                    [rtol * stack.weight * float(np.hypot(stack.b, stack.h).max())]])
         self.t = motion.t
         self.ug = motion.horizontal
         self.vg = motion.vertical_or_zero
@@ -167,11 +170,14 @@ class Run:
             deceleration = -pattern[interface] * phi_ddot[interface]
             remaining = cascade_rest_time(phi_dot[interface], deceleration, ratio)
             if remaining <= self.rest_tolerance:
+                # the cascade's energy is lost (the stack comes to rest at phi = 0)
+                self.record(time + remaining, "rest", interface, pattern, (0,) * self.n,
+                            cascade=True, energy_before=energy_after,
+                            energy_after=sum(energy(self.chain, self.phi, 0.0 * self.phi_dot,
+                                                    (0,) * self.n)))
                 self.phi_dot = np.zeros(self.n)
                 self.pattern = (0,) * self.n
                 self.rest_until = time + remaining
-                self.record(time + remaining, "rest", interface, pattern, self.pattern,
-                            cascade=True)
                 return
         if all(s == 0 for s in self.pattern):
             self.phi_dot = np.zeros(self.n)
@@ -208,12 +214,19 @@ class Run:
                 if len(cache) > 64:
                     cache.clear()
                 ug, vg = ground(time)
-                cache[key] = state_forces(chain, y[:n], y[n:], pattern, ug, vg) if flat else \
-                    (accelerations(chain, y[:n], y[n:], pattern, ug, vg)[0], None)
+                phi_ddot, (theta, theta_dot, centroid, jacobian, centripetal) = accelerations(
+                    chain, y[:n], y[n:2 * n], pattern, ug, vg)
+                forces = interface_forces(chain, pattern, ug, vg, theta, np.cumsum(phi_ddot),
+                                          centroid, jacobian, centripetal) if flat else None
+                # the power of the table's inertial forces -m u'', -m v'' (the work W)
+                velocity = np.einsum("iak,k->ia", jacobian, theta_dot)
+                power = -float((chain.m * (ug * velocity[:, 0] + vg * velocity[:, 1])).sum())
+                cache[key] = (phi_ddot, forces, power)
             return cache[key]
 
         def rhs(time, y):
-            return np.concatenate([y[n:], evaluate(time, y)[0]])
+            phi_ddot, _, power = evaluate(time, y)
+            return np.concatenate([y[n:2 * n], phi_ddot, [power]])
 
         events, meaning = [], []
         for j in open_:
@@ -230,7 +243,7 @@ class Run:
                 lift.terminal, lift.direction = True, -1
                 events.append(lift)
                 meaning.append(("lift", j))
-        y0 = np.concatenate([self.phi, self.phi_dot])
+        y0 = np.concatenate([self.phi, self.phi_dot, [self.work]])
         solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol, atol=self.atol,
                              events=events)
         if solution.status == -1:
@@ -242,9 +255,10 @@ class Run:
             fired = [(times[0], index) for index, times in enumerate(solution.t_events) if len(times)]
             time, index = min(fired)
             y = solution.y_events[index][0]
-            self.phi, self.phi_dot = y[:n].copy(), y[n:].copy()
+            self.phi, self.phi_dot, self.work = y[:n].copy(), y[n:2 * n].copy(), float(y[-1])
             return time, meaning[index]
-        self.phi, self.phi_dot = solution.y[:n, -1].copy(), solution.y[n:, -1].copy()
+        self.phi, self.phi_dot = solution.y[:n, -1].copy(), solution.y[n:2 * n, -1].copy()
+        self.work = float(solution.y[-1, -1])
         return t_end, None
 
     def interval(self, k: int) -> bool:
@@ -305,7 +319,7 @@ class Run:
         ug, vg = self.ug[k], self.vg[k]
         phi_ddot, forces = state_forces(self.chain, self.phi, self.phi_dot, self.pattern, ug, vg)
         return (np.cumsum(self.phi), np.cumsum(self.phi_dot), np.cumsum(phi_ddot),
-                np.array(self.pattern), forces)
+                np.array(self.pattern), forces, self.work)
 
 
 def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: float,
@@ -318,19 +332,20 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     theta, rate, acceleration = np.zeros((count, n)), np.zeros((count, n)), np.zeros((count, n))
     patterns = np.zeros((count, n), dtype=np.int8)
     forces = np.zeros((count, n, 4))
+    work = np.zeros(count)
     first = Ground(float(motion.t[0]), float(motion.t[1]), run.ug[0], run.ug[1], run.vg[0],
                    run.vg[1])
     run.choose(float(motion.t[0]), first, "start")
     filled = 0
-    theta[0], rate[0], acceleration[0], patterns[0], forces[0] = run.sample(0)
+    theta[0], rate[0], acceleration[0], patterns[0], forces[0], work[0] = run.sample(0)
     filled = 1
     for k in range(count - 1):
         going = run.interval(k)
         if not going:
             break
-        theta[k + 1], rate[k + 1], acceleration[k + 1], patterns[k + 1], forces[k + 1] = \
-            run.sample(k + 1)
+        theta[k + 1], rate[k + 1], acceleration[k + 1], patterns[k + 1], forces[k + 1], \
+            work[k + 1] = run.sample(k + 1)
         filled = k + 2
     return dict(run=run, filled=filled, theta=theta[:filled], rate=rate[:filled],
                 acceleration=acceleration[:filled], patterns=patterns[:filled],
-                forces=forces[:filled])
+                forces=forces[:filled], work=work[:filled])

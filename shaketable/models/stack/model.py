@@ -93,6 +93,7 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
         stack=stack, motion=motion, impact=impact, cor=math.nan if cor is None else cor,
         t=motion.t[:out["filled"]].copy(), theta=out["theta"], theta_dot=out["rate"],
         theta_ddot=out["acceleration"], patterns=out["patterns"], forces=out["forces"],
+        work=out["work"],
         events=tuple(run.events), status=run.status, t_overturn=run.t_overturn,
         overturned_block=run.overturned_block, t_airborne=run.t_airborne,
         n_events=run.n_events, statistics={"steps": run.steps, "evaluations": run.evaluations})

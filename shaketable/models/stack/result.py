@@ -58,6 +58,10 @@ class StackResult(ModelResult):
     forces : ndarray, shape (k, n, 4)
         Each interface's normal N and tangential F force on the blocks above [N] (along
         the lower surface), and the normal forces at the upper block's -x and +x corners [N].
+    work : ndarray, shape (k,)
+        Work of the table's inertial forces (-m u'', -m v'') on the blocks since the start
+        [J] (integrated with the motion): kinetic plus potential energy change by it
+        between impacts.
     events : tuple of dict
         Uplifts, impacts, rests, overturn, airborne, in time order.
     status : str
@@ -84,6 +88,7 @@ class StackResult(ModelResult):
     theta_ddot: np.ndarray
     patterns: np.ndarray
     forces: np.ndarray
+    work: np.ndarray
     events: tuple
     status: str
     t_overturn: float
@@ -144,6 +149,18 @@ class StackResult(ModelResult):
         return float(np.abs(self.top_corner_excursion).max()) if self.t.size else 0.0
 
     # ------------------------------------------------------------------ views
+    @property
+    def energy(self) -> np.ndarray:
+        """Kinetic (table frame) plus potential energy above the table [J] at the output
+        times."""
+        from shaketable.models.stack.physics import Chain, energy
+
+        chain = Chain.of(self.stack)
+        phi = np.diff(self.theta, axis=1, prepend=0.0)
+        rate = np.diff(self.theta_dot, axis=1, prepend=0.0)
+        return np.array([sum(energy(chain, phi[k], rate[k], self.patterns[k]))
+                         for k in range(self.t.size)])
+
     def to_frame(self) -> pd.DataFrame:
         columns: dict[str, Any] = {"t [s]": self.t}
         u, v = self.motion.at(self.t)
@@ -169,6 +186,9 @@ class StackResult(ModelResult):
                     row[key] = pattern_name(row[key])
             rows.append(row)
         frame = pd.DataFrame(rows)
+        for column in ("t", "kind", "interface", "pattern_before", "pattern_after"):
+            if column not in frame:
+                frame[column] = pd.Series(dtype=object)
         return frame.rename(columns={"t": "t [s]", "rate_before": "phi_dot_before [rad/s]",
                                      "rate_after": "phi_dot_after [rad/s]",
                                      "energy_before": "energy_before [J]",
