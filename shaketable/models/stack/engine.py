@@ -14,7 +14,7 @@ At an uplift the closing force is zero and the flat and the opened patterns have
 accelerations, so the choice is made just after the event, at ``t + delta``
 (``delta = 1e-8 / p_max``) with the state carried along the current pattern: a candidate
 is consistent when every flat corner's normal force is >= -tol (``tol = 1e-12`` times the
-weight of the stack) and every interface it opens accelerates open (``s_j phi_j'' > 0``).
+weight of the lightest block) and every interface it opens accelerates open (``s_j phi_j'' > 0``).
 The uplift events fire at a corner force of -tol, so that a force touching zero and
 recovering (grazing) starts nothing. The consistent candidate with the fewest open
 interfaces is kept; how many were consistent is recorded with the event.
@@ -37,12 +37,16 @@ from shaketable.models.stack.physics import (
     energy,
     interface_forces,
     state_forces,
+    table_power,
 )
 
-#: Relative force tolerance of the rest and flat contacts (times the stack's weight).
+#: Relative force tolerance of the rest and flat contacts (times the lightest block's weight).
 FORCE_TOLERANCE = 1e-12
 #: Look-ahead of the pattern choice, times 1 / p_max [s].
 LOOKAHEAD = 1e-8
+#: Rates below FLOOR alpha_min p_max and rotations below FLOOR alpha_min after an impact
+#: are rest (the noise level of a landing).
+FLOOR = 1e-10
 #: Events in a row at one instant before the run is declared stalled.
 MAX_EVENTS_AT_ONE_INSTANT = 200
 
@@ -83,8 +87,9 @@ class Run:
         self.rest_tolerance = rest_tolerance
         self.max_recorded = max_recorded_events
         self.delta = LOOKAHEAD / stack.p_max
-        self.tol_force = FORCE_TOLERANCE * stack.weight
+        self.tol_force = FORCE_TOLERANCE * G * float(stack.m.min())
         scale = stack.alpha_min
+        self.alpha, self.alpha_p = scale, scale * stack.p_max
         self.work = 0.0   # the table's work on the blocks since the start [J]
         self.atol = np.concatenate([np.full(self.n, rtol * scale),
                                     np.full(self.n, rtol * scale * stack.p_max),
@@ -115,14 +120,21 @@ class Run:
                                     pattern_before=before, pattern_after=after, **values))
 
     # ----------------------------------------------------------------- choice
-    def choose(self, time, ground, reason: str, interface: int = -1) -> None:
-        """Choose the pattern at ``time`` among the candidates (module docstring)."""
+    def choose(self, time, ground, reason: str, interface: int = -1, end=math.inf) -> float:
+        """Choose the pattern at ``time`` among the candidates (module docstring); the time
+        the run goes on from.
+
+        When the pattern changes the run goes on from the look-ahead ``time + delta`` (at
+        most ``end``), with the state carried there along the old pattern (an error of
+        order delta^3 in the newly opened interfaces, whose phi'' is of order delta there):
+        the new pattern then starts with its opening acceleration strictly positive.
+        """
         free = [j for j in range(self.n) if self.pattern[j] == 0]
         if not free:
-            return
+            return time
         acceleration, _ = accelerations(self.chain, self.phi, self.phi_dot, self.pattern,
                                         *ground(time))
-        delta = self.delta
+        delta = min(self.delta, max(end - time, 0.0))
         phi = self.phi + self.phi_dot * delta + 0.5 * acceleration * delta ** 2
         phi_dot = self.phi_dot + acceleration * delta
         ug, vg = ground(time + delta)
@@ -138,13 +150,17 @@ class Run:
             raise StackStalled(f"stack model: no consistent contact pattern at t = {time!r} s "
                                f"(from {self.pattern}); the input is outside the model")
         best = min(consistent, key=lambda c: sum(s != 0 for s in c))
-        if best != self.pattern:
-            self.record(time, "uplift", interface, self.pattern, best,
-                        solutions=len(consistent), reason=reason)
-            self.pattern = best
+        if best == self.pattern:
+            return time
+        self.record(time, "uplift", interface, self.pattern, best, solutions=len(consistent),
+                    reason=reason)
+        self.work += delta * table_power(self.chain, self.phi, self.phi_dot, self.pattern,
+                                         *ground(time))
+        self.pattern, self.phi, self.phi_dot = best, phi, phi_dot
+        return time + delta
 
     # ----------------------------------------------------------------- impact
-    def impact(self, time, ground, interface: int) -> None:
+    def impact(self, time, ground, interface: int, end: float) -> float:
         before = self.pattern
         energy_before = sum(energy(self.chain, self.phi, self.phi_dot, before))
         rate_before = self.phi_dot[interface]
@@ -161,6 +177,16 @@ class Run:
         self.record(time, "impact", interface, before, pattern, rate_before=rate_before,
                     rate_after=phi_dot[interface], energy_before=energy_before,
                     energy_after=energy_after, solutions=solutions)
+        # a landing at the noise level (a force that barely crossed zero, the end of a
+        # chatter of several interfaces): the stack is at rest
+        if (np.abs(phi_dot).max() <= FLOOR * self.alpha_p and np.abs(self.phi).max()
+                <= FLOOR * self.alpha):
+            self.record(time, "rest", interface, pattern, (0,) * self.n, cascade=True,
+                        energy_before=energy_after,
+                        energy_after=sum(energy(self.chain, 0.0 * self.phi, 0.0 * phi_dot,
+                                                (0,) * self.n)))
+            self.phi, self.phi_dot, self.pattern = np.zeros(self.n), np.zeros(self.n), (0,) * self.n
+            return self.choose(time, ground, "after rest", interface, end)
         # an endless cascade (one interface rocking, the rest flat), summed in closed form
         if (pattern[interface] != 0 and sum(s != 0 for s in pattern) == 1
                 and rate_before != 0.0):
@@ -178,10 +204,10 @@ class Run:
                 self.phi_dot = np.zeros(self.n)
                 self.pattern = (0,) * self.n
                 self.rest_until = time + remaining
-                return
+                return time
         if all(s == 0 for s in self.pattern):
             self.phi_dot = np.zeros(self.n)
-        self.choose(time, ground, "after impact", interface)
+        return self.choose(time, ground, "after impact", interface, end)
 
     # ----------------------------------------------------------------- rest
     def rest_uplift(self, t, t_end, ground):
@@ -279,15 +305,14 @@ class Run:
                 t = self.rest_until
             if self.rest_until > -math.inf and t >= self.rest_until:
                 self.rest_until = -math.inf
-                self.choose(t, ground, "after rest")
+                t = self.choose(t, ground, "after rest", end=t1)
             if all(s == 0 for s in self.pattern):
                 found = self.rest_uplift(t, t1, ground)
                 if found is None:
                     return True
                 t_new, interface = found
                 self.progress(t, t_new)
-                t = t_new
-                self.choose(t, ground, "uplift", interface)
+                t = self.choose(t_new, ground, "uplift", interface, t1)
                 continue
             t_new, what = self.segment(t, t1, ground)
             self.progress(t, t_new)
@@ -296,7 +321,7 @@ class Run:
                 continue
             kind, interface = what
             if kind == "impact":
-                self.impact(t, ground, interface)
+                t = self.impact(t, ground, interface, t1)
             elif kind == "overturn":
                 self.status = "overturned"
                 self.t_overturn = t
@@ -304,7 +329,7 @@ class Run:
                 self.record(t, "overturn", interface, self.pattern, self.pattern)
                 return False
             else:
-                self.choose(t, ground, "uplift", interface)
+                t = self.choose(t, ground, "uplift", interface, t1)
         return True
 
     def progress(self, t, t_new) -> None:
@@ -335,7 +360,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     work = np.zeros(count)
     first = Ground(float(motion.t[0]), float(motion.t[1]), run.ug[0], run.ug[1], run.vg[0],
                    run.vg[1])
-    run.choose(float(motion.t[0]), first, "start")
+    run.choose(float(motion.t[0]), first, "start", end=float(motion.t[0]))
     filled = 0
     theta[0], rate[0], acceleration[0], patterns[0], forces[0], work[0] = run.sample(0)
     filled = 1
