@@ -164,6 +164,7 @@ class Run:
         before = self.pattern
         energy_before = sum(energy(self.chain, self.phi, self.phi_dot, before))
         rate_before = self.phi_dot[interface]
+        rates_before = self.phi_dot.copy()
         self.phi[interface] = 0.0
         if self.law == "plastic":
             phi_dot, pattern, solutions, _ = plastic_impact(self.chain, self.phi, self.phi_dot,
@@ -187,16 +188,16 @@ class Run:
                                                 (0,) * self.n)))
             self.phi, self.phi_dot, self.pattern = np.zeros(self.n), np.zeros(self.n), (0,) * self.n
             return self.choose(time, ground, "after rest", interface, end)
-        # an endless cascade (one interface rocking, the rest flat), summed in closed form
-        if (pattern[interface] != 0 and sum(s != 0 for s in pattern) == 1
-                and rate_before != 0.0):
+        # an endless cascade of landings of this interface, summed in closed form: the
+        # flights shrink by the ratio of this impact and last 2|phi'| / deceleration
+        if pattern[interface] != 0 and rate_before != 0.0:
             ratio = abs(phi_dot[interface] / rate_before)
             phi_ddot, _ = accelerations(self.chain, self.phi, self.phi_dot, pattern,
                                         *ground(time))
             deceleration = -pattern[interface] * phi_ddot[interface]
             remaining = cascade_rest_time(phi_dot[interface], deceleration, ratio)
-            if remaining <= self.rest_tolerance:
-                # the cascade's energy is lost (the stack comes to rest at phi = 0)
+            if remaining <= self.rest_tolerance and sum(s != 0 for s in pattern) == 1:
+                # the only moving interface: the stack rests at the cascade's end
                 self.record(time + remaining, "rest", interface, pattern, (0,) * self.n,
                             cascade=True, energy_before=energy_after,
                             energy_after=sum(energy(self.chain, self.phi, 0.0 * self.phi_dot,
@@ -205,6 +206,15 @@ class Run:
                 self.pattern = (0,) * self.n
                 self.rest_until = time + remaining
                 return time
+            if remaining <= self.rest_tolerance:
+                # the others move on: this interface closes now (a plastic landing held
+                # flat), at most rest_tolerance early
+                phi_dot, closed, _, _ = plastic_impact(self.chain, self.phi, rates_before,
+                                                       before, interface, closed=(interface,))
+                energy_closed = sum(energy(self.chain, self.phi, phi_dot, closed))
+                self.record(time, "rest", interface, pattern, closed, cascade=True,
+                            energy_before=energy_after, energy_after=energy_closed)
+                self.phi_dot, self.pattern = phi_dot, closed
         if all(s == 0 for s in self.pattern):
             self.phi_dot = np.zeros(self.n)
         return self.choose(time, ground, "after impact", interface, end)
@@ -257,7 +267,13 @@ class Run:
         events, meaning = [], []
         for j in open_:
             s = pattern[j]
-            landing = (lambda time, y, j=j, s=s: s * y[j])
+            if self.phi[j] == 0.0:
+                # leaving phi = 0: s phi / elapsed (-> s phi' at the start) so that a flight
+                # shorter than a step is not "found" at its start, where s phi is zero
+                landing = (lambda time, y, j=j, s=s: s * y[n + j] if time <= t
+                           else s * y[j] / (time - t))
+            else:
+                landing = (lambda time, y, j=j, s=s: s * y[j])
             landing.terminal, landing.direction = True, -1
             falling = (lambda time, y, j=j, s=s: 0.5 * math.pi - s * y[j])
             falling.terminal, falling.direction = True, -1

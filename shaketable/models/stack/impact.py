@@ -44,7 +44,7 @@ from shaketable.models.stack.physics import (
 IMPACT_TOLERANCE = 1e-9
 
 
-def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int):
+def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int, closed=()):
     """Post-impact ``phi'`` and pattern of the plastic, no-slip multi-contact law.
 
     ``phi[interface]`` is zero (the landing); ``pattern`` the pattern before. Returns
@@ -52,7 +52,8 @@ def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int):
     of admissible active sets (1: unique), ``impulses`` the (n, 4) impulses [N s] of the
     chosen one (see :func:`~shaketable.models.stack.physics.interface_loads`). With more
     than one admissible set the one with the fewest open interfaces is kept; with none, the
-    one whose worst violation is least.
+    one whose worst violation is least. ``closed``: interfaces held flat (the end of a
+    cascade summed in closed form).
     """
     theta, theta_dot = np.cumsum(phi), np.cumsum(phi_dot)
     centroid, before_map, _ = kinematics(chain, theta, theta_dot, pattern)
@@ -66,6 +67,8 @@ def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int):
     start[interface] = 0
     found = []
     for candidate in candidates(tuple(start), free):
+        if any(candidate[j] != 0 for j in closed):
+            continue
         _, after_map, _ = kinematics(chain, theta, theta_dot, candidate)
         columns = [j for j, s in enumerate(candidate) if s != 0]
         theta_after = np.zeros(chain.n)
