@@ -28,7 +28,6 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from shaketable.core.constants import G
-from shaketable.core.dynamics import cascade_rest_time
 from shaketable.models.stack.impact import cor_impact, plastic_impact
 from shaketable.models.stack.physics import (
     Chain,
@@ -49,6 +48,16 @@ LOOKAHEAD = 1e-8
 FLOOR = 1e-10
 #: Events in a row at one instant before the run is declared stalled.
 MAX_EVENTS_AT_ONE_INSTANT = 200
+
+
+def cascade_rest_time(rate_after, deceleration, ratio):
+    """Time for an endless cascade of landings to die out [s]: flights of 2|w| / a0 shrinking
+    by ``ratio`` each, summed, 2|w| / (a0 (1 - ratio)); inf when the series diverges (the
+    single block's rule, :func:`shaketable.core.dynamics.cascade_rest_time`, written here so
+    that the stack model does not load numba)."""
+    if deceleration <= 0.0 or ratio >= 1.0:
+        return math.inf
+    return 2.0 * abs(rate_after) / (deceleration * (1.0 - ratio))
 
 
 class StackStalled(RuntimeError):

@@ -52,6 +52,7 @@ class Chain:
         self.n = self.b.size
         self.inertia = self.m * (self.b ** 2 + self.h ** 2) / 3.0
         self.lower = np.tril(np.ones((self.n, self.n)))
+        self.strictly_lower = np.tril(np.ones((self.n, self.n), dtype=bool), -1)
 
     @classmethod
     def of(cls, stack) -> "Chain":
@@ -73,14 +74,13 @@ def arms(chain: Chain, theta, pattern):
     """The rotated chain vectors ``R(theta_k) D_k`` and ``R(theta_i) C_i`` [m], shape (n, 2)
     each, and the pivot on the table ``P_0``."""
     sigma = pivots(pattern)
-    n = chain.n
-    above = np.append(sigma[1:] * chain.b[1:], 0.0) if n > 1 else np.zeros(1)
-    d = np.stack([sigma * chain.b - above, 2.0 * chain.h], axis=1)
-    c = np.stack([sigma * chain.b, chain.h], axis=1)
-    rd, rc = np.empty((n, 2)), np.empty((n, 2))
-    for k in range(n):
-        r = rotation(theta[k])
-        rd[k], rc[k] = r @ d[k], r @ c[k]
+    above = np.zeros(chain.n)
+    above[:-1] = sigma[1:] * chain.b[1:]
+    dx, dy = sigma * chain.b - above, 2.0 * chain.h
+    cx, cy = sigma * chain.b, chain.h
+    cosine, sine = np.cos(theta), np.sin(theta)
+    rd = np.stack([cosine * dx - sine * dy, sine * dx + cosine * dy], axis=1)
+    rc = np.stack([cosine * cx - sine * cy, sine * cx + cosine * cy], axis=1)
     return rd, rc, np.array([-sigma[0] * chain.b[0], 0.0])
 
 
@@ -88,19 +88,22 @@ def kinematics(chain: Chain, theta, theta_dot, pattern):
     """Centroids ``G`` (n, 2) [m], Jacobians ``J`` (n, 2, n) [m] and the velocity-product
     accelerations ``c`` (n, 2) [m/s^2] of the chain with the pivots of ``pattern``."""
     n = chain.n
-    rd, rc, p0 = arms(chain, theta, pattern)
-    centroid = np.empty((n, 2))
-    jacobian = np.zeros((n, 2, n))
-    centripetal = np.empty((n, 2))
-    base, spin = p0.copy(), np.zeros(2)
-    for i in range(n):
-        centroid[i] = base + rc[i]
-        centripetal[i] = -(spin + rc[i] * theta_dot[i] ** 2)
-        jacobian[i, :, i] = QUARTER @ rc[i]
-        for k in range(i):
-            jacobian[i, :, k] = QUARTER @ rd[k]
-        base = base + rd[i]
-        spin = spin + rd[i] * theta_dot[i] ** 2
+    theta_dot = np.asarray(theta_dot, dtype=float)
+    rd, rc, p0 = arms(chain, np.asarray(theta, dtype=float), pattern)
+    # sums over the blocks below: base_i = P_0 + sum_{k<i} R D_k, likewise the spin terms
+    below = np.zeros((n, 2))
+    below[1:] = np.cumsum(rd[:-1], axis=0)
+    spun = rd * (theta_dot ** 2)[:, None]
+    spin_below = np.zeros((n, 2))
+    spin_below[1:] = np.cumsum(spun[:-1], axis=0)
+    centroid = p0[None, :] + below + rc
+    centripetal = -(spin_below + rc * (theta_dot ** 2)[:, None])
+    # J_i[:, k] = QUARTER R D_k for k < i, QUARTER R C_i for k = i: QUARTER (x, y) = (-y, x)
+    turned_d = np.stack([-rd[:, 1], rd[:, 0]], axis=1)
+    turned_c = np.stack([-rc[:, 1], rc[:, 0]], axis=1)
+    jacobian = np.where(chain.strictly_lower[:, None, :], turned_d.T[None, :, :], 0.0)
+    index = np.arange(n)
+    jacobian[index, :, index] = turned_c
     return centroid, jacobian, centripetal
 
 
