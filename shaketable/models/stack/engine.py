@@ -32,7 +32,7 @@ from shaketable.models.stack.impact import cor_impact, plastic_impact
 from shaketable.models.stack.physics import (
     Chain,
     accelerations,
-    candidates,
+    candidate_levels,
     energy,
     interface_forces,
     state_forces,
@@ -43,6 +43,9 @@ from shaketable.models.stack.physics import (
 FORCE_TOLERANCE = 1e-12
 #: Look-ahead of the pattern choice, times 1 / p_max [s].
 LOOKAHEAD = 1e-8
+#: Up to this many blocks every candidate pattern is tried (and the consistent ones
+#: counted); above it the search stops at the first number of open interfaces that has one.
+FULL_ENUMERATION = 3
 #: Rates below FLOOR alpha_min p_max and rotations below FLOOR alpha_min after an impact
 #: are rest (the noise level of a landing).
 FLOOR = 1e-10
@@ -148,13 +151,17 @@ class Run:
         phi_dot = self.phi_dot + acceleration * delta
         ug, vg = ground(time + delta)
         consistent = []
-        for candidate in candidates(self.pattern, free):
-            phi_ddot, forces = state_forces(self.chain, phi, phi_dot, candidate, ug, vg)
-            good = all(candidate[j] * phi_ddot[j] > 0.0 for j in free if candidate[j] != 0)
-            good = good and all(forces[j, 2] >= -self.tol_force and forces[j, 3] >= -self.tol_force
-                                for j in free if candidate[j] == 0)
-            if good:
-                consistent.append(candidate)
+        for level in candidate_levels(self.pattern, free):
+            for candidate in level:
+                phi_ddot, forces = state_forces(self.chain, phi, phi_dot, candidate, ug, vg)
+                good = all(candidate[j] * phi_ddot[j] > 0.0 for j in free if candidate[j] != 0)
+                good = good and all(forces[j, 2] >= -self.tol_force
+                                    and forces[j, 3] >= -self.tol_force
+                                    for j in free if candidate[j] == 0)
+                if good:
+                    consistent.append(candidate)
+            if consistent and self.n > FULL_ENUMERATION:
+                break   # the fewest open interfaces: the levels above are not searched
         if not consistent:
             raise StackStalled(f"stack model: no consistent contact pattern at t = {time!r} s "
                                f"(from {self.pattern}); the input is outside the model")

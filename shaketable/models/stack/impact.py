@@ -34,12 +34,15 @@ import numpy as np
 
 from shaketable.models.stack.physics import (
     Chain,
-    candidates,
+    candidate_levels,
     interface_loads,
     kinematics,
     mass_matrix,
 )
 
+#: Up to this many blocks every active set is tried (and the admissible ones counted);
+#: above it the search stops after the fewest open interfaces that give an admissible one.
+FULL_ENUMERATION = 3
 #: Relative tolerance of the admissibility tests (impulses, separating velocities).
 IMPACT_TOLERANCE = 1e-9
 
@@ -66,9 +69,12 @@ def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int, closed=(
     start = list(pattern)
     start[interface] = 0
     found = []
-    for candidate in candidates(tuple(start), free):
+    for candidate in (c for level in candidate_levels(tuple(start), free) for c in level):
         if any(candidate[j] != 0 for j in closed):
             continue
+        if chain.n > FULL_ENUMERATION and any(item[0] <= 1.0 and item[1] < sum(
+                s != 0 for s in candidate) for item in found):
+            break   # an admissible set with fewer open interfaces is already found
         _, after_map, _ = kinematics(chain, theta, theta_dot, candidate)
         columns = [j for j, s in enumerate(candidate) if s != 0]
         theta_after = np.zeros(chain.n)

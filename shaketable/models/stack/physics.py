@@ -217,8 +217,19 @@ def table_power(chain: Chain, phi, phi_dot, pattern, ug, vg) -> float:
 def candidates(pattern, free):
     """Every pattern that keeps the interfaces not in ``free`` and gives each free one any of
     flat, +1, -1 (flat first)."""
-    for choice in itertools.product((0, 1, -1), repeat=len(free)):
-        candidate = list(pattern)
-        for j, s in zip(free, choice):
-            candidate[j] = s
-        yield tuple(candidate)
+    for level in candidate_levels(pattern, free):
+        yield from level
+
+
+def candidate_levels(pattern, free):
+    """The candidates of :func:`candidates` in groups, by how many free interfaces they open
+    (0, 1, 2, ...)."""
+    for count in range(len(free) + 1):
+        level = []
+        for opened in itertools.combinations(free, count):
+            for sides in itertools.product((1, -1), repeat=count):
+                candidate = [0 if j in free else s for j, s in enumerate(pattern)]
+                for j, side in zip(opened, sides):
+                    candidate[j] = side
+                level.append(tuple(candidate))
+        yield level
