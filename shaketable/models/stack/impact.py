@@ -68,7 +68,7 @@ def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int, closed=(
     free = [j for j in range(chain.n) if phi[j] == 0.0]
     start = list(pattern)
     start[interface] = 0
-    found = []
+    found: list[tuple] = []
     for candidate in (c for level in candidate_levels(tuple(start), free) for c in level):
         if any(candidate[j] != 0 for j in closed):
             continue
