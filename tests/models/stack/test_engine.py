@@ -22,14 +22,14 @@ def test_a_stack_of_one_block_is_the_rocking_engine():
     free = simulate_stack(stack, None, theta0=[0.8 * block.alpha], duration=2.0, output_dt=0.01)
     engine = st.simulate(block, None, cor=ratio, theta0=0.8 * block.alpha, duration=2.0,
                          output_dt=0.01, method="reference")
-    assert np.abs(free.theta[:, 0] - engine.theta).max() < 1e-9
-    assert np.abs(free.theta_dot[:, 0] - engine.theta_dot).max() < 1e-9
+    assert np.abs(free.theta[:, 0] - engine.theta).max() < 1e-12
+    assert np.abs(free.theta_dot[:, 0] - engine.theta_dot).max() < 1e-12
     t = np.arange(0.0, 1.5, 0.005)
     motion = st.Motion(t, 4.0 * np.sin(9.0 * t), 1.0 * np.sin(5.0 * t))
     forced = simulate_stack(stack, motion)
     engine = st.simulate(block, motion, cor=ratio, method="reference")
     assert forced.events[0]["t"] == pytest.approx(engine.t_start, abs=1e-9)
-    assert np.abs(forced.theta[:, 0] - engine.theta).max() < 1e-9
+    assert np.abs(forced.theta[:, 0] - engine.theta).max() < 1e-12
     impacts = [e["t"] for e in forced.events if e["kind"] == "impact"]
     assert np.abs(np.array(impacts) - engine.impact_times[:len(impacts)]).max() < 1e-9
     assert len(impacts) == engine.n_impacts
@@ -61,9 +61,9 @@ def test_a_rigid_release_falls_as_one_body_to_its_first_base_impact():
     assert impact["t"] == pytest.approx(fall, abs=1e-9)
     assert impact["rate_before"] == pytest.approx(rate, rel=1e-9)
     assert impact["rate_after"] / impact["rate_before"] == pytest.approx(
-        1 - 2 * mass * b1 ** 2 / inertia, rel=1e-9)
-    assert [e["kind"] for e in result.events] == ["impact"] * (len(result.events) - 1) + ["rest"] \
-        or all(e["pattern_after"][1] == 0 for e in result.events)
+        1 - 2 * mass * b1 ** 2 / inertia, rel=1e-12)
+    # the squat top never lifts: every impact keeps the interface shut
+    assert all(e["pattern_after"][1] == 0 for e in result.events)
 
 
 @pytest.mark.parametrize("b1, h1, b2, h2, ratio", [
