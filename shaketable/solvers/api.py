@@ -108,8 +108,6 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
                              subdivisions=subdivisions, output_dt=output_dt,
                              rest_tolerance=rest_tolerance, top_force=top_force,
                              friction=friction)
-    if cor is None:
-        raise TypeError("simulate() missing 1 required keyword-only argument: 'cor'")
     if friction is not None:
         from shaketable.solvers.planar_run import simulate_planar  # compiled on first use
 
