@@ -26,6 +26,7 @@ import math
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from shaketable.core.constants import G
 from shaketable.models.stack.impact import cor_impact, plastic_impact
@@ -301,16 +302,30 @@ class Run:
                 lift.terminal, lift.direction = True, -1
                 events.append(lift)
                 meaning.append(("lift", j))
+        turning = len(events)
+        for j in open_:
+            peak = (lambda time, y, j=j: y[n + j])
+            peak.terminal, peak.direction = False, 0
+            events.append(peak)
+            meaning.append(("turn", j))
         y0 = np.concatenate([self.phi, self.phi_dot, [self.work]])
         solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol, atol=self.atol,
-                             events=events)
+                             events=events, dense_output=True)
         if solution.status == -1:
             raise StackStalled(f"stack model: DOP853 failed at t = {solution.t[-1]!r} s: "
                                f"{solution.message}")
         self.steps += len(solution.t) - 1
         self.evaluations += solution.nfev
+        fired = [(times[0], index) for index, times in enumerate(solution.t_events[:turning])
+                 if len(times)]
+        passed = self.passed_landing(solution, t, pattern, meaning, turning)
+        if passed is not None and (not fired or passed[0] < min(fired)[0]):
+            time, j = passed
+            y = solution.sol(time)
+            self.phi, self.phi_dot, self.work = y[:n].copy(), y[n:2 * n].copy(), float(y[-1])
+            self.phi[j] = 0.0
+            return time, ("impact", j)
         if solution.status == 1:
-            fired = [(times[0], index) for index, times in enumerate(solution.t_events) if len(times)]
             time, index = min(fired)
             y = solution.y_events[index][0]
             self.phi, self.phi_dot, self.work = y[:n].copy(), y[n:2 * n].copy(), float(y[-1])
@@ -318,6 +333,35 @@ class Run:
         self.phi, self.phi_dot = solution.y[:n, -1].copy(), solution.y[n:2 * n, -1].copy()
         self.work = float(solution.y[-1, -1])
         return t_end, None
+
+    def passed_landing(self, solution, t, pattern, meaning, turning):
+        """A landing a step passed without seeing it, as ``(time, interface)``, else None.
+
+        The landing events test the sign of s phi at step ends only: a dip below zero that
+        begins and ends inside one step is invisible to them, but its turning point is
+        not (phi' = 0 on the wrong side). The landing is then the zero of s phi before that
+        turning point on the step's dense output (Brent's method), as the single-block
+        reference solver does.
+        """
+        found = None
+        for index in range(turning, len(meaning)):
+            j = meaning[index][1]
+            s = pattern[j]
+            earlier = t
+            for tau, y in zip(solution.t_events[index], solution.y_events[index]):
+                if s * y[j] >= 0.0:
+                    earlier = tau
+                    continue
+                steps = solution.t[solution.t < tau]
+                low = max(float(steps[-1]) if steps.size else t, earlier)
+                side = (lambda x, j=j, s=s: s * float(solution.sol(x)[j]))
+                if low <= t and self.phi[j] == 0.0 or side(low) <= 0.0:
+                    break
+                time = brentq(side, low, tau, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+                if found is None or time < found[0]:
+                    found = (time, j)
+                break
+        return found
 
     def interval(self, k: int) -> bool:
         """Advance over the input interval k; False when the run stops."""

@@ -165,3 +165,20 @@ def test_friction_given_to_a_stack_is_refused():
         st.simulate(stack, None, duration=1.0, friction=st.Friction(0.5))
     result = st.simulate(stack, None, duration=0.05)
     assert result.status == "completed" and result.events == ()
+
+
+def test_a_dip_inside_one_long_interval_is_a_landing():
+    # the single-block engine's case (tests/solvers/test_substep_impacts.py): a block rocking
+    # back towards theta = 0 under a constant push of 1.5 g tan(alpha) dips below zero and
+    # returns inside one 0.5 s input interval; the landing must be found, at the time of the
+    # same run on 1 ms samples
+    block = st.Block.parse("4x1ft")
+    push = 1.5 * G * math.tan(block.alpha)
+
+    def first_landing(dt):
+        t = np.arange(0.0, 0.5 + dt / 2, dt)
+        result = simulate_stack(Stack([block]), st.Motion(t, np.full(t.size, push)),
+                                impact="cor", cor=0.9, theta0=[1e-3], theta_dot0=[-0.06])
+        return next(e["t"] for e in result.events if e["kind"] == "impact")
+
+    assert first_landing(0.5) == pytest.approx(first_landing(0.001), abs=1e-9)
