@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from shaketable.core.dynamics import block_parameters
@@ -108,6 +110,7 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
                              subdivisions=subdivisions, output_dt=output_dt,
                              rest_tolerance=rest_tolerance, top_force=top_force,
                              friction=friction)
+    cor = cast(float, cor)   # a Block's cor is checked where it is used (None: ValueError)
     if friction is not None:
         from shaketable.solvers.planar_run import simulate_planar  # compiled on first use
 
