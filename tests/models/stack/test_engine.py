@@ -182,3 +182,29 @@ def test_a_dip_inside_one_long_interval_is_a_landing():
         return next(e["t"] for e in result.events if e["kind"] == "impact")
 
     assert first_landing(0.5) == pytest.approx(first_landing(0.001), abs=1e-9)
+
+
+@pytest.mark.parametrize("b1, h1, b2, h2, m1, m2", [
+    (0.05, 0.5, 0.05, 0.5, 1.0, 1.0), (0.1, 0.5, 0.1, 0.5, 1.0, 1.0),
+    (0.1, 0.5, 0.06, 0.4, 2.0, 1.0)])
+def test_a_strong_step_starts_the_blocks_opposite_ways_above_a_closed_form(b1, h1, b2, h2,
+                                                                            m1, m2):
+    # from rest, a step u'' > 0: the stack as one body rotates about its -x base corner with
+    # alpha = M (u'' y_c - g b1) / I_O; the top block's centroid then accelerates by
+    # alpha (-(2 h1 + h2), b1) and the moment about its +x interface corner (b2, 2 h1) of
+    # what it needs is M_R = m2 [alpha (h2 (2 h1 + h2) - b1 b2) - b2 g - h2 u''] + I2 alpha.
+    # The -x interface corner unloads (N = -M_R / 2 b2 = 0) at
+    # u* = g (m2 b2 + K M b1 / I_O) / (K M y_c / I_O - m2 h2), K = m2 (h2 (2h1 + h2) - b1 b2) + I2:
+    # below it the stack rocks as one body, above it the top starts the other way
+    mass = m1 + m2
+    y_c = (m1 * h1 + m2 * (2 * h1 + h2)) / mass
+    inertia = 4 / 3 * m1 * (b1 ** 2 + h1 ** 2) + m2 * ((b2 ** 2 + h2 ** 2) / 3 + b1 ** 2
+                                                       + (2 * h1 + h2) ** 2)
+    k = m2 * (h2 * (2 * h1 + h2) - b1 * b2) + m2 * (b2 ** 2 + h2 ** 2) / 3
+    step = G * (m2 * b2 + k * mass * b1 / inertia) / (k * mass * y_c / inertia - m2 * h2)
+    stack = Stack([st.Block(2 * h1, 2 * b1), st.Block(2 * h2, 2 * b2)], masses=(m1, m2))
+    for factor, pattern in ((1 - 1e-6, (1, 0)), (1 + 1e-6, (1, -1))):
+        result = simulate_stack(stack, st.Motion([0.0, 0.01], [factor * step] * 2))
+        assert result.events[0]["t"] == 0.0
+        assert result.events[0]["pattern_after"] == pattern
+        assert result.events[0]["solutions"] == 1
