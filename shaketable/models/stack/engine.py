@@ -183,6 +183,17 @@ class Run:
         rate_before = self.phi_dot[interface]
         rates_before = self.phi_dot.copy()
         self.phi[interface] = 0.0
+        if abs(rate_before) <= FLOOR * self.alpha_p and np.abs(rates_before).max() > \
+                FLOOR * self.alpha_p:
+            # a landing at the noise level while the stack moves: the interface closes (a
+            # plastic landing held flat), whatever the law
+            phi_dot, pattern, _, _ = plastic_impact(self.chain, self.phi, rates_before, before,
+                                                    interface, closed=(interface,))
+            self.phi_dot, self.pattern = phi_dot, pattern
+            self.record(time, "rest", interface, before, pattern, cascade=False,
+                        energy_before=energy_before,
+                        energy_after=sum(energy(self.chain, self.phi, phi_dot, pattern)))
+            return self.choose(time, ground, "after a noise-level landing", interface, end)
         if self.law == "plastic":
             phi_dot, pattern, solutions, _ = plastic_impact(self.chain, self.phi, self.phi_dot,
                                                             before, interface)
@@ -213,6 +224,10 @@ class Run:
                                         *ground(time))
             deceleration = -pattern[interface] * phi_ddot[interface]
             remaining = cascade_rest_time(phi_dot[interface], deceleration, ratio)
+            # a rebound pushed back whose flight would rise less than the integrator's
+            # absolute tolerance (rtol alpha_min) is noise: it ends here too
+            if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * self.atol[0]:
+                remaining = 0.0
             if remaining <= self.rest_tolerance and sum(s != 0 for s in pattern) == 1:
                 # the only moving interface: the stack rests at the cascade's end
                 self.record(time + remaining, "rest", interface, pattern, (0,) * self.n,

@@ -40,6 +40,8 @@ from shaketable.models.stack.physics import (
     mass_matrix,
 )
 
+#: Relative rounding of the impulses computed from the whole motion's momenta.
+ROUNDING = 1e-6
 #: Up to this many blocks every active set is tried (and the admissible ones counted);
 #: above it the search stops after the fewest open interfaces that give an admissible one.
 FULL_ENUMERATION = 3
@@ -61,10 +63,13 @@ def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int, closed=(
     theta, theta_dot = np.cumsum(phi), np.cumsum(phi_dot)
     centroid, before_map, _ = kinematics(chain, theta, theta_dot, pattern)
     velocity = np.einsum("iak,k->ia", before_map, theta_dot)
-    scale_velocity = max(np.abs(velocity).max(), np.abs(theta_dot * np.hypot(chain.b, chain.h)).max(),
-                         1e-300)
-    impulse_tolerance = IMPACT_TOLERANCE * chain.m.sum() * scale_velocity
-    rate_tolerance = IMPACT_TOLERANCE * max(np.abs(theta_dot).max(), 1e-300)
+    # the impulses and the rebounds scale with the landing's approach rate (the rest of the
+    # motion needs none): the tolerances are relative to it, above the rounding of the
+    # momenta of the whole motion
+    landing = abs(phi_dot[interface]) + ROUNDING * np.abs(theta_dot).max() + 1e-300
+    impulse_tolerance = (IMPACT_TOLERANCE * chain.m.sum() * landing
+                         * float(np.hypot(chain.b, chain.h).max()))
+    rate_tolerance = IMPACT_TOLERANCE * landing
     free = [j for j in range(chain.n) if phi[j] == 0.0]
     start = list(pattern)
     start[interface] = 0
