@@ -325,7 +325,13 @@ class Run:
             meaning.append(("turn", j))
         y0 = np.concatenate([self.phi, self.phi_dot, [self.work]])
         solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol, atol=self.atol,
-                             events=events, dense_output=True)
+                             events=events)
+        if any(pattern[meaning[index][1]] * y[meaning[index][1]] < 0.0
+               for index in range(turning, len(meaning)) for y in solution.y_events[index]):
+            # a turning point on the wrong side of a landing: the same steps again, with
+            # their dense output, to find the landing before it (passed_landing)
+            solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol,
+                                 atol=self.atol, events=events, dense_output=True)
         if solution.status == -1:
             raise StackStalled(f"stack model: DOP853 failed at t = {solution.t[-1]!r} s: "
                                f"{solution.message}")
@@ -333,7 +339,8 @@ class Run:
         self.evaluations += solution.nfev
         fired = [(times[0], index) for index, times in enumerate(solution.t_events[:turning])
                  if len(times)]
-        passed = self.passed_landing(solution, t, pattern, meaning, turning)
+        passed = None if solution.sol is None else self.passed_landing(solution, t, pattern,
+                                                                        meaning, turning)
         if passed is not None and (not fired or passed[0] < min(fired)[0]):
             time, j = passed
             y = solution.sol(time)

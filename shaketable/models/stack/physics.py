@@ -53,6 +53,8 @@ class Chain:
         self.inertia = self.m * (self.b ** 2 + self.h ** 2) / 3.0
         self.lower = np.tril(np.ones((self.n, self.n)))
         self.strictly_lower = np.tril(np.ones((self.n, self.n), dtype=bool), -1)
+        self.m_twice = np.repeat(self.m, 2)   # the mass of each centroid coordinate
+        self.inertia_matrix = np.diag(self.inertia)
 
     @classmethod
     def of(cls, stack) -> "Chain":
@@ -109,7 +111,8 @@ def kinematics(chain: Chain, theta, theta_dot, pattern):
 
 def mass_matrix(chain: Chain, jacobian) -> np.ndarray:
     """M = sum_i m_i J_i^T J_i + diag(I_i) [kg m^2]."""
-    return np.einsum("i,iak,ial->kl", chain.m, jacobian, jacobian) + np.diag(chain.inertia)
+    flat = jacobian.reshape(2 * chain.n, chain.n)
+    return flat.T @ (chain.m_twice[:, None] * flat) + chain.inertia_matrix
 
 
 def applied(chain: Chain, ug: float, vg: float) -> np.ndarray:
@@ -131,7 +134,7 @@ def accelerations(chain: Chain, phi, phi_dot, pattern, ug: float, vg: float):
     columns = [j for j, s in enumerate(pattern) if s != 0]
     if columns:
         force = applied(chain, ug, vg) - chain.m[:, None] * centripetal
-        q = np.einsum("iak,ia->k", jacobian, force)
+        q = jacobian.reshape(2 * chain.n, chain.n).T @ force.reshape(2 * chain.n)
         t = chain.lower[:, columns]
         matrix = t.T @ mass_matrix(chain, jacobian) @ t
         phi_ddot[columns] = np.linalg.solve(matrix, t.T @ q)
