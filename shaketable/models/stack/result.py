@@ -202,6 +202,9 @@ class StackResult(ModelResult):
                 "t_overturn [s]": self.t_overturn, "overturned block": self.overturned_block,
                 "t_airborne [s]": self.t_airborne,
                 "impacts": kinds.count("impact"), "events": self.n_events,
+                # uplifts and impacts whose complementarity had not exactly one solution
+                "events not unique": sum(1 for e in self.events
+                                         if e.get("solutions") not in (None, 1)),
                 "max |theta| [rad]": [float(x) for x in np.abs(self.theta).max(axis=0)],
                 "peak top-corner excursion [m]": self.peak_excursion,
                 "max F/N [-]": float(np.nanmax(np.where(np.isfinite(self.friction_demand),

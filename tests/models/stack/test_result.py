@@ -29,6 +29,7 @@ def test_the_views_and_equality(rocking):
     assert events["pattern_after"].iloc[0] == "stack as one body (+)"
     summary = rocking.summary()
     assert summary["blocks"] == 2 and summary["impacts"] == list(events["kind"]).count("impact")
+    assert summary["events not unique"] == 0
     assert pickle.loads(pickle.dumps(rocking)) == rocking
 
 
