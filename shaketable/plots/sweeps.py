@@ -387,8 +387,10 @@ def sweep_figures(table, out) -> list:
 
     from shaketable.plots.base import save
 
+    from shaketable.core.files import subfolder, write_csv
+
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = subfolder(out.parent if str(out.parent) else ".", out.name, "figures folder")
     written = []
     widths = table["block_width [m]"].nunique()
     aspects = table["aspect_ratio [-]"].round(9).nunique()
@@ -715,7 +717,7 @@ def measure_figures(table, out) -> list:
                                                               "pga*", "pgv*")
                                                  if _has_measure(part, m)])
             written.append(out / f"im-comparison-cor{cor:g}.csv")
-            comparison.to_csv(written[-1], index=False)
+            write_csv(written[-1], comparison)
     return written
 
 

@@ -251,17 +251,18 @@ class OverturningSpectrum:
         return self.bands.copy()
 
     def to_csv(self, path) -> None:
-        """Write the band table, with a comment header saying how it was made."""
-        with open(path, "w", encoding="utf-8") as handle:
-            handle.write(f"# overturning spectrum: block {self.block.describe()}, alpha "
-                         f"{self.block.alpha:.8g} rad, p {self.block.p:.8g} rad/s, cor "
-                         f"{self.cor:.8g}; scan step {self.scan_step:g}, edge tolerance "
-                         f"{self.tolerance:g} relative, ceiling {self.ceiling:g}; "
-                         + ("" if self.method == "fast" else f"method {self.method}; ") +
-                         "shaketable.studies.overturning_spectrum\n")
-            for flag in self.flags:
-                handle.write(f"# flag: {flag}\n")
-            self.bands.to_csv(handle, index=False, float_format="%.9g")
+        """Write the band table, with a comment header saying how it was made (atomically:
+        :func:`shaketable.core.files.write_text`)."""
+        from shaketable.core.files import write_text
+
+        header = (f"# overturning spectrum: block {self.block.describe()}, alpha "
+                  f"{self.block.alpha:.8g} rad, p {self.block.p:.8g} rad/s, cor "
+                  f"{self.cor:.8g}; scan step {self.scan_step:g}, edge tolerance "
+                  f"{self.tolerance:g} relative, ceiling {self.ceiling:g}; "
+                  + ("" if self.method == "fast" else f"method {self.method}; ") +
+                  "shaketable.studies.overturning_spectrum\n")
+        flags = "".join(f"# flag: {flag}\n" for flag in self.flags)
+        write_text(path, header + flags + self.bands.to_csv(index=False, float_format="%.9g"))
 
     def edges(self, pulse: str, ratio: float) -> list:
         """Band edges a/(g tan alpha) [-] for one pulse and omega/p, increasing."""

@@ -19,7 +19,7 @@ import numpy as np
 
 from shaketable.core.constants import G
 from shaketable.core.equality import fields_equal
-from shaketable.core.files import folder_lock, prepare_output_folder, temporary_files
+from shaketable.core.files import folder_lock, prepare_output_folder, subfolder, temporary_files
 from shaketable.core.motion import Motion
 from shaketable.core.units import parse_angle_or_ratio
 from shaketable.sweeps.spec import (
@@ -443,16 +443,27 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                     "output folder")
         # temporary files of a killed writer (atomic_write's .<stem>.tmp-<random><suffix>);
         # the folder lock is held, so none belongs to a live process
-        for stray in temporary_files(out / "parts") + temporary_files(out):
+        for stray in temporary_files(out) + _part_leftovers(out):
             stray.unlink(missing_ok=True)
         return finished_chunks(spec, out, fmt)
-    (out / "parts").mkdir(parents=True, exist_ok=True)
+    subfolder(out, "parts")
     existing = [p for p in (out / "parts").iterdir() if not p.name.startswith(".")]
     if existing:
         raise SweepError(f"{out}: holds part files but no manifest; choose another output "
                          "folder")
     write_text_atomic(manifest_path, json.dumps(manifest, indent=2))
     return set()
+
+
+def _part_leftovers(out: Path) -> list:
+    """Half-written parts a killed writer left in ``out/parts``: every hidden file named
+    after a part (``.part-NNNNNN.tmp-<random>.parquet`` of the atomic writer, and any
+    other ``.part-NNNNNN.<...>`` a writer may leave), never a finished part."""
+    parts = out / "parts"
+    if not parts.is_dir():
+        return []
+    return sorted(path for path in parts.iterdir()
+                  if path.name.startswith(".part-") and not path.is_dir())
 
 
 @dataclass(frozen=True)
@@ -578,7 +589,7 @@ def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk
 
     def finished(chunk, frame):
         nonlocal computed
-        write_atomic(frame, part_path(out, chunk, fmt), fmt)
+        _write_or_stop(frame, part_path(out, chunk, fmt), fmt, f"chunk {chunk}")
         computed += len(frame)
         if bar is not None:
             bar.update(len(frame))
@@ -606,10 +617,24 @@ def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk
             warnings.simplefilter("ignore", SweepStoreWarning)
             table = read_results(out, fmt=fmt, parts_only=True, n_chunks=spec.n_chunks)
         path = out / f"results.{'parquet' if fmt == 'parquet' else 'csv'}"
-        write_atomic(table, path, fmt)
+        _write_or_stop(table, path, fmt, "the joined table")
     return SweepOutcome(table=table, path=path, out=out, computed_runs=computed,
                         skipped_runs=skipped, seconds=time.perf_counter() - began,
                         complete=complete, format=fmt)
+
+
+def _write_or_stop(frame, path: Path, fmt: str, what: str) -> None:
+    """Write a part or the joined table; a write that fails (a folder made read-only
+    during the run, a full disk) stops the sweep with a RuntimeError (exit status 1)
+    naming the file, never silently."""
+    try:
+        write_atomic(frame, path, fmt)
+        if not path.is_file():
+            raise OSError(f"{path} is not on disk after writing it")
+    except OSError as error:
+        raise RuntimeError(f"{path}: cannot write {what} ({error.strerror or error}); the sweep "
+                           "stopped here; the chunks already finished are on disk: make the "
+                           "folder writable and run again with --resume") from error
 
 
 def _chunk_length(spec, chunk: int) -> int:

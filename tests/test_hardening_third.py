@@ -1,0 +1,161 @@
+"""Hardening, third pass: each class of the third audit as tests that failed before the fix.
+
+Classes: (1) no write through a planted link, nothing created outside the output folder;
+(2) a run that ends before its motion says so (console, ``summary.json``, exit 1);
+(3) options that would be ignored are refused naming both; (4) a calibration used for
+another block, a tampered calibration; (5) target spectra and intensity levels; (6) every
+input of a sweep checked before its first chunk; (7) record suites; (8) ``risk`` and the
+fragility and risk functions; (9) resources bounded before any work; (10) messages of the
+API entry points; (11) resume, a failing write, a CSV fault on its line.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import pytest
+
+from shaketable.core.files import OutputPathError, folder_lock
+from tests.test_bad_input import SWEEP, _replace, run_cli
+
+TINY_SWEEP = _replace(SWEEP, '[rocking]\ncor = [0.9]',
+                      '[rocking]\ncor = [0.9]\nduration = "1 s"') + (
+    '[intensity]\npga = ["0.2 g", "0.3 g"]\n[run]\nchunk_size = 1\n')
+
+
+def _outside(tmp_path) -> Path:
+    victim = tmp_path / "outside" / "victim.txt"
+    victim.parent.mkdir()
+    victim.write_text("keep me")
+    return victim
+
+
+# ----------------------------------------------------------------- 1. planted links
+@pytest.mark.parametrize("kind", ["symlink", "dangling", "hardlink"])
+def test_the_lock_file_is_never_opened_through_a_link(tmp_path, kind):
+    out = tmp_path / "out"
+    out.mkdir()
+    victim = _outside(tmp_path)
+    lock = out / ".shaketable.lock"
+    if kind == "symlink":
+        lock.symlink_to(victim)
+    elif kind == "dangling":
+        lock.symlink_to(tmp_path / "outside" / "created.txt")
+    else:
+        os.link(victim, lock)
+    with pytest.raises(OutputPathError, match="link"):
+        with folder_lock(out):
+            pass
+    assert victim.read_text() == "keep me"
+    assert not (tmp_path / "outside" / "created.txt").exists()
+
+
+def test_examples_force_replaces_a_planted_link_never_its_target(tmp_path):
+    out = tmp_path / "ex"
+    out.mkdir()
+    victim = _outside(tmp_path)
+    (out / "plot_tutorial_rock_a_block.py").symlink_to(victim)
+    (out / "README.rst").symlink_to(tmp_path / "outside" / "created.rst")   # dangling
+    status, _, err = run_cli(["examples", "--out", out, "--force", "-q"], tmp_path)
+    assert status == 0, err
+    assert victim.read_text() == "keep me"
+    assert not (tmp_path / "outside" / "created.rst").exists()
+    assert not (out / "plot_tutorial_rock_a_block.py").is_symlink()
+    assert "import" in (out / "plot_tutorial_rock_a_block.py").read_text()
+
+
+def test_reproduce_writes_its_tables_by_rename_not_through_a_link(tmp_path):
+    from shaketable.studies.overturning_spectrum import OverturningSpectrum
+
+    # the one writer of a band table that opened its file in place
+    victim = _outside(tmp_path)
+    link = tmp_path / "spectrum.csv"
+    link.symlink_to(victim)
+    import pandas as pd
+
+    from shaketable.core.geometry import Block
+
+    spectrum = OverturningSpectrum(block=Block(height=1.0, width=0.25), cor=0.9,
+                                   scan_step=0.01, tolerance=1e-6, ceiling=10.0,
+                                   bands=pd.DataFrame({"a": [1.0]}), flags=[])
+    spectrum.to_csv(link)
+    assert victim.read_text() == "keep me"
+    assert not link.is_symlink() and "overturning spectrum" in link.read_text()
+
+
+def test_a_planted_subfolder_link_is_refused_and_nothing_is_written_outside(tmp_path):
+    (tmp_path / "w.toml").write_text(TINY_SWEEP)
+    out = tmp_path / "out"
+    out.mkdir()
+    (tmp_path / "outside").mkdir()
+    (out / "parts").symlink_to(tmp_path / "outside")
+    status, _, err = run_cli(["sweep", "w.toml", "--out", out, "-q"], tmp_path)
+    assert status == 2 and "symbolic link" in err, err
+    assert list((tmp_path / "outside").iterdir()) == []
+
+
+def test_reproduce_refuses_a_scene_folder_that_is_a_link(tmp_path):
+    from shaketable.reproduce import _study_section
+    from shaketable.scenes.catalog import resolve_scene_path
+    from shaketable.scenes.parse import load_scene
+    from shaketable.studies.comparison import ComparisonTally
+
+    (tmp_path / "outside").mkdir()
+    out = tmp_path / "out"
+    out.mkdir()
+    study = load_scene(resolve_scene_path("fig-2-3"))
+    (out / study.name).symlink_to(tmp_path / "outside")
+    with pytest.raises(OutputPathError, match="symbolic link"):
+        _study_section(study, out, ComparisonTally())
+    assert list((tmp_path / "outside").iterdir()) == []
+
+
+# ----------------------------------------------------------------- 11. resume, writes
+def test_resume_removes_every_half_written_part(tmp_path):
+    from shaketable import sweeps
+
+    spec = tmp_path / "w.toml"
+    spec.write_text(TINY_SWEEP)
+    out = tmp_path / "out"
+    outcome = sweeps.run_sweep(spec, out, progress=False, max_chunks=1, fmt="csv")
+    assert not outcome.complete
+    leftovers = [out / "parts" / ".part-000001.3f9a01bc.csv",
+                 out / "parts" / ".part-000001.tmp-3f9a01bc.csv"]
+    for path in leftovers:
+        path.write_text("half")
+    outcome = sweeps.run_sweep(spec, out, progress=False, resume=True, fmt="csv")
+    assert outcome.complete
+    assert not any(path.exists() for path in leftovers)
+
+
+def test_a_part_that_cannot_be_written_stops_the_sweep_with_exit_1(tmp_path, monkeypatch):
+    from shaketable.sweeps import execute, store
+
+    written = []
+    real = store.write_csv
+
+    def read_only_after_one(path, frame, **options):
+        if written:
+            raise PermissionError(30, "Read-only file system", str(path))
+        written.append(path)
+        return real(path, frame, **options)
+
+    monkeypatch.setattr(store, "write_csv", read_only_after_one)
+    monkeypatch.setattr(execute, "parquet_available", lambda: False)
+    (tmp_path / "w.toml").write_text(TINY_SWEEP)
+    status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "-q"], tmp_path)
+    assert status == 1, err
+    assert "part-000001" in err and "Read-only" in err and "--resume" in err, err
+
+
+def test_a_csv_with_minus_inf_names_its_line(tmp_path):
+    rows = "".join(f"{0.01 * i:.2f},{0.001 * (i % 7)}\n" for i in range(2000))
+    lines = ("time [s],acceleration [g]\n" + rows).splitlines()
+    lines[78] = "0.77,-inf"            # line 79 of the file
+    (tmp_path / "r.csv").write_text("\n".join(lines) + "\n")
+    status, _, err = run_cli(["simulate", "--block", "4x1ft", "--cor", "0.9", "--record",
+                              "r.csv", "--out", "o", "-q"], tmp_path)
+    assert status == 2, err
+    assert "line 79" in err, err
