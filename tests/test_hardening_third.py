@@ -159,3 +159,34 @@ def test_a_csv_with_minus_inf_names_its_line(tmp_path):
                               "r.csv", "--out", "o", "-q"], tmp_path)
     assert status == 2, err
     assert "line 79" in err, err
+
+
+# ----------------------------------------------------------------- 2. early stops
+def test_the_documented_chatter_case_says_it_stopped_and_exits_1(tmp_path):
+    # docs/planar.md: the 30 x 6 in block at mu = 0.2 under Pacoima S16E x 0.5, COR 1,
+    # stops with status 'chatter' at 2.9 s of the 41.7 s record
+    status, out, err = run_cli(["simulate", "--block", "30x6in", "--cor", "1", "--friction",
+                                "0.2", "--record", "pacoima-dam-s16e", "--scale", "0.5",
+                                "--duration", "3s", "--history", "none", "--out", "o"], tmp_path)
+    assert status == 1, err
+    assert "stopped at 2.8" in err and "chatter" in err, err
+    summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert summary["stopped early"] is True and summary["status"] == "chatter"
+    assert 2.8 < summary["stopped at [s]"] < 2.9 and "chatter" in summary["stop reason"]
+
+
+def test_a_rocking_run_that_leaves_the_ground_is_an_early_stop(tmp_path):
+    import numpy as np
+
+    import shaketable as st
+    from shaketable.core.stops import early_stop, stop_summary
+
+    t = np.arange(0.0, 2.0, 0.01)
+    motion = st.Motion(t=t, horizontal=np.zeros_like(t),
+                       vertical=np.where(t > 0.5, -1.5 * 9.80665, 0.0))
+    result = st.simulate(st.Block.parse("30x6in"), motion, cor=0.9, theta0=0.05)
+    assert result.status == "airborne"
+    assert "left the ground" in early_stop(result)
+    assert stop_summary(result)["stopped early"] is True
+    free = st.simulate(st.Block.parse("30x6in"), None, cor=0.9, theta0=0.05, duration=1.0)
+    assert early_stop(free) is None and stop_summary(free)["stopped early"] is False

@@ -32,7 +32,9 @@ def _resolve_angle(text: str, block: Block) -> float:
 
 
 def _simulate(args) -> int:
-    from shaketable.core.files import prepare_output_folder, write_csv, write_text
+    from shaketable.commands.checks import report_early_stops
+    from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
+    from shaketable.core.stops import stop_summary
     from shaketable.plots import base as plots
     from shaketable.solvers.api import simulate
 
@@ -67,7 +69,7 @@ def _simulate(args) -> int:
         history = "full"   # the planar block's history has no peaks selection: all of it
     if history != "none":
         write_csv(out / "history.csv", history_frame(result, history))
-    write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
+    write_text(out / "summary.json", json.dumps(json_ready_dict(stop_summary(result)), indent=2))
     plots.save((result if friction is not None else for_figure(result)).plot(),
                out / f"calcomp.{args.format}")
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
@@ -81,7 +83,7 @@ def _simulate(args) -> int:
     written = ([out / "history.csv"] if history != "none" else []) + [
         out / "summary.json", out / f"calcomp.{args.format}"]
     print("wrote " + ", ".join(str(path) for path in written))
-    return 0
+    return report_early_stops([result], "simulate", f"{block.describe()} block")
 
 
 def _friction(text: str | None):

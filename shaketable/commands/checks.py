@@ -1,0 +1,88 @@
+"""Checks the commands share, run before any work, and the early-stop report after it.
+
+Kept apart from the commands' own modules so that each command calls one function per
+check: options that one model would ignore (:func:`refuse_ignored_options`), and a run
+that ended before its motion did (:func:`report_early_stops`: said on stderr, exit 1).
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterable
+
+
+def report_early_stops(results: Iterable, command: str, label: str = "") -> int:
+    """Say on stderr which runs stopped before their motion ended; the exit status.
+
+    Parameters
+    ----------
+    results : iterable of results
+        Runs of any model (:func:`shaketable.core.stops.early_stop` decides).
+    command : str
+        The subcommand, for the message prefix.
+    label : str
+        What the runs are (a block, a scene), for the message.
+
+    Returns
+    -------
+    int
+        1 when any run stopped early (the command's exit status), else 0.
+    """
+    from shaketable.core.stops import early_stop
+
+    reasons = [reason for reason in (early_stop(result) for result in results) if reason]
+    for reason in reasons:
+        print(f"shaketable {command}: warning: {label + ': ' if label else ''}the run "
+              f"{reason}; exit status 1", file=sys.stderr)
+    return 1 if reasons else 0
+
+
+def report_stopped_rows(table, name: str) -> int:
+    """Say on stderr how many runs of a sweep table stopped before their motion ended
+    (a ``status`` other than completed or overturned); the exit status (1 if any).
+
+    The rows keep what the run computed up to its stop (the ``status`` column says
+    which stopped); the sweep's table is complete, but a fragility or risk read from
+    it counts such runs as not overturned, which the user must know.
+    """
+    from shaketable.core.stops import FINISHED_STATUSES
+
+    if "status" not in table:
+        return 0
+    stopped = table[~table["status"].isin(FINISHED_STATUSES)]
+    if not len(stopped):
+        return 0
+    print(f"shaketable sweep: warning: {name}: {len(stopped)} of {len(table)} run(s) stopped "
+          f"before their motion ended (status "
+          f"{', '.join(sorted(map(str, stopped['status'].unique())))}; runs "
+          f"{', '.join(str(run) for run in stopped['run'].head(5))}"
+          f"{' ...' if len(stopped) > 5 else ''}; see the 'status' column and "
+          "docs/planar.md); their results cover the run up to the stop only; exit status 1",
+          file=sys.stderr)
+    return 1
+
+
+def refuse_ignored_options(args, model: str, ignored: dict) -> None:
+    """Refuse options the chosen model would ignore, naming them and the option that
+    chose the model.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+    model : str
+        The option (or options) that chose the model, e.g. ``"--friction"``.
+    ignored : dict
+        ``{"--option": default}``: each option whose value differs from its default
+        is refused.
+
+    Raises
+    ------
+    ValueError
+        Naming the first option given and ``model``.
+    """
+    for option, default in ignored.items():
+        value = getattr(args, option.lstrip("-").replace("-", "_"), default)
+        if value != default and value is not None:
+            raise ValueError(f"{option} {value!r} cannot be used with {model}: that model "
+                             f"does not take {option} (it would be ignored); leave out "
+                             f"{option}, or {model}")
