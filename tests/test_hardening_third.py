@@ -190,3 +190,28 @@ def test_a_rocking_run_that_leaves_the_ground_is_an_early_stop(tmp_path):
     assert stop_summary(result)["stopped early"] is True
     free = st.simulate(st.Block.parse("30x6in"), None, cor=0.9, theta0=0.05, duration=1.0)
     assert early_stop(free) is None and stop_summary(free)["stopped early"] is False
+
+
+# ----------------------------------------------------------------- 3. ignored options
+@pytest.mark.parametrize("extra, both", [
+    (["--friction", "0.3", "--method", "reference"], ("--method", "--friction")),
+    (["--friction", "0.3", "--subdivisions", "8"], ("--subdivisions", "--friction")),
+    (["--subdivisions", "8"], ("--subdivisions", "--method fast")),
+    (["--perturb-cor", "0.01"], ("--perturb-cor", "--ensemble")),
+    (["--horizon-threshold", "0.01"], ("--horizon-threshold", "--ensemble")),
+    (["--seed", "3"], ("--seed", "--ensemble")),
+    (["--ensemble", "4", "--history", "full"], ("--history", "--ensemble")),
+])
+def test_options_another_model_would_ignore_are_refused_naming_both(tmp_path, extra, both):
+    status, _, err = run_cli(["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0",
+                              "0.5alpha", "--duration", "1s", "--out", "o", *extra], tmp_path)
+    assert status == 2, err
+    assert all(option in err for option in both), err
+    assert not (tmp_path / "o").exists()
+
+
+def test_friction_with_a_calibration_file_is_refused_naming_both(tmp_path):
+    (tmp_path / "calibration.json").write_text("{}")
+    status, _, err = run_cli(["simulate", "--block", "30x6in", "--cor", "calibration.json",
+                              "--friction", "0.3", "--out", "o"], tmp_path)
+    assert status == 2 and "--friction" in err and "calibration.json" in err, err

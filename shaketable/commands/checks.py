@@ -86,3 +86,47 @@ def refuse_ignored_options(args, model: str, ignored: dict) -> None:
             raise ValueError(f"{option} {value!r} cannot be used with {model}: that model "
                              f"does not take {option} (it would be ignored); leave out "
                              f"{option}, or {model}")
+
+
+#: ``simulate``'s options that belong to one model or mode, with their defaults.
+_ENSEMBLE_OPTIONS = {"--perturb": 1e-9, "--perturb-amplitude": None, "--perturb-cor": None,
+                     "--perturb-size": None, "--perturb-start": None,
+                     "--horizon-threshold": 1e-3}
+
+
+def check_simulate_options(args) -> None:
+    """Refuse the ``simulate`` options the chosen model or mode would ignore.
+
+    ``--friction`` runs the planar block (no ``--method``, ``--subdivisions``,
+    ``--ensemble`` or calibration file as ``--cor``); ``--subdivisions`` belongs to
+    ``--method predictor-corrector``; the perturbation options and ``--seed`` belong to
+    ``--ensemble`` (or to a calibration file as ``--cor``, which draws its CORs with
+    ``--seed``); an ensemble writes no ``history.csv`` (no ``--history``).
+
+    Raises
+    ------
+    ValueError
+        Naming both options.
+    """
+    calibrated = isinstance(args.cor, str)
+    if args.friction is not None:
+        if calibrated:
+            raise ValueError(f"--friction cannot be used with --cor {args.cor} (a calibration "
+                             "file): the calibrated COR ensemble runs the rocking model; "
+                             "give --cor a number to run the planar block with --friction")
+        refuse_ignored_options(args, "--friction", {"--method": "fast", "--subdivisions": 4})
+    if args.method != "predictor-corrector":
+        refuse_ignored_options(args, f"--method {args.method}", {"--subdivisions": 4})
+    moving = any(getattr(args, name, None) for name in ("record", "harmonic", "pulse"))
+    ensemble = bool(args.ensemble) or (calibrated and moving)
+    if not ensemble:
+        refuse_ignored_options(args, "a single run (no --ensemble)",
+                               {**_ENSEMBLE_OPTIONS,
+                                **({} if calibrated else {"--seed": 0})})
+    else:
+        refuse_ignored_options(args, "--ensemble" if args.ensemble else
+                               f"--cor {args.cor} (an ensemble over the calibrated COR)",
+                               {"--history": "auto"})
+        if calibrated:
+            refuse_ignored_options(args, f"--cor {args.cor} (an ensemble over the calibrated "
+                                   "COR)", _ENSEMBLE_OPTIONS)

@@ -32,12 +32,13 @@ def _resolve_angle(text: str, block: Block) -> float:
 
 
 def _simulate(args) -> int:
-    from shaketable.commands.checks import report_early_stops
+    from shaketable.commands.checks import check_simulate_options, report_early_stops
     from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
     from shaketable.core.stops import stop_summary
     from shaketable.plots import base as plots
     from shaketable.solvers.api import simulate
 
+    check_simulate_options(args)   # options the chosen model would ignore: refused
     block = Block.parse(args.block)
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     if motion is not None:
