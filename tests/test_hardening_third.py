@@ -215,3 +215,41 @@ def test_friction_with_a_calibration_file_is_refused_naming_both(tmp_path):
     status, _, err = run_cli(["simulate", "--block", "30x6in", "--cor", "calibration.json",
                               "--friction", "0.3", "--out", "o"], tmp_path)
     assert status == 2 and "--friction" in err and "calibration.json" in err, err
+
+
+# ----------------------------------------------------------------- 4. calibrations
+CALIBRATION = {"cor_mean [-]": 0.91, "cor_mean_se [-]": 0.006, "cor_mean_dof": 11,
+               "cor_scatter_sigma [-]": 0.01, "cor [-]": 0.91, "cor_se [-]": 0.0001,
+               "block_height [m]": 0.762, "block_width [m]": 0.1524}
+
+
+@pytest.mark.parametrize("block, warned", [("16x4ft", True), ("30x6in", False)])
+def test_a_calibration_of_another_block_is_named_with_both_sizes(tmp_path, block, warned):
+    (tmp_path / "calibration.json").write_text(json.dumps(CALIBRATION))
+    status, _, err = run_cli(["simulate", "--block", block, "--cor", "calibration.json",
+                              "--pulse", "half-sine,0.1g,0.2s", "--duration", "1s",
+                              "--ensemble", "3", "--out", "o"], tmp_path)
+    assert status == 0, err
+    assert ("30 x 6 in" in err and "16 x 4 ft" in err) is warned, err
+
+
+@pytest.mark.parametrize("key, value, fragment", [
+    ("cor_mean_dof", 1e300, "'cor_mean_dof'"), ("cor_mean_dof", float("nan"), "'cor_mean_dof'"),
+    ("cor_mean_dof", 2.5, "'cor_mean_dof'"), ("cor_mean_dof", -3, "'cor_mean_dof'"),
+    ("cor_mean_se [-]", 1e300, "mean_se"), ("block_width [m]", -1.0, "'block_width [m]'"),
+    ("cor_scatter_sigma [-]", None, "'cor_scatter_sigma [-]'")])
+def test_a_tampered_calibration_is_a_clear_error_naming_the_key(tmp_path, key, value, fragment):
+    from shaketable.calibration.uncertainty import CalibratedCor
+
+    data = dict(CALIBRATION)
+    if value is None:
+        del data[key]
+    else:
+        data[key] = value
+    (tmp_path / "calibration.json").write_text(json.dumps(data))
+    with pytest.raises(ValueError, match="calibration.json") as error:
+        CalibratedCor.from_json(tmp_path / "calibration.json")
+    assert fragment in str(error.value)
+    status, _, err = run_cli(["simulate", "--block", "30x6in", "--cor", "calibration.json",
+                              "--out", "o"], tmp_path)
+    assert status == 2 and fragment in err and "internal" not in err, err

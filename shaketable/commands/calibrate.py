@@ -128,6 +128,11 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
     except (OSError, ValueError) as error:
         raise ValueError(f"--cor {args.cor}: {error}") from None
     print(f"{block.describe()} block, calibrated {cor.describe()}")
+    mismatch = cor.size_mismatch(block)
+    if mismatch is not None:   # said once here, not again as a Python warning
+        import sys
+
+        print(f"shaketable simulate: warning: {mismatch}", file=sys.stderr)
     if motion is None:
         from shaketable.solvers.api import simulate
 
@@ -139,8 +144,14 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
         print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}")
         return 0
     members = args.ensemble if args.ensemble else 200
-    ensemble = calibrated_ensemble(block, motion, cor, members=members, seed=args.seed,
-                                 duration=args.duration, method=args.method)
+    import warnings
+
+    from shaketable.calibration.uncertainty import CalibrationMismatchWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CalibrationMismatchWarning)
+        ensemble = calibrated_ensemble(block, motion, cor, members=members, seed=args.seed,
+                                       duration=args.duration, method=args.method)
     write_csv(out / "ensemble.csv", ensemble.to_frame())
     write_text(out / "ensemble.json", json.dumps(json_ready_dict(ensemble.summary), indent=2,
                                                  default=float))
