@@ -253,3 +253,138 @@ def test_a_tampered_calibration_is_a_clear_error_naming_the_key(tmp_path, key, v
     status, _, err = run_cli(["simulate", "--block", "30x6in", "--cor", "calibration.json",
                               "--out", "o"], tmp_path)
     assert status == 2 and fragment in err and "internal" not in err, err
+
+
+# ----------------------------------------------------------------- 5. target spectra, levels
+SPECTRUM_SPEC = """name = "target"
+[blocks]
+width = ["1 ft"]
+aspect = [4]
+[rocking]
+cor = [0.9]
+duration = "1 s"
+[[records]]
+name = "el-centro-chopra"
+[intensity]
+{intensity}
+"""
+
+
+def _spectrum_spec(tmp_path, spectrum_text, intensity='spectrum = "target.csv"'):
+    from shaketable import sweeps
+
+    (tmp_path / "target.csv").write_text(spectrum_text)
+    (tmp_path / "s.toml").write_text(SPECTRUM_SPEC.format(intensity=intensity))
+    return sweeps.load_spec(tmp_path / "s.toml")
+
+
+ROWS = "0.1, 0.5\n0.5, 0.9\n1.0, 0.6\n3.0, 0.2\n"
+
+
+def test_a_spectrum_header_in_ms_and_cm_s2_is_read_in_its_units(tmp_path):
+    from shaketable.core.constants import G
+
+    in_g = _spectrum_spec(tmp_path, "period [s], sa [g]\n" + ROWS).measures.spectrum
+    converted = "".join(f"{1000 * float(t)}, {float(sa) * G * 100}\n"
+                        for t, sa in (row.split(",") for row in ROWS.splitlines()))
+    in_ms = _spectrum_spec(tmp_path, "period [ms], sa [cm/s^2]\n" + converted).measures.spectrum
+    import numpy as np
+
+    np.testing.assert_allclose(np.array(in_ms), np.array(in_g), rtol=1e-12)
+    assert in_g[0] == pytest.approx((0.1, 0.5 * G))
+
+
+@pytest.mark.parametrize("text, fragment", [
+    (ROWS, "no header"),                                         # the first row is not lost
+    ("period, sa\n" + ROWS, "units"),                            # a header without units
+    ("period [s], sa [furlong]\n" + ROWS, "units"),
+    ("period [s], sa [g]\n0.1, 1e300\n3.0, 0.2\n", "Sa"),        # beyond any earthquake
+    ("period [s], sa [g]\n0.5, 0.9\n1.0, 0.6\n", "covers 0.5 to 1 s"),   # would extrapolate
+])
+def test_a_spectrum_that_cannot_be_read_safely_is_refused(tmp_path, text, fragment):
+    from shaketable import sweeps
+
+    with pytest.raises(sweeps.SweepError, match="target.csv|s.toml") as error:
+        _spectrum_spec(tmp_path, text)
+    assert fragment in str(error.value)
+
+
+@pytest.mark.parametrize("intensity, fragment", [
+    ('pga = ["1e300 g"]', "beyond any earthquake"),
+    ('pga = ["0.3 g", "0.3 g"]', "more than once"),
+    ('measure = "pgv"\nlevels = ["1e300 m/s"]', "beyond any earthquake"),
+    ('scale = [1e300]', "beyond any earthquake"),
+])
+def test_absurd_or_repeated_levels_are_refused(tmp_path, intensity, fragment):
+    from shaketable import sweeps
+
+    with pytest.raises(sweeps.SweepError, match="intensity") as error:
+        _spectrum_spec(tmp_path, "period [s], sa [g]\n" + ROWS, intensity)
+    assert fragment in str(error.value)
+
+
+# ----------------------------------------------------------------- 6, 7. sweep inputs, suites
+SUITE_SPEC = """name = "suite"
+[blocks]
+width = ["1 ft"]
+aspect = [4]
+[rocking]
+cor = [0.9]
+[[records]]
+folder = "suite"
+pattern = "*.csv"
+units = "g"
+[intensity]
+pga = ["0.2 g"]
+[run]
+chunk_size = 1
+"""
+
+
+def _suite(tmp_path, files: dict):
+    folder = tmp_path / "suite"
+    folder.mkdir()
+    for name, text in files.items():
+        (folder / name).write_text(text)
+    (tmp_path / "s.toml").write_text(SUITE_SPEC)
+    return folder
+
+
+GOOD = "time [s],acceleration [g]\n" + "".join(f"{0.01 * i:.2f},{0.1 * (-1) ** i}\n"
+                                               for i in range(100))
+
+
+@pytest.mark.parametrize("bad", [
+    "time [s],acceleration [g]\n" + "".join(f"{0.01 * i:.2f},0\n" for i in range(100)),
+    "this is not a record\n",
+])
+def test_every_record_is_checked_before_the_first_chunk(tmp_path, bad):
+    from shaketable import sweeps
+
+    folder = _suite(tmp_path, {"a.csv": GOOD, "z.csv": bad})
+    with pytest.raises(sweeps.SweepError, match="z.csv") as error:
+        sweeps.run_sweep(tmp_path / "s.toml", tmp_path / "out", progress=False)
+    assert "nothing was run" in str(error.value)
+    assert not (tmp_path / "out" / "manifest.json").exists()
+    (folder / "z.csv").unlink()   # the corrected suite runs into the same folder
+    assert sweeps.run_sweep(tmp_path / "s.toml", tmp_path / "out", progress=False).complete
+
+
+def test_a_link_loop_in_a_suite_is_named_not_dropped(tmp_path):
+    folder = _suite(tmp_path, {"a.csv": GOOD})
+    (folder / "loop.csv").symlink_to(folder / "loop.csv")
+    status, _, err = run_cli(["sweep", "s.toml", "--out", "out", "-q"], tmp_path)
+    assert status == 2 and "loop.csv" in err, err
+    assert not (tmp_path / "out").exists() or not (tmp_path / "out" / "manifest.json").exists()
+
+
+# ----------------------------------------------------------------- 9. resources
+def test_a_grid_of_too_many_chunks_is_refused_before_any_work(tmp_path):
+    spec = _replace(TINY_SWEEP, '[[records]]\nname = "pacoima-dam-s16e"',
+                    '[[records]]\npreset = "B-1"\nseeds = 100000\nduration = "1 s"')
+    spec = _replace(spec, 'pga = ["0.2 g", "0.3 g"]',
+                    "pga = [" + ", ".join(f'"{0.01 * k:.2f} g"' for k in range(1, 21)) + "]")
+    (tmp_path / "w.toml").write_text(spec)   # 2,000,000 runs in chunks of 1
+    status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "-q"], tmp_path)
+    assert status == 2 and "run.chunk_size" in err and "1,000,000" in err, err
+    assert not (tmp_path / "out").exists()

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from shaketable.core.files import subfolder, write_csv
 from shaketable.plots.base import place_legend, pyplot
 from shaketable.sweeps.fragility import (
     MEASURE_LABELS,
@@ -386,8 +387,6 @@ def sweep_figures(table, out) -> list:
     import pandas as pd
 
     from shaketable.plots.base import save
-
-    from shaketable.core.files import subfolder, write_csv
 
     out = Path(out)
     out = subfolder(out.parent if str(out.parent) else ".", out.name, "figures folder")

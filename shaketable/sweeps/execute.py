@@ -110,6 +110,51 @@ def spectrum_factor(record: RecordSpec, seed, measures) -> float:
     return float(np.exp(np.mean(np.log(target / values))))
 
 
+def check_inputs(spec: SweepSpec) -> None:
+    """Read every record the sweep will use and check that it can be scaled as asked,
+    before the first chunk runs (and before anything is written).
+
+    Each distinct base motion (record and seed) is read (a bad file of a suite, a file
+    that is not a record, an unreadable one: refused now, naming the file), and with
+    a target PGA, measure or spectrum its value is computed and checked (a record
+    without horizontal motion cannot be scaled). The motions and measures are cached
+    per process, so the chunks reuse them. A spec refused here leaves nothing behind:
+    the corrected spec starts (or resumes) as if the bad one had never run.
+
+    Raises
+    ------
+    SweepError
+        Naming the spec, the record and (for a file) its path.
+    """
+    seen = set()
+    for record_index, seed, _ in spec.motion_variants:
+        if (record_index, seed) in seen:
+            continue
+        seen.add((record_index, seed))
+        record = spec.records[record_index]
+        what = f"record {record.label!r}" + (f" ({record.file})" if record.file else "") \
+            + ("" if seed is None else f", seed {seed}")
+        try:
+            base = _record_motion(record, seed)
+        except (ValueError, OSError) as error:
+            message = getattr(error, "strerror", None) or str(error)
+            raise SweepError(f"{spec.path}: {what}: cannot be used ({message}); nothing was "
+                             "run") from None
+        if spec.intensity == "pga" and not base.pga > 0.0:
+            raise SweepError(f"{spec.path}: {what} has no horizontal motion; it cannot be "
+                             "scaled to a PGA; nothing was run")
+        if spec.intensity == "measure":
+            value = record_measures(record, seed, spec.measures)[spec.measures.column]
+            if not (value > 0.0 and math.isfinite(value)):
+                raise SweepError(f"{spec.path}: {what} has {spec.measures.column} = {value!r}; "
+                                 "it cannot be scaled to it; nothing was run")
+        elif spec.measures.spectrum:
+            try:
+                spectrum_factor(record, seed, spec.measures)
+            except SweepError as error:
+                raise SweepError(f"{spec.path}: {error}; nothing was run") from None
+
+
 def build_motion(spec: SweepSpec, record_index: int, seed: int | None = None,
                  level_index: int = 0, phase_index: int | None = None) -> tuple[Motion, float]:
     """The motion of one run and its earthquake scale factor.
@@ -560,6 +605,7 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
                                 or workers < 1):
         raise ValueError(f"workers (--workers) must be a positive integer (threads), "
                          f"got {workers!r}")
+    check_inputs(spec)   # every record and measure, before any file or chunk
     began = time.perf_counter()
     client: Any      # a distributed.Client, or None
     own_client: bool

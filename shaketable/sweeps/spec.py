@@ -137,7 +137,12 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
-from shaketable.sweeps.targets import IntensitySettings, read_spectrum
+from shaketable.sweeps.targets import (
+    IntensitySettings,
+    check_levels,
+    check_spectrum_covers,
+    read_spectrum,
+)
 
 if TYPE_CHECKING:
     from shaketable.lab.pitch import Pitch
@@ -452,7 +457,29 @@ def spec_from_dict(data: dict, where: str = "<spec>",
                      measures=measures, friction=friction_grid(data.get("friction"), where),
                      raw=data)
     check_friction_spec(spec, rocking)   # with [friction]: what the planar model refuses
+    _check_grid_size(spec, where)
     return spec
+
+
+#: Most chunks of one sweep (the resume bookkeeping holds one entry per chunk) and most
+#: distinct motions (records x seeds x pitch phases, each held as a row of the grid).
+MAX_CHUNKS = 1_000_000
+MAX_VARIANTS = 1_000_000
+
+
+def _check_grid_size(spec: SweepSpec, where: str) -> None:
+    """Refuse a grid whose bookkeeping would exhaust memory, naming the limit and the key."""
+    phases = 1 if spec.pitch is None else len(spec.pitch.phases)
+    variants = sum(len(record.seeds) for record in spec.records) * phases
+    if variants > MAX_VARIANTS:
+        raise SweepError(f"{where}: the grid has {variants:,} distinct motions (records x "
+                         f"seeds x pitch phases); at most {MAX_VARIANTS:,}: fewer "
+                         "[[records]] seeds or pitch phases")
+    if spec.n_chunks > MAX_CHUNKS:
+        need = -(-spec.n_runs // MAX_CHUNKS)
+        raise SweepError(f"{where}: {spec.n_runs:,} runs in chunks of {spec.chunk_size} make "
+                         f"{spec.n_chunks:,} chunks; at most {MAX_CHUNKS:,}: set run.chunk_size "
+                         f"to {need:,} or more (or make the grid smaller)")
 
 
 def _ensemble(table, where):
@@ -717,6 +744,8 @@ def _intensity(table, where, directory: Path | None = None):
             raise SweepError(f"{where}: intensity.spectrum goes with scale factors (or none), "
                              "not with a target pga or measure")
         settings["spectrum"] = read_spectrum(table["spectrum"], where, directory)
+        check_spectrum_covers(settings["spectrum"], settings.get("period_range", (0.2, 2.0)),
+                              where)
     if "measure" in table:
         measure = table["measure"]
         if measure not in MEASURES:
@@ -730,6 +759,8 @@ def _intensity(table, where, directory: Path | None = None):
                              "(such as \"1 s\")")
         kind = MEASURES[measure][1]
         levels = _quantity_list(table["levels"], kind, where, "intensity.levels")
+        check_levels(levels, "arias" if measure in ("arias", "cav") else kind, where,
+                     "intensity.levels")
         return "measure", levels, IntensitySettings(measure=measure, **settings)
     if "levels" in table:
         raise SweepError(f"{where}: intensity.levels needs intensity.measure (which measure "
@@ -739,11 +770,13 @@ def _intensity(table, where, directory: Path | None = None):
         if extra:
             raise SweepError(f"{where}: intensity.{extra[0]} does not go with intensity.pga; "
                              "use measure = \"pga\" with levels")
-        return "pga", _quantity_list(table["pga"], "acceleration", where, "intensity.pga"), \
-            IntensitySettings()
+        levels = _quantity_list(table["pga"], "acceleration", where, "intensity.pga")
+        check_levels(levels, "acceleration", where, "intensity.pga")
+        return "pga", levels, IntensitySettings()
     if "scale" in table:
-        return "scale", _number_list(table["scale"], where, "intensity.scale", 0.0,
-                                     low_open=True), IntensitySettings(**settings)
+        levels = _number_list(table["scale"], where, "intensity.scale", 0.0, low_open=True)
+        check_levels(levels, "scale", where, "intensity.scale")
+        return "scale", levels, IntensitySettings(**settings)
     return "scale", [1.0], IntensitySettings(**settings)
 
 
