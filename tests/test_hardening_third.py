@@ -388,3 +388,151 @@ def test_a_grid_of_too_many_chunks_is_refused_before_any_work(tmp_path):
     status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "-q"], tmp_path)
     assert status == 2 and "run.chunk_size" in err and "1,000,000" in err, err
     assert not (tmp_path / "out").exists()
+
+
+# ----------------------------------------------------------------- 8. risk, 41.5 interval
+def _fit():
+    from shaketable.sweeps.fragility import FragilityFit
+
+    return FragilityFit(median=0.5, beta=0.3, n_runs=10, n_overturned=5)
+
+
+def _hazard(**changes):
+    from shaketable.sweeps.risk import HazardCurve
+
+    values = dict(im=(0.05, 0.5, 5.0), rate=(1e-2, 1e-4, 1e-6), measure="pgv",
+                  column="pgv [m/s]")
+    values.update(changes)
+    return HazardCurve(**values)
+
+
+@pytest.mark.parametrize("changes, error, fragment", [
+    ({"rate": (1e-2, 1e-1, 1e-6)}, ValueError, "decrease"),
+    ({"im": (0.5, 0.05, 5.0)}, ValueError, "increase"),
+    ({"im": (1e-300, 0.5, 1e300)}, ValueError, "decades"),
+    ({"rate": (1e300, 1e-4, 1e-6)}, ValueError, "annual rates"),
+    ({"im": (0.05, float("nan"), 5.0)}, ValueError, "finite"),
+    ({"im": "0.05"}, TypeError, "HazardCurve.im"),
+    ({"measure": None}, TypeError, "HazardCurve.measure"),
+])
+def test_a_hazard_curve_built_in_python_gets_the_file_checks(changes, error, fragment):
+    with pytest.raises(error, match=fragment):
+        _hazard(**changes)
+
+
+@pytest.mark.parametrize("call, error, fragment", [
+    (lambda r: r.overturning_rate(None, _hazard()), TypeError, "fragility"),
+    (lambda r: r.overturning_rate(_fit(), _hazard(), years=True), TypeError, "years"),
+    (lambda r: r.overturning_rate(_fit(), _hazard(), years=-5), ValueError, "years"),
+    (lambda r: r.overturning_rate(_fit(), _hazard(), points_per_decade=10**9), ValueError,
+     "points_per_decade"),
+    (lambda r: r.overturning_rate(_fit(), "hazard.csv"), TypeError, "hazard"),
+    (lambda r: r.design_life_probability("1", 50), TypeError, "rate"),
+    (lambda r: r.design_life_probability(1e-3, float("inf")), ValueError, "years"),
+])
+def test_risk_functions_name_the_bad_parameter(call, error, fragment):
+    from shaketable.sweeps import risk
+
+    with pytest.raises(error, match=fragment):
+        call(risk)
+
+
+@pytest.mark.parametrize("kwargs, error, fragment", [
+    ({"beta": -0.3}, ValueError, "beta"), ({"median": None}, TypeError, "median"),
+    ({"confidence": 2.0}, ValueError, "confidence"), ({"n_runs": -1}, ValueError, "n_runs"),
+])
+def test_a_fragility_built_by_hand_is_checked(kwargs, error, fragment):
+    from shaketable.sweeps.fragility import FragilityFit
+
+    with pytest.raises(error, match=fragment):
+        FragilityFit(**{"median": 0.5, "beta": 0.3, "n_runs": 10, "n_overturned": 5, **kwargs})
+
+
+@pytest.mark.parametrize("call, error, fragment", [
+    (lambda f: f(None, [True, False]), TypeError, "im"),
+    (lambda f: f([0.1, 0.2], ["yes", "no"]), TypeError, "overturned"),
+    (lambda f: f([0.1, 0.2, 0.3], [0, 1, 2]), ValueError, "overturned"),
+    (lambda f: f([0.1, 0.2, 0.3], [0, 1, 0], confidence=True), ValueError, "confidence"),
+])
+def test_fragility_fit_names_the_bad_parameter(call, error, fragment):
+    from shaketable.sweeps.fragility import fragility_fit
+
+    with pytest.raises(error, match=fragment):
+        call(fragility_fit)
+
+
+def test_a_hazard_curve_that_is_not_utf8_is_named_with_its_line(tmp_path):
+    from shaketable.sweeps.risk import read_hazard_curve
+
+    path = tmp_path / "hazard.csv"
+    path.write_bytes(b"# site \xe9\npgv [m/s], annual_rate [1/yr]\n0.1, 1e-2\n1.0, 1e-4\n")
+    with pytest.raises(ValueError, match=r"hazard.csv, line 1: not UTF-8"):
+        read_hazard_curve(path)
+
+
+def test_the_rate_interval_is_the_range_over_the_fits_likelihood_region():
+    # independent check: lambda at the corners of the fit's own profile intervals of
+    # median and beta bounds the interval from outside (the likelihood region lies inside
+    # that rectangle), and the interval holds the point estimate
+    import numpy as np
+
+    from shaketable.sweeps.fragility import FragilityFit, fragility_fit
+    from shaketable.sweeps.risk import overturning_rate
+
+    rng = np.random.default_rng(4)
+    levels = np.repeat([0.2, 0.3, 0.4, 0.5, 0.6, 0.8], 12)
+    from scipy.stats import norm
+
+    overturned = rng.random(levels.size) < norm.cdf(np.log(levels / 0.45) / 0.35)
+    fit = fragility_fit(levels, overturned, measure="pgv [m/s]")
+    hazard = _hazard()
+    result = overturning_rate(fit, hazard)
+    low, high = result.rate_interval
+    assert low < result.rate < high
+    corners = [overturning_rate(FragilityFit(median=m, beta=b, n_runs=1, n_overturned=1),
+                                hazard, interval=False).rate
+               for m in fit.median_interval for b in fit.beta_interval]
+    assert min(corners) <= low and high <= max(corners)
+    assert result.probability_interval[0] < result.probability < result.probability_interval[1]
+    assert "interval" in result.summary() and result.confidence == 0.95
+
+
+def _risk_sweep(tmp_path, levels, runs):
+    folder = tmp_path / "sweep"
+    (folder / "parts").mkdir(parents=True)
+    import pandas as pd
+
+    overturned = [level > (0.45 if k % 3 else 0.65) for k, level in enumerate(levels)]
+    table = pd.DataFrame({"run": range(len(levels)), "record": [f"r{k % 3}" for k in
+                                                                 range(len(levels))],
+                          "seed": pd.array([None] * len(levels), dtype="Int64"),
+                          "block": "24 x 6 in", "cor [-]": 0.9, "status": "completed",
+                          "pgv [m/s]": levels, "overturned": overturned})
+    table.to_csv(folder / "parts" / "part-000000.csv", index=False)
+    (folder / "manifest.json").write_text(json.dumps({"format": "csv", "n_chunks": 3,
+                                                      "n_runs": runs}))
+    return folder
+
+
+def test_risk_warns_of_an_unfinished_sweep_and_a_small_suite(tmp_path):
+    levels = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9] * 2
+    folder = _risk_sweep(tmp_path, levels, runs=48)
+    status, out, err = run_cli(["risk", folder, "--hazard", "example"], tmp_path)
+    assert status == 0, err
+    assert "unfinished sweep (16 of 48 runs" in err, err
+    assert "3 ground motion(s)" in err and "interval" in out, (out, err)
+
+
+def test_risk_exits_1_when_no_rate_can_be_given_and_checks_the_figure_first(tmp_path):
+    folder = _risk_sweep(tmp_path, [0.2, 0.3, 0.4, 0.5] * 2, runs=8)
+    hazard = tmp_path / "pga.csv"   # the sweep's PGV runs all far below this PGA curve
+    hazard.write_text("pgv [m/s], annual_rate [1/yr]\n1, 1e-3\n10, 1e-5\n")
+    import pandas as pd
+
+    part = folder / "parts" / "part-000000.csv"
+    pd.read_csv(part).assign(overturned=False).to_csv(part, index=False)
+    status, _, err = run_cli(["risk", folder, "--hazard", hazard], tmp_path)
+    assert status == 1 and "no rate" in err, err
+    status, _, err = run_cli(["risk", folder, "--hazard", hazard, "--figure",
+                              tmp_path / "risk.txt"], tmp_path)
+    assert status == 2 and "--figure" in err, err

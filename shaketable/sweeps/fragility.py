@@ -100,6 +100,26 @@ class FragilityFit:
     measure: str = ""
     stripes: tuple = field(default=(), repr=False, compare=False)
 
+    def __post_init__(self) -> None:
+        for name in ("median", "beta"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.integer,
+                                                                 np.floating)):
+                raise TypeError(f"FragilityFit.{name} must be a number, got {value!r}")
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"FragilityFit.{name} must be positive and finite, got "
+                                 f"{value!r}")
+        for name in ("n_runs", "n_overturned"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+                raise ValueError(f"FragilityFit.{name} must be a non-negative integer, got "
+                                 f"{value!r}")
+        if not (isinstance(self.confidence, (int, float)) and 0 < self.confidence < 1):
+            raise ValueError(f"FragilityFit.confidence must be in (0, 1), got "
+                             f"{self.confidence!r}")
+        if self.method not in ("msa", "ida"):
+            raise ValueError(f"FragilityFit.method must be 'msa' or 'ida', got {self.method!r}")
+
     def probability(self, im):
         """P(overturn) at ``im`` [unit of the fit]."""
         from scipy.stats import norm
@@ -153,8 +173,21 @@ class FragilityFit:
 
 
 def _stripes(im, overturned, what="im"):
-    im = np.asarray(im, dtype=float)
-    overturned = np.asarray(overturned, dtype=bool)
+    given_type = type(im).__name__
+    try:
+        im = np.asarray(im, dtype=float)
+    except (TypeError, ValueError):
+        im = np.zeros(())
+    if im.ndim == 0:
+        raise TypeError(f"{what} must be an array of positive numbers, got {given_type}")
+    if im.ndim != 1:
+        raise ValueError(f"{what} must be a one-dimensional array, got shape {im.shape}")
+    given = np.asarray(overturned)
+    if given.dtype == object or not (given.dtype == bool or np.issubdtype(given.dtype, np.number)):
+        raise TypeError(f"overturned must be an array of booleans, got {given.dtype} values")
+    if np.issubdtype(given.dtype, np.number) and not np.all(np.isin(given, (0, 1))):
+        raise ValueError("overturned must hold booleans (or 0 and 1) only")
+    overturned = given.astype(bool)
     if im.shape != overturned.shape or im.size == 0:
         raise ValueError(f"{what} and overturned must be non-empty and of the same length")
     if not np.all(np.isfinite(im)) or np.any(im <= 0):
@@ -208,8 +241,12 @@ def fragility_fit(im, overturned, *, confidence: float = 0.95, intervals: bool =
     """
     from scipy.optimize import minimize
 
-    if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must be in (0, 1), got {confidence!r}")
+    if isinstance(confidence, bool) or not isinstance(confidence, (int, float)) \
+            or not 0.0 < confidence < 1.0:
+        raise ValueError(f"fragility_fit: confidence must be a number in (0, 1), got "
+                         f"{confidence!r}")
+    if not isinstance(intervals, (bool, np.bool_)):
+        raise TypeError(f"fragility_fit: intervals must be True or False, got {intervals!r}")
     log_im, runs, failures = _stripes(im, overturned)
     over = failures > 0
     stand = failures < runs
