@@ -536,3 +536,76 @@ def test_risk_exits_1_when_no_rate_can_be_given_and_checks_the_figure_first(tmp_
     status, _, err = run_cli(["risk", folder, "--hazard", hazard, "--figure",
                               tmp_path / "risk.txt"], tmp_path)
     assert status == 2 and "--figure" in err, err
+
+
+@pytest.mark.parametrize("option, value", [("--dpi", "100000"), ("--fps", "1e-9"),
+                                           ("--fps", "1e9"), ("--dpi", "0.001")])
+def test_animate_bounds_dpi_and_fps_before_any_work(tmp_path, option, value):
+    status, _, err = run_cli(["animate", "fig-3-4", "--out", "a.gif", option, value],
+                             tmp_path)
+    assert status == 2 and option in err and "from" in err, err
+    assert not (tmp_path / "a.gif").exists()
+
+
+def test_the_animation_functions_bound_dpi_and_fps():
+    from shaketable.plots.animation import _size, frame_times
+
+    with pytest.raises(ValueError, match="dpi must be from"):
+        _size((320, 180), 1e5)
+    with pytest.raises(ValueError, match="fps must be from"):
+        frame_times(0.0, 1.0, fps=1e-9, speed=1.0)
+
+
+# ----------------------------------------------------------------- 10. messages
+@pytest.mark.parametrize("extra, fragment", [
+    (["--method", "linear", "--cor", "2"], "--cor must be"),
+    (["--method", "linear", "--scan-step", "0"], "--scan-step must be"),
+    (["--method", "linear", "--ceiling", "0.5"], "--ceiling must be"),
+    (["--method", "linear", "--alpha", "1.5rad"], "--cor 'housner'"),
+    (["--method", "linear", "--compare-linear"], "--compare-linear"),
+    (["--method", "linear", "--scan-step", "1e-9", "--tolerance", "1e-12"], "--scan-step"),
+])
+def test_spectrum_refusals_name_the_options(tmp_path, extra, fragment):
+    argv = ["spectrum", "--alpha", "0.1rad", "--p", "2rad/s", "--ratios", "4", "--out", "o"]
+    if "--alpha" in extra:
+        argv[2] = extra[extra.index("--alpha") + 1]
+        extra = [item for k, item in enumerate(extra)
+                 if item != "--alpha" and (k == 0 or extra[k - 1] != "--alpha")]
+    status, _, err = run_cli(argv + extra, tmp_path)
+    assert status == 2 and fragment in err, err
+    assert "Case." not in err and "Number of samples" not in err, err
+
+
+@pytest.mark.parametrize("call, error, fragment", [
+    (lambda f, b, m, F: f(None, m, F(0.3), 0.9), TypeError, "blocks"),
+    (lambda f, b, m, F: f("30x6in", m, F(0.3), 0.9), TypeError, "blocks"),
+    (lambda f, b, m, F: f(b, m, 0.3, 0.9), TypeError, "frictions"),
+    (lambda f, b, m, F: f(b, m, F(0.3), None), TypeError, "cors"),
+    (lambda f, b, m, F: f(b, m, F(0.3), []), ValueError, "cors is empty"),
+    (lambda f, b, m, F: f([], m, F(0.3), 0.9), ValueError, "blocks is empty"),
+])
+def test_simulate_many_planar_names_the_bad_parameter(call, error, fragment):
+    import shaketable as st
+    from shaketable.core.sliding_result import Friction
+    from shaketable.solvers.planar_batch import simulate_many_planar
+
+    with pytest.raises(error, match=fragment):
+        call(simulate_many_planar, st.Block.parse("30x6in"), st.Motion.at_rest(0.5), Friction)
+
+
+@pytest.mark.parametrize("call, error, fragment", [
+    (lambda C, e, b, m: C(0.9, 0.01, 5, 0.0, 1), TypeError, "source"),
+    (lambda C, e, b, m: C(0.9, 0.01, 10**12), ValueError, "dof"),
+    (lambda C, e, b, m: C(0.9, 5.0, 10), ValueError, "mean_se"),
+    (lambda C, e, b, m: e("30x6in", m, C(0.9, 0.01, 5)), TypeError, "block"),
+    (lambda C, e, b, m: e(b, m, 0.9), TypeError, "cor"),
+    (lambda C, e, b, m: e(b, m, C(0.9, 0.01, 5), members=10**9), ValueError, "members"),
+    (lambda C, e, b, m: e(b, m, C(0.9, 0.01, 5), seed=-1), ValueError, "seed"),
+])
+def test_calibrated_cor_and_ensemble_name_the_bad_parameter(call, error, fragment):
+    import shaketable as st
+    from shaketable.calibration.uncertainty import CalibratedCor, calibrated_ensemble
+
+    with pytest.raises(error, match=fragment):
+        call(CalibratedCor, calibrated_ensemble, st.Block.parse("30x6in"),
+             st.Motion.at_rest(0.5))

@@ -87,6 +87,9 @@ class CalibratedCor:
     width: float | None = None
 
     def __post_init__(self) -> None:
+        if not isinstance(self.source, str):
+            raise TypeError(f"CalibratedCor.source must be text (a file name), got "
+                            f"{self.source!r}")
         for name in ("mean", "mean_se", "sigma"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) \

@@ -35,6 +35,9 @@ def _animate(args) -> int:
     from shaketable.scenes.parse import Study, load_scene
     from shaketable.scenes.run import run_scene
 
+    from shaketable.commands.checks import check_animate_options
+
+    check_animate_options(args)   # before the scene runs: bounds that protect the memory
     size = _size(args.size)
     prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
     scene = load_scene(resolve_scene_path(args.scene))

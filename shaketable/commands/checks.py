@@ -130,3 +130,33 @@ def check_simulate_options(args) -> None:
         if calibrated:
             refuse_ignored_options(args, f"--cor {args.cor} (an ensemble over the calibrated "
                                    "COR)", _ENSEMBLE_OPTIONS)
+
+
+def check_animate_options(args) -> None:
+    """``animate``'s --dpi, --fps and --speed, bounded before the scene runs (a dpi or a
+    frame rate beyond :data:`~shaketable.plots.animation.DPI_RANGE` and
+    :data:`~shaketable.plots.animation.FPS_RANGE` would exhaust memory or fail inside the
+    writers)."""
+    import math
+
+    from shaketable.plots.animation import DPI_RANGE, FPS_RANGE
+
+    for option, value, (low, high), unit in (("--dpi", args.dpi, DPI_RANGE, "dots per inch"),
+                                             ("--fps", args.fps, FPS_RANGE,
+                                              "frames per second")):
+        if not (math.isfinite(value) and low <= value <= high):
+            raise ValueError(f"{option} {value:g}: must be from {low:g} to {high:g} {unit}")
+    if not (math.isfinite(args.speed) and args.speed > 0):
+        raise ValueError(f"--speed {args.speed:g}: must be a positive number of simulated "
+                         "seconds per second")
+
+
+def with_option_names(error: ValueError, options: dict) -> ValueError:
+    """``error`` with the library's parameter name at the start of its message replaced by
+    the command's option (``scan_step must be ...`` -> ``--scan-step must be ...``), so a
+    refusal names what the user typed."""
+    message = str(error)
+    for parameter, option in options.items():
+        if message.startswith(parameter + " ") or message.startswith(parameter + ":"):
+            return ValueError(option + message[len(parameter):])
+    return ValueError(message)
