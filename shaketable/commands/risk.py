@@ -23,15 +23,12 @@ def hazard_path(text: str) -> Path:
 
 
 def _risk(args: argparse.Namespace) -> int:
-    from shaketable.sweeps.fragility import fragility_fit, measure_column
-    from shaketable.sweeps.risk import overturning_rate, read_hazard_curve
-    from shaketable.sweeps.store import read_results
-
     import math
     import sys
 
-    from shaketable.sweeps.risk import FEW_RECORDS, MAX_YEARS
-    from shaketable.sweeps.store import read_manifest
+    from shaketable.sweeps.fragility import fragility_fit, measure_column
+    from shaketable.sweeps.risk import FEW_RECORDS, MAX_YEARS, overturning_rate, read_hazard_curve
+    from shaketable.sweeps.store import read_manifest, read_results
 
     folder = Path(args.sweep)
     if not (folder / "manifest.json").is_file():

@@ -40,12 +40,11 @@ OPTIONS = {"cor": "--cor", "scan_step": "--scan-step", "tolerance": "--tolerance
 
 
 def _spectrum(args) -> int:
+    from shaketable.commands.checks import with_option_names
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import atomic_write, prepare_output_folder, write_parquet
     from shaketable.plots import base as plots
     from shaketable.studies.overturning_spectrum import overturning_spectrum
-
-    from shaketable.commands.checks import with_option_names
 
     if args.compare_linear and args.method == "linear":
         raise ValueError("--compare-linear cannot be used with --method linear: the spectrum "

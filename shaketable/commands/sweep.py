@@ -78,10 +78,9 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"wrote {out / 'spectrum-scale-factors.csv'} (each record's factor to the "
               "target spectrum)")
     if args.figures:
+        from shaketable.core.files import subfolder
         from shaketable.plots.sweeps import sweep_figures
         from shaketable.sweeps.friction import friction_figure_sets
-
-        from shaketable.core.files import subfolder
 
         paths = [path for rows, folder in friction_figure_sets(table, subfolder(out, "figures"))
                  for path in sweep_figures(rows, folder)]

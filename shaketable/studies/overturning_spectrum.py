@@ -345,10 +345,10 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
     cor = _cor(block, cor)
     tallest = max([ceiling] if ceiling is not None else
                   [2 * math.sqrt(1 + float(ratio) ** 2) + 2 for ratio in ratios] or [2.0])
-    points = math.log(tallest) / math.log1p(scan_step)
-    if points > MAX_SCAN_POINTS:
+    scan_points = math.log(tallest) / math.log1p(scan_step)
+    if scan_points > MAX_SCAN_POINTS:
         raise ValueError(f"scan_step {scan_step:g} up to a/(g tan alpha) = {tallest:g} makes "
-                         f"{points:.3g} scan points per pulse and omega/p; at most "
+                         f"{scan_points:.3g} scan points per pulse and omega/p; at most "
                          f"{MAX_SCAN_POINTS:,}: a larger scan_step or a lower ceiling")
     keys, shapes, grids, tops = [], [], [], []
     for kind in pulses:

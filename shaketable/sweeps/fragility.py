@@ -141,7 +141,7 @@ class FragilityFit:
         if self.method == "ida" or not self.stripes:
             corners = [(m, b) for m in self.median_interval for b in self.beta_interval]
         else:
-            corners = _region_boundary(self, directions)
+            corners = region_boundary(self, directions)
         curves = np.array([norm.cdf(np.log(im / m) / b) for m, b in corners]
                           + [self.probability(im)])
         return curves.min(axis=0), curves.max(axis=0)
@@ -319,7 +319,7 @@ def _profile_intervals(mu, log_beta, best, log_im, runs, failures, confidence):
     return ends(drop_mu, mu, 0.5 * beta), ends(drop_beta, log_beta, 0.3)
 
 
-def _region_boundary(fit: FragilityFit, directions: int):
+def region_boundary(fit: FragilityFit, directions: int):
     """(median, beta) on the boundary of the profile-likelihood region of ``fit``."""
     from scipy.optimize import brentq
     from scipy.stats import chi2

@@ -356,14 +356,14 @@ def rate_interval(fit, hazard: HazardCurve, points_per_decade: int = POINTS_PER_
     """
     from scipy.stats import norm
 
-    from shaketable.sweeps.fragility import FragilityFit, _region_boundary
+    from shaketable.sweeps.fragility import FragilityFit, region_boundary
 
     if not isinstance(fit, FragilityFit):
         raise TypeError(f"fit must be a FragilityFit, got {type(fit).__name__}")
     if fit.method == "ida" or not fit.stripes:
         points = [(m, b) for m in fit.median_interval for b in fit.beta_interval]
     else:
-        points = _region_boundary(fit, directions)
+        points = region_boundary(fit, directions)
     values = [_integral(lambda im, m=m, b=b: norm.cdf(np.log(im / m) / b), hazard,
                         points_per_decade) for m, b in points]
     return float(min(values)), float(max(values))

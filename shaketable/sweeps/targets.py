@@ -108,7 +108,7 @@ def read_spectrum(value, where: str, directory: Path | None) -> tuple:
     path = path if path.is_absolute() or directory is None else directory / path
     if not path.is_file():
         raise SweepError(f"{where}: intensity.spectrum: no such file {str(path)!r}")
-    pairs = []
+    pairs: list[tuple[float, float]] = []
     factors = None
     for number, line in enumerate(read_utf8(path, "target spectrum", SweepError).splitlines(), 1):
         text = line.split("#")[0].strip()
