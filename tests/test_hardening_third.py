@@ -609,3 +609,15 @@ def test_calibrated_cor_and_ensemble_name_the_bad_parameter(call, error, fragmen
     with pytest.raises(error, match=fragment):
         call(CalibratedCor, calibrated_ensemble, st.Block.parse("30x6in"),
              st.Motion.at_rest(0.5))
+
+
+@pytest.mark.parametrize("ensemble", [[], ["--ensemble", "3"]])
+def test_a_block_that_leaves_the_ground_exits_1_alone_or_in_an_ensemble(tmp_path, ensemble):
+    # a vertical table acceleration of 1.5 g amplitude passes -g: the block leaves the ground
+    status, _, err = run_cli(["simulate", "--block", "30x6in", "--cor", "0.9", "--harmonic",
+                              "2Hz,0.05g,1.5g", "--duration", "2s", "--out", "o", *ensemble],
+                             tmp_path)
+    assert status == 1 and "airborne" in err and "stopped" in err, err
+    if not ensemble:
+        summary = json.loads((tmp_path / "o" / "summary.json").read_text())
+        assert summary["stopped early"] is True and "left the ground" in summary["stop reason"]

@@ -136,10 +136,13 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
     if motion is None:
         from shaketable.solvers.api import simulate
 
+        from shaketable.core.stops import stop_summary
+
         run = simulate(block, None, cor=cor.mean, theta0=theta0, duration=args.duration,
                           method=args.method, subdivisions=args.subdivisions)
         write_csv(out / "history.csv", run.to_frame())
-        write_text(out / "summary.json", json.dumps(run.summary(), indent=2))
+        write_text(out / "summary.json", json.dumps(json_ready_dict(stop_summary(run)),
+                                                    indent=2))
         print(f"free rocking with the mean COR {cor.mean:.4f}: {run.verdict()}")
         print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}")
         return 0
@@ -159,7 +162,9 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
     print(ensemble.describe())
     print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
           f"{out / ('ensemble.' + args.format)}")
-    return 0
+    from shaketable.commands.checks import report_stopped_rows
+
+    return report_stopped_rows(ensemble.to_frame(), f"{block.describe()} block", "simulate")
 
 
 def register(commands) -> None:

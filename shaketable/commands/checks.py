@@ -37,7 +37,7 @@ def report_early_stops(results: Iterable, command: str, label: str = "") -> int:
     return 1 if reasons else 0
 
 
-def report_stopped_rows(table, name: str) -> int:
+def report_stopped_rows(table, name: str, command: str = "sweep") -> int:
     """Say on stderr how many runs of a sweep table stopped before their motion ended
     (a ``status`` other than completed or overturned); the exit status (1 if any).
 
@@ -52,10 +52,11 @@ def report_stopped_rows(table, name: str) -> int:
     stopped = table[~table["status"].isin(FINISHED_STATUSES)]
     if not len(stopped):
         return 0
-    print(f"shaketable sweep: warning: {name}: {len(stopped)} of {len(table)} run(s) stopped "
+    run_column = "run" if "run" in table else "member"
+    print(f"shaketable {command}: warning: {name}: {len(stopped)} of {len(table)} run(s) stopped "
           f"before their motion ended (status "
           f"{', '.join(sorted(map(str, stopped['status'].unique())))}; runs "
-          f"{', '.join(str(run) for run in stopped['run'].head(5))}"
+          f"{', '.join(str(run) for run in stopped[run_column].head(5))}"
           f"{' ...' if len(stopped) > 5 else ''}; see the 'status' column and "
           "docs/planar.md); their results cover the run up to the stop only; exit status 1",
           file=sys.stderr)

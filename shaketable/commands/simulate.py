@@ -136,7 +136,9 @@ def _ensemble(args, block, motion, out) -> int:
           f"{result.describe()}")
     print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
           f"{out / ('ensemble.' + args.format)}")
-    return 0
+    from shaketable.commands.checks import report_stopped_rows
+
+    return report_stopped_rows(result.to_frame(), f"{block.describe()} block", "simulate")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
