@@ -621,3 +621,23 @@ def test_a_block_that_leaves_the_ground_exits_1_alone_or_in_an_ensemble(tmp_path
     if not ensemble:
         summary = json.loads((tmp_path / "o" / "summary.json").read_text())
         assert summary["stopped early"] is True and "left the ground" in summary["stop reason"]
+
+
+@pytest.mark.parametrize("argv, both", [
+    (["--table-4-4", "--record", "pacoima-dam-s16e"], ("--record", "--table-4-4")),
+    (["--table-4-4", "--static-friction", "0.3"], ("--static-friction", "--table-4-4")),
+    (["--record", "pacoima-dam-s16e", "--sweep", "0.1", "0.2", "--block", "4x1ft"],
+     ("--block", "--sweep")),
+    (["--record", "pacoima-dam-s16e", "--seed", "4"], ("--seed", "--table-4-4")),
+])
+def test_slide_refuses_options_its_mode_would_ignore(tmp_path, argv, both):
+    status, _, err = run_cli(["slide", *argv, "--out", "o"], tmp_path)
+    assert status == 2 and all(option in err for option in both), err
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_chunk_too_large_to_hold_is_refused_naming_the_key(tmp_path):
+    (tmp_path / "w.toml").write_text(_replace(TINY_SWEEP, "chunk_size = 1",
+                                              "chunk_size = 100000000"))
+    status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "-q"], tmp_path)
+    assert status == 2 and "run.chunk_size" in err and "100,000" in err, err

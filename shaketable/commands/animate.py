@@ -68,7 +68,9 @@ def _animate(args) -> int:
     print(f"wrote {written.path} ({written.n_frames} frames of {written.size[0]} x "
           f"{written.size[1]} pixels, {written.fps:g} fps, {written.t_first:g}-"
           f"{written.t_last:g} s at speed {written.speed:g})")
-    return 0
+    from shaketable.commands.checks import report_early_stops
+
+    return report_early_stops(runs, "animate", scene.name)
 
 
 def register(commands) -> None:

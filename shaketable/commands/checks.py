@@ -161,3 +161,20 @@ def with_option_names(error: ValueError, options: dict) -> ValueError:
         if message.startswith(parameter + " ") or message.startswith(parameter + ":"):
             return ValueError(option + message[len(parameter):])
     return ValueError(message)
+
+
+def check_slide_options(args) -> None:
+    """Refuse the ``slide`` options the chosen mode would ignore: ``--table-4-4`` takes
+    only ``--seed`` (and ``--out``); ``--sweep`` gives the dynamic frictions itself (no
+    ``--static-friction``, ``--dynamic-friction`` or ``--block``); ``--seed`` belongs to
+    ``--table-4-4``."""
+    if args.table_4_4:
+        refuse_ignored_options(args, "--table-4-4", {
+            "--record": None, "--sweep": None, "--static-friction": 0.2,
+            "--dynamic-friction": None, "--block": None, "--scale": 1.0, "--units": None,
+            "--dt": None, "--column": None, "--no-vertical": False})
+        return
+    refuse_ignored_options(args, "a run on a record (no --table-4-4)", {"--seed": 1})
+    if args.sweep:
+        refuse_ignored_options(args, "--sweep", {"--static-friction": 0.2,
+                                                 "--dynamic-friction": None, "--block": None})

@@ -15,6 +15,9 @@ def _slide(args) -> int:
     from shaketable.plots.base import save
     from shaketable.solvers.sliding import peak_slips, slide
 
+    from shaketable.commands.checks import check_slide_options
+
+    check_slide_options(args)   # options the chosen mode would ignore: refused
     out = prepare_output_folder(args.out)
     if args.table_4_4:
         from shaketable.studies.sliding import table_4_4, table_4_4_markdown

@@ -444,8 +444,10 @@ def spec_from_dict(data: dict, where: str = "<spec>",
         raise SweepError(f"{where}: [run] must be a table, got {run!r}")
     _only(run, RUN_KEYS, where, "[run]")
     chunk_size = run.get("chunk_size", 500)
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
-        raise SweepError(f"{where}: run.chunk_size must be a positive integer, got "
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) \
+            or not 1 <= chunk_size <= MAX_CHUNK_SIZE:
+        raise SweepError(f"{where}: run.chunk_size must be an integer from 1 to "
+                         f"{MAX_CHUNK_SIZE:,} (a chunk's rows are held in memory), got "
                          f"{chunk_size!r}")
     from shaketable.sweeps.friction import check_friction_spec, friction_grid
     spec = SweepSpec(name=name.strip(), description=str(data.get("description", "")),
@@ -465,6 +467,7 @@ def spec_from_dict(data: dict, where: str = "<spec>",
 #: distinct motions (records x seeds x pitch phases, each held as a row of the grid).
 MAX_CHUNKS = 1_000_000
 MAX_VARIANTS = 1_000_000
+MAX_CHUNK_SIZE = 100_000
 
 
 def _check_grid_size(spec: SweepSpec, where: str) -> None:
