@@ -314,6 +314,7 @@ def test_a_spectrum_that_cannot_be_read_safely_is_refused(tmp_path, text, fragme
     ('pga = ["0.3 g", "0.3 g"]', "more than once"),
     ('measure = "pgv"\nlevels = ["1e300 m/s"]', "beyond any earthquake"),
     ('scale = [1e300]', "beyond any earthquake"),
+    ('measure = "sa"\nperiod = "1000 s"\nlevels = ["1 g"]', "intensity.period"),
 ])
 def test_absurd_or_repeated_levels_are_refused(tmp_path, intensity, fragment):
     from shaketable import sweeps

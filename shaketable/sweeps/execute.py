@@ -143,16 +143,18 @@ def check_inputs(spec: SweepSpec) -> None:
         if spec.intensity == "pga" and not base.pga > 0.0:
             raise SweepError(f"{spec.path}: {what} has no horizontal motion; it cannot be "
                              "scaled to a PGA; nothing was run")
+        try:   # every row records the measures: an unusable one is refused now
+            measures = record_measures(record, seed, spec.measures)
+            if spec.measures.spectrum:
+                spectrum_factor(record, seed, spec.measures)
+        except ValueError as error:   # SweepError included
+            raise SweepError(f"{spec.path}: {what}: its intensity measures cannot be "
+                             f"computed ({error}); nothing was run") from None
         if spec.intensity == "measure":
-            value = record_measures(record, seed, spec.measures)[spec.measures.column]
+            value = measures[spec.measures.column]
             if not (value > 0.0 and math.isfinite(value)):
                 raise SweepError(f"{spec.path}: {what} has {spec.measures.column} = {value!r}; "
                                  "it cannot be scaled to it; nothing was run")
-        elif spec.measures.spectrum:
-            try:
-                spectrum_factor(record, seed, spec.measures)
-            except SweepError as error:
-                raise SweepError(f"{spec.path}: {error}; nothing was run") from None
 
 
 def build_motion(spec: SweepSpec, record_index: int, seed: int | None = None,

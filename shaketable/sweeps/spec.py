@@ -138,6 +138,7 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
 from shaketable.sweeps.targets import (
+    SPECTRUM_PERIODS,
     IntensitySettings,
     check_levels,
     check_spectrum_covers,
@@ -742,6 +743,12 @@ def _intensity(table, where, directory: Path | None = None):
     if "period" in table:
         settings["period"] = _quantity(table["period"], "time", where, "intensity.period",
                                        positive=True)
+    for key, values in (("period", [settings.get("period", 1.0)]),
+                        ("period_range", settings.get("period_range", ()))):
+        if any(not SPECTRUM_PERIODS[0] <= value <= SPECTRUM_PERIODS[1] for value in values):
+            raise SweepError(f"{where}: intensity.{key} must lie from "
+                             f"{SPECTRUM_PERIODS[0]:g} to {SPECTRUM_PERIODS[1]:g} s (a period "
+                             f"of a response spectrum), got {table[key]!r}")
     if "spectrum" in table:
         if "measure" in table or "pga" in table:
             raise SweepError(f"{where}: intensity.spectrum goes with scale factors (or none), "
