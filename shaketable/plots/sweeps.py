@@ -24,6 +24,8 @@ the axes. matplotlib is imported inside the plotting functions only;
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from shaketable.core.files import subfolder, write_csv
@@ -658,9 +660,15 @@ def risk_curves(fragility, hazard, result=None, *, ax=None):
     handles = ax.get_legend_handles_labels()
     more = other.get_legend_handles_labels()
     ax.legend(handles[0] + more[0], handles[1] + more[1], fontsize=7, loc="lower left")
-    if result is not None:
-        ax.set_title(f"λ = {result.rate:.3g} /yr (±{result.error:.1g}), P(overturn in "
-                     f"{result.years:g} yr) = {result.probability:.3g}", fontsize=9)
+    if result is not None:   # the interval the fit's uncertainty gives, when it is known
+        low, high = getattr(result, "rate_interval", (math.nan, math.nan))
+        known = math.isfinite(low) and math.isfinite(high)
+        p_low, p_high = getattr(result, "probability_interval", (math.nan, math.nan))
+        ax.set_title(f"λ = {result.rate:.2g} /yr"
+                     + (f" ({100 * result.confidence:g} %: {low:.2g} to {high:.2g})" if known
+                        else f" (±{result.error:.1g})")
+                     + f", P(overturn in {result.years:g} yr) = {result.probability:.2g}"
+                     + (f" ({p_low:.2g} to {p_high:.2g})" if known else ""), fontsize=9)
     ax.fragility_axis = other
     return ax
 
