@@ -548,6 +548,17 @@ def test_animate_bounds_dpi_and_fps_before_any_work(tmp_path, option, value):
     assert not (tmp_path / "a.gif").exists()
 
 
+def test_an_ensemble_too_large_to_draw_is_refused_naming_the_option(tmp_path):
+    status, _, err = run_cli(["simulate", "--block", "30x6in", "--cor", "0.9", "--record",
+                              "pacoima-dam-s16e", "--ensemble", "1000000000", "--out", "o"],
+                             tmp_path)
+    assert status == 2 and "--ensemble" in err and "1,000,000" in err, err
+    from shaketable.core.ensemble import Perturbation, perturbed_members
+
+    with pytest.raises(ValueError, match="members must be an integer >= 2 .at most 1,000,000"):
+        perturbed_members(10**9, Perturbation())
+
+
 def test_the_animation_functions_bound_dpi_and_fps():
     from shaketable.plots.animation import _size, frame_times
 

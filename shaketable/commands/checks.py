@@ -110,6 +110,11 @@ def check_simulate_options(args) -> None:
         Naming both options.
     """
     calibrated = isinstance(args.cor, str)
+    from shaketable.core.ensemble import MAX_MEMBERS
+
+    if args.ensemble and not 2 <= args.ensemble <= MAX_MEMBERS:
+        raise ValueError(f"--ensemble {args.ensemble}: must be from 2 to {MAX_MEMBERS:,} "
+                         "members (each is a run)")
     if args.friction is not None:
         if calibrated:
             raise ValueError(f"--friction cannot be used with --cor {args.cor} (a calibration "
