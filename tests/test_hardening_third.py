@@ -653,3 +653,14 @@ def test_a_chunk_too_large_to_hold_is_refused_naming_the_key(tmp_path):
                                               "chunk_size = 100000000"))
     status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "-q"], tmp_path)
     assert status == 2 and "run.chunk_size" in err and "100,000" in err, err
+
+
+def test_a_sweep_whose_runs_leave_the_ground_says_so_and_exits_1(tmp_path):
+    spec = _replace(TINY_SWEEP, '[[records]]\nname = "pacoima-dam-s16e"',
+                    '[[records]]\npreset = "B-1"\nduration = "1 s"\nvertical_pga = "2 g"')
+    (tmp_path / "w.toml").write_text(spec)
+    status, _, err = run_cli(["sweep", "w.toml", "--out", "out", "--no-progress"], tmp_path)
+    assert status == 1, err
+    assert "stopped before their motion ended" in err and "airborne" in err, err
+    assert (tmp_path / "out" / "results.parquet").exists() or \
+        (tmp_path / "out" / "results.csv").exists()
