@@ -664,3 +664,13 @@ def test_a_sweep_whose_runs_leave_the_ground_says_so_and_exits_1(tmp_path):
     assert "stopped before their motion ended" in err and "airborne" in err, err
     assert (tmp_path / "out" / "results.parquet").exists() or \
         (tmp_path / "out" / "results.csv").exists()
+
+
+def test_the_share_of_lambda_outside_the_levels_run_is_measured():
+    # the whole hazard range holds all of lambda; a range beyond the curve holds none
+    from shaketable.sweeps.risk import share_outside
+
+    hazard = _hazard()
+    assert share_outside(_fit(), hazard, 0.05, 5.0) == pytest.approx(0.0, abs=1e-12)
+    assert share_outside(_fit(), hazard, 10.0, 20.0) == pytest.approx(1.0, abs=1e-12)
+    assert 0.0 < share_outside(_fit(), hazard, 0.05, 0.5) < 1.0

@@ -27,7 +27,13 @@ def _risk(args: argparse.Namespace) -> int:
     import sys
 
     from shaketable.sweeps.fragility import fragility_fit, measure_column
-    from shaketable.sweeps.risk import FEW_RECORDS, MAX_YEARS, overturning_rate, read_hazard_curve
+    from shaketable.sweeps.risk import (
+        FEW_RECORDS,
+        MAX_YEARS,
+        overturning_rate,
+        read_hazard_curve,
+        share_outside,
+    )
     from shaketable.sweeps.store import read_manifest, read_results
 
     folder = Path(args.sweep)
@@ -93,6 +99,13 @@ def _risk(args: argparse.Namespace) -> int:
         results.append((block, label, fit, result))
         print(f"{block}, {label}: {result.summary()}")
         print(f"    fragility {fit.summary()}")
+        low, high = float(rows[column].min()), float(rows[column].max())
+        outside = share_outside(fit, hazard, low, high)
+        if outside > 0.1:   # the lognormal carried beyond the levels run: say how much
+            print(f"shaketable risk: warning: {block}, {label}: {100 * outside:.0f} % of "
+                  f"lambda comes from {column} outside the levels the sweep ran ({low:.3g} "
+                  f"to {high:.3g}), where the fitted lognormal is extrapolated",
+                  file=sys.stderr)
         motions = len(rows[[key for key in ("record", "seed") if key in rows]]
                       .drop_duplicates())
         if motions < FEW_RECORDS:

@@ -369,6 +369,21 @@ def rate_interval(fit, hazard: HazardCurve, points_per_decade: int = POINTS_PER_
     return float(min(values)), float(max(values))
 
 
+def share_outside(fragility, hazard: HazardCurve, low: float, high: float,
+                  points_per_decade: int = POINTS_PER_DECADE) -> float:
+    """Fraction of ``lambda`` that comes from IMs outside ``[low, high]`` [-] (where the
+    fragility was not fitted, so the lognormal is extrapolated there)."""
+    total = _integral(fragility.probability, hazard, points_per_decade)
+    if not total > 0:
+        return 0.0
+
+    def inside(im):
+        im = np.asarray(im, dtype=float)
+        return np.where((im >= low) & (im <= high), fragility.probability(im), 0.0)
+
+    return float(max(0.0, 1.0 - _integral(inside, hazard, points_per_decade) / total))
+
+
 def design_life_probability(rate: float, years: float) -> float:
     """``1 - exp(-rate years)``: at least one overturning in ``years`` [-] (Poisson)."""
     for name, value in (("rate", rate), ("years", years)):
