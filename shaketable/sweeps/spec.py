@@ -137,10 +137,11 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
+from shaketable.sweeps.limits import MAX_CHUNK_SIZE, check_grid_size
 from shaketable.sweeps.targets import (
-    SPECTRUM_PERIODS,
     IntensitySettings,
     check_levels,
+    check_periods,
     check_spectrum_covers,
     read_spectrum,
 )
@@ -460,30 +461,8 @@ def spec_from_dict(data: dict, where: str = "<spec>",
                      measures=measures, friction=friction_grid(data.get("friction"), where),
                      raw=data)
     check_friction_spec(spec, rocking)   # with [friction]: what the planar model refuses
-    _check_grid_size(spec, where)
+    check_grid_size(spec, where)
     return spec
-
-
-#: Most chunks of one sweep (the resume bookkeeping holds one entry per chunk) and most
-#: distinct motions (records x seeds x pitch phases, each held as a row of the grid).
-MAX_CHUNKS = 1_000_000
-MAX_VARIANTS = 1_000_000
-MAX_CHUNK_SIZE = 100_000
-
-
-def _check_grid_size(spec: SweepSpec, where: str) -> None:
-    """Refuse a grid whose bookkeeping would exhaust memory, naming the limit and the key."""
-    phases = 1 if spec.pitch is None else len(spec.pitch.phases)
-    variants = sum(len(record.seeds) for record in spec.records) * phases
-    if variants > MAX_VARIANTS:
-        raise SweepError(f"{where}: the grid has {variants:,} distinct motions (records x "
-                         f"seeds x pitch phases); at most {MAX_VARIANTS:,}: fewer "
-                         "[[records]] seeds or pitch phases")
-    if spec.n_chunks > MAX_CHUNKS:
-        need = -(-spec.n_runs // MAX_CHUNKS)
-        raise SweepError(f"{where}: {spec.n_runs:,} runs in chunks of {spec.chunk_size} make "
-                         f"{spec.n_chunks:,} chunks; at most {MAX_CHUNKS:,}: set run.chunk_size "
-                         f"to {need:,} or more (or make the grid smaller)")
 
 
 def _ensemble(table, where):
@@ -743,12 +722,7 @@ def _intensity(table, where, directory: Path | None = None):
     if "period" in table:
         settings["period"] = _quantity(table["period"], "time", where, "intensity.period",
                                        positive=True)
-    for key, values in (("period", [settings.get("period", 1.0)]),
-                        ("period_range", settings.get("period_range", ()))):
-        if any(not SPECTRUM_PERIODS[0] <= value <= SPECTRUM_PERIODS[1] for value in values):
-            raise SweepError(f"{where}: intensity.{key} must lie from "
-                             f"{SPECTRUM_PERIODS[0]:g} to {SPECTRUM_PERIODS[1]:g} s (a period "
-                             f"of a response spectrum), got {table[key]!r}")
+    check_periods(settings, table, where)
     if "spectrum" in table:
         if "measure" in table or "pga" in table:
             raise SweepError(f"{where}: intensity.spectrum goes with scale factors (or none), "

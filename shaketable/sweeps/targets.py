@@ -186,3 +186,15 @@ def check_levels(levels: list, kind: str, where: str, key: str) -> None:
     if repeated:
         raise SweepError(f"{where}: {key} gives the level {repeated[0]:g} (SI) more than "
                          "once; each level must be given once")
+
+
+def check_periods(settings: dict, table: dict, where: str) -> None:
+    """Refuse an ``intensity.period`` or ``period_range`` outside :data:`SPECTRUM_PERIODS`."""
+    from shaketable.sweeps.spec import SweepError
+
+    for key, values in (("period", [settings.get("period", 1.0)]),
+                        ("period_range", settings.get("period_range", ()))):
+        if any(not SPECTRUM_PERIODS[0] <= value <= SPECTRUM_PERIODS[1] for value in values):
+            raise SweepError(f"{where}: intensity.{key} must lie from "
+                             f"{SPECTRUM_PERIODS[0]:g} to {SPECTRUM_PERIODS[1]:g} s (a period "
+                             f"of a response spectrum), got {table[key]!r}")
