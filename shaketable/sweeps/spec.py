@@ -448,7 +448,7 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     chunk_size = run.get("chunk_size", 500)
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) \
             or not 1 <= chunk_size <= MAX_CHUNK_SIZE:
-        raise SweepError(f"{where}: run.chunk_size must be an integer from 1 to "
+        raise SweepError(f"{where}: run.chunk_size must be a positive integer, at most "
                          f"{MAX_CHUNK_SIZE:,} (a chunk's rows are held in memory), got "
                          f"{chunk_size!r}")
     from shaketable.sweeps.friction import check_friction_spec, friction_grid
