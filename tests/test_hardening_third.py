@@ -200,7 +200,9 @@ def test_a_rocking_run_that_leaves_the_ground_is_an_early_stop(tmp_path):
     (["--perturb-cor", "0.01"], ("--perturb-cor", "--ensemble")),
     (["--horizon-threshold", "0.01"], ("--horizon-threshold", "--ensemble")),
     (["--seed", "3"], ("--seed", "--ensemble")),
-    (["--ensemble", "4", "--history", "full"], ("--history", "--ensemble")),
+    (["--ensemble", "4", "--history", "full", "--pulse", "half-sine,0.1g,0.2s"],
+     ("--history", "--ensemble")),
+    (["--ensemble", "4"], ("--ensemble", "--record")),
 ])
 def test_options_another_model_would_ignore_are_refused_naming_both(tmp_path, extra, both):
     status, _, err = run_cli(["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0",

@@ -124,11 +124,13 @@ def check_simulate_options(args) -> None:
     if args.method != "predictor-corrector":
         refuse_ignored_options(args, f"--method {args.method}", {"--subdivisions": 4})
     moving = any(getattr(args, name, None) for name in ("record", "harmonic", "pulse"))
+    if args.ensemble and not moving:
+        raise ValueError("--ensemble needs a --record (or --harmonic, --pulse): free rocking "
+                         "from --theta0 is not chaotic, every member would be the same run")
     ensemble = bool(args.ensemble) or (calibrated and moving)
     if not ensemble:
         refuse_ignored_options(args, "a single run (no --ensemble)",
-                               {**_ENSEMBLE_OPTIONS,
-                                **({} if calibrated else {"--seed": 0})})
+                               {**_ENSEMBLE_OPTIONS, "--seed": 0})
     else:
         refuse_ignored_options(args, "--ensemble" if args.ensemble else
                                f"--cor {args.cor} (an ensemble over the calibrated COR)",
