@@ -8,6 +8,7 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from shaketable.core.files import subfolder, write_csv
 from shaketable.scenes.catalog import resolve_scene_path, study_kind, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
@@ -119,7 +120,7 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
     def record(name, section, counts, failed):
         if failed and failures is not None:
             failures.append(name)
-        folder = prepare_output_folder(out / name, "out")
+        folder = subfolder(out, name, "out")
         write_text(folder / "section.md", section)
         write_text(folder / "counts.json", json.dumps(counts))
         if bar is not None:
@@ -303,7 +304,7 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
     if isinstance(scene, Study):
         return _study_section(scene, out, tally)
     result = run_scene(scene)
-    result.write(out / scene.name)
+    result.write(subfolder(out, scene.name, "out"))
     lines = [f"## {scene.source or scene.name} — `{scene.name}`", "", scene.description, "",
              f"![{scene.name}]({scene.name}/calcomp.png)", ""]
     for index, test in enumerate(result.tests):
@@ -481,8 +482,7 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
     """Recompute one of the report's tables; write its CSV; return the Markdown section."""
     from shaketable.studies.report_tables import reproduce_table, table_3_1
 
-    folder = out / study.name
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = subfolder(out, study.name, "out")
     lines = [f"## {study.source} — `{study.name}`", "", study.description, ""]
     if study.table == "table_4_4":  # the sliding mode (shaketable.studies.sliding)
         return _table_4_4_section(study, folder, lines, tally)
@@ -504,7 +504,7 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
             "2.5": section2.figure_2_5, "2.6": section2.figure_2_6,
             "4.3.4": pulses.section_4_3_4}
         frame = figures[study.figure]()
-        frame.to_csv(folder / "curves.csv", index=False)
+        write_csv(folder / "curves.csv", frame)
         save(section_2_figure(frame, study.figure), folder / "figure.png")
         lines += [f"![{study.name}]({study.name}/figure.png)", "", _markdown(frame.round(4))]
         if study.figure == "4.3.4":
@@ -524,7 +524,7 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
         from shaketable.plots.studies import figure_3_6
 
         frame = table_3_1()
-        frame.to_csv(folder / "table.csv", index=False)
+        write_csv(folder / "table.csv", frame)
         save(figure_3_6(frame), folder / "figure.png")
         lines += [f"![{study.name}]({study.name}/figure.png)", ""]
         agrees = (abs(frame["test / exact [-]"] - 1) <= 0.03)
@@ -542,7 +542,7 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
         return "\n".join(lines) + "\n"
     comparison = reproduce_table(study.table, columns=study.columns or None, seed=study.seed)
     frame = comparison.to_frame()
-    frame.to_csv(folder / "table.csv", index=False)
+    write_csv(folder / "table.csv", frame)
     counts = comparison.counts()
     for substitute, cells in frame.groupby("substitute motion"):
         tally.add_many("substitute" if substitute else "report inputs",
@@ -599,7 +599,7 @@ def _repeatability_section(study: Study, folder: Path, lines: list, tally: Compa
 
     cases = section_3_7_cases(phases=study.phases)
     save(pitch_repeatability_figure(cases), folder / "figure.png")
-    pd.concat([case.to_frame() for case in cases]).to_csv(folder / "runs.csv", index=False)
+    write_csv(folder / "runs.csv", pd.concat([case.to_frame() for case in cases]))
     frame = pd.DataFrame([case.summary() for case in cases])
     frame["overturn directions"] = frame["overturn directions"].map(
         lambda values: ", ".join(f"{v:+d}" for v in values) or "—")
@@ -629,7 +629,7 @@ def _teaching_section(study: Study, folder: Path, lines: list) -> str:
 
     item = run_item(study.item)
     frame = item.to_frame()
-    frame.to_csv(folder / "numbers.csv", index=False)
+    write_csv(folder / "numbers.csv", frame)
     save_item(item, folder / "figure.png")
     return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", ""]
                      + [f"* {line}" for line in item.highlights()]
@@ -723,8 +723,8 @@ def _mode_map_section(study: Study, folder: Path, lines: list) -> str:
                       aspect_ratios=settings.aspect_ratios, frictions=settings.frictions,
                       height=settings.height, cor=settings.cor)
     limits = sliding_limits(motion=motion, cor=settings.cor)
-    result.frame.to_csv(folder / "mode_map.csv", index=False)
-    limits.to_csv(folder / "sliding_limits.csv", index=False)
+    write_csv(folder / "mode_map.csv", result.frame)
+    write_csv(folder / "sliding_limits.csv", limits)
     save(result.plot(), folder / "figure.png")
     return "\n".join(lines + [f"![{study.name}]({study.name}/figure.png)", "",
                               mode_map_markdown(result, limits)]) + "\n"
@@ -735,7 +735,7 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
     from shaketable.studies.sliding import table_4_4, table_4_4_markdown
 
     frame = table_4_4(columns=study.columns or None, seed=study.seed)
-    frame.to_csv(folder / "table.csv", index=False)
+    write_csv(folder / "table.csv", frame)
     for substitute, cells in frame.groupby("substitute motion"):
         agrees = abs(cells["ratio [-]"] - 1.0) <= 0.10
         tally.add_many("substitute" if substitute else "report inputs", int(agrees.sum()),
@@ -753,7 +753,7 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
     from shaketable.studies.mode_map import table_4_4_coupled, table_4_4_coupled_markdown
 
     coupled = table_4_4_coupled()   # issue 25: the planar block beside the sliding model
-    coupled.to_csv(folder / "planar.csv", index=False)
+    write_csv(folder / "planar.csv", coupled)
     return "\n".join(lines) + body + "\n" + table_4_4_coupled_markdown(coupled) + "\n"
 
 

@@ -26,6 +26,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -42,6 +43,18 @@ if TYPE_CHECKING:
 
 #: Smallest COR drawn [-].
 COR_FLOOR = 0.05
+
+#: Most members of one calibrated ensemble (each is a run of the block).
+MAX_MEMBERS = 1_000_000
+
+
+class CalibrationMismatchWarning(UserWarning):
+    """A calibration applied to a block of another size than the one it was measured on."""
+
+
+#: Largest degrees of freedom a calibration may state (a t distribution with more is a
+#: normal one to 1e-9; a larger value is a tampered or broken file).
+MAX_DOF = 10**9
 
 
 @dataclass(frozen=True)
@@ -60,6 +73,9 @@ class CalibratedCor:
         Impact-to-impact scatter of the COR [-] (0 without a scatter model).
     source : str
         Where it comes from (a file name).
+    height, width : float or None
+        Size of the calibrated block [m] (None when the calibration does not say):
+        :meth:`size_mismatch` compares it with the block a run uses.
     """
 
     mean: float
@@ -67,8 +83,13 @@ class CalibratedCor:
     dof: int
     sigma: float = 0.0
     source: str = ""
+    height: float | None = None
+    width: float | None = None
 
     def __post_init__(self) -> None:
+        if not isinstance(self.source, str):
+            raise TypeError(f"CalibratedCor.source must be text (a file name), got "
+                            f"{self.source!r}")
         for name in ("mean", "mean_se", "sigma"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) \
@@ -76,11 +97,43 @@ class CalibratedCor:
                 raise ValueError(f"CalibratedCor.{name} must be a finite number, got {value!r}")
         if not 0 < self.mean <= 1:
             raise ValueError(f"CalibratedCor.mean must be in (0, 1], got {self.mean!r}")
-        if self.mean_se < 0 or self.sigma < 0:
-            raise ValueError("CalibratedCor.mean_se and sigma must be >= 0")
+        for name in ("mean_se", "sigma"):   # a COR lies in [0, 1]: so do its spreads
+            if not 0 <= getattr(self, name) <= 1:
+                raise ValueError(f"CalibratedCor.{name} must be from 0 to 1 (a spread of a "
+                                 f"COR), got {getattr(self, name)!r}")
         if isinstance(self.dof, bool) or not isinstance(self.dof, (int, np.integer)) \
-                or self.dof < 1:
-            raise ValueError(f"CalibratedCor.dof must be a positive integer, got {self.dof!r}")
+                or not 1 <= self.dof <= MAX_DOF:
+            raise ValueError(f"CalibratedCor.dof must be an integer from 1 to {MAX_DOF:.0e} "
+                             f"(degrees of freedom of the mean), got {self.dof!r}")
+        for name in ("height", "width"):
+            value = getattr(self, name)
+            if value is not None and (isinstance(value, bool)
+                                      or not isinstance(value, (int, float))
+                                      or not 0 < value < math.inf):
+                raise ValueError(f"CalibratedCor.{name} must be a positive size [m] or None, "
+                                 f"got {value!r}")
+
+    def size_mismatch(self, block: Block, tolerance: float = 0.01) -> str | None:
+        """Why this calibration may not fit ``block``, in words, or None.
+
+        A COR is a property of one block: it depends on its shape (Housner's
+        1 - 1.5 sin^2 alpha, Eq. 2-12 of [1]_) and on its size and base. A
+        calibration measured on a block whose height or width differs by more than
+        ``tolerance`` (relative) from ``block``'s is named with both sizes.
+        """
+        if self.height is None or self.width is None:
+            return None
+        if (abs(block.height / self.height - 1) <= tolerance
+                and abs(block.width / self.width - 1) <= tolerance):
+            return None
+        measured = Block(height=self.height, width=self.width)
+        return (f"the calibration{' ' + self.source if self.source else ''} was measured on a "
+                f"{measured.describe(unit='in')} block ({self.height:.4g} x {self.width:.4g} m, "
+                f"H/B {self.height / self.width:.3g}), not on this {block.describe()} block "
+                f"({block.height:.4g} x {block.width:.4g} m, H/B "
+                f"{block.height / block.width:.3g}); a COR belongs to the block it was "
+                "measured on (its shape and size): calibrate this block, or take the result "
+                "as a what-if")
 
     @classmethod
     def from_json(cls, path: str | os.PathLike[str]) -> CalibratedCor:
@@ -112,16 +165,39 @@ class CalibratedCor:
                                  "a calibration.json written by `shaketable calibrate`?")
             return float(value)
 
-        if "cor_source" in data:       # the headline keys: the COR that the calibration leads with
-            sigma = number("cor_sigma [-]") if "cor_sigma [-]" in data else 0.0
-            return cls(number("cor [-]"), number("cor_se [-]"), int(number("cor_dof")), sigma,
-                       source)
-        # files written before the headline keys: the scatter model's mean if it is there
-        if "cor_mean [-]" in data:
-            return cls(number("cor_mean [-]"), number("cor_mean_se [-]"),
-                       int(number("cor_mean_dof")), number("cor_scatter_sigma [-]"), source)
-        samples = int(number("fit samples")) if "fit samples" in data else 1000
-        return cls(number("cor [-]"), number("cor_se [-]"), max(samples - 5, 1), 0.0, source)
+        def integer(key: str) -> int:
+            value = number(key)
+            if value != int(value) or not 1 <= value <= MAX_DOF:
+                raise ValueError(f"{where}: {key!r} is {value!r}; it must be a whole number "
+                                 f"from 1 to {MAX_DOF:.0e}")
+            return int(value)
+
+        def size(key: str) -> float | None:
+            if key not in data:
+                return None
+            value = number(key)
+            if not value > 0:
+                raise ValueError(f"{where}: {key!r} is {value!r}; a block size is positive")
+            return value
+
+        sizes = {"height": size("block_height [m]"), "width": size("block_width [m]")}
+        try:
+            if "cor_source" in data:   # the headline keys: the COR the calibration leads with
+                sigma = number("cor_sigma [-]") if "cor_sigma [-]" in data else 0.0
+                return cls(number("cor [-]"), number("cor_se [-]"), integer("cor_dof"), sigma,
+                           source, **sizes)
+            # files written before the headline keys: the scatter model's mean if it is there
+            if "cor_mean [-]" in data:
+                return cls(number("cor_mean [-]"), number("cor_mean_se [-]"),
+                           integer("cor_mean_dof"), number("cor_scatter_sigma [-]"), source,
+                           **sizes)
+            samples = integer("fit samples") if "fit samples" in data else 1000
+            return cls(number("cor [-]"), number("cor_se [-]"), max(samples - 5, 1), 0.0,
+                       source, **sizes)
+        except ValueError as error:
+            message = str(error)
+            raise ValueError(message if message.startswith(where) else
+                             f"{where}: {message}") from None
 
     def draws(self, members: int, seed: int = 0, *, scatter: bool = True) -> np.ndarray:
         """``members`` CORs [-]: member 0 the mean, the others drawn (see the module)."""
@@ -217,10 +293,27 @@ def calibrated_ensemble(block: Block, motion: Motion, cor: CalibratedCor, *,
     duration, method, threads
         As in :func:`shaketable.solvers.batch.simulate_cases`.
     """
+    if not isinstance(block, Block):
+        raise TypeError(f"calibrated_ensemble: block must be a shaketable Block, got "
+                        f"{type(block).__name__}")
     if not isinstance(cor, CalibratedCor):
-        raise ValueError(f"cor must be a CalibratedCor, got {type(cor).__name__}")
+        raise TypeError(f"calibrated_ensemble: cor must be a CalibratedCor (e.g. "
+                        f"CalibratedCor.from_json('calibration.json')), got {type(cor).__name__}")
     if not isinstance(motion, Motion):
-        raise ValueError(f"motion must be a shaketable Motion, got {type(motion).__name__}")
+        raise TypeError(f"calibrated_ensemble: motion must be a shaketable Motion, got "
+                        f"{type(motion).__name__}")
+    if isinstance(members, bool) or not isinstance(members, (int, np.integer)) \
+            or not 2 <= members <= MAX_MEMBERS:
+        raise ValueError(f"calibrated_ensemble: members must be an integer from 2 to "
+                         f"{MAX_MEMBERS}, got {members!r}")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"calibrated_ensemble: seed must be a non-negative integer, got "
+                         f"{seed!r}")
+    if not isinstance(scatter, (bool, np.bool_)):
+        raise TypeError(f"calibrated_ensemble: scatter must be True or False, got {scatter!r}")
+    mismatch = cor.size_mismatch(block)
+    if mismatch is not None:
+        warnings.warn(mismatch, CalibrationMismatchWarning, stacklevel=2)
     cors = cor.draws(members, seed, scatter=scatter)
     cases = [Case(block, motion, float(value)) for value in cors]
     frame = simulate_cases(cases, threads=threads, method=method, duration=duration)

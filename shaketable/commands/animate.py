@@ -28,6 +28,7 @@ def _size(text: str) -> tuple:
 
 
 def _animate(args) -> int:
+    from shaketable.commands.checks import check_animate_options
     from shaketable.core.files import prepare_output_file
     from shaketable.plots.animation import animate
     from shaketable.plots.calcomp import run_labels
@@ -35,6 +36,7 @@ def _animate(args) -> int:
     from shaketable.scenes.parse import Study, load_scene
     from shaketable.scenes.run import run_scene
 
+    check_animate_options(args)   # before the scene runs: bounds that protect the memory
     size = _size(args.size)
     prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
     scene = load_scene(resolve_scene_path(args.scene))
@@ -66,7 +68,9 @@ def _animate(args) -> int:
     print(f"wrote {written.path} ({written.n_frames} frames of {written.size[0]} x "
           f"{written.size[1]} pixels, {written.fps:g} fps, {written.t_first:g}-"
           f"{written.t_last:g} s at speed {written.speed:g})")
-    return 0
+    from shaketable.commands.checks import report_early_stops
+
+    return report_early_stops(runs, "animate", scene.name)
 
 
 def register(commands) -> None:

@@ -128,23 +128,36 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
     except (OSError, ValueError) as error:
         raise ValueError(f"--cor {args.cor}: {error}") from None
     print(f"{block.describe()} block, calibrated {cor.describe()}")
+    mismatch = cor.size_mismatch(block)
+    if mismatch is not None:   # said once here, not again as a Python warning
+        import sys
+
+        print(f"shaketable simulate: warning: {mismatch}", file=sys.stderr)
     if motion is None:
+        from shaketable.core.stops import stop_summary
         from shaketable.solvers.api import simulate
 
         run = simulate(block, None, cor=cor.mean, theta0=theta0, duration=args.duration,
                           method=args.method, subdivisions=args.subdivisions)
         write_csv(out / "history.csv", run.to_frame())
-        write_text(out / "summary.json", json.dumps(run.summary(), indent=2))
+        write_text(out / "summary.json", json.dumps(json_ready_dict(stop_summary(run)),
+                                                    indent=2))
         from shaketable.commands.answers import rocking_answer
 
-        print(f"free rocking with the calibrated COR {cor.mean:.6g}: {run.verdict()}")
+        print(f"free rocking with the mean COR {cor.mean:.4f}: {run.verdict()}")
         for line in rocking_answer(run):
             print("  " + line)
         print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}")
         return 0
     members = args.ensemble if args.ensemble else 200
-    ensemble = calibrated_ensemble(block, motion, cor, members=members, seed=args.seed,
-                                 duration=args.duration, method=args.method)
+    import warnings
+
+    from shaketable.calibration.uncertainty import CalibrationMismatchWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CalibrationMismatchWarning)
+        ensemble = calibrated_ensemble(block, motion, cor, members=members, seed=args.seed,
+                                       duration=args.duration, method=args.method)
     write_csv(out / "ensemble.csv", ensemble.to_frame())
     write_text(out / "ensemble.json", json.dumps(json_ready_dict(ensemble.summary), indent=2,
                                                  default=float))
@@ -152,7 +165,9 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
     print(ensemble.describe())
     print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
           f"{out / ('ensemble.' + args.format)}")
-    return 0
+    from shaketable.commands.checks import report_stopped_rows
+
+    return report_stopped_rows(ensemble.to_frame(), f"{block.describe()} block", "simulate")
 
 
 def register(commands) -> None:

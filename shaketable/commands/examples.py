@@ -14,9 +14,7 @@ def gallery_scripts() -> list[Path]:
 
 
 def _examples(args) -> int:
-    import shutil
-
-    from shaketable.core.files import prepare_output_folder
+    from shaketable.core.files import copy_file, prepare_output_folder
 
     scripts = gallery_scripts()
     if not scripts:
@@ -26,14 +24,15 @@ def _examples(args) -> int:
         print("\n".join(path.name for path in scripts if path.suffix == ".py"))
         return 0
     out = Path(args.out)
-    existing = [path.name for path in scripts if (out / path.name).exists()]
+    existing = [path.name for path in scripts
+                if (out / path.name).exists() or (out / path.name).is_symlink()]
     if existing and not args.force:
         raise ValueError(f"--out {str(out)!r} already has {', '.join(existing[:3])}"
                          f"{' ...' if len(existing) > 3 else ''}; give another folder or "
                          "--force to overwrite them")
     out = prepare_output_folder(out)
     for path in scripts:
-        shutil.copyfile(path, out / path.name)
+        copy_file(path, out / path.name)   # a link in the way is replaced, not followed
     print(f"copied {len(scripts) - 1} gallery scripts and README.rst to {out}/")
     print(f"run one: python {out / 'plot_tutorial_rock_a_block.py'}")
     return 0

@@ -23,18 +23,43 @@ def hazard_path(text: str) -> Path:
 
 
 def _risk(args: argparse.Namespace) -> int:
+    import math
+    import sys
+
     from shaketable.sweeps.fragility import fragility_fit, measure_column
-    from shaketable.sweeps.risk import overturning_rate, read_hazard_curve
-    from shaketable.sweeps.store import read_results
+    from shaketable.sweeps.risk import (
+        FEW_RECORDS,
+        MAX_YEARS,
+        overturning_rate,
+        read_hazard_curve,
+        share_outside,
+    )
+    from shaketable.sweeps.store import read_manifest, read_results
 
     folder = Path(args.sweep)
     if not (folder / "manifest.json").is_file():
         raise FileNotFoundError(f"{folder}: not a sweep folder (no manifest.json); run "
                                 "'shaketable sweep SPEC --out FOLDER' first")
-    if not args.years > 0:
-        raise ValueError(f"--years must be positive, got {args.years!r}")
+    if not (math.isfinite(args.years) and 0 < args.years <= MAX_YEARS):
+        raise ValueError(f"--years must be a design life from 0 to {MAX_YEARS:g} yr, got "
+                         f"{args.years!r}")
+    if args.figure is not None:   # before the work: a bad path loses nothing
+        from shaketable.core.files import prepare_output_file
+
+        prepare_output_file(args.figure, "--figure", suffixes=(".png", ".svg", ".pdf"))
     hazard = read_hazard_curve(hazard_path(args.hazard))
     table = read_results(folder)
+    expected = read_manifest(folder).get("n_runs")
+    if isinstance(expected, int) and len(table) < expected:
+        print(f"shaketable risk: warning: {folder} is an unfinished sweep ({len(table)} of "
+              f"{expected} runs on disk): the fragility is fitted to the finished runs only; "
+              "finish it with 'shaketable sweep SPEC --out FOLDER --resume'", file=sys.stderr)
+    if "status" in table:
+        stopped = ~table["status"].isin(("completed", "overturned"))
+        if stopped.any():
+            print(f"shaketable risk: warning: {int(stopped.sum())} run(s) of the sweep stopped "
+                  "before their motion ended (see its 'status' column); they count as not "
+                  "overturned", file=sys.stderr)
     column = measure_column(table, hazard.column if args.measure is None else args.measure)
     if column != hazard.column:
         raise ValueError(f"--measure {args.measure!r} is column {column!r} but the hazard "
@@ -67,12 +92,32 @@ def _risk(args: argparse.Namespace) -> int:
         try:
             fit = fragility_fit(rows[column], rows["overturned"], measure=column)
         except ValueError as error:
-            print(f"{block}, {label}: no fragility ({error})")
+            print(f"shaketable risk: {block}, {label}: no fragility, so no rate ({error})",
+                  file=sys.stderr)
             continue
         result = overturning_rate(fit, hazard, years=args.years)
         results.append((block, label, fit, result))
-        print(f"{block}, {label}: {fit.summary()}")
-        print(f"    {result.summary()}")
+        print(f"{block}, {label}: {result.summary()}")
+        print(f"    fragility {fit.summary()}")
+        low, high = float(rows[column].min()), float(rows[column].max())
+        outside = share_outside(fit, hazard, low, high)
+        if outside > 0.1:   # the lognormal carried beyond the levels run: say how much
+            print(f"shaketable risk: warning: {block}, {label}: {100 * outside:.0f} % of "
+                  f"lambda comes from {column} outside the levels the sweep ran ({low:.3g} "
+                  f"to {high:.3g}), where the fitted lognormal is extrapolated",
+                  file=sys.stderr)
+        motions = len(rows[[key for key in ("record", "seed") if key in rows]]
+                      .drop_duplicates())
+        if motions < FEW_RECORDS:
+            print(f"shaketable risk: warning: {block}, {label}: the fragility rests on "
+                  f"{motions} ground motion(s); fewer than {FEW_RECORDS} make its beta, and "
+                  "lambda, uncertain (the interval above says how much): add records",
+                  file=sys.stderr)
+    if not results:
+        print(f"shaketable risk: error: no rate of overturning can be given: no block and COR "
+              f"of {folder} has a fragility against {column} (see above); exit status 1",
+              file=sys.stderr)
+        return 1
     if args.figure and results:
         from shaketable.plots.base import pyplot, save
         from shaketable.plots.sweeps import risk_curves

@@ -75,7 +75,9 @@ def _run(args) -> int:
         written += more
         print("\n".join(lines))
     print("wrote " + ", ".join(str(path) for path in written))
-    return 0
+    from shaketable.commands.checks import report_early_stops
+
+    return report_early_stops([*result.runs, *result.planar], "run", scene.name)
 
 
 def _run_study(study, out: Path) -> int:

@@ -56,10 +56,13 @@ def _on_floor(args, motion):
 
 
 def _simulate(args) -> int:
-    from shaketable.core.files import prepare_output_folder, write_csv, write_text
+    from shaketable.commands.checks import check_simulate_options, report_early_stops
+    from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
+    from shaketable.core.stops import stop_summary
     from shaketable.plots import base as plots
     from shaketable.solvers.api import simulate
 
+    check_simulate_options(args)   # options the chosen model would ignore: refused
     block = Block.parse(args.block)
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     motion, scale_note = scaled_record(motion, args)
@@ -101,7 +104,7 @@ def _simulate(args) -> int:
         history = "full"   # the planar block's history has no peaks selection: all of it
     if history != "none":
         write_csv(out / "history.csv", history_frame(result, history))
-    write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
+    write_text(out / "summary.json", json.dumps(json_ready_dict(stop_summary(result)), indent=2))
     plots.save((result if friction is not None else for_figure(result)).plot(),
                out / f"calcomp.{args.format}")
     from shaketable.commands.answers import planar_answer, rocking_answer
@@ -117,7 +120,7 @@ def _simulate(args) -> int:
     written = ([out / "history.csv"] if history != "none" else []) + [
         out / "summary.json", out / f"calcomp.{args.format}"]
     print("wrote " + ", ".join(str(path) for path in written))
-    return 0
+    return report_early_stops([result], "simulate", f"{block.describe()} block")
 
 
 def _friction(text: str | None):
@@ -169,7 +172,9 @@ def _ensemble(args, block, motion, out) -> int:
           f"{result.describe()}")
     print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
           f"{out / ('ensemble.' + args.format)}")
-    return 0
+    from shaketable.commands.checks import report_stopped_rows
+
+    return report_stopped_rows(result.to_frame(), f"{block.describe()} block", "simulate")
 
 
 def register(commands: argparse._SubParsersAction) -> None:

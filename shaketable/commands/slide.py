@@ -9,12 +9,14 @@ from shaketable.core.constants import INCH
 
 
 def _slide(args) -> int:
+    from shaketable.commands.checks import check_slide_options
     from shaketable.core.files import prepare_output_folder, write_csv, write_text
     from shaketable.core.geometry import Block
     from shaketable.core.sliding_result import Friction
     from shaketable.plots.base import save
     from shaketable.solvers.sliding import peak_slips, slide
 
+    check_slide_options(args)   # options the chosen mode would ignore: refused
     out = prepare_output_folder(args.out)
     if args.table_4_4:
         from shaketable.studies.sliding import table_4_4, table_4_4_markdown

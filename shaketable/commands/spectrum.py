@@ -27,23 +27,42 @@ def cor_of(text: str):
     """A number or ``housner``."""
     if str(text).lower() == "housner":
         return "housner"
-    return float(text)
+    try:
+        return float(text)
+    except ValueError:
+        raise ValueError(f"--cor {text!r}: give a number in [0, 1] or 'housner'") from None
+
+
+#: The parameters of the spectrum functions and the options that give them.
+OPTIONS = {"cor": "--cor", "scan_step": "--scan-step", "tolerance": "--tolerance",
+           "ceiling": "--ceiling", "alpha": "--alpha", "p": "--p", "method": "--method",
+           "unknown pulse kind": "--pulse: unknown pulse kind"}
 
 
 def _spectrum(args) -> int:
+    from shaketable.commands.checks import with_option_names
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import atomic_write, prepare_output_folder, write_parquet
     from shaketable.plots import base as plots
     from shaketable.studies.overturning_spectrum import overturning_spectrum
 
-    block = block_of(args.block, args.alpha, args.p)
+    if args.compare_linear and args.method == "linear":
+        raise ValueError("--compare-linear cannot be used with --method linear: the spectrum "
+                         "is the linearised one already; leave out --compare-linear")
+    try:
+        block = block_of(args.block, args.alpha, args.p)
+    except ValueError as error:
+        raise with_option_names(error, OPTIONS) from None
     out = prepare_output_folder(args.out)
     notice_first_compile(args.quiet, which=("batch",))
     start = time.perf_counter()
-    result = overturning_spectrum(block, pulses=args.pulse or ["half-sine"],
-                                  ratios=parse_ratios(args.ratios), cor=cor_of(args.cor),
-                                  ceiling=args.ceiling, scan_step=args.scan_step,
-                                  tolerance=args.tolerance, method=args.method)
+    try:   # the parameters are checked before the first run: name the options
+        result = overturning_spectrum(block, pulses=args.pulse or ["half-sine"],
+                                      ratios=parse_ratios(args.ratios), cor=cor_of(args.cor),
+                                      ceiling=args.ceiling, scan_step=args.scan_step,
+                                      tolerance=args.tolerance, method=args.method)
+    except ValueError as error:
+        raise with_option_names(error, OPTIONS) from None
     elapsed = time.perf_counter() - start
     written = [out / "spectrum.csv"]
     atomic_write(written[0], result.to_csv)

@@ -56,14 +56,12 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"{spec.name}: verdicts of the {len(table)} runs: {verdict_counts(table)}")
         for line in friction_summary(table):
             print(f"    {line}")
-        stopped = table[~table["status"].isin(["completed", "overturned"])]
-        if len(stopped):
-            print(f"{spec.name}: warning: {len(stopped)} run(s) stopped early (status "
-                  f"{', '.join(sorted(stopped['status'].unique()))}; see the 'status' column "
-                  "and docs/planar.md); their results cover the run up to the stop")
     else:
         print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
               f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")
+    from shaketable.commands.checks import report_stopped_rows
+
+    status = report_stopped_rows(table, spec.name)
     if "mark" in table:
         assert spec.ensemble is not None   # the mark column comes from [ensemble]
         fragile = table[table["mark"] == "fragile"]
@@ -80,14 +78,15 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"wrote {out / 'spectrum-scale-factors.csv'} (each record's factor to the "
               "target spectrum)")
     if args.figures:
+        from shaketable.core.files import subfolder
         from shaketable.plots.sweeps import sweep_figures
         from shaketable.sweeps.friction import friction_figure_sets
 
-        paths = [path for rows, folder in friction_figure_sets(table, out / "figures")
+        paths = [path for rows, folder in friction_figure_sets(table, subfolder(out, "figures"))
                  for path in sweep_figures(rows, folder)]
         print("wrote " + (", ".join(str(path) for path in paths) if paths else
                           "no figure (the table has no grid of blocks or of PGA to draw)"))
-    return 0
+    return status
 
 
 def register(commands: argparse._SubParsersAction) -> None:

@@ -42,6 +42,9 @@ TINY = 1e-9
 HORIZON_THRESHOLD = 1e-3
 
 #: Keys of an ``[ensemble]`` section (scene or sweep spec).
+#: Most members of one ensemble (each is a run; the draws alone take 40 bytes a member).
+MAX_MEMBERS = 1_000_000
+
 ENSEMBLE_KEYS = {"members", "perturb", "perturb_amplitude", "perturb_cor", "perturb_size",
                  "perturb_start", "seed", "horizon_threshold"}
 
@@ -145,8 +148,10 @@ def perturbed_members(members: int, perturbation: Perturbation, seed: int = 0) -
 
     The same ``(members, perturbation, seed)`` always gives the same draws.
     """
-    if not (isinstance(members, (int, np.integer)) and members >= 2):
-        raise ValueError(f"members must be an integer >= 2, got {members!r}")
+    if not (isinstance(members, (int, np.integer)) and not isinstance(members, bool)
+            and 2 <= members <= MAX_MEMBERS):
+        raise ValueError(f"members must be an integer >= 2 (at most {MAX_MEMBERS:,}), got "
+                         f"{members!r}")
     rng = np.random.default_rng(seed)
     start = perturbation.start * rng.uniform(-1.0, 1.0, members)
     start[0] = 0.0
@@ -241,8 +246,10 @@ def ensemble_options(section: dict, where: str, *, horizon: bool = True) -> dict
         raise ValueError(f"{where}: unknown key ensemble.{unknown[0]}; expected one of "
                          f"{', '.join(sorted(allowed))}{extra}")
     members = section.get("members", 200)
-    if isinstance(members, bool) or not isinstance(members, int) or members < 2:
-        raise ValueError(f"{where}: ensemble.members must be an integer >= 2, got {members!r}")
+    if isinstance(members, bool) or not isinstance(members, int) \
+            or not 2 <= members <= MAX_MEMBERS:
+        raise ValueError(f"{where}: ensemble.members must be an integer >= 2 (at most "
+                         f"{MAX_MEMBERS:,}), got {members!r}")
     seed = section.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise ValueError(f"{where}: ensemble.seed must be a non-negative integer, got {seed!r}")

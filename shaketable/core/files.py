@@ -16,6 +16,7 @@ import math
 import os
 import secrets
 import socket
+import stat
 import tempfile
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -297,6 +298,73 @@ def write_parquet(path, frame) -> Path:
 LOCK_NAME = ".shaketable.lock"
 
 
+def open_in_place(path, what: str) -> int:
+    """Open (or create) a file that must be written in place, never through a link.
+
+    The one file the package opens for writing in place (an output folder's lock
+    file, which must keep its identity for ``flock``) is opened with ``O_NOFOLLOW``,
+    so a symbolic link planted under its name is refused rather than followed (which
+    would create or truncate a file outside the folder), and is then checked to be a
+    regular file with one name (a hard link planted there would be truncated
+    through). Every other file is written by :func:`atomic_write`, whose rename
+    replaces a link itself, never its target.
+
+    Returns
+    -------
+    int
+        An open file descriptor (read and write).
+
+    Raises
+    ------
+    OutputPathError
+        ``path`` is a symbolic link, not a regular file, or has another name.
+    """
+    flags = (os.O_RDWR | os.O_CREAT | getattr(os, "O_NOFOLLOW", 0)
+             | getattr(os, "O_CLOEXEC", 0) | getattr(os, "O_NONBLOCK", 0))
+    try:
+        handle = os.open(path, flags, 0o666)
+    except OSError as error:
+        if error.errno in (errno.ELOOP, errno.EMLINK) or Path(path).is_symlink():
+            raise OutputPathError(f"{path}: {what} is a symbolic link; shaketable never writes "
+                                  "through a link: remove it") from None
+        raise
+    status = os.fstat(handle)
+    if not stat.S_ISREG(status.st_mode) or status.st_nlink != 1:
+        os.close(handle)
+        why = "not a regular file" if not stat.S_ISREG(status.st_mode) else \
+            f"a file with {status.st_nlink} names (a hard link)"
+        raise OutputPathError(f"{path}: {what} is {why}; shaketable never writes through a "
+                              "link: remove it")
+    return handle
+
+
+def subfolder(parent, name: str, option: str = "--out") -> Path:
+    """The folder ``parent/name``, created if missing, refused if it is a link.
+
+    Every folder the package makes inside an output folder goes through here: a
+    symbolic link planted under its name (pointing outside the output folder) is
+    refused, so nothing is written outside the output folder.
+
+    Raises
+    ------
+    OutputPathError
+        ``parent/name`` is a symbolic link or a file, or cannot be created.
+    """
+    folder = Path(parent) / name
+    if folder.is_symlink():
+        raise OutputPathError(f"{option} {str(parent)!r}: {str(folder)!r} is a symbolic link; "
+                              "shaketable never writes through a link: remove it")
+    return prepare_output_folder(folder, option)
+
+
+def copy_file(source, target) -> Path:
+    """Copy ``source`` to ``target`` atomically (a link at ``target`` is replaced, not
+    followed)."""
+    import shutil
+
+    return atomic_write(target, lambda temporary: shutil.copyfile(source, temporary))
+
+
 class FolderBusyError(OutputPathError):
     """Another process holds the output folder's lock; the message names it and the folder."""
 
@@ -334,7 +402,7 @@ def folder_lock(folder, what: str = "output folder"):
         yield
         return
     path = Path(folder) / LOCK_NAME
-    handle = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    handle = open_in_place(path, "the lock file of the " + what)
     try:
         try:
             fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -347,7 +415,7 @@ def folder_lock(folder, what: str = "output folder"):
             raise FolderBusyError(f"{folder}: this {what} is in use by another shaketable "
                                   f"process ({who}, lock file {path}); wait for it to "
                                   f"finish, or choose another output folder") from None
-        os.ftruncate(handle, 0)
+        os.ftruncate(handle, 0)   # our own file: open_in_place refused a link
         os.pwrite(handle, f"{os.getpid()} {socket.gethostname()}\n".encode(), 0)
         try:
             yield

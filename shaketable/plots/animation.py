@@ -63,6 +63,13 @@ DEFAULT_DPI = 100
 #: Largest frame side [pixels].
 MAX_SIDE = 3840
 
+#: Bounds of the resolution [dots per inch] and of the frame rate [1/s]: fonts are drawn
+#: ``dpi / 72`` pixels a point, so a dpi far beyond a print's draws glyphs of thousands of
+#: pixels (memory), and a frame rate far below one frame a second gives a frame duration
+#: the GIF and MP4 writers cannot hold.
+DPI_RANGE = (10.0, 1000.0)
+FPS_RANGE = (0.5, 120.0)
+
 #: Units a stage may be drawn in (the block's own unit by default).
 STAGE_UNITS = ("mm", "cm", "m", "in", "ft")
 
@@ -120,6 +127,9 @@ def frame_times(t_first: float, t_last: float, fps: float, speed: float,
         Largest number of frames; more is a ValueError naming fps and speed.
     """
     fps = positive("fps", fps)
+    if not FPS_RANGE[0] <= fps <= FPS_RANGE[1]:
+        raise ValueError(f"fps must be from {FPS_RANGE[0]:g} to {FPS_RANGE[1]:g} frames per "
+                         f"second, got {fps:g}")
     speed = positive("speed", speed)
     if not t_last > t_first:
         raise ValueError(f"the end time ({t_last!r} s) must be after the start ({t_first!r} s)")
@@ -404,7 +414,10 @@ def _size(size, dpi) -> tuple:
     if not (64 <= width <= MAX_SIDE and 64 <= height <= MAX_SIDE):
         raise ValueError(f"size must be from 64 to {MAX_SIDE} pixels a side, got "
                          f"{width} x {height}")
-    positive("dpi", dpi)
+    dpi = positive("dpi", dpi)
+    if not DPI_RANGE[0] <= dpi <= DPI_RANGE[1]:
+        raise ValueError(f"dpi must be from {DPI_RANGE[0]:g} to {DPI_RANGE[1]:g} dots per inch, "
+                         f"got {dpi:g}")
     return width, height
 
 

@@ -250,7 +250,9 @@ def save_work_precision_figure(frame, path, cases=None, dpi: int = 110, planar=N
     """Draw :func:`work_precision_figure` and write it to ``path`` (PNG, SVG... by suffix)."""
     plt = pyplot()
     fig = work_precision_figure(frame, cases=cases, planar=planar)
+    from shaketable.core.files import atomic_write
+
     try:
-        fig.savefig(path, dpi=dpi)
+        atomic_write(path, lambda temporary: fig.savefig(temporary, dpi=dpi))
     finally:
         plt.close(fig)

@@ -24,8 +24,11 @@ the axes. matplotlib is imported inside the plotting functions only;
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from shaketable.core.files import subfolder, write_csv
 from shaketable.plots.base import place_legend, pyplot
 from shaketable.sweeps.fragility import (
     MEASURE_LABELS,
@@ -391,7 +394,7 @@ def sweep_figures(table, out) -> list:
     from shaketable.plots.base import save
 
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = subfolder(out.parent if str(out.parent) else ".", out.name, "figures folder")
     written = []
     widths = table["block_width [m]"].nunique()
     aspects = table["aspect_ratio [-]"].round(9).nunique()
@@ -666,9 +669,15 @@ def risk_curves(fragility, hazard, result=None, *, ax=None):
     handles = ax.get_legend_handles_labels()
     more = other.get_legend_handles_labels()
     ax.legend(handles[0] + more[0], handles[1] + more[1], fontsize=7, loc="lower left")
-    if result is not None:
-        ax.set_title(f"λ = {result.rate:.3g} /yr (±{result.error:.1g}), P(overturn in "
-                     f"{result.years:g} yr) = {result.probability:.3g}", fontsize=9)
+    if result is not None:   # the interval the fit's uncertainty gives, when it is known
+        low, high = getattr(result, "rate_interval", (math.nan, math.nan))
+        known = math.isfinite(low) and math.isfinite(high)
+        p_low, p_high = getattr(result, "probability_interval", (math.nan, math.nan))
+        ax.set_title(f"λ = {result.rate:.2g} /yr"
+                     + (f" ({100 * result.confidence:g} %: {low:.2g} to {high:.2g})" if known
+                        else f" (±{result.error:.1g})")
+                     + f", P(overturn in {result.years:g} yr) = {result.probability:.2g}"
+                     + (f" ({p_low:.2g} to {p_high:.2g})" if known else ""), fontsize=9)
     ax.fragility_axis = other
     return ax
 
@@ -724,7 +733,7 @@ def measure_figures(table, out) -> list:
                                                               "pga*", "pgv*")
                                                  if _has_measure(part, m)])
             written.append(out / f"im-comparison-cor{cor:g}.csv")
-            comparison.to_csv(written[-1], index=False)
+            write_csv(written[-1], comparison)
     return written
 
 

@@ -162,10 +162,14 @@ class SceneResult:
 
     def summary(self) -> dict:
         """JSON-ready scalars: scene identification, each run, each comparison."""
+        from shaketable.core.stops import early_stop, stop_summary
+
+        stopped = [run for run in (*self.runs, *self.planar) if early_stop(run) is not None]
         summary: dict[str, Any] = {
             "scene": self.scene.name, "source": self.scene.source,
             "description": self.scene.description,
-            "runs": [run.summary() for run in self.runs],
+            "stopped early": bool(stopped),
+            "runs": [stop_summary(run) for run in self.runs],
             "comparisons": [{"quantity": c.quantity, "report": c.report,
                              "reproduced": c.reproduced, "unit": c.unit, "agrees": c.agrees}
                             for c in self.comparisons],
@@ -179,7 +183,7 @@ class SceneResult:
         if self.slides:
             summary["sliding"] = [run.summary() for run in self.slides]
         if self.planar:
-            summary["planar"] = [run.summary() for run in self.planar]
+            summary["planar"] = [stop_summary(run) for run in self.planar]
         if self.calibrated is not None:
             from shaketable.core.files import json_ready_dict
 

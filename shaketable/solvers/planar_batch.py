@@ -34,6 +34,24 @@ from shaketable.solvers.common import (
 from shaketable.solvers.planar_run import DEFAULT_PLANAR_RTOL, check_planar_inputs, impact_ratios
 
 
+def _one_or_many(value, kinds: tuple, name: str, what: str) -> list:
+    """``value`` as a non-empty list of ``kinds``: one item, or a sequence of them; a
+    TypeError or ValueError naming the parameter ``name`` otherwise."""
+    if isinstance(value, kinds):
+        return [value]
+    if value is None or isinstance(value, (bytes, dict)) or not hasattr(value, "__iter__"):
+        raise TypeError(f"simulate_many_planar: {name} must be {what} or a sequence of them, "
+                        f"got {type(value).__name__}")
+    items = list(value)
+    if not items:
+        raise ValueError(f"simulate_many_planar: {name} is empty; give {what} or more")
+    wrong = [item for item in items if not isinstance(item, kinds) or isinstance(item, bool)]
+    if wrong:
+        raise TypeError(f"simulate_many_planar: {name} must hold {what} each, got "
+                        f"{type(wrong[0]).__name__} ({wrong[0]!r})")
+    return items
+
+
 def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
                          frictions: Friction | Iterable[Friction], cors, *,
                          rtol: float | None = None, duration: float | None = None,
@@ -66,12 +84,13 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
     """
     import pandas as pd
 
-    blocks = [blocks] if isinstance(blocks, (Block, AsymmetricBlock)) else list(blocks)
+    blocks = _one_or_many(blocks, (Block, AsymmetricBlock), "blocks", "a Block")
     if any(isinstance(block, AsymmetricBlock) for block in blocks):
         raise ValueError("block: the planar model (friction=...) is symmetric; an AsymmetricBlock "
                          "rocks without friction only (simulate(..., friction=None))")
-    frictions = [frictions] if isinstance(frictions, Friction) else list(frictions)
-    cors = [cors] if isinstance(cors, (int, float, str)) else list(cors)
+    frictions = _one_or_many(frictions, (Friction,), "frictions", "a Friction")
+    cors = _one_or_many(cors, (int, float, str, np.floating, np.integer), "cors",
+                        "a COR (a number in [0, 1] or 'housner')")
     if not isinstance(motion, Motion):
         raise ValueError(f"motion must be a shaketable.Motion, got {type(motion).__name__}")
     if motion.rotation is not None and np.any(motion.rotation != 0.0):

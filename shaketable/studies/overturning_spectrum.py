@@ -111,8 +111,20 @@ def _cor(block, cor):
     if isinstance(cor, str):
         if cor.lower() != "housner":
             raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
-        return housner_cor(block)
+        value = housner_cor(block)
+        if not 0.0 <= value <= 1.0:
+            raise ValueError(f"cor 'housner' is 1 - 1.5 sin^2 alpha = {value:.4g} for alpha "
+                             f"{block.alpha:.4g} rad, below 0 (a block this squat): give the "
+                             "COR as a number in [0, 1]")
+        return value
+    if isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0.0 <= cor <= 1.0:
+        raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
     return float(cor)
+
+
+#: Most scan points of one pulse and omega/p (each is a run): a finer scan or a higher
+#: ceiling would exhaust memory before the first run.
+MAX_SCAN_POINTS = 1_000_000
 
 
 def decide_after_pulse(theta, theta_dot, alpha: float, p: float, cor: float,
@@ -251,17 +263,18 @@ class OverturningSpectrum:
         return self.bands.copy()
 
     def to_csv(self, path) -> None:
-        """Write the band table, with a comment header saying how it was made."""
-        with open(path, "w", encoding="utf-8") as handle:
-            handle.write(f"# overturning spectrum: block {self.block.describe()}, alpha "
-                         f"{self.block.alpha:.8g} rad, p {self.block.p:.8g} rad/s, cor "
-                         f"{self.cor:.8g}; scan step {self.scan_step:g}, edge tolerance "
-                         f"{self.tolerance:g} relative, ceiling {self.ceiling:g}; "
-                         + ("" if self.method == "fast" else f"method {self.method}; ") +
-                         "shaketable.studies.overturning_spectrum\n")
-            for flag in self.flags:
-                handle.write(f"# flag: {flag}\n")
-            self.bands.to_csv(handle, index=False, float_format="%.9g")
+        """Write the band table, with a comment header saying how it was made (atomically:
+        :func:`shaketable.core.files.write_text`)."""
+        from shaketable.core.files import write_text
+
+        header = (f"# overturning spectrum: block {self.block.describe()}, alpha "
+                  f"{self.block.alpha:.8g} rad, p {self.block.p:.8g} rad/s, cor "
+                  f"{self.cor:.8g}; scan step {self.scan_step:g}, edge tolerance "
+                  f"{self.tolerance:g} relative, ceiling {self.ceiling:g}; "
+                  + ("" if self.method == "fast" else f"method {self.method}; ") +
+                  "shaketable.studies.overturning_spectrum\n")
+        flags = "".join(f"# flag: {flag}\n" for flag in self.flags)
+        write_text(path, header + flags + self.bands.to_csv(index=False, float_format="%.9g"))
 
     def edges(self, pulse: str, ratio: float) -> list:
         """Band edges a/(g tan alpha) [-] for one pulse and omega/p, increasing."""
@@ -325,7 +338,18 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
         raise ValueError(f"scan_step must be in (0, 1), got {scan_step!r}")
     if not 0 < tolerance < scan_step:
         raise ValueError(f"tolerance must be in (0, scan_step), got {tolerance!r}")
+    if ceiling is not None and (isinstance(ceiling, bool) or not isinstance(ceiling, (int, float))
+                                or not 1.0 < ceiling < math.inf):
+        raise ValueError(f"ceiling must be a number above 1 (the scan starts at a/(g tan alpha) "
+                         f"= 1, where rocking starts), got {ceiling!r}")
     cor = _cor(block, cor)
+    tallest = max([ceiling] if ceiling is not None else
+                  [2 * math.sqrt(1 + float(ratio) ** 2) + 2 for ratio in ratios] or [2.0])
+    scan_points = math.log(tallest) / math.log1p(scan_step)
+    if scan_points > MAX_SCAN_POINTS:
+        raise ValueError(f"scan_step {scan_step:g} up to a/(g tan alpha) = {tallest:g} makes "
+                         f"{scan_points:.3g} scan points per pulse and omega/p; at most "
+                         f"{MAX_SCAN_POINTS:,}: a larger scan_step or a lower ceiling")
     keys, shapes, grids, tops = [], [], [], []
     for kind in pulses:
         for ratio in ratios:

@@ -19,7 +19,7 @@ import numpy as np
 
 from shaketable.core.constants import G
 from shaketable.core.equality import fields_equal
-from shaketable.core.files import folder_lock, prepare_output_folder, temporary_files
+from shaketable.core.files import folder_lock, prepare_output_folder, subfolder, temporary_files
 from shaketable.core.motion import Motion
 from shaketable.core.units import parse_angle_or_ratio
 from shaketable.sweeps.spec import (
@@ -108,6 +108,53 @@ def spectrum_factor(record: RecordSpec, seed, measures) -> float:
         raise SweepError(f"record {record.label!r} has no horizontal motion; it cannot be "
                          "scaled to a spectrum")
     return float(np.exp(np.mean(np.log(target / values))))
+
+
+def check_inputs(spec: SweepSpec) -> None:
+    """Read every record the sweep will use and check that it can be scaled as asked,
+    before the first chunk runs (and before anything is written).
+
+    Each distinct base motion (record and seed) is read (a bad file of a suite, a file
+    that is not a record, an unreadable one: refused now, naming the file), and with
+    a target PGA, measure or spectrum its value is computed and checked (a record
+    without horizontal motion cannot be scaled). The motions and measures are cached
+    per process, so the chunks reuse them. A spec refused here leaves nothing behind:
+    the corrected spec starts (or resumes) as if the bad one had never run.
+
+    Raises
+    ------
+    SweepError
+        Naming the spec, the record and (for a file) its path.
+    """
+    seen = set()
+    for record_index, seed, _ in spec.motion_variants:
+        if (record_index, seed) in seen:
+            continue
+        seen.add((record_index, seed))
+        record = spec.records[record_index]
+        what = f"record {record.label!r}" + (f" ({record.file})" if record.file else "") \
+            + ("" if seed is None else f", seed {seed}")
+        try:
+            base = _record_motion(record, seed)
+        except (ValueError, OSError) as error:
+            message = getattr(error, "strerror", None) or str(error)
+            raise SweepError(f"{spec.path}: {what}: cannot be used ({message}); nothing was "
+                             "run") from None
+        if spec.intensity == "pga" and not base.pga > 0.0:
+            raise SweepError(f"{spec.path}: {what} has no horizontal motion; it cannot be "
+                             "scaled to a PGA; nothing was run")
+        try:   # every row records the measures: an unusable one is refused now
+            measures = record_measures(record, seed, spec.measures)
+            if spec.measures.spectrum:
+                spectrum_factor(record, seed, spec.measures)
+        except ValueError as error:   # SweepError included
+            raise SweepError(f"{spec.path}: {what}: its intensity measures cannot be "
+                             f"computed ({error}); nothing was run") from None
+        if spec.intensity == "measure":
+            value = measures[spec.measures.column]
+            if not (value > 0.0 and math.isfinite(value)):
+                raise SweepError(f"{spec.path}: {what} has {spec.measures.column} = {value!r}; "
+                                 "it cannot be scaled to it; nothing was run")
 
 
 def build_motion(spec: SweepSpec, record_index: int, seed: int | None = None,
@@ -443,16 +490,27 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                     "output folder")
         # temporary files of a killed writer (atomic_write's .<stem>.tmp-<random><suffix>);
         # the folder lock is held, so none belongs to a live process
-        for stray in temporary_files(out / "parts") + temporary_files(out):
+        for stray in temporary_files(out) + _part_leftovers(out):
             stray.unlink(missing_ok=True)
         return finished_chunks(spec, out, fmt)
-    (out / "parts").mkdir(parents=True, exist_ok=True)
+    subfolder(out, "parts")
     existing = [p for p in (out / "parts").iterdir() if not p.name.startswith(".")]
     if existing:
         raise SweepError(f"{out}: holds part files but no manifest; choose another output "
                          "folder")
     write_text_atomic(manifest_path, json.dumps(manifest, indent=2))
     return set()
+
+
+def _part_leftovers(out: Path) -> list:
+    """Half-written parts a killed writer left in ``out/parts``: every hidden file named
+    after a part (``.part-NNNNNN.tmp-<random>.parquet`` of the atomic writer, and any
+    other ``.part-NNNNNN.<...>`` a writer may leave), never a finished part."""
+    parts = out / "parts"
+    if not parts.is_dir():
+        return []
+    return sorted(path for path in parts.iterdir()
+                  if path.name.startswith(".part-") and not path.is_dir())
 
 
 @dataclass(frozen=True)
@@ -549,6 +607,7 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
                                 or workers < 1):
         raise ValueError(f"workers (--workers) must be a positive integer (threads), "
                          f"got {workers!r}")
+    check_inputs(spec)   # every record and measure, before any file or chunk
     began = time.perf_counter()
     client: Any      # a distributed.Client, or None
     own_client: bool
@@ -578,7 +637,7 @@ def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk
 
     def finished(chunk, frame):
         nonlocal computed
-        write_atomic(frame, part_path(out, chunk, fmt), fmt)
+        _write_or_stop(frame, part_path(out, chunk, fmt), fmt, f"chunk {chunk}")
         computed += len(frame)
         if bar is not None:
             bar.update(len(frame))
@@ -606,10 +665,24 @@ def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk
             warnings.simplefilter("ignore", SweepStoreWarning)
             table = read_results(out, fmt=fmt, parts_only=True, n_chunks=spec.n_chunks)
         path = out / f"results.{'parquet' if fmt == 'parquet' else 'csv'}"
-        write_atomic(table, path, fmt)
+        _write_or_stop(table, path, fmt, "the joined table")
     return SweepOutcome(table=table, path=path, out=out, computed_runs=computed,
                         skipped_runs=skipped, seconds=time.perf_counter() - began,
                         complete=complete, format=fmt)
+
+
+def _write_or_stop(frame, path: Path, fmt: str, what: str) -> None:
+    """Write a part or the joined table; a write that fails (a folder made read-only
+    during the run, a full disk) stops the sweep with a RuntimeError (exit status 1)
+    naming the file, never silently."""
+    try:
+        write_atomic(frame, path, fmt)
+        if not path.is_file():
+            raise OSError(f"{path} is not on disk after writing it")
+    except OSError as error:
+        raise RuntimeError(f"{path}: cannot write {what} ({error.strerror or error}); the sweep "
+                           "stopped here; the chunks already finished are on disk: make the "
+                           "folder writable and run again with --resume") from error
 
 
 def _chunk_length(spec, chunk: int) -> int:

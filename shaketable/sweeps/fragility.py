@@ -100,6 +100,26 @@ class FragilityFit:
     measure: str = ""
     stripes: tuple = field(default=(), repr=False, compare=False)
 
+    def __post_init__(self) -> None:
+        for name in ("median", "beta"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.integer,
+                                                                 np.floating)):
+                raise TypeError(f"FragilityFit.{name} must be a number, got {value!r}")
+            if not (math.isfinite(value) and value > 0):
+                raise ValueError(f"FragilityFit.{name} must be positive and finite, got "
+                                 f"{value!r}")
+        for name in ("n_runs", "n_overturned"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+                raise ValueError(f"FragilityFit.{name} must be a non-negative integer, got "
+                                 f"{value!r}")
+        if not (isinstance(self.confidence, (int, float)) and 0 < self.confidence < 1):
+            raise ValueError(f"FragilityFit.confidence must be in (0, 1), got "
+                             f"{self.confidence!r}")
+        if self.method not in ("msa", "ida"):
+            raise ValueError(f"FragilityFit.method must be 'msa' or 'ida', got {self.method!r}")
+
     def probability(self, im):
         """P(overturn) at ``im`` [unit of the fit]."""
         from scipy.stats import norm
@@ -121,7 +141,7 @@ class FragilityFit:
         if self.method == "ida" or not self.stripes:
             corners = [(m, b) for m in self.median_interval for b in self.beta_interval]
         else:
-            corners = _region_boundary(self, directions)
+            corners = region_boundary(self, directions)
         curves = np.array([norm.cdf(np.log(im / m) / b) for m, b in corners]
                           + [self.probability(im)])
         return curves.min(axis=0), curves.max(axis=0)
@@ -153,8 +173,21 @@ class FragilityFit:
 
 
 def _stripes(im, overturned, what="im"):
-    im = np.asarray(im, dtype=float)
-    overturned = np.asarray(overturned, dtype=bool)
+    given_type = type(im).__name__
+    try:
+        im = np.asarray(im, dtype=float)
+    except (TypeError, ValueError):
+        im = np.zeros(())
+    if im.ndim == 0:
+        raise TypeError(f"{what} must be an array of positive numbers, got {given_type}")
+    if im.ndim != 1:
+        raise ValueError(f"{what} must be a one-dimensional array, got shape {im.shape}")
+    given = np.asarray(overturned)
+    if given.dtype == object or not (given.dtype == bool or np.issubdtype(given.dtype, np.number)):
+        raise TypeError(f"overturned must be an array of booleans, got {given.dtype} values")
+    if np.issubdtype(given.dtype, np.number) and not np.all(np.isin(given, (0, 1))):
+        raise ValueError("overturned must hold booleans (or 0 and 1) only")
+    overturned = given.astype(bool)
     if im.shape != overturned.shape or im.size == 0:
         raise ValueError(f"{what} and overturned must be non-empty and of the same length")
     if not np.all(np.isfinite(im)) or np.any(im <= 0):
@@ -208,8 +241,12 @@ def fragility_fit(im, overturned, *, confidence: float = 0.95, intervals: bool =
     """
     from scipy.optimize import minimize
 
-    if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must be in (0, 1), got {confidence!r}")
+    if isinstance(confidence, bool) or not isinstance(confidence, (int, float)) \
+            or not 0.0 < confidence < 1.0:
+        raise ValueError(f"fragility_fit: confidence must be a number in (0, 1), got "
+                         f"{confidence!r}")
+    if not isinstance(intervals, (bool, np.bool_)):
+        raise TypeError(f"fragility_fit: intervals must be True or False, got {intervals!r}")
     log_im, runs, failures = _stripes(im, overturned)
     over = failures > 0
     stand = failures < runs
@@ -282,7 +319,7 @@ def _profile_intervals(mu, log_beta, best, log_im, runs, failures, confidence):
     return ends(drop_mu, mu, 0.5 * beta), ends(drop_beta, log_beta, 0.3)
 
 
-def _region_boundary(fit: FragilityFit, directions: int):
+def region_boundary(fit: FragilityFit, directions: int):
     """(median, beta) on the boundary of the profile-likelihood region of ``fit``."""
     from scipy.optimize import brentq
     from scipy.stats import chi2

@@ -137,7 +137,14 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse, parse_angle_or_ratio
-from shaketable.sweeps.targets import IntensitySettings, read_spectrum
+from shaketable.sweeps.limits import MAX_CHUNK_SIZE, check_grid_size
+from shaketable.sweeps.targets import (
+    IntensitySettings,
+    check_levels,
+    check_periods,
+    check_spectrum_covers,
+    read_spectrum,
+)
 
 if TYPE_CHECKING:
     from shaketable.lab.pitch import Pitch
@@ -439,8 +446,10 @@ def spec_from_dict(data: dict, where: str = "<spec>",
         raise SweepError(f"{where}: [run] must be a table, got {run!r}")
     _only(run, RUN_KEYS, where, "[run]")
     chunk_size = run.get("chunk_size", 500)
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
-        raise SweepError(f"{where}: run.chunk_size must be a positive integer, got "
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) \
+            or not 1 <= chunk_size <= MAX_CHUNK_SIZE:
+        raise SweepError(f"{where}: run.chunk_size must be a positive integer, at most "
+                         f"{MAX_CHUNK_SIZE:,} (a chunk's rows are held in memory), got "
                          f"{chunk_size!r}")
     from shaketable.sweeps.friction import check_friction_spec, friction_grid
     spec = SweepSpec(name=name.strip(), description=str(data.get("description", "")),
@@ -452,6 +461,7 @@ def spec_from_dict(data: dict, where: str = "<spec>",
                      measures=measures, friction=friction_grid(data.get("friction"), where),
                      raw=data)
     check_friction_spec(spec, rocking)   # with [friction]: what the planar model refuses
+    check_grid_size(spec, where)
     return spec
 
 
@@ -741,11 +751,14 @@ def _intensity(table, where, directory: Path | None = None):
     if "period" in table:
         settings["period"] = _quantity(table["period"], "time", where, "intensity.period",
                                        positive=True)
+    check_periods(settings, table, where)
     if "spectrum" in table:
         if "measure" in table or "pga" in table:
             raise SweepError(f"{where}: intensity.spectrum goes with scale factors (or none), "
                              "not with a target pga or measure")
         settings["spectrum"] = read_spectrum(table["spectrum"], where, directory)
+        check_spectrum_covers(settings["spectrum"], settings.get("period_range", (0.2, 2.0)),
+                              where)
     if "measure" in table:
         measure = table["measure"]
         if measure not in MEASURES:
@@ -759,6 +772,8 @@ def _intensity(table, where, directory: Path | None = None):
                              "(such as \"1 s\")")
         kind = MEASURES[measure][1]
         levels = _quantity_list(table["levels"], kind, where, "intensity.levels")
+        check_levels(levels, "arias" if measure in ("arias", "cav") else kind, where,
+                     "intensity.levels")
         return "measure", levels, IntensitySettings(measure=measure, **settings)
     if "levels" in table:
         raise SweepError(f"{where}: intensity.levels needs intensity.measure (which measure "
@@ -768,11 +783,13 @@ def _intensity(table, where, directory: Path | None = None):
         if extra:
             raise SweepError(f"{where}: intensity.{extra[0]} does not go with intensity.pga; "
                              "use measure = \"pga\" with levels")
-        return "pga", _quantity_list(table["pga"], "acceleration", where, "intensity.pga"), \
-            IntensitySettings()
+        levels = _quantity_list(table["pga"], "acceleration", where, "intensity.pga")
+        check_levels(levels, "acceleration", where, "intensity.pga")
+        return "pga", levels, IntensitySettings()
     if "scale" in table:
-        return "scale", _number_list(table["scale"], where, "intensity.scale", 0.0,
-                                     low_open=True), IntensitySettings(**settings)
+        levels = _number_list(table["scale"], where, "intensity.scale", 0.0, low_open=True)
+        check_levels(levels, "scale", where, "intensity.scale")
+        return "scale", levels, IntensitySettings(**settings)
     return "scale", [1.0], IntensitySettings(**settings)
 
 

@@ -5,6 +5,7 @@ Parsed for :mod:`shaketable.sweeps.spec`.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from shaketable.sweeps.spec import RecordSpec, SweepError
@@ -23,7 +24,20 @@ def suite_records(entry: dict, where: str, key: str, directory: Path) -> list:
     path = path if path.is_absolute() else (directory / path)
     if not path.is_dir():
         raise SweepError(f"{where}: {key}.folder: no such folder {str(path)!r}")
-    files = sorted(p for p in path.glob(pattern) if p.is_file())
+    matched = sorted(path.glob(pattern))
+    for candidate in matched:   # a link loop, a dangling link, a folder: never dropped silently
+        try:
+            regular = candidate.is_file()
+        except OSError:
+            regular = False
+        if not regular and not candidate.is_dir():
+            raise SweepError(f"{where}: {key}.folder: {str(candidate)!r} matches {pattern!r} "
+                             "but is not a readable file (a broken or looping link?); remove "
+                             "it or narrow the pattern")
+        if regular and not os.access(candidate, os.R_OK):
+            raise SweepError(f"{where}: {key}.folder: {str(candidate)!r} cannot be read "
+                             "(permission denied)")
+    files = [candidate for candidate in matched if candidate.is_file()]
     if not files:
         raise SweepError(f"{where}: {key}.folder: no file matching {pattern!r} in "
                          f"{str(path)!r}")
