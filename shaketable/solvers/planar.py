@@ -68,8 +68,6 @@ from shaketable.core.planar_dynamics import (
     corner_height,
     corner_height_rate,
     corner_vector,
-    flat_landing,
-    impact,
     kinetic_energy,
     rock_forces,
     slide_rock_accelerations,
@@ -91,6 +89,7 @@ from shaketable.solvers.planar_modes import (  # N_OUT: the output layout, re-ex
     measures,
     q_from_z,
     store,
+    strike,
     z_from_q,
 )
 from shaketable.solvers.planar_steps import (
@@ -499,35 +498,25 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 if terminal == 1:
                     transition = True
                     _, corner_side = lowest_corner(q[1], q[2], parameters)
-                    if q[2] == 0.0 and q[5] == 0.0:
-                        before = kinetic_energy(q[3], q[4], 0.0, parameters)
-                        x_dot, mode = flat_landing(q[3], q[4], mu_s, mu_d)
-                        flat(q, x_dot, parameters)
-                        loss += before - kinetic_energy(x_dot, 0.0, 0.0, parameters)
-                        sigma = 0.0 if x_dot == 0.0 else math.copysign(1.0, x_dot)
-                        _record(ev, info, t, EV_LANDING, _FLIGHT, mode, 0.0, q, parameters)
-                    else:
-                        side = corner_side
-                        # the corner on the table (the root is located to the ulp)
-                        r_x, r_y = corner_vector(q[2], side, parameters)
-                        q[1] = -r_y
-                        omega_before = q[5]
-                        x_dot, y_dot, omega, kind, new_sigma, lost, cap = impact(
-                            q[2], q[3], q[4], q[5], side, rho, mu_s, mu_d, parameters)
-                        n_impacts += 1
-                        capped += int(cap)
-                        if kind == PAINLEVE:
-                            status = STATUS_PAINLEVE
-                            info[I_FAILED_MODE] = FLIGHT
-                            break
-                        loss += lost
-                        q[3], q[4], q[5] = x_dot, y_dot, omega
-                        mode = int(kind)
-                        sigma = new_sigma
+                    landed_flat = q[2] == 0.0 and q[5] == 0.0
+                    omega_before = q[5]
+                    kind, new_side, sigma, lost, cap = strike(q, corner_side, rho, mu_s, mu_d,
+                                                              parameters)
+                    n_impacts += 0 if landed_flat else 1
+                    capped += int(cap)
+                    if kind == PAINLEVE:
+                        status = STATUS_PAINLEVE
+                        info[I_FAILED_MODE] = FLIGHT
+                        break
+                    loss += lost
+                    mode = int(kind)
+                    info[I_T_REST] = t if mode == REST else info[I_T_REST]
+                    if mode == ROCK or mode == SLIDE_ROCK:
+                        side = new_side
                         z_from_q(q, side, z, parameters)
                         entered = True
-                        _record(ev, info, t, EV_IMPACT, _FLIGHT, mode, omega_before, q,
-                                parameters)
+                    _record(ev, info, t, EV_LANDING if landed_flat else EV_IMPACT, _FLIGHT, mode,
+                            omega_before, q, parameters)
             else:
                 # ---------------------------------------------------------------- contact
                 if entered:
@@ -684,8 +673,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             before_mode = mode
                             omega_before = q[5]
                             striking = -side
-                            x_dot, y_dot, omega, kind, new_sigma, lost, cap = impact(
-                                0.0, q[3], q[4], q[5], striking, rho, mu_s, mu_d, parameters)
+                            kind, side, new_sigma, lost, cap = strike(q, striking, rho, mu_s,
+                                                                      mu_d, parameters)
                             n_impacts += 1
                             capped += int(cap)
                             if kind == PAINLEVE:
@@ -693,9 +682,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 info[I_FAILED_MODE] = mode
                                 break
                             loss += lost
-                            side = striking
-                            q[3], q[4], q[5] = x_dot, y_dot, omega
-                            sticking = kind == ROCK
+                            omega = q[5]
+                            sticking = kind == ROCK and side == striking
                             mode, sigma = enter_contact(int(kind), side, new_sigma, t, q, segment,
                                                  mu_s, mu_d, parameters)
                             if mode >= 0:
@@ -709,6 +697,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             if mode == REST or mode == SLIDE:
                                 flat(q, q[3] if mode == SLIDE else 0.0, parameters)
                                 rest_until = t
+                                info[I_T_REST] = t if mode == REST else info[I_T_REST]
                             _record(ev, info, t, EV_IMPACT, before_mode, mode, omega_before, q,
                                     parameters)
                             if mode != ROCK and mode != SLIDE_ROCK:
@@ -734,8 +723,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                         0.0, side, u_now, v_now, 0.0, parameters)
                             remaining = cascade_rest_time(omega, deceleration, ratio)
                             if remaining == math.inf and ratio >= 1.0 and deceleration > 0.0 \
-                                    and abs(omega) <= velocity_floor:
-                                remaining = 0.0
+                                    and abs(omega) <= max(velocity_floor, 0.5 * deceleration
+                                                          * rest_tolerance):
+                                remaining = 0.0   # no decay, impacts < rest_tolerance apart
                             if omega == 0.0 or remaining <= rest_tolerance or (
                                     abs(omega) <= velocity_floor and remaining < math.inf):
                                 # settles flat: sliding at the corner's slip speed (REST if 0)

@@ -106,6 +106,7 @@ from shaketable.solvers.planar_contact import (
     rock_solution,
     slide_rock_effective_mass,
     slide_rock_solution,
+    two_corner_impact,
 )
 
 #: Consecutive segments that may end where they began before the solver gives up.
@@ -445,14 +446,14 @@ class _Run:
         fresh, self.fresh = self.fresh, set()
         functions, names = [], []
 
-        def add(function, name, terminal, direction, rate=None):
+        def add(function, name, terminal, direction, rate=None, order=1):
             if name in fresh and rate is not None:
                 raw = function
 
                 def function(t, z):
                     elapsed = t - t_segment
                     if elapsed > 0.0:
-                        return raw(t, z) / elapsed
+                        return raw(t, z) / elapsed ** order
                     value = raw(t, z)
                     return value if value != 0.0 else rate(t, z)
             function.terminal, function.direction = terminal, direction
@@ -465,7 +466,12 @@ class _Run:
             return xdd - r_y * thdd - r_x * z[5] ** 2
 
         if mode in (ROCK, SLIDE_ROCK):
-            add(lambda t, z: side * z[2], "impact", True, -1, lambda t, z: side * z[5])
+            if self.state[5] == 0.0:
+                # a block that starts to turn from theta = theta' = 0: theta ~ theta'' t^2 / 2
+                add(lambda t, z: side * z[2], "impact", True, -1,
+                    lambda t, z: 0.5 * side * self.solution(t, z)[2], order=2)
+            else:
+                add(lambda t, z: side * z[2], "impact", True, -1, lambda t, z: side * z[5])
             add(lambda t, z: self.solution(t, z)[4], "lift-off", True, -1)
             if mode == ROCK:
                 add(lambda t, z: self.mu_s * self.solution(t, z)[4]
@@ -565,7 +571,9 @@ class _Run:
 
     # ------------------------------------------------------------ transitions
     def impact(self, t, corner):
-        """A corner impact at t (spec, "Impacts")."""
+        """A corner impact at t (docs/planar.md, "Impacts"); at theta = 0 an impact that
+        turns the block back onto the other corner, which is on the table, is followed by
+        the two-corner problem."""
         before = self.mode
         pre = self.state.copy()
         energy_before = kinetic_energy(self.geometry, pre)
@@ -575,15 +583,32 @@ class _Run:
         self.capped += capped
         self.state[3:6] = velocities
         self.side = corner
-        if sigma == 0:
-            self.enter_contact(t, ROCK, corner, self.sigma, "impact", before)
-        else:
-            self.sigma = sigma
-            self.enter_contact(t, SLIDE_ROCK, corner, sigma, "impact", before)
+        mode = ROCK if sigma == 0 else SLIDE_ROCK
+        if self.state[2] == 0.0 and corner * self.state[5] < 0.0:
+            velocities, mode, side, sigma = two_corner_impact(self.geometry, self.state,
+                                                              self.mu_s, self.mu_d)
+            self.state[3:6] = velocities
+            self.side = side or corner
+        self.enter_after_impact(t, mode, sigma, "impact", before)
+        if self.mode == REST:
+            self.t_rest = t
         self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
         if self.state[2] == 0.0 and self.mode in (ROCK, SLIDE_ROCK) and pre[5] != 0.0:
-            sticking = sigma == 0 and self.mode == ROCK
+            sticking = sigma == 0 and self.mode == ROCK and self.side == corner
             self.cascade(t, self.cascade_cor if sticking else abs(self.state[5] / pre[5]))
+
+    def enter_after_impact(self, t, mode, sigma, kind, before):
+        """Enter the mode an impact left (flat: REST, which records t_rest, or SLIDE)."""
+        if mode in (ROCK, SLIDE_ROCK):
+            if sigma != 0:
+                self.sigma = sigma
+            self.enter_contact(t, mode, self.side, self.sigma, kind, before)
+            return
+        self.state[1:3] = [self.geometry.h, 0.0]
+        if mode == REST:
+            self.t_rest = t
+            self.rest_until = t
+        self.set_mode(t, mode, sigma=sigma if mode == SLIDE else None, kind=kind)
 
     def cascade(self, t, ratio):
         """The endless cascade of impacts of a decaying block, summed (as the rocking engine).
@@ -604,8 +629,9 @@ class _Run:
             deceleration = -self.tipping(self.side, ug, vg)
         remaining = cascade_rest_time(omega, deceleration, ratio)
         if (remaining == math.inf and ratio >= 1.0 and deceleration > 0.0
-                and abs(omega) <= self.velocity_floor):
-            remaining = 0.0
+                and abs(omega) <= max(self.velocity_floor,
+                                      0.5 * deceleration * self.rest_tolerance)):
+            remaining = 0.0   # no decay, and impacts closer than the rest tolerance
         if omega == 0.0 or remaining <= self.rest_tolerance or (
                 abs(omega) <= self.velocity_floor and remaining < math.inf):
             # a slipping corner's cascade ends sliding flat at the corner's slip speed
@@ -620,19 +646,16 @@ class _Run:
                 self.set_mode(t, SLIDE, sigma=1 if x_dot > 0 else -1, kind="cascade")
 
     def flat_landing(self, t):
+        """A flat landing (theta = theta' = 0): the two-corner problem."""
         before = self.mode
         energy_before = kinetic_energy(self.geometry, self.state)
-        x_dot, y_dot = self.state[3], self.state[4]
-        self.state[4] = self.state[5] = 0.0
-        if abs(x_dot) <= self.mu_s * abs(y_dot):
-            self.state[3] = 0.0
-            self.set_mode(t, REST)
-        else:
-            direction = 1 if x_dot > 0 else -1
-            self.state[3] = x_dot - direction * self.mu_d * abs(y_dot)
-            self.set_mode(t, SLIDE, sigma=direction)
+        velocities, mode, side, sigma = two_corner_impact(self.geometry, self.state,
+                                                          self.mu_s, self.mu_d)
+        self.state[3:6] = velocities
+        if side:
+            self.side = side
+        self.enter_after_impact(t, mode, sigma, "flat landing", before)
         self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
-        self.record(t, "flat landing", before, self.mode)
 
     def after_event(self, t, terminal):
         """Apply the transition of a terminal event."""

@@ -127,9 +127,11 @@ CASES.update({
         Friction(0.6712566611989306, 0.6712566611989306),
         (2.07623137253849, 4.516771444849119), (0.0, 5.760290824753959),
         2.7185295727420664)),
-    # two impacts at one instant, the second capped (rho = cor / c_H > 1 would add energy):
-    # the spec's largest rho_eff (seed 3 with --low-friction, run 3)
-    "fuzz3 3: capped impact": dict(modes={REST, ROCK, SLIDE_ROCK, FLIGHT}, **_harmonic_pair(
+    # two impacts at one instant, the second capped under the table frame's couple (seed 3
+    # with --low-friction, run 3); with the corner frame's couple (docs/planar.md,
+    # "Impacts") its impacts keep the energy uncapped and it no longer flies: kept for its
+    # 480 impacts, many of them slipping
+    "fuzz3 3: capped impact": dict(modes={REST, ROCK, SLIDE_ROCK}, **_harmonic_pair(
         Block(0.6718162217669676, 0.23444106148738691), 0.9638058191732378,
         Friction(0.37263257257333005, 0.26616639821864474),
         (4.160284602730944, 0.9604396486493347), (7.5265477576186415, 5.173725856063846),
