@@ -256,6 +256,23 @@ def _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple, sigma, mu_d, paramet
     return x_new, y_new, omega_new, SLIDE_ROCK, sigma, py
 
 
+@njit(**HELPER)
+def _energy_fraction(x1, y1, w1, xa, ya, wa, shift, before, inertia_root):
+    """The fraction f in [0, 1] of the way from the post state at rho = 1 (x1, y1, w1) to
+    the one at rho_eff (xa, ya, wa) where the kinetic energy, in the frame moving at
+    ``shift`` along x, reaches ``before`` (1 when it does not; 0 when even rho = 1 gains)."""
+    b0, b1, b2 = x1 - shift, y1, inertia_root * w1
+    d0, d1, d2 = xa - x1, ya - y1, inertia_root * (wa - w1)
+    qa = d0 * d0 + d1 * d1 + d2 * d2
+    qb = 2.0 * (b0 * d0 + b1 * d1 + b2 * d2)
+    qc = b0 * b0 + b1 * b1 + b2 * b2 - 2.0 * before
+    fraction = 0.0
+    if qa > 0.0 and qc <= 0.0:
+        root = (-qb + math.sqrt(max(qb * qb - 4.0 * qa * qc, 0.0))) / (2.0 * qa)
+        fraction = min(max(root, 0.0), 1.0)
+    return fraction
+
+
 @njit(cache=True, error_model=ERROR_MODEL)
 def impact(theta, x_dot, y_dot, omega, side, rho, mu_s, mu_d, parameters):
     """Impact of the bottom corner ``side`` (striking with Y' < 0) on the table.
@@ -287,31 +304,30 @@ def impact(theta, x_dot, y_dot, omega, side, rho, mu_s, mu_d, parameters):
     if kind == PAINLEVE:
         return xa, ya, wa, PAINLEVE, sigma, 0.0, 0.0
     after = kinetic_energy(xa, ya, wa, parameters)
+    # the slip frame (moving with the corner's incoming slip u): no gain there either, so
+    # that the capped law, like the couple, does not depend on a uniform sliding speed
+    u = x_dot - r_y * omega
+    before_u = kinetic_energy(x_dot - u, y_dot, omega, parameters)
+    after_u = kinetic_energy(xa - u, ya, wa, parameters)
     capped = 0.0
     rho_eff = rho
     inertia_root = math.sqrt(centroidal_inertia(parameters))
     for _ in range(8):
-        if rho_eff == 1.0 or (after <= before and pa >= 0.0):
+        if rho_eff == 1.0 or (after <= before and after_u <= before_u and pa >= 0.0):
             break
-        if pa < 0.0 or after - before > ENERGY_ROUNDING * before:
+        if pa < 0.0 or after - before > ENERGY_ROUNDING * before \
+                or after_u - before_u > ENERGY_ROUNDING * before_u:
             capped = 1.0   # not a gain of rounding size (a COR 1 impact's last ulps)
         # the post state is affine in rho along one branch: move rho toward 1 (from
         # either side: rho > 1 when cor > c_H, rho < 1 when the couple with a slipping
-        # corner adds energy) to where KE+ = KE- and the normal impulse does not pull
-        # (P_y >= 0; at rho = 1 the plastic impulse of a striking corner pushes), and
-        # decide the branch again there
+        # corner adds energy) to where KE+ = KE- (in both frames) and the normal impulse
+        # does not pull (P_y >= 0; at rho = 1 the plastic impulse of a striking corner
+        # pushes), and decide the branch again there
         force = 1.0 if kind == ROCK else 2.0 * sigma
         x1, y1, w1, _, _, p1 = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, force,
                                             mu_s, mu_d, parameters)
-        b0, b1, b2 = x1, y1, inertia_root * w1
-        d0, d1, d2 = xa - x1, ya - y1, inertia_root * (wa - w1)
-        qa = d0 * d0 + d1 * d1 + d2 * d2
-        qb = 2.0 * (b0 * d0 + b1 * d1 + b2 * d2)
-        qc = b0 * b0 + b1 * b1 + b2 * b2 - 2.0 * before
-        fraction = 0.0
-        if qa > 0.0 and qc <= 0.0:
-            root = (-qb + math.sqrt(max(qb * qb - 4.0 * qa * qc, 0.0))) / (2.0 * qa)
-            fraction = min(max(root, 0.0), 1.0)
+        fraction = min(_energy_fraction(x1, y1, w1, xa, ya, wa, 0.0, before, inertia_root),
+                       _energy_fraction(x1, y1, w1, xa, ya, wa, u, before_u, inertia_root))
         if pa < 0.0:
             fraction = min(fraction, max(p1, 0.0) / (p1 - pa))
         rho_eff = 1.0 + fraction * (rho_eff - 1.0)
@@ -320,6 +336,7 @@ def impact(theta, x_dot, y_dot, omega, side, rho, mu_s, mu_d, parameters):
         if kind == PAINLEVE:
             return xa, ya, wa, PAINLEVE, sigma, 0.0, 1.0
         after = kinetic_energy(xa, ya, wa, parameters)
+        after_u = kinetic_energy(xa - u, ya, wa, parameters)
     return xa, ya, wa, kind, sigma, before - after, capped
 
 

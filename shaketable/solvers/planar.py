@@ -387,6 +387,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         _record(ev, info, t, kind, _SLIDE, _SLIDE, 0.0, q, parameters)
                     else:
                         mode = new_mode
+                        # a slide an impact left (-inf: pending) ends the rocking's rest
+                        if mode == REST and info[I_T_REST] == -math.inf:
+                            info[I_T_REST] = t
                         side = new_side
                         sigma = new_sigma
                         if mode == ROCK or mode == SLIDE_ROCK:
@@ -697,7 +700,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             if mode == REST or mode == SLIDE:
                                 flat(q, q[3] if mode == SLIDE else 0.0, parameters)
                                 rest_until = t
-                                info[I_T_REST] = t if mode == REST else info[I_T_REST]
+                                info[I_T_REST] = t if mode == REST else -math.inf
                             _record(ev, info, t, EV_IMPACT, before_mode, mode, omega_before, q,
                                     parameters)
                             if mode != ROCK and mode != SLIDE_ROCK:
@@ -748,6 +751,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 else:
                                     mode = SLIDE
                                     sigma = 1.0 if base > 0.0 else -1.0
+                                    info[I_T_REST] = -math.inf
                                 _record(ev, info, t, EV_CASCADE, _SLIDE_ROCK if base != 0.0
                                         else _ROCK, mode, omega, q, parameters)
                                 break
@@ -806,3 +810,5 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     info[I_N_OUTPUT] = filled
     info[I_VISITED] = visited
     info[I_E_END] = kinetic_energy(q[3], q[4], q[5], parameters) + G * q[1]
+    if info[I_T_REST] == -math.inf:   # still sliding from an impact
+        info[I_T_REST] = math.nan

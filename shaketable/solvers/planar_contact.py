@@ -138,25 +138,39 @@ def impact_map(geometry, state, corner, rho, mu_s, mu_d):
                 return slipping, sigma
         return stick, 0  # no slip direction is consistent: the corner sticks
 
-    before = kinetic_energy(geometry, state)
+    # the kinetic energy in the table's frame and in the frame moving with the corner's
+    # incoming slip u (where the couple is defined): the law gains in neither
+    slip = x_dot - r_y * omega
+    frames = [(0.0, kinetic_energy(geometry, state)),
+              (slip, kinetic_energy(geometry, np.r_[0, 0, 0, x_dot - slip, y_dot, omega]))]
+    weight = np.array([1.0, 1.0, math.sqrt(geometry.Ic)])
+
+    def gains(post):
+        return [kinetic_energy(geometry, np.r_[0, 0, 0, post[0] - shift, post[1:3]]) - before
+                for shift, before in frames]
+
     rho_eff = rho
     post, sigma = decide(rho_eff)
     capped = False
     for _ in range(8):
-        gain = kinetic_energy(geometry, np.r_[0, 0, 0, post[:3]]) - before
-        if rho_eff == 1.0 or (gain <= 0.0 and post[4] >= 0.0):
+        gain = gains(post)
+        if rho_eff == 1.0 or (max(gain) <= 0.0 and post[4] >= 0.0):
             break
-        capped = capped or post[4] < 0.0 or gain > 1e-12 * before
+        capped = capped or post[4] < 0.0 or any(
+            g > 1e-12 * before for g, (_, before) in zip(gain, frames))
         # the post state is affine in rho (in one branch): the rho_eff nearest rho between
-        # 1 and rho with KE+ <= KE- and P_y >= 0; then the branch is decided again there
+        # 1 and rho with no gain in either frame and P_y >= 0; then the branch is decided
+        # again there
         one = solve(1.0, sigma)
-        weight = np.array([1.0, 1.0, math.sqrt(geometry.Ic)])
-        base, step = one[:3] * weight, (post[:3] - one[:3]) * weight
-        qa, qb, qc = step @ step, 2.0 * base @ step, base @ base - 2.0 * before
-        fraction = 0.0
-        if qa > 0.0 and qc <= 0.0:
-            root = (-qb + math.sqrt(max(qb * qb - 4 * qa * qc, 0.0))) / (2 * qa)
-            fraction = min(max(root, 0.0), 1.0)
+        fraction = 1.0
+        for shift, before in frames:
+            base = (one[:3] - [shift, 0.0, 0.0]) * weight
+            step = (post[:3] - one[:3]) * weight
+            qa, qb, qc = step @ step, 2.0 * base @ step, base @ base - 2.0 * before
+            root = 0.0
+            if qa > 0.0 and qc <= 0.0:
+                root = (-qb + math.sqrt(max(qb * qb - 4 * qa * qc, 0.0))) / (2 * qa)
+            fraction = min(fraction, min(max(root, 0.0), 1.0))
         if post[4] < 0.0:
             fraction = min(fraction, max(one[4], 0.0) / (one[4] - post[4]))
         rho_eff = 1.0 + fraction * (rho_eff - 1.0)

@@ -590,8 +590,8 @@ class _Run:
             self.state[3:6] = velocities
             self.side = side or corner
         self.enter_after_impact(t, mode, sigma, "impact", before)
-        if self.mode == REST:
-            self.t_rest = t
+        if self.mode in (REST, SLIDE):
+            self.t_rest = t if self.mode == REST else -math.inf   # -inf: rests when it stops
         self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
         if self.state[2] == 0.0 and self.mode in (ROCK, SLIDE_ROCK) and pre[5] != 0.0:
             sticking = sigma == 0 and self.mode == ROCK and self.side == corner
@@ -644,6 +644,7 @@ class _Run:
                 self.t_rest = self.rest_until
             else:
                 self.set_mode(t, SLIDE, sigma=1 if x_dot > 0 else -1, kind="cascade")
+                self.t_rest = -math.inf
 
     def flat_landing(self, t):
         """A flat landing (theta = theta' = 0): the two-corner problem."""
@@ -684,6 +685,8 @@ class _Run:
             self.state[3] = 0.0
             if self.rest_holds(t):
                 self.set_mode(t, REST, kind="stick")
+                if self.t_rest == -math.inf:   # a slide an impact left ends the rocking
+                    self.t_rest = t
             else:
                 self.leave_flat(t, "reverse")
         elif terminal == "stick":  # SLIDE_ROCK: the corner stops slipping
@@ -805,7 +808,9 @@ class _Run:
             peak_slip=float(self.peak_slip), t_peak_slip=float(self.t_peak_slip),
             residual_slip=float(slip_end), max_abs_theta=float(self.max_abs_theta),
             t_max=float(self.t_max), t_unstable=float(self.t_unstable),
-            t_overturn=float(t_overturn), t_rest=float(self.t_rest), friction_work=float(self.work[0]),
+            t_overturn=float(t_overturn),
+            t_rest=float(self.t_rest) if self.t_rest != -math.inf else math.nan,
+            friction_work=float(self.work[0]),
             input_work=float(self.work[1]), impact_loss=float(self.impact_loss),
             energy_start=float(energy_start), energy_end=float(self.energy()),
             capped_impacts=int(self.capped), status=status, message=message,
