@@ -113,7 +113,13 @@ from shaketable.solvers.planar_steps import (
     terminal_event,
     zeros,
 )
-from shaketable.solvers.planar_track import contact_extrema, flight_extrema, record, track
+from shaketable.solvers.planar_track import (
+    P_PEAK_BASE_SLIP,
+    contact_extrema,
+    flight_extrema,
+    record,
+    track,
+)
 from shaketable.solvers.sliding import first_up_crossing, first_velocity_zero
 
 #: Why a run stopped (index = status code).
@@ -144,8 +150,9 @@ EVENT_COLUMNS = 6
  I_PEAK_SLIP, I_T_PEAK_SLIP, I_PEAK_EXCURSION, I_W_TABLE, I_W_FRICTION, I_IMPACT_LOSS,
  I_STEPS, I_REJECTED, I_EVALUATIONS, I_N_EVENTS, I_N_OUTPUT, I_TIME_REST, I_TIME_SLIDE,
  I_TIME_ROCK, I_TIME_SLIDE_ROCK, I_TIME_FLIGHT, I_VISITED, I_T_REST, I_E0, I_E_END,
- I_FAILED_MODE) = range(33)
-N_INFO = 33
+ I_FAILED_MODE, I_PEAK_BASE_SLIP, I_T_PEAK_BASE_SLIP) = range(35)
+N_INFO = 35
+assert I_PEAK_BASE_SLIP - I_MAX_ABS_THETA == P_PEAK_BASE_SLIP   # planar_track's layout
 
 #: Where planar_track's peaks start in info, as an int64 (track is compiled for the type
 #: its callers give ``first``: a literal would compile it once more).

@@ -243,6 +243,7 @@ class _Run:
         self.impact_loss = 0.0
         self.max_abs_theta, self.t_max = 0.0, float(motion.t[0])
         self.peak_slip, self.t_peak_slip = 0.0, float(motion.t[0])
+        self.peak_base_slip, self.t_peak_base_slip = 0.0, float(motion.t[0])
         self.t_unstable = math.nan
         self.t_rest = math.nan
         self.time_in_mode = dict.fromkeys(MODE_NAMES, 0.0)
@@ -262,6 +263,10 @@ class _Run:
         slip = state[0] + self.geometry.h * math.sin(theta)
         if abs(slip) > self.peak_slip:
             self.peak_slip, self.t_peak_slip = abs(slip), t
+        # the base's own slide: the corner it stands or turns on (x when flat)
+        base = slip + math.copysign(self.geometry.b * (1.0 - math.cos(theta)), theta)
+        if abs(base) > self.peak_base_slip:
+            self.peak_base_slip, self.t_peak_base_slip = abs(base), t
 
     def ground(self, time):
         u0, u1, v0, v1, t0, t1 = self.interval
@@ -806,6 +811,8 @@ class _Run:
             impact_times=np.array([i[0] for i in self.impacts], dtype=float),
             impact_velocities=np.array([i[1] for i in self.impacts], dtype=float),
             peak_slip=float(self.peak_slip), t_peak_slip=float(self.t_peak_slip),
+            peak_base_slip=float(self.peak_base_slip),
+            t_peak_base_slip=float(self.t_peak_base_slip),
             residual_slip=float(slip_end), max_abs_theta=float(self.max_abs_theta),
             t_max=float(self.t_max), t_unstable=float(self.t_unstable),
             t_overturn=float(t_overturn),

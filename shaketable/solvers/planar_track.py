@@ -34,6 +34,22 @@ from shaketable.solvers.planar_steps import (
 P_MAX_ABS_THETA, P_T_MAX, P_PEAK_SLIP, P_T_PEAK_SLIP, P_PEAK_EXCURSION = range(5)
 N_PEAKS = 5
 
+#: Where the peak base slip [m] and its time [s] are, from ``first`` (the engine's
+#: I_PEAK_BASE_SLIP - I_MAX_ABS_THETA: slots appended to its info array).
+P_PEAK_BASE_SLIP, P_T_PEAK_BASE_SLIP = 23, 24
+
+
+@njit(**HELPER)
+def base_slip(q, parameters):
+    """How far the base has slid on the table [m]: the displacement of the bottom corner
+    the block stands or turns on (the one on the side of theta; x when flat),
+    x + h sin(theta) + sign(theta) b (1 - cos(theta)). A block that rocks without sliding
+    keeps it at 0; the base midpoint's ``slip`` moves with the rotation."""
+    theta = q[2]
+    b = parameters[HALF_WIDTH]
+    lift = 0.0 if theta == 0.0 else math.copysign(b * (1.0 - math.cos(theta)), theta)
+    return q[0] + parameters[HALF_HEIGHT] * math.sin(theta) + lift
+
 
 # one compiled function (not inlined: a copy of it in each of its four callers cost more
 # to compile); the callers pass ``first`` as an int64 so that it is compiled once
@@ -49,6 +65,10 @@ def track(t, q, info, first, parameters):
     if abs(q[2]) > info[first + P_MAX_ABS_THETA]:
         info[first + P_MAX_ABS_THETA] = abs(q[2])
         info[first + P_T_MAX] = t
+    base = abs(base_slip(q, parameters))
+    if base > info[first + P_PEAK_BASE_SLIP]:
+        info[first + P_PEAK_BASE_SLIP] = base
+        info[first + P_T_PEAK_BASE_SLIP] = t
 
 
 @njit(cache=True, inline="always", error_model=ERROR_MODEL)

@@ -215,3 +215,27 @@ def test_the_chatter_case_runs_to_its_end():
     result = simulate_planar(Block(30 * INCH, 6 * INCH), motion, cor=1.0,
                              friction=Friction(0.2))
     assert result.status == "completed" and result.t[-1] == motion.t[-1]
+
+
+def test_the_base_slip_is_the_slide_alone():
+    # a block that rocks on corners that never slip (mu 10, free rocking): the pivot stays
+    # where it stood, so the base slid 0 (to rounding); the midpoint, turning about the
+    # pivot b away, moved b (1 - cos(theta)), largest at the release angle. A block that
+    # cannot rock (B/H = 4) only slides: both are the sliding model's slip
+    block = Block.from_inches(30, 6)
+    rocking = simulate_planar(block, None, cor=0.9, friction=Friction(10.0), theta0=0.15,
+                              duration=3.0)
+    theta = 0.15
+    assert rocking.peak_slip == pytest.approx(block.width / 2 * (1 - math.cos(theta)),
+                                              rel=1e-12)
+    assert rocking.peak_base_slip < 1e-15
+    from shaketable.ground.generators import harmonic
+    from shaketable.solvers.sliding import slide
+
+    motion = harmonic(2.0, horizontal=0.5 * 9.80665, duration=2.0, dt=0.01)
+    sliding = simulate_planar(Block(height=0.5, width=2.0), motion, cor=0.9,
+                              friction=Friction(0.3))
+    expected = slide(motion, Friction(0.3)).peak_slip
+    assert sliding.peak_base_slip == pytest.approx(expected, rel=1e-9)
+    assert sliding.peak_slip == pytest.approx(expected, rel=1e-9)
+    assert "no bouncing" in rocking.summary()["model limits"]
