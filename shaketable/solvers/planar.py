@@ -300,7 +300,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     rejected = 0
     evaluations = 0
     _track(t, q, info, parameters)
-    slip, _ = measures(q, parameters)
+    slip, _, _ = measures(q, parameters)
     keep_rows = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
     filled = 1
     if keep_rows:
@@ -790,11 +790,11 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
             break
         _track(t, q, info, parameters)
         if keep_rows:
-            slip, _ = measures(q, parameters)
+            slip, _, _ = measures(q, parameters)
             store(out, k + 1, q, slip, mode)
         filled = k + 2
 
-    slip, _ = measures(q, parameters)
+    slip, _, _ = measures(q, parameters)
     final[OUT_X] = q[0]
     final[OUT_Y] = q[1]
     final[OUT_THETA] = q[2]

@@ -61,7 +61,10 @@ def q_from_z(z, side, q, parameters):
 
 @njit(**HELPER)
 def measures(q, parameters):
-    """Slip of the base midpoint [m] and the largest corner excursion |X - X_rest| [m]."""
+    """Slip of the base midpoint [m], the largest corner excursion |X - X_rest| [m] and
+    the base's slide [m]: the displacement of the bottom corner the block stands or turns
+    on (on theta's side; x when flat), x + h sin(theta) + sign(theta) b (1 - cos(theta)),
+    0 for a block that rocks without sliding."""
     b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     cosine = math.cos(q[2])
@@ -73,7 +76,8 @@ def measures(q, parameters):
             excursion = abs(q[0] + u * cosine - w * sine - u)
             if excursion > largest:
                 largest = excursion
-    return slip, largest
+    base = slip if q[2] == 0.0 else slip + math.copysign(b * (1.0 - cosine), q[2])
+    return slip, largest, base
 
 
 @njit(**HELPER)

@@ -39,24 +39,16 @@ N_PEAKS = 5
 P_PEAK_BASE_SLIP, P_T_PEAK_BASE_SLIP = 23, 24
 
 
-@njit(**HELPER)
-def base_slip(q, parameters):
-    """How far the base has slid on the table [m]: the displacement of the bottom corner
-    the block stands or turns on (the one on the side of theta; x when flat),
-    x + h sin(theta) + sign(theta) b (1 - cos(theta)). A block that rocks without sliding
-    keeps it at 0; the base midpoint's ``slip`` moves with the rotation."""
-    theta = q[2]
-    b = parameters[HALF_WIDTH]
-    lift = 0.0 if theta == 0.0 else math.copysign(b * (1.0 - math.cos(theta)), theta)
-    return q[0] + parameters[HALF_HEIGHT] * math.sin(theta) + lift
-
-
 # one compiled function (not inlined: a copy of it in each of its four callers cost more
 # to compile); the callers pass ``first`` as an int64 so that it is compiled once
 @njit(**HELPER)
 def track(t, q, info, first, parameters):
     """Update the peaks in ``info`` with the state q = (x, y, theta, x', y', theta') at t."""
-    slip, excursion = measures(q, parameters)
+    slip, excursion, base = measures(q, parameters)
+    base = abs(base)
+    if base > info[first + P_PEAK_BASE_SLIP]:
+        info[first + P_PEAK_BASE_SLIP] = base
+        info[first + P_T_PEAK_BASE_SLIP] = t
     if abs(slip) > info[first + P_PEAK_SLIP]:
         info[first + P_PEAK_SLIP] = abs(slip)
         info[first + P_T_PEAK_SLIP] = t
@@ -65,10 +57,6 @@ def track(t, q, info, first, parameters):
     if abs(q[2]) > info[first + P_MAX_ABS_THETA]:
         info[first + P_MAX_ABS_THETA] = abs(q[2])
         info[first + P_T_MAX] = t
-    base = abs(base_slip(q, parameters))
-    if base > info[first + P_PEAK_BASE_SLIP]:
-        info[first + P_PEAK_BASE_SLIP] = base
-        info[first + P_T_PEAK_BASE_SLIP] = t
 
 
 @njit(cache=True, inline="always", error_model=ERROR_MODEL)
@@ -77,7 +65,7 @@ def record(ev, info, slot, t, kind, before, after, omega, q, parameters):
     q [m]) into row ``info[slot]`` of ``ev`` if it has room; count it in ``info[slot]``."""
     index = int(info[slot])
     if index < ev.shape[0]:
-        slip, _ = measures(q, parameters)
+        slip, _, _ = measures(q, parameters)
         ev[index, 0] = t
         ev[index, 1] = kind
         ev[index, 2] = before
