@@ -229,7 +229,7 @@ KNIFE_EDGE_OFFSETS = (-1e-3, -1e-6, 1e-6, 1e-3, 5e-2)
 KNIFE_EDGE_MARGIN = 0.05
 
 
-def knife_edge(block: Block, motion: Motion | None = None, *, cor: float | str = 0.95,
+def knife_edge(block: Block, motion: Motion | None = None, *, cor: float = 0.95,
                offsets: Sequence[float] = KNIFE_EDGE_OFFSETS) -> pd.DataFrame:
     """The verdict of the planar block at mu_s = mu_d = (1 - delta) B/H for each delta.
 
@@ -238,7 +238,7 @@ def knife_edge(block: Block, motion: Motion | None = None, *, cor: float | str =
     block : Block
     motion : Motion, optional
         Default: Pacoima Dam S16E with its vertical.
-    cor : float or "housner"
+    cor : float
         Coefficient of restitution [-].
     offsets : sequence of float
         Relative offsets delta [-]: positive below B/H.
