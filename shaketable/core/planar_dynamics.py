@@ -32,16 +32,21 @@ corner, sticking), SLIDE_ROCK 3 (one corner, slipping), FLIGHT 4 (no contact).
   samples); their conditions are :func:`rest_margins` and :func:`start_mode`.
 
 Impacts (:func:`impact`): a plastic normal impulse at the striking corner k plus the
-couple C = (rho - 1) H_k with H_k the angular momentum about k, rho = cor / c_H (c_H =
-1 - 1.5 sin^2(alpha), Housner's ratio) for a numeric COR and rho = 1 for Housner's law;
-sticking if the tangential impulse needed is within mu_s times the normal one, else
-slipping with mu_d toward sigma = -sign(sticking P_x). Decision beyond the model text:
-when the corner's velocity after that slipping impact does not have the sign sigma, the
-other direction is tried, and if neither is consistent the impact sticks (a plastic
-normal impact then has no Coulomb solution). Kinetic energy never increases: if it
-would, rho is moved toward 1 (from either side) to where KE+ = KE-, the branch decided
-again there (at most 8 times; counted as capped). A slipping branch is not checked for P_y > 0 (the energy cap
-is the guard), as in the reference solver.
+couple C = (rho - 1) H_k' with H_k' the angular momentum about k in the frame that moves
+with the corner's incoming slip, (Ic + r_y^2) theta' - r_x y' (no dependence on a uniform
+sliding speed; the table frame's H_k when the corner arrives without slipping, as in every
+rock-to-rock impact), rho = cor / c_H (c_H = 1 - 1.5 sin^2(alpha), Housner's ratio) for a
+numeric COR and rho = 1 for Housner's law (the plastic Newton law); sticking if the
+tangential impulse needed is within mu_s times the normal one, else slipping with mu_d
+toward sigma = -sign(sticking P_x). Decision beyond the model text: when the corner's
+velocity after that slipping impact does not have the sign sigma, the other direction is
+tried, and if neither is consistent the impact sticks (a plastic normal impact then has
+no Coulomb solution). The normal impulse never pulls and the kinetic energy never grows
+(in the table's frame nor in the slip frame): where the law at rho would, rho is moved
+toward 1 (from either side) to the nearest root, the branch decided again there (at
+most 8 times; counted as capped unless the gain was of rounding size). At theta = 0 with
+both corners on the table, :func:`two_corner_impact` solves the plastic two-corner
+problem (docs/planar.md, "Both corners on the table").
 
 Every function here is compiled with numba and works on floats and the parameter
 array of :func:`shaketable.core.dynamics.block_parameters` (rods are refused upstream).

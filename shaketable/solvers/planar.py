@@ -165,7 +165,8 @@ _ONE, _SIX, _STATE, _EVENTS = np.int64(1), np.int64(6), np.int64(N_STATE), np.in
 MAX_TRANSITIONS_AT_ONE_TIME = 200
 
 #: Impacts at one instant (each turning the block onto the other corner) before the run
-#: stops with status "inconsistent".
+#: stops with status "inconsistent": a safeguard (the two-corner problem of
+#: :func:`~shaketable.solvers.planar_modes.strike` ends every such sequence at once).
 MAX_IMMEDIATE_IMPACTS = 1000
 
 #: Transitions allowed in one sample interval before the run stops with status "chatter"
@@ -668,9 +669,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             _record(ev, info, t, EV_REVERSAL, _SLIDE_ROCK, _SLIDE_ROCK, z[1], q,
                                     parameters)
                     else:
-                        # ---- impact of the other corner at theta = 0; a plastic impact
-                        # there can leave the block turning onto the corner that struck
-                        # first (side * theta'+ < 0): it strikes again at once (bounded)
+                        # ---- impact of the other corner at theta = 0 (strike resolves a
+                        # block turned back onto the corner on the table with the
+                        # two-corner problem; the loop bound is a safeguard)
                         z[0] = 0.0
                         q_from_z(z, side, q, parameters)
                         step_size = min(step_size, max(t - last_impact, 1e-3 * step_size))

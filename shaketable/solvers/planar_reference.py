@@ -47,16 +47,17 @@ Choices where the spec is silent (documented here, reported to the lead)
   this is the spec's "slip reverses" when F_rock opposes the old slip, and
   keeps the slip direction in the marginal case mu_d = mu_s just after a slip
   started (a sign the spec does not fix).
-* Impacts (``planar_contact.impact_map``): a slipping impact slips the way
-  its corner goes (sigma = -sign of the sticking P_x, else the other sigma,
-  else it sticks). The energy cap applies to rho < 1 as well: with a slipping
-  corner the couple C = (rho - 1) H_k can add energy for rho < 1 too (e.g.
-  cor = 0, mu = 0, theta = 0, x' = 1 m/s, theta' = -1 rad/s on a square block),
-  so rho is moved toward 1 until KE+ = KE- whatever side of 1 it is on, and
-  the branch is decided again at the new rho.
-* A plastic impact at theta = 0 that leaves the block turning onto the corner
-  that struck before (side * theta'+ < 0; both corners are on the table) is
-  followed, at the same instant, by that corner's impact.
+* Impacts (``planar_contact.impact_map``): the couple C = (rho - 1) H_k' with
+  H_k' the angular momentum about the striking corner in the frame of its
+  incoming slip (``planar_contact.frame_momentum``); a slipping impact slips
+  the way its corner goes (sigma = -sign of the sticking P_x, else the other
+  sigma, else it sticks). The cap applies on both sides of rho = 1: rho is moved
+  toward 1 until the normal impulse pushes and the kinetic energy grows in
+  neither the table's frame nor the slip frame, and the branch is decided
+  again at the new rho.
+* An impact at theta = 0 that leaves the block turning onto the corner that
+  was on the table (side * theta'+ < 0), and a flat landing, are resolved by
+  the plastic two-corner problem (``planar_contact.two_corner_impact``).
 * The cascade sum (``cascade_rest_time``) is applied after every impact at
   theta = 0: after a sticking impact that leaves the block in ROCK with the
   numeric cor (c_H for ``"housner"``), exactly as the rocking engine; after a
@@ -673,8 +674,8 @@ class _Run:
             self.set_mode(t, FLIGHT, kind="lift-off")
         elif terminal == "impact":
             self.impact(t, -self.side)
-            # a plastic impact at theta = 0 can leave the block turning onto the corner that
-            # struck first (side * theta'+ < 0): that corner strikes again at once
+            # impact() resolves a block turned back onto the corner on the table with the
+            # two-corner problem; the bound is a safeguard
             for _ in range(MAX_IMMEDIATE_IMPACTS):
                 if not (self.mode in (ROCK, SLIDE_ROCK) and self.state[2] == 0.0
                         and self.side * self.state[5] < 0.0):
