@@ -10,6 +10,8 @@ to visit the modes named in its id (checked in the test, on the reference's run)
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -21,6 +23,7 @@ from shaketable.core.sliding_result import Friction
 from shaketable.ground.generators import half_sine_pulse, harmonic
 from shaketable.solvers.planar_reference import simulate_reference
 from shaketable.solvers.planar_run import simulate_planar
+from tests.solvers.test_planar_flat_landing import _landing_motion
 
 TOLERANCE = 1e-8
 
@@ -159,6 +162,17 @@ CASES.update({
             Friction(0.7803828012931048, 0.7803828012931048),
             (5.691309673482435, 3.70154241634365), (14.217035816323746, 3.448487335811363),
             1.7758820747473298)),
+    # a squat block (B/H 1.2, mu 0.3 < B/H) released on a corner: its slipping impacts at
+    # theta = 0 turn it back onto the corner on the table, resolved by the two-corner
+    # problem (it used to strike the two corners in turn until status 'inconsistent')
+    "squat: turned back onto the other corner": dict(
+        block=Block(1.0, 1.2), cor=1.0, friction=Friction(0.3), motion=None,
+        extra=dict(theta0=0.3 * math.atan(1.2), duration=3.0), modes={REST, SLIDE_ROCK}),
+    # a flat landing with mu > B/H and |x'| > (B/H)|y'|: the block tips onto its leading
+    # corner (docs/planar.md, "Both corners on the table")
+    "flat landing that tips": dict(
+        block=Block(1.0, 0.5), cor=0.8, friction=Friction(0.8), motion=_landing_motion(0.8, 0.03),
+        modes={REST, ROCK, FLIGHT}),
 })
 
 #: Disagreements reported to branch planar (DISAGREEMENTS.md) and not yet resolved:
