@@ -32,16 +32,21 @@ corner, sticking), SLIDE_ROCK 3 (one corner, slipping), FLIGHT 4 (no contact).
   samples); their conditions are :func:`rest_margins` and :func:`start_mode`.
 
 Impacts (:func:`impact`): a plastic normal impulse at the striking corner k plus the
-couple C = (rho - 1) H_k with H_k the angular momentum about k, rho = cor / c_H (c_H =
-1 - 1.5 sin^2(alpha), Housner's ratio) for a numeric COR and rho = 1 for Housner's law;
-sticking if the tangential impulse needed is within mu_s times the normal one, else
-slipping with mu_d toward sigma = -sign(sticking P_x). Decision beyond the model text:
-when the corner's velocity after that slipping impact does not have the sign sigma, the
-other direction is tried, and if neither is consistent the impact sticks (a plastic
-normal impact then has no Coulomb solution). Kinetic energy never increases: if it
-would, rho is moved toward 1 (from either side) to where KE+ = KE-, the branch decided
-again there (at most 8 times; counted as capped). A slipping branch is not checked for P_y > 0 (the energy cap
-is the guard), as in the reference solver.
+couple C = (rho - 1) H_k' with H_k' the angular momentum about k in the frame that moves
+with the corner's incoming slip, (Ic + r_y^2) theta' - r_x y' (no dependence on a uniform
+sliding speed; the table frame's H_k when the corner arrives without slipping, as in every
+rock-to-rock impact), rho = cor / c_H (c_H = 1 - 1.5 sin^2(alpha), Housner's ratio) for a
+numeric COR and rho = 1 for Housner's law (the plastic Newton law); sticking if the
+tangential impulse needed is within mu_s times the normal one, else slipping with mu_d
+toward sigma = -sign(sticking P_x). Decision beyond the model text: when the corner's
+velocity after that slipping impact does not have the sign sigma, the other direction is
+tried, and if neither is consistent the impact sticks (a plastic normal impact then has
+no Coulomb solution). The normal impulse never pulls and the kinetic energy never grows
+(in the table's frame nor in the slip frame): where the law at rho would, rho is moved
+toward 1 (from either side) to the nearest root, the branch decided again there (at
+most 8 times; counted as capped unless the gain was of rounding size). At theta = 0 with
+both corners on the table, :func:`two_corner_impact` solves the plastic two-corner
+problem (docs/planar.md, "Both corners on the table").
 
 Every function here is compiled with numba and works on floats and the parameter
 array of :func:`shaketable.core.dynamics.block_parameters` (rods are refused upstream).
@@ -73,6 +78,11 @@ INCONSISTENT = -1
 
 #: Outcome of :func:`impact` / :func:`slide_rock_accelerations` with D <= 0 (Painleve).
 PAINLEVE = -2
+
+#: Relative kinetic-energy gain of an impact below which the energy cap is rounding (a
+#: COR 1 impact conserves the energy to its last ulps) and the impact is not counted as
+#: capped [-].
+ENERGY_ROUNDING = 1e-12
 
 #: numba options of the compiled functions that only compiled code calls (here and in the
 #: planar engine's modules): no Python entry point (nor C callback) is built for them,
@@ -194,19 +204,29 @@ def kinetic_energy(x_dot, y_dot, omega, parameters):
 @njit(**HELPER)
 def _impact_post(x_dot, y_dot, omega, r_x, r_y, rho, force, mu_s, mu_d, parameters):
     """Post-impact state for a given rho: ``force`` 0 decides, 1 forces sticking,
-    +-2 forces slipping with sigma = +-1. Returns (x', y', omega, kind, sigma) with kind
-    ROCK (sticking), SLIDE_ROCK (slipping) or PAINLEVE."""
+    +-2 forces slipping with sigma = +-1. Returns (x', y', omega, kind, sigma, P_y) with
+    kind ROCK (sticking), SLIDE_ROCK (slipping) or PAINLEVE, P_y the normal impulse [m/s].
+
+    The couple is C = (rho - 1) H_k', H_k' the angular momentum about the striking corner
+    in the frame that moves with the corner's incoming slip u = x' - r_y omega:
+    H_k' = H_k - r_y u = (Ic + r_y^2) omega - r_x y' (H_k the table frame's).
+    """
     inertia = centroidal_inertia(parameters)
     i0 = parameters[INERTIA]
     momentum = inertia * omega - r_x * y_dot + r_y * x_dot
-    couple = (rho - 1.0) * momentum
-    omega_stick = rho * momentum / i0
+    slip = x_dot - r_y * omega
+    # a corner that does not slip in (every sticking rock-to-rock impact): the table
+    # frame's H_k, evaluated as before
+    frame_momentum = momentum if slip == 0.0 else momentum - r_y * slip
+    couple = (rho - 1.0) * frame_momentum
+    # I0 omega+ = H_k+ = H_k + C about the corner that sticks
+    omega_stick = rho * momentum / i0 if slip == 0.0 else (momentum + couple) / i0
     xs = omega_stick * r_y
     ys = -omega_stick * r_x
     px = xs - x_dot
     py = ys - y_dot
     if force == 1.0 or (force == 0.0 and py > 0.0 and abs(px) <= mu_s * py):
-        return xs, ys, omega_stick, ROCK, 0.0
+        return xs, ys, omega_stick, ROCK, 0.0, py
     if force != 0.0:
         return _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple, 0.5 * force, mu_d,
                                 parameters)
@@ -215,30 +235,47 @@ def _impact_post(x_dot, y_dot, omega, r_x, r_y, rho, force, mu_s, mu_d, paramete
     # is consistent (no Coulomb solution with a plastic normal impact), it sticks
     sigma = 1.0 if px < 0.0 else -1.0
     for trial in (sigma, -sigma):
-        xa, ya, wa, kind, _ = _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple, trial,
-                                               mu_d, parameters)
+        xa, ya, wa, kind, _, pa = _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple,
+                                                   trial, mu_d, parameters)
         if kind == PAINLEVE:
-            return xa, ya, wa, kind, trial
+            return xa, ya, wa, kind, trial, pa
         if trial * (xa - wa * r_y) >= 0.0:
-            return xa, ya, wa, SLIDE_ROCK, trial
-    return xs, ys, omega_stick, ROCK, 0.0
+            return xa, ya, wa, SLIDE_ROCK, trial, pa
+    return xs, ys, omega_stick, ROCK, 0.0, py
 
 
 @njit(**HELPER)
 def _slipping_impact(x_dot, y_dot, omega, r_x, r_y, couple, sigma, mu_d, parameters):
     """Post-impact state of a corner slipping toward ``sigma``: P_x = -sigma mu_d P_y,
-    the couple, Y_k'+ = 0."""
+    the couple, Y_k'+ = 0. Returns (x', y', omega, kind, sigma, P_y)."""
     inertia = centroidal_inertia(parameters)
     c = r_x + sigma * mu_d * r_y
     d = inertia + r_x * c
     if not d > 0.0:
-        return x_dot, y_dot, omega, PAINLEVE, sigma
+        return x_dot, y_dot, omega, PAINLEVE, sigma, 0.0
     corner_normal = y_dot + r_x * omega
     py = -(corner_normal + r_x * couple / inertia) * inertia / d
     x_new = x_dot - sigma * mu_d * py
     y_new = y_dot + py
     omega_new = omega + (couple + py * c) / inertia
-    return x_new, y_new, omega_new, SLIDE_ROCK, sigma
+    return x_new, y_new, omega_new, SLIDE_ROCK, sigma, py
+
+
+@njit(**HELPER)
+def _energy_fraction(x1, y1, w1, xa, ya, wa, shift, before, inertia_root):
+    """The fraction f in [0, 1] of the way from the post state at rho = 1 (x1, y1, w1) to
+    the one at rho_eff (xa, ya, wa) where the kinetic energy, in the frame moving at
+    ``shift`` along x, reaches ``before`` (1 when it does not; 0 when even rho = 1 gains)."""
+    b0, b1, b2 = x1 - shift, y1, inertia_root * w1
+    d0, d1, d2 = xa - x1, ya - y1, inertia_root * (wa - w1)
+    qa = d0 * d0 + d1 * d1 + d2 * d2
+    qb = 2.0 * (b0 * d0 + b1 * d1 + b2 * d2)
+    qc = b0 * b0 + b1 * b1 + b2 * b2 - 2.0 * before
+    fraction = 0.0
+    if qa > 0.0 and qc <= 0.0:
+        root = (-qb + math.sqrt(max(qb * qb - 4.0 * qa * qc, 0.0))) / (2.0 * qa)
+        fraction = min(max(root, 0.0), 1.0)
+    return fraction
 
 
 @njit(cache=True, error_model=ERROR_MODEL)
@@ -267,39 +304,44 @@ def impact(theta, x_dot, y_dot, omega, side, rho, mu_s, mu_d, parameters):
     """
     r_x, r_y = corner_vector(theta, side, parameters)
     before = kinetic_energy(x_dot, y_dot, omega, parameters)
-    xa, ya, wa, kind, sigma = _impact_post(x_dot, y_dot, omega, r_x, r_y, rho, 0.0, mu_s,
-                                           mu_d, parameters)
+    xa, ya, wa, kind, sigma, pa = _impact_post(x_dot, y_dot, omega, r_x, r_y, rho, 0.0,
+                                               mu_s, mu_d, parameters)
     if kind == PAINLEVE:
         return xa, ya, wa, PAINLEVE, sigma, 0.0, 0.0
     after = kinetic_energy(xa, ya, wa, parameters)
+    # the slip frame (moving with the corner's incoming slip u): no gain there either, so
+    # that the capped law, like the couple, does not depend on a uniform sliding speed
+    u = x_dot - r_y * omega
+    before_u = kinetic_energy(x_dot - u, y_dot, omega, parameters)
+    after_u = kinetic_energy(xa - u, ya, wa, parameters)
     capped = 0.0
     rho_eff = rho
     inertia_root = math.sqrt(centroidal_inertia(parameters))
     for _ in range(8):
-        if rho_eff == 1.0 or after <= before:
+        if rho_eff == 1.0 or (after <= before and after_u <= before_u and pa >= 0.0):
             break
+        if pa < 0.0 or after - before > ENERGY_ROUNDING * before \
+                or after_u - before_u > ENERGY_ROUNDING * before_u:
+            capped = 1.0   # not a gain of rounding size (a COR 1 impact's last ulps)
         # the post state is affine in rho along one branch: move rho toward 1 (from
         # either side: rho > 1 when cor > c_H, rho < 1 when the couple with a slipping
-        # corner adds energy) to where KE+ = KE-, and decide the branch again there
+        # corner adds energy) to where KE+ = KE- (in both frames) and the normal impulse
+        # does not pull (P_y >= 0; at rho = 1 the plastic impulse of a striking corner
+        # pushes), and decide the branch again there
         force = 1.0 if kind == ROCK else 2.0 * sigma
-        x1, y1, w1, _, _ = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, force, mu_s,
-                                        mu_d, parameters)
-        b0, b1, b2 = x1, y1, inertia_root * w1
-        d0, d1, d2 = xa - x1, ya - y1, inertia_root * (wa - w1)
-        qa = d0 * d0 + d1 * d1 + d2 * d2
-        qb = 2.0 * (b0 * d0 + b1 * d1 + b2 * d2)
-        qc = b0 * b0 + b1 * b1 + b2 * b2 - 2.0 * before
-        fraction = 0.0
-        if qa > 0.0 and qc <= 0.0:
-            root = (-qb + math.sqrt(max(qb * qb - 4.0 * qa * qc, 0.0))) / (2.0 * qa)
-            fraction = min(max(root, 0.0), 1.0)
+        x1, y1, w1, _, _, p1 = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, force,
+                                            mu_s, mu_d, parameters)
+        fraction = min(_energy_fraction(x1, y1, w1, xa, ya, wa, 0.0, before, inertia_root),
+                       _energy_fraction(x1, y1, w1, xa, ya, wa, u, before_u, inertia_root))
+        if pa < 0.0:
+            fraction = min(fraction, max(p1, 0.0) / (p1 - pa))
         rho_eff = 1.0 + fraction * (rho_eff - 1.0)
-        xa, ya, wa, kind, sigma = _impact_post(x_dot, y_dot, omega, r_x, r_y, rho_eff, 0.0,
-                                               mu_s, mu_d, parameters)
+        xa, ya, wa, kind, sigma, pa = _impact_post(x_dot, y_dot, omega, r_x, r_y, rho_eff,
+                                                   0.0, mu_s, mu_d, parameters)
         if kind == PAINLEVE:
             return xa, ya, wa, PAINLEVE, sigma, 0.0, 1.0
         after = kinetic_energy(xa, ya, wa, parameters)
-        capped = 1.0
+        after_u = kinetic_energy(xa - u, ya, wa, parameters)
     return xa, ya, wa, kind, sigma, before - after, capped
 
 
@@ -312,6 +354,56 @@ def flat_landing(x_dot, y_dot, mu_s, mu_d):
     if abs(x_dot) <= mu_s * abs(y_dot):
         return 0.0, REST
     return x_dot - math.copysign(mu_d * abs(y_dot), x_dot), SLIDE
+
+
+@njit(**HELPER)
+def two_corner_impact(x_dot, y_dot, omega, mu_s, mu_d, parameters):
+    """Plastic impact of the block at theta = 0 with both bottom corners on the table.
+
+    The two-corner contact problem at the impulse level (plastic Newton law, the limit
+    of Moreau-Jean time-stepping; Coulomb friction): normal impulses P_s >= 0, gap rates
+    Y_s'+ >= 0, P_s Y_s'+ = 0 (s = +-1), the tangential impulse F within mu_s sum(P) if
+    the base's slip x' + h omega stops, else -sigma mu_d sum(P). At theta = 0 both
+    corners slip alike, so only F's sum matters. Its solutions are enumerated: both
+    corners push (the base lands flat: y'+ = omega+ = 0, P_+ - P_- = (Ic omega + h F) / b
+    with both P_s >= 0, i.e. |Ic omega + h F| <= b sum(P)), else one corner s pushes
+    (:func:`impact` at s with rho = 1: Housner's plastic impact) and the other rises
+    (s omega+ >= 0). The flat solution is taken first (a landing with mu_d <= b/h is the
+    sliding model's); none consistent leaves the flat solution with F at the limit.
+
+    Returns
+    -------
+    tuple
+        (x', y', omega after, mode after: REST, SLIDE, ROCK, SLIDE_ROCK or PAINLEVE,
+        side s of the corner that pushes alone (0.0 when flat), slip direction sigma).
+    """
+    b = parameters[HALF_WIDTH]
+    h = parameters[HALF_HEIGHT]
+    inertia = centroidal_inertia(parameters)
+    total = -y_dot
+    if total >= 0.0:
+        spin = inertia * omega
+        if abs(x_dot) <= mu_s * total and abs(spin - h * x_dot) <= b * total:
+            return 0.0, 0.0, 0.0, REST, 0.0, 0.0
+        direction = 1.0 if x_dot > 0.0 else -1.0
+        friction = -direction * mu_d * total
+        if abs(x_dot) > mu_d * total and abs(spin + h * friction) <= b * total:
+            return x_dot - math.copysign(mu_d * total, x_dot), 0.0, 0.0, SLIDE, 0.0, \
+                direction
+    for side in (1.0, -1.0):
+        if y_dot - side * b * omega >= 0.0:
+            continue   # this corner does not move into the table
+        r_x, r_y = corner_vector(0.0, side, parameters)
+        xa, ya, wa, kind, sigma, pa = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, 0.0,
+                                                   mu_s, mu_d, parameters)
+        if kind == PAINLEVE:
+            return xa, ya, wa, PAINLEVE, side, sigma
+        if pa >= 0.0 and side * wa >= 0.0:
+            return xa, ya, wa, kind, side, sigma
+    direction = 1.0 if x_dot > 0.0 else -1.0
+    slipped = abs(x_dot) > mu_s * max(total, 0.0)
+    x_new = x_dot - math.copysign(mu_d * max(total, 0.0), x_dot) if slipped else 0.0
+    return x_new, 0.0, 0.0, SLIDE if slipped else REST, 0.0, direction if slipped else 0.0
 
 
 @njit(**HELPER)

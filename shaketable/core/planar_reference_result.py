@@ -72,6 +72,9 @@ class PlanarReferenceResult:
         Impacts whose rho was lowered so as not to add energy.
     time_in_mode : dict
         Seconds spent in each mode, by name.
+    peak_base_slip, t_peak_base_slip : float
+        How far the base slid [m] (the corner the block stands or turns on; x when flat)
+        and when [s], at the located events and the steps' ends.
     status : str
         One of :data:`STATUSES`.
     message : str
@@ -113,6 +116,8 @@ class PlanarReferenceResult:
     status: str
     message: str = ""
     time_in_mode: dict = field(default_factory=dict)
+    peak_base_slip: float = math.nan
+    t_peak_base_slip: float = math.nan
 
     @property
     def overturned(self) -> bool:

@@ -28,11 +28,24 @@ STATUS_MESSAGES = {
     "painleve": ("Painleve's paradox: slipping on one corner, the effective mass "
                  "Ic + r_x (r_x + sigma mu_d r_y) is not positive (mu_d too large for the "
                  "block's h/b); the rigid-body Coulomb model has no solution here"),
-    "inconsistent": "no contact mode is consistent with the start rules (please report)",
+    "inconsistent": ("a flat block must slide with mu_d > B/H but cannot tip: no mode of this "
+                     "model holds it (docs/planar.md, 'Where the model stops')"),
     "chatter": ("more than 200 mode changes at one instant, or 100 000 in one sample "
-                "interval (please report the case)"),
-    "stalled": "the step size fell below 1e-14 s (please report the case)",
+                "interval: a sequence of events the model cannot sum (docs/planar.md, "
+                "'Where the model stops')"),
+    "stalled": ("the step size fell below 1e-14 s: the motion is not smooth enough here for "
+                "the integrator (docs/planar.md, 'Where the model stops')"),
 }
+
+
+#: Where the planar model stops being valid (docs/planar.md, "Where the model stops"),
+#: written with every planar summary.
+MODEL_LIMITS = (
+    "planar: no motion out of the plane, no twist; rigid block on a rigid table; constant "
+    "Coulomb friction (mu_s, mu_d); no bouncing: an impact is plastic at the striking corner "
+    "(the COR enters as a couple about it), so a squat block that bounces is not modelled; "
+    "flat landings and impacts on both corners are plastic; near mu = B/H the verdict is a "
+    "knife-edge (stay below 0.99 B/H for a robust 'slides'); no prestress rods")
 
 
 @dataclass(frozen=True)
@@ -66,7 +79,11 @@ class PlanarResult:
     modes_visited : tuple of str
         Modes the block was in at any time.
     peak_slip, t_peak_slip, residual_slip : float
-        Largest |slip| [m], when [s], slip at the end [m].
+        Largest |slip| [m], when [s], slip at the end [m]: the base midpoint's
+        displacement, which the rotation moves too (h sin(theta) - b (1 - cos(theta)) for
+        a block rocking on a corner that does not slide; exactly b for a block that
+        overturned without sliding). Kept with this meaning; ``peak_base_slip`` is the
+        slide alone.
     peak_excursion : float
         Largest |X - X_rest| over time and over the four corners [m]: the clearance the
         block needs from its neighbours.
@@ -89,6 +106,11 @@ class PlanarResult:
         A key of :data:`STATUS_MESSAGES`.
     statistics : dict
         Solver work: steps, rejected steps, right-hand-side evaluations.
+    peak_base_slip, t_peak_base_slip : float
+        How far the base slid on the table [m] and when [s]: the largest displacement of
+        the bottom corner the block stands or turns on (x when flat), 0 for a block that
+        rocks or overturns without sliding. Exact at every event and sample (a contact
+        corner's slip turns where its slip speed is 0, an event); in a flight, at its ends.
     """
 
     block: Block
@@ -130,6 +152,8 @@ class PlanarResult:
     energy_end: float
     status: str
     statistics: dict = field(default_factory=dict)
+    peak_base_slip: float = math.nan
+    t_peak_base_slip: float = math.nan
 
     @property
     def overturned(self) -> bool:
@@ -205,6 +229,7 @@ class PlanarResult:
 #: corner excursion, start of rocking, event counts or solver statistics.
 _SUMMARY_ROWS = (
     ("peak slip [m]", "peak_slip"), ("t_peak_slip [s]", "t_peak_slip"),
+    ("peak base slip [m]", "peak_base_slip"), ("t_peak_base_slip [s]", "t_peak_base_slip"),
     ("residual slip [m]", "residual_slip"), ("peak corner excursion [m]", "peak_excursion"),
     ("t_start [s]", "t_start"), ("t_unstable [s]", "t_unstable"),
     ("unstable_direction", "unstable_direction"), ("t_overturn [s]", "t_overturn"),
@@ -247,6 +272,7 @@ def planar_summary(result, model: str | None = None) -> dict:
         "status": result.status, "verdict": result.verdict(),
         "overturned": result.overturned, "max_theta_ratio [-]": result.max_theta_ratio,
         "max_abs_theta [rad]": result.max_abs_theta, "t_max [s]": result.t_max,
+        "model limits": MODEL_LIMITS,
     })
     data.update({key: getattr(result, name) for key, name in _SUMMARY_ROWS
                  if hasattr(result, name)})

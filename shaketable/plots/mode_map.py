@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.plots.base import pyplot
-from shaketable.studies.mode_map import VERDICT_ORDER
+from shaketable.studies.mode_map import KNIFE_EDGE_MARGIN, VERDICT_ORDER
 
 #: One colour per verdict, calm to violent.
 VERDICT_COLOURS = {"stayed": "#f0f0f0", "slid": "#9ecae1", "rocked": "#fdd49e",
@@ -13,7 +13,8 @@ VERDICT_COLOURS = {"stayed": "#f0f0f0", "slid": "#9ecae1", "rocked": "#fdd49e",
 
 
 def mode_map_figure(mode_map, fig=None, block=None):
-    """One panel per PGA level: the verdict of each (B/H, mu) cell, the rule mu = B/H.
+    """One panel per PGA level: the verdict of each (B/H, mu) cell, the rule mu = B/H (a
+    knife-edge: drawn solid) and the margin below it that a friction known to +-5 % needs.
 
     Cells where the planar block overturns and the rocking model (a base that cannot slide)
     does not, or the other way round, carry a cross.
@@ -53,7 +54,8 @@ def mode_map_figure(mode_map, fig=None, block=None):
         differ = cells[cells["overturned"] != cells["rocking model overturned"]]
         axis.plot(differ["B/H [-]"], differ["mu [-]"], "x", color="black", markersize=5)
         line = np.array([min(ratios[0], mus[0]), max(ratios[-1], mus[-1])])
-        axis.plot(line, line, "k--", linewidth=1.2)
+        axis.plot(line, line, color="black", linewidth=1.8)   # the knife-edge
+        axis.plot(line, (1.0 - KNIFE_EDGE_MARGIN) * line, ":", color="black", linewidth=1.2)
         axis.set_xlim(_edges(ratios)[[0, -1]])
         axis.set_ylim(_edges(mus)[[0, -1]])
         if block is not None:
@@ -65,7 +67,12 @@ def mode_map_figure(mode_map, fig=None, block=None):
     axes[0].set_ylabel("μs = μd")
     handles = [Patch(facecolor=VERDICT_COLOURS[name], edgecolor="grey", label=name)
                for name in VERDICT_ORDER if name in set(frame["verdict"])]
-    handles += [plt.Line2D([], [], color="k", linestyle="--", label="μs = B/H (Section 2.1)"),
+    handles += [plt.Line2D([], [], color="k", linewidth=1.8,
+                           label="μs = B/H (Section 2.1): a knife-edge,\nslides below, may "
+                                 "overturn above"),
+                plt.Line2D([], [], color="k", linestyle=":",
+                           label=f"μs = {1 - KNIFE_EDGE_MARGIN:g} B/H: slides for a μs\n"
+                                 f"known to ±{KNIFE_EDGE_MARGIN:.0%}"),
                 plt.Line2D([], [], color="k", marker="x", linestyle="",
                            label="overturn verdict differs\nfrom the rocking model")]
     if block is not None:

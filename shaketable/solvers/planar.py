@@ -68,8 +68,6 @@ from shaketable.core.planar_dynamics import (
     corner_height,
     corner_height_rate,
     corner_vector,
-    flat_landing,
-    impact,
     kinetic_energy,
     rock_forces,
     slide_rock_accelerations,
@@ -91,6 +89,7 @@ from shaketable.solvers.planar_modes import (  # N_OUT: the output layout, re-ex
     measures,
     q_from_z,
     store,
+    strike,
     z_from_q,
 )
 from shaketable.solvers.planar_steps import (
@@ -114,7 +113,13 @@ from shaketable.solvers.planar_steps import (
     terminal_event,
     zeros,
 )
-from shaketable.solvers.planar_track import contact_extrema, flight_extrema, record, track
+from shaketable.solvers.planar_track import (
+    P_PEAK_BASE_SLIP,
+    contact_extrema,
+    flight_extrema,
+    record,
+    track,
+)
 from shaketable.solvers.sliding import first_up_crossing, first_velocity_zero
 
 #: Why a run stopped (index = status code).
@@ -145,8 +150,9 @@ EVENT_COLUMNS = 6
  I_PEAK_SLIP, I_T_PEAK_SLIP, I_PEAK_EXCURSION, I_W_TABLE, I_W_FRICTION, I_IMPACT_LOSS,
  I_STEPS, I_REJECTED, I_EVALUATIONS, I_N_EVENTS, I_N_OUTPUT, I_TIME_REST, I_TIME_SLIDE,
  I_TIME_ROCK, I_TIME_SLIDE_ROCK, I_TIME_FLIGHT, I_VISITED, I_T_REST, I_E0, I_E_END,
- I_FAILED_MODE) = range(33)
-N_INFO = 33
+ I_FAILED_MODE, I_PEAK_BASE_SLIP, I_T_PEAK_BASE_SLIP) = range(35)
+N_INFO = 35
+assert I_PEAK_BASE_SLIP - I_MAX_ABS_THETA == P_PEAK_BASE_SLIP   # planar_track's layout
 
 #: Where planar_track's peaks start in info, as an int64 (track is compiled for the type
 #: its callers give ``first``: a literal would compile it once more).
@@ -159,7 +165,8 @@ _ONE, _SIX, _STATE, _EVENTS = np.int64(1), np.int64(6), np.int64(N_STATE), np.in
 MAX_TRANSITIONS_AT_ONE_TIME = 200
 
 #: Impacts at one instant (each turning the block onto the other corner) before the run
-#: stops with status "inconsistent".
+#: stops with status "inconsistent": a safeguard (the two-corner problem of
+#: :func:`~shaketable.solvers.planar_modes.strike` ends every such sequence at once).
 MAX_IMMEDIATE_IMPACTS = 1000
 
 #: Transitions allowed in one sample interval before the run stops with status "chatter"
@@ -294,7 +301,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     rejected = 0
     evaluations = 0
     _track(t, q, info, parameters)
-    slip, _ = measures(q, parameters)
+    slip, _, _ = measures(q, parameters)
     keep_rows = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
     filled = 1
     if keep_rows:
@@ -388,6 +395,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                         _record(ev, info, t, kind, _SLIDE, _SLIDE, 0.0, q, parameters)
                     else:
                         mode = new_mode
+                        # a slide an impact left (-inf: pending) ends the rocking's rest
+                        if mode == REST and info[I_T_REST] == -math.inf:
+                            info[I_T_REST] = t
                         side = new_side
                         sigma = new_sigma
                         if mode == ROCK or mode == SLIDE_ROCK:
@@ -499,35 +509,25 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 if terminal == 1:
                     transition = True
                     _, corner_side = lowest_corner(q[1], q[2], parameters)
-                    if q[2] == 0.0 and q[5] == 0.0:
-                        before = kinetic_energy(q[3], q[4], 0.0, parameters)
-                        x_dot, mode = flat_landing(q[3], q[4], mu_s, mu_d)
-                        flat(q, x_dot, parameters)
-                        loss += before - kinetic_energy(x_dot, 0.0, 0.0, parameters)
-                        sigma = 0.0 if x_dot == 0.0 else math.copysign(1.0, x_dot)
-                        _record(ev, info, t, EV_LANDING, _FLIGHT, mode, 0.0, q, parameters)
-                    else:
-                        side = corner_side
-                        # the corner on the table (the root is located to the ulp)
-                        r_x, r_y = corner_vector(q[2], side, parameters)
-                        q[1] = -r_y
-                        omega_before = q[5]
-                        x_dot, y_dot, omega, kind, new_sigma, lost, cap = impact(
-                            q[2], q[3], q[4], q[5], side, rho, mu_s, mu_d, parameters)
-                        n_impacts += 1
-                        capped += int(cap)
-                        if kind == PAINLEVE:
-                            status = STATUS_PAINLEVE
-                            info[I_FAILED_MODE] = FLIGHT
-                            break
-                        loss += lost
-                        q[3], q[4], q[5] = x_dot, y_dot, omega
-                        mode = int(kind)
-                        sigma = new_sigma
+                    landed_flat = q[2] == 0.0 and q[5] == 0.0
+                    omega_before = q[5]
+                    kind, new_side, sigma, lost, cap = strike(q, corner_side, rho, mu_s, mu_d,
+                                                              parameters)
+                    n_impacts += 0 if landed_flat else 1
+                    capped += int(cap)
+                    if kind == PAINLEVE:
+                        status = STATUS_PAINLEVE
+                        info[I_FAILED_MODE] = FLIGHT
+                        break
+                    loss += lost
+                    mode = int(kind)
+                    info[I_T_REST] = t if mode == REST else info[I_T_REST]
+                    if mode == ROCK or mode == SLIDE_ROCK:
+                        side = new_side
                         z_from_q(q, side, z, parameters)
                         entered = True
-                        _record(ev, info, t, EV_IMPACT, _FLIGHT, mode, omega_before, q,
-                                parameters)
+                    _record(ev, info, t, EV_LANDING if landed_flat else EV_IMPACT, _FLIGHT, mode,
+                            omega_before, q, parameters)
             else:
                 # ---------------------------------------------------------------- contact
                 if entered:
@@ -669,9 +669,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             _record(ev, info, t, EV_REVERSAL, _SLIDE_ROCK, _SLIDE_ROCK, z[1], q,
                                     parameters)
                     else:
-                        # ---- impact of the other corner at theta = 0; a plastic impact
-                        # there can leave the block turning onto the corner that struck
-                        # first (side * theta'+ < 0): it strikes again at once (bounded)
+                        # ---- impact of the other corner at theta = 0 (strike resolves a
+                        # block turned back onto the corner on the table with the
+                        # two-corner problem; the loop bound is a safeguard)
                         z[0] = 0.0
                         q_from_z(z, side, q, parameters)
                         step_size = min(step_size, max(t - last_impact, 1e-3 * step_size))
@@ -684,8 +684,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             before_mode = mode
                             omega_before = q[5]
                             striking = -side
-                            x_dot, y_dot, omega, kind, new_sigma, lost, cap = impact(
-                                0.0, q[3], q[4], q[5], striking, rho, mu_s, mu_d, parameters)
+                            kind, side, new_sigma, lost, cap = strike(q, striking, rho, mu_s,
+                                                                      mu_d, parameters)
                             n_impacts += 1
                             capped += int(cap)
                             if kind == PAINLEVE:
@@ -693,9 +693,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 info[I_FAILED_MODE] = mode
                                 break
                             loss += lost
-                            side = striking
-                            q[3], q[4], q[5] = x_dot, y_dot, omega
-                            sticking = kind == ROCK
+                            omega = q[5]
+                            sticking = kind == ROCK and side == striking
                             mode, sigma = enter_contact(int(kind), side, new_sigma, t, q, segment,
                                                  mu_s, mu_d, parameters)
                             if mode >= 0:
@@ -709,6 +708,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                             if mode == REST or mode == SLIDE:
                                 flat(q, q[3] if mode == SLIDE else 0.0, parameters)
                                 rest_until = t
+                                info[I_T_REST] = t if mode == REST else -math.inf
                             _record(ev, info, t, EV_IMPACT, before_mode, mode, omega_before, q,
                                     parameters)
                             if mode != ROCK and mode != SLIDE_ROCK:
@@ -734,8 +734,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                         0.0, side, u_now, v_now, 0.0, parameters)
                             remaining = cascade_rest_time(omega, deceleration, ratio)
                             if remaining == math.inf and ratio >= 1.0 and deceleration > 0.0 \
-                                    and abs(omega) <= velocity_floor:
-                                remaining = 0.0
+                                    and abs(omega) <= max(velocity_floor, 0.5 * deceleration
+                                                          * rest_tolerance):
+                                remaining = 0.0   # no decay, impacts < rest_tolerance apart
                             if omega == 0.0 or remaining <= rest_tolerance or (
                                     abs(omega) <= velocity_floor and remaining < math.inf):
                                 # settles flat: sliding at the corner's slip speed (REST if 0)
@@ -758,6 +759,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                                 else:
                                     mode = SLIDE
                                     sigma = 1.0 if base > 0.0 else -1.0
+                                    info[I_T_REST] = -math.inf
                                 _record(ev, info, t, EV_CASCADE, _SLIDE_ROCK if base != 0.0
                                         else _ROCK, mode, omega, q, parameters)
                                 break
@@ -789,11 +791,11 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
             break
         _track(t, q, info, parameters)
         if keep_rows:
-            slip, _ = measures(q, parameters)
+            slip, _, _ = measures(q, parameters)
             store(out, k + 1, q, slip, mode)
         filled = k + 2
 
-    slip, _ = measures(q, parameters)
+    slip, _, _ = measures(q, parameters)
     final[OUT_X] = q[0]
     final[OUT_Y] = q[1]
     final[OUT_THETA] = q[2]
@@ -816,3 +818,5 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     info[I_N_OUTPUT] = filled
     info[I_VISITED] = visited
     info[I_E_END] = kinetic_energy(q[3], q[4], q[5], parameters) + G * q[1]
+    if info[I_T_REST] == -math.inf:   # still sliding from an impact
+        info[I_T_REST] = math.nan

@@ -139,6 +139,7 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
             "max_theta_ratio [-]": (np.nan if overturned
                                     else row[planar.I_MAX_ABS_THETA] / blocks[b].alpha),
             "peak slip [m]": row[planar.I_PEAK_SLIP],
+            "peak base slip [m]": row[planar.I_PEAK_BASE_SLIP],
             "residual slip [m]": final[i, planar.OUT_SLIP],
             "peak corner excursion [m]": row[planar.I_PEAK_EXCURSION],
             "t_overturn [s]": row[planar.I_T_OVERTURN],

@@ -22,8 +22,11 @@ from shaketable.core.planar_dynamics import (
     SLIDE,
     SLIDE_ROCK,
     corner_vector,
+    impact,
+    kinetic_energy,
     rock_forces,
     slide_rock_accelerations,
+    two_corner_impact,
 )
 from shaketable.solvers.planar_steps import ground
 
@@ -58,7 +61,10 @@ def q_from_z(z, side, q, parameters):
 
 @njit(**HELPER)
 def measures(q, parameters):
-    """Slip of the base midpoint [m] and the largest corner excursion |X - X_rest| [m]."""
+    """Slip of the base midpoint [m], the largest corner excursion |X - X_rest| [m] and
+    the base's slide [m]: the displacement of the bottom corner the block stands or turns
+    on (on theta's side; x when flat), x + h sin(theta) + sign(theta) b (1 - cos(theta)),
+    0 for a block that rocks without sliding."""
     b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     cosine = math.cos(q[2])
@@ -70,7 +76,8 @@ def measures(q, parameters):
             excursion = abs(q[0] + u * cosine - w * sine - u)
             if excursion > largest:
                 largest = excursion
-    return slip, largest
+    base = slip if q[2] == 0.0 else slip + math.copysign(b * (1.0 - cosine), q[2])
+    return slip, largest, base
 
 
 @njit(**HELPER)
@@ -137,6 +144,8 @@ def enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
     SLIDE_ROCK, unless mu_d > b/h: INCONSISTENT); ROCK needing |F| > mu_s N: SLIDE_ROCK
     with sigma = -sign(F) (checked again). Returns (mode, sigma).
     """
+    if mode == REST or mode == SLIDE:
+        return mode, sigma   # flat after a two-corner impact: the rest rules decide
     ug, vg = ground(segment, t)
     for _ in range(4):
         if mode == ROCK:
@@ -224,3 +233,43 @@ def flat(q, x_dot, parameters):
     q[3] = x_dot
     q[4] = 0.0
     q[5] = 0.0
+
+
+@njit(**HELPER)
+def strike(q, striking, rho, mu_s, mu_d, parameters):
+    """The impact of a block whose corner ``striking`` reaches the table (state q, whose
+    velocities are replaced; docs/planar.md, "Impacts").
+
+    A flat landing (theta = theta' = 0) is the two-corner problem
+    (:func:`~shaketable.core.planar_dynamics.two_corner_impact`). Otherwise the corner is
+    put on the table and struck (:func:`~shaketable.core.planar_dynamics.impact`); at
+    theta = 0, where the other corner is on the table too, an impact that turns the block
+    back onto that corner (striking * theta'+ < 0: it would enter the table) is followed
+    at once by the two-corner problem from the state it left.
+
+    Returns (mode after: ROCK, SLIDE_ROCK, REST, SLIDE or PAINLEVE, side of the corner
+    the block turns on, slip direction sigma, kinetic energy lost [m^2/s^2], capped).
+    """
+    before = kinetic_energy(q[3], q[4], q[5], parameters)
+    side = striking
+    capped = 0.0
+    if q[2] == 0.0 and q[5] == 0.0:
+        x_dot, y_dot, omega, kind, pivot, sigma = two_corner_impact(q[3], q[4], 0.0, mu_s,
+                                                                    mu_d, parameters)
+        side = pivot if pivot != 0.0 else side
+    else:
+        _, r_y = corner_vector(q[2], striking, parameters)
+        q[1] = -r_y   # the corner on the table (its root is located to the ulp)
+        x_dot, y_dot, omega, kind, sigma, _, capped = impact(
+            q[2], q[3], q[4], q[5], striking, rho, mu_s, mu_d, parameters)
+        if kind != PAINLEVE and q[2] == 0.0 and striking * omega < 0.0:
+            x_dot, y_dot, omega, kind, pivot, sigma = two_corner_impact(
+                x_dot, y_dot, omega, mu_s, mu_d, parameters)
+            side = pivot if pivot != 0.0 else side
+    if kind == PAINLEVE:
+        return kind, side, sigma, 0.0, capped
+    if kind == REST or kind == SLIDE:
+        flat(q, x_dot, parameters)
+    else:
+        q[3], q[4], q[5] = x_dot, y_dot, omega
+    return kind, side, sigma, before - kinetic_energy(q[3], q[4], q[5], parameters), capped

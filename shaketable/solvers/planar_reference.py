@@ -47,16 +47,17 @@ Choices where the spec is silent (documented here, reported to the lead)
   this is the spec's "slip reverses" when F_rock opposes the old slip, and
   keeps the slip direction in the marginal case mu_d = mu_s just after a slip
   started (a sign the spec does not fix).
-* Impacts (``planar_contact.impact_map``): a slipping impact slips the way
-  its corner goes (sigma = -sign of the sticking P_x, else the other sigma,
-  else it sticks). The energy cap applies to rho < 1 as well: with a slipping
-  corner the couple C = (rho - 1) H_k can add energy for rho < 1 too (e.g.
-  cor = 0, mu = 0, theta = 0, x' = 1 m/s, theta' = -1 rad/s on a square block),
-  so rho is moved toward 1 until KE+ = KE- whatever side of 1 it is on, and
-  the branch is decided again at the new rho.
-* A plastic impact at theta = 0 that leaves the block turning onto the corner
-  that struck before (side * theta'+ < 0; both corners are on the table) is
-  followed, at the same instant, by that corner's impact.
+* Impacts (``planar_contact.impact_map``): the couple C = (rho - 1) H_k' with
+  H_k' the angular momentum about the striking corner in the frame of its
+  incoming slip (``planar_contact.frame_momentum``); a slipping impact slips
+  the way its corner goes (sigma = -sign of the sticking P_x, else the other
+  sigma, else it sticks). The cap applies on both sides of rho = 1: rho is moved
+  toward 1 until the normal impulse pushes and the kinetic energy grows in
+  neither the table's frame nor the slip frame, and the branch is decided
+  again at the new rho.
+* An impact at theta = 0 that leaves the block turning onto the corner that
+  was on the table (side * theta'+ < 0), and a flat landing, are resolved by
+  the plastic two-corner problem (``planar_contact.two_corner_impact``).
 * The cascade sum (``cascade_rest_time``) is applied after every impact at
   theta = 0: after a sticking impact that leaves the block in ROCK with the
   numeric cor (c_H for ``"housner"``), exactly as the rocking engine; after a
@@ -106,6 +107,7 @@ from shaketable.solvers.planar_contact import (
     rock_solution,
     slide_rock_effective_mass,
     slide_rock_solution,
+    two_corner_impact,
 )
 
 #: Consecutive segments that may end where they began before the solver gives up.
@@ -245,6 +247,7 @@ class _Run:
         self.impact_loss = 0.0
         self.max_abs_theta, self.t_max = 0.0, float(motion.t[0])
         self.peak_slip, self.t_peak_slip = 0.0, float(motion.t[0])
+        self.peak_base_slip, self.t_peak_base_slip = 0.0, float(motion.t[0])
         self.t_unstable = math.nan
         self.t_rest = math.nan
         self.time_in_mode = dict.fromkeys(MODE_NAMES, 0.0)
@@ -264,6 +267,10 @@ class _Run:
         slip = state[0] + self.geometry.h * math.sin(theta)
         if abs(slip) > self.peak_slip:
             self.peak_slip, self.t_peak_slip = abs(slip), t
+        # the base's own slide: the corner it stands or turns on (x when flat)
+        base = slip + math.copysign(self.geometry.b * (1.0 - math.cos(theta)), theta)
+        if abs(base) > self.peak_base_slip:
+            self.peak_base_slip, self.t_peak_base_slip = abs(base), t
 
     def ground(self, time):
         u0, u1, v0, v1, t0, t1 = self.interval
@@ -448,14 +455,14 @@ class _Run:
         fresh, self.fresh = self.fresh, set()
         functions, names = [], []
 
-        def add(function, name, terminal, direction, rate=None):
+        def add(function, name, terminal, direction, rate=None, order=1):
             if name in fresh and rate is not None:
                 raw = function
 
                 def function(t, z):
                     elapsed = t - t_segment
                     if elapsed > 0.0:
-                        return raw(t, z) / elapsed
+                        return raw(t, z) / elapsed ** order
                     value = raw(t, z)
                     return value if value != 0.0 else rate(t, z)
             function.terminal, function.direction = terminal, direction
@@ -468,7 +475,12 @@ class _Run:
             return xdd - r_y * thdd - r_x * z[5] ** 2
 
         if mode in (ROCK, SLIDE_ROCK):
-            add(lambda t, z: side * z[2], "impact", True, -1, lambda t, z: side * z[5])
+            if self.state[5] == 0.0:
+                # a block that starts to turn from theta = theta' = 0: theta ~ theta'' t^2 / 2
+                add(lambda t, z: side * z[2], "impact", True, -1,
+                    lambda t, z: 0.5 * side * self.solution(t, z)[2], order=2)
+            else:
+                add(lambda t, z: side * z[2], "impact", True, -1, lambda t, z: side * z[5])
             add(lambda t, z: self.solution(t, z)[4], "lift-off", True, -1)
             if mode == ROCK:
                 add(lambda t, z: self.mu_s * self.solution(t, z)[4]
@@ -568,7 +580,9 @@ class _Run:
 
     # ------------------------------------------------------------ transitions
     def impact(self, t, corner):
-        """A corner impact at t (spec, "Impacts")."""
+        """A corner impact at t (docs/planar.md, "Impacts"); at theta = 0 an impact that
+        turns the block back onto the other corner, which is on the table, is followed by
+        the two-corner problem."""
         before = self.mode
         pre = self.state.copy()
         energy_before = kinetic_energy(self.geometry, pre)
@@ -578,15 +592,32 @@ class _Run:
         self.capped += capped
         self.state[3:6] = velocities
         self.side = corner
-        if sigma == 0:
-            self.enter_contact(t, ROCK, corner, self.sigma, "impact", before)
-        else:
-            self.sigma = sigma
-            self.enter_contact(t, SLIDE_ROCK, corner, sigma, "impact", before)
+        mode = ROCK if sigma == 0 else SLIDE_ROCK
+        if self.state[2] == 0.0 and corner * self.state[5] < 0.0:
+            velocities, mode, side, sigma = two_corner_impact(self.geometry, self.state,
+                                                              self.mu_s, self.mu_d)
+            self.state[3:6] = velocities
+            self.side = side or corner
+        self.enter_after_impact(t, mode, sigma, "impact", before)
+        if self.mode in (REST, SLIDE):
+            self.t_rest = t if self.mode == REST else -math.inf   # -inf: rests when it stops
         self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
         if self.state[2] == 0.0 and self.mode in (ROCK, SLIDE_ROCK) and pre[5] != 0.0:
-            sticking = sigma == 0 and self.mode == ROCK
+            sticking = sigma == 0 and self.mode == ROCK and self.side == corner
             self.cascade(t, self.cascade_cor if sticking else abs(self.state[5] / pre[5]))
+
+    def enter_after_impact(self, t, mode, sigma, kind, before):
+        """Enter the mode an impact left (flat: REST, which records t_rest, or SLIDE)."""
+        if mode in (ROCK, SLIDE_ROCK):
+            if sigma != 0:
+                self.sigma = sigma
+            self.enter_contact(t, mode, self.side, self.sigma, kind, before)
+            return
+        self.state[1:3] = [self.geometry.h, 0.0]
+        if mode == REST:
+            self.t_rest = t
+            self.rest_until = t
+        self.set_mode(t, mode, sigma=sigma if mode == SLIDE else None, kind=kind)
 
     def cascade(self, t, ratio):
         """The endless cascade of impacts of a decaying block, summed (as the rocking engine).
@@ -607,8 +638,9 @@ class _Run:
             deceleration = -self.tipping(self.side, ug, vg)
         remaining = cascade_rest_time(omega, deceleration, ratio)
         if (remaining == math.inf and ratio >= 1.0 and deceleration > 0.0
-                and abs(omega) <= self.velocity_floor):
-            remaining = 0.0
+                and abs(omega) <= max(self.velocity_floor,
+                                      0.5 * deceleration * self.rest_tolerance)):
+            remaining = 0.0   # no decay, and impacts closer than the rest tolerance
         if omega == 0.0 or remaining <= self.rest_tolerance or (
                 abs(omega) <= self.velocity_floor and remaining < math.inf):
             # a slipping corner's cascade ends sliding flat at the corner's slip speed
@@ -621,21 +653,19 @@ class _Run:
                 self.t_rest = self.rest_until
             else:
                 self.set_mode(t, SLIDE, sigma=1 if x_dot > 0 else -1, kind="cascade")
+                self.t_rest = -math.inf
 
     def flat_landing(self, t):
+        """A flat landing (theta = theta' = 0): the two-corner problem."""
         before = self.mode
         energy_before = kinetic_energy(self.geometry, self.state)
-        x_dot, y_dot = self.state[3], self.state[4]
-        self.state[4] = self.state[5] = 0.0
-        if abs(x_dot) <= self.mu_s * abs(y_dot):
-            self.state[3] = 0.0
-            self.set_mode(t, REST)
-        else:
-            direction = 1 if x_dot > 0 else -1
-            self.state[3] = x_dot - direction * self.mu_d * abs(y_dot)
-            self.set_mode(t, SLIDE, sigma=direction)
+        velocities, mode, side, sigma = two_corner_impact(self.geometry, self.state,
+                                                          self.mu_s, self.mu_d)
+        self.state[3:6] = velocities
+        if side:
+            self.side = side
+        self.enter_after_impact(t, mode, sigma, "flat landing", before)
         self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
-        self.record(t, "flat landing", before, self.mode)
 
     def after_event(self, t, terminal):
         """Apply the transition of a terminal event."""
@@ -647,8 +677,8 @@ class _Run:
             self.set_mode(t, FLIGHT, kind="lift-off")
         elif terminal == "impact":
             self.impact(t, -self.side)
-            # a plastic impact at theta = 0 can leave the block turning onto the corner that
-            # struck first (side * theta'+ < 0): that corner strikes again at once
+            # impact() resolves a block turned back onto the corner on the table with the
+            # two-corner problem; the bound is a safeguard
             for _ in range(MAX_IMMEDIATE_IMPACTS):
                 if not (self.mode in (ROCK, SLIDE_ROCK) and self.state[2] == 0.0
                         and self.side * self.state[5] < 0.0):
@@ -664,6 +694,8 @@ class _Run:
             self.state[3] = 0.0
             if self.rest_holds(t):
                 self.set_mode(t, REST, kind="stick")
+                if self.t_rest == -math.inf:   # a slide an impact left ends the rocking
+                    self.t_rest = t
             else:
                 self.leave_flat(t, "reverse")
         elif terminal == "stick":  # SLIDE_ROCK: the corner stops slipping
@@ -783,9 +815,13 @@ class _Run:
             impact_times=np.array([i[0] for i in self.impacts], dtype=float),
             impact_velocities=np.array([i[1] for i in self.impacts], dtype=float),
             peak_slip=float(self.peak_slip), t_peak_slip=float(self.t_peak_slip),
+            peak_base_slip=float(self.peak_base_slip),
+            t_peak_base_slip=float(self.t_peak_base_slip),
             residual_slip=float(slip_end), max_abs_theta=float(self.max_abs_theta),
             t_max=float(self.t_max), t_unstable=float(self.t_unstable),
-            t_overturn=float(t_overturn), t_rest=float(self.t_rest), friction_work=float(self.work[0]),
+            t_overturn=float(t_overturn),
+            t_rest=float(self.t_rest) if self.t_rest != -math.inf else math.nan,
+            friction_work=float(self.work[0]),
             input_work=float(self.work[1]), impact_loss=float(self.impact_loss),
             energy_start=float(energy_start), energy_end=float(self.energy()),
             capped_impacts=int(self.capped), status=status, message=message,

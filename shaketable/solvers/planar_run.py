@@ -176,6 +176,8 @@ def planar_result(block, motion, cor, friction, t_grid, out, events, final, info
         work_table=float(info[planar.I_W_TABLE]), work_friction=float(info[planar.I_W_FRICTION]),
         impact_loss=float(info[planar.I_IMPACT_LOSS]), energy_start=float(info[planar.I_E0]),
         energy_end=float(info[planar.I_E_END]), status=status,
+        peak_base_slip=float(info[planar.I_PEAK_BASE_SLIP]),
+        t_peak_base_slip=float(info[planar.I_T_PEAK_BASE_SLIP]),
         statistics={"steps": int(info[planar.I_STEPS]),
                     "rejected": int(info[planar.I_REJECTED]),
                     "evaluations": int(info[planar.I_EVALUATIONS])})

@@ -34,13 +34,21 @@ from shaketable.solvers.planar_steps import (
 P_MAX_ABS_THETA, P_T_MAX, P_PEAK_SLIP, P_T_PEAK_SLIP, P_PEAK_EXCURSION = range(5)
 N_PEAKS = 5
 
+#: Where the peak base slip [m] and its time [s] are, from ``first`` (the engine's
+#: I_PEAK_BASE_SLIP - I_MAX_ABS_THETA: slots appended to its info array).
+P_PEAK_BASE_SLIP, P_T_PEAK_BASE_SLIP = 23, 24
+
 
 # one compiled function (not inlined: a copy of it in each of its four callers cost more
 # to compile); the callers pass ``first`` as an int64 so that it is compiled once
 @njit(**HELPER)
 def track(t, q, info, first, parameters):
     """Update the peaks in ``info`` with the state q = (x, y, theta, x', y', theta') at t."""
-    slip, excursion = measures(q, parameters)
+    slip, excursion, base = measures(q, parameters)
+    base = abs(base)
+    if base > info[first + P_PEAK_BASE_SLIP]:
+        info[first + P_PEAK_BASE_SLIP] = base
+        info[first + P_T_PEAK_BASE_SLIP] = t
     if abs(slip) > info[first + P_PEAK_SLIP]:
         info[first + P_PEAK_SLIP] = abs(slip)
         info[first + P_T_PEAK_SLIP] = t
@@ -57,7 +65,7 @@ def record(ev, info, slot, t, kind, before, after, omega, q, parameters):
     q [m]) into row ``info[slot]`` of ``ev`` if it has room; count it in ``info[slot]``."""
     index = int(info[slot])
     if index < ev.shape[0]:
-        slip, _ = measures(q, parameters)
+        slip, _, _ = measures(q, parameters)
         ev[index, 0] = t
         ev[index, 1] = kind
         ev[index, 2] = before

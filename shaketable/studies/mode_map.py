@@ -12,6 +12,8 @@ blocks slide. The planar model (:mod:`shaketable.core.planar_dynamics`, run by
   corner), by bisection: Section 2.1 says B/H.
 * :func:`table_4_4_coupled` -- Table 4.4's peak slips recomputed for the report's
   shielding blocks with the planar model, beside the pure-sliding values.
+* :func:`knife_edge` -- the verdict at relative offsets from mu = B/H: the rule's line
+  is a knife-edge (the block slides just below it and may overturn just above it).
 
 Data only: the figure is :func:`shaketable.plots.mode_map.mode_map_figure`.
 
@@ -216,6 +218,46 @@ def sliding_limit(block: Block, motion: Motion | None = None, *, cor: float = 0.
         else:
             high = middle
     return low
+
+
+#: Relative offsets delta of the friction from the knife-edge, mu = (1 - delta) B/H, that
+#: :func:`knife_edge` tries by default [-].
+KNIFE_EDGE_OFFSETS = (-1e-3, -1e-6, 1e-6, 1e-3, 5e-2)
+
+#: The margin below B/H the mode map draws [-]: a friction coefficient known to +-5 %
+#: slides for certain only when its upper bound is below B/H (docs/planar.md, "The
+#: knife-edge at mu = B/H"; the model itself slides at any mu below (1 - 1e-6) B/H).
+KNIFE_EDGE_MARGIN = 0.05
+
+
+def knife_edge(block: Block, motion: Motion | None = None, *, cor: float = 0.95,
+               offsets: Sequence[float] = KNIFE_EDGE_OFFSETS) -> pd.DataFrame:
+    """The verdict of the planar block at mu_s = mu_d = (1 - delta) B/H for each delta.
+
+    Parameters
+    ----------
+    block : Block
+    motion : Motion, optional
+        Default: Pacoima Dam S16E with its vertical.
+    cor : float
+        Coefficient of restitution [-].
+    offsets : sequence of float
+        Relative offsets delta [-]: positive below B/H.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``delta [-]``, ``mu [-]``, ``verdict``, ``peak base slip [m]``.
+    """
+    motion = records.load(DEFAULT_RECORD) if motion is None else motion
+    ratio = block.width / block.height
+    rows = []
+    for delta in offsets:
+        mu = ratio * (1.0 - float(delta))
+        result = simulate(block, motion, cor=cor, friction=Friction(mu))
+        rows.append({"delta [-]": float(delta), "mu [-]": mu, "verdict": result.verdict(),
+                     "peak base slip [m]": result.peak_base_slip})
+    return pd.DataFrame(rows)
 
 
 def sliding_limits(blocks_ft: Sequence[tuple[float, float]] = SHIELDING_BLOCKS_FT,

@@ -102,3 +102,15 @@ def test_mode_map_scene_parses_and_refuses_bad_keys(tmp_path):
         bad.write_text(f'name = "m"\n[study]\nkind = "mode-map"\n{text}\n')
         with pytest.raises(SceneError, match=message):
             load_scene(bad)
+
+
+def test_the_rule_is_a_knife_edge(pacoima):
+    """Section 2.1's line mu = B/H: the 16 x 4 ft block at COR 1 only slides a relative 1e-6
+    below it (a flat block with mu_s < B/H slips before Eq. (2-1) and, with mu_d < B/H,
+    never tips) and overturns 1e-6 above it: the verdict jumps across the line."""
+    from shaketable.studies.mode_map import knife_edge
+
+    frame = knife_edge(Block.parse("16x4ft"), records.load("pacoima-dam-s16e", vertical=True),
+                       cor=1.0, offsets=(1e-6, 5e-2, -1e-6))
+    assert list(frame["verdict"]) == ["slid", "slid", "overturned"]
+    assert (frame["peak base slip [m]"] > 0).all()
