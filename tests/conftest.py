@@ -95,6 +95,11 @@ def pytest_testnodedown(node, error):
 
 
 def pytest_terminal_summary(terminalreporter, config):
+    seed = getattr(config.option, "randomly_seed", None)
+    if config.pluginmanager.has_plugin("randomly") and isinstance(seed, int):
+        # printed under -q too (pytest-randomly's own line is in the header, which -q hides)
+        terminalreporter.write_line(f"tests in random order, seed {seed}: repeat the order "
+                                    f"with -p randomly --randomly-seed={seed}")
     count = config.getoption("cpu_durations")
     if count and _TEST_CPU:
         terminalreporter.write_sep("=", f"{count} tests using the most CPU time")
