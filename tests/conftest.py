@@ -114,9 +114,9 @@ def pytest_terminal_summary(terminalreporter, config):
 
 
 def pytest_addoption(parser, pluginmanager):
-    """``--cpu-durations N``; and pyproject's addopts ask for ``--dist loadgroup`` (pytest-xdist, the test extras); a
-    developer without pytest-xdist (or with ``-p no:xdist``) still runs the suite in one
-    process: the option is accepted and ignored then."""
+    """``--cpu-durations N``. pyproject's addopts ask for ``--dist loadgroup`` (pytest-xdist,
+    the test extras); a developer without pytest-xdist (or with ``-p no:xdist``) still runs
+    the suite in one process: the option is accepted and ignored then."""
     parser.addoption("--cpu-durations", type=int, default=0, metavar="N",
                      help="list the N tests that used the most CPU time (with subprocesses)")
     if not pluginmanager.has_plugin("xdist") and not pluginmanager.has_plugin("xdist.plugin"):
@@ -160,7 +160,6 @@ def pytest_runtest_logreport(report):
 
 # ------------------------------------------------- one compile for the whole run
 _WARM_UP = r"""
-import numpy as np
 import shaketable as st
 from shaketable.ground.generators import harmonic
 from shaketable.solvers.batch import simulate_many
