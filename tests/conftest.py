@@ -186,6 +186,9 @@ def pytest_sessionstart(session):
         return
     if not getattr(config.option, "numprocesses", None):
         return   # one process: it compiles what it uses, once
+    sources = getattr(pytest.Config, "ArgsSource", None)
+    if sources is not None and getattr(config, "args_source", None) != sources.TESTPATHS:
+        return   # a few files named on the command line: compile only what they use
     import subprocess
     import sys
 
