@@ -1,14 +1,15 @@
 """Fixtures shared by the test folders (which mirror the package's layers).
 
 The suite runs in one process (``pytest``) or on pytest-xdist workers (``pytest -n 2``,
-what CI runs; ``--dist loadgroup`` is in pyproject.toml's ``addopts``). Tests that share a
-module- or class-scoped fixture are put in one ``xdist_group`` (named after their module),
-so that the fixture is computed once, on one worker, and the tests run in their file's
-order (``tests/test_readme.py`` runs the README's commands one after another in one
-folder); a module can also name its group itself (``pytestmark``). Every other test goes
-to whichever worker is free. Each worker reports the CPU time it used (its own and its
-subprocesses') at the end of the run: the suite's wall time on a quiet machine is about
-the largest of them plus start-up.
+what CI runs; ``--dist loadgroup`` is in pyproject.toml's ``addopts``), in the order
+pytest-randomly draws (a test extra). No test needs another to have run, in its process
+or before it: each builds what it reads (a module-scoped fixture computes it in whichever
+process needs it). As a saving only, tests that share a module- or class-scoped fixture
+are put in one ``xdist_group`` (named after their module), so that under ``--dist
+loadgroup`` the fixture is computed once, on one worker; a module can also name its group
+itself (``pytestmark``). Every other test goes to whichever worker is free. Each worker
+reports the CPU time it used (its own and its subprocesses') at the end of the run: the
+suite's wall time on a quiet machine is about the largest of them plus start-up.
 """
 
 from __future__ import annotations
@@ -93,16 +94,103 @@ def pytest_testnodedown(node, error):
         _WORKER_CPU[node.gateway.id] = (output["cpu_self"], output["cpu_children"])
 
 
-def pytest_terminal_summary(terminalreporter):
+def pytest_terminal_summary(terminalreporter, config):
+    seed = getattr(config.option, "randomly_seed", None)
+    if config.pluginmanager.has_plugin("randomly") and isinstance(seed, int):
+        # printed under -q too (pytest-randomly's own line is in the header, which -q hides)
+        terminalreporter.write_line(f"tests in random order, seed {seed}: repeat the order "
+                                    f"with -p randomly --randomly-seed={seed}")
+    count = config.getoption("cpu_durations")
+    if count and _TEST_CPU:
+        terminalreporter.write_sep("=", f"{count} tests using the most CPU time")
+        ranked = sorted(_TEST_CPU.items(), key=lambda pair: -pair[1])[:count]
+        for nodeid, seconds in ranked:
+            terminalreporter.write_line(f"{seconds:8.2f} s CPU  {nodeid}")
+        terminalreporter.write_line(f"{sum(_TEST_CPU.values()):8.1f} s CPU in all "
+                                    f"{len(_TEST_CPU)} tests (setup to teardown)")
     for worker, (own, children) in sorted(_WORKER_CPU.items()):
         terminalreporter.write_line(f"worker {worker}: {own + children:.1f} s CPU "
                                     f"({own:.1f} s its own, {children:.1f} s in subprocesses)")
 
 
 def pytest_addoption(parser, pluginmanager):
-    """pyproject's addopts ask for ``--dist loadgroup`` (pytest-xdist, the test extras); a
-    developer without pytest-xdist (or with ``-p no:xdist``) still runs the suite in one
-    process: the option is accepted and ignored then."""
+    """``--cpu-durations N``. pyproject's addopts ask for ``--dist loadgroup`` (pytest-xdist,
+    the test extras); a developer without pytest-xdist (or with ``-p no:xdist``) still runs
+    the suite in one process: the option is accepted and ignored then."""
+    parser.addoption("--cpu-durations", type=int, default=0, metavar="N",
+                     help="list the N tests that used the most CPU time (with subprocesses)")
     if not pluginmanager.has_plugin("xdist") and not pluginmanager.has_plugin("xdist.plugin"):
         parser.addoption("--dist", default="no",
                          help="pytest-xdist's distribution mode (not installed: ignored)")
+
+
+# ------------------------------------------------------------ CPU time of each test
+# ``--cpu-durations=N`` lists the N tests that used the most CPU time (the process's own
+# and its subprocesses', setup to teardown): unlike pytest's --durations (wall time), the
+# figure changes little with the machine's load. benchmarks/suite_cost.py asks for it.
+_CPU_START = pytest.StashKey[float]()
+_TEST_CPU: dict[str, float] = {}
+
+
+def _cpu_now() -> float:
+    return _cpu_seconds(resource.RUSAGE_SELF) + _cpu_seconds(resource.RUSAGE_CHILDREN)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item, nextitem):
+    if resource is not None:
+        item.stash[_CPU_START] = _cpu_now()
+    yield
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    outcome = yield
+    if call.when == "teardown" and resource is not None and _CPU_START in item.stash:
+        outcome.get_result().user_properties.append(("cpu [s]", _cpu_now() - item.stash[_CPU_START]))
+
+
+def pytest_runtest_logreport(report):
+    """Keep each test's CPU time (in the one process, or on the xdist controller)."""
+    if report.when == "teardown":
+        for key, value in report.user_properties:
+            if key == "cpu [s]":
+                _TEST_CPU[report.nodeid] = value
+
+
+# ------------------------------------------------- one compile for the whole run
+_WARM_UP = r"""
+import shaketable as st
+from shaketable.ground.generators import harmonic
+from shaketable.solvers.batch import simulate_many
+from shaketable.solvers.sliding import slide
+
+block = st.Block.parse("30x6in")
+motion = harmonic(2.0, horizontal=0.5 * st.G, duration=0.5)
+for method in ("fast", "predictor-corrector", "linear"):
+    st.simulate(block, motion, cor=0.9, method=method)
+simulate_many([block], [motion], [0.9], threads=1)
+st.simulate(block, motion, cor=0.9, friction=st.Friction(0.3, 0.25))
+slide(motion, 0.3)
+"""
+
+
+def pytest_sessionstart(session):
+    """On the pytest-xdist controller, before the workers start: compile the engines into
+    numba's cache (or load them), so that the workers and the tests' subprocesses load them
+    instead of each compiling its own copy at the same time on a fresh machine (the planar
+    engine costs ~13 s of CPU per compile). A saving only: any test compiles what it
+    misses. ``import shaketable`` in a subprocess names the cache folder the workers use."""
+    config = session.config
+    if getattr(config, "workerinput", None) is not None or config.option.collectonly:
+        return
+    if not getattr(config.option, "numprocesses", None):
+        return   # one process: it compiles what it uses, once
+    sources = getattr(pytest.Config, "ArgsSource", None)
+    if sources is not None and getattr(config, "args_source", None) != sources.TESTPATHS:
+        return   # a few files named on the command line: compile only what they use
+    import subprocess
+    import sys
+
+    subprocess.run([sys.executable, "-c", _WARM_UP], cwd=REPOSITORY, check=False,
+                   env=dict(os.environ, MPLBACKEND="Agg"), capture_output=True)

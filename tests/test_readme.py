@@ -1,22 +1,33 @@
 """Every command of the README's "Use" section runs verbatim from an empty folder (issue 13).
 
-The ``shaketable ...`` lines of the README's bash blocks (the set-up block's pip lines
-excepted) are run in order in one temporary folder outside the repository, as a user
-would type them (so a folder an earlier command wrote is there for the later ones),
-through ``python -m shaketable`` (the same entry point as the console script); the
-Python blocks in a fresh interpreter: exit status 0, no traceback, files written.
+Each ``shaketable ...`` line of the README's bash blocks (the set-up block's pip lines
+excepted) runs in a folder of its own outside the repository, empty but for what the
+earlier lines of its block wrote that it reads (``risk fragility`` reads the folder the
+``sweep ... --out fragility`` line above it writes, so that line runs first there), as a
+user would type them, through the console script's function (``shaketable.cli.main``, in
+the test's process: a fresh interpreter per line cost 1.7 s of CPU each; the entry point
+itself runs a README line in a subprocess below); the Python blocks in a fresh
+interpreter: exit status 0, no traceback, files written. No test needs another to have
+run, on its worker or before it: a line another reads is run once per process (a
+module-scoped memo) and its folder copied.
 """
 
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
+import traceback
 
+import matplotlib.pyplot as plt
 import pytest
 
+from shaketable.scenes.catalog import scene_names
 from tests.helpers import REPOSITORY
 
 README = (REPOSITORY / "README.md").read_text(encoding="utf-8")
@@ -26,17 +37,21 @@ def _blocks(language: str) -> list[str]:
     return re.findall(rf"```{language}\n(.*?)```", README, flags=re.DOTALL)
 
 
-def _commands() -> list[str]:
-    lines = []
+def _command_blocks() -> list[list[str]]:
+    """The ``shaketable`` lines of each bash block (comments dropped), blocks without one left out."""
+    blocks = []
     for block in _blocks("bash"):
-        for line in block.splitlines():
-            line = line.split("  #")[0].strip()
-            if line.startswith("shaketable "):
-                lines.append(line)
-    return lines
+        lines = [line.split("  #")[0].strip() for line in block.splitlines()]
+        lines = [line for line in lines if line.startswith("shaketable ")]
+        if lines:
+            blocks.append(lines)
+    return blocks
 
 
-COMMANDS = _commands()
+BLOCKS = _command_blocks()
+COMMANDS = [line for block in BLOCKS for line in block]
+#: (block, line) of every command, in the README's order
+LINES = [(b, i) for b, block in enumerate(BLOCKS) for i in range(len(block))]
 PYTHON_BLOCKS = _blocks("python")
 
 #: The bundled scenes the README runs as plain ``shaketable run NAME``: this file checks
@@ -44,6 +59,26 @@ PYTHON_BLOCKS = _blocks("python")
 #: leaves them out, so that no scene runs twice for the same checks).
 README_RUN_SCENES = [command.split()[2] for command in COMMANDS
                      if len(command.split()) == 3 and command.split()[1] == "run"]
+
+
+def _out(line: str) -> str | None:
+    words = shlex.split(line)
+    return words[words.index("--out") + 1] if "--out" in words[:-1] else None
+
+
+def prerequisites(block: int, index: int) -> list[int]:
+    """The earlier lines of ``block`` whose output folder line ``index`` reads (a word of its
+    arguments, not the name of a bundled scene, is that folder), with theirs, in order."""
+    lines = BLOCKS[block]
+    bundled = set(scene_names())
+    words = [word for word in shlex.split(lines[index])[2:] if word not in bundled]
+    needed: set[int] = set()
+    for earlier in range(index):
+        out = _out(lines[earlier])
+        if out is not None and any(word == out or word.startswith(out + "/") for word in words):
+            needed.add(earlier)
+            needed.update(prerequisites(block, earlier))
+    return sorted(needed)
 
 
 def _environment():
@@ -54,27 +89,81 @@ def _environment():
     return environment
 
 
-def test_the_readme_has_commands_and_python():
-    assert len(COMMANDS) >= 8 and PYTHON_BLOCKS
-
-
-@pytest.fixture(scope="module")
-def user_folder(tmp_path_factory):
-    """The one folder, empty at first, where the README's commands run one after another."""
-    return tmp_path_factory.mktemp("readme-user")
-
-
 def _files(folder):
     return {path: path.stat().st_mtime_ns for path in folder.rglob("*") if path.is_file()}
 
 
+def test_the_readme_has_commands_and_python():
+    assert len(COMMANDS) >= 8 and PYTHON_BLOCKS
+
+
+def test_the_risk_line_runs_after_the_sweep_it_reads():
+    """From an empty folder ``risk fragility`` has no sweep to read: its block must write
+    that folder first (the README says so beside it)."""
+    (block, index), = [(b, i) for b, i in LINES if BLOCKS[b][i].startswith("shaketable risk ")]
+    needed = prerequisites(block, index)
+    assert [BLOCKS[block][i].split()[1] for i in needed] == ["sweep"]
+    assert _out(BLOCKS[block][needed[0]]) == shlex.split(BLOCKS[block][index])[2]
+
+
+def _run_in_process(argv: list[str], folder) -> subprocess.CompletedProcess:
+    """``shaketable ARGV`` run in ``folder`` by the console script's function, its output
+    captured; an exception that escapes it is a traceback on stderr and exit status 1."""
+    from shaketable.cli import main
+
+    stdout, stderr = io.StringIO(), io.StringIO()
+    here = os.getcwd()
+    os.chdir(folder)
+    try:
+        with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+            try:
+                status = main(argv)
+            except SystemExit as exit_:
+                status = exit_.code if isinstance(exit_.code, int) else 1
+            except Exception:
+                traceback.print_exc()
+                status = 1
+    finally:
+        os.chdir(here)
+        plt.close("all")
+    return subprocess.CompletedProcess(argv, status, stdout.getvalue(), stderr.getvalue())
+
+
+def test_the_console_entry_point_runs_a_readme_line(tmp_path):
+    """The first README line through ``python -m shaketable`` (what the console script
+    calls), in a fresh interpreter, from an empty folder."""
+    line = BLOCKS[0][0]
+    done = subprocess.run([sys.executable, "-m", "shaketable"] + shlex.split(line)[1:],
+                          cwd=tmp_path, env=_environment(), capture_output=True, text=True,
+                          timeout=600)
+    assert done.returncode == 0 and "Traceback" not in done.stderr, done.stderr
+    assert (tmp_path / _out(line)).is_dir() and any((tmp_path / _out(line)).iterdir())
+
+
+@pytest.fixture(scope="module")
+def run_line(tmp_path_factory):
+    """Run a README line in a fresh folder holding the outputs of its prerequisites; each
+    line runs once per process (its folder, the files before it ran, and its process)."""
+    done: dict = {}
+
+    def run(block: int, index: int):
+        if (block, index) not in done:
+            folder = tmp_path_factory.mktemp(f"readme-{block}-{index}")
+            for earlier in prerequisites(block, index):
+                shutil.copytree(run(block, earlier)[0], folder, dirs_exist_ok=True)
+            before = _files(folder)
+            done[(block, index)] = (folder, before,
+                                    _run_in_process(shlex.split(BLOCKS[block][index])[1:], folder))
+        return done[(block, index)]
+
+    return run
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("command", COMMANDS)
-def test_readme_command_runs_verbatim_from_an_empty_folder(command, user_folder):
-    before = _files(user_folder)
-    argv = [sys.executable, "-m", "shaketable"] + shlex.split(command)[1:]
-    done = subprocess.run(argv, cwd=user_folder, env=_environment(), capture_output=True,
-                          text=True, timeout=600)
+@pytest.mark.parametrize("block, index", LINES, ids=COMMANDS)
+def test_readme_command_runs_verbatim_from_an_empty_folder(block, index, run_line):
+    user_folder, before, done = run_line(block, index)
+    command = BLOCKS[block][index]
     assert "Traceback" not in done.stderr, done.stderr
     assert done.returncode == 0, done.stderr
     assert _files(user_folder) != before, "the command wrote nothing"

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-import hashlib
 import os
 import sys
 from pathlib import Path
+
+from shaketable.core.numba_cache import cache_subpath
 
 
 def add_record_arguments(parser) -> None:
@@ -115,8 +116,7 @@ def compiled_before(which: str = "engine") -> bool:
     import shaketable.solvers as solvers
 
     folder = os.path.dirname(os.path.abspath(solvers.__file__))
-    subpath = f"solvers_{hashlib.sha1(folder.encode()).hexdigest()}"
-    cache = Path(os.environ.get("NUMBA_CACHE_DIR", "")) / subpath
+    cache = Path(os.environ.get("NUMBA_CACHE_DIR", "")) / cache_subpath(folder)
     tag = f"py{sys.version_info.major}{sys.version_info.minor}"
     prefix = _COMPILED[which][0]
     return cache.is_dir() and any(cache.glob(f"{prefix}*.{tag}.nbi"))

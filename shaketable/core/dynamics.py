@@ -45,7 +45,12 @@ from numba import njit
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import AsymmetricBlock, Block
+from shaketable.core.numba_cache import register
 from shaketable.core.validation import in_range
+
+# numba's cache of the package's compiled functions in one folder whatever the install
+# (before the first cached function of the package is defined; core/numba_cache.py)
+register()
 
 # Indices into the parameter array.
 HALF_WIDTH, HALF_HEIGHT, INERTIA, ROD_STIFFNESS, ROD_FORCE, ROD_ARM_1, ROD_ARM_2, ALPHA, \

@@ -1,0 +1,86 @@
+"""The compiled engines' cache does not depend on where the package is installed.
+
+The README's two set-up commands install the same sources twice (``pip install .``, then
+``pip install -e ".[test]"``): the second install must load what the first compiled. numba
+names a module's cache folder after the folder's absolute path; the package's locator
+(``core/numba_cache.py``) names it after the folder's path inside the package.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import os
+import shutil
+import subprocess
+import sys
+
+import shaketable
+from shaketable.core import numba_cache
+
+PACKAGE = os.path.dirname(os.path.abspath(shaketable.__file__))
+
+#: The modules that define cached compiled functions.
+COMPILED_MODULES = ["shaketable.core.dynamics", "shaketable.core.planar_dynamics",
+                    "shaketable.solvers.engine", "shaketable.solvers.batch",
+                    "shaketable.solvers.planar", "shaketable.solvers.planar_modes",
+                    "shaketable.solvers.planar_track", "shaketable.solvers.sliding"]
+
+
+def test_the_cache_subfolder_is_named_from_the_path_inside_the_package():
+    expected = "solvers_" + hashlib.sha1(b"shaketable/solvers").hexdigest()
+    assert numba_cache.cache_subpath(os.path.join(PACKAGE, "solvers")) == expected
+    assert numba_cache.cache_subpath(os.path.join(PACKAGE, "core")) == (
+        "core_" + hashlib.sha1(b"shaketable/core").hexdigest())
+
+
+def test_every_cached_function_of_the_package_uses_the_package_locator():
+    import numba.core.registry
+
+    seen = 0
+    for name in COMPILED_MODULES:
+        module = importlib.import_module(name)
+        folder = os.path.dirname(os.path.abspath(module.__file__))
+        for value in vars(module).values():
+            if isinstance(value, numba.core.registry.CPUDispatcher) and value._cache is not None \
+                    and value.__module__ == name and hasattr(value._cache, "_impl"):
+                locator = value._cache._impl.locator
+                assert type(locator).__name__ == "PackageCacheLocator", (name, value)
+                assert locator.get_cache_path() == os.path.join(
+                    os.environ["NUMBA_CACHE_DIR"], numba_cache.cache_subpath(folder))
+                seen += 1
+    assert seen >= 8
+
+
+_PROBE = (
+    "import os, numpy as np, shaketable\n"
+    "from shaketable.core import dynamics\n"
+    "assert os.path.dirname(shaketable.__file__).startswith(os.getcwd()), shaketable.__file__\n"
+    "moment = dynamics.rod_moment(0.1, np.zeros(dynamics.N_PARAMETERS))\n"
+    "stats = dynamics.rod_moment.stats\n"
+    "print(os.environ['NUMBA_CACHE_DIR'], sum(stats.cache_hits.values()),\n"
+    "      sum(stats.cache_misses.values()), moment)\n"
+)
+
+
+def test_two_copies_of_the_sources_at_different_paths_share_one_compile(tmp_path):
+    """The same sources at two paths (a wheel's site-packages, an editable checkout): the
+    first process compiles, the second loads the first's machine code (numba's hit counter),
+    from the same default cache folder (keyed by the sources, not the path)."""
+    environment = {key: value for key, value in os.environ.items()
+                   if key not in ("NUMBA_CACHE_DIR", "PYTHONPATH")}
+    environment["XDG_CACHE_HOME"] = str(tmp_path / "cache")
+    lines = []
+    for install in ("site-packages", "checkout"):
+        root = tmp_path / install
+        shutil.copytree(PACKAGE, root / "shaketable", symlinks=True,
+                        ignore=shutil.ignore_patterns("__pycache__", "data", "*.pyc"))
+        done = subprocess.run([sys.executable, "-c", _PROBE], cwd=root, env=environment,
+                              capture_output=True, text=True, timeout=300)
+        assert done.returncode == 0, done.stderr
+        lines.append(done.stdout.split())
+    (first_folder, first_hits, first_misses, _), (second_folder, hits, misses, _) = lines
+    assert first_folder == second_folder
+    assert first_folder.startswith(str(tmp_path / "cache" / "shaketable" / "numba"))
+    assert (first_hits, first_misses) == ("0", "1")   # compiled in the first copy
+    assert (hits, misses) == ("1", "0")               # loaded in the second
