@@ -22,6 +22,7 @@ import sys
 SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "animate",
                "slide", "spectrum", "examples"]
 SUBCOMMANDS.insert(SUBCOMMANDS.index("sweep") + 1, "risk")   # issue 29
+SUBCOMMANDS.insert(SUBCOMMANDS.index("animate") + 1, "classroom")
 
 #: Exit statuses (documented in ``shaketable --help``).
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
