@@ -540,16 +540,21 @@ def compute(settings: Settings | dict) -> Picture:
     ValueError
         A run that cannot be made (e.g. pitch with friction); the message says why.
     """
-    from shaketable.scenes.parse import scene_from_dict
+    from shaketable.scenes.parse import Scene, scene_from_dict
     from shaketable.scenes.run import run_scene
 
     data = scene_data(settings) if isinstance(settings, Settings) else settings
-    result = run_scene(scene_from_dict(data, "the classroom page"))
+    scene = scene_from_dict(data, "the classroom page")
+    if not isinstance(scene, Scene):   # a [study]: never made by scene_data
+        raise ValueError("the classroom page runs scenes, not studies")
+    result = run_scene(scene)
     runs = result.planar if result.planar else result.runs
     unit = data["block"]["size"]
     unit = (unit[0] if isinstance(unit, list) else unit).rstrip().split("x")[-1]
     unit = unit.lstrip("0123456789.eE+- ")
     end = max(float(run.t[-1]) for run in runs)
+    if result.motion is not None:   # an overturned block lies on the table to the end
+        end = max(end, float(result.motion.t[-1]))
     frames = FRAME_STEP * np.arange(int(math.floor(end / FRAME_STEP + 1e-9)) + 1)
     motion = result.motion
     from shaketable.plots.animation import table_displacement

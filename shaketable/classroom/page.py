@@ -15,10 +15,12 @@ import socket
 import time
 from dataclasses import fields
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import panel as pn
-from bokeh.models import ColumnDataSource, Label, Range1d, Span
+from bokeh.models import ColumnDataSource, Range1d
+from bokeh.models.annotations import Label, Span
 from bokeh.plotting import figure
 
 from shaketable.classroom.model import (
@@ -118,7 +120,7 @@ class _Field:
     def _slid(self, event) -> None:
         if self._quiet:
             return
-        _, unit = _split(self.text.value)
+        _, unit = _split(self.text.value or "")
         value = f"{event.new:.4g}" + (f" {unit}" if unit else "")
         self._quiet = True
         try:
@@ -156,13 +158,18 @@ class ClassroomPage:
         Folder the save button writes the scene and the figure to.
     settings : Settings, optional
         The first inputs shown (default: the first lesson).
+    autoplay : bool
+        A lesson starts playing when it is shown (the page's address with ``?play=0``:
+        not until the play button is pressed).
     """
 
-    def __init__(self, out: Path, settings: Settings | None = None):
+    def __init__(self, out: Path, settings: Settings | None = None, autoplay: bool = True):
         self.out = Path(out)
+        self.autoplay = autoplay
         self.picture: Picture | None = None
-        self.t, self._last, self._revealed = 0.0, 0.0, []
-        self._callback = None
+        self.t, self._last = 0.0, 0.0
+        self._revealed: list[int] = []
+        self._callback: Any = None
         self._loading = False
         first = settings or LESSONS["period"].settings
         self.fields = {item.name: _Field(item.name, str(getattr(first, item.name)),
@@ -199,12 +206,12 @@ class ClassroomPage:
                                        width=120)
         self.play = pn.widgets.Button(name="▶ play", button_type="success", width=90,
                                       css_classes=["st-play"])
-        self.play.on_click(lambda event: self.toggle())
+        self.play.on_click(lambda event: self._locked(self.toggle))
         self.restart = pn.widgets.Button(name="⟲ from the start", width=130)
-        self.restart.on_click(lambda event: self.start(0.0))
+        self.restart.on_click(lambda event: self._locked(self.start, 0.0))
         self.save_button = pn.widgets.Button(name="save figure and scene", button_type="primary",
                                              width=180, css_classes=["st-save"])
-        self.save_button.on_click(lambda event: self.save())
+        self.save_button.on_click(lambda event: self._save())
         self.status = pn.pane.HTML("", css_classes=["st-status"], width=900)
         self.numbers = pn.pane.HTML("", css_classes=["st-numbers"], width=900)
         self._figures()
@@ -216,7 +223,7 @@ class ClassroomPage:
     # ------------------------------------------------------------------ inputs
     def settings(self) -> Settings:
         """The inputs as the page shows them."""
-        values = {name: item.text.value for name, item in self.fields.items()}
+        values: dict[str, Any] = {name: item.text.value for name, item in self.fields.items()}
         values.update({name: widget.value for name, widget in self.choices.items()})
         values.update({name: widget.value for name, widget in self.switches.items()})
         return Settings(**values)
@@ -243,7 +250,7 @@ class ClassroomPage:
                                         f"(`shaketable run {lesson.scene}` runs the same "
                                         "blocks.)")
                 self.load(lesson.settings)
-                self.start(0.0, play=True)
+                self._locked(self.start, 0.0, self.autoplay)
                 return
         self.look_for.object = ("**Your block.** Change any field or slider: the page "
                                 "recomputes at once. Give a second block (a COR, a release "
@@ -272,14 +279,24 @@ class ClassroomPage:
             self.status.object = f"<span style='color:#b00020'>{_escape(str(error))}</span>"
             return False
         self.status.object = ""
-        self.draw(picture)
+        self._locked(self.draw, picture)
         return True
+
+    def _locked(self, function, *args) -> None:
+        """Call ``function(*args)`` holding the document's lock: a widget's callback runs
+        without it, and the Bokeh figures (not Panel's own objects) may change only with it.
+        Without a served document (tests, the benchmark) the call is direct."""
+        document = pn.state.curdoc
+        if document is not None and document.session_context is not None:
+            document.add_next_tick_callback(lambda: function(*args))
+        else:
+            function(*args)
 
     # ------------------------------------------------------------------ figures
     def _figures(self) -> None:
         tools = "pan,wheel_zoom,reset,save"
         self.stage = figure(width=640, height=330, tools=tools, toolbar_location="right",
-                            x_range=Range1d(-1, 1), y_range=Range1d(-0.1, 1),
+                            x_range=Range1d(start=-1, end=1), y_range=Range1d(start=-0.1, end=1),
                             title="the block on the shaking table")
         self.stage.xgrid.visible = self.stage.ygrid.visible = False
         self.table_source = ColumnDataSource({"left": [0.0], "right": [1.0], "bottom": [-0.1],
@@ -293,8 +310,8 @@ class ClassroomPage:
         self.clock = Label(x=8, y=240, x_units="screen", y_units="screen", text="t = 0.00 s",
                            text_font_size="13px", text_font="monospace")
         self.stage.add_layout(self.clock)
-        self.history = figure(width=640, height=190, tools=tools, x_range=Range1d(0, 1),
-                              y_range=Range1d(-1.6, 1.6), title="θ/α (|θ/α| > 1: beyond the "
+        self.history = figure(width=640, height=190, tools=tools, x_range=Range1d(start=0, end=1),
+                              y_range=Range1d(start=-1.6, end=1.6), title="θ/α (|θ/α| > 1: beyond the "
                                                                 "block angle)")
         self.history.yaxis.axis_label = "θ/α [-]"
         for sign in (1, -1):
@@ -305,12 +322,12 @@ class ClassroomPage:
                                                line_width=1.5)
                              for k, source in enumerate(self.trace_sources)]
         self.ground = figure(width=640, height=150, tools=tools, x_range=self.history.x_range,
-                             y_range=Range1d(-1, 1), title="table acceleration")
+                             y_range=Range1d(start=-1, end=1), title="table acceleration")
         self.ground.yaxis.axis_label = "ü [g]"
         self.ground_source = ColumnDataSource({"t": [], "a": []})
         self.ground.line("t", "a", source=self.ground_source, color="#444444")
         self.band = figure(width=640, height=110, tools="", toolbar_location=None,
-                           x_range=self.history.x_range, y_range=Range1d(0, 2),
+                           x_range=self.history.x_range, y_range=Range1d(start=0, end=2),
                            title="what the block does (mode)")
         self.band.yaxis.visible = False
         self.band.xaxis.axis_label = "time [s]"
@@ -319,8 +336,6 @@ class ClassroomPage:
         self.band.quad(source=self.band_source, left="left", right="right", bottom="bottom",
                        top="top", fill_color="colour", line_color=None, legend_field="mode")
         self.band.legend.label_text_font_size = "9px"
-        self.band.legend.spacing = 0
-        self.band.legend.padding = 2
         self.band.add_layout(self.band.legend[0], "right")
         self.cursors = [Span(location=0, dimension="height", line_color="#1f77b4",
                              line_width=1.5) for _ in range(3)]
@@ -434,6 +449,9 @@ class ClassroomPage:
             self.play.name = "▶ play"
 
     # ------------------------------------------------------------------ saving
+    def _save(self) -> None:
+        self.save()
+
     def save(self) -> list:
         """Write the scene (TOML) and the figure (PNG) of what is shown; return the paths."""
         from shaketable.core.files import write_text
@@ -593,7 +611,12 @@ def serve(*, port: int = 0, address: str = "localhost", browser: bool = True,
     port = free_port(address) if port == 0 else int(port)
     url = f"http://{'localhost' if address in ('localhost', '127.0.0.1') else address}:{port}/"
     origins = [f"localhost:{port}", f"127.0.0.1:{port}", f"{address}:{port}"]
-    server = pn.serve({"/": lambda: ClassroomPage(Path(out), settings).layout()}, port=port,
+    def page():
+        arguments = pn.state.session_args or {}
+        autoplay = arguments.get("play", [b"1"])[0] not in (b"0", b"no", b"false")
+        return ClassroomPage(Path(out), settings, autoplay=autoplay).layout()
+
+    server = pn.serve({"/": page}, port=port,
                       address=address, websocket_origin=origins, show=False, start=False,
                       title="shaketable classroom", verbose=False)
     server.start()

@@ -6,9 +6,9 @@ import sys
 
 
 def _classroom(args) -> int:
-    try:
-        import panel  # noqa: F401  (the optional extra; the page is built with it)
-    except ImportError:
+    import importlib.util
+
+    if importlib.util.find_spec("panel") is None:   # the optional extra the page is built with
         print("shaketable classroom needs Panel: pip install 'shaketable[classroom]'",
               file=sys.stderr)
         return 1

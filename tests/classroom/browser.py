@@ -100,6 +100,12 @@ def chromium():
     return driver
 
 
+def load(driver, url: str) -> None:
+    """Open the page (again)."""
+    driver.numbers_host = None
+    driver.get(url)
+
+
 def close(driver) -> None:
     driver.quit()
     shutil.rmtree(driver.profile_folder, ignore_errors=True)
@@ -114,13 +120,17 @@ def wait(condition, timeout: float = 20.0, what: str = "the page"):
             return value
         if time.perf_counter() > end:
             raise AssertionError(f"timed out waiting for {what}")
-        time.sleep(0.05)
+        time.sleep(0.1)
 
 
 def texts(driver, selector: str) -> list:
-    """The text of every element matching ``selector`` (through the shadow roots)."""
-    return driver.execute_script(DEEP + "return deepAll(arguments[0]).map(e => e.textContent);",
-                                 selector)
+    """The text of every element matching ``selector`` (through the shadow roots; a
+    widget's own text is in its shadow root)."""
+    return driver.execute_script(
+        DEEP + "return deepAll(arguments[0]).map(e => Array.from((e.shadowRoot || e).childNodes)"
+        ".filter(n => !['STYLE', 'LINK'].includes(n.nodeName)).map(n => n.textContent)"
+        ".join(''));",
+        selector)
 
 
 def inner(driver, host: str, selector: str):
@@ -137,8 +147,7 @@ def type_into(driver, name: str, text: str) -> None:
     from selenium.webdriver.common.keys import Keys
 
     field = wait(lambda: inner(driver, f".st-{name}", "input"), what=f"the field {name}")
-    field.send_keys(Keys.CONTROL, "a")
-    field.send_keys(Keys.DELETE)
+    driver.execute_script("arguments[0].value = '';", field)   # then typed as a user does
     field.send_keys(text, Keys.ENTER)
 
 
@@ -162,9 +171,14 @@ def click_button(driver, host: str, label: str) -> None:
 
 def numbers(driver) -> dict:
     """The verdicts and the key numbers under the picture, by run: {run: {key: text}}."""
+    host = getattr(driver, "numbers_host", None)
+    if host is None:   # found once: the pane's element stays, its content changes
+        host = driver.numbers_host = wait(lambda: driver.execute_script(
+            DEEP + "return deepAll('.st-numbers')[0];"), what="the numbers")
     found = driver.execute_script(
-        DEEP + "return deepAll('td.st-verdict, td.st-number').map(e => [e.dataset.run,"
-        " e.dataset.key || 'verdict', e.textContent]);")
+        "return Array.from(arguments[0].shadowRoot.querySelectorAll("
+        "'td.st-verdict, td.st-number')).map(e => [e.dataset.run, e.dataset.key || 'verdict',"
+        " e.textContent]);", host)
     table: dict = {}
     for run, key, text in found:
         table.setdefault(int(run), {})[key] = text
