@@ -166,6 +166,14 @@ def click_button(driver, host: str, label: str) -> None:
             " for (const b of h.shadowRoot.querySelectorAll('button')) {"
             "  if (b.textContent.trim() === arguments[1]) return b; } } return null;",
             host, label)
+    from selenium.common.exceptions import StaleElementReferenceException
+
+    for _ in range(5):   # a button whose label just changed may be drawn anew
+        try:
+            wait(find, what=f"the button {label!r}").click()
+            return
+        except StaleElementReferenceException:
+            time.sleep(0.2)
     wait(find, what=f"the button {label!r}").click()
 
 
