@@ -610,7 +610,9 @@ def serve(*, port: int = 0, address: str = "localhost", browser: bool = True,
     """
     port = free_port(address) if port == 0 else int(port)
     url = f"http://{'localhost' if address in ('localhost', '127.0.0.1') else address}:{port}/"
-    origins = [f"localhost:{port}", f"127.0.0.1:{port}", f"{address}:{port}"]
+    local = address in ("localhost", "127.0.0.1")
+    # the browser's origin must match: this machine's names, or any for a shared address
+    origins = [f"localhost:{port}", f"127.0.0.1:{port}"] if local else ["*"]
     def page():
         arguments = pn.state.session_args or {}
         autoplay = arguments.get("play", [b"1"])[0] not in (b"0", b"no", b"false")

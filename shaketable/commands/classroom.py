@@ -21,6 +21,16 @@ def _classroom(args) -> int:
     from shaketable.classroom.page import serve
 
     compute(LESSONS["period"].settings)   # the engine compiled (or loaded) before the page opens
+    from dataclasses import replace
+
+    from shaketable.commands.common import compiled_before
+
+    if compiled_before("planar"):   # loaded now (0.5 s) rather than at the first friction run
+        compute(replace(LESSONS["period"].settings, motion="harmonic", duration="1 s",
+                        friction=True, compare="none"))
+    elif not args.quiet:
+        print("shaketable classroom: the first run with friction compiles the planar engine "
+              "(~13 s) once", file=sys.stderr)
     def ready(url: str) -> None:   # the address is needed: on stderr when stdout is quiet
         print(f"shaketable classroom: {url}  (Ctrl-C stops it)",
               file=sys.stderr if args.quiet else sys.stdout, flush=True)
