@@ -59,9 +59,11 @@ class Server:
         root = str(Path(shaketable.__file__).resolve().parents[1])
         environment["PYTHONPATH"] = os.pathsep.join(
             [root] + [part for part in environment.get("PYTHONPATH", "").split(os.pathsep) if part])
+        # stderr to a file: the server's log must never fill a pipe nobody reads
+        self.errors = tempfile.TemporaryFile(mode="w+")
         self.process = subprocess.Popen(
             [sys.executable, "-m", "shaketable", "classroom", "--no-browser",
-             "--out", str(out)], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+             "--out", str(out)], cwd=cwd, stdout=subprocess.PIPE, stderr=self.errors,
             text=True, env=environment)
         assert self.process.stdout is not None
         line = self.process.stdout.readline()
@@ -77,10 +79,13 @@ class Server:
         if self.process.poll() is None:
             self.process.send_signal(signal.SIGINT)
         try:
-            rest, errors = self.process.communicate(timeout=20)
+            rest, _ = self.process.communicate(timeout=20)
         except subprocess.TimeoutExpired:
             self.process.kill()
-            rest, errors = self.process.communicate()
+            rest, _ = self.process.communicate()
+        self.errors.seek(0)
+        errors = self.errors.read()
+        self.errors.close()
         return self.process.returncode, rest, errors
 
 
