@@ -58,13 +58,14 @@ MODE_COLOURS = {"rest": "#eeeeee", "slide": "#8fbbd9", "rock": "#f2b06b",
 SLIDER_RANGES = {"in": (1.0, 240.0, 1.0), "ft": (0.2, 20.0, 0.1), "m": (0.05, 6.0, 0.01),
                  "cm": (5.0, 600.0, 1.0), "mm": (50.0, 6000.0, 10.0), "g": (0.0, 1.5, 0.01),
                  "m/s2": (0.0, 15.0, 0.1), "gal": (0.0, 1500.0, 10.0), "hz": (0.1, 20.0, 0.1),
-                 "s": (0.02, 2.0, 0.01), "": (0.0, 1.0, 0.005)}
+                 "s": (0.02, 2.0, 0.01), "": (0.0, 1.0, 0.005), "alpha": (0.0, 0.99, 0.01),
+                 "deg": (0.0, 30.0, 0.5), "rad": (0.0, 0.5, 0.005)}
 
 #: Fields with a slider beside their text, and the kind of quantity each holds.
 SLIDERS = {"height": "length", "width": "length", "cor": "", "static_friction": "",
            "dynamic_friction": "", "frequency": "frequency", "amplitude": "acceleration",
            "vertical": "acceleration", "pulse_amplitude": "acceleration",
-           "pulse_length": "time", "record_scale": "", "second": None}
+           "pulse_length": "time", "record_scale": "", "theta0": "angle", "second": None}
 
 
 def _split(text: str) -> tuple:
@@ -372,7 +373,10 @@ class ClassroomPage:
         self._thickness = thickness
         self.history.x_range.update(start=0.0, end=picture.end)
         peak = float(np.max(np.abs(picture.ground[1]), initial=0.0))
-        self.ground.y_range.update(start=-1.1 * peak - 1e-3, end=1.1 * peak + 1e-3)
+        peak = 1.1 * peak if peak > 0 else 1.0
+        self.ground.y_range.update(start=-peak, end=peak)
+        self.ground.title.text = ("table acceleration" if picture.data["motion"]["kind"] != "free"
+                                  else "table acceleration: the table is at rest")
         self.numbers.object = _numbers_html(picture)
         self.start(0.0, play=self._callback is not None)
 
