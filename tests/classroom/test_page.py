@@ -14,6 +14,9 @@ import pytest
 
 pytest.importorskip("panel")
 
+# Panel 1.9 announces renamed widget arguments (name -> label) that older Panels lack
+pytestmark = pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")
+
 from shaketable.classroom.model import LESSONS, Settings, compute  # noqa: E402
 from shaketable.classroom.page import ClassroomPage, free_port  # noqa: E402
 
