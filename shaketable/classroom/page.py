@@ -217,7 +217,12 @@ class ClassroomPage:
         self.numbers = pn.pane.HTML("", css_classes=["st-numbers"], width=900)
         self._figures()
         if settings is None:
-            self._show_lesson(LESSONS["period"].title)
+            self._show_lesson(LESSONS["period"].title, play=False)
+            document = pn.state.curdoc
+            if autoplay and document is not None and document.session_context is not None:
+                # the first lesson plays once the browser has drawn the page, not while
+                # the page is still loading
+                pn.state.onload(lambda: self._locked(self.start, 0.0, True))
         else:
             self.recompute()
 
@@ -244,14 +249,14 @@ class ClassroomPage:
     def _lesson(self, event) -> None:
         self._show_lesson(event.new)
 
-    def _show_lesson(self, title: str) -> None:
+    def _show_lesson(self, title: str, play: bool = True) -> None:
         for lesson in LESSONS.values():
             if lesson.title == title:
                 self.look_for.object = (f"**{lesson.title}.** {lesson.look_for} "
                                         f"(`shaketable run {lesson.scene}` runs the same "
                                         "blocks.)")
                 self.load(lesson.settings)
-                self._locked(self.start, 0.0, self.autoplay)
+                self._locked(self.start, 0.0, self.autoplay and play)
                 return
         self.look_for.object = ("**Your block.** Change any field or slider: the page "
                                 "recomputes at once. Give a second block (a COR, a release "
@@ -325,6 +330,7 @@ class ClassroomPage:
         self.ground = figure(width=640, height=150, tools=tools, x_range=self.history.x_range,
                              y_range=Range1d(start=-1, end=1), title="table acceleration")
         self.ground.yaxis.axis_label = "ü [g]"
+        self.ground_title: Any = self.ground.title
         self.ground_source = ColumnDataSource({"t": [], "a": []})
         self.ground.line("t", "a", source=self.ground_source, color="#444444")
         self.band = figure(width=640, height=110, tools="", toolbar_location=None,
@@ -375,7 +381,7 @@ class ClassroomPage:
         peak = float(np.max(np.abs(picture.ground[1]), initial=0.0))
         peak = 1.1 * peak if peak > 0 else 1.0
         self.ground.y_range.update(start=-peak, end=peak)
-        self.ground.title.text = ("table acceleration" if picture.data["motion"]["kind"] != "free"
+        self.ground_title.text = ("table acceleration" if picture.data["motion"]["kind"] != "free"
                                   else "table acceleration: the table is at rest")
         self.numbers.object = _numbers_html(picture)
         self.start(0.0, play=self._callback is not None)
@@ -612,6 +618,10 @@ def serve(*, port: int = 0, address: str = "localhost", browser: bool = True,
     ready : callable, optional
         Called with the page's address once the server listens (default: print it).
     """
+    import logging
+
+    # a closed tab's last frames have nowhere to go: no warning per frame in the terminal
+    logging.getLogger("bokeh.server.views.ws").setLevel(logging.ERROR)
     port = free_port(address) if port == 0 else int(port)
     url = f"http://{'localhost' if address in ('localhost', '127.0.0.1') else address}:{port}/"
     local = address in ("localhost", "127.0.0.1")
@@ -624,7 +634,10 @@ def serve(*, port: int = 0, address: str = "localhost", browser: bool = True,
 
     server = pn.serve({"/": page}, port=port,
                       address=address, websocket_origin=origins, show=False, start=False,
-                      title="shaketable classroom", verbose=False)
+                      title="shaketable classroom", verbose=False,
+                      # a closed tab's session (and its animation) ends within 2 s
+                      check_unused_sessions_milliseconds=1000,
+                      unused_session_lifetime_milliseconds=1000)
     server.start()
     if ready is None:
         print(f"shaketable classroom: {url}  (Ctrl-C stops it)", flush=True)
