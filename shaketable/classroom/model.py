@@ -22,6 +22,7 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 
 from shaketable.core.constants import LENGTH_UNITS, G
+from shaketable.core.equality import fields_equal
 from shaketable.core.units import parse
 
 __all__ = ["COMPARE", "FIELD_LABELS", "FRAME_STEP", "LESSONS", "MOTIONS", "PULSE_SHAPES",
@@ -404,6 +405,8 @@ class Picture:
     numbers : tuple of dict
         Per block, :func:`key_numbers`.
     """
+
+    __eq__ = fields_equal   # arrays compared by value
 
     data: dict
     runs: tuple

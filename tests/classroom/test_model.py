@@ -181,3 +181,8 @@ def test_pitch_adds_the_table_section_and_runs_as_the_lab_does():
     direct = simulate(Block(30 * INCH, 6 * INCH), felt, cor=0.925)
     assert picture.runs[0].max_abs_theta == direct.max_abs_theta
     assert np.any(picture.runs[0].motion.rotation_or_zero != 0.0)   # the pitch is felt
+
+
+def test_a_picture_compares_by_value_and_the_same_inputs_give_the_same_picture():
+    assert compute(Settings()) == compute(Settings())
+    assert compute(Settings()) != compute(Settings(cor="0.8"))
