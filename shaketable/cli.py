@@ -26,6 +26,7 @@ SUBCOMMANDS.insert(SUBCOMMANDS.index("risk") + 1, "assess")
 SUBCOMMANDS.insert(SUBCOMMANDS.index("calibrate"), "records")
 SUBCOMMANDS.insert(SUBCOMMANDS.index("spectrum"), "modemap")
 SUBCOMMANDS.insert(SUBCOMMANDS.index("calibrate") + 1, "validate")
+SUBCOMMANDS.insert(SUBCOMMANDS.index("animate") + 1, "classroom")
 
 #: Exit statuses (documented in ``shaketable --help``).
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130

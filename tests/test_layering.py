@@ -6,7 +6,8 @@ convenience: a function body may import :mod:`shaketable.plots` (a thin
 delegate, loaded only when a figure is asked for). Third-party libraries with
 one home: matplotlib only in ``plots/``, obspy only in ``ground/readers/``,
 the TOML reader only in ``scenes/`` and ``sweeps/``, numba only in ``core`` and
-``solvers``. No module imports another module's private (``_``) names. The
+``solvers``, Panel and Bokeh only in ``classroom/page.py`` (the classroom's model is
+plain functions). No module imports another module's private (``_``) names. The
 scene parser knows no study and no pipeline module. The benchmark harness does
 not drive the CLI module.
 """
@@ -20,10 +21,9 @@ from tests.helpers import REPOSITORY
 
 #: Layer of each top-level folder or module of the package: a module may import
 #: from a layer of lower rank, or from its own folder.
-RANK = {"core": 0, "solvers": 1, "ground": 1, "models": 1, "lab": 2, "calibration": 3, "sweeps": 3,
-        "validation": 3,
-        "studies": 4, "scenes": 5, "plots": 6, "reproduce": 7, "bench": 7, "commands": 8, "cli": 9,
-        "assessment": 7,
+RANK = {"core": 0, "solvers": 1, "ground": 1, "models": 1, "lab": 2, "calibration": 3,
+        "sweeps": 3, "validation": 3, "studies": 4, "scenes": 5, "plots": 6, "reproduce": 7,
+        "bench": 7, "assessment": 7, "classroom": 7, "commands": 8, "cli": 9,
         "__init__": 10, "__main__": 10, "simulate": 10, "version": 0}
 
 #: Third-party modules and the layers allowed to import them.
@@ -35,7 +35,8 @@ DELEGATES = {("core/motion.py", "shaketable.ground.readers.waveform"),
              ("solvers/api.py", "shaketable.models.registry")}
 
 HOMES = {"matplotlib": ("plots",), "obspy": ("ground/readers",), "tomllib": ("scenes", "sweeps"),
-         "tomli": ("scenes", "sweeps"), "numba": ("core", "solvers")}
+         "tomli": ("scenes", "sweeps"), "numba": ("core", "solvers"),
+         "panel": ("classroom/page.py",), "bokeh": ("classroom/page.py",), "selenium": ()}
 
 
 def _layer(relative: Path) -> str:

@@ -1,4 +1,9 @@
-"""``shaketable animate SCENE --out FILE.mp4``: the block(s) rocking on the moving table."""
+"""``shaketable animate SCENE --out FILE.mp4``: the block(s) rocking on the moving table.
+
+Or without a scene, one block on a motion given as ``simulate`` takes it:
+``shaketable animate --block 30x6in --cor 0.9 --harmonic 2Hz,0.3g --duration 6s --out a.gif``
+(``--pulse``, ``--record``).
+"""
 
 from __future__ import annotations
 
@@ -28,7 +33,6 @@ def _size(text: str) -> tuple:
 
 
 def _animate(args) -> int:
-    from shaketable.commands.checks import check_animate_options
     from shaketable.core.files import prepare_output_file
     from shaketable.plots.animation import animate
     from shaketable.plots.calcomp import run_labels
@@ -36,9 +40,18 @@ def _animate(args) -> int:
     from shaketable.scenes.parse import Study, load_scene
     from shaketable.scenes.run import run_scene
 
+    from shaketable.commands.checks import check_animate_options
+
     check_animate_options(args)   # before the scene runs: bounds that protect the memory
     size = _size(args.size)
     prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
+    given = [f"--{name}" for name in ("block", "cor", "harmonic", "pulse", "record")
+             if getattr(args, name) is not None]
+    if args.scene is None:
+        return _animate_options(args, size)
+    if given:
+        raise ValueError(f"give a scene or --block with its motion, not both (got the scene "
+                         f"{args.scene!r} and {', '.join(given)})")
     scene = load_scene(resolve_scene_path(args.scene))
     if isinstance(scene, Study):
         raise ValueError(f"{scene.path}: a [study] has no single block to animate; give a "
@@ -63,19 +76,57 @@ def _animate(args) -> int:
         if run.block.describe() not in label:
             label = f"{run.block.describe()}, {label}"
         print(f"{scene.name}: {label}: {verdict}")
-    if written.note:
-        print(f"note: {written.note}")
-    print(f"wrote {written.path} ({written.n_frames} frames of {written.size[0]} x "
-          f"{written.size[1]} pixels, {written.fps:g} fps, {written.t_first:g}-"
-          f"{written.t_last:g} s at speed {written.speed:g})")
+    _wrote(written)
     from shaketable.commands.checks import report_early_stops
 
     return report_early_stops(runs, "animate", scene.name)
 
 
+def _animate_options(args, size: tuple) -> int:
+    """No scene: one block (``--block``, ``--cor``, ``--theta0``) on the motion of
+    ``--harmonic``, ``--pulse`` or ``--record`` (or free rocking), as ``simulate`` reads them."""
+    from shaketable.commands.checks import report_early_stops
+    from shaketable.commands.common import load_motion, notice_first_compile, scaled_record
+    from shaketable.commands.options import motion_from_options
+    from shaketable.commands.simulate import resolve_angle
+    from shaketable.core.geometry import Block
+    from shaketable.core.validation import in_range
+    from shaketable.plots.animation import animate
+    from shaketable.solvers.api import simulate
+
+    if args.block is None or args.cor is None:
+        raise ValueError("give a scene, or --block and --cor (with --harmonic, --pulse or "
+                         "--record, or --theta0 and --duration for free rocking)")
+    block = Block.parse(args.block)
+    cor = in_range("--cor", args.cor, 0.0, 1.0)
+    motion = motion_from_options(args) or (load_motion(args) if args.record else None)
+    motion, scale_note = scaled_record(motion, args)
+    if motion is None and args.duration is None:
+        raise ValueError("free rocking (no --harmonic, --pulse or --record) needs --duration")
+    theta0 = resolve_angle(args.theta0, block)
+    notice_first_compile(args.quiet)
+    result = simulate(block, motion, cor=cor, theta0=theta0, duration=args.duration)
+    written = animate(result, out=args.out, fps=args.fps, speed=args.speed, start=args.start,
+                      end=args.end, size=size, dpi=args.dpi, unit=args.unit)
+    if scale_note:
+        print(scale_note)
+    print(f"{block.describe()} block, COR {cor:g}: {result.verdict()}")
+    _wrote(written)
+    return report_early_stops([result], "animate", block.describe())
+
+
+def _wrote(written) -> None:
+    if written.note:
+        print(f"note: {written.note}")
+    print(f"wrote {written.path} ({written.n_frames} frames of {written.size[0]} x "
+          f"{written.size[1]} pixels, {written.fps:g} fps, {written.t_first:g}-"
+          f"{written.t_last:g} s at speed {written.speed:g})")
+
+
 def register(commands) -> None:
     """Add the ``animate`` subcommand."""
-    from shaketable.commands.options import add_quantity
+    from shaketable.commands.common import add_record_arguments
+    from shaketable.commands.options import add_motion_options, add_quantity
 
     parser = commands.add_parser(
         "animate", help="animation (MP4 or GIF): the blocks rocking on the moving table beside θ/α",
@@ -83,8 +134,24 @@ def register(commands) -> None:
                     "about their corners) on the moving table, beside θ/α with the ±1 lines "
                     "and the ground acceleration. A scene with several runs (cor, theta0 "
                     "or block size given as a list) shows them side by side or overlaid. "
+                    "Without a scene, one block on a motion given as `simulate` takes it "
+                    "(--block, --cor, --harmonic, --pulse, --record, --duration). Every trace "
+                    "is drawn up to the frame's time, never ahead of it. "
                     "MP4 needs ffmpeg; without it a GIF is written.")
-    parser.add_argument("scene", help="path to a scene .toml, or the name of a bundled scene")
+    parser.add_argument("scene", nargs="?",
+                        help="path to a scene .toml, or the name of a bundled scene; or none, "
+                             "with --block and its motion")
+    parser.add_argument("--block", help="without a scene: HEIGHTxWIDTH with unit, height "
+                                        "first, e.g. 30x6in or 16x4ft")
+    parser.add_argument("--cor", type=float,
+                        help="without a scene: coefficient of restitution [0-1]")
+    parser.add_argument("--theta0", default="0rad",
+                        help="without a scene: initial tilt with unit: 0.05rad, 3deg or "
+                             "0.5alpha (default 0rad)")
+    add_record_arguments(parser)
+    add_motion_options(parser)
+    add_quantity(parser, "--duration", kind="time", example="8s",
+                 help="without a scene: length of the run")
     parser.add_argument("--out", required=True,
                         help="the file to write: FILE.mp4 (with ffmpeg; otherwise FILE.gif "
                              "is written) or FILE.gif")

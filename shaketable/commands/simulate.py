@@ -19,7 +19,7 @@ from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
 
-def _resolve_angle(text: str, block: Block) -> float:
+def resolve_angle(text: str, block: Block) -> float:
     value = str(text).strip().lower()
     for suffix, factor in (("alpha", block.alpha), ("deg", math.pi / 180), ("rad", 1.0)):
         if value.endswith(suffix):
@@ -67,7 +67,7 @@ def _simulate(args) -> int:
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     motion, scale_note = scaled_record(motion, args)
     motion = _on_floor(args, motion)
-    theta0 = _resolve_angle(args.theta0, block)
+    theta0 = resolve_angle(args.theta0, block)
     out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
     notice_first_compile(args.quiet, which=("planar",) if args.friction is not None else
                          ("engine", "batch") if args.ensemble else ("engine",))

@@ -9,14 +9,17 @@ table's controller does, Section 3.4 of [1]_). Beside it: theta/alpha with the
 +-1 lines of the stable region and a moving cursor, and the horizontal ground
 acceleration.
 
+Every trace is revealed as time advances: at each frame theta/alpha and the
+ground acceleration are drawn up to that frame's time, never ahead of it.
+
 Several runs (two CORs, two release angles, two block sizes) are shown side by
 side, each block on its own table, all drawn to the same scale in one length
 unit, or overlaid on one table (``layout="overlay"``); their theta/alpha
 traces share one panel, in the colours of their blocks.
 
-The frames are drawn by blitting: the axes, the traces and the labels are
-drawn once, and each frame redraws only the moving blocks, tables, cursors and
-texts onto a copy of that background.
+The frames are drawn by blitting: the axes and the labels are drawn once, and
+each frame redraws only the moving blocks, tables, cursors, texts and the traces
+up to its time onto a copy of that background.
 
 Like :mod:`shaketable.plots.calcomp`, this module is at the edge: it is the only one,
 with the plotting modules, that imports matplotlib.
@@ -300,11 +303,13 @@ class _Stage:
 
         history = self.history
         self.dots = []
+        self.traces: list = []   # (line, times, values): drawn up to each frame's time
         limit = 1.2
         for k, run in enumerate(self.results):
             ratio = run.theta / run.block.alpha
-            history.plot(run.t, ratio, color=lines[k], lw=1.0,
-                         label=None if single else self.labels[k])
+            (trace,) = history.plot(run.t, ratio, color=lines[k], lw=1.0,
+                                    label=None if single else self.labels[k])
+            self.traces.append((trace, run.t, ratio))
             limit = max(limit, 1.05 * float(np.max(np.abs(ratio), initial=0.0)))
             (dot,) = history.plot([times[0]], [self.theta[k][0] / run.block.alpha], "o",
                                   color=lines[k] if not single else "tab:blue", ms=6)
@@ -327,8 +332,9 @@ class _Stage:
                     continue
                 seen.append(ground)
                 shown = ground.t <= times[-1] + 1e-12
-                self.ground.plot(ground.t[shown], ground.horizontal[shown] / G, lw=0.7,
-                                 color="0.3" if len(seen) == 1 else lines[k])
+                (trace,) = self.ground.plot(ground.t[shown], ground.horizontal[shown] / G,
+                                            lw=0.7, color="0.3" if len(seen) == 1 else lines[k])
+                self.traces.append((trace, ground.t[shown], ground.horizontal[shown] / G))
             self.ground.set_ylabel("ü [g]")
             self.ground.set_xlabel("time [s]")
             self.ground.grid(True, lw=0.3, alpha=0.5)
@@ -357,8 +363,8 @@ class _Stage:
         if len(title) > fits and ": " in title:
             title = title.replace(": ", ":\n", 1)  # two lines rather than past the edges
         fig.suptitle(title, fontsize=12, y=0.99)
-        self.animated = [*self.tables, *self.blocks, *self.cursors, *self.dots, *self.states,
-                         self.clock]
+        self.animated = [*self.tables, *self.blocks, *(trace for trace, _, _ in self.traces),
+                         *self.cursors, *self.dots, *self.states, self.clock]
 
     def draw(self, index: int):
         """Move the artists to frame ``index``; return them."""
@@ -370,6 +376,9 @@ class _Stage:
             self.dots[k].set_data([t], [self.theta[k][index] / self.results[k].block.alpha])
         for cursor in self.cursors:
             cursor.set_xdata([t, t])
+        for trace, trace_times, values in self.traces:   # up to t, never ahead of it
+            shown = int(np.searchsorted(trace_times, t, side="right"))
+            trace.set_data(trace_times[:shown], values[:shown])
         sign = "+" if self.displacement[0][index] >= 0 else "−"
         self.clock.set_text(f"t = {t:6.2f} s   table x = {sign}"
                             f"{abs(self.displacement[0][index]):.2f} {self.unit}")

@@ -186,3 +186,42 @@ def test_the_small_block_falls_first_scene_does_what_it_says():
     small, large = run_scene(load_scene(resolve_scene_path("teaching-small-block-falls"))).runs
     assert small.overturned and not large.overturned
     assert large.max_theta_ratio == pytest.approx(0.56, abs=0.005)
+
+
+def test_every_trace_is_revealed_up_to_the_frame_time_only():
+    # the theta/alpha traces and the ground acceleration are drawn up to each frame's time:
+    # the future (the small block's fall) is not on the picture before it happens
+    from shaketable.plots.animation import _Stage
+    from shaketable.plots.base import pyplot
+
+    block = st.Block.parse("30x6in")
+    run = st.simulate(block, motions.harmonic(2.0, horizontal=0.3 * G, duration=3.0), cor=0.9)
+    times = frame_times(0.0, 3.0, fps=4, speed=1.0)
+    stage = _Stage([run], [run.motion], times, 0.1)
+    try:
+        assert len(stage.traces) == 2   # theta/alpha and the ground acceleration
+        for index, t in enumerate(times):
+            stage.draw(index)
+            for trace, trace_times, _ in stage.traces:
+                shown = np.asarray(trace.get_xdata())
+                assert shown.size == np.count_nonzero(trace_times <= t)
+                assert shown.size == 0 or shown.max() <= t
+        for trace, trace_times, _ in stage.traces:   # the last frame: all of it
+            assert np.asarray(trace.get_xdata()).size == trace_times.size
+    finally:
+        pyplot().close(stage.fig)
+
+
+def test_cli_animate_takes_the_motion_options_of_simulate(tmp_path, capsys):
+    out = tmp_path / "harmonic.gif"
+    assert main(["animate", "--block", "30x6in", "--cor", "0.9", "--harmonic", "2Hz,0.3g",
+                 "--duration", "2s", "--fps", "2", "--size", "320x180", "--out", str(out)]) == 0
+    with Image.open(out) as gif:
+        assert gif.n_frames == 5   # 0, 0.5, ..., 2 s
+    direct = st.simulate(st.Block.parse("30x6in"),
+                         motions.harmonic(2.0, horizontal=0.3 * G, duration=2.0), cor=0.9)
+    assert f"30 x 6 in block, COR 0.9: {direct.verdict()}" in capsys.readouterr().out
+    assert main(["animate", "fig-3-4", "--block", "30x6in", "--out", str(out)]) == 2
+    assert "not both" in capsys.readouterr().err
+    assert main(["animate", "--block", "30x6in", "--out", str(out)]) == 2
+    assert "--cor" in capsys.readouterr().err
