@@ -115,7 +115,8 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
     if isinstance(motion, ImpulsiveMotion):   # velocity steps: split there (solvers.impulses)
         from shaketable.solvers.impulses import simulate_impulsive
 
-        return simulate_impulsive(block, motion, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
+        return simulate_impulsive(block, motion, simulate=simulate, cor=cor, theta0=theta0,
+                                  theta_dot0=theta_dot0,
                                   duration=duration, method=method, rtol=rtol,
                                   subdivisions=subdivisions, output_dt=output_dt,
                                   rest_tolerance=rest_tolerance,

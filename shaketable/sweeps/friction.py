@@ -2,7 +2,7 @@
 
 A sweep spec (:mod:`shaketable.sweeps.spec`) with a ``[friction]`` section runs each
 cell with the coupled model of the whole planar block -- rest, slide, rock, slide-rock
-and free flight with Coulomb friction (issue 25; ``docs/planar.md``) -- compiled, through
+and free flight with Coulomb friction (``docs/planar.md``) -- compiled, through
 :func:`shaketable.solvers.planar_batch.simulate_many_planar`, instead of the rocking
 batch. Friction coefficients are dimensionless: plain numbers, no unit::
 
@@ -48,7 +48,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaketable.sweeps.spec import SweepError
+from shaketable.sweeps.base import SweepError
 
 if TYPE_CHECKING:
     import pandas as pd

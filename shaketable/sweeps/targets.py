@@ -1,4 +1,4 @@
-"""The intensity-measure settings of a sweep spec's ``[intensity]`` (issue 29): which
+"""The intensity-measure settings of a sweep spec's ``[intensity]``: which
 measure is the target, the periods and damping of the spectra, and a target spectrum.
 Parsed by :mod:`shaketable.sweeps.spec`; used by :mod:`shaketable.sweeps.execute`.
 """
@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaketable.core.constants import G
+from shaketable.sweeps.base import SweepError
 
 #: Periods [s] of the Sa columns every row records (and ``period`` when given).
 RECORDED_PERIODS = (0.2, 0.5, 1.0, 2.0)
@@ -61,8 +62,6 @@ class IntensitySettings:
 
 def read_spectrum(value, where: str, directory: Path | None) -> tuple:
     """A target spectrum CSV (``period [s], sa [g]`` with a header): ((T, Sa [m/s^2]), ...)."""
-    from shaketable.sweeps.spec import SweepError
-
     if not isinstance(value, str) or not value:
         raise SweepError(f"{where}: intensity.spectrum must be a CSV file name")
     path = Path(value)
