@@ -42,7 +42,7 @@ def _run(args) -> int:
             line += (f" (largest |θ|/α before instability "
                      f"{run.max_theta_ratio_before_instability:.3f})")
         print(line)
-    for run in result.planar:   # issue 25: block.static_friction runs the planar block
+    for run in result.planar:   # block.static_friction runs the planar block
         print(f"{scene.name}: planar block (μs {run.friction.static:g}, μd "
               f"{run.friction.dynamic:g}), COR {run.cor:g}: {run.verdict()}; peak slip "
               f"{run.peak_slip:.4f} m, peak corner excursion {run.peak_excursion:.4f} m; "

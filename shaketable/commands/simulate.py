@@ -80,7 +80,7 @@ def _simulate(args) -> int:
                          "--ensemble")
     if args.ensemble:
         return _ensemble(args, block, motion, out)
-    if friction is not None:   # issue 25: the planar block (rest, slide, rock, slide-rock, flight)
+    if friction is not None:   # the planar block (rest, slide, rock, slide-rock, flight)
         result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
                           friction=friction)
     else:
@@ -88,7 +88,7 @@ def _simulate(args) -> int:
                           method=args.method, subdivisions=args.subdivisions)
     from shaketable.commands.history import for_figure, history_frame, history_mode
 
-    history = history_mode(args.history, result.t.size)   # --history (issue 27)
+    history = history_mode(args.history, result.t.size)   # --history
     if friction is not None and history == "peaks":
         history = "full"   # the planar block's history has no peaks selection: all of it
     if history != "none":

@@ -1,6 +1,6 @@
 """Perturbed copies of one run: the spreads, the draws and the verdict statistics.
 
-The solver-free part of an ensemble (issue 16), shared by every layer that runs
+The solver-free part of an ensemble, shared by every layer that runs
 one: :mod:`shaketable.studies.predictability` (the API, ``simulate --ensemble``,
 a scene's ``[ensemble]``, Tables 4.1-4.3) and :mod:`shaketable.sweeps` (a sweep's
 ``[ensemble]``, one ensemble per cell). Member ``k`` of an ensemble has

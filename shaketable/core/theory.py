@@ -190,7 +190,7 @@ def periods(block: Block, amplitudes) -> np.ndarray:
     return np.array([housner_period(block, a) for a in np.atleast_1d(amplitudes)])
 
 
-# --- Housner's linearised model (Eq. 2-4) under pulses, in closed form (issue 30) ----------
+# --- Housner's linearised model (Eq. 2-4) under pulses, in closed form ---------------------
 #
 # With u = theta/alpha, tau = p t, x = a/(g alpha) and r = omega/p, Eq. (2-4) with the
 # table acceleration a f(t) reads, on the corner s = sign(u),

@@ -106,7 +106,7 @@ _PLANAR_SECTIONS = {"table-4-4"}
 
 
 def uses_planar(name_or_path: str) -> bool:
-    """Whether a scene runs the planar block (issue 25), read from its TOML alone.
+    """Whether a scene runs the planar block, read from its TOML alone.
 
     True for ``block.static_friction`` (the planar run per COR), a ``mode-map`` study, and
     the scenes whose report section recomputes with the planar block (Table 4.4): the

@@ -63,7 +63,7 @@ MOTION_KEYS = {
     "artificial": {"preset", "seed", "pga", "duration", "dt", "vertical_pga"},
     "half-sine": {"amplitude", "pulse_duration", "duration", "dt", "sign"},
     "constant-pulse": {"acceleration", "pulse_duration", "duration", "dt"},
-    # issue 30: steps of the table's velocity, applied exactly (shaketable.core.impulses)
+    # steps of the table's velocity, applied exactly (shaketable.core.impulses)
     "impulses": {"times", "velocity_steps", "duration", "dt"},
 }
 
@@ -93,11 +93,11 @@ SLIDING_KEYS = {"static_friction", "dynamic_friction"}
 #: Studies that recompute one of the report's tables (a ``[study]`` section).
 STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"},
                "pitch-repeatability": {"phases"}, "teaching": {"item"},
-               # issue 16; the keys are read by shaketable.scenes.spectrum
+               # the keys are read by shaketable.scenes.spectrum
                "overturning-spectrum": {"pulse", "block", "alpha", "p", "cor", "omega_over_p",
                                         "ceiling", "scan_step", "tolerance", "reference",
                                         "method"},
-               # issue 25; the keys are read by shaketable.scenes.mode_map
+               # the keys are read by shaketable.scenes.mode_map
                "mode-map": {"record", "pga", "aspect_ratios", "frictions", "height", "cor"}}
 
 
@@ -151,7 +151,7 @@ class Scene:
     static_friction : float or None
         ``block.static_friction``: mu_s for Section 2.1's sliding-or-rocking check; with a
         table motion the scene also runs the planar block (rest, slide, rock, slide-rock,
-        flight; issue 25) with this friction.
+        flight) with this friction.
     dynamic_friction : float or None
         ``block.dynamic_friction``: mu_d of that planar run (default mu_s).
     sliding : tuple of (float, float)
@@ -382,7 +382,7 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
         raise SceneError(f"{where}: block.static_friction must be a positive number (the "
                          f"static coefficient of friction mu_s), got {static_friction!r}")
     dynamic_friction = data["block"].get("dynamic_friction")
-    if dynamic_friction is not None:   # issue 25: with static_friction, the planar block runs
+    if dynamic_friction is not None:   # with static_friction, the planar block runs
         if static_friction is None:
             raise SceneError(f"{where}: block.dynamic_friction needs block.static_friction "
                              "(mu_s)")

@@ -1,7 +1,7 @@
 """The ``[study] kind = "overturning-spectrum"`` of a scene: its keys, read and checked.
 
 A scene of this kind runs :func:`shaketable.studies.overturning_spectrum.overturning_spectrum`
-(every overturn/safe band edge in a/(g tan alpha), issue 16) with the options of
+(every overturn/safe band edge in a/(g tan alpha)) with the options of
 ``shaketable spectrum``::
 
     [study]

@@ -14,8 +14,8 @@ import numpy as np
 from shaketable.core.files import write_csv, write_parquet, write_text
 from shaketable.sweeps.spec import SweepError
 
-#: Version of the result layout, written in the manifest (2: the intensity-measure columns
-#: of issue 29; a folder of version 1 is not resumed, its rows lack them).
+#: Version of the result layout, written in the manifest (2: with the intensity-measure
+#: columns; a folder of version 1 is not resumed, its rows lack them).
 FORMAT_VERSION = 2
 
 

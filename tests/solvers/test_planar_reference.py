@@ -85,7 +85,7 @@ def test_fig_3_7_harmonic_run_equals_the_rocking_model_while_the_corner_holds(me
 
 @pytest.mark.parametrize("method", ["reference", "fast"])
 def test_pacoima_s16e_with_vertical_equals_the_rocking_model_while_the_corner_holds(method):
-    # issue 25 check 1: the bundled Pacoima Dam S16E record with its vertical, a 16 x 4 ft
+    # the rocking limit: the bundled Pacoima Dam S16E record with its vertical, a 16 x 4 ft
     # block, COR 0.95. It overturns; in the final fall (after the last impact) N -> 0
     # and the planar corner slips at 6.717 s (as in Fig. 3.7): compare up to there
     from shaketable.ground import records
@@ -213,7 +213,7 @@ def test_frictionless_cor_1_the_spec_law_is_not_elastic():
     # is symmetric (x' = 0, by horizontal momentum). The spec's law gives
     # theta'+ = rho (Ic - b^2) / (Ic + b^2) theta'-, rho = cor / c_H, and the kinetic
     # energy 0.5 (Ic + b^2) theta'^2 before and after: a loss 1 - (ratio)^2 even with
-    # cor = 1 (reported in DISAGREEMENTS.md: issue 25 check 5 expects none). The
+    # cor = 1, where an elastic impact would lose none. The
     # run's balance holds.
     block = Block.from_inches(30, 6)
     result = simulate_reference(block, None, cor=1.0, friction=Friction(0.0), theta0=0.1,
@@ -248,7 +248,7 @@ def test_energy_balance_on_a_coupled_harmonic_run(mu_s, mu_d):
 
 
 def test_energy_balance_over_a_pacoima_run():
-    # issue 25 check 5: Pacoima Dam S16E with its vertical, the 16 x 4 ft block, COR 0.95,
+    # energy balance: Pacoima Dam S16E with its vertical, the 16 x 4 ft block, COR 0.95,
     # mu_s 0.28, mu_d 0.26 (just above B/H = 0.25): rocks and slide-rocks with over 100
     # impacts. The balance of the equations of motion holds to 1e-9 of g R
     from shaketable.ground import records
