@@ -5,7 +5,7 @@ the layers below it, never above. The one exception is a ``.plot()``
 convenience: a function body may import :mod:`shaketable.plots` (a thin
 delegate, loaded only when a figure is asked for). Third-party libraries with
 one home: matplotlib only in ``plots/``, obspy only in ``ground/readers/``,
-the TOML reader only in ``scenes/`` and ``sweeps/``, numba only in ``core`` and
+the TOML reader only in ``core/tomlfile.py`` (read by ``scenes/`` and ``sweeps/``), numba only in ``core`` and
 ``solvers``. No module imports another module's private (``_``) names. No
 module imports itself through others (no import cycle), except through the
 listed ``.plot()`` and ObsPy delegates. The
@@ -44,8 +44,9 @@ CYCLE_DELEGATES = DELEGATES | {
     ("sweeps/fragility.py", "shaketable.plots.sweeps"),
 }
 
-HOMES = {"matplotlib": ("plots",), "obspy": ("ground/readers",), "tomllib": ("scenes", "sweeps"),
-         "tomli": ("scenes", "sweeps"), "numba": ("core", "solvers")}
+TOML_HOMES = ("core/tomlfile.py", "scenes", "sweeps")
+HOMES = {"matplotlib": ("plots",), "obspy": ("ground/readers",), "tomllib": TOML_HOMES,
+         "tomli": TOML_HOMES, "numba": ("core", "solvers")}
 
 
 def _layer(relative: Path) -> str:

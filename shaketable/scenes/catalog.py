@@ -90,7 +90,7 @@ def study_kind(name_or_path: str) -> str | None:
     SceneError
         No such scene, or a file that is not TOML (:func:`resolve_scene_path`).
     """
-    from shaketable.scenes.parse import tomllib
+    from shaketable.core.tomlfile import tomllib
 
     path = resolve_scene_path(name_or_path)
     try:
@@ -113,7 +113,7 @@ def uses_planar(name_or_path: str) -> bool:
     first-compile notice names the planar engine for them. An unreadable file is left to
     the scene parser to report (``False`` here).
     """
-    from shaketable.scenes.parse import tomllib
+    from shaketable.core.tomlfile import tomllib
 
     try:
         path = resolve_scene_path(name_or_path)

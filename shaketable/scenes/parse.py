@@ -41,13 +41,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
-    import tomli as tomllib  # type: ignore[no-redef]
-
 from shaketable.core.geometry import Block, PrestressRods
+from shaketable.core.tomlfile import key_line, read_toml
 from shaketable.core.units import parse, parse_angle_or_ratio
+from shaketable.core.validation import unknown_keys
 
 if TYPE_CHECKING:
     from shaketable.lab.stage import TableSetup
@@ -295,17 +292,8 @@ def load_scene(path: str | Path) -> Scene | Study:
     SceneError
         With the file name, the key and what was expected.
     """
-    from shaketable.core.files import read_utf8
-
     path = Path(path)
-    text = read_utf8(path, "scene", SceneError)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise SceneError(f"{path}: not valid TOML: {error}") from None
-    except RecursionError:  # an array nested thousands deep: the parser's recursion
-        raise SceneError(f"{path}: arrays or tables nested too deeply to read (a scene "
-                         f"needs a few levels)") from None
+    data, text = read_toml(path, "scene", SceneError)
     try:
         return scene_from_dict(data, where=str(path))
     except SceneError as error:
@@ -316,8 +304,6 @@ def load_scene(path: str | Path) -> Scene | Study:
 _KEY_IN_MESSAGE = re.compile(r"unknown key '([\w-]+)' in \[([\w.-]+)|\[([\w.-]+)\]|"
                              r"\b((?:block|motion|rocking|report|outputs|table|sensors|theory|"
                              r"sliding|ensemble|study|floor)(?:\.[\w-]+)+)")
-_HEADER = re.compile(r"^\s*\[\[?\s*([\w.\"' -]+?)\s*\]\]?\s*(?:#.*)?$")
-_ASSIGNMENT = re.compile(r"^\s*([\w.\"' -]+?)\s*=")
 
 
 def with_line(message: str, where: str, text: str) -> str:
@@ -339,30 +325,6 @@ def with_line(message: str, where: str, text: str) -> str:
     path = f"{section}.{unknown}" if unknown else (header or dotted)
     line = key_line(text, path.split("."))
     return message if line is None else f"{message} (line {line})"
-
-
-def key_line(text: str, path: list) -> int | None:
-    """Line number (from 1) of the dotted key ``path`` in TOML ``text``, or of its longest
-    written prefix (a section header, an inline table); ``None`` when nothing of it is written."""
-    best, best_depth = None, 0
-    section: list = []
-    for number, line in enumerate(text.splitlines(), start=1):
-        header = _HEADER.match(line)
-        if header:
-            section = [part.strip().strip("\"'") for part in header.group(1).split(".")]
-            keys = section
-        else:
-            assignment = _ASSIGNMENT.match(line)
-            if not assignment:
-                continue
-            keys = section + [part.strip().strip("\"'")
-                              for part in assignment.group(1).split(".")]
-        depth = 0
-        while depth < min(len(keys), len(path)) and keys[depth] == path[depth]:
-            depth += 1
-        if depth == len(keys) and depth > best_depth:  # this line writes a prefix of path
-            best, best_depth = number, depth
-    return best
 
 
 def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
@@ -656,7 +618,7 @@ def _table(value, where, section):
 
 
 def _only(table: dict, allowed: set, where: str, section: str) -> None:
-    unknown = sorted(set(table) - allowed)
+    unknown = unknown_keys(table, allowed)
     if unknown:
         raise SceneError(f"{where}: unknown key {unknown[0]!r} in [{section}]; expected one of "
                          f"{', '.join(sorted(allowed)) or '(none)'}")

@@ -130,13 +130,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
-    import tomli as tomllib  # type: ignore[no-redef]
-
 from shaketable.core.geometry import Block, PrestressRods
+from shaketable.core.tomlfile import read_toml
 from shaketable.core.units import parse, parse_angle_or_ratio
+from shaketable.core.validation import unknown_keys
 from shaketable.sweeps.base import RecordSpec, SweepError
 from shaketable.sweeps.targets import IntensitySettings, read_spectrum
 
@@ -299,17 +296,8 @@ def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
     SweepError
         With the file name, the key and what was expected.
     """
-    from shaketable.core.files import read_utf8
-
     path = Path(path)
-    text = read_utf8(path, "sweep spec", SweepError)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise SweepError(f"{path}: not valid TOML: {error}") from None
-    except RecursionError:  # an array nested thousands deep: the parser's recursion
-        raise SweepError(f"{path}: arrays or tables nested too deeply to read (a sweep spec "
-                         f"needs a few levels)") from None
+    data, text = read_toml(path, "sweep spec", SweepError)
     try:
         return spec_from_dict(data, where=str(path), directory=path.parent)
     except SweepError as error:   # a [friction] key: its line, as the scenes give it
@@ -432,7 +420,7 @@ def _ensemble(table, where):
 
 
 def _only(table: dict, allowed: set, where: str, section: str) -> None:
-    unknown = sorted(set(table) - set(allowed))
+    unknown = unknown_keys(table, allowed)
     if unknown:
         raise SweepError(f"{where}: unknown key {unknown[0]!r} in {section}; expected one of "
                          f"{', '.join(sorted(allowed))}")
