@@ -1,5 +1,21 @@
 """shaketable: virtual shaking-table tests of free-standing rigid blocks.
 
+Example: does a 30 x 6 in block overturn under Pacoima Dam S16E, at 0.3 and 0.5 of it?
+
+>>> import shaketable as st
+>>> from shaketable.ground import records
+>>> block = st.Block.parse("30x6in")               # height x width, with its unit
+>>> motion = records.load("pacoima-dam-s16e")      # a bundled record (`shaketable records`)
+>>> st.simulate(block, motion.scaled(0.3), cor=0.9).verdict()   # peak rotation / alpha
+'max θ/α = 0.20'
+>>> st.simulate(block, motion.scaled(0.5), cor=0.9).verdict()
+'overturned (−) at 4.16 s'
+
+A run's ``plot()`` draws the report's Calcomp figure, ``to_frame()`` its time
+history; ``st.simulate(..., friction=st.Friction(0.3))`` lets the base slide too. From
+a shell: ``shaketable simulate --block 30x6in --record pacoima-dam-s16e --scale 0.3
+--cor 0.9``.
+
 Reproduces Aslam, Godden & Scalise, *Rocking and overturning response of rigid
 bodies to earthquake motions* (LBL / UC Berkeley; program BLOKROC).
 
@@ -77,15 +93,15 @@ def _numba_sees_the_cache_folder() -> None:
 _numba_sees_the_cache_folder()
 
 from shaketable.core.constants import FOOT, INCH, G  # noqa: E402
-from shaketable.core.geometry import Block, PrestressRods  # noqa: E402
+from shaketable.core.geometry import AsymmetricBlock, Block, PrestressRods  # noqa: E402
 from shaketable.core.motion import Motion  # noqa: E402
 from shaketable.core.planar_result import PlanarResult  # noqa: E402
 from shaketable.core.results import RockingResult  # noqa: E402
 from shaketable.core.sliding_result import Friction  # noqa: E402
 from shaketable.version import __version__  # noqa: E402
 
-__all__ = ["Block", "PrestressRods", "Motion", "RockingResult", "Friction", "PlanarResult",
-           "simulate", "METHODS", "assess", "G", "INCH", "FOOT", "__version__"]
+__all__ = ["Block", "AsymmetricBlock", "PrestressRods", "Motion", "RockingResult", "Friction",
+           "PlanarResult", "simulate", "METHODS", "assess", "G", "INCH", "FOOT", "__version__"]
 
 #: The names loaded on first use, and the module each comes from.
 _LAZY = {"simulate": "shaketable.solvers.api", "METHODS": "shaketable.solvers.layout",

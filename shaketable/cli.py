@@ -23,6 +23,9 @@ SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "a
                "slide", "spectrum", "examples"]
 SUBCOMMANDS.insert(SUBCOMMANDS.index("sweep") + 1, "risk")
 SUBCOMMANDS.insert(SUBCOMMANDS.index("risk") + 1, "assess")
+SUBCOMMANDS.insert(SUBCOMMANDS.index("calibrate"), "records")
+SUBCOMMANDS.insert(SUBCOMMANDS.index("spectrum"), "modemap")
+SUBCOMMANDS.insert(SUBCOMMANDS.index("calibrate") + 1, "validate")
 
 #: Exit statuses (documented in ``shaketable --help``).
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130

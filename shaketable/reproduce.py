@@ -25,8 +25,14 @@ TIMING_NOTE = ("*Times:* the run lines give the exact block's times (events loca
                "grid at or after the exact event (the first sample beyond α).")
 
 
+#: How a section carries its differing comparisons to the report's list (an HTML comment
+#: per comparison, ``<!-- differs: KIND | WHAT -->``, removed from report.md).
+DIFFERS_MARK = "<!-- differs: "
+
+
 def run_line(run: RockingResult) -> str:
-    """One run in words and units for report.md: verdict, instability, impacts, rods."""
+    """One run in words and units for report.md: which block, from which angle and at which
+    COR, then the verdict, instability, impacts and rods."""
     if run.overturned:
         side = "+" if run.overturn_direction > 0 else "−"
         verdict = (f"**F**: overturns ({side}) at {run.t_overturn:.2f} s; largest rocking "
@@ -42,7 +48,10 @@ def run_line(run: RockingResult) -> str:
                     "summed in closed form (endless impacts to rest)")
     rods = ("" if run.block.rods is None else
             f"; largest rod force {run.max_rod_force:.3g} W (Section 4.4)")
-    return f"* COR {run.cor:g}: {verdict}; {unstable}; {impacts}{rods}"
+    start = (f"from θ0 = {run.theta[0] / run.block.alpha:.3g} α" if run.theta[0] != 0.0
+             else "from rest")
+    return (f"* {run.block.describe()} block, {start}, COR {run.cor:g}: {verdict}; {unstable}; "
+            f"{impacts}{rods}")
 
 
 def comparison_kind(scene: Scene, quantity_key: str | None = None) -> str:
@@ -278,6 +287,9 @@ def _scene_outcome(name: str, out: Path) -> tuple[str, dict, bool]:
         section = _scene_section(name, out, tally)
     except (ValueError, OSError) as error:
         return f"## {name}\n\n**Not reproduced:** {error}\n", tally.counts, True
+    # the differing comparisons, for the report's list (comments: not shown in the section)
+    section += "".join(f"{DIFFERS_MARK}{kind} | {what} -->\n"
+                       for kind, what in tally.differing)
     return section, tally.counts, False
 
 
@@ -326,7 +338,9 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
                   "|---|---|---|---|---|"]
         for line in result.comparisons:
             kind = comparison_kind(scene, line.key)
-            tally.add(kind, line.agrees)
+            unit = "" if line.unit in ("", "-") else f" {line.unit}"
+            tally.add(kind, line.agrees, what=f"{line.quantity}: the report gives "
+                      f"{_format(line.report)}, reproduced {_format(line.reproduced)}{unit}")
             mark = "yes" if line.agrees else "**no**"
             if kind == "by construction":
                 mark += " (by construction)"
@@ -363,6 +377,7 @@ def _assemble(out: Path, rerun) -> Path:
     scope = (f"{len(order)} {sections_word}, all rerun now." if not kept else
              f"{len(order)} sections: {len(rerun)} rerun now ({', '.join(rerun)}), "
              f"{len(kept)} kept from an earlier run into this folder.")
+    sections, differing, contents = _contents(order, sections, tally)
     header = ["# shaketable: the report reproduced", "",
               "Aslam, Godden & Scalise, *Rocking and overturning response of rigid bodies to "
               "earthquake motions* (BLOKROC). Each section reruns one figure or table as a "
@@ -372,10 +387,60 @@ def _assemble(out: Path, rerun) -> Path:
               "An overturned run is the report's **F** everywhere (its peak before "
               "instability is given beside it, never (π/2)/α as a peak). Table 4.4 (sliding) "
               "is computed by the Coulomb stick-slip block, outside the rocking model "
-              "(section `table-4-4`).", ""]
-    path = write_text(out / "report.md", "\n".join(header + sections))
+              "(section `table-4-4`).", "", *differing, *contents]
+    anchored = [f'<a id="{name}"></a>\n\n{section}' for name, section in zip(order, sections)]
+    path = write_text(out / "report.md", "\n".join(header + anchored))
     write_gallery(out)
     return path
+
+
+def _differing(section: str) -> tuple[str, list[tuple[str, str]]]:
+    """A section without its differs-comments, and the ``(kind, what)`` they carry."""
+    kept, found = [], []
+    for line in section.splitlines(keepends=True):
+        if line.startswith(DIFFERS_MARK) and line.rstrip().endswith("-->"):
+            kind, _, what = line[len(DIFFERS_MARK):].rstrip()[:-3].strip().partition(" | ")
+            found.append((kind, what))
+        else:
+            kept.append(line)
+    return "".join(kept), found
+
+
+#: Headings of the report's lists of differing comparisons, by kind.
+DIFFERING_HEADINGS = {"report inputs": "against the report's own inputs",
+                      "substitute": "against SUBSTITUTE accelerograms (not expected to match)",
+                      "by construction": "by construction"}
+
+
+def _contents(order: list[str], sections: list[str],
+              tally: ComparisonTally) -> tuple[list[str], list[str], list[str]]:
+    """The sections without their differs-comments, the report's lists of the comparisons
+    that differ (by kind, linked to their sections) and its table of contents."""
+    contents = ["## Contents", ""]
+    by_kind: dict[str, list[str]] = {kind: [] for kind in DIFFERING_HEADINGS}
+    cleaned = []
+    for name, section in zip(order, sections):
+        section, found = _differing(section)
+        cleaned.append(section)
+        heading = next((line[3:].strip() for line in section.splitlines()
+                        if line.startswith("## ")), name)
+        contents.append(f"- [{heading}](#{name})"
+                        + (f" ({len(found)} differ)" if found else ""))
+        for kind, what in found:
+            by_kind.setdefault(kind, []).append(f"- [`{name}`](#{name}): {what}")
+    lists = []
+    for kind, items in by_kind.items():
+        counted = tally.counts.get(kind, [0, 0])[1]
+        if not counted and not items:
+            continue
+        things = ("comparison", "differs") if counted == 1 else ("comparisons", "differ")
+        lists += [f"## The {counted} {things[0]} {DIFFERING_HEADINGS.get(kind, kind)} that "
+                  f"{things[1]}", ""] + items
+        if len(items) != counted:   # sections kept from a run of an earlier version
+            lists.append(f"- ({counted - len(items)} more in sections written by an earlier "
+                         "version, which do not list them: rerun those sections)")
+        lists.append("")
+    return cleaned, lists, contents + [""]
 
 
 def write_gallery(out: str | os.PathLike[str]) -> Path:
@@ -446,7 +511,8 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
             # the report's one number: 4.6 g by Eq. (2-9) for a 0.1 s pulse
             row = frame[frame["pulse duration [s]"] == 0.1].iloc[0]
             agrees = abs(row["Eq. 2-9 [g]"] / 4.6 - 1) <= 0.05
-            tally.add("report inputs", agrees)
+            tally.add("report inputs", agrees, what=f"Eq. 2-9, 0.1 s pulse: the report gives "
+                      f"4.6 g, reproduced {row['Eq. 2-9 [g]']:.3g} g")
             lines += ["", "| quantity | report | reproduced | unit | agrees |",
                       "|---|---|---|---|---|",
                       f"| Eq. 2-9, 0.1 s pulse | 4.6 | {row['Eq. 2-9 [g]']:.3g} | g | "
@@ -462,7 +528,10 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
         save(figure_3_6(frame), folder / "figure.png")
         lines += [f"![{study.name}]({study.name}/figure.png)", ""]
         agrees = (abs(frame["test / exact [-]"] - 1) <= 0.03)
-        tally.add_many("report inputs", int(agrees.sum()), len(agrees))
+        tally.add_many("report inputs", int(agrees.sum()), len(agrees), differing=[
+            f"amplitude {row['amplitude [deg]']:g} deg: test / exact period "
+            f"{row['test / exact [-]']:.3f} (within 3 %: no)"
+            for _, row in frame[~agrees].iterrows()])
         lines += [_markdown(frame.round(3)), "",
                   "The report's test/theory agreement is within 2–3 %; the exact nonlinear "
                   f"period agrees with the printed test periods within "
@@ -477,7 +546,11 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
     counts = comparison.counts()
     for substitute, cells in frame.groupby("substitute motion"):
         tally.add_many("substitute" if substitute else "report inputs",
-                       int(cells["verdict_agrees"].sum()), len(cells))
+                       int(cells["verdict_agrees"].sum()), len(cells), differing=[
+                           f"{row['height [ft]']:g} x {row['width [ft]']:g} ft, COR "
+                           f"{row['cor [-]']:g}, {row['column']}: the report gives "
+                           f"{row['report']}, reproduced {row['reproduced']} (F = overturns)"
+                           for _, row in cells[~cells["verdict_agrees"].astype(bool)].iterrows()])
     wide = frame.assign(cell=frame["report"] + " / " + frame["reproduced"]).pivot_table(
         index=["height [ft]", "width [ft]", "cor [-]"], columns="column", values="cell",
         aggfunc="first", sort=False).reset_index()
@@ -534,11 +607,16 @@ def _repeatability_section(study: Study, folder: Path, lines: list, tally: Compa
               "| quantity | report | reproduced | unit | agrees |", "|---|---|---|---|---|"]
     # every case row is a comparison with the report's finding ('agrees' column); the
     # earthquake-type cases run on the SUBSTITUTE accelerogram, as do the contrast lines
-    for row in frame.itertuples(index=False):
-        kind = "substitute" if "substitute" in row.case else "report inputs"
-        tally.add(kind, row.agrees == "yes" if isinstance(row.agrees, str) else bool(row.agrees))
+    for _, row in frame.iterrows():
+        kind = "substitute" if "substitute" in row["case"] else "report inputs"
+        agrees = row["agrees"]
+        tally.add(kind, agrees == "yes" if isinstance(agrees, str) else bool(agrees),
+                  what=f"{row['case']}: the report found "
+                       f"'{row.get('report (Section 3.7 (2))', '—')}', reproduced "
+                       f"'{row.get('reproduced', '—')}'")
     for line in section_3_7_contrast(cases):
-        tally.add("substitute", line.agrees)
+        tally.add("substitute", line.agrees, what=f"{line.quantity}: the report gives "
+                  f"{_format(line.report)}, reproduced {_format(line.reproduced)}")
         lines.append(f"| {line.quantity} | {_format(line.report)} | {_format(line.reproduced)} "
                      f"| {line.unit} | {'yes' if line.agrees else '**no**'} |")
     return "\n".join(lines) + "\n"
@@ -661,7 +739,10 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
     for substitute, cells in frame.groupby("substitute motion"):
         agrees = abs(cells["ratio [-]"] - 1.0) <= 0.10
         tally.add_many("substitute" if substitute else "report inputs", int(agrees.sum()),
-                       len(cells))
+                       len(cells), differing=[
+                           f"{row['column']}, mu_d {row['mu_d [-]']:g}: the report gives "
+                           f"{row['report [in]']:g} in, reproduced {row['reproduced [in]']:.3g} "
+                           f"in (within 10 %: no)" for _, row in cells[~agrees].iterrows()])
     body = table_4_4_markdown(frame).split("\n", 1)[1]  # drop its own heading
     lines += ["*Outside the rocking model:* Table 4.4 is the report's sliding mode "
               "(Section 4.5), a block that slides without rocking; it is computed here by the "

@@ -22,7 +22,8 @@ from tests.helpers import REPOSITORY
 
 #: Layer of each top-level folder or module of the package: a module may import
 #: from a layer of lower rank, or from its own folder.
-RANK = {"core": 0, "solvers": 1, "ground": 1, "lab": 2, "calibration": 3, "sweeps": 3,
+RANK = {"core": 0, "solvers": 1, "ground": 1, "models": 1, "lab": 2, "calibration": 3, "sweeps": 3,
+        "validation": 3,
         "studies": 4, "scenes": 5, "plots": 6, "reproduce": 7, "bench": 7, "commands": 8, "cli": 9,
         "assessment": 7,
         "__init__": 10, "__main__": 10, "simulate": 10, "version": 0}
@@ -31,7 +32,9 @@ RANK = {"core": 0, "solvers": 1, "ground": 1, "lab": 2, "calibration": 3, "sweep
 #: Lazy (function-level) imports allowed upward besides the plots delegates: the ObsPy
 #: conversions of :class:`Motion` (``Motion.from_stream``/``to_stream``) are thin delegates
 #: to the reader layer, which is the only one that may import ObsPy.
-DELEGATES = {("core/motion.py", "shaketable.ground.readers.waveform")}
+DELEGATES = {("core/motion.py", "shaketable.ground.readers.waveform"),
+             # simulate() hands another model's input (a Stack) to that model
+             ("solvers/api.py", "shaketable.models.registry")}
 
 #: The lazy imports allowed to close an import cycle: ``.plot()`` delegates of a result or
 #: study to the figure module that draws it (and that imports the result's own module

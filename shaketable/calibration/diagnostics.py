@@ -105,7 +105,7 @@ def diagnose(*, rate: float, anti_alias: str, filter_cutoff: float, residual_lag
     if peaks is not None and abs(peaks.slope_z) > limits["velocity_z"]:
         warn("velocity",
             f"the COR depends on the impact velocity (slope {peaks.slope:+.3f} +- "
-            f"{1.96 * peaks.slope_se:.3f} s/rad, {abs(peaks.slope_z):.1f} standard errors): "
+            f"{peaks.slope_se:.3f} s/rad, standard error; {abs(peaks.slope_z):.1f} standard errors): "
             "one COR does not describe this block (report Section 3.7 (1))")
     if periods is not None and periods.nominal is not None:
         z = periods.nominal_discrepancy()

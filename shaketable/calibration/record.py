@@ -7,13 +7,13 @@ from __future__ import annotations
 import math
 import numbers
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
-from shaketable.core.constants import INCH, LENGTH_UNITS
+from shaketable.core.constants import LENGTH_UNITS
 from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import Block
 from shaketable.lab.sensors import (
@@ -54,6 +54,9 @@ class FreeRockingRecord:
         Per-sample clipping flags, if the acquisition gives them.
     name : str
         Label.
+    display_unit : str, optional
+        Length unit the figures and the CSV show a top displacement in (the record
+        file's own unit when it was read from a file); None: inches, as the report.
     """
 
     __eq__ = fields_equal   # arrays compared by value; equal after a pickle round trip
@@ -64,8 +67,12 @@ class FreeRockingRecord:
     height: float | None = None
     clipped: np.ndarray | None = None
     name: str = ""
+    display_unit: str | None = None
 
     def __post_init__(self) -> None:
+        if self.display_unit is not None and self.display_unit not in LENGTH_UNITS:
+            raise ValueError(f"display_unit must be one of {', '.join(LENGTH_UNITS)} or None, "
+                             f"got {self.display_unit!r}")
         if self.quantity not in QUANTITIES:
             raise ValueError(f"quantity must be one of {QUANTITIES}, got {self.quantity!r}")
         t = np.array(self.t, dtype=float)
@@ -149,8 +156,12 @@ class FreeRockingRecord:
         return float(self.t[-1] - self.t[0])
 
     def display_scale(self) -> tuple[float, str]:
-        """Factor and unit for plots: rad for angles, in for displacements."""
-        return (1.0, "rad") if self.quantity == "angle" else (1.0 / INCH, "in")
+        """Factor and unit for plots: rad for angles; for displacements the record file's
+        unit (:attr:`display_unit`), else in."""
+        if self.quantity == "angle":
+            return 1.0, "rad"
+        unit = self.display_unit or "in"
+        return 1.0 / LENGTH_UNITS[unit], unit
 
     def to_quantity(self, theta: npt.ArrayLike, block: Block) -> np.ndarray:
         """The record's quantity for rotations ``theta`` [rad] (no offset)."""
@@ -261,9 +272,9 @@ def _record_from_columns(path: Path, t: np.ndarray, values: np.ndarray, units: s
     unit_key = _canonical_unit(units)
     if unit_key in ANGLE_UNITS:
         return FreeRockingRecord.from_angle(t, values, units=unit_key, name=path.stem)
-    if unit_key in LENGTH_UNITS:
-        return FreeRockingRecord.from_top_displacement(t, values, units=unit_key, height=height,
-                                            name=path.stem)
+    if unit_key in LENGTH_UNITS:    # shown in the file's own unit
+        return replace(FreeRockingRecord.from_top_displacement(
+            t, values, units=unit_key, height=height, name=path.stem), display_unit=unit_key)
     raise ValueError(f"{path}: unknown unit {units!r} of column {column!r}; expected an angle "
                      f"({sorted(ANGLE_UNITS)}) or a length ({sorted(LENGTH_UNITS)})")
 

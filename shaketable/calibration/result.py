@@ -8,7 +8,7 @@ import json
 import math
 import os
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 
@@ -16,7 +16,7 @@ from shaketable.calibration.model import PARAMETERS
 from shaketable.calibration.peaks import PeakEstimate, PeriodFit
 from shaketable.calibration.record import FreeRockingRecord
 from shaketable.calibration.scatter import CorScatter
-from shaketable.core.constants import INCH
+from shaketable.core.constants import length_factor
 from shaketable.core.equality import fields_equal
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
@@ -28,6 +28,19 @@ if TYPE_CHECKING:
     import pandas as pd
     from matplotlib.figure import Figure
 
+    from shaketable.calibration.uncertainty import CalibratedCor, CalibratedEnsemble
+
+#: Warning kinds (:data:`~shaketable.calibration.diagnostics.KINDS`) under which the
+#: block's mean COR of the random-effects model is the answer: the COR scatters from
+#: impact to impact, or the least-squares COR disagrees with the per-impact CORs. The
+#: least-squares interval then describes one record's average of its impacts, not the
+#: block, and the least-squares fit is kept as a diagnostic.
+MEAN_COR_KINDS = ("scatter", "methods")
+
+#: Key of the least-squares fit in :meth:`Calibration.summary` (a diagnostic when the
+#: block's mean COR leads).
+LEAST_SQUARES_KEY = "least_squares_fit (diagnostic)"
+
 
 @dataclass(frozen=True)
 class Calibration:
@@ -38,7 +51,9 @@ class Calibration:
     record : FreeRockingRecord
     block : Block
     cor : float
-        Least-squares COR [-].
+        Least-squares COR [-]: the answer on a record that obeys one COR, a diagnostic
+        when the COR scatters (then :attr:`answer` is the block's mean COR; see
+        :attr:`mean_cor_leads`).
     cor_interval : tuple of float
         95 % interval of the COR [-] (``interval_method``).
     cor_se : float
@@ -148,6 +163,68 @@ class Calibration:
         """Level of ``cor_interval`` [-]."""
         return 0.95
 
+    @property
+    def mean_cor_leads(self) -> bool:
+        """Whether the block's mean COR (``scatter``) is the answer, not the least-squares
+        ``cor``: the COR scatters from impact to impact or the two methods disagree
+        (:data:`MEAN_COR_KINDS`)."""
+        return self.scatter is not None and any(kind in MEAN_COR_KINDS
+                                                for kind in self.warning_kinds)
+
+    @property
+    def answer(self) -> CalibratedCor:
+        """The calibrated COR: the block's mean COR with its standard error, degrees of
+        freedom and impact-to-impact scatter when :attr:`mean_cor_leads`, else the
+        least-squares COR and its standard error (with the scatter model's sigma when there
+        is one). What :meth:`summary` heads with, :meth:`predict` runs and ``simulate
+        --cor calibration.json`` reads."""
+        from shaketable.calibration.uncertainty import CalibratedCor
+
+        source = f"calibration of {self.record.name}"
+        sigma = self.scatter.sigma if self.scatter is not None else 0.0
+        if self.mean_cor_leads and self.scatter is not None:
+            # a noisy record's mean may pass 1, which no block restores: kept in (0, 1]
+            return CalibratedCor(min(max(self.scatter.mean, 1e-9), 1.0), self.scatter.mean_se,
+                                 self.scatter.dof, sigma, source)
+        dof = max(int(self.goodness.get("samples", 1000)) - len(self.parameters), 1)
+        return CalibratedCor(min(max(self.cor, 1e-9), 1.0), self.cor_se, dof, sigma, source)
+
+    @property
+    def answer_interval(self) -> tuple[float, float]:
+        """95 % interval of :attr:`answer` [-]: the mean's (t quantile) or ``cor_interval``."""
+        if self.mean_cor_leads and self.scatter is not None:
+            return self.scatter.mean_interval
+        return self.cor_interval
+
+    def filter_text(self) -> str:
+        """How the acquisition's filter was modelled, in words; a fitted cutoff at or above
+        the Nyquist frequency (half the sample rate) is no filter."""
+        nyquist = 0.5 * self.record.rate
+        if self.anti_alias == "fit":
+            if not math.isfinite(self.filter_cutoff):
+                return "fitted filter: no filter"
+            if self.filter_cutoff >= nyquist:
+                return (f"fitted filter: no filter (its cutoff {self.filter_cutoff:.3g} Hz is "
+                        f"above the Nyquist frequency {nyquist:.3g} Hz)")
+            return f"fitted {self.filter_order}-pole filter at {self.filter_cutoff:.3g} Hz"
+        if self.anti_alias == "known":
+            return f"given {self.filter_order}-pole filter at {self.filter_cutoff:.3g} Hz"
+        return "no filter modelled"
+
+    def headline(self) -> str:
+        """The answer in one line: the COR that leads with its 95 % interval and whence."""
+        low, high = self.answer_interval
+        if self.mean_cor_leads and self.scatter is not None:
+            sc = self.scatter
+            return (f"COR = {sc.mean:.4f}  (95 % interval {low:.4f} to {high:.4f}): the "
+                    f"block's mean COR over {sc.impacts} impacts; it scatters from impact to "
+                    f"impact, sigma {sc.sigma:.4f} ({sc.sigma_interval[0]:.4f} to "
+                    f"{sc.sigma_interval[1]:.4f})")
+        digits = self.digits
+        return (f"COR = {self.cor:.{digits}f}  (95 % interval {low:.{digits}f} to "
+                f"{high:.{digits}f}, least squares, {self.interval_method}; "
+                f"{self.filter_text()})")
+
     def to_frame(self) -> pd.DataFrame:
         """FreeRockingRecord, fit and residuals as a :class:`pandas.DataFrame` (units in the names)."""
         import pandas as pd
@@ -164,14 +241,24 @@ class Calibration:
     def summary(self) -> dict[str, Any]:
         """JSON-ready scalar results (units in the keys)."""
         unit = "rad" if self.record.quantity == "angle" else "m"
-        data = {
-            "record": self.record.name, "quantity": self.record.quantity,
-            "block_height [m]": self.block.height, "block_width [m]": self.block.width,
+        answer, (low, high) = self.answer, self.answer_interval
+        least_squares = {
             "cor [-]": self.cor, "cor_low [-]": self.cor_interval[0],
             "cor_high [-]": self.cor_interval[1],
             "cor_interval [-]": [float(self.cor_interval[0]), float(self.cor_interval[1])],
-            "cor_interval_level [-]": self.confidence, "cor_se [-]": self.cor_se,
-            "interval": self.interval_method,
+            "cor_se [-]": self.cor_se, "interval": self.interval_method}
+        data = {
+            "record": self.record.name, "quantity": self.record.quantity,
+            "block_height [m]": self.block.height, "block_width [m]": self.block.width,
+            # the headline: the COR that leads (read by CalibratedCor.from_summary)
+            "cor_source": ("block mean (random effects)" if self.mean_cor_leads
+                           else "least squares"),
+            "cor [-]": answer.mean, "cor_low [-]": low, "cor_high [-]": high,
+            "cor_interval [-]": [float(low), float(high)],
+            "cor_interval_level [-]": self.confidence, "cor_se [-]": answer.mean_se,
+            "cor_dof": answer.dof, "cor_sigma [-]": answer.sigma,
+            "interval": ("Hartung-Knapp t" if self.mean_cor_leads else self.interval_method),
+            LEAST_SQUARES_KEY: {key: json_ready(value) for key, value in least_squares.items()},
             "anti_alias": self.anti_alias, "filter_order": self.filter_order,
             "filter_cutoff [Hz]": self.filter_cutoff, "filter_delay [s]": self.filter_delay,
             "theta0 [rad]": self.theta0, "theta0_se [rad]": self.theta0_se,
@@ -231,8 +318,9 @@ class Calibration:
 
         return plot_calibration(self, fig=fig, title=title)
 
-    def predict(self, motion: Motion | None = None, **kwargs: Any) -> RockingResult:
-        """The theory run with the calibrated COR (see :func:`predict`)."""
+    def predict(self, motion: Motion | None = None,
+                **kwargs: Any) -> RockingResult | CalibratedEnsemble:
+        """The theory run (or ensemble) with the calibrated COR (see :func:`predict`)."""
         return predict(self, motion, **kwargs)
 
     @property
@@ -242,23 +330,22 @@ class Calibration:
         return max(4, int(math.ceil(-math.log10(half))) + 1) if half > 0 else 6
 
     def text(self) -> str:
-        """One-paragraph human summary."""
+        """Human summary: the answer first (:meth:`headline`), then the diagnostics.
+
+        "+-" is one standard error everywhere in it; intervals are 95 %.
+        """
         low, high = self.cor_interval
         digits = self.digits
         unit = "rad" if self.record.quantity == "angle" else "m"
-        if self.anti_alias == "fit":
-            filter_text = (f"fitted {self.filter_order}-pole filter: none"
-                           if not math.isfinite(self.filter_cutoff) else
-                           f"fitted {self.filter_order}-pole filter at {self.filter_cutoff:.3g} Hz")
-        elif self.anti_alias == "known":
-            filter_text = f"given {self.filter_order}-pole filter at {self.filter_cutoff:.3g} Hz"
-        else:
-            filter_text = "no filter modelled"
-        lines = [f"COR = {self.cor:.{digits}f}  (95 % interval {low:.{digits}f} to "
-                 f"{high:.{digits}f}, {self.interval_method}; {filter_text})",
-                 f"release angle {self.theta0:.5f} rad = {self.theta0 / self.block.alpha:.3f} "
-                 f"alpha at t = {self.t_release:.3f} s; fit rms {self.goodness['rms']:.3g} "
-                 f"{unit}, R^2 {self.goodness['r_squared']:.6f}"]
+        lines = [self.headline()]
+        if self.mean_cor_leads:
+            lines.append(f"least-squares fit (diagnostic; its interval holds for one COR at "
+                         f"every impact): COR {self.cor:.{digits}f} ({low:.{digits}f} to "
+                         f"{high:.{digits}f}, {self.interval_method}; {self.filter_text()})")
+        lines.append(f"release angle {self.theta0:.5f} rad = "
+                     f"{self.theta0 / self.block.alpha:.3f} alpha at t = {self.t_release:.3f} "
+                     f"s; fit rms {self.goodness['rms']:.3g} {unit}, R^2 "
+                     f"{self.goodness['r_squared']:.6f}")
         if self.bootstrap_interval is not None and self.bootstrap_cors is not None:
             lines.append(f"bootstrap ({self.bootstrap_cors.size}): "
                          f"{self.bootstrap_interval[0]:.{digits}f} to "
@@ -267,9 +354,9 @@ class Calibration:
             p = self.peaks
             lines.append(f"peak method: COR = {p.cor:.4f} ({p.cor_interval[0]:.4f} to "
                          f"{p.cor_interval[1]:.4f}) from {p.amplitudes.size} peaks; COR vs "
-                         f"impact velocity slope {p.slope:+.4f} +- {1.96 * p.slope_se:.4f} s/rad"
+                         f"impact velocity slope {p.slope:+.4f} +- {p.slope_se:.4f} s/rad"
                          + (" (no dependence)" if p.velocity_independent else " (DEPENDS)"))
-        if self.scatter is not None:
+        if self.scatter is not None and not self.mean_cor_leads:
             sc = self.scatter
             lines.append(f"block's mean COR (random effects over {sc.impacts} impacts) = "
                          f"{sc.mean:.4f} (95 % interval {sc.mean_interval[0]:.4f} to "
@@ -279,10 +366,12 @@ class Calibration:
         if self.periods is not None:
             e = self.periods.block
             height_se, width_se = self.periods.size_se()
+            size_unit = self.block.length_unit     # the size in the unit the block was given in
+            scale = length_factor(size_unit)
             lines.append(f"period fit: R = {self.periods.R:.4f} +- {self.periods.R_se:.4f} m, "
                          f"alpha = {self.periods.alpha:.4f} +- {self.periods.alpha_se:.4f} rad "
-                         f"-> {e.height / INCH:.2f} +- {height_se / INCH:.2f} x "
-                         f"{e.width / INCH:.2f} +- {width_se / INCH:.2f} in (standard errors; "
+                         f"-> {e.height / scale:.4g} +- {height_se / scale:.2g} x "
+                         f"{e.width / scale:.4g} +- {width_se / scale:.2g} {size_unit} (standard errors; "
                          f"nominal {self.block.describe()})"
                          + (f"; at the nominal alpha R = {self.periods_alpha_held.R:.4f} +- "
                             f"{self.periods_alpha_held.R_se:.4f} m (nominal "
@@ -290,14 +379,34 @@ class Calibration:
                             else ""))
         lines.extend(note if note.startswith("WARNING: ") else f"note: {note}"
                      for note in self.notes)
+        lines.append("(+- is one standard error; intervals are 95 %)")
         return "\n".join(lines)
 
 
 # ------------------------------------------------------------------ theory run
+@overload
+def predict(calibration: Calibration, motion: None = None, *, duration: float | None = None,
+            theta0: float | None = None, members: int = 200, seed: int = 0,
+            **kwargs: Any) -> RockingResult: ...
+
+
+@overload
+def predict(calibration: Calibration, motion: Motion, *, duration: float | None = None,
+            theta0: float | None = None, members: int = 200, seed: int = 0,
+            **kwargs: Any) -> RockingResult | CalibratedEnsemble: ...
+
+
 def predict(calibration: Calibration, motion: Motion | None = None, *,
             duration: float | None = None, theta0: float | None = None,
-            **kwargs: Any) -> RockingResult:
+            members: int = 200, seed: int = 0,
+            **kwargs: Any) -> RockingResult | CalibratedEnsemble:
     """The theory run with the calibrated COR (the report's use of nu = 0.925, Section 3.6).
+
+    The COR is the calibration's answer (:attr:`Calibration.answer`). When the block's
+    mean COR leads (the COR scatters, :attr:`Calibration.mean_cor_leads`) a table motion
+    is run as an ensemble over the COR that the mean's interval and the scatter imply
+    (:func:`~shaketable.calibration.uncertainty.calibrated_ensemble`, what ``shaketable
+    simulate --cor calibration.json`` runs); otherwise, and for free rocking, one run.
 
     Parameters
     ----------
@@ -309,17 +418,37 @@ def predict(calibration: Calibration, motion: Motion | None = None, *,
         Length of the run [s] (default: the record's length after release).
     theta0 : float, optional
         Initial rotation [rad] (default: the fitted release angle for free
-        rocking, 0 under a motion).
+        rocking, 0 under a motion; an ensemble starts at rest).
+    members, seed : int
+        Size and seed of the ensemble (when one is run).
     **kwargs
-        Passed to :func:`shaketable.solvers.api`.
+        Passed to :func:`shaketable.solvers.api.simulate` (an ensemble takes
+        ``method`` and ``threads``).
+
+    Returns
+    -------
+    RockingResult or CalibratedEnsemble
     """
     if not isinstance(calibration, Calibration):
         raise ValueError(f"calibration must be a Calibration, got {type(calibration).__name__}")
+    answer = calibration.answer
+    if motion is not None and calibration.mean_cor_leads:
+        from shaketable.calibration.uncertainty import calibrated_ensemble
+
+        if theta0 not in (None, 0.0):
+            raise ValueError(f"theta0 = {theta0!r}: the ensemble of a scattering COR starts "
+                             "at rest (theta0 = 0)")
+        unknown = sorted(set(kwargs) - {"method", "threads"})
+        if unknown:
+            raise ValueError(f"{', '.join(unknown)}: not options of the calibrated ensemble "
+                             "(method, threads)")
+        return calibrated_ensemble(calibration.block, motion, answer, members=members,
+                                   seed=seed, duration=duration, **kwargs)
     if motion is None:
         theta0 = calibration.theta0 if theta0 is None else theta0
         if duration is None:
             duration = float(calibration.record.t[-1] - calibration.t_release)
     else:
         theta0 = 0.0 if theta0 is None else theta0
-    return simulate(calibration.block, motion, cor=calibration.cor, theta0=theta0,
+    return simulate(calibration.block, motion, cor=answer.mean, theta0=theta0,
                     duration=duration, **kwargs)

@@ -98,7 +98,10 @@ class CalibratedCor:
 
     @classmethod
     def from_summary(cls, data: dict[str, Any], source: str = "") -> CalibratedCor:
-        """From :meth:`Calibration.summary` (the scatter model's mean if it is there)."""
+        """From :meth:`Calibration.summary`: its headline COR (``cor [-]``, ``cor_se [-]``,
+        ``cor_dof``, ``cor_sigma [-]``, with ``cor_source``); a summary without
+        ``cor_source`` (written by earlier versions) gives the scatter model's mean if it is
+        there, else the least-squares COR."""
         where = source or "calibration summary"
 
         def number(key: str) -> float:
@@ -109,6 +112,11 @@ class CalibratedCor:
                                  "a calibration.json written by `shaketable calibrate`?")
             return float(value)
 
+        if "cor_source" in data:       # the headline keys: the COR that the calibration leads with
+            sigma = number("cor_sigma [-]") if "cor_sigma [-]" in data else 0.0
+            return cls(number("cor [-]"), number("cor_se [-]"), int(number("cor_dof")), sigma,
+                       source)
+        # files written before the headline keys: the scatter model's mean if it is there
         if "cor_mean [-]" in data:
             return cls(number("cor_mean [-]"), number("cor_mean_se [-]"),
                        int(number("cor_mean_dof")), number("cor_scatter_sigma [-]"), source)
@@ -132,8 +140,11 @@ class CalibratedCor:
         import scipy.stats
 
         half = float(scipy.stats.t.ppf(0.975, self.dof)) * self.mean_se
-        return (f"COR {self.mean:.4f} (95 % interval {self.mean - half:.4f} to "
-                f"{self.mean + half:.4f}), impact-to-impact scatter sigma {self.sigma:.4f}"
+        # one decimal beyond the interval's half-width, at least 4
+        digits = max(4, int(math.ceil(-math.log10(half))) + 1) if half > 0 else 6
+        return (f"COR {self.mean:.{digits}f} (95 % interval {self.mean - half:.{digits}f} to "
+                f"{self.mean + half:.{digits}f}), impact-to-impact scatter sigma "
+                f"{self.sigma:.4f}"
                 + (f", from {self.source}" if self.source else ""))
 
 

@@ -115,7 +115,7 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
     With a ``--record``: an ensemble of ``--ensemble`` members (default 200), each with
     a COR drawn from the calibration (:func:`shaketable.calibration.uncertainty.calibrated_ensemble`),
     reporting P(overturn) and max theta/alpha with their intervals. Free rocking (no
-    record) cannot overturn from theta0 < alpha: one run with the mean COR.
+    record) cannot overturn from theta0 < alpha: one run with the calibrated COR.
     """
     import json
 
@@ -135,7 +135,11 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
                           method=args.method, subdivisions=args.subdivisions)
         write_csv(out / "history.csv", run.to_frame())
         write_text(out / "summary.json", json.dumps(run.summary(), indent=2))
-        print(f"free rocking with the mean COR {cor.mean:.4f}: {run.verdict()}")
+        from shaketable.commands.answers import rocking_answer
+
+        print(f"free rocking with the calibrated COR {cor.mean:.6g}: {run.verdict()}")
+        for line in rocking_answer(run):
+            print("  " + line)
         print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}")
         return 0
     members = args.ensemble if args.ensemble else 200

@@ -21,7 +21,13 @@ def add_record_arguments(parser) -> None:
                  help="sample interval of a one-column record")
     parser.add_argument("--column", help="the acceleration column of a text record with "
                                          "several, by 0-based index or header name")
-    parser.add_argument("--scale", type=float, default=1.0, help="factor on the record [-]")
+    scale = parser.add_mutually_exclusive_group()
+    scale.add_argument("--scale", type=float, default=None,
+                       help="factor on the record [-] (default 1)")
+    scale.add_argument("--pga", metavar="ACCELERATION",
+                       help="scale the record to this horizontal PGA, with its unit (e.g. "
+                            "0.5g, 3m/s2); the record's own PGA and the factor are printed "
+                            "(not with --scale)")
     parser.add_argument("--no-vertical", action="store_true",
                         help="drop the vertical component")
 
@@ -53,11 +59,43 @@ def load_motion(args):
 
 
 def scaled(motion, factor, option: str = "--scale"):
-    """The motion times ``--scale``, the option checked and named."""
+    """The motion times ``--scale``, the option checked and named (None: unscaled)."""
     from shaketable.core.validation import number
 
+    if factor is None:
+        return motion
     factor = number(option, factor)
     return motion if factor == 1.0 else motion.scaled(factor)
+
+
+def scaled_record(motion, args):
+    """``--scale`` or ``--pga`` applied to the ``--record``: ``(motion, note)``.
+
+    ``note`` says the record's own PGA and the factor used to reach ``--pga``
+    (None without ``--pga``). ``--pga`` needs a record with a horizontal component.
+    """
+    target_text = getattr(args, "pga", None)
+    if target_text is None:
+        return (None if motion is None else scaled(motion, args.scale)), None
+    from shaketable.core.constants import G
+    from shaketable.core.units import parse
+
+    if args.scale is not None:     # argparse refuses both; a programmatic args may not
+        raise ValueError("--pga and --scale both scale the record: give one")
+    if motion is None or not getattr(args, "record", None):
+        raise ValueError(f"--pga {target_text}: scales a --record (a --harmonic or --pulse "
+                         "states its amplitude itself)")
+    target = parse(target_text, "acceleration", where="--pga")
+    if target <= 0:
+        raise ValueError(f"--pga {target_text}: must be above 0")
+    own = motion.pga
+    if own == 0.0:
+        raise ValueError(f"--pga {target_text}: the record {args.record!r} has no horizontal "
+                         "acceleration to scale")
+    factor = target / own
+    note = (f"record {args.record}: own PGA {own / G:.4g} g, scaled by {factor:.4g} to "
+            f"PGA {target / G:.4g} g")
+    return motion.scaled(factor), note
 
 
 #: The compiled functions whose numba cache files tell that the engine was compiled

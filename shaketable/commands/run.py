@@ -43,15 +43,20 @@ def _run(args) -> int:
                      f"{run.max_theta_ratio_before_instability:.3f})")
         print(line)
     for run in result.planar:   # block.static_friction runs the planar block
-        print(f"{scene.name}: planar block (μs {run.friction.static:g}, μd "
-              f"{run.friction.dynamic:g}), COR {run.cor:g}: {run.verdict()}; peak slip "
-              f"{run.peak_slip:.4f} m, peak corner excursion {run.peak_excursion:.4f} m; "
-              + ", ".join(f"{name} {seconds:.2f} s" for name, seconds in
-                          run.time_in_mode.items() if seconds > 0))
-    for run in result.slides:
+        from shaketable.commands.answers import planar_answer
+
+        print(f"{scene.name}: planar {run.block.describe()} block (μs "
+              f"{run.friction.static:g}, μd {run.friction.dynamic:g}), COR {run.cor:g}: "
+              f"{run.verdict()}")
+        for answer in planar_answer(run):
+            print(f"  {answer}")
+    for run in result.slides:   # in the unit the scene's block was given in
+        from shaketable.core.units import format_length
+
+        unit = scene.block.length_unit
         print(f"{scene.name}: sliding with μs {run.friction.static:g}, μd "
-              f"{run.friction.dynamic:g}: peak slip {run.peak_slip_inches:.2f} in "
-              f"({run.peak_slip:.4f} m), residual {run.residual_slip:+.4f} m, "
+              f"{run.friction.dynamic:g}: peak slip {format_length(run.peak_slip, unit)}, "
+              f"residual {format_length(run.residual_slip, unit, signed=True)}, "
               f"{run.slip_episodes} slip episode(s); Section 2.1: "
               f"{run.mode_choice.get('mode (Section 2.1)', 'n/a')}")
     for line in result.comparisons:

@@ -12,10 +12,9 @@ from shaketable.commands.common import (
     add_record_arguments,
     load_motion,
     notice_first_compile,
-    scaled,
+    scaled_record,
 )
 from shaketable.commands.options import add_motion_options, add_quantity, motion_from_options
-from shaketable.core.constants import INCH
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -63,23 +62,32 @@ def _simulate(args) -> int:
 
     block = Block.parse(args.block)
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
-    if motion is not None:
-        motion = scaled(motion, args.scale)
+    motion, scale_note = scaled_record(motion, args)
     motion = _on_floor(args, motion)
     theta0 = _resolve_angle(args.theta0, block)
     out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
-    notice_first_compile(args.quiet, which=("engine", "batch") if args.ensemble else
-                         ("planar",) if args.friction is not None else ("engine",))
+    notice_first_compile(args.quiet, which=("planar",) if args.friction is not None else
+                         ("engine", "batch") if args.ensemble else ("engine",))
     if isinstance(args.cor, str):           # a calibration.json: the calibrated COR's spread
         from shaketable.commands.calibrate import simulate_calibrated
 
-        return simulate_calibrated(args, block, motion, theta0, out)
+        status = simulate_calibrated(args, block, motion, theta0, out)
+        if scale_note:
+            print(scale_note)
+        return status
     friction = _friction(args.friction)
-    if friction is not None and args.ensemble:
-        raise ValueError("--friction runs one planar block; it cannot be combined with "
-                         "--ensemble")
+    if friction is not None and args.ensemble:   # the planar model's ensemble
+        from shaketable.commands.friction_ensemble import friction_ensemble
+
+        status = friction_ensemble(args, block, motion, friction, out)
+        if scale_note:
+            print(scale_note)
+        return status
     if args.ensemble:
-        return _ensemble(args, block, motion, out)
+        status = _ensemble(args, block, motion, out)
+        if scale_note:
+            print(scale_note)
+        return status
     if friction is not None:   # the planar block (rest, slide, rock, slide-rock, flight)
         result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
                           friction=friction)
@@ -96,12 +104,14 @@ def _simulate(args) -> int:
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
     plots.save((result if friction is not None else for_figure(result)).plot(),
                out / f"calcomp.{args.format}")
+    from shaketable.commands.answers import planar_answer, rocking_answer
+
+    # the answer first, in the block's units; then the files
     print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
-    if friction is not None:   # as `run` says it of a scene's planar block
-        print(f"peak slip {result.peak_slip / INCH:.3g} in, residual "
-              f"{result.residual_slip / INCH:+.3g} in ({result.residual_slip:+.4f} m); "
-              + ", ".join(f"{name} {seconds:.2f} s" for name, seconds in
-                          result.time_in_mode.items() if seconds > 0))
+    for line in (planar_answer(result) if friction is not None else rocking_answer(result)):
+        print("  " + line)
+    if scale_note:
+        print(scale_note)
     if args.history == "auto" and history != "full":
         print(f"history.csv: {history} ({result.t.size} samples; --history full writes all)")
     written = ([out / "history.csv"] if history != "none" else []) + [

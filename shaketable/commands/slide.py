@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from shaketable.commands.common import add_record_arguments, load_motion, scaled
+from shaketable.commands.common import add_record_arguments, load_motion, scaled_record
 from shaketable.core.constants import INCH
 
 
@@ -28,11 +28,13 @@ def _slide(args) -> int:
     if not args.record:
         raise ValueError("--record is required (or give --table-4-4)")
     motion = load_motion(args)
-    motion = scaled(motion, args.scale)
+    motion, scale_note = scaled_record(motion, args)
     if args.sweep:
         frame = peak_slips(motion, args.sweep)
         write_csv(out / "sweep.csv", frame)
         print(frame[["mu_d [-]", "peak slip [in]", "residual slip [m]"]].to_string(index=False))
+        if scale_note:
+            print(scale_note)
         print(f"wrote {out / 'sweep.csv'}")
         return 0
     static = args.static_friction
@@ -41,10 +43,21 @@ def _slide(args) -> int:
     result = slide(motion, Friction(static, dynamic), block=block)
     write_csv(out / "history.csv", result.to_frame())
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
-    save(result.plot(), out / f"sliding.{args.format}")
-    print(f"{result.status}: peak slip {result.peak_slip_inches:.2f} in, residual "
-          f"{result.residual_slip / INCH:+.2f} in ({result.residual_slip:+.4f} m), "
-          f"{result.slip_episodes} slip episodes")
+    save(result.plot(length_unit=block.length_unit if block is not None else "in"),
+         out / f"sliding.{args.format}")
+    if block is not None:    # in the unit the block was given in
+        from shaketable.core.units import format_length
+
+        unit = block.length_unit
+        print(f"{result.status}: peak slip {format_length(result.peak_slip, unit)}, residual "
+              f"{format_length(result.residual_slip, unit, signed=True)}, "
+              f"{result.slip_episodes} slip episodes")
+    else:
+        print(f"{result.status}: peak slip {result.peak_slip_inches:.2f} in, residual "
+              f"{result.residual_slip / INCH:+.2f} in ({result.residual_slip:+.4f} m), "
+              f"{result.slip_episodes} slip episodes")
+    if scale_note:
+        print(scale_note)
     if block is not None:
         print(f"Section 2.1: {result.mode_choice['mode (Section 2.1)']} "
               f"(B/H = {result.mode_choice['B/H [-]']:.3f}, mu_s = {static:g})")

@@ -44,7 +44,8 @@ import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import AsymmetricBlock, Block
+from shaketable.core.validation import in_range
 
 # Indices into the parameter array.
 HALF_WIDTH, HALF_HEIGHT, INERTIA, ROD_STIFFNESS, ROD_FORCE, ROD_ARM_1, ROD_ARM_2, ALPHA, \
@@ -104,6 +105,52 @@ def block_parameters(block: Block, top_force: float = 0.0) -> np.ndarray:
         parameters[ROD_ARM_2] = block.width - rods.edge_distance
         parameters[HOLD_DOWN] = G * rods.force
     return parameters
+
+
+def side_parameters(block: Block | AsymmetricBlock) -> np.ndarray:
+    """The parameter arrays of the two pivots: row 0 for theta > 0, row 1 for theta < 0.
+
+    An asymmetric block on side s is Eq. (2-13) with that side's b_s and I0_s (h is
+    common), so each row is the symmetric block's array with those values and the
+    side's alpha_s: :func:`flight_acceleration` (the one equation of motion) is called
+    with the row of the active pivot. A :class:`Block` gives :func:`block_parameters`
+    twice. Rods and a top force are not offered for an asymmetric block.
+
+    Returns
+    -------
+    ndarray, shape (2, N_PARAMETERS)
+    """
+    if isinstance(block, Block):
+        row = block_parameters(block)
+        return np.vstack([row, row])
+    if not isinstance(block, AsymmetricBlock):
+        raise ValueError(f"block must be a shaketable.Block or AsymmetricBlock, got "
+                         f"{type(block).__name__}")
+    rows = np.zeros((2, N_PARAMETERS))
+    for index, side in ((0, 1.0), (1, -1.0)):
+        rows[index, HALF_WIDTH] = block.b_of(side)
+        rows[index, HALF_HEIGHT] = block.h
+        rows[index, INERTIA] = block.I0_of(side)
+        rows[index, ALPHA] = block.alpha_of(side)
+    return rows
+
+
+def impact_cors(block: Block | AsymmetricBlock, cor: float | str) -> np.ndarray:
+    """Coefficients of restitution of the impacts onto each pivot: [onto theta > 0, onto < 0].
+
+    ``cor`` a number: the report's constant COR (Section 2.7 (5)) for both;
+    ``"housner"``: :meth:`AsymmetricBlock.housner_cor` of each pivot (for a
+    :class:`Block`, 1 - 1.5 sin^2(alpha) twice).
+    """
+    if isinstance(cor, str):
+        if cor != "housner":
+            raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
+        if isinstance(block, Block):
+            value = 1.0 - 1.5 * math.sin(block.alpha) ** 2
+            return np.array([value, value])
+        return np.array([block.housner_cor(1.0), block.housner_cor(-1.0)])
+    value = in_range("cor", cor, 0.0, 1.0)
+    return np.array([value, value])
 
 
 @njit(cache=True, error_model=ERROR_MODEL)

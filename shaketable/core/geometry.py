@@ -227,6 +227,13 @@ class Block:
             restoring += G * self.rods.force * self.b  # the pair's resultant acts at mid-width
         return restoring / self.h
 
+    @property
+    def length_unit(self) -> str:
+        """The length unit of the block's label (:meth:`describe`): the user's unit when
+        the block was parsed from text (``"m"`` for ``"2x0.5m"``), else ft or in."""
+        unit = self.describe().rsplit(" ", 1)[-1]
+        return unit if unit in ("m", "cm", "mm", "in", "ft") else "in"
+
     def describe(self, unit: str | None = None) -> str:
         """Short label, height first: ``30 x 6 in``, ``16 x 4 ft``.
 
@@ -246,3 +253,153 @@ class Block:
         if unit is None and all(abs(value - round(value)) < 1e-9 and round(value) >= 1 for value in in_feet):
             return f"{round(in_feet[0])} x {round(in_feet[1])} ft"
         return f"{self.height / inch:g} x {self.width / inch:g} in"
+
+
+@dataclass(frozen=True)
+class AsymmetricBlock:
+    """A rigid block whose centre of mass is not over the middle of its base.
+
+    The planar idealisation of a rock, a cabinet or a machine: the centroid at height
+    ``h`` over the base and at horizontal distances ``b_plus`` and ``b_minus`` from the
+    two pivots. With one signed theta (``docs/conventions.md``), theta > 0 pivots on the
+    corner at -x (the block tips toward -x, driven by a positive table acceleration):
+    that corner is ``b_plus`` from the centroid; theta < 0 pivots on the corner at +x,
+    ``b_minus`` away. Each side has its own block angle, size and inertia about its pivot,
+
+        alpha_s = arctan(b_s / h),  R_s = sqrt(b_s^2 + h^2),  I0_s = k^2 + R_s^2,
+        p_s = sqrt(g R_s / I0_s),
+
+    and Eq. (2-13) on side s is the symmetric block's with b, R and I0 of that side.
+    A symmetric :class:`Block` is the special case b_plus = b_minus = B/2,
+    k^2 = R^2/3 (I0 = 4R^2/3); the solvers keep running :class:`Block` exactly as
+    before, this class is a separate input.
+
+    Parameters
+    ----------
+    h : float
+        Height of the centroid over the base [m].
+    b_plus : float
+        Horizontal distance from the centroid to the pivot of theta > 0 (the -x corner) [m].
+    b_minus : float
+        Horizontal distance from the centroid to the pivot of theta < 0 (the +x corner) [m].
+    gyration : float, optional
+        Radius of gyration k about the centroid, for rocking in this plane [m]
+        (I_cm = M k^2). ``None``: the rectangle of height 2h and width
+        b_plus + b_minus, k^2 = (h^2 + ((b_plus + b_minus)/2)^2) / 3.
+    label : str
+        A name echoed by :meth:`describe`; not part of equality.
+    """
+
+    h: float
+    b_plus: float
+    b_minus: float
+    gyration: float | None = None
+    label: str = field(default="", compare=False, repr=False)
+
+    def __post_init__(self):
+        for name in ("h", "b_plus", "b_minus"):
+            value = positive(f"AsymmetricBlock.{name}", getattr(self, name), " [m]")
+            if not MIN_DIMENSION / 2 <= value <= MAX_DIMENSION:
+                raise ValueError(f"AsymmetricBlock.{name} must be from {MIN_DIMENSION / 2:g} m "
+                                 f"to {MAX_DIMENSION:g} m, got {value!r} m")
+            object.__setattr__(self, name, value)
+        for name in ("b_plus", "b_minus"):
+            ratio = self.h / getattr(self, name)
+            if not MIN_ASPECT_RATIO / 2 <= ratio <= 2 * MAX_ASPECT_RATIO:
+                raise ValueError(f"AsymmetricBlock h/{name} must be from {MIN_ASPECT_RATIO / 2:g} "
+                                 f"to {2 * MAX_ASPECT_RATIO:g}, got {ratio:.3g}")
+        if self.gyration is not None:
+            object.__setattr__(self, "gyration", positive("AsymmetricBlock.gyration",
+                                                          self.gyration, " [m]"))
+
+    @classmethod
+    def from_angles(cls, alpha_plus: float, alpha_minus: float, h: float,
+                    gyration: float | None = None, label: str = "") -> "AsymmetricBlock":
+        """Block from its two block angles [rad] (0 < alpha < pi/2) and centroid height h [m]."""
+        for name, value in (("alpha_plus", alpha_plus), ("alpha_minus", alpha_minus)):
+            value = positive(name, value, " [rad]")
+            if value >= math.pi / 2:
+                raise ValueError(f"{name} must be below pi/2, got {value!r}")
+        h = positive("h", h, " [m]")
+        return cls(h, h * math.tan(alpha_plus), h * math.tan(alpha_minus), gyration, label)
+
+    # -------------------------------------------------------------- derived
+    @property
+    def symmetric(self) -> bool:
+        """True when both pivots are equally far from the centroid."""
+        return self.b_plus == self.b_minus
+
+    @property
+    def k_squared(self) -> float:
+        """Squared radius of gyration about the centroid, I_cm / M [m^2]."""
+        if self.gyration is not None:
+            return self.gyration ** 2
+        half_width = 0.5 * (self.b_plus + self.b_minus)
+        return (self.h ** 2 + half_width ** 2) / 3.0
+
+    def b_of(self, side: float) -> float:
+        """Centroid-to-pivot horizontal distance of ``side`` (+1: theta > 0, -1) [m]."""
+        return self.b_plus if side > 0 else self.b_minus
+
+    def alpha_of(self, side: float) -> float:
+        """Block angle arctan(b_s / h) of ``side`` [rad]: its static stability limit."""
+        return math.atan2(self.b_of(side), self.h)
+
+    def R_of(self, side: float) -> float:
+        """Pivot-to-centroid distance R_s of ``side`` [m]."""
+        return math.hypot(self.b_of(side), self.h)
+
+    def I0_of(self, side: float) -> float:
+        """Moment of inertia about the pivot of ``side`` per unit mass, k^2 + R_s^2 [m^2]."""
+        return self.k_squared + self.R_of(side) ** 2
+
+    def p_of(self, side: float) -> float:
+        """Frequency parameter p_s = sqrt(g R_s / I0_s) of ``side`` [rad/s]."""
+        return math.sqrt(G * self.R_of(side) / self.I0_of(side))
+
+    @property
+    def alpha_plus(self) -> float:
+        """Block angle of theta > 0 rocking [rad]."""
+        return self.alpha_of(1.0)
+
+    @property
+    def alpha_minus(self) -> float:
+        """Block angle of theta < 0 rocking [rad]."""
+        return self.alpha_of(-1.0)
+
+    @property
+    def alpha(self) -> float:
+        """The smaller block angle [rad]: the static stability limit of the weaker side."""
+        return min(self.alpha_plus, self.alpha_minus)
+
+    @property
+    def p(self) -> float:
+        """The larger frequency parameter of the two sides [rad/s]."""
+        return max(self.p_of(1.0), self.p_of(-1.0))
+
+    def housner_cor(self, onto: float) -> float:
+        """Housner's coefficient of restitution of an impact onto the pivot ``onto`` [-].
+
+        Angular momentum about the new pivot is conserved through the impact (Housner's
+        assumption, Section 2.7 (5)): with the old pivot b1 and the new b2 from the
+        centroid, k^2 + h^2 - b1 b2 = (k^2 + b2^2 + h^2) c, so
+
+            c = 1 - b2 (b1 + b2) / I0_2,
+
+        the theta' after over before (one signed theta). For a symmetric rectangle it is
+        1 - 1.5 sin^2(alpha).
+        """
+        b2 = self.b_of(onto)
+        b1 = self.b_of(-onto)
+        return 1.0 - b2 * (b1 + b2) / self.I0_of(onto)
+
+    def rocking_threshold(self, side: float) -> float:
+        """Table acceleration that starts rocking toward ``side``, g tan(alpha_s) [m/s^2]."""
+        return G * self.b_of(side) / self.h
+
+    def describe(self, unit: str | None = None) -> str:
+        """Short label: the user's ``label``, else the two angles and h."""
+        if self.label:
+            return self.label
+        return (f"asymmetric alpha+ {self.alpha_plus:.4g} / alpha- {self.alpha_minus:.4g} rad, "
+                f"h {self.h:.4g} m")

@@ -207,9 +207,10 @@ class SlidingResult:
         data.update(self.mode_choice)
         return json_ready_dict(data)
 
-    def plot(self, fig=None, title: str | None = None):
-        """Table acceleration, relative velocity and displacement; see
+    def plot(self, fig=None, title: str | None = None, length_unit: str = "in"):
+        """Table acceleration, relative velocity and displacement (lengths in
+        ``length_unit``, the user's: m, cm, mm, in or ft); see
         :func:`shaketable.plots.sliding.sliding_figure`."""
         from shaketable.plots.sliding import sliding_figure
 
-        return sliding_figure(self, fig=fig, title=title)
+        return sliding_figure(self, fig=fig, title=title, length_unit=length_unit)

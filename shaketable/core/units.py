@@ -90,3 +90,47 @@ def _example(kind: str) -> str:
             "angular frequency": "2 rad/s", "angular acceleration": "0.22 rad/s2",
             "stiffness": "0.4 W/in", "weight": "0.4 W", "mass": "400 kg",
             "density": "2400 kg/m3"}[kind]
+
+
+#: The smaller unit in which a length under one of the user's unit is shown.
+_SMALLER_LENGTH = {"m": "mm", "ft": "in"}
+
+
+def display_length_unit(value: float, unit: str) -> str:
+    """The unit in which :func:`format_length` shows a length of ``value`` [m] for a user
+    who writes lengths in ``unit``: ``unit``, or the next smaller one (m -> mm,
+    ft -> in) for a length under one ``unit``."""
+    if unit not in LENGTH_UNITS:
+        raise ValueError(f"unit must be one of {', '.join(LENGTH_UNITS)}, got {unit!r}")
+    if math.isfinite(value) and abs(value) < LENGTH_UNITS[unit] and unit in _SMALLER_LENGTH:
+        return _SMALLER_LENGTH[unit]
+    return unit
+
+
+def format_length(value: float, unit: str, *, digits: int = 3, signed: bool = False) -> str:
+    """A length [m] in the user's length ``unit``, with its unit: ``"225 mm"``.
+
+    Lengths under one of ``unit`` are shown in the next smaller unit when there is one
+    (m -> mm, ft -> in), so that a slip of 0.1 mm of a block given in metres does not
+    read ``0.000104 m``; NaN reads ``"n/a"``.
+
+    Parameters
+    ----------
+    value : float
+        Length [m].
+    unit : str
+        The user's unit, one of ``m, cm, mm, in, ft``.
+    digits : int
+        Significant digits.
+    signed : bool
+        Write a + before positive values.
+    """
+    if not math.isfinite(value):
+        return "n/a"
+    unit = display_length_unit(value, unit)
+    factor = LENGTH_UNITS[unit]
+    # significant zeros kept (8.30 in), no bare trailing point (225 mm)
+    number = f"{value / factor:{'+' if signed else ''}#.{digits}g}".replace(".e", "e")
+    number = number[:-1] if number.endswith(".") else number
+    return f"{number} {unit}"
+

@@ -50,6 +50,7 @@ names the file and the line.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
@@ -252,6 +253,55 @@ def available(details: bool = False) -> list[str] | dict[str, str]:
     if not details:
         return sorted(_BUNDLED)
     return {name: _BUNDLED[name].title + _sign_note(_BUNDLED[name]) for name in sorted(_BUNDLED)}
+
+
+def _source(file_names: list[str]) -> str:
+    """Where bundled files come from, from their names (PROVENANCE.md next to the files)."""
+    if file_names[0].upper().endswith(".AT2"):
+        where = f"PEER NGA-West2 {file_names[0].split('_', 1)[0]}"
+    else:
+        where = "Chopra's textbook"
+    return f"{where} ({', '.join(file_names)})"
+
+
+def catalog():
+    """The bundled records with their measures, computed from the files.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per name of :func:`available`: ``name``, ``components`` (horizontal,
+        vertical or both), ``PGA [g]`` and ``PGV [m/s]`` of the horizontal (NaN without
+        one), ``vertical PGA [g]`` (NaN without one), ``duration [s]`` (last sample time
+        minus the first), ``dt [s]``, ``samples``, ``source`` and ``title``; the motion
+        is read as :func:`load` reads it (PGV from rest, not baseline-corrected,
+        :func:`shaketable.ground.intensity.pgv`).
+    """
+    import pandas as pd
+
+    from shaketable.core.constants import G
+    from shaketable.ground import intensity
+
+    rows = []
+    for name in available():
+        entry = _BUNDLED[name]
+        motion = load(name)
+        has_h, has_v = entry.horizontal is not None, entry.vertical is not None
+        rows.append({
+            "name": name,
+            "components": " + ".join(part for part, present in
+                                     (("horizontal", has_h), ("vertical", has_v)) if present),
+            "PGA [g]": intensity.pga(motion) / G if has_h else math.nan,
+            "PGV [m/s]": intensity.pgv(motion) if has_h else math.nan,
+            "vertical PGA [g]": intensity.pga(motion, "vertical") / G if has_v else math.nan,
+            "duration [s]": float(motion.t[-1] - motion.t[0]),
+            "dt [s]": motion.dt,
+            "samples": int(motion.t.size),
+            "source": _source([file for file in (entry.horizontal, entry.vertical)
+                               if file is not None]),
+            "title": entry.title,
+        })
+    return pd.DataFrame(rows)
 
 
 def _sign_note(entry: _Bundled) -> str:

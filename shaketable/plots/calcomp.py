@@ -115,7 +115,7 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
         and verdict follow on their own lines.
     time_range : (float, float), optional
         Time axis limits [s] (default: the motion's start to the end of the
-        run). Figures meant to be compared share one.
+        longest run). Figures meant to be compared share one.
     others : sequence of RockingResult, optional
         Runs of the same block and motion at other CORs, overlaid on the
         rotation panel (their verdicts join the caption).
@@ -128,7 +128,9 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
     """
     block = result.block
     motion = result.motion
-    end = result.t[-1]
+    # to the end of the longest run: a run that overturns early must not cut short the
+    # others overlaid on it (the large block's peak after the small one fell)
+    end = max(float(run.t[-1]) for run in (result, *others))
     fig, axes = ground_panels(motion, end, (1.3, 1.5), fig, height=(3.6, 1.9))
     rates, rotation = axes[-2], axes[-1]
     t_broken, acceleration = broken_at_sign_changes(result.t, result.theta, result.theta_ddot)

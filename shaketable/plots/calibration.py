@@ -109,20 +109,23 @@ def plot_fit(calibration: Calibration,
     top.plot(record.t, record.values * scale, ".", ms=2.5, color="0.35", label="record")
     digits = calibration.digits
     top.plot(record.t, calibration.fitted * scale, lw=1.0, color="C3",
-             label=f"engine, COR {calibration.cor:.{digits}f}")
+             label=f"engine, least-squares COR {calibration.cor:.{digits}f}")
     top.axvline(calibration.t_release, color="C2", lw=0.8, ls=":", label="release (fitted)")
-    cutoff = getattr(calibration, "filter_cutoff", np.inf)
     if getattr(calibration, "anti_alias", "none") != "none":
-        top.plot([], [], " ", label=(f"{calibration.filter_order}-pole filter, "
-                                     + (f"{cutoff:.3g} Hz" if np.isfinite(cutoff) else "none")
-                                     + (" (fitted)" if calibration.anti_alias == "fit"
-                                        else " (given)")))
+        top.plot([], [], " ", label=calibration.filter_text())
     top.set_ylabel(f"{record.quantity} [{unit}]")
     place_legend(top, fontsize=8)
     top.grid(alpha=0.3)
-    low, high = calibration.cor_interval
-    top.set_title(f"COR = {calibration.cor:.{digits}f}  (95 % interval {low:.{digits}f} to "
-                  f"{high:.{digits}f}, {calibration.interval_method})", fontsize=10)
+    # the answer leads: the block's mean COR when it scatters, else the least-squares COR
+    low, high = calibration.answer_interval
+    if calibration.mean_cor_leads:
+        title = (f"COR = {calibration.answer.mean:.4f}  (95 % interval {low:.4f} to "
+                 f"{high:.4f}), the block's mean; the COR scatters (curve: least-squares "
+                 "fit, a diagnostic)")
+    else:
+        title = (f"COR = {calibration.cor:.{digits}f}  (95 % interval {low:.{digits}f} to "
+                 f"{high:.{digits}f}, {calibration.interval_method})")
+    top.set_title(title, fontsize=10)
     bottom.plot(record.t, calibration.residuals * scale, lw=0.6, color="0.2")
     bottom.axhline(0.0, color="C3", lw=0.8)
     bottom.set_ylabel(f"residual [{unit}]")
@@ -149,7 +152,7 @@ def plot_cor_per_impact(peaks: PeakEstimate, ax: Axes | None = None,
     if np.isfinite(peaks.slope):
         v = np.linspace(np.min(peaks.impact_velocity), np.max(peaks.impact_velocity), 2)
         ax.plot(v, peaks.intercept + peaks.slope * v, color="C1", ls="--", lw=1.0,
-                label=f"linear trend: slope {peaks.slope:+.3f} ± {1.96 * peaks.slope_se:.3f} s/rad")
+                label=f"linear trend: slope {peaks.slope:+.3f} ± {peaks.slope_se:.3f} s/rad (± se)")
     ax.set_xlabel("angular velocity before impact [rad/s]")
     ax.set_ylabel("COR of the impact [-]")
     ax.set_title("Section 3.7 (1): does the COR depend on the impact velocity?", fontsize=10)

@@ -12,7 +12,7 @@ VERDICT_COLOURS = {"stayed": "#f0f0f0", "slid": "#9ecae1", "rocked": "#fdd49e",
                    "slide-rocked": "#fc8d59", "flew": "#c994c7", "overturned": "#b30000"}
 
 
-def mode_map_figure(mode_map, fig=None):
+def mode_map_figure(mode_map, fig=None, block=None):
     """One panel per PGA level: the verdict of each (B/H, mu) cell, the rule mu = B/H.
 
     Cells where the planar block overturns and the rocking model (a base that cannot slide)
@@ -22,6 +22,9 @@ def mode_map_figure(mode_map, fig=None):
     ----------
     mode_map : shaketable.studies.mode_map.ModeMap
     fig : matplotlib.figure.Figure, optional
+    block : Block, optional
+        The user's block: its B/H column is outlined, and the title gives its size in the
+        unit it was given in.
 
     Returns
     -------
@@ -53,6 +56,10 @@ def mode_map_figure(mode_map, fig=None):
         axis.plot(line, line, "k--", linewidth=1.2)
         axis.set_xlim(_edges(ratios)[[0, -1]])
         axis.set_ylim(_edges(mus)[[0, -1]])
+        if block is not None:
+            ratio = block.width / block.height
+            axis.axvline(ratio, color="tab:blue", linewidth=1.6,
+                         label=f"{block.describe()} (B/H {ratio:.3g})")
         axis.set_title(f"PGA {level:.2f} g")
         axis.set_xlabel("B / H")
     axes[0].set_ylabel("μs = μd")
@@ -61,9 +68,17 @@ def mode_map_figure(mode_map, fig=None):
     handles += [plt.Line2D([], [], color="k", linestyle="--", label="μs = B/H (Section 2.1)"),
                 plt.Line2D([], [], color="k", marker="x", linestyle="",
                            label="overturn verdict differs\nfrom the rocking model")]
+    if block is not None:
+        handles.append(plt.Line2D([], [], color="tab:blue", linewidth=1.6,
+                                  label=f"{block.describe()} block"))
     fig.legend(handles=handles, loc="outside right center", frameon=False)
-    fig.suptitle(f"Planar block under {mode_map.record}: H = {mode_map.height:.3g} m, "
-                 f"COR {mode_map.cor:g}")
+    if block is not None:
+        from shaketable.core.units import format_length
+
+        height = format_length(mode_map.height, block.length_unit)
+    else:
+        height = f"{mode_map.height:.3g} m"
+    fig.suptitle(f"Planar block under {mode_map.record}: H = {height}, COR {mode_map.cor:g}")
     return fig
 
 

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from shaketable.core.constants import INCH
+from shaketable.core.constants import LENGTH_UNITS
+from shaketable.core.units import display_length_unit, format_length
 from shaketable.plots.calcomp import (
     describe_block,
     describe_motion,
@@ -60,8 +61,10 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     The Calcomp layout of :func:`shaketable.plots.calcomp.calcomp` (ground panels left
     out when a channel is zero), with the angular velocity alone on its panel (the
     coupled model's theta'' has no single formula across modes), then the slip of the
-    base's midpoint relative to the table [in] with its peak marked, and a band coloured
-    by the mode the block is in (slide, rock, slide-rock, flight; left blank at rest).
+    base's midpoint relative to the table (in the unit the block was given in, mm for
+    metres) with its peak marked, and a band coloured by the mode the block is in (slide,
+    rock, slide-rock, flight; left blank at rest). A block that never rocks gets the slip
+    velocity instead of the two flat rotation panels, and a caption line saying so.
 
     The traces are the columns of ``result.to_frame()``, which the compiled engine's
     :class:`~shaketable.core.planar_result.PlanarResult` and the SciPy reference's
@@ -88,27 +91,36 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     theta = frame["theta [rad]"].to_numpy()
     slip_values = frame["slip [m]"].to_numpy()
     end = t[-1]
-    fig, axes = ground_panels(motion, end, (1.0, 1.4, 1.2, 0.28), fig, height=(3.4, 1.7))
-    rates, rotation, slip, band = axes[-4], axes[-3], axes[-2], axes[-1]
-    rates.plot(t, frame["theta_dot [rad/s]"].to_numpy(), color="tab:blue", lw=0.9)
-    rates.set_ylabel("θ' [rad/s]")
-    rotation.plot(t, theta, color="k", lw=0.9, label="θ")
-    for sign in (1, -1):
-        rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
-                         label="±α (stability limit)" if sign > 0 else None)
-    limit = max(1.3 * block.alpha, 1.1 * float(np.max(np.abs(theta), initial=0.0)))
-    rotation.set_ylim(-limit, limit)
-    rotation.set_ylabel("θ [rad]")
-    rotation.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
-                    borderaxespad=0.0)
-    slip.plot(t, slip_values / INCH, color="tab:red", lw=0.9, label="slip of the base")
+    theta_dot = frame["theta_dot [rad/s]"].to_numpy()
+    # the slip in the unit the block was given in (mm for a block in metres)
+    unit = display_length_unit(float(np.max(np.abs(slip_values), initial=0.0)),
+                               block.length_unit)
+    scale = LENGTH_UNITS[unit]
+    rocked = bool(np.any(theta != 0.0) or np.any(theta_dot != 0.0))
+    if rocked:
+        fig, axes = ground_panels(motion, end, (1.0, 1.4, 1.2, 0.28), fig, height=(3.4, 1.7))
+        rates, rotation, slip, band = axes[-4], axes[-3], axes[-2], axes[-1]
+        _rotation_panels(rates, rotation, t, theta, theta_dot, block)
+    else:
+        # a block that never rocks: theta and theta' would be two flat panels; the slip
+        # velocity of the base (x' + h cos(theta) theta' = x' here) says how it slides
+        fig, axes = ground_panels(motion, end, (1.0, 1.2, 0.28), fig, height=(3.4, 1.7))
+        velocity, slip, band = axes[-3], axes[-2], axes[-1]
+        velocity.plot(t, frame["x_dot [m/s]"].to_numpy() / scale, color="tab:blue", lw=0.9,
+                      label="slip velocity")
+        velocity.axhline(0.0, color="0.6", lw=0.5)
+        velocity.set_ylabel(f"slip velocity [{unit}/s]")
+        velocity.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
+                        borderaxespad=0.0)
+    slip.plot(t, slip_values / scale, color="tab:red", lw=0.9, label="slip of the base")
     slip.axhline(0.0, color="0.6", lw=0.5)
     if result.peak_slip > 0.0 and np.isfinite(result.t_peak_slip):
         at = int(np.argmin(np.abs(t - result.t_peak_slip)))
         direction = 1.0 if slip_values[at] >= 0 else -1.0
-        slip.plot([result.t_peak_slip], [direction * result.peak_slip / INCH], "v", color="tab:red",
-                  ms=5, label=f"peak {result.peak_slip / INCH:.3g} in")
-    slip.set_ylabel("slip [in]")
+        slip.plot([result.t_peak_slip], [direction * result.peak_slip / scale], "v",
+                  color="tab:red", ms=5,
+                  label=f"peak {result.peak_slip / scale:.3g} {unit}")
+    slip.set_ylabel(f"slip [{unit}]")
     slip.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
     shown_modes = set()
     for start, stop, code in mode_spans(result):
@@ -133,9 +145,27 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
             axis.grid(True, lw=0.3, alpha=0.5)
         axis.set_xlim(start, stop)
     mark_overturn(axes[:-1], result, stop)
-    fig.suptitle("\n".join(planar_caption(result, title)), fontsize=9.5)
+    caption = planar_caption(result, title)
+    if not rocked:
+        caption.append("θ = 0 throughout: the block never rocked (no rotation panels)")
+    fig.suptitle("\n".join(caption), fontsize=9.5)
     fig.align_ylabels(axes)
     return fig
+
+
+def _rotation_panels(rates, rotation, t, theta, theta_dot, block) -> None:
+    """theta' and theta (with +-alpha) of a block that rocked."""
+    rates.plot(t, theta_dot, color="tab:blue", lw=0.9)
+    rates.set_ylabel("θ' [rad/s]")
+    rotation.plot(t, theta, color="k", lw=0.9, label="θ")
+    for sign in (1, -1):
+        rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
+                         label="±α (stability limit)" if sign > 0 else None)
+    limit = max(1.3 * block.alpha, 1.1 * float(np.max(np.abs(theta), initial=0.0)))
+    rotation.set_ylim(-limit, limit)
+    rotation.set_ylabel("θ [rad]")
+    rotation.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
+                    borderaxespad=0.0)
 
 
 def planar_caption(result, title: str | None = None) -> list[str]:
@@ -153,10 +183,46 @@ def planar_caption(result, title: str | None = None) -> list[str]:
     if result.overturned:
         side = "+" if result.overturn_direction > 0 else "−"
         verdict = f"overturned ({side}) at {result.t_overturn:.2f} s"
-    measures = f"{verdict}; max |θ|/α = {ratio}, peak slip {result.peak_slip / INCH:.3g} in"
+    unit = block.length_unit
+    measures = (f"{verdict}; max |θ|/α = {ratio}, peak slip "
+                f"{format_length(result.peak_slip, unit)}")
     excursion = getattr(result, "peak_excursion", None)  # the reference computes none
     lines.append(measures if excursion is None
-                 else f"{measures}, corner excursion {excursion / INCH:.3g} in")
+                 else f"{measures}, corner excursion {format_length(excursion, unit)}")
     if result.status not in ("completed", "overturned"):
         lines.append(f"stopped: {result.message}")
     return lines
+
+
+def planar_ensemble_axes(ensemble, ax=None):
+    """Peak slip and corner excursion of each member of a planar ensemble
+    (:class:`~shaketable.studies.planar_ensemble.PlanarEnsemble`) against the member, in
+    the unit the block was given in; members that overturned are marked on the axis.
+    Returns the axes."""
+    from shaketable.plots.base import pyplot
+
+    if ax is None:
+        _, ax = pyplot().subplots(figsize=(7.5, 4.2), layout="constrained")
+    frame = ensemble.members
+    standing = frame[~frame["overturned"]]
+    largest = float(standing["peak corner excursion [m]"].max()) if len(standing) else 0.0
+    unit = display_length_unit(largest, ensemble.block.length_unit)
+    scale = LENGTH_UNITS[unit]
+    ax.plot(standing["member"], standing["peak slip [m]"] / scale, "o", ms=3.5,
+            color="tab:red", label="peak slip")
+    ax.plot(standing["member"], standing["peak corner excursion [m]"] / scale, "s", ms=3,
+            mfc="none", color="tab:blue", label="peak corner excursion (clearance)")
+    fallen = frame[frame["overturned"]]
+    if len(fallen):
+        ax.plot(fallen["member"], np.zeros(len(fallen)), "x", color="black",
+                label=f"overturned ({len(fallen)})")
+    ax.set_xlabel("member (0: nominal)")
+    ax.set_ylabel(f"peak slip, corner excursion [{unit}]")
+    summary = ensemble.summary
+    ax.set_title(f"{ensemble.block.describe()}, COR {ensemble.cor:g}, μs "
+                 f"{ensemble.friction.static:g}, μd {ensemble.friction.dynamic:g}: "
+                 f"P(overturn) = {summary['P(overturn) [-]']:.3f} ({summary['P low [-]']:.3f}"
+                 f" to {summary['P high [-]']:.3f})", fontsize=9)
+    ax.grid(True, lw=0.3, alpha=0.5)
+    ax.legend(fontsize=7, loc="upper left")
+    return ax

@@ -11,13 +11,20 @@ from shaketable.core.constants import INCH, G
 from shaketable.plots.base import place_legend, pyplot
 
 
-def sliding_figure(result, fig=None, title: str | None = None):
-    """Table acceleration [g], relative velocity [in/s] and relative displacement [in].
+def sliding_figure(result, fig=None, title: str | None = None, length_unit: str = "in"):
+    """Table acceleration [g], relative velocity and relative displacement.
 
     Sliding phases are shaded; the peak slip is marked. The time axis ends a
     little after the last slip (the x label gives the end of the record when
-    it is cut). Returns the figure.
+    it is cut). Lengths are in the user's ``length_unit`` (m, cm, mm, in, ft; in mm
+    or in when the peak slip is under one m or ft: :func:`shaketable.core.units.
+    display_length_unit`), inches by default as the report. Returns the figure.
     """
+    from shaketable.core.constants import LENGTH_UNITS
+    from shaketable.core.units import display_length_unit
+
+    unit = display_length_unit(result.peak_slip, length_unit)
+    scale = LENGTH_UNITS[unit]
     plt = pyplot()
     if fig is None:
         fig = plt.figure(figsize=(9, 7), layout="constrained")
@@ -34,16 +41,16 @@ def sliding_figure(result, fig=None, title: str | None = None):
     axes[0].plot(t, mu_s * normal, "k--", lw=0.6, label=r"$\pm\mu_s(1+\ddot v/g)$ (Eq. 2-2)")
     axes[0].plot(t, -mu_s * normal, "k--", lw=0.6)
     axes[0].set_ylabel("table acc. [g]")
-    axes[1].plot(t, result.v / INCH, lw=0.8, color="C2")
-    axes[1].set_ylabel("relative vel. [in/s]")
-    axes[2].plot(t, result.x / INCH, lw=1.0, color="C3")
+    axes[1].plot(t, result.v / scale, lw=0.8, color="C2")
+    axes[1].set_ylabel(f"relative vel. [{unit}/s]")
+    axes[2].plot(t, result.x / scale, lw=1.0, color="C3")
     axes[2].axhline(0.0, color="0.6", lw=0.5)
     peak_x = np.interp(result.t_peak, result.event_times, result.event_x) \
         if result.event_times.size else 0.0
-    axes[2].plot([result.t_peak], [peak_x / INCH], "ko", ms=4)
-    axes[2].annotate(f"peak {result.peak_slip_inches:.2f} in", (result.t_peak, peak_x / INCH),
+    axes[2].plot([result.t_peak], [peak_x / scale], "ko", ms=4)
+    axes[2].annotate(f"peak {result.peak_slip / scale:.3g} {unit}", (result.t_peak, peak_x / scale),
                      textcoords="offset points", xytext=(6, 6), fontsize=8)
-    axes[2].set_ylabel("relative disp. [in]")
+    axes[2].set_ylabel(f"relative disp. [{unit}]")
     sliding = result.state != 0
     for axis in axes:
         axis.fill_between(t, 0, 1, where=sliding, step="post", color="C1", alpha=0.12,

@@ -378,7 +378,10 @@ def sweep_figures(table, out) -> list:
       COR, when there are at least three PGA levels and several records or
       realisations per level (runs without pitch);
     * the spread over the pitch phases (:func:`pitch_phase_spread`) per record,
-      block and COR, for a sweep with ``[pitch]``.
+      block and COR, for a sweep with ``[pitch]``;
+    * for a friction sweep with at least two PGA levels, peak slip and corner
+      excursion against PGA, median and 84th percentile, per block and COR
+      (:func:`shaketable.plots.sweep_slip.slip_against_intensity`).
     """
     from pathlib import Path
 
@@ -424,6 +427,12 @@ def sweep_figures(table, out) -> list:
             axis.set_title(f"fragility, COR {cor:g}", fontsize=9)
             written.append(out / f"fragility-cor{cor:g}.png")
             save(figure, written[-1])
+    if "peak corner excursion [m]" in table and levels >= 2:   # a friction sweep
+        from shaketable.plots.sweep_slip import slip_against_intensity
+
+        for (block, cor), rows in pitch_free.groupby(["block", "cor [-]"], sort=False):
+            written.append(out / f"slip-{block.replace(' ', '')}-cor{cor:g}.png")
+            save(slip_against_intensity(rows), written[-1])
     if "target_measure" in table:
         written.extend(measure_figures(table, out))
     if "pitch_phase [rad]" in table:

@@ -61,7 +61,9 @@ class ModeMapSettings:
     cor: float = 0.95
 
 
-def _numbers(value, where: str, key: str, low: float, high: float) -> tuple:
+def grid_numbers(value, where: str, key: str, low: float, high: float) -> tuple:
+    """A list of numbers, or ``"start:stop:step"`` (stop included), each in (low, high]
+    (ValueError naming ``where`` and ``study.key``)."""
     if isinstance(value, str) and value.count(":") == 2:
         try:
             start, stop, step = (float(part) for part in value.split(":"))
@@ -107,9 +109,9 @@ def mode_map_settings(spec: dict, where: str) -> ModeMapSettings:
         if not value > 0:
             raise ValueError(f"{where}: study.pga: every level must be positive, got {level!r}")
         pga_levels.append(value)
-    aspect_ratios = _numbers(spec.get("aspect_ratios", list(defaults.aspect_ratios)), where,
+    aspect_ratios = grid_numbers(spec.get("aspect_ratios", list(defaults.aspect_ratios)), where,
                              "aspect_ratios", 0.0, 10.0)
-    frictions = _numbers(spec.get("frictions", list(defaults.frictions)), where, "frictions",
+    frictions = grid_numbers(spec.get("frictions", list(defaults.frictions)), where, "frictions",
                          0.0, 10.0)
     cells = len(pga_levels) * len(aspect_ratios) * len(frictions)
     if cells > MAX_CELLS:

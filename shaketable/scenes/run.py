@@ -259,7 +259,9 @@ class SceneResult:
                 written.append(out / f"sliding{label}.png")
                 title = (f"{self.scene.source or self.scene.name}: the same block sliding, "
                          f"μs {run.friction.static:g}, μd {run.friction.dynamic:g}")
-                save(run.plot(title=title), written[-1])
+                # lengths in the unit the scene's block was given in
+                save(run.plot(title=title, length_unit=self.scene.block.length_unit),
+                     written[-1])
         return written
 
 

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from shaketable.core.dynamics import block_parameters
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion, whole_number
 from shaketable.core.sliding_result import Friction
@@ -23,7 +25,8 @@ from shaketable.solvers.common import (
 )
 
 
-def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, cor: float, theta0: float = 0.0,
+def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | None = None, *,
+             cor: float | None = None, theta0: float = 0.0,
              theta_dot0: float = 0.0, duration: float | None = None, method: str = "fast",
              rtol: float | None = None, subdivisions: int = 4, output_dt: float = 0.005,
              rest_tolerance: float | None = None, max_recorded_impacts: int = 100_000,
@@ -32,15 +35,22 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
 
     Parameters
     ----------
-    block : Block
-        The block (with optional prestress rods).
+    block : Block or AsymmetricBlock
+        The block (with optional prestress rods); an
+        :class:`~shaketable.core.geometry.AsymmetricBlock` runs
+        :func:`shaketable.solvers.asymmetric.simulate_asymmetric` (``method`` "fast" or
+        "reference", ``cor`` a number or ``"housner"``, no friction, rods, impulses or top
+        force) and returns an :class:`~shaketable.core.asymmetric_result.AsymmetricResult`.
+        A :class:`~shaketable.models.stack.Stack` runs the stack model
+        (:func:`~shaketable.models.stack.simulate_stack`; ``cor`` then selects the
+        constant-COR law, the plastic law by default) and returns a ``StackResult``.
     motion : Motion or ImpulsiveMotion, optional
         Ground accelerations [m/s^2]; an :class:`~shaketable.core.impulses.ImpulsiveMotion`
         adds steps of the table's velocity, applied exactly as jumps of theta'
         (:mod:`shaketable.solvers.impulses`). ``None`` is free rocking on a table at
         rest (Figs. 2.9, 2.10, 3.4): give ``duration``.
     cor : float
-        Coefficient of restitution [-] in [0, 1] (Section 2.7 (5)).
+        Coefficient of restitution [-] in [0, 1] (Section 2.7 (5)); required for a block.
     theta0 : float
         Initial rotation [rad], |theta0| < pi/2.
     theta_dot0 : float
@@ -94,6 +104,29 @@ def simulate(block: Block, motion: Motion | ImpulsiveMotion | None = None, *, co
         ``method="reference"`` only: SciPy's integrator gave up or made no
         progress.
     """
+    if not isinstance(block, Block):   # another model's input (a stack), else refused below
+        from shaketable.models.registry import model_for
+
+        model = model_for(block)
+        if model is not None:
+            return model.run(block, motion, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
+                             duration=duration, method=method, rtol=rtol,
+                             subdivisions=subdivisions, output_dt=output_dt,
+                             rest_tolerance=rest_tolerance, top_force=top_force,
+                             friction=friction)
+    if isinstance(block, AsymmetricBlock):
+        if friction is not None:
+            raise ValueError("block: the planar model (friction=...) is symmetric; an "
+                             "AsymmetricBlock rocks without friction only")
+        if isinstance(motion, ImpulsiveMotion) or top_force != 0.0:
+            raise ValueError("block: impulses and top_force are not offered for an "
+                             "AsymmetricBlock")
+        from shaketable.solvers.asymmetric import simulate_asymmetric
+
+        return simulate_asymmetric(block, motion, cor=cor, theta0=theta0,
+                                   theta_dot0=theta_dot0, duration=duration, method=method,
+                                   rtol=1e-12 if rtol is None else rtol, output_dt=output_dt)
+    cor = cast(float, cor)   # a Block's cor is checked where it is used (None: ValueError)
     if friction is not None:
         from shaketable.solvers.planar_run import simulate_planar  # compiled on first use
 

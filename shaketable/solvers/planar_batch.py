@@ -18,7 +18,7 @@ from collections.abc import Iterable
 import numpy as np
 
 from shaketable.core.dynamics import N_PARAMETERS, block_parameters
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.motion import Motion
 from shaketable.core.planar_result import MODES, VERDICTS
 from shaketable.core.sliding_result import Friction
@@ -66,7 +66,10 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
     """
     import pandas as pd
 
-    blocks = [blocks] if isinstance(blocks, Block) else list(blocks)
+    blocks = [blocks] if isinstance(blocks, (Block, AsymmetricBlock)) else list(blocks)
+    if any(isinstance(block, AsymmetricBlock) for block in blocks):
+        raise ValueError("block: the planar model (friction=...) is symmetric; an AsymmetricBlock "
+                         "rocks without friction only (simulate(..., friction=None))")
     frictions = [frictions] if isinstance(frictions, Friction) else list(frictions)
     cors = [cors] if isinstance(cors, (int, float, str)) else list(cors)
     if not isinstance(motion, Motion):

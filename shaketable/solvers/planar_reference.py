@@ -93,7 +93,7 @@ from scipy.optimize import brentq
 
 from shaketable.core.constants import G
 from shaketable.core.dynamics import cascade_rest_time
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.motion import Motion
 from shaketable.core.planar_reference_result import PlanarReferenceResult
 from shaketable.core.shenton import FLIGHT, MODE_NAMES, REST, ROCK, SLIDE, SLIDE_ROCK
@@ -125,6 +125,9 @@ class PlanarReferenceError(RuntimeError):
 # ----------------------------------------------------------------- the solver
 
 def _check(block, motion, cor, friction, rtol, duration, output_dt):
+    if isinstance(block, AsymmetricBlock):
+        raise ValueError("block: the planar model (friction=...) is symmetric; an AsymmetricBlock "
+                         "rocks without friction only (simulate(..., friction=None))")
     if not isinstance(block, Block):
         raise ValueError(f"block must be a shaketable Block, got {type(block).__name__}")
     if block.rods is not None:

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from shaketable.core.dynamics import block_parameters
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.motion import Motion, whole_number
 from shaketable.core.planar_result import MODES, PlanarResult
 from shaketable.core.sliding_result import Friction
@@ -47,6 +47,9 @@ def impact_ratios(block: Block, cor: float | str) -> tuple[float, float]:
 
 def check_planar_inputs(block, friction) -> Friction:
     """The block and friction of the coupled model, checked (errors name the parameter)."""
+    if isinstance(block, AsymmetricBlock):
+        raise ValueError("block: the planar model (friction=...) is symmetric; an AsymmetricBlock "
+                         "rocks without friction only (simulate(..., friction=None))")
     if not isinstance(block, Block):
         raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
     if block.rods is not None:

@@ -22,6 +22,7 @@ from scipy.optimize import brentq
 
 from shaketable.core.constants import G
 from shaketable.core.dynamics import (
+    ALPHA,
     HOLD_DOWN,
     angular_acceleration,
     cascade_rest_time,
@@ -88,6 +89,22 @@ def _passed_impact(solution, side, t_segment):
     return None
 
 
+def _pivots(parameters, alpha, cor, sides):
+    """(parameters, alpha, COR of an impact onto it) of a pivot, as functions of its side.
+
+    ``sides`` None: the symmetric block's one set for both; else ``(rows, cors)``.
+    """
+    if sides is None:
+        return (lambda side: parameters), (lambda side: alpha), (lambda side: cor)
+    rows, cors = sides
+
+    def par(side):
+        return rows[0] if side > 0 else rows[1]
+
+    return (par, (lambda side: float(par(side)[ALPHA])),
+            (lambda side: float(cors[0] if side > 0 else cors[1])))
+
+
 class ReferenceSolverError(RuntimeError):
     """SciPy's integrator gave up, or the event loop stopped advancing in time.
 
@@ -109,8 +126,17 @@ MAX_SEGMENTS_PER_INTERVAL = 100_000
 
 def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, omega0, rtol,
                         rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
-                        impact_velocities, info):
-    """Same contract as :func:`shaketable.solvers.engine.integrate` (METHOD_FAST)."""
+                        impact_velocities, info, sides=None):
+    """Same contract as :func:`shaketable.solvers.engine.integrate` (METHOD_FAST).
+
+    ``sides``: an asymmetric block (:mod:`shaketable.solvers.asymmetric`), as
+    ``(rows, cors)``: the two rows of :func:`~shaketable.core.dynamics.side_parameters`
+    (theta > 0, theta < 0) and the CORs of an impact landing on each pivot; ``alpha``
+    and ``p`` are then the smaller angle and the larger p (the tolerances), ``cor`` and
+    ``parameters`` unused. ``None``: the symmetric block, every number as before.
+    """
+    par, alpha_of, cor_onto = _pivots(parameters, alpha, cor, sides)
+    parameters = par(1.0)
     atol = np.array([rtol * alpha, rtol * alpha * p]) * 1e-2
     if rest_tolerance < 0:
         rest_tolerance = 1e-6 / p
@@ -134,7 +160,7 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
     rest_until = t
     out_theta[0], out_omega[0] = theta, omega
     out_acceleration[0] = 0.0 if resting else angular_acceleration(theta, side, ug[0], vg[0],
-                                                                   rg[0], parameters)
+                                                                   rg[0], par(side))
     filled = 1
     max_recorded = len(impact_times)
 
@@ -169,8 +195,8 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 t = max(t, rest_until)
                 start, start_side = math.inf, 0.0
                 for s in (1.0, -1.0):
-                    margin_a = s * angular_acceleration(0.0, s, *ground(t), parameters)
-                    margin_b = s * angular_acceleration(0.0, s, *ground(t_end), parameters)
+                    margin_a = s * angular_acceleration(0.0, s, *ground(t), par(s))
+                    margin_b = s * angular_acceleration(0.0, s, *ground(t_end), par(s))
                     if margin_a > 0:
                         candidate = t
                     elif margin_b > 0:
@@ -187,13 +213,13 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 # rests and restarts at the same instant forever; engine: same rule)
                 low, high = start, t_end
                 if start_side * angular_acceleration(0.0, start_side, *ground(start),
-                                                     parameters) <= 0.0:
+                                                     par(start_side)) <= 0.0:
                     for _ in range(200):
                         middle = 0.5 * (low + high)
                         if middle <= low or middle >= high:
                             break
                         if start_side * angular_acceleration(0.0, start_side, *ground(middle),
-                                                             parameters) > 0.0:
+                                                             par(start_side)) > 0.0:
                             high = middle
                         else:
                             low = middle
@@ -204,6 +230,8 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 continue
 
             active_side = side
+            active = par(side)
+            active_alpha = alpha_of(side)
             t_segment = t
             from_zero = theta == 0.0
 
@@ -211,7 +239,7 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 # the active corner's equation continued past theta = 0 (smooth), as in
                 # the engine: Eq. 2-13's switch of corner there is a jump in theta''
                 # that made DOP853 give up at the impact
-                return [y[1], flight_acceleration(y[0], active_side, *ground(time), parameters)]
+                return [y[1], flight_acceleration(y[0], active_side, *ground(time), active)]
 
             def impact(time, y):
                 if from_zero:
@@ -229,7 +257,7 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
             peak.terminal, peak.direction = False, 0
 
             def unstable(time, y):
-                return alpha - abs(y[0])
+                return active_alpha - abs(y[0])
             unstable.terminal, unstable.direction = False, -1
 
             solution = solve_ivp(rhs, (t, t_end), [theta, omega], method="DOP853", rtol=rtol,
@@ -283,12 +311,13 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                     impact_times[counts["impacts"]] = t
                     impact_velocities[counts["impacts"]] = omega
                 counts["impacts"] += 1
-                omega *= cor
                 side = -active_side
+                landing = cor_onto(side)
+                omega *= landing
                 theta = 0.0
-                deceleration = -side * angular_acceleration(0.0, side, *ground(t), parameters)
-                remaining = cascade_rest_time(omega, deceleration, cor)
-                if (remaining == math.inf and cor >= 1.0 and deceleration > 0.0
+                deceleration = -side * angular_acceleration(0.0, side, *ground(t), par(side))
+                remaining = cascade_rest_time(omega, deceleration, landing)
+                if (remaining == math.inf and landing >= 1.0 and deceleration > 0.0
                         and abs(omega) <= velocity_floor):
                     remaining = 0.0  # COR = 1 bounces at the noise level: at rest (engine)
                 if omega == 0.0 or remaining <= rest_tolerance or (
@@ -307,7 +336,7 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
             break
         out_theta[k + 1], out_omega[k + 1] = theta, omega
         out_acceleration[k + 1] = 0.0 if resting else angular_acceleration(
-            theta, side, u1, v1, r1, parameters)
+            theta, side, u1, v1, r1, par(side))
         filled = k + 2
 
     info[INFO_T_END], info[INFO_THETA_END], info[INFO_THETA_DOT_END] = t, theta, omega

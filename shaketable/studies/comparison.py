@@ -68,20 +68,34 @@ class ComparisonTally:
     ----------
     counts : dict of str to list of int
         ``{kind: [agree, differ]}``.
+    differing : list of (str, str)
+        ``(kind, what)`` of each differing comparison counted with a description (the
+        report's list of the comparisons that differ).
     """
 
     counts: dict = field(default_factory=lambda: {kind: [0, 0] for kind in COMPARISON_KINDS})
+    differing: list = field(default_factory=list)
 
-    def add(self, kind: str, agrees: bool, number: int = 1) -> None:
-        """Count ``number`` comparisons of ``kind`` that agree (or differ)."""
+    def add(self, kind: str, agrees: bool, number: int = 1, what: str | None = None) -> None:
+        """Count ``number`` comparisons of ``kind`` that agree (or differ); ``what``
+        describes a differing one (kept in :attr:`differing`)."""
         if kind not in self.counts:
             raise ValueError(f"kind must be one of {', '.join(COMPARISON_KINDS)}, got {kind!r}")
         self.counts[kind][0 if agrees else 1] += int(number)
+        if not agrees and what is not None:
+            self.differing.append((kind, what))
 
-    def add_many(self, kind: str, agreeing: int, total: int) -> None:
-        """Count ``total`` comparisons of ``kind`` of which ``agreeing`` agree."""
+    def add_many(self, kind: str, agreeing: int, total: int,
+                 differing: list | None = None) -> None:
+        """Count ``total`` comparisons of ``kind`` of which ``agreeing`` agree;
+        ``differing`` describes the others (one text each)."""
         self.add(kind, True, agreeing)
         self.add(kind, False, total - agreeing)
+        if differing is not None:
+            if len(differing) != total - agreeing:
+                raise ValueError(f"{len(differing)} descriptions for {total - agreeing} "
+                                 "differing comparisons")
+            self.differing.extend((kind, what) for what in differing)
 
     def headline(self) -> list[str]:
         """The report's headline: one bold line per kind of comparison."""

@@ -107,11 +107,12 @@ class ModeMap:
             })
         return pd.DataFrame(rows)
 
-    def plot(self, fig=None):
-        """The map: :func:`shaketable.plots.mode_map.mode_map_figure`."""
+    def plot(self, fig=None, block: Block | None = None):
+        """The map: :func:`shaketable.plots.mode_map.mode_map_figure` (``block``: the
+        user's block, its column outlined)."""
         from shaketable.plots.mode_map import mode_map_figure
 
-        return mode_map_figure(self, fig=fig)
+        return mode_map_figure(self, fig=fig, block=block)
 
 
 def _scaled(motion: Motion, pga: float | None) -> Motion:

@@ -234,7 +234,7 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd
         label = record.label if seed is None else f"{record.label} (seed {seed})"
         block = spec.blocks[row.block_index]
         cases.append(Case(block, motion, cors[k], scale=1.0 if spec.pitch is not None else factor,
-                          block_label=block.describe(unit="in"), motion_label=label))
+                          block_label=block.describe(), motion_label=label))
         factor_list.append(factor)
         pga_list.append(_record_motion(record, seed).pga)
     statistics = None

@@ -189,7 +189,7 @@ def check_friction_spec(spec: SweepSpec, rocking: dict) -> None:
                 impact_ratios(block, cor)
             except ValueError as error:
                 raise SweepError(f"{where}: rocking.cor with [friction], block "
-                                 f"{block.describe(unit='in')}: {error}") from None
+                                 f"{block.describe()}: {error}") from None
 
 
 def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list,
@@ -285,14 +285,21 @@ def verdict_counts(table) -> str:
 def friction_summary(table) -> list:
     """One line per friction pair of a friction sweep's table: its verdicts and, over its
     runs that stay standing (a toppled block's slip and corner are no clearance), the
-    largest peak slip and peak corner excursion [m]."""
+    largest peak slip and peak corner excursion (in the unit of the blocks' labels when
+    they share one, else m)."""
+    from shaketable.core.units import format_length
+
+    # lengths in the unit of the blocks' labels when they share one (2 x 0.5 m: mm or m)
+    units = {str(label).rsplit(" ", 1)[-1] for label in table["block"].unique()}
+    unit = units.pop() if len(units) == 1 and units <= {"m", "cm", "mm", "in", "ft"} else "m"
     lines = []
     for mu_s, mu_d in friction_pairs(table):
         rows = friction_rows(table, mu_s, mu_d)
         standing = rows[~rows["overturned"].astype(bool)]
         extent = "no run stands" if standing.empty else (
-            f"standing runs: largest peak slip {standing['peak slip [m]'].max():.3g} m, "
-            f"largest peak corner excursion {standing['peak corner excursion [m]'].max():.3g} m")
+            "standing runs: largest peak slip "
+            f"{format_length(standing['peak slip [m]'].max(), unit)}, largest peak corner "
+            f"excursion {format_length(standing['peak corner excursion [m]'].max(), unit)}")
         lines.append(f"mu_s {mu_s:g}, mu_d {mu_d:g}: {verdict_counts(rows)}; {extent}")
     return lines
 

@@ -524,23 +524,52 @@ def _blocks(table, where):
             if value >= math.pi / 2:
                 raise SweepError(f"{where}: blocks.alpha must be below 90 deg, got {item!r}")
             alphas.append(value)
+    # the blocks of a grid are labelled in the unit of the grid's first length
+    unit = _length_unit(table[next(key for key in grid if key in lengths)])
     if grid == ("height", "width"):
         for height, width in product(lengths["height"], lengths["width"]):
-            add(lambda: Block(height, width, rods), "height", {})
+            add(lambda: _labelled(Block(height, width, rods), unit), "height", {})
     elif grid == ("height", "aspect"):
         for height, aspect in product(lengths["height"], aspects):
-            add(lambda: Block(height, height / aspect, rods), "aspect", {"aspect": aspect})
+            add(lambda: _labelled(Block(height, height / aspect, rods), unit), "aspect",
+                {"aspect": aspect})
     elif grid == ("width", "aspect"):
         for width, aspect in product(lengths["width"], aspects):
-            add(lambda: Block(width * aspect, width, rods), "aspect", {"aspect": aspect})
+            add(lambda: _labelled(Block(width * aspect, width, rods), unit), "aspect",
+                {"aspect": aspect})
     elif grid == ("R", "alpha"):
         for radius, alpha in product(lengths["R"], alphas):
-            add(lambda: Block.from_slenderness(radius, alpha, rods), "alpha", {})
+            add(lambda: _labelled(Block.from_slenderness(radius, alpha, rods), unit), "alpha",
+                {})
     else:  # R + aspect
         for radius, aspect in product(lengths["R"], aspects):
-            add(lambda: Block.from_slenderness(radius, math.atan(1.0 / aspect), rods),
-                "aspect", {"aspect": aspect})
+            add(lambda: _labelled(Block.from_slenderness(radius, math.atan(1.0 / aspect), rods),
+                                  unit), "aspect", {"aspect": aspect})
     return blocks, inputs
+
+
+def _length_unit(value) -> str | None:
+    """The unit of the first length of a grid key (``"2 m"`` -> ``"m"``), None if unknown."""
+    from shaketable.core.constants import LENGTH_UNITS
+
+    first = _as_list(value)[0] if _as_list(value) else None
+    if not isinstance(first, str):
+        return None
+    unit = first.strip().lstrip("+-0123456789.eE").strip().lower()
+    return unit if unit in LENGTH_UNITS else None
+
+
+def _labelled(block: Block, unit: str | None) -> Block:
+    """The block labelled ``H x B unit`` in the user's unit (as :meth:`Block.parse` does)."""
+    if unit is None:
+        return block
+    from dataclasses import replace
+
+    from shaketable.core.constants import length_factor
+
+    factor = length_factor(unit)
+    return replace(block, label=f"{block.height / factor:.6g} x {block.width / factor:.6g} "
+                                f"{unit}")
 
 
 def _records(value, where, directory: Path, seed: int):

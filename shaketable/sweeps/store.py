@@ -14,9 +14,10 @@ import numpy as np
 from shaketable.core.files import write_csv, write_parquet, write_text
 from shaketable.sweeps.spec import SweepError
 
-#: Version of the result layout, written in the manifest (2: with the intensity-measure
-#: columns; a folder of version 1 is not resumed, its rows lack them).
-FORMAT_VERSION = 2
+#: Version of the result layout, written in the manifest (2: the intensity-measure
+#: columns; 3: the ``block`` column in the user's units, ``2 x 0.5 m``, not always inches).
+#: A folder of an earlier version is not resumed: its rows differ.
+FORMAT_VERSION = 3
 
 
 # --------------------------------------------------------------------------- execution

@@ -61,7 +61,7 @@ def test_each_cell_equals_the_api_ensemble(tables):
     motion = records.load("pacoima-dam-s74w")
     assert len(table) == 4
     for _, row in table.iterrows():
-        block = Block.parse({"24 x 12 in": "2x1ft", "48 x 24 in": "4x2ft"}[row["block"]])
+        block = Block.parse({"2 x 1 ft": "2x1ft", "4 x 2 ft": "4x2ft"}[row["block"]])
         api = ensemble(block, motion, cor=row["cor [-]"], members=MEMBERS,
                        perturbation=Perturbation(), seed=3, horizon_pairs=0).summary
         assert row["members"] == MEMBERS
@@ -75,7 +75,7 @@ def test_each_cell_equals_the_api_ensemble(tables):
         assert (row["P low [-]"], row["P high [-]"]) == (low, high)
         assert row["mark"] == ("robust" if api["robust"] else "fragile")
     # the 2 x 1 ft block under S74W at COR 1 is fragile under 1e-9 perturbations
-    cell = table[(table["block"] == "24 x 12 in") & (table["cor [-]"] == 1.0)].iloc[0]
+    cell = table[(table["block"] == "2 x 1 ft") & (table["cor [-]"] == 1.0)].iloc[0]
     assert cell["mark"] == "fragile" and 0 < cell["P(overturn) [-]"] < 1
 
 

@@ -202,7 +202,7 @@ def test_a_rocking_store_refuses_a_friction_spec_and_keeps_its_format(tmp_path):
                              "n_chunks", "format", "format_version", "solver"}
     assert manifest["fingerprint"] == \
         "da7b7957bfe1432d658337882c1c918c96ee9e704fbf391ca976917b35380e55"
-    assert manifest["format_version"] == 2
+    assert manifest["format_version"] == 3
     with_friction = ROCKING_SPEC.replace("[run]", "[friction]\nstatic = 0.6\n[run]")
     with pytest.raises(sweeps.SweepError, match=r"has no \[friction\] \(the rocking model\) "
                                                 r"and .* has \[friction\]"):
@@ -294,7 +294,10 @@ def test_sweep_command_prints_verdicts_and_draws_figures_per_friction(tmp_path, 
         line = f"mu_s {mu_s:g}, mu_d {mu_d:g}: "
         assert line in printed
         if len(standing):
-            assert (f"largest peak slip {standing['peak slip [m]'].max():.3g} m"
+            # blocks in in and ft: lengths in m (mm below 1 m), 3 significant digits
+            from shaketable.core.units import format_length
+
+            assert (f"largest peak slip {format_length(standing['peak slip [m]'].max(), 'm')}"
                     in printed.split(line)[1].splitlines()[0])
     folders = sorted(p.name for p in (out / "figures").iterdir())
     assert folders == ["friction-mus0.2-mud0.16", "friction-mus0.2-mud0.2",

@@ -1,0 +1,103 @@
+"""The answer of a run in the user's units, first: what the commands print before details.
+
+An engineer deciding about a block reads the verdict, max theta/alpha, the overturn time,
+the peak slip, the corner excursion (the clearance the block needs) and when it came to
+rest; these lines give them, lengths in the unit the block was given in
+(:attr:`shaketable.core.geometry.Block.length_unit`, :func:`shaketable.core.units.format_length`).
+Time spent in each mode is a detail and is labelled as such.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from shaketable.core.units import format_length
+
+
+def _seconds(value: float) -> str:
+    return f"{value:.2f} s"
+
+
+def planar_rest_time(result) -> float:
+    """When a planar block (:class:`~shaketable.core.planar_result.PlanarResult`) came to
+    rest for good [s]: the start of the rest it ends the run in; NaN when it overturned
+    or is still moving at the end, 0 when it never moved."""
+    from shaketable.core.planar_result import MODES
+
+    rest = MODES.index("rest")
+    if result.overturned or int(result.mode[-1]) != rest:
+        return math.nan
+    if not math.isfinite(result.t_start):
+        return 0.0
+    events = result.events
+    if result.n_events <= events.shape[0]:     # every event recorded: the exact instant
+        into_rest = events[(events[:, 3] == rest) & (events[:, 2] != rest), 0]
+        if into_rest.size:
+            return float(into_rest[-1])
+    moving = np.flatnonzero(result.mode != rest)
+    return float(result.t[moving[-1] + 1]) if moving.size else 0.0
+
+
+def rocking_rest_time(result) -> float:
+    """When a rocking block (:class:`~shaketable.core.results.RockingResult`) came to rest
+    for good [s]: NaN when it overturned, left the ground or still rocks at the end, 0
+    when it never rocked."""
+    if result.status != "completed":
+        return math.nan
+    if not math.isfinite(result.t_start):
+        return 0.0
+    moving = np.flatnonzero((result.theta != 0.0) | (result.theta_dot != 0.0))
+    if not moving.size:
+        return 0.0
+    if moving[-1] == result.t.size - 1:
+        return math.nan
+    settled = float(result.t[moving[-1] + 1])
+    # the summed cascade's end lies between the last moving sample and the next
+    if math.isfinite(result.t_rest) and result.t[moving[-1]] <= result.t_rest <= settled:
+        return float(result.t_rest)
+    return settled
+
+
+def _rest_line(rest: float, result) -> str:
+    if result.overturned:
+        return "came to rest: no, it overturned"
+    if math.isnan(rest):
+        return f"came to rest: no, still moving at the end of the run (t = {result.t[-1]:.2f} s)"
+    if rest == 0.0:
+        return "came to rest: it never moved"
+    return f"came to rest at t = {_seconds(rest)}"
+
+
+def _ratio_line(result) -> str:
+    if result.overturned:
+        return (f"max theta/alpha: F (overturned); overturn time {_seconds(result.t_overturn)}"
+                f" ({'+' if result.overturn_direction > 0 else '-'}x side)")
+    return (f"max theta/alpha {result.max_theta_ratio:.3g} at t = {_seconds(result.t_max)}; "
+            "did not overturn")
+
+
+def planar_answer(result) -> list[str]:
+    """The answer lines of a planar (friction) run, in the block's units."""
+    unit = result.block.length_unit
+    peak = format_length(result.peak_slip, unit)
+    residual = format_length(result.residual_slip, unit, signed=True)
+    lines = [_ratio_line(result),
+             f"peak slip {peak} at t = {_seconds(result.t_peak_slip)}, residual {residual}"
+             if result.peak_slip > 0 else "peak slip 0: the base never slid",
+             f"corner excursion (the clearance it needs) "
+             f"{format_length(result.peak_excursion, unit)}",
+             _rest_line(planar_rest_time(result), result)]
+    in_mode = ", ".join(f"{name} {_seconds(seconds)}" for name, seconds in
+                        result.time_in_mode.items() if seconds > 0)
+    lines.append(f"time in each mode (details): {in_mode}")
+    return lines
+
+
+def rocking_answer(result) -> list[str]:
+    """The answer lines of a rocking run (after its verdict)."""
+    if result.status == "airborne":
+        return [f"the block leaves the ground at t = {_seconds(result.t_airborne)}: "
+                "outside the model, the run stops there"]
+    return [_ratio_line(result), _rest_line(rocking_rest_time(result), result)]

@@ -1,0 +1,44 @@
+"""``shaketable simulate --friction MU --ensemble N``: the planar model's ensemble."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+
+def friction_ensemble(args, block, motion, friction, out) -> int:
+    """Run the perturbed copies of one planar run, print the answer, write CSV, JSON, figure.
+
+    The perturbation is the one ``--ensemble`` gives the rocking model (``--perturb`` and
+    ``--perturb-amplitude/-cor/-size/-start``); see
+    :func:`shaketable.studies.planar_ensemble.planar_ensemble`.
+    """
+    from shaketable.core.ensemble import Perturbation
+    from shaketable.core.files import json_ready_dict, write_csv, write_text
+    from shaketable.plots import base as plots
+    from shaketable.studies.planar_ensemble import planar_ensemble
+
+    if motion is None:
+        raise ValueError("--ensemble needs a --record (free rocking from --theta0 is not chaotic)")
+    if args.ensemble < 2:
+        raise ValueError(f"--ensemble must be 2 or more members (the nominal run and its "
+                         f"perturbed copies), got {args.ensemble}")
+    spread = args.perturb
+    perturbation = Perturbation(
+        amplitude=spread if args.perturb_amplitude is None else args.perturb_amplitude,
+        cor=spread if args.perturb_cor is None else args.perturb_cor,
+        size=spread if args.perturb_size is None else args.perturb_size,
+        start=spread if args.perturb_start is None else args.perturb_start)
+    result = planar_ensemble(block, motion, args.cor, friction, members=args.ensemble,
+                             perturbation=perturbation, seed=args.seed, duration=args.duration)
+    write_csv(out / "ensemble.csv", result.to_frame())
+    summary = json_ready_dict(result.summary)
+    summary["perturbation [-]"] = dataclasses.asdict(perturbation)
+    write_text(out / "ensemble.json", json.dumps(summary, indent=2, default=float))
+    plots.save(result.plot().figure, out / f"ensemble.{args.format}")
+    print(f"{block.describe()} block, COR {args.cor}, μs {friction.static:g}, μd "
+          f"{friction.dynamic:g}, {args.ensemble} members (planar model): "
+          f"{result.describe()}")
+    print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
+          f"{out / ('ensemble.' + args.format)}")
+    return 0

@@ -1,0 +1,266 @@
+"""``shaketable validate calibrate|predict|score``: measured shake-table tests.
+
+* ``calibrate FOLDER --out cal.json``: an equivalent block per specimen by maximum
+  likelihood, with 95 % profile-likelihood sets, k-fold cross-validated scores with the
+  baselines, and a bootstrap check of the sets (all in the JSON);
+* ``predict FOLDER --calibration cal.json --out predictions.csv``: P(overturn) and the
+  verdict of every test and specimen (the folder's outcome columns are not needed);
+* ``score predictions.csv FOLDER``: accuracy, confusion, log loss, Brier, reliability and
+  fragility against the folder's outcomes (``--figures DIR`` draws them).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+
+def _floats(text: str, option: str) -> tuple[float, ...]:
+    try:
+        values = tuple(float(part) for part in text.split(",") if part.strip())
+    except ValueError:
+        raise ValueError(f"{option} {text!r}: give numbers separated by commas") from None
+    if not values:
+        raise ValueError(f"{option} {text!r}: give at least one number")
+    return values
+
+
+def _grid(args):
+    from shaketable.validation.model import CandidateGrid
+
+    default = CandidateGrid()
+    cors: list[float | str] = []
+    if args.cors:
+        for part in args.cors.split(","):
+            part = part.strip().lower()
+            cors.append(part if part == "housner" else _floats(part, "--cors")[0])
+    return CandidateGrid(
+        alphas=_floats(args.alphas, "--alphas") if args.alphas else default.alphas,
+        ratios=_floats(args.ratios, "--ratios") if args.ratios else default.ratios,
+        heights=_floats(args.heights, "--heights") if args.heights else default.heights,
+        cors=tuple(cors) if cors else default.cors)
+
+
+def _calibrate(args) -> int:
+    import pandas as pd
+
+    from shaketable.core.files import prepare_output_file, write_csv, write_text
+    from shaketable.validation.check import (
+        bootstrap_refits,
+        bootstrap_sets,
+        coverage,
+        cross_validate,
+        out_of_fold,
+    )
+    from shaketable.validation.folder import read_folder
+    from shaketable.validation.workflow import (
+        calibrate_folder,
+        calibration_json,
+        describe_calibration,
+    )
+
+    folder = read_folder(args.folder)
+    grid = _grid(args)
+    out = prepare_output_file(args.out, "--out", suffixes=(".json",))
+    if not args.quiet:
+        print(f"{len(folder.tests)} tests, specimens {', '.join(folder.specimens)}; "
+              f"{len(grid.candidates())} candidate blocks")
+    calibrations, overturned, candidates = calibrate_folder(folder, grid, threads=args.threads,
+                                                            cache=args.verdicts)
+    pgv = folder.metadata["pgv [m/s]"].to_numpy()  # type: ignore[index]
+    checks: dict = {}
+    held_out = []
+    for name, calibration in calibrations.items():
+        outcomes = folder.outcomes(name)
+        entry: dict = {}
+        if args.folds:
+            frame = cross_validate(overturned, outcomes, candidates, pgv, k=args.folds,
+                                   repeats=args.repeats, seed=args.seed)
+            entry["cross_validation"] = {
+                model: {metric: {"mean": float(part[metric].mean()),
+                                 "std": float(part[metric].std(ddof=1))}
+                        for metric in ("accuracy", "log_loss", "brier")}
+                for model, part in frame.groupby("model")}
+            entry["cross_validation"]["folds"] = args.folds
+            entry["cross_validation"]["repeats"] = args.repeats
+            if args.cv_predictions:
+                p = out_of_fold(overturned, outcomes, candidates, k=args.folds, seed=args.seed)
+                held_out.append(pd.DataFrame({"test": folder.metadata["test"],  # type: ignore[index]
+                                              "specimen": name, "p_overturn": p,
+                                              "predicted_overturned": (p >= 0.5).astype(int)}))
+        if args.bootstrap:
+            # one bootstrap gives the percentile sets; an independent one checks them and
+            # the profile-likelihood sets
+            refits = bootstrap_refits(overturned, outcomes, candidates,
+                                      resamples=args.bootstrap, seed=args.seed)
+            check = bootstrap_refits(overturned, outcomes, candidates,
+                                     resamples=args.bootstrap, seed=args.seed + 1)
+            sets = bootstrap_sets(refits)
+            entry["bootstrap"] = {"resamples": args.bootstrap, "sets": sets,
+                                  "coverage_of_profile_sets": coverage(
+                                      check, calibration.intervals),
+                                  "coverage_of_bootstrap_sets": coverage(check, sets)}
+        checks[name] = entry
+        if not args.quiet:
+            print(describe_calibration(calibration))
+            for model, values in entry.get("cross_validation", {}).items():
+                if isinstance(values, dict):
+                    accuracy = values["accuracy"]
+                    print(f"  {args.folds}-fold CV accuracy, {model}: {accuracy['mean']:.3f} "
+                          f"+- {accuracy['std']:.3f} (log loss {values['log_loss']['mean']:.3f}, "
+                          f"Brier {values['brier']['mean']:.3f})")
+            if "bootstrap" in entry:
+                boot = entry["bootstrap"]
+                print(f"  95 % bootstrap sets: {boot['sets']}")
+                print(f"  independent refits inside the profile sets: "
+                      f"{boot['coverage_of_profile_sets']}")
+                print(f"  independent refits inside the bootstrap sets: "
+                      f"{boot['coverage_of_bootstrap_sets']}")
+    if held_out:
+        write_csv(prepare_output_file(args.cv_predictions, "--cv-predictions", (".csv",)),
+                  pd.concat(held_out, ignore_index=True), index=False)
+    write_text(out, calibration_json(calibrations, {"folder": str(folder.path),
+                                                    "grid": {"alphas": grid.alphas,
+                                                             "ratios": grid.ratios,
+                                                             "heights": grid.heights,
+                                                             "cors": grid.cors},
+                                                    "checks": checks}))
+    if not args.quiet:
+        print(f"wrote {out}")
+    return 0
+
+
+def _predict(args) -> int:
+    from shaketable.core.files import prepare_output_file, write_csv
+    from shaketable.validation.folder import read_folder
+    from shaketable.validation.workflow import (
+        predict_folder,
+        predict_from_geometry,
+        read_calibration,
+    )
+
+    if (args.calibration is None) == (args.geometry is None):
+        raise ValueError("give --calibration (a calibrated block) or --geometry (the "
+                         "specimens' measured geometry), one of them")
+    folder = read_folder(args.folder)
+    out = prepare_output_file(args.out, "--out", suffixes=(".csv",))
+    if args.geometry is not None:
+        import pandas as pd
+
+        geometry = pd.read_csv(args.geometry)
+        frame = predict_from_geometry(folder, geometry, sign=args.sign, threads=args.threads)
+    else:
+        frame = predict_folder(folder, read_calibration(args.calibration), threads=args.threads)
+    write_csv(out, frame, index=False)
+    if not args.quiet:
+        for name in frame.attrs.get("missing", []):
+            print(f"specimen {name}: not in the calibration, left out")
+        counts = frame.groupby("specimen")["predicted_overturned"].agg(["sum", "count"])
+        for name, row in counts.iterrows():
+            print(f"{name}: {int(row['sum'])} of {int(row['count'])} tests predicted to overturn")
+        print(f"wrote {out}")
+    return 0
+
+
+def _score(args) -> int:
+    from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
+    from shaketable.validation.folder import read_folder
+    from shaketable.validation.workflow import read_predictions, score_folder
+
+    predictions = read_predictions(args.predictions)
+    folder = read_folder(args.folder)
+    result = score_folder(predictions, folder)
+    figures = prepare_output_folder(args.figures, "--figures") if args.figures else None
+    if not args.quiet:
+        for name, values in [*result["specimens"].items(), ("all", result["all"])]:
+            print(f"{name}: accuracy {values['accuracy']:.3f} on {values['n']} "
+                  f"(overturned: {values['true_positive']} right, {values['false_negative']} "
+                  f"missed; standing: {values['true_negative']} right, "
+                  f"{values['false_positive']} false alarms); log loss "
+                  f"{values['log_loss']:.3f}, Brier {values['brier']:.3f}")
+        if result["unmatched"]:
+            print(f"{result['unmatched']} prediction rows have no outcome in the folder")
+        print("reliability (predicted P in bins against the measured fraction):")
+        print(result["reliability"].to_string(index=False, float_format=lambda x: f"{x:.3f}"))
+    if args.json:
+        summary = {"specimens": result["specimens"], "all": result["all"],
+                   "reliability": result["reliability"].to_dict(orient="records")}
+        write_text(Path(args.json), json.dumps(json_ready_dict(summary), indent=2,
+                                               default=str))
+    if figures is not None:
+        from shaketable.plots.base import save
+        from shaketable.plots.validation import fragility_figure, reliability_figure
+
+        save(reliability_figure(result["reliability"]), figures / "reliability.png")
+        save(fragility_figure(result["fragility_pga"], "PGA [g]", log=True),
+             figures / "fragility_pga.png")
+        save(fragility_figure(result["fragility_pgv_over_pga"], "PGV/PGA [s]", log=True),
+             figures / "fragility_pgv_over_pga.png")
+        write_csv(figures / "fragility_pga.csv", result["fragility_pga"], index=False)
+        write_csv(figures / "fragility_pgv_over_pga.csv", result["fragility_pgv_over_pga"],
+                  index=False)
+        if not args.quiet:
+            print(f"wrote the figures to {figures}")
+    return 0
+
+
+def register(commands) -> None:
+    """Add the ``validate`` subcommand and its three steps."""
+    parser = commands.add_parser(
+        "validate", help="calibrate on, predict and score measured shake-table tests",
+        description="Validation against measured shake-table tests (a folder: metadata.csv, "
+                    "one motion per test, '<specimen>_overturned' outcome columns).")
+    steps = parser.add_subparsers(dest="step", required=True, metavar="STEP")
+
+    calibrate = steps.add_parser("calibrate", help="an equivalent block per specimen, by "
+                                                    "maximum likelihood, with intervals")
+    calibrate.add_argument("folder", help="folder of tests with outcome columns")
+    calibrate.add_argument("--out", required=True, help="calibration file to write (.json)")
+    calibrate.add_argument("--alphas", help="weak-side block angles in rad, comma-separated "
+                                            "(default 0.04 to 0.19)")
+    calibrate.add_argument("--ratios", help="alpha_strong / alpha_weak, comma-separated "
+                                            "(default 1,2)")
+    calibrate.add_argument("--heights", help="centroid heights in m, comma-separated "
+                                             "(default 0.3)")
+    calibrate.add_argument("--cors", help="CORs, comma-separated, 'housner' allowed "
+                                          "(default housner,0.9,0.8)")
+    calibrate.add_argument("--folds", type=int, default=5, help="cross-validation folds "
+                                                                "(0: none; default 5)")
+    calibrate.add_argument("--repeats", type=int, default=5,
+                           help="cross-validation repetitions with other folds (default 5)")
+    calibrate.add_argument("--bootstrap", type=int, default=200,
+                           help="bootstrap refits checking the intervals (0: none; default 200)")
+    calibrate.add_argument("--seed", type=int, default=0, help="seed of folds and bootstrap")
+    calibrate.add_argument("--cv-predictions", metavar="CSV",
+                           help="write the out-of-fold predictions (each test predicted by the "
+                                "calibration on the other folds) for 'validate score'")
+    calibrate.add_argument("--verdicts", help="cache of the simulated verdicts (.npz): reused "
+                                              "when it matches the grid and the tests")
+    calibrate.add_argument("--threads", type=int, help="threads of the simulations")
+    calibrate.set_defaults(handler=_calibrate)
+
+    predict = steps.add_parser("predict", help="P(overturn) and verdicts of a folder's tests")
+    predict.add_argument("folder", help="folder of tests (outcome columns not needed)")
+    predict.add_argument("--calibration", help="calibration file (.json)")
+    predict.add_argument("--geometry", help="instead of a calibration: the specimens' geometry "
+                                            "CSV (columns specimen, direction, side, b_m, h_m, "
+                                            "R_m, I_O_over_mR2): the scan-based block, "
+                                            "Housner's COR per pivot")
+    predict.add_argument("--sign", type=int, choices=(1, -1), default=1,
+                         help="with --geometry: +1 if a positive recorded acceleration tips "
+                              "the block over its +x side, -1 the other way (default 1)")
+    predict.add_argument("--out", required=True, help="predictions to write (.csv)")
+    predict.add_argument("--threads", type=int, help="threads of the simulations")
+    predict.set_defaults(handler=_predict)
+
+    score = steps.add_parser("score", help="score predictions against a folder's outcomes")
+    score.add_argument("predictions", help="predictions CSV of 'validate predict'")
+    score.add_argument("folder", help="folder of tests with outcome columns")
+    score.add_argument("--json", help="write the scores to this JSON file")
+    score.add_argument("--figures", help="folder for the reliability and fragility figures")
+    score.set_defaults(handler=_score)
+    for step in (calibrate, predict, score):
+        # after the step too; SUPPRESS: a step's default must not undo `validate -q STEP`
+        step.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS,
+                          help="print nothing but errors")

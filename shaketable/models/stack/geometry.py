@@ -1,0 +1,137 @@
+"""A column of rigid rectangular blocks, each centred on the one below (input of the stack
+model)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from shaketable.core.constants import G
+from shaketable.core.geometry import Block
+from shaketable.core.validation import number
+
+#: Most blocks in one stack (the patterns are enumerated: 3^n candidates at an event).
+MAX_BLOCKS = 10
+
+
+@dataclass(frozen=True)
+class Stack:
+    """A planar column of rigid blocks on the table, block 0 at the bottom.
+
+    Parameters
+    ----------
+    blocks : sequence of Block or (height, width) pairs
+        The blocks from the bottom up [m]. Each rests centred on the one below and may not
+        be wider than it (an overhanging upper block would pivot on the lower block's top
+        corner, which this model does not describe). Prestress rods are not offered.
+    masses : sequence of float, optional
+        Mass of each block [kg] (only the ratios enter the motion). By default proportional
+        to the blocks' areas (one density).
+
+    Notes
+    -----
+    Half sizes ``b_i = B_i / 2``, ``h_i = H_i / 2``; the moment of inertia of block i about
+    its centroid is ``m_i (b_i^2 + h_i^2) / 3``. The stack model assumes no sliding and no
+    flight (as the report's Section 2.7 does for one block); the result reports the
+    friction each contact needs and any tensile contact force.
+    """
+
+    blocks: tuple[Block, ...]
+    masses: tuple[float, ...] | None = None
+
+    def __post_init__(self) -> None:
+        try:
+            given = list(self.blocks)
+        except TypeError:
+            raise TypeError(f"Stack.blocks must be a sequence of Block, got "
+                            f"{type(self.blocks).__name__}")
+        if not given:
+            raise ValueError("Stack.blocks must hold at least one block, got none")
+        if len(given) > MAX_BLOCKS:
+            raise ValueError(f"Stack.blocks holds {len(given)} blocks; at most {MAX_BLOCKS}")
+        blocks: list[Block] = []
+        for index, item in enumerate(given):
+            name = f"Stack.blocks[{index}]"
+            if isinstance(item, Block):
+                block = item
+            elif isinstance(item, (tuple, list)) and len(item) == 2:
+                height = number(f"{name} height", item[0])
+                width = number(f"{name} width", item[1])
+                for what, value in (("height", height), ("width", width)):
+                    if not value > 0:
+                        raise ValueError(f"{name} {what} must be positive [m], got {value!r}")
+                try:
+                    block = Block(height, width)
+                except ValueError as error:
+                    raise ValueError(f"{name}: {error}") from None
+            else:
+                raise TypeError(f"{name} must be a Block or a (height, width) pair [m], "
+                                f"got {item!r}")
+            if block.rods is not None:
+                raise ValueError(f"{name}.rods: prestress rods are not offered in a stack")
+            if blocks and block.width > blocks[-1].width:
+                raise ValueError(
+                    f"{name}.width ({block.width!r} m) is wider than the block below "
+                    f"(Stack.blocks[{index - 1}].width = {blocks[-1].width!r} m): an "
+                    "overhanging block is not offered by the stack model")
+            blocks.append(block)
+        object.__setattr__(self, "blocks", tuple(blocks))
+        if self.masses is None:
+            return
+        try:
+            masses = [number(f"Stack.masses[{i}]", m) for i, m in enumerate(self.masses)]
+        except TypeError:
+            raise TypeError(f"Stack.masses must be a sequence of numbers [kg], got "
+                            f"{self.masses!r}")
+        if len(masses) != len(blocks):
+            raise ValueError(f"Stack.masses has {len(masses)} values for {len(blocks)} blocks")
+        for index, mass in enumerate(masses):
+            if not (mass > 0 and math.isfinite(mass)):
+                raise ValueError(f"Stack.masses[{index}] must be a positive finite mass [kg], "
+                                 f"got {mass!r}")
+        object.__setattr__(self, "masses", tuple(masses))
+
+    @property
+    def n(self) -> int:
+        """Number of blocks."""
+        return len(self.blocks)
+
+    @property
+    def b(self) -> np.ndarray:
+        """Half widths [m], bottom first."""
+        return np.array([block.b for block in self.blocks])
+
+    @property
+    def h(self) -> np.ndarray:
+        """Half heights [m], bottom first."""
+        return np.array([block.h for block in self.blocks])
+
+    @property
+    def m(self) -> np.ndarray:
+        """Masses [kg] (the areas B H when none were given)."""
+        if self.masses is None:
+            return np.array([block.width * block.height for block in self.blocks])
+        return np.array(self.masses, dtype=float)
+
+    @property
+    def p_max(self) -> float:
+        """Largest frequency parameter sqrt(3 g / 4 R_i) of the blocks [rad/s]."""
+        return max(block.p for block in self.blocks)
+
+    @property
+    def alpha_min(self) -> float:
+        """Smallest block angle atan(b_i / h_i) [rad]."""
+        return min(block.alpha for block in self.blocks)
+
+    @property
+    def weight(self) -> float:
+        """Total weight [N] (g times the sum of the masses)."""
+        return float(G * self.m.sum())
+
+    def describe(self) -> str:
+        """``"2 blocks: 30 x 6 in on 30 x 6 in"``-like text, top first."""
+        sizes = [block.describe() if hasattr(block, "describe") else
+                 f"{block.height:g} x {block.width:g} m" for block in reversed(self.blocks)]
+        return f"{self.n} block{'s' if self.n > 1 else ''}: " + " on ".join(sizes)

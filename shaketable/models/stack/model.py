@@ -1,0 +1,162 @@
+"""The stack model behind the package's one interface, and its one run."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+import numpy as np
+
+from shaketable.core.motion import Motion
+from shaketable.core.validation import in_range, positive
+from shaketable.models.base import ModelResult
+from shaketable.models.stack.geometry import Stack
+from shaketable.models.stack.result import StackResult
+
+#: The impact laws offered.
+IMPACT_LAWS = ("plastic", "cor")
+
+
+class StackTensionWarning(UserWarning):
+    """A contact of the stack carried a tensile force: the no-flight assumption failed."""
+
+
+def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = "plastic",
+                   cor: float | None = None, theta0=None, theta_dot0=None,
+                   duration: float | None = None, rtol: float = 1e-12,
+                   rest_tolerance: float | None = None, output_dt: float = 0.005,
+                   max_recorded_events: int = 100_000) -> StackResult:
+    """Rocking response of a column of rigid blocks (``docs/stack.md``).
+
+    Parameters
+    ----------
+    stack : Stack
+    motion : Motion, optional
+        The table's accelerations [m/s^2]; ``None``: free rocking for ``duration``.
+    impact : {"plastic", "cor"}
+        The impact law: the plastic, no-slip multi-contact law (default; Housner's
+        1 - 1.5 sin^2(alpha) for one block) or the constant COR ``cor`` (every block's rate
+        times ``cor``, the report's Section 2.7 (5) for one block).
+    cor : float, optional
+        The constant COR [-] in [0, 1]; only with ``impact="cor"`` (a float given alone
+        selects that law).
+    theta0, theta_dot0 : sequence of float, optional
+        Each block's initial absolute rotation [rad] and rate [rad/s] (default zeros).
+    duration : float, optional
+        Length of free rocking [s] (``motion=None`` only).
+    rtol : float
+        DOP853's relative tolerance [-].
+    rest_tolerance : float, optional
+        Remaining time of an impact cascade summed in closed form [s] (default
+        1e-6 / p of the bottom block, as the single-block engine).
+    output_dt : float
+        Output interval of free rocking [s].
+    max_recorded_events : int
+        Events kept in the result (all are counted).
+    """
+    from shaketable.models.stack.engine import integrate  # SciPy on use
+
+    if not isinstance(stack, Stack):
+        raise TypeError(f"stack must be a Stack, got {type(stack).__name__}")
+    if impact not in IMPACT_LAWS:
+        raise ValueError(f"impact must be one of {IMPACT_LAWS}, got {impact!r}")
+    if impact == "cor":
+        if cor is None:
+            raise ValueError("impact='cor' needs cor, the coefficient of restitution [-]")
+        cor = in_range("cor", cor, 0.0, 1.0)
+    elif cor is not None:
+        raise ValueError("cor is given with impact='plastic': give impact='cor' for the "
+                         "constant-COR law")
+    n = stack.n
+    theta0 = _per_block("theta0", theta0, n)
+    theta_dot0 = _per_block("theta_dot0", theta_dot0, n)
+    if np.any(np.abs(np.diff(theta0, prepend=0.0)) >= 0.5 * math.pi):
+        raise ValueError("theta0: every interface's relative rotation must be below pi/2")
+    if motion is None:
+        if duration is None:
+            raise ValueError("free rocking (motion None) needs duration [s]")
+        motion = Motion.at_rest(positive("duration", duration, " [s]"), output_dt)
+    elif duration is not None:
+        raise ValueError("duration is for free rocking only (the motion sets the run's length)")
+    elif not isinstance(motion, Motion):
+        raise TypeError(f"motion must be a shaketable.Motion, got {type(motion).__name__}")
+    rtol = in_range("rtol", rtol, 1e-14, 1e-3)
+    rest = (1e-6 / stack.blocks[0].p if rest_tolerance is None
+            else positive("rest_tolerance", rest_tolerance, " [s]"))
+    out = integrate(stack, motion, law=impact, cor=1.0 if cor is None else cor, theta0=theta0,
+                    theta_dot0=theta_dot0, rtol=rtol, rest_tolerance=rest,
+                    max_recorded_events=int(max_recorded_events))
+    run = out["run"]
+    result = StackResult(
+        stack=stack, motion=motion, impact=impact, cor=math.nan if cor is None else cor,
+        t=motion.t[:out["filled"]].copy(), theta=out["theta"], theta_dot=out["rate"],
+        theta_ddot=out["acceleration"], patterns=out["patterns"], forces=out["forces"],
+        work=out["work"],
+        events=tuple(run.events), status=run.status, t_overturn=run.t_overturn,
+        overturned_block=run.overturned_block, t_airborne=run.t_airborne,
+        n_events=run.n_events, statistics={"steps": run.steps, "evaluations": run.evaluations})
+    if not math.isnan(result.t_tension):
+        warnings.warn(f"a contact of the stack carried a tensile force from t = "
+                      f"{result.t_tension:.6g} s: the model (no flight) is outside its "
+                      "assumptions there", StackTensionWarning, stacklevel=2)
+    return result
+
+
+def _per_block(name: str, values, n: int) -> np.ndarray:
+    if values is None:
+        return np.zeros(n)
+    array = np.atleast_1d(np.asarray(values, dtype=float))
+    if array.shape != (n,) or not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must give {n} finite values (one per block), got {values!r}")
+    return array
+
+
+class StackModel:
+    """The stack model behind :class:`~shaketable.models.base.Model`."""
+
+    name: str = "stack"
+
+    def accepts(self, subject: Any) -> bool:
+        return isinstance(subject, Stack)
+
+    def validate(self, subject: Any, options: Mapping[str, Any]) -> dict[str, Any]:
+        """The options of :func:`simulate_stack` from those of ``shaketable.simulate``."""
+        options = dict(options)
+        friction = options.pop("friction", None)
+        if friction is not None:
+            raise ValueError("friction is not offered for a Stack: the stack model does not "
+                             "slide (it reports the friction each contact needs: "
+                             "StackResult.friction_demand)")
+        for key, default in (("method", "fast"), ("top_force", 0.0), ("subdivisions", 4)):
+            if key in options and options.pop(key) != default:
+                raise ValueError(f"{key} is not offered for a Stack")
+        options.pop("max_recorded_impacts", None)
+        for key in ("theta0", "theta_dot0"):   # the block's scalar default: the stack's zeros
+            value = options.get(key, 0.0)
+            if np.ndim(value) == 0 and value == 0.0:
+                options.pop(key, None)
+        if options.get("rtol", 0.0) is None:
+            options.pop("rtol")
+        cor = options.pop("cor", None)
+        if isinstance(cor, str):
+            if cor != "plastic":
+                raise ValueError(f"cor for a Stack is a number (the constant-COR law) or "
+                                 f"'plastic', got {cor!r}")
+            cor = None
+        if cor is not None:
+            options.setdefault("impact", "cor")
+        if "impact" not in options:
+            options["impact"] = "plastic"
+        options["cor"] = cor
+        return options
+
+    def run(self, subject: Any, motion: Any, **options: Any) -> StackResult:
+        return simulate_stack(subject, motion, **self.validate(subject, options))
+
+    def run_many(self, subject: Any, motions: Iterable[Any], **options: Any) -> list[ModelResult]:
+        return [self.run(subject, motion, **options) for motion in motions]
+
+
+STACK_MODEL = StackModel()

@@ -1,0 +1,218 @@
+"""The result of one stack run (:class:`StackResult`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from shaketable.core.motion import Motion
+from shaketable.models.base import ModelResult
+from shaketable.models.stack.geometry import Stack
+
+
+def pattern_name(pattern) -> str:
+    """A contact pattern in words (``(1, 0)`` of two blocks: ``"stack as one body (+)"``)."""
+    pattern = tuple(int(s) for s in pattern)
+    sign = lambda s: "+" if s > 0 else "-"   # noqa: E731
+    if all(s == 0 for s in pattern):
+        return "rest"
+    if len(pattern) == 1:
+        return f"rocking ({sign(pattern[0])})"
+    if len(pattern) == 2:
+        base, top = pattern
+        if top == 0:
+            return f"stack as one body ({sign(base)})"
+        if base == 0:
+            return f"top alone ({sign(top)})"
+        if base == top:
+            return f"both, same way ({sign(base)})"
+        return f"both, opposite ways ({sign(base)}{sign(top)})"
+    return "open " + " ".join(f"{j}{sign(s)}" for j, s in enumerate(pattern) if s != 0)
+
+
+@dataclass(frozen=True, eq=False)
+class StackResult(ModelResult):
+    """Time history, events and scalar results of one stack run.
+
+    Attributes
+    ----------
+    stack : Stack
+    motion : Motion
+        The table's motion (``Motion.at_rest`` for free rocking).
+    impact : str
+        ``"plastic"`` or ``"cor"`` (with ``cor``).
+    cor : float
+        The constant COR of ``impact="cor"`` [-]; NaN with the plastic law.
+    t : ndarray, shape (k,)
+        Output times [s] (the motion's samples up to the end of the run).
+    theta, theta_dot, theta_ddot : ndarray, shape (k, n)
+        Each block's absolute rotation [rad], rate [rad/s] and acceleration [rad/s^2]
+        (positive: counter-clockwise, the package's sign).
+    patterns : ndarray of int8, shape (k, n)
+        Each interface's state at the output times: 0 flat, +1/-1 pivoting on the upper
+        block's -x/+x corner (interface j is below block j).
+    forces : ndarray, shape (k, n, 4)
+        Each interface's normal N and tangential F force on the blocks above [N] (along
+        the lower surface), and the normal forces at the upper block's -x and +x corners [N].
+    work : ndarray, shape (k,)
+        Work of the table's inertial forces (-m u'', -m v'') on the blocks since the start
+        [J] (integrated with the motion): kinetic plus potential energy change by it
+        between impacts.
+    events : tuple of dict
+        Uplifts, impacts, rests, overturn, airborne, in time order.
+    status : str
+        ``"completed"``, ``"overturned"`` or ``"airborne"``.
+    t_overturn : float
+        When an interface's rotation reached pi/2 [s]; NaN if none.
+    overturned_block : int
+        The block above that interface (-1 if none).
+    t_airborne : float
+        When g + v'' reached 0 [s] (the run stops); NaN if never.
+    n_events : int
+        Events counted (all; ``events`` keeps the first ``max_recorded_events``).
+    statistics : dict
+        Solver work: steps, right-hand-side evaluations.
+    """
+
+    stack: Stack
+    motion: Motion
+    impact: str
+    cor: float
+    t: np.ndarray
+    theta: np.ndarray
+    theta_dot: np.ndarray
+    theta_ddot: np.ndarray
+    patterns: np.ndarray
+    forces: np.ndarray
+    work: np.ndarray
+    events: tuple
+    status: str
+    t_overturn: float
+    overturned_block: int
+    t_airborne: float
+    n_events: int
+    statistics: dict = field(default_factory=dict, compare=False)
+
+    # ------------------------------------------------------------------ derived
+    @property
+    def n_blocks(self) -> int:
+        return self.stack.n
+
+    @property
+    def friction_demand(self) -> np.ndarray:
+        """|F| / N of every interface at the output times [-] (inf where N <= 0)."""
+        normal, tangential = self.forces[:, :, 0], np.abs(self.forces[:, :, 1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(normal > 0.0, tangential / normal, np.inf)
+
+    def t_friction_exceeded(self, mu: float) -> float:
+        """First output time some interface needs more friction than ``mu`` [s] (NaN if
+        never): the no-sliding assumption fails there."""
+        if not (isinstance(mu, (int, float)) and mu >= 0 and math.isfinite(mu)):
+            raise ValueError(f"mu must be a finite friction coefficient >= 0, got {mu!r}")
+        over = np.flatnonzero((self.friction_demand > mu).any(axis=1))
+        return float(self.t[over[0]]) if over.size else math.nan
+
+    @property
+    def t_tension(self) -> float:
+        """First output time a contact carries a tensile (negative) normal force [s] (the
+        no-flight assumption fails there); NaN if never."""
+        tolerance = 1e-9 * self.stack.weight
+        over = np.flatnonzero((self.forces[:, :, 2:] < -tolerance).any(axis=(1, 2)))
+        return float(self.t[over[0]]) if over.size else math.nan
+
+    @property
+    def top_corner_excursion(self) -> np.ndarray:
+        """Horizontal displacement of the top block's two top corners from rest [m],
+        shape (k, 2) (-x corner, +x corner), at the output times."""
+        from shaketable.models.stack.physics import Chain, kinematics, rotation
+
+        chain = Chain.of(self.stack)
+        top = self.stack.n - 1
+        out = np.empty((self.t.size, 2))
+        for k in range(self.t.size):
+            centroid, _, _ = kinematics(chain, self.theta[k], self.theta_dot[k], self.patterns[k])
+            r = rotation(self.theta[k, top])
+            for c, side in enumerate((-1.0, 1.0)):
+                corner = centroid[top] + r @ np.array([side * chain.b[top], chain.h[top]])
+                out[k, c] = corner[0] - side * chain.b[top]
+        return out
+
+    @property
+    def peak_excursion(self) -> float:
+        """Peak |horizontal displacement| of the top block's top corners [m] (at the output
+        times): the clearance the stack needs."""
+        return float(np.abs(self.top_corner_excursion).max()) if self.t.size else 0.0
+
+    # ------------------------------------------------------------------ views
+    @property
+    def energy(self) -> np.ndarray:
+        """Kinetic (table frame) plus potential energy above the table [J] at the output
+        times."""
+        from shaketable.models.stack.physics import Chain, energy
+
+        chain = Chain.of(self.stack)
+        phi = np.diff(self.theta, axis=1, prepend=0.0)
+        rate = np.diff(self.theta_dot, axis=1, prepend=0.0)
+        return np.array([sum(energy(chain, phi[k], rate[k], self.patterns[k]))
+                         for k in range(self.t.size)])
+
+    def to_frame(self) -> pd.DataFrame:
+        columns: dict[str, Any] = {"t [s]": self.t}
+        u, v = self.motion.at(self.t)
+        columns["ug [m/s^2]"], columns["vg [m/s^2]"] = u, v
+        for i in range(self.n_blocks):
+            columns[f"theta_{i} [rad]"] = self.theta[:, i]
+            columns[f"theta_dot_{i} [rad/s]"] = self.theta_dot[:, i]
+            columns[f"theta_ddot_{i} [rad/s^2]"] = self.theta_ddot[:, i]
+        for j in range(self.n_blocks):
+            columns[f"state_{j}"] = self.patterns[:, j]
+            columns[f"N_{j} [N]"] = self.forces[:, j, 0]
+            columns[f"F_{j} [N]"] = self.forces[:, j, 1]
+            columns[f"F/N_{j} [-]"] = self.friction_demand[:, j]
+        columns["pattern"] = [pattern_name(p) for p in self.patterns]
+        return pd.DataFrame(columns)
+
+    def events_frame(self) -> pd.DataFrame:
+        rows = []
+        for event in self.events:
+            row = dict(event)
+            for key in ("pattern_before", "pattern_after"):
+                if row.get(key) is not None:
+                    row[key] = pattern_name(row[key])
+            rows.append(row)
+        frame = pd.DataFrame(rows)
+        for column in ("t", "kind", "interface", "pattern_before", "pattern_after"):
+            if column not in frame:
+                frame[column] = pd.Series(dtype=object)
+        return frame.rename(columns={"t": "t [s]", "rate_before": "phi_dot_before [rad/s]",
+                                     "rate_after": "phi_dot_after [rad/s]",
+                                     "energy_before": "energy_before [J]",
+                                     "energy_after": "energy_after [J]"})
+
+    def summary(self) -> dict[str, Any]:
+        kinds = [event["kind"] for event in self.events]
+        first_uplift = next((e["t"] for e in self.events if e["kind"] == "uplift"), math.nan)
+        return {"blocks": self.n_blocks, "impact law": self.impact, "status": self.status,
+                "t_start [s]": float(first_uplift),
+                "t_overturn [s]": self.t_overturn, "overturned block": self.overturned_block,
+                "t_airborne [s]": self.t_airborne,
+                "impacts": kinds.count("impact"), "events": self.n_events,
+                # uplifts and impacts whose complementarity had not exactly one solution
+                "events not unique": sum(1 for e in self.events
+                                         if e.get("solutions") not in (None, 1)),
+                "max |theta| [rad]": [float(x) for x in np.abs(self.theta).max(axis=0)],
+                "peak top-corner excursion [m]": self.peak_excursion,
+                "max F/N [-]": float(np.nanmax(np.where(np.isfinite(self.friction_demand),
+                                                        self.friction_demand, np.nan)))
+                if np.isfinite(self.friction_demand).any() else math.nan,
+                "t_tension [s]": self.t_tension}
+
+    def _figure(self, **options: Any):
+        from shaketable.plots.stack import stack_calcomp  # matplotlib on use
+
+        return stack_calcomp(self, **options)

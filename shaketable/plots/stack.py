@@ -1,0 +1,103 @@
+"""The Calcomp layout of a stack run: the table, one rotation panel per block, the patterns."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from shaketable.plots.calcomp import describe_motion, ground_panels
+
+#: Colours of the contact states of an interface in the pattern band.
+STATE_COLOURS = {0: "white", 1: "tab:orange", -1: "tab:blue"}
+
+
+def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
+    """The report's Calcomp layout (Figs. 2.8, 4.1-4.17) for a stack.
+
+    From top to bottom: horizontal and vertical table acceleration [g] (a channel that is
+    zero is left out), one rotation panel per block, the top block first, with its +-alpha
+    lines (its own block angle: where a block alone on a fixed base would pass its corner),
+    and the pattern band: one row per interface, white where flat, orange where it pivots on
+    the upper block's -x corner (phi > 0), blue on its +x corner. Impacts are marked by
+    ticks on the band, the overturn by a cross.
+
+    Parameters
+    ----------
+    result : StackResult
+    fig : matplotlib.figure.Figure, optional
+    title : str, optional
+        First caption line.
+    time_range : (float, float), optional
+        Time axis limits [s].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    stack = result.stack
+    n = stack.n
+    motion = result.motion
+    end = float(result.t[-1]) if result.t.size else float(motion.t[0])
+    fig, axes = ground_panels(motion, end, [1.2] * n + [0.25 + 0.22 * n], fig,
+                              height=(3.0, 1.5))
+    panels, band = axes[-(n + 1):-1], axes[-1]
+    for row, axis in enumerate(panels):
+        i = n - 1 - row
+        block = stack.blocks[i]
+        axis.plot(result.t, result.theta[:, i], color="k", lw=0.9, label=f"θ{i}")
+        for sign in (1, -1):
+            axis.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
+                         label="±α of the block" if sign > 0 else None)
+        peak = float(np.max(np.abs(result.theta[:, i]), initial=0.0))
+        limit = max(1.3 * block.alpha, 1.1 * peak)
+        axis.set_ylim(-limit, limit)
+        where = "top" if i == n - 1 and n > 1 else ("bottom" if i == 0 else f"block {i}")
+        axis.set_ylabel(f"θ{i} [rad]\n({where})")
+        axis.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
+                    borderaxespad=0.0)
+    t = result.t
+    for j in range(n):
+        states = result.patterns[:, j]
+        start = 0
+        for k in range(1, t.size + 1):
+            if k == t.size or states[k] != states[start]:
+                stop = t[k] if k < t.size else t[-1]
+                band.axvspan(t[start], stop, ymin=(j + 0.1) / n, ymax=(j + 0.9) / n,
+                             color=STATE_COLOURS[int(states[start])], lw=0)
+                start = k
+    for event in result.events:
+        if event["kind"] == "impact":
+            j = event["interface"]
+            band.plot([event["t"]] * 2, [j + 0.1, j + 0.9], color="k", lw=0.5)
+        elif event["kind"] == "overturn":
+            band.plot(event["t"], event["interface"] + 0.5, "x", color="tab:red", ms=8)
+    band.set_ylim(0, n)
+    band.set_yticks(np.arange(n) + 0.5, ["base" if j == 0 else f"{j - 1}|{j}" for j in range(n)],
+                    fontsize=7)
+    band.set_ylabel("contact")
+    band.set_xlabel("time [s]")
+    from matplotlib.patches import Patch
+
+    band.legend(handles=[Patch(facecolor="white", edgecolor="k", label="flat"),
+                         Patch(color="tab:orange", label="pivot on -x corner (φ > 0)"),
+                         Patch(color="tab:blue", label="pivot on +x corner (φ < 0)")],
+                loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
+    first, last = (motion.t[0], max(end, motion.t[0] + 1e-9)) if time_range is None \
+        else time_range
+    for axis in axes:
+        axis.grid(True, lw=0.3, alpha=0.5)
+        axis.set_xlim(first, last)
+    band.grid(False)
+    lines = [title] if title else []
+    lines.append("stack, top first, H × B: " + " on ".join(
+        b.label.replace(" x ", " × ") if b.label else f"{b.height:g} × {b.width:g} m"
+        for b in reversed(stack.blocks)))
+    law = "plastic impacts" if result.impact == "plastic" else f"COR {result.cor:g}"
+    lines.append(f"{describe_motion(motion, not np.any(motion.horizontal))}; {law}")
+    if result.status == "overturned":
+        lines.append(f"block {result.overturned_block} overturned at {result.t_overturn:.3f} s")
+    else:
+        lines.append(f"{result.status}; peak top-corner excursion "
+                     f"{result.peak_excursion * 1000:.1f} mm")
+    fig.suptitle("\n".join(lines), fontsize=9.5)
+    fig.align_ylabels(axes)
+    return fig

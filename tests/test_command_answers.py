@@ -1,0 +1,75 @@
+"""Every command leads with the engineer's answer, in the user's own units: verdict, max
+theta/alpha, overturn time, peak slip, corner excursion (clearance) and when the block came
+to rest; time spent in each mode is a labelled detail.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from shaketable.cli import main
+from shaketable.core.geometry import Block
+from shaketable.core.units import format_length
+
+
+def test_lengths_are_written_in_the_users_unit():
+    # 0.2248 m for a block given in metres: mm below one metre, m above
+    assert format_length(0.2248, "m") == "225 mm"
+    assert format_length(2.47, "m") == "2.47 m"
+    assert format_length(0.2248, "in") == "8.85 in"          # 0.2248 / 0.0254
+    assert format_length(0.2248, "ft") == "8.85 in"          # under a foot: inches
+    assert format_length(-0.0216, "m", signed=True) == "-21.6 mm"
+    assert format_length(math.nan, "m") == "n/a"
+    assert Block.parse("2x0.5m").length_unit == "m"
+    assert Block.parse("4x0.8ft").length_unit == "ft"
+    with pytest.raises(ValueError, match="unit must be one of"):
+        format_length(1.0, "furlong")
+
+
+def test_simulate_friction_leads_with_the_answer_in_metres(tmp_path, capsys):
+    # free rocking of a 2 x 0.5 m block from 0.5 alpha on a base that does not slide (mu 1)
+    block = Block.parse("2x0.5m")
+    theta0 = 0.5 * block.alpha
+    assert main(["simulate", "--block", "2x0.5m", "--theta0", "0.5alpha", "--cor", "0.9",
+                 "--friction", "1.0", "--duration", "12s", "--out", str(tmp_path / "f")]) == 0
+    planar = capsys.readouterr().out.splitlines()
+    assert main(["simulate", "--block", "2x0.5m", "--theta0", "0.5alpha", "--cor", "0.9",
+                 "--duration", "12s", "--out", str(tmp_path / "r")]) == 0
+    rocking = capsys.readouterr().out.splitlines()
+    import json
+
+    # the rocking engine (the report's model, another solver) gives the rest time
+    rest = json.loads((tmp_path / "r" / "summary.json").read_text())["t_rest [s]"]
+    assert planar[0] == "2 x 0.5 m block, COR 0.9: rocked"
+    assert planar[1] == "  max theta/alpha 0.5 at t = 0.00 s; did not overturn"
+    assert planar[2].startswith("  peak slip ") and " mm at t = " in planar[2]
+    # the far top corner at the release: B (1 - cos theta0) + H sin theta0 from rest
+    excursion = block.width * (1 - math.cos(theta0)) + block.height * math.sin(theta0)
+    assert planar[3] == (f"  corner excursion (the clearance it needs) "
+                         f"{excursion * 1000:.3g} mm")
+    assert planar[4] == f"  came to rest at t = {rest:.2f} s"
+    assert planar[5].startswith("  time in each mode (details): rest ")
+    assert " in" not in "\n".join(planar[:6]).replace(" in each", "")
+    assert rocking[1:3] == ["  max theta/alpha 0.5 at t = 0.00 s; did not overturn",
+                            f"  came to rest at t = {rest:.2f} s"]
+
+
+def test_sweeps_label_blocks_in_the_users_units(tmp_path):
+    from shaketable import sweeps
+
+    def blocks(table):
+        spec = sweeps.spec_from_dict(
+            {"name": "u", "blocks": table, "rocking": {"cor": 0.9, "duration": "1 s"},
+             "records": [{"name": "el-centro-chopra"}],
+             "intensity": {"measure": "pga", "levels": ["0.1 g"]}}, directory=tmp_path)
+        return spec, [block.describe() for block in spec.blocks]
+
+    assert blocks({"sizes": ["2x0.5m", "16x4ft"]})[1] == ["2 x 0.5 m", "16 x 4 ft"]
+    assert blocks({"height": ["2 m"], "width": ["0.5 m", "0.25 m"]})[1] == [
+        "2 x 0.5 m", "2 x 0.25 m"]
+    assert blocks({"height": ["4 ft"], "aspect": [4.0]})[1] == ["4 x 1 ft"]
+    spec, _ = blocks({"sizes": ["2x0.5m"]})
+    table = sweeps.run_sweep(spec, tmp_path / "out", workers=1, progress=False).table
+    assert list(table["block"]) == ["2 x 0.5 m"]
