@@ -1,4 +1,4 @@
-"""Batch throughput (issue 28, goal 2): runs per second on 1 and 2 threads.
+"""Batch throughput: runs per second on 1 and 2 threads.
 
 The grid: Table 4.2's nine block sizes x the two Pacoima Dam records (S16E and S74W,
 with their verticals) x 8 COR in [0.7, 1.0] = 144 runs, fast method, as

@@ -1,4 +1,4 @@
-"""Accuracy and interval coverage of the COR calibration (issue 6), over many seeds.
+"""Accuracy and interval coverage of the COR calibration, over many seeds.
 
 For each true COR (default 0.80, 0.85, 0.90, 0.925, 0.95, 0.98) and each seed, a virtual
 free-rocking test of the 30 x 6 in block is made with shaketable.lab.sensors (both
@@ -254,7 +254,7 @@ def findings(rows, cors, refits):
     worst_peak = max(s["max"] for s in per["peaks"].values() if s is not None)
     records = sum(s["n"] for s in default.values())
     text.append(f"Accuracy: the largest error of the default over all {records} "
-                f"records is {worst:.1e} (issue 6 asks +-0.005: "
+                f"records is {worst:.1e} (the target is +-0.005: "
                 f"{'met' if worst < 0.005 else 'NOT met'}); the peak method's {worst_peak:.1e}.")
     for method in ("default", "known filter", "default/hac", "no filter/hac"):
         stats = per[method]
@@ -456,7 +456,7 @@ Made by `python3 benchmarks/calibration_coverage.py --seeds {args.seeds} --robus
 --workers {args.workers}` (Python {platform.python_version()}, numpy {np.__version__}; \
 {elapsed:.0f} s on {args.workers} worker processes on this machine).
 
-Virtual free-rocking tests of the 30 x 6 in block (issue 6): both potentiometers, 50
+Virtual free-rocking tests of the 30 x 6 in block: both potentiometers, 50
 samples/s, 20 Hz 4-pole Butterworth anti-alias filter (the sensors' discrete version at
 400 samples/s), 12-bit ADC over +-15 in, 0.005 in sensor noise (after the filter) and 0.5 LSB
 ADC noise; released from a random angle in [0.3, 0.7] alpha at an unknown time (0.3-1.5 s

@@ -1,4 +1,4 @@
-"""COR calibration on lab-like records from an INDEPENDENT generator (issue 26).
+"""COR calibration on lab-like records from an INDEPENDENT generator.
 
 The records of ``benchmarks/calibration_coverage.py`` come from the package's own engine
 and sensors, so they obey the calibration's model exactly. Here they come from
@@ -224,7 +224,7 @@ def main(argv=None):
                                                    default=float))
     main_table = table(rows)
     listed = "\n".join(f"* {line}" for line in findings(rows))
-    text = f"""## Lab-like records from an independent generator (issue 26)
+    text = f"""## Lab-like records from an independent generator
 
 Made by `python3 benchmarks/calibration_scatter.py --records {args.records} --workers \
 {args.workers}` (Python {platform.python_version()}, numpy {np.__version__}; {len(rows)} \

@@ -1,4 +1,4 @@
-"""10 million samples through the command line against the Python API (issue 27).
+"""10 million samples through the command line against the Python API.
 
 Writes a one-column text record of ``--samples`` accelerations (default 10 million,
 dt 0.005 s: 14 h of a 0.08 g sine plus noise, below the 30x6 in block's rocking
@@ -18,7 +18,7 @@ and prints the times and the ratio CLI / API (goal: within 3x).
 The engine is compiled (numba cache) before the timings. The machine is shared:
 run it alone, once, and read the numbers as such.
 
-Measured (issue 27, the shared 2-core VM, nice 5, block at rest; five runs at load
+Measured (the shared 2-core VM, nice 5, block at rest; five runs at load
 averages 3 to 8): CLI (default --history auto = peaks) 7.7 to 19.9 s, against the
 API's simulate alone 1.9 to 6.7 s (CLI / API 2.9 to 4.2) and the API's read +
 simulate 4.8 to 17.3 s (CLI / that 1.1 to 1.9). Before: about 90 s (79 s reading the

@@ -1,4 +1,4 @@
-"""Cold start (issue 28, goal 3): CPU seconds of the first ``simulate`` and of the first
+"""Cold start: CPU seconds of the first ``simulate`` and of the first
 batch after it, in a fresh process with an empty numba cache.
 
 Each measurement runs in a new Python process whose ``NUMBA_CACHE_DIR`` is an empty

@@ -1,4 +1,4 @@
-"""Compare two ``shaketable reproduce --all --out DIR`` folders file by file (issue 28).
+"""Compare two ``shaketable reproduce --all --out DIR`` folders file by file.
 
 What a speed change of the reproduction must keep: every CSV and JSON identical except
 run-time columns and keys (``run time [s]`` and the like), every other file (PNG,

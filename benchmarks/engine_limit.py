@@ -1,4 +1,4 @@
-"""The engine against its own limit (issue 28, goal 1): Pacoima Dam S16E + vertical,
+"""The engine against its own limit: Pacoima Dam S16E + vertical,
 16 x 4 ft block, COR 0.95.
 
 The limit is the cost of the run's right-hand-side evaluations alone: the same number of

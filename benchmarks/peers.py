@@ -1,4 +1,4 @@
-"""The engine beside a researcher's own script (issue 28, goal 6).
+"""The engine beside a researcher's own script.
 
 The peer is the script a researcher writes with SciPy alone: Eq. (2-13) with the
 vertical acceleration, ground accelerations interpolated linearly between samples

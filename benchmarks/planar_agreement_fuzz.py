@@ -1,4 +1,4 @@
-"""Random runs of the compiled planar model against the SciPy reference (issue 25).
+"""Random runs of the compiled planar model against the SciPy reference.
 
 Draws blocks, friction, cor and ramped harmonic table motions (horizontal and vertical)
 from a seeded generator, runs ``solvers.planar_run.simulate_planar`` and

@@ -8,7 +8,7 @@ then the three batches are timed in turn, ``--repeats`` times (default 5), so th
 change of the machine's load touches all three alike. Both the wall time and the CPU
 time of the process (all threads: the batches run in parallel) are measured; the
 ratios planar / rocking of runs/s are printed as the median over the repeats and
-their range. Issue 25 asks for at least one third of the rocking batch's runs/s. Both
+their range. The target is at least one third of the rocking batch's runs/s. Both
 batches share their cases among Python threads (no numba threading layer, whose OpenMP
 threads stayed busy after a parallel loop and slowed the batch timed next).
 

@@ -1,4 +1,4 @@
-"""Work-precision of the coupled planar model (issue 25, check 6), as ``shaketable bench`` measures it.
+"""Work-precision of the coupled planar model, as ``shaketable bench`` measures it.
 
 The study is :mod:`shaketable.studies.planar_work_precision` (``shaketable bench`` draws it
 beside the rocking methods); this script runs it at the full settings and prints the

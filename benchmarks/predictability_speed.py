@@ -1,4 +1,4 @@
-"""Timings of issue 16: one overturning spectrum and the Table 4.2 ensembles.
+"""Timings of one overturning spectrum and the Table 4.2 ensembles.
 
 Run: PYTHONPATH=. python benchmarks/predictability_speed.py  (best of ``REPEATS``; the
 first call compiles and is not counted). Results in benchmarks/RESULTS.md.

@@ -1,4 +1,4 @@
-"""``shaketable reproduce --all`` (issue 28, goal 4): wall and CPU time, and the CPU of
+"""``shaketable reproduce --all``: wall and CPU time, and the CPU of
 each scene, from which the two-process wall time on two free cores follows.
 
 Runs the whole reproduction (warm numba cache) into a temporary folder (or ``--keep``)

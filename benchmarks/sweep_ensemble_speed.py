@@ -1,4 +1,4 @@
-"""Timing of a sweep with ``[ensemble]`` (issue 16): the Pacoima Dam cells of Tables 4.2
+"""Timing of a sweep with ``[ensemble]``: the Pacoima Dam cells of Tables 4.2
 and 4.3 (12 blocks x S16E, S74W x COR 1.0, 0.90 = 48 cells) x 200 members each.
 
 Run: PYTHONPATH=. python benchmarks/sweep_ensemble_speed.py [--threads 2]

@@ -1,6 +1,6 @@
 """Throughput of ``shaketable sweep``: 10,000 runs of 30 s records on 2 cores.
 
-Issue 7's target: at most 60 s. The sweep (a spec built below) is 100 blocks
+The target: at most 60 s. The sweep (a spec built below) is 100 blocks
 (width 0.5-5 ft x H/B 1.5-8) x 5 motions of 30 s at 100 Hz (Pacoima Dam S16E and
 S74W with their vertical, cut to 30 s; three olive-view SUBSTITUTE realisations)
 x 4 scale factors (0.25-1.0) x 5 COR (0.8-1.0) = 10,000 runs, run by

@@ -29,7 +29,7 @@ import os as _os
 
 # numba's on-disk cache of the compiled engine goes to the user's cache folder, not
 # next to the modules: a cache written inside site-packages outlives `pip uninstall`
-# and its leftover folder then shadows a later editable install (issue 13). Set
+# and its leftover folder then shadows a later editable install. Set
 # NUMBA_CACHE_DIR yourself to put it elsewhere. The default folder is keyed by the compiled
 # modules' source (below), so that an edit of an inlined helper cannot leave stale code.
 
@@ -70,8 +70,8 @@ if "NUMBA_CACHE_DIR" not in _os.environ:
 
 # While numba types the engine it tries many overloads for every operation and formats
 # the message of each one it rejects, in bold through colorama, although it shows none of
-# them unless the compile fails. Plain messages make the engine's first compile about
-# 0.1-0.2 s of CPU shorter (issue 28); numba's error messages lose only their bold. Set
+# them unless the compile fails. Plain messages make the engine's first compile
+# shorter; numba's error messages lose only their bold. Set
 # the variable to an empty string to keep it. (Read when numba is imported: no effect if
 # numba was imported first.)
 _os.environ.setdefault("NUMBA_DISABLE_ERROR_MESSAGE_HIGHLIGHTING", "1")
@@ -81,7 +81,7 @@ def _numba_sees_the_cache_folder() -> None:
     """numba reads ``NUMBA_CACHE_DIR`` when it is imported: if it was imported before us (a
     notebook that used numba first), have it read the environment again now, before the
     engine's cached functions are defined, or it would compile into the package's
-    ``__pycache__`` (issue 27). numba itself is not imported here (only ``core`` and
+    ``__pycache__``. numba itself is not imported here (only ``core`` and
     ``solvers`` import it)."""
     import sys
 

@@ -3,7 +3,7 @@
 Used by ``shaketable bench`` and by ``benchmarks/work_precision.py`` (which
 regenerates the committed ``benchmarks/RESULTS.md``); the measurements are in
 :mod:`shaketable.studies.work_precision` (the rocking methods) and
-:mod:`shaketable.studies.planar_work_precision` (the coupled planar model, issue 25), the
+:mod:`shaketable.studies.planar_work_precision` (the coupled planar model), the
 figure in :mod:`shaketable.plots.bench`.
 """
 

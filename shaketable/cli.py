@@ -21,7 +21,7 @@ import sys
 #: Subcommand modules in ``shaketable.commands``, in the order ``--help`` shows them.
 SUBCOMMANDS = ["simulate", "run", "reproduce", "calibrate", "sweep", "bench", "animate",
                "slide", "spectrum", "examples"]
-SUBCOMMANDS.insert(SUBCOMMANDS.index("sweep") + 1, "risk")   # issue 29
+SUBCOMMANDS.insert(SUBCOMMANDS.index("sweep") + 1, "risk")
 SUBCOMMANDS.insert(SUBCOMMANDS.index("risk") + 1, "assess")
 SUBCOMMANDS.insert(SUBCOMMANDS.index("calibrate"), "records")
 SUBCOMMANDS.insert(SUBCOMMANDS.index("spectrum"), "modemap")

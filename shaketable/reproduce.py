@@ -581,7 +581,7 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
                      "down": "as labelled, downward", "none": "left out"}[reading]
             cells = int(frame["column"].isin(pacoima).sum())
             lines.append(f"| {label} | {agreeing}/{cells} |")
-    from shaketable.studies.predictability import predictability_markdown  # issue 16
+    from shaketable.studies.predictability import predictability_markdown
 
     lines += predictability_markdown(study.table, columns=study.columns or None,
                                      motion_seed=study.seed)
@@ -637,7 +637,7 @@ def _teaching_section(study: Study, folder: Path, lines: list) -> str:
 
 
 def _spectrum_section(study: Study, folder: Path, lines: list) -> str:
-    """An overturning spectrum (issue 16): every band, its flags, the figure, and the
+    """An overturning spectrum: every band, its flags, the figure, and the
     published edges the scene gives beside the reproduced ones.
 
     The published values are the literature's, not the report's: they are shown with
@@ -711,7 +711,7 @@ def _spectrum_section(study: Study, folder: Path, lines: list) -> str:
 
 
 def _mode_map_section(study: Study, folder: Path, lines: list) -> str:
-    """The planar block's mode map and sliding limits against Section 2.1 (issue 25)."""
+    """The planar block's mode map and sliding limits against Section 2.1."""
     from shaketable.ground import records
     from shaketable.plots.base import save
     from shaketable.studies.mode_map import mode_map, mode_map_markdown, sliding_limits
@@ -752,7 +752,7 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
               "(within ~10 %).", ""]
     from shaketable.studies.mode_map import table_4_4_coupled, table_4_4_coupled_markdown
 
-    coupled = table_4_4_coupled()   # issue 25: the planar block beside the sliding model
+    coupled = table_4_4_coupled()   # the planar block beside the sliding model
     write_csv(folder / "planar.csv", coupled)
     return "\n".join(lines) + body + "\n" + table_4_4_coupled_markdown(coupled) + "\n"
 

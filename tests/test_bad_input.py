@@ -1,4 +1,4 @@
-"""A corpus of malformed and hostile inputs: every one gets a clean answer (issue 13).
+"""A corpus of malformed and hostile inputs: every one gets a clean answer.
 
 Each case runs the ``shaketable`` command in-process (or calls the Python API) on
 one bad input and checks that the answer is an error message naming what is

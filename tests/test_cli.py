@@ -49,7 +49,7 @@ def test_simulate_bad_input_is_a_clear_error(argv, message, tmp_path, capsys):
     assert message in capsys.readouterr().err
 
 
-#: Every dimensional option of every subcommand, with a value lacking its unit (issue 31).
+#: Every dimensional option of every subcommand, with a value lacking its unit.
 DIMENSIONAL_OPTIONS = [
     (["simulate", "--block", "30x6in", "--cor", "0.9"], "--duration", "8", "time"),
     (["simulate", "--block", "30x6in", "--cor", "0.9"], "--dt", "0.02", "time"),
@@ -90,7 +90,7 @@ def test_dimensional_options_take_their_unit():
 
 
 def test_run_writes_parquet_and_svg_on_request(tmp_path, capsys):
-    # `shaketable run SCENE --parquet --svg` (issue 5): history.parquet holds the same table
+    # `shaketable run SCENE --parquet --svg`: history.parquet holds the same table
     # as history.csv, and the Calcomp figure is written as SVG besides PNG
     pytest.importorskip("pyarrow")
     out = tmp_path / "fig-2-9"
@@ -111,7 +111,7 @@ def test_run_writes_parquet_and_svg_on_request(tmp_path, capsys):
 
 
 def test_simulate_harmonic_and_pulse_from_the_command_line(tmp_path, capsys):
-    # issue 31: table motions without a scene file. The ground column of history.csv is
+    # table motions without a scene file. The ground column of history.csv is
     # the closed form: 0.15 sin(2 pi 2 t) [g], and a half sine 0.5 sin(pi t / 0.2 s) then 0
     import numpy as np
 
@@ -160,7 +160,7 @@ def test_simulate_motion_options_bad_input(motion, message, tmp_path, capsys):
 
 
 def test_reproduce_ends_with_the_agree_differ_summary(tmp_path, capsys):
-    # issue 31: the console ends with the report's headline, the same counts as report.md's
+    # the console ends with the report's headline, the same counts as report.md's
     out = tmp_path / "rep"
     assert main(["reproduce", "fig-2-9", "--out", str(out)]) == 0
     printed = capsys.readouterr().out.splitlines()
@@ -173,7 +173,7 @@ def test_reproduce_ends_with_the_agree_differ_summary(tmp_path, capsys):
 
 
 def test_examples_copies_the_gallery_scripts_out_of_the_package(tmp_path, capsys):
-    # issue 31: a pip user has no examples/ folder; the scripts are package data
+    # a pip user has no examples/ folder; the scripts are package data
     from tests.helpers import REPOSITORY
 
     out = tmp_path / "mine"

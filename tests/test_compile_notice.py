@@ -1,4 +1,4 @@
-"""The one-line notice before a first compile names what will compile (issue 28).
+"""The one-line notice before a first compile names what will compile.
 
 The planar engine costs ~13 s of CPU to compile (measured, `commands/common.py`), four
 to five times the rocking engine: a command that will run it must say so before the wait.

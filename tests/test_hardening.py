@@ -1,4 +1,4 @@
-"""Safe to share and to run unattended (issue 27): each defect the hostile-user audit
+"""Safe to share and to run unattended: each defect the hostile-user audit
 found, as a test that failed before the fix.
 
 Classes: output confinement of a scene's and a sweep spec's ``name``; file modes

@@ -1,13 +1,15 @@
-"""The package's architecture, enforced (issue 12; docs/architecture.md).
+"""The package's architecture, enforced (the rules of docs/architecture.md).
 
 Each folder of ``shaketable/`` is a layer; a module may import its own layer and
 the layers below it, never above. The one exception is a ``.plot()``
 convenience: a function body may import :mod:`shaketable.plots` (a thin
 delegate, loaded only when a figure is asked for). Third-party libraries with
 one home: matplotlib only in ``plots/``, obspy only in ``ground/readers/``,
-the TOML reader only in ``scenes/`` and ``sweeps/``, numba only in ``core`` and
-``solvers``, Panel and Bokeh only in ``classroom/page.py`` (the classroom's model is
-plain functions). No module imports another module's private (``_``) names. The
+the TOML reader only in ``core/tomlfile.py`` (read by ``scenes/`` and ``sweeps/``), numba
+only in ``core`` and ``solvers``, Panel and Bokeh only in ``classroom/page.py`` (the
+classroom's model is plain functions). No module imports another module's private (``_``)
+names. No module imports itself through others (no import cycle), except through the
+listed ``.plot()`` and ObsPy delegates. The
 scene parser knows no study and no pipeline module. The benchmark harness does
 not drive the CLI module.
 """
@@ -34,8 +36,20 @@ DELEGATES = {("core/motion.py", "shaketable.ground.readers.waveform"),
              # simulate() hands another model's input (a Stack) to that model
              ("solvers/api.py", "shaketable.models.registry")}
 
-HOMES = {"matplotlib": ("plots",), "obspy": ("ground/readers",), "tomllib": ("scenes", "sweeps"),
-         "tomli": ("scenes", "sweeps"), "numba": ("core", "solvers"),
+#: The lazy imports allowed to close an import cycle: ``.plot()`` delegates of a result or
+#: study to the figure module that draws it (and that imports the result's own module
+#: back), and the ObsPy delegates above. Any other cycle, through module-level or
+#: function-level imports, fails :func:`test_no_module_imports_itself_through_others`.
+CYCLE_DELEGATES = DELEGATES | {
+    ("core/planar_result.py", "shaketable.plots.planar"),
+    ("core/planar_reference_result.py", "shaketable.plots.planar"),
+    ("studies/mode_map.py", "shaketable.plots.mode_map"),
+    ("sweeps/fragility.py", "shaketable.plots.sweeps"),
+}
+
+TOML_HOMES = ("core/tomlfile.py", "scenes", "sweeps")
+HOMES = {"matplotlib": ("plots",), "obspy": ("ground/readers",), "tomllib": TOML_HOMES,
+         "tomli": TOML_HOMES, "numba": ("core", "solvers"),
          "panel": ("classroom/page.py",), "bokeh": ("classroom/page.py",), "selenium": ()}
 
 
@@ -109,6 +123,60 @@ def violations(package: Path) -> list[str]:
     return found
 
 
+def import_graph(package: Path) -> dict[str, set[str]]:
+    """Module -> the package's modules it imports (at module level or in a function body),
+    without ``if TYPE_CHECKING:`` imports and the :data:`CYCLE_DELEGATES`."""
+    modules = {}
+    for path in package.rglob("*.py"):
+        parts = path.relative_to(package.parent).with_suffix("").parts
+        modules[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
+    graph: dict[str, set[str]] = {}
+    for name, path in modules.items():
+        relative = str(path.relative_to(package))
+        graph[name] = set()
+        for module, names, _, type_only in _imports(ast.parse(path.read_text(encoding="utf-8"))):
+            if type_only or (relative, module) in CYCLE_DELEGATES:
+                continue
+            # `from shaketable.ground import records` imports the module records
+            for target in [f"{module}.{n}" for n in names if f"{module}.{n}" in modules] or [module]:
+                while target and target not in modules:
+                    target = target.rpartition(".")[0]
+                if target and target != name:
+                    graph[name].add(target)
+    return graph
+
+
+def import_cycles(package: Path) -> list[list[str]]:
+    """The import cycles of the package: each group of modules that import each other,
+    directly or through others (strongly connected components, Tarjan's algorithm)."""
+    graph = import_graph(package)
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    cycles = []
+
+    def visit(node: str) -> None:
+        index[node] = low[node] = len(index)
+        stack.append(node)
+        for target in graph[node]:
+            if target not in index:
+                visit(target)
+                low[node] = min(low[node], low[target])
+            elif target in stack:
+                low[node] = min(low[node], index[target])
+        if low[node] == index[node]:
+            group = [stack.pop()]
+            while group[-1] != node:
+                group.append(stack.pop())
+            if len(group) > 1:
+                cycles.append(sorted(group))
+
+    for node in sorted(graph):
+        if node not in index:
+            visit(node)
+    return sorted(cycles)
+
+
 def test_the_package_respects_its_layers():
     assert violations(REPOSITORY / "shaketable") == []
 
@@ -127,6 +195,36 @@ def test_the_check_fails_when_core_imports_plots(tmp_path):
     assert any("imports shaketable.plots.base (layer 'plots'" in v for v in found)
     assert any("imports matplotlib" in v for v in found)
     assert any("imports private ['_NUMBER_UNIT']" in v for v in found)
+
+
+def test_no_module_imports_itself_through_others():
+    assert import_cycles(REPOSITORY / "shaketable") == []
+
+
+def test_every_listed_cycle_delegate_exists():
+    # the list stays exact: an entry whose import is gone is removed from it
+    package = REPOSITORY / "shaketable"
+    for relative, module in CYCLE_DELEGATES:
+        tree = ast.parse((package / relative).read_text(encoding="utf-8"))
+        assert any(m == module and lazy for m, _, lazy, _ in _imports(tree)), (relative, module)
+
+
+def test_the_cycle_check_sees_module_and_function_level_cycles(tmp_path):
+    # a tiny package: a -> b at module level, b -> a inside a function; c -> plots.d in a
+    # .plot() body not listed as a delegate, plots.d -> c at module level
+    package = tmp_path / "shaketable"
+    (package / "plots").mkdir(parents=True)
+    (package / "__init__.py").write_text("")
+    (package / "a.py").write_text("from shaketable.b import g\n")
+    (package / "b.py").write_text("def g():\n    from shaketable import a\n    return a\n")
+    (package / "c.py").write_text("def plot():\n    from shaketable.plots.d import draw\n")
+    (package / "plots" / "__init__.py").write_text("")
+    (package / "plots" / "d.py").write_text("from shaketable.c import plot\n")
+    (package / "e.py").write_text("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n"
+                                  "    from shaketable.f import F\n")
+    (package / "f.py").write_text("from shaketable.e import TYPE_CHECKING\n")
+    assert import_cycles(package) == [["shaketable.a", "shaketable.b"],
+                                      ["shaketable.c", "shaketable.plots.d"]]
 
 
 def test_benchmarks_do_not_drive_the_cli_module():

@@ -1,4 +1,4 @@
-"""Every command of the README's "Use" section runs verbatim from an empty folder (issue 13).
+"""Every command of the README's "Use" section runs verbatim from an empty folder.
 
 Each ``shaketable ...`` line of the README's bash blocks (the set-up block's pip lines
 excepted) runs in a folder of its own outside the repository, empty but for what the
@@ -180,6 +180,6 @@ def test_readme_python_block_runs(index, tmp_path):
     done = subprocess.run([sys.executable, "-c", PYTHON_BLOCKS[index]], cwd=tmp_path,
                           env=_environment(), capture_output=True, text=True, timeout=600)
     assert done.returncode == 0, done.stderr
-    # run as a script, a block shows something and keeps something (issue 31)
+    # run as a script, a block shows something and keeps something
     assert done.stdout.strip(), "the block prints nothing"
     assert any(tmp_path.iterdir()), "the block writes nothing"

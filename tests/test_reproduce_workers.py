@@ -1,4 +1,4 @@
-"""``reproduce`` in two processes writes what it writes in one (issue 28).
+"""``reproduce`` in two processes writes what it writes in one.
 
 Scenes run in worker processes when there are many of them; the report is assembled
 in the catalogue's order, so the files must not depend on where a scene ran. Checked

@@ -78,7 +78,7 @@ class FreeRockingModel:
         # a sample within MIN_SAMPLE_INTERVAL (1 ns) after the release is still at theta0
         # (it moves by theta''.tau^2/2 < 1e-16 rad there); simulating it would ask for a
         # motion with an interval below the shortest a Motion accepts: a record starting at
-        # the release, t[0] = t_release to within the fit's rounding, failed so (issue 27)
+        # the release, t[0] = t_release to within the fit's rounding, would fail so
         after = tau > MIN_SAMPLE_INTERVAL
         out = np.full(times.shape, theta0)
         if not np.any(after):

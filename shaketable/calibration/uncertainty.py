@@ -1,4 +1,4 @@
-"""A calibrated COR with its uncertainty, carried into prediction (issue 26).
+"""A calibrated COR with its uncertainty, carried into prediction.
 
 :class:`CalibratedCor` is what a ``calibration.json`` (written by ``shaketable
 calibrate`` / :meth:`Calibration.to_json`) says about a block's COR: the block's

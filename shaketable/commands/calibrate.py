@@ -1,4 +1,4 @@
-"""``shaketable calibrate RECORD --block 30x6in``: the COR of a free-rocking record (issue 6)."""
+"""``shaketable calibrate RECORD --block 30x6in``: the COR of a free-rocking record."""
 
 from __future__ import annotations
 

@@ -91,7 +91,7 @@ def _simulate(args) -> int:
         if scale_note:
             print(scale_note)
         return status
-    if friction is not None:   # issue 25: the planar block (rest, slide, rock, slide-rock, flight)
+    if friction is not None:   # the planar block (rest, slide, rock, slide-rock, flight)
         result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
                           friction=friction)
     else:
@@ -99,7 +99,7 @@ def _simulate(args) -> int:
                           method=args.method, subdivisions=args.subdivisions)
     from shaketable.commands.history import for_figure, history_frame, history_mode
 
-    history = history_mode(args.history, result.t.size)   # --history (issue 27)
+    history = history_mode(args.history, result.t.size)   # --history
     if friction is not None and history == "peaks":
         history = "full"   # the planar block's history has no peaks selection: all of it
     if history != "none":

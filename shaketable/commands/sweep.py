@@ -70,7 +70,7 @@ def _sweep(args: argparse.Namespace) -> int:
               f"{len(table) - len(fragile)} robust")
     # (a CSV table: run_sweep said at the start that pyarrow is missing)
     print(f"wrote {outcome.path}")
-    if "spectrum_scale [-]" in table:   # issue 29: the factors to the target spectrum
+    if "spectrum_scale [-]" in table:   # the factors to the target spectrum
         factors = table[["record", "seed", "spectrum_scale [-]"]].drop_duplicates()
         from shaketable.core.files import write_csv
 

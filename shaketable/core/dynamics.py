@@ -159,25 +159,6 @@ def impact_cors(block: Block | AsymmetricBlock, cor: float | str) -> np.ndarray:
 
 
 @njit(cache=True, error_model=ERROR_MODEL)
-def rod_moment(theta, parameters):
-    """Restoring moment of the prestress rods per unit mass [m^2/s^2], Eq. (2-14).
-
-    RM1 + RM2 = sum_i (F0_i + K_i d_i sin|theta|) d_i cos(theta), always >= 0
-    for |theta| < pi/2 and acting toward theta = 0.
-    """
-    stiffness = parameters[ROD_STIFFNESS]
-    force = parameters[ROD_FORCE]
-    if stiffness == 0.0 and force == 0.0:
-        return 0.0
-    uplift = math.sin(abs(theta))
-    cosine = math.cos(theta)
-    arm_1 = parameters[ROD_ARM_1]
-    arm_2 = parameters[ROD_ARM_2]
-    return ((force + stiffness * arm_1 * uplift) * arm_1
-            + (force + stiffness * arm_2 * uplift) * arm_2) * cosine
-
-
-@njit(cache=True, error_model=ERROR_MODEL)
 def flight_acceleration(theta, side, ug, vg, rg, parameters):
     """theta'' [rad/s^2] of a block pivoting on the corner ``side`` (+1 or -1): Eq. (2-13)/(2-14).
 
@@ -241,16 +222,6 @@ def angular_acceleration(theta, side, ug, vg, rg, parameters):
 
 
 @njit(cache=True, error_model=ERROR_MODEL)
-def uplift_margin(side, ug, vg, rg, parameters):
-    """Net overturning moment per mass at theta = 0 toward ``side`` [m^2/s^2].
-
-    Rocking onto ``side`` starts when this is positive: Eq. (2-1) generalised
-    to prestress rods, ``s ug h > (g + vg) b + F0 b``.
-    """
-    return side * angular_acceleration(0.0, side, ug, vg, rg, parameters) * parameters[INERTIA]
-
-
-@njit(cache=True, error_model=ERROR_MODEL)
 def cascade_rest_time(theta_dot_after, deceleration, cor):
     """Time for an endless cascade of impacts to die out [s].
 
@@ -266,13 +237,3 @@ def cascade_rest_time(theta_dot_after, deceleration, cor):
     if deceleration <= 0.0 or cor >= 1.0:
         return math.inf
     return 2.0 * abs(theta_dot_after) / (deceleration * (1.0 - cor))
-
-
-def airborne_acceleration(block: Block) -> float:
-    """Vertical ground acceleration at which the block leaves the ground [m/s^2].
-
-    The model (Section 2.7) assumes contact: with ``g + vg <= 0`` a free-standing
-    block is lifted off (prestress rods hold it down down to ``-g (1 + F0)``).
-    """
-    force = 0.0 if block.rods is None else block.rods.force
-    return -G * (1.0 + force)

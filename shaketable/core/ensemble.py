@@ -1,6 +1,6 @@
 """Perturbed copies of one run: the spreads, the draws and the verdict statistics.
 
-The solver-free part of an ensemble (issue 16), shared by every layer that runs
+The solver-free part of an ensemble, shared by every layer that runs
 one: :mod:`shaketable.studies.predictability` (the API, ``simulate --ensemble``,
 a scene's ``[ensemble]``, Tables 4.1-4.3) and :mod:`shaketable.sweeps` (a sweep's
 ``[ensemble]``, one ensemble per cell). Member ``k`` of an ensemble has
@@ -29,6 +29,7 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.core.validation import unknown_keys
 
 __all__ = ["ENSEMBLE_KEYS", "HORIZON_THRESHOLD", "Members", "Perturbation", "TINY",
            "ensemble_options", "perturbed_block", "perturbed_cor", "perturbed_members",
@@ -238,7 +239,7 @@ def ensemble_options(section: dict, where: str, *, horizon: bool = True) -> dict
         :class:`Perturbation`) and ``threshold`` [-].
     """
     allowed = ENSEMBLE_KEYS if horizon else ENSEMBLE_KEYS - {"horizon_threshold"}
-    unknown = sorted(set(section) - allowed)
+    unknown = unknown_keys(section, allowed)
     if unknown:
         extra = ("; a sweep computes no predictability horizon (run one cell with "
                  "`shaketable simulate --ensemble`)" if unknown[0] == "horizon_threshold"

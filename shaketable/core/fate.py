@@ -1,4 +1,4 @@
-"""The fate of a block left rocking on a table at rest, decided by energy (issue 30).
+"""The fate of a block left rocking on a table at rest, decided by energy.
 
 When the ground motion ends the table is at rest and the block rocks freely.
 Whether it will overturn is then settled by its state alone, in closed form:

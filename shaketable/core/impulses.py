@@ -1,4 +1,4 @@
-"""Ground-velocity steps (impulses) carried with a motion (issue 30).
+"""Ground-velocity steps (impulses) carried with a motion.
 
 An impulse is a step ``delta_v`` [m/s] of the table's horizontal velocity at
 one instant: the Dirac pulse of the rocking literature (Housner 1963's

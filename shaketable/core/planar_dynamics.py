@@ -1,5 +1,5 @@
 """The planar rigid block on a moving table: five contact modes, their forces, start rules
-and the impact law (issue 25; the model that the compiled engine and the SciPy reference
+and the impact law (the model that the compiled engine and the SciPy reference
 solver both follow).
 
 Everything is per unit mass, in the table's (non-inertial) frame, with the package's

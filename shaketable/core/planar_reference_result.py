@@ -1,6 +1,6 @@
 """Result of the planar reference solver (:mod:`shaketable.solvers.planar_reference`).
 
-The planar block of issue 25 (``PLANAR_SPEC.md``): rest, slide, rock, slide-rock and
+The planar block (``docs/planar.md``): rest, slide, rock, slide-rock and
 free flight; mode codes and names of :mod:`shaketable.core.shenton`.
 """
 

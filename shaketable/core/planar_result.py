@@ -1,4 +1,4 @@
-"""The result of one run of the planar block (issue 25): slip, rocking and flight in one model."""
+"""The result of one run of the planar block: slip, rocking and flight in one model."""
 
 from __future__ import annotations
 

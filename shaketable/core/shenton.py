@@ -7,7 +7,7 @@ acceleration ``a`` [m/s^2] (+x) and a constant vertical one ``vg`` [m/s^2] (up).
 Coulomb friction: static mu_s, dynamic mu_d <= mu_s. Which of the five modes
 (rest, slide, rock, slide-rock, flight) does the block enter? Shenton [1]_
 answers this for mu_s = mu_d; below it is derived again, from the equations of
-the planar model (``PLANAR_SPEC.md``, issue 25) and its start rules, which also
+the planar model (``docs/planar.md``) and its start rules, which also
 cover mu_d < mu_s.
 
 Derivation
@@ -103,7 +103,7 @@ import numpy as np
 
 from shaketable.core.constants import G
 
-#: Mode codes of the planar model (PLANAR_SPEC.md), in this order.
+#: Mode codes of the planar model (docs/planar.md), in this order.
 REST, SLIDE, ROCK, SLIDE_ROCK, FLIGHT = range(5)
 
 #: Names of the mode codes.

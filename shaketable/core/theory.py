@@ -185,17 +185,12 @@ def half_sine_overturn_amplitude_large_frequency(block: Block, pulse_period: flo
     return G * block.alpha * omega / block.p
 
 
-def sliding_or_rocking(block: Block, static_friction: float) -> str:
-    """Which mode an unrestrained block enters first, Section 2.1: 'rocking' if mu > B/H."""
-    return "rocking" if static_friction > block.width / block.height else "sliding"
-
-
 def periods(block: Block, amplitudes) -> np.ndarray:
     """Eq. (2-5) over an array of amplitudes [rad] -> periods [s]."""
     return np.array([housner_period(block, a) for a in np.atleast_1d(amplitudes)])
 
 
-# --- Housner's linearised model (Eq. 2-4) under pulses, in closed form (issue 30) ----------
+# --- Housner's linearised model (Eq. 2-4) under pulses, in closed form ---------------------
 #
 # With u = theta/alpha, tau = p t, x = a/(g alpha) and r = omega/p, Eq. (2-4) with the
 # table acceleration a f(t) reads, on the corner s = sign(u),

@@ -5,7 +5,7 @@ from __future__ import annotations
 import functools
 import math
 import numbers
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import ParamSpec, TypeVar
 
 import numpy as np
@@ -20,6 +20,12 @@ def number(name: str, value: object) -> float:
     if not math.isfinite(value):
         raise ValueError(f"{name} must be finite, got {value!r}")
     return value
+
+
+def unknown_keys(table: Iterable[str], allowed: Iterable[str]) -> list[str]:
+    """The keys of an input section ``table`` that it does not take (``allowed``), sorted:
+    the first, named in the caller's message, is the same whatever the order written."""
+    return sorted(set(table) - set(allowed))
 
 
 def positive(name: str, value: object, unit: str = "") -> float:

@@ -51,7 +51,6 @@ names the file and the line.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import resources
@@ -62,11 +61,13 @@ import numpy as np
 
 from shaketable.core.motion import Motion
 from shaketable.ground.readers.at2 import read_at2
-from shaketable.ground.readers.common import (
-    DOWN_LABELS,
+from shaketable.ground.readers.common import (  # noqa: F401 (VerticalSignWarning: public here too)
     Record,
     RecordError,
+    VerticalSignWarning,
+    combine,
     units_argument,
+    vertical_is_positive_down,
 )
 from shaketable.ground.readers.text import read_text
 from shaketable.ground.readers.waveform import (
@@ -77,10 +78,6 @@ from shaketable.ground.readers.waveform import (
     read_obspy,
     record_from_stream,
 )
-
-
-class VerticalSignWarning(UserWarning):
-    """A ``DWN``-labelled vertical was combined without an explicit sign reading."""
 
 # --------------------------------------------------------------------- dispatch
 #: Extensions read by ObsPy without trying text (binary or ObsPy-specific formats).
@@ -196,121 +193,6 @@ def read(path: Any, **options: Any) -> Record:
                          "acceleration response)")
     return record_from_stream(stream, path, None if units is None
                               else units_argument(units, path), None)
-
-
-def _vertical_sign_warning(vertical: Record) -> None:
-    warnings.warn(
-        f"vertical component {vertical.component!r}{_from(vertical)} is labelled positive "
-        "down and is flipped to positive up; the bundled names 'pacoima-dam-s16e' and "
-        "'pacoima-dam-s74w' read the same file the other way (pacoima_vertical_sign='up', "
-        "the reading that reproduces Tables 4.2-4.3). Pass vertical_positive='down' or "
-        "'up' to combine() to choose explicitly and silence this warning",
-        VerticalSignWarning, stacklevel=3)
-
-
-# --------------------------------------------------------------------- combine
-def _vertical_is_positive_down(vertical: Record, vertical_positive: str | None) -> bool:
-    if vertical_positive is None:
-        return vertical.component.strip().upper() in DOWN_LABELS
-    choice = str(vertical_positive).strip().lower()
-    if choice not in ("up", "down"):
-        raise ValueError(f"vertical_positive must be 'up' or 'down', got {vertical_positive!r}")
-    return choice == "down"
-
-
-def _padded(values: np.ndarray, length: int) -> np.ndarray:
-    """``values`` followed by zeros up to ``length`` samples."""
-    return np.concatenate([values, np.zeros(length - values.size)])
-
-
-def _from(record: Record) -> str:
-    return f" (from {record.source})" if record.source else ""
-
-
-def _check_same_sampling(horizontal: Record, vertical: Record) -> None:
-    if not math.isclose(horizontal.dt, vertical.dt, rel_tol=1e-6):
-        raise ValueError(
-            f"cannot combine records with different sample intervals: horizontal dt = "
-            f"{horizontal.dt} s{_from(horizontal)}, vertical dt = {vertical.dt} s"
-            f"{_from(vertical)}; resample one of them first"
-        )
-    if abs(horizontal.t0 - vertical.t0) > 1e-6 * horizontal.dt:
-        raise ValueError(
-            f"cannot combine records starting at different times: horizontal t0 = "
-            f"{horizontal.t0} s, vertical t0 = {vertical.t0} s"
-        )
-
-
-def combine(horizontal: Record, vertical: Record | None = None, *,
-            vertical_positive: str | None = None, name: str = "") -> Motion:
-    """Join a horizontal and an optional vertical record into a :class:`Motion`.
-
-    Components of different lengths are aligned at their first sample and the
-    shorter is padded with zeros at the end to the length of the longer.
-
-    Parameters
-    ----------
-    horizontal : Record
-        Horizontal acceleration [m/s^2], used as +x.
-    vertical : Record, optional
-        Vertical acceleration [m/s^2]; same ``dt`` and ``t0`` as ``horizontal``.
-    vertical_positive : {"up", "down"}, optional
-        Direction in which the vertical file's positive values point. ``"down"``
-        multiplies the vertical by -1 so that the motion is positive up (the
-        package convention). Default: from the record's component label --
-        ``"DWN"``, ``"DOWN"`` or ``"DN"`` mean down, anything else (``"UP"``,
-        an empty label, ...) means up; a down label read this way gives a
-        :class:`VerticalSignWarning`, because the bundled Pacoima Dam names
-        read their ``DWN`` file the other way (see the module docstring).
-    name : str, optional
-        Motion name; default built from the records' descriptions.
-
-    Returns
-    -------
-    Motion
-        Sampled every ``dt`` from t = 0 (the records' own start ``t0``, when not
-        0, is kept in ``metadata["start time [s]"]``); vertical positive up.
-        ``metadata`` holds each record's own metadata under ``"horizontal"``
-        and ``"vertical"``, and ``"vertical_positive"`` (``"up"``/``"down"``,
-        the reading applied) with ``"vertical_sign_source"`` (``"argument"``
-        or ``"label"``).
-
-    Raises
-    ------
-    ValueError
-        Different ``dt`` or ``t0``, or an invalid ``vertical_positive``.
-    """
-    # the motion's clock starts at 0: a record whose time column starts at an epoch
-    # offset (t0 = 1.7e9 s) would leave the engine's event location no digits; the
-    # record's own start is kept in the metadata
-    start = {"start time [s]": horizontal.t0} if horizontal.t0 != 0.0 else {}
-    if vertical is None:
-        return Motion.uniform(horizontal.dt, horizontal.acceleration, None,
-                              name=name or _default_name(horizontal, None, False),
-                              metadata={"horizontal": horizontal.metadata, **start})
-    _check_same_sampling(horizontal, vertical)
-    positive_down = _vertical_is_positive_down(vertical, vertical_positive)
-    if positive_down and vertical_positive is None:
-        _vertical_sign_warning(vertical)
-    length = max(horizontal.npts, vertical.npts)
-    vertical_up = -vertical.acceleration if positive_down else vertical.acceleration
-    metadata = {"horizontal": horizontal.metadata, "vertical": vertical.metadata,
-                "vertical_positive": "down" if positive_down else "up",
-                "vertical_sign_source": "label" if vertical_positive is None else "argument",
-                **start}
-    return Motion.uniform(
-        horizontal.dt, _padded(horizontal.acceleration, length), _padded(vertical_up, length),
-        name=name or _default_name(horizontal, vertical, positive_down),
-        metadata=metadata,
-    )
-
-
-def _default_name(horizontal: Record, vertical: Record | None, positive_down: bool) -> str:
-    label = f"{horizontal.description} [{horizontal.component}]".strip()
-    if vertical is None:
-        return label
-    flip = " (sign flipped: file positive down)" if positive_down else ""
-    return f"{label} + vertical [{vertical.component}]{flip}"
 
 
 @dataclass(frozen=True)
@@ -547,7 +429,7 @@ def load(name: str, *, vertical: bool = True, pacoima_vertical_sign: str = "up")
 
 def _vertical_only_motion(vertical: Record, vertical_positive: str | None, title: str) -> Motion:
     """A motion with zero horizontal and the given vertical, positive up."""
-    down = _vertical_is_positive_down(vertical, vertical_positive)
+    down = vertical_is_positive_down(vertical, vertical_positive)
     sign = -1.0 if down else 1.0
     return Motion.uniform(vertical.dt, np.zeros(vertical.npts), sign * vertical.acceleration,
                           t0=vertical.t0, name=title,

@@ -26,6 +26,7 @@ import numpy as np
 
 from shaketable.core.motion import Motion
 from shaketable.core.units import parse
+from shaketable.core.validation import unknown_keys
 from shaketable.lab.command import TableCommand, displacement_command
 from shaketable.lab.limits import LimitExceedance, TableLimits, check_limits
 from shaketable.lab.pitch import Pitch, motion_at_block
@@ -217,7 +218,7 @@ def table_setup_from_dict(spec: dict, where: str = "<scene>") -> TableSetup:
 
     if not isinstance(spec, dict):
         raise ValueError(f"{where}: [table] must be a table")
-    unknown = sorted(set(spec) - _TABLE_KEYS)
+    unknown = unknown_keys(spec, _TABLE_KEYS)
     if unknown:
         raise ValueError(f"{where}: unknown key {unknown[0]!r} in [table]; expected one of "
                          f"{', '.join(sorted(_TABLE_KEYS))}")
@@ -266,7 +267,7 @@ def _part_of_table(value: Any, name: str, kind: type, keys: dict[str, str],
         return kind()
     if not isinstance(value, dict):
         raise ValueError(f"{where}: table.{name}: must be true, false or a table, got {value!r}")
-    unknown = sorted(set(value) - set(keys))
+    unknown = unknown_keys(value, keys)
     if unknown:
         raise ValueError(f"{where}: table.{name}.{unknown[0]}: unknown key; expected one of "
                          f"{', '.join(sorted(keys))}")

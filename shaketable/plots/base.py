@@ -44,7 +44,7 @@ def save_tight(fig, target, dpi: int = 110) -> None:
     the figure is laid out as that draw would lay it out, its box measured at the
     same dpi with the same padding, and the file is byte-identical
     (``tests/plots/test_save_tight.py``; every figure of ``shaketable reproduce
-    --all`` checked, issue 28): ~10 % of the time of a Calcomp figure. Any other
+    --all`` checked): ~10 % of the time of a Calcomp figure. Any other
     format or canvas goes through ``savefig`` unchanged.
     """
     import matplotlib

@@ -9,7 +9,7 @@ swept over its setting; the first and last settings are written at the ends
 of the max |theta| line (rtol for ``fast`` and ``reference``, subdivisions
 for ``predictor-corrector``).
 
-The coupled planar model (issue 25) joins it: its compiled engine (``planar``) and its
+The coupled planar model joins it: its compiled engine (``planar``) and its
 SciPy reference (``planar-reference``) are lines on the rocking-limit case's panel (ample
 friction, against that case's rocking truth), and each coupled case of
 :mod:`shaketable.studies.planar_work_precision` gets a panel of its own (against the planar

@@ -1,4 +1,4 @@
-"""The mode map of the planar block against Section 2.1's rule (issue 25)."""
+"""The mode map of the planar block against Section 2.1's rule."""
 
 from __future__ import annotations
 

@@ -29,19 +29,15 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # Python 3.10
-    import tomli as tomllib  # type: ignore[no-redef]
-
 from shaketable.core.constants import G
-from shaketable.core.files import read_utf8
 from shaketable.core.geometry import Block
+from shaketable.core.tomlfile import key_line, read_toml
 from shaketable.core.units import parse
+from shaketable.core.validation import unknown_keys
 from shaketable.ground import records
 from shaketable.ground.artificial import PRESETS
 from shaketable.ground.floor import SHAPES, Building
-from shaketable.scenes.parse import SceneError, key_line
+from shaketable.scenes.parse import SceneError
 from shaketable.studies.assess import (
     DEFAULT_RECORDS,
     AssessedObject,
@@ -80,11 +76,7 @@ def load_assessment(path: str | Path) -> Assessment:
         A missing file (the object file, a calibration or hazard file).
     """
     path = Path(path)
-    text = read_utf8(path, "object file", SceneError)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise SceneError(f"{path}: not valid TOML: {error}") from None
+    data, text = read_toml(path, "object file", SceneError)
     try:
         return assessment_from_dict(data, path.parent)
     except _Error as error:
@@ -114,7 +106,7 @@ def _section(data: dict, name: str) -> dict:
     table = data.get(name, {})
     if not isinstance(table, dict):
         raise _Error(name, f"[{name}] must be a table")
-    unknown = sorted(set(table) - SECTIONS[name])
+    unknown = unknown_keys(table, SECTIONS[name])
     if unknown:
         raise _Error(f"{name}.{unknown[0]}", f"unknown key; [{name}] takes "
                                               f"{', '.join(sorted(SECTIONS[name]))}")
@@ -124,7 +116,7 @@ def _section(data: dict, name: str) -> dict:
 def assessment_from_dict(data: dict, folder: Path | None = None) -> Assessment:
     """Validate the parsed TOML (``folder``: where relative file names are read from)."""
     folder = Path(".") if folder is None else folder
-    unknown = sorted(set(data) - TOP)
+    unknown = unknown_keys(data, TOP)
     if unknown:
         raise _Error(unknown[0], f"unknown key at the top level; expected "
                                  f"{', '.join(sorted(TOP))}")
@@ -330,7 +322,7 @@ FLOOR_KEYS = {"floor"} | SECTIONS["building"]
 def floor_from_dict(section: dict, where: str) -> FloorSetup:
     """A scene's ``[floor]`` (``floor = 3``, ``period = "0.6 s"``, ``height = "17.5 m"``,
     ``storeys = 5``, ``damping``, ``shape``, ``modes``): errors name ``floor.KEY``."""
-    unknown = sorted(set(section) - FLOOR_KEYS)
+    unknown = unknown_keys(section, FLOOR_KEYS)
     if unknown:
         raise SceneError(f"{where}: unknown key {unknown[0]!r} in [floor]; expected one of "
                          f"{', '.join(sorted(FLOOR_KEYS))}")

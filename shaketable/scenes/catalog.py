@@ -90,7 +90,7 @@ def study_kind(name_or_path: str) -> str | None:
     SceneError
         No such scene, or a file that is not TOML (:func:`resolve_scene_path`).
     """
-    from shaketable.scenes.parse import tomllib
+    from shaketable.core.tomlfile import tomllib
 
     path = resolve_scene_path(name_or_path)
     try:
@@ -106,14 +106,14 @@ _PLANAR_SECTIONS = {"table-4-4"}
 
 
 def uses_planar(name_or_path: str) -> bool:
-    """Whether a scene runs the planar block (issue 25), read from its TOML alone.
+    """Whether a scene runs the planar block, read from its TOML alone.
 
     True for ``block.static_friction`` (the planar run per COR), a ``mode-map`` study, and
     the scenes whose report section recomputes with the planar block (Table 4.4): the
     first-compile notice names the planar engine for them. An unreadable file is left to
     the scene parser to report (``False`` here).
     """
-    from shaketable.scenes.parse import tomllib
+    from shaketable.core.tomlfile import tomllib
 
     try:
         path = resolve_scene_path(name_or_path)

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from shaketable.core.results import RockingResult
+from shaketable.core.validation import unknown_keys
 from shaketable.scenes.parse import Scene, SceneError
 from shaketable.studies.comparison import (
     TEST_THEORY_PEAK_RATIO,
@@ -111,7 +112,7 @@ def scene_tolerances(scene: Scene) -> dict[str, Tolerance]:
                          f"table such as {{ t_overturn = '0.5 s' }}, got {given!r}")
     else:
         common = float(given)
-    unknown = sorted(set(table) - set(TOLERANCE_KEYS))
+    unknown = unknown_keys(table, TOLERANCE_KEYS)
     if unknown:
         raise SceneError(f"{where}: unknown key {unknown[0]!r}; expected one of "
                          f"{', '.join(sorted(TOLERANCE_KEYS))}")

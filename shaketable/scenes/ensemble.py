@@ -1,4 +1,4 @@
-"""The ``[ensemble]`` section of a scene: perturbed copies of each run (issue 16).
+"""The ``[ensemble]`` section of a scene: perturbed copies of each run.
 
 Keys (all optional): ``members`` (default 200), ``perturb`` (relative spread of every
 input, default 1e-9), ``perturb_amplitude``, ``perturb_cor``, ``perturb_size``,

@@ -1,7 +1,7 @@
 """The ``[study] kind = "mode-map"`` of a scene: its keys, read and checked.
 
 A scene of this kind runs :func:`shaketable.studies.mode_map.mode_map` (the planar
-block's mode over a grid of B/H and friction, issue 25) with the sliding limit of the
+block's mode over a grid of B/H and friction) with the sliding limit of the
 report's shielding blocks::
 
     [study]

@@ -41,13 +41,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
-    import tomli as tomllib  # type: ignore[no-redef]
-
 from shaketable.core.geometry import Block, PrestressRods
+from shaketable.core.tomlfile import key_line, read_toml
 from shaketable.core.units import parse, parse_angle_or_ratio
+from shaketable.core.validation import unknown_keys
 
 if TYPE_CHECKING:
     from shaketable.lab.stage import TableSetup
@@ -63,7 +60,7 @@ MOTION_KEYS = {
     "artificial": {"preset", "seed", "pga", "duration", "dt", "vertical_pga"},
     "half-sine": {"amplitude", "pulse_duration", "duration", "dt", "sign"},
     "constant-pulse": {"acceleration", "pulse_duration", "duration", "dt"},
-    # issue 30: steps of the table's velocity, applied exactly (shaketable.core.impulses)
+    # steps of the table's velocity, applied exactly (shaketable.core.impulses)
     "impulses": {"times", "velocity_steps", "duration", "dt"},
 }
 
@@ -93,11 +90,11 @@ SLIDING_KEYS = {"static_friction", "dynamic_friction"}
 #: Studies that recompute one of the report's tables (a ``[study]`` section).
 STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"figure"},
                "pitch-repeatability": {"phases"}, "teaching": {"item"},
-               # issue 16; the keys are read by shaketable.scenes.spectrum
+               # the keys are read by shaketable.scenes.spectrum
                "overturning-spectrum": {"pulse", "block", "alpha", "p", "cor", "omega_over_p",
                                         "ceiling", "scan_step", "tolerance", "reference",
                                         "method"},
-               # issue 25; the keys are read by shaketable.scenes.mode_map
+               # the keys are read by shaketable.scenes.mode_map
                "mode-map": {"record", "pga", "aspect_ratios", "frictions", "height", "cor"}}
 
 
@@ -151,7 +148,7 @@ class Scene:
     static_friction : float or None
         ``block.static_friction``: mu_s for Section 2.1's sliding-or-rocking check; with a
         table motion the scene also runs the planar block (rest, slide, rock, slide-rock,
-        flight; issue 25) with this friction.
+        flight) with this friction.
     dynamic_friction : float or None
         ``block.dynamic_friction``: mu_d of that planar run (default mu_s).
     sliding : tuple of (float, float)
@@ -295,17 +292,8 @@ def load_scene(path: str | Path) -> Scene | Study:
     SceneError
         With the file name, the key and what was expected.
     """
-    from shaketable.core.files import read_utf8
-
     path = Path(path)
-    text = read_utf8(path, "scene", SceneError)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise SceneError(f"{path}: not valid TOML: {error}") from None
-    except RecursionError:  # an array nested thousands deep: the parser's recursion
-        raise SceneError(f"{path}: arrays or tables nested too deeply to read (a scene "
-                         f"needs a few levels)") from None
+    data, text = read_toml(path, "scene", SceneError)
     try:
         return scene_from_dict(data, where=str(path))
     except SceneError as error:
@@ -316,8 +304,6 @@ def load_scene(path: str | Path) -> Scene | Study:
 _KEY_IN_MESSAGE = re.compile(r"unknown key '([\w-]+)' in \[([\w.-]+)|\[([\w.-]+)\]|"
                              r"\b((?:block|motion|rocking|report|outputs|table|sensors|theory|"
                              r"sliding|ensemble|study|floor)(?:\.[\w-]+)+)")
-_HEADER = re.compile(r"^\s*\[\[?\s*([\w.\"' -]+?)\s*\]\]?\s*(?:#.*)?$")
-_ASSIGNMENT = re.compile(r"^\s*([\w.\"' -]+?)\s*=")
 
 
 def with_line(message: str, where: str, text: str) -> str:
@@ -341,30 +327,6 @@ def with_line(message: str, where: str, text: str) -> str:
     return message if line is None else f"{message} (line {line})"
 
 
-def key_line(text: str, path: list) -> int | None:
-    """Line number (from 1) of the dotted key ``path`` in TOML ``text``, or of its longest
-    written prefix (a section header, an inline table); ``None`` when nothing of it is written."""
-    best, best_depth = None, 0
-    section: list = []
-    for number, line in enumerate(text.splitlines(), start=1):
-        header = _HEADER.match(line)
-        if header:
-            section = [part.strip().strip("\"'") for part in header.group(1).split(".")]
-            keys = section
-        else:
-            assignment = _ASSIGNMENT.match(line)
-            if not assignment:
-                continue
-            keys = section + [part.strip().strip("\"'")
-                              for part in assignment.group(1).split(".")]
-        depth = 0
-        while depth < min(len(keys), len(path)) and keys[depth] == path[depth]:
-            depth += 1
-        if depth == len(keys) and depth > best_depth:  # this line writes a prefix of path
-            best, best_depth = number, depth
-    return best
-
-
 def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
     """Validate a scene given as a dict (the parsed TOML); a ``[study]`` gives a :class:`Study`."""
     if "study" in data:
@@ -382,7 +344,7 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
         raise SceneError(f"{where}: block.static_friction must be a positive number (the "
                          f"static coefficient of friction mu_s), got {static_friction!r}")
     dynamic_friction = data["block"].get("dynamic_friction")
-    if dynamic_friction is not None:   # issue 25: with static_friction, the planar block runs
+    if dynamic_friction is not None:   # with static_friction, the planar block runs
         if static_friction is None:
             raise SceneError(f"{where}: block.dynamic_friction needs block.static_friction "
                              "(mu_s)")
@@ -656,7 +618,7 @@ def _table(value, where, section):
 
 
 def _only(table: dict, allowed: set, where: str, section: str) -> None:
-    unknown = sorted(set(table) - allowed)
+    unknown = unknown_keys(table, allowed)
     if unknown:
         raise SceneError(f"{where}: unknown key {unknown[0]!r} in [{section}]; expected one of "
                          f"{', '.join(sorted(allowed)) or '(none)'}")

@@ -331,7 +331,7 @@ def _run_impulses(scene: Scene, motion: ImpulsiveMotion) -> SceneResult:
 
 def _run_planar(scene: Scene, felt: Motion | None) -> tuple:
     """``block.static_friction`` (and ``dynamic_friction``) with a table motion: the planar
-    block (rest, slide, rock, slide-rock, flight; issue 25), one run per COR."""
+    block (rest, slide, rock, slide-rock, flight), one run per COR."""
     if scene.static_friction is None or felt is None:
         return ()
     from shaketable.core.sliding_result import Friction

@@ -1,7 +1,7 @@
 """The ``[study] kind = "overturning-spectrum"`` of a scene: its keys, read and checked.
 
 A scene of this kind runs :func:`shaketable.studies.overturning_spectrum.overturning_spectrum`
-(every overturn/safe band edge in a/(g tan alpha), issue 16) with the options of
+(every overturn/safe band edge in a/(g tan alpha)) with the options of
 ``shaketable spectrum``::
 
     [study]
@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.units import parse
+from shaketable.core.validation import unknown_keys
 
 __all__ = ["MAX_RATIOS", "SPECTRUM_KEYS", "REFERENCE_KEYS", "SpectrumReference",
            "SpectrumSettings", "block_from", "parse_ratios", "spectrum_settings"]
@@ -233,7 +234,7 @@ def spectrum_settings(spec: dict, where: str) -> SpectrumSettings:
                          f"{given!r}")
     for k, item in enumerate(given):
         key = f"study.reference[{k}]"
-        unknown = sorted(set(item) - REFERENCE_KEYS)
+        unknown = unknown_keys(item, REFERENCE_KEYS)
         if unknown:
             raise ValueError(f"{where}: unknown key {key}.{unknown[0]}; expected one of "
                              f"{', '.join(sorted(REFERENCE_KEYS))}")

@@ -24,6 +24,7 @@ from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
 from shaketable.core.units import parse
+from shaketable.core.validation import unknown_keys
 from shaketable.lab.digitizer import Digitizer
 from shaketable.lab.sensors import (
     WIRES,
@@ -273,7 +274,7 @@ def sensors_from_dict(spec: dict, where: str = "<scene>") -> Sensors:
     """
     if not isinstance(spec, dict):
         raise ValueError(f"{where}: [sensors] must be a table")
-    unknown = sorted(set(spec) - _SENSOR_KEYS)
+    unknown = unknown_keys(spec, _SENSOR_KEYS)
     if unknown:
         raise ValueError(f"{where}: unknown key {unknown[0]!r} in [sensors]; expected one of "
                          f"{', '.join(sorted(_SENSOR_KEYS))}")
@@ -327,7 +328,7 @@ def theory_from_dict(spec: dict, where: str = "<scene>") -> TheorySetup:
     ``release = "0.5 alpha"``, ``free_rocking_duration = "8 s"``, ``method``."""
     if not isinstance(spec, dict):
         raise ValueError(f"{where}: [theory] must be a table")
-    unknown = sorted(set(spec) - _THEORY_KEYS)
+    unknown = unknown_keys(spec, _THEORY_KEYS)
     if unknown:
         raise ValueError(f"{where}: unknown key {unknown[0]!r} in [theory]; expected one of "
                          f"{', '.join(sorted(_THEORY_KEYS))}")

@@ -123,7 +123,7 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
                              "AsymmetricBlock")
         from shaketable.solvers.asymmetric import simulate_asymmetric
 
-        return simulate_asymmetric(block, motion, cor=cor, theta0=theta0,
+        return simulate_asymmetric(block, motion, cor=cast(float, cor), theta0=theta0,
                                    theta_dot0=theta_dot0, duration=duration, method=method,
                                    rtol=1e-12 if rtol is None else rtol, output_dt=output_dt)
     cor = cast(float, cor)   # a Block's cor is checked where it is used (None: ValueError)
@@ -148,7 +148,8 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
     if isinstance(motion, ImpulsiveMotion):   # velocity steps: split there (solvers.impulses)
         from shaketable.solvers.impulses import simulate_impulsive
 
-        return simulate_impulsive(block, motion, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
+        return simulate_impulsive(block, motion, simulate=simulate, cor=cor, theta0=theta0,
+                                  theta_dot0=theta_dot0,
                                   duration=duration, method=method, rtol=rtol,
                                   subdivisions=subdivisions, output_dt=output_dt,
                                   rest_tolerance=rest_tolerance,

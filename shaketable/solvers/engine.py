@@ -50,7 +50,7 @@ summation of the endless cascade of impacts of a decaying block
 (:func:`shaketable.core.dynamics.cascade_rest_time`), unstable / overturned, and the
 block leaving the ground when g + vg <= 0.
 
-First compile (issue 28): each method has its own compiled integrator, the driver's code
+First compile: each method has its own compiled integrator, the driver's code
 with the method a compile-time constant and the method's functions bound to the names it
 calls (:func:`_integrator`), so the default method's first compile types and optimises
 only its own code, with no compiled layer that chooses a method's function. numba's first
@@ -754,9 +754,8 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
 _METHOD_HELPERS = ("_first_positive_margin", "_locate", "_dip_on_stepper", "_step_events",
                    "_rest_after_impact")
 # Those that LLVM inlines into the driver (forceinline: LLVM's alwaysinline): part of its
-# body, called at every step, compiled apart only to keep numba's first compile short
-# (issue 28). Called instead, it made the batch 2 % slower (0.61 against 0.60 ms of CPU
-# per run, benchmarks/batch_rate.py); inlined, the first compile is 0.05 s longer.
+# body, called at every step, compiled apart only to keep numba's first compile short;
+# inlined because a call at every step makes the batch slower (benchmarks/batch_rate.py).
 _INLINED_HELPERS = ("_step_events",)
 _INLINED_HELPER = njit(**{**HELPER_OPTIONS, "forceinline": True})
 

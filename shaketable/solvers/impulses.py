@@ -1,4 +1,4 @@
-"""Runs with ground-velocity steps: the run split at each step, the state jumped (issue 30).
+"""Runs with ground-velocity steps: the run split at each step, the state jumped.
 
 :func:`simulate_impulsive` runs the smooth part of an
 :class:`~shaketable.core.impulses.ImpulsiveMotion` piece by piece with
@@ -16,6 +16,7 @@ instant twice (the state before and after the jump).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -48,15 +49,16 @@ def _first(values) -> float:
     return finite[0] if finite else math.nan
 
 
-def simulate_impulsive(block, motion: ImpulsiveMotion, *, cor: float, theta0: float = 0.0,
-                       theta_dot0: float = 0.0, method: str = "fast", **options) -> RockingResult:
+def simulate_impulsive(block, motion: ImpulsiveMotion, *, simulate: Callable[..., RockingResult],
+                       cor: float, theta0: float = 0.0, theta_dot0: float = 0.0,
+                       method: str = "fast", **options) -> RockingResult:
     """:func:`~shaketable.solvers.api.simulate` of a motion with velocity steps.
 
     Parameters are those of :func:`~shaketable.solvers.api.simulate`; ``duration``
     cuts or pads the smooth part (every step must then still lie inside it).
+    ``simulate`` is the function that runs each smooth piece (the caller passes
+    :func:`~shaketable.solvers.api.simulate`, which sits above this module).
     """
-    from shaketable.solvers.api import simulate
-
     base = motion.motion
     duration = options.pop("duration", None)
     if duration is not None:        # cut or padded with the table at rest, as simulate does

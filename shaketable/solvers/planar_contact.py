@@ -1,6 +1,6 @@
 """Contact mechanics of the planar block for the reference solver (Newton-Euler, numpy).
 
-Per unit mass, table frame, the conventions of ``PLANAR_SPEC.md`` (issue 25). In each
+Per unit mass, table frame, the conventions of ``docs/planar.md``. In each
 mode the accelerations (x'', y'', theta'') and the contact force (F, N) come from one
 small linear system (``numpy.linalg.solve``): the Newton-Euler equations
 M q'' = f + W lambda, M = diag(1, 1, Ic), f = (-ug, -(g + vg), 0), with the contact

@@ -1,6 +1,6 @@
 """Independent SciPy reference of the planar rigid block: rest, slide, rock, slide-rock, flight.
 
-The model is the one of ``PLANAR_SPEC.md`` (issue 25); this module is a second,
+The model is the one of ``docs/planar.md``; this module is a second,
 independent implementation of it, used to validate the compiled engine. It
 shares with the rest of the package only the closed-form cascade sum
 (:func:`shaketable.core.dynamics.cascade_rest_time`) and the mode codes of

@@ -38,7 +38,7 @@ from shaketable.solvers.api import simulate
 #: Relative accuracy the fast engine must reach against ``reference`` (times, max |theta|).
 ACCEPT_RELATIVE = 1e-8
 
-#: Issue 3's speed targets on the Pacoima Dam run: warm ms per run, speed-up over reference.
+#: The speed targets on the Pacoima Dam run: warm ms per run, speed-up over reference.
 TARGET_FAST_MS = 2.0
 
 TARGET_SPEED_UP = 300.0
@@ -169,7 +169,7 @@ def benchmark_cases(extreme: bool = True, quick: bool = False,
     Parameters
     ----------
     extreme : bool
-        Include the extreme cases of issue 3.
+        Include the extreme cases (listed in the module docstring).
     quick : bool
         Shorten the long record to 20 s (for iterations).
     names : list of str, optional

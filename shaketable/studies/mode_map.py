@@ -1,4 +1,4 @@
-"""Rock, slide or anchor? The planar block's mode map against Section 2.1's rule (issue 25).
+"""Rock, slide or anchor? The planar block's mode map against Section 2.1's rule.
 
 Section 2.1 of [1]_ decides between the two modes by friction alone: a block rocks if
 mu_s > B/H, slides otherwise; Section 4.5 and Conclusion 6 advise letting shielding
@@ -378,7 +378,7 @@ def table_4_4_coupled_markdown(frame: pd.DataFrame) -> str:
     same = frame[frame["planar verdict"].map(_only_slides)]
     difference = (same["planar peak slip [in]"] - same["sliding model peak slip [in]"]).abs()
     return "\n".join([
-        "", "### Table 4.4 with the planar block (issue 25)", "",
+        "", "### Table 4.4 with the planar block", "",
         "The same records and frictions (mu_s = mu_d), the planar model run for two of the "
         "report's shielding blocks beside the sliding model of Table 4.4 (which cannot rock, "
         "so it is the same for every block):", "", *_table(shown), "",

@@ -1,4 +1,4 @@
-"""Work-precision of the coupled planar block (issue 25, check 6): error against run time.
+"""Work-precision of the coupled planar block: error against run time.
 
 Two kinds of rows, both drawn by ``shaketable bench`` beside the rocking methods:
 

@@ -1,7 +1,7 @@
 """How predictable a verdict is: ensembles of perturbed copies of one run.
 
 Rocking under a long record is chaotic: two runs whose inputs differ by one
-part in 1e12 can end one standing, one overturned (issue 16; Yim, Chopra &
+part in 1e12 can end one standing, one overturned (Yim, Chopra &
 Penzien [2]_; Bachmann et al. [3]_, "Is rocking motion predictable?"). Only
 the distribution of responses is reproducible, which is what the report's
 Section 3.7 (2) and 4.3 (3) discussions of unrepeatable table tests are

@@ -22,7 +22,6 @@ References
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass
 from importlib.resources import files
 from pathlib import Path
@@ -281,10 +280,3 @@ def teaching_pair(block: Block | None = None, motion: Motion | None = None,
     block = Block.from_feet(16, 4) if block is None else block
     motion = records.load("pacoima-dam-s16e") if motion is None else motion
     return respond(block, motion, low_mu, cor=cor), respond(block, motion, high_mu, cor=cor)
-
-
-def timed_table_4_4(**kwargs):
-    """:func:`table_4_4` and its wall time [s]."""
-    start = time.perf_counter()
-    frame = table_4_4(**kwargs)
-    return frame, time.perf_counter() - start

@@ -20,9 +20,6 @@ References
 .. [1] M. Aslam, W. G. Godden and D. T. Scalise, "Rocking and overturning
    response of rigid bodies to earthquake motions", Lawrence Berkeley
    Laboratory, University of California, Berkeley.
-
-Size: about 640 lines, four gallery items of the same shape (a result type and its
-function each); splitting them would scatter one page of the documentation.
 """
 
 from __future__ import annotations

@@ -552,8 +552,8 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
 
 
 def _planar_markdown(limit: pd.DataFrame | None, coupled: pd.DataFrame | None) -> list[str]:
-    """The section of the coupled planar model (issue 25): rocking limit and coupled cases."""
-    lines = ["## Coupled planar model (issue 25): engine and independent reference", "",
+    """The section of the coupled planar model: rocking limit and coupled cases."""
+    lines = ["## Coupled planar model: engine and independent reference", "",
              "`planar`: the compiled engine (`simulate(..., friction=...)`) at its rtol; "
              "`planar-reference`: the SciPy reference (`solvers.planar_reference`, Newton-Euler "
              "linear solves per mode, DOP853 with event location) at its rtol.", ""]

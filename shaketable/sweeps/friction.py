@@ -2,7 +2,7 @@
 
 A sweep spec (:mod:`shaketable.sweeps.spec`) with a ``[friction]`` section runs each
 cell with the coupled model of the whole planar block -- rest, slide, rock, slide-rock
-and free flight with Coulomb friction (issue 25; ``docs/planar.md``) -- compiled, through
+and free flight with Coulomb friction (``docs/planar.md``) -- compiled, through
 :func:`shaketable.solvers.planar_batch.simulate_many_planar`, instead of the rocking
 batch. Friction coefficients are dimensionless: plain numbers, no unit::
 
@@ -48,7 +48,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaketable.sweeps.spec import SweepError
+from shaketable.core.tomlfile import key_line
+from shaketable.core.validation import unknown_keys
+from shaketable.sweeps.base import SweepError
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -125,7 +127,7 @@ def friction_grid(table, where: str) -> FrictionGrid | None:
     if not isinstance(table, dict):
         raise SweepError(f"{where}: [friction] must be a table with friction.static, got "
                          f"{table!r}")
-    unknown = sorted(set(table) - FRICTION_KEYS)
+    unknown = unknown_keys(table, FRICTION_KEYS)
     if unknown:
         raise SweepError(f"{where}: unknown key {unknown[0]!r} in [friction]; expected one of "
                          f"{', '.join(sorted(FRICTION_KEYS))}")
@@ -324,31 +326,20 @@ def refuse_mixed_friction(table, what: str) -> None:
                          f"(shaketable.sweeps.friction.friction_rows), they are not pooled")
 
 
-_SECTION = re.compile(r"^\s*\[\s*friction\s*\]\s*(?:#.*)?$")
-_KEY = re.compile(r"^\s*([\w\"'-]+)\s*=")
 _NAMED = re.compile(r"friction\.(\w+)|\[friction\]|unknown key '([\w-]+)' in \[friction\]")
 
 
 def with_friction_line(message: str, where: str, text: str) -> str:
     """``message`` with ``(line N)`` of the ``[friction]`` key it begins with, found in the
     TOML ``text`` (as the scenes report it); unchanged when the message is about another
-    key or the key is not written (then the line of ``[friction]`` if that is)."""
+    key or nothing of it is written (then the line of ``[friction]`` if that is)."""
     prefix = f"{where}: "
     match = _NAMED.match(message[len(prefix):]) if message.startswith(prefix) else None
     if match is None:
         return message
-    key, inside, found = match.group(1) or match.group(2), False, None
-    for number, line in enumerate(text.splitlines(), start=1):
-        if line.lstrip().startswith("["):
-            inside = bool(_SECTION.match(line))
-            if inside and found is None:
-                found = number
-            continue
-        assignment = _KEY.match(line)
-        if inside and key is not None and assignment \
-                and assignment.group(1).strip("\"'") == key:
-            found = number
-    return message if found is None else f"{message} (line {found})"
+    key = match.group(1) or match.group(2)
+    line = key_line(text, ["friction"] if key is None else ["friction", key])
+    return message if line is None else f"{message} (line {line})"
 
 
 def friction_figure_sets(table, out: Path) -> list:

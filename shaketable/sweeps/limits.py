@@ -3,6 +3,8 @@ before any file or chunk, naming the key to change and the limit."""
 
 from __future__ import annotations
 
+from shaketable.sweeps.base import SweepError
+
 #: Most chunks of one sweep (the resume bookkeeping holds one entry per chunk) and most
 #: distinct motions (records x seeds x pitch phases, each held as a row of the grid).
 MAX_CHUNKS = 1_000_000
@@ -12,8 +14,6 @@ MAX_CHUNK_SIZE = 100_000
 
 def check_grid_size(spec, where: str) -> None:
     """Refuse a grid whose bookkeeping would exhaust memory, naming the limit and the key."""
-    from shaketable.sweeps.spec import SweepError
-
     phases = 1 if spec.pitch is None else len(spec.pitch.phases)
     variants = sum(len(record.seeds) for record in spec.records) * phases
     if variants > MAX_VARIANTS:

@@ -57,7 +57,7 @@ dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``):
     amplitude = "0.22 rad/s2"
     # block_position = "0 in", axis_depth = "0 in"
 
-    [ensemble]                    # optional: every cell run as an ensemble (issue 16)
+    [ensemble]                    # optional: every cell run as an ensemble
     members = 200                 # copies per cell, the first the nominal run
     perturb = 1e-9                # relative spread of every input; or per input:
     # perturb_amplitude, perturb_cor, perturb_size, perturb_start (sample intervals)
@@ -69,7 +69,7 @@ dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``):
     [run]
     chunk_size = 500              # runs (cells) per chunk (a part file each)
 
-Intensity measures (issue 29): every row records every measure of
+Intensity measures: every row records every measure of
 :func:`shaketable.ground.intensity.intensity_measures` of the scaled record (before the
 pitch, over the whole record): ``pgv [m/s]``, ``pgd [m]``, ``pgv/pga [s]``, ``sa(T s)
 [m/s^2]`` at 0.2, 0.5, 1 and 2 s (and ``period``), ``sa_avg(T1-T2 s) [m/s^2]`` over
@@ -111,10 +111,10 @@ theta/alpha over the members that stand. ``chunk_size`` still counts cells
 The same spec (and seed) always gives the same table, whatever the number of
 workers, the chunking or the interruptions.
 
-Size: about 790 lines, half of them this docstring (the spec format's reference); the
-intensity settings and the target-spectrum reader are in :mod:`shaketable.sweeps.targets`,
-record suites in :mod:`shaketable.sweeps.suites`, the friction axis (``[friction]``, the
-coupled planar model) in :mod:`shaketable.sweeps.friction`.
+The intensity settings and the target-spectrum reader are in
+:mod:`shaketable.sweeps.targets`, record suites in :mod:`shaketable.sweeps.suites`, the
+friction axis (``[friction]``, the coupled planar model) in :mod:`shaketable.sweeps.friction`,
+:class:`SweepError` and :class:`RecordSpec` in :mod:`shaketable.sweeps.base`.
 """
 
 from __future__ import annotations
@@ -130,13 +130,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-try:  # Python >= 3.11
-    import tomllib
-except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
-    import tomli as tomllib  # type: ignore[no-redef]
-
 from shaketable.core.geometry import Block, PrestressRods
+from shaketable.core.tomlfile import read_toml
 from shaketable.core.units import parse, parse_angle_or_ratio
+from shaketable.core.validation import unknown_keys
+from shaketable.sweeps.base import RecordSpec, SweepError
 from shaketable.sweeps.limits import MAX_CHUNK_SIZE, check_grid_size
 from shaketable.sweeps.targets import (
     IntensitySettings,
@@ -174,47 +172,6 @@ PITCH_KEYS = {"phases", "random_phases", "frequency", "amplitude", "block_positi
               "axis_depth", "frequency_drift", "amplitude_drift"}
 
 RUN_KEYS = {"chunk_size"}
-
-
-class SweepError(ValueError):
-    """A sweep spec (or output folder) that cannot be used; the message names file and key."""
-
-
-@dataclass(frozen=True)
-class RecordSpec:
-    """One entry of ``[[records]]``.
-
-    Attributes
-    ----------
-    kind : str
-        ``"bundled"``, ``"file"`` or ``"artificial"``.
-    label : str
-        Name in the result table (``motion`` column).
-    name : str
-        Bundled record name (:func:`shaketable.ground.records.available`).
-    vertical : bool
-        Keep the bundled record's vertical component.
-    file : str
-        Absolute path of a record file.
-    options : tuple
-        Reader options (``units``, ``dt`` [s], ``value_column``) for a file,
-        or generator options (``duration`` [s], ``dt`` [s], ``pga`` [m/s^2],
-        ``vertical_pga`` [m/s^2]) for an artificial record, as (key, value) pairs.
-    preset : str
-        Artificial preset (:data:`shaketable.ground.generators.PRESETS`).
-    seeds : tuple of int
-        Seeds of the artificial realisations (``(None,)`` for a recorded motion).
-    """
-
-    kind: str
-    label: str
-    name: str = ""
-    vertical: bool = True
-    file: str = ""
-    options: tuple = ()
-    preset: str = ""
-    seeds: tuple = (None,)
-    suite: str = ""
 
 
 @dataclass(frozen=True)
@@ -346,17 +303,8 @@ def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
     SweepError
         With the file name, the key and what was expected.
     """
-    from shaketable.core.files import read_utf8
-
     path = Path(path)
-    text = read_utf8(path, "sweep spec", SweepError)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise SweepError(f"{path}: not valid TOML: {error}") from None
-    except RecursionError:  # an array nested thousands deep: the parser's recursion
-        raise SweepError(f"{path}: arrays or tables nested too deeply to read (a sweep spec "
-                         f"needs a few levels)") from None
+    data, text = read_toml(path, "sweep spec", SweepError)
     try:
         return spec_from_dict(data, where=str(path), directory=path.parent)
     except SweepError as error:   # a [friction] key: its line, as the scenes give it
@@ -482,7 +430,7 @@ def _ensemble(table, where):
 
 
 def _only(table: dict, allowed: set, where: str, section: str) -> None:
-    unknown = sorted(set(table) - set(allowed))
+    unknown = unknown_keys(table, allowed)
     if unknown:
         raise SweepError(f"{where}: unknown key {unknown[0]!r} in {section}; expected one of "
                          f"{', '.join(sorted(allowed))}")

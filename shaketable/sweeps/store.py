@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from shaketable.core.files import write_csv, write_parquet, write_text
-from shaketable.sweeps.spec import SweepError
+from shaketable.sweeps.base import SweepError
 
 #: Version of the result layout, written in the manifest (2: the intensity-measure
 #: columns; 3: the ``block`` column in the user's units, ``2 x 0.5 m``, not always inches).

@@ -1,4 +1,4 @@
-"""Record suites of a sweep spec: ``[[records]] folder = ...`` (issue 29), every file of a
+"""Record suites of a sweep spec: ``[[records]] folder = ...``, every file of a
 folder (``pattern``, default NGA-West2 ``*.AT2``) as one record, labelled by its stem.
 Parsed for :mod:`shaketable.sweeps.spec`.
 """
@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from shaketable.sweeps.spec import RecordSpec, SweepError
+from shaketable.sweeps.base import RecordSpec, SweepError
 
 
 def suite_records(entry: dict, where: str, key: str, directory: Path) -> list:

@@ -1,4 +1,4 @@
-"""The intensity-measure settings of a sweep spec's ``[intensity]`` (issue 29): which
+"""The intensity-measure settings of a sweep spec's ``[intensity]``: which
 measure is the target, the periods and damping of the spectra, and a target spectrum.
 Parsed by :mod:`shaketable.sweeps.spec`; used by :mod:`shaketable.sweeps.execute`.
 """
@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from shaketable.core.constants import G
+from shaketable.sweeps.base import SweepError
 
 #: Periods [s] of the Sa columns every row records (and ``period`` when given).
 RECORDED_PERIODS = (0.2, 0.5, 1.0, 2.0)
@@ -74,7 +75,6 @@ ARIAS_LIMIT = (1e4, "1e4 m/s")
 def _header_units(line: str, path: Path, number: int) -> tuple[float, float]:
     """The period and Sa factors to SI of a spectrum header ``period [s], sa [g]``."""
     from shaketable.core.constants import ACCELERATION_UNITS
-    from shaketable.sweeps.spec import SweepError
 
     names = [field.strip() for field in line.split(",")]
     units = []
@@ -100,7 +100,6 @@ def read_spectrum(value, where: str, directory: Path | None) -> tuple:
     Sa from 1e-6 g to 100 g (values outside are a unit or a typing error).
     """
     from shaketable.core.files import read_utf8
-    from shaketable.sweeps.spec import SweepError
 
     if not isinstance(value, str) or not value:
         raise SweepError(f"{where}: intensity.spectrum must be a CSV file name")
@@ -163,7 +162,6 @@ def check_spectrum_covers(spectrum: tuple, period_range: tuple, where: str) -> N
     the file's periods it would have to extrapolate, which is refused rather than done
     silently.
     """
-    from shaketable.sweeps.spec import SweepError
 
     low, high = spectrum[0][0], spectrum[-1][0]
     if period_range[0] < low * (1 - 1e-12) or period_range[1] > high * (1 + 1e-12):
@@ -175,7 +173,6 @@ def check_spectrum_covers(spectrum: tuple, period_range: tuple, where: str) -> N
 
 def check_levels(levels: list, kind: str, where: str, key: str) -> None:
     """Refuse repeated levels and levels beyond what is physical (:data:`LEVEL_LIMITS`)."""
-    from shaketable.sweeps.spec import SweepError
 
     limit, words = ARIAS_LIMIT if kind == "arias" else LEVEL_LIMITS[kind]
     for value in levels:
@@ -190,7 +187,6 @@ def check_levels(levels: list, kind: str, where: str, key: str) -> None:
 
 def check_periods(settings: dict, table: dict, where: str) -> None:
     """Refuse an ``intensity.period`` or ``period_range`` outside :data:`SPECTRUM_PERIODS`."""
-    from shaketable.sweeps.spec import SweepError
 
     for key, values in (("period", [settings.get("period", 1.0)]),
                         ("period_range", settings.get("period_range", ()))):

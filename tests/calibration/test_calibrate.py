@@ -66,11 +66,11 @@ def _calibrated(cor, seed):
     return _CACHE[cor, seed]
 
 
-# ------------------------------------------------------------------ recovery (issue 6)
+# ------------------------------------------------------------------ recovery
 @pytest.mark.parametrize("cor, seed", [(0.80, 11), (0.90, 12), (0.98, 13)])
 def test_identified_cor_within_0_005_of_the_truth(cor, seed):
     _, result = _calibrated(cor, seed)
-    # issue 6: "within +-0.005 of the true value for true values between 0.80 and 0.98"
+    # the target: "within +-0.005 of the true value for true values between 0.80 and 0.98"
     assert abs(result.cor - cor) < 0.005
     low, high = result.cor_interval
     assert low <= result.cor <= high and high - low < 0.01
@@ -260,7 +260,7 @@ def test_covariance_of_recomputes_the_stored_interval():
         covariance_of(result, "sandwich")
 
 
-# ------------------------------------------------------------------ Fig. 3.4 (issue 6)
+# ------------------------------------------------------------------ Fig. 3.4
 def test_fig_3_4_calibrated_cor_reproduces_the_virtual_test():
     comparison = reproduce_fig_3_4(seed=0)
     assert abs(comparison.calibration.cor - 0.925) < 0.005

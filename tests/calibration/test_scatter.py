@@ -1,4 +1,4 @@
-"""Issue 26: the COR of a real block (impact-to-impact scatter), warnings that speak, the
+"""The COR of a real block (impact-to-impact scatter), warnings that speak, the
 calibrated COR carried into prediction, and records as labs export them.
 
 The records are made by ``tests/calibration/lab_records.py``, a generator that uses

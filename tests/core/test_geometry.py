@@ -47,7 +47,7 @@ def test_parse_16x4ft_derived_quantities_by_hand(text):
     ("36in x 9in", "36 x 9 in"), ("30in x 0.5ft", "30 in x 0.5 ft"), ("0.5x0.1m", "0.5 x 0.1 m"),
 ])
 def test_a_parsed_block_is_echoed_in_the_users_order_and_units(text, label):
-    # issue 31: `--block 4x0.8ft` was echoed as 48 x 9.6 in; the label keeps the user's text
+    # `--block 4x0.8ft` is echoed as the user wrote it, not as 48 x 9.6 in
     block = Block.parse(text)
     assert block.label == label and block.describe() == label
     # the label is not part of equality: the same block built in SI is equal, and the

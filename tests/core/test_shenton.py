@@ -4,7 +4,7 @@
   Newton-Euler system (a 5 x 5 linear solve, solvers/planar_reference.py) and
   against its algebraic properties derived in the module docstring.
 * The mode classification against the planar reference solver started from rest
-  under constant table accelerations (PLANAR_SPEC.md, issue 25, check 3), over a
+  under constant table accelerations (docs/planar.md), over a
   grid of mu_s, B/H, a/g and vg/g that includes the slide-rock wedge
   B/H < mu < mu_cr(A) and mu_d < mu_s.
 """

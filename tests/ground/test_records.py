@@ -353,7 +353,7 @@ NO_UNITS_HEADER = ["PEER NGA STRONG MOTION DATABASE RECORD", "Quake, 1/1/2000, S
 
 def test_at2_without_units_is_refused_unless_units_are_given(tmp_path):
     path = write(tmp_path / "nounits.AT2", NO_UNITS_HEADER + VALUES)
-    # units are never assumed (issue 4): the message names the file and the header lines
+    # units are never assumed: the message names the file and the header lines
     with pytest.raises(RecordError, match=r"nounits\.AT2, lines 1-4:.*does not state.*units="):
         at2.read_at2(path)
     with pytest.raises(RecordError, match=r"nounits\.AT2.*units="):

@@ -257,7 +257,7 @@ def test_actuator_delay_shifts_the_output_and_displacement_path_agrees():
 
 
 def test_no_actuator_means_the_table_does_exactly_what_it_is_commanded():
-    # Issue 4: "Everything a scene does not ask for stays out: ... no actuator model".
+    # "Everything a scene does not ask for stays out: ... no actuator model".
     # actuator=None is pass-through: the achieved acceleration IS the command's own
     # (the exact second derivative of the displacement command), bit for bit.
     target = motions.harmonic(2.0, horizontal=0.5 * G, vertical=0.2 * G, duration=2.125, dt=0.005, ramp=0.5)

@@ -1,4 +1,4 @@
-"""The Calcomp figure carries its own caption (issue: figures a reader can trust at a glance)."""
+"""The Calcomp figure carries its own caption: a reader can trust it at a glance."""
 
 from __future__ import annotations
 
@@ -50,7 +50,7 @@ def test_overturned_run_reads_as_overturned_never_as_a_peak():
     assert 0.0 <= summary["max_theta_ratio_before_instability [-]"] <= 1.0
     text = svg_text(result.plot())
     assert "overturned (" in text and "max θ/α" not in text
-    # the scene's size = "16x4ft", echoed in its order and units (issue 31)
+    # the scene's size = "16x4ft", echoed in its order and units
     assert "H × B = 16 × 4 ft" in text and "COR 1" in text and "Pacoima Dam S16E" in text
     # Figs. 4.1 and 4.2 share one time axis (their scenes' [outputs] time_range)
     other = load_scene(resolve_scene_path("fig-4-2"))

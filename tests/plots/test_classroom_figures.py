@@ -1,4 +1,4 @@
-"""Figure defects found by the classroom trial (issue 31): each checked on the drawn figure."""
+"""Figure defects found by the classroom trial: each checked on the drawn figure."""
 
 from __future__ import annotations
 

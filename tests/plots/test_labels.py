@@ -1,4 +1,4 @@
-"""Figure text spells Greek letters as Greek (issue 14): a reader sees θ/α, ω / p and
+"""Figure text spells Greek letters as Greek: a reader sees θ/α, ω / p and
 a / (g tan α) on every figure, as on the Calcomp and teaching figures, never "theta",
 "alpha" or "omega" written out.
 

@@ -1,6 +1,5 @@
 """The SciPy planar reference's result has the figure, frame and summary of the compiled
-planar result (issue 25: "``to_frame()``, ``summary()``, ``plot()`` as for the other
-results").
+planar result (``to_frame()``, ``summary()``, ``plot()`` as for the other results).
 
 Same run through both models (the 30 x 6 in block, mu_s 0.25, mu_d 0.22, COR 0.9, 3 Hz
 0.6 g ramped, 3 s: rock, slide-rock and impacts): the two figures must have the same

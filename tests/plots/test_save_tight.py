@@ -1,4 +1,4 @@
-"""``plots.base.save_tight`` writes the file ``savefig(bbox_inches="tight")`` writes (issue 28).
+"""``plots.base.save_tight`` writes the file ``savefig(bbox_inches="tight")`` writes.
 
 The shortcut measures the tight box of a figure without a layout engine directly
 instead of drawing the figure once more; the reference is matplotlib's own

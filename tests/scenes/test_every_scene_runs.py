@@ -1,4 +1,4 @@
-"""Every bundled scene runs with ``shaketable run NAME`` (issue 13): studies included.
+"""Every bundled scene runs with ``shaketable run NAME``: studies included.
 
 The audit found `run` crashing on every ``[study]`` scene; this runs the command
 on each bundled name, in-process, and fails on any traceback or non-zero exit. The scenes

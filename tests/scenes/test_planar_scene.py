@@ -1,5 +1,4 @@
-"""The planar block from a scene (``block.static_friction``) and from ``simulate --friction``
-(issue 25).
+"""The planar block from a scene (``block.static_friction``) and from ``simulate --friction``.
 
 Reference: the sliding model of Table 4.4 (:func:`shaketable.solvers.sliding.slide`, exact
 piecewise integration). A block with mu_s < B/H only slides (Section 2.1, Eqs. 2-1/2-2: slip

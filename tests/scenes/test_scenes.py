@@ -203,7 +203,7 @@ theta0 = "0.1 alpha"
     (("kind = \"harmonic\"", "kind = \"wobble\""), 7),
 ])
 def test_scene_errors_name_the_line(tmp_path, change, line):
-    # the README: "the message names the option, file and line" (issue 31)
+    # the README: "the message names the option, file and line"
     path = write(tmp_path, LINED.replace(*change))
     with pytest.raises(SceneError) as error:
         load_scene(path)
@@ -233,7 +233,7 @@ duration = "3 s"
 
 
 def test_theta0_and_block_size_may_be_lists_like_cor(tmp_path):
-    # issue 31: theta0 = ["0.2 alpha", "0.8 alpha"] was refused ("expected a angle");
+    # theta0 = ["0.2 alpha", "0.8 alpha"] is a list of angles (not refused as "a angle");
     # one run per block, then per theta0 (a multiple of that block's own alpha), then per COR
     import shaketable as st
 

@@ -1,4 +1,4 @@
-"""A scene's ``[sliding]`` section (issue 17): the same block and motion, sliding.
+"""A scene's ``[sliding]`` section: the same block and motion, sliding.
 
 The sliding solver itself is checked against closed forms and Table 4.4 in
 ``tests/solvers``; here: the section is parsed strictly, the scene runs the

@@ -1,8 +1,8 @@
-"""The ``overturning-spectrum`` study kind (issue 16): a scene runs the spectrum, writes
+"""The ``overturning-spectrum`` study kind: a scene runs the spectrum, writes
 its CSV, figure and report section, and compares with published edges.
 
 Reference values: Zhang, J. and Makris, N., "Rocking response of free-standing blocks
-under cycloidal pulses", J. Eng. Mech. 127(5), 473-483, 2001, as quoted in issue 16: the
+under cycloidal pulses", J. Eng. Mech. 127(5), 473-483, 2001: the
 one-sine at omega/p = 4 (alpha 0.25 rad, p 2 rad/s, Housner's COR) overturns from
 1.78856 to 5.00928 and above 5.32302 (6 significant digits: agreement within 5e-6).
 """

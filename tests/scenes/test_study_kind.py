@@ -1,5 +1,5 @@
 """``scenes.catalog.study_kind``: a scene file's ``[study] kind`` without parsing the scene
-(what ``reproduce`` schedules by, issue 28)."""
+(what ``reproduce`` schedules by)."""
 
 from __future__ import annotations
 

@@ -194,7 +194,7 @@ def test_fig_3_5_values_are_the_tests():
 
 
 def test_an_initial_velocity_reaches_the_test_and_the_theory_with_sensors():
-    # issue 12: theta_dot0 was dropped for scenes with [sensors]. Free rocking of the
+    # theta_dot0 reaches scenes with [sensors] too. Free rocking of the
     # 30 x 6 in block thrown from theta = 0 with theta' = 0.2 rad/s (table at rest).
     data = {"name": "thrown", "block": {"size": "30x6in"},
             "motion": {"kind": "free"},
@@ -207,7 +207,7 @@ def test_an_initial_velocity_reaches_the_test_and_the_theory_with_sensors():
 
 
 def test_stage_sections_are_parsed_once_into_frozen_objects():
-    """[table], [sensors] and [theory] are typed at load (issue 12): the pipeline gets
+    """[table], [sensors] and [theory] are typed at load: the pipeline gets
     the objects, never the raw TOML tables, and a scene without them has None."""
     from shaketable.scenes.virtual_test import TheorySetup
 

@@ -1,4 +1,4 @@
-"""Stiff and extreme cases of issue 3: each result finite, converged and physically right.
+"""Stiff and extreme cases: each result finite, converged and physically right.
 
 "Converged" is fast (default rtol 1e-11) against the independent SciPy DOP853 reference
 (rtol 1e-12), to the issue's 1e-8 relative (1e-10 rad for tiny responses), or a
@@ -23,7 +23,7 @@ BLOCK_30x6 = st.Block.parse("30x6in")
 
 
 def _agree(fast, reference, rel=benchmark_cases.ACCEPT_RELATIVE):
-    """Issue 3's acceptance: 1e-8 relative (1e-10 rad for max |theta|), same events."""
+    """The acceptance: 1e-8 relative (1e-10 rad for max |theta|), same events."""
     errors = benchmark_cases.compare(fast, reference)
     assert np.all(np.isfinite(fast.theta)) and np.all(np.isfinite(fast.theta_dot))
     assert errors["same verdict"] and errors["same impacts"], errors

@@ -1,4 +1,4 @@
-"""Steps of the table's velocity (ideal impulses), applied exactly (issue 30).
+"""Steps of the table's velocity (ideal impulses), applied exactly.
 
 References: the jump of theta' from the angular-momentum balance about the pivot
 (``shaketable.core.impulses``), checked against the engine under a very short

@@ -1,4 +1,4 @@
-"""Where each method starts rocking (issue 13, item 9; README "Solvers").
+"""Where each method starts rocking (README "Solvers").
 
 Eq. (2-1): the block lifts when |ug| exceeds g tan(alpha) (1 + vg/g). Housner's
 linearised equation (Eq. 2-4) replaces tan(alpha) by alpha, so the ``linear``

@@ -1,4 +1,4 @@
-"""Each compiled integrator calls its own method's functions (issue 28).
+"""Each compiled integrator calls its own method's functions.
 
 :func:`shaketable.solvers.engine._integrator` compiles one integrator per method from a copy
 of the engine's namespace in which ``model_acceleration``, ``flight_model`` and ``advance``

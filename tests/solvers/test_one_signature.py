@@ -1,4 +1,4 @@
-"""The engine is compiled once whatever the entry point (issue 28).
+"""The engine is compiled once whatever the entry point.
 
 ``simulate`` and the batch call the same compiled integrator of each method
 (:data:`shaketable.solvers.engine.INTEGRATORS`) and hand it arrays of one type (float64,

@@ -1,4 +1,4 @@
-"""The planar block (issue 25): rest, slide, rock, slide-rock and flight in one model.
+"""The planar block: rest, slide, rock, slide-rock and flight in one model.
 
 Where each expected number comes from is said at each test: the rocking engine
 (``simulate`` without friction, an independent integrator: RKN 6(4) against DOP853),

@@ -1,6 +1,6 @@
 """The compiled planar model (``solvers.planar_run``) against the independent reference.
 
-Issue 25, check 6: the compiled engine (branch ``planar``) and the SciPy reference of
+The compiled engine (branch ``planar``) and the SciPy reference of
 ``solvers/planar_reference.py`` (a different formulation: Newton-Euler linear solves in
 (x, y, theta) per mode, DOP853 with SciPy's event location, restarted at every event)
 must agree to 1e-8 on runs that visit every mode: event times (with the modes on both

@@ -85,7 +85,7 @@ def test_fig_3_7_harmonic_run_equals_the_rocking_model_while_the_corner_holds(me
 
 @pytest.mark.parametrize("method", ["reference", "fast"])
 def test_pacoima_s16e_with_vertical_equals_the_rocking_model_while_the_corner_holds(method):
-    # issue 25 check 1: the bundled Pacoima Dam S16E record with its vertical, a 16 x 4 ft
+    # the rocking limit: the bundled Pacoima Dam S16E record with its vertical, a 16 x 4 ft
     # block, COR 0.95. It overturns; in the final fall (after the last impact) N -> 0
     # and the planar corner slips at 6.717 s (as in Fig. 3.7): compare up to there
     from shaketable.ground import records
@@ -237,7 +237,7 @@ def test_energy_balance_on_a_coupled_harmonic_run(mu_s, mu_d):
 
 
 def test_energy_balance_over_a_pacoima_run():
-    # issue 25 check 5: Pacoima Dam S16E with its vertical, the 16 x 4 ft block, COR 0.95,
+    # energy balance: Pacoima Dam S16E with its vertical, the 16 x 4 ft block, COR 0.95,
     # mu_s 0.28, mu_d 0.26 (just above B/H = 0.25): rocks and slide-rocks with over 100
     # impacts. The balance of the equations of motion holds to 1e-9 of g R
     from shaketable.ground import records

@@ -1,4 +1,4 @@
-"""The planar engine is compiled once whatever the entry point (issue 28's rule, issue 25's
+"""The planar engine is compiled once whatever the entry point (as the rocking
 engine): a cold compile costs ~15 s of CPU, so a free-rocking run (a motion without a
 vertical component: a fresh writable array of zeros), a record with its vertical and the
 batch must hand `solvers.planar.integrate` arrays of one type."""

@@ -1,4 +1,4 @@
-"""``simulate`` borrows per-thread scratch arrays for the impacts (issue 28): a run's
+"""``simulate`` borrows per-thread scratch arrays for the impacts: a run's
 result must not depend on what an earlier run left in them, nor change after a later run.
 """
 

@@ -1,4 +1,4 @@
-"""The sliding mode (issue 17): closed forms, invariants, Section 2.1, Table 4.4."""
+"""The sliding mode: closed forms, invariants, Section 2.1, Table 4.4."""
 
 from __future__ import annotations
 
@@ -35,7 +35,7 @@ def _step(a, t1, vertical=0.0, total=3.0):
 def test_constant_pulse_peak_slip_closed_form(mu, vertical_g):
     # a > mu (g + vg) for t1, then zero: slip (a - mu N) t1^2 / 2 during the pulse, then
     # the relative speed (a - mu N) t1 decays at mu N: ((a - mu N) t1)^2 / (2 mu N) more
-    # (issue 17, "Done when"; N = g + vg, the normal force per mass of Eq. (2-2))
+    # (N = g + vg, the normal force per mass of Eq. (2-2))
     a, t1 = 0.5 * G, 0.3
     normal = G * (1.0 + vertical_g)
     result = slide(_step(a, t1, vertical_g * G), mu)

@@ -1,4 +1,4 @@
-"""Impacts whose dip below theta = 0 lasts less than one integration step (issue 12).
+"""Impacts whose dip below theta = 0 lasts less than one integration step.
 
 A solver that tests the sign of theta only at step ends misses such an impact
 and follows a block that, in fact, hit the table. The case: the bundled Pacoima
@@ -105,7 +105,7 @@ def test_a_dip_inside_one_long_interval_is_an_impact(method):
         assert coarse.impact_times[0] == pytest.approx(exact, abs=1e-9)
 
 
-# Two turning points inside one step (issue 12, follow-up): theta' has the same sign at
+# Two turning points inside one step: theta' has the same sign at
 # both ends of the step, so neither the sign test on theta nor the single sign change of
 # theta' sees the dip between them. The ground acceleration is a single linear ramp (one
 # input interval of T seconds) chosen so that, leaving out the p^2 theta term, the flight

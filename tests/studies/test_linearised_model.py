@@ -1,4 +1,4 @@
-"""The literature's linearised rocking model side by side with the exact one (issue 30).
+"""The literature's linearised rocking model side by side with the exact one.
 
 Reference values and where they come from:
 
@@ -36,7 +36,7 @@ P = 2.0
 
 
 def test_half_sine_threshold_matches_the_literature_and_is_below_eq_2_8():
-    # issue 30 quotes 2.79 against Eq. (2-8)'s 4.12 at omega/p = 4, 4.79 against 8.06 at 8
+    # the literature gives 2.79 against Eq. (2-8)'s 4.12 at omega/p = 4, 4.79 against 8.06 at 8
     for ratio, published in ((4, 2.79), (8, 4.79)):
         exact = theory.linear_half_sine_threshold(ratio)
         assert exact == pytest.approx(published, abs=0.005)
@@ -207,7 +207,7 @@ def test_spectrum_scene_method_key(tmp_path):
     from shaketable.scenes.parse import SceneError, load_scene
 
     text = """name = "linearised"
-source = "issue 30"
+source = "the literature's linearised model"
 
 [study]
 kind = "overturning-spectrum"

@@ -1,4 +1,4 @@
-"""The mode map of the planar block against Section 2.1's rule (issue 25).
+"""The mode map of the planar block against Section 2.1's rule.
 
 References used here:
 * Section 2.1 of the report, Eqs. (2-1) and (2-2): from rest, slip needs |ug| > mu_s (g + vg),

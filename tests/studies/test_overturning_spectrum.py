@@ -1,4 +1,4 @@
-"""Overturning spectra of pulses (issue 16): every band edge against an independent solver
+"""Overturning spectra of pulses: every band edge against an independent solver
 and the literature; Section 4.3 (4) recomputed."""
 
 import math
@@ -21,10 +21,10 @@ from tests.studies import pulse_reference  # SciPy DOP853 on the analytic pulse,
 # alpha = 0.25 rad, p = 2 rad/s (R = 3 g / 16), Housner's COR: the blocks of Zhang & Makris (2001)
 BLOCK = Block.from_slenderness(3 * G / 16, 0.25)
 
-# Half-sine minimum overturning a/(g tan alpha), literature values quoted in issue 16 (4-5
+# Half-sine minimum overturning a/(g tan alpha), literature values (4-5
 # significant digits: tolerance half a unit of the last digit).
 HALF_SINE = {1: 1.3213, 2: 1.8015, 3: 2.2974, 4: 2.7975, 6: 3.8018, 8: 4.8081, 10: 5.8150}
-# One-sine at omega/p = 4: Zhang & Makris (2001), J. Eng. Mech. 127(5), as quoted in issue 16
+# One-sine at omega/p = 4: Zhang & Makris (2001), J. Eng. Mech. 127(5)
 # (6 significant digits): overturns after one impact from 1.78856, safe 5.00928-5.32302,
 # overturns without impact above.
 ONE_SINE_4 = [1.78856, 5.00928, 5.32302]
@@ -84,7 +84,7 @@ def test_spectrum_csv_has_units_and_provenance(spectra, tmp_path):
 
 
 def test_section_4_3_4_exact_half_sine_threshold():
-    # 16 x 4 ft block, 0.1 s half-sine, COR 1: 2.506643 g (issue 16, exact value to 1e-6);
+    # 16 x 4 ft block, 0.1 s half-sine, COR 1: 2.506643 g (exact value to 1e-6);
     # Eq. (2-9) 4.50 g with alpha = atan(B/H), 4.59 g with alpha = B/H; report 4.6 g.
     frame = section_pulses.section_4_3_4(pulse_durations=(0.1,))
     row = frame.iloc[0]
@@ -173,7 +173,7 @@ def test_the_single_threshold_bisection_refuses_a_banded_pulse():
     """threshold() (Fig. 2.6, Section 4.3 (4)) checks its single-transition assumption:
     the one-sine at omega/p = 4 has three transitions in [1.5, 8] (1.78856, 5.00928,
     5.32302, Zhang & Makris 2001) and must raise rather than return one edge; the
-    half-sine there has one (2.7975, the literature value quoted in issue 16)."""
+    half-sine there has one (2.7975, the literature value)."""
     shape = Pulse("one-sine", 4 * BLOCK.p)
     with pytest.raises(ValueError, match="3 overturn/safe transitions.*overturning_spectrum"):
         threshold(BLOCK, shape, cor="housner", low=1.5, high=8.0)

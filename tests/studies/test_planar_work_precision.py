@@ -1,4 +1,4 @@
-"""The coupled planar model in the work-precision study (issue 25, check 6).
+"""The coupled planar model in the work-precision study.
 
 Truths: the rocking-limit rows are measured against the rocking ``reference`` at rtol
 2.5e-14 (a different model and solver: the report's Eq. 2-13 by SciPy), the coupled rows
@@ -37,7 +37,7 @@ def test_coupled_case_visits_slide_rock_and_engine_meets_1e_8(coupled):
     assert truth.time_in_mode["slide-rock"] > 0 and truth.time_in_mode["rock"] > 0
     assert len(truth.impact_times) >= 10
     engine = frame[frame["method"] == "planar"].iloc[0]
-    # issue 25 check 6: the compiled engine agrees with the independent reference to 1e-8
+    # the compiled engine agrees with the independent reference to 1e-8
     assert engine["same events"] and engine["same verdict"]
     for column in ("error max_theta [-]", "error events [-]", "error peak slip [-]"):
         assert engine[column] < 1e-8, column
@@ -92,7 +92,7 @@ def test_rocking_limit_rows_meet_check_1():
     rows = planar_work_precision.rocking_limit_rows(case, truth, settings, repeats=1)
     assert [row["method"] for row in rows] == ["planar", "planar-reference"]
     for row in rows:
-        # issue 25 check 1: with friction that cannot be exceeded the planar block is the
+        # the rocking limit: with friction that cannot be exceeded the planar block is the
         # rocking block: impact times and max theta to 1e-9 of the rocking truth
         assert row["impacts"] == row["impacts truth"] >= 8
         assert row["error max_theta [-]"] < 1e-9 and row["error events [-]"] < 1e-9

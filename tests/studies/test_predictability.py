@@ -1,4 +1,4 @@
-"""Ensembles of perturbed copies (shaketable.studies.predictability, issue 16)."""
+"""Ensembles of perturbed copies (shaketable.studies.predictability)."""
 
 import math
 
@@ -81,7 +81,7 @@ def test_block_that_never_rocks_is_robust_with_infinite_horizon():
 
 
 def test_pacoima_s74w_2x1_cell_is_fragile():
-    # issue 16: one part in 1e12 flips this Table 4.2 cell; 1e-9 spreads give both verdicts
+    # one part in 1e12 flips this Table 4.2 cell; 1e-9 spreads give both verdicts
     from shaketable.studies.report_tables import column_motion
 
     result = pr.ensemble(Block.from_feet(2, 1), column_motion("pacoima S74W"), cor=1.0,
@@ -110,7 +110,7 @@ def test_simulate_ensemble_and_spectrum_from_the_command_line(tmp_path, capsys):
 
     bands = pd.read_csv(tmp_path / "spec" / "spectrum.csv", comment="#")
     first = bands[bands["verdict"] == "overturns"]["from a/(g tan alpha) [-]"].min()
-    # half-sine, omega/p = 2: 1.8015 (issue 16, the well-known value; four decimals)
+    # half-sine, omega/p = 2: 1.8015 (the literature's value; four decimals)
     assert first == pytest.approx(1.8015, abs=5e-5)
     assert "overturns without impact" in capsys.readouterr().out
 

@@ -1,11 +1,11 @@
-"""A sweep's ``[ensemble]`` (issue 16): every cell as an ensemble of perturbed copies.
+"""A sweep's ``[ensemble]``: every cell as an ensemble of perturbed copies.
 
 No expected value comes from the sweep code: each cell's P(overturn) and peak statistics
 are compared with :func:`shaketable.studies.predictability.ensemble` (the API, which
 builds its members through its own cases) on the same block, record and COR; the
 nominal columns with the same sweep run without ``[ensemble]``; a resumed or re-chunked
 ensemble sweep with an uninterrupted one. The cell 2 x 1 ft / Pacoima S74W / COR 1 is
-the one issue 16 found fragile under a 1e-12 change of the input.
+fragile under a 1e-12 change of the input.
 """
 
 import math
@@ -74,7 +74,7 @@ def test_each_cell_equals_the_api_ensemble(tables):
         low, high = wilson_interval(int(row["overturned members"]), MEMBERS)
         assert (row["P low [-]"], row["P high [-]"]) == (low, high)
         assert row["mark"] == ("robust" if api["robust"] else "fragile")
-    # issue 16: the 2 x 1 ft block under S74W at COR 1 is fragile under 1e-9 perturbations
+    # the 2 x 1 ft block under S74W at COR 1 is fragile under 1e-9 perturbations
     cell = table[(table["block"] == "2 x 1 ft") & (table["cor [-]"] == 1.0)].iloc[0]
     assert cell["mark"] == "fragile" and 0 < cell["P(overturn) [-]"] < 1
 

@@ -1,4 +1,4 @@
-"""Friction as a sweep axis (issue 25, "Batch and sweeps"): ``[friction]`` runs the coupled
+"""Friction as a sweep axis: ``[friction]`` runs the coupled
 planar model.
 
 No expected value here comes from the sweep code: each row is compared with an

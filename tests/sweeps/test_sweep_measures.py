@@ -1,4 +1,4 @@
-"""Sweeps over intensity measures (issue 29): IM targets, the IM columns of every row,
+"""Sweeps over intensity measures: IM targets, the IM columns of every row,
 record suites, spectrum matching, resume guard, ``shaketable risk``, and the similarity
 law behind the dimensionless PGV p / (g tan alpha).
 

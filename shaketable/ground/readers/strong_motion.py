@@ -179,8 +179,8 @@ def load_strong_motion(path: str | Path, horizontal: str | int | None = None,
     MissingExtraError
         gmprocess is not installed (the message names the ``formats`` extra).
     """
+    from shaketable.ground.readers.common import combine
     from shaketable.ground.readers.waveform import select_trace
-    from shaketable.ground.records import combine
 
     path = Path(path)
     stream = read_strong_motion_stream(path)

@@ -324,7 +324,7 @@ def read_text(path: str | os.PathLike[str], *, dt: float | None = None, units: s
         units = units_argument(units, path)
     content = read_text_file(path)
     # the header from the first lines only: a long record's body goes to the compiled
-    # parser as one string, never split into millions of Python lines (issue 27)
+    # parser as one string, never split into millions of Python lines
     lines = content[:_HEAD_CHARACTERS].splitlines()
     header_length = count_header_lines(lines, skiprows, delimiter)
     if header_length >= len(lines) - 1:   # the head holds no complete data line: all of it

@@ -85,6 +85,7 @@ from shaketable.core.motion import Motion
 from shaketable.ground.readers.common import (
     Record,
     RecordError,
+    combine,
     missing_file_message,
     units_argument,
 )
@@ -522,8 +523,6 @@ def motion_from_stream(stream: Any, horizontal: str | int | None = None,
     TypeError
         ``inventory`` is neither an inventory nor a path.
     """
-    from shaketable.ground.records import combine  # records imports this module
-
     stream = _as_stream(stream)
     stations = load_inventory(inventory)  # a file is read once for both traces
     chosen_h = select_trace(stream, horizontal, "ObsPy stream")
