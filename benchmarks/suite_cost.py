@@ -12,7 +12,7 @@ number of cores, and pytest's last lines, with the tests that used the most CPU
 
     python3 benchmarks/suite_cost.py [--cold] [--top 15] [-- PYTEST ARGUMENTS]
 
-Target (issue 41): at most 300 s of CPU on 2 cores.
+Target: at most 300 s of CPU on 2 cores.
 """
 
 from __future__ import annotations
