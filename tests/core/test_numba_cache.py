@@ -56,8 +56,8 @@ _PROBE = (
     "import os, numpy as np, shaketable\n"
     "from shaketable.core import dynamics\n"
     "assert os.path.dirname(shaketable.__file__).startswith(os.getcwd()), shaketable.__file__\n"
-    "moment = dynamics.rod_moment(0.1, np.zeros(dynamics.N_PARAMETERS))\n"
-    "stats = dynamics.rod_moment.stats\n"
+    "moment = dynamics.cascade_rest_time(1.0, 2.0, 0.5)\n"
+    "stats = dynamics.cascade_rest_time.stats\n"
     "print(os.environ['NUMBA_CACHE_DIR'], sum(stats.cache_hits.values()),\n"
     "      sum(stats.cache_misses.values()), moment)\n"
 )
