@@ -148,6 +148,21 @@ class StackResult(ModelResult):
         times): the clearance the stack needs."""
         return float(np.abs(self.top_corner_excursion).max()) if self.t.size else 0.0
 
+    def verdict(self) -> str:
+        """The run in words, as the other models' results say it: "block 0 overturned at
+        3.99 s", "rocked: max |θ| = 0.012, 0.030 rad (bottom to top)", "stayed at rest", or
+        the time a block would leave its support (outside the model: the run stops there)."""
+        if self.status == "overturned":
+            return f"block {self.overturned_block} overturned at {self.t_overturn:.2f} s"
+        if self.status == "airborne":
+            return (f"a block would leave its support at {self.t_airborne:.2f} s (outside the "
+                    "model: the run stops there)")
+        peaks = np.abs(self.theta).max(axis=0) if self.t.size else np.zeros(self.n_blocks)
+        if not peaks.any():
+            return "stayed at rest"
+        return ("rocked: max |θ| = " + ", ".join(f"{peak:.3g}" for peak in peaks)
+                + " rad (bottom to top)")
+
     # ------------------------------------------------------------------ views
     @property
     def energy(self) -> np.ndarray:

@@ -63,3 +63,22 @@ def test_the_stack_model_is_registered_behind_the_interface():
     model = MODELS["stack"]
     assert isinstance(model, Model)
     assert model_for(Stack([(1.0, 0.3)])) is model and model_for(st.Block(1.0, 0.3)) is None
+
+
+def test_the_verdict_says_what_the_run_did(rocking):
+    # rest: a table at rest leaves the stack at rest (no uplift: theta stays exactly 0)
+    stack = Stack([st.Block(1.0, 0.3), st.Block(0.8, 0.2)])
+    still = simulate_stack(stack, st.Motion([0.0, 1.0], [0.0, 0.0]))
+    assert still.verdict() == "stayed at rest"
+    # rocking: the peaks quoted are the run's own max |theta|, bottom block first
+    peaks = np.abs(rocking.theta).max(axis=0)
+    assert rocking.status == "completed" and peaks.any()
+    assert rocking.verdict() == ("rocked: max |θ| = " + ", ".join(f"{p:.3g}" for p in peaks)
+                                 + " rad (bottom to top)")
+    # overturning: a constant table acceleration of 2 g topples a 4:1 column one way
+    slender = Stack([st.Block(1.0, 0.25), st.Block(1.0, 0.25)])
+    t = np.arange(0.0, 3.0, 0.01)
+    fallen = simulate_stack(slender, st.Motion(t, np.full_like(t, 2.0 * G)))
+    assert fallen.status == "overturned"
+    assert fallen.verdict() == (f"block {fallen.overturned_block} overturned at "
+                                f"{fallen.t_overturn:.2f} s")
