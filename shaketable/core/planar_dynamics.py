@@ -361,12 +361,12 @@ def two_corner_impact(x_dot, y_dot, omega, mu_s, mu_d, parameters):
     """Plastic impact of the block at theta = 0 with both bottom corners on the table.
 
     The two-corner contact problem at the impulse level (plastic Newton law, the limit
-    of Moreau-Jean time-stepping; Coulomb friction): normal impulses P_s >= 0, gap rates
-    Y_s'+ >= 0, P_s Y_s'+ = 0 (s = +-1), the tangential impulse F within mu_s sum(P) if
+    of Moreau-Jean time-stepping; Coulomb friction): normal impulses ``P_s >= 0``, gap rates
+    ``Y_s'+ >= 0``, ``P_s Y_s'+ = 0`` (s = +-1), the tangential impulse F within mu_s sum(P) if
     the base's slip x' + h omega stops, else -sigma mu_d sum(P). At theta = 0 both
     corners slip alike, so only F's sum matters. Its solutions are enumerated: both
-    corners push (the base lands flat: y'+ = omega+ = 0, P_+ - P_- = (Ic omega + h F) / b
-    with both P_s >= 0, i.e. |Ic omega + h F| <= b sum(P)), else one corner s pushes
+    corners push (the base lands flat: y'+ = omega+ = 0, ``P_+ - P_- = (Ic omega + h F) / b``
+    with both ``P_s >= 0``, i.e. |Ic omega + h F| <= b sum(P)), else one corner s pushes
     (:func:`impact` at s with rho = 1: Housner's plastic impact) and the other rises
     (s omega+ >= 0). The flat solution is taken first (a landing with mu_d <= b/h is the
     sliding model's); none consistent leaves the flat solution with F at the limit.
