@@ -13,7 +13,10 @@ The coupled planar model joins it: its compiled engine (``planar``) and its
 SciPy reference (``planar-reference``) are lines on the rocking-limit case's panel (ample
 friction, against that case's rocking truth), and each coupled case of
 :mod:`shaketable.studies.planar_work_precision` gets a panel of its own (against the planar
-reference at rtol 1e-13), where a dash-dotted line adds the error of the peak slip.
+reference at rtol 1e-13), where a dash-dotted line adds the error of the peak slip. The
+Moreau-Jean time stepping (``moreau-jean``, grey, labelled by its step h) is drawn on the
+3 Hz case's panel: first order in h, against the planar reference with the plastic Newton
+law (``cor="housner"``) on the case's first 1.2 s.
 """
 
 from __future__ import annotations
@@ -33,6 +36,7 @@ STYLE = {
     "reference": ("tab:red", "^"),
     "planar": ("tab:purple", "P"),
     "planar-reference": ("tab:brown", "v"),
+    "moreau-jean": ("tab:gray", "X"),
 }
 
 #: Title of a coupled case's panel: its truth is not the rocking one.
@@ -56,6 +60,9 @@ def _short(label: str) -> str:
         return f"1e{round(exponent)}" if abs(exponent - round(exponent)) < 1e-9 else f"{value:g}"
     if label.startswith("subdivisions="):
         return "n=" + label.split("=", 1)[1]
+    if label.startswith("h="):
+        value = float(label[2:])
+        return f"h={value:g}"
     return ""
 
 
@@ -233,6 +240,9 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
                    "panels (planar block with friction)\nagainst the planar reference at rtol "
                    f"{PLANAR_TRUTH_RTOL:g} (labels: rtol, n = predictor-corrector subdivisions; "
                    f"errors below {ERROR_FLOOR:g} drawn at it)")
+        if (planar["method"] == "moreau-jean").any():
+            caption += ("; moreau-jean (h = step): plastic Newton law, first 1.2 s, vs "
+                        "planar-reference with cor = housner")
     handles.append(Line2D([], [], color="0.6", linestyle=":", label="1e-8 target"))
     legend_columns = len(handles) if len(handles) <= 9 else int(math.ceil(len(handles) / 2))
     fig.legend(handles=handles, loc="upper center", ncol=legend_columns, fontsize=8,
