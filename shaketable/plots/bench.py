@@ -15,8 +15,8 @@ friction, against that case's rocking truth), and each coupled case of
 :mod:`shaketable.studies.planar_work_precision` gets a panel of its own (against the planar
 reference at rtol 1e-13), where a dash-dotted line adds the error of the peak slip. The
 Moreau-Jean time stepping (``moreau-jean``, grey, labelled by its step h) is drawn on the
-3 Hz case's panel: first order in h, against the planar reference with the plastic Newton
-law (``cor="housner"``) on the case's first 1.2 s.
+coupled panels: first order in h, against the planar reference with the plastic Newton law
+(``cor="housner"``) on each case's first seconds (``MOREAU_WINDOW``).
 """
 
 from __future__ import annotations
@@ -26,7 +26,11 @@ import math
 import numpy as np
 
 from shaketable.plots.base import pyplot
-from shaketable.studies.planar_work_precision import AMPLE_FRICTION, PLANAR_TRUTH_RTOL
+from shaketable.studies.planar_work_precision import (
+    AMPLE_FRICTION,
+    MOREAU_WINDOW,
+    PLANAR_TRUTH_RTOL,
+)
 
 #: Colour and marker of each method.
 STYLE = {
@@ -53,16 +57,16 @@ ERROR_FLOOR = 1e-16
 
 
 def _short(label: str) -> str:
-    """``rtol=1e-08`` -> ``1e-8``; ``subdivisions=4`` -> ``n=4``."""
+    """``rtol=1e-08`` -> ``1e-8``; ``subdivisions=4`` -> ``n=4``; ``h=0.00025`` -> ``h=2.5e-4``."""
     if label.startswith("rtol="):
         value = float(label[5:])
         exponent = math.log10(value)
         return f"1e{round(exponent)}" if abs(exponent - round(exponent)) < 1e-9 else f"{value:g}"
     if label.startswith("subdivisions="):
         return "n=" + label.split("=", 1)[1]
-    if label.startswith("h="):
-        value = float(label[2:])
-        return f"h={value:g}"
+    if label.startswith("h="):   # a time step: h=0.00025 -> h=2.5e-4
+        digits, power = f"{float(label[2:]):e}".split("e")
+        return f"h={float(digits):g}e{int(power)}"
     return ""
 
 
@@ -241,7 +245,9 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
                    f"{PLANAR_TRUTH_RTOL:g} (labels: rtol, n = predictor-corrector subdivisions; "
                    f"errors below {ERROR_FLOOR:g} drawn at it)")
         if (planar["method"] == "moreau-jean").any():
-            caption += ("; moreau-jean (h = step): plastic Newton law, first 1.2 s, vs "
+            windows = ", ".join(f"{name} first {seconds:g} s"
+                                for name, seconds in MOREAU_WINDOW.items())
+            caption += (f"; moreau-jean (h = step): plastic Newton law, {windows}, vs "
                         "planar-reference with cor = housner")
     handles.append(Line2D([], [], color="0.6", linestyle=":", label="1e-8 target"))
     legend_columns = len(handles) if len(handles) <= 9 else int(math.ceil(len(handles) / 2))

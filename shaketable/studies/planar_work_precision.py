@@ -18,7 +18,7 @@ Two kinds of rows, both drawn by ``shaketable bench`` beside the rocking methods
   the times of the mode changes and impacts, the peak slip.
 * :func:`moreau_jean_rows` -- the independent Moreau-Jean time stepping
   (:mod:`shaketable.solvers.planar_moreau`, method ``"moreau-jean"``) at several steps h
-  on the first :data:`MOREAU_WINDOW` seconds of a coupled case with the plastic Newton
+  on the first seconds (:data:`MOREAU_WINDOW`) of the coupled cases with the plastic Newton
   law it converges to (``cor="housner"``), against the planar reference at
   :data:`PLANAR_TRUTH_RTOL` on the same window and law: the errors of max |theta| and of
   the peak slip (no event times: a time stepper has none). First order in h.
@@ -70,10 +70,15 @@ MOREAU_STEPS = (1e-3, 2.5e-4, 6.25e-5)
 QUICK_MOREAU_STEPS = (1e-3, 2.5e-4)
 
 #: The coupled cases that get Moreau-Jean rows and the window they are run on [s]: the
-#: first 1.2 s of the 3 Hz case (rest, rock, slide-rock and 4 impacts). Past a few impacts
-#: the errors of a first-order scheme stop falling monotonically at affordable steps (the
-#: whole 3 s: 2-5e-2 at h = 1e-3 ... 6.25e-5), and a 40 s record costs seconds per run.
-MOREAU_WINDOW = {"slide-rock-3hz": 1.2}
+#: first 1.2 s of the 3 Hz case (rest, rock, slide-rock and 4 impacts) and the first 3.5 s
+#: of Pacoima Dam (rock with 110 impacts, most in a cascade). Past a few impacts of the 3 Hz
+#: case the errors of a first-order scheme stop falling monotonically at affordable steps
+#: (its whole 3 s: 1-5e-2 at h = 1e-3 ... 6.25e-5), and the whole 40 s record costs
+#: seconds per run.
+MOREAU_WINDOW = {"slide-rock-3hz": 1.2, "pacoima-16x4ft-mu0.3": 3.5}
+
+#: The cases of :data:`MOREAU_WINDOW` that ``--quick`` runs.
+QUICK_MOREAU_CASES = ("slide-rock-3hz",)
 
 #: Method name of the Moreau-Jean rows.
 MOREAU_METHOD = "moreau-jean"
@@ -373,8 +378,8 @@ def planar_truth(case: PlanarCase, cache: dict | None = None):
 def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
                           settings: Sequence[tuple[str, str, dict[str, Any]]] | None = None,
                           repeats: int = 5, progress: Progress | None = None,
-                          cache: dict | None = None,
-                          moreau: Sequence[float] = ()) -> pd.DataFrame:
+                          cache: dict | None = None, moreau: Sequence[float] = (),
+                          moreau_cases: Sequence[str] | None = None) -> pd.DataFrame:
     """Error against run time on the coupled cases, one row per (case, method, setting).
 
     Parameters
@@ -392,7 +397,9 @@ def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
         Memo of the truths (:func:`planar_truth`).
     moreau : sequence of float
         Steps h [s] of the Moreau-Jean rows (:func:`moreau_jean_rows`) added after the
-        rows of each case of :data:`MOREAU_WINDOW`; empty: none.
+        rows of each case of ``moreau_cases``; empty: none.
+    moreau_cases : sequence of str, optional
+        The cases that get them (default: those of :data:`MOREAU_WINDOW`).
 
     Returns
     -------
@@ -417,7 +424,8 @@ def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
             rows.append(_row(case.name, method, label, options, seconds,
                              compare_planar(result, truth), result, truth,
                              "planar-reference", PLANAR_TRUTH_RTOL))
-        if moreau and case.name in MOREAU_WINDOW:
+        if moreau and case.name in (MOREAU_WINDOW if moreau_cases is None
+                                    else moreau_cases):
             rows += moreau_jean_rows(case, moreau, cache=cache)
     return pd.DataFrame(rows)
 
@@ -426,6 +434,11 @@ def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
 def moreau_steps(quick: bool = False) -> tuple[float, ...]:
     """Steps h [s] of the Moreau-Jean rows (fewer for ``--quick``)."""
     return QUICK_MOREAU_STEPS if quick else MOREAU_STEPS
+
+
+def moreau_case_names(quick: bool = False) -> tuple[str, ...]:
+    """The coupled cases that get Moreau-Jean rows (fewer for ``--quick``)."""
+    return QUICK_MOREAU_CASES if quick else tuple(MOREAU_WINDOW)
 
 
 def _window(motion: Motion, end: float) -> Motion:
