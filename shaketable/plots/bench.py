@@ -245,10 +245,10 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
                    f"{PLANAR_TRUTH_RTOL:g} (labels: rtol, n = predictor-corrector subdivisions; "
                    f"errors below {ERROR_FLOOR:g} drawn at it)")
         if (planar["method"] == "moreau-jean").any():
-            windows = ", ".join(f"{name} first {seconds:g} s"
+            windows = ", ".join(f"{seconds:g} s of {name}"
                                 for name, seconds in MOREAU_WINDOW.items())
-            caption += (f"; moreau-jean (h = step): plastic Newton law, {windows}, vs "
-                        "planar-reference with cor = housner")
+            caption += ("\nmoreau-jean (labels: step h): plastic Newton law, against "
+                        f"planar-reference with cor = housner on the first {windows}")
     handles.append(Line2D([], [], color="0.6", linestyle=":", label="1e-8 target"))
     legend_columns = len(handles) if len(handles) <= 9 else int(math.ceil(len(handles) / 2))
     fig.legend(handles=handles, loc="upper center", ncol=legend_columns, fontsize=8,
@@ -257,7 +257,7 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     height = 2.75 * rows + 1.1
     legend_rows = 1 if len(handles) == legend_columns else 2
     caption_rows = caption.count("\n") + 1
-    fig.tight_layout(rect=(0, 0.03 if caption_rows == 1 else 0.3 / height, 1,
+    fig.tight_layout(rect=(0, 0.03 if caption_rows == 1 else 0.15 * caption_rows / height, 1,
                            1 - (0.22 if legend_rows == 1 else 0.34) / height))
     return fig
 
