@@ -245,8 +245,9 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
                    f"{PLANAR_TRUTH_RTOL:g} (labels: rtol, n = predictor-corrector subdivisions; "
                    f"errors below {ERROR_FLOOR:g} drawn at it)")
         if (planar["method"] == "moreau-jean").any():
-            windows = ", ".join(f"{seconds:g} s of {name}"
-                                for name, seconds in MOREAU_WINDOW.items())
+            moreau = dict.fromkeys(planar.loc[planar["method"] == "moreau-jean", "case"])
+            windows = ", ".join(f"{MOREAU_WINDOW[name]:g} s of {name}" if name in MOREAU_WINDOW
+                                else name for name in moreau)
             caption += ("\nmoreau-jean (labels: step h): plastic Newton law, against "
                         f"planar-reference with cor = housner on the first {windows}")
     handles.append(Line2D([], [], color="0.6", linestyle=":", label="1e-8 target"))
