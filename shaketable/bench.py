@@ -23,7 +23,10 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     rows of ``work_precision.csv`` against that case's rocking truth) and on the coupled
     cases of :func:`~shaketable.studies.planar_work_precision.planar_cases` (against the
     planar reference at rtol 1e-13, ``planar_work_precision.csv``), drawn as further panels
-    of the figure.
+    of the figure; on the first seconds of the coupled cases (``quick``: the 3 Hz case only)
+    the independent Moreau-Jean time stepping joins them at steps h of
+    :func:`~shaketable.studies.planar_work_precision.moreau_steps` (first order, with the
+    plastic Newton law, against the planar reference with ``cor="housner"``).
 
     Parameters
     ----------
@@ -91,6 +94,8 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
         if coupled:
             planar_frame = planar_work_precision.planar_work_precision(
                 coupled, planar_settings, repeats=repeats,
+                moreau=planar_work_precision.moreau_steps(quick),
+                moreau_cases=planar_work_precision.moreau_case_names(quick),
                 progress=lambda name: progress(f"work-precision (planar): {name}"))
     csv = out / "work_precision.csv"
     write_csv(csv, frame)

@@ -13,7 +13,10 @@ The coupled planar model joins it: its compiled engine (``planar``) and its
 SciPy reference (``planar-reference``) are lines on the rocking-limit case's panel (ample
 friction, against that case's rocking truth), and each coupled case of
 :mod:`shaketable.studies.planar_work_precision` gets a panel of its own (against the planar
-reference at rtol 1e-13), where a dash-dotted line adds the error of the peak slip.
+reference at rtol 1e-13), where a dash-dotted line adds the error of the peak slip. The
+Moreau-Jean time stepping (``moreau-jean``, grey, labelled by its step h) is drawn on the
+coupled panels: first order in h, against the planar reference with the plastic Newton law
+(``cor="housner"``) on each case's first seconds (``MOREAU_WINDOW``).
 """
 
 from __future__ import annotations
@@ -23,7 +26,11 @@ import math
 import numpy as np
 
 from shaketable.plots.base import pyplot
-from shaketable.studies.planar_work_precision import AMPLE_FRICTION, PLANAR_TRUTH_RTOL
+from shaketable.studies.planar_work_precision import (
+    AMPLE_FRICTION,
+    MOREAU_WINDOW,
+    PLANAR_TRUTH_RTOL,
+)
 
 #: Colour and marker of each method.
 STYLE = {
@@ -33,6 +40,7 @@ STYLE = {
     "reference": ("tab:red", "^"),
     "planar": ("tab:purple", "P"),
     "planar-reference": ("tab:brown", "v"),
+    "moreau-jean": ("tab:gray", "X"),
 }
 
 #: Title of a coupled case's panel: its truth is not the rocking one.
@@ -49,13 +57,16 @@ ERROR_FLOOR = 1e-16
 
 
 def _short(label: str) -> str:
-    """``rtol=1e-08`` -> ``1e-8``; ``subdivisions=4`` -> ``n=4``."""
+    """``rtol=1e-08`` -> ``1e-8``; ``subdivisions=4`` -> ``n=4``; ``h=0.00025`` -> ``h=2.5e-4``."""
     if label.startswith("rtol="):
         value = float(label[5:])
         exponent = math.log10(value)
         return f"1e{round(exponent)}" if abs(exponent - round(exponent)) < 1e-9 else f"{value:g}"
     if label.startswith("subdivisions="):
         return "n=" + label.split("=", 1)[1]
+    if label.startswith("h="):   # a time step: h=0.00025 -> h=2.5e-4
+        digits, power = f"{float(label[2:]):e}".split("e")
+        return f"h={float(digits):g}e{int(power)}"
     return ""
 
 
@@ -233,6 +244,12 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
                    "panels (planar block with friction)\nagainst the planar reference at rtol "
                    f"{PLANAR_TRUTH_RTOL:g} (labels: rtol, n = predictor-corrector subdivisions; "
                    f"errors below {ERROR_FLOOR:g} drawn at it)")
+        if (planar["method"] == "moreau-jean").any():
+            moreau = dict.fromkeys(planar.loc[planar["method"] == "moreau-jean", "case"])
+            windows = ", ".join(f"{MOREAU_WINDOW[name]:g} s of {name}" if name in MOREAU_WINDOW
+                                else name for name in moreau)
+            caption += ("\nmoreau-jean (labels: step h): plastic Newton law, against "
+                        f"planar-reference with cor = housner on the first {windows}")
     handles.append(Line2D([], [], color="0.6", linestyle=":", label="1e-8 target"))
     legend_columns = len(handles) if len(handles) <= 9 else int(math.ceil(len(handles) / 2))
     fig.legend(handles=handles, loc="upper center", ncol=legend_columns, fontsize=8,
@@ -241,7 +258,7 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     height = 2.75 * rows + 1.1
     legend_rows = 1 if len(handles) == legend_columns else 2
     caption_rows = caption.count("\n") + 1
-    fig.tight_layout(rect=(0, 0.03 if caption_rows == 1 else 0.3 / height, 1,
+    fig.tight_layout(rect=(0, 0.03 if caption_rows == 1 else 0.15 * caption_rows / height, 1,
                            1 - (0.22 if legend_rows == 1 else 0.34) / height))
     return fig
 

@@ -16,6 +16,12 @@ Two kinds of rows, both drawn by ``shaketable bench`` beside the rocking methods
   :data:`PLANAR_TRUTH_RTOL` (the tightest tolerance it is run at; the code under test at
   the same setting is never its own truth). Errors (:func:`compare_planar`): max |theta|,
   the times of the mode changes and impacts, the peak slip.
+* :func:`moreau_jean_rows` -- the independent Moreau-Jean time stepping
+  (:mod:`shaketable.solvers.planar_moreau`, method ``"moreau-jean"``) at several steps h
+  on the first seconds (:data:`MOREAU_WINDOW`) of the coupled cases with the plastic Newton
+  law it converges to (``cor="housner"``), against the planar reference at
+  :data:`PLANAR_TRUTH_RTOL` on the same window and law: the errors of max |theta| and of
+  the peak slip (no event times: a time stepper has none). First order in h.
 
 Nothing here is a pass/fail test; the functions measure and return pandas frames.
 """
@@ -56,6 +62,26 @@ PLANAR_REFERENCE_RTOLS = (1e-6, 1e-8, 1e-10, 1e-11, 1e-12)
 QUICK_PLANAR_RTOLS = (1e-6, 1e-10, 1e-12, 1e-13)
 
 QUICK_PLANAR_REFERENCE_RTOLS = (1e-8, 1e-12)
+
+#: Steps of the Moreau-Jean rows [s] (each a quarter of the last: first order divides the
+#: error by about 4 per step).
+MOREAU_STEPS = (1e-3, 2.5e-4, 6.25e-5)
+
+QUICK_MOREAU_STEPS = (1e-3, 2.5e-4)
+
+#: The coupled cases that get Moreau-Jean rows and the window they are run on [s]: the
+#: first 1.2 s of the 3 Hz case (rest, rock, slide-rock and 4 impacts) and the first 3.5 s
+#: of Pacoima Dam (rock with 110 impacts, most in a cascade). Past a few impacts of the 3 Hz
+#: case the errors of a first-order scheme stop falling monotonically at affordable steps
+#: (its whole 3 s: 1-5e-2 at h = 1e-3 ... 6.25e-5), and the whole 40 s record costs
+#: seconds per run.
+MOREAU_WINDOW = {"slide-rock-3hz": 1.2, "pacoima-16x4ft-mu0.3": 3.5}
+
+#: The cases of :data:`MOREAU_WINDOW` that ``--quick`` runs.
+QUICK_MOREAU_CASES = ("slide-rock-3hz",)
+
+#: Method name of the Moreau-Jean rows.
+MOREAU_METHOD = "moreau-jean"
 
 #: The coupled cases' truth: the planar reference at the tightest tolerance it is run at
 #: (it accepts 1e-14, where DOP853's rtol/100 absolute tolerances are at rounding).
@@ -352,7 +378,8 @@ def planar_truth(case: PlanarCase, cache: dict | None = None):
 def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
                           settings: Sequence[tuple[str, str, dict[str, Any]]] | None = None,
                           repeats: int = 5, progress: Progress | None = None,
-                          cache: dict | None = None) -> pd.DataFrame:
+                          cache: dict | None = None, moreau: Sequence[float] = (),
+                          moreau_cases: Sequence[str] | None = None) -> pd.DataFrame:
     """Error against run time on the coupled cases, one row per (case, method, setting).
 
     Parameters
@@ -368,6 +395,11 @@ def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
         Called with each case's name.
     cache : dict, optional
         Memo of the truths (:func:`planar_truth`).
+    moreau : sequence of float
+        Steps h [s] of the Moreau-Jean rows (:func:`moreau_jean_rows`) added after the
+        rows of each case of ``moreau_cases``; empty: none.
+    moreau_cases : sequence of str, optional
+        The cases that get them (default: those of :data:`MOREAU_WINDOW`).
 
     Returns
     -------
@@ -392,4 +424,96 @@ def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
             rows.append(_row(case.name, method, label, options, seconds,
                              compare_planar(result, truth), result, truth,
                              "planar-reference", PLANAR_TRUTH_RTOL))
+        if moreau and case.name in (MOREAU_WINDOW if moreau_cases is None
+                                    else moreau_cases):
+            rows += moreau_jean_rows(case, moreau, cache=cache)
     return pd.DataFrame(rows)
+
+
+# --------------------------------------------------------------------------- Moreau-Jean
+def moreau_steps(quick: bool = False) -> tuple[float, ...]:
+    """Steps h [s] of the Moreau-Jean rows (fewer for ``--quick``)."""
+    return QUICK_MOREAU_STEPS if quick else MOREAU_STEPS
+
+
+def moreau_case_names(quick: bool = False) -> tuple[str, ...]:
+    """The coupled cases that get Moreau-Jean rows (fewer for ``--quick``)."""
+    return QUICK_MOREAU_CASES if quick else tuple(MOREAU_WINDOW)
+
+
+def _window(motion: Motion, end: float) -> Motion:
+    """``motion`` up to ``end`` [s] (its samples at or before it)."""
+    keep = np.asarray(motion.t) <= end + 1e-12
+    return Motion(np.asarray(motion.t)[keep], np.asarray(motion.horizontal)[keep],
+                  motion.vertical_or_zero[keep])
+
+
+def compare_moreau(result, truth) -> dict[str, Any]:
+    """Errors of a Moreau-Jean run against a planar truth: max |theta| and peak slip (the
+    columns of :func:`compare_planar`); the event error is the overturn time's relative
+    error when either overturns, NaN otherwise (a time stepper has no event times)."""
+    either = result.overturned or truth.overturned
+    return {
+        "error max_theta [-]": _relative(result.max_abs_theta, truth.max_abs_theta),
+        "error max_theta [rad]": abs(result.max_abs_theta - truth.max_abs_theta),
+        "error events [-]": (_relative(result.t_overturn, truth.t_overturn) if either
+                             else math.nan),
+        "error peak slip [-]": _relative(result.peak_slip, truth.peak_slip),
+        "error peak slip [m]": abs(result.peak_slip - truth.peak_slip),
+        "impacts": math.nan, "impacts truth": int(len(truth.impact_times)),
+        "events": math.nan, "events truth": math.nan,
+        "same impacts": math.nan, "same events": math.nan,
+        "same verdict": bool(result.overturned == truth.overturned),
+    }
+
+
+def moreau_jean_rows(case: PlanarCase, steps: Sequence[float] = MOREAU_STEPS,
+                     window: float | None = None,
+                     cache: dict | None = None) -> list[dict[str, Any]]:
+    """Rows of the Moreau-Jean check on ``case`` (module docstring), one per step h.
+
+    Parameters
+    ----------
+    case : PlanarCase
+        A coupled case with a motion.
+    steps : sequence of float
+        Steps h [s].
+    window : float, optional
+        Run the first ``window`` seconds [s] (default :data:`MOREAU_WINDOW` of the case,
+        else the whole motion).
+    cache : dict, optional
+        Memo of the truth, by (case name, "moreau truth").
+
+    Returns
+    -------
+    list of dict
+        The columns of :func:`planar_work_precision` (setting ``h=...``, rtol NaN, steps
+        the number of steps, time [s] one run's wall time, truth
+        ``"planar-reference cor=housner"``).
+    """
+    from shaketable.solvers.planar_moreau import simulate_moreau_jean
+
+    if case.motion is None:
+        raise ValueError(f"case {case.name!r}: the Moreau-Jean rows need a motion")
+    end = MOREAU_WINDOW.get(case.name) if window is None else window
+    motion = case.motion if end is None else _window(case.motion, float(end))
+    key = (case.name, "moreau truth")
+    truth = None if cache is None else cache.get(key)
+    if truth is None:
+        truth = run_planar("planar-reference", case.block, motion, cor="housner",
+                           friction=case.friction, theta0=case.theta0,
+                           rtol=PLANAR_TRUTH_RTOL)
+        if cache is not None:
+            cache[key] = truth
+    state = (0.0, case.block.h, case.theta0, 0.0, 0.0, 0.0)
+    rows = []
+    for step in steps:
+        start = time.perf_counter()
+        result = simulate_moreau_jean(case.block, motion, friction=case.friction,
+                                      step=step, state=state)
+        seconds = time.perf_counter() - start
+        row = _row(case.name, MOREAU_METHOD, f"h={step:g}", {}, seconds,
+                   compare_moreau(result, truth), result, truth,
+                   "planar-reference cor=housner", PLANAR_TRUTH_RTOL)
+        rows.append(row)
+    return rows

@@ -566,7 +566,13 @@ def _planar_markdown(limit: pd.DataFrame | None, coupled: pd.DataFrame | None) -
     if coupled is not None and not coupled.empty:
         lines += ["Coupled cases (rock, slide-rock, impacts): against the planar reference at "
                   "rtol 1e-13; event times are the mode changes and impacts, compared while "
-                  "their modes agree (a missing or extra event: inf).", "",
+                  "their modes agree (a missing or extra event: inf)."
+                  + (" `moreau-jean`: the independent Moreau-Jean time stepping "
+                     "(`solvers.planar_moreau`, plastic Newton law) at step h on the first "
+                     "seconds of the case (1.2 s, 3.5 s), against the planar reference with "
+                     "`cor=\"housner\"` on the same window; first order in h (no event "
+                     "times)."
+                     if (coupled["method"] == "moreau-jean").any() else ""), "",
                   markdown_table(coupled, ["case", "method", "setting", "time [s]",
                                            "error max_theta [-]", "error events [-]",
                                            "error peak slip [-]", "events", "events truth",

@@ -1,7 +1,8 @@
 """A block landing flat on both bottom corners (docs/planar.md, "Both corners on the
 table"): the two-corner contact problem decides whether it stops, slides or tips.
 
-Reference: an independent Moreau-Jean time-stepping solver written here (numpy only): the
+Reference: the independent Moreau-Jean time-stepping solver of
+:mod:`shaketable.solvers.planar_moreau` (numpy only, no modes or events): the
 midpoint scheme of Moreau and Jean with both bottom corners as unilateral contacts, the
 plastic Newton law and Coulomb friction at the velocity level, the contact problem of each
 step solved exactly by enumerating every contact's status (off, sticking, slipping either
@@ -12,8 +13,6 @@ Moreau-Jean solution tips it.
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 import pytest
 
@@ -21,6 +20,7 @@ from shaketable import Block
 from shaketable.core.constants import G
 from shaketable.core.motion import Motion
 from shaketable.core.sliding_result import Friction
+from shaketable.solvers.planar_moreau import simulate_moreau_jean
 from shaketable.solvers.planar_run import simulate_planar
 
 BLOCK = Block(height=1.0, width=0.5)
@@ -30,68 +30,12 @@ BLOCK = Block(height=1.0, width=0.5)
 STEPS = (1e-4, 5e-5, 2.5e-5)
 
 
-def _contact_step(free, active, inverse_mass, mu):
-    """The velocity after one step's contact impulses: every status combination of the
-    active contacts (0 off, 1 stick, 2 slip toward +x, 3 toward -x) solved as a linear
-    system, the first consistent one returned with the corners that push."""
-    tolerance = 1e-12 * (1.0 + np.abs(free).max())
-    for statuses in itertools.product(range(4), repeat=len(active)):
-        on = [(contact, status) for contact, status in zip(active, statuses) if status]
-        if not on:
-            if all(normal @ free >= -tolerance for _, normal, _ in active):
-                return free, ()
-            continue
-        w = np.array([vector * inverse_mass for (_, normal, tangent), _ in on
-                      for vector in (normal, tangent)]).T
-        matrix = np.zeros((w.shape[1], w.shape[1]))
-        rhs = np.zeros(w.shape[1])
-        for index, ((_, normal, tangent), status) in enumerate(on):
-            matrix[2 * index] = normal @ w
-            rhs[2 * index] = -normal @ free
-            if status == 1:
-                matrix[2 * index + 1] = tangent @ w
-                rhs[2 * index + 1] = -tangent @ free
-            else:   # P_t = -mu P_n toward +x (status 2), +mu P_n toward -x
-                matrix[2 * index + 1, 2 * index] = mu if status == 2 else -mu
-                matrix[2 * index + 1, 2 * index + 1] = 1.0
-        try:
-            impulses = np.linalg.solve(matrix, rhs)
-        except np.linalg.LinAlgError:
-            continue
-        velocity = free + w @ impulses
-        consistent = all(normal @ velocity >= -tolerance for _, normal, _ in active)
-        for index, ((_, _, tangent), status) in enumerate(on):
-            normal_impulse, tangent_impulse = impulses[2 * index], impulses[2 * index + 1]
-            slip = tangent @ velocity
-            consistent &= normal_impulse >= -tolerance and (
-                abs(tangent_impulse) <= mu * normal_impulse + tolerance if status == 1
-                else (slip >= -tolerance if status == 2 else slip <= tolerance))
-        if consistent:
-            return velocity, tuple(side for (side, _, _), _ in on)
-    raise AssertionError("no consistent contact status")
-
-
 def moreau_jean(state, mu, step, duration):
     """(theta at each step, the corners that push at each step) from ``state`` (x, y,
     theta and their rates) on a table at rest."""
-    b, h = BLOCK.width / 2, BLOCK.height / 2
-    inverse_mass = np.array([1.0, 1.0, 3.0 / (b * b + h * h)])
-    q, v = np.array(state[:3], float), np.array(state[3:], float)
-    thetas, pushing = [q[2]], []
-    for _ in range(int(round(duration / step))):
-        middle = q + 0.5 * step * v
-        cosine, sine = np.cos(middle[2]), np.sin(middle[2])
-        active = []
-        for side in (1.0, -1.0):
-            r_x, r_y = -side * b * cosine + h * sine, -side * b * sine - h * cosine
-            if middle[1] + r_y <= 0.0:   # the corner's gap at the midpoint
-                active.append((side, np.array([0.0, 1.0, r_x]), np.array([1.0, 0.0, -r_y])))
-        free = v + step * np.array([0.0, -G, 0.0])
-        v, touching = _contact_step(free, active, inverse_mass, mu) if active else (free, ())
-        q = middle + 0.5 * step * v
-        thetas.append(q[2])
-        pushing.append(touching)
-    return np.array(thetas), pushing
+    result = simulate_moreau_jean(BLOCK, friction=Friction(mu), step=step,
+                                  duration=duration, state=state)
+    return result.theta, list(result.pushing)
 
 
 def _landing_motion(x_speed, lift):
