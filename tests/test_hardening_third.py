@@ -504,6 +504,31 @@ def test_the_rate_interval_is_the_range_over_the_fits_likelihood_region():
     assert "interval" in result.summary() and result.confidence == 0.95
 
 
+def test_the_region_search_stays_finite_from_a_point_that_is_not_the_fits_best():
+    # the assessment evaluates lambda with the fit's median moved to an end of its interval
+    # (beta kept): from there the likelihood region is not centred, and its boundary
+    # search along a steep direction used to overflow exp() (OverflowError) instead of
+    # stopping; every boundary point must be finite and the interval must hold the rate
+    from dataclasses import replace
+
+    import numpy as np
+
+    from shaketable.sweeps.fragility import fragility_fit, region_boundary
+    from shaketable.sweeps.risk import overturning_rate
+
+    levels = np.repeat([0.3, 0.6, 0.9, 1.2], 4)          # 4 records x 4 levels, few data
+    overturned = np.array([False] * 9 + [True] * 7)
+    fit = fragility_fit(levels, overturned, measure="pgv [m/s]")
+    hazard = _hazard()
+    for median in fit.median_interval:
+        moved = replace(fit, median=median)
+        points = region_boundary(moved, 96)
+        assert all(np.isfinite(m) and np.isfinite(b) and m > 0 and b > 0 for m, b in points)
+        result = overturning_rate(moved, hazard)
+        low, high = result.rate_interval
+        assert np.isfinite(low) and np.isfinite(high) and low <= result.rate <= high
+
+
 def _risk_sweep(tmp_path, levels, runs):
     folder = tmp_path / "sweep"
     (folder / "parts").mkdir(parents=True)

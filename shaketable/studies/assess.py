@@ -366,7 +366,7 @@ def _fragility_and_risk(spec: Assessment, runs: pd.DataFrame) -> tuple[dict, dic
             result = overturning_rate(fit, spec.criteria.hazard, years=spec.criteria.years)
             # the fit's uncertainty: lambda at the ends of the median's interval (beta kept)
             ends = [overturning_rate(replace(fit, median=median), spec.criteria.hazard,
-                                     years=spec.criteria.years).rate
+                                     years=spec.criteria.years, interval=False).rate
                     for median in fit.median_interval if math.isfinite(median)]
             risk[case] = {"mu [-]": mu, "lambda [1/yr]": result.rate,
                           "lambda upper [1/yr]": result.upper,

@@ -341,10 +341,14 @@ def region_boundary(fit: FragilityFit, directions: int):
             return best - _log_likelihood(mu + radius * du, math.exp(log_beta + radius * db),
                                           log_im, runs, failures) - limit
 
-        far = 1.0
-        while drop(far) < 0.0 and far < 1e3:
-            far *= 2.0
-        radius = brentq(drop, 0.0, far, xtol=1e-8)
+        # the search stops where the median or beta would pass a factor e^50 (exp would
+        # overflow long before 2^10 on a steep direction): a region still open there is
+        # bounded at that point, far beyond anything the data can say
+        reach = min(1e3, 50.0 / max(abs(du), abs(db)))
+        far = min(1.0, reach)
+        while drop(far) < 0.0 and far < reach:
+            far = min(2.0 * far, reach)
+        radius = brentq(drop, 0.0, far, xtol=1e-8) if drop(far) >= 0.0 else far
         points.append((math.exp(mu + radius * du), math.exp(log_beta + radius * db)))
     return points
 
