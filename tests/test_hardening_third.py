@@ -705,3 +705,13 @@ def test_the_share_of_lambda_outside_the_levels_run_is_measured():
     assert share_outside(_fit(), hazard, 0.05, 5.0) == pytest.approx(0.0, abs=1e-12)
     assert share_outside(_fit(), hazard, 10.0, 20.0) == pytest.approx(1.0, abs=1e-12)
     assert 0.0 < share_outside(_fit(), hazard, 0.05, 0.5) < 1.0
+
+
+@pytest.mark.parametrize("bad, named", [(["--cor", "2"], "--cor"),
+                                        (["--cor", "0.9", "--friction", "-1"], "--friction"),
+                                        (["--cor", "0.9", "--friction", "0.3,0.5"], "--friction")])
+def test_simulate_refuses_bad_input_before_it_creates_the_output_folder(tmp_path, bad, named):
+    status, _, err = run_cli(["simulate", "--block", "30x6in", "--theta0", "0.5alpha",
+                              "--duration", "1s", *bad, "--out", "o"], tmp_path)
+    assert status == 2 and named in err, err
+    assert not (tmp_path / "o").exists()

@@ -68,6 +68,11 @@ def _simulate(args) -> int:
     motion, scale_note = scaled_record(motion, args)
     motion = _on_floor(args, motion)
     theta0 = resolve_angle(args.theta0, block)
+    friction = _friction(args.friction)      # every input checked before the output folder
+    if not isinstance(args.cor, str):
+        from shaketable.core.validation import in_range
+
+        in_range("--cor", args.cor, 0.0, 1.0)
     out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
     notice_first_compile(args.quiet, which=("planar",) if args.friction is not None else
                          ("engine", "batch") if args.ensemble else ("engine",))
@@ -78,7 +83,6 @@ def _simulate(args) -> int:
         if scale_note:
             print(scale_note)
         return status
-    friction = _friction(args.friction)
     if friction is not None and args.ensemble:   # the planar model's ensemble
         from shaketable.commands.friction_ensemble import friction_ensemble
 

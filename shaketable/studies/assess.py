@@ -323,7 +323,7 @@ def _free_statistics(spec: Assessment, runs: pd.DataFrame) -> pd.DataFrame:
             low, high = wilson_interval(over, n)
             standing = cells[~cells["overturned"].astype(bool)]  # a fallen block has no excursion
             excursion = _stats(standing["peak corner excursion [m]"])
-            slip = _stats(standing["peak slip [m]"])
+            slip = _stats(standing["peak base slip [m]"])   # the slide, not the rocking
             verdicts = cells["verdict"].value_counts()
             rows.append({
                 "level": k, "level name": name, "ground pga [g]": spec.demand.levels[k] / G,

@@ -70,7 +70,8 @@ class ModeMap:
         One row per (PGA, B/H, mu): ``pga [g]``, ``B/H [-]``, ``mu [-]`` (mu_s = mu_d),
         ``verdict`` (planar model), ``rule`` (Section 2.1: ``"slide"`` if mu < B/H else
         ``"rock"``), ``overturned``, ``rocking model overturned`` (the report's model on a
-        base that cannot slide), ``max theta/alpha [-]``, ``peak slip [m]``, ``peak corner
+        base that cannot slide), ``max theta/alpha [-]``, ``peak slip [m]`` (the base midpoint's,
+        rocking included), ``peak base slip [m]`` (the slide alone), ``peak corner
         excursion [m]`` and the seconds in each mode.
     record : str
         The record's name.
@@ -165,6 +166,7 @@ def mode_map(motion: Motion | None = None, *, pga_levels: Sequence[float | None]
                     "rocking model overturned": rocking.overturned,
                     "max theta/alpha [-]": result.max_theta_ratio,
                     "peak slip [m]": result.peak_slip,
+                    "peak base slip [m]": result.peak_base_slip,
                     "peak corner excursion [m]": result.peak_excursion,
                     **{f"time {name} [s]": seconds
                        for name, seconds in result.time_in_mode.items()},
