@@ -80,6 +80,9 @@ def test_friction_with_ensemble_runs_the_planar_model(tmp_path, capsys):
     printed = capsys.readouterr().out
     assert printed.startswith("2 x 0.5 m block, COR 0.9, μs 0.3, μd 0.3, 3 members (planar "
                               "model): P(overturn) = ")
+    # what the members differ by is said with the answer (here 1 %: no chaos-probe note)
+    assert ("  members differ by a relative spread of: amplitude 0.01, cor 0.01, size 0.01, "
+            "start 0.01\n") in printed
     members = pd.read_csv(out / "ensemble.csv")
     # member 0 is the nominal run: the plain planar run of the same inputs, bit for bit
     motion = records.load("el-centro-chopra")

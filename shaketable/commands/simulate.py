@@ -174,6 +174,9 @@ def _ensemble(args, block, motion, out) -> int:
     plots.save(result.plot().figure, out / f"ensemble.{args.format}")
     print(f"{block.describe()} block, COR {args.cor}, {args.ensemble} members: "
           f"{result.describe()}")
+    from shaketable.commands.friction_ensemble import perturbation_line
+
+    print(perturbation_line(perturbation))
     print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
           f"{out / ('ensemble.' + args.format)}")
     from shaketable.commands.checks import report_stopped_rows
