@@ -181,6 +181,9 @@ def _score(args) -> int:
                   f"{values['log_loss']:.3f}, Brier {values['brier']:.3f}")
         if result["unmatched"]:
             print(f"{result['unmatched']} prediction rows have no outcome in the folder")
+        print("(on tests the calibration was fitted to, these are in-sample scores; the fair "
+              "figure for them is the k-fold cross-validated accuracy `validate calibrate` "
+              "prints)")
         print("reliability (predicted P in bins against the measured fraction):")
         print(result["reliability"].to_string(index=False, float_format=lambda x: f"{x:.3f}"))
     if args.json:
