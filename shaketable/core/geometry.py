@@ -156,8 +156,11 @@ class Block:
         unit, height_unit = unit.lower(), height_unit.lower()
         label = (f"{match['height']} x {match['width']} {unit}" if height_unit == unit
                  else f"{match['height']} {height_unit} x {match['width']} {unit}")
-        return cls(float(match["height"]) * length_factor(height_unit),
-                   float(match["width"]) * length_factor(unit), rods, label=label)
+        try:
+            return cls(float(match["height"]) * length_factor(height_unit),
+                       float(match["width"]) * length_factor(unit), rods, label=label)
+        except ValueError as error:   # a zero size: say which text gave it
+            raise ValueError(f"block size {text!r}: {error}") from None
 
     @classmethod
     def from_inches(cls, height: float, width: float, rods=None) -> "Block":
