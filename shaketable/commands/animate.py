@@ -118,8 +118,8 @@ def _wrote(written) -> None:
     if written.note:
         print(f"note: {written.note}")
     print(f"wrote {written.path} ({written.n_frames} frames of {written.size[0]} x "
-          f"{written.size[1]} pixels, {written.fps:g} fps, {written.t_first:g}-"
-          f"{written.t_last:g} s at speed {written.speed:g})")
+          f"{written.size[1]} pixels, {written.fps:g} fps, {round(written.t_first, 2):g}-"
+          f"{round(written.t_last, 2):g} s at speed {written.speed:g})")
 
 
 def register(commands) -> None:
