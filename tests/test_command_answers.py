@@ -1,6 +1,6 @@
 """Every command leads with the engineer's answer, in the user's own units: verdict, max
-theta/alpha, overturn time, peak slip, corner excursion (clearance) and when the block came
-to rest; time spent in each mode is a labelled detail.
+θ/α, overturn time, peak slip, corner excursion (clearance) and when the block came
+to rest; time spent in each mode comes last.
 """
 
 from __future__ import annotations
@@ -43,7 +43,8 @@ def test_simulate_friction_leads_with_the_answer_in_metres(tmp_path, capsys):
     # the rocking engine (the report's model, another solver) gives the rest time
     rest = json.loads((tmp_path / "r" / "summary.json").read_text())["t_rest [s]"]
     assert planar[0] == "2 x 0.5 m block, COR 0.9: rocked"
-    assert planar[1] == "  max theta/alpha 0.5 at t = 0.00 s; did not overturn"
+    # the console's one notation, θ/α; the peak is the release itself
+    assert planar[1] == "  max θ/α 0.5 at the release (t = 0.00 s); did not overturn"
     # mu 1 > B/H: the corner it rocks on never slides (the midpoint moves with the rocking)
     assert planar[2] == "  peak slip 0: the base never slid"
     # the far top corner at the release: B (1 - cos theta0) + H sin theta0 from rest
@@ -51,10 +52,24 @@ def test_simulate_friction_leads_with_the_answer_in_metres(tmp_path, capsys):
     assert planar[3] == (f"  corner excursion (the clearance it needs) "
                          f"{excursion * 1000:.3g} mm")
     assert planar[4] == f"  came to rest at t = {rest:.2f} s"
-    assert planar[5].startswith("  time in each mode (details): rest ")
+    assert planar[5].startswith("  time in each mode: rest ")
     assert " in" not in "\n".join(planar[:6]).replace(" in each", "")
-    assert rocking[1:3] == ["  max theta/alpha 0.5 at t = 0.00 s; did not overturn",
+    assert rocking[1:3] == ["  max θ/α 0.5 at the release (t = 0.00 s); did not overturn",
                             f"  came to rest at t = {rest:.2f} s"]
+
+
+def test_a_block_that_only_slid_did_not_rock():
+    # a squat 0.5 m high, 2 m wide block (B/H = 4) on mu 0.1 under 2 Hz 0.3 g: Section 2.1's
+    # rule (it slides when mu < B/H) says it slides and cannot rock
+    import shaketable as st
+    from shaketable.commands.answers import planar_answer
+    from shaketable.ground import generators
+
+    block = Block.parse("0.5x2m")
+    motion = generators.harmonic(2.0, horizontal=0.3 * st.G, duration=1.0)
+    result = st.simulate(block, motion, cor=0.9, friction=st.Friction(0.1))
+    assert result.peak_base_slip > 0.0
+    assert planar_answer(result)[0] == "max θ/α 0: did not rock; did not overturn"
 
 
 def test_sweeps_label_blocks_in_the_users_units(tmp_path):
