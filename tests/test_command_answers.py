@@ -89,3 +89,51 @@ def test_sweeps_label_blocks_in_the_users_units(tmp_path):
     spec, _ = blocks({"sizes": ["2x0.5m"]})
     table = sweeps.run_sweep(spec, tmp_path / "out", workers=1, progress=False).table
     assert list(table["block"]) == ["2 x 0.5 m"]
+
+
+@pytest.mark.parametrize("command", [
+    ["simulate", "--cor", "0.9", "--duration", "1s"],
+    ["animate", "--cor", "0.9", "--duration", "1s", "--out", "a.gif"],
+    ["slide", "--record", "el-centro-chopra"],
+    ["spectrum"],
+    ["modemap", "--cor", "0.9", "--record", "el-centro-chopra"],
+])
+@pytest.mark.parametrize("size, reason", [
+    ("0x6in", "the height must be positive"),
+    ("30x0in", "the width must be positive"),
+    ("-30x6in", "the height and the width must be positive"),
+])
+def test_a_zero_or_negative_block_size_is_named_by_its_option(tmp_path, capsys, monkeypatch,
+                                                               command, size, reason):
+    monkeypatch.chdir(tmp_path)
+    extra = [] if "--out" in command else ["--out", "out"]
+    assert main(command[:1] + [f"--block={size}"] + command[1:] + extra) == 2
+    assert f"error: --block {size}: {reason}\n" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())    # checked before any output is made
+
+
+@pytest.mark.parametrize("command", [
+    ["simulate", "--block", "30x6in", "--duration", "1s", "--out", "out"],
+    ["animate", "--block", "30x6in", "--duration", "1s", "--out", "a.gif"],
+    ["spectrum", "--block", "30x6in", "--out", "out"],
+    ["modemap", "--block", "30x6in", "--record", "el-centro-chopra", "--out", "out"],
+])
+@pytest.mark.parametrize("cor", ["2", "-0.1"])
+def test_an_out_of_range_cor_is_named_by_its_option(tmp_path, capsys, monkeypatch, command,
+                                                    cor):
+    monkeypatch.chdir(tmp_path)
+    assert main(command + [f"--cor={cor}"]) == 2
+    err = capsys.readouterr().err
+    assert "error: --cor must be" in err and "[0" in err
+    assert not any(tmp_path.iterdir())
+
+
+def test_a_scene_names_the_block_size_its_line_and_the_cor_key(tmp_path, capsys):
+    scene = tmp_path / "s.toml"
+    scene.write_text('name = "s"\n[block]\nsize = "0x6in"\n[motion]\nkind = "free"\n'
+                     '[rocking]\ncor = 0.9\ntheta0 = "0.5 alpha"\nduration = "1 s"\n')
+    assert main(["run", str(scene), "--out", str(tmp_path / "o")]) == 2
+    assert "block.size '0x6in': the height must be positive (line 3)" in capsys.readouterr().err
+    scene.write_text(scene.read_text().replace('"0x6in"', '"30x6in"').replace("0.9", "2"))
+    assert main(["run", str(scene), "--out", str(tmp_path / "o")]) == 2
+    assert "rocking.cor must be a number in [0, 1]" in capsys.readouterr().err
