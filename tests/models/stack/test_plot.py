@@ -24,5 +24,5 @@ def test_the_docs_number_the_blocks_as_the_figure_and_the_verdict_do():
     from pathlib import Path
 
     text = (Path(__file__).parents[3] / "docs" / "stack.md").read_text(encoding="utf-8")
-    assert '"block 0 (bottom)"' in text and '"block 1\n(top)"' in text
+    assert '"block 0 (bottom)"' in text and '"block 1 (top)"' in text
     assert '"block 0 (bottom) overturned at 3.99 s"' in text
