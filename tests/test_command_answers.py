@@ -1,6 +1,6 @@
 """Every command leads with the engineer's answer, in the user's own units: verdict, max
-theta/alpha, overturn time, peak slip, corner excursion (clearance) and when the block came
-to rest; time spent in each mode is a labelled detail.
+θ/α, overturn time, peak slip, corner excursion (clearance) and when the block came
+to rest; time spent in each mode comes last.
 """
 
 from __future__ import annotations
@@ -43,7 +43,8 @@ def test_simulate_friction_leads_with_the_answer_in_metres(tmp_path, capsys):
     # the rocking engine (the report's model, another solver) gives the rest time
     rest = json.loads((tmp_path / "r" / "summary.json").read_text())["t_rest [s]"]
     assert planar[0] == "2 x 0.5 m block, COR 0.9: rocked"
-    assert planar[1] == "  max theta/alpha 0.5 at t = 0.00 s; did not overturn"
+    # the console's one notation, θ/α; the peak is the release itself
+    assert planar[1] == "  max θ/α 0.5 at the release (t = 0.00 s); did not overturn"
     # mu 1 > B/H: the corner it rocks on never slides (the midpoint moves with the rocking)
     assert planar[2] == "  peak slip 0: the base never slid"
     # the far top corner at the release: B (1 - cos theta0) + H sin theta0 from rest
@@ -51,10 +52,24 @@ def test_simulate_friction_leads_with_the_answer_in_metres(tmp_path, capsys):
     assert planar[3] == (f"  corner excursion (the clearance it needs) "
                          f"{excursion * 1000:.3g} mm")
     assert planar[4] == f"  came to rest at t = {rest:.2f} s"
-    assert planar[5].startswith("  time in each mode (details): rest ")
+    assert planar[5].startswith("  time in each mode: rest ")
     assert " in" not in "\n".join(planar[:6]).replace(" in each", "")
-    assert rocking[1:3] == ["  max theta/alpha 0.5 at t = 0.00 s; did not overturn",
+    assert rocking[1:3] == ["  max θ/α 0.5 at the release (t = 0.00 s); did not overturn",
                             f"  came to rest at t = {rest:.2f} s"]
+
+
+def test_a_block_that_only_slid_did_not_rock():
+    # a squat 0.5 m high, 2 m wide block (B/H = 4) on mu 0.1 under 2 Hz 0.3 g: Section 2.1's
+    # rule (it slides when mu < B/H) says it slides and cannot rock
+    import shaketable as st
+    from shaketable.commands.answers import planar_answer
+    from shaketable.ground import generators
+
+    block = Block.parse("0.5x2m")
+    motion = generators.harmonic(2.0, horizontal=0.3 * st.G, duration=1.0)
+    result = st.simulate(block, motion, cor=0.9, friction=st.Friction(0.1))
+    assert result.peak_base_slip > 0.0
+    assert planar_answer(result)[0] == "max θ/α 0: did not rock; did not overturn"
 
 
 def test_sweeps_label_blocks_in_the_users_units(tmp_path):
@@ -74,3 +89,51 @@ def test_sweeps_label_blocks_in_the_users_units(tmp_path):
     spec, _ = blocks({"sizes": ["2x0.5m"]})
     table = sweeps.run_sweep(spec, tmp_path / "out", workers=1, progress=False).table
     assert list(table["block"]) == ["2 x 0.5 m"]
+
+
+@pytest.mark.parametrize("command", [
+    ["simulate", "--cor", "0.9", "--duration", "1s"],
+    ["animate", "--cor", "0.9", "--duration", "1s", "--out", "a.gif"],
+    ["slide", "--record", "el-centro-chopra"],
+    ["spectrum"],
+    ["modemap", "--cor", "0.9", "--record", "el-centro-chopra"],
+])
+@pytest.mark.parametrize("size, reason", [
+    ("0x6in", "the height must be positive"),
+    ("30x0in", "the width must be positive"),
+    ("-30x6in", "the height and the width must be positive"),
+])
+def test_a_zero_or_negative_block_size_is_named_by_its_option(tmp_path, capsys, monkeypatch,
+                                                               command, size, reason):
+    monkeypatch.chdir(tmp_path)
+    extra = [] if "--out" in command else ["--out", "out"]
+    assert main(command[:1] + [f"--block={size}"] + command[1:] + extra) == 2
+    assert f"error: --block {size}: {reason}\n" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())    # checked before any output is made
+
+
+@pytest.mark.parametrize("command", [
+    ["simulate", "--block", "30x6in", "--duration", "1s", "--out", "out"],
+    ["animate", "--block", "30x6in", "--duration", "1s", "--out", "a.gif"],
+    ["spectrum", "--block", "30x6in", "--out", "out"],
+    ["modemap", "--block", "30x6in", "--record", "el-centro-chopra", "--out", "out"],
+])
+@pytest.mark.parametrize("cor", ["2", "-0.1"])
+def test_an_out_of_range_cor_is_named_by_its_option(tmp_path, capsys, monkeypatch, command,
+                                                    cor):
+    monkeypatch.chdir(tmp_path)
+    assert main(command + [f"--cor={cor}"]) == 2
+    err = capsys.readouterr().err
+    assert "error: --cor must be" in err and "[0" in err
+    assert not any(tmp_path.iterdir())
+
+
+def test_a_scene_names_the_block_size_its_line_and_the_cor_key(tmp_path, capsys):
+    scene = tmp_path / "s.toml"
+    scene.write_text('name = "s"\n[block]\nsize = "0x6in"\n[motion]\nkind = "free"\n'
+                     '[rocking]\ncor = 0.9\ntheta0 = "0.5 alpha"\nduration = "1 s"\n')
+    assert main(["run", str(scene), "--out", str(tmp_path / "o")]) == 2
+    assert "block.size '0x6in': the height must be positive (line 3)" in capsys.readouterr().err
+    scene.write_text(scene.read_text().replace('"0x6in"', '"30x6in"').replace("0.9", "2"))
+    assert main(["run", str(scene), "--out", str(tmp_path / "o")]) == 2
+    assert "rocking.cor must be a number in [0, 1]" in capsys.readouterr().err

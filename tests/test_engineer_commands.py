@@ -78,7 +78,7 @@ def test_friction_with_ensemble_runs_the_planar_model(tmp_path, capsys):
                  "0.5g", "--cor", "0.9", "--friction", "0.3", "--ensemble", "3", "--perturb",
                  "0.01", "--duration", "4s", "--out", str(out)]) == 0
     printed = capsys.readouterr().out
-    assert printed.startswith("2 x 0.5 m block, COR 0.9, μs 0.3, μd 0.3, 3 members (planar "
+    assert printed.startswith("2 x 0.5 m block, COR 0.9, mu_s 0.3, mu_d 0.3, 3 members (planar "
                               "model): P(overturn) = ")
     # what the members differ by is said with the answer (here 1 %: no chaos-probe note)
     assert ("  members differ by a relative spread of: amplitude 0.01, cor 0.01, size 0.01, "

@@ -256,7 +256,7 @@ class CalibratedEnsemble:
         """P(overturn) with its interval and the peak theta/alpha with its 5-95 % range."""
         s = self.summary
         peaks = ("every member overturns" if not s["standing members"] else
-                 f"max theta/alpha of the {s['standing members']} standing members: median "
+                 f"max θ/α of the {s['standing members']} standing members: median "
                  f"{s['median max theta/alpha [-]']:.3f}, 5-95 % "
                  f"{s['p05 max theta/alpha [-]']:.3f} to {s['p95 max theta/alpha [-]']:.3f}")
         return (f"P(overturn) = {s['P(overturn) [-]']:.3f} (Wilson 95 % {s['P low [-]']:.3f} to "

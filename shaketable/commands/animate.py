@@ -86,9 +86,8 @@ def _animate_options(args, size: tuple) -> int:
     ``--harmonic``, ``--pulse`` or ``--record`` (or free rocking), as ``simulate`` reads them."""
     from shaketable.commands.checks import report_early_stops
     from shaketable.commands.common import load_motion, notice_first_compile, scaled_record
-    from shaketable.commands.options import motion_from_options
+    from shaketable.commands.options import block_option, motion_from_options
     from shaketable.commands.simulate import resolve_angle
-    from shaketable.core.geometry import Block
     from shaketable.core.validation import in_range
     from shaketable.plots.animation import animate
     from shaketable.solvers.api import simulate
@@ -96,7 +95,7 @@ def _animate_options(args, size: tuple) -> int:
     if args.block is None or args.cor is None:
         raise ValueError("give a scene, or --block and --cor (with --harmonic, --pulse or "
                          "--record, or --theta0 and --duration for free rocking)")
-    block = Block.parse(args.block)
+    block = block_option(args.block)
     cor = in_range("--cor", args.cor, 0.0, 1.0)
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     motion, scale_note = scaled_record(motion, args)
@@ -118,8 +117,8 @@ def _wrote(written) -> None:
     if written.note:
         print(f"note: {written.note}")
     print(f"wrote {written.path} ({written.n_frames} frames of {written.size[0]} x "
-          f"{written.size[1]} pixels, {written.fps:g} fps, {written.t_first:g}-"
-          f"{written.t_last:g} s at speed {written.speed:g})")
+          f"{written.size[1]} pixels, {written.fps:g} fps, {round(written.t_first, 2):g}-"
+          f"{round(written.t_last, 2):g} s at speed {written.speed:g})")
 
 
 def register(commands) -> None:

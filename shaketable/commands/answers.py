@@ -1,10 +1,10 @@
 """The answer of a run in the user's units, first: what the commands print before details.
 
-An engineer deciding about a block reads the verdict, max theta/alpha, the overturn time,
+An engineer deciding about a block reads the verdict, max θ/α, the overturn time,
 the peak slip, the corner excursion (the clearance the block needs) and when it came to
 rest; these lines give them, lengths in the unit the block was given in
 (:attr:`shaketable.core.geometry.Block.length_unit`, :func:`shaketable.core.units.format_length`).
-Time spent in each mode is a detail and is labelled as such.
+Time spent in each mode is a detail and comes last.
 """
 
 from __future__ import annotations
@@ -72,10 +72,14 @@ def _rest_line(rest: float, result) -> str:
 
 def _ratio_line(result) -> str:
     if result.overturned:
-        return (f"max theta/alpha: F (overturned); overturn time {_seconds(result.t_overturn)}"
+        return (f"max θ/α: F (overturned); overturn time {_seconds(result.t_overturn)}"
                 f" ({'+' if result.overturn_direction > 0 else '-'}x side)")
-    return (f"max theta/alpha {result.max_theta_ratio:.3g} at t = {_seconds(result.t_max)}; "
-            "did not overturn")
+    if not result.max_theta_ratio > 1e-9:   # below rounding: the block only slid or stood
+        return "max θ/α 0: did not rock; did not overturn"
+    when = (f"at the release (t = {_seconds(result.t_max)})"
+            if result.t_max == result.t[0] and result.theta[0] != 0.0
+            else f"at t = {_seconds(result.t_max)}")
+    return f"max θ/α {result.max_theta_ratio:.3g} {when}; did not overturn"
 
 
 def planar_answer(result) -> list[str]:
@@ -96,7 +100,7 @@ def planar_answer(result) -> list[str]:
              _rest_line(planar_rest_time(result), result)]
     in_mode = ", ".join(f"{name} {_seconds(seconds)}" for name, seconds in
                         result.time_in_mode.items() if seconds > 0)
-    lines.append(f"time in each mode (details): {in_mode}")
+    lines.append(f"time in each mode: {in_mode}")
     return lines
 
 

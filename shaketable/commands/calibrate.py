@@ -60,12 +60,12 @@ def _record_path(text: str) -> Path:
 def _calibrate(args) -> int:
     from shaketable.calibration.fit import calibrate
     from shaketable.calibration.record import read_record
+    from shaketable.commands.options import block_option
     from shaketable.core.files import prepare_output_folder, write_csv
-    from shaketable.core.geometry import Block
     from shaketable.core.units import parse
     from shaketable.plots.base import save
 
-    block = Block.parse(args.block)
+    block = block_option(args.block)
     height = None
     if args.height is not None:
         height = parse(args.height, "length", where="--height")

@@ -36,7 +36,7 @@ def friction_ensemble(args, block, motion, friction, out) -> int:
     summary["perturbation [-]"] = dataclasses.asdict(perturbation)
     write_text(out / "ensemble.json", json.dumps(summary, indent=2, default=float))
     plots.save(result.plot().figure, out / f"ensemble.{args.format}")
-    print(f"{block.describe()} block, COR {args.cor}, μs {friction.static:g}, μd "
+    print(f"{block.describe()} block, COR {args.cor}, mu_s {friction.static:g}, mu_d "
           f"{friction.dynamic:g}, {args.ensemble} members (planar model): "
           f"{result.describe()}")
     print(perturbation_line(perturbation))

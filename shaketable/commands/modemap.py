@@ -49,15 +49,15 @@ def _cropped(motion, duration):
 
 def _modemap(args) -> int:
     from shaketable.commands.common import notice_first_compile
+    from shaketable.commands.options import block_option
     from shaketable.core.constants import G
     from shaketable.core.files import prepare_output_folder, write_csv, write_text
-    from shaketable.core.geometry import Block
     from shaketable.core.units import format_length
     from shaketable.core.validation import number
     from shaketable.plots.base import save
     from shaketable.studies.mode_map import mode_map, sliding_limit
 
-    block = Block.parse(args.block)
+    block = block_option(args.block)
     if block.rods is not None:
         raise ValueError("--block: the planar model has no prestress rods")
     cor = number("--cor", args.cor)

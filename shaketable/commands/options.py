@@ -40,6 +40,25 @@ class Quantity(argparse.Action):
         setattr(namespace, self.dest, value)
 
 
+def block_option(text: str, option: str = "--block"):
+    """The :class:`~shaketable.core.geometry.Block` of ``--block HEIGHTxWIDTH<unit>``.
+
+    Raises
+    ------
+    ValueError
+        Naming the option and its text: ``--block 0x6in: the height must be positive``.
+    """
+    from shaketable.core.geometry import Block
+
+    text = str(text)
+    try:
+        return Block.parse(text)
+    except ValueError as error:
+        reason, prefix = str(error), f"block size {text!r}"
+        reason = reason[len(prefix):].lstrip(":; ") if reason.startswith(prefix) else reason
+        raise ValueError(f"{option} {text}: {reason}") from None
+
+
 def add_quantity(parser, *flags: str, kind: str, example: str, help: str, **kwargs: Any) -> None:
     """Add a dimensional option: ``help`` gains the unit rule and an example (``8s``)."""
     metavar = kwargs.pop("metavar", None) or kind.upper().replace(" ", "_")

@@ -45,8 +45,8 @@ def _run(args) -> int:
     for run in result.planar:   # block.static_friction runs the planar block
         from shaketable.commands.answers import planar_answer
 
-        print(f"{scene.name}: planar {run.block.describe()} block (μs "
-              f"{run.friction.static:g}, μd {run.friction.dynamic:g}), COR {run.cor:g}: "
+        print(f"{scene.name}: planar {run.block.describe()} block (mu_s "
+              f"{run.friction.static:g}, mu_d {run.friction.dynamic:g}), COR {run.cor:g}: "
               f"{run.verdict()}")
         for answer in planar_answer(run):
             print(f"  {answer}")
@@ -54,7 +54,7 @@ def _run(args) -> int:
         from shaketable.core.units import format_length
 
         unit = scene.block.length_unit
-        print(f"{scene.name}: sliding with μs {run.friction.static:g}, μd "
+        print(f"{scene.name}: sliding with mu_s {run.friction.static:g}, mu_d "
               f"{run.friction.dynamic:g}: peak slip {format_length(run.peak_slip, unit)}, "
               f"residual {format_length(run.residual_slip, unit, signed=True)}, "
               f"{run.slip_episodes} slip episode(s); Section 2.1: "

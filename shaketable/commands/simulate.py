@@ -14,7 +14,12 @@ from shaketable.commands.common import (
     notice_first_compile,
     scaled_record,
 )
-from shaketable.commands.options import add_motion_options, add_quantity, motion_from_options
+from shaketable.commands.options import (
+    add_motion_options,
+    add_quantity,
+    block_option,
+    motion_from_options,
+)
 from shaketable.core.geometry import Block
 from shaketable.solvers.layout import METHODS
 
@@ -63,7 +68,7 @@ def _simulate(args) -> int:
     from shaketable.solvers.api import simulate
 
     check_simulate_options(args)   # options the chosen model would ignore: refused
-    block = Block.parse(args.block)
+    block = block_option(args.block)
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     motion, scale_note = scaled_record(motion, args)
     motion = _on_floor(args, motion)

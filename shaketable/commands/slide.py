@@ -11,12 +11,14 @@ from shaketable.core.constants import INCH
 def _slide(args) -> int:
     from shaketable.commands.checks import check_slide_options
     from shaketable.core.files import prepare_output_folder, write_csv, write_text
-    from shaketable.core.geometry import Block
     from shaketable.core.sliding_result import Friction
     from shaketable.plots.base import save
     from shaketable.solvers.sliding import peak_slips, slide
 
     check_slide_options(args)   # options the chosen mode would ignore: refused
+    from shaketable.commands.options import block_option
+
+    block = block_option(args.block) if args.block else None   # before the output folder
     out = prepare_output_folder(args.out)
     if args.table_4_4:
         from shaketable.studies.sliding import table_4_4, table_4_4_markdown
@@ -41,7 +43,6 @@ def _slide(args) -> int:
         return 0
     static = args.static_friction
     dynamic = args.dynamic_friction if args.dynamic_friction is not None else static
-    block = Block.parse(args.block) if args.block else None
     result = slide(motion, Friction(static, dynamic), block=block)
     write_csv(out / "history.csv", result.to_frame())
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))

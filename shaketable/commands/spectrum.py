@@ -15,7 +15,9 @@ def block_of(block: str | None, alpha: float | None, p: float | None) -> Block:
     if block is not None:
         if alpha is not None or p is not None:
             raise ValueError("give either --block or --alpha and --p, not both")
-        return Block.parse(block)
+        from shaketable.commands.options import block_option
+
+        return block_option(block)
     if alpha is None or p is None:
         raise ValueError("give --block HxW (e.g. 16x4ft) or both --alpha [rad] and --p [rad/s]")
     if p <= 0:
@@ -28,9 +30,12 @@ def cor_of(text: str):
     if str(text).lower() == "housner":
         return "housner"
     try:
-        return float(text)
+        value = float(text)
     except ValueError:
         raise ValueError(f"--cor {text!r}: give a number in [0, 1] or 'housner'") from None
+    if not 0.0 <= value <= 1.0:   # checked here, before the output folder is made
+        raise ValueError(f"--cor must be a number in [0, 1] or 'housner', got {text}")
+    return value
 
 
 #: The parameters of the spectrum functions and the options that give them.
@@ -53,6 +58,7 @@ def _spectrum(args) -> int:
         block = block_of(args.block, args.alpha, args.p)
     except ValueError as error:
         raise with_option_names(error, OPTIONS) from None
+    cor_of(args.cor)
     out = prepare_output_folder(args.out)
     notice_first_compile(args.quiet, which=("batch",))
     start = time.perf_counter()

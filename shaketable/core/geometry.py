@@ -143,6 +143,8 @@ class Block:
         The report writes blocks as height x width ("30 in. x 6 in.").
         A unit is required.
         """
+        if str(text).lstrip().startswith("-"):
+            raise ValueError(f"block size {text!r}: the height and the width must be positive")
         match = _SIZE.match(str(text))
         if not match:
             raise ValueError(
@@ -156,11 +158,12 @@ class Block:
         unit, height_unit = unit.lower(), height_unit.lower()
         label = (f"{match['height']} x {match['width']} {unit}" if height_unit == unit
                  else f"{match['height']} {height_unit} x {match['width']} {unit}")
-        try:
-            return cls(float(match["height"]) * length_factor(height_unit),
-                       float(match["width"]) * length_factor(unit), rods, label=label)
-        except ValueError as error:   # a zero size: say which text gave it
-            raise ValueError(f"block size {text!r}: {error}") from None
+        height, width = float(match["height"]), float(match["width"])
+        for name, value in (("height", height), ("width", width)):
+            if not value > 0:   # a zero size: say which text gave it
+                raise ValueError(f"block size {text!r}: the {name} must be positive")
+        return cls(height * length_factor(height_unit), width * length_factor(unit), rods,
+                   label=label)
 
     @classmethod
     def from_inches(cls, height: float, width: float, rods=None) -> "Block":

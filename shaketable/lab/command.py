@@ -36,6 +36,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.signal
+from numpy.typing import ArrayLike
 
 from shaketable.core.motion import Motion
 from shaketable.core.motion import motion_argument as _motion
@@ -155,6 +156,35 @@ def _butterworth_highpassed(acceleration: np.ndarray, dt: float, corner: float,
     pad = int(math.ceil(1.5 * order / (corner * dt)))
     padded = np.concatenate([np.zeros(pad), acceleration, np.zeros(pad)])
     return scipy.signal.sosfiltfilt(sos, padded, padtype=None)[pad:pad + acceleration.size]
+
+
+def zero_phase_highpass(values: ArrayLike, dt: float, corner: float,
+                        order: int = 4) -> np.ndarray:
+    """Zero-phase Butterworth high-pass of a sampled history (any quantity).
+
+    Parameters
+    ----------
+    values : array_like
+        Samples every ``dt``, treated as zero before and after.
+    dt : float
+        Sample interval [s], positive.
+    corner : float
+        Corner frequency [Hz], positive and below the Nyquist frequency.
+    order : int, optional
+        Order of the filter [-], 1 to 8, run forward and backward.
+
+    Returns
+    -------
+    numpy.ndarray
+        The filtered samples, same length, no phase shift.
+    """
+    dt = _positive("dt", dt, " [s]")
+    corner = _positive("corner", corner, " [Hz]")
+    if corner >= 0.5 / dt:
+        raise ValueError(f"corner ({corner!r} Hz) must be below the Nyquist frequency "
+                         f"{0.5 / dt:g} Hz")
+    order = _integer("order", order, 1, 8)
+    return _butterworth_highpassed(np.asarray(values, dtype=float), dt, corner, int(order))
 
 
 def _integrated_from_rest(acceleration: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:

@@ -3,9 +3,9 @@
 For teaching: each block is drawn to scale as a rectangle rotating about its
 pivot corner (Fig. 2.7 of [1]_; theta > 0 pivots on the -x corner, see
 ``docs/conventions.md``), standing on a table that moves by the table
-displacement (:func:`shaketable.lab.command.displacement_command`: the ground
-acceleration integrated twice, high-passed and brought to rest the way the
-table's controller does, Section 3.4 of [1]_). Beside it: theta/alpha with the
+displacement (:func:`table_displacement`: the ground acceleration integrated
+twice, with its mean velocity removed so that the table shakes about where it
+started instead of drifting, then high-passed). Beside it: theta/alpha with the
 +-1 lines of the stable region and a moving cursor, and the horizontal ground
 acceleration.
 
@@ -149,18 +149,43 @@ def table_displacement(motion: Motion | None, times: ArrayLike, *,
                        highpass: float | None = 0.1) -> np.ndarray:
     """Horizontal table displacement at ``times`` [m] for a table motion [m/s^2].
 
-    The displacement command of :func:`shaketable.lab.command.displacement_command`
-    (zero-phase high-pass at ``highpass`` Hz, exact double integration, end at
-    rest), linearly interpolated; held at its last value after the motion
-    ends. ``None`` (free rocking) or a table at rest gives zeros.
+    The displacement a shaking table has while it reproduces the acceleration:
+
+    1. exact double integration of the (piecewise-linear) acceleration from
+       rest at the first sample
+       (:func:`shaketable.lab.command.displacement_command` with neither
+       filter nor baseline);
+    2. baseline correction for a zero mean velocity: the straight line
+       ``(d(T) - d(0)) (t - t0) / (T - t0)`` is subtracted, so that the table
+       ends where it started. Integrated from rest, a sine acceleration
+       ``A sin(w t)`` has the mean velocity ``A / w`` and its displacement
+       drifts by ``A t / w``; with the correction it is the closed form
+       ``-A / w^2 sin(w t)`` over whole cycles (a table shaking about its
+       centre), and the abrupt start of the sine moves the table no more
+       than that;
+    3. zero-phase Butterworth high-pass of the displacement at ``highpass``
+       Hz (:func:`shaketable.lab.command.zero_phase_highpass`, ``None``
+       skips it), which removes slower drifts of a record beyond a constant
+       velocity.
+
+    Linearly interpolated at ``times``; held at its last value after the motion
+    ends. ``None`` (free rocking) or a table at rest gives zeros. The change in
+    acceleration that this correction implies is drawn only, never simulated:
+    the block is simulated on ``motion`` itself.
     """
     times = np.asarray(times, dtype=float)
     if motion is None or not np.any(motion.horizontal):
         return np.zeros_like(times)
-    from shaketable.lab.command import displacement_command
+    from shaketable.lab.command import displacement_command, zero_phase_highpass
 
-    command = displacement_command(motion, highpass=highpass)
-    return np.interp(times, command.t, command.horizontal_displacement)
+    command = displacement_command(motion, highpass=None, baseline=False)
+    t = command.t
+    displacement = command.horizontal_displacement
+    displacement = displacement - displacement[0] - (displacement[-1] - displacement[0]) * (
+        (t - t[0]) / (t[-1] - t[0]))
+    if highpass is not None:
+        displacement = zero_phase_highpass(displacement, float(t[1] - t[0]), highpass)
+    return np.interp(times, t, displacement)
 
 
 def block_outline(block: Block, theta: float, base_x: float = 0.0) -> np.ndarray:
@@ -511,7 +536,8 @@ def animate(result: RockingResult | Sequence[RockingResult], block: Block | None
         first block was written in (``Block.label``), else metres.
     highpass : float or None
         Corner of the table's displacement high-pass [Hz]
-        (:func:`shaketable.lab.command.displacement_command`).
+        (:func:`table_displacement`, which also removes the drift of the
+        integrated acceleration).
     title : str, optional
     max_frames : int
         Refuse to write more frames than this.

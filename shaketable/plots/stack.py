@@ -50,8 +50,7 @@ def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
         peak = float(np.max(np.abs(result.theta[:, i]), initial=0.0))
         limit = max(1.3 * block.alpha, 1.1 * peak)
         axis.set_ylim(-limit, limit)
-        where = "top" if i == n - 1 and n > 1 else ("bottom" if i == 0 else f"block {i}")
-        axis.set_ylabel(f"θ{i} [rad]\n({where})")
+        axis.set_ylabel(f"θ{i} [rad]\n{result.block_name(i)}")
         axis.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
                     borderaxespad=0.0)
     t = result.t
@@ -94,7 +93,8 @@ def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
     law = "plastic impacts" if result.impact == "plastic" else f"COR {result.cor:g}"
     lines.append(f"{describe_motion(motion, not np.any(motion.horizontal))}; {law}")
     if result.status == "overturned":
-        lines.append(f"block {result.overturned_block} overturned at {result.t_overturn:.3f} s")
+        lines.append(f"{result.block_name(result.overturned_block)} overturned at "
+                     f"{result.t_overturn:.3f} s")
     else:
         lines.append(f"{result.status}; peak top-corner excursion "
                      f"{result.peak_excursion * 1000:.1f} mm")

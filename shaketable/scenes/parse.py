@@ -659,7 +659,14 @@ def _block(table, where) -> Block:
         if "size" in table:
             if "height" in table or "width" in table:
                 raise SceneError(f"{where}: [block] gives 'size' and height/width; give one")
-            return Block.parse(table["size"], rods=rods)
+            try:
+                return Block.parse(table["size"], rods=rods)
+            except ValueError as error:   # the key, for the line: block.size '0x6in': ...
+                prefix = f"block size {table['size']!r}"
+                message = str(error)
+                if message.startswith(prefix):
+                    message = f"block.size{message[len('block size'):]}"
+                raise SceneError(f"{where}: {message}") from None
         if "height" not in table or "width" not in table:
             raise SceneError(f"{where}: [block] needs size = '30x6in' or height and width")
         return Block(parse(table["height"], "length", where=f"{where}: block.height"),

@@ -252,8 +252,9 @@ class AssessmentResult:
     runs : pandas.DataFrame
         The mode map's rows (one per level, record and friction): ``level``, ``level name``,
         ``ground pga [g]``, ``record`` and the columns of
-        :class:`shaketable.studies.mode_map.ModeMap` (``pga [g]`` is the PGA where the
-        object stands).
+        :class:`shaketable.studies.mode_map.ModeMap`, its ``pga [g]`` renamed
+        ``floor pga [g]``: the PGA where the object stands (the floor's, after the
+        building; the ground's at grade).
     free : pandas.DataFrame
         Per level and friction (the object's two ends and the let-it-slide value):
         P(overturn) and its Wilson 95 % interval, excursion and slip statistics [m] over
@@ -303,6 +304,8 @@ def _mode_runs(spec: Assessment, motions: dict) -> pd.DataFrame:
     for (k, name), motion in motions.items():
         frame = mode_map(motion, pga_levels=(None,), aspect_ratios=(block.width / block.height,),
                          frictions=frictions, height=block.height, cor=spec.obj.cor).frame
+        # the map's own PGA column is the floor's (the motion the object stands on)
+        frame = frame.rename(columns={"pga [g]": "floor pga [g]"})
         frame.insert(0, "record", name)
         frame.insert(0, "ground pga [g]", spec.demand.levels[k] / G)
         frame.insert(0, "level name", spec.demand.level_names[k])

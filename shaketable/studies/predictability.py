@@ -190,7 +190,7 @@ class EnsembleResult:
             f": P(overturn) = {s['P(overturn) [-]']:.3f} [{s['P low [-]']:.3f}, "
             f"{s['P high [-]']:.3f}] (Wilson 95 %) over {s['members']} members")
         peaks = ("every member overturns (F)" if not s["standing members"] else
-                 f"max theta/alpha of the {s['standing members']} standing members: median "
+                 f"max θ/α of the {s['standing members']} standing members: median "
                  f"{s['median max theta/alpha [-]']:.3f}, 5-95 % "
                  f"{s['p05 max theta/alpha [-]']:.3f}-{s['p95 max theta/alpha [-]']:.3f}")
         return (f"{verdict}; {peaks}; predictability horizon {s['horizon [s]']:.2f} s "

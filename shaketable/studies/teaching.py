@@ -250,7 +250,7 @@ class CorSweep:
         first = "F" if self.overturned[0] else f"{self.max_theta_ratio[0]:.3f}"
         index = int(np.flatnonzero(self.cors == self.worst_cor)[0])
         worst = "F" if self.overturned[index] else f"{self.max_theta_ratio[index]:.3f}"
-        lines = [f"{self.block.describe()} block, {self.motion_name}: max theta/alpha = "
+        lines = [f"{self.block.describe()} block, {self.motion_name}: max θ/α = "
                  f"{first} at COR {self.cors[0]:g} but {worst} at COR {self.worst_cor:g}.",
                  f"Over COR {self.cors[-1]:g}-{self.cors[0]:g} the peak rises "
                  f"{int(np.sum(np.diff(self.max_theta_ratio) > 0))} times and falls "

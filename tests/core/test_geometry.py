@@ -82,7 +82,9 @@ def test_parse_is_height_by_width_and_units_agree_with_the_explicit_constructors
     ("16x4", "no unit"),
     ("16 by 4 ft", "not understood"),
     ("16x4 furlongs", "unit"),
-    ("0x4ft", "Block.height"),
+    ("0x4ft", "'0x4ft': the height must be positive"),
+    ("16x0ft", "'16x0ft': the width must be positive"),
+    ("-16x4ft", "'-16x4ft': the height and the width must be positive"),
 ])
 def test_parse_rejects_bad_sizes_naming_the_problem(text, match):
     with pytest.raises(ValueError, match=match):

@@ -64,6 +64,34 @@ def test_table_displacement_of_a_harmonic():
     np.testing.assert_array_equal(table_displacement(None, times), 0.0)
 
 
+def test_table_displacement_of_an_abrupt_harmonic_does_not_drift():
+    # a sine acceleration A sin(w t) integrated from rest has the mean velocity A / w
+    # and drifts by A t / w (2.1 m in 6 s at 2 Hz, 0.45 g); a shaking table moves by the
+    # closed form -A / w^2 sin(w t) (27.9 mm) about where it started
+    amplitude, omega = 0.45 * G, 4 * np.pi
+    motion = motions.harmonic(2.0, horizontal=amplitude, duration=6.0)
+    times = np.linspace(0.0, 6.0, 1201)
+    closed = -amplitude / omega**2 * np.sin(omega * times)
+    # without the high-pass: the closed form up to the sampling error: samples every
+    # 0.01 s, the acceleration linear between them and the displacement interpolated
+    # linearly between them, each off by up to (w dt)^2 / 8 = 0.2 % of the amplitude
+    exact = table_displacement(motion, times, highpass=None)
+    np.testing.assert_allclose(exact, closed, atol=0.005 * amplitude / omega**2)
+    # the default 0.1 Hz high-pass changes it by the filter's response at the abrupt ends
+    shown = table_displacement(motion, times)
+    np.testing.assert_allclose(shown, closed, atol=0.03 * amplitude / omega**2)
+
+
+def test_animate_prints_rounded_times(capsys):
+    from types import SimpleNamespace
+
+    from shaketable.commands.animate import _wrote
+
+    _wrote(SimpleNamespace(note=None, path="a.gif", n_frames=53, size=(640, 360), fps=12.0,
+                           t_first=0.0, t_last=4.333333333, speed=1.0))
+    assert "0-4.33 s at speed 1" in capsys.readouterr().out
+
+
 def test_animate_writes_a_gif_with_the_expected_frames_and_size(tmp_path):
     block = st.Block.from_inches(30, 6)
     result = st.simulate(block, cor=0.925, theta0=0.5 * block.alpha, duration=1.0)

@@ -6,8 +6,13 @@ model's assumptions are in ``docs/stack.md``.
 """
 
 from shaketable.models.stack.geometry import Stack
-from shaketable.models.stack.model import IMPACT_LAWS, StackTensionWarning, simulate_stack
-from shaketable.models.stack.result import StackResult, pattern_name
+from shaketable.models.stack.model import (
+    IMPACT_LAWS,
+    StackFrictionWarning,
+    StackTensionWarning,
+    simulate_stack,
+)
+from shaketable.models.stack.result import PLAUSIBLE_FRICTION, StackResult, pattern_name
 
 __all__ = ["Stack", "StackResult", "simulate_stack", "pattern_name", "IMPACT_LAWS",
-           "StackTensionWarning"]
+           "StackTensionWarning", "StackFrictionWarning", "PLAUSIBLE_FRICTION"]

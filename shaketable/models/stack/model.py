@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import math
+import os
+import sys
+import types
 import warnings
 from collections.abc import Iterable, Mapping
 from typing import Any
@@ -13,7 +16,7 @@ from shaketable.core.motion import Motion
 from shaketable.core.validation import in_range, positive
 from shaketable.models.base import ModelResult
 from shaketable.models.stack.geometry import Stack
-from shaketable.models.stack.result import StackResult
+from shaketable.models.stack.result import PLAUSIBLE_FRICTION, StackResult
 
 #: The impact laws offered.
 IMPACT_LAWS = ("plastic", "cor")
@@ -21,6 +24,26 @@ IMPACT_LAWS = ("plastic", "cor")
 
 class StackTensionWarning(UserWarning):
     """A contact of the stack carried a tensile force: the no-flight assumption failed."""
+
+
+class StackFrictionWarning(UserWarning):
+    """A contact of the stack needed more friction than
+    :data:`~shaketable.models.stack.result.PLAUSIBLE_FRICTION`: the no-slip assumption
+    failed."""
+
+
+def _user_stacklevel() -> int:
+    """The ``stacklevel`` of :func:`warnings.warn`, called from the caller of this function,
+    that points at the first frame outside the package: the user's call, however many of
+    the package's functions (``shaketable.simulate``, the model registry) lie between."""
+    package = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    frame: types.FrameType | None = sys._getframe(1)
+    level = 1
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(
+            package + os.sep):
+        frame = frame.f_back
+        level += 1
+    return level
 
 
 def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = "plastic",
@@ -100,7 +123,13 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
     if not math.isnan(result.t_tension):
         warnings.warn(f"a contact of the stack carried a tensile force from t = "
                       f"{result.t_tension:.6g} s: the model (no flight) is outside its "
-                      "assumptions there", StackTensionWarning, stacklevel=2)
+                      "assumptions there", StackTensionWarning, stacklevel=_user_stacklevel())
+    slip = result.t_friction_exceeded(PLAUSIBLE_FRICTION)
+    if not math.isnan(slip):
+        warnings.warn(f"a contact of the stack needed a friction coefficient F/N above "
+                      f"{PLAUSIBLE_FRICTION:g} from t = {slip:.6g} s: real blocks would slide "
+                      "there, the model (no slip) is outside its assumptions",
+                      StackFrictionWarning, stacklevel=_user_stacklevel())
     return result
 
 

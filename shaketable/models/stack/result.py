@@ -13,6 +13,11 @@ from shaketable.core.motion import Motion
 from shaketable.models.base import ModelResult
 from shaketable.models.stack.geometry import Stack
 
+#: The largest friction coefficient F/N a contact is taken to offer [-]: the model does not
+#: slide, and a run whose contacts need more (dry stone, steel or concrete give 0.3 to 0.8;
+#: 1.0 leaves a margin) is outside its no-slip assumption from that time on.
+PLAUSIBLE_FRICTION = 1.0
+
 
 def pattern_name(pattern) -> str:
     """A contact pattern in words (``(1, 0)`` of two blocks: ``"stack as one body (+)"``)."""
@@ -109,6 +114,15 @@ class StackResult(ModelResult):
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(normal > 0.0, tangential / normal, np.inf)
 
+    def block_name(self, i: int) -> str:
+        """How the results, the figure and ``docs/stack.md`` name block ``i``: numbered from 0
+        at the bottom, "block 0 (bottom)", "block 1 (top)", "block 1" between."""
+        if self.n_blocks > 1 and i == 0:
+            return "block 0 (bottom)"
+        if self.n_blocks > 1 and i == self.n_blocks - 1:
+            return f"block {i} (top)"
+        return f"block {i}"
+
     def t_friction_exceeded(self, mu: float) -> float:
         """First output time some interface needs more friction than ``mu`` [s] (NaN if
         never): the no-sliding assumption fails there."""
@@ -149,11 +163,13 @@ class StackResult(ModelResult):
         return float(np.abs(self.top_corner_excursion).max()) if self.t.size else 0.0
 
     def verdict(self) -> str:
-        """The run in words, as the other models' results say it: "block 0 overturned at
-        3.99 s", "rocked: max |θ| = 0.012, 0.030 rad (bottom to top)", "stayed at rest", or
+        """The run in words, as the other models' results say it: "block 0 (bottom) overturned
+        at 3.99 s" (blocks numbered from 0 at the bottom, :meth:`block_name`), "rocked:
+        max |θ| = 0.012, 0.030 rad (bottom to top)", "stayed at rest", or
         the time a block would leave its support (outside the model: the run stops there)."""
         if self.status == "overturned":
-            return f"block {self.overturned_block} overturned at {self.t_overturn:.2f} s"
+            return (f"{self.block_name(self.overturned_block)} overturned at "
+                    f"{self.t_overturn:.2f} s")
         if self.status == "airborne":
             return (f"a block would leave its support at {self.t_airborne:.2f} s (outside the "
                     "model: the run stops there)")
@@ -210,22 +226,37 @@ class StackResult(ModelResult):
                                      "energy_after": "energy_after [J]"})
 
     def summary(self) -> dict[str, Any]:
+        """The run's numbers as plain Python values (float, int, str, lists of float).
+
+        ``"no-slip assumption"`` says whether some contact needed a friction
+        coefficient above :data:`PLAUSIBLE_FRICTION` (no real contact gives more),
+        and ``"t_friction_exceeded [s]"`` is the first such time
+        (:meth:`t_friction_exceeded`); NaN if never.
+        """
         kinds = [event["kind"] for event in self.events]
         first_uplift = next((e["t"] for e in self.events if e["kind"] == "uplift"), math.nan)
-        return {"blocks": self.n_blocks, "impact law": self.impact, "status": self.status,
+        finite = np.isfinite(self.friction_demand)
+        slip = self.t_friction_exceeded(PLAUSIBLE_FRICTION)
+        return {"blocks": int(self.n_blocks), "impact law": str(self.impact),
+                "status": str(self.status),
                 "t_start [s]": float(first_uplift),
-                "t_overturn [s]": self.t_overturn, "overturned block": self.overturned_block,
-                "t_airborne [s]": self.t_airborne,
-                "impacts": kinds.count("impact"), "events": self.n_events,
+                "t_overturn [s]": float(self.t_overturn),
+                "overturned block": int(self.overturned_block),
+                "t_airborne [s]": float(self.t_airborne),
+                "impacts": kinds.count("impact"), "events": int(self.n_events),
                 # uplifts and impacts whose complementarity had not exactly one solution
                 "events not unique": sum(1 for e in self.events
                                          if e.get("solutions") not in (None, 1)),
                 "max |theta| [rad]": [float(x) for x in np.abs(self.theta).max(axis=0)],
-                "peak top-corner excursion [m]": self.peak_excursion,
-                "max F/N [-]": float(np.nanmax(np.where(np.isfinite(self.friction_demand),
-                                                        self.friction_demand, np.nan)))
-                if np.isfinite(self.friction_demand).any() else math.nan,
-                "t_tension [s]": self.t_tension}
+                "peak top-corner excursion [m]": float(self.peak_excursion),
+                "max F/N [-]": float(np.nanmax(np.where(finite, self.friction_demand, np.nan)))
+                if finite.any() else math.nan,
+                "no-slip assumption": (f"holds (F/N <= {PLAUSIBLE_FRICTION:g} throughout)"
+                                       if math.isnan(slip) else
+                                       f"fails from t = {slip:.3f} s (F/N > "
+                                       f"{PLAUSIBLE_FRICTION:g}: the blocks would slide)"),
+                "t_friction_exceeded [s]": float(slip),
+                "t_tension [s]": float(self.t_tension)}
 
     def _figure(self, **options: Any):
         from shaketable.plots.stack import stack_calcomp  # matplotlib on use

@@ -11,7 +11,12 @@ import shaketable as st
 from shaketable.core.constants import G
 from shaketable.models.base import Model
 from shaketable.models.registry import MODELS, model_for
-from shaketable.models.stack import Stack, StackTensionWarning, simulate_stack
+from shaketable.models.stack import (
+    Stack,
+    StackFrictionWarning,
+    StackTensionWarning,
+    simulate_stack,
+)
 
 
 @pytest.fixture(scope="module")
@@ -52,11 +57,52 @@ def test_a_tensile_contact_is_reported_with_a_warning():
     stack = Stack([st.Block(1.0, 0.3), st.Block(0.8, 0.2)])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        result = simulate_stack(stack, st.Motion.uniform(0.01, 3.0 * np.sin(np.linspace(0, 6, 200))))
+        result = st.simulate(stack, st.Motion.uniform(0.01, 3.0 * np.sin(np.linspace(0, 6, 200))))
     assert not math.isnan(result.t_tension)
-    assert any(issubclass(w.category, StackTensionWarning) for w in caught)
+    tension = [w for w in caught if issubclass(w.category, StackTensionWarning)]
+    # once, and pointing at this call (not at a line inside the package)
+    assert len(tension) == 1 and tension[0].filename == __file__
     k = int(np.searchsorted(result.t, result.t_tension))
     assert result.forces[k, :, 2:].min() < 0.0
+
+
+def _plain(value) -> bool:
+    if isinstance(value, list):
+        return all(type(item) is float for item in value)
+    return type(value) in (int, float, str)
+
+
+def test_the_summary_holds_plain_python_values_and_the_no_slip_check(rocking):
+    summary = rocking.summary()
+    assert all(_plain(value) for value in summary.values()), {
+        key: type(value).__name__ for key, value in summary.items() if not _plain(value)}
+    # at rest under u'' = 0.5 m/s^2 and v'' = 1 m/s^2 the stack needs F/N = 0.5 / (g + 1)
+    # (the static closed form), far below 1: the no-slip assumption holds, no warning
+    stack = Stack([st.Block(1.0, 0.3), st.Block(0.8, 0.2)])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", StackFrictionWarning)
+        still = simulate_stack(stack, st.Motion([0.0, 1.0], [0.5, 0.5], [1.0, 1.0]))
+    assert still.summary()["no-slip assumption"].startswith("holds")
+    assert math.isnan(still.summary()["t_friction_exceeded [s]"])
+
+
+def test_a_friction_demand_above_one_is_reported_once_where_the_user_called():
+    # at rest under a constant u'' = 1.5 g each interface needs F/N = 1.5 (static closed
+    # form): more than any real contact gives, from the first output time. The squat stack
+    # stays at rest: the top block alone uplifts at g b / h = 8 g, the column (centre of mass
+    # 0.14 m up, base half-width 0.5 m, masses as the areas) at about 3.5 g
+    stack = Stack([st.Block(0.2, 1.0), st.Block(0.1, 0.8)])
+    t = np.arange(0.0, 0.2, 0.01)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = st.simulate(stack, st.Motion(t, np.full_like(t, 1.5 * G)))
+    friction = [w for w in caught if issubclass(w.category, StackFrictionWarning)]
+    assert len(friction) == 1 and friction[0].filename == __file__
+    assert "above 1 from t = 0 s" in str(friction[0].message)
+    summary = result.summary()
+    assert summary["no-slip assumption"].startswith("fails from t = 0.000 s")
+    assert summary["t_friction_exceeded [s]"] == 0.0
+    assert summary["max F/N [-]"] == pytest.approx(1.5, rel=1e-9)
 
 
 def test_the_stack_model_is_registered_behind_the_interface():
@@ -80,5 +126,5 @@ def test_the_verdict_says_what_the_run_did(rocking):
     t = np.arange(0.0, 3.0, 0.01)
     fallen = simulate_stack(slender, st.Motion(t, np.full_like(t, 2.0 * G)))
     assert fallen.status == "overturned"
-    assert fallen.verdict() == (f"block {fallen.overturned_block} overturned at "
-                                f"{fallen.t_overturn:.2f} s")
+    name = ["block 0 (bottom)", "block 1 (top)"][fallen.overturned_block]
+    assert fallen.verdict() == f"{name} overturned at {fallen.t_overturn:.2f} s"
