@@ -287,6 +287,14 @@ class Run:
         chain, pattern, n = self.chain, self.pattern, self.n
         open_ = [j for j in range(n) if pattern[j] != 0]
         flat = [j for j in range(n) if pattern[j] == 0]
+        for j in open_:
+            # an interface already on the wrong side of its pivot (two landings within the
+            # event location's rounding, the later one passed by ~1e-7 rad) or leaving phi = 0
+            # the wrong way: it lands now (its events could not fire from there)
+            if pattern[j] * self.phi[j] < 0.0 or (self.phi[j] == 0.0
+                                                   and pattern[j] * self.phi_dot[j] < 0.0):
+                self.phi[j] = 0.0
+                return t, ("impact", j)
         cache: dict = {}
 
         def evaluate(time, y):

@@ -93,16 +93,20 @@ def stack_mass(result):
     return float(result.stack.m.sum())
 
 
-def test_no_interface_pivots_against_its_rotation():
-    """Three blocks (masses 1 : 0.3 : 0.3) under 0.14 g at 1.5 Hz: at 1.7345 s the base and
-    the top interface land together at the noise level. Every open interface must stay on
-    the side of its pivot (s_j phi_j >= 0), so that its landing and its overturn at
-    |phi_j| = pi/2 can fire: the reference above parts from this chaotic run after 0.39 s,
-    but no block of a column without sliding turns 157 degrees on the one below it and
-    keeps rocking."""
-    t = np.arange(0.0, 1.8 + 1e-9, 1e-3)
-    motion = st.Motion(t, np.where(t < 2 / 1.5, 0.14 * G * np.sin(2 * np.pi * 1.5 * t), 0.0))
-    result = simulate_stack(Stack([(1.0, 0.25)] * 3, masses=[1.0, 0.3, 0.3]), motion)
+@pytest.mark.parametrize("amplitude, frequency, duration, dt", [
+    (0.14, 1.5, 1.8, 1e-3),   # base and top interface close together at noise level, 1.7345 s
+    (0.20, 2.0, 1.7, 5e-3),   # the top interface's landing passed by 1.4e-7 rad, 1.6697 s
+])
+def test_no_interface_pivots_against_its_rotation(amplitude, frequency, duration, dt):
+    """Three blocks (masses 1 : 0.3 : 0.3), two sine cycles: every open interface must stay
+    on the side of its pivot (s_j phi_j >= 0), so that its landing and its overturn at
+    |phi_j| = pi/2 can fire (the reference above parts from these chaotic runs after some
+    tenths of a second, but no block of a column without sliding turns past 90 degrees on
+    the one below it and keeps rocking: before the fix one top block reached 157 degrees,
+    in the other run a block "overturned" after a top block had turned the wrong way)."""
+    t = np.arange(0.0, duration + 1e-9, dt)
+    u = np.where(t < 2 / frequency, amplitude * G * np.sin(2 * np.pi * frequency * t), 0.0)
+    result = simulate_stack(Stack([(1.0, 0.25)] * 3, masses=[1.0, 0.3, 0.3]), st.Motion(t, u))
     phi = np.diff(result.theta, axis=1, prepend=0.0)
     assert (result.patterns * phi).min() > -1e-9
     assert result.status == "overturned" or np.abs(phi).max() < 0.5 * np.pi
