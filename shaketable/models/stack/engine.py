@@ -141,7 +141,20 @@ class Run:
         most ``end``), with the state carried there along the old pattern (an error of
         order delta^3 in the newly opened interfaces, whose phi'' is of order delta there):
         the new pattern then starts with its opening acceleration strictly positive.
+
+        An open interface at ``phi = 0`` that does not separate (``s phi' <= FLOOR alpha p``:
+        left there by landings at the noise level) is closed first, its rate of rounding
+        size dropped, and chosen with the flat ones: its landing event could not fire if it
+        turned the other way, nor its overturn.
         """
+        stuck = [j for j in range(self.n) if self.pattern[j] != 0 and self.phi[j] == 0.0
+                 and self.pattern[j] * self.phi_dot[j] <= FLOOR * self.alpha_p]
+        if stuck:
+            pattern = list(self.pattern)
+            for j in stuck:
+                pattern[j] = 0
+                self.phi_dot[j] = 0.0
+            self.pattern = tuple(pattern)
         free = [j for j in range(self.n) if self.pattern[j] == 0]
         if not free:
             return time
@@ -274,6 +287,14 @@ class Run:
         chain, pattern, n = self.chain, self.pattern, self.n
         open_ = [j for j in range(n) if pattern[j] != 0]
         flat = [j for j in range(n) if pattern[j] == 0]
+        for j in open_:
+            # an interface already on the wrong side of its pivot (two landings within the
+            # event location's rounding, the later one passed by ~1e-7 rad) or leaving phi = 0
+            # the wrong way: it lands now (its events could not fire from there)
+            if pattern[j] * self.phi[j] < 0.0 or (self.phi[j] == 0.0
+                                                   and pattern[j] * self.phi_dot[j] < 0.0):
+                self.phi[j] = 0.0
+                return t, ("impact", j)
         cache: dict = {}
 
         def evaluate(time, y):
