@@ -141,7 +141,31 @@ def test_the_console_entry_point_runs_a_readme_line(tmp_path):
 
 
 @pytest.fixture(scope="module")
-def run_line(tmp_path_factory):
+def shared_table_predictability():
+    """``run table-4-2`` and ``reproduce fig-3-4 table-4-2`` both recompute Table 4.2's
+    ensembles (200 runs per cell, about 7 s of CPU each): computed once per process for the
+    same arguments (the function is deterministic: seeded members, fixed records), each
+    caller getting its own copy of the frame."""
+    import copy
+
+    from shaketable.studies import predictability
+
+    computed: dict = {}
+    original = predictability.table_predictability
+
+    def table_predictability(*args, **kwargs):
+        key = repr((args, sorted(kwargs.items())))
+        if key not in computed:
+            computed[key] = original(*args, **kwargs)
+        return copy.deepcopy(computed[key])
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(predictability, "table_predictability", table_predictability)
+        yield computed
+
+
+@pytest.fixture(scope="module")
+def run_line(tmp_path_factory, shared_table_predictability):
     """Run a README line in a fresh folder holding the outputs of its prerequisites; each
     line runs once per process (its folder, the files before it ran, and its process)."""
     done: dict = {}
