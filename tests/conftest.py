@@ -111,6 +111,15 @@ def pytest_terminal_summary(terminalreporter, config):
     for worker, (own, children) in sorted(_WORKER_CPU.items()):
         terminalreporter.write_line(f"worker {worker}: {own + children:.1f} s CPU "
                                     f"({own:.1f} s its own, {children:.1f} s in subprocesses)")
+    if count and _WORKER_CPU and resource is not None:
+        # the rest of the run's CPU: the controller itself, and its finished subprocesses
+        # beyond what the workers reported at their session's end (the engines' warm-up,
+        # each worker's exit after its report)
+        workers = sum(own + children for own, children in _WORKER_CPU.values())
+        terminalreporter.write_line(
+            f"controller: {_cpu_seconds(resource.RUSAGE_SELF):.1f} s CPU its own, "
+            f"{_cpu_seconds(resource.RUSAGE_CHILDREN) - workers:.1f} s in its subprocesses "
+            f"beyond the workers' reports")
 
 
 def pytest_addoption(parser, pluginmanager):

@@ -6,10 +6,10 @@ earlier lines of its block wrote that it reads (``risk fragility`` reads the fol
 ``sweep ... --out fragility`` line above it writes, so that line runs first there), as a
 user would type them, through the console script's function (``shaketable.cli.main``, in
 the test's process: a fresh interpreter per line cost 1.7 s of CPU each; the entry point
-itself runs a README line in a subprocess below); the Python blocks in a fresh
-interpreter: exit status 0, no traceback, files written. No test needs another to have
-run, on its worker or before it: a line another reads is run once per process (a
-module-scoped memo) and its folder copied.
+itself runs a README line in a subprocess below); the Python blocks as scripts (globals
+of their own) in the test's process: exit status 0 (no exception), no traceback, files
+written. No test needs another to have run, on its worker or before it: a line another
+reads is run once per process (a module-scoped memo) and its folder copied.
 """
 
 from __future__ import annotations
@@ -141,7 +141,31 @@ def test_the_console_entry_point_runs_a_readme_line(tmp_path):
 
 
 @pytest.fixture(scope="module")
-def run_line(tmp_path_factory):
+def shared_table_predictability():
+    """``run table-4-2`` and ``reproduce fig-3-4 table-4-2`` both recompute Table 4.2's
+    ensembles (200 runs per cell, about 7 s of CPU each): computed once per process for the
+    same arguments (the function is deterministic: seeded members, fixed records), each
+    caller getting its own copy of the frame."""
+    import copy
+
+    from shaketable.studies import predictability
+
+    computed: dict = {}
+    original = predictability.table_predictability
+
+    def table_predictability(*args, **kwargs):
+        key = repr((args, sorted(kwargs.items())))
+        if key not in computed:
+            computed[key] = original(*args, **kwargs)
+        return copy.deepcopy(computed[key])
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(predictability, "table_predictability", table_predictability)
+        yield computed
+
+
+@pytest.fixture(scope="module")
+def run_line(tmp_path_factory, shared_table_predictability):
     """Run a README line in a fresh folder holding the outputs of its prerequisites; each
     line runs once per process (its folder, the files before it ran, and its process)."""
     done: dict = {}
@@ -177,9 +201,19 @@ def test_readme_command_runs_verbatim_from_an_empty_folder(block, index, run_lin
 
 @pytest.mark.parametrize("index", range(len(PYTHON_BLOCKS)))
 def test_readme_python_block_runs(index, tmp_path):
-    done = subprocess.run([sys.executable, "-c", PYTHON_BLOCKS[index]], cwd=tmp_path,
-                          env=_environment(), capture_output=True, text=True, timeout=600)
-    assert done.returncode == 0, done.stderr
+    """Each Python block run as a script (``__main__``, globals of its own, so it must import
+    what it uses) in an empty folder, in the test's process (a fresh interpreter per block
+    cost 1.7 s of CPU in imports; the console entry point's test above starts one)."""
+    stdout = io.StringIO()
+    here = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        with contextlib.redirect_stdout(stdout):
+            exec(compile(PYTHON_BLOCKS[index], f"<README python block {index}>", "exec"),
+                 {"__name__": "__main__"})
+    finally:
+        os.chdir(here)
+        plt.close("all")
     # run as a script, a block shows something and keeps something
-    assert done.stdout.strip(), "the block prints nothing"
+    assert stdout.getvalue().strip(), "the block prints nothing"
     assert any(tmp_path.iterdir()), "the block writes nothing"

@@ -3,7 +3,8 @@
 The audit found `run` crashing on every ``[study]`` scene; this runs the command
 on each bundled name, in-process, and fails on any traceback or non-zero exit. The scenes
 the README runs as ``shaketable run NAME`` are checked the same way, on that run, by
-``tests/test_readme.py`` (each scene runs once in the suite).
+``tests/test_readme.py``, and ``spectrum-one-sine`` by ``tests/scenes/test_spectrum_scene.py``
+(each scene runs once in the suite).
 """
 
 from __future__ import annotations
@@ -11,18 +12,24 @@ from __future__ import annotations
 import pytest
 
 from shaketable.scenes.catalog import scene_names, sweep_names
+from tests.scenes.test_spectrum_scene import SCENE as SPECTRUM_SCENE
 from tests.test_bad_input import run_cli
 from tests.test_readme import README_RUN_SCENES
+
+#: Bundled scenes that another test runs with ``shaketable run NAME`` and checks as below,
+#: on that run (tests/scenes/test_spectrum_scene.py, with the published band edges).
+CHECKED_ELSEWHERE = [SPECTRUM_SCENE.stem]
 
 
 def test_the_readme_runs_bundled_scenes():
     # the scenes left out below are bundled ones, so test_readme.py checks them
     assert README_RUN_SCENES and set(README_RUN_SCENES) <= set(scene_names())
+    assert set(CHECKED_ELSEWHERE) <= set(scene_names())
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", [name for name in scene_names()
-                                  if name not in README_RUN_SCENES])
+                                  if name not in README_RUN_SCENES + CHECKED_ELSEWHERE])
 def test_run_succeeds_on_every_bundled_scene(name, tmp_path):
     status, out, err = run_cli(["run", name, "--out", tmp_path / name], cwd=tmp_path)
     assert "Traceback" not in err and "internal error" not in err, err
