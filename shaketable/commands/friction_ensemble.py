@@ -13,22 +13,11 @@ def friction_ensemble(args, block, motion, friction, out) -> int:
     ``--perturb-amplitude/-cor/-size/-start``); see
     :func:`shaketable.studies.planar_ensemble.planar_ensemble`.
     """
-    from shaketable.core.ensemble import Perturbation
     from shaketable.core.files import json_ready_dict, write_csv, write_text
     from shaketable.plots import base as plots
     from shaketable.studies.planar_ensemble import planar_ensemble
 
-    if motion is None:
-        raise ValueError("--ensemble needs a --record (free rocking from --theta0 is not chaotic)")
-    if args.ensemble < 2:
-        raise ValueError(f"--ensemble must be 2 or more members (the nominal run and its "
-                         f"perturbed copies), got {args.ensemble}")
-    spread = args.perturb
-    perturbation = Perturbation(
-        amplitude=spread if args.perturb_amplitude is None else args.perturb_amplitude,
-        cor=spread if args.perturb_cor is None else args.perturb_cor,
-        size=spread if args.perturb_size is None else args.perturb_size,
-        start=spread if args.perturb_start is None else args.perturb_start)
+    perturbation = ensemble_perturbation(args, motion)
     result = planar_ensemble(block, motion, args.cor, friction, members=args.ensemble,
                              perturbation=perturbation, seed=args.seed, duration=args.duration)
     write_csv(out / "ensemble.csv", result.to_frame())
@@ -55,3 +44,22 @@ def perturbation_line(perturbation) -> str:
         line += (" (a probe of chaos, not an uncertainty of the inputs: --perturb 0.05 "
                  "spreads them by 5 %)")
     return line
+
+
+def ensemble_perturbation(args, motion):
+    """The members' :class:`~shaketable.core.ensemble.Perturbation` from ``--perturb`` and
+    ``--perturb-amplitude/-cor/-size/-start`` (each defaulting to ``--perturb``), after
+    checking that ``--ensemble`` has a motion and at least two members."""
+    from shaketable.core.ensemble import Perturbation
+
+    if motion is None:
+        raise ValueError("--ensemble needs a --record (free rocking from --theta0 is not chaotic)")
+    if args.ensemble < 2:
+        raise ValueError(f"--ensemble must be 2 or more members (the nominal run and its "
+                         f"perturbed copies), got {args.ensemble}")
+    spread = args.perturb
+    return Perturbation(
+        amplitude=spread if args.perturb_amplitude is None else args.perturb_amplitude,
+        cor=spread if args.perturb_cor is None else args.perturb_cor,
+        size=spread if args.perturb_size is None else args.perturb_size,
+        start=spread if args.perturb_start is None else args.perturb_start)

@@ -153,20 +153,11 @@ def _friction(text: str | None):
 
 
 def _ensemble(args, block, motion, out) -> int:
+    from shaketable.commands.friction_ensemble import ensemble_perturbation, perturbation_line
     from shaketable.plots import base as plots
-    from shaketable.studies.predictability import Perturbation, ensemble
+    from shaketable.studies.predictability import ensemble
 
-    if motion is None:
-        raise ValueError("--ensemble needs a --record (free rocking from --theta0 is not chaotic)")
-    if args.ensemble < 2:
-        raise ValueError(f"--ensemble must be 2 or more members (the nominal run and its "
-                         f"perturbed copies), got {args.ensemble}")
-    spread = args.perturb
-    perturbation = Perturbation(
-        amplitude=spread if args.perturb_amplitude is None else args.perturb_amplitude,
-        cor=spread if args.perturb_cor is None else args.perturb_cor,
-        size=spread if args.perturb_size is None else args.perturb_size,
-        start=spread if args.perturb_start is None else args.perturb_start)
+    perturbation = ensemble_perturbation(args, motion)
     result = ensemble(block, motion, cor=args.cor, members=args.ensemble,
                       perturbation=perturbation, seed=args.seed, duration=args.duration,
                       method=args.method, threshold=args.horizon_threshold)
@@ -179,8 +170,6 @@ def _ensemble(args, block, motion, out) -> int:
     plots.save(result.plot().figure, out / f"ensemble.{args.format}")
     print(f"{block.describe()} block, COR {args.cor}, {args.ensemble} members: "
           f"{result.describe()}")
-    from shaketable.commands.friction_ensemble import perturbation_line
-
     print(perturbation_line(perturbation))
     print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
           f"{out / ('ensemble.' + args.format)}")
