@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
+import sys
 from pathlib import Path
 
 
@@ -42,6 +44,35 @@ def _grid(args):
         cors=tuple(cors) if cors else default.cors)
 
 
+class _Progress:
+    """Progress lines of ``validate calibrate`` on stderr: the stage, done/total, the time
+    since the command started; at most one line every few seconds per stage (and the
+    stage's last), nothing under --quiet."""
+
+    EVERY = 5.0
+
+    def __init__(self, quiet: bool) -> None:
+        import time
+
+        self.quiet = quiet
+        self.clock = time.perf_counter
+        self.start = self.clock()
+        self.last = -math.inf
+
+    def stage(self, name: str, unit: str):
+        """A ``progress(done, total)`` callback for one stage."""
+        def report(done: int, total: int) -> None:
+            now = self.clock()
+            if self.quiet or (done < total and now - self.last < self.EVERY):
+                return
+            self.last = now
+            elapsed = int(round(now - self.start))
+            print(f"validate calibrate: {name}: {done}/{total} {unit} "
+                  f"({100.0 * done / max(total, 1):.0f} %), {elapsed // 60} min "
+                  f"{elapsed % 60:02d} s elapsed", file=sys.stderr, flush=True)
+        return report
+
+
 def _calibrate(args) -> int:
     import pandas as pd
 
@@ -66,8 +97,10 @@ def _calibrate(args) -> int:
     if not args.quiet:
         print(f"{len(folder.tests)} tests, specimens {', '.join(folder.specimens)}; "
               f"{len(grid.candidates())} candidate blocks")
-    calibrations, overturned, candidates = calibrate_folder(folder, grid, threads=args.threads,
-                                                            cache=args.verdicts)
+    progress = _Progress(args.quiet)
+    calibrations, overturned, candidates = calibrate_folder(
+        folder, grid, threads=args.threads, cache=args.verdicts,
+        progress=progress.stage("simulating the candidates", "runs"))
     pgv = folder.metadata["pgv [m/s]"].to_numpy()  # type: ignore[index]
     checks: dict = {}
     held_out = []
@@ -76,7 +109,9 @@ def _calibrate(args) -> int:
         entry: dict = {}
         if args.folds:
             frame = cross_validate(overturned, outcomes, candidates, pgv, k=args.folds,
-                                   repeats=args.repeats, seed=args.seed)
+                                   repeats=args.repeats, seed=args.seed,
+                                   progress=progress.stage(f"{name} cross-validation",
+                                                           "folds"))
             entry["cross_validation"] = {
                 model: {metric: {"mean": float(part[metric].mean()),
                                  "std": float(part[metric].std(ddof=1))}
@@ -93,9 +128,12 @@ def _calibrate(args) -> int:
             # one bootstrap gives the percentile sets; an independent one checks them and
             # the profile-likelihood sets
             refits = bootstrap_refits(overturned, outcomes, candidates,
-                                      resamples=args.bootstrap, seed=args.seed)
+                                      resamples=args.bootstrap, seed=args.seed,
+                                      progress=progress.stage(f"{name} bootstrap", "refits"))
             check = bootstrap_refits(overturned, outcomes, candidates,
-                                     resamples=args.bootstrap, seed=args.seed + 1)
+                                     resamples=args.bootstrap, seed=args.seed + 1,
+                                     progress=progress.stage(f"{name} bootstrap check",
+                                                             "refits"))
             sets = bootstrap_sets(refits)
             entry["bootstrap"] = {"resamples": args.bootstrap, "sets": sets,
                                   "coverage_of_profile_sets": coverage(
@@ -159,6 +197,10 @@ def _predict(args) -> int:
         counts = frame.groupby("specimen")["predicted_overturned"].agg(["sum", "count"])
         for name, row in counts.iterrows():
             print(f"{name}: {int(row['sum'])} of {int(row['count'])} tests predicted to overturn")
+        inside = frame[frame["in_training"] == 1].groupby("specimen").size()
+        for name, count in inside.items():
+            print(f"{name}: {count} of these tests were in the calibration's training set "
+                  "(in-sample: column in_training)")
         print(f"wrote {out}")
     return 0
 
@@ -174,21 +216,25 @@ def _score(args) -> int:
     figures = prepare_output_folder(args.figures, "--figures") if args.figures else None
     if not args.quiet:
         for name, values in [*result["specimens"].items(), ("all", result["all"])]:
-            print(f"{name}: accuracy {values['accuracy']:.3f} on {values['n']} "
-                  f"(overturned: {values['true_positive']} right, {values['false_negative']} "
-                  f"missed; standing: {values['true_negative']} right, "
-                  f"{values['false_positive']} false alarms); log loss "
-                  f"{values['log_loss']:.3f}, Brier {values['brier']:.3f}")
+            print(_score_line(name, values))
         if result["unmatched"]:
             print(f"{result['unmatched']} prediction rows have no outcome in the folder")
-        print("(on tests the calibration was fitted to, these are in-sample scores; the fair "
-              "figure for them is the k-fold cross-validated accuracy `validate calibrate` "
-              "prints)")
+        for key, what in (("in_sample", "in-sample (tests the calibration was fitted on: "
+                                        "optimistic; the fair figure is the k-fold "
+                                        "cross-validated accuracy of `validate calibrate`)"),
+                          ("out_of_sample", "out-of-sample (tests the calibration never saw)")):
+            if key in result:
+                print(f"{what}:")
+                for name, values in [*result[key]["specimens"].items(),
+                                     ("all", result[key]["all"])]:
+                    print("  " + _score_line(name, values))
         print("reliability (predicted P in bins against the measured fraction):")
         print(result["reliability"].to_string(index=False, float_format=lambda x: f"{x:.3f}"))
     if args.json:
         summary = {"specimens": result["specimens"], "all": result["all"],
                    "reliability": result["reliability"].to_dict(orient="records")}
+        summary.update({key: result[key] for key in ("in_sample", "out_of_sample")
+                        if key in result})
         write_text(Path(args.json), json.dumps(json_ready_dict(summary), indent=2,
                                                default=str))
     if figures is not None:
@@ -206,6 +252,13 @@ def _score(args) -> int:
         if not args.quiet:
             print(f"wrote the figures to {figures}")
     return 0
+
+
+def _score_line(name: str, values: dict) -> str:
+    return (f"{name}: accuracy {values['accuracy']:.3f} on {values['n']} (overturned: "
+            f"{values['true_positive']} right, {values['false_negative']} missed; standing: "
+            f"{values['true_negative']} right, {values['false_positive']} false alarms); "
+            f"log loss {values['log_loss']:.3f}, Brier {values['brier']:.3f}")
 
 
 def register(commands) -> None:

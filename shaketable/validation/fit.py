@@ -111,6 +111,9 @@ class Calibration:
         The ensemble (the heaviest candidates), the best first.
     weights : ndarray
         Their weights (summing to 1).
+    tests : tuple of str
+        The ids of the tests it was calibrated on (a prediction of one of them is
+        in-sample); empty when not recorded.
     """
 
     specimen: str
@@ -121,6 +124,7 @@ class Calibration:
     intervals: dict
     members: list = field(default_factory=list)
     weights: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    tests: tuple = ()
 
     def to_dict(self) -> dict:
         """JSON-ready."""
@@ -128,7 +132,8 @@ class Calibration:
                 "log_likelihood": self.log_likelihood, "n": self.n, "accuracy": self.accuracy,
                 "intervals": self.intervals,
                 "members": [member.to_dict() for member in self.members],
-                "weights": [float(weight) for weight in self.weights]}
+                "weights": [float(weight) for weight in self.weights],
+                "tests": list(self.tests)}
 
     @classmethod
     def from_dict(cls, data: dict, where: str = "calibration") -> "Calibration":
@@ -140,7 +145,8 @@ class Calibration:
             return cls(str(data["specimen"]), member(data["best"]),
                        float(data["log_likelihood"]), int(data["n"]), float(data["accuracy"]),
                        dict(data["intervals"]), [member(item) for item in data["members"]],
-                       np.asarray(data["weights"], dtype=float))
+                       np.asarray(data["weights"], dtype=float),
+                       tuple(str(test) for test in data.get("tests", ())))
         except (KeyError, TypeError) as error:
             raise ValueError(f"{where}: not a calibration of shaketable validate ({error!r})") \
                 from None

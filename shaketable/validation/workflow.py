@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 
@@ -16,12 +17,16 @@ FORMAT = "shaketable-validation-calibration/1"
 
 
 def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
-                     threads: int | None = None, cache=None) -> tuple[dict, np.ndarray, list]:
+                     threads: int | None = None, cache=None,
+                     progress=None) -> tuple[dict, np.ndarray, list]:
     """Calibrate an equivalent block for every specimen with outcomes in ``folder``.
 
     ``cache``: an ``.npz`` file of the candidates' verdicts: read when it holds the same
     candidates, tests and amplitude factors, else computed and written there (the
     simulations are the expensive part; the fits, cross-validation and bootstrap reuse them).
+    ``progress``: called as ``progress(done, total)`` while the runs are simulated
+    (:func:`~shaketable.validation.model.verdicts`). Each calibration records the ids of
+    the tests it was fitted on (:attr:`Calibration.tests`).
 
     Returns
     -------
@@ -37,13 +42,15 @@ def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
     if not specimens:
         raise ValueError(f"{folder.path / 'metadata.csv'}: no outcome column "
                          "('<specimen>_overturned'): nothing to calibrate on")
-    overturned = _cached_verdicts(cache, candidates, folder, threads)
-    calibrations = {name: fit(overturned, folder.outcomes(name), candidates, name)
+    overturned = _cached_verdicts(cache, candidates, folder, threads, progress)
+    ids = tuple(str(test) for test in folder.tests)
+    calibrations = {name: replace(fit(overturned, folder.outcomes(name), candidates, name),
+                                  tests=ids)
                     for name in specimens}
     return calibrations, overturned, candidates
 
 
-def _cached_verdicts(cache, candidates, folder: TestFolder, threads) -> np.ndarray:
+def _cached_verdicts(cache, candidates, folder: TestFolder, threads, progress) -> np.ndarray:
     from pathlib import Path
 
     key = json.dumps({"candidates": [candidate.to_dict() for candidate in candidates],
@@ -52,7 +59,7 @@ def _cached_verdicts(cache, candidates, folder: TestFolder, threads) -> np.ndarr
         with np.load(cache) as data:
             if str(data["key"]) == key:
                 return data["overturned"]
-    overturned, _ = verdicts(candidates, folder.motions(), threads=threads)
+    overturned, _ = verdicts(candidates, folder.motions(), threads=threads, progress=progress)
     if cache is not None:
         from shaketable.core.files import atomic_write
 
@@ -106,7 +113,9 @@ def predict_folder(folder: TestFolder, calibrations: dict, *, threads: int | Non
         One row per test and specimen: ``test``, ``specimen``, ``p_overturn`` (the
         calibration's ensemble), ``predicted_overturned`` (P >= 0.5), ``best_overturned``
         (the maximum-likelihood block alone), ``fate`` of the best block ("overturns during
-        the motion", "overturns after the motion", "stands") and ``t_overturn [s]``.
+        the motion", "overturns after the motion", "stands"), ``t_overturn [s]`` and
+        ``in_training`` (1 when the calibration was fitted on that test: an in-sample
+        prediction).
     """
     import pandas as pd
 
@@ -133,7 +142,8 @@ def predict_folder(folder: TestFolder, calibrations: dict, *, threads: int | Non
             "test": folder.metadata["test"].to_numpy(),  # type: ignore[index]
             "specimen": name, "p_overturn": p, "predicted_overturned": (p >= 0.5).astype(int),
             "best_overturned": best.astype(int), "fate": fate,
-            "t_overturn [s]": best_time}))
+            "t_overturn [s]": best_time,
+            "in_training": np.isin(folder.tests, calibration.tests).astype(int)}))
     frame = pd.concat(frames, ignore_index=True)
     frame.attrs["missing"] = missing
     return frame
@@ -164,7 +174,10 @@ def score_folder(predictions, folder: TestFolder, *, pga_edges=None, ratio_edges
     Returns
     -------
     dict
-        ``specimens``: specimen -> :func:`scores`; ``all``: over both; ``reliability``,
+        ``specimens``: specimen -> :func:`scores`; ``all``: over both; ``in_sample`` and
+        ``out_of_sample``: the same over the rows whose ``in_training`` is 1 (tests the
+        calibration was fitted on) and 0 (absent when the predictions have no such column,
+        or when a part is empty); ``reliability``,
         ``fragility_pga``, ``fragility_pgv_over_pga``: frames over all specimens (PGA in g,
         PGV/PGA in s); ``joined``: the predictions with the outcome, PGA and PGV.
     """
@@ -198,6 +211,16 @@ def score_folder(predictions, folder: TestFolder, *, pga_edges=None, ratio_edges
                                            part.get("predicted_overturned"))
     result["all"] = scores(joined["p_overturn"], joined["overturned"],
                            joined.get("predicted_overturned"))
+    if "in_training" in joined.columns:
+        for key, flag in (("in_sample", 1), ("out_of_sample", 0)):
+            part = joined[joined["in_training"].astype(int) == flag]
+            if len(part):
+                result[key] = {"specimens": {
+                    name: scores(rows["p_overturn"], rows["overturned"],
+                                 rows.get("predicted_overturned"))
+                    for name, rows in part.groupby("specimen")},
+                    "all": scores(part["p_overturn"], part["overturned"],
+                                  part.get("predicted_overturned"))}
     result["unmatched"] = int(len(predictions) - len(joined))
     pga_edges = pga_edges if pga_edges is not None else np.geomspace(0.02, 6.0, 12)
     ratio_edges = ratio_edges if ratio_edges is not None else np.geomspace(0.02, 0.4, 8)
@@ -267,5 +290,6 @@ def predict_from_geometry(folder: TestFolder, geometry, *, sign: int = 1,
             "test": folder.metadata["test"].to_numpy(),  # type: ignore[index]
             "specimen": name, "p_overturn": overturned.astype(float),
             "predicted_overturned": overturned.astype(int),
-            "best_overturned": overturned.astype(int), "fate": fate, "t_overturn [s]": when}))
+            "best_overturned": overturned.astype(int), "fate": fate, "t_overturn [s]": when,
+            "in_training": 0}))
     return pd.concat(frames, ignore_index=True)
