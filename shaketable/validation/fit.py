@@ -37,8 +37,9 @@ CHI2_95 = 3.841458820694124
 #: Candidates kept in a calibration's ensemble (the heaviest).
 ENSEMBLE_SIZE = 24
 
-#: The axes of the grid whose intervals are reported.
-AXES = ("alpha_weak", "alpha_strong", "h", "cor", "sign", "sigma")
+#: The axes of the grid whose intervals are reported (``half_width``: h tan(alpha_weak), the
+#: effective contact half-width, a function of two axes).
+AXES = ("alpha_weak", "alpha_strong", "h", "half_width", "cor", "sign", "sigma")
 
 #: Grids of the link's spread sigma [-] (of ln amplitude) and floor epsilon [-].
 SIGMAS = (0.0, 0.1, 0.2, 0.3, 0.4)

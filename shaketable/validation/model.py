@@ -98,6 +98,12 @@ class EquivalentBlock:
         """Frequency parameter of the weak side [rad/s]."""
         return self.block().p_of(1.0)
 
+    @property
+    def half_width(self) -> float:
+        """The weak side's effective contact half-width h tan(alpha_weak) [m]: the distance
+        from the centroid to the pivot the block tips over first."""
+        return self.effective_half_width("weak")
+
     def effective_half_width(self, side: str = "weak") -> float:
         """Horizontal distance from the centroid to the pivot, h tan(alpha) [m]."""
         return self.h * math.tan(self.alpha_weak if side == "weak" else self.alpha_strong)

@@ -139,9 +139,21 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
                  str(tmp_path / "verdicts.npz"), "--cv-predictions",
                  str(tmp_path / "cv.csv")]) == 0
     assert (tmp_path / "verdicts.npz").is_file()
+    # progress on stderr: each stage's last line at least (done/total, elapsed)
+    err = capsys.readouterr().err
+    assert f"simulating the candidates: {3 * 16 * len(LOG_SCALES)}/{3 * 16 * len(LOG_SCALES)}" \
+        " runs (100 %)" in err
+    assert "a cross-validation: 2/2 folds (100 %)" in err and "s elapsed" in err
+    assert "b bootstrap check: 5/5 refits (100 %)" in err
     assert len(pd.read_csv(tmp_path / "cv.csv")) == 2 * amplitudes.size
     saved = json.loads(out.read_text())
     assert saved["specimens"]["a"]["best"]["block"]["alpha_weak"] == 0.1
+    assert saved["specimens"]["a"]["tests"] == [str(k) for k in range(16)]
+    # --quiet: no progress (the verdicts come from the cache)
+    assert main(["validate", "calibrate", str(data), "--out", str(tmp_path / "quiet.json"),
+                 "--alphas", "0.05,0.1,0.2", "--ratios", "1", "--cors", "0.9", "--folds", "0",
+                 "--bootstrap", "0", "--verdicts", str(tmp_path / "verdicts.npz"), "-q"]) == 0
+    assert capsys.readouterr().err == ""
     assert "cross_validation" in saved["checks"]["a"]
     assert set(saved["checks"]["a"]["bootstrap"]["sets"]) >= {"alpha_weak", "cor"}
     # predict a folder without outcome columns: one row per test and specimen
@@ -152,11 +164,21 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
     assert len(frame) == 2 * amplitudes.size
     assert set(frame["specimen"]) == {"a", "b"}
     assert np.array_equal(frame[frame["specimen"] == "a"]["best_overturned"], outcome)
+    assert (frame["in_training"] == 1).all()          # the same test ids as the calibration's
+    # a calibration that saw only the last 8 tests: the first 8 are out-of-sample
+    for name in ("a", "b"):
+        saved["specimens"][name]["tests"] = [str(k) for k in range(8, 16)]
+    out.write_text(json.dumps(saved))
+    assert main(["validate", "predict", str(folder), "--calibration", str(out), "--out",
+                 str(predictions)]) == 0
+    assert list(pd.read_csv(predictions)["in_training"]) == ([0] * 8 + [1] * 8) * 2
     capsys.readouterr()
     assert main(["validate", "score", str(predictions), str(data), "--figures",
                  str(tmp_path / "figures")]) == 0
     printed = capsys.readouterr().out
     assert "a: accuracy 1.000 on 16" in printed
+    in_sample, out_of_sample = printed.split("in-sample")[1].split("out-of-sample")
+    assert "  a: accuracy 1.000 on 8" in in_sample and "  a: accuracy 1.000 on 8" in out_of_sample
     assert (tmp_path / "figures" / "reliability.png").is_file()
     # bad input: a calibration file that is not one
     (tmp_path / "bad.json").write_text("{}")
