@@ -84,6 +84,7 @@ def _calibrate(args) -> int:
         cross_validate,
         out_of_fold,
     )
+    from shaketable.validation.fit import BAGS
     from shaketable.validation.folder import read_folder
     from shaketable.validation.workflow import (
         calibrate_folder,
@@ -91,6 +92,10 @@ def _calibrate(args) -> int:
         describe_calibration,
     )
 
+    if args.bags is None:
+        args.bags = BAGS
+    if args.bags < 0:
+        raise ValueError(f"--bags must be >= 0, got {args.bags}")
     folder = read_folder(args.folder)
     grid = _grid(args)
     out = prepare_output_file(args.out, "--out", suffixes=(".json",))
@@ -100,7 +105,8 @@ def _calibrate(args) -> int:
     progress = _Progress(args.quiet)
     calibrations, overturned, candidates = calibrate_folder(
         folder, grid, threads=args.threads, cache=args.verdicts,
-        progress=progress.stage("simulating the candidates", "runs"))
+        progress=progress.stage("simulating the candidates", "runs"), bags=args.bags,
+        seed=args.seed)
     pgv = folder.metadata["pgv [m/s]"].to_numpy()  # type: ignore[index]
     checks: dict = {}
     held_out = []
@@ -109,7 +115,7 @@ def _calibrate(args) -> int:
         entry: dict = {}
         if args.folds:
             frame = cross_validate(overturned, outcomes, candidates, pgv, k=args.folds,
-                                   repeats=args.repeats, seed=args.seed,
+                                   repeats=args.repeats, seed=args.seed, bags=args.bags,
                                    progress=progress.stage(f"{name} cross-validation",
                                                            "folds"))
             entry["cross_validation"] = {
@@ -120,7 +126,8 @@ def _calibrate(args) -> int:
             entry["cross_validation"]["folds"] = args.folds
             entry["cross_validation"]["repeats"] = args.repeats
             if args.cv_predictions:
-                p = out_of_fold(overturned, outcomes, candidates, k=args.folds, seed=args.seed)
+                p = out_of_fold(overturned, outcomes, candidates, k=args.folds, seed=args.seed,
+                                bags=args.bags)
                 held_out.append(pd.DataFrame({"test": folder.metadata["test"],  # type: ignore[index]
                                               "specimen": name, "p_overturn": p,
                                               "predicted_overturned": (p >= 0.5).astype(int)}))
@@ -163,6 +170,7 @@ def _calibrate(args) -> int:
                                                              "ratios": grid.ratios,
                                                              "heights": grid.heights,
                                                              "cors": grid.cors},
+                                                    "bags": args.bags, "seed": args.seed,
                                                     "checks": checks}))
     if not args.quiet:
         print(f"wrote {out}")
@@ -287,6 +295,11 @@ def register(commands) -> None:
                            help="cross-validation repetitions with other folds (default 5)")
     calibrate.add_argument("--bootstrap", type=int, default=200,
                            help="bootstrap refits checking the intervals (0: none; default 200)")
+    calibrate.add_argument("--bags", type=int,
+                           help="bootstrap refits of the bagged ensemble that gives the "
+                                "probabilities (default 30, shaketable.validation.fit.BAGS; "
+                                "0: the 24 most likely candidates weighted by their "
+                                "likelihood)")
     calibrate.add_argument("--seed", type=int, default=0, help="seed of folds and bootstrap")
     calibrate.add_argument("--cv-predictions", metavar="CSV",
                            help="write the out-of-fold predictions (each test predicted by the "

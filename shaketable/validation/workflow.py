@@ -7,7 +7,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from shaketable.validation.fit import Calibration, fit
+from shaketable.validation.fit import BAGS, Calibration, fit
 from shaketable.validation.folder import TestFolder
 from shaketable.validation.model import LOG_SCALES, CandidateGrid, verdicts
 from shaketable.validation.score import fragility, reliability, scores
@@ -17,16 +17,17 @@ FORMAT = "shaketable-validation-calibration/1"
 
 
 def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
-                     threads: int | None = None, cache=None,
-                     progress=None) -> tuple[dict, np.ndarray, list]:
+                     threads: int | None = None, cache=None, progress=None,
+                     bags: int = BAGS, seed: int = 0) -> tuple[dict, np.ndarray, list]:
     """Calibrate an equivalent block for every specimen with outcomes in ``folder``.
 
     ``cache``: an ``.npz`` file of the candidates' verdicts: read when it holds the same
     candidates, tests and amplitude factors, else computed and written there (the
     simulations are the expensive part; the fits, cross-validation and bootstrap reuse them).
     ``progress``: called as ``progress(done, total)`` while the runs are simulated
-    (:func:`~shaketable.validation.model.verdicts`). Each calibration records the ids of
-    the tests it was fitted on (:attr:`Calibration.tests`).
+    (:func:`~shaketable.validation.model.verdicts`). ``bags``, ``seed``: the ensemble
+    (:func:`~shaketable.validation.fit.fit`; 0 bags: the likelihood-weighted one). Each
+    calibration records the ids of the tests it was fitted on (:attr:`Calibration.tests`).
 
     Returns
     -------
@@ -44,8 +45,8 @@ def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
                          "('<specimen>_overturned'): nothing to calibrate on")
     overturned = _cached_verdicts(cache, candidates, folder, threads, progress)
     ids = tuple(str(test) for test in folder.tests)
-    calibrations = {name: replace(fit(overturned, folder.outcomes(name), candidates, name),
-                                  tests=ids)
+    calibrations = {name: replace(fit(overturned, folder.outcomes(name), candidates, name,
+                                      bags=bags, seed=seed), tests=ids)
                     for name in specimens}
     return calibrations, overturned, candidates
 

@@ -98,6 +98,14 @@ def test_fit_recovers_the_candidate_that_made_the_outcomes():
     assert calibration.accuracy == 1.0
     assert calibration.intervals["alpha_weak"][0] <= candidates[2].alpha_weak \
         <= calibration.intervals["alpha_weak"][1]
+    # bagged: every bootstrap refit picks the candidate that made the outcomes (each
+    # resample still holds tests between its neighbours' thresholds)
+    bagged = fit(overturned, outcomes, candidates, "toy", bags=10, seed=1)
+    assert bagged.best == calibration.best
+    assert [member.block for member in bagged.members] == [candidates[2]]
+    assert list(bagged.weights) == [1.0]
+    with pytest.raises(ValueError, match="bags"):
+        fit(overturned, outcomes, candidates, bags=-1)
     table = likelihood_table(overturned, outcomes)
     assert table.shape == (n_c, len(SIGMAS), 4)
     frame = cross_validate(overturned, outcomes, candidates, intensity, k=3, repeats=1)
