@@ -72,7 +72,8 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
     from shaketable.core.files import prepare_output_folder
     from shaketable.plots.base import save
     from shaketable.plots.validation import fragility_figure, reliability_figure
-    from shaketable.validation.check import cross_validate, out_of_fold, summary
+    from shaketable.validation.check import cross_validate, out_of_fold
+    from shaketable.validation.fit import BAGS
     from shaketable.validation.folder import read_folder
     from shaketable.validation.workflow import (
         calibrate_folder,
@@ -108,13 +109,12 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
                      f"{1000 * block.effective_half_width():.0f} mm), link sigma "
                      f"{calibration.best.sigma:g}; training accuracy {calibration.accuracy:.3f}.")
         outcomes = folder.outcomes(name)
-        table = summary(cross_validate(overturned, outcomes, candidates, pgv, k=SECTION_FOLDS,
-                                       repeats=SECTION_REPEATS))
-        for model in table.index:
-            rows.append(f"| {name} | {model} | {table.loc[model, ('accuracy', 'mean')]:.3f} "
-                        f"± {table.loc[model, ('accuracy', 'std')]:.3f} | "
-                        f"{table.loc[model, ('log_loss', 'mean')]:.3f} |")
-        p = out_of_fold(overturned, outcomes, candidates, k=SECTION_FOLDS)
+        frame = cross_validate(overturned, outcomes, candidates, pgv, k=SECTION_FOLDS,
+                               repeats=SECTION_REPEATS, bags=BAGS)
+        for model, part in frame.groupby("model"):
+            rows.append(f"| {name} | {model} | {part['accuracy'].mean():.3f} ± "
+                        f"{part['accuracy'].std(ddof=1):.3f} | {part['log_loss'].mean():.3f} |")
+        p = out_of_fold(overturned, outcomes, candidates, k=SECTION_FOLDS, bags=BAGS)
         held_out.append(pd.DataFrame({"test": folder.tests, "specimen": name,
                                       "p_overturn": p}))
     lines += ["", f"{SECTION_FOLDS}-fold cross-validation ({SECTION_REPEATS} repetitions; "
