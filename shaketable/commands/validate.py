@@ -130,7 +130,8 @@ def _calibrate(args) -> int:
                                 bags=args.bags)
                 held_out.append(pd.DataFrame({"test": folder.metadata["test"],  # type: ignore[index]
                                               "specimen": name, "p_overturn": p,
-                                              "predicted_overturned": (p >= 0.5).astype(int)}))
+                                              "predicted_overturned": (p >= 0.5).astype(int),
+                                              "in_training": 0}))
         if args.bootstrap:
             # one bootstrap gives the percentile sets; an independent one checks them and
             # the profile-likelihood sets
@@ -284,7 +285,7 @@ def register(commands) -> None:
     calibrate.add_argument("--alphas", help="weak-side block angles in rad, comma-separated "
                                             "(default 0.04 to 0.19)")
     calibrate.add_argument("--ratios", help="alpha_strong / alpha_weak, comma-separated "
-                                            "(default 1,2)")
+                                            "(default 1,1.5,2)")
     calibrate.add_argument("--heights", help="centroid heights in m, comma-separated "
                                              "(default 0.3)")
     calibrate.add_argument("--cors", help="CORs, comma-separated, 'housner' allowed "

@@ -137,7 +137,7 @@ class CandidateGrid:
 
     alphas: tuple[float, ...] = (0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.1, 0.11, 0.12, 0.13,
                                  0.14, 0.16, 0.19)
-    ratios: tuple[float, ...] = (1.0, 2.0)
+    ratios: tuple[float, ...] = (1.0, 1.5, 2.0)
     heights: tuple[float, ...] = (0.3,)
     cors: tuple[float | str, ...] = ("housner", 0.9, 0.8)
 
