@@ -238,3 +238,28 @@ def test_scan_based_block_scores_as_an_independent_integrator(tmp_path):
     result = score_folder(read_predictions(predictions), read_folder(SHARED_PBR))
     assert result["specimens"]["sp1"]["accuracy"] == pytest.approx(0.664, abs=0.0021)
     assert result["specimens"]["sp2"]["accuracy"] == pytest.approx(0.721, abs=0.0021)
+
+
+def test_reproduce_validation_section_runs_or_skips(tmp_path):
+    from shaketable.reproduce import reproduce
+
+    # absent folder: the section is one line saying why, and the report counts it as rerun
+    report = reproduce([], out=tmp_path / "out", progress=False,
+                       extra={"validation": {"data": tmp_path / "absent"}})
+    text = report.read_text()
+    assert f"Skipped: no folder of measured tests at {tmp_path / 'absent'}" in text
+    assert "1 section, all rerun now." in text
+    # a folder of tests with outcomes (made by a symmetric block of alpha 0.1, COR 0.9, one
+    # of the section's candidates): the coarse calibration finds it and cross-validates
+    amplitudes = np.linspace(0.04, 0.3, 20)
+    made, _ = verdicts([EquivalentBlock(0.1, 0.1, 0.3, 0.9)],
+                       read_folder(_harmonic_folder(tmp_path / "made", amplitudes)).motions(),
+                       threads=1, log_scales=(0.0,))
+    outcome = made[0, :, 0].astype(int)
+    data = _harmonic_folder(tmp_path / "data", amplitudes, outcomes=(outcome, outcome))
+    from shaketable.validation.report import reproduce_section
+
+    section = reproduce_section(tmp_path / "section", data, threads=1)
+    assert "* a, the most likely block: alpha 0.1 rad" in section
+    assert "| a | PGV threshold |" in section and "| b | calibrated |" in section
+    assert (tmp_path / "section" / "reliability.png").is_file()
