@@ -90,6 +90,7 @@ def _calibrate(args) -> int:
         calibrate_folder,
         calibration_json,
         describe_calibration,
+        format_set,
     )
 
     if args.bags is None:
@@ -158,11 +159,11 @@ def _calibrate(args) -> int:
                           f"Brier {values['brier']['mean']:.3f})")
             if "bootstrap" in entry:
                 boot = entry["bootstrap"]
-                print(f"  95 % bootstrap sets: {boot['sets']}")
-                print(f"  independent refits inside the profile sets: "
-                      f"{boot['coverage_of_profile_sets']}")
-                print(f"  independent refits inside the bootstrap sets: "
-                      f"{boot['coverage_of_bootstrap_sets']}")
+                for axis, accepted in boot["sets"].items():
+                    print(f"  95 % bootstrap set of {axis}: {format_set(accepted)} (independent "
+                          f"refits inside: {boot['coverage_of_bootstrap_sets'][axis]:.1%}; "
+                          f"inside the profile set: "
+                          f"{boot['coverage_of_profile_sets'][axis]:.1%})")
     if held_out:
         write_csv(prepare_output_file(args.cv_predictions, "--cv-predictions", (".csv",)),
                   pd.concat(held_out, ignore_index=True), index=False)
@@ -206,6 +207,10 @@ def _predict(args) -> int:
         counts = frame.groupby("specimen")["predicted_overturned"].agg(["sum", "count"])
         for name, row in counts.iterrows():
             print(f"{name}: {int(row['sum'])} of {int(row['count'])} tests predicted to overturn")
+        unknown = sorted(set(frame.loc[frame["in_training"] == -1, "specimen"]))
+        if unknown:
+            print(f"{', '.join(unknown)}: the calibration does not record the tests it was "
+                  "fitted on (in_training -1: in-sample or not is unknown)")
         inside = frame[frame["in_training"] == 1].groupby("specimen").size()
         for name, count in inside.items():
             print(f"{name}: {count} of these tests were in the calibration's training set "

@@ -116,7 +116,7 @@ def predict_folder(folder: TestFolder, calibrations: dict, *, threads: int | Non
         (the maximum-likelihood block alone), ``fate`` of the best block ("overturns during
         the motion", "overturns after the motion", "stands"), ``t_overturn [s]`` and
         ``in_training`` (1 when the calibration was fitted on that test: an in-sample
-        prediction).
+        prediction; 0 when not; -1 when the calibration file does not record its tests).
     """
     import pandas as pd
 
@@ -144,7 +144,8 @@ def predict_folder(folder: TestFolder, calibrations: dict, *, threads: int | Non
             "specimen": name, "p_overturn": p, "predicted_overturned": (p >= 0.5).astype(int),
             "best_overturned": best.astype(int), "fate": fate,
             "t_overturn [s]": best_time,
-            "in_training": np.isin(folder.tests, calibration.tests).astype(int)}))
+            "in_training": (np.isin(folder.tests, calibration.tests).astype(int)
+                            if calibration.tests else -1)}))
     frame = pd.concat(frames, ignore_index=True)
     frame.attrs["missing"] = missing
     return frame
@@ -239,13 +240,20 @@ def describe_calibration(calibration: Calibration) -> str:
     lines = [f"{calibration.specimen}: {best.block.describe()}",
              f"  link: sigma {best.sigma:g} (of ln amplitude), epsilon {best.epsilon:g}; "
              f"log likelihood {calibration.log_likelihood:.2f} on {calibration.n} tests",
-             f"  training accuracy of the ensemble {calibration.accuracy:.3f}"]
+             f"  training accuracy of the ensemble ({len(calibration.members)} members, "
+             f"in-sample) {calibration.accuracy:.3f}"]
     for axis, accepted in calibration.intervals.items():
-        lines.append(f"  95 % profile-likelihood set of {axis}: {accepted}")
+        lines.append(f"  95 % profile-likelihood set of {axis}: {format_set(accepted)}")
     return "\n".join(lines)
 
 
-__all__ = ["calibrate_folder", "calibration_json", "describe_calibration",
+def format_set(values) -> str:
+    """A set of an axis as text: numbers to 4 significant digits, names as they are."""
+    return "[" + ", ".join(f"{value:.4g}" if isinstance(value, float) else str(value)
+                           for value in values) + "]"
+
+
+__all__ = ["calibrate_folder", "calibration_json", "describe_calibration", "format_set",
            "predict_folder", "read_calibration", "read_predictions", "score_folder"]
 
 
