@@ -187,6 +187,14 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
     assert "a: accuracy 1.000 on 16" in printed
     in_sample, out_of_sample = printed.split("in-sample")[1].split("out-of-sample")
     assert "  a: accuracy 1.000 on 8" in in_sample and "  a: accuracy 1.000 on 8" in out_of_sample
+    # a calibration file that does not record its tests: in-sample or not is unknown
+    for name in ("a", "b"):
+        del saved["specimens"][name]["tests"]
+    out.write_text(json.dumps(saved))
+    assert main(["validate", "predict", str(folder), "--calibration", str(out), "--out",
+                 str(tmp_path / "unknown.csv")]) == 0
+    assert "a, b: the calibration does not record the tests" in capsys.readouterr().out
+    assert set(pd.read_csv(tmp_path / "unknown.csv")["in_training"]) == {-1}
     assert (tmp_path / "figures" / "reliability.png").is_file()
     # bad input: a calibration file that is not one
     (tmp_path / "bad.json").write_text("{}")
