@@ -1,12 +1,15 @@
 """``shaketable validate calibrate|predict|score``: measured shake-table tests.
 
 * ``calibrate FOLDER --out cal.json``: an equivalent block per specimen by maximum
-  likelihood, with 95 % profile-likelihood sets, k-fold cross-validated scores with the
-  baselines, and a bootstrap check of the sets (all in the JSON);
+  likelihood with its bagged ensemble, 95 % profile-likelihood and bootstrap sets checked
+  by an independent bootstrap, k-fold cross-validated scores with the baselines (all in
+  the JSON, with the ids of the tests it was fitted on); progress lines on stderr;
 * ``predict FOLDER --calibration cal.json --out predictions.csv``: P(overturn) and the
-  verdict of every test and specimen (the folder's outcome columns are not needed);
+  verdict of every test and specimen (the folder's outcome columns are not needed), each
+  row marked ``in_training`` when the calibration was fitted on that test;
 * ``score predictions.csv FOLDER``: accuracy, confusion, log loss, Brier, reliability and
-  fragility against the folder's outcomes (``--figures DIR`` draws them).
+  fragility against the folder's outcomes, in-sample and out-of-sample rows also apart
+  (``--figures DIR`` draws them).
 """
 
 from __future__ import annotations
