@@ -26,6 +26,12 @@ TIMING_NOTE = ("*Times:* the run lines give the exact block's times (events loca
                "grid at or after the exact event (the first sample beyond α).")
 
 
+#: Sections of ``reproduce --all`` beyond the scenes: name -> "module:function"; the function
+#: takes the section's folder and the options the caller gives for it, and returns the
+#: section's Markdown (a one-line skip when it cannot run).
+EXTRA_SECTIONS = {"validation": "shaketable.validation.report:reproduce_section"}
+
+
 #: How a section carries its differing comparisons to the report's list (an HTML comment
 #: per comparison, ``<!-- differs: KIND | WHAT -->``, removed from report.md).
 DIFFERS_MARK = "<!-- differs: "
@@ -78,7 +84,8 @@ def _format(value) -> str:
 
 
 def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out", progress: bool = True,
-              failures: list | None = None, compile_planar_first: bool = False) -> Path:
+              failures: list | None = None, compile_planar_first: bool = False,
+              extra: dict | None = None) -> Path:
     """Run the named scenes; write ``out/report.md`` with figures and comparison tables.
 
     Each scene's outputs go to ``out/<name>/``, with its Markdown section
@@ -103,6 +110,8 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         The planar engine is not in numba's cache yet: with scenes in two processes, one
         compiles it first (unless the first scene to start is a planar one), so that the
         two never both compile it (~15 s of CPU each).
+    extra : dict, optional
+        Sections of :data:`EXTRA_SECTIONS` to run after the scenes: name -> its options.
 
     Returns
     -------
@@ -134,7 +143,7 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         finally:
             if bar is not None:
                 bar.close()
-        return _assemble(out, rerun=names)
+        return _assemble(out, rerun=names + _extra_sections(out, extra or {}, failures))
     # Scenes in processes of their own (each a fresh interpreter, numba's cache loaded
     # once per process); a scene's outputs do not depend on the process it runs in, and
     # the report is assembled in the catalogue's order whatever the order of completion.
@@ -170,7 +179,27 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
                 bar.close()
     if failures is not None:   # in the catalogue's order, whatever the order of completion
         failures.sort(key=lambda name: names.index(name) if name in names else len(names))
-    return _assemble(out, rerun=names)
+    return _assemble(out, rerun=names + _extra_sections(out, extra or {}, failures))
+
+
+def _extra_sections(out: Path, extra: dict, failures: list | None) -> list[str]:
+    """Run the sections of :data:`EXTRA_SECTIONS` named in ``extra``; their names."""
+    import importlib
+
+    from shaketable.core.files import write_text
+
+    for name, options in extra.items():
+        module, function = EXTRA_SECTIONS[name].split(":")
+        folder = subfolder(out, name, "out")
+        try:
+            section = getattr(importlib.import_module(module), function)(folder, **options)
+        except (ValueError, OSError) as error:
+            section = f"## {name}\n\n**Not reproduced:** {error}\n"
+            if failures is not None:
+                failures.append(name)
+        write_text(folder / "section.md", section)
+        write_text(folder / "counts.json", "{}")
+    return list(extra)
 
 
 class _ProgressBar:

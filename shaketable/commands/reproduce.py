@@ -28,8 +28,11 @@ def _reproduce(args) -> int:
     planar = any(uses_planar(name) for name in names)
     notice_first_compile(args.quiet, which=("engine", "planar") if planar else ("engine",))
     failed: list = []
+    # with every scene, the sections beyond them (each skips itself when it cannot run)
+    extra = {"validation": {"data": args.validation_data}} if names == available else None
     report = reproduce(names, out=out, progress=not args.quiet, failures=failed,
-                       compile_planar_first=planar and not compiled_before("planar"))
+                       compile_planar_first=planar and not compiled_before("planar"),
+                       extra=extra)
     for line in _summary(out):
         print(line)
     print(f"wrote {report} (and gallery.md beside it)")
@@ -65,5 +68,9 @@ def register(commands) -> None:
     parser.add_argument("--all", action="store_true", help="every scene")
     parser.add_argument("--list", action="store_true", help="list the scenes and stop")
     parser.add_argument("--out", default="reproduce-out", help="output folder")
+    parser.add_argument("--validation-data", metavar="DIR",
+                        help="with every scene: the folder of measured tests of the "
+                             "'validation' section (default $SHAKETABLE_PBR, else "
+                             "../shared/data/pbr beside the project; skipped when absent)")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     parser.set_defaults(handler=_reproduce)

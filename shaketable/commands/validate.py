@@ -1,18 +1,23 @@
 """``shaketable validate calibrate|predict|score``: measured shake-table tests.
 
 * ``calibrate FOLDER --out cal.json``: an equivalent block per specimen by maximum
-  likelihood, with 95 % profile-likelihood sets, k-fold cross-validated scores with the
-  baselines, and a bootstrap check of the sets (all in the JSON);
+  likelihood with its bagged ensemble, 95 % profile-likelihood and bootstrap sets checked
+  by an independent bootstrap, k-fold cross-validated scores with the baselines (all in
+  the JSON, with the ids of the tests it was fitted on); progress lines on stderr;
 * ``predict FOLDER --calibration cal.json --out predictions.csv``: P(overturn) and the
-  verdict of every test and specimen (the folder's outcome columns are not needed);
+  verdict of every test and specimen (the folder's outcome columns are not needed), each
+  row marked ``in_training`` when the calibration was fitted on that test;
 * ``score predictions.csv FOLDER``: accuracy, confusion, log loss, Brier, reliability and
-  fragility against the folder's outcomes (``--figures DIR`` draws them).
+  fragility against the folder's outcomes, in-sample and out-of-sample rows also apart
+  (``--figures DIR`` draws them).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
+import sys
 from pathlib import Path
 
 
@@ -42,6 +47,35 @@ def _grid(args):
         cors=tuple(cors) if cors else default.cors)
 
 
+class _Progress:
+    """Progress lines of ``validate calibrate`` on stderr: the stage, done/total, the time
+    since the command started; at most one line every few seconds per stage (and the
+    stage's last), nothing under --quiet."""
+
+    EVERY = 5.0
+
+    def __init__(self, quiet: bool) -> None:
+        import time
+
+        self.quiet = quiet
+        self.clock = time.perf_counter
+        self.start = self.clock()
+        self.last = -math.inf
+
+    def stage(self, name: str, unit: str):
+        """A ``progress(done, total)`` callback for one stage."""
+        def report(done: int, total: int) -> None:
+            now = self.clock()
+            if self.quiet or (done < total and now - self.last < self.EVERY):
+                return
+            self.last = now
+            elapsed = int(round(now - self.start))
+            print(f"validate calibrate: {name}: {done}/{total} {unit} "
+                  f"({100.0 * done / max(total, 1):.0f} %), {elapsed // 60} min "
+                  f"{elapsed % 60:02d} s elapsed", file=sys.stderr, flush=True)
+        return report
+
+
 def _calibrate(args) -> int:
     import pandas as pd
 
@@ -53,21 +87,30 @@ def _calibrate(args) -> int:
         cross_validate,
         out_of_fold,
     )
+    from shaketable.validation.fit import BAGS
     from shaketable.validation.folder import read_folder
     from shaketable.validation.workflow import (
         calibrate_folder,
         calibration_json,
         describe_calibration,
+        format_set,
     )
 
+    if args.bags is None:
+        args.bags = BAGS
+    if args.bags < 0:
+        raise ValueError(f"--bags must be >= 0, got {args.bags}")
     folder = read_folder(args.folder)
     grid = _grid(args)
     out = prepare_output_file(args.out, "--out", suffixes=(".json",))
     if not args.quiet:
         print(f"{len(folder.tests)} tests, specimens {', '.join(folder.specimens)}; "
               f"{len(grid.candidates())} candidate blocks")
-    calibrations, overturned, candidates = calibrate_folder(folder, grid, threads=args.threads,
-                                                            cache=args.verdicts)
+    progress = _Progress(args.quiet)
+    calibrations, overturned, candidates = calibrate_folder(
+        folder, grid, threads=args.threads, cache=args.verdicts,
+        progress=progress.stage("simulating the candidates", "runs"), bags=args.bags,
+        seed=args.seed)
     pgv = folder.metadata["pgv [m/s]"].to_numpy()  # type: ignore[index]
     checks: dict = {}
     held_out = []
@@ -76,7 +119,9 @@ def _calibrate(args) -> int:
         entry: dict = {}
         if args.folds:
             frame = cross_validate(overturned, outcomes, candidates, pgv, k=args.folds,
-                                   repeats=args.repeats, seed=args.seed)
+                                   repeats=args.repeats, seed=args.seed, bags=args.bags,
+                                   progress=progress.stage(f"{name} cross-validation",
+                                                           "folds"))
             entry["cross_validation"] = {
                 model: {metric: {"mean": float(part[metric].mean()),
                                  "std": float(part[metric].std(ddof=1))}
@@ -85,17 +130,22 @@ def _calibrate(args) -> int:
             entry["cross_validation"]["folds"] = args.folds
             entry["cross_validation"]["repeats"] = args.repeats
             if args.cv_predictions:
-                p = out_of_fold(overturned, outcomes, candidates, k=args.folds, seed=args.seed)
+                p = out_of_fold(overturned, outcomes, candidates, k=args.folds, seed=args.seed,
+                                bags=args.bags)
                 held_out.append(pd.DataFrame({"test": folder.metadata["test"],  # type: ignore[index]
                                               "specimen": name, "p_overturn": p,
-                                              "predicted_overturned": (p >= 0.5).astype(int)}))
+                                              "predicted_overturned": (p >= 0.5).astype(int),
+                                              "in_training": 0}))
         if args.bootstrap:
             # one bootstrap gives the percentile sets; an independent one checks them and
             # the profile-likelihood sets
             refits = bootstrap_refits(overturned, outcomes, candidates,
-                                      resamples=args.bootstrap, seed=args.seed)
+                                      resamples=args.bootstrap, seed=args.seed,
+                                      progress=progress.stage(f"{name} bootstrap", "refits"))
             check = bootstrap_refits(overturned, outcomes, candidates,
-                                     resamples=args.bootstrap, seed=args.seed + 1)
+                                     resamples=args.bootstrap, seed=args.seed + 1,
+                                     progress=progress.stage(f"{name} bootstrap check",
+                                                             "refits"))
             sets = bootstrap_sets(refits)
             entry["bootstrap"] = {"resamples": args.bootstrap, "sets": sets,
                                   "coverage_of_profile_sets": coverage(
@@ -112,11 +162,11 @@ def _calibrate(args) -> int:
                           f"Brier {values['brier']['mean']:.3f})")
             if "bootstrap" in entry:
                 boot = entry["bootstrap"]
-                print(f"  95 % bootstrap sets: {boot['sets']}")
-                print(f"  independent refits inside the profile sets: "
-                      f"{boot['coverage_of_profile_sets']}")
-                print(f"  independent refits inside the bootstrap sets: "
-                      f"{boot['coverage_of_bootstrap_sets']}")
+                for axis, accepted in boot["sets"].items():
+                    print(f"  95 % bootstrap set of {axis}: {format_set(accepted)} (independent "
+                          f"refits inside: {boot['coverage_of_bootstrap_sets'][axis]:.1%}; "
+                          f"inside the profile set: "
+                          f"{boot['coverage_of_profile_sets'][axis]:.1%})")
     if held_out:
         write_csv(prepare_output_file(args.cv_predictions, "--cv-predictions", (".csv",)),
                   pd.concat(held_out, ignore_index=True), index=False)
@@ -125,6 +175,7 @@ def _calibrate(args) -> int:
                                                              "ratios": grid.ratios,
                                                              "heights": grid.heights,
                                                              "cors": grid.cors},
+                                                    "bags": args.bags, "seed": args.seed,
                                                     "checks": checks}))
     if not args.quiet:
         print(f"wrote {out}")
@@ -159,6 +210,14 @@ def _predict(args) -> int:
         counts = frame.groupby("specimen")["predicted_overturned"].agg(["sum", "count"])
         for name, row in counts.iterrows():
             print(f"{name}: {int(row['sum'])} of {int(row['count'])} tests predicted to overturn")
+        unknown = sorted(set(frame.loc[frame["in_training"] == -1, "specimen"]))
+        if unknown:
+            print(f"{', '.join(unknown)}: the calibration does not record the tests it was "
+                  "fitted on (in_training -1: in-sample or not is unknown)")
+        inside = frame[frame["in_training"] == 1].groupby("specimen").size()
+        for name, count in inside.items():
+            print(f"{name}: {count} of these tests were in the calibration's training set "
+                  "(in-sample: column in_training)")
         print(f"wrote {out}")
     return 0
 
@@ -174,21 +233,25 @@ def _score(args) -> int:
     figures = prepare_output_folder(args.figures, "--figures") if args.figures else None
     if not args.quiet:
         for name, values in [*result["specimens"].items(), ("all", result["all"])]:
-            print(f"{name}: accuracy {values['accuracy']:.3f} on {values['n']} "
-                  f"(overturned: {values['true_positive']} right, {values['false_negative']} "
-                  f"missed; standing: {values['true_negative']} right, "
-                  f"{values['false_positive']} false alarms); log loss "
-                  f"{values['log_loss']:.3f}, Brier {values['brier']:.3f}")
+            print(_score_line(name, values))
         if result["unmatched"]:
             print(f"{result['unmatched']} prediction rows have no outcome in the folder")
-        print("(on tests the calibration was fitted to, these are in-sample scores; the fair "
-              "figure for them is the k-fold cross-validated accuracy `validate calibrate` "
-              "prints)")
+        for key, what in (("in_sample", "in-sample (tests the calibration was fitted on: "
+                                        "optimistic; the fair figure is the k-fold "
+                                        "cross-validated accuracy of `validate calibrate`)"),
+                          ("out_of_sample", "out-of-sample (tests the calibration never saw)")):
+            if key in result:
+                print(f"{what}:")
+                for name, values in [*result[key]["specimens"].items(),
+                                     ("all", result[key]["all"])]:
+                    print("  " + _score_line(name, values))
         print("reliability (predicted P in bins against the measured fraction):")
         print(result["reliability"].to_string(index=False, float_format=lambda x: f"{x:.3f}"))
     if args.json:
         summary = {"specimens": result["specimens"], "all": result["all"],
                    "reliability": result["reliability"].to_dict(orient="records")}
+        summary.update({key: result[key] for key in ("in_sample", "out_of_sample")
+                        if key in result})
         write_text(Path(args.json), json.dumps(json_ready_dict(summary), indent=2,
                                                default=str))
     if figures is not None:
@@ -208,6 +271,13 @@ def _score(args) -> int:
     return 0
 
 
+def _score_line(name: str, values: dict) -> str:
+    return (f"{name}: accuracy {values['accuracy']:.3f} on {values['n']} (overturned: "
+            f"{values['true_positive']} right, {values['false_negative']} missed; standing: "
+            f"{values['true_negative']} right, {values['false_positive']} false alarms); "
+            f"log loss {values['log_loss']:.3f}, Brier {values['brier']:.3f}")
+
+
 def register(commands) -> None:
     """Add the ``validate`` subcommand and its three steps."""
     parser = commands.add_parser(
@@ -223,7 +293,7 @@ def register(commands) -> None:
     calibrate.add_argument("--alphas", help="weak-side block angles in rad, comma-separated "
                                             "(default 0.04 to 0.19)")
     calibrate.add_argument("--ratios", help="alpha_strong / alpha_weak, comma-separated "
-                                            "(default 1,2)")
+                                            "(default 1,1.5,2)")
     calibrate.add_argument("--heights", help="centroid heights in m, comma-separated "
                                              "(default 0.3)")
     calibrate.add_argument("--cors", help="CORs, comma-separated, 'housner' allowed "
@@ -234,6 +304,11 @@ def register(commands) -> None:
                            help="cross-validation repetitions with other folds (default 5)")
     calibrate.add_argument("--bootstrap", type=int, default=200,
                            help="bootstrap refits checking the intervals (0: none; default 200)")
+    calibrate.add_argument("--bags", type=int,
+                           help="bootstrap refits of the bagged ensemble that gives the "
+                                "probabilities (default 30, shaketable.validation.fit.BAGS; "
+                                "0: the 24 most likely candidates weighted by their "
+                                "likelihood)")
     calibrate.add_argument("--seed", type=int, default=0, help="seed of folds and bootstrap")
     calibrate.add_argument("--cv-predictions", metavar="CSV",
                            help="write the out-of-fold predictions (each test predicted by the "

@@ -33,7 +33,8 @@ def folds(outcomes, k: int, seed: int) -> np.ndarray:
 
 
 def cross_validate(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock],
-                   pgv, *, k: int = 5, repeats: int = 5, seed: int = 0):
+                   pgv, *, k: int = 5, repeats: int = 5, seed: int = 0, bags: int = 0,
+                   progress=None):
     """k-fold cross-validated scores of the calibration and of the baselines.
 
     Parameters
@@ -45,6 +46,11 @@ def cross_validate(overturned: np.ndarray, outcomes, candidates: Sequence[Equiva
         Peak table velocity of each test [m/s] (the PGV-threshold baseline).
     k, repeats, seed : int
         Folds, repetitions with other random folds, and the first repetition's seed.
+    bags : int
+        The calibration's ensemble (:func:`~shaketable.validation.fit.fit`), made in each
+        fold from its training tests only.
+    progress : callable, optional
+        Called as ``progress(done, total)`` (folds) after each fold.
 
     Returns
     -------
@@ -62,7 +68,8 @@ def cross_validate(overturned: np.ndarray, outcomes, candidates: Sequence[Equiva
         fold = folds(y, k, seed + repeat)
         for f in range(k):
             train, test = fold != f, fold == f
-            calibration = fit(overturned[:, train], y[train], candidates, intervals=False)
+            calibration = fit(overturned[:, train], y[train], candidates, intervals=False,
+                              bags=bags, seed=seed)
             p = ensemble_probability(calibration, candidates, overturned[:, test])
             threshold = threshold_fit(pgv[train], y[train])
             base_rate = float(np.clip(y[train].mean(), 1e-3, 1 - 1e-3))
@@ -72,6 +79,8 @@ def cross_validate(overturned: np.ndarray, outcomes, candidates: Sequence[Equiva
                     ("PGV threshold", np.where(pgv[test] >= threshold, 1.0, 0.0))):
                 rows.append({"repeat": repeat, "fold": f, "model": model,
                              **scores(probability, y[test])})
+            if progress is not None:
+                progress(repeat * k + f + 1, repeats * k)
     return pd.DataFrame(rows)
 
 
@@ -82,10 +91,11 @@ def summary(frame) -> "object":
 
 
 def bootstrap_refits(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock],
-                     *, resamples: int = 200, seed: int = 0) -> list:
+                     *, resamples: int = 200, seed: int = 0, progress=None) -> list:
     """The best member of refits on ``resamples`` bootstrap resamples of the tests.
 
     The tests are drawn with replacement; each resample is refitted (:func:`fit`).
+    ``progress(done, total)`` is called after each refit.
 
     Returns
     -------
@@ -94,9 +104,11 @@ def bootstrap_refits(overturned: np.ndarray, outcomes, candidates: Sequence[Equi
     y = np.asarray(outcomes, dtype=int)
     rng = np.random.default_rng(seed)
     refits = []
-    for _ in range(resamples):
+    for done in range(resamples):
         rows = rng.integers(0, y.size, y.size)
         refits.append(fit(overturned[:, rows], y[rows], candidates, intervals=False).best)
+        if progress is not None:
+            progress(done + 1, resamples)
     return refits
 
 
@@ -147,7 +159,7 @@ def bootstrap_coverage(overturned: np.ndarray, outcomes, candidates: Sequence[Eq
 
 
 def out_of_fold(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock], *,
-                k: int = 5, seed: int = 0) -> np.ndarray:
+                k: int = 5, seed: int = 0, bags: int = 0) -> np.ndarray:
     """P(overturn) of every test from the calibration on the other folds (never its own).
 
     The honest counterpart of a calibration's in-sample predictions: score it with
@@ -158,6 +170,7 @@ def out_of_fold(overturned: np.ndarray, outcomes, candidates: Sequence[Equivalen
     p = np.empty(y.size)
     for f in range(k):
         train, test = fold != f, fold == f
-        calibration = fit(overturned[:, train], y[train], candidates, intervals=False)
+        calibration = fit(overturned[:, train], y[train], candidates, intervals=False,
+                          bags=bags, seed=seed)
         p[test] = ensemble_probability(calibration, candidates, overturned[:, test])
     return p

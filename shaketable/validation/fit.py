@@ -17,9 +17,19 @@ largest l (ties: the first of the grid's order). Its 95 % intervals are the prof
 likelihood's: on each axis of the grid, the values whose best candidate has
 2 (l_max - l) <= 3.84 (chi-square, one degree of freedom), at the grid's resolution.
 
-The prediction is an ensemble over the calibration's uncertainty: every candidate with its
-own sigma and epsilon, weighted by its profile likelihood (a flat prior on the grid, Bayes'
-rule), the probabilities averaged. The verdict is P >= 0.5.
+The prediction is an ensemble over the calibration's uncertainty, the probabilities
+averaged; the verdict is P >= 0.5. Two ensembles:
+
+* bagged (``bags > 0``, the default of ``shaketable validate``): the maximum-likelihood
+  member of each of ``bags`` refits on bootstrap resamples of the tests, each with its own
+  sigma and epsilon, weighted by how many refits chose it. The spread of the members is
+  the calibration's sampling uncertainty as the bootstrap measures it, which holds where
+  the likelihood is too rough for its curvature to (the block's verdicts jump as a
+  parameter crosses a value where the rocking changes course, so the profile sets are too
+  narrow: docs/validation.md);
+* likelihood-weighted (``bags = 0``): the :data:`ENSEMBLE_SIZE` most likely candidates,
+  each with its own sigma and epsilon, weighted by their profile likelihood (a flat prior
+  on the grid, Bayes' rule).
 """
 
 from __future__ import annotations
@@ -34,11 +44,15 @@ from shaketable.validation.model import LOG_SCALES, EquivalentBlock
 #: chi-square(1) 95 % quantile: the profile likelihood's cut.
 CHI2_95 = 3.841458820694124
 
-#: Candidates kept in a calibration's ensemble (the heaviest).
+#: Candidates kept in a likelihood-weighted ensemble (the heaviest).
 ENSEMBLE_SIZE = 24
 
-#: The axes of the grid whose intervals are reported.
-AXES = ("alpha_weak", "alpha_strong", "h", "cor", "sign", "sigma")
+#: Bootstrap refits of the bagged ensemble of ``shaketable validate`` (see the docstring).
+BAGS = 30
+
+#: The axes of the grid whose intervals are reported (``half_width``: h tan(alpha_weak), the
+#: effective contact half-width, a function of two axes).
+AXES = ("alpha_weak", "alpha_strong", "h", "half_width", "cor", "sign", "sigma")
 
 #: Grids of the link's spread sigma [-] (of ln amplitude) and floor epsilon [-].
 SIGMAS = (0.0, 0.1, 0.2, 0.3, 0.4)
@@ -111,6 +125,9 @@ class Calibration:
         The ensemble (the heaviest candidates), the best first.
     weights : ndarray
         Their weights (summing to 1).
+    tests : tuple of str
+        The ids of the tests it was calibrated on (a prediction of one of them is
+        in-sample); empty when not recorded.
     """
 
     specimen: str
@@ -121,6 +138,7 @@ class Calibration:
     intervals: dict
     members: list = field(default_factory=list)
     weights: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    tests: tuple = ()
 
     def to_dict(self) -> dict:
         """JSON-ready."""
@@ -128,7 +146,8 @@ class Calibration:
                 "log_likelihood": self.log_likelihood, "n": self.n, "accuracy": self.accuracy,
                 "intervals": self.intervals,
                 "members": [member.to_dict() for member in self.members],
-                "weights": [float(weight) for weight in self.weights]}
+                "weights": [float(weight) for weight in self.weights],
+                "tests": list(self.tests)}
 
     @classmethod
     def from_dict(cls, data: dict, where: str = "calibration") -> "Calibration":
@@ -140,7 +159,8 @@ class Calibration:
             return cls(str(data["specimen"]), member(data["best"]),
                        float(data["log_likelihood"]), int(data["n"]), float(data["accuracy"]),
                        dict(data["intervals"]), [member(item) for item in data["members"]],
-                       np.asarray(data["weights"], dtype=float))
+                       np.asarray(data["weights"], dtype=float),
+                       tuple(str(test) for test in data.get("tests", ())))
         except (KeyError, TypeError) as error:
             raise ValueError(f"{where}: not a calibration of shaketable validate ({error!r})") \
                 from None
@@ -185,7 +205,8 @@ def profile_intervals(candidates: Sequence[EquivalentBlock], table: np.ndarray) 
 
 
 def fit(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock],
-        specimen: str = "", *, intervals: bool = True) -> Calibration:
+        specimen: str = "", *, intervals: bool = True, bags: int = 0,
+        seed: int = 0) -> Calibration:
     """Maximum-likelihood equivalent block from the candidates' verdicts.
 
     Parameters
@@ -198,6 +219,11 @@ def fit(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock],
     specimen : str
     intervals : bool
         Compute the profile-likelihood sets (skipped inside cross-validation).
+    bags : int
+        Bootstrap refits of the bagged ensemble (see the module docstring); 0: the
+        likelihood-weighted ensemble.
+    seed : int
+        Seed of the bootstrap resamples.
     """
     overturned = np.asarray(overturned, dtype=bool)
     y = np.asarray(outcomes, dtype=int)
@@ -218,12 +244,31 @@ def fit(overturned: np.ndarray, outcomes, candidates: Sequence[EquivalentBlock],
         s, e = np.unravel_index(choice[k], (len(SIGMAS), len(EPSILONS)))
         members.append(Member(candidates[k], SIGMAS[s], EPSILONS[e]))
     sets = profile_intervals(candidates, table) if intervals else {}
+    if bags:
+        members, weights = _bagged(overturned, y, candidates, members[0], bags, seed)
     calibration = Calibration(specimen, members[0], float(per_candidate[order[0]]), int(y.size),
                               0.0, sets, members, weights)
     rows = [list(candidates).index(block) for block in calibration.blocks()]
     accuracy = float(np.mean((calibration.probability(overturned[rows]) >= 0.5) == (y == 1)))
     return Calibration(specimen, members[0], calibration.log_likelihood, int(y.size), accuracy,
                        sets, members, weights)
+
+
+def _bagged(overturned: np.ndarray, y: np.ndarray, candidates: Sequence[EquivalentBlock],
+            best: Member, bags: int, seed: int) -> tuple[list, np.ndarray]:
+    """The bagged ensemble: the best members of ``bags`` bootstrap refits, weighted by how
+    often each was chosen; the full data's best member first (weight 0 if never chosen)."""
+    if bags < 0:
+        raise ValueError(f"bags must be >= 0, got {bags}")
+    rng = np.random.default_rng(seed)
+    counts: dict = {best: 0}
+    for _ in range(bags):
+        rows = rng.integers(0, y.size, y.size)
+        member = fit(overturned[:, rows], y[rows], candidates, intervals=False).best
+        counts[member] = counts.get(member, 0) + 1
+    members = [best] + sorted((member for member in counts if member != best),
+                              key=lambda member: -counts[member])
+    return members, np.array([counts[member] / bags for member in members])
 
 
 def ensemble_probability(calibration: Calibration, candidates: Sequence[EquivalentBlock],

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -98,6 +98,12 @@ class EquivalentBlock:
         """Frequency parameter of the weak side [rad/s]."""
         return self.block().p_of(1.0)
 
+    @property
+    def half_width(self) -> float:
+        """The weak side's effective contact half-width h tan(alpha_weak) [m]: the distance
+        from the centroid to the pivot the block tips over first."""
+        return self.effective_half_width("weak")
+
     def effective_half_width(self, side: str = "weak") -> float:
         """Horizontal distance from the centroid to the pivot, h tan(alpha) [m]."""
         return self.h * math.tan(self.alpha_weak if side == "weak" else self.alpha_strong)
@@ -131,7 +137,7 @@ class CandidateGrid:
 
     alphas: tuple[float, ...] = (0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.1, 0.11, 0.12, 0.13,
                                  0.14, 0.16, 0.19)
-    ratios: tuple[float, ...] = (1.0, 2.0)
+    ratios: tuple[float, ...] = (1.0, 1.5, 2.0)
     heights: tuple[float, ...] = (0.3,)
     cors: tuple[float | str, ...] = ("housner", 0.9, 0.8)
 
@@ -151,8 +157,9 @@ class CandidateGrid:
 
 
 def verdicts(candidates: Sequence[EquivalentBlock], motions, *, threads: int | None = None,
-             padding: float = FATE_PADDING,
-             log_scales=LOG_SCALES) -> tuple[np.ndarray, np.ndarray]:
+             padding: float = FATE_PADDING, log_scales=LOG_SCALES,
+             progress: Callable[[int, int], None] | None = None
+             ) -> tuple[np.ndarray, np.ndarray]:
     """Simulated verdict of every candidate on every motion, at each amplitude scale.
 
     Parameters
@@ -167,6 +174,10 @@ def verdicts(candidates: Sequence[EquivalentBlock], motions, *, threads: int | N
     log_scales : sequence of float
         Natural logarithms of the factors on the motion's amplitude [-]
         (:data:`LOG_SCALES`; the likelihood's probit link on the log margin).
+    progress : callable, optional
+        Called as ``progress(done, total)`` (runs: candidate x motion x scale) after each
+        group of motions (about 20 groups, every candidate in each: the same runs and
+        verdicts as one batch).
 
     Returns
     -------
@@ -182,6 +193,23 @@ def verdicts(candidates: Sequence[EquivalentBlock], motions, *, threads: int | N
     for motion in motions:
         padded = extended(motion, motion.duration + padding)
         runs.append(padded)
+    factors = np.exp(np.asarray(log_scales, dtype=float))
+    n_c, n_m, n_s = len(candidates), len(runs), factors.size
+    overturned = np.empty((n_c, n_m, n_s), dtype=bool)
+    t_overturn = np.empty((n_c, n_m, n_s))
+    group = max(1, -(-n_m // 20))
+    for first in range(0, n_m, group):
+        last = min(first + group, n_m)
+        overturned[:, first:last], t_overturn[:, first:last] = \
+            _group_verdicts(list(candidates), runs[first:last], factors, threads)
+        if progress is not None:
+            progress(n_c * last * n_s, n_c * n_m * n_s)
+    return overturned, t_overturn
+
+
+def _group_verdicts(candidates: list, runs: list, factors: np.ndarray,
+                    threads: int | None) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`verdicts` of the candidates on a few padded motions, in one batch."""
     blocks: list[AsymmetricBlock] = []
     index: dict[tuple, int] = {}
     block_of = np.empty(len(candidates), dtype=np.int64)
@@ -191,7 +219,6 @@ def verdicts(candidates: Sequence[EquivalentBlock], motions, *, threads: int | N
             index[key] = len(blocks)
             blocks.append(candidate.block())
         block_of[k] = index[key]
-    factors = np.exp(np.asarray(log_scales, dtype=float))
     n_c, n_m, n_s = len(candidates), len(runs), factors.size
     cases = np.empty((n_c * n_m * n_s, 2), dtype=np.int64)
     cases[:, 0] = np.repeat(block_of, n_m * n_s)

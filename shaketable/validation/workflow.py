@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 
-from shaketable.validation.fit import Calibration, fit
+from shaketable.validation.fit import BAGS, Calibration, fit
 from shaketable.validation.folder import TestFolder
 from shaketable.validation.model import LOG_SCALES, CandidateGrid, verdicts
 from shaketable.validation.score import fragility, reliability, scores
@@ -16,12 +17,17 @@ FORMAT = "shaketable-validation-calibration/1"
 
 
 def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
-                     threads: int | None = None, cache=None) -> tuple[dict, np.ndarray, list]:
+                     threads: int | None = None, cache=None, progress=None,
+                     bags: int = BAGS, seed: int = 0) -> tuple[dict, np.ndarray, list]:
     """Calibrate an equivalent block for every specimen with outcomes in ``folder``.
 
     ``cache``: an ``.npz`` file of the candidates' verdicts: read when it holds the same
     candidates, tests and amplitude factors, else computed and written there (the
     simulations are the expensive part; the fits, cross-validation and bootstrap reuse them).
+    ``progress``: called as ``progress(done, total)`` while the runs are simulated
+    (:func:`~shaketable.validation.model.verdicts`). ``bags``, ``seed``: the ensemble
+    (:func:`~shaketable.validation.fit.fit`; 0 bags: the likelihood-weighted one). Each
+    calibration records the ids of the tests it was fitted on (:attr:`Calibration.tests`).
 
     Returns
     -------
@@ -37,13 +43,15 @@ def calibrate_folder(folder: TestFolder, grid: CandidateGrid | None = None, *,
     if not specimens:
         raise ValueError(f"{folder.path / 'metadata.csv'}: no outcome column "
                          "('<specimen>_overturned'): nothing to calibrate on")
-    overturned = _cached_verdicts(cache, candidates, folder, threads)
-    calibrations = {name: fit(overturned, folder.outcomes(name), candidates, name)
+    overturned = _cached_verdicts(cache, candidates, folder, threads, progress)
+    ids = tuple(str(test) for test in folder.tests)
+    calibrations = {name: replace(fit(overturned, folder.outcomes(name), candidates, name,
+                                      bags=bags, seed=seed), tests=ids)
                     for name in specimens}
     return calibrations, overturned, candidates
 
 
-def _cached_verdicts(cache, candidates, folder: TestFolder, threads) -> np.ndarray:
+def _cached_verdicts(cache, candidates, folder: TestFolder, threads, progress) -> np.ndarray:
     from pathlib import Path
 
     key = json.dumps({"candidates": [candidate.to_dict() for candidate in candidates],
@@ -52,7 +60,7 @@ def _cached_verdicts(cache, candidates, folder: TestFolder, threads) -> np.ndarr
         with np.load(cache) as data:
             if str(data["key"]) == key:
                 return data["overturned"]
-    overturned, _ = verdicts(candidates, folder.motions(), threads=threads)
+    overturned, _ = verdicts(candidates, folder.motions(), threads=threads, progress=progress)
     if cache is not None:
         from shaketable.core.files import atomic_write
 
@@ -106,7 +114,9 @@ def predict_folder(folder: TestFolder, calibrations: dict, *, threads: int | Non
         One row per test and specimen: ``test``, ``specimen``, ``p_overturn`` (the
         calibration's ensemble), ``predicted_overturned`` (P >= 0.5), ``best_overturned``
         (the maximum-likelihood block alone), ``fate`` of the best block ("overturns during
-        the motion", "overturns after the motion", "stands") and ``t_overturn [s]``.
+        the motion", "overturns after the motion", "stands"), ``t_overturn [s]`` and
+        ``in_training`` (1 when the calibration was fitted on that test: an in-sample
+        prediction; 0 when not; -1 when the calibration file does not record its tests).
     """
     import pandas as pd
 
@@ -133,7 +143,9 @@ def predict_folder(folder: TestFolder, calibrations: dict, *, threads: int | Non
             "test": folder.metadata["test"].to_numpy(),  # type: ignore[index]
             "specimen": name, "p_overturn": p, "predicted_overturned": (p >= 0.5).astype(int),
             "best_overturned": best.astype(int), "fate": fate,
-            "t_overturn [s]": best_time}))
+            "t_overturn [s]": best_time,
+            "in_training": (np.isin(folder.tests, calibration.tests).astype(int)
+                            if calibration.tests else -1)}))
     frame = pd.concat(frames, ignore_index=True)
     frame.attrs["missing"] = missing
     return frame
@@ -164,7 +176,10 @@ def score_folder(predictions, folder: TestFolder, *, pga_edges=None, ratio_edges
     Returns
     -------
     dict
-        ``specimens``: specimen -> :func:`scores`; ``all``: over both; ``reliability``,
+        ``specimens``: specimen -> :func:`scores`; ``all``: over both; ``in_sample`` and
+        ``out_of_sample``: the same over the rows whose ``in_training`` is 1 (tests the
+        calibration was fitted on) and 0 (absent when the predictions have no such column,
+        or when a part is empty); ``reliability``,
         ``fragility_pga``, ``fragility_pgv_over_pga``: frames over all specimens (PGA in g,
         PGV/PGA in s); ``joined``: the predictions with the outcome, PGA and PGV.
     """
@@ -198,6 +213,16 @@ def score_folder(predictions, folder: TestFolder, *, pga_edges=None, ratio_edges
                                            part.get("predicted_overturned"))
     result["all"] = scores(joined["p_overturn"], joined["overturned"],
                            joined.get("predicted_overturned"))
+    if "in_training" in joined.columns:
+        for key, flag in (("in_sample", 1), ("out_of_sample", 0)):
+            part = joined[joined["in_training"].astype(int) == flag]
+            if len(part):
+                result[key] = {"specimens": {
+                    name: scores(rows["p_overturn"], rows["overturned"],
+                                 rows.get("predicted_overturned"))
+                    for name, rows in part.groupby("specimen")},
+                    "all": scores(part["p_overturn"], part["overturned"],
+                                  part.get("predicted_overturned"))}
     result["unmatched"] = int(len(predictions) - len(joined))
     pga_edges = pga_edges if pga_edges is not None else np.geomspace(0.02, 6.0, 12)
     ratio_edges = ratio_edges if ratio_edges is not None else np.geomspace(0.02, 0.4, 8)
@@ -215,13 +240,20 @@ def describe_calibration(calibration: Calibration) -> str:
     lines = [f"{calibration.specimen}: {best.block.describe()}",
              f"  link: sigma {best.sigma:g} (of ln amplitude), epsilon {best.epsilon:g}; "
              f"log likelihood {calibration.log_likelihood:.2f} on {calibration.n} tests",
-             f"  training accuracy of the ensemble {calibration.accuracy:.3f}"]
+             f"  training accuracy of the ensemble ({len(calibration.members)} members, "
+             f"in-sample) {calibration.accuracy:.3f}"]
     for axis, accepted in calibration.intervals.items():
-        lines.append(f"  95 % profile-likelihood set of {axis}: {accepted}")
+        lines.append(f"  95 % profile-likelihood set of {axis}: {format_set(accepted)}")
     return "\n".join(lines)
 
 
-__all__ = ["calibrate_folder", "calibration_json", "describe_calibration",
+def format_set(values) -> str:
+    """A set of an axis as text: numbers to 4 significant digits, names as they are."""
+    return "[" + ", ".join(f"{value:.4g}" if isinstance(value, float) else str(value)
+                           for value in values) + "]"
+
+
+__all__ = ["calibrate_folder", "calibration_json", "describe_calibration", "format_set",
            "predict_folder", "read_calibration", "read_predictions", "score_folder"]
 
 
@@ -267,5 +299,6 @@ def predict_from_geometry(folder: TestFolder, geometry, *, sign: int = 1,
             "test": folder.metadata["test"].to_numpy(),  # type: ignore[index]
             "specimen": name, "p_overturn": overturned.astype(float),
             "predicted_overturned": overturned.astype(int),
-            "best_overturned": overturned.astype(int), "fate": fate, "t_overturn [s]": when}))
+            "best_overturned": overturned.astype(int), "fate": fate, "t_overturn [s]": when,
+            "in_training": 0}))
     return pd.concat(frames, ignore_index=True)

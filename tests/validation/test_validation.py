@@ -98,6 +98,14 @@ def test_fit_recovers_the_candidate_that_made_the_outcomes():
     assert calibration.accuracy == 1.0
     assert calibration.intervals["alpha_weak"][0] <= candidates[2].alpha_weak \
         <= calibration.intervals["alpha_weak"][1]
+    # bagged: every bootstrap refit picks the candidate that made the outcomes (each
+    # resample still holds tests between its neighbours' thresholds)
+    bagged = fit(overturned, outcomes, candidates, "toy", bags=10, seed=1)
+    assert bagged.best == calibration.best
+    assert [member.block for member in bagged.members] == [candidates[2]]
+    assert list(bagged.weights) == [1.0]
+    with pytest.raises(ValueError, match="bags"):
+        fit(overturned, outcomes, candidates, bags=-1)
     table = likelihood_table(overturned, outcomes)
     assert table.shape == (n_c, len(SIGMAS), 4)
     frame = cross_validate(overturned, outcomes, candidates, intensity, k=3, repeats=1)
@@ -139,9 +147,21 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
                  str(tmp_path / "verdicts.npz"), "--cv-predictions",
                  str(tmp_path / "cv.csv")]) == 0
     assert (tmp_path / "verdicts.npz").is_file()
+    # progress on stderr: each stage's last line at least (done/total, elapsed)
+    err = capsys.readouterr().err
+    assert f"simulating the candidates: {3 * 16 * len(LOG_SCALES)}/{3 * 16 * len(LOG_SCALES)}" \
+        " runs (100 %)" in err
+    assert "a cross-validation: 2/2 folds (100 %)" in err and "s elapsed" in err
+    assert "b bootstrap check: 5/5 refits (100 %)" in err
     assert len(pd.read_csv(tmp_path / "cv.csv")) == 2 * amplitudes.size
     saved = json.loads(out.read_text())
     assert saved["specimens"]["a"]["best"]["block"]["alpha_weak"] == 0.1
+    assert saved["specimens"]["a"]["tests"] == [str(k) for k in range(16)]
+    # --quiet: no progress (the verdicts come from the cache)
+    assert main(["validate", "calibrate", str(data), "--out", str(tmp_path / "quiet.json"),
+                 "--alphas", "0.05,0.1,0.2", "--ratios", "1", "--cors", "0.9", "--folds", "0",
+                 "--bootstrap", "0", "--verdicts", str(tmp_path / "verdicts.npz"), "-q"]) == 0
+    assert capsys.readouterr().err == ""
     assert "cross_validation" in saved["checks"]["a"]
     assert set(saved["checks"]["a"]["bootstrap"]["sets"]) >= {"alpha_weak", "cor"}
     # predict a folder without outcome columns: one row per test and specimen
@@ -152,11 +172,29 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
     assert len(frame) == 2 * amplitudes.size
     assert set(frame["specimen"]) == {"a", "b"}
     assert np.array_equal(frame[frame["specimen"] == "a"]["best_overturned"], outcome)
+    assert (frame["in_training"] == 1).all()          # the same test ids as the calibration's
+    # a calibration that saw only the last 8 tests: the first 8 are out-of-sample
+    for name in ("a", "b"):
+        saved["specimens"][name]["tests"] = [str(k) for k in range(8, 16)]
+    out.write_text(json.dumps(saved))
+    assert main(["validate", "predict", str(folder), "--calibration", str(out), "--out",
+                 str(predictions)]) == 0
+    assert list(pd.read_csv(predictions)["in_training"]) == ([0] * 8 + [1] * 8) * 2
     capsys.readouterr()
     assert main(["validate", "score", str(predictions), str(data), "--figures",
                  str(tmp_path / "figures")]) == 0
     printed = capsys.readouterr().out
     assert "a: accuracy 1.000 on 16" in printed
+    in_sample, out_of_sample = printed.split("in-sample")[1].split("out-of-sample")
+    assert "  a: accuracy 1.000 on 8" in in_sample and "  a: accuracy 1.000 on 8" in out_of_sample
+    # a calibration file that does not record its tests: in-sample or not is unknown
+    for name in ("a", "b"):
+        del saved["specimens"][name]["tests"]
+    out.write_text(json.dumps(saved))
+    assert main(["validate", "predict", str(folder), "--calibration", str(out), "--out",
+                 str(tmp_path / "unknown.csv")]) == 0
+    assert "a, b: the calibration does not record the tests" in capsys.readouterr().out
+    assert set(pd.read_csv(tmp_path / "unknown.csv")["in_training"]) == {-1}
     assert (tmp_path / "figures" / "reliability.png").is_file()
     # bad input: a calibration file that is not one
     (tmp_path / "bad.json").write_text("{}")
@@ -208,3 +246,28 @@ def test_scan_based_block_scores_as_an_independent_integrator(tmp_path):
     result = score_folder(read_predictions(predictions), read_folder(SHARED_PBR))
     assert result["specimens"]["sp1"]["accuracy"] == pytest.approx(0.664, abs=0.0021)
     assert result["specimens"]["sp2"]["accuracy"] == pytest.approx(0.721, abs=0.0021)
+
+
+def test_reproduce_validation_section_runs_or_skips(tmp_path):
+    from shaketable.reproduce import reproduce
+
+    # absent folder: the section is one line saying why, and the report counts it as rerun
+    report = reproduce([], out=tmp_path / "out", progress=False,
+                       extra={"validation": {"data": tmp_path / "absent"}})
+    text = report.read_text()
+    assert f"Skipped: no folder of measured tests at {tmp_path / 'absent'}" in text
+    assert "1 section, all rerun now." in text
+    # a folder of tests with outcomes (made by a symmetric block of alpha 0.1, COR 0.9, one
+    # of the section's candidates): the coarse calibration finds it and cross-validates
+    amplitudes = np.linspace(0.04, 0.3, 20)
+    made, _ = verdicts([EquivalentBlock(0.1, 0.1, 0.3, 0.9)],
+                       read_folder(_harmonic_folder(tmp_path / "made", amplitudes)).motions(),
+                       threads=1, log_scales=(0.0,))
+    outcome = made[0, :, 0].astype(int)
+    data = _harmonic_folder(tmp_path / "data", amplitudes, outcomes=(outcome, outcome))
+    from shaketable.validation.report import reproduce_section
+
+    section = reproduce_section(tmp_path / "section", data, threads=1)
+    assert "* a, the most likely block: alpha 0.1 rad" in section
+    assert "| a | PGV threshold |" in section and "| b | calibrated |" in section
+    assert (tmp_path / "section" / "reliability.png").is_file()
