@@ -303,7 +303,7 @@ def load_scene(path: str | Path) -> Scene | Study:
 #: A key named in an error message: ``rocking.theta0``, ``[block]``, ``'colour' in [block]``.
 _KEY_IN_MESSAGE = re.compile(r"unknown key '([\w-]+)' in \[([\w.-]+)|\[([\w.-]+)\]|"
                              r"\b((?:block|motion|rocking|report|outputs|table|sensors|theory|"
-                             r"sliding|ensemble|study|floor)(?:\.[\w-]+)+)")
+                             r"sliding|ensemble|study|floor|stack)(?:\.[\w-]+)+)")
 
 
 def with_line(message: str, where: str, text: str) -> str:
@@ -331,6 +331,8 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
     """Validate a scene given as a dict (the parsed TOML); a ``[study]`` gives a :class:`Study`."""
     if "study" in data:
         return _study(data, where)
+    if "stack" in data:   # a column of blocks: the parser registered for it (scenes.stack)
+        return SECTION_PARSERS["stack"](data, where)
     _only(data, TOP_KEYS, where, "top level")
     for key in ("name", "block", "motion", "rocking"):
         if key not in data:
