@@ -206,7 +206,9 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
     uplift = next((event for event in result.events if event["kind"] == "uplift"), None)
     impacts = sum(1 for event in result.events if event["kind"] == "impact")
     if uplift is None:
-        lines.append("uplift: none (the stack stood on the table)")
+        still = not np.any(result.theta)
+        lines.append("uplift: none" + (" (the stack stood on the table)" if still else
+                                       " after the release"))
     else:
         from shaketable.models.stack import pattern_name
 
