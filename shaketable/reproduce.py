@@ -303,6 +303,10 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
     scene = load_scene(resolve_scene_path(name))
     if isinstance(scene, Study):
         return _study_section(scene, out, tally)
+    from shaketable.scenes.stack import StackScene, stack_scene_section
+
+    if isinstance(scene, StackScene):   # [stack]: a column of blocks
+        return stack_scene_section(scene, subfolder(out, scene.name, "out"))
     result = run_scene(scene)
     result.write(subfolder(out, scene.name, "out"))
     lines = [f"## {scene.source or scene.name} — `{scene.name}`", "", scene.description, "",

@@ -202,7 +202,8 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
             continue
         lines.append(f"{result.block_name(i)} {block.describe()}: max |θ| {theta[k]:.3g} rad "
                      f"= {theta[k] / block.alpha:.3g} α (α = {block.alpha:.4g} rad)"
-                     + (f" at t = {result.t[k]:.2f} s" if theta[k] > 0 else ""))
+                     + (f" at t = {result.t[k]:.2f} s" if theta[k] > 0 else "")
+                     + _first_moved(result, i))
     uplift = next((event for event in result.events if event["kind"] == "uplift"), None)
     impacts = sum(1 for event in result.events if event["kind"] == "impact")
     if uplift is None:
@@ -233,6 +234,19 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
         lines.append(f"a contact pulls from t = {result.t_tension:.2f} s (a block would lift "
                      "off: outside the model)")
     return lines
+
+
+def _first_moved(result: StackResult, i: int) -> str:
+    """``"; at rest until t = 0.265 s"`` for a block that started at rest and was set
+    moving later (an interface at or below it opened: an uplift or a landing's kick)."""
+    if result.t.size == 0 or result.theta[0, i] != 0.0 or result.theta_dot[0, i] != 0.0:
+        return ""
+    for event in result.events:
+        after = event.get("pattern_after")
+        if after is not None and any(after[: i + 1]):
+            return ("" if event["t"] <= result.t[0] else
+                    f"; at rest until t = {event['t']:.3f} s ({event['kind']})")
+    return ""
 
 
 def run_quietly(stack: Stack, motion, **options) -> tuple[StackResult, list[str]]:
@@ -440,3 +454,15 @@ def run_stack_scene(scene: StackScene) -> StackSceneResult:
 def with_outputs(scene: StackScene, **outputs) -> StackScene:
     """The scene with some outputs switched on (``--svg``, ``--parquet`` of ``run``)."""
     return replace(scene, outputs=dict(scene.outputs, **outputs))
+
+
+def stack_scene_section(scene: StackScene, folder: Path) -> str:
+    """A stack scene's section of ``reproduce``'s report: it runs into ``folder``."""
+    result = run_stack_scene(scene)
+    result.write(folder)
+    lines = [f"## {scene.source or scene.name} — `{scene.name}`", "", scene.description, "",
+             f"![{scene.name}]({scene.name}/calcomp.png)", "",
+             f"* {scene.stack.describe()}, {describe_law(result.run)}: {result.run.verdict()}"]
+    lines += [f"  * {line}" for line in stack_answer(result.run, scene.mu)]
+    lines += [f"  * warning: {line}" for line in result.warnings]
+    return "\n".join(lines) + "\n"
