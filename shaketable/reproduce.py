@@ -498,6 +498,9 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
         return _spectrum_section(study, folder, lines)
     if study.kind == "mode-map":
         return _mode_map_section(study, folder, lines)
+    if study.kind == "stacks":   # stacks beside single blocks
+        from shaketable.scenes.stack import stacks_section
+        return stacks_section(folder, lines)
     if study.kind == "report-figure":
         from shaketable.plots.base import save
         from shaketable.plots.studies import section_2_figure

@@ -95,7 +95,8 @@ STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"
                                         "ceiling", "scan_step", "tolerance", "reference",
                                         "method"},
                # the keys are read by shaketable.scenes.mode_map
-               "mode-map": {"record", "pga", "aspect_ratios", "frictions", "height", "cor"}}
+               "mode-map": {"record", "pga", "aspect_ratios", "frictions", "height", "cor"},
+               "stacks": set()}   # stacks beside single blocks (scenes.stack)
 
 
 class SceneError(ValueError):
@@ -525,6 +526,8 @@ def _study(data: dict, where: str) -> Study:
             return Study(**common, mode_map=mode_map_settings(spec, where))
         except ValueError as error:
             raise SceneError(str(error)) from None
+    if kind == "stacks":
+        return Study(**common)
     if kind == "pitch-repeatability":
         phases = spec.get("phases", 24)
         if isinstance(phases, bool) or not isinstance(phases, int) or phases < 2:
