@@ -102,3 +102,54 @@ def simulate_stack_command(args, on_floor) -> int:
         print(f"shaketable simulate: warning: {line}", file=sys.stderr)
     print("wrote " + ", ".join(str(path) for path in written))
     return report_early_stops([result], "simulate", stack.describe())
+
+
+def _animation_options(args, size) -> dict:
+    return {"out": args.out, "fps": args.fps, "speed": args.speed, "start": args.start,
+            "end": args.end, "size": size, "dpi": args.dpi, "unit": args.unit}
+
+
+def _refuse_runs_and_layout(args, what: str) -> None:
+    from shaketable.commands.checks import refuse_ignored_options
+
+    refuse_ignored_options(args, what, {"--run": "all", "--layout": "side"})
+
+
+def animate_stack_scene(args, scene, size, wrote) -> int:
+    """``animate SCENE`` for a scene with ``[stack]``: its one run, one drawing per block."""
+    from shaketable.commands.checks import report_early_stops
+    from shaketable.plots.animation import animate
+    from shaketable.scenes.stack import run_stack_scene
+
+    _refuse_runs_and_layout(args, f"a stack scene ({scene.name}: one run)")
+    result = run_stack_scene(scene)
+    written = animate(result.run, **_animation_options(args, size))
+    print(result.lines()[0])
+    wrote(written)
+    return report_early_stops([result.run], "animate", scene.name)
+
+
+def animate_stack_options(args, size, wrote) -> int:
+    """``animate --stack SIZES`` with a motion given as ``simulate`` takes it."""
+    from shaketable.commands.checks import report_early_stops
+    from shaketable.core.validation import in_range
+    from shaketable.plots.animation import animate
+    from shaketable.scenes.stack import describe_law, per_block_angles, run_quietly, stack_from_text
+
+    _refuse_runs_and_layout(args, "--stack (one run)")
+    if args.block is not None:
+        raise ValueError("give --block or --stack, not both")
+    stack = stack_from_text(args.stack)
+    options: dict = {"theta0": per_block_angles(args.theta0, stack, where="--theta0")}
+    if args.cor is not None:
+        options.update(impact="cor", cor=in_range("--cor", args.cor, 0.0, 1.0))
+    motion, note = stack_motion(args, lambda _, motion: motion)
+    if motion is None:
+        options["duration"] = args.duration
+    result, _ = run_quietly(stack, motion, **options)
+    written = animate(result, **_animation_options(args, size))
+    if note:
+        print(note)
+    print(f"{stack.describe()}, {describe_law(result)}: {result.verdict()}")
+    wrote(written)
+    return report_early_stops([result], "animate", stack.describe())

@@ -551,6 +551,12 @@ def animate(result: RockingResult | Sequence[RockingResult], block: Block | None
     ValueError
         For a bad parameter; the message names it.
     """
+    if type(result).__name__ == "StackResult":   # a column of blocks: one drawing per block
+        from shaketable.plots.stack_animation import animate_stack
+
+        return animate_stack(result, out=out, fps=fps, speed=speed, start=start, end=end,
+                             size=size, dpi=dpi, unit=unit, highpass=highpass, title=title,
+                             max_frames=max_frames)
     results = [result] if isinstance(result, RockingResult) else list(result)
     if not results:
         raise ValueError("result must be a RockingResult or a non-empty sequence of them")
@@ -661,3 +667,8 @@ def snapshot(result: RockingResult | Sequence[RockingResult], time: float, *,
     finally:
         pyplot().close(stage.fig)
     return out
+
+
+#: The frame loop, the frame-size check and the writer, for the stack's animation
+#: (:mod:`shaketable.plots.stack_animation`).
+render_frames, checked_size = _render, _size
