@@ -118,12 +118,12 @@ def _refuse_runs_and_layout(args, what: str) -> None:
 def animate_stack_scene(args, scene, size, wrote) -> int:
     """``animate SCENE`` for a scene with ``[stack]``: its one run, one drawing per block."""
     from shaketable.commands.checks import report_early_stops
-    from shaketable.plots.animation import animate
+    from shaketable.plots.stack_animation import animate_stack
     from shaketable.scenes.stack import run_stack_scene
 
     _refuse_runs_and_layout(args, f"a stack scene ({scene.name}: one run)")
     result = run_stack_scene(scene)
-    written = animate(result.run, **_animation_options(args, size))
+    written = animate_stack(result.run, **_animation_options(args, size))
     print(result.lines()[0])
     wrote(written)
     return report_early_stops([result.run], "animate", scene.name)
@@ -133,7 +133,7 @@ def animate_stack_options(args, size, wrote) -> int:
     """``animate --stack SIZES`` with a motion given as ``simulate`` takes it."""
     from shaketable.commands.checks import report_early_stops
     from shaketable.core.validation import in_range
-    from shaketable.plots.animation import animate
+    from shaketable.plots.stack_animation import animate_stack
     from shaketable.scenes.stack import describe_law, per_block_angles, run_quietly, stack_from_text
 
     _refuse_runs_and_layout(args, "--stack (one run)")
@@ -147,7 +147,7 @@ def animate_stack_options(args, size, wrote) -> int:
     if motion is None:
         options["duration"] = args.duration
     result, _ = run_quietly(stack, motion, **options)
-    written = animate(result, **_animation_options(args, size))
+    written = animate_stack(result, **_animation_options(args, size))
     if note:
         print(note)
     print(f"{stack.describe()}, {describe_law(result)}: {result.verdict()}")

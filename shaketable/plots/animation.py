@@ -551,12 +551,6 @@ def animate(result: RockingResult | Sequence[RockingResult], block: Block | None
     ValueError
         For a bad parameter; the message names it.
     """
-    if type(result).__name__ == "StackResult":   # a column of blocks: one drawing per block
-        from shaketable.plots.stack_animation import animate_stack
-
-        return animate_stack(result, out=out, fps=fps, speed=speed, start=start, end=end,
-                             size=size, dpi=dpi, unit=unit, highpass=highpass, title=title,
-                             max_frames=max_frames)
     results = [result] if isinstance(result, RockingResult) else list(result)
     if not results:
         raise ValueError("result must be a RockingResult or a non-empty sequence of them")

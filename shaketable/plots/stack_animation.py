@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any, cast
 
 import numpy as np
 
@@ -227,8 +228,9 @@ def animate_stack(result, *, out: str | os.PathLike[str], fps: float = DEFAULT_F
     stage = _StackStage(result, times, highpass, size=(width, height), dpi=dpi, unit=unit,
                         title=title)
     try:
-        atomic_write(out, lambda temporary: render_frames(stage, temporary, (width, height),
-                                                          fps))
+        # the frame loop needs fig, times, animated and draw: what a _StackStage has
+        atomic_write(out, lambda temporary: render_frames(cast(Any, stage), temporary,
+                                                          (width, height), fps))
     finally:
         pyplot().close(stage.fig)
     return AnimationFile(path=out, n_frames=len(times), fps=float(fps), speed=float(speed),

@@ -38,6 +38,7 @@ from typing import Any
 import numpy as np
 
 from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
 from shaketable.core.units import format_length, parse, parse_angle_or_ratio
 from shaketable.core.validation import unknown_keys
 from shaketable.models.stack import (
@@ -220,7 +221,7 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
     demand = result.friction_demand
     finite = np.where(np.isfinite(demand), demand, -1.0)
     if finite.size and finite.max() >= 0:
-        k, j = np.unravel_index(int(np.argmax(finite)), finite.shape)
+        k, j = (int(index) for index in np.unravel_index(int(np.argmax(finite)), finite.shape))
         where = "the base" if j == 0 else f"interface {j - 1}|{j}"
         line = f"needed friction: peak F/N {finite[k, j]:.3g} at {where}, t = {result.t[k]:.2f} s"
         limit = PLAUSIBLE_FRICTION if mu is None else mu
@@ -429,6 +430,8 @@ def stack_motion(scene: StackScene):
     from shaketable.solvers.common import extended
 
     motion = build_motion(scene.base)
+    if motion is not None and not isinstance(motion, Motion):   # refused when parsed
+        raise SceneError(f"{scene.path}: motion.kind 'impulses' is not offered for a stack")
     if motion is not None and scene.duration is not None:
         motion = extended(motion, scene.duration)
     return motion
@@ -473,7 +476,7 @@ def stack_scene_section(scene: StackScene, folder: Path) -> str:
 #: figures (Pacoima Dam S16E with its vertical) over its strong part, a slender top block for
 #: the second branch of the uplift threshold, and one pulse frequency (the cost of the
 #: section is that of the stack model's SciPy engine).
-STACKS_SECTION = {"block": "8x2ft", "slender_top": "6x1ft", "records": ("pacoima-dam-s16e",),
+STACKS_SECTION: dict[str, Any] = {"block": "8x2ft", "slender_top": "6x1ft", "records": ("pacoima-dam-s16e",),
                   "window": 6.0, "ratios": (3.0,), "iterations": 5, "rtol": 1e-8}
 
 
