@@ -153,3 +153,41 @@ def animate_stack_options(args, size, wrote) -> int:
     print(f"{stack.describe()}, {describe_law(result)}: {result.verdict()}")
     wrote(written)
     return report_early_stops([result], "animate", stack.describe())
+
+
+def stack_spectrum_command(args) -> int:
+    """``spectrum --stack``: the smallest overturning half-sine pulse of a stack and of its
+    bottom block alone over omega/p (:func:`shaketable.studies.stacks.stack_spectrum`)."""
+    from shaketable.commands.checks import refuse_ignored_options
+    from shaketable.core.files import prepare_output_folder, write_csv
+    from shaketable.plots import base as plots
+    from shaketable.plots.stack_studies import stack_spectrum_figure
+    from shaketable.scenes.spectrum import parse_ratios
+    from shaketable.scenes.stack import stack_from_text
+    from shaketable.studies.stacks import stack_spectrum
+
+    refuse_ignored_options(args, "--stack (the smallest overturning half-sine, plastic "
+                           "impacts)", {"--block": None, "--alpha": None, "--p": None,
+                                        "--cor": "housner", "--ceiling": None,
+                                        "--scan-step": 0.005, "--tolerance": 1e-8,
+                                        "--method": "fast", "--compare-linear": False,
+                                        "--parquet": False})
+    if args.pulse and args.pulse != ["half-sine"]:
+        raise ValueError(f"--pulse {args.pulse[0]}: with --stack only half-sine pulses are "
+                         "offered")
+    if not 1 <= args.iterations <= 30:
+        raise ValueError(f"--iterations must be from 1 to 30, got {args.iterations}")
+    stack = stack_from_text(args.stack, args.masses)
+    ratios = parse_ratios(args.ratios)
+    out = prepare_output_folder(args.out)
+    frame = stack_spectrum(stack, ratios, iterations=args.iterations)
+    written = [write_csv(out / "spectrum.csv", frame), out / f"spectrum.{args.format}"]
+    plots.save(stack_spectrum_figure(frame, stack), written[-1])
+    print(f"{stack.describe()}, plastic impacts: smallest overturning half-sine [g] over "
+          f"ω/p (p = {stack.blocks[0].p:.4g} rad/s of the bottom block)")
+    for ratio, rows in frame.groupby("omega/p [-]", sort=False):
+        words = [f"{row['column']} {row['minimum [g]']:.3g} (Eq. 2-8 as one body "
+                 f"{row['Eq. (2-8) as one body [g]']:.3g})" for _, row in rows.iterrows()]
+        print(f"  ω/p = {ratio:g}: " + "; ".join(words))
+    print("wrote " + ", ".join(str(path) for path in written))
+    return 0

@@ -193,51 +193,88 @@ def _pulse(amplitude: float, length: float, after: float, samples: int = 40) -> 
                                   np.zeros(tail.size)]), name="half-sine pulse")
 
 
-def _overturns(block: Block, count: int, amplitude: float, length: float, after: float,
+def _overturns(stack: Stack, amplitude: float, length: float, after: float,
                rtol: float) -> bool:
     motion = _pulse(amplitude, length, after)
-    if count == 1:
+    if stack.n == 1:
+        block = stack.blocks[0]
         return bool(simulate(block, motion, cor=housner_cor(block)).overturned)
-    return _stack_run(Stack((block,) * count), motion, rtol=rtol).status == "overturned"
+    return _stack_run(stack, motion, rtol=rtol).status == "overturned"
+
+
+def eq_2_8(stack: Stack, omega: float) -> float:
+    """Housner's half-sine estimate Eq. (2-8) for the column as one rigid body [g]:
+    tan(alpha_eq) sqrt(1 + (omega / p_eq)^2) (one block: the report's own)."""
+    rigid = rigid_stack(stack)
+    return math.tan(rigid["alpha_eq"]) * math.sqrt(1.0 + (omega / rigid["p_eq"]) ** 2)
+
+
+def column_minimum(stack: Stack, omega: float, iterations: int = 5, after: float = 2.5,
+                   rtol: float = 1e-9) -> dict:
+    """The smallest half-sine pulse of angular frequency ``omega`` [rad/s] (lasting
+    pi / omega) that overturns ``stack`` (one block: the single-block engine at Housner's
+    COR), bisected ``iterations`` times between 0.5 and 2 times :func:`eq_2_8`; a run
+    overturns when the column falls within ``after`` seconds of the pulse's end.
+
+    Returns
+    -------
+    dict
+        ``stands [g]`` and ``falls [g]`` (the bracket), ``minimum [g]`` (its middle; NaN
+        when the bracket does not hold the switch) and ``Eq. (2-8) as one body [g]``.
+    """
+    length = math.pi / omega
+    estimate = eq_2_8(stack, omega)
+    low, high = 0.5 * estimate, 2.0 * estimate
+    row = {"stands [g]": math.nan, "falls [g]": math.nan, "minimum [g]": math.nan,
+           "Eq. (2-8) as one body [g]": estimate}
+    if _overturns(stack, low * G, length, after, rtol) or not _overturns(
+            stack, high * G, length, after, rtol):
+        return row
+    for _ in range(iterations):
+        middle = 0.5 * (low + high)
+        low, high = ((low, middle) if _overturns(stack, middle * G, length, after, rtol)
+                     else (middle, high))
+    row.update({"stands [g]": low, "falls [g]": high, "minimum [g]": 0.5 * (low + high)})
+    return row
 
 
 def pulse_amplitudes(block: Block, ratios=(3.0,), heights=(1, 2), iterations: int = 5,
                      after: float = 2.5, rtol: float = 1e-9) -> pd.DataFrame:
-    """The smallest half-sine pulse that overturns ``block`` alone and stacked.
-
-    For each ``omega / p`` of ``ratios`` (p of the block alone; the pulse lasts pi /
-    omega) and each height, the amplitude is bisected ``iterations`` times between 0.5
-    and 2 times the half-sine estimate of Eq. (2-8) for that column as one rigid body,
-    ``a = g tan(alpha_eq) sqrt(1 + (omega / p_eq)^2)``; a run overturns when the column
-    falls within ``after`` seconds of the pulse's end.
+    """The smallest half-sine pulse that overturns ``block`` alone and stacked
+    ``heights`` high, for each ``omega / p`` of ``ratios`` (p of the block alone)
+    (:func:`column_minimum`).
 
     Returns
     -------
     DataFrame
-        omega/p, blocks high, the bracket found [g] (low: stands, high: falls) and its
-        middle, and Eq. (2-8) for the column [g].
+        omega/p, blocks high, the bracket found [g] (stands, falls), its middle, and
+        Eq. (2-8) for the column as one body [g].
     """
     rows = []
     for ratio in ratios:
-        omega = ratio * block.p
-        length = math.pi / omega
         for count in heights:
-            rigid = rigid_stack(Stack((block,) * count))
-            estimate = math.tan(rigid["alpha_eq"]) * math.sqrt(1.0 + (omega / rigid["p_eq"]) ** 2)
-            low, high = 0.5 * estimate, 2.0 * estimate
-            if _overturns(block, count, low * G, length, after, rtol) or not _overturns(
-                    block, count, high * G, length, after, rtol):
-                rows.append({"omega/p [-]": ratio, "blocks high": count, "stands [g]": math.nan,
-                             "falls [g]": math.nan, "minimum [g]": math.nan,
-                             "Eq. (2-8) as one body [g]": estimate})
-                continue
-            for _ in range(iterations):
-                middle = 0.5 * (low + high)
-                low, high = ((low, middle) if _overturns(block, count, middle * G, length,
-                                                         after, rtol) else (middle, high))
-            rows.append({"omega/p [-]": ratio, "blocks high": count, "stands [g]": low,
-                         "falls [g]": high, "minimum [g]": 0.5 * (low + high),
-                         "Eq. (2-8) as one body [g]": estimate})
+            rows.append({"omega/p [-]": ratio, "blocks high": count,
+                         **column_minimum(Stack((block,) * count), ratio * block.p,
+                                          iterations, after, rtol)})
+    return pd.DataFrame(rows)
+
+
+def stack_spectrum(stack: Stack, ratios, iterations: int = 5, after: float = 2.5,
+                   rtol: float = 1e-9) -> pd.DataFrame:
+    """The smallest overturning half-sine pulse of ``stack`` and of its bottom block alone
+    over ``omega / p`` (p of the bottom block), with Eq. (2-8) for each as one body.
+
+    Only the lowest overturning amplitude of each pulse frequency is sought (bisected
+    between 0.5 and 2 times Eq. (2-8)): the safe bands above it that a single block has
+    (:mod:`shaketable.studies.overturning_spectrum`) are not searched for a stack.
+    """
+    bottom = Stack((stack.blocks[0],))
+    rows = []
+    for ratio in ratios:
+        omega = float(ratio) * stack.blocks[0].p
+        for label, column in (("stack", stack), ("bottom block alone", bottom)):
+            rows.append({"omega/p [-]": float(ratio), "column": label,
+                         **column_minimum(column, omega, iterations, after, rtol)})
     return pd.DataFrame(rows)
 
 

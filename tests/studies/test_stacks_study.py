@@ -54,3 +54,26 @@ def test_the_stacks_scene_is_a_study_of_its_own_kind():
 
     study = load_scene(resolve_scene_path("stacks"))
     assert isinstance(study, Study) and study.kind == "stacks"
+
+
+def test_eq_2_8_of_one_block_is_the_report_s_and_a_stack_s_is_lower():
+    from shaketable.studies.stacks import eq_2_8
+
+    omega = 3.0 * BOTTOM.p
+    assert eq_2_8(Stack((BOTTOM,)), omega) == pytest.approx(
+        math.tan(BOTTOM.alpha) * math.sqrt(1.0 + 9.0), rel=1e-14)
+    assert eq_2_8(Stack((BOTTOM, BOTTOM)), omega) < eq_2_8(Stack((BOTTOM,)), omega)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--stack", "8x2ft,8x3ft"], "--stack: block 1 (top) (8 x 3 ft) is wider than block 0"),
+    (["--stack", "8x2ft,8x2ft", "--pulse", "one-sine"], "only half-sine pulses are offered"),
+    (["--stack", "8x2ft,8x2ft", "--cor", "0.9"], "--cor '0.9' cannot be used with --stack"),
+    (["--stack", "8x2ft,8x2ft", "--iterations", "0"], "--iterations must be from 1 to 30"),
+])
+def test_spectrum_with_a_stack_refuses_bad_input(tmp_path, argv, message):
+    from tests.test_bad_input import run_cli
+
+    status, _, err = run_cli(["spectrum", *argv, "--out", tmp_path / "out"], cwd=tmp_path)
+    assert status == 2 and message in err, err
+    assert not (tmp_path / "out").exists()
