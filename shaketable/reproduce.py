@@ -228,7 +228,7 @@ def _worker_count(scenes: int) -> int:
 #: (longest processing time first), so that the two processes end together.
 SCENE_CPU = {"table-4-3": 11.3, "table-4-2": 9.7, "table-4-1": 8.6,
              "teaching-slide-or-rock": 4.4, "fig-2-6": 4.0, "mode-map-pacoima": 3.5,
-             "spectrum-one-sine": 3.1, "section-3-7-pitch": 2.1, "fig-3-8": 1.9,
+             "spectrum-one-sine": 3.1, "stacks": 7.0, "section-3-7-pitch": 2.1, "fig-3-8": 1.9,
              "fig-2-3": 1.9, "fig-3-9": 1.8, "fig-3-5": 1.7, "fig-3-7": 1.5,
              "section-4-3-4": 1.5, "fig-2-4": 1.4, "teaching-lower-cor": 1.3,
              "table-3-1": 0.3, "table-4-4": 0.2}
