@@ -158,13 +158,15 @@ def animate_stack_options(args, size, wrote) -> int:
 def stack_spectrum_command(args) -> int:
     """``spectrum --stack``: the smallest overturning half-sine pulse of a stack and of its
     bottom block alone over omega/p (:func:`shaketable.studies.stacks.stack_spectrum`)."""
+    import numpy as np
+
     from shaketable.commands.checks import refuse_ignored_options
     from shaketable.core.files import prepare_output_folder, write_csv
     from shaketable.plots import base as plots
     from shaketable.plots.stack_studies import stack_spectrum_figure
     from shaketable.scenes.spectrum import parse_ratios
     from shaketable.scenes.stack import stack_from_text
-    from shaketable.studies.stacks import stack_spectrum
+    from shaketable.studies.stacks import eq_2_8_curves, stack_spectrum
 
     refuse_ignored_options(args, "--stack (the smallest overturning half-sine, plastic "
                            "impacts)", {"--block": None, "--alpha": None, "--p": None,
@@ -182,7 +184,9 @@ def stack_spectrum_command(args) -> int:
     out = prepare_output_folder(args.out)
     frame = stack_spectrum(stack, ratios, iterations=args.iterations)
     written = [write_csv(out / "spectrum.csv", frame), out / f"spectrum.{args.format}"]
-    plots.save(stack_spectrum_figure(frame, stack), written[-1])
+    curves = eq_2_8_curves(stack, np.linspace(0.0, 1.05 * max(ratios), 200))
+    plots.save(stack_spectrum_figure(frame, curves, f"half-sine pulses: {stack.describe()}"),
+               written[-1])
     print(f"{stack.describe()}, plastic impacts: smallest overturning half-sine [g] over "
           f"ω/p (p = {stack.blocks[0].p:.4g} rad/s of the bottom block)")
     for ratio, rows in frame.groupby("omega/p [-]", sort=False):

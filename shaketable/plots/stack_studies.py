@@ -110,7 +110,7 @@ def stacks_study_figure(study):
     return fig
 
 
-def stack_spectrum_figure(frame, stack, title: str = ""):
+def stack_spectrum_figure(frame, curves: dict, title: str = ""):
     """The smallest overturning half-sine pulse of a stack and of its bottom block alone
     over omega/p (bisected brackets), with Eq. (2-8) for each as one rigid body (lines).
 
@@ -118,34 +118,33 @@ def stack_spectrum_figure(frame, stack, title: str = ""):
     ----------
     frame : DataFrame
         :func:`shaketable.studies.stacks.stack_spectrum`.
-    stack : shaketable.models.stack.Stack
+    curves : dict
+        ``{"stack": (ratios, amplitudes [g]), "bottom block alone": (...)}``: Eq. (2-8)
+        for each column (:func:`shaketable.studies.stacks.eq_2_8`).
     title : str, optional
 
     Returns
     -------
     matplotlib.figure.Figure
     """
-    from shaketable.models.stack import Stack
-    from shaketable.studies.stacks import eq_2_8
-
     plt = pyplot()
     fig, axis = plt.subplots(figsize=(7.5, 5.0))
-    ratios = np.linspace(0.0, 1.05 * float(frame["omega/p [-]"].max()), 200)
-    p = stack.blocks[0].p
-    for (label, column), colour in ((("stack", stack), "tab:red"),
-                                    (("bottom block alone", Stack((stack.blocks[0],))), "k")):
-        axis.plot(ratios, [eq_2_8(column, ratio * p) for ratio in ratios], color=colour,
-                  lw=0.9, ls="--", label=f"{label}: Eq. (2-8) as one rigid body")
+    last = 0.0
+    for label, colour in (("stack", "tab:red"), ("bottom block alone", "k")):
+        ratios, values = curves[label]
+        last = max(last, float(np.max(ratios)))
+        axis.plot(ratios, values, color=colour, lw=0.9, ls="--",
+                  label=f"{label}: Eq. (2-8) as one rigid body")
         rows = frame[frame["column"] == label]
         axis.errorbar(rows["omega/p [-]"], rows["minimum [g]"],
                       yerr=0.5 * (rows["falls [g]"] - rows["stands [g]"]), fmt="o",
                       color=colour, capsize=3, label=f"{label}: computed (bisected)")
     axis.set_xlabel("ω/p of the bottom block [-] (half-sine lasting π/ω)")
     axis.set_ylabel("smallest overturning amplitude [g]")
-    axis.set_xlim(0.0, ratios[-1])
+    axis.set_xlim(0.0, last)
     axis.set_ylim(0.0, None)
     axis.grid(True, lw=0.3, alpha=0.5)
     axis.legend(fontsize=8, loc="upper left")
-    axis.set_title(title or f"half-sine pulses: {stack.describe()}", fontsize=10)
+    axis.set_title(title or "half-sine pulses", fontsize=10)
     fig.tight_layout()
     return fig

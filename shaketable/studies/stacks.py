@@ -238,6 +238,16 @@ def column_minimum(stack: Stack, omega: float, iterations: int = 5, after: float
     return row
 
 
+def eq_2_8_curves(stack: Stack, ratios) -> dict:
+    """:func:`eq_2_8` of ``stack`` and of its bottom block alone over ``ratios`` (omega/p
+    of the bottom block): ``{"stack": (ratios, [g]), "bottom block alone": (ratios, [g])}``."""
+    ratios = np.asarray(ratios, dtype=float)
+    p = stack.blocks[0].p
+    return {label: (ratios, np.array([eq_2_8(column, ratio * p) for ratio in ratios]))
+            for label, column in (("stack", stack), ("bottom block alone",
+                                                     Stack((stack.blocks[0],))))}
+
+
 def pulse_amplitudes(block: Block, ratios=(3.0,), heights=(1, 2), iterations: int = 5,
                      after: float = 2.5, rtol: float = 1e-9) -> pd.DataFrame:
     """The smallest half-sine pulse that overturns ``block`` alone and stacked
