@@ -477,7 +477,7 @@ def stack_scene_section(scene: StackScene, folder: Path) -> str:
 #: the second branch of the uplift threshold, and one pulse frequency (the cost of the
 #: section is that of the stack model's SciPy engine).
 STACKS_SECTION: dict[str, Any] = {"block": "8x2ft", "slender_top": "6x1ft", "records": ("pacoima-dam-s16e",),
-                  "window": 6.0, "ratios": (3.0,), "iterations": 5, "rtol": 1e-8}
+                  "window": 6.0, "ratios": (3.0,), "iterations": 5, "rtol": 1e-7}
 
 
 def stacks_section(folder: Path, lines: list) -> str:
@@ -522,6 +522,9 @@ def stacks_section(folder: Path, lines: list) -> str:
               "block alone by the single-block engine at Housner's COR 1 − 1.5 sin²α, the "
               "plastic law's one-block case). F = overturns; max θ/α bottom first:", "",
               table(study.records.drop(columns=["height [ft]"])), "",
+              "(The overturn times and blocks are those of runs at rtol 10⁻¹², to the "
+              "digits shown; the number of impacts of a rocking column is not: the "
+              "chatter before a landing resolves differently at each tolerance.)", "",
               "**Uplift thresholds** from a table acceleration rising at 0.5 g/s, against "
               "(g + v̈) min(A1, A2), A1 = b1 (m1 + m2) / (m1 h1 + m2 (2 h1 + h2)) (the whole "
               f"stack), A2 = b2/h2 (the top block alone): largest relative difference "
