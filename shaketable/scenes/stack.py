@@ -402,7 +402,8 @@ class StackSceneResult:
         return json_ready_dict(summary)
 
     def write(self, out: str | os.PathLike[str]) -> list[Path]:
-        """history.csv, events.csv, summary.json and calcomp.png (as the scene asks)."""
+        """history.csv, events.csv, summary.json and calcomp.png (and .svg), as the scene's
+        ``[outputs]`` asks."""
         from shaketable.core.files import prepare_output_folder, write_csv, write_text
 
         out = prepare_output_folder(out, "out")
@@ -417,9 +418,11 @@ class StackSceneResult:
 
             title = (f"{self.scene.source} (scene {self.scene.name})" if self.scene.source
                      else f"scene {self.scene.name}")
-            written.append(out / "calcomp.png")
-            save(self.run.plot(title=title,
-                               time_range=self.scene.outputs.get("time_range")), written[-1])
+            for suffix in ("png", "svg") if self.scene.outputs.get("svg", False) else ("png",):
+                written.append(out / f"calcomp.{suffix}")
+                save(self.run.plot(title=title,
+                                   time_range=self.scene.outputs.get("time_range")),
+                     written[-1])
         return written
 
 
