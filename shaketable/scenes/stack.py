@@ -242,10 +242,11 @@ def _first_moved(result: StackResult, i: int) -> str:
     moving later (an interface at or below it opened: an uplift or a landing's kick)."""
     if result.t.size == 0 or result.theta[0, i] != 0.0 or result.theta_dot[0, i] != 0.0:
         return ""
-    for event in result.events:
+    for index, event in enumerate(result.events):
         after = event.get("pattern_after")
         if after is not None and any(after[: i + 1]):
-            return ("" if event["t"] <= result.t[0] else
+            first = index == 0 and event["kind"] == "uplift"   # the stack's own start: said
+            return ("" if event["t"] <= result.t[0] or first else      # by the uplift line
                     f"; at rest until t = {event['t']:.3f} s ({event['kind']})")
     return ""
 
