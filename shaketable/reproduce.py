@@ -257,7 +257,7 @@ def _worker_count(scenes: int) -> int:
 #: (longest processing time first), so that the two processes end together.
 SCENE_CPU = {"table-4-3": 11.3, "table-4-2": 9.7, "table-4-1": 8.6,
              "teaching-slide-or-rock": 4.4, "fig-2-6": 4.0, "mode-map-pacoima": 3.5,
-             "spectrum-one-sine": 3.1, "section-3-7-pitch": 2.1, "fig-3-8": 1.9,
+             "spectrum-one-sine": 3.1, "stacks": 7.0, "section-3-7-pitch": 2.1, "fig-3-8": 1.9,
              "fig-2-3": 1.9, "fig-3-9": 1.8, "fig-3-5": 1.7, "fig-3-7": 1.5,
              "section-4-3-4": 1.5, "fig-2-4": 1.4, "teaching-lower-cor": 1.3,
              "table-3-1": 0.3, "table-4-4": 0.2}
@@ -332,6 +332,10 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
     scene = load_scene(resolve_scene_path(name))
     if isinstance(scene, Study):
         return _study_section(scene, out, tally)
+    from shaketable.scenes.stack import StackScene, stack_scene_section
+
+    if isinstance(scene, StackScene):   # [stack]: a column of blocks
+        return stack_scene_section(scene, subfolder(out, scene.name, "out"))
     result = run_scene(scene)
     result.write(subfolder(out, scene.name, "out"))
     lines = [f"## {scene.source or scene.name} — `{scene.name}`", "", scene.description, "",
@@ -523,6 +527,9 @@ def _study_section(study: Study, out: Path, tally: ComparisonTally) -> str:
         return _spectrum_section(study, folder, lines)
     if study.kind == "mode-map":
         return _mode_map_section(study, folder, lines)
+    if study.kind == "stacks":   # stacks beside single blocks
+        from shaketable.scenes.stack import stacks_section
+        return stacks_section(folder, lines)
     if study.kind == "report-figure":
         from shaketable.plots.base import save
         from shaketable.plots.studies import section_2_figure

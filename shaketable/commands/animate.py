@@ -44,9 +44,13 @@ def _animate(args) -> int:
     check_animate_options(args)   # before the scene runs: bounds that protect the memory
     size = _size(args.size)
     prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
-    given = [f"--{name}" for name in ("block", "cor", "harmonic", "pulse", "record")
+    given = [f"--{name}" for name in ("block", "stack", "cor", "harmonic", "pulse", "record")
              if getattr(args, name) is not None]
     if args.scene is None:
+        if args.stack is not None:    # a column of blocks on a motion given as simulate's
+            from shaketable.commands.stack import animate_stack_options
+
+            return animate_stack_options(args, size, _wrote)
         return _animate_options(args, size)
     if given:
         raise ValueError(f"give a scene or --block with its motion, not both (got the scene "
@@ -56,7 +60,12 @@ def _animate(args) -> int:
         raise ValueError(f"{scene.path}: a [study] has no single block to animate; give a "
                          "scene with [block], [motion] and [rocking]")
     from shaketable.commands.common import notice_first_compile
+    from shaketable.scenes.stack import StackScene
 
+    if isinstance(scene, StackScene):   # [stack]: one drawing per block
+        from shaketable.commands.stack import animate_stack_scene
+
+        return animate_stack_scene(args, scene, size, _wrote)
     notice_first_compile(args.quiet)
     result = run_scene(scene)
     labels = run_labels(result.runs)
@@ -141,6 +150,10 @@ def register(commands) -> None:
                              "with --block and its motion")
     parser.add_argument("--block", help="without a scene: HEIGHTxWIDTH with unit, height "
                                         "first, e.g. 30x6in or 16x4ft")
+    parser.add_argument("--stack", metavar="SIZE,SIZE[,...]",
+                        help="without a scene: a column of blocks from the bottom up, each "
+                             "HEIGHTxWIDTH with unit (e.g. 30x6in,30x6in), as simulate --stack "
+                             "(--cor optional: without it plastic impacts)")
     parser.add_argument("--cor", type=float,
                         help="without a scene: coefficient of restitution [0-1]")
     parser.add_argument("--theta0", default="0rad",

@@ -20,6 +20,10 @@ def _run(args) -> int:
                          if uses_planar(args.scene) else ("engine",))
     if isinstance(scene, Study):
         return _run_study(scene, out)
+    from shaketable.scenes.stack import StackScene
+
+    if isinstance(scene, StackScene):   # [stack]: a column of blocks (the stack model)
+        return _run_stack(scene, out, args)
     from shaketable.scenes.run import run_scene
 
     if args.parquet or args.svg:
@@ -78,6 +82,24 @@ def _run(args) -> int:
     from shaketable.commands.checks import report_early_stops
 
     return report_early_stops([*result.runs, *result.planar], "run", scene.name)
+
+
+def _run_stack(scene, out: Path, args) -> int:
+    """A scene with ``[stack]``: its verdict and answer, then the files."""
+    import sys
+
+    from shaketable.commands.checks import report_early_stops
+    from shaketable.scenes.stack import run_stack_scene, with_outputs
+
+    if args.parquet:
+        raise ValueError(f"--parquet: a stack scene ({scene.name}) writes history.csv only")
+    result = run_stack_scene(with_outputs(scene, svg=args.svg) if args.svg else scene)
+    written = result.write(out)
+    print("\n".join(result.lines()))
+    for line in result.warnings:
+        print(f"shaketable run: warning: {scene.name}: {line}", file=sys.stderr)
+    print("wrote " + ", ".join(str(path) for path in written))
+    return report_early_stops([result.run], "run", scene.name)
 
 
 def _run_study(study, out: Path) -> int:

@@ -67,6 +67,16 @@ def _simulate(args) -> int:
     from shaketable.plots import base as plots
     from shaketable.solvers.api import simulate
 
+    if args.stack is not None:   # a column of blocks: the stack model (commands/stack.py)
+        from shaketable.commands.stack import simulate_stack_command
+
+        return simulate_stack_command(args, _on_floor)
+    from shaketable.commands.stack import refuse_stack_options
+
+    refuse_stack_options(args)
+    if args.block is None or args.cor is None:
+        raise ValueError("give --block and --cor (one block), or --stack (a column of blocks, "
+                         "e.g. --stack 30x6in,30x6in)")
     check_simulate_options(args)   # options the chosen model would ignore: refused
     block = block_option(args.block)
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
@@ -181,17 +191,37 @@ def _ensemble(args, block, motion, out) -> int:
 def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``simulate`` subcommand to an argparse subparsers object."""
     sim = commands.add_parser(
-        "simulate", help="one block, one motion (or free rocking): CSV, JSON and Calcomp figure",
+        "simulate", help="one block (or a --stack of blocks), one motion (or free rocking): "
+                         "CSV, JSON and Calcomp figure",
         description="Simulate one block under a record (--record), a harmonic motion "
                     "(--harmonic 2Hz,0.5g) or a pulse (--pulse half-sine,0.5g,0.2s). Without "
                     "any, the block rocks freely from --theta0.")
-    sim.add_argument("--block", required=True,
+    sim.add_argument("--block",
                      help="HEIGHTxWIDTH with unit, height first, e.g. 30x6in or 16x4ft")
-    sim.add_argument("--cor", type=cor_argument, required=True,
+    sim.add_argument("--cor", type=cor_argument,
                      help="coefficient of restitution [0-1], or a calibration.json of "
-                          "`shaketable calibrate` (an ensemble over the calibrated COR)")
+                          "`shaketable calibrate` (an ensemble over the calibrated COR); "
+                          "needed for --block; with --stack optional (the constant-COR law; "
+                          "without it the plastic multi-contact law)")
+    stack = sim.add_argument_group(
+        "stack", "a column of blocks instead of --block (the stack model: no sliding, no "
+        "flight; docs/stack.md)")
+    stack.add_argument("--stack", metavar="SIZE,SIZE[,...]",
+                       help="the blocks from the bottom up, each HEIGHTxWIDTH with unit, e.g. "
+                            "30x6in,30x6in; each centred on the one below, none wider than it")
+    stack.add_argument("--masses", metavar="MASS,MASS[,...]",
+                       help="each block's mass with its unit, bottom first (e.g. 400kg,200kg); "
+                            "default: one density, masses in proportion to the areas")
+    stack.add_argument("--densities", metavar="DENSITY,...",
+                       help="each block's density with its unit, bottom first (e.g. "
+                            "2400kg/m3,7800kg/m3; equal depths)")
+    stack.add_argument("--mu", type=float,
+                       help="the friction coefficient the contacts offer [-]: said beside the "
+                            "friction they need (F/N) and when it would be exceeded")
     sim.add_argument("--theta0", default="0rad",
-                     help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad)")
+                     help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad); "
+                          "with --stack one value (every block's) or one per block, bottom "
+                          "first, alpha being each block's own")
     add_record_arguments(sim)
     add_motion_options(sim)
     add_quantity(sim, "--duration", kind="time", example="8s", help="length of the run")

@@ -51,6 +51,10 @@ def _spectrum(args) -> int:
     from shaketable.plots import base as plots
     from shaketable.studies.overturning_spectrum import overturning_spectrum
 
+    if args.stack is not None:   # a column of blocks (commands/stack.py)
+        from shaketable.commands.stack import stack_spectrum_command
+
+        return stack_spectrum_command(args)
     if args.compare_linear and args.method == "linear":
         raise ValueError("--compare-linear cannot be used with --method linear: the spectrum "
                          "is the linearised one already; leave out --compare-linear")
@@ -110,6 +114,15 @@ def register(commands) -> None:
         description="Every overturn/safe band edge in a/(g tan alpha) of a block under pulses, "
                     "over omega/p (shaketable.studies.overturning_spectrum).")
     spec.add_argument("--block", help="HEIGHTxWIDTH with unit, e.g. 16x4ft")
+    spec.add_argument("--stack", metavar="SIZE,SIZE[,...]",
+                      help="a column of blocks from the bottom up (e.g. 8x2ft,8x2ft; "
+                           "--masses as for simulate): the smallest overturning half-sine "
+                           "of the stack and of its bottom block alone, bisected "
+                           "(--iterations), beside Eq. (2-8) for each as one rigid body")
+    spec.add_argument("--masses", metavar="MASS,MASS[,...]",
+                      help="with --stack: each block's mass with its unit, bottom first")
+    spec.add_argument("--iterations", type=int, default=5,
+                      help="with --stack: bisections of each amplitude (default 5)")
     add_quantity(spec, "--alpha", kind="angle", example="0.25rad",
                  help="block angle alpha (with --p)")
     add_quantity(spec, "--p", kind="angular frequency", example="2rad/s",

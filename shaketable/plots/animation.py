@@ -661,3 +661,8 @@ def snapshot(result: RockingResult | Sequence[RockingResult], time: float, *,
     finally:
         pyplot().close(stage.fig)
     return out
+
+
+#: The frame loop, the frame-size check and the writer, for the stack's animation
+#: (:mod:`shaketable.plots.stack_animation`).
+render_frames, checked_size = _render, _size

@@ -42,6 +42,13 @@ def _floor(section: dict, where: str) -> Any:
     return floor_from_dict(section, where)
 
 
+def _stack(scene: dict, where: str) -> Any:
+    from shaketable.scenes.stack import stack_scene_from_dict
+
+    return stack_scene_from_dict(scene, where)
+
+
 register_section_parser("sensors", _sensors)
 register_section_parser("theory", _theory)
 register_section_parser("floor", _floor)
+register_section_parser("stack", _stack)   # a whole scene with [stack] (a column of blocks)

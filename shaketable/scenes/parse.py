@@ -95,7 +95,8 @@ STUDY_KINDS = {"report-table": {"table", "columns", "seed"}, "report-figure": {"
                                         "ceiling", "scan_step", "tolerance", "reference",
                                         "method"},
                # the keys are read by shaketable.scenes.mode_map
-               "mode-map": {"record", "pga", "aspect_ratios", "frictions", "height", "cor"}}
+               "mode-map": {"record", "pga", "aspect_ratios", "frictions", "height", "cor"},
+               "stacks": set()}   # stacks beside single blocks (scenes.stack)
 
 
 class SceneError(ValueError):
@@ -303,7 +304,7 @@ def load_scene(path: str | Path) -> Scene | Study:
 #: A key named in an error message: ``rocking.theta0``, ``[block]``, ``'colour' in [block]``.
 _KEY_IN_MESSAGE = re.compile(r"unknown key '([\w-]+)' in \[([\w.-]+)|\[([\w.-]+)\]|"
                              r"\b((?:block|motion|rocking|report|outputs|table|sensors|theory|"
-                             r"sliding|ensemble|study|floor)(?:\.[\w-]+)+)")
+                             r"sliding|ensemble|study|floor|stack)(?:\.[\w-]+)+)")
 
 
 def with_line(message: str, where: str, text: str) -> str:
@@ -331,6 +332,8 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
     """Validate a scene given as a dict (the parsed TOML); a ``[study]`` gives a :class:`Study`."""
     if "study" in data:
         return _study(data, where)
+    if "stack" in data:   # a column of blocks: the parser registered for it (scenes.stack)
+        return SECTION_PARSERS["stack"](data, where)
     _only(data, TOP_KEYS, where, "top level")
     for key in ("name", "block", "motion", "rocking"):
         if key not in data:
@@ -523,6 +526,8 @@ def _study(data: dict, where: str) -> Study:
             return Study(**common, mode_map=mode_map_settings(spec, where))
         except ValueError as error:
             raise SceneError(str(error)) from None
+    if kind == "stacks":
+        return Study(**common)
     if kind == "pitch-repeatability":
         phases = spec.get("phases", 24)
         if isinstance(phases, bool) or not isinstance(phases, int) or phases < 2:

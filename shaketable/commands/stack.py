@@ -1,0 +1,197 @@
+"""``shaketable simulate --stack 30x6in,30x6in``: a column of blocks (the stack model).
+
+The answer first (the verdict: which block overturned and when; each block's peak
+rotation against its own alpha; the top corner's excursion; the friction the contacts
+need against ``--mu``), then the files, as for one block: history.csv, events.csv,
+summary.json and the Calcomp figure (one rotation panel per block and the contact
+patterns; ``docs/stack.md``).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+
+#: ``simulate``'s options that belong to one block, with their defaults: refused with --stack.
+_BLOCK_ONLY = {"--block": None, "--method": "fast", "--subdivisions": 4, "--friction": None,
+               "--ensemble": 0, "--perturb": 1e-9, "--perturb-amplitude": None,
+               "--perturb-cor": None, "--perturb-size": None, "--perturb-start": None,
+               "--seed": 0, "--horizon-threshold": 1e-3}
+
+
+def refuse_stack_options(args) -> None:
+    """``--masses``, ``--densities`` and ``--mu`` without ``--stack``: refused, naming them."""
+    for option in ("--masses", "--densities", "--mu"):
+        if getattr(args, option[2:], None) is not None:
+            raise ValueError(f"{option} is for a column of blocks: give --stack (e.g. --stack "
+                             "30x6in,30x6in), or leave out " + option)
+
+
+def stack_motion(args, on_floor):
+    """The table motion of ``--record``, ``--harmonic`` or ``--pulse`` (None: free rocking),
+    a record cut to ``--duration`` when one is given, on ``--floor`` of ``--building``."""
+    from shaketable.commands.common import load_motion, scaled_record
+    from shaketable.commands.options import motion_from_options
+    from shaketable.solvers.common import extended
+
+    motion = motion_from_options(args) or (load_motion(args) if args.record else None)
+    motion, note = scaled_record(motion, args)
+    motion = on_floor(args, motion)
+    if motion is None and args.duration is None:
+        raise ValueError("free rocking (no --record, --harmonic or --pulse) needs --duration")
+    if motion is not None and args.record and args.duration is not None:
+        motion = extended(motion, args.duration)
+    return motion, note
+
+
+def simulate_stack_command(args, on_floor) -> int:
+    """Run ``simulate --stack``; the exit status (1: a run stopped early).
+
+    ``on_floor(args, motion)`` is simulate's reading of ``--floor`` and ``--building``."""
+    from shaketable.commands.checks import refuse_ignored_options, report_early_stops
+    from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
+    from shaketable.core.stops import stop_summary
+    from shaketable.core.validation import in_range
+    from shaketable.plots import base as plots
+    from shaketable.scenes.stack import (
+        describe_law,
+        friction_coefficient,
+        per_block_angles,
+        run_quietly,
+        stack_answer,
+        stack_from_text,
+    )
+
+    refuse_ignored_options(args, "--stack (a column of blocks)", _BLOCK_ONLY)
+    if isinstance(args.cor, str):
+        raise ValueError(f"--cor {args.cor}: a calibration file is for one block; with --stack "
+                         "give a number (the constant-COR law) or leave --cor out (the plastic "
+                         "multi-contact law)")
+    if args.history == "peaks":
+        raise ValueError("--history peaks is for one block; with --stack give full or none")
+    stack = stack_from_text(args.stack, args.masses, args.densities)
+    theta0 = per_block_angles(args.theta0, stack, where="--theta0")
+    mu = friction_coefficient(args.mu, "--mu")
+    options: dict = {"theta0": theta0}
+    if args.cor is not None:
+        options.update(impact="cor", cor=in_range("--cor", args.cor, 0.0, 1.0))
+    motion, note = stack_motion(args, on_floor)
+    if motion is None:
+        options["duration"] = args.duration
+    out = prepare_output_folder(args.out)   # before the run: a bad path loses no work
+    result, said = run_quietly(stack, motion, **options)
+    written = []
+    if args.history != "none":
+        written += [write_csv(out / "history.csv", result.to_frame())]
+    written += [write_csv(out / "events.csv", result.events_frame())]
+    summary = dict(stop_summary(result), stack=stack.describe(), verdict=result.verdict(),
+                   warnings=said)
+    if mu is not None:
+        summary["mu [-]"] = mu
+        summary["t_friction_exceeded(mu) [s]"] = result.t_friction_exceeded(mu)
+    written.append(write_text(out / "summary.json",
+                              json.dumps(json_ready_dict(summary), indent=2)))
+    written.append(out / f"calcomp.{args.format}")
+    plots.save(result.plot(), written[-1])
+    print(f"{stack.describe()}, {describe_law(result)}: {result.verdict()}")
+    for line in stack_answer(result, mu):
+        print("  " + line)
+    if note:
+        print(note)
+    for line in said:
+        print(f"shaketable simulate: warning: {line}", file=sys.stderr)
+    print("wrote " + ", ".join(str(path) for path in written))
+    return report_early_stops([result], "simulate", stack.describe())
+
+
+def _animation_options(args, size) -> dict:
+    return {"out": args.out, "fps": args.fps, "speed": args.speed, "start": args.start,
+            "end": args.end, "size": size, "dpi": args.dpi, "unit": args.unit}
+
+
+def _refuse_runs_and_layout(args, what: str) -> None:
+    from shaketable.commands.checks import refuse_ignored_options
+
+    refuse_ignored_options(args, what, {"--run": "all", "--layout": "side"})
+
+
+def animate_stack_scene(args, scene, size, wrote) -> int:
+    """``animate SCENE`` for a scene with ``[stack]``: its one run, one drawing per block."""
+    from shaketable.commands.checks import report_early_stops
+    from shaketable.plots.stack_animation import animate_stack
+    from shaketable.scenes.stack import run_stack_scene
+
+    _refuse_runs_and_layout(args, f"a stack scene ({scene.name}: one run)")
+    result = run_stack_scene(scene)
+    written = animate_stack(result.run, **_animation_options(args, size))
+    print(result.lines()[0])
+    wrote(written)
+    return report_early_stops([result.run], "animate", scene.name)
+
+
+def animate_stack_options(args, size, wrote) -> int:
+    """``animate --stack SIZES`` with a motion given as ``simulate`` takes it."""
+    from shaketable.commands.checks import report_early_stops
+    from shaketable.core.validation import in_range
+    from shaketable.plots.stack_animation import animate_stack
+    from shaketable.scenes.stack import describe_law, per_block_angles, run_quietly, stack_from_text
+
+    _refuse_runs_and_layout(args, "--stack (one run)")
+    if args.block is not None:
+        raise ValueError("give --block or --stack, not both")
+    stack = stack_from_text(args.stack)
+    options: dict = {"theta0": per_block_angles(args.theta0, stack, where="--theta0")}
+    if args.cor is not None:
+        options.update(impact="cor", cor=in_range("--cor", args.cor, 0.0, 1.0))
+    motion, note = stack_motion(args, lambda _, motion: motion)
+    if motion is None:
+        options["duration"] = args.duration
+    result, _ = run_quietly(stack, motion, **options)
+    written = animate_stack(result, **_animation_options(args, size))
+    if note:
+        print(note)
+    print(f"{stack.describe()}, {describe_law(result)}: {result.verdict()}")
+    wrote(written)
+    return report_early_stops([result], "animate", stack.describe())
+
+
+def stack_spectrum_command(args) -> int:
+    """``spectrum --stack``: the smallest overturning half-sine pulse of a stack and of its
+    bottom block alone over omega/p (:func:`shaketable.studies.stacks.stack_spectrum`)."""
+    import numpy as np
+
+    from shaketable.commands.checks import refuse_ignored_options
+    from shaketable.core.files import prepare_output_folder, write_csv
+    from shaketable.plots import base as plots
+    from shaketable.plots.stack_studies import stack_spectrum_figure
+    from shaketable.scenes.spectrum import parse_ratios
+    from shaketable.scenes.stack import stack_from_text
+    from shaketable.studies.stacks import eq_2_8_curves, stack_spectrum
+
+    refuse_ignored_options(args, "--stack (the smallest overturning half-sine, plastic "
+                           "impacts)", {"--block": None, "--alpha": None, "--p": None,
+                                        "--cor": "housner", "--ceiling": None,
+                                        "--scan-step": 0.005, "--tolerance": 1e-8,
+                                        "--method": "fast", "--compare-linear": False,
+                                        "--parquet": False})
+    if args.pulse and args.pulse != ["half-sine"]:
+        raise ValueError(f"--pulse {args.pulse[0]}: with --stack only half-sine pulses are "
+                         "offered")
+    if not 1 <= args.iterations <= 30:
+        raise ValueError(f"--iterations must be from 1 to 30, got {args.iterations}")
+    stack = stack_from_text(args.stack, args.masses)
+    ratios = parse_ratios(args.ratios)
+    out = prepare_output_folder(args.out)
+    frame = stack_spectrum(stack, ratios, iterations=args.iterations)
+    written = [write_csv(out / "spectrum.csv", frame), out / f"spectrum.{args.format}"]
+    curves = eq_2_8_curves(stack, np.linspace(0.0, 1.05 * max(ratios), 200))
+    plots.save(stack_spectrum_figure(frame, curves, f"half-sine pulses: {stack.describe()}"),
+               written[-1])
+    print(f"{stack.describe()}, plastic impacts: smallest overturning half-sine [g] over "
+          f"ω/p (p = {stack.blocks[0].p:.4g} rad/s of the bottom block)")
+    for ratio, rows in frame.groupby("omega/p [-]", sort=False):
+        words = [f"{row['column']} {row['minimum [g]']:.3g} (Eq. 2-8 as one body "
+                 f"{row['Eq. (2-8) as one body [g]']:.3g})" for _, row in rows.iterrows()]
+        print(f"  ω/p = {ratio:g}: " + "; ".join(words))
+    print("wrote " + ", ".join(str(path) for path in written))
+    return 0

@@ -1,0 +1,150 @@
+"""The figure of the stacks study (:mod:`shaketable.studies.stacks`): uplift thresholds and
+pulse overturning amplitudes of stacks beside their closed forms, and the report's blocks
+stacked under a Section 4 record."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from shaketable.plots.base import pyplot
+
+
+def _uplift_panel(axis, frame) -> None:
+    """Uplift threshold against m2/m1: closed forms (lines) and computed (markers)."""
+    ratios = np.geomspace(0.1, 10.0, 200)
+    colours = ("tab:blue", "tab:orange", "tab:green", "tab:red")
+    for (label, rows), colour in zip(frame.groupby("stack", sort=False), colours):
+        first = rows.iloc[0]
+        b1, h1, b2, h2 = (first[key] for key in ("b1 [m]", "h1 [m]", "b2 [m]", "h2 [m]"))
+        a1 = b1 * (1 + ratios) / (h1 + ratios * (2 * h1 + h2))
+        a2 = np.full_like(ratios, b2 / h2)
+        axis.plot(ratios, np.minimum(a1, a2), color=colour, lw=1.6,
+                  label=f"{label}: (g + v̈) min(A1, A2)")
+        axis.plot(ratios, a1, color=colour, lw=0.8, ls=":", label="A1: the whole stack")
+        axis.plot(ratios, a2, color=colour, lw=0.8, ls="--", label="A2: the top block alone")
+        axis.plot(rows["m2/m1 [-]"], rows["computed [g]"], "o", mfc="none", color=colour,
+                  ms=8, label="computed (first uplift)")
+    tan_alpha = float(frame["bottom block alone tan(alpha1) [g]"].iloc[0])
+    axis.axhline(tan_alpha, color="k", lw=1.0, label="bottom block alone: tan α1 (Eq. 2-1)")
+    axis.set_xscale("log")
+    axis.set_xlabel("mass ratio m2/m1 (top over bottom) [-]")
+    axis.set_ylabel("uplift threshold |ü| / (g + v̈) [-]")
+    axis.set_title("(a) when a stack starts to rock", fontsize=10)
+    axis.set_ylim(0.0, 1.15 * tan_alpha)
+    axis.legend(fontsize=6.5, loc="lower left")
+
+
+def _pulse_panel(axis, frame, block) -> None:
+    """Smallest overturning half-sine pulse: bracket (bar), middle, Eq. (2-8) as one body."""
+    for k, (_, row) in enumerate(frame.iterrows()):
+        x = k
+        label = f"{int(row['blocks high'])} high, ω/p = {row['omega/p [-]']:g}"
+        if math.isfinite(row["minimum [g]"]):
+            axis.plot([x, x], [row["stands [g]"], row["falls [g]"]], color="k", lw=3)
+            axis.plot(x, row["minimum [g]"], "o", color="k",
+                      label="computed (bisected: stands below, falls above)" if k == 0 else None)
+        axis.plot(x, row["Eq. (2-8) as one body [g]"], "s", mfc="none", color="tab:red", ms=9,
+                  label="Eq. (2-8) for the column as one body" if k == 0 else None)
+        axis.annotate(label, (x, 0), xytext=(0, 4), textcoords="offset points", ha="center",
+                      fontsize=7)
+    axis.set_xlim(-0.6, len(frame) - 0.4)
+    axis.set_ylim(0.0, 1.2 * float(np.nanmax(frame[["falls [g]",
+                                                     "Eq. (2-8) as one body [g]"]].to_numpy())))
+    axis.set_xticks([])
+    axis.set_ylabel("half-sine amplitude [g]")
+    axis.set_title(f"(b) the smallest pulse that overturns {block.describe()} blocks",
+                   fontsize=10)
+    axis.legend(fontsize=7, loc="upper right")
+
+
+def _record_panel(axis, frame) -> None:
+    """Overturn time (or peak theta/alpha) of the block alone and stacked, per record."""
+    markers = ("o", "s", "^", "D")
+    top = float(np.nanmax(frame[["t_overturn [s]", "t_uplift [s]"]].to_numpy()))
+    axis.set_ylim(0.0, 1.35 * top)
+    for (record, rows), marker in zip(frame.groupby("record", sort=False), markers):
+        fell = rows[rows["verdict"] == "F"]
+        axis.plot(fell["blocks high"], fell["t_overturn [s]"], marker, ms=9, color="tab:red",
+                  label=f"{record}: overturned at (the lowest block that fell)")
+        for _, row in rows.iterrows():
+            text = (f"block {int(row['overturned block'])}" if row["verdict"] == "F"
+                    else f"stands\n{row['max theta/alpha']}")
+            y = row["t_overturn [s]"] if row["verdict"] == "F" else axis.get_ylim()[0]
+            axis.annotate(text, (row["blocks high"], y), xytext=(8, 0),
+                          textcoords="offset points", fontsize=7, va="center")
+        uplift = rows["t_uplift [s]"]
+        axis.plot(rows["blocks high"], uplift, marker, mfc="none", ms=7, color="tab:blue",
+                  label=f"{record}: first uplift at")
+    axis.set_xticks(sorted(frame["blocks high"].unique()))
+    axis.set_xlim(0.5, frame["blocks high"].max() + 0.8)
+    axis.set_xlabel("blocks high (1: the block alone, COR 1 − 1.5 sin²α)")
+    axis.set_ylabel("time [s]")
+    block = frame["block"].iloc[0]
+    axis.set_title(f"(c) {block} blocks stacked under a Section 4 record", fontsize=10)
+    axis.legend(fontsize=7, loc="upper left")
+
+
+def stacks_study_figure(study):
+    """The stacks study in three panels (the closed forms drawn beside the computed points).
+
+    Parameters
+    ----------
+    study : shaketable.studies.stacks.StacksStudy
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    plt = pyplot()
+    fig, axes = plt.subplots(1, 3, figsize=(15.0, 5.2))
+    _uplift_panel(axes[0], study.uplift)
+    _pulse_panel(axes[1], study.pulses, study.block)
+    _record_panel(axes[2], study.records)
+    for axis in axes:
+        axis.grid(True, lw=0.3, alpha=0.5)
+    fig.suptitle("Stacks beside single blocks (plastic impacts; shaketable.studies.stacks, "
+                 "docs/stack.md)", fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def stack_spectrum_figure(frame, curves: dict, title: str = ""):
+    """The smallest overturning half-sine pulse of a stack and of its bottom block alone
+    over omega/p (bisected brackets), with Eq. (2-8) for each as one rigid body (lines).
+
+    Parameters
+    ----------
+    frame : DataFrame
+        :func:`shaketable.studies.stacks.stack_spectrum`.
+    curves : dict
+        ``{"stack": (ratios, amplitudes [g]), "bottom block alone": (...)}``: Eq. (2-8)
+        for each column (:func:`shaketable.studies.stacks.eq_2_8`).
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    plt = pyplot()
+    fig, axis = plt.subplots(figsize=(7.5, 5.0))
+    last = 0.0
+    for label, colour in (("stack", "tab:red"), ("bottom block alone", "k")):
+        ratios, values = curves[label]
+        last = max(last, float(np.max(ratios)))
+        axis.plot(ratios, values, color=colour, lw=0.9, ls="--",
+                  label=f"{label}: Eq. (2-8) as one rigid body")
+        rows = frame[frame["column"] == label]
+        axis.errorbar(rows["omega/p [-]"], rows["minimum [g]"],
+                      yerr=0.5 * (rows["falls [g]"] - rows["stands [g]"]), fmt="o",
+                      color=colour, capsize=3, label=f"{label}: computed (bisected)")
+    axis.set_xlabel("ω/p of the bottom block [-] (half-sine lasting π/ω)")
+    axis.set_ylabel("smallest overturning amplitude [g]")
+    axis.set_xlim(0.0, last)
+    axis.set_ylim(0.0, None)
+    axis.grid(True, lw=0.3, alpha=0.5)
+    axis.legend(fontsize=8, loc="upper left")
+    axis.set_title(title or "half-sine pulses", fontsize=10)
+    fig.tight_layout()
+    return fig

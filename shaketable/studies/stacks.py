@@ -1,0 +1,330 @@
+"""Stacks beside single blocks: the report's shielding blocks stacked, uplift thresholds and
+pulse overturning amplitudes, each against its closed form (``docs/stack.md``).
+
+The report's shielding blocks are "often stacked as much as 20 feet high" (Section 1);
+its Section 4 computes one block at a time. This study sets a column of the report's
+blocks beside the block alone:
+
+* :func:`record_runs`: a block of Section 4 alone (the single-block engine at Housner's
+  COR 1 - 1.5 sin^2(alpha), the plastic law's one-block case) and stacked two and three
+  high (the stack model, plastic impacts) under a record of Section 4 with its vertical;
+* :func:`uplift_thresholds`: the table acceleration at which a two-block stack starts to
+  rock, from a slowly rising acceleration, against the closed form
+  ``(g + v'') min(A1, A2)``, ``A1 = b1 (m1 + m2) / (m1 h1 + m2 (2 h1 + h2))`` (the whole
+  stack about a base corner), ``A2 = b2 / h2`` (the top block alone), and the bottom block
+  alone ``tan(alpha1)`` (Eq. 2-1);
+* :func:`pulse_amplitudes`: the smallest half-sine pulse that overturns a block alone and
+  the same block two high, against the half-sine estimate of Eq. (2-8),
+  ``a / (g alpha) = sqrt(1 + (omega / p)^2)``, written for the stack rocking as one rigid
+  body with its own ``alpha_eq = atan(b1 / y_c)`` and ``p_eq^2 = M g R_c / I_O``.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pandas as pd
+
+from shaketable.core.constants import G
+from shaketable.core.geometry import Block
+from shaketable.core.motion import Motion
+from shaketable.models.stack import (
+    Stack,
+    StackFrictionWarning,
+    StackTensionWarning,
+    simulate_stack,
+)
+from shaketable.solvers.api import simulate
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+
+def housner_cor(block: Block) -> float:
+    """Housner's COR 1 - 1.5 sin^2(alpha) [-]: the plastic impact law of one block."""
+    return 1.0 - 1.5 * math.sin(block.alpha) ** 2
+
+
+def _stack_run(stack: Stack, motion: Motion | None, **options):
+    """One stack run; its assumption warnings are counted by the study, not shown."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", StackTensionWarning)
+        warnings.simplefilter("ignore", StackFrictionWarning)
+        return simulate_stack(stack, motion, **options)
+
+
+# ----------------------------------------------------------------------------- closed forms
+def rigid_stack(stack: Stack) -> dict:
+    """The stack as one rigid body rocking on a base corner (check 2 of ``docs/stack.md``).
+
+    Returns
+    -------
+    dict
+        ``I_O`` [kg m^2] (about the base corner), ``y_c`` [m] (height of the centre of
+        mass), ``R_c`` [m], ``alpha_eq`` = atan(b1 / y_c) [rad], ``p_eq`` =
+        sqrt(M g R_c / I_O) [rad/s].
+    """
+    b, h, m = stack.b, stack.h, stack.m
+    y = 2.0 * np.concatenate([[0.0], np.cumsum(h)[:-1]]) + h   # centroid heights
+    inertia = float(np.sum(m * ((b ** 2 + h ** 2) / 3.0 + b[0] ** 2 + y ** 2)))
+    y_c = float(np.sum(m * y) / m.sum())
+    r_c = math.hypot(b[0], y_c)
+    return {"I_O": inertia, "y_c": y_c, "R_c": r_c, "alpha_eq": math.atan(b[0] / y_c),
+            "p_eq": math.sqrt(m.sum() * G * r_c / inertia)}
+
+
+def uplift_closed_form(stack: Stack) -> tuple[float, float]:
+    """``(A1, A2)`` of a two-block stack [-]: the whole stack about a base corner and the
+    top block alone (the uplift thresholds over g + v'')."""
+    (b1, b2), (h1, h2), (m1, m2) = stack.b, stack.h, stack.m
+    return b1 * (m1 + m2) / (m1 * h1 + m2 * (2.0 * h1 + h2)), b2 / h2
+
+
+# ----------------------------------------------------------------------------- records
+def record_runs(block: Block, motion: Motion, heights=(1, 2, 3), rtol: float = 1e-10,
+                record: str = "") -> pd.DataFrame:
+    """``block`` alone and stacked ``heights`` high under ``motion``.
+
+    One block: the single-block engine at Housner's COR (the plastic law's one-block
+    case). Two or more: the stack model, plastic impacts, DOP853 at ``rtol``.
+
+    Returns
+    -------
+    DataFrame
+        One row per height: verdict, t_overturn [s] and which block, first uplift [s],
+        max theta/alpha of each block (bottom first), and when the contacts
+        first needed F/N > 1 or pulled [s] (the model's assumptions failing).
+    """
+    rows = []
+    for count in heights:
+        row = {"record": record, "block": block.describe(), "blocks high": count,
+               "height [ft]": count * block.height / 0.3048}
+        if count == 1:
+            run = simulate(block, motion, cor=housner_cor(block))
+            row.update({"verdict": ("F" if run.overturned else "rocked" if math.isfinite(run.t_start)
+                                    else "at rest"),
+                        "t_overturn [s]": run.t_overturn if run.overturned else math.nan,
+                        "overturned block": 0 if run.overturned else -1,
+                        "t_uplift [s]": run.t_start,
+                        "max theta/alpha": f"{run.max_theta_ratio:.3g}" if not run.overturned
+                        else "F",
+                        "F/N > 1 from [s]": math.nan, "tension from [s]": math.nan})
+        else:
+            stack = Stack((block,) * count)
+            run = _stack_run(stack, motion, rtol=rtol)
+            ratios = np.abs(run.theta).max(axis=0) / block.alpha
+            words = ["F" if run.status == "overturned" and i >= run.overturned_block
+                     else f"{ratio:.3g}" for i, ratio in enumerate(ratios)]
+            summary = run.summary()
+            row.update({"verdict": "F" if run.status == "overturned" else run.status,
+                        "t_overturn [s]": run.t_overturn,
+                        "overturned block": run.overturned_block,
+                        "t_uplift [s]": summary["t_start [s]"],
+                        "max theta/alpha": ", ".join(words),
+                        "F/N > 1 from [s]": summary["t_friction_exceeded [s]"],
+                        "tension from [s]": summary["t_tension [s]"]})
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+# ----------------------------------------------------------------------------- uplift
+def ramp(rate: float, duration: float) -> Motion:
+    """A table acceleration rising at ``rate`` [m/s^3] from rest for ``duration`` [s]."""
+    return Motion(np.array([0.0, duration]), np.array([0.0, rate * duration]), name="ramp")
+
+
+def uplift_thresholds(cases, rate: float = 0.5 * G, duration: float = 0.8) -> pd.DataFrame:
+    """The uplift threshold of each two-block stack of ``cases`` from a slowly rising
+    table acceleration, beside the closed form.
+
+    Parameters
+    ----------
+    cases : iterable of (str, Stack)
+        A label and a two-block stack.
+    rate : float
+        Rate of the rising acceleration [m/s^3]: the first uplift at time t is the
+        threshold ``rate t`` (the resting stack's corner forces are linear in time and
+        their zero is found exactly).
+    duration : float
+        Length of each ramp [s] (``rate duration`` must pass every threshold).
+
+    Returns
+    -------
+    DataFrame
+        label, mass ratio m2/m1, A1, A2, closed form min(A1, A2), computed [g], relative
+        difference, the pattern entered and the one the closed form names, the bottom
+        block alone tan(alpha1) (Eq. 2-1).
+    """
+    from shaketable.models.stack import pattern_name
+
+    rows = []
+    motion = ramp(rate, duration)
+    for label, stack in cases:
+        a1, a2 = uplift_closed_form(stack)
+        run = _stack_run(stack, motion)
+        uplift = next((event for event in run.events if event["kind"] == "uplift"), None)
+        computed = math.nan if uplift is None else rate * uplift["t"] / G
+        expected = "stack as one body (+)" if a1 < a2 else "top alone (+)"
+        rows.append({"stack": label, "m2/m1 [-]": float(stack.m[1] / stack.m[0]),
+                     "b1 [m]": stack.b[0], "h1 [m]": stack.h[0], "b2 [m]": stack.b[1],
+                     "h2 [m]": stack.h[1],
+                     "A1 [-]": a1, "A2 [-]": a2, "closed form min(A1, A2) [g]": min(a1, a2),
+                     "computed [g]": computed,
+                     "relative difference [-]": computed / min(a1, a2) - 1.0,
+                     "pattern entered": "none" if uplift is None
+                     else pattern_name(uplift["pattern_after"]),
+                     "pattern of the closed form": expected,
+                     "bottom block alone tan(alpha1) [g]": math.tan(stack.blocks[0].alpha)})
+    return pd.DataFrame(rows)
+
+
+# ----------------------------------------------------------------------------- pulses
+def _pulse(amplitude: float, length: float, after: float, samples: int = 40) -> Motion:
+    """A half sine of ``amplitude`` [m/s^2] lasting ``length`` [s], then the table at rest
+    for ``after`` [s] (sampled every 0.05 s: nothing to resolve)."""
+    t = np.linspace(0.0, length, samples + 1)
+    tail = np.arange(length + 0.05, length + after + 1e-9, 0.05)
+    return Motion(np.concatenate([t, tail]),
+                  np.concatenate([amplitude * np.sin(math.pi * t / length),
+                                  np.zeros(tail.size)]), name="half-sine pulse")
+
+
+def _overturns(stack: Stack, amplitude: float, length: float, after: float,
+               rtol: float) -> bool:
+    motion = _pulse(amplitude, length, after)
+    if stack.n == 1:
+        block = stack.blocks[0]
+        return bool(simulate(block, motion, cor=housner_cor(block)).overturned)
+    return _stack_run(stack, motion, rtol=rtol).status == "overturned"
+
+
+def eq_2_8(stack: Stack, omega: float) -> float:
+    """Housner's half-sine estimate Eq. (2-8) for the column as one rigid body [g]:
+    tan(alpha_eq) sqrt(1 + (omega / p_eq)^2) (one block: the report's own)."""
+    rigid = rigid_stack(stack)
+    return math.tan(rigid["alpha_eq"]) * math.sqrt(1.0 + (omega / rigid["p_eq"]) ** 2)
+
+
+def column_minimum(stack: Stack, omega: float, iterations: int = 5, after: float = 2.5,
+                   rtol: float = 1e-9) -> dict:
+    """The smallest half-sine pulse of angular frequency ``omega`` [rad/s] (lasting
+    pi / omega) that overturns ``stack`` (one block: the single-block engine at Housner's
+    COR), bisected ``iterations`` times between 0.5 and 2 times :func:`eq_2_8`; a run
+    overturns when the column falls within ``after`` seconds of the pulse's end.
+
+    Returns
+    -------
+    dict
+        ``stands [g]`` and ``falls [g]`` (the bracket), ``minimum [g]`` (its middle; NaN
+        when the bracket does not hold the switch) and ``Eq. (2-8) as one body [g]``.
+    """
+    length = math.pi / omega
+    estimate = eq_2_8(stack, omega)
+    low, high = 0.5 * estimate, 2.0 * estimate
+    row = {"stands [g]": math.nan, "falls [g]": math.nan, "minimum [g]": math.nan,
+           "Eq. (2-8) as one body [g]": estimate}
+    if _overturns(stack, low * G, length, after, rtol) or not _overturns(
+            stack, high * G, length, after, rtol):
+        return row
+    for _ in range(iterations):
+        middle = 0.5 * (low + high)
+        low, high = ((low, middle) if _overturns(stack, middle * G, length, after, rtol)
+                     else (middle, high))
+    row.update({"stands [g]": low, "falls [g]": high, "minimum [g]": 0.5 * (low + high)})
+    return row
+
+
+def eq_2_8_curves(stack: Stack, ratios) -> dict:
+    """:func:`eq_2_8` of ``stack`` and of its bottom block alone over ``ratios`` (omega/p
+    of the bottom block): ``{"stack": (ratios, [g]), "bottom block alone": (ratios, [g])}``."""
+    ratios = np.asarray(ratios, dtype=float)
+    p = stack.blocks[0].p
+    return {label: (ratios, np.array([eq_2_8(column, ratio * p) for ratio in ratios]))
+            for label, column in (("stack", stack), ("bottom block alone",
+                                                     Stack((stack.blocks[0],))))}
+
+
+def pulse_amplitudes(block: Block, ratios=(3.0,), heights=(1, 2), iterations: int = 5,
+                     after: float = 2.5, rtol: float = 1e-9) -> pd.DataFrame:
+    """The smallest half-sine pulse that overturns ``block`` alone and stacked
+    ``heights`` high, for each ``omega / p`` of ``ratios`` (p of the block alone)
+    (:func:`column_minimum`).
+
+    Returns
+    -------
+    DataFrame
+        omega/p, blocks high, the bracket found [g] (stands, falls), its middle, and
+        Eq. (2-8) for the column as one body [g].
+    """
+    rows = []
+    for ratio in ratios:
+        for count in heights:
+            rows.append({"omega/p [-]": ratio, "blocks high": count,
+                         **column_minimum(Stack((block,) * count), ratio * block.p,
+                                          iterations, after, rtol)})
+    return pd.DataFrame(rows)
+
+
+def stack_spectrum(stack: Stack, ratios, iterations: int = 5, after: float = 2.5,
+                   rtol: float = 1e-9) -> pd.DataFrame:
+    """The smallest overturning half-sine pulse of ``stack`` and of its bottom block alone
+    over ``omega / p`` (p of the bottom block), with Eq. (2-8) for each as one body.
+
+    Only the lowest overturning amplitude of each pulse frequency is sought (bisected
+    between 0.5 and 2 times Eq. (2-8)): the safe bands above it that a single block has
+    (:mod:`shaketable.studies.overturning_spectrum`) are not searched for a stack.
+    """
+    bottom = Stack((stack.blocks[0],))
+    rows = []
+    for ratio in ratios:
+        omega = float(ratio) * stack.blocks[0].p
+        for label, column in (("stack", stack), ("bottom block alone", bottom)):
+            rows.append({"omega/p [-]": float(ratio), "column": label,
+                         **column_minimum(column, omega, iterations, after, rtol)})
+    return pd.DataFrame(rows)
+
+
+# ----------------------------------------------------------------------------- the study
+@dataclass(frozen=True)
+class StacksStudy:
+    """The three parts of the study (:func:`stacks_study`); ``plot()`` draws them."""
+
+    records: pd.DataFrame
+    uplift: pd.DataFrame
+    pulses: pd.DataFrame
+    block: Block
+
+    def plot(self) -> "Figure":
+        from shaketable.plots.stack_studies import stacks_study_figure
+
+        return stacks_study_figure(self)
+
+
+def uplift_cases(block: Block, slender_top: Block, mass_ratios=(0.25, 1.0, 4.0)) -> list:
+    """Two-block stacks of the study: ``block`` on ``block`` and ``slender_top`` on
+    ``block``, at each mass ratio m2/m1 (the closed form's two branches)."""
+    cases = []
+    for top in (block, slender_top):
+        for ratio in mass_ratios:
+            label = f"{top.describe()} on {block.describe()}"
+            cases.append((label, Stack((block, top), masses=(1.0, ratio))))
+    return cases
+
+
+def stacks_study(block: Block, records: dict, slender_top: Block, window: float,
+                 heights=(1, 2, 3), ratios=(3.0,), iterations: int = 5,
+                 rtol: float = 1e-10) -> StacksStudy:
+    """The three parts for ``block`` under ``records`` (name -> Motion), each cut to
+    ``window`` seconds [s]."""
+    from shaketable.solvers.common import extended
+
+    frames = [record_runs(block, extended(motion, window), heights, rtol=rtol, record=name)
+              for name, motion in records.items()]
+    return StacksStudy(records=pd.concat(frames, ignore_index=True),
+                       uplift=uplift_thresholds(uplift_cases(block, slender_top)),
+                       pulses=pulse_amplitudes(block, ratios=ratios, iterations=iterations),
+                       block=block)
