@@ -33,7 +33,7 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.tomlfile import key_line, read_toml
 from shaketable.core.units import parse
-from shaketable.core.validation import unknown_keys
+from shaketable.core.validation import check_keys, unknown_keys
 from shaketable.ground import records
 from shaketable.ground.artificial import PRESETS
 from shaketable.ground.floor import SHAPES, Building
@@ -322,10 +322,7 @@ FLOOR_KEYS = {"floor"} | SECTIONS["building"]
 def floor_from_dict(section: dict, where: str) -> FloorSetup:
     """A scene's ``[floor]`` (``floor = 3``, ``period = "0.6 s"``, ``height = "17.5 m"``,
     ``storeys = 5``, ``damping``, ``shape``, ``modes``): errors name ``floor.KEY``."""
-    unknown = unknown_keys(section, FLOOR_KEYS)
-    if unknown:
-        raise SceneError(f"{where}: unknown key {unknown[0]!r} in [floor]; expected one of "
-                         f"{', '.join(sorted(FLOOR_KEYS))}")
+    check_keys(section, FLOOR_KEYS, where, "[floor]", SceneError)
     if "floor" not in section:
         raise SceneError(f"{where}: floor.floor is missing (the floor the block stands on, "
                          f"1..storeys)")

@@ -130,10 +130,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from shaketable.core.geometry import Block, PrestressRods
-from shaketable.core.tomlfile import read_toml
-from shaketable.core.units import parse, parse_angle_or_ratio
-from shaketable.core.validation import unknown_keys
+from shaketable.core import sections
+from shaketable.core.geometry import Block
+from shaketable.core.tomlfile import read_toml, with_line
+from shaketable.core.units import parse_angle_or_ratio
+from shaketable.core.validation import check_keys, count, flag
 from shaketable.sweeps.base import RecordSpec, SweepError
 from shaketable.sweeps.limits import MAX_CHUNK_SIZE, check_grid_size
 from shaketable.sweeps.targets import (
@@ -172,6 +173,9 @@ PITCH_KEYS = {"phases", "random_phases", "frequency", "amplitude", "block_positi
               "axis_depth", "frequency_drift", "amplitude_drift"}
 
 RUN_KEYS = {"chunk_size"}
+
+#: Sections whose keys an error message gets the line of (``(line N)``).
+LINE_SECTIONS = ("friction", "stacks")
 
 
 @dataclass(frozen=True)
@@ -307,9 +311,9 @@ def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
     data, text = read_toml(path, "sweep spec", SweepError)
     try:
         return spec_from_dict(data, where=str(path), directory=path.parent)
-    except SweepError as error:   # a [friction] key: its line, as the scenes give it
-        from shaketable.sweeps import friction
-        raise SweepError(friction.with_friction_line(str(error), str(path), text)) from None
+    except SweepError as error:   # a [friction] or [stacks] key: its line, as the scenes give it
+        raise SweepError(with_line(str(error), str(path), text, LINE_SECTIONS,
+                                   at_start=True)) from None
 
 
 def spec_from_dict(data: dict, where: str = "<spec>",
@@ -339,9 +343,7 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     if problem := folder_name_problem(name.strip()):
         raise SweepError(f"{where}: 'name' {name!r} {problem} (the name is the default output "
                          f"folder shaketable-out/<name>; use letters, digits, '-', '_', '.')")
-    seed = data.get("seed", 1)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise SweepError(f"{where}: 'seed' must be a non-negative integer, got {seed!r}")
+    seed = _checked(count, f"{where}: 'seed'", data.get("seed", 1))
 
     blocks, block_inputs = _blocks(_section(data, "blocks", where), where)
     rocking = _section(data, "rocking", where)
@@ -370,11 +372,8 @@ def spec_from_dict(data: dict, where: str = "<spec>",
                              f"got {rtol!r}")
         options["rtol"] = float(rtol)
     if "subdivisions" in rocking:
-        value = rocking["subdivisions"]
-        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-            raise SweepError(f"{where}: rocking.subdivisions must be a positive integer, "
-                             f"got {value!r}")
-        options["subdivisions"] = value
+        options["subdivisions"] = _checked(count, f"{where}: rocking.subdivisions",
+                                           rocking["subdivisions"], 1)
     if "theta0" in rocking:
         value = rocking["theta0"]
         if not isinstance(value, str):
@@ -430,10 +429,15 @@ def _ensemble(table, where):
 
 
 def _only(table: dict, allowed: set, where: str, section: str) -> None:
-    unknown = unknown_keys(table, allowed)
-    if unknown:
-        raise SweepError(f"{where}: unknown key {unknown[0]!r} in {section}; expected one of "
-                         f"{', '.join(sorted(allowed))}")
+    check_keys(table, allowed, where, section, SweepError)
+
+
+def _checked(check, name: str, *args):
+    """``check(name, *args)`` of :mod:`shaketable.core.validation`, its error a SweepError."""
+    try:
+        return check(name, *args)
+    except ValueError as error:
+        raise SweepError(str(error)) from None
 
 
 def _section(data, key, where) -> dict:
@@ -464,13 +468,7 @@ def _number_list(value, where, key, low=-math.inf, high=math.inf, low_open=False
 
 
 def _quantity(value, kind, where, key, positive=False):
-    try:
-        number = parse(value, kind, where=f"{where}: {key}")
-    except ValueError as error:
-        raise SweepError(str(error)) from None
-    if positive and not number > 0:
-        raise SweepError(f"{where}: {key} must be positive, got {value!r}")
-    return number
+    return sections.quantity(value, kind, where, key, SweepError, positive)
 
 
 def _quantity_list(value, kind, where, key, positive=True):
@@ -482,24 +480,8 @@ def _quantity_list(value, kind, where, key, positive=True):
 
 def _blocks(table, where):
     _only(table, BLOCK_KEYS, where, "[blocks]")
-    rods = None
-    if "rods" in table:
-        spec = table["rods"]
-        if not isinstance(spec, dict):
-            raise SweepError(f"{where}: [blocks.rods] must be a table")
-        _only(spec, {"stiffness", "force", "edge_distance"}, where, "[blocks.rods]")
-        missing = {"stiffness", "force", "edge_distance"} - set(spec)
-        if missing:
-            raise SweepError(f"{where}: blocks.rods needs {', '.join(sorted(missing))}")
-        try:
-            rods = PrestressRods(
-                _quantity(spec["stiffness"], "stiffness", where, "blocks.rods.stiffness"),
-                _quantity(spec["force"], "weight", where, "blocks.rods.force"),
-                _quantity(spec["edge_distance"], "length", where, "blocks.rods.edge_distance"))
-        except SweepError:
-            raise
-        except ValueError as error:
-            raise SweepError(f"{where}: blocks.rods: {error}") from None
+    rods = sections.rods(table["rods"], where, "blocks.rods", SweepError) \
+        if "rods" in table else None
     given = tuple(sorted(set(table) - {"rods"}))
     grid = next((g for g in BLOCK_GRIDS if set(g) == set(given)), None)
     if grid is None:
@@ -520,7 +502,8 @@ def _blocks(table, where):
             if not isinstance(text, str):
                 raise SweepError(f"{where}: blocks.sizes must be texts such as '30x6in', got "
                                  f"{text!r}")
-            add(lambda: Block.parse(text, rods=rods), "sizes", {"size": text})
+            blocks.append(sections.sized_block(text, where, "blocks.sizes", rods, SweepError))
+            inputs.append({"size": text})
         return blocks, inputs
     lengths = {key: _quantity_list(table[key], "length", where, f"blocks.{key}")
                for key in ("height", "width", "R") if key in table}
@@ -615,9 +598,7 @@ def _records(value, where, directory: Path, seed: int):
             if entry["name"] not in bundled.available():
                 raise SweepError(f"{where}: {key}.name {entry['name']!r} is not a bundled "
                                  f"record; available: {', '.join(bundled.available())}")
-            vertical = entry.get("vertical", True)
-            if not isinstance(vertical, bool):
-                raise SweepError(f"{where}: {key}.vertical must be true or false")
+            vertical = _checked(flag, f"{where}: {key}.vertical", entry.get("vertical", True))
             result.append(RecordSpec("bundled", label or entry["name"], name=entry["name"],
                                      vertical=vertical))
         elif kind == "file":
@@ -639,10 +620,7 @@ def _records(value, where, directory: Path, seed: int):
             if entry["preset"] not in motions.PRESETS:
                 raise SweepError(f"{where}: {key}.preset must be one of "
                                  f"{', '.join(sorted(motions.PRESETS))}, got {entry['preset']!r}")
-            base = entry.get("seed", seed)
-            if isinstance(base, bool) or not isinstance(base, int) or base < 0:
-                raise SweepError(f"{where}: {key}.seed must be a non-negative integer, got "
-                                 f"{base!r}")
+            base = _checked(count, f"{where}: {key}.seed", entry.get("seed", seed))
             seeds = entry.get("seeds", 1)
             if isinstance(seeds, list):
                 if not seeds or any(isinstance(s, bool) or not isinstance(s, int) or s < 0
