@@ -83,11 +83,13 @@ def _risk(args: argparse.Namespace) -> int:
 
     # a friction sweep: one fragility per friction pair too (the pairs are not pooled)
     pairs = friction_pairs(table) or [None]
-    groups = [(block, f"COR {cor:g}" + ("" if pair is None else
-                                         f", mu_s {pair[0]:g}, mu_d {pair[1]:g}"), rows)
+    # a stack sweep's plastic impacts have no COR (NaN): a group of their own
+    groups = [(block, (f"COR {cor:g}" if cor == cor else "plastic impacts")
+               + ("" if pair is None else f", mu_s {pair[0]:g}, mu_d {pair[1]:g}"), rows)
               for pair in pairs
               for (block, cor), rows in (table if pair is None else friction_rows(
-                  table, *pair)).groupby(["block", "cor [-]"], sort=False)]
+                  table, *pair)).groupby(["block", "cor [-]"], sort=False, dropna=False)]
+    from shaketable.sweeps.stacks import overturned_blocks
     for block, label, rows in groups:
         try:
             fit = fragility_fit(rows[column], rows["overturned"], measure=column)
@@ -99,6 +101,8 @@ def _risk(args: argparse.Namespace) -> int:
         results.append((block, label, fit, result))
         print(f"{block}, {label}: {result.summary()}")
         print(f"    fragility {fit.summary()}")
+        if fell := overturned_blocks(rows):   # a stack sweep: which block fell
+            print(f"    the block that fell: {fell}")
         low, high = float(rows[column].min()), float(rows[column].max())
         outside = share_outside(fit, hazard, low, high)
         if outside > 0.1:   # the lognormal carried beyond the levels run: say how much

@@ -29,14 +29,12 @@ def _sweep(args: argparse.Namespace) -> int:
     if spec.ensemble is not None:
         print(f"{spec.name}: each run is an ensemble of {spec.ensemble['members']} perturbed "
               f"copies ([ensemble]: {spec.n_runs * spec.ensemble['members']} simulations)")
-    if spec.friction is not None:
-        print(f"{spec.name}: [friction]: the coupled planar model (rest, slide, rock, "
-              f"slide-rock, flight), {len(spec.friction.pairs)} friction pair(s) (mu_s, mu_d)")
-    compiling = not args.scheduler and not compiled_before(
-        "batch" if spec.friction is None else "planar")
-    if not args.scheduler:
-        notice_first_compile(args.quiet, which=("batch",) if spec.friction is None
-                             else ("planar",))
+    if spec.model.describe() is not None:   # the model the spec chose (not the default)
+        print(f"{spec.name}: {spec.model.describe()}")
+    engine = {"rocking": "batch", "planar": "planar"}.get(spec.model.name)
+    compiling = engine is not None and not args.scheduler and not compiled_before(engine)
+    if engine is not None and not args.scheduler:
+        notice_first_compile(args.quiet, which=(engine,))
     outcome = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler,
                         resume=args.resume, progress=not (args.no_progress or args.quiet),
                         max_chunks=args.max_chunks)
@@ -56,6 +54,13 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"{spec.name}: verdicts of the {len(table)} runs: {verdict_counts(table)}")
         for line in friction_summary(table):
             print(f"    {line}")
+    elif spec.model.name == "stack":
+        from shaketable.sweeps.stacks import overturned_blocks
+
+        fell = overturned_blocks(table)
+        print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn"
+              f"{f' (the block that fell: {fell})' if fell else ''}, "
+              f"{int(table['airborne'].sum())} stopped where a block would leave its support")
     else:
         print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
               f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")
@@ -77,7 +82,10 @@ def _sweep(args: argparse.Namespace) -> int:
         write_csv(out / "spectrum-scale-factors.csv", factors)
         print(f"wrote {out / 'spectrum-scale-factors.csv'} (each record's factor to the "
               "target spectrum)")
-    if args.figures:
+    if args.figures and spec.model.name == "stack":
+        print("no figure: the figures of a stack sweep are not drawn (its table holds the "
+              "runs; `shaketable risk` fits their fragility)")
+    elif args.figures:
         from shaketable.core.files import subfolder
         from shaketable.plots.sweeps import sweep_figures
         from shaketable.sweeps.friction import friction_figure_sets

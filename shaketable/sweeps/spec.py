@@ -137,6 +137,7 @@ from shaketable.core.units import parse_angle_or_ratio
 from shaketable.core.validation import check_keys, count, flag
 from shaketable.sweeps.base import RecordSpec, SweepError
 from shaketable.sweeps.limits import MAX_CHUNK_SIZE, check_grid_size
+from shaketable.sweeps.models import PlanarSweep, RockingSweep
 from shaketable.sweeps.targets import (
     IntensitySettings,
     check_levels,
@@ -149,7 +150,7 @@ if TYPE_CHECKING:
     from shaketable.lab.pitch import Pitch
 
 TOP_KEYS = {"name", "description", "seed", "blocks", "rocking", "records", "intensity",
-            "pitch", "run", "ensemble", "friction"}
+            "pitch", "run", "ensemble", "friction", "model", "stacks"}
 
 BLOCK_KEYS = {"height", "width", "aspect", "R", "alpha", "sizes", "rods"}
 
@@ -240,8 +241,14 @@ class SweepSpec:
     ensemble : dict or None
         ``[ensemble]``: :func:`shaketable.core.ensemble.ensemble_options`
         (``members``, ``seed``, ``spreads``); None runs each cell once.
+    model : RockingSweep
+        The model the sweep runs (:mod:`shaketable.sweeps.models`): the rocking block,
+        :class:`~shaketable.sweeps.models.PlanarSweep` (``[friction]``) or
+        :class:`~shaketable.sweeps.stacks.StackSweep` (``[stacks]``: ``blocks`` then holds
+        :class:`~shaketable.models.stack.Stack` objects).
     friction : shaketable.sweeps.friction.FrictionGrid or None
-        ``[friction]``: the (mu_s, mu_d) axis of the coupled planar model; None: rocking.
+        ``[friction]``: the (mu_s, mu_d) axis of the planar model (its parameters); None
+        for the other models.
     path : str
         Where the spec was read from (for messages and relative record files).
     raw : dict
@@ -265,7 +272,7 @@ class SweepSpec:
     ensemble: dict | None = None
     path: str = "<spec>"
     measures: IntensitySettings = IntensitySettings()
-    friction: Any = None
+    model: Any = RockingSweep()
     raw: dict = field(default_factory=dict, compare=False, repr=False)
 
     # ------------------------------------------------------------ the grid
@@ -280,7 +287,12 @@ class SweepSpec:
     def n_runs(self) -> int:
         """Number of runs (rows of the table)."""
         return (len(self.motion_variants) * len(self.levels) * len(self.blocks)
-                * len(self.cors) * (1 if self.friction is None else len(self.friction.pairs)))
+                * len(self.cors) * max(1, len(self.model.axis)))
+
+    @property
+    def friction(self) -> Any:
+        """The planar model's (mu_s, mu_d) grid (``[friction]``); None for another model."""
+        return getattr(self.model, "friction", None)
 
     @property
     def n_chunks(self) -> int:
@@ -331,7 +343,10 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     """
     directory = Path(directory) if directory is not None else Path.cwd()
     _only(data, TOP_KEYS, where, "the top level")
-    for key in ("name", "blocks", "rocking", "records"):
+    model_name = _model_name(data, where)
+    required = ("name", "stacks", "records") if model_name == "stack" else (
+        "name", "blocks", "rocking", "records")
+    for key in required:
         if key not in data:
             raise SweepError(f"{where}: missing " + (f"[{key}]" if key != "name" else
                                                      "'name' at the top level"))
@@ -345,13 +360,19 @@ def spec_from_dict(data: dict, where: str = "<spec>",
                          f"folder shaketable-out/<name>; use letters, digits, '-', '_', '.')")
     seed = _checked(count, f"{where}: 'seed'", data.get("seed", 1))
 
-    blocks, block_inputs = _blocks(_section(data, "blocks", where), where)
-    rocking = _section(data, "rocking", where)
+    rocking = _section(data, "rocking", where) if "rocking" in data else {}
     _only(rocking, ROCKING_KEYS, where, "[rocking]")
-    if "cor" not in rocking:
-        raise SweepError(f"{where}: rocking.cor is missing (coefficient of restitution, "
-                         "a number in [0, 1] or a list)")
-    cors = tuple(_number_list(rocking["cor"], where, "rocking.cor", 0.0, 1.0))
+    if model_name == "stack":
+        from shaketable.sweeps.stacks import stack_cors, stacks_grid
+
+        blocks, block_inputs = stacks_grid(data["stacks"], where)
+        cors = stack_cors(rocking, where)
+    else:
+        blocks, block_inputs = _blocks(_section(data, "blocks", where), where)
+        if "cor" not in rocking:
+            raise SweepError(f"{where}: rocking.cor is missing (coefficient of restitution, "
+                             "a number in [0, 1] or a list)")
+        cors = tuple(_number_list(rocking["cor"], where, "rocking.cor", 0.0, 1.0))
     duration = None
     if "duration" in rocking:
         duration = _quantity(rocking["duration"], "time", where, "rocking.duration",
@@ -398,18 +419,56 @@ def spec_from_dict(data: dict, where: str = "<spec>",
         raise SweepError(f"{where}: run.chunk_size must be a positive integer, at most "
                          f"{MAX_CHUNK_SIZE:,} (a chunk's rows are held in memory), got "
                          f"{chunk_size!r}")
-    from shaketable.sweeps.friction import check_friction_spec, friction_grid
+    model = _model(model_name, data, where)
     spec = SweepSpec(name=name.strip(), description=str(data.get("description", "")),
                      seed=seed, blocks=tuple(blocks), block_inputs=tuple(block_inputs),
                      cors=cors, records=tuple(records), intensity=intensity,
                      levels=tuple(levels), pitch=pitch, duration=duration, method=method,
                      options=options, chunk_size=chunk_size,
                      ensemble=_ensemble(data.get("ensemble"), where), path=where,
-                     measures=measures, friction=friction_grid(data.get("friction"), where),
+                     measures=measures, model=model,
                      raw=data)
-    check_friction_spec(spec, rocking)   # with [friction]: what the planar model refuses
+    model.check(spec, rocking)   # what the model refuses, by key
     check_grid_size(spec, where)
     return spec
+
+
+def _model_name(data: dict, where: str) -> str:
+    """``model = "..."``, or the model that the sections choose: ``[stacks]`` the stack model,
+    ``[friction]`` the planar model, else the rocking block; a section of another model
+    is refused by name."""
+    from shaketable.sweeps.models import MODEL_NAMES
+
+    chosen = "stack" if "stacks" in data else "planar" if "friction" in data else "rocking"
+    name = data.get("model", chosen)
+    if name not in MODEL_NAMES:
+        raise SweepError(f"{where}: 'model' must be one of {', '.join(MODEL_NAMES)}, got "
+                         f"{name!r}")
+    if "stacks" in data and "friction" in data:
+        raise SweepError(f"{where}: [stacks] with [friction]: the stack model does not slide; "
+                         "drop one of them")
+    if name != chosen:
+        needs = {"stack": "[stacks]", "planar": "[friction]"}
+        raise SweepError(f"{where}: model = {name!r} " + (
+            f"needs {needs[name]}" if name in needs else
+            f"takes no {needs[chosen]} (it is the {chosen} model's section)"))
+    if name == "stack" and "blocks" in data:
+        raise SweepError(f"{where}: [blocks] with [stacks]: the stacks take the place of the "
+                         "blocks; give the columns' sizes in [stacks]")
+    return name
+
+
+def _model(name: str, data: dict, where: str):
+    """The sweep's model with its parameters (:mod:`shaketable.sweeps.models`)."""
+    if name == "stack":
+        from shaketable.sweeps.stacks import StackSweep
+
+        return StackSweep()
+    if name == "planar":
+        from shaketable.sweeps.friction import friction_grid
+
+        return PlanarSweep(friction=friction_grid(data.get("friction"), where))
+    return RockingSweep()
 
 
 def _ensemble(table, where):
