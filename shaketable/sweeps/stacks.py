@@ -32,7 +32,8 @@ or ``"cor"``; ``cor [-]`` is NaN with the plastic law), ``status``, ``overturned
 block fell), ``overturned block`` (the block that fell, numbered from 0 at the bottom;
 -1 if none), ``verdict`` (:meth:`StackResult.verdict`), ``t_overturn [s]``,
 ``max_theta_ratio [-]`` (the largest max |theta_i| / alpha_i over the blocks, NaN when
-overturned), ``max |theta| bottom [rad]``, ``max |theta| top [rad]``, ``t_start [s]``,
+overturned), ``max |theta| bottom [rad]``, ``max |theta| top [rad]`` (these peaks, and the
+top corner's, read at the record's samples: the stack's output times), ``t_start [s]``,
 ``n_impacts``, ``peak top-corner excursion [m]``, ``max F/N [-]``,
 ``t_friction_exceeded [s]`` (the first time a contact needs more friction than
 :data:`~shaketable.models.stack.PLAUSIBLE_FRICTION`: the no-slip assumption fails there),
@@ -307,7 +308,7 @@ def overturned_blocks(table) -> str:
     return ", ".join(parts)
 
 
-def first_to_fall_fits(rows, measure: str) -> dict:
+def first_to_fall_fits(rows, measure: str, *, intervals: bool = True) -> dict:
     """Lognormal fragilities of one stack's rows (one stack and impact law): of "some
     block fell" (the ``overturned`` column) and of each block that was the one to fall
     (``overturned block == j``: the run stops at the first block that falls), by name.
@@ -318,6 +319,8 @@ def first_to_fall_fits(rows, measure: str) -> dict:
         Rows of a stack sweep's table for one stack.
     measure : str
         The intensity measure (:func:`shaketable.sweeps.fragility.measure_column`).
+    intervals : bool
+        Profile-likelihood intervals too (:func:`~shaketable.sweeps.fragility.fragility_fit`).
 
     Returns
     -------
@@ -343,7 +346,8 @@ def first_to_fall_fits(rows, measure: str) -> dict:
     fits: dict = {}
     for name, outcome in outcomes.items():
         try:
-            fits[name] = fragility_fit(rows[column], outcome.to_numpy(), measure=column)
+            fits[name] = fragility_fit(rows[column], outcome.to_numpy(), measure=column,
+                                       intervals=intervals)
         except ValueError as error:
             fits[name] = str(error)
     return fits

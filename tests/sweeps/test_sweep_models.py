@@ -1,0 +1,247 @@
+"""The model axis of sweeps: stacks swept over records and intensities, stored, resumed and
+fitted; a folder of store format 2 resumed; the spec's model chosen and refused by key.
+
+The stack runs are kept short (a 1.5 s record of one half-sine pulse, DOP853 at 1e-8):
+the stack model is SciPy's integrator, not a compiled batch.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from shaketable.core.constants import G
+from shaketable.core.geometry import Block
+from shaketable.sweeps.base import SweepError
+from shaketable.sweeps.execute import run_sweep
+from shaketable.sweeps.spec import spec_from_dict
+from shaketable.sweeps.store import FORMAT_VERSION
+
+FIXTURES = Path(__file__).parent / "data"
+
+#: The spec of ``data/format-2-sweep`` (see :func:`test_a_format_2_folder_resumes`).
+FORMAT_TWO_SPEC = {"name": "format-two", "seed": 1, "blocks": {"sizes": ["4x1ft", "30x6in"]},
+                   "rocking": {"cor": 0.9},
+                   "records": [{"preset": "A-1", "seeds": 1, "duration": "3 s",
+                                "dt": "0.01 s"}],
+                   "intensity": {"pga": ["0.3 g", "0.6 g"]}, "run": {"chunk_size": 2}}
+
+
+def _pulses(folder: Path) -> dict:
+    """Two record files [g]: one half-sine pulse of 0.25 s ("short") and of 0.6 s ("long"),
+    then rest, to 1.5 s, sampled every 0.05 s (the table's acceleration is linear between
+    samples: the runs are exact for that input, and short)."""
+    paths = {}
+    for name, width in (("short", 0.25), ("long", 0.6)):
+        t = np.round(np.arange(0.0, 1.5 + 1e-9, 0.05), 10)
+        a = np.where(t < width, np.sin(np.pi * t / width), 0.0)
+        paths[name] = folder / f"{name}.csv"
+        np.savetxt(paths[name], np.column_stack([t, a]), delimiter=",", header="t,a",
+                   comments="")
+    return paths
+
+
+def _stack_spec(folder: Path, **changes) -> dict:
+    paths = _pulses(folder)
+    spec = {"name": "stack-pulses",
+            "stacks": {"sizes": ["30x6in"], "blocks": 2, "mass_ratios": [0.5]},
+            "rocking": {"rtol": 1e-7},
+            "records": [{"file": str(paths["short"]), "units": "g"},
+                        {"file": str(paths["long"]), "units": "g"}],
+            "intensity": {"pga": ["0.15 g", "0.25 g", "0.4 g"]}, "run": {"chunk_size": 4}}
+    spec.update(changes)
+    return spec
+
+
+@pytest.fixture(scope="module")
+def stack_sweep(tmp_path_factory):
+    """A stack sweep (2 records x 3 PGAs; two 30x6in blocks, the top one half the bottom
+    one's mass), run whole."""
+    folder = tmp_path_factory.mktemp("stack-sweep")
+    spec = spec_from_dict(_stack_spec(folder), where="stack.toml")
+    outcome = run_sweep(spec, folder / "out", progress=False, fmt="csv")
+    return spec, outcome
+
+
+def test_stack_rows_start_rocking_at_the_closed_form_uplift(stack_sweep):
+    """Each run's first uplift is where the table's acceleration reaches (g) A1 =
+    g b (m1 + m2) / (m1 h + m2 3 h): the two equal blocks tip as one body (the threshold of
+    the whole stack about a base corner, below the top block's own b / h), found on the
+    record as the sweep scaled it (linear between samples)."""
+    spec, outcome = stack_sweep
+    table = outcome.table
+    assert len(table) == spec.n_runs == 6
+    block = Block.parse("30x6in")
+    for _, row in table.iterrows():
+        ratio = row["mass ratio [-]"]
+        a1 = block.b * (1.0 + ratio) / (block.h + ratio * 3.0 * block.h)
+        record = np.loadtxt(spec.records[0].file if row["record"] == "short"
+                            else spec.records[1].file, delimiter=",", skiprows=1)
+        u = record[:, 1] * G * row["scale [-]"]
+        k = int(np.argmax(u >= a1 * G))
+        expected = record[k - 1, 0] + (a1 * G - u[k - 1]) / (u[k] - u[k - 1]) * 0.05
+        assert row["t_start [s]"] == pytest.approx(expected, abs=1e-7)
+    assert set(table["block"]) == {"2 blocks: 30 x 6 in on 30 x 6 in, mass ratio 0.5"}
+
+
+def test_stack_rows_say_which_block_fell(stack_sweep):
+    """``overturned`` is some block falling; ``overturned block`` and the verdict name it."""
+    _, outcome = stack_sweep
+    table = outcome.table
+    fell = table["overturned"].astype(bool)
+    assert fell.any() and not fell.all()
+    assert (fell == (table["status"] == "overturned")).all()
+    assert (fell == (table["overturned block"] >= 0)).all()
+    assert table["t_overturn [s]"][fell].notna().all()
+    assert table["max_theta_ratio [-]"][fell].isna().all()
+    for _, row in table[fell].iterrows():
+        index = int(row["overturned block"])
+        name = "block 0 (bottom)" if index == 0 else "block 1 (top)"
+        assert row["verdict"].startswith(f"{name} overturned at")
+    assert table["impact"].eq("plastic").all() and table["cor [-]"].isna().all()
+
+
+def test_a_killed_stack_sweep_resumes_to_the_same_table(stack_sweep, tmp_path):
+    spec, outcome = stack_sweep
+    folder = tmp_path / "resumed"
+    shutil.copytree(outcome.out, folder)
+    (folder / "parts" / "part-000001.csv").unlink()
+    (folder / "results.csv").unlink()
+    resumed = run_sweep(spec, folder, resume=True, progress=False, fmt="csv")
+    assert (resumed.computed_runs, resumed.skipped_runs) == (2, 4)
+    assert (folder / "results.csv").read_bytes() == (outcome.out / "results.csv").read_bytes()
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert manifest["model"]["model"].startswith("stack")
+
+
+def test_fragility_and_risk_work_on_a_stack_sweep(stack_sweep, capsys):
+    """The fragility of "some block fell" and of each block as the one to fall, and
+    ``shaketable risk`` on the folder: a fit per stack, the plastic impacts a group."""
+    from shaketable.cli import main
+    from shaketable.sweeps.stacks import first_to_fall_fits
+
+    _, outcome = stack_sweep
+    table = outcome.table
+    rows = table
+    fits = first_to_fall_fits(rows, "pga", intervals=False)
+    assert list(fits) == ["any block", "block 1 (top)", "block 0 (bottom)"]
+    fell = rows["overturned"].astype(bool)
+    for name, fit in fits.items():
+        outcome_of = fell if name == "any block" else \
+            rows["overturned block"] == (1 if "top" in name else 0)
+        if isinstance(fit, str):   # no fit: the outcome never, always or separately happened
+            continue
+        assert fit.n_overturned == int(outcome_of.sum()) and fit.n_runs == len(rows)
+    assert not isinstance(fits["any block"], str)
+    status = main(["risk", str(outcome.out), "--hazard", "example"])
+    said = capsys.readouterr()
+    # six runs leave the profile likelihood open: risk names the group and says why
+    assert "2 blocks: 30 x 6 in on 30 x 6 in, mass ratio 0.5, plastic impacts" in \
+        said.out + said.err
+    assert status == 0 or "no rate of overturning can be given" in said.err
+
+
+def test_one_block_stack_rows_agree_with_the_rocking_sweep(tmp_path):
+    """A column of one block with the constant-COR law is the rocking block: the stack
+    sweep (SciPy DOP853 with events) and the rocking sweep (the compiled engine) agree."""
+    data = _stack_spec(tmp_path, stacks={"sizes": ["30x6in"], "blocks": 1},
+                       rocking={"cor": 0.9, "rtol": 1e-10},
+                       intensity={"pga": ["0.25 g", "0.4 g"]})
+    data["records"] = data["records"][1:]
+    stacks = run_sweep(spec_from_dict(data), tmp_path / "stacks", progress=False,
+                       fmt="csv").table
+    rocking = dict(data, blocks={"sizes": ["30x6in"]}, rocking={"cor": 0.9})
+    del rocking["stacks"]
+    blocks = run_sweep(spec_from_dict(rocking), tmp_path / "blocks", progress=False,
+                       fmt="csv").table
+    assert list(stacks["overturned"]) == list(blocks["overturned"]) == [False, True]
+    assert stacks["t_overturn [s]"].iloc[1] == pytest.approx(blocks["t_overturn [s]"].iloc[1],
+                                                             abs=1e-6)
+    assert stacks["n_impacts"].iloc[0] == blocks["n_impacts"].iloc[0] > 0
+    # the stack's peak is read at the record's samples, the rocking engine's located
+    assert 0.98 * blocks["max_theta_ratio [-]"].iloc[0] < stacks["max_theta_ratio [-]"].iloc[0] \
+        <= blocks["max_theta_ratio [-]"].iloc[0] * (1 + 1e-9)
+    for column in ("pga [m/s^2]", "pgv [m/s]", "R [m]", "pga/(g tan a) [-]"):
+        assert np.array_equal(stacks[column], blocks[column])
+
+
+def test_a_format_2_folder_resumes(tmp_path):
+    """A sweep folder written by the version of store format 2 (the block column always in
+    inches) resumes: its parts are brought to format 3, the rest is computed, and the
+    table is byte for byte the table of the whole sweep run now.
+
+    ``data/format-2-sweep`` is the first of the two chunks of :data:`FORMAT_TWO_SPEC`,
+    written by that version (commit 4745c1d^) with::
+
+        git archive 4745c1d^ shaketable | tar -x -C /tmp/v2
+        PYTHONPATH=/tmp/v2 python3 - <<'EOF'
+        from shaketable.sweeps.execute import run_sweep
+        from shaketable.sweeps.spec import spec_from_dict
+        spec = spec_from_dict(FORMAT_TWO_SPEC, where="format-two.toml")
+        run_sweep(spec, "format-2-sweep", progress=False, fmt="csv", max_chunks=1, workers=1)
+        EOF
+
+    (and the folder's lock file removed).
+    """
+    folder = tmp_path / "old"
+    shutil.copytree(FIXTURES / "format-2-sweep", folder)
+    old = pd.read_csv(folder / "parts" / "part-000000.csv")
+    assert json.loads((folder / "manifest.json").read_text())["format_version"] == 2
+    assert list(old["block"]) == ["48 x 12 in", "30 x 6 in"]
+    spec = spec_from_dict(FORMAT_TWO_SPEC, where="format-two.toml")
+    resumed = run_sweep(spec, folder, resume=True, progress=False, fmt="csv", workers=1)
+    assert (resumed.computed_runs, resumed.skipped_runs, resumed.complete) == (2, 2, True)
+    whole = run_sweep(spec, tmp_path / "whole", progress=False, fmt="csv", workers=1)
+    assert (folder / "results.csv").read_bytes() == whole.path.read_bytes()
+    assert list(resumed.table["block"][:2]) == ["4 x 1 ft", "30 x 6 in"]
+    assert json.loads((folder / "manifest.json").read_text())["format_version"] == \
+        FORMAT_VERSION == 3
+    migrated = pd.read_csv(folder / "parts" / "part-000000.csv")
+    pd.testing.assert_frame_equal(migrated.drop(columns="block"), old.drop(columns="block"))
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"model": "planar"}, r"model = 'planar' needs \[friction\]"),
+    ({"model": "tower"}, "'model' must be one of rocking, planar, stack"),
+    ({"friction": {"static": 0.3}}, r"\[stacks\] with \[friction\]"),
+    ({"blocks": {"sizes": ["30x6in"]}}, r"\[blocks\] with \[stacks\]"),
+    ({"stacks": {"sizes": ["30x6in"], "blocks": 11}}, "stacks.blocks must be at most 10"),
+    ({"stacks": {"sizes": ["30x6in"], "blocks": 0}}, "stacks.blocks must be a positive integer"),
+    ({"stacks": {"columns": [["30x6in", "60x12in"]]}}, r"wider than the block below"),
+    ({"stacks": {"sizes": ["30x6in"], "colour": 1}},
+     r"unknown key 'colour' in \[stacks\]; expected one of blocks, columns, mass_ratios, sizes"),
+    ({"stacks": {"sizes": ["0x6in"]}}, r"stacks.sizes '0x6in': the height"),
+    ({"stacks": {"sizes": ["30x6in"], "mass_ratios": [0]}}, "stacks.mass_ratios must be positive"),
+    ({"rocking": {"cor": "elastic"}}, 'rocking.cor of a stack sweep must be "plastic"'),
+    ({"rocking": {"theta0": "0.1 alpha"}}, r"rocking.theta0 with \[stacks\]"),
+    ({"pitch": {"phases": 2}}, r"\[pitch\] with \[stacks\] is not offered"),
+])
+def test_stack_spec_errors_name_the_key(tmp_path, change, message):
+    with pytest.raises(SweepError, match=message):
+        spec_from_dict(_stack_spec(tmp_path, **change), where="spec.toml")
+
+
+def test_the_model_is_chosen_by_the_spec(tmp_path):
+    """Without ``model`` the sections choose it; the planar model's parameters are the
+    friction pairs; columns of explicit sizes and the mass-ratio axis in grid order."""
+    rocking = {k: v for k, v in FORMAT_TWO_SPEC.items()}
+    assert spec_from_dict(rocking).model.name == "rocking"
+    assert spec_from_dict(dict(rocking, model="rocking")).friction is None
+    planar = spec_from_dict(dict(rocking, friction={"static": [0.2, 0.4]}))
+    assert planar.model.name == "planar" and planar.model.axis == ((0.2, 0.2), (0.4, 0.4))
+    assert planar.friction.pairs == planar.model.axis and planar.n_runs == 2 * 2 * 2
+    spec = spec_from_dict(_stack_spec(tmp_path, stacks={
+        "columns": [["60x12in", "30x6in"], ["30x6in"]], "mass_ratios": [2, 0.5]}))
+    assert spec.model.name == "stack"
+    assert [(s.n, s.masses) for s in spec.blocks] == [(2, (1.0, 2.0)), (2, (1.0, 0.5)),
+                                                     (1, (1.0,)), (1, (1.0,))]
+    assert [spec.model.label(s) for s in spec.blocks[:2]] == [
+        "2 blocks: 30 x 6 in on 60 x 12 in, mass ratio 2",
+        "2 blocks: 30 x 6 in on 60 x 12 in, mass ratio 0.5"]
+    assert math.isnan(spec.cors[0]) and spec.n_runs == 2 * 3 * 4
