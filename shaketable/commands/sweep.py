@@ -101,15 +101,16 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``sweep`` subcommand."""
     parser = commands.add_parser(
         "sweep", help="run a parameter sweep (TOML spec) into a Parquet table, resumable",
-        description="Run every combination of blocks, COR, records, PGA levels, pitch "
-                    "phases and friction coefficients named in a sweep spec (see "
+        description="Run every combination of blocks (or stacks of blocks), COR, records, "
+                    "PGA levels, pitch phases and friction coefficients named in a sweep "
+                    "spec, with the model it names (see "
                     "shaketable.sweeps.spec) and write one row per run to "
                     "OUT/results.parquet. Finished chunks are kept on disk: a killed sweep "
                     "continues with --resume.")
     parser.add_argument("spec", help="path to a sweep spec .toml, or the name of a bundled "
                                      "one (pacoima-overturning-map, artificial-fragility, "
                                      "pitch-phase-repeatability, im-fragility-collapse, "
-                                     "pacoima-friction)")
+                                     "pacoima-friction, stacked-blocks-fragility)")
     parser.add_argument("--out", help="output folder (default shaketable-out/<sweep name>)")
     parser.add_argument("--workers", type=int, default=None,
                         help="local threads (default all cores); with --scheduler, threads "

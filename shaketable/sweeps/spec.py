@@ -63,6 +63,8 @@ dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``):
     # perturb_amplitude, perturb_cor, perturb_size, perturb_start (sample intervals)
     # seed = 0                    # of the draws (member k is the same in every cell)
 
+    # model = "rocking"           # optional: "rocking" (default), "planar" ([friction]) or
+    #                             # "stack" ([stacks] in place of [blocks]: shaketable.sweeps.stacks)
     [friction]                    # optional: the coupled planar model (shaketable.sweeps.friction)
     static = [0.2, 0.3]           # mu_s [-], plain numbers; dynamic = [...] or dynamic_ratio
 

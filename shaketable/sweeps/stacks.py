@@ -294,7 +294,8 @@ def simulate_stacks(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.Da
 
 def overturned_blocks(table) -> str:
     """Which block fell in the overturned runs of a stack sweep's rows, top first:
-    ``"block 1 (top) 5, block 0 (bottom) 2"`` ("" for another sweep's table)."""
+    ``"block 1 (top) 5, block 0 (bottom) 2"`` (``"a block alone 3"``: the columns of one
+    block; "" for another sweep's table)."""
     if "overturned block" not in table or "blocks" not in table:
         return ""
     fell = table[table["overturned"].astype(bool)]
@@ -302,8 +303,8 @@ def overturned_blocks(table) -> str:
     for (blocks, index), rows in sorted(fell.groupby(["blocks", "overturned block"]),
                                         key=lambda item: (-item[0][1], item[0][0])):
         blocks, index = int(blocks), int(index)
-        name = f"block {index}" + (" (bottom)" if index == 0 and blocks > 1 else
-                                   " (top)" if index == blocks - 1 and blocks > 1 else "")
+        name = "a block alone" if blocks == 1 else f"block {index}" + (
+            " (bottom)" if index == 0 else " (top)" if index == blocks - 1 else "")
         parts.append(f"{name} {len(rows)}")
     return ", ".join(parts)
 
