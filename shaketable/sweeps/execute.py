@@ -366,10 +366,9 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                 "solver": solver_identity()}
     if spec.ensemble is not None:
         manifest["ensemble"] = spec.ensemble
-    if spec.friction is not None:   # a folder without the key: a sweep without friction
-        manifest["friction"] = spec.friction.manifest()
-    elif spec.model.manifest() is not None:   # a folder without the key: the rocking model
-        manifest["model"] = spec.model.manifest()
+    # the model's entries ("friction": the planar model's grid; "model": the stack model);
+    # a folder without them ran the rocking block
+    manifest.update(spec.model.manifest())
     if manifest_path.exists():
         if not resume:
             raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
@@ -382,6 +381,13 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
         if not isinstance(old, dict):
             raise SweepError(f"{manifest_path}: not a sweep manifest (a JSON "
                              f"{type(old).__name__}, not an object); use another output folder")
+        if old.get("model") != manifest.get("model"):
+            def model(entry):
+                return entry["model"] if isinstance(entry, dict) and "model" in entry \
+                    else "the rocking or planar model"
+            raise SweepError(f"{out}: cannot resume: the sweep there runs "
+                             f"{model(old.get('model'))} and {spec.path} "
+                             f"{model(manifest.get('model'))}; use another output folder")
         if old.get("friction") != manifest.get("friction"):
             def friction(entry):
                 if not isinstance(entry, dict):
@@ -392,13 +398,6 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
             raise SweepError(f"{out}: cannot resume: the sweep there has "
                              f"{friction(old.get('friction'))} and {spec.path} has "
                              f"{friction(manifest.get('friction'))}; use another output folder")
-        if old.get("model") != manifest.get("model"):
-            def model(entry):
-                return entry["model"] if isinstance(entry, dict) and "model" in entry \
-                    else "the rocking or planar model"
-            raise SweepError(f"{out}: cannot resume: the sweep there runs "
-                             f"{model(old.get('model'))} and {spec.path} "
-                             f"{model(manifest.get('model'))}; use another output folder")
         if old.get("format_version") in MIGRATED_VERSIONS and all(
                 old.get(key) == manifest[key] for key in ("fingerprint", "n_runs",
                                                           "chunk_size", "format", "solver")):

@@ -37,9 +37,10 @@ class RockingSweep:
         """The model's own axis between the block and the COR (none: one value)."""
         return ()
 
-    def manifest(self) -> dict | None:
-        """What the sweep folder records of the model (None: nothing, as before the model axis)."""
-        return None
+    def manifest(self) -> dict:
+        """What the sweep folder's manifest records of the model, by key (a resume with
+        other entries is refused): nothing for the rocking block (its folders hold none)."""
+        return {}
 
     def check(self, spec: SweepSpec, rocking: dict) -> None:
         """Refuse, naming the key, what the model does not take (nothing here)."""
@@ -87,9 +88,9 @@ class PlanarSweep(RockingSweep):
         assert self.friction is not None
         return self.friction.pairs
 
-    def manifest(self) -> dict | None:
+    def manifest(self) -> dict:
         assert self.friction is not None
-        return self.friction.manifest()
+        return {"friction": self.friction.manifest()}
 
     def check(self, spec: SweepSpec, rocking: dict) -> None:
         from shaketable.sweeps.friction import check_friction_spec

@@ -180,9 +180,9 @@ class StackSweep(RockingSweep):
 
     name: str = "stack"
 
-    def manifest(self) -> dict | None:
-        return {"model": "stack (a column of rigid blocks; no sliding, no flight)",
-                "default rtol": DEFAULT_STACK_RTOL}
+    def manifest(self) -> dict:
+        return {"model": {"model": "stack (a column of rigid blocks; no sliding, no flight)",
+                          "default rtol": DEFAULT_STACK_RTOL}}
 
     def check(self, spec: SweepSpec, rocking: dict) -> None:
         where = spec.path

@@ -245,3 +245,14 @@ def test_the_model_is_chosen_by_the_spec(tmp_path):
         "2 blocks: 30 x 6 in on 60 x 12 in, mass ratio 2",
         "2 blocks: 30 x 6 in on 60 x 12 in, mass ratio 0.5"]
     assert math.isnan(spec.cors[0]) and spec.n_runs == 2 * 3 * 4
+
+
+def test_a_resume_with_another_model_is_refused_by_name(stack_sweep, tmp_path):
+    spec, outcome = stack_sweep
+    folder = tmp_path / "other"
+    shutil.copytree(outcome.out, folder)
+    data = _stack_spec(tmp_path, blocks={"sizes": ["30x6in"]}, rocking={"cor": 0.9})
+    del data["stacks"]
+    with pytest.raises(SweepError, match=r"cannot resume: the sweep there runs stack \(a column "
+                                         r"of rigid blocks.*and .* the rocking or planar model"):
+        run_sweep(spec_from_dict(data), folder, resume=True, progress=False, fmt="csv")
