@@ -24,7 +24,7 @@ from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
 from shaketable.core.units import parse
-from shaketable.core.validation import check_keys
+from shaketable.core.validation import check_keys, flag
 from shaketable.lab.digitizer import Digitizer
 from shaketable.lab.sensors import (
     WIRES,
@@ -296,9 +296,7 @@ def sensors_from_dict(spec: dict, where: str = "<scene>") -> Sensors:
             potentiometers = Potentiometers(**options)
         accelerometers = None
         fitted = spec.get("accelerometers", True)
-        if not isinstance(fitted, bool):
-            raise ValueError(f"{where}: sensors.accelerometers must be true or false, got "
-                             f"{fitted!r}")
+        flag(f"{where}: sensors.accelerometers", fitted)
         if fitted:
             options = {}
             if "accelerometer_noise" in spec:
