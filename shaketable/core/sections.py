@@ -4,7 +4,8 @@ A scene's ``[block]`` and a sweep spec's ``[blocks]`` (and the sweep's ``[stacks
 give block sizes and prestress rods the same way; this module reads them for both:
 :func:`table_of` (a section must be a table), :func:`quantity` (a value with its unit,
 in SI), :func:`rods` (``[block.rods]`` / ``[blocks.rods]``) and :func:`sized_block`
-(``"30x6in"``). Every error is raised as the caller's class (``error``: the scenes'
+(``"30x6in"``), and the label of a block of a grid in the user's unit
+(:func:`length_unit`, :func:`labelled`). Every error is raised as the caller's class (``error``: the scenes'
 ``SceneError``, the sweeps' ``SweepError``), its message beginning with the file and
 naming the key, as ``"scene.toml: block.rods.force: ..."``; the unknown-key check is
 :func:`shaketable.core.validation.check_keys`.
@@ -12,6 +13,9 @@ naming the key, as ``"scene.toml: block.rods.force: ..."``; the unknown-key chec
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+from shaketable.core.constants import LENGTH_UNITS, length_factor
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.units import parse
 from shaketable.core.validation import check_keys
@@ -81,3 +85,24 @@ def sized_block(text: object, where: str, key: str, rods: PrestressRods | None =
         else:
             message = f"{key}: {message}"
         raise error(f"{where}: {message}") from None
+
+
+def length_unit(value: object) -> str | None:
+    """The unit of the first length of a grid key (``"2 m"`` or ``["2 m", "3 m"]`` ->
+    ``"m"``), None if unknown: the unit a grid's blocks are labelled in."""
+    values = value if isinstance(value, list) else [value]
+    first = values[0] if values else None
+    if not isinstance(first, str):
+        return None
+    unit = first.strip().lstrip("+-0123456789.eE").strip().lower()
+    return unit if unit in LENGTH_UNITS else None
+
+
+def labelled(block: Block, unit: str | None) -> Block:
+    """The block labelled ``H x B unit`` in the user's unit (as :meth:`Block.parse` does);
+    as it is for ``unit=None``."""
+    if unit is None:
+        return block
+    factor = length_factor(unit)
+    return replace(block, label=f"{block.height / factor:.6g} x {block.width / factor:.6g} "
+                                f"{unit}")

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from shaketable.core.units import parse_angle_or_ratio
+from shaketable.sweeps.base import SweepError
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -110,6 +111,29 @@ class PlanarSweep(RockingSweep):
 
 #: The models a spec may name (``model = "..."``).
 MODEL_NAMES = ("rocking", "planar", "stack")
+
+
+def chosen_model(data: dict, where: str) -> str:
+    """``model = "..."``, or the model that the sections choose: ``[stacks]`` the stack model,
+    ``[friction]`` the planar model, else the rocking block; a section of another model
+    is refused by name."""
+    chosen = "stack" if "stacks" in data else "planar" if "friction" in data else "rocking"
+    name = data.get("model", chosen)
+    if name not in MODEL_NAMES:
+        raise SweepError(f"{where}: 'model' must be one of {', '.join(MODEL_NAMES)}, got "
+                         f"{name!r}")
+    if "stacks" in data and "friction" in data:
+        raise SweepError(f"{where}: [stacks] with [friction]: the stack model does not slide; "
+                         "drop one of them")
+    if name != chosen:
+        needs = {"stack": "[stacks]", "planar": "[friction]"}
+        raise SweepError(f"{where}: model = {name!r} " + (
+            f"needs {needs[name]}" if name in needs else
+            f"takes no {needs[chosen]} (it is the {chosen} model's section)"))
+    if name == "stack" and "blocks" in data:
+        raise SweepError(f"{where}: [blocks] with [stacks]: the stacks take the place of the "
+                         "blocks; give the columns' sizes in [stacks]")
+    return name
 
 
 def simulate_rocking(spec: SweepSpec, inputs, cases: list, threads):

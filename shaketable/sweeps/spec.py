@@ -139,7 +139,7 @@ from shaketable.core.units import parse_angle_or_ratio
 from shaketable.core.validation import check_keys, count, flag
 from shaketable.sweeps.base import RecordSpec, SweepError
 from shaketable.sweeps.limits import MAX_CHUNK_SIZE, check_grid_size
-from shaketable.sweeps.models import PlanarSweep, RockingSweep
+from shaketable.sweeps.models import PlanarSweep, RockingSweep, chosen_model
 from shaketable.sweeps.targets import (
     IntensitySettings,
     check_levels,
@@ -345,7 +345,7 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     """
     directory = Path(directory) if directory is not None else Path.cwd()
     _only(data, TOP_KEYS, where, "the top level")
-    model_name = _model_name(data, where)
+    model_name = chosen_model(data, where)
     required = ("name", "stacks", "records") if model_name == "stack" else (
         "name", "blocks", "rocking", "records")
     for key in required:
@@ -433,31 +433,6 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     model.check(spec, rocking)   # what the model refuses, by key
     check_grid_size(spec, where)
     return spec
-
-
-def _model_name(data: dict, where: str) -> str:
-    """``model = "..."``, or the model that the sections choose: ``[stacks]`` the stack model,
-    ``[friction]`` the planar model, else the rocking block; a section of another model
-    is refused by name."""
-    from shaketable.sweeps.models import MODEL_NAMES
-
-    chosen = "stack" if "stacks" in data else "planar" if "friction" in data else "rocking"
-    name = data.get("model", chosen)
-    if name not in MODEL_NAMES:
-        raise SweepError(f"{where}: 'model' must be one of {', '.join(MODEL_NAMES)}, got "
-                         f"{name!r}")
-    if "stacks" in data and "friction" in data:
-        raise SweepError(f"{where}: [stacks] with [friction]: the stack model does not slide; "
-                         "drop one of them")
-    if name != chosen:
-        needs = {"stack": "[stacks]", "planar": "[friction]"}
-        raise SweepError(f"{where}: model = {name!r} " + (
-            f"needs {needs[name]}" if name in needs else
-            f"takes no {needs[chosen]} (it is the {chosen} model's section)"))
-    if name == "stack" and "blocks" in data:
-        raise SweepError(f"{where}: [blocks] with [stacks]: the stacks take the place of the "
-                         "blocks; give the columns' sizes in [stacks]")
-    return name
 
 
 def _model(name: str, data: dict, where: str):
@@ -579,51 +554,27 @@ def _blocks(table, where):
                 raise SweepError(f"{where}: blocks.alpha must be below 90 deg, got {item!r}")
             alphas.append(value)
     # the blocks of a grid are labelled in the unit of the grid's first length
-    unit = _length_unit(table[next(key for key in grid if key in lengths)])
+    unit = sections.length_unit(table[next(key for key in grid if key in lengths)])
     if grid == ("height", "width"):
         for height, width in product(lengths["height"], lengths["width"]):
-            add(lambda: _labelled(Block(height, width, rods), unit), "height", {})
+            add(lambda: sections.labelled(Block(height, width, rods), unit), "height", {})
     elif grid == ("height", "aspect"):
         for height, aspect in product(lengths["height"], aspects):
-            add(lambda: _labelled(Block(height, height / aspect, rods), unit), "aspect",
+            add(lambda: sections.labelled(Block(height, height / aspect, rods), unit), "aspect",
                 {"aspect": aspect})
     elif grid == ("width", "aspect"):
         for width, aspect in product(lengths["width"], aspects):
-            add(lambda: _labelled(Block(width * aspect, width, rods), unit), "aspect",
+            add(lambda: sections.labelled(Block(width * aspect, width, rods), unit), "aspect",
                 {"aspect": aspect})
     elif grid == ("R", "alpha"):
         for radius, alpha in product(lengths["R"], alphas):
-            add(lambda: _labelled(Block.from_slenderness(radius, alpha, rods), unit), "alpha",
+            add(lambda: sections.labelled(Block.from_slenderness(radius, alpha, rods), unit), "alpha",
                 {})
     else:  # R + aspect
         for radius, aspect in product(lengths["R"], aspects):
-            add(lambda: _labelled(Block.from_slenderness(radius, math.atan(1.0 / aspect), rods),
+            add(lambda: sections.labelled(Block.from_slenderness(radius, math.atan(1.0 / aspect), rods),
                                   unit), "aspect", {"aspect": aspect})
     return blocks, inputs
-
-
-def _length_unit(value) -> str | None:
-    """The unit of the first length of a grid key (``"2 m"`` -> ``"m"``), None if unknown."""
-    from shaketable.core.constants import LENGTH_UNITS
-
-    first = _as_list(value)[0] if _as_list(value) else None
-    if not isinstance(first, str):
-        return None
-    unit = first.strip().lstrip("+-0123456789.eE").strip().lower()
-    return unit if unit in LENGTH_UNITS else None
-
-
-def _labelled(block: Block, unit: str | None) -> Block:
-    """The block labelled ``H x B unit`` in the user's unit (as :meth:`Block.parse` does)."""
-    if unit is None:
-        return block
-    from dataclasses import replace
-
-    from shaketable.core.constants import length_factor
-
-    factor = length_factor(unit)
-    return replace(block, label=f"{block.height / factor:.6g} x {block.width / factor:.6g} "
-                                f"{unit}")
 
 
 def _records(value, where, directory: Path, seed: int):
