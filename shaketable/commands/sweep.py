@@ -23,6 +23,8 @@ def _sweep(args: argparse.Namespace) -> int:
     spec = load_spec(resolve_sweep_path(args.spec))
     out = prepare_output_folder(args.out or Path("shaketable-out") / spec.name)
     where = f"Dask cluster {args.scheduler}" if args.scheduler else (
+        (f"{args.workers} local process(es)" if args.workers and args.workers > 1
+         else "one local process") if spec.model.processes else
         f"{args.workers} local thread(s)" if args.workers else "all local cores")
     print(f"{spec.name}: {spec.n_runs} runs in {spec.n_chunks} chunk(s) of {spec.chunk_size}, "
           f"on {where}")
@@ -113,8 +115,9 @@ def register(commands: argparse._SubParsersAction) -> None:
                                      "pacoima-friction, stacked-blocks-fragility)")
     parser.add_argument("--out", help="output folder (default shaketable-out/<sweep name>)")
     parser.add_argument("--workers", type=int, default=None,
-                        help="local threads (default all cores); with --scheduler, threads "
-                             "inside each Dask task (default 1)")
+                        help="local threads (default all cores); for a stack sweep, local "
+                             "processes, each computing whole chunks (default one); with "
+                             "--scheduler, threads inside each Dask task (default 1)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
                         help="run the chunks on a dask.distributed cluster "
                              "(e.g. tcp://host:8786)")

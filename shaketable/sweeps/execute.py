@@ -486,9 +486,11 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
         Output folder: ``manifest.json``, ``parts/part-NNNNNN.parquet`` and,
         at the end, ``results.parquet``.
     workers : int, optional
-        Local: threads of the compiled batch loop (default all cores). With
-        ``scheduler``: threads inside each Dask task (default 1; the cluster's
-        own workers give the parallelism).
+        Local: threads of the compiled batch loop (default all cores); for a model whose
+        runs are not a compiled batch (the stack model, ``model.processes``), processes,
+        each computing whole chunks (default one: the chunks one after the other, in this
+        process; the table is the same either way). With ``scheduler``: threads inside
+        each Dask task (default 1; the cluster's own workers give the parallelism).
     scheduler : str or distributed.Client, optional
         Address of a ``dask.distributed`` scheduler (``tcp://host:8786``), or
         a connected ``distributed.Client`` (used as is and not closed at the
@@ -529,7 +531,8 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
         raise ValueError(f"max_chunks must be a non-negative integer, got {max_chunks!r}")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):
-        raise ValueError(f"workers (--workers) must be a positive integer (threads), "
+        raise ValueError(f"workers (--workers) must be a positive integer ("
+                         f"{'processes' if spec.model.processes else 'threads'}), "
                          f"got {workers!r}")
     check_inputs(spec)   # every record and measure, before any file or chunk
     began = time.perf_counter()
@@ -569,7 +572,9 @@ def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk
             on_chunk(chunk, frame)
 
     try:
-        if client is None:
+        if client is None and spec.model.processes and (workers or 1) > 1 and len(todo) > 1:
+            _run_in_processes(spec, todo, min(workers or 1, len(todo)), finished)
+        elif client is None:
             for chunk in todo:
                 finished(chunk, compute_chunk(spec, chunk, threads=workers))
         else:
@@ -636,6 +641,26 @@ def _connect(scheduler):
         raise ValueError(f"--scheduler {scheduler!r}: cannot reach a Dask scheduler there "
                          f"within {SCHEDULER_TIMEOUT:g} s ({type(error).__name__}: "
                          f"{error}); nothing was written") from None
+
+
+def _run_in_processes(spec, chunks, workers: int, finished) -> None:
+    """Compute the chunks in ``workers`` processes of their own; write each as it completes.
+
+    Each process runs :func:`compute_chunk` as a Dask task does (a chunk's rows do not
+    depend on where or in which order it is computed), its batches on one thread.
+    Ctrl-C or a chunk's error starts no further chunk; the finished ones are on disk.
+    """
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = {pool.submit(compute_chunk, spec, chunk, 1): chunk for chunk in chunks}
+        try:
+            for future in as_completed(futures):
+                finished(futures[future], future.result())
+        except BaseException:
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
 
 
 def _run_on_dask(spec, chunks, client, threads, finished) -> None:

@@ -33,6 +33,10 @@ class RockingSweep:
 
     name: str = "rocking"
 
+    #: Whether ``--workers`` counts processes that each compute whole chunks (a model
+    #: whose runs are not a compiled, multi-threaded batch); else threads of the batch.
+    processes = False
+
     @property
     def axis(self) -> tuple:
         """The model's own axis between the block and the COR (none: one value)."""

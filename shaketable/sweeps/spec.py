@@ -133,6 +133,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from shaketable.core import sections
+from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import Block
 from shaketable.core.tomlfile import read_toml, with_line
 from shaketable.core.units import parse_angle_or_ratio
@@ -256,6 +257,11 @@ class SweepSpec:
     raw : dict
         The parsed TOML, for the manifest's fingerprint.
     """
+
+    # by value, NaN equal to NaN in the same place: the plastic law's COR is NaN by design
+    # (a stack sweep's ``cors``, its ``block_inputs`` "mass ratio" for one density), and a
+    # spec equals its pickled copy
+    __eq__ = fields_equal
 
     name: str
     description: str

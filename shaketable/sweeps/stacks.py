@@ -42,9 +42,11 @@ columns carry them.
 
 What the stack model does not take is refused when the spec is read, naming the key:
 ``[pitch]``, ``[ensemble]``, ``[friction]``, ``rocking.method`` other than ``"fast"``,
-``rocking.subdivisions`` and ``rocking.theta0`` (every run starts from rest). The runs are
-computed one after the other (the stack model is not the compiled batch: ``--workers``
-does not apply).
+``rocking.subdivisions`` and ``rocking.theta0`` (every run starts from rest). The runs of
+a chunk are computed one after the other (the stack model is not the compiled batch);
+``--workers N`` (``run_sweep(workers=N)``) computes N chunks at once in processes of their
+own, so give ``[run] chunk_size`` small enough for several chunks. The table is the same
+whatever the number of workers.
 """
 
 from __future__ import annotations
@@ -58,6 +60,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from shaketable.core import sections
+from shaketable.core.equality import fields_equal
 from shaketable.core.validation import check_keys, count
 from shaketable.sweeps.base import SweepError
 from shaketable.sweeps.models import RockingSweep
@@ -78,6 +81,8 @@ DEFAULT_STACK_RTOL = 1e-12
 class StackCase:
     """One run of a stack sweep: the stack, the unscaled motion, the COR (NaN: the plastic
     law), the scale factor and the labels of the table."""
+
+    __eq__ = fields_equal   # NaN (the plastic law) equal to NaN; equal after a pickle
 
     stack: Any
     motion: Any
@@ -179,6 +184,7 @@ class StackSweep(RockingSweep):
     """A column of rigid blocks (:mod:`shaketable.models.stack`) in each cell."""
 
     name: str = "stack"
+    processes = True   # SciPy runs, one after the other: --workers N runs N chunks at once
 
     def manifest(self) -> dict:
         return {"model": {"model": "stack (a column of rigid blocks; no sliding, no flight)",

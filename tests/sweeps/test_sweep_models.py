@@ -120,6 +120,40 @@ def test_a_killed_stack_sweep_resumes_to_the_same_table(stack_sweep, tmp_path):
     assert manifest["model"]["model"].startswith("stack")
 
 
+def test_stack_sweeps_in_processes_give_the_sequential_table(stack_sweep, tmp_path):
+    """``workers=2``: the two chunks in two processes of their own, written as they end;
+    the parts and the table are byte-identical to the sequential run's."""
+    spec, outcome = stack_sweep
+    assert spec.n_chunks == 2 and spec.model.processes
+    parallel = run_sweep(spec, tmp_path / "two", workers=2, progress=False, fmt="csv")
+    assert parallel.computed_runs == 6 and parallel.table.equals(outcome.table)
+    for name in ("results.csv", "parts/part-000000.csv", "parts/part-000001.csv"):
+        assert (tmp_path / "two" / name).read_bytes() == (outcome.out / name).read_bytes()
+    with pytest.raises(ValueError, match=r"workers \(--workers\) must be a positive integer "
+                                         r"\(processes\), got 0"):
+        run_sweep(spec, tmp_path / "none", workers=0, progress=False, fmt="csv")
+
+
+def test_a_plastic_stack_spec_equals_its_pickled_copy(stack_sweep):
+    """The plastic law's COR is NaN by design (and one density's mass ratio): a spec equals
+    its pickled copy and its twin; NaN in another place, or another value, is not equal."""
+    import dataclasses
+    import pickle
+
+    spec, outcome = stack_sweep
+    data = _stack_spec(Path(outcome.out).parent)
+    assert math.isnan(spec.cors[0])
+    assert pickle.loads(pickle.dumps(spec)) == spec == spec_from_dict(data, where="stack.toml")
+    mixed = dataclasses.replace(spec, cors=(math.nan, 0.9))
+    assert mixed == pickle.loads(pickle.dumps(mixed))
+    assert mixed != dataclasses.replace(spec, cors=(0.9, math.nan))
+    assert spec != dataclasses.replace(spec, cors=(0.9,))
+    one_density = spec_from_dict(dict(data, stacks={"sizes": ["30x6in"], "blocks": 2}))
+    assert math.isnan(one_density.block_inputs[0]["mass ratio"])
+    assert one_density == pickle.loads(pickle.dumps(one_density)) != spec
+    assert outcome == pickle.loads(pickle.dumps(outcome))
+
+
 def test_fragility_and_risk_work_on_a_stack_sweep(stack_sweep, capsys):
     """The fragility of "some block fell" and of each block as the one to fall, and
     ``shaketable risk`` on the folder: a fit per stack, the plastic impacts a group."""
