@@ -85,8 +85,11 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"wrote {out / 'spectrum-scale-factors.csv'} (each record's factor to the "
               "target spectrum)")
     if args.figures and spec.model.name == "stack":
-        print("no figure: the figures of a stack sweep are not drawn (its table holds the "
-              "runs; `shaketable risk` fits their fragility)")
+        from shaketable.core.files import subfolder
+        from shaketable.plots.sweep_stacks import stack_sweep_figures
+
+        paths = stack_sweep_figures(table, subfolder(out, "figures"))
+        print("wrote " + ", ".join(str(path) for path in paths))
     elif args.figures:
         from shaketable.core.files import subfolder
         from shaketable.plots.sweeps import sweep_figures
@@ -132,5 +135,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                              "a sweep scaled to an intensity measure, fragility against it, "
                              "PGA and PGV p/(g tan a) with confidence bands, the PGA-PGV "
                              "surface and the IM comparison (OUT/figures/; a [friction] "
-                             "sweep: one folder per friction pair)")
+                             "sweep: one folder per friction pair; a [stacks] sweep: P(some "
+                             "block overturns) per stack beside the block alone, with fits, "
+                             "and which block falls first)")
     parser.set_defaults(handler=_sweep)

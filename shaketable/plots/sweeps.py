@@ -36,6 +36,7 @@ from shaketable.sweeps.fragility import (
     fragility_surface,
     measure_column,
 )
+from shaketable.sweeps.stacks import impact_law, law_token
 
 _RATIO = "max_theta_ratio [-]"
 
@@ -174,7 +175,7 @@ def overturning_map(table, *, x="aspect", y="width", record=None, cor=None, ax=N
     bar = ax.figure.colorbar(image, ax=ax, extend="max")
     bar.set_label("max |θ|/α [-]  (red, F: overturned)")
     label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
-    ax.set_title(f"{label}, COR {rows['cor [-]'].iloc[0]:g}: "
+    ax.set_title(f"{label}, {impact_law(rows['cor [-]'].iloc[0])}: "
                  f"{int(overturned.sum())} of {int((seen > 0).sum())} overturn")
     return ax
 
@@ -234,7 +235,7 @@ def rocking_spectrum(table, *, x="p", record=None, cor=None, group="aspect", ax=
     ax.set_xlabel(x_label)
     ax.set_ylabel("max |θ|/α [-]")
     label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
-    ax.set_title(f"Rocking spectrum: {label}, COR {rows['cor [-]'].iloc[0]:g}")
+    ax.set_title(f"Rocking spectrum: {label}, {impact_law(rows['cor [-]'].iloc[0])}")
     place_legend(ax, fontsize=7, ncol=2)
     return ax
 
@@ -289,7 +290,7 @@ def fragility_curve(table, *, group="block", cor=None, pga="pga [g]", ax=None):
     n_motions = rows.groupby(["record", "seed"], dropna=False).ngroups if "record" in rows \
         else len(records)
     ax.set_title(f"Fragility: {', '.join(map(str, records))} ({n_motions} motions), "
-                 f"COR {rows['cor [-]'].iloc[0]:g}")
+                 f"{impact_law(rows['cor [-]'].iloc[0])}")
     ax.grid(alpha=0.3)
     place_legend(ax, fontsize=7)
     ax.fragility_fits = fits
@@ -354,7 +355,7 @@ def pitch_phase_spread(table, *, record=None, cor=None, ax=None):
     ax.set_xlabel("PGA [g] (at each level, the pitch phases side by side)")
     ax.set_ylabel("max |θ|/α [-]")
     block = rows["block"].iloc[0] if rows["block"].nunique() == 1 else "several blocks"
-    ax.set_title(f"{rows['record'].iloc[0]}: {block}, COR {rows['cor [-]'].iloc[0]:g}, "
+    ax.set_title(f"{rows['record'].iloc[0]}: {block}, {impact_law(rows['cor [-]'].iloc[0])}, "
                  f"{int(rows['pitch_phase [rad]'].round(9).nunique())} pitch phases "
                  "(Section 3.7 (2))", fontsize=9)
     ax.grid(alpha=0.3)
@@ -393,6 +394,10 @@ def sweep_figures(table, out) -> list:
 
     from shaketable.plots.base import save
 
+    if "overturned block" in table:   # a stack sweep: its own figures
+        from shaketable.plots.sweep_stacks import stack_sweep_figures
+
+        return stack_sweep_figures(table, out)
     out = Path(out)
     out = subfolder(out.parent if str(out.parent) else ".", out.name, "figures folder")
     written = []
@@ -406,35 +411,37 @@ def sweep_figures(table, out) -> list:
             continue  # several intensities: the fragility figure covers them
         if not pd.isna(seed) and rows["record_kind"].iloc[0] == "artificial":
             record = f"{record}-seed{int(seed)}"
-        label = f"{record}-cor{cor:g}"
+        label = f"{record}-{law_token(cor)}"
         if widths > 1 and aspects > 1 and rows.groupby(
                 ["block_width [m]", "aspect_ratio [-]"]).size().max() == 1:
             figure, axis = plt.subplots(figsize=(8, 5))
             overturning_map(rows, ax=axis, length_unit="ft")
-            axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
+            axis.set_title(f"{record}, {impact_law(cor)}", fontsize=9)
             written.append(out / f"map-{label}.png")
             save(figure, written[-1])
         if rows["block"].nunique() > 1:
             figure, axis = plt.subplots(figsize=(8, 4))
             rocking_spectrum(rows, ax=axis)
-            axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
+            axis.set_title(f"{record}, {impact_law(cor)}", fontsize=9)
             written.append(out / f"spectrum-{label}.png")
             save(figure, written[-1])
     levels = pitch_free["pga [g]"].round(6).nunique()
-    per_level = (pitch_free.groupby([pitch_free["pga [g]"].round(6), "block", "cor [-]"])
+    per_level = (pitch_free.groupby([pitch_free["pga [g]"].round(6), "block", "cor [-]"],
+                                    dropna=False)
                  .size().min() if len(pitch_free) else 0)
     if levels >= 3 and per_level >= 2:
-        for cor, rows in pitch_free.groupby("cor [-]", sort=False):
+        for cor, rows in pitch_free.groupby("cor [-]", sort=False, dropna=False):
             figure, axis = plt.subplots(figsize=(7, 4.5))
             fragility_curve(rows, ax=axis)
-            axis.set_title(f"fragility, COR {cor:g}", fontsize=9)
-            written.append(out / f"fragility-cor{cor:g}.png")
+            axis.set_title(f"fragility, {impact_law(cor)}", fontsize=9)
+            written.append(out / f"fragility-{law_token(cor)}.png")
             save(figure, written[-1])
     if "peak corner excursion [m]" in table and levels >= 2:   # a friction sweep
         from shaketable.plots.sweep_slip import slip_against_intensity
 
-        for (block, cor), rows in pitch_free.groupby(["block", "cor [-]"], sort=False):
-            written.append(out / f"slip-{block.replace(' ', '')}-cor{cor:g}.png")
+        for (block, cor), rows in pitch_free.groupby(["block", "cor [-]"], sort=False,
+                                                   dropna=False):
+            written.append(out / f"slip-{block.replace(' ', '')}-{law_token(cor)}.png")
             save(slip_against_intensity(rows), written[-1])
     if "target_measure" in table:
         written.extend(measure_figures(table, out))
@@ -446,7 +453,7 @@ def sweep_figures(table, out) -> list:
             pitch_phase_spread(rows, ax=axis)
             if not pd.isna(seed) and rows["record_kind"].iloc[0] == "artificial":
                 record = f"{record}-seed{int(seed)}"
-            name = f"pitch-{record}-{block.replace(' ', '')}-cor{cor:g}"
+            name = f"pitch-{record}-{block.replace(' ', '')}-{law_token(cor)}"
             written.append(out / f"{name}.png")
             save(figure, written[-1])
     return written
@@ -563,7 +570,7 @@ def fragility_by_measure(table, measure="pgv", *, group="block", cor=None, ax=No
     records = rows.groupby(["record", "seed"], dropna=False).ngroups if "record" in rows \
         else rows["motion"].nunique()
     ax.set_title(f"Fragility against {MEASURE_LABELS.get(column, column).split(' [')[0]}: "
-                 f"{records} motions, COR {rows['cor [-]'].iloc[0]:g} (bands: "
+                 f"{records} motions, {impact_law(rows['cor [-]'].iloc[0])} (bands: "
                  f"{100 * confidence:g} % profile likelihood)", fontsize=9)
     place_legend(ax, fontsize=7)
     ax.fragility_fits = fits
@@ -697,12 +704,12 @@ def measure_figures(table, out) -> list:
     written = []
     target = str(table["target_measure"].iloc[0])
     rows = table[table["pitch_phase [rad]"].isna()] if "pitch_phase [rad]" in table else table
-    for cor, part in rows.groupby("cor [-]", sort=False):
+    for cor, part in rows.groupby("cor [-]", sort=False, dropna=False):
         for measure in dict.fromkeys([target, "pga", "pgv*"]):
             figure, axis = plt.subplots(figsize=(7.5, 4.8))
             fragility_by_measure(part, measure, ax=axis)
             name = measure.replace("*", "-star")
-            written.append(out / f"fragility-{name}-cor{cor:g}.png")
+            written.append(out / f"fragility-{name}-{law_token(cor)}.png")
             save(figure, written[-1])
         blocks = list(part.groupby("block", sort=False))
         if len(blocks) > 4:
@@ -724,7 +731,7 @@ def measure_figures(table, out) -> list:
             drawn += 1
         if drawn:
             figure.tight_layout()
-            written.append(out / f"fragility-pga-pgv-cor{cor:g}.png")
+            written.append(out / f"fragility-pga-pgv-{law_token(cor)}.png")
             save(figure, written[-1])
         else:
             plt.close(figure)
@@ -732,7 +739,7 @@ def measure_figures(table, out) -> list:
             comparison = compare_measures(part, [m for m in ("pga", "pgv", "sa(1)", "sa_avg",
                                                               "pga*", "pgv*")
                                                  if _has_measure(part, m)])
-            written.append(out / f"im-comparison-cor{cor:g}.csv")
+            written.append(out / f"im-comparison-{law_token(cor)}.csv")
             write_csv(written[-1], comparison)
     return written
 

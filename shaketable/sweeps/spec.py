@@ -421,12 +421,10 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     if not isinstance(run, dict):
         raise SweepError(f"{where}: [run] must be a table, got {run!r}")
     _only(run, RUN_KEYS, where, "[run]")
-    chunk_size = run.get("chunk_size", 500)
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) \
-            or not 1 <= chunk_size <= MAX_CHUNK_SIZE:
-        raise SweepError(f"{where}: run.chunk_size must be a positive integer, at most "
-                         f"{MAX_CHUNK_SIZE:,} (a chunk's rows are held in memory), got "
-                         f"{chunk_size!r}")
+    chunk_size = _checked(count, f"{where}: run.chunk_size", run.get("chunk_size", 500), 1)
+    if chunk_size > MAX_CHUNK_SIZE:
+        raise SweepError(f"{where}: run.chunk_size must be at most {MAX_CHUNK_SIZE:,} (a "
+                         f"chunk's rows are held in memory), got {chunk_size!r}")
     model = _model(model_name, data, where)
     spec = SweepSpec(name=name.strip(), description=str(data.get("description", "")),
                      seed=seed, blocks=tuple(blocks), block_inputs=tuple(block_inputs),
@@ -749,18 +747,14 @@ def _pitch(table, where, seed):
     if "phases" in table:
         value = table["phases"]
         if isinstance(value, int) and not isinstance(value, bool):
-            if value < 1:
-                raise SweepError(f"{where}: pitch.phases must be at least 1, got {value!r}")
+            value = _checked(count, f"{where}: pitch.phases", value, 1)
             phases = [2.0 * math.pi * k / value for k in range(value)]
         else:
             phases = [_quantity(item, "angle", where, "pitch.phases") for item in
                       _as_list(value)]
     else:
-        count = table["random_phases"]
-        if isinstance(count, bool) or not isinstance(count, int) or count < 1:
-            raise SweepError(f"{where}: pitch.random_phases must be a positive count, got "
-                             f"{count!r}")
-        phases = list(np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, count))
+        drawn = _checked(count, f"{where}: pitch.random_phases", table["random_phases"], 1)
+        phases = list(np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, drawn))
     values = {}
     for key, kind in (("frequency", "frequency"), ("amplitude", "angular acceleration"),
                       ("block_position", "length"), ("axis_depth", "length")):

@@ -210,7 +210,7 @@ class StackSweep(RockingSweep):
 
     def describe(self) -> str | None:
         return ("[stacks]: the stack model (a column of rigid blocks; plastic or constant-COR "
-                "impacts), the runs one after the other")
+                "impacts), a chunk's runs one after the other (--workers N: N chunks at once)")
 
     def case(self, subject: Any, motion: Any, cor: float, scale: float, block_label: str,
              motion_label: str) -> Any:
@@ -313,6 +313,72 @@ def overturned_blocks(table) -> str:
             " (bottom)" if index == 0 else " (top)" if index == blocks - 1 else "")
         parts.append(f"{name} {len(rows)}")
     return ", ".join(parts)
+
+
+def impact_law(cor: float) -> str:
+    """The impact law of a row's ``cor [-]``, for labels: ``"plastic impacts"`` (NaN: the
+    plastic multi-contact law has no COR) or ``"COR 0.9"``."""
+    return "plastic impacts" if math.isnan(cor) else f"COR {cor:g}"
+
+
+def law_token(cor: float) -> str:
+    """The impact law in a file name: ``"plastic"`` or ``"cor0.9"``."""
+    return "plastic" if math.isnan(cor) else f"cor{cor:g}"
+
+
+def stack_medians(rows, measure: str) -> dict:
+    """The lognormal fit of "some block fell" of each stack (``block`` column) of one
+    impact law, and its median as a share of the block alone's.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        Rows of a stack sweep's table with one impact law.
+    measure : str
+        The intensity measure (:func:`shaketable.sweeps.fragility.measure_column`).
+
+    Returns
+    -------
+    dict
+        Each stack's label to ``{"fit": FragilityFit or None, "why": the reason there is
+        no fit ("" with one), "share of alone": median / the median of the one-block
+        column of the same bottom block (same ``R [m]`` and ``base width [m]``) [-], NaN
+        without one}``.
+    """
+    from shaketable.sweeps.fragility import fragility_fit, measure_column
+
+    column = measure_column(rows, measure)
+    found: dict = {}
+    for name, part in rows.groupby("block", sort=False):
+        try:
+            fit, why = fragility_fit(part[column], part["overturned"].astype(bool).to_numpy(),
+                                     measure=column, intervals=False), ""
+        except ValueError as error:
+            fit, why = None, _short_reason(str(error))
+        found[name] = {"fit": fit, "why": why, "bottom": (round(float(part["R [m]"].iloc[0]), 9),
+                                                          round(float(part["base width [m]"]
+                                                                      .iloc[0]), 9)),
+                       "blocks": int(part["blocks"].iloc[0])}
+    alone = {entry["bottom"]: entry["fit"] for entry in found.values() if entry["blocks"] == 1}
+    for entry in found.values():
+        single = alone.get(entry["bottom"])
+        entry["share of alone"] = (entry["fit"].median / single.median
+                                   if entry["fit"] is not None and single is not None
+                                   and entry["blocks"] > 1 else math.nan)
+        del entry["bottom"], entry["blocks"]
+    return found
+
+
+def _short_reason(message: str) -> str:
+    """The reason of a fit's ValueError in a few words, for a legend."""
+    lowered = message.lower()
+    if "no run overturned" in lowered:
+        return "none fell"
+    if "every run overturned" in lowered:
+        return "all fell"
+    if "separated" in lowered:
+        return "outcomes separated by the measure"
+    return message.split(";")[0][:60]
 
 
 def first_to_fall_fits(rows, measure: str, *, intervals: bool = True) -> dict:
