@@ -290,3 +290,56 @@ def test_a_resume_with_another_model_is_refused_by_name(stack_sweep, tmp_path):
     with pytest.raises(SweepError, match=r"cannot resume: the sweep there runs stack \(a column "
                                          r"of rigid blocks.*and .* the rocking or planar model"):
         run_sweep(spec_from_dict(data), folder, resume=True, progress=False, fmt="csv")
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"run": {"chunk_size": 0}}, "run.chunk_size must be a positive integer, got 0"),
+    ({"run": {"chunk_size": 10**9}},
+     "run.chunk_size must be at most 100,000 (a chunk's rows are held in memory), got "
+     "1000000000"),
+    ({"pitch": {"phases": 0}}, "pitch.phases must be a positive integer, got 0"),
+    ({"pitch": {"random_phases": True}}, "pitch.random_phases must be a positive integer, "
+                                         "got True"),
+])
+def test_counts_of_a_spec_read_as_everywhere(change, message):
+    """The count checks of core.validation (the words of every other count), by key."""
+    with pytest.raises(SweepError) as raised:
+        spec_from_dict(dict(FORMAT_TWO_SPEC, **change), where="spec.toml")
+    assert str(raised.value) == f"spec.toml: {message}"
+
+
+def test_stack_figures_draw_each_impact_law(stack_sweep, tmp_path):
+    """``--figures`` of a stack sweep: per impact law (the plastic law by its label, its NaN
+    COR not dropped), P(some block overturns) per stack and which block fell first, whose
+    bars are the shares counted in the table; sweep_figures hands a stack table over."""
+    from matplotlib.patches import Rectangle
+
+    from shaketable.plots.base import pyplot
+    from shaketable.plots.sweep_stacks import first_to_fall
+    from shaketable.plots.sweeps import sweep_figures
+
+    _, outcome = stack_sweep
+    table = outcome.table
+    constant = table.assign(**{"cor [-]": 0.9, "impact": "cor"})   # a second law's rows
+    both = pd.concat([table, constant], ignore_index=True)
+    paths = sweep_figures(both, tmp_path / "figures")
+    assert [path.name for path in paths] == [
+        f"stacks-{kind}-{law}.{suffix}" for law in ("plastic", "cor0.9")
+        for kind, suffix in (("fragility", "png"), ("first-to-fall", "png"),
+                             ("fragility", "csv"))]
+    summary = pd.read_csv(tmp_path / "figures" / "stacks-fragility-plastic.csv")
+    fell = table["overturned"].astype(bool)
+    assert list(summary["runs"]) == [6] and list(summary["overturned"]) == [int(fell.sum())]
+    assert summary["impact law"].iloc[0] == "plastic impacts"
+    figure = first_to_fall(table)
+    axis = figure.axes[0]
+    bars = [patch for patch in axis.patches if isinstance(patch, Rectangle)]
+    levels = np.sort(table["pga [g]"].round(6).unique())
+    # per level: the top block, the bottom block, then the runs that stood (bottom up)
+    heights = np.array([bar.get_height() for bar in bars]).reshape(3, len(levels))
+    for k, level in enumerate(levels):
+        at = table[table["pga [g]"].round(6) == level]
+        counted = [(at["overturned block"] == 1).mean(), (at["overturned block"] == 0).mean(),
+                   (~at["overturned"].astype(bool)).mean()]
+        assert heights[:, k] == pytest.approx(counted, abs=1e-12)
+    pyplot().close("all")
