@@ -343,3 +343,33 @@ def test_stack_figures_draw_each_impact_law(stack_sweep, tmp_path):
                    (~at["overturned"].astype(bool)).mean()]
         assert heights[:, k] == pytest.approx(counted, abs=1e-12)
     pyplot().close("all")
+
+
+def test_risk_on_stacks_leads_with_the_answer():
+    """``risk`` on a stack sweep says first, per impact law, each stack's P(some block
+    overturns in the design life), the most likely first, as a multiple of the block
+    alone's (same bottom block), and which block fell first."""
+    from shaketable.commands.risk import hazard_path, stack_headline
+    from shaketable.sweeps.fragility import FragilityFit
+    from shaketable.sweeps.risk import overturning_rate, read_hazard_curve
+
+    hazard = read_hazard_curve(hazard_path("example"))
+    block = Block.parse("30x6in")
+
+    def rows(blocks, fell):   # which block fell in each run (-1: none)
+        return pd.DataFrame({"R [m]": block.R, "base width [m]": block.width,
+                             "blocks": blocks, "overturned": [k >= 0 for k in fell],
+                             "overturned block": fell})
+
+    alone = overturning_rate(FragilityFit(0.5, 0.3, 4, 2), hazard, interval=False)
+    pair = overturning_rate(FragilityFit(0.3, 0.3, 4, 3), hazard, interval=False)
+    lines = stack_headline([("1 block", "plastic impacts", alone, rows(1, [0, 0, -1, -1])),
+                            ("2 blocks", "plastic impacts", pair, rows(2, [0, 1, 0, -1]))],
+                           50.0)
+    assert lines[0] == "P(some block overturns in 50 yr), plastic impacts:"
+    assert pair.probability > alone.probability
+    assert lines[1] == (f"    2 blocks: {pair.probability:.2g}, "
+                        f"{pair.probability / alone.probability:.2g} x the block alone's; the "
+                        "first to fall in its 3 runs that overturned: block 1 (top) 1, "
+                        "block 0 (bottom) 2")
+    assert lines[2] == f"    1 block: {alone.probability:.2g}" and len(lines) == 3
