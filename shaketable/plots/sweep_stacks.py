@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from shaketable.core.files import subfolder, write_csv
-from shaketable.plots.base import pyplot, save
+from shaketable.plots.base import log_axis, pyplot, save, stripe_fractions
 from shaketable.sweeps.stacks import impact_law, law_token, stack_medians
 
 #: The measures of :func:`stack_fragility`'s panels: column, axis label, log axis.
@@ -71,8 +71,6 @@ def stack_fragility(rows, *, fig=None):
         block alone's (the same bottom block); a stack whose outcomes cannot be fitted
         (none or all fell, or separated by the measure) says so.
     """
-    from shaketable.plots.sweeps import _log_axis, _stripe_fractions
-
     plt = pyplot()
     if fig is None:
         fig = plt.figure(figsize=(12, 5.4), layout="constrained")
@@ -88,7 +86,7 @@ def stack_fragility(rows, *, fig=None):
         for colour, (name, part) in zip(colours, groups):
             fell = part["overturned"].astype(bool).to_numpy()
             if log:
-                centres, fractions, _ = _stripe_fractions(part[column], fell, bins=8)
+                centres, fractions, _ = stripe_fractions(part[column], fell, bins=8)
             else:
                 levels = part.groupby(part[column].round(6))["overturned"].mean()
                 centres, fractions = levels.index.to_numpy(), levels.to_numpy()
@@ -106,7 +104,7 @@ def stack_fragility(rows, *, fig=None):
                       + ("" if np.isnan(share) else f" ({share:.2f} x alone)")
                       + f", β {fit.beta:.2f}")
         if log:
-            _log_axis(axis.xaxis)
+            log_axis(axis.xaxis)
         axis.set_xlabel(label)
         axis.set_ylim(-0.03, 1.03)
         axis.grid(alpha=0.3, which="both")

@@ -29,7 +29,7 @@ import math
 import numpy as np
 
 from shaketable.core.files import subfolder, write_csv
-from shaketable.plots.base import place_legend, pyplot
+from shaketable.plots.base import log_axis, place_legend, pyplot, stripe_fractions
 from shaketable.sweeps.fragility import (
     MEASURE_LABELS,
     fragility_fit,
@@ -459,26 +459,6 @@ def sweep_figures(table, out) -> list:
     return written
 
 
-def _stripe_fractions(im, overturned, bins: int = 12):
-    """Fraction overturned in log-spaced bins of the IM (the points of a fragility figure):
-    bin centres, fractions and counts."""
-    im = np.asarray(im, dtype=float)
-    overturned = np.asarray(overturned, dtype=bool)
-    levels = np.unique(np.round(im, 12))
-    if levels.size <= bins:
-        groups = [np.round(im, 12) == level for level in levels]
-        centres = levels
-    else:
-        edges = np.geomspace(im.min(), im.max() * (1 + 1e-12), bins + 1)
-        index = np.clip(np.searchsorted(edges, im, side="right") - 1, 0, bins - 1)
-        groups = [index == k for k in range(bins)]
-        centres = np.sqrt(edges[:-1] * edges[1:])
-    keep = [k for k, pick in enumerate(groups) if pick.any()]
-    fractions = np.array([overturned[groups[k]].mean() for k in keep])
-    counts = np.array([int(groups[k].sum()) for k in keep])
-    return np.asarray(centres)[keep], fractions, counts
-
-
 def fragility_with_band(fit, *, ax=None, im=None, overturned=None, color="tab:blue",
                         label=None, grid=None):
     """One fragility fit: the lognormal curve, its pointwise confidence band and (given
@@ -505,23 +485,13 @@ def fragility_with_band(fit, *, ax=None, im=None, overturned=None, color="tab:bl
                   f"{fit.median_interval[1]:.3g}], β {fit.beta:.2f} [{fit.beta_interval[0]:.2f}, "
                   f"{fit.beta_interval[1]:.2f}]")
     if im is not None and overturned is not None:
-        centres, fractions, _ = _stripe_fractions(im, overturned)
+        centres, fractions, _ = stripe_fractions(im, overturned)
         ax.plot(centres, fractions, "o", color=color, ms=4)
-    _log_axis(ax.xaxis)
+    log_axis(ax.xaxis)
     ax.set_ylim(-0.03, 1.03)
     ax.set_ylabel("P(overturn) [-]")
     ax.grid(alpha=0.3, which="both")
     return ax
-
-
-def _log_axis(axis):
-    """A log axis labelled at 1, 2, 5 x 10^n in plain numbers (no crowded minor labels)."""
-    from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
-
-    axis.axes.set_xscale("log") if axis is axis.axes.xaxis else axis.axes.set_yscale("log")
-    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
-    axis.set_major_formatter(FormatStrFormatter("%g"))
-    axis.set_minor_formatter(NullFormatter())
 
 
 def fragility_by_measure(table, measure="pgv", *, group="block", cor=None, ax=None,
@@ -612,8 +582,8 @@ def fragility_contours(surface, *, ax=None, table=None, x_unit=1.0, y_unit=1.0,
         ax.plot(x[over] / x_unit, y[over] / y_unit, "x", ms=3, color="k", mew=0.7,
                 label="overturns")
         place_legend(ax, fontsize=7)
-    _log_axis(ax.xaxis)
-    _log_axis(ax.yaxis)
+    log_axis(ax.xaxis)
+    log_axis(ax.yaxis)
     ax.figure.colorbar(filled, ax=ax).set_label("P(overturn) [-]")
     ax.set_xlabel(MEASURE_LABELS.get(surface.x_measure, surface.x_measure))
     ax.set_ylabel(MEASURE_LABELS.get(surface.y_measure, surface.y_measure))
