@@ -17,7 +17,8 @@ def _sweep(args: argparse.Namespace) -> int:
     from shaketable.sweeps.spec import load_spec
 
     if args.workers is not None and args.workers < 1:
-        raise ValueError(f"--workers must be a positive number of threads, got {args.workers}")
+        raise ValueError(f"--workers must be a positive number (of threads; of processes for a "
+                         f"stack sweep), got {args.workers}")
     if args.max_chunks is not None and args.max_chunks < 0:
         raise ValueError(f"--max-chunks must be 0 or more, got {args.max_chunks}")
     spec = load_spec(resolve_sweep_path(args.spec))
