@@ -34,6 +34,10 @@ def _sweep(args: argparse.Namespace) -> int:
               f"copies ([ensemble]: {spec.n_runs * spec.ensemble['members']} simulations)")
     if spec.model.describe() is not None:   # the model the spec chose (not the default)
         print(f"{spec.name}: {spec.model.describe()}")
+    if spec.model.processes and not args.scheduler and (args.workers or 1) > spec.n_chunks:
+        print(f"{spec.name}: note: {args.workers} processes for {spec.n_chunks} chunk(s): "
+              "a process computes whole chunks; a smaller [run] chunk_size gives each "
+              "process one")
     engine = {"rocking": "batch", "planar": "planar"}.get(spec.model.name)
     compiling = engine is not None and not args.scheduler and not compiled_before(engine)
     if engine is not None and not args.scheduler:
