@@ -79,40 +79,62 @@ def _risk(args: argparse.Namespace) -> int:
     print(f"hazard curve {source}: {hazard.column}, {len(hazard.im)} points from "
           f"{hazard.im[0]:.3g} to {hazard.im[-1]:.3g}; design life {args.years:g} yr")
     results = []
+    headline: list = []
     from shaketable.sweeps.friction import friction_pairs, friction_rows
 
     # a friction sweep: one fragility per friction pair too (the pairs are not pooled)
     pairs = friction_pairs(table) or [None]
-    groups = [(block, f"COR {cor:g}" + ("" if pair is None else
-                                         f", mu_s {pair[0]:g}, mu_d {pair[1]:g}"), rows)
+    # a stack sweep's plastic impacts have no COR (NaN): a group of their own
+    groups = [(block, (f"COR {cor:g}" if cor == cor else "plastic impacts")
+               + ("" if pair is None else f", mu_s {pair[0]:g}, mu_d {pair[1]:g}"), rows)
               for pair in pairs
               for (block, cor), rows in (table if pair is None else friction_rows(
-                  table, *pair)).groupby(["block", "cor [-]"], sort=False)]
+                  table, *pair)).groupby(["block", "cor [-]"], sort=False, dropna=False)]
+    from shaketable.sweeps.stacks import overturned_blocks
+    # a stack sweep leads with the answer (P(some block overturns) of each stack against
+    # the block alone's): its lines are said after that headline, in their order
+    stacks = "overturned block" in table
+    said: list = []
+
+    def say(text: str, file=sys.stdout) -> None:
+        if stacks:
+            said.append((text, file))
+        else:
+            print(text, file=file)
+
     for block, label, rows in groups:
         try:
             fit = fragility_fit(rows[column], rows["overturned"], measure=column)
         except ValueError as error:
-            print(f"shaketable risk: {block}, {label}: no fragility, so no rate ({error})",
-                  file=sys.stderr)
+            say(f"shaketable risk: {block}, {label}: no fragility, so no rate ({error})",
+                file=sys.stderr)
             continue
         result = overturning_rate(fit, hazard, years=args.years)
         results.append((block, label, fit, result))
-        print(f"{block}, {label}: {result.summary()}")
-        print(f"    fragility {fit.summary()}")
+        if stacks:
+            headline.append((block, label, result, rows))
+        say(f"{block}, {label}: {result.summary()}")
+        say(f"    fragility {fit.summary()}")
+        if fell := overturned_blocks(rows):   # a stack sweep: which block fell
+            say(f"    the block that fell: {fell}")
         low, high = float(rows[column].min()), float(rows[column].max())
         outside = share_outside(fit, hazard, low, high)
         if outside > 0.1:   # the lognormal carried beyond the levels run: say how much
-            print(f"shaketable risk: warning: {block}, {label}: {100 * outside:.0f} % of "
-                  f"lambda comes from {column} outside the levels the sweep ran ({low:.3g} "
-                  f"to {high:.3g}), where the fitted lognormal is extrapolated",
-                  file=sys.stderr)
+            say(f"shaketable risk: warning: {block}, {label}: {100 * outside:.0f} % of "
+                f"lambda comes from {column} outside the levels the sweep ran ({low:.3g} "
+                f"to {high:.3g}), where the fitted lognormal is extrapolated",
+                file=sys.stderr)
         motions = len(rows[[key for key in ("record", "seed") if key in rows]]
                       .drop_duplicates())
         if motions < FEW_RECORDS:
-            print(f"shaketable risk: warning: {block}, {label}: the fragility rests on "
-                  f"{motions} ground motion(s); fewer than {FEW_RECORDS} make its beta, and "
-                  "lambda, uncertain (the interval above says how much): add records",
-                  file=sys.stderr)
+            say(f"shaketable risk: warning: {block}, {label}: the fragility rests on "
+                f"{motions} ground motion(s); fewer than {FEW_RECORDS} make its beta, and "
+                "lambda, uncertain (the interval above says how much): add records",
+                file=sys.stderr)
+    for line in stack_headline(headline, args.years):
+        print(line)
+    for text, file in said:
+        print(text, file=file)
     if not results:
         print(f"shaketable risk: error: no rate of overturning can be given: no block and COR "
               f"of {folder} has a fragility against {column} (see above); exit status 1",
@@ -135,6 +157,47 @@ def _risk(args: argparse.Namespace) -> int:
         save(figure, args.figure)
         print(f"wrote {args.figure}")
     return 0
+
+
+def stack_headline(entries: list, years: float) -> list:
+    """The answer of ``risk`` on a stack sweep, before the details: per impact law, each
+    stack's P(some block overturns in the design life) with its interval, the most
+    likely first, as a multiple of the block alone's (the one-block column of the same
+    bottom block, when the sweep ran it) and which block fell first.
+
+    ``entries`` holds (stack, impact law, OverturningRate, rows) of each fitted stack.
+    """
+    from shaketable.sweeps.stacks import overturned_blocks
+
+    lines = []
+    laws = dict.fromkeys(label for _, label, _, _ in entries)
+    for law in laws:
+        group = [entry for entry in entries if entry[1] == law]
+
+        def bottom(rows):
+            return (round(float(rows["R [m]"].iloc[0]), 9),
+                    round(float(rows["base width [m]"].iloc[0]), 9))
+
+        alone = {bottom(rows): result.probability for _, _, result, rows in group
+                 if int(rows["blocks"].iloc[0]) == 1}
+        level = group[0][2].confidence
+        lines.append(f"P(some block overturns in {years:g} yr), {law}"
+                     + (f" ({100 * level:g} % interval from the fragility fit)"
+                        if level == level else "") + ":")
+        for stack, _, result, rows in sorted(group, key=lambda entry: -entry[2].probability):
+            low, high = result.probability_interval
+            text = f"    {stack}: {result.probability:.2g}"
+            if low == low and high == high:
+                text += f" ({low:.2g} to {high:.2g})"
+            single = alone.get(bottom(rows))
+            if int(rows["blocks"].iloc[0]) > 1 and single:
+                text += f", {result.probability / single:.2g} x the block alone's"
+            fell = overturned_blocks(rows)
+            if fell and int(rows["blocks"].iloc[0]) > 1:
+                text += (f"; the first to fall in its {int(rows['overturned'].sum())} runs "
+                         f"that overturned: {fell}")
+            lines.append(text)
+    return lines
 
 
 def register(commands: argparse._SubParsersAction) -> None:

@@ -8,16 +8,23 @@ from pathlib import Path
 def _run(args) -> int:
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import prepare_output_folder
-    from shaketable.scenes.catalog import is_sweep_spec, resolve_scene_path, uses_planar
-    from shaketable.scenes.parse import Study, load_scene
+    from shaketable.scenes.catalog import is_sweep_spec, read_scene, uses_planar
+    from shaketable.scenes.parse import SceneError, Study, load_scene
 
-    if is_sweep_spec(args.scene):
-        raise ValueError(f"{args.scene!r} is a sweep spec, not a scene: run it with "
-                         f"`shaketable sweep {args.scene}`")
-    scene = load_scene(resolve_scene_path(args.scene))
+    sweep = ValueError(f"{args.scene!r} is a sweep spec, not a scene: run it with "
+                       f"`shaketable sweep {args.scene}`")
+    try:   # the file is read once: the questions below and the parser share the reading
+        source = read_scene(args.scene)
+    except SceneError:
+        if is_sweep_spec(args.scene):   # the name of a bundled sweep spec
+            raise sweep from None
+        raise
+    if is_sweep_spec(args.scene, source.data):
+        raise sweep
+    scene = load_scene(source.path, read=(source.data, source.text))
     out = prepare_output_folder(args.out or Path("shaketable-out") / scene.name)
     notice_first_compile(args.quiet, which=("engine", "planar")
-                         if uses_planar(args.scene) else ("engine",))
+                         if uses_planar(source) else ("engine",))
     if isinstance(scene, Study):
         return _run_study(scene, out)
     from shaketable.scenes.stack import StackScene

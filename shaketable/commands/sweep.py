@@ -17,26 +17,31 @@ def _sweep(args: argparse.Namespace) -> int:
     from shaketable.sweeps.spec import load_spec
 
     if args.workers is not None and args.workers < 1:
-        raise ValueError(f"--workers must be a positive number of threads, got {args.workers}")
+        raise ValueError(f"--workers must be a positive number (of threads; of processes for a "
+                         f"stack sweep), got {args.workers}")
     if args.max_chunks is not None and args.max_chunks < 0:
         raise ValueError(f"--max-chunks must be 0 or more, got {args.max_chunks}")
     spec = load_spec(resolve_sweep_path(args.spec))
     out = prepare_output_folder(args.out or Path("shaketable-out") / spec.name)
     where = f"Dask cluster {args.scheduler}" if args.scheduler else (
+        (f"{args.workers} local process(es)" if args.workers and args.workers > 1
+         else "one local process") if spec.model.processes else
         f"{args.workers} local thread(s)" if args.workers else "all local cores")
     print(f"{spec.name}: {spec.n_runs} runs in {spec.n_chunks} chunk(s) of {spec.chunk_size}, "
           f"on {where}")
     if spec.ensemble is not None:
         print(f"{spec.name}: each run is an ensemble of {spec.ensemble['members']} perturbed "
               f"copies ([ensemble]: {spec.n_runs * spec.ensemble['members']} simulations)")
-    if spec.friction is not None:
-        print(f"{spec.name}: [friction]: the coupled planar model (rest, slide, rock, "
-              f"slide-rock, flight), {len(spec.friction.pairs)} friction pair(s) (mu_s, mu_d)")
-    compiling = not args.scheduler and not compiled_before(
-        "batch" if spec.friction is None else "planar")
-    if not args.scheduler:
-        notice_first_compile(args.quiet, which=("batch",) if spec.friction is None
-                             else ("planar",))
+    if spec.model.describe() is not None:   # the model the spec chose (not the default)
+        print(f"{spec.name}: {spec.model.describe()}")
+    if spec.model.processes and not args.scheduler and (args.workers or 1) > spec.n_chunks:
+        print(f"{spec.name}: note: {args.workers} processes for {spec.n_chunks} chunk(s): "
+              "a process computes whole chunks; a smaller [run] chunk_size gives each "
+              "process one")
+    engine = {"rocking": "batch", "planar": "planar"}.get(spec.model.name)
+    compiling = engine is not None and not args.scheduler and not compiled_before(engine)
+    if engine is not None and not args.scheduler:
+        notice_first_compile(args.quiet, which=(engine,))
     outcome = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler,
                         resume=args.resume, progress=not (args.no_progress or args.quiet),
                         max_chunks=args.max_chunks)
@@ -56,6 +61,13 @@ def _sweep(args: argparse.Namespace) -> int:
         print(f"{spec.name}: verdicts of the {len(table)} runs: {verdict_counts(table)}")
         for line in friction_summary(table):
             print(f"    {line}")
+    elif spec.model.name == "stack":
+        from shaketable.sweeps.stacks import overturned_blocks
+
+        fell = overturned_blocks(table)
+        print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn"
+              f"{f' (the block that fell: {fell})' if fell else ''}, "
+              f"{int(table['airborne'].sum())} stopped where a block would leave its support")
     else:
         print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
               f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")
@@ -77,7 +89,13 @@ def _sweep(args: argparse.Namespace) -> int:
         write_csv(out / "spectrum-scale-factors.csv", factors)
         print(f"wrote {out / 'spectrum-scale-factors.csv'} (each record's factor to the "
               "target spectrum)")
-    if args.figures:
+    if args.figures and spec.model.name == "stack":
+        from shaketable.core.files import subfolder
+        from shaketable.plots.sweep_stacks import stack_sweep_figures
+
+        paths = stack_sweep_figures(table, subfolder(out, "figures"))
+        print("wrote " + ", ".join(str(path) for path in paths))
+    elif args.figures:
         from shaketable.core.files import subfolder
         from shaketable.plots.sweeps import sweep_figures
         from shaketable.sweeps.friction import friction_figure_sets
@@ -93,19 +111,21 @@ def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``sweep`` subcommand."""
     parser = commands.add_parser(
         "sweep", help="run a parameter sweep (TOML spec) into a Parquet table, resumable",
-        description="Run every combination of blocks, COR, records, PGA levels, pitch "
-                    "phases and friction coefficients named in a sweep spec (see "
+        description="Run every combination of blocks (or stacks of blocks), COR, records, "
+                    "PGA levels, pitch phases and friction coefficients named in a sweep "
+                    "spec, with the model it names (see "
                     "shaketable.sweeps.spec) and write one row per run to "
                     "OUT/results.parquet. Finished chunks are kept on disk: a killed sweep "
                     "continues with --resume.")
     parser.add_argument("spec", help="path to a sweep spec .toml, or the name of a bundled "
                                      "one (pacoima-overturning-map, artificial-fragility, "
                                      "pitch-phase-repeatability, im-fragility-collapse, "
-                                     "pacoima-friction)")
+                                     "pacoima-friction, stacked-blocks-fragility)")
     parser.add_argument("--out", help="output folder (default shaketable-out/<sweep name>)")
     parser.add_argument("--workers", type=int, default=None,
-                        help="local threads (default all cores); with --scheduler, threads "
-                             "inside each Dask task (default 1)")
+                        help="local threads (default all cores); for a stack sweep, local "
+                             "processes, each computing whole chunks (default one); with "
+                             "--scheduler, threads inside each Dask task (default 1)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
                         help="run the chunks on a dask.distributed cluster "
                              "(e.g. tcp://host:8786)")
@@ -120,5 +140,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                              "a sweep scaled to an intensity measure, fragility against it, "
                              "PGA and PGV p/(g tan a) with confidence bands, the PGA-PGV "
                              "surface and the IM comparison (OUT/figures/; a [friction] "
-                             "sweep: one folder per friction pair)")
+                             "sweep: one folder per friction pair; a [stacks] sweep: P(some "
+                             "block overturns) per stack beside the block alone, with fits, "
+                             "and which block falls first)")
     parser.set_defaults(handler=_sweep)

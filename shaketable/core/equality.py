@@ -5,7 +5,9 @@ NumPy arrays raises ("the truth value of an array ... is ambiguous"). The
 objects that hold arrays (:class:`~shaketable.core.motion.Motion`, the result
 objects) use :func:`fields_equal` instead: the same fields (those with
 ``compare=True``), arrays and pandas objects compared by value, NaN equal to
-NaN. So an object equals its copy and its pickled-and-loaded round trip.
+NaN. So an object equals its copy and its pickled-and-loaded round trip. A frozen
+dataclass that holds a NaN by design (a sweep spec's COR of the plastic impact law) uses
+it too: the generated ``__eq__`` compares tuples, where NaN equals only the same object.
 """
 
 from __future__ import annotations

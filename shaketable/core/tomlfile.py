@@ -3,8 +3,9 @@
 The scene files, the sweep specs and the object files of ``shaketable assess`` are TOML.
 :func:`read_toml` reads one (UTF-8, valid TOML, not nested past the parser's recursion)
 into its data and its text, :func:`key_line` finds the line where a dotted key is written
-(for error messages that name file, key and line); the check of a section's keys is
-:func:`shaketable.core.validation.unknown_keys`. This is the one module outside
+(for error messages that name file, key and line) and :func:`with_line` adds that line
+to a message; the check of a section's keys is
+:func:`shaketable.core.validation.check_keys`. This is the one module outside
 ``scenes/`` and ``sweeps/`` that imports the TOML parser.
 """
 
@@ -20,7 +21,7 @@ except ModuleNotFoundError:  # Python 3.10: the same parser, packaged as tomli
 
 from shaketable.core.files import read_utf8
 
-__all__ = ["key_line", "read_toml", "tomllib"]
+__all__ = ["key_line", "read_toml", "tomllib", "with_line"]
 
 _HEADER = re.compile(r"^\s*\[\[?\s*([\w.\"' -]+?)\s*\]\]?\s*(?:#.*)?$")
 _ASSIGNMENT = re.compile(r"^\s*([\w.\"' -]+?)\s*=")
@@ -78,3 +79,38 @@ def key_line(text: str, path: list) -> int | None:
             best, best_depth = number, depth
     return best
 
+
+
+def with_line(message: str, where: str, text: str, sections, *, at_start: bool = False) -> str:
+    """``message`` (``"WHERE: rocking.cor ..."``) with the line of the key it names in ``text``.
+
+    ``"scene.toml: rocking.cor must be ..., got 1.5"`` becomes ``"scene.toml: rocking.cor
+    must be ..., got 1.5 (line 9)"``: the line where the key (or, failing that, its
+    section) is written. The key is found as ``unknown key 'k' in [section``, ``[section]``
+    or ``section.key``, for the ``sections`` given (the top-level tables of the file). The
+    line goes at the end so that the message still begins with the file and the key. A
+    message naming no such key, or a key not written in ``text``, is returned as it is.
+
+    Parameters
+    ----------
+    message, where, text : str
+        The message, the file it begins with, the file's TOML text.
+    sections : iterable of str
+        The sections whose keys are looked for.
+    at_start : bool
+        Only a key right after ``"WHERE: "`` (else the first anywhere in the message).
+    """
+    prefix = f"{where}: "
+    if not message.startswith(prefix):
+        return message
+    names = "|".join(re.escape(name) for name in sorted(sections, key=len, reverse=True))
+    pattern = re.compile(rf"unknown key '([\w-]+)' in \[((?:{names})(?:\.[\w-]+)*)|"
+                         rf"\[((?:{names})(?:\.[\w-]+)*)\]|\b((?:{names})(?:\.[\w-]+)+)")
+    rest = message[len(prefix):]
+    match = pattern.match(rest) if at_start else pattern.search(rest)
+    if match is None:
+        return message
+    unknown, section, header, dotted = match.groups()
+    path = f"{section}.{unknown}" if unknown else (header or dotted)
+    line = key_line(text, path.split("."))
+    return message if line is None else f"{message} (line {line})"

@@ -28,6 +28,46 @@ def unknown_keys(table: Iterable[str], allowed: Iterable[str]) -> list[str]:
     return sorted(set(table) - set(allowed))
 
 
+def check_keys(table: Iterable[str], allowed: Iterable[str], where: str, section: str,
+               error: type = ValueError) -> None:
+    """Refuse a key of an input section that it does not take, the one message of every
+    input file: ``"WHERE: unknown key 'x' in SECTION; expected one of a, b"``.
+
+    Parameters
+    ----------
+    table : iterable of str
+        The keys written (a dict of the section).
+    allowed : iterable of str
+        The keys the section takes.
+    where : str
+        The file (the message's start).
+    section : str
+        The section as the message names it (``"[block]"``, ``"records[0] (file)"``).
+    error : type
+        The exception class (a ValueError subclass of the caller's layer).
+    """
+    unknown = unknown_keys(table, allowed)
+    if unknown:
+        raise error(f"{where}: unknown key {unknown[0]!r} in {section}; expected one of "
+                    f"{', '.join(sorted(allowed)) or '(none)'}")
+
+
+def flag(name: str, value: object) -> bool:
+    """``value`` if it is a bool (TOML's true or false), else a ValueError naming ``name``."""
+    if not isinstance(value, bool):
+        raise ValueError(f"{name} must be true or false, got {value!r}")
+    return value
+
+
+def count(name: str, value: object, low: int = 0) -> int:
+    """An integer (not a bool) of at least ``low``, else a ValueError naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+        expected = ("a non-negative integer" if low == 0 else "a positive integer" if low == 1
+                    else f"an integer of at least {low}")
+        raise ValueError(f"{name} must be {expected}, got {value!r}")
+    return int(value)
+
+
 def positive(name: str, value: object, unit: str = "") -> float:
     """A finite positive number; ``unit`` (e.g. ``" [Hz]"``) is quoted in the message."""
     value = number(name, value)

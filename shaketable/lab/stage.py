@@ -26,7 +26,7 @@ import numpy as np
 
 from shaketable.core.motion import Motion
 from shaketable.core.units import parse
-from shaketable.core.validation import unknown_keys
+from shaketable.core.validation import check_keys, unknown_keys
 from shaketable.lab.command import TableCommand, displacement_command
 from shaketable.lab.limits import LimitExceedance, TableLimits, check_limits
 from shaketable.lab.pitch import Pitch, motion_at_block
@@ -218,10 +218,7 @@ def table_setup_from_dict(spec: dict, where: str = "<scene>") -> TableSetup:
 
     if not isinstance(spec, dict):
         raise ValueError(f"{where}: [table] must be a table")
-    unknown = unknown_keys(spec, _TABLE_KEYS)
-    if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} in [table]; expected one of "
-                         f"{', '.join(sorted(_TABLE_KEYS))}")
+    check_keys(spec, _TABLE_KEYS, where, "[table]")
     options: dict[str, Any] = {}
     command = spec.get("command", "actuator" in spec and spec["actuator"] is not False)
     if not isinstance(command, bool):

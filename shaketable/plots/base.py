@@ -160,3 +160,35 @@ def place_legend(axis, corners=LEGEND_CORNERS, **options):
     options.setdefault("frameon", True)
     return axis.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
                        **options)
+
+
+def stripe_fractions(im, overturned, bins: int = 12):
+    """Fraction overturned in log-spaced bins of the IM (the points of a fragility figure):
+    bin centres, fractions and counts."""
+    import numpy as np
+
+    im = np.asarray(im, dtype=float)
+    overturned = np.asarray(overturned, dtype=bool)
+    levels = np.unique(np.round(im, 12))
+    if levels.size <= bins:
+        groups = [np.round(im, 12) == level for level in levels]
+        centres = levels
+    else:
+        edges = np.geomspace(im.min(), im.max() * (1 + 1e-12), bins + 1)
+        index = np.clip(np.searchsorted(edges, im, side="right") - 1, 0, bins - 1)
+        groups = [index == k for k in range(bins)]
+        centres = np.sqrt(edges[:-1] * edges[1:])
+    keep = [k for k, pick in enumerate(groups) if pick.any()]
+    fractions = np.array([overturned[groups[k]].mean() for k in keep])
+    counts = np.array([int(groups[k].sum()) for k in keep])
+    return np.asarray(centres)[keep], fractions, counts
+
+
+def log_axis(axis):
+    """A log axis labelled at 1, 2, 5 x 10^n in plain numbers (no crowded minor labels)."""
+    from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
+
+    axis.axes.set_xscale("log") if axis is axis.axes.xaxis else axis.axes.set_yscale("log")
+    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FormatStrFormatter("%g"))
+    axis.set_minor_formatter(NullFormatter())

@@ -29,13 +29,14 @@ import math
 import numpy as np
 
 from shaketable.core.files import subfolder, write_csv
-from shaketable.plots.base import place_legend, pyplot
+from shaketable.plots.base import log_axis, place_legend, pyplot, stripe_fractions
 from shaketable.sweeps.fragility import (
     MEASURE_LABELS,
     fragility_fit,
     fragility_surface,
     measure_column,
 )
+from shaketable.sweeps.stacks import impact_law, law_token
 
 _RATIO = "max_theta_ratio [-]"
 
@@ -174,7 +175,7 @@ def overturning_map(table, *, x="aspect", y="width", record=None, cor=None, ax=N
     bar = ax.figure.colorbar(image, ax=ax, extend="max")
     bar.set_label("max |θ|/α [-]  (red, F: overturned)")
     label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
-    ax.set_title(f"{label}, COR {rows['cor [-]'].iloc[0]:g}: "
+    ax.set_title(f"{label}, {impact_law(rows['cor [-]'].iloc[0])}: "
                  f"{int(overturned.sum())} of {int((seen > 0).sum())} overturn")
     return ax
 
@@ -234,7 +235,7 @@ def rocking_spectrum(table, *, x="p", record=None, cor=None, group="aspect", ax=
     ax.set_xlabel(x_label)
     ax.set_ylabel("max |θ|/α [-]")
     label = rows["record"].iloc[0] if "record" in rows else rows["motion"].iloc[0]
-    ax.set_title(f"Rocking spectrum: {label}, COR {rows['cor [-]'].iloc[0]:g}")
+    ax.set_title(f"Rocking spectrum: {label}, {impact_law(rows['cor [-]'].iloc[0])}")
     place_legend(ax, fontsize=7, ncol=2)
     return ax
 
@@ -289,7 +290,7 @@ def fragility_curve(table, *, group="block", cor=None, pga="pga [g]", ax=None):
     n_motions = rows.groupby(["record", "seed"], dropna=False).ngroups if "record" in rows \
         else len(records)
     ax.set_title(f"Fragility: {', '.join(map(str, records))} ({n_motions} motions), "
-                 f"COR {rows['cor [-]'].iloc[0]:g}")
+                 f"{impact_law(rows['cor [-]'].iloc[0])}")
     ax.grid(alpha=0.3)
     place_legend(ax, fontsize=7)
     ax.fragility_fits = fits
@@ -354,7 +355,7 @@ def pitch_phase_spread(table, *, record=None, cor=None, ax=None):
     ax.set_xlabel("PGA [g] (at each level, the pitch phases side by side)")
     ax.set_ylabel("max |θ|/α [-]")
     block = rows["block"].iloc[0] if rows["block"].nunique() == 1 else "several blocks"
-    ax.set_title(f"{rows['record'].iloc[0]}: {block}, COR {rows['cor [-]'].iloc[0]:g}, "
+    ax.set_title(f"{rows['record'].iloc[0]}: {block}, {impact_law(rows['cor [-]'].iloc[0])}, "
                  f"{int(rows['pitch_phase [rad]'].round(9).nunique())} pitch phases "
                  "(Section 3.7 (2))", fontsize=9)
     ax.grid(alpha=0.3)
@@ -393,6 +394,10 @@ def sweep_figures(table, out) -> list:
 
     from shaketable.plots.base import save
 
+    if "overturned block" in table:   # a stack sweep: its own figures
+        from shaketable.plots.sweep_stacks import stack_sweep_figures
+
+        return stack_sweep_figures(table, out)
     out = Path(out)
     out = subfolder(out.parent if str(out.parent) else ".", out.name, "figures folder")
     written = []
@@ -406,35 +411,37 @@ def sweep_figures(table, out) -> list:
             continue  # several intensities: the fragility figure covers them
         if not pd.isna(seed) and rows["record_kind"].iloc[0] == "artificial":
             record = f"{record}-seed{int(seed)}"
-        label = f"{record}-cor{cor:g}"
+        label = f"{record}-{law_token(cor)}"
         if widths > 1 and aspects > 1 and rows.groupby(
                 ["block_width [m]", "aspect_ratio [-]"]).size().max() == 1:
             figure, axis = plt.subplots(figsize=(8, 5))
             overturning_map(rows, ax=axis, length_unit="ft")
-            axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
+            axis.set_title(f"{record}, {impact_law(cor)}", fontsize=9)
             written.append(out / f"map-{label}.png")
             save(figure, written[-1])
         if rows["block"].nunique() > 1:
             figure, axis = plt.subplots(figsize=(8, 4))
             rocking_spectrum(rows, ax=axis)
-            axis.set_title(f"{record}, COR {cor:g}", fontsize=9)
+            axis.set_title(f"{record}, {impact_law(cor)}", fontsize=9)
             written.append(out / f"spectrum-{label}.png")
             save(figure, written[-1])
     levels = pitch_free["pga [g]"].round(6).nunique()
-    per_level = (pitch_free.groupby([pitch_free["pga [g]"].round(6), "block", "cor [-]"])
+    per_level = (pitch_free.groupby([pitch_free["pga [g]"].round(6), "block", "cor [-]"],
+                                    dropna=False)
                  .size().min() if len(pitch_free) else 0)
     if levels >= 3 and per_level >= 2:
-        for cor, rows in pitch_free.groupby("cor [-]", sort=False):
+        for cor, rows in pitch_free.groupby("cor [-]", sort=False, dropna=False):
             figure, axis = plt.subplots(figsize=(7, 4.5))
             fragility_curve(rows, ax=axis)
-            axis.set_title(f"fragility, COR {cor:g}", fontsize=9)
-            written.append(out / f"fragility-cor{cor:g}.png")
+            axis.set_title(f"fragility, {impact_law(cor)}", fontsize=9)
+            written.append(out / f"fragility-{law_token(cor)}.png")
             save(figure, written[-1])
     if "peak corner excursion [m]" in table and levels >= 2:   # a friction sweep
         from shaketable.plots.sweep_slip import slip_against_intensity
 
-        for (block, cor), rows in pitch_free.groupby(["block", "cor [-]"], sort=False):
-            written.append(out / f"slip-{block.replace(' ', '')}-cor{cor:g}.png")
+        for (block, cor), rows in pitch_free.groupby(["block", "cor [-]"], sort=False,
+                                                   dropna=False):
+            written.append(out / f"slip-{block.replace(' ', '')}-{law_token(cor)}.png")
             save(slip_against_intensity(rows), written[-1])
     if "target_measure" in table:
         written.extend(measure_figures(table, out))
@@ -446,30 +453,10 @@ def sweep_figures(table, out) -> list:
             pitch_phase_spread(rows, ax=axis)
             if not pd.isna(seed) and rows["record_kind"].iloc[0] == "artificial":
                 record = f"{record}-seed{int(seed)}"
-            name = f"pitch-{record}-{block.replace(' ', '')}-cor{cor:g}"
+            name = f"pitch-{record}-{block.replace(' ', '')}-{law_token(cor)}"
             written.append(out / f"{name}.png")
             save(figure, written[-1])
     return written
-
-
-def _stripe_fractions(im, overturned, bins: int = 12):
-    """Fraction overturned in log-spaced bins of the IM (the points of a fragility figure):
-    bin centres, fractions and counts."""
-    im = np.asarray(im, dtype=float)
-    overturned = np.asarray(overturned, dtype=bool)
-    levels = np.unique(np.round(im, 12))
-    if levels.size <= bins:
-        groups = [np.round(im, 12) == level for level in levels]
-        centres = levels
-    else:
-        edges = np.geomspace(im.min(), im.max() * (1 + 1e-12), bins + 1)
-        index = np.clip(np.searchsorted(edges, im, side="right") - 1, 0, bins - 1)
-        groups = [index == k for k in range(bins)]
-        centres = np.sqrt(edges[:-1] * edges[1:])
-    keep = [k for k, pick in enumerate(groups) if pick.any()]
-    fractions = np.array([overturned[groups[k]].mean() for k in keep])
-    counts = np.array([int(groups[k].sum()) for k in keep])
-    return np.asarray(centres)[keep], fractions, counts
 
 
 def fragility_with_band(fit, *, ax=None, im=None, overturned=None, color="tab:blue",
@@ -498,23 +485,13 @@ def fragility_with_band(fit, *, ax=None, im=None, overturned=None, color="tab:bl
                   f"{fit.median_interval[1]:.3g}], β {fit.beta:.2f} [{fit.beta_interval[0]:.2f}, "
                   f"{fit.beta_interval[1]:.2f}]")
     if im is not None and overturned is not None:
-        centres, fractions, _ = _stripe_fractions(im, overturned)
+        centres, fractions, _ = stripe_fractions(im, overturned)
         ax.plot(centres, fractions, "o", color=color, ms=4)
-    _log_axis(ax.xaxis)
+    log_axis(ax.xaxis)
     ax.set_ylim(-0.03, 1.03)
     ax.set_ylabel("P(overturn) [-]")
     ax.grid(alpha=0.3, which="both")
     return ax
-
-
-def _log_axis(axis):
-    """A log axis labelled at 1, 2, 5 x 10^n in plain numbers (no crowded minor labels)."""
-    from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
-
-    axis.axes.set_xscale("log") if axis is axis.axes.xaxis else axis.axes.set_yscale("log")
-    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
-    axis.set_major_formatter(FormatStrFormatter("%g"))
-    axis.set_minor_formatter(NullFormatter())
 
 
 def fragility_by_measure(table, measure="pgv", *, group="block", cor=None, ax=None,
@@ -563,7 +540,7 @@ def fragility_by_measure(table, measure="pgv", *, group="block", cor=None, ax=No
     records = rows.groupby(["record", "seed"], dropna=False).ngroups if "record" in rows \
         else rows["motion"].nunique()
     ax.set_title(f"Fragility against {MEASURE_LABELS.get(column, column).split(' [')[0]}: "
-                 f"{records} motions, COR {rows['cor [-]'].iloc[0]:g} (bands: "
+                 f"{records} motions, {impact_law(rows['cor [-]'].iloc[0])} (bands: "
                  f"{100 * confidence:g} % profile likelihood)", fontsize=9)
     place_legend(ax, fontsize=7)
     ax.fragility_fits = fits
@@ -605,8 +582,8 @@ def fragility_contours(surface, *, ax=None, table=None, x_unit=1.0, y_unit=1.0,
         ax.plot(x[over] / x_unit, y[over] / y_unit, "x", ms=3, color="k", mew=0.7,
                 label="overturns")
         place_legend(ax, fontsize=7)
-    _log_axis(ax.xaxis)
-    _log_axis(ax.yaxis)
+    log_axis(ax.xaxis)
+    log_axis(ax.yaxis)
     ax.figure.colorbar(filled, ax=ax).set_label("P(overturn) [-]")
     ax.set_xlabel(MEASURE_LABELS.get(surface.x_measure, surface.x_measure))
     ax.set_ylabel(MEASURE_LABELS.get(surface.y_measure, surface.y_measure))
@@ -697,12 +674,12 @@ def measure_figures(table, out) -> list:
     written = []
     target = str(table["target_measure"].iloc[0])
     rows = table[table["pitch_phase [rad]"].isna()] if "pitch_phase [rad]" in table else table
-    for cor, part in rows.groupby("cor [-]", sort=False):
+    for cor, part in rows.groupby("cor [-]", sort=False, dropna=False):
         for measure in dict.fromkeys([target, "pga", "pgv*"]):
             figure, axis = plt.subplots(figsize=(7.5, 4.8))
             fragility_by_measure(part, measure, ax=axis)
             name = measure.replace("*", "-star")
-            written.append(out / f"fragility-{name}-cor{cor:g}.png")
+            written.append(out / f"fragility-{name}-{law_token(cor)}.png")
             save(figure, written[-1])
         blocks = list(part.groupby("block", sort=False))
         if len(blocks) > 4:
@@ -724,7 +701,7 @@ def measure_figures(table, out) -> list:
             drawn += 1
         if drawn:
             figure.tight_layout()
-            written.append(out / f"fragility-pga-pgv-cor{cor:g}.png")
+            written.append(out / f"fragility-pga-pgv-{law_token(cor)}.png")
             save(figure, written[-1])
         else:
             plt.close(figure)
@@ -732,7 +709,7 @@ def measure_figures(table, out) -> list:
             comparison = compare_measures(part, [m for m in ("pga", "pgv", "sa(1)", "sa_avg",
                                                               "pga*", "pgv*")
                                                  if _has_measure(part, m)])
-            written.append(out / f"im-comparison-cor{cor:g}.csv")
+            written.append(out / f"im-comparison-{law_token(cor)}.csv")
             write_csv(written[-1], comparison)
     return written
 

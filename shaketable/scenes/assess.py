@@ -33,7 +33,7 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.tomlfile import key_line, read_toml
 from shaketable.core.units import parse
-from shaketable.core.validation import unknown_keys
+from shaketable.core.validation import check_keys, integer, unknown_keys
 from shaketable.ground import records
 from shaketable.ground.artificial import PRESETS
 from shaketable.ground.floor import SHAPES, Building
@@ -83,6 +83,15 @@ def load_assessment(path: str | Path) -> Assessment:
         line = key_line(text, error.key.split("."))
         suffix = "" if line is None else f" (line {line})"
         raise SceneError(f"{path}: {error.key}: {error}{suffix}") from None
+
+
+def _checked(check, key: str, value, *bounds, name: str = ""):
+    """``check(name, value, *bounds)`` of :mod:`shaketable.core.validation`, its ValueError
+    raised with the dotted ``key`` (for the line number): ``key: [name ]must be ...``."""
+    try:
+        return check(name, value, *bounds)
+    except ValueError as error:
+        raise _Error(key, str(error).lstrip()) from None
 
 
 def _number(value, key: str, low: float, high: float, *, low_open=False) -> float:
@@ -213,9 +222,7 @@ def _building(data: dict) -> tuple[Building | None, int]:
     height = _quantity(table["height"], "length", "building.height")
     if not height > 0:
         raise _Error("building.height", f"must be positive, got {table['height']!r}")
-    storeys = table["storeys"]
-    if isinstance(storeys, bool) or not isinstance(storeys, int) or not 1 <= storeys <= 200:
-        raise _Error("building.storeys", f"must be an integer from 1 to 200, got {storeys!r}")
+    storeys = _checked(integer, "building.storeys", table["storeys"], 1, 200)
     if floor > storeys:
         raise _Error("location.floor", f"floor {floor} is above the roof (floor {storeys} of "
                                        f"a {storeys}-storey building)")
@@ -268,9 +275,8 @@ def _demand(table: dict) -> Demand:
         if preset not in PRESETS:
             raise _Error("demand.artificial", f"unknown preset {preset!r}; expected "
                                               f"{', '.join(PRESETS)}")
-        count = spec.get("count", 4)
-        if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 100:
-            raise _Error("demand.artificial", f"count must be 1..100, got {count!r}")
+        count = _checked(integer, "demand.artificial", spec.get("count", 4), 1, 100,
+                         name="count")
     if not names and not count:
         raise _Error("demand.records", "the suite is empty: give records or artificial")
     return Demand(tuple(names), levels, tuple(level_names), s_ds, preset, count)
@@ -322,10 +328,7 @@ FLOOR_KEYS = {"floor"} | SECTIONS["building"]
 def floor_from_dict(section: dict, where: str) -> FloorSetup:
     """A scene's ``[floor]`` (``floor = 3``, ``period = "0.6 s"``, ``height = "17.5 m"``,
     ``storeys = 5``, ``damping``, ``shape``, ``modes``): errors name ``floor.KEY``."""
-    unknown = unknown_keys(section, FLOOR_KEYS)
-    if unknown:
-        raise SceneError(f"{where}: unknown key {unknown[0]!r} in [floor]; expected one of "
-                         f"{', '.join(sorted(FLOOR_KEYS))}")
+    check_keys(section, FLOOR_KEYS, where, "[floor]", SceneError)
     if "floor" not in section:
         raise SceneError(f"{where}: floor.floor is missing (the floor the block stands on, "
                          f"1..storeys)")

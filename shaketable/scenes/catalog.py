@@ -2,9 +2,53 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
+from shaketable.core.tomlfile import read_toml
 from shaketable.scenes.parse import SceneError
+
+
+@dataclass(frozen=True)
+class SceneSource:
+    """A scene file read once: where it is, its TOML data and its text (for the lines of
+    error messages). What a command needs to know of a scene before parsing it (is it a
+    sweep spec, does it run the planar engine, its study kind) is read from ``data``, and
+    :func:`shaketable.scenes.parse.load_scene` parses the same reading (``read=``)."""
+
+    path: Path
+    data: dict
+    text: str
+
+
+#: The last files read, by (resolved path, modification time, size): the scheduling of
+#: ``reproduce`` asks several questions of one file without reading it again.
+_READ: dict = {}
+
+
+def read_scene(name_or_path: str) -> SceneSource:
+    """The scene file of a name or path (:func:`resolve_scene_path`), read and decoded once.
+
+    Raises
+    ------
+    SceneError
+        No such scene, or a file that is not UTF-8 TOML (naming the file).
+    """
+    path = resolve_scene_path(name_or_path)
+    try:
+        status = path.stat()
+        key = (str(path.resolve()), status.st_mtime_ns, status.st_size)
+    except OSError:
+        key = None
+    if key is not None and key in _READ:
+        return _READ[key]
+    data, text = read_toml(path, "scene", SceneError)
+    source = SceneSource(path, data, text)
+    if key is not None:
+        if len(_READ) >= 256:
+            _READ.clear()
+        _READ[key] = source
+    return source
 
 
 def resolve_scene_path(name_or_path: str, directory=None) -> Path:
@@ -45,12 +89,15 @@ def resolve_sweep_path(name_or_path: str) -> Path:
                      f"bundled: {', '.join(sweep_names())}")
 
 
-def is_sweep_spec(name_or_path: str) -> bool:
-    """Whether a name or path given to ``run`` is a sweep spec rather than a scene."""
+def is_sweep_spec(name_or_path: str, data: dict | None = None) -> bool:
+    """Whether a name or path given to ``run`` is a sweep spec rather than a scene
+    (``data``: the file's TOML, already read, is looked at instead of reading it)."""
     candidate = Path(name_or_path)
     if candidate.suffix == ".toml" and candidate.is_file():
         if candidate.resolve().parent == (experiments_folder() / "sweeps").resolve():
             return True
+        if data is not None:   # the sections only a sweep spec has
+            return bool({"blocks", "stacks", "records", "intensity", "run"} & set(data))
         try:
             head = candidate.read_text(encoding="utf-8", errors="replace")
         except OSError:
@@ -90,14 +137,7 @@ def study_kind(name_or_path: str) -> str | None:
     SceneError
         No such scene, or a file that is not TOML (:func:`resolve_scene_path`).
     """
-    from shaketable.core.tomlfile import tomllib
-
-    path = resolve_scene_path(name_or_path)
-    try:
-        with open(path, "rb") as file:
-            study = tomllib.load(file).get("study")
-    except (OSError, tomllib.TOMLDecodeError) as error:
-        raise SceneError(f"{path}: {error}") from error
+    study = read_scene(name_or_path).data.get("study")
     return str(study.get("kind")) if isinstance(study, dict) else None
 
 
@@ -105,7 +145,7 @@ def study_kind(name_or_path: str) -> str | None:
 _PLANAR_SECTIONS = {"table-4-4"}
 
 
-def uses_planar(name_or_path: str) -> bool:
+def uses_planar(name_or_path: str | SceneSource) -> bool:
     """Whether a scene runs the planar block, read from its TOML alone.
 
     True for ``block.static_friction`` (the planar run per COR), a ``mode-map`` study, and
@@ -113,14 +153,12 @@ def uses_planar(name_or_path: str) -> bool:
     first-compile notice names the planar engine for them. An unreadable file is left to
     the scene parser to report (``False`` here).
     """
-    from shaketable.core.tomlfile import tomllib
-
     try:
-        path = resolve_scene_path(name_or_path)
-        with open(path, "rb") as file:
-            scene = tomllib.load(file)
-    except (OSError, SceneError, tomllib.TOMLDecodeError):
+        source = name_or_path if isinstance(name_or_path, SceneSource) else \
+            read_scene(name_or_path)
+    except (OSError, SceneError):
         return False
+    path, scene = source.path, source.data
     if path.stem in _PLANAR_SECTIONS:
         return True
     block, study = scene.get("block"), scene.get("study")

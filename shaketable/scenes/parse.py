@@ -35,16 +35,17 @@ Sections (``experiments/*.toml`` are the examples)::
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from shaketable.core.geometry import Block, PrestressRods
-from shaketable.core.tomlfile import key_line, read_toml
+from shaketable.core import sections
+from shaketable.core.geometry import Block
+from shaketable.core.tomlfile import read_toml
+from shaketable.core.tomlfile import with_line as _with_line
 from shaketable.core.units import parse, parse_angle_or_ratio
-from shaketable.core.validation import unknown_keys
+from shaketable.core.validation import check_keys, count, flag
 
 if TYPE_CHECKING:
     from shaketable.lab.stage import TableSetup
@@ -285,8 +286,11 @@ def register_section_parser(section: str, parser: Callable[[dict, str], Any]) ->
     SECTION_PARSERS[section] = parser
 
 
-def load_scene(path: str | Path) -> Scene | Study:
+def load_scene(path: str | Path, *, read: tuple[dict, str] | None = None) -> Scene | Study:
     """Read and validate a scene file.
+
+    ``read``: the file's TOML data and text when the caller has read it already
+    (:func:`shaketable.scenes.catalog.read_scene`): the file is then not read again.
 
     Raises
     ------
@@ -294,38 +298,19 @@ def load_scene(path: str | Path) -> Scene | Study:
         With the file name, the key and what was expected.
     """
     path = Path(path)
-    data, text = read_toml(path, "scene", SceneError)
+    data, text = read_toml(path, "scene", SceneError) if read is None else read
     try:
         return scene_from_dict(data, where=str(path))
     except SceneError as error:
         raise SceneError(with_line(str(error), str(path), text)) from None
 
 
-#: A key named in an error message: ``rocking.theta0``, ``[block]``, ``'colour' in [block]``.
-_KEY_IN_MESSAGE = re.compile(r"unknown key '([\w-]+)' in \[([\w.-]+)|\[([\w.-]+)\]|"
-                             r"\b((?:block|motion|rocking|report|outputs|table|sensors|theory|"
-                             r"sliding|ensemble|study|floor|stack)(?:\.[\w-]+)+)")
-
-
 def with_line(message: str, where: str, text: str) -> str:
-    """``message`` (``"WHERE: rocking.cor ..."``) with the line of the key it names in ``text``.
-
-    ``"scene.toml: rocking.cor must be ..., got 1.5"`` becomes ``"scene.toml: rocking.cor
-    must be ..., got 1.5 (line 9)"``: the line where the key (or, failing that, its
-    section) is written, found in the TOML text. The line goes at the end so that the
-    message still begins with the file and the key. A message naming no key found in the
-    text is returned as it is.
-    """
-    prefix = f"{where}: "
-    if not message.startswith(prefix):
-        return message
-    match = _KEY_IN_MESSAGE.search(message[len(prefix):])
-    if match is None:
-        return message
-    unknown, section, header, dotted = match.groups()
-    path = f"{section}.{unknown}" if unknown else (header or dotted)
-    line = key_line(text, path.split("."))
-    return message if line is None else f"{message} (line {line})"
+    """``message`` (``"WHERE: rocking.cor ..."``) with the line of the key it names in ``text``
+    (:func:`shaketable.core.tomlfile.with_line` over the scene's sections): ``"scene.toml:
+    rocking.cor must be ..., got 1.5 (line 9)"``."""
+    return _with_line(message, where, text, (TOP_KEYS - {"name", "source", "description"})
+                      | {"study", "stack"})
 
 
 def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
@@ -410,8 +395,8 @@ def scene_from_dict(data: dict, where: str = "<scene>") -> Scene | Study:
     for key, value in given.items():
         if key == "time_range":
             given = dict(given, time_range=_time_range(value, where))
-        elif not isinstance(value, bool):
-            raise SceneError(f"{where}: outputs.{key} must be true or false, got {value!r}")
+        else:
+            _checked(flag, f"{where}: outputs.{key}", value)
     outputs.update(given)
     name = data["name"]
     if not isinstance(name, str) or not name:
@@ -529,10 +514,7 @@ def _study(data: dict, where: str) -> Study:
     if kind == "stacks":
         return Study(**common)
     if kind == "pitch-repeatability":
-        phases = spec.get("phases", 24)
-        if isinstance(phases, bool) or not isinstance(phases, int) or phases < 2:
-            raise SceneError(f"{where}: study.phases must be an integer of at least 2, got "
-                             f"{phases!r}")
+        phases = _checked(count, f"{where}: study.phases", spec.get("phases", 24), 2)
         return Study(**common, phases=phases)
     if kind == "teaching":
         items = STUDY_ITEMS[kind]() if kind in STUDY_ITEMS else ()
@@ -550,9 +532,7 @@ def _study(data: dict, where: str) -> Study:
     if table not in ("table_3_1", "table_4_1", "table_4_2", "table_4_3", "table_4_4"):
         raise SceneError(f"{where}: study.table must be table_3_1, table_4_1, table_4_2 or "
                          f"table_4_3, got {table!r}")
-    seed = spec.get("seed", 1)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise SceneError(f"{where}: study.seed must be a non-negative integer, got {seed!r}")
+    seed = _checked(count, f"{where}: study.seed", spec.get("seed", 1))
     columns = spec.get("columns", ())
     if not isinstance(columns, list) or not all(isinstance(c, str) for c in columns):
         if columns != ():
@@ -623,10 +603,15 @@ def _table(value, where, section):
 
 
 def _only(table: dict, allowed: set, where: str, section: str) -> None:
-    unknown = unknown_keys(table, allowed)
-    if unknown:
-        raise SceneError(f"{where}: unknown key {unknown[0]!r} in [{section}]; expected one of "
-                         f"{', '.join(sorted(allowed)) or '(none)'}")
+    check_keys(table, allowed, where, f"[{section}]", SceneError)
+
+
+def _checked(check: Callable[..., Any], name: str, *args: Any) -> Any:
+    """``check(name, *args)`` of :mod:`shaketable.core.validation`, its error a SceneError."""
+    try:
+        return check(name, *args)
+    except ValueError as error:
+        raise SceneError(str(error)) from None
 
 
 def _blocks(table, where) -> tuple:
@@ -645,42 +630,20 @@ def _block(table, where) -> Block:
     table = _table(table, where, "block")
     _only(table, {"size", "height", "width", "rods", "static_friction", "dynamic_friction"},
           where, "block")
-    rods = None
-    if "rods" in table:
-        spec = _table(table["rods"], where, "block.rods")
-        _only(spec, {"stiffness", "force", "edge_distance"}, where, "block.rods")
-        missing = {"stiffness", "force", "edge_distance"} - set(spec)
-        if missing:
-            raise SceneError(f"{where}: block.rods needs {', '.join(sorted(missing))}")
-        try:
-            rods = PrestressRods(
-                parse(spec["stiffness"], "stiffness", where=f"{where}: block.rods.stiffness"),
-                parse(spec["force"], "weight", where=f"{where}: block.rods.force"),
-                parse(spec["edge_distance"], "length", where=f"{where}: block.rods.edge_distance"))
-        except ValueError as error:
-            raise SceneError(str(error) if str(error).startswith(where) else
-                             f"{where}: block.rods: {error}") from None
+    rods = sections.rods(table["rods"], where, "block.rods", SceneError) \
+        if "rods" in table else None
+    if "size" in table:
+        if "height" in table or "width" in table:
+            raise SceneError(f"{where}: [block] gives 'size' and height/width; give one")
+        return sections.sized_block(table["size"], where, "block.size", rods, SceneError)
+    if "height" not in table or "width" not in table:
+        raise SceneError(f"{where}: [block] needs size = '30x6in' or height and width")
+    height, width = (sections.quantity(table[key], "length", where, f"block.{key}", SceneError)
+                     for key in ("height", "width"))
     try:
-        if "size" in table:
-            if "height" in table or "width" in table:
-                raise SceneError(f"{where}: [block] gives 'size' and height/width; give one")
-            try:
-                return Block.parse(table["size"], rods=rods)
-            except ValueError as error:   # the key, for the line: block.size '0x6in': ...
-                prefix = f"block size {table['size']!r}"
-                message = str(error)
-                if message.startswith(prefix):
-                    message = f"block.size{message[len('block size'):]}"
-                raise SceneError(f"{where}: {message}") from None
-        if "height" not in table or "width" not in table:
-            raise SceneError(f"{where}: [block] needs size = '30x6in' or height and width")
-        return Block(parse(table["height"], "length", where=f"{where}: block.height"),
-                     parse(table["width"], "length", where=f"{where}: block.width"), rods)
-    except SceneError:
-        raise
+        return Block(height, width, rods)
     except ValueError as error:
-        raise SceneError(str(error) if str(error).startswith(where) else
-                         f"{where}: block: {error}") from None
+        raise SceneError(f"{where}: block: {error}") from None
 
 
 _MOTION_UNITS = {

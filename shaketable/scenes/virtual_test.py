@@ -24,7 +24,7 @@ from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.results import RockingResult
 from shaketable.core.units import parse
-from shaketable.core.validation import unknown_keys
+from shaketable.core.validation import check_keys, flag
 from shaketable.lab.digitizer import Digitizer
 from shaketable.lab.sensors import (
     WIRES,
@@ -274,10 +274,7 @@ def sensors_from_dict(spec: dict, where: str = "<scene>") -> Sensors:
     """
     if not isinstance(spec, dict):
         raise ValueError(f"{where}: [sensors] must be a table")
-    unknown = unknown_keys(spec, _SENSOR_KEYS)
-    if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} in [sensors]; expected one of "
-                         f"{', '.join(sorted(_SENSOR_KEYS))}")
+    check_keys(spec, _SENSOR_KEYS, where, "[sensors]")
 
     def quantity(key, kind):
         return parse(spec[key], kind, where=f"{where}: sensors.{key}")
@@ -299,9 +296,7 @@ def sensors_from_dict(spec: dict, where: str = "<scene>") -> Sensors:
             potentiometers = Potentiometers(**options)
         accelerometers = None
         fitted = spec.get("accelerometers", True)
-        if not isinstance(fitted, bool):
-            raise ValueError(f"{where}: sensors.accelerometers must be true or false, got "
-                             f"{fitted!r}")
+        flag(f"{where}: sensors.accelerometers", fitted)
         if fitted:
             options = {}
             if "accelerometer_noise" in spec:
@@ -328,10 +323,7 @@ def theory_from_dict(spec: dict, where: str = "<scene>") -> TheorySetup:
     ``release = "0.5 alpha"``, ``free_rocking_duration = "8 s"``, ``method``."""
     if not isinstance(spec, dict):
         raise ValueError(f"{where}: [theory] must be a table")
-    unknown = unknown_keys(spec, _THEORY_KEYS)
-    if unknown:
-        raise ValueError(f"{where}: unknown key {unknown[0]!r} in [theory]; expected one of "
-                         f"{', '.join(sorted(_THEORY_KEYS))}")
+    check_keys(spec, _THEORY_KEYS, where, "[theory]")
     options: dict[str, Any] = {}
     cor = spec.get("cor", "calibrated")
     if cor != "calibrated":

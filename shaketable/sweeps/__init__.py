@@ -3,8 +3,9 @@
 :mod:`~shaketable.sweeps.spec` reads and checks the spec, :mod:`~shaketable.sweeps.execute`
 runs it (locally or on a Dask cluster) and :mod:`~shaketable.sweeps.store` writes the
 Parquet/CSV parts that make a sweep resumable; :mod:`~shaketable.sweeps.fragility` fits
-fragility curves to the table; :mod:`~shaketable.sweeps.friction` makes friction an axis
-(the coupled planar model).
+fragility curves to the table; :mod:`~shaketable.sweeps.models` is the model axis (the
+rocking block; the planar model, whose parameters :mod:`~shaketable.sweeps.friction` reads
+from ``[friction]``; a column of blocks, :mod:`~shaketable.sweeps.stacks`).
 """
 
 from shaketable.sweeps.execute import (

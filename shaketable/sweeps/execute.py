@@ -21,7 +21,6 @@ from shaketable.core.constants import G
 from shaketable.core.equality import fields_equal
 from shaketable.core.files import folder_lock, prepare_output_folder, subfolder, temporary_files
 from shaketable.core.motion import Motion
-from shaketable.core.units import parse_angle_or_ratio
 from shaketable.sweeps.spec import (
     RecordSpec,
     SweepError,
@@ -31,8 +30,10 @@ from shaketable.sweeps.spec import (
 )
 from shaketable.sweeps.store import (
     FORMAT_VERSION,
+    MIGRATED_VERSIONS,
     SweepStoreWarning,
     finished_chunks,
+    migrate_parts,
     parquet_available,
     part_path,
     read_results,
@@ -44,8 +45,6 @@ from shaketable.sweeps.store import (
 if TYPE_CHECKING:
     import pandas as pd
     from distributed import Client
-
-    from shaketable.solvers.batch import Case
 
 
 @lru_cache(maxsize=16)
@@ -222,15 +221,16 @@ def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None) -> pd.D
     """The inputs of runs ``start`` to ``stop`` (the grid, before running), one row each.
 
     Columns: ``run``, ``record_index``, ``seed``, ``phase_index``,
-    ``level_index``, ``block_index``, ``cor [-]``; with ``[friction]`` also
-    ``friction_index`` (into ``spec.friction.pairs``; between block and COR in run order).
+    ``level_index``, ``block_index``, ``cor [-]``; with ``[friction]`` (the planar
+    model's axis) also ``friction_index`` (into ``spec.friction.pairs``; between block and
+    COR in run order).
     """
     import pandas as pd
 
     stop = spec.n_runs if stop is None else min(stop, spec.n_runs)
     runs = np.arange(start, stop, dtype=np.int64)
     n_cor, n_block, n_level = len(spec.cors), len(spec.blocks), len(spec.levels)
-    n_friction = 1 if spec.friction is None else len(spec.friction.pairs)
+    n_friction = max(1, len(spec.model.axis))   # the model's own axis (friction pairs)
     cor_index = runs % n_cor
     friction_index = (runs // n_cor) % n_friction
     n_cor = n_cor * n_friction   # the runs of one block (frictions x CORs)
@@ -238,7 +238,7 @@ def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None) -> pd.D
     level_index = (runs // (n_cor * n_block)) % n_level
     variant_index = runs // (n_cor * n_block * n_level)
     variants = spec.motion_variants
-    frictions = {} if spec.friction is None else {"friction_index": friction_index}
+    frictions = {"friction_index": friction_index} if spec.model.axis else {}
     return pd.DataFrame({
         "run": runs,
         "variant": variant_index,
@@ -255,17 +255,17 @@ def runs_table(spec: SweepSpec, start: int = 0, stop: int | None = None) -> pd.D
 def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd.DataFrame:
     """Run one chunk; the rows of the result table for runs ``chunk * chunk_size`` on.
 
-    A plain function of picklable arguments: this is what a Dask worker runs. With
+    A plain function of picklable arguments: this is what a Dask worker runs. The
+    spec's model (:mod:`shaketable.sweeps.models`) runs the chunk's cases. With
     ``spec.ensemble`` each run is an ensemble of perturbed copies (its row gains
-    :data:`ENSEMBLE_COLUMNS` and ``mark``).
+    :data:`~shaketable.sweeps.models.ENSEMBLE_COLUMNS` and ``mark``).
     """
     import pandas as pd
 
-    from shaketable.solvers.batch import Case
-
+    model = spec.model
     start = chunk * spec.chunk_size
     inputs = runs_table(spec, start, start + spec.chunk_size)
-    cases: list[Case] = []
+    cases: list = []
     factor_list: list[float] = []
     pga_list: list[float] = []
     motions: dict[tuple, tuple[Motion, float]] = {}
@@ -280,18 +280,11 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd
         record = spec.records[row.record_index]
         label = record.label if seed is None else f"{record.label} (seed {seed})"
         block = spec.blocks[row.block_index]
-        cases.append(Case(block, motion, cors[k], scale=1.0 if spec.pitch is not None else factor,
-                          block_label=block.describe(), motion_label=label))
+        cases.append(model.case(block, motion, cors[k], 1.0 if spec.pitch is not None else factor,
+                                model.label(block), label))
         factor_list.append(factor)
         pga_list.append(_record_motion(record, seed).pga)
-    statistics = None
-    if spec.friction is not None:   # the coupled planar model (shaketable.sweeps.friction)
-        from shaketable.sweeps.friction import simulate_friction
-        frame = simulate_friction(spec, inputs, cases, threads)
-    elif spec.ensemble is None:
-        frame = _simulate(spec, inputs, cases, threads)
-    else:
-        frame, statistics = _simulate_ensembles(spec, inputs, cases, threads)
+    frame, statistics = model.simulate(spec, inputs, cases, threads)
     frame = frame.drop(columns=["block_index", "motion_index", "scale [-]", "pga [m/s^2]"])
     record_pgas = np.array(pga_list)
     factors = np.array(factor_list)
@@ -315,7 +308,7 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd
         "pga [g]": record_pgas * factors / G,
         "pitch": spec.pitch is not None,
         "pitch_phase [rad]": phases,
-        "R [m]": [spec.blocks[i].R for i in inputs["block_index"]],
+        "R [m]": [model.lead_block(spec.blocks[i]).R for i in inputs["block_index"]],
         "block_index": inputs["block_index"].to_numpy(),
     })
     frame = frame.reset_index(drop=True)
@@ -337,7 +330,7 @@ def _measure_columns(spec: SweepSpec, inputs, records, factors, level):
         base = record_measures(record, seed, spec.measures)
         row = {column: value * factors[k] ** scale_exponent(column)
                for column, value in base.items() if column != "pga [m/s^2]"}
-        block = spec.blocks[inputs["block_index"].iloc[k]]
+        block = spec.model.lead_block(spec.blocks[inputs["block_index"].iloc[k]])
         row["pga/(g tan a) [-]"] = normalised_pga(base["pga [m/s^2]"] * factors[k], block.alpha)
         row["pgv p/(g tan a) [-]"] = normalised_pgv(row["pgv [m/s]"], block.p, block.alpha)
         rows.append(row)
@@ -351,90 +344,6 @@ def _measure_columns(spec: SweepSpec, inputs, records, factors, level):
             spectrum_factor(record, None if pd.isna(seed) else int(seed), spec.measures)
             for record, seed in zip(records, inputs["seed"])]
     return table
-
-
-def _simulate(spec: SweepSpec, inputs, cases: list, threads):
-    """The batch rows of ``cases`` (one per row of ``inputs``), in order."""
-    import pandas as pd
-
-    from shaketable.solvers.batch import simulate_cases
-
-    options = {key: value for key, value in spec.options.items() if key != "theta0"}
-    theta0_text = spec.options.get("theta0")
-    if theta0_text is None:
-        return simulate_cases(cases, threads=threads, method=spec.method,
-                              duration=spec.duration, **options)
-    # "k alpha" depends on the block: one batch per block
-    parts = []
-    for block_index, group in inputs.groupby("block_index", sort=False):
-        theta0 = parse_angle_or_ratio(theta0_text, spec.blocks[block_index].alpha)
-        subset = [cases[i] for i in group.index]
-        part = simulate_cases(subset, threads=threads, method=spec.method,
-                              duration=spec.duration, theta0=theta0, **options)
-        part.index = group.index
-        parts.append(part)
-    return pd.concat(parts).sort_index()
-
-
-#: Ensemble columns a sweep row gains with ``[ensemble]`` (:func:`verdict_statistics` names).
-ENSEMBLE_COLUMNS = {"members": "members", "overturned": "overturned members",
-                    "P(overturn) [-]": "P(overturn) [-]", "P low [-]": "P low [-]",
-                    "P high [-]": "P high [-]", "robust": "robust",
-                    "standing members": "standing members",
-                    "median max theta/alpha [-]": "median max theta/alpha [-]",
-                    "p05 max theta/alpha [-]": "p05 max theta/alpha [-]",
-                    "p95 max theta/alpha [-]": "p95 max theta/alpha [-]"}
-
-
-def _simulate_ensembles(spec: SweepSpec, inputs, cases: list, threads):
-    """Each cell's ensemble in one batch: the nominal rows and the ensemble columns.
-
-    Member k of every cell has the k-th draw of
-    :func:`shaketable.core.ensemble.perturbed_members` (a function of the spec
-    alone, so a chunk's rows do not depend on the chunking or on a resume);
-    member 0 is the cell's own case, so its row is the row of the sweep
-    without ``[ensemble]``.
-    """
-    import pandas as pd
-
-    from shaketable.core.ensemble import (
-        Perturbation,
-        perturbed_block,
-        perturbed_cor,
-        perturbed_members,
-        shifted,
-        verdict_statistics,
-    )
-    from shaketable.solvers.batch import Case
-
-    ensemble = spec.ensemble
-    assert ensemble is not None   # called for a sweep with [ensemble] only
-    members = ensemble["members"]
-    drawn = perturbed_members(members, Perturbation(**ensemble["spreads"]),
-                              ensemble["seed"])
-    copies: dict = {}           # shifted copies of each motion, shared by its cells
-    expanded = []
-    for case in cases:
-        key = (id(case.motion), case.motion_label)
-        if key not in copies:
-            copies[key] = [shifted(case.motion, s * case.motion.dt) for s in drawn.start]
-        for k in range(members):
-            expanded.append(Case(perturbed_block(case.block, drawn, k), copies[key][k],
-                                 perturbed_cor(case.cor, drawn, k),
-                                 scale=case.scale * float(drawn.amplitude[k]),
-                                 block_label=case.block_label, motion_label=case.motion_label))
-    repeated = inputs.loc[inputs.index.repeat(members)].reset_index(drop=True)
-    frame = _simulate(spec, repeated, expanded, threads)
-    overturned = frame["overturned"].to_numpy().reshape(len(cases), members)
-    ratio = frame["max_theta_ratio [-]"].to_numpy().reshape(len(cases), members)
-    rows = []
-    for k in range(len(cases)):
-        summary = verdict_statistics(overturned[k], ratio[k])
-        row = {name: summary[key] for key, name in ENSEMBLE_COLUMNS.items()}
-        row["mark"] = "robust" if summary["robust"] else "fragile"
-        rows.append(row)
-    nominal = frame.iloc[::members].reset_index(drop=True)
-    return nominal, pd.DataFrame(rows)
 
 
 def solver_identity() -> dict:
@@ -457,8 +366,9 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
                 "solver": solver_identity()}
     if spec.ensemble is not None:
         manifest["ensemble"] = spec.ensemble
-    if spec.friction is not None:   # a folder without the key: a sweep without friction
-        manifest["friction"] = spec.friction.manifest()
+    # the model's entries ("friction": the planar model's grid; "model": the stack model);
+    # a folder without them ran the rocking block
+    manifest.update(spec.model.manifest())
     if manifest_path.exists():
         if not resume:
             raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
@@ -471,6 +381,13 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
         if not isinstance(old, dict):
             raise SweepError(f"{manifest_path}: not a sweep manifest (a JSON "
                              f"{type(old).__name__}, not an object); use another output folder")
+        if old.get("model") != manifest.get("model"):
+            def model(entry):
+                return entry["model"] if isinstance(entry, dict) and "model" in entry \
+                    else "the rocking or planar model"
+            raise SweepError(f"{out}: cannot resume: the sweep there runs "
+                             f"{model(old.get('model'))} and {spec.path} "
+                             f"{model(manifest.get('model'))}; use another output folder")
         if old.get("friction") != manifest.get("friction"):
             def friction(entry):
                 if not isinstance(entry, dict):
@@ -481,6 +398,13 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
             raise SweepError(f"{out}: cannot resume: the sweep there has "
                              f"{friction(old.get('friction'))} and {spec.path} has "
                              f"{friction(manifest.get('friction'))}; use another output folder")
+        if old.get("format_version") in MIGRATED_VERSIONS and all(
+                old.get(key) == manifest[key] for key in ("fingerprint", "n_runs",
+                                                          "chunk_size", "format", "solver")):
+            # a folder of an earlier layout: its parts brought to this one, then resumed
+            migrate_parts(spec, out, fmt, old["format_version"], spec.model.label)
+            old["format_version"] = FORMAT_VERSION
+            write_text_atomic(manifest_path, json.dumps(old, indent=2))
         for key in ("fingerprint", "n_runs", "chunk_size", "format", "format_version",
                     "solver"):
             if old.get(key) != manifest[key]:
@@ -562,9 +486,11 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
         Output folder: ``manifest.json``, ``parts/part-NNNNNN.parquet`` and,
         at the end, ``results.parquet``.
     workers : int, optional
-        Local: threads of the compiled batch loop (default all cores). With
-        ``scheduler``: threads inside each Dask task (default 1; the cluster's
-        own workers give the parallelism).
+        Local: threads of the compiled batch loop (default all cores); for a model whose
+        runs are not a compiled batch (the stack model, ``model.processes``), processes,
+        each computing whole chunks (default one: the chunks one after the other, in this
+        process; the table is the same either way). With ``scheduler``: threads inside
+        each Dask task (default 1; the cluster's own workers give the parallelism).
     scheduler : str or distributed.Client, optional
         Address of a ``dask.distributed`` scheduler (``tcp://host:8786``), or
         a connected ``distributed.Client`` (used as is and not closed at the
@@ -605,7 +531,8 @@ def run_sweep(spec: SweepSpec | str | os.PathLike[str], out: str | os.PathLike[s
         raise ValueError(f"max_chunks must be a non-negative integer, got {max_chunks!r}")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):
-        raise ValueError(f"workers (--workers) must be a positive integer (threads), "
+        raise ValueError(f"workers (--workers) must be a positive integer ("
+                         f"{'processes' if spec.model.processes else 'threads'}), "
                          f"got {workers!r}")
     check_inputs(spec)   # every record and measure, before any file or chunk
     began = time.perf_counter()
@@ -645,7 +572,9 @@ def _run(spec, out, fmt, resume, max_chunks, workers, client, progress, on_chunk
             on_chunk(chunk, frame)
 
     try:
-        if client is None:
+        if client is None and spec.model.processes and (workers or 1) > 1 and len(todo) > 1:
+            _run_in_processes(spec, todo, min(workers or 1, len(todo)), finished)
+        elif client is None:
             for chunk in todo:
                 finished(chunk, compute_chunk(spec, chunk, threads=workers))
         else:
@@ -712,6 +641,26 @@ def _connect(scheduler):
         raise ValueError(f"--scheduler {scheduler!r}: cannot reach a Dask scheduler there "
                          f"within {SCHEDULER_TIMEOUT:g} s ({type(error).__name__}: "
                          f"{error}); nothing was written") from None
+
+
+def _run_in_processes(spec, chunks, workers: int, finished) -> None:
+    """Compute the chunks in ``workers`` processes of their own; write each as it completes.
+
+    Each process runs :func:`compute_chunk` as a Dask task does (a chunk's rows do not
+    depend on where or in which order it is computed), its batches on one thread.
+    Ctrl-C or a chunk's error starts no further chunk; the finished ones are on disk.
+    """
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = {pool.submit(compute_chunk, spec, chunk, 1): chunk for chunk in chunks}
+        try:
+            for future in as_completed(futures):
+                finished(futures[future], future.result())
+        except BaseException:
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
 
 
 def _run_on_dask(spec, chunks, client, threads, finished) -> None:

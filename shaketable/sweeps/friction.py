@@ -41,15 +41,13 @@ friction (or with none) is refused by name.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaketable.core.tomlfile import key_line
-from shaketable.core.validation import unknown_keys
+from shaketable.core.validation import check_keys
 from shaketable.sweeps.base import SweepError
 
 if TYPE_CHECKING:
@@ -127,10 +125,7 @@ def friction_grid(table, where: str) -> FrictionGrid | None:
     if not isinstance(table, dict):
         raise SweepError(f"{where}: [friction] must be a table with friction.static, got "
                          f"{table!r}")
-    unknown = unknown_keys(table, FRICTION_KEYS)
-    if unknown:
-        raise SweepError(f"{where}: unknown key {unknown[0]!r} in [friction]; expected one of "
-                         f"{', '.join(sorted(FRICTION_KEYS))}")
+    check_keys(table, FRICTION_KEYS, where, "[friction]", SweepError)
     if "static" not in table:
         raise SweepError(f"{where}: friction.static is missing (the static coefficient mu_s "
                          "[-], a number or a list)")
@@ -324,22 +319,6 @@ def refuse_mixed_friction(table, what: str) -> None:
         raise ValueError(f"{what}: the table holds {len(pairs)} friction pairs (mu_s, mu_d) "
                          f"{pairs[:4]}{' ...' if len(pairs) > 4 else ''}; select one first "
                          f"(shaketable.sweeps.friction.friction_rows), they are not pooled")
-
-
-_NAMED = re.compile(r"friction\.(\w+)|\[friction\]|unknown key '([\w-]+)' in \[friction\]")
-
-
-def with_friction_line(message: str, where: str, text: str) -> str:
-    """``message`` with ``(line N)`` of the ``[friction]`` key it begins with, found in the
-    TOML ``text`` (as the scenes report it); unchanged when the message is about another
-    key or nothing of it is written (then the line of ``[friction]`` if that is)."""
-    prefix = f"{where}: "
-    match = _NAMED.match(message[len(prefix):]) if message.startswith(prefix) else None
-    if match is None:
-        return message
-    key = match.group(1) or match.group(2)
-    line = key_line(text, ["friction"] if key is None else ["friction", key])
-    return message if line is None else f"{message} (line {line})"
 
 
 def friction_figure_sets(table, out: Path) -> list:

@@ -63,6 +63,8 @@ dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``):
     # perturb_amplitude, perturb_cor, perturb_size, perturb_start (sample intervals)
     # seed = 0                    # of the draws (member k is the same in every cell)
 
+    # model = "rocking"           # optional: "rocking" (default), "planar" ([friction]) or
+    #                             # "stack" ([stacks] in place of [blocks]: shaketable.sweeps.stacks)
     [friction]                    # optional: the coupled planar model (shaketable.sweeps.friction)
     static = [0.2, 0.3]           # mu_s [-], plain numbers; dynamic = [...] or dynamic_ratio
 
@@ -130,12 +132,15 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from shaketable.core.geometry import Block, PrestressRods
-from shaketable.core.tomlfile import read_toml
-from shaketable.core.units import parse, parse_angle_or_ratio
-from shaketable.core.validation import unknown_keys
+from shaketable.core import sections
+from shaketable.core.equality import fields_equal
+from shaketable.core.geometry import Block
+from shaketable.core.tomlfile import read_toml, with_line
+from shaketable.core.units import parse_angle_or_ratio
+from shaketable.core.validation import check_keys, count, flag
 from shaketable.sweeps.base import RecordSpec, SweepError
 from shaketable.sweeps.limits import MAX_CHUNK_SIZE, check_grid_size
+from shaketable.sweeps.models import PlanarSweep, RockingSweep, chosen_model
 from shaketable.sweeps.targets import (
     IntensitySettings,
     check_levels,
@@ -148,7 +153,7 @@ if TYPE_CHECKING:
     from shaketable.lab.pitch import Pitch
 
 TOP_KEYS = {"name", "description", "seed", "blocks", "rocking", "records", "intensity",
-            "pitch", "run", "ensemble", "friction"}
+            "pitch", "run", "ensemble", "friction", "model", "stacks"}
 
 BLOCK_KEYS = {"height", "width", "aspect", "R", "alpha", "sizes", "rods"}
 
@@ -172,6 +177,9 @@ PITCH_KEYS = {"phases", "random_phases", "frequency", "amplitude", "block_positi
               "axis_depth", "frequency_drift", "amplitude_drift"}
 
 RUN_KEYS = {"chunk_size"}
+
+#: Sections whose keys an error message gets the line of (``(line N)``).
+LINE_SECTIONS = ("friction", "stacks")
 
 
 @dataclass(frozen=True)
@@ -236,13 +244,24 @@ class SweepSpec:
     ensemble : dict or None
         ``[ensemble]``: :func:`shaketable.core.ensemble.ensemble_options`
         (``members``, ``seed``, ``spreads``); None runs each cell once.
+    model : RockingSweep
+        The model the sweep runs (:mod:`shaketable.sweeps.models`): the rocking block,
+        :class:`~shaketable.sweeps.models.PlanarSweep` (``[friction]``) or
+        :class:`~shaketable.sweeps.stacks.StackSweep` (``[stacks]``: ``blocks`` then holds
+        :class:`~shaketable.models.stack.Stack` objects).
     friction : shaketable.sweeps.friction.FrictionGrid or None
-        ``[friction]``: the (mu_s, mu_d) axis of the coupled planar model; None: rocking.
+        ``[friction]``: the (mu_s, mu_d) axis of the planar model (its parameters); None
+        for the other models.
     path : str
         Where the spec was read from (for messages and relative record files).
     raw : dict
         The parsed TOML, for the manifest's fingerprint.
     """
+
+    # by value, NaN equal to NaN in the same place: the plastic law's COR is NaN by design
+    # (a stack sweep's ``cors``, its ``block_inputs`` "mass ratio" for one density), and a
+    # spec equals its pickled copy
+    __eq__ = fields_equal
 
     name: str
     description: str
@@ -261,7 +280,7 @@ class SweepSpec:
     ensemble: dict | None = None
     path: str = "<spec>"
     measures: IntensitySettings = IntensitySettings()
-    friction: Any = None
+    model: Any = RockingSweep()
     raw: dict = field(default_factory=dict, compare=False, repr=False)
 
     # ------------------------------------------------------------ the grid
@@ -276,7 +295,12 @@ class SweepSpec:
     def n_runs(self) -> int:
         """Number of runs (rows of the table)."""
         return (len(self.motion_variants) * len(self.levels) * len(self.blocks)
-                * len(self.cors) * (1 if self.friction is None else len(self.friction.pairs)))
+                * len(self.cors) * max(1, len(self.model.axis)))
+
+    @property
+    def friction(self) -> Any:
+        """The planar model's (mu_s, mu_d) grid (``[friction]``); None for another model."""
+        return getattr(self.model, "friction", None)
 
     @property
     def n_chunks(self) -> int:
@@ -307,9 +331,9 @@ def load_spec(path: str | os.PathLike[str]) -> SweepSpec:
     data, text = read_toml(path, "sweep spec", SweepError)
     try:
         return spec_from_dict(data, where=str(path), directory=path.parent)
-    except SweepError as error:   # a [friction] key: its line, as the scenes give it
-        from shaketable.sweeps import friction
-        raise SweepError(friction.with_friction_line(str(error), str(path), text)) from None
+    except SweepError as error:   # a [friction] or [stacks] key: its line, as the scenes give it
+        raise SweepError(with_line(str(error), str(path), text, LINE_SECTIONS,
+                                   at_start=True)) from None
 
 
 def spec_from_dict(data: dict, where: str = "<spec>",
@@ -327,7 +351,10 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     """
     directory = Path(directory) if directory is not None else Path.cwd()
     _only(data, TOP_KEYS, where, "the top level")
-    for key in ("name", "blocks", "rocking", "records"):
+    model_name = chosen_model(data, where)
+    required = ("name", "stacks", "records") if model_name == "stack" else (
+        "name", "blocks", "rocking", "records")
+    for key in required:
         if key not in data:
             raise SweepError(f"{where}: missing " + (f"[{key}]" if key != "name" else
                                                      "'name' at the top level"))
@@ -339,17 +366,21 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     if problem := folder_name_problem(name.strip()):
         raise SweepError(f"{where}: 'name' {name!r} {problem} (the name is the default output "
                          f"folder shaketable-out/<name>; use letters, digits, '-', '_', '.')")
-    seed = data.get("seed", 1)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise SweepError(f"{where}: 'seed' must be a non-negative integer, got {seed!r}")
+    seed = _checked(count, f"{where}: 'seed'", data.get("seed", 1))
 
-    blocks, block_inputs = _blocks(_section(data, "blocks", where), where)
-    rocking = _section(data, "rocking", where)
+    rocking = _section(data, "rocking", where) if "rocking" in data else {}
     _only(rocking, ROCKING_KEYS, where, "[rocking]")
-    if "cor" not in rocking:
-        raise SweepError(f"{where}: rocking.cor is missing (coefficient of restitution, "
-                         "a number in [0, 1] or a list)")
-    cors = tuple(_number_list(rocking["cor"], where, "rocking.cor", 0.0, 1.0))
+    if model_name == "stack":
+        from shaketable.sweeps.stacks import stack_cors, stacks_grid
+
+        blocks, block_inputs = stacks_grid(data["stacks"], where)
+        cors = stack_cors(rocking, where)
+    else:
+        blocks, block_inputs = _blocks(_section(data, "blocks", where), where)
+        if "cor" not in rocking:
+            raise SweepError(f"{where}: rocking.cor is missing (coefficient of restitution, "
+                             "a number in [0, 1] or a list)")
+        cors = tuple(_number_list(rocking["cor"], where, "rocking.cor", 0.0, 1.0))
     duration = None
     if "duration" in rocking:
         duration = _quantity(rocking["duration"], "time", where, "rocking.duration",
@@ -370,11 +401,8 @@ def spec_from_dict(data: dict, where: str = "<spec>",
                              f"got {rtol!r}")
         options["rtol"] = float(rtol)
     if "subdivisions" in rocking:
-        value = rocking["subdivisions"]
-        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-            raise SweepError(f"{where}: rocking.subdivisions must be a positive integer, "
-                             f"got {value!r}")
-        options["subdivisions"] = value
+        options["subdivisions"] = _checked(count, f"{where}: rocking.subdivisions",
+                                           rocking["subdivisions"], 1)
     if "theta0" in rocking:
         value = rocking["theta0"]
         if not isinstance(value, str):
@@ -393,24 +421,35 @@ def spec_from_dict(data: dict, where: str = "<spec>",
     if not isinstance(run, dict):
         raise SweepError(f"{where}: [run] must be a table, got {run!r}")
     _only(run, RUN_KEYS, where, "[run]")
-    chunk_size = run.get("chunk_size", 500)
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) \
-            or not 1 <= chunk_size <= MAX_CHUNK_SIZE:
-        raise SweepError(f"{where}: run.chunk_size must be a positive integer, at most "
-                         f"{MAX_CHUNK_SIZE:,} (a chunk's rows are held in memory), got "
-                         f"{chunk_size!r}")
-    from shaketable.sweeps.friction import check_friction_spec, friction_grid
+    chunk_size = _checked(count, f"{where}: run.chunk_size", run.get("chunk_size", 500), 1)
+    if chunk_size > MAX_CHUNK_SIZE:
+        raise SweepError(f"{where}: run.chunk_size must be at most {MAX_CHUNK_SIZE:,} (a "
+                         f"chunk's rows are held in memory), got {chunk_size!r}")
+    model = _model(model_name, data, where)
     spec = SweepSpec(name=name.strip(), description=str(data.get("description", "")),
                      seed=seed, blocks=tuple(blocks), block_inputs=tuple(block_inputs),
                      cors=cors, records=tuple(records), intensity=intensity,
                      levels=tuple(levels), pitch=pitch, duration=duration, method=method,
                      options=options, chunk_size=chunk_size,
                      ensemble=_ensemble(data.get("ensemble"), where), path=where,
-                     measures=measures, friction=friction_grid(data.get("friction"), where),
+                     measures=measures, model=model,
                      raw=data)
-    check_friction_spec(spec, rocking)   # with [friction]: what the planar model refuses
+    model.check(spec, rocking)   # what the model refuses, by key
     check_grid_size(spec, where)
     return spec
+
+
+def _model(name: str, data: dict, where: str):
+    """The sweep's model with its parameters (:mod:`shaketable.sweeps.models`)."""
+    if name == "stack":
+        from shaketable.sweeps.stacks import StackSweep
+
+        return StackSweep()
+    if name == "planar":
+        from shaketable.sweeps.friction import friction_grid
+
+        return PlanarSweep(friction=friction_grid(data.get("friction"), where))
+    return RockingSweep()
 
 
 def _ensemble(table, where):
@@ -430,10 +469,15 @@ def _ensemble(table, where):
 
 
 def _only(table: dict, allowed: set, where: str, section: str) -> None:
-    unknown = unknown_keys(table, allowed)
-    if unknown:
-        raise SweepError(f"{where}: unknown key {unknown[0]!r} in {section}; expected one of "
-                         f"{', '.join(sorted(allowed))}")
+    check_keys(table, allowed, where, section, SweepError)
+
+
+def _checked(check, name: str, *args):
+    """``check(name, *args)`` of :mod:`shaketable.core.validation`, its error a SweepError."""
+    try:
+        return check(name, *args)
+    except ValueError as error:
+        raise SweepError(str(error)) from None
 
 
 def _section(data, key, where) -> dict:
@@ -464,13 +508,7 @@ def _number_list(value, where, key, low=-math.inf, high=math.inf, low_open=False
 
 
 def _quantity(value, kind, where, key, positive=False):
-    try:
-        number = parse(value, kind, where=f"{where}: {key}")
-    except ValueError as error:
-        raise SweepError(str(error)) from None
-    if positive and not number > 0:
-        raise SweepError(f"{where}: {key} must be positive, got {value!r}")
-    return number
+    return sections.quantity(value, kind, where, key, SweepError, positive)
 
 
 def _quantity_list(value, kind, where, key, positive=True):
@@ -482,24 +520,8 @@ def _quantity_list(value, kind, where, key, positive=True):
 
 def _blocks(table, where):
     _only(table, BLOCK_KEYS, where, "[blocks]")
-    rods = None
-    if "rods" in table:
-        spec = table["rods"]
-        if not isinstance(spec, dict):
-            raise SweepError(f"{where}: [blocks.rods] must be a table")
-        _only(spec, {"stiffness", "force", "edge_distance"}, where, "[blocks.rods]")
-        missing = {"stiffness", "force", "edge_distance"} - set(spec)
-        if missing:
-            raise SweepError(f"{where}: blocks.rods needs {', '.join(sorted(missing))}")
-        try:
-            rods = PrestressRods(
-                _quantity(spec["stiffness"], "stiffness", where, "blocks.rods.stiffness"),
-                _quantity(spec["force"], "weight", where, "blocks.rods.force"),
-                _quantity(spec["edge_distance"], "length", where, "blocks.rods.edge_distance"))
-        except SweepError:
-            raise
-        except ValueError as error:
-            raise SweepError(f"{where}: blocks.rods: {error}") from None
+    rods = sections.rods(table["rods"], where, "blocks.rods", SweepError) \
+        if "rods" in table else None
     given = tuple(sorted(set(table) - {"rods"}))
     grid = next((g for g in BLOCK_GRIDS if set(g) == set(given)), None)
     if grid is None:
@@ -520,7 +542,8 @@ def _blocks(table, where):
             if not isinstance(text, str):
                 raise SweepError(f"{where}: blocks.sizes must be texts such as '30x6in', got "
                                  f"{text!r}")
-            add(lambda: Block.parse(text, rods=rods), "sizes", {"size": text})
+            blocks.append(sections.sized_block(text, where, "blocks.sizes", rods, SweepError))
+            inputs.append({"size": text})
         return blocks, inputs
     lengths = {key: _quantity_list(table[key], "length", where, f"blocks.{key}")
                for key in ("height", "width", "R") if key in table}
@@ -535,51 +558,27 @@ def _blocks(table, where):
                 raise SweepError(f"{where}: blocks.alpha must be below 90 deg, got {item!r}")
             alphas.append(value)
     # the blocks of a grid are labelled in the unit of the grid's first length
-    unit = _length_unit(table[next(key for key in grid if key in lengths)])
+    unit = sections.length_unit(table[next(key for key in grid if key in lengths)])
     if grid == ("height", "width"):
         for height, width in product(lengths["height"], lengths["width"]):
-            add(lambda: _labelled(Block(height, width, rods), unit), "height", {})
+            add(lambda: sections.labelled(Block(height, width, rods), unit), "height", {})
     elif grid == ("height", "aspect"):
         for height, aspect in product(lengths["height"], aspects):
-            add(lambda: _labelled(Block(height, height / aspect, rods), unit), "aspect",
+            add(lambda: sections.labelled(Block(height, height / aspect, rods), unit), "aspect",
                 {"aspect": aspect})
     elif grid == ("width", "aspect"):
         for width, aspect in product(lengths["width"], aspects):
-            add(lambda: _labelled(Block(width * aspect, width, rods), unit), "aspect",
+            add(lambda: sections.labelled(Block(width * aspect, width, rods), unit), "aspect",
                 {"aspect": aspect})
     elif grid == ("R", "alpha"):
         for radius, alpha in product(lengths["R"], alphas):
-            add(lambda: _labelled(Block.from_slenderness(radius, alpha, rods), unit), "alpha",
+            add(lambda: sections.labelled(Block.from_slenderness(radius, alpha, rods), unit), "alpha",
                 {})
     else:  # R + aspect
         for radius, aspect in product(lengths["R"], aspects):
-            add(lambda: _labelled(Block.from_slenderness(radius, math.atan(1.0 / aspect), rods),
+            add(lambda: sections.labelled(Block.from_slenderness(radius, math.atan(1.0 / aspect), rods),
                                   unit), "aspect", {"aspect": aspect})
     return blocks, inputs
-
-
-def _length_unit(value) -> str | None:
-    """The unit of the first length of a grid key (``"2 m"`` -> ``"m"``), None if unknown."""
-    from shaketable.core.constants import LENGTH_UNITS
-
-    first = _as_list(value)[0] if _as_list(value) else None
-    if not isinstance(first, str):
-        return None
-    unit = first.strip().lstrip("+-0123456789.eE").strip().lower()
-    return unit if unit in LENGTH_UNITS else None
-
-
-def _labelled(block: Block, unit: str | None) -> Block:
-    """The block labelled ``H x B unit`` in the user's unit (as :meth:`Block.parse` does)."""
-    if unit is None:
-        return block
-    from dataclasses import replace
-
-    from shaketable.core.constants import length_factor
-
-    factor = length_factor(unit)
-    return replace(block, label=f"{block.height / factor:.6g} x {block.width / factor:.6g} "
-                                f"{unit}")
 
 
 def _records(value, where, directory: Path, seed: int):
@@ -615,9 +614,7 @@ def _records(value, where, directory: Path, seed: int):
             if entry["name"] not in bundled.available():
                 raise SweepError(f"{where}: {key}.name {entry['name']!r} is not a bundled "
                                  f"record; available: {', '.join(bundled.available())}")
-            vertical = entry.get("vertical", True)
-            if not isinstance(vertical, bool):
-                raise SweepError(f"{where}: {key}.vertical must be true or false")
+            vertical = _checked(flag, f"{where}: {key}.vertical", entry.get("vertical", True))
             result.append(RecordSpec("bundled", label or entry["name"], name=entry["name"],
                                      vertical=vertical))
         elif kind == "file":
@@ -639,10 +636,7 @@ def _records(value, where, directory: Path, seed: int):
             if entry["preset"] not in motions.PRESETS:
                 raise SweepError(f"{where}: {key}.preset must be one of "
                                  f"{', '.join(sorted(motions.PRESETS))}, got {entry['preset']!r}")
-            base = entry.get("seed", seed)
-            if isinstance(base, bool) or not isinstance(base, int) or base < 0:
-                raise SweepError(f"{where}: {key}.seed must be a non-negative integer, got "
-                                 f"{base!r}")
+            base = _checked(count, f"{where}: {key}.seed", entry.get("seed", seed))
             seeds = entry.get("seeds", 1)
             if isinstance(seeds, list):
                 if not seeds or any(isinstance(s, bool) or not isinstance(s, int) or s < 0
@@ -753,18 +747,14 @@ def _pitch(table, where, seed):
     if "phases" in table:
         value = table["phases"]
         if isinstance(value, int) and not isinstance(value, bool):
-            if value < 1:
-                raise SweepError(f"{where}: pitch.phases must be at least 1, got {value!r}")
+            value = _checked(count, f"{where}: pitch.phases", value, 1)
             phases = [2.0 * math.pi * k / value for k in range(value)]
         else:
             phases = [_quantity(item, "angle", where, "pitch.phases") for item in
                       _as_list(value)]
     else:
-        count = table["random_phases"]
-        if isinstance(count, bool) or not isinstance(count, int) or count < 1:
-            raise SweepError(f"{where}: pitch.random_phases must be a positive count, got "
-                             f"{count!r}")
-        phases = list(np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, count))
+        drawn = _checked(count, f"{where}: pitch.random_phases", table["random_phases"], 1)
+        phases = list(np.random.default_rng(seed).uniform(0.0, 2.0 * math.pi, drawn))
     values = {}
     for key, kind in (("frequency", "frequency"), ("amplitude", "angular acceleration"),
                       ("block_position", "length"), ("axis_depth", "length")):

@@ -16,8 +16,12 @@ from shaketable.sweeps.base import SweepError
 
 #: Version of the result layout, written in the manifest (2: the intensity-measure
 #: columns; 3: the ``block`` column in the user's units, ``2 x 0.5 m``, not always inches).
-#: A folder of an earlier version is not resumed: its rows differ.
+#: A folder of version 2 is migrated when resumed (:func:`migrate_parts`); one of version 1
+#: is not resumed: its rows lack the measures.
 FORMAT_VERSION = 3
+
+#: The earlier versions a resume brings up to :data:`FORMAT_VERSION`.
+MIGRATED_VERSIONS = (2,)
 
 
 # --------------------------------------------------------------------------- execution
@@ -69,6 +73,41 @@ def finished_chunks(spec, out: Path, fmt: str) -> set:
         else:
             path.unlink()
     return done
+
+
+def migrate_parts(spec, out: Path, fmt: str, version: int, label) -> int:
+    """Bring the parts of a sweep folder of layout ``version`` to :data:`FORMAT_VERSION`;
+    the number of parts rewritten.
+
+    Version 2 differs from 3 in the ``block`` column alone: it held every block in inches
+    (``30 x 6 in``, ``Block.describe(unit="in")``), version 3 in the user's units
+    (``Block.describe()``). Each part's ``block`` is written again from its ``block_index``
+    (``label(spec.blocks[index])``), atomically; the other columns are kept as they are,
+    so a resumed sweep's table equals the table of a sweep run whole by this version.
+    A joined ``results.*`` of the old layout is removed (the parts are joined again at the
+    end of the resume).
+    """
+    if version not in MIGRATED_VERSIONS:
+        raise SweepError(f"{out}: a sweep folder of layout version {version!r} cannot be "
+                         f"brought to version {FORMAT_VERSION}")
+    suffix = "parquet" if fmt == "parquet" else "csv"
+    rewritten = 0
+    for chunk in range(spec.n_chunks):
+        path = part_path(out, chunk, fmt)
+        if not path.exists():
+            continue
+        try:
+            frame = _read(path, fmt)
+            labels = [label(spec.blocks[int(index)]) for index in frame["block_index"]]
+        except Exception:  # unreadable or not this spec's: recomputed on resume
+            path.unlink()
+            continue
+        if list(frame["block"]) != labels:
+            frame["block"] = labels
+            write_atomic(frame, path, fmt)
+            rewritten += 1
+    (out / f"results.{suffix}").unlink(missing_ok=True)
+    return rewritten
 
 
 def write_text_atomic(path: Path, text: str) -> None:

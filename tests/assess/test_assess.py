@@ -133,6 +133,22 @@ def test_bad_input_names_the_key_and_line(tmp_path, old, new, key, line):
         load_assessment(path)
 
 
+@pytest.mark.parametrize("old, new, message", [
+    ("storeys = 5", "storeys = 0",
+     "building.storeys: must be an integer from 1 to 200, got 0 (line 12)"),
+    ("storeys = 5", "storeys = true",
+     "building.storeys: must be an integer from 1 to 200, got True (line 12)"),
+    ('pga = ["0.2 g"]', 'pga = ["0.2 g"]\nartificial = {preset = "A-1", count = 101}',
+     "demand.artificial: count must be an integer from 1 to 100, got 101 (line 16)"),
+])
+def test_counts_are_checked_as_everywhere(tmp_path, old, new, message):
+    """The integer checks of core.validation, with the dotted key and its line."""
+    path = _write(tmp_path, GOOD.replace(old, new))
+    with pytest.raises(SceneError) as raised:
+        load_assessment(path)
+    assert str(raised.value) == f"{path}: {message}"
+
+
 def test_calibration_of_another_block(tmp_path):
     _write(tmp_path, json.dumps({"cor [-]": 0.9, "cor_se [-]": 0.01, "fit samples": 100,
                                  "block_height [m]": 0.762, "block_width [m]": 0.1524}),
