@@ -45,7 +45,7 @@ if TYPE_CHECKING:
     import pandas as pd
     from distributed import Client
 
-    from shaketable.solvers.batch import Case
+    from shaketable.models.rocking.batch import Case
 
 
 @lru_cache(maxsize=16)
@@ -261,7 +261,7 @@ def compute_chunk(spec: SweepSpec, chunk: int, threads: int | None = None) -> pd
     """
     import pandas as pd
 
-    from shaketable.solvers.batch import Case
+    from shaketable.models.rocking.batch import Case
 
     start = chunk * spec.chunk_size
     inputs = runs_table(spec, start, start + spec.chunk_size)
@@ -357,7 +357,7 @@ def _simulate(spec: SweepSpec, inputs, cases: list, threads):
     """The batch rows of ``cases`` (one per row of ``inputs``), in order."""
     import pandas as pd
 
-    from shaketable.solvers.batch import simulate_cases
+    from shaketable.models.rocking.batch import simulate_cases
 
     options = {key: value for key, value in spec.options.items() if key != "theta0"}
     theta0_text = spec.options.get("theta0")
@@ -405,7 +405,7 @@ def _simulate_ensembles(spec: SweepSpec, inputs, cases: list, threads):
         shifted,
         verdict_statistics,
     )
-    from shaketable.solvers.batch import Case
+    from shaketable.models.rocking.batch import Case
 
     ensemble = spec.ensemble
     assert ensemble is not None   # called for a sweep with [ensemble] only
@@ -441,8 +441,8 @@ def solver_identity() -> dict:
     """What a resumed sweep must share with the parts already written: the package
     version, the solvers and their default tolerances (rows computed by another engine
     must not be mixed into one table)."""
-    from shaketable.solvers.common import DEFAULT_RTOL
-    from shaketable.solvers.layout import METHODS
+    from shaketable.models.rocking.layout import METHODS
+    from shaketable.models.rocking.run import DEFAULT_RTOL
     from shaketable.version import __version__
 
     return {"shaketable": __version__, "methods": dict(METHODS),
