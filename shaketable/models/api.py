@@ -30,7 +30,7 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
              theta_dot0: float = 0.0, duration: float | None = None, method: str = "fast",
              rtol: float | None = None, subdivisions: int = 4, output_dt: float = 0.005,
              rest_tolerance: float | None = None, max_recorded_impacts: int = 100_000,
-             top_force: float = 0.0, friction: Friction | None = None):
+             top_force: float = 0.0, friction: Friction | None = None, model: str | None = None):
     """Rocking response of a rigid block, Eqs. (2-13)/(2-14) with impacts.
 
     Parameters
@@ -90,11 +90,20 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
         :class:`~shaketable.models.planar.result.PlanarResult`. ``cor`` may then also be
         ``"housner"``; ``method`` must be ``"fast"`` (its own compiled engine),
         ``top_force`` 0, ``subdivisions`` unused, no rods. Without it nothing changes.
+    model : str, optional
+        The model by name, one of :data:`shaketable.models.registry.MODELS`
+        (``"rocking"``, ``"planar"``, ``"sliding"``, ``"stack"``). ``None`` (default): the
+        model of the input (:func:`~shaketable.models.registry.model_for`): a ``Block``
+        rocks, with ``friction`` it is the planar block, a
+        :class:`~shaketable.models.stack.Stack` is the stack model's. ``"sliding"``: the
+        block only slides (:func:`~shaketable.models.sliding.engine.slide`, with
+        ``friction``; the rocking options stay at their defaults).
 
     Returns
     -------
     RockingResult
-        (:class:`~shaketable.models.planar.result.PlanarResult` when ``friction`` is given)
+        (:class:`~shaketable.models.planar.result.PlanarResult` when ``friction`` is given,
+        the chosen model's result with ``model``)
 
     Raises
     ------
@@ -104,16 +113,19 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
         ``method="reference"`` only: SciPy's integrator gave up or made no
         progress.
     """
-    if not isinstance(block, Block):   # another model's input (a stack), else refused below
-        from shaketable.models.registry import model_for
+    if model is not None or not isinstance(block, Block):   # another model, else refused below
+        from shaketable.models.registry import model_for, model_named
 
-        model = model_for(block)
-        if model is not None:
-            return model.run(block, motion, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
-                             duration=duration, method=method, rtol=rtol,
-                             subdivisions=subdivisions, output_dt=output_dt,
-                             rest_tolerance=rest_tolerance, top_force=top_force,
-                             friction=friction)
+        chosen = (model_for(block, {"friction": friction}) if model is None
+                  else model_named(model, block))
+        if chosen is not None and chosen.name in ("rocking", "planar"):  # run below
+            chosen.validate(block, {"friction": friction})
+        elif chosen is not None:
+            return chosen.run(block, motion, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
+                              duration=duration, method=method, rtol=rtol,
+                              subdivisions=subdivisions, output_dt=output_dt,
+                              rest_tolerance=rest_tolerance, top_force=top_force,
+                              friction=friction)
     if isinstance(block, AsymmetricBlock):
         if friction is not None:
             raise ValueError("block: the planar model (friction=...) is symmetric; an "

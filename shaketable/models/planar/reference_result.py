@@ -13,6 +13,7 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.models.base import ModelResult
 from shaketable.models.planar.result import VERDICTS, planar_frame, planar_summary
 from shaketable.models.planar.shenton import MODE_NAMES
 from shaketable.models.sliding.result import Friction
@@ -22,7 +23,7 @@ STATUSES = ("completed", "overturned", "painleve", "inconsistent")
 
 
 @dataclass(frozen=True)
-class PlanarReferenceResult:
+class PlanarReferenceResult(ModelResult):
     """Time history, events and scalar results of one reference run.
 
     Attributes

@@ -9,6 +9,7 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.models.base import ModelResult
 from shaketable.models.sliding.result import Friction
 
 #: Mode names by code (the codes of :mod:`shaketable.models.planar.physics`).
@@ -49,7 +50,7 @@ MODEL_LIMITS = (
 
 
 @dataclass(frozen=True)
-class PlanarResult:
+class PlanarResult(ModelResult):
     """Time history and scalar results of one run of the planar block.
 
     Coordinates are relative to the table (see :mod:`shaketable.models.planar.physics`):

@@ -10,6 +10,7 @@ import numpy as np
 from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import AsymmetricBlock
 from shaketable.core.motion import Motion
+from shaketable.models.base import ModelResult
 
 #: Why a run stopped (the engine's status codes).
 STATUSES = ("completed", "overturned", "airborne")
@@ -20,7 +21,7 @@ _T_START, _T_UNSTABLE, _T_OVERTURN, _MAX_ABS, _T_MAX, _N_IMPACTS, _STATUS, _T_RE
 
 
 @dataclass(frozen=True, eq=False)
-class AsymmetricResult:
+class AsymmetricResult(ModelResult):
     """Time history and scalar results of one run of an :class:`AsymmetricBlock`.
 
     Attributes

@@ -10,13 +10,14 @@ import numpy as np
 from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.models.base import ModelResult
 
 #: Why a run stopped.
 STATUSES = ("completed", "overturned", "airborne")
 
 
 @dataclass(frozen=True)
-class RockingResult:
+class RockingResult(ModelResult):
     """Time history and scalar results of one rocking simulation.
 
     Attributes

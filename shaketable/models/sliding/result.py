@@ -35,6 +35,7 @@ from shaketable.core.constants import INCH
 from shaketable.core.equality import fields_equal
 from shaketable.core.motion import Motion
 from shaketable.core.validation import nonnegative
+from shaketable.models.base import ModelResult
 
 #: Phases of the block on the table, the ``state`` codes of :class:`SlidingResult`.
 STATES = {0: "stuck", 1: "sliding +x", -1: "sliding -x", 2: "airborne"}
@@ -89,7 +90,7 @@ class Friction:
 
 
 @dataclass(frozen=True)
-class SlidingResult:
+class SlidingResult(ModelResult):
     """Time history and scalar results of one sliding (stick-slip) run.
 
     Attributes
