@@ -215,6 +215,23 @@ class RockingResult(ModelResult):
             "theta/alpha [-]": self.theta / self.block.alpha,
         })
 
+    def events_frame(self):
+        """The run's events as a :class:`pandas.DataFrame`, in time order: ``uplift``
+        (rocking starts), each resolved ``impact`` (with theta' just before it [rad/s]),
+        ``unstable`` (|theta| past alpha), ``overturn``, ``airborne`` and ``rest`` (the
+        last cascade summed to rest); an event that did not happen has no row."""
+        import pandas as pd
+
+        times = [self.t_start, self.t_unstable, self.t_overturn, self.t_airborne, self.t_rest]
+        kinds = ["uplift", "unstable", "overturn", "airborne", "rest"]
+        once = [(t, kind) for t, kind in zip(times, kinds) if not math.isnan(t)]
+        frame = pd.DataFrame({
+            "time [s]": np.concatenate([[t for t, _ in once], self.impact_times]),
+            "event": [kind for _, kind in once] + ["impact"] * len(self.impact_times),
+            "theta_dot before [rad/s]": np.concatenate([np.full(len(once), np.nan),
+                                                        self.impact_velocities])})
+        return frame.sort_values("time [s]", kind="stable", ignore_index=True)
+
     def summary(self) -> dict:
         """Scalar results as a JSON-ready dict (NaN written as None).
 
