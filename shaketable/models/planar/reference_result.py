@@ -199,6 +199,19 @@ class PlanarReferenceResult(ModelResult):
         acceleration [g], x, y, theta, their rates, slip, theta/alpha, mode name)."""
         return planar_frame(self)
 
+    def events_frame(self):
+        """The located events as a :class:`pandas.DataFrame`: time [s], kind and the mode
+        names on both sides (the names of :meth:`PlanarResult.events_frame
+        <shaketable.models.planar.result.PlanarResult.events_frame>`)."""
+        import pandas as pd
+
+        return pd.DataFrame({
+            "time [s]": self.event_times,
+            "event": list(self.event_kinds),
+            "mode before": [MODE_NAMES[int(k)] for k in self.event_mode_before],
+            "mode after": [MODE_NAMES[int(k)] for k in self.event_mode_after],
+        })
+
     def plot(self, fig=None, title: str | None = None):
         """The Calcomp layout with a slip panel and a mode band, the figure of
         :meth:`shaketable.models.planar.result.PlanarResult.plot`; see

@@ -115,6 +115,20 @@ class AsymmetricResult(ModelResult):
                              "theta [rad]": self.theta, "theta_dot [rad/s]": self.theta_dot,
                              "theta/alpha_side [-]": self.theta / alpha})
 
+    def events_frame(self):
+        """The run's events as a :class:`pandas.DataFrame`, in time order: ``uplift``, each
+        resolved ``impact`` (the first ones, as :attr:`impact_times`), ``unstable``,
+        ``overturn`` and ``rest``; an event that did not happen has no row."""
+        import pandas as pd
+
+        once = [(float(self.info[index]), kind) for index, kind in (
+            (_T_START, "uplift"), (_T_UNSTABLE, "unstable"), (_T_OVERTURN, "overturn"),
+            (_T_REST, "rest")) if not math.isnan(self.info[index])]
+        frame = pd.DataFrame({
+            "time [s]": np.concatenate([[t for t, _ in once], self.impact_times]),
+            "event": [kind for _, kind in once] + ["impact"] * len(self.impact_times)})
+        return frame.sort_values("time [s]", kind="stable", ignore_index=True)
+
     def summary(self) -> dict:
         """Scalar results (NaN: never happened)."""
         block = self.block

@@ -38,3 +38,18 @@ def test_an_overturn_is_the_last_event():
     events = result.events_frame()
     assert events["event"].iloc[-1] == "overturn"
     assert events["time [s]"].iloc[-1] == result.t_overturn
+
+
+def test_the_asymmetric_events_frame_of_a_symmetric_shape_has_the_same_impacts():
+    """An AsymmetricBlock with b_plus = b_minus = B/2 and the rectangle's gyration is the
+    symmetric block (AsymmetricBlock's docstring): its free-rocking impacts are the
+    closed form's too."""
+    block = st.Block(1.0, 0.3)
+    shape = st.AsymmetricBlock(h=0.5, b_plus=0.15, b_minus=0.15)
+    amplitude = 0.5 * block.alpha
+    first = theory.exact_period(block, amplitude) / 4.0
+    result = st.simulate(shape, cor=0.9, theta0=amplitude, duration=first + 0.05)
+    events = result.events_frame()
+    assert list(events.columns) == ["time [s]", "event"]
+    impacts = events[events["event"] == "impact"]
+    assert impacts["time [s]"].iloc[0] == pytest.approx(first, rel=1e-7)
