@@ -35,7 +35,9 @@ RANK = {"_moved": -1, "core": 0, "numerics": 0.5, "solvers": 1, "ground": 1, "mo
 #: conversions of :class:`Motion` (``Motion.from_stream``/``to_stream``) are thin delegates
 #: to the reader layer, which is the only one that may import ObsPy.
 DELEGATES = {("core/motion.py", "shaketable.ground.readers.waveform"),
-             # simulate() hands another model's input (a Stack) to that model
+             # simulate() hands another model's input (a Stack), or a model named by
+             # model=, to that model (the registry imports the models; a model's run is
+             # simulate's own branch for the rocking and planar models)
              ("models/api.py", "shaketable.models.registry")}
 
 #: The lazy imports allowed to close an import cycle: ``.plot()`` delegates of a result or

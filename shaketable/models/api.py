@@ -119,7 +119,8 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
         chosen = (model_for(block, {"friction": friction}) if model is None
                   else model_named(model, block))
         if chosen is not None and chosen.name in ("rocking", "planar"):  # run below
-            chosen.validate(block, {"friction": friction})
+            if model is not None:   # named: its options checked (an input is, below)
+                chosen.validate(block, {"friction": friction})
         elif chosen is not None:
             return chosen.run(block, motion, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
                               duration=duration, method=method, rtol=rtol,

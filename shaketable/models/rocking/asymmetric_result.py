@@ -11,13 +11,22 @@ from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import AsymmetricBlock
 from shaketable.core.motion import Motion
 from shaketable.models.base import ModelResult
+from shaketable.models.rocking.layout import (
+    INFO_MAX_ABS_THETA,
+    INFO_N_IMPACTS,
+    INFO_STATUS,
+    INFO_T_MAX,
+    INFO_T_OVERTURN,
+    INFO_T_REST,
+    INFO_T_START,
+    INFO_T_UNSTABLE,
+)
+from shaketable.models.rocking.result import STATUSES
 
-#: Why a run stopped (the engine's status codes).
-STATUSES = ("completed", "overturned", "airborne")
-
-# the engine's info layout (shaketable.models.rocking.layout), restated: core may not import solvers
+# the engine's info layout, under the short names this module reads it by
 _T_START, _T_UNSTABLE, _T_OVERTURN, _MAX_ABS, _T_MAX, _N_IMPACTS, _STATUS, _T_REST = (
-    0, 1, 3, 6, 7, 17, 16, 19)
+    INFO_T_START, INFO_T_UNSTABLE, INFO_T_OVERTURN, INFO_MAX_ABS_THETA, INFO_T_MAX,
+    INFO_N_IMPACTS, INFO_STATUS, INFO_T_REST)
 
 
 @dataclass(frozen=True, eq=False)
