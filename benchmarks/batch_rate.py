@@ -24,10 +24,10 @@ from collections import defaultdict
 import numpy as np
 
 from shaketable import Block
-from shaketable.core.dynamics import block_parameters
 from shaketable.ground import records
-from shaketable.solvers import batch
-from shaketable.solvers.batch import simulate_many
+from shaketable.models.rocking import batch
+from shaketable.models.rocking.batch import simulate_many
+from shaketable.models.rocking.physics import block_parameters
 
 try:  # run as a script from benchmarks/
     from engine_limit import cpu_per_call, rhs_loop

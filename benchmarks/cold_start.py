@@ -26,7 +26,7 @@ first use, loading, the run itself), which a warm first call pays too.
 ``--constructs`` prints what numba's first compile costs per statement of each kind (a
 float operation, a tuple item, a call of a helper, a branch, ...), from functions of 20 and
 120 copies of it compiled as the engine's helpers are: the figures
-:mod:`shaketable.solvers.engine` is shaped by.
+:mod:`shaketable.models.rocking.engine` is shaped by.
 
     python3 benchmarks/cold_start.py [--repeats 2] [--breakdown] [--planar] [--constructs]
 """
@@ -53,12 +53,12 @@ motion = records.load("pacoima-dam-s16e")
 imported = cpu()
 st.simulate(block, motion, cor=0.95)
 first = cpu()
-from shaketable.solvers.batch import simulate_many
+from shaketable.models.rocking.batch import simulate_many
 simulate_many([block], [motion, records.load("pacoima-dam-s74w")], [0.9, 0.95], threads=2)
 batch = cpu()
 simulate_many([block], [motion], [0.9], threads=1)
 serial = cpu()
-from shaketable.solvers import engine
+from shaketable.models.rocking import engine
 print(json.dumps({"import [s]": imported - start, "first simulate [s]": first - imported,
                   "first batch after it [s]": batch - first,
                   "batch on one thread after that [s]": serial - batch,
@@ -78,7 +78,7 @@ imported = cpu()
 import numba
 from numba.core import event
 numba_imported = cpu()
-from shaketable.solvers import api  # noqa: F401  (the solvers' modules)
+from shaketable.models import api  # noqa: F401  (the solvers' modules)
 solvers = cpu()
 
 
@@ -136,7 +136,7 @@ print(json.dumps({"import shaketable + a record [s]": imported - start,
 #: engine's first simulate and then its first batch (both counted).
 ROCKING_CALL = "st.simulate(block, motion, cor=0.95)"
 PLANAR_CALL = ("st.simulate(block, motion, cor=0.9, friction=st.Friction(0.3), duration=1.0); "
-               "from shaketable.solvers.planar_batch import simulate_many_planar; "
+               "from shaketable.models.planar.batch import simulate_many_planar; "
                "simulate_many_planar([block], motion, st.Friction(0.3), [0.9], duration=1.0)")
 
 PLANAR = r"""
@@ -152,10 +152,10 @@ motion = records.load("pacoima-dam-s16e")
 imported = cpu()
 st.simulate(block, motion, cor=0.9, friction=st.Friction(0.3), duration=1.0)
 first = cpu()
-from shaketable.solvers.planar_batch import simulate_many_planar
+from shaketable.models.planar.batch import simulate_many_planar
 simulate_many_planar([block], motion, st.Friction(0.3), [0.9], duration=1.0)
 batch = cpu()
-from shaketable.solvers import planar
+from shaketable.models.planar import engine as planar
 print(json.dumps({"import [s]": imported - start, "first planar simulate [s]": first - imported,
                   "first planar batch after it [s]": batch - first,
                   "planar engine signatures": len(planar.integrate.signatures)}))

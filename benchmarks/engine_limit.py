@@ -2,7 +2,7 @@
 16 x 4 ft block, COR 0.95.
 
 The limit is the cost of the run's right-hand-side evaluations alone: the same number of
-calls of :func:`shaketable.core.dynamics.flight_acceleration` (the run's own
+calls of :func:`shaketable.models.rocking.physics.flight_acceleration` (the run's own
 ``statistics["evaluations"]``) in a tight compiled loop, measured in the same process.
 Printed: CPU time per run [ms] of ``simulate``, of ``engine.integrate_fast`` called directly
 (no Python wrapper), of the limit loop, and the two ratios (target: simulate <= 2.0 x the
@@ -23,9 +23,9 @@ import numpy as np
 from numba import njit
 
 from shaketable import Block, simulate
-from shaketable.core.dynamics import block_parameters, flight_acceleration
 from shaketable.ground import records
-from shaketable.solvers import engine
+from shaketable.models.rocking import engine
+from shaketable.models.rocking.physics import block_parameters, flight_acceleration
 
 
 @njit(cache=True)

@@ -1,11 +1,11 @@
 """Random runs of the compiled planar model against the SciPy reference.
 
 Draws blocks, friction, cor and ramped harmonic table motions (horizontal and vertical)
-from a seeded generator, runs ``solvers.planar_run.simulate_planar`` and
-``solvers.planar_reference.simulate_reference`` on each and prints one line per run:
+from a seeded generator, runs ``models.planar.run.simulate_planar`` and
+``models.planar.reference.simulate_reference`` on each and prints one line per run:
 the modes visited (r s r s f: rest, slide, rock, slide-rock, flight), the status and
 either OK or the first difference beyond 1e-8 (events merged at one instant, as in
-``tests/solvers/test_planar_agreement.py``; peak slip, residual slip, max |theta|/alpha).
+``tests/models/planar/test_planar_agreement.py``; peak slip, residual slip, max |theta|/alpha).
 The cases of DISAGREEMENTS.md were found this way.
 
 Run: ``python benchmarks/planar_agreement_fuzz.py --seed 1 --runs 25``
@@ -21,9 +21,9 @@ import numpy as np
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.sliding_result import Friction
-from shaketable.solvers.planar_reference import simulate_reference
-from shaketable.solvers.planar_run import simulate_planar
+from shaketable.models.planar.reference import simulate_reference
+from shaketable.models.planar.run import simulate_planar
+from shaketable.models.sliding.result import Friction
 
 TOLERANCE = 1e-8
 UNSTABLE_KIND = 4   # the compiled result's |theta| = alpha event

@@ -24,10 +24,10 @@ import numpy as np
 
 from shaketable import Block
 from shaketable.core.constants import INCH
-from shaketable.core.sliding_result import Friction
 from shaketable.ground import records
-from shaketable.solvers.batch import simulate_many
-from shaketable.solvers.planar_batch import simulate_many_planar
+from shaketable.models.planar.batch import simulate_many_planar
+from shaketable.models.rocking.batch import simulate_many
+from shaketable.models.sliding.result import Friction
 
 FOOT = 12 * INCH
 

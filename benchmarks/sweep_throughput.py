@@ -10,7 +10,7 @@ small warm-up sweep that loads the compiled code.
 
 Run:  python benchmarks/sweep_throughput.py [--threads 2] [--out DIR]
 It prints the wall time, runs per second, and the same for the bare batch
-(:func:`shaketable.solvers.batch.simulate_cases` on the same runs, no I/O).
+(:func:`shaketable.models.rocking.batch.simulate_cases` on the same runs, no I/O).
 """
 
 from __future__ import annotations
@@ -51,7 +51,7 @@ def main(argv=None) -> int:
     parser.add_argument("--out", default=None, help="keep the sweep folder here")
     args = parser.parse_args(argv)
 
-    from shaketable.solvers.batch import simulate_cases
+    from shaketable.models.rocking.batch import simulate_cases
     from shaketable.sweeps import execute, spec
 
     with tempfile.TemporaryDirectory() as scratch:
@@ -78,7 +78,7 @@ def main(argv=None) -> int:
         assert outcome.complete and len(table) == 10_000
 
         # the same runs through the bare batch (no chunking, no I/O)
-        from shaketable.solvers.batch import Case
+        from shaketable.models.rocking.batch import Case
         cases = []
         for k in range(spec.n_chunks):
             inputs = execute.runs_table(spec, k * spec.chunk_size, (k + 1) * spec.chunk_size)

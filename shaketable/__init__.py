@@ -35,11 +35,11 @@ import os as _os
 
 
 def _compiled_sources_fingerprint() -> str:
-    """A short hash of the source of every module numba compiles (``core`` and ``solvers``).
+    """A short hash of the source of every module numba compiles (``core`` and ``models``).
 
     numba's cache checks only the file that defines a cached function, not the helpers it
-    inlines from other files (``solvers/steppers.py`` into ``solvers/engine.py``,
-    ``solvers/planar_modes.py`` into ``solvers/planar.py``): after an edit or an upgrade
+    inlines from other files (``models/rocking/steppers.py`` into ``models/rocking/engine.py``,
+    ``models/planar/modes.py`` into ``models/planar/engine.py``): after an edit or an upgrade
     that changes only a helper's file, the stale machine code would still run. One cache
     folder per version of these sources makes such a change compile afresh (about 1 ms
     to hash the files at import).
@@ -49,13 +49,14 @@ def _compiled_sources_fingerprint() -> str:
     digest = hashlib.sha256()
     here = _os.path.dirname(_os.path.abspath(__file__))
     try:
-        for layer in ("core", "solvers"):
-            folder = _os.path.join(here, layer)
-            for name in sorted(_os.listdir(folder)):
-                if name.endswith(".py"):
-                    digest.update(name.encode())
-                    with open(_os.path.join(folder, name), "rb") as source:
-                        digest.update(source.read())
+        for layer in ("core", "models"):
+            for folder, folders, names in sorted(_os.walk(_os.path.join(here, layer))):
+                folders.sort()
+                for name in sorted(names):
+                    if name.endswith(".py"):
+                        digest.update(_os.path.relpath(_os.path.join(folder, name), here).encode())
+                        with open(_os.path.join(folder, name), "rb") as source:
+                            digest.update(source.read())
     except OSError:   # sources not readable as files (a zipped or frozen install)
         from shaketable.version import __version__
 
@@ -81,8 +82,7 @@ def _numba_sees_the_cache_folder() -> None:
     """numba reads ``NUMBA_CACHE_DIR`` when it is imported: if it was imported before us (a
     notebook that used numba first), have it read the environment again now, before the
     engine's cached functions are defined, or it would compile into the package's
-    ``__pycache__``. numba itself is not imported here (only ``core`` and
-    ``solvers`` import it)."""
+    ``__pycache__``. numba itself is not imported here (only ``models`` imports it)."""
     import sys
 
     config = sys.modules.get("numba.core.config")
@@ -95,16 +95,16 @@ _numba_sees_the_cache_folder()
 from shaketable.core.constants import FOOT, INCH, G  # noqa: E402
 from shaketable.core.geometry import AsymmetricBlock, Block, PrestressRods  # noqa: E402
 from shaketable.core.motion import Motion  # noqa: E402
-from shaketable.core.planar_result import PlanarResult  # noqa: E402
-from shaketable.core.results import RockingResult  # noqa: E402
-from shaketable.core.sliding_result import Friction  # noqa: E402
+from shaketable.models.planar.result import PlanarResult  # noqa: E402
+from shaketable.models.rocking.result import RockingResult  # noqa: E402
+from shaketable.models.sliding.result import Friction  # noqa: E402
 from shaketable.version import __version__  # noqa: E402
 
 __all__ = ["Block", "AsymmetricBlock", "PrestressRods", "Motion", "RockingResult", "Friction",
            "PlanarResult", "simulate", "METHODS", "assess", "G", "INCH", "FOOT", "__version__"]
 
 #: The names loaded on first use, and the module each comes from.
-_LAZY = {"simulate": "shaketable.solvers.api", "METHODS": "shaketable.solvers.layout",
+_LAZY = {"simulate": "shaketable.models.api", "METHODS": "shaketable.models.rocking.layout",
          "assess": "shaketable.assessment"}
 
 

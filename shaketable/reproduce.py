@@ -16,7 +16,7 @@ from shaketable.studies.comparison import ComparisonTally
 if TYPE_CHECKING:
     import pandas as pd
 
-    from shaketable.core.results import RockingResult
+    from shaketable.models.rocking.result import RockingResult
     from shaketable.scenes.parse import Scene
 
 #: What the run lines and the test-vs-theory tables time differently (Figs. 3.4-3.9).
@@ -287,7 +287,7 @@ def _expected_cost(name: str) -> float:
 
 def _one_thread_each() -> None:
     """A worker's batches on one thread: the workers share the cores already."""
-    from shaketable.solvers.batch import set_default_threads
+    from shaketable.models.rocking.batch import set_default_threads
 
     set_default_threads(1)
 
@@ -295,8 +295,8 @@ def _one_thread_each() -> None:
 def _load_the_planar_engine() -> None:
     """Compile (cold numba cache) or load the planar engine in this worker: a short run."""
     from shaketable.core.geometry import Block
-    from shaketable.core.sliding_result import Friction
-    from shaketable.solvers.api import simulate
+    from shaketable.models.api import simulate
+    from shaketable.models.sliding.result import Friction
 
     block = Block(height=1.0, width=0.25)
     simulate(block, None, cor=0.9, theta0=0.5 * block.alpha, friction=Friction(0.5),
@@ -782,7 +782,7 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
     body = table_4_4_markdown(frame).split("\n", 1)[1]  # drop its own heading
     lines += ["*Outside the rocking model:* Table 4.4 is the report's sliding mode "
               "(Section 4.5), a block that slides without rocking; it is computed here by the "
-              "Coulomb stick-slip block (`shaketable.solvers.sliding`), not by the rocking "
+              "Coulomb stick-slip block (`shaketable.models.sliding.engine`), not by the rocking "
               "engine of the other sections. Counted in the headline: the Pacoima Dam cells "
               "against the report's inputs, the substitute columns as substitute comparisons "
               "(within ~10 %).", ""]

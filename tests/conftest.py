@@ -171,8 +171,8 @@ def pytest_runtest_logreport(report):
 _WARM_UP = r"""
 import shaketable as st
 from shaketable.ground.generators import harmonic
-from shaketable.solvers.batch import simulate_many
-from shaketable.solvers.sliding import slide
+from shaketable.models.rocking.batch import simulate_many
+from shaketable.models.sliding.engine import slide
 
 block = st.Block.parse("30x6in")
 motion = harmonic(2.0, horizontal=0.5 * st.G, duration=0.5)

@@ -29,10 +29,10 @@ def test_a_compiled_engine_is_found_in_the_cache(tmp_path, monkeypatch):
     import sys
 
     # the package's cache locator names the folder from its path inside the package
-    cache = tmp_path / f"solvers_{hashlib.sha1(b'shaketable/solvers').hexdigest()}"
+    cache = tmp_path / f"planar_{hashlib.sha1(b'shaketable/models/planar').hexdigest()}"
     cache.mkdir()
     tag = f"py{sys.version_info.major}{sys.version_info.minor}"
-    (cache / f"planar.integrate-191.{tag}.nbi").write_bytes(b"")
+    (cache / f"engine.integrate-191.{tag}.nbi").write_bytes(b"")
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     assert common.compiled_before("planar")
     assert not common.compiled_before("engine")

@@ -270,13 +270,13 @@ def _public_objects():
     from shaketable.calibration.fit import calibrate
     from shaketable.calibration.free_rocking import virtual_free_rocking_record
     from shaketable.core.ensemble import Perturbation
-    from shaketable.core.sliding_result import Friction
     from shaketable.ground import records
     from shaketable.lab.pitch import Pitch
+    from shaketable.models.sliding.engine import slide
+    from shaketable.models.sliding.result import Friction
     from shaketable.scenes.catalog import resolve_scene_path, resolve_sweep_path
     from shaketable.scenes.parse import load_scene
     from shaketable.scenes.run import run_scene
-    from shaketable.solvers.sliding import slide
     from shaketable.studies.predictability import ensemble
     from shaketable.sweeps.spec import load_spec
 
@@ -402,7 +402,7 @@ def test_a_toml_nested_thousands_deep_is_bad_input_naming_the_file(tmp_path, kin
                                   FREE + ["--out", "ok/" + "b" * 256 + "/c"],
                                   ["animate", "fig-3-4", "--out", "c" * 250 + ".gif"]])
 def test_an_output_name_too_long_is_refused_before_any_work(tmp_path, argv, monkeypatch):
-    import shaketable.solvers.api as api
+    import shaketable.models.api as api
 
     def no_work(*args, **kwargs):
         raise AssertionError("the run started before --out was checked")
@@ -432,7 +432,7 @@ def test_a_closed_pipe_ends_quietly():
 def test_the_cache_folder_holds_when_numba_is_imported_first(tmp_path):
     # A notebook that used numba before shaketable: before, numba had read an empty
     # NUMBA_CACHE_DIR, the engine compiled into the package's own __pycache__
-    # (shaketable/solvers/__pycache__/*.nbi) and the user's cache stayed empty.
+    # (the package's own __pycache__/*.nbi) and the user's cache stayed empty.
     import time
 
     started = time.time()
@@ -641,7 +641,7 @@ def test_a_full_disk_under_calibrate_names_the_file(tmp_path, monkeypatch):
 
 def test_an_edit_of_an_inlined_helper_moves_the_default_cache_folder(tmp_path):
     # numba's cache index checks only the file that defines a cached function: an edit of
-    # solvers/steppers.py (inlined into engine.py's integrators) would leave stale machine
+    # models/rocking/steppers.py (inlined into engine.py's integrators) would leave stale machine
     # code in the cache. The default folder is keyed by the compiled modules' source.
     import shutil
 
@@ -660,7 +660,7 @@ def test_an_edit_of_an_inlined_helper_moves_the_default_cache_folder(tmp_path):
     before = folder()
     assert before.startswith(str(tmp_path / "cache" / "shaketable" / "numba"))
     assert folder() == before                       # the same sources, the same folder
-    with open(copy / "shaketable" / "solvers" / "steppers.py", "a") as source:
+    with open(copy / "shaketable" / "models" / "rocking" / "steppers.py", "a") as source:
         source.write("\n# an edit\n")
     assert folder() != before
     env["NUMBA_CACHE_DIR"] = str(tmp_path / "mine")  # a folder the user chose stays as it is

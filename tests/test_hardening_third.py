@@ -183,7 +183,7 @@ def test_a_rocking_run_that_leaves_the_ground_is_an_early_stop(tmp_path):
     import numpy as np
 
     import shaketable as st
-    from shaketable.core.stops import early_stop, stop_summary
+    from shaketable.models.stops import early_stop, stop_summary
 
     t = np.arange(0.0, 2.0, 0.01)
     motion = st.Motion(t=t, horizontal=np.zeros_like(t),
@@ -629,8 +629,8 @@ def test_spectrum_refusals_name_the_options(tmp_path, extra, fragment):
 ])
 def test_simulate_many_planar_names_the_bad_parameter(call, error, fragment):
     import shaketable as st
-    from shaketable.core.sliding_result import Friction
-    from shaketable.solvers.planar_batch import simulate_many_planar
+    from shaketable.models.planar.batch import simulate_many_planar
+    from shaketable.models.sliding.result import Friction
 
     with pytest.raises(error, match=fragment):
         call(simulate_many_planar, st.Block.parse("30x6in"), st.Motion.at_rest(0.5), Friction)

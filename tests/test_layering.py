@@ -6,10 +6,10 @@ convenience: a function body may import :mod:`shaketable.plots` (a thin
 delegate, loaded only when a figure is asked for). Third-party libraries with
 one home: matplotlib only in ``plots/``, obspy only in ``ground/readers/``,
 the TOML reader only in ``core/tomlfile.py`` (read by ``scenes/`` and ``sweeps/``), numba
-only in ``core`` and ``solvers``, Panel and Bokeh only in ``classroom/page.py`` (the
-classroom's model is plain functions). No module imports another module's private (``_``)
-names. No module imports itself through others (no import cycle), except through the
-listed ``.plot()`` and ObsPy delegates. The
+only in ``models`` and ``numerics`` (and ``core/numba_cache.py``, its cache locator), Panel
+and Bokeh only in ``classroom/page.py`` (the classroom's model is plain functions). No
+module imports another module's private (``_``) names. No module imports itself through
+others (no import cycle), except through the listed ``.plot()`` and ObsPy delegates. The
 scene parser knows no study and no pipeline module. The benchmark harness does
 not drive the CLI module.
 """
@@ -23,8 +23,10 @@ from tests.helpers import REPOSITORY
 
 #: Layer of each top-level folder or module of the package: a module may import
 #: from a layer of lower rank, or from its own folder.
-RANK = {"core": 0, "solvers": 1, "ground": 1, "models": 1, "lab": 2, "calibration": 3,
-        "sweeps": 3, "validation": 3, "studies": 4, "scenes": 5, "plots": 6, "reproduce": 7,
+#: ``numerics`` (integrator code the models' engines share) sits between ``core`` and the
+#: models; ``solvers`` holds only the deprecated old paths of the moved modules (``_moved``).
+RANK = {"_moved": -1, "core": 0, "numerics": 0.5, "solvers": 1, "ground": 1, "models": 1,
+        "lab": 2, "calibration": 3, "sweeps": 3, "validation": 3, "studies": 4, "scenes": 5, "plots": 6, "reproduce": 7,
         "bench": 7, "assessment": 7, "classroom": 7, "commands": 8, "cli": 9,
         "__init__": 10, "__main__": 10, "simulate": 10, "version": 0}
 
@@ -33,23 +35,25 @@ RANK = {"core": 0, "solvers": 1, "ground": 1, "models": 1, "lab": 2, "calibratio
 #: conversions of :class:`Motion` (``Motion.from_stream``/``to_stream``) are thin delegates
 #: to the reader layer, which is the only one that may import ObsPy.
 DELEGATES = {("core/motion.py", "shaketable.ground.readers.waveform"),
-             # simulate() hands another model's input (a Stack) to that model
-             ("solvers/api.py", "shaketable.models.registry")}
+             # simulate() hands another model's input (a Stack), or a model named by
+             # model=, to that model (the registry imports the models; a model's run is
+             # simulate's own branch for the rocking and planar models)
+             ("models/api.py", "shaketable.models.registry")}
 
 #: The lazy imports allowed to close an import cycle: ``.plot()`` delegates of a result or
 #: study to the figure module that draws it (and that imports the result's own module
 #: back), and the ObsPy delegates above. Any other cycle, through module-level or
 #: function-level imports, fails :func:`test_no_module_imports_itself_through_others`.
 CYCLE_DELEGATES = DELEGATES | {
-    ("core/planar_result.py", "shaketable.plots.planar"),
-    ("core/planar_reference_result.py", "shaketable.plots.planar"),
+    ("models/planar/result.py", "shaketable.plots.planar"),
+    ("models/planar/reference_result.py", "shaketable.plots.planar"),
     ("studies/mode_map.py", "shaketable.plots.mode_map"),
     ("sweeps/fragility.py", "shaketable.plots.sweeps"),
 }
 
 TOML_HOMES = ("core/tomlfile.py", "scenes", "sweeps")
 HOMES = {"matplotlib": ("plots",), "obspy": ("ground/readers",), "tomllib": TOML_HOMES,
-         "tomli": TOML_HOMES, "numba": ("core", "solvers"),
+         "tomli": TOML_HOMES, "numba": ("core/numba_cache.py", "models", "numerics"),
          "panel": ("classroom/page.py",), "bokeh": ("classroom/page.py",), "selenium": ()}
 
 

@@ -70,7 +70,7 @@ def test_version_is_written_once():
 def test_every_name_of_the_front_door_loads_from_outside_the_repository(tmp_path):
     """``import shaketable`` and ``from shaketable import *`` from a folder outside the
     checkout: every name of ``__all__`` resolves (``simulate`` and ``METHODS`` on first use,
-    from ``solvers.api`` and ``solvers.layout``), and the import itself loads no numba.
+    from ``models.api`` and ``models.rocking.layout``), and the import itself loads no numba.
     ``shaketable.METHODS`` raised AttributeError before (it was looked up in ``api``)."""
     code = (
         "import sys\n"
@@ -85,7 +85,7 @@ def test_every_name_of_the_front_door_loads_from_outside_the_repository(tmp_path
                             cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert result.stdout.split("\n")[0] == ("True [] ['fast', 'linear', 'predictor-corrector', "
-                                           "'reference'] shaketable.solvers.api True")
+                                           "'reference'] shaketable.models.api True")
 
 
 def test_the_package_loads_from_the_folder_that_holds_a_checkout_named_shaketable(tmp_path):
@@ -102,7 +102,7 @@ def test_the_package_loads_from_the_folder_that_holds_a_checkout_named_shaketabl
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             cwd=tmp_path)
     assert result.returncode == 0, result.stderr
-    assert result.stdout.strip() == "shaketable.solvers.api"
+    assert result.stdout.strip() == "shaketable.models.api"
 
 
 def test_the_first_versions_module_path_shaketable_simulate_still_imports(tmp_path):
@@ -120,7 +120,7 @@ def test_the_first_versions_module_path_shaketable_simulate_still_imports(tmp_pa
         "import shaketable.simulate\n"
         "after = st.simulate(block, cor=0.925, theta0=0.05, duration=2)\n"
         "from shaketable.simulate import METHODS, simulate\n"
-        "from shaketable.solvers import api\n"
+        "from shaketable.models import api\n"
         "print(light, simulate is api.simulate, sorted(METHODS) == sorted(st.METHODS),\n"
         "      bool((before.theta == after.theta).all()), before.n_impacts == after.n_impacts)\n"
     )

@@ -16,7 +16,7 @@ from shaketable.calibration.record import FreeRockingRecord
 from shaketable.calibration.result import Calibration, predict
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
 
 if TYPE_CHECKING:
     from shaketable.lab.sensors import Measurement, Sensors
@@ -153,7 +153,7 @@ def virtual_free_rocking_record(block: Block, cor: float, theta0: float, *, seed
     sensors : Sensors, optional
         Default ``Sensors(seed=seed)``.
     method, rtol
-        Solver of the "test" run and its tolerance (:func:`shaketable.solvers.api`;
+        Solver of the "test" run and its tolerance (:func:`shaketable.models.api`;
         default the fast engine at its default 1e-11, tighter than the
         calibration's 1e-9; ``method="reference"`` for SciPy's DOP853).
 

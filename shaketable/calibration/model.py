@@ -19,7 +19,7 @@ from shaketable.calibration.record import FreeRockingRecord
 from shaketable.core.geometry import Block
 from shaketable.core.motion import MIN_SAMPLE_INTERVAL, Motion
 from shaketable.lab.digitizer import Digitizer
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
 
 #: Order of the parameters in vectors and covariance matrices (a fifth, ``filter_u`` =
 #: tau^2 [s^2] of the fitted filter, follows with ``anti_alias="fit"``; ``t_release`` is

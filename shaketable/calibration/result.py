@@ -21,8 +21,8 @@ from shaketable.core.equality import fields_equal
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
+from shaketable.models.rocking.result import RockingResult
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -422,7 +422,7 @@ def predict(calibration: Calibration, motion: Motion | None = None, *,
     members, seed : int
         Size and seed of the ensemble (when one is run).
     **kwargs
-        Passed to :func:`shaketable.solvers.api.simulate` (an ensemble takes
+        Passed to :func:`shaketable.models.api.simulate` (an ensemble takes
         ``method`` and ``threads``).
 
     Returns

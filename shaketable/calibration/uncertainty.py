@@ -7,7 +7,7 @@ scatter sigma of the random-effects model (:mod:`~shaketable.calibration.scatter
 a file without it falls back to the least-squares COR and its standard error, sigma 0).
 
 :func:`calibrated_ensemble` runs the block under a motion once per member with a
-COR drawn from that distribution, in parallel (:func:`shaketable.solvers.batch.simulate_cases`),
+COR drawn from that distribution, in parallel (:func:`shaketable.models.rocking.batch.simulate_cases`),
 and reports P(overturn) with Wilson's interval and the median and 5-95 % range of
 max |theta|/alpha (:func:`shaketable.core.ensemble.verdict_statistics`, the
 statistics of every ensemble of the package). Member k's COR is
@@ -36,7 +36,7 @@ import numpy as np
 from shaketable.core.ensemble import verdict_statistics
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.solvers.batch import Case, simulate_cases
+from shaketable.models.rocking.batch import Case, simulate_cases
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -291,7 +291,7 @@ def calibrated_ensemble(block: Block, motion: Motion, cor: CalibratedCor, *,
         Draw the impact-to-impact scatter too (default) or the mean's
         uncertainty alone.
     duration, method, threads
-        As in :func:`shaketable.solvers.batch.simulate_cases`.
+        As in :func:`shaketable.models.rocking.batch.simulate_cases`.
     """
     if not isinstance(block, Block):
         raise TypeError(f"calibrated_ensemble: block must be a shaketable Block, got "

@@ -4,7 +4,7 @@ The page's inputs are :class:`Settings`, the text of its fields as a teacher typ
 (``"30 in"``, ``"0.5 g"``, ``"2 Hz"``). :func:`scene_data` checks each field and turns
 them into a scene (the dict a scene file holds, units written out), :func:`compute` runs
 that scene with the scene pipeline (:func:`shaketable.scenes.run.run_scene`, which calls
-:func:`shaketable.solvers.api.simulate`) and returns a :class:`Picture`: the block
+:func:`shaketable.models.api.simulate`) and returns a :class:`Picture`: the block
 outlines frame by frame, the table's displacement, the theta/alpha traces, the ground
 acceleration, the mode band, the verdicts and the key numbers. :func:`scene_toml` writes
 the scene as a file that ``shaketable run`` reproduces: what the page shows is a run of the
@@ -382,8 +382,8 @@ class Picture:
     data : dict
         The scene run (:func:`scene_data`).
     runs : tuple
-        The results, one per block: :class:`~shaketable.core.results.RockingResult`, or
-        :class:`~shaketable.core.planar_result.PlanarResult` with friction.
+        The results, one per block: :class:`~shaketable.models.rocking.result.RockingResult`, or
+        :class:`~shaketable.models.planar.result.PlanarResult` with friction.
     labels : tuple of str
         What tells the blocks apart (``"COR 0.93"``, ``"12 x 2.4 ft"``).
     unit : str
@@ -480,7 +480,7 @@ def _stretches(t: np.ndarray, names: np.ndarray, result) -> list:
 
 
 def _planar_bands(result) -> list:
-    from shaketable.core.shenton import MODE_NAMES
+    from shaketable.models.planar.shenton import MODE_NAMES
     from shaketable.plots.planar import mode_spans
 
     spans = [(start, stop, MODE_NAMES[code]) for start, stop, code in mode_spans(result)]

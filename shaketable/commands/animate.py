@@ -98,8 +98,8 @@ def _animate_options(args, size: tuple) -> int:
     from shaketable.commands.options import block_option, motion_from_options
     from shaketable.commands.simulate import resolve_angle
     from shaketable.core.validation import in_range
+    from shaketable.models.api import simulate
     from shaketable.plots.animation import animate
-    from shaketable.solvers.api import simulate
 
     if args.block is None or args.cor is None:
         raise ValueError("give a scene, or --block and --cor (with --harmonic, --pulse or "

@@ -21,10 +21,10 @@ def _seconds(value: float) -> str:
 
 
 def planar_rest_time(result) -> float:
-    """When a planar block (:class:`~shaketable.core.planar_result.PlanarResult`) came to
+    """When a planar block (:class:`~shaketable.models.planar.result.PlanarResult`) came to
     rest for good [s]: the start of the rest it ends the run in; NaN when it overturned
     or is still moving at the end, 0 when it never moved."""
-    from shaketable.core.planar_result import MODES
+    from shaketable.models.planar.result import MODES
 
     rest = MODES.index("rest")
     if result.overturned or int(result.mode[-1]) != rest:
@@ -41,7 +41,7 @@ def planar_rest_time(result) -> float:
 
 
 def rocking_rest_time(result) -> float:
-    """When a rocking block (:class:`~shaketable.core.results.RockingResult`) came to rest
+    """When a rocking block (:class:`~shaketable.models.rocking.result.RockingResult`) came to rest
     for good [s]: NaN when it overturned, left the ground or still rocks at the end, 0
     when it never rocked."""
     if result.status != "completed":

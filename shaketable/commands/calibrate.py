@@ -134,8 +134,8 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
 
         print(f"shaketable simulate: warning: {mismatch}", file=sys.stderr)
     if motion is None:
-        from shaketable.core.stops import stop_summary
-        from shaketable.solvers.api import simulate
+        from shaketable.models.api import simulate
+        from shaketable.models.stops import stop_summary
 
         run = simulate(block, None, cor=cor.mean, theta0=theta0, duration=args.duration,
                           method=args.method, subdivisions=args.subdivisions)

@@ -17,7 +17,7 @@ def report_early_stops(results: Iterable, command: str, label: str = "") -> int:
     Parameters
     ----------
     results : iterable of results
-        Runs of any model (:func:`shaketable.core.stops.early_stop` decides).
+        Runs of any model (:func:`shaketable.models.stops.early_stop` decides).
     command : str
         The subcommand, for the message prefix.
     label : str
@@ -28,7 +28,7 @@ def report_early_stops(results: Iterable, command: str, label: str = "") -> int:
     int
         1 when any run stopped early (the command's exit status), else 0.
     """
-    from shaketable.core.stops import early_stop
+    from shaketable.models.stops import early_stop
 
     reasons = [reason for reason in (early_stop(result) for result in results) if reason]
     for reason in reasons:
@@ -45,7 +45,7 @@ def report_stopped_rows(table, name: str, command: str = "sweep") -> int:
     which stopped); the sweep's table is complete, but a fragility or risk read from
     it counts such runs as not overturned, which the user must know.
     """
-    from shaketable.core.stops import FINISHED_STATUSES
+    from shaketable.models.stops import FINISHED_STATUSES
 
     if "status" not in table:
         return 0

@@ -101,9 +101,9 @@ def scaled_record(motion, args):
 
 #: The compiled functions whose numba cache files tell that the engine was compiled
 #: before, and what their first compilation costs on the 2-core CI machine (measured, README).
-_COMPILED = {"engine": ("engine.integrate_fast-", "the engine", "~3 s"),
-             "batch": ("batch._run_cases_fast-", "the batch engine", "~1 s"),
-             "planar": ("planar.integrate-", "the planar engine", "~13 s")}
+_COMPILED = {"engine": ("engine.integrate_fast-", "the engine", "~3 s", "rocking"),
+             "batch": ("batch._run_cases_fast-", "the batch engine", "~1 s", "rocking"),
+             "planar": ("engine.integrate-", "the planar engine", "~13 s", "planar")}
 
 
 def compiled_before(which: str = "engine") -> bool:
@@ -111,11 +111,11 @@ def compiled_before(which: str = "engine") -> bool:
 
     Looks for the cache index files numba writes (``NUMBA_CACHE_DIR``, set by
     ``import shaketable`` to the user's cache folder unless already set) for the
-    installed solvers folder and this Python version, without importing numba.
+    installed model's folder and this Python version, without importing numba.
     """
-    import shaketable.solvers as solvers
+    import shaketable.models as models
 
-    folder = os.path.dirname(os.path.abspath(solvers.__file__))
+    folder = os.path.join(os.path.dirname(os.path.abspath(models.__file__)), _COMPILED[which][3])
     cache = Path(os.environ.get("NUMBA_CACHE_DIR", "")) / cache_subpath(folder)
     tag = f"py{sys.version_info.major}{sys.version_info.minor}"
     prefix = _COMPILED[which][0]

@@ -21,7 +21,7 @@ from shaketable.commands.options import (
     motion_from_options,
 )
 from shaketable.core.geometry import Block
-from shaketable.solvers.layout import METHODS
+from shaketable.models.rocking.layout import METHODS
 
 
 def resolve_angle(text: str, block: Block) -> float:
@@ -63,9 +63,9 @@ def _on_floor(args, motion):
 def _simulate(args) -> int:
     from shaketable.commands.checks import check_simulate_options, report_early_stops
     from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
-    from shaketable.core.stops import stop_summary
+    from shaketable.models.api import simulate
+    from shaketable.models.stops import stop_summary
     from shaketable.plots import base as plots
-    from shaketable.solvers.api import simulate
 
     if args.stack is not None:   # a column of blocks: the stack model (commands/stack.py)
         from shaketable.commands.stack import simulate_stack_command
@@ -143,10 +143,10 @@ def _simulate(args) -> int:
 
 
 def _friction(text: str | None):
-    """``--friction MU_S[,MU_D]``: a :class:`~shaketable.core.sliding_result.Friction` or None."""
+    """``--friction MU_S[,MU_D]``: a :class:`~shaketable.models.sliding.result.Friction` or None."""
     if text is None:
         return None
-    from shaketable.core.sliding_result import Friction
+    from shaketable.models.sliding.result import Friction
 
     parts = text.split(",")
     try:

@@ -11,9 +11,9 @@ from shaketable.core.constants import INCH
 def _slide(args) -> int:
     from shaketable.commands.checks import check_slide_options
     from shaketable.core.files import prepare_output_folder, write_csv, write_text
-    from shaketable.core.sliding_result import Friction
+    from shaketable.models.sliding.engine import peak_slips, slide
+    from shaketable.models.sliding.result import Friction
     from shaketable.plots.base import save
-    from shaketable.solvers.sliding import peak_slips, slide
 
     check_slide_options(args)   # options the chosen mode would ignore: refused
     from shaketable.commands.options import block_option

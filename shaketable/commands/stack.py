@@ -32,7 +32,7 @@ def stack_motion(args, on_floor):
     a record cut to ``--duration`` when one is given, on ``--floor`` of ``--building``."""
     from shaketable.commands.common import load_motion, scaled_record
     from shaketable.commands.options import motion_from_options
-    from shaketable.solvers.common import extended
+    from shaketable.models.rocking.run import extended
 
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     motion, note = scaled_record(motion, args)
@@ -50,8 +50,8 @@ def simulate_stack_command(args, on_floor) -> int:
     ``on_floor(args, motion)`` is simulate's reading of ``--floor`` and ``--building``."""
     from shaketable.commands.checks import refuse_ignored_options, report_early_stops
     from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
-    from shaketable.core.stops import stop_summary
     from shaketable.core.validation import in_range
+    from shaketable.models.stops import stop_summary
     from shaketable.plots import base as plots
     from shaketable.scenes.stack import (
         describe_law,

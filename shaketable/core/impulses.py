@@ -6,8 +6,8 @@ impulsive limit; the double impulse of Kojima & Takewaki 2015 and Nabeshima,
 Taniguchi, Kojima & Takewaki 2016). A :class:`Motion` cannot hold it (its
 samples are at least 1 ns apart and linear between), so an
 :class:`ImpulsiveMotion` pairs a smooth motion with the steps, and
-:func:`shaketable.solvers.api.simulate` applies each one exactly
-(:mod:`shaketable.solvers.impulses`).
+:func:`shaketable.models.api.simulate` applies each one exactly
+(:mod:`shaketable.models.rocking.impulses`).
 
 The jump of theta' (angular-momentum balance about the pivot)
 -------------------------------------------------------------

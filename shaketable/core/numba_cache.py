@@ -1,17 +1,17 @@
 """Where numba caches the package's compiled functions: one folder whatever the install.
 
 numba names the cache folder of a module's compiled functions after the module folder's
-*absolute path* (``solvers_<sha1 of /.../shaketable/solvers>``, numba's
+*absolute path* (``rocking_<sha1 of /.../shaketable/models/rocking>``, numba's
 ``_CacheLocator.get_suitable_cache_subpath``), so the same sources installed twice (a
 wheel in ``site-packages``, then an editable install of the checkout) compile twice,
 although numba's own check of a cached function (the SHA-256 of its file, the bytecode,
 the signature, numba's version and the CPU) would accept the first compile. The package's
 functions are located here by their folder *inside the package* instead
-(``solvers_<sha1 of "shaketable/solvers">``): the key is then the sources alone (numba's
+(``rocking_<sha1 of "shaketable/models/rocking">``): the key is then the sources alone (numba's
 check above, and ``NUMBA_CACHE_DIR``'s default folder keyed by the hash of ``core/`` and
-``solvers/``, ``shaketable/__init__.py``). Functions outside the package keep numba's
+``models/``, ``shaketable/__init__.py``). Functions outside the package keep numba's
 locators. The module imports numba only when :func:`register` is called (by
-``core/dynamics.py``, which every module that compiles imports before its first
+``models/rocking/physics.py``, which every module that compiles imports before its first
 decorator).
 """
 
@@ -30,13 +30,13 @@ def cache_subpath(module_folder: str) -> str:
     Parameters
     ----------
     module_folder : str
-        A folder of the package (e.g. ``.../shaketable/solvers``), absolute or relative.
+        A folder of the package (e.g. ``.../shaketable/models/rocking``), absolute or relative.
 
     Returns
     -------
     str
         ``<folder name>_<sha1 of its path relative to the package's parent, with "/">``,
-        e.g. ``solvers_<sha1 of "shaketable/solvers">``: the same for every install.
+        e.g. ``rocking_<sha1 of "shaketable/models/rocking">``: the same for every install.
     """
     folder = os.path.abspath(module_folder)
     relative = os.path.relpath(folder, PACKAGE_PARENT).replace(os.sep, "/")

@@ -276,7 +276,7 @@ def velocity_steps(times, steps, *, duration: float, dt: float = 0.01) -> Impuls
     Returns
     -------
     ImpulsiveMotion
-        Applied exactly by :func:`shaketable.solvers.api.simulate`
+        Applied exactly by :func:`shaketable.models.api.simulate`
         (:mod:`shaketable.core.impulses` derives the jump of theta').
     """
     rest = Motion.at_rest(_positive("duration", duration), _positive("dt", dt))

@@ -10,7 +10,7 @@ digitized at 50 samples/s (Sections 3.5, 3.6; the table system itself could
 sample at 100 samples/s, Section 3.4), and the angle of the block was obtained
 from the top displacement divided by the height.
 
-This module turns a simulation (:class:`~shaketable.core.results.RockingResult`)
+This module turns a simulation (:class:`~shaketable.models.rocking.result.RockingResult`)
 and the motion the block felt into such a :class:`Measurement`:
 
 1. the true signals on a fine uniform grid (``Digitizer.oversample`` points per
@@ -65,9 +65,9 @@ from scipy.interpolate import CubicHermiteSpline
 from shaketable.core.constants import INCH, G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
 from shaketable.core.validation import nonnegative, positive
 from shaketable.lab.digitizer import Digitizer, digitize
+from shaketable.models.rocking.result import RockingResult
 
 #: One ounce-force [N] (avoirdupois ounce x standard gravity).
 OUNCE_FORCE = 0.028349523125 * G

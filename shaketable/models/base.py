@@ -13,11 +13,10 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping
 from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
-import pandas as pd
-
 from shaketable.core.equality import fields_equal
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:   # pandas is loaded by the views that build a frame, not by a run
+    import pandas as pd
     from matplotlib.figure import Figure
 
 
@@ -68,9 +67,9 @@ class ModelResult:
         """The scalar results, one entry each."""
         raise NotImplementedError
 
-    def plot(self, **options: Any) -> "Figure":
+    def plot(self, *args: Any, **options: Any) -> "Figure":
         """The result's figure (see the model's plotting function for the options)."""
-        return self._figure(**options)
+        return self._figure(*args, **options)
 
-    def _figure(self, **options: Any) -> "Figure":
+    def _figure(self, *args: Any, **options: Any) -> "Figure":
         raise NotImplementedError

@@ -47,8 +47,8 @@ from numpy.typing import ArrayLike
 from shaketable.core.constants import LENGTH_UNITS, G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
 from shaketable.core.validation import positive
+from shaketable.models.rocking.result import RockingResult
 
 __all__ = ["AnimationFile", "animate", "block_outline", "ffmpeg_available", "frame_times",
            "snapshot", "table_displacement"]

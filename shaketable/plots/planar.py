@@ -24,9 +24,9 @@ MODE_COLOURS = {1: ("slide", VERDICT_COLOURS["slid"]), 2: ("rock", VERDICT_COLOU
 
 def mode_changes(result):
     """(event times [s], mode codes after them, whether every event is recorded) of either
-    planar result: :class:`~shaketable.core.planar_result.PlanarResult` (its ``events``,
+    planar result: :class:`~shaketable.models.planar.result.PlanarResult` (its ``events``,
     the first ``max_recorded_events`` of ``n_events``) or
-    :class:`~shaketable.core.planar_reference_result.PlanarReferenceResult` (every event)."""
+    :class:`~shaketable.models.planar.reference_result.PlanarReferenceResult` (every event)."""
     if hasattr(result, "events"):
         events = result.events
         return events[:, 0], events[:, 3], result.n_events <= events.shape[0]
@@ -67,8 +67,8 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     velocity instead of the two flat rotation panels, and a caption line saying so.
 
     The traces are the columns of ``result.to_frame()``, which the compiled engine's
-    :class:`~shaketable.core.planar_result.PlanarResult` and the SciPy reference's
-    :class:`~shaketable.core.planar_reference_result.PlanarReferenceResult` share, so one
+    :class:`~shaketable.models.planar.result.PlanarResult` and the SciPy reference's
+    :class:`~shaketable.models.planar.reference_result.PlanarReferenceResult` share, so one
     figure serves both (the reference computes no corner excursion: its caption leaves
     it out).
 

@@ -1,7 +1,7 @@
 """Figures of sweep tables: overturning maps, rocking spectra, fragility curves.
 
 Every function takes the tidy table of :func:`shaketable.sweeps.execute.run_sweep` (or of
-:func:`shaketable.solvers.batch.simulate_many`), an optional matplotlib ``ax`` and returns
+:func:`shaketable.models.rocking.batch.simulate_many`), an optional matplotlib ``ax`` and returns
 the axes. matplotlib is imported inside the plotting functions only;
 :func:`fragility_fit` is plain numerics.
 

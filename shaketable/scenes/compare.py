@@ -10,8 +10,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaketable.core.results import RockingResult
 from shaketable.core.validation import unknown_keys
+from shaketable.models.rocking.result import RockingResult
 from shaketable.scenes.parse import Scene, SceneError
 from shaketable.studies.comparison import (
     TEST_THEORY_PEAK_RATIO,

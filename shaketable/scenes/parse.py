@@ -132,7 +132,7 @@ class Scene:
         Run length [s].
     method : str
     options : dict
-        Further keyword arguments for :func:`shaketable.solvers.api`.
+        Further keyword arguments for :func:`shaketable.models.api`.
     report : dict
         The report's values to compare with.
     outputs : dict

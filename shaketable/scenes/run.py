@@ -15,17 +15,17 @@ from typing import TYPE_CHECKING, Any
 from shaketable.core.equality import fields_equal
 from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
 from shaketable.core.units import parse
 from shaketable.ground import generators
 from shaketable.lab.stage import TableRun, run_table
+from shaketable.models.api import simulate
+from shaketable.models.rocking.result import RockingResult
 from shaketable.scenes.compare import (
     compare_test_with_theory,
     compare_with_report,
     is_earthquake,
 )
 from shaketable.scenes.parse import Scene, SceneError
-from shaketable.solvers.api import simulate
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -162,7 +162,7 @@ class SceneResult:
 
     def summary(self) -> dict:
         """JSON-ready scalars: scene identification, each run, each comparison."""
-        from shaketable.core.stops import early_stop, stop_summary
+        from shaketable.models.stops import early_stop, stop_summary
 
         stopped = [run for run in (*self.runs, *self.planar) if early_stop(run) is not None]
         summary: dict[str, Any] = {
@@ -334,7 +334,7 @@ def _run_planar(scene: Scene, felt: Motion | None) -> tuple:
     block (rest, slide, rock, slide-rock, flight), one run per COR."""
     if scene.static_friction is None or felt is None:
         return ()
-    from shaketable.core.sliding_result import Friction
+    from shaketable.models.sliding.result import Friction
 
     if scene.block.rods is not None:
         raise SceneError(f"{scene.path}: block.static_friction runs the planar block, which "
@@ -356,9 +356,9 @@ def _run_sliding(scene: Scene, felt: Motion | None) -> tuple:
     """``[sliding]``: the same block on the same table motion, sliding, per (mu_s, mu_d)."""
     if not scene.sliding or felt is None:
         return ()
-    from shaketable.core.sliding_result import Friction
-    from shaketable.solvers.common import extended
-    from shaketable.solvers.sliding import slide
+    from shaketable.models.rocking.run import extended
+    from shaketable.models.sliding.engine import slide
+    from shaketable.models.sliding.result import Friction
 
     motion = extended(felt, scene.duration)
     try:

@@ -392,7 +392,7 @@ class StackSceneResult:
 
     def summary(self) -> dict:
         from shaketable.core.files import json_ready_dict
-        from shaketable.core.stops import stop_summary
+        from shaketable.models.stops import stop_summary
 
         summary = {"scene": self.scene.name, "source": self.scene.source,
                    "description": self.scene.description,
@@ -430,8 +430,8 @@ class StackSceneResult:
 def stack_motion(scene: StackScene):
     """The table motion of a stack scene [m/s^2] (None: free rocking), cut to
     ``stack.duration`` when a motion is given with one."""
+    from shaketable.models.rocking.run import extended
     from shaketable.scenes.run import build_motion
-    from shaketable.solvers.common import extended
 
     motion = build_motion(scene.base)
     if motion is not None and not isinstance(motion, Motion):   # refused when parsed

@@ -22,7 +22,6 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
 from shaketable.core.units import parse
 from shaketable.core.validation import check_keys, flag
 from shaketable.lab.digitizer import Digitizer
@@ -34,7 +33,8 @@ from shaketable.lab.sensors import (
     Sensors,
     measure,
 )
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
+from shaketable.models.rocking.result import RockingResult
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -211,7 +211,7 @@ def run_virtual_test(block: Block, felt: Motion | None, *, cor: float, sensors: 
     commanded : Motion, optional
         Drives the theory when no accelerometers are fitted.
     theta0, theta_dot0, duration, method, options
-        As for :func:`shaketable.solvers.api.simulate` (the test run; the theory run
+        As for :func:`shaketable.models.api.simulate` (the test run; the theory run
         starts from the same state).
     """
     theory = TheorySetup() if theory is None else theory

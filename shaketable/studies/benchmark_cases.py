@@ -32,8 +32,8 @@ import numpy as np
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block, PrestressRods
 from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
+from shaketable.models.rocking.result import RockingResult
 
 #: Relative accuracy the fast engine must reach against ``reference`` (times, max |theta|).
 ACCEPT_RELATIVE = 1e-8
@@ -70,7 +70,7 @@ QUICK_REFERENCE_RTOLS = (1e-8, 1e-12)
 #: The truth: ``reference`` at the tightest tolerance SciPy accepts (100 eps).
 TRUTH_RTOL = 2.5e-14
 
-#: Default tolerance of ``method="reference"`` (:func:`shaketable.solvers.api`) [-].
+#: Default tolerance of ``method="reference"`` (:func:`shaketable.models.api`) [-].
 REFERENCE_DEFAULT_RTOL = 1e-12
 
 

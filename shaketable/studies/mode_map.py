@@ -2,7 +2,7 @@
 
 Section 2.1 of [1]_ decides between the two modes by friction alone: a block rocks if
 mu_s > B/H, slides otherwise; Section 4.5 and Conclusion 6 advise letting shielding
-blocks slide. The planar model (:mod:`shaketable.core.planar_dynamics`, run by
+blocks slide. The planar model (:mod:`shaketable.models.planar.physics`, run by
 ``simulate(..., friction=...)``) has all five modes, so the rule can be checked:
 
 * :func:`mode_map` -- one record at a few PGA levels over a grid of (B/H, mu): the mode
@@ -38,11 +38,11 @@ import pandas as pd
 from shaketable.core.constants import FOOT, INCH, G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.sliding_result import Friction
 from shaketable.ground import records
 from shaketable.ground.signals import scale_to_pga
-from shaketable.solvers.api import simulate
-from shaketable.solvers.sliding import slide
+from shaketable.models.api import simulate
+from shaketable.models.sliding.engine import slide
+from shaketable.models.sliding.result import Friction
 
 #: Verdicts of the planar model, from calm to violent (the map's colour order).
 VERDICT_ORDER = ("stayed", "slid", "rocked", "slide-rocked", "flew", "overturned")
@@ -290,7 +290,7 @@ def table_4_4_coupled(blocks_ft: Sequence[tuple[float, float]] = ((15.0, 5.0), (
                       cor: float = 0.95) -> pd.DataFrame:
     """Table 4.4's peak slips [in] with the planar model beside the pure-sliding model.
 
-    The pure-sliding model (:func:`shaketable.solvers.sliding.slide`, Table 4.4's model)
+    The pure-sliding model (:func:`shaketable.models.sliding.engine.slide`, Table 4.4's model)
     cannot rock, so it is the same for every block; the planar block slides exactly the
     same while mu < B/H and rocks or slide-rocks above.
 

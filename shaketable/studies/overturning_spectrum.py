@@ -9,7 +9,7 @@ a/(g tan alpha) up to a ceiling, for a list of omega/p.
 
 How a verdict is decided
 ------------------------
-The engine (:func:`shaketable.solvers.batch.simulate_cases`, the pulse
+The engine (:func:`shaketable.models.rocking.batch.simulate_cases`, the pulse
 sampled by :func:`shaketable.ground.pulses.pulse_motion`) runs **only while
 the pulse acts**. After it the table is at rest, the block rocks freely and
 its energy per unit I0, E = theta'^2/2 + p^2 (cos(alpha - |theta|) - cos alpha),
@@ -87,7 +87,7 @@ from shaketable.core.constants import G
 from shaketable.core.fate import free_rocking_fate
 from shaketable.core.geometry import Block
 from shaketable.ground.pulses import Pulse, pulse_motion
-from shaketable.solvers.batch import Case, simulate_cases
+from shaketable.models.rocking.batch import Case, simulate_cases
 
 __all__ = ["COLUMNS", "METHODS", "WINDOW_COLUMNS", "OverturningSpectrum", "decide_after_pulse", "housner_cor",
            "overturn_verdicts", "overturning_spectrum", "threshold"]

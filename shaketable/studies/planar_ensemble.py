@@ -5,7 +5,7 @@ perturbs the input amplitude, the COR, the block's height and width and the reco
 start by a small relative spread and runs the copies in the rocking batch engine.
 :func:`planar_ensemble` draws the same perturbations (:func:`shaketable.core.ensemble.
 perturbed_members`, member 0 the nominal run) and runs each copy in the planar model
-(:func:`shaketable.solvers.api.simulate` with ``friction=``), so that a block that may
+(:func:`shaketable.models.api.simulate` with ``friction=``), so that a block that may
 slide gets P(overturn) with its Wilson interval and, over the members that stay up, the
 spread of its peak slip and corner excursion (the clearance it needs).
 """
@@ -28,7 +28,7 @@ from shaketable.core.ensemble import (
 )
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.sliding_result import Friction
+from shaketable.models.sliding.result import Friction
 
 
 @dataclass(frozen=True)
@@ -113,7 +113,7 @@ def planar_ensemble(block: Block, motion: Motion, cor: float, friction: Friction
     -------
     PlanarEnsemble
     """
-    from shaketable.solvers.api import simulate
+    from shaketable.models.api import simulate
 
     if not isinstance(friction, Friction):
         raise ValueError(f"friction must be a Friction, got {type(friction).__name__}")

@@ -17,7 +17,7 @@ Two kinds of rows, both drawn by ``shaketable bench`` beside the rocking methods
   the same setting is never its own truth). Errors (:func:`compare_planar`): max |theta|,
   the times of the mode changes and impacts, the peak slip.
 * :func:`moreau_jean_rows` -- the independent Moreau-Jean time stepping
-  (:mod:`shaketable.solvers.planar_moreau`, method ``"moreau-jean"``) at several steps h
+  (:mod:`shaketable.models.planar.moreau`, method ``"moreau-jean"``) at several steps h
   on the first seconds (:data:`MOREAU_WINDOW`) of the coupled cases with the plastic Newton
   law it converges to (``cor="housner"``), against the planar reference at
   :data:`PLANAR_TRUTH_RTOL` on the same window and law: the errors of max |theta| and of
@@ -39,8 +39,8 @@ import numpy as np
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.planar_result import EVENT_KINDS
-from shaketable.core.sliding_result import Friction
+from shaketable.models.planar.result import EVENT_KINDS
+from shaketable.models.sliding.result import Friction
 from shaketable.studies.benchmark_cases import Case, compare
 
 if TYPE_CHECKING:
@@ -55,7 +55,7 @@ PLANAR_METHODS = ("planar", "planar-reference")
 #: Tolerances of the compiled planar engine (``simulate(..., friction=..., rtol=...)``).
 PLANAR_RTOLS = (1e-6, 1e-8, 1e-10, 1e-11, 1e-12, 1e-13)
 
-#: Tolerances of the SciPy planar reference (``solvers.planar_reference``).
+#: Tolerances of the SciPy planar reference (``models.planar.reference``).
 PLANAR_REFERENCE_RTOLS = (1e-6, 1e-8, 1e-10, 1e-11, 1e-12)
 
 #: Fewer settings for ``--quick``.
@@ -126,16 +126,16 @@ def run_planar(method: str, block: Block, motion: Motion | None, *, cor, frictio
                rtol: float | None = None):
     """One run of the planar block by ``method`` (one of :data:`PLANAR_METHODS`).
 
-    Returns a :class:`~shaketable.core.planar_result.PlanarResult` (``"planar"``) or a
-    :class:`~shaketable.core.planar_reference_result.PlanarReferenceResult`.
+    Returns a :class:`~shaketable.models.planar.result.PlanarResult` (``"planar"``) or a
+    :class:`~shaketable.models.planar.reference_result.PlanarReferenceResult`.
     """
     if method == "planar":
-        from shaketable.solvers.planar_run import simulate_planar
+        from shaketable.models.planar.run import simulate_planar
 
         return simulate_planar(block, motion, cor=cor, friction=friction, theta0=theta0,
                                duration=duration, rtol=rtol)
     if method == "planar-reference":
-        from shaketable.solvers.planar_reference import simulate_reference
+        from shaketable.models.planar.reference import simulate_reference
 
         options = {} if rtol is None else {"rtol": float(rtol)}
         return simulate_reference(block, motion, cor=cor, friction=friction, theta0=theta0,
@@ -186,7 +186,7 @@ def planar_case_names() -> tuple[str, ...]:
 
 # --------------------------------------------------------------------------- comparisons
 def _merged(times, before, after) -> tuple[np.ndarray, np.ndarray]:
-    """Mode changes at one instant merged into one, as ``tests/solvers/test_planar_agreement``.
+    """Mode changes at one instant merged into one, as ``tests/models/planar/test_planar_agreement``.
 
     The two implementations write some instants differently with the same physics (a
     summed cascade is ``impact rock->rock`` + ``cascade rock->rest`` in the reference and
@@ -491,7 +491,7 @@ def moreau_jean_rows(case: PlanarCase, steps: Sequence[float] = MOREAU_STEPS,
         the number of steps, time [s] one run's wall time, truth
         ``"planar-reference cor=housner"``).
     """
-    from shaketable.solvers.planar_moreau import simulate_moreau_jean
+    from shaketable.models.planar.moreau import simulate_moreau_jean
 
     if case.motion is None:
         raise ValueError(f"case {case.name!r}: the Moreau-Jean rows need a motion")

@@ -17,14 +17,14 @@ with u1 ... u5 independent and uniform in [-1, 1] (a seeded generator); member 0
 is the unperturbed run. The spreads are relative (default 1e-9, to expose
 chaos; physical spreads such as ``cor=0.01`` for COR +/- 1 % are given the same
 way). All members run in one call of the batch engine
-(:func:`shaketable.solvers.batch.simulate_cases`).
+(:func:`shaketable.models.rocking.batch.simulate_cases`).
 
 It reports P(overturn) with Wilson's 95 % score interval, the median and the
 5-95 % range of max |theta|/alpha, and a **predictability horizon**: the
 time after which copies differing by the tiny perturbation ``horizon_spread``
 (1e-9 of every input) differ by more than ``threshold`` (1e-3 alpha) in theta,
 the median over ``horizon_pairs`` pairs (the nominal run against perturbed
-copies, full time histories from :func:`shaketable.solvers.api.simulate`).
+copies, full time histories from :func:`shaketable.models.api.simulate`).
 
 References
 ----------
@@ -60,7 +60,7 @@ from shaketable.core.ensemble import (  # the solver-free part, shared with the 
 from shaketable.core.equality import fields_equal
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.solvers.batch import Case, simulate_cases
+from shaketable.models.rocking.batch import Case, simulate_cases
 
 __all__ = ["Perturbation", "EnsembleResult", "ensemble", "wilson_interval",
            "perturbed_members", "horizon", "trajectories", "TINY"]
@@ -91,9 +91,9 @@ def trajectories(block: Block, motion: Motion, cor: float, *, members: int = 5,
                  method: str = "fast"):
     """Full runs of ``members`` copies (the first nominal) perturbed by ``spread``.
 
-    Returns a list of :class:`shaketable.core.results.RockingResult`.
+    Returns a list of :class:`shaketable.models.rocking.result.RockingResult`.
     """
-    from shaketable.solvers.api import simulate
+    from shaketable.models.api import simulate
 
     drawn = perturbed_members(members, Perturbation.uniform(spread), seed)
     runs = []
@@ -237,7 +237,7 @@ def ensemble(block: Block, motion: Motion, *, cor: float, members: int = 200,
     threshold : float
         Horizon threshold [-] in units of alpha.
     duration, method, threads
-        As in :func:`shaketable.solvers.batch.simulate_cases`.
+        As in :func:`shaketable.models.rocking.batch.simulate_cases`.
 
     Returns
     -------

@@ -32,10 +32,10 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
 from shaketable.lab.pitch import Pitch
 from shaketable.lab.stage import TableSetup, pitch_sampled, run_table
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
+from shaketable.models.rocking.result import RockingResult
 from shaketable.studies.comparison import TEST_THEORY_T_UNSTABLE
 
 if TYPE_CHECKING:
@@ -91,7 +91,7 @@ def run_to_the_end(block: Block, felt: Motion, *, cor: float, method: str = "fas
                    tail: float = TAIL, max_tail: float = MAX_TAIL) -> RockingResult:
     """Run ``felt`` and continue with the table at rest until the block rests or overturns.
 
-    :func:`shaketable.solvers.api` with ``duration`` longer than the record pads
+    :func:`shaketable.models.api` with ``duration`` longer than the record pads
     the motion (and the pitch's ``rotation``) with zeros: the table stops.
 
     Parameters
@@ -102,7 +102,7 @@ def run_to_the_end(block: Block, felt: Motion, *, cor: float, method: str = "fas
     cor : float
         Coefficient of restitution [-].
     method : str
-        Solver (:data:`shaketable.solvers.layout.METHODS`).
+        Solver (:data:`shaketable.models.rocking.layout.METHODS`).
     tail : float
         First length of table at rest after the record [s], positive; doubled
         until the verdict is final (:func:`is_final`).

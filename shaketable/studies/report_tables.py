@@ -18,10 +18,10 @@ import pandas as pd
 from shaketable.core import theory
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.results import RockingResult
 from shaketable.ground import generators as motions
 from shaketable.ground import records
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
+from shaketable.models.rocking.result import RockingResult
 
 if TYPE_CHECKING:
     from shaketable.lab.sensors import Sensors

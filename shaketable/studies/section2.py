@@ -17,7 +17,7 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.ground import generators as motions
 from shaketable.ground.pulses import Pulse
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
 from shaketable.studies.overturning_spectrum import threshold
 from shaketable.studies.pulses import bisect_threshold
 

@@ -2,8 +2,8 @@
 
 * :func:`respond` -- one block, one record, one mu_s: apply Section 2.1 of [1]_
   (Eqs. (2-1), (2-2)) and run the model of the mode that starts first (rocking
-  with :func:`shaketable.solvers.api.simulate`, sliding with
-  :func:`shaketable.solvers.sliding.slide`); for a rocking run, check along the
+  with :func:`shaketable.models.api.simulate`, sliding with
+  :func:`shaketable.models.sliding.engine.slide`); for a rocking run, check along the
   time history whether the friction the rocking solution needs exceeds mu_s
   (it would slide while rocking) or the normal force vanishes (it would jump):
   combined sliding-rocking and jumping are outside the model.
@@ -33,10 +33,10 @@ import pandas as pd
 from shaketable.core.constants import INCH, G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.core.sliding_result import Friction
 from shaketable.ground import generators, records
-from shaketable.solvers.api import simulate
-from shaketable.solvers.sliding import mode_choice, peak_slips, slide
+from shaketable.models.api import simulate
+from shaketable.models.sliding.engine import mode_choice, peak_slips, slide
+from shaketable.models.sliding.result import Friction
 
 #: Columns of Table 4.4: (kind, name). Pacoima Dam: the bundled NGA-West2 records
 #: with their recorded vertical; A-1, A-2, B-1: the package's SUBSTITUTE accelerograms
@@ -131,7 +131,7 @@ def table_4_4_markdown(frame: pd.DataFrame | None = None) -> str:
     header = "| mu_d | " + " | ".join(wide.columns) + " |"
     lines = ["## Table 4.4 — maximum sliding displacement relative to the ground (Section 4.5)",
              "", "Each cell: **report / reproduced** [in]; mu_s = mu_d. Coulomb stick-slip "
-             "block, exact piecewise integration (`shaketable.solvers.sliding`).", "",
+             "block, exact piecewise integration (`shaketable.models.sliding.engine`).", "",
              header, "|" + "---|" * (len(wide.columns) + 1)]
     for mu, row in wide.iterrows():
         lines.append(f"| {mu:g} | " + " | ".join(row) + " |")
@@ -202,7 +202,7 @@ class ModeResult:
     Attributes
     ----------
     choice : dict
-        From :func:`shaketable.solvers.sliding.mode_choice`.
+        From :func:`shaketable.models.sliding.engine.mode_choice`.
     result : RockingResult or SlidingResult or None
         The run of the chosen mode (None if the block moves with the table).
     combined : dict

@@ -32,13 +32,13 @@ import pandas as pd
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.models.api import simulate
 from shaketable.models.stack import (
     Stack,
     StackFrictionWarning,
     StackTensionWarning,
     simulate_stack,
 )
-from shaketable.solvers.api import simulate
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -320,7 +320,7 @@ def stacks_study(block: Block, records: dict, slender_top: Block, window: float,
                  rtol: float = 1e-10) -> StacksStudy:
     """The three parts for ``block`` under ``records`` (name -> Motion), each cut to
     ``window`` seconds [s]."""
-    from shaketable.solvers.common import extended
+    from shaketable.models.rocking.run import extended
 
     frames = [record_runs(block, extended(motion, window), heights, rtol=rtol, record=name)
               for name, motion in records.items()]

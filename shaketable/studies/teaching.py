@@ -36,7 +36,7 @@ from shaketable.core import theory
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
 
 if TYPE_CHECKING:
     import pandas as pd

@@ -16,10 +16,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from shaketable.core.geometry import Block
-from shaketable.core.results import RockingResult
-from shaketable.solvers.api import simulate
-from shaketable.solvers.common import DEFAULT_RTOL
-from shaketable.solvers.reference import ReferenceSolverError
+from shaketable.models.api import simulate
+from shaketable.models.rocking.reference import ReferenceSolverError
+from shaketable.models.rocking.result import RockingResult
+from shaketable.models.rocking.run import DEFAULT_RTOL
 from shaketable.studies.benchmark_cases import (
     ACCEPT_ABSOLUTE_THETA,
     ACCEPT_RELATIVE,
@@ -378,7 +378,7 @@ def first_call_seconds(cold: bool = False) -> dict[str, float]:
 
 
 def batch_throughput(threads: int = 2, n_cors: int = 8, repeats: int = 3) -> dict[str, Any]:
-    """Runs per second of :func:`shaketable.solvers.batch.simulate_many` on ``threads`` threads.
+    """Runs per second of :func:`shaketable.models.rocking.batch.simulate_many` on ``threads`` threads.
 
     The sweep: Table 4.2's nine block sizes x the two Pacoima Dam records x
     ``n_cors`` values of COR in [0.7, 1.0], fast method.
@@ -388,15 +388,15 @@ def batch_throughput(threads: int = 2, n_cors: int = 8, repeats: int = 3) -> dic
     dict
         runs, threads, median seconds per sweep, runs/s with ``threads``
         threads, with one thread and for a Python loop over
-        :func:`shaketable.solvers.api`, and the number overturned; or, when
-        :mod:`shaketable.solvers.batch` is not installed yet, ``{"skipped": reason}``.
+        :func:`shaketable.models.api`, and the number overturned; or, when
+        :mod:`shaketable.models.rocking.batch` is not installed yet, ``{"skipped": reason}``.
     """
     from shaketable.ground import records
 
     try:
-        from shaketable.solvers.batch import simulate_many
+        from shaketable.models.rocking.batch import simulate_many
     except ImportError as error:
-        return {"skipped": f"shaketable.solvers.batch.simulate_many is not available ({error})"}
+        return {"skipped": f"shaketable.models.rocking.batch.simulate_many is not available ({error})"}
 
     blocks = [Block.from_feet(h, w) for h, w in
               ((2, 1), (3, 1), (4, 1), (5, 1), (4, 2), (6, 2), (8, 2), (6, 3), (9, 3))]
@@ -515,7 +515,7 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
                          f"{_fmt(values['first call [s]'])} | {_fmt(values['second call [s]'])} |")
         lines.append("")
     if batch is not None:
-        lines += ["## Batch throughput (`shaketable.solvers.batch.simulate_many`)", ""]
+        lines += ["## Batch throughput (`shaketable.models.rocking.batch.simulate_many`)", ""]
         if "skipped" in batch:
             lines += [f"Skipped: {batch['skipped']}.", ""]
         else:
@@ -555,7 +555,7 @@ def _planar_markdown(limit: pd.DataFrame | None, coupled: pd.DataFrame | None) -
     """The section of the coupled planar model: rocking limit and coupled cases."""
     lines = ["## Coupled planar model: engine and independent reference", "",
              "`planar`: the compiled engine (`simulate(..., friction=...)`) at its rtol; "
-             "`planar-reference`: the SciPy reference (`solvers.planar_reference`, Newton-Euler "
+             "`planar-reference`: the SciPy reference (`models.planar.reference`, Newton-Euler "
              "linear solves per mode, DOP853 with event location) at its rtol.", ""]
     if limit is not None and not limit.empty:
         lines += ["Rocking limit (mu_s = mu_d = 10, friction never reached): against the case's "
@@ -568,7 +568,7 @@ def _planar_markdown(limit: pd.DataFrame | None, coupled: pd.DataFrame | None) -
                   "rtol 1e-13; event times are the mode changes and impacts, compared while "
                   "their modes agree (a missing or extra event: inf)."
                   + (" `moreau-jean`: the independent Moreau-Jean time stepping "
-                     "(`solvers.planar_moreau`, plastic Newton law) at step h on the first "
+                     "(`models.planar.moreau`, plastic Newton law) at step h on the first "
                      "seconds of the case (1.2 s, 3.5 s), against the planar reference with "
                      "`cor=\"housner\"` on the same window; first order in h (no event "
                      "times)."

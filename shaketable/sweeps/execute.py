@@ -350,8 +350,8 @@ def solver_identity() -> dict:
     """What a resumed sweep must share with the parts already written: the package
     version, the solvers and their default tolerances (rows computed by another engine
     must not be mixed into one table)."""
-    from shaketable.solvers.common import DEFAULT_RTOL
-    from shaketable.solvers.layout import METHODS
+    from shaketable.models.rocking.layout import METHODS
+    from shaketable.models.rocking.run import DEFAULT_RTOL
     from shaketable.version import __version__
 
     return {"shaketable": __version__, "methods": dict(METHODS),

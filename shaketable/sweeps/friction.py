@@ -3,7 +3,7 @@
 A sweep spec (:mod:`shaketable.sweeps.spec`) with a ``[friction]`` section runs each
 cell with the coupled model of the whole planar block -- rest, slide, rock, slide-rock
 and free flight with Coulomb friction (``docs/planar.md``) -- compiled, through
-:func:`shaketable.solvers.planar_batch.simulate_many_planar`, instead of the rocking
+:func:`shaketable.models.planar.batch.simulate_many_planar`, instead of the rocking
 batch. Friction coefficients are dimensionless: plain numbers, no unit::
 
     [friction]
@@ -24,7 +24,7 @@ What the coupled model does not take is refused when the spec is read, naming th
 than ``"fast"`` (the model has its own engine), ``rocking.subdivisions`` and
 ``rocking.theta0`` (every run starts from rest), and a numeric COR on a block with
 B/H = sqrt(2) (where Housner's c_H is 0). ``rocking.rtol`` is the planar engine's DOP853
-tolerance (default 1e-12, :data:`shaketable.solvers.planar_run.DEFAULT_PLANAR_RTOL`).
+tolerance (default 1e-12, :data:`shaketable.models.planar.run.DEFAULT_PLANAR_RTOL`).
 
 Each row keeps the input columns of a rocking sweep (record, scale, PGA, block, COR,
 intensity measures, ...) and gains ``static friction mu_s [-]``, ``dynamic friction mu_d
@@ -59,7 +59,7 @@ if TYPE_CHECKING:
 FRICTION_KEYS = {"static", "dynamic", "dynamic_ratio"}
 
 #: Table columns of the two coefficients (the names of
-#: :func:`~shaketable.solvers.planar_batch.simulate_many_planar` and ``PlanarResult.summary``).
+#: :func:`~shaketable.models.planar.batch.simulate_many_planar` and ``PlanarResult.summary``).
 STATIC_COLUMN, DYNAMIC_COLUMN = "static friction mu_s [-]", "dynamic friction mu_d [-]"
 
 #: Columns of the planar batch copied into a sweep row, in this order.
@@ -68,7 +68,7 @@ PLANAR_COLUMNS = ("status", "verdict", "max_theta_ratio [-]", "peak slip [m]",
                   "n_impacts", "time rest [s]", "time slide [s]", "time rock [s]",
                   "time slide-rock [s]", "time flight [s]")
 
-#: Verdicts in the order of the modes (as :data:`shaketable.core.planar_result.VERDICTS`),
+#: Verdicts in the order of the modes (as :data:`shaketable.models.planar.result.VERDICTS`),
 #: overturned last.
 VERDICT_ORDER = ("stayed", "slid", "rocked", "slide-rocked", "flew", "overturned")
 
@@ -90,7 +90,7 @@ class FrictionGrid:
 
     def manifest(self) -> dict:
         """What a sweep folder records (a resume with another grid is refused)."""
-        from shaketable.solvers.planar_run import DEFAULT_PLANAR_RTOL
+        from shaketable.models.planar.run import DEFAULT_PLANAR_RTOL
 
         return {"model": "planar (rest, slide, rock, slide-rock, flight)",
                 "pairs (mu_s, mu_d)": [list(pair) for pair in self.pairs],
@@ -155,7 +155,7 @@ def friction_grid(table, where: str) -> FrictionGrid | None:
 def check_friction_spec(spec: SweepSpec, rocking: dict) -> None:
     """Refuse, by key, what the coupled model does not take (the module docstring); a
     spec without ``[friction]`` passes."""
-    from shaketable.solvers.planar_run import impact_ratios
+    from shaketable.models.planar.run import impact_ratios
 
     if spec.friction is None:
         return
@@ -197,10 +197,10 @@ def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list,
         With ``spec.friction``.
     inputs : pandas.DataFrame
         :func:`shaketable.sweeps.execute.runs_table` of the chunk (``friction_index``).
-    cases : list of shaketable.solvers.batch.Case
+    cases : list of shaketable.models.rocking.batch.Case
         The chunk's runs: block, unscaled motion, COR and scale factor.
     threads : int, optional
-        Threads of the planar batch (:func:`~shaketable.solvers.planar_batch.simulate_many_planar`).
+        Threads of the planar batch (:func:`~shaketable.models.planar.batch.simulate_many_planar`).
 
     Returns
     -------
@@ -212,7 +212,7 @@ def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list,
     Notes
     -----
     The runs of one motion (and scale) are one call of
-    :func:`~shaketable.solvers.planar_batch.simulate_many_planar` over the blocks,
+    :func:`~shaketable.models.planar.batch.simulate_many_planar` over the blocks,
     friction pairs and CORs the chunk holds for it (its product; the few extra runs at a
     chunk's edges are discarded). A run does not depend on the others of its call, so a
     row equals ``simulate(block, motion.scaled(scale), cor=cor, friction=Friction(mu_s,
@@ -221,9 +221,9 @@ def simulate_friction(spec: SweepSpec, inputs: pd.DataFrame, cases: list,
     """
     import pandas as pd
 
-    from shaketable.core.sliding_result import Friction
-    from shaketable.solvers.planar_batch import simulate_many_planar
-    from shaketable.solvers.planar_run import DEFAULT_PLANAR_RTOL
+    from shaketable.models.planar.batch import simulate_many_planar
+    from shaketable.models.planar.run import DEFAULT_PLANAR_RTOL
+    from shaketable.models.sliding.result import Friction
 
     assert spec.friction is not None   # called for a sweep with [friction] only
     rtol = spec.options.get("rtol", DEFAULT_PLANAR_RTOL)

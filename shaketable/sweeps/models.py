@@ -57,7 +57,7 @@ class RockingSweep:
     def case(self, subject: Any, motion: Any, cor: float, scale: float, block_label: str,
              motion_label: str) -> Any:
         """One run of the chunk as the model's batch takes it."""
-        from shaketable.solvers.batch import Case
+        from shaketable.models.rocking.batch import Case
 
         return Case(subject, motion, cor, scale=scale, block_label=block_label,
                     motion_label=motion_label)
@@ -144,7 +144,7 @@ def simulate_rocking(spec: SweepSpec, inputs, cases: list, threads):
     """The batch rows of ``cases`` (one per row of ``inputs``), in order."""
     import pandas as pd
 
-    from shaketable.solvers.batch import simulate_cases
+    from shaketable.models.rocking.batch import simulate_cases
 
     options = {key: value for key, value in spec.options.items() if key != "theta0"}
     theta0_text = spec.options.get("theta0")
@@ -192,7 +192,7 @@ def simulate_ensembles(spec: SweepSpec, inputs, cases: list, threads):
         shifted,
         verdict_statistics,
     )
-    from shaketable.solvers.batch import Case
+    from shaketable.models.rocking.batch import Case
 
     ensemble = spec.ensemble
     assert ensemble is not None   # called for a sweep with [ensemble] only

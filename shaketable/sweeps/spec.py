@@ -1,7 +1,7 @@
 """Parameter sweeps: a TOML spec, a grid of runs, a tidy table; parallel, resumable, Dask.
 
 A sweep spec names grids; every combination is one run of
-:func:`shaketable.solvers.batch.simulate_cases` and one row of the result table. Every
+:func:`shaketable.models.rocking.batch.simulate_cases` and one row of the result table. Every
 dimensional value carries its unit, as in the scenes (``"30 in"``, ``"0.5 g"``)::
 
     name = "pacoima-map"
@@ -386,14 +386,14 @@ def spec_from_dict(data: dict, where: str = "<spec>",
         duration = _quantity(rocking["duration"], "time", where, "rocking.duration",
                              positive=True)
     method = rocking.get("method", "fast")
-    from shaketable.solvers.batch import METHODS
+    from shaketable.models.rocking.batch import METHODS
     if method not in METHODS:
         raise SweepError(f"{where}: rocking.method must be one of {', '.join(METHODS)}, "
                          f"got {method!r}")
     options: dict[str, Any] = {}
     if "rtol" in rocking:
         rtol = rocking["rtol"]
-        from shaketable.solvers.common import MIN_RTOL
+        from shaketable.models.rocking.run import MIN_RTOL
 
         if isinstance(rtol, bool) or not isinstance(rtol, (int, float)) \
                 or not MIN_RTOL <= rtol < 1:

@@ -239,13 +239,13 @@ def simulate_stacks(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.Da
     """
     import pandas as pd
 
+    from shaketable.models.rocking.run import extended
     from shaketable.models.stack import (
         PLAUSIBLE_FRICTION,
         StackFrictionWarning,
         StackTensionWarning,
         simulate_stack,
     )
-    from shaketable.solvers.common import extended
 
     rtol = spec.options.get("rtol", DEFAULT_STACK_RTOL)
     motions: dict = {}

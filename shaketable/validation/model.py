@@ -22,8 +22,8 @@ import numpy as np
 
 from shaketable.core.geometry import AsymmetricBlock
 from shaketable.core.validation import in_range, positive
-from shaketable.solvers.asymmetric import simulate_many_asymmetric
-from shaketable.solvers.layout import INFO_STATUS, INFO_T_OVERTURN, STATUS_OVERTURNED
+from shaketable.models.rocking.asymmetric import simulate_many_asymmetric
+from shaketable.models.rocking.layout import INFO_STATUS, INFO_T_OVERTURN, STATUS_OVERTURNED
 
 #: Seconds of table at rest appended to every motion: the block's free rocking after the
 #: record decides its fate (a block with p ~ 5 rad/s rocks out in a few seconds).
@@ -187,7 +187,7 @@ def verdicts(candidates: Sequence[EquivalentBlock], motions, *, threads: int | N
     """
     motions = list(motions)
     # each motion padded on its own (the batch pads all to one duration)
-    from shaketable.solvers.common import extended
+    from shaketable.models.rocking.run import extended
 
     runs = []
     for motion in motions:

@@ -273,9 +273,9 @@ def predict_from_geometry(folder: TestFolder, geometry, *, sign: int = 1,
     """
     import pandas as pd
 
-    from shaketable.solvers.asymmetric import simulate_many_asymmetric
-    from shaketable.solvers.common import extended
-    from shaketable.solvers.layout import INFO_STATUS, INFO_T_OVERTURN, STATUS_OVERTURNED
+    from shaketable.models.rocking.asymmetric import simulate_many_asymmetric
+    from shaketable.models.rocking.layout import INFO_STATUS, INFO_T_OVERTURN, STATUS_OVERTURNED
+    from shaketable.models.rocking.run import extended
     from shaketable.validation.model import FATE_PADDING, scan_block
 
     if sign not in (1, -1):

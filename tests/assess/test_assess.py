@@ -173,8 +173,8 @@ def test_fragility_is_the_package_fit_of_direct_runs(monkeypatch):
     # the report's 16 x 4 ft block, the four Section 4 records at 0.3, 0.6 and 1.2 g; the
     # outcomes recomputed here with simulate itself, fitted by sweeps.fragility
     import shaketable.studies.assess as study
-    from shaketable.core.sliding_result import Friction
-    from shaketable.solvers.api import simulate
+    from shaketable.models.api import simulate
+    from shaketable.models.sliding.result import Friction
     from shaketable.sweeps.fragility import fragility_fit
 
     monkeypatch.setattr(study, "MAP_FRICTIONS", ())  # only the object's frictions

@@ -21,15 +21,15 @@ from shaketable.core import numba_cache
 PACKAGE = os.path.dirname(os.path.abspath(shaketable.__file__))
 
 #: The modules that define cached compiled functions.
-COMPILED_MODULES = ["shaketable.core.dynamics", "shaketable.core.planar_dynamics",
-                    "shaketable.solvers.engine", "shaketable.solvers.batch",
-                    "shaketable.solvers.planar", "shaketable.solvers.planar_modes",
-                    "shaketable.solvers.planar_track", "shaketable.solvers.sliding"]
+COMPILED_MODULES = ["shaketable.models.rocking.physics", "shaketable.models.planar.physics",
+                    "shaketable.models.rocking.engine", "shaketable.models.rocking.batch",
+                    "shaketable.models.planar.engine", "shaketable.models.planar.modes",
+                    "shaketable.models.planar.track", "shaketable.models.sliding.engine"]
 
 
 def test_the_cache_subfolder_is_named_from_the_path_inside_the_package():
-    expected = "solvers_" + hashlib.sha1(b"shaketable/solvers").hexdigest()
-    assert numba_cache.cache_subpath(os.path.join(PACKAGE, "solvers")) == expected
+    expected = "rocking_" + hashlib.sha1(b"shaketable/models/rocking").hexdigest()
+    assert numba_cache.cache_subpath(os.path.join(PACKAGE, "models", "rocking")) == expected
     assert numba_cache.cache_subpath(os.path.join(PACKAGE, "core")) == (
         "core_" + hashlib.sha1(b"shaketable/core").hexdigest())
 
@@ -54,7 +54,7 @@ def test_every_cached_function_of_the_package_uses_the_package_locator():
 
 _PROBE = (
     "import os, numpy as np, shaketable\n"
-    "from shaketable.core import dynamics\n"
+    "from shaketable.models.rocking import physics as dynamics\n"
     "assert os.path.dirname(shaketable.__file__).startswith(os.getcwd()), shaketable.__file__\n"
     "moment = dynamics.cascade_rest_time(1.0, 2.0, 0.5)\n"
     "stats = dynamics.cascade_rest_time.stats\n"

@@ -5,7 +5,7 @@ Same run through both models (the 30 x 6 in block, mu_s 0.25, mu_d 0.22, COR 0.9
 0.6 g ramped, 3 s: rock, slide-rock and impacts): the two figures must have the same
 panels, and each figure's traces must be its own result's columns. The mode bands are
 compared between the two independent implementations (they agree to 1e-8 in event times,
-tests/solvers/test_planar_agreement.py).
+tests/models/planar/test_planar_agreement.py).
 """
 
 from __future__ import annotations
@@ -17,12 +17,12 @@ import pytest
 
 from shaketable.core.constants import INCH, G
 from shaketable.core.geometry import Block
-from shaketable.core.sliding_result import Friction
 from shaketable.ground.generators import harmonic
+from shaketable.models.planar.reference import simulate_reference
+from shaketable.models.planar.run import simulate_planar
+from shaketable.models.sliding.result import Friction
 from shaketable.plots.base import pyplot
 from shaketable.plots.planar import mode_spans
-from shaketable.solvers.planar_reference import simulate_reference
-from shaketable.solvers.planar_run import simulate_planar
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
 """The planar block from a scene (``block.static_friction``) and from ``simulate --friction``.
 
-Reference: the sliding model of Table 4.4 (:func:`shaketable.solvers.sliding.slide`, exact
+Reference: the sliding model of Table 4.4 (:func:`shaketable.models.sliding.engine.slide`, exact
 piecewise integration). A block with mu_s < B/H only slides (Section 2.1, Eqs. 2-1/2-2: slip
 comes first, and a flat sliding block with mu_d <= B/H never tips), so its planar run must
 give the sliding model's peak slip.
@@ -12,11 +12,11 @@ import json
 
 import pytest
 
-from shaketable.core.sliding_result import Friction
+from shaketable.models.sliding.engine import slide
+from shaketable.models.sliding.result import Friction
 from shaketable.scenes.catalog import resolve_scene_path
 from shaketable.scenes.parse import SceneError, load_scene
 from shaketable.scenes.run import run_scene
-from shaketable.solvers.sliding import slide
 from tests.test_bad_input import run_cli
 
 

@@ -1,7 +1,7 @@
 """A scene's ``[sliding]`` section: the same block and motion, sliding.
 
 The sliding solver itself is checked against closed forms and Table 4.4 in
-``tests/solvers``; here: the section is parsed strictly, the scene runs the
+``tests/models/sliding``; here: the section is parsed strictly, the scene runs the
 solver on the scene's own motion (the same numbers as a direct call), and the
 outputs are written.
 """
@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import pytest
 
-from shaketable.core.sliding_result import Friction
 from shaketable.ground import records
+from shaketable.models.sliding.engine import slide
+from shaketable.models.sliding.result import Friction
 from shaketable.scenes.catalog import resolve_scene_path
 from shaketable.scenes.parse import SceneError, load_scene, scene_from_dict
 from shaketable.scenes.run import run_scene
-from shaketable.solvers.sliding import slide
 
 BASE = {"name": "probe", "block": {"size": "8x2ft"},
         "motion": {"kind": "record", "name": "pacoima-dam-s16e"}, "rocking": {"cor": 0.95}}

@@ -67,9 +67,9 @@ def test_the_kick_comes_when_the_top_block_lands_as_a_block_alone_on_a_fixed_bas
     """stack-kick: until its landing the top block rocks on a bottom block at rest, i.e. as
     one block on a fixed base; the single-block engine (its own code, reference method)
     gives that landing time, and the bottom block starts moving there."""
-    import shaketable as st
-
     from dataclasses import replace
+
+    import shaketable as st
 
     scene = load_scene(resolve_scene_path("stack-kick"))
     result = run_stack_scene(replace(scene, duration=0.3))   # the kick only (0.265 s)

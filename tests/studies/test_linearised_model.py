@@ -24,8 +24,8 @@ import pytest
 from shaketable.core import theory
 from shaketable.core.fate import FATE_REASONS, free_rocking_fate
 from shaketable.ground.pulses import Pulse, pulse_motion
+from shaketable.models.api import simulate
 from shaketable.scenes.spectrum import block_from
-from shaketable.solvers.api import simulate
 from shaketable.studies.overturning_spectrum import (
     housner_cor,
     overturning_spectrum,

@@ -7,7 +7,7 @@ References used here:
   at mu_d h < b inside its base (moment balance about the centre): it never tips. So the
   largest mu (mu_s = mu_d) at which a block only slides is B/H exactly, for any record
   that reaches the tipping threshold.
-* Table 4.4's model, :func:`shaketable.solvers.sliding.slide` (exact piecewise
+* Table 4.4's model, :func:`shaketable.models.sliding.engine.slide` (exact piecewise
   integration): a planar block that only slides must give its peak slip.
 """
 

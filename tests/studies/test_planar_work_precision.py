@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from shaketable.core.geometry import Block
-from shaketable.core.sliding_result import Friction
+from shaketable.models.sliding.result import Friction
 from shaketable.studies import benchmark_cases, planar_work_precision, work_precision
 
 

@@ -7,7 +7,7 @@ import pytest
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
-from shaketable.solvers.api import simulate
+from shaketable.models.api import simulate
 from shaketable.studies import predictability as pr
 
 

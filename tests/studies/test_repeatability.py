@@ -10,8 +10,8 @@ from shaketable.core.constants import G
 from shaketable.ground.generators import artificial, harmonic
 from shaketable.lab.pitch import Pitch
 from shaketable.lab.stage import TableSetup, run_table
+from shaketable.models.api import simulate
 from shaketable.scenes.studies import section_3_7_cases
-from shaketable.solvers.api import simulate
 from shaketable.studies.repeatability import (
     is_final,
     pitch_repeatability,

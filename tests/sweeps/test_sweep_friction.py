@@ -19,8 +19,8 @@ import shaketable as st
 from shaketable import sweeps
 from shaketable.cli import main
 from shaketable.core.constants import G
-from shaketable.core.sliding_result import Friction
 from shaketable.ground import generators, records, signals
+from shaketable.models.sliding.result import Friction
 from shaketable.sweeps import execute
 from tests.sweeps.test_sweeps import SPEC as ROCKING_SPEC
 from tests.sweeps.test_sweeps import write
@@ -339,7 +339,7 @@ def test_risk_command_fits_each_friction_pair_apart(tmp_path, capsys):
 def batch_threads(monkeypatch):
     """The ``threads`` of every planar batch a sweep calls, in order (a spy on
     simulate_many_planar, which still runs)."""
-    from shaketable.solvers import planar_batch
+    from shaketable.models.planar import batch as planar_batch
 
     seen = []
     original = planar_batch.simulate_many_planar
@@ -372,7 +372,7 @@ def test_workers_sets_the_planar_batch_threads_and_not_the_table(tmp_path, frict
 
 @pytest.mark.parametrize("threads", [0, 1.5, "2", True, 10**6])
 def test_planar_batch_threads_out_of_range_is_refused_by_name(threads):
-    from shaketable.solvers.planar_batch import simulate_many_planar
+    from shaketable.models.planar.batch import simulate_many_planar
 
     block, motion = st.Block.parse("30x6in"), records.load("pacoima-dam-s16e")
     with pytest.raises(ValueError, match="threads"):
@@ -383,7 +383,7 @@ def test_planar_batch_threads_out_of_range_is_refused_by_name(threads):
 def test_planar_batch_rtol_out_of_range_is_refused_by_name(rtol):
     # rtol 0 gave a zero error scale: a division 0/0 in the DOP853 step (a wrong "stalled"
     # run under numba's numpy error model, not an error)
-    from shaketable.solvers.planar_batch import simulate_many_planar
+    from shaketable.models.planar.batch import simulate_many_planar
 
     block, motion = st.Block.parse("30x6in"), records.load("pacoima-dam-s16e")
     with pytest.raises(ValueError, match="rtol"):
@@ -409,9 +409,9 @@ _CONCURRENT_BATCHES = """
 import threading
 import pandas as pd
 import shaketable as st
-from shaketable.core.sliding_result import Friction
+from shaketable.models.sliding.result import Friction
 from shaketable.ground import records
-from shaketable.solvers.planar_batch import simulate_many_planar
+from shaketable.models.planar.batch import simulate_many_planar
 
 blocks = [st.Block.parse("30x6in"), st.Block.parse("2x1ft")]
 motion = records.load("pacoima-dam-s16e")

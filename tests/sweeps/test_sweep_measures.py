@@ -22,7 +22,7 @@ from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.ground import intensity as im
 from shaketable.ground import records
-from shaketable.solvers.batch import Case, simulate_cases
+from shaketable.models.rocking.batch import Case, simulate_cases
 
 SPEC = """
 name = "im-tiny"

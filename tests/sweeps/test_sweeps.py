@@ -1,7 +1,7 @@
 """``shaketable sweep``: spec validation, rows equal to single runs, resume, Dask, CLI.
 
 No expected value here comes from the sweep code: each row is compared with an
-independent :func:`shaketable.solvers.api` on a motion built by hand from the
+independent :func:`shaketable.models.api` on a motion built by hand from the
 documented recipe (record -> ``scale_to_pga`` / ``Motion.scaled`` -> pitching table),
 and resumed or distributed sweeps are compared with an uninterrupted local one.
 """

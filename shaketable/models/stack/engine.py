@@ -57,7 +57,7 @@ MAX_EVENTS_AT_ONE_INSTANT = 200
 def cascade_rest_time(rate_after, deceleration, ratio):
     """Time for an endless cascade of landings to die out [s]: flights of 2|w| / a0 shrinking
     by ``ratio`` each, summed, 2|w| / (a0 (1 - ratio)); inf when the series diverges (the
-    single block's rule, :func:`shaketable.core.dynamics.cascade_rest_time`, written here so
+    single block's rule, :func:`shaketable.models.rocking.physics.cascade_rest_time`, written here so
     that the stack model does not load numba)."""
     if deceleration <= 0.0 or ratio >= 1.0:
         return math.inf

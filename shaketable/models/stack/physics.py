@@ -148,13 +148,13 @@ def cross(a, b) -> float:
 def interface_loads(chain: Chain, pattern, theta, centroid, demand, spin):
     """What each interface carries for the blocks above it, from what they need.
 
-    ``demand`` (n, 2) is each block's m_i G_i'' - f_i [N] (or its momentum change
-    m_i dG_i' [N s] at an impact) and ``spin`` (n,) its I_i theta_i'' [N m] (or I_i
-    dtheta_i' [N m s]). Returns an array (n, 4): normal N and tangential F of the resultant
+    ``demand`` (n, 2) is each block's ``m_i G_i'' - f_i`` [N] (or its momentum change
+    ``m_i dG_i'`` [N s] at an impact) and ``spin`` (n,) its ``I_i theta_i''`` [N m] (or
+    ``I_i dtheta_i'`` [N m s]). Returns an array (n, 4): normal N and tangential F of the resultant
     (along the lower surface's normal and its +x direction) and the normal parts at the
     upper block's -x and +x corners: a pivot carries all of N; a flat interface's two
-    corners follow from the moments about each corner (N_+x = M_-x / 2b,
-    N_-x = -M_+x / 2b).
+    corners follow from the moments about each corner (``N_+x = M_-x / 2b``,
+    ``N_-x = -M_+x / 2b``).
     """
     n = chain.n
     result = np.zeros((n, 4))

@@ -26,7 +26,7 @@ def _point_terms(r, omega):
 
 
 def newton_euler(b, h, m, theta, theta_dot, pattern, ug, vg):
-    """theta'' [rad/s^2] of each block and each interface's (N, F, N_-x, N_+x) [N].
+    """theta'' [rad/s^2] of each block and each interface's ``(N, F, N_-x, N_+x)`` [N].
 
     Geometry rebuilt from scratch: block i's bottom centre follows from the pivots, the
     upper block's corner at ``-s_j b_j`` sitting on the lower block's top face.

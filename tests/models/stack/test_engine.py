@@ -168,7 +168,7 @@ def test_friction_given_to_a_stack_is_refused():
 
 
 def test_a_dip_inside_one_long_interval_is_a_landing():
-    # the single-block engine's case (tests/solvers/test_substep_impacts.py): a block rocking
+    # the single-block engine's case (tests/models/rocking/test_substep_impacts.py): a block rocking
     # back towards theta = 0 under a constant push of 1.5 g tan(alpha) dips below zero and
     # returns inside one 0.5 s input interval; the landing must be found, at the time of the
     # same run on 1 ms samples

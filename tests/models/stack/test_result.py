@@ -108,7 +108,7 @@ def test_a_friction_demand_above_one_is_reported_once_where_the_user_called():
 def test_the_stack_model_is_registered_behind_the_interface():
     model = MODELS["stack"]
     assert isinstance(model, Model)
-    assert model_for(Stack([(1.0, 0.3)])) is model and model_for(st.Block(1.0, 0.3)) is None
+    assert model_for(Stack([(1.0, 0.3)])) is model and model_for(st.Block(1.0, 0.3)) is not model
 
 
 def test_the_verdict_says_what_the_run_did(rocking):

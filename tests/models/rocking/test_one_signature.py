@@ -1,0 +1,41 @@
+"""The engine is compiled once whatever the entry point.
+
+``simulate`` and the batch call the same compiled integrator of each method
+(:data:`shaketable.models.rocking.engine.INTEGRATORS`) and hand it arrays of one type (float64,
+C-contiguous, read-only inputs; ``models.rocking.run.engine_arrays``), so numba compiles it
+for one signature. Two signatures meant compiling the whole engine
+twice (seconds on a fresh install).
+"""
+
+import numpy as np
+
+from shaketable import Block, Motion, simulate
+from shaketable.models.rocking import engine
+from shaketable.models.rocking.batch import simulate_many
+from shaketable.models.rocking.run import engine_arrays
+
+
+def test_simulate_and_the_batch_use_one_compiled_signature():
+    block = Block.from_feet(4, 1)
+    t = np.linspace(0.0, 1.0, 101)
+    record = Motion(t, 3.0 * np.sin(8.0 * t), 0.5 * np.cos(5.0 * t), name="two components")
+    pitched = Motion(t, 3.0 * np.sin(8.0 * t), rotation=0.1 * np.sin(3.0 * t), name="pitched")
+    writable_t = np.array(t)  # a motion built from writable arrays
+    plain = Motion(writable_t, np.array(3.0 * np.sin(8.0 * t)), name="writable")
+    for motion in (record, pitched, plain):
+        simulate(block, motion, cor=0.9)
+        simulate(block, motion, cor=0.9, method="predictor-corrector")
+    simulate(block, None, cor=0.9, theta0=0.05, duration=0.5)
+    simulate_many([block], [record, pitched, plain], [0.8, 0.9], scales=[1.0, 0.5][:1])
+    simulate_many([block], [record, plain], [0.8], threads=1)
+    for integrator in (engine.integrate_fast, engine.integrate_predictor_corrector):
+        assert len(integrator.signatures) == 1, integrator.signatures
+
+
+def test_engine_arrays_are_read_only_views_of_the_same_numbers():
+    values = np.arange(5.0)
+    (view,) = engine_arrays(values)
+    assert not view.flags.writeable and view.flags.c_contiguous
+    assert np.shares_memory(view, values) and values.flags.writeable
+    (converted,) = engine_arrays(np.arange(5))  # integers: converted to float64
+    assert converted.dtype == np.float64 and np.array_equal(converted, values)
