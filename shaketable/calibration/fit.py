@@ -341,7 +341,7 @@ def _check_arguments(record: FreeRockingRecord, block: Block, interval: str,
 
 
 def _initial_guess(record: FreeRockingRecord, block: Block, theta: np.ndarray, sigma: float,
-                   offset_guess: float, crossings: np.ndarray) -> tuple:
+                   offset_guess: float, crossings: list[int]) -> tuple:
     """The starting point of the fit (COR, theta0 [rad], release time [s], offset [record
     unit]) read from the record, and the bounds, scales and Jacobian steps of each.
 

@@ -111,6 +111,7 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
                          friction=friction)
     if other is not None:
         return other
+    block, motion = cast(Block, block), cast("Motion | None", motion)   # the rest went above
     cor = in_range("cor", cast(float, cor), 0.0, 1.0)
     options = run_options(method, theta0=theta0, theta_dot0=theta_dot0, duration=duration,
                           rtol=rtol, subdivisions=subdivisions, rest_tolerance=rest_tolerance,
