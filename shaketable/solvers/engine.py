@@ -40,8 +40,9 @@ the step ends. With one turning point in the step, theta' changes sign and the
 driver locates the turning point and, when it lies past 0, the impact before
 it. With two (theta' of one sign at both ends, the ground acceleration ramping
 fast), :func:`~shaketable.solvers.events.dip_on_stepper` searches the cubic
-Hermite interpolant of theta, theta' at the step ends and confirms the dip on the stepper itself; the same
-check makes a step that ends past 0 after three crossings stop at the first.
+Hermite interpolant of theta, theta' at the step ends and confirms the dip on
+the stepper itself; the same check makes a step that ends past 0 after three
+crossings stop at the first.
 Steps without such a dip are not changed.
 
 All three share the event logic: start of rocking at the exact crossing of
@@ -580,7 +581,7 @@ _INLINED_HELPER = njit(**{**HELPER_OPTIONS, "forceinline": True})
 # so that the driver compiles and runs as one function, as when they were written in it.
 _PHASES = ("_settings", "_initial_state", "_contact_end", "_start_of_rocking",
            "_step_length", "_control", "_store", "_finish")
-_PHASE = njit(inline="always")
+_PHASE = njit(inline="always", error_model=ERROR_MODEL)
 
 
 def _integrator(method, name):
@@ -591,8 +592,8 @@ def _integrator(method, name):
     method's functions (:data:`~shaketable.solvers.steppers.METHOD_FUNCTIONS`); the helpers
     that call those (:data:`_METHOD_HELPERS`) are compiled from it too (those of
     :mod:`shaketable.solvers.events` from a copy of that module's namespace, bound the
-    same way), each under a name of its own. numba reads ``method == METHOD_...`` as a comparison of two constants and
-    drops the other methods' branches before typing. The namespace is copied at import:
+    same way), each under a name of its own. numba reads ``method == METHOD_...`` as a
+    comparison of two constants and drops the other methods' branches before typing. The namespace is copied at import:
     replacing a helper in the module afterwards does not change the integrators.
 
     The integrator allocates no array: it is compiled without numba's reference counting
