@@ -297,7 +297,7 @@ def test_the_size_check_counts_from_def_to_the_last_line(tmp_path):
     body = "    x = 1\n" * (MAX_FUNCTION_LINES - 2)
     (package / "fits.py").write_text(f"@staticmethod\ndef f():\n    \"\"\"Doc.\"\"\"\n{body}")
     assert oversized(package) == {}
-    (package / "long.py").write_text(f"class C:\n    def g(self):\n        x = 0\n"
+    (package / "long.py").write_text("class C:\n    def g(self):\n        x = 0\n"
                                      + body.replace("    ", "        ") + "        return x\n")
     (package / "big.py").write_text("x = 1\n" * (MAX_MODULE_LINES + 1))
     assert oversized(package) == {"long.py:g": MAX_FUNCTION_LINES + 1,
