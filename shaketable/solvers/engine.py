@@ -123,10 +123,9 @@ from shaketable.solvers.steppers import (
     helper,
 )
 
-# Eq. (2-13)/(2-14)'s cascade sum (shaketable.core.dynamics' keeps its Python entry; see
-# shaketable.solvers.steppers), inlined by numba into _rest_after_impact, its only caller:
-# one function fewer to compile on a first run.
-_cascade_rest_time = njit(inline="always", error_model=ERROR_MODEL)(cascade_rest_time.py_func)
+# Eq. (2-13)/(2-14)'s cascade sum as a compiled helper (shaketable.core.dynamics' keeps its
+# Python entry; see shaketable.solvers.steppers).
+_cascade_rest_time = helper(cascade_rest_time.py_func)
 
 
 # placeholders: each integrator binds the method's functions to these names (_integrator)

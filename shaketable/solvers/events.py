@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import math
 
-from numba import int64, njit
+from numba import int64
 
-from shaketable.core.dynamics import ALPHA, ERROR_MODEL
+from shaketable.core.dynamics import ALPHA
 from shaketable.solvers.layout import (
     EVENT_IMPACT,
     EVENT_OVERTURN,
@@ -30,6 +30,7 @@ from shaketable.solvers.layout import (
     INFO_THETA_AT_MAX,
     INFO_UNSTABLE_DIRECTION,
 )
+from shaketable.solvers.steppers import helper
 
 
 def bound_per_method(*arguments):
@@ -49,8 +50,7 @@ advance = bound_per_method
 METHOD_HELPERS = ("locate", "dip_on_stepper", "step_events")
 
 
-# inlined by numba into locate, its only caller: one function fewer to compile on a first run
-@njit(inline="always", error_model=ERROR_MODEL)
+@helper
 def event(kind, x, v, a, side, sign, alpha):
     """Event function (positive before the event, <= 0 at and after it) and its rate."""
     if kind == EVENT_IMPACT:
