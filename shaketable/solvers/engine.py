@@ -270,9 +270,7 @@ def _settings(block, rtol, rest_tolerance):
     # Below this velocity an impact is lost in the integration error: sum the cascade.
     velocity_floor = 1e-13 * alpha * p
     if method == METHOD_FAST:
-        above_error = 1e3 * atol_omega
-        if above_error > velocity_floor:  # max(); see _control
-            velocity_floor = above_error
+        velocity_floor = max(velocity_floor, 1e3 * atol_omega)
     per_step = _EVALUATIONS_LINEAR
     if method == METHOD_FAST:
         per_step = _EVALUATIONS_FAST
@@ -352,16 +350,13 @@ def _step_length(t, t0, t_end, substep, step_size):
     the interval.
     """
     method = _METHOD
-    rest = t_end - t
-    # min() written out; see _control
     if method == METHOD_FAST:
-        h = rest if rest < step_size else step_size
+        h = min(step_size, t_end - t)
     elif method == METHOD_PREDICTOR_CORRECTOR:
         index = math.floor((t - t0) / substep * (1.0 + 1e-12) + 1e-9) + 1.0
-        step_end = t0 + index * substep
-        h = (t_end if t_end < step_end else step_end) - t
+        h = min(t0 + index * substep, t_end) - t
         if h <= 1e-12 * substep:
-            h = rest if rest < substep else substep
+            h = min(substep, t_end - t)
     else:
         h = t_end - t
     return h
@@ -376,31 +371,20 @@ def _control(h, theta, omega, theta_new, omega_new, error_theta, error_omega, rt
     size [s], the controller's memory (the last accepted error) and whether the step was
     rejected.
     """
-    # min(a, b) and max(a, b) written out as numba computes them (b if b < a else a, b if
-    # b > a else a; the same numbers, NaN included): without them the first compile does
-    # not compile numba's min() and max()
-    scale_theta = abs(theta_new) if abs(theta_new) > abs(theta) else abs(theta)
-    scale_omega = abs(omega_new) if abs(omega_new) > abs(omega) else abs(omega)
-    a = abs(error_theta) / (atol_theta + rtol * scale_theta)
-    b = abs(error_omega) / (atol_omega + rtol * scale_omega)
-    error = b if b > a else a
+    error = max(abs(error_theta) / (atol_theta + rtol * max(abs(theta), abs(theta_new))),
+                abs(error_omega) / (atol_omega + rtol * max(abs(omega), abs(omega_new))))
     if not error <= 1.0:  # also NaN
         if error != error:
             error = 1e10
-        shrink = 0.9 * error ** -0.2
-        return False, h * (shrink if shrink > 0.2 else 0.2), previous_error, True
-    if 1e-10 > error:
-        error = 1e-10
-    growth = 0.9 * error ** -0.17 * previous_error ** 0.04
-    growth = growth if growth > 0.2 else 0.2
-    growth = growth if growth < 5.0 else 5.0
-    if just_rejected and 1.0 < growth:
-        growth = 1.0
+        return False, h * max(0.2, 0.9 * error ** -0.2), previous_error, True
+    error = max(error, 1e-10)
+    growth = min(5.0, max(0.2, 0.9 * error ** -0.17 * previous_error ** 0.04))
+    if just_rejected:
+        growth = min(growth, 1.0)
     if h < step_size:
         # a step cut short by the end of the interval says nothing against the step
         # size that was planned
-        if h * growth > step_size:
-            step_size = h * growth
+        step_size = max(step_size, h * growth)
     else:
         step_size = h * growth
     return True, step_size, error, False
@@ -548,9 +532,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 break
             if kind == EVENT_IMPACT:
                 # the next flight is shorter than the last one: do not try a longer step
-                flight = t - last_impact  # min(step_size, max(flight, 1e-3 * step_size))
-                flight = 1e-3 * step_size if 1e-3 * step_size > flight else flight
-                step_size = flight if flight < step_size else step_size
+                step_size = min(step_size, max(t - last_impact, 1e-3 * step_size))
                 last_impact = t
                 if n_impacts < max_recorded:
                     impact_times[n_impacts] = t
