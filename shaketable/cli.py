@@ -61,8 +61,12 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     """Entry point of the ``shaketable`` console script; returns the exit status."""
+    from shaketable.commands.options import join_negative_values
+
     parser = build_parser()
-    args = parser.parse_args(argv)
+    # a negative value after an option (--block -30x6in) is read as the option's value
+    args = parser.parse_args(join_negative_values(parser, list(sys.argv[1:] if argv is None
+                                                               else argv)))
     prefix = f"shaketable {args.command}: error:"
     quiet = getattr(args, "quiet", False)
     try:

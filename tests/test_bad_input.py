@@ -495,6 +495,39 @@ def test_command_line_answers_cleanly(kind, name, argv, status, fragment, corpus
     assert fragment.lower() in err.lower(), f"{fragment!r} not in: {err}"
 
 
+@pytest.mark.parametrize("argv, answer", [
+    (["simulate", "--block", "-30x6in", "--cor", "0.9"],
+     "--block -30x6in: the height and the width must be positive"),
+    (["spectrum", "--block", "-16x4ft"], "--block -16x4ft: the height and the width"),
+    (["calibrate", "virtual-fig-3-4", "--block", "-30x6in"], "--block -30x6in: the height"),
+    (["simulate", "--block", "30x6in", "--cor", "0.9", "--duration", "-8s"],
+     "duration must be in (0.0, inf], got -8.0"),
+    (["calibrate", "virtual-fig-3-4", "--block", "30x6in", "--rate", "-50Hz"],
+     "rate must be a positive number"),
+], ids=["simulate-block", "spectrum-block", "calibrate-block", "duration", "rate"])
+def test_a_negative_value_given_without_equals_gets_the_options_own_answer(argv, answer,
+                                                                          tmp_path):
+    # argparse takes "-30x6in" for an option: its usage dump ("expected one argument")
+    # instead of what is wrong with the value
+    code, _, err = run_cli(argv + ["--out", str(tmp_path / "out")], cwd=tmp_path)
+    assert code == 2, err
+    assert "usage:" not in err and "expected one argument" not in err, err
+    assert answer in err, err
+
+
+def test_only_a_one_value_option_takes_a_negative_word():
+    from shaketable.cli import build_parser
+    from shaketable.commands.options import join_negative_values
+
+    parser = build_parser()
+    argv = ["simulate", "--block", "30x6in", "--cor", "0.9", "--theta0", "-0.5alpha", "-q",
+            "--out", "-results", "--duration", "-.5s"]
+    assert join_negative_values(parser, argv) == [
+        "simulate", "--block", "30x6in", "--cor", "0.9", "--theta0=-0.5alpha", "-q", "--out",
+        "-results", "--duration=-.5s"]
+    assert parser.parse_args(join_negative_values(parser, argv[:7])).theta0 == "-0.5alpha"
+
+
 def test_an_unreachable_scheduler_is_reported_within_its_timeout(tmp_path, monkeypatch):
     """--scheduler at an address where nothing listens: a clean error after the timeout,
     before anything is written (the audit saw a traceback)."""

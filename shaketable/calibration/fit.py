@@ -244,91 +244,15 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
         Bad arguments, naming the argument.
     """
     started = _time.perf_counter()
-    if not isinstance(record, FreeRockingRecord):
-        raise ValueError(f"record must be a shaketable.calibration.record.FreeRockingRecord, got "
-                         f"{type(record).__name__}")
-    if not isinstance(block, Block):
-        raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
-    if interval not in INTERVALS:
-        raise ValueError(f"interval must be one of {sorted(INTERVALS)}, got {interval!r}")
-    mode, digitizer = _filter_mode(anti_alias)
-    orders = _filter_orders(filter_order)
-    if isinstance(bootstrap, bool) or int(bootstrap) != bootstrap or bootstrap < 0:
-        raise ValueError(f"bootstrap must be a non-negative integer, got {bootstrap!r}")
+    mode, digitizer, orders = _check_arguments(record, block, interval, anti_alias,
+                                               filter_order, bootstrap)
     theta, sigma, offset_guess, crossings = _check_record(record, block, stroke)
-
-    # ---- initial guess from the record: release angle from the first extreme, release time
-    # from the first zero crossing minus the exact quarter period, COR from the peaks
-    t = record.t
-    first_zero = zero_time(t, theta, crossings[0])
-    first_segment = theta[:crossings[0] + 1]
-    sign = 1.0 if np.median(first_segment) > 0 else -1.0
-    theta0_guess = float(np.median(first_segment[np.abs(first_segment) >= 0.98 * np.max(
-        np.abs(first_segment))])) if first_segment.size else theta[0]
-    theta0_guess = sign * min(max(abs(theta0_guess), 1e-4), 0.98 * block.alpha)
-    t_release_guess = first_zero - exact_period(block, abs(theta0_guess)) / 4.0
     notes: list[str] = []
-    try:
-        cor_guess = peak_estimate(record, block, offset=offset_guess,
-                                  t_release=t_release_guess if t_release_guess > t[0] else None,
-                                  sigma=sigma).cor
-    except CalibrationError:
-        cor_guess = 0.9
-    cor_guess = float(np.clip(cor_guess, 0.3, 0.999))
-
-    unit_scale = float(np.max(np.abs(record.values - offset_guess)))
-    lower = [0.05, 0.0 if sign > 0 else -0.999 * block.alpha, t[0] - 5.0, -np.inf]
-    upper = [1.0, 0.999 * block.alpha if sign > 0 else 0.0, first_zero, np.inf]
-    scales = [0.01, 0.01 * block.alpha, 0.01, max(sigma, 1e-6 * unit_scale)]
-    if record.quantity == "top displacement":
-        height = record.height if record.height is not None else block.height
-        scales[3] = max(sigma * height, 1e-9)
-    steps = [2e-4, 2e-4 * block.alpha, 2e-3 * record.dt * 5, max(1e-6 * unit_scale, 1e-12)]
-
-    def solve(model: FreeRockingModel, x0: np.ndarray, low: list[float], high: list[float],
-              scale: list[float], **options: Any) -> scipy.optimize.OptimizeResult:
-        x0 = np.clip(x0, np.array(low) + 1e-12, np.array(high) - 1e-12)
-        return scipy.optimize.least_squares(lambda x: record.values - model(x), x0,
-                                            bounds=(low, high), x_scale=np.array(scale),
-                                            diff_step=1e-5, **options)
-
-    tight = dict(xtol=1e-10, ftol=1e-12, gtol=1e-10, max_nfev=400)
-    # stage 1: the unfiltered model, cheap (the engine at the samples only)
-    plain = FreeRockingModel(record, block, "none", None, 4, rtol)
-    solution = solve(plain, np.array([cor_guess, theta0_guess, t_release_guess, offset_guess]),
-                     lower, upper, scales, **tight)
-    x = solution.x
-    models = [plain]  # every model made: their runs of the engine add up to the cost
-    model = plain
-    if digitizer is not None:       # mode "known"
-        # the known filter: its delay leaves the release time
-        model = FreeRockingModel(record, block, "known", digitizer, digitizer.filter_order, rtol)
-        models.append(model)
-        x[2] -= butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff_frequency)
-    elif mode == "fit":
-        tau_max = 1.0 / (2.0 * math.pi * 0.05 * record.rate)
-        tau_start = 1.0 / (2.0 * math.pi * 0.4 * record.rate)
-        lower, upper = lower + [0.0], upper + [tau_max**2]
-        scales = scales + [tau_start**2]
-        steps = steps + [0.05 * tau_start**2]
-        # stage 2: the filtered model from the unfiltered optimum, for each candidate order;
-        # the smallest residual sum of squares wins
-        # (chi-square differences between orders are > 1, so a loose tolerance ranks them)
-        loose = dict(xtol=1e-6, ftol=1e-7, gtol=1e-8, max_nfev=200) if len(orders) > 1 else tight
-        best: tuple[FreeRockingModel, scipy.optimize.OptimizeResult] | None = None
-        for order in orders:
-            candidate = FreeRockingModel(record, block, "fit", None, order, rtol)
-            trial = solve(candidate, np.append(x, tau_start**2), lower, upper, scales, **loose)
-            models.append(candidate)
-            if best is None or trial.cost < best[1].cost:
-                best = (candidate, trial)
-        assert best is not None, "orders is never empty"
-        model, solution = best
-        if len(orders) > 1:
-            solution = solve(model, solution.x, lower, upper, scales, **tight)
-    if mode == "known":
-        # stage 2: the known filter, from the unfiltered optimum
-        solution = solve(model, x, lower, upper, scales, **tight)
+    x0, lower, upper, scales, steps = _initial_guess(record, block, theta, sigma,
+                                                     offset_guess, crossings)
+    model, solution, models, lower, upper, scales, steps = _fit(
+        record, block, mode, digitizer, orders, rtol, x0, lower, upper, scales, steps)
+    t = record.t
     x = solution.x
     fitted = model(x)
     res = record.values - fitted
@@ -341,45 +265,14 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
     method = interval
     if x[0] >= 0.9999:
         notes.append("the COR reached its bound 1: the record shows no energy loss")
-
-    # the release time: the fitted one is apparent (it holds the fitted filter's delay)
-    apparent = float(x[2])
-    t_release, t_release_se = apparent, float(se[2])
-    cutoff = model.cutoff(x)
-    delay = 0.0
-    if mode == "fit":
-        tau = math.sqrt(max(float(x[4]), 0.0))
-        delay = model.delay * tau
-        t_release = apparent - delay
-        if tau > TAU_FLOOR:
-            gradient = np.zeros(x.size)
-            gradient[2], gradient[4] = 1.0, -model.delay / (2.0 * tau)
-            t_release_se = float(math.sqrt(max(gradient @ covariance @ gradient, 0.0)))
-        if x[4] <= 1e-12 * upper[4]:
-            notes.append("the fitted anti-alias filter reached no filter at all")
-        elif x[4] >= 0.999 * upper[4]:
-            notes.append(f"the fitted anti-alias filter reached its lowest cutoff "
-                         f"{cutoff:.3g} Hz: the record looks smoothed beyond a plain filter")
-    elif digitizer is not None:     # mode "known"
-        delay = butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff_frequency)
-        apparent = t_release + delay
+    t_release, t_release_se, apparent, cutoff, delay = _release_time(
+        model, x, se, covariance, mode, digitizer, upper, notes)
 
     boot_interval: tuple[float, float] | None = None
     boot: np.ndarray | None = None
     if bootstrap:
-        rng = np.random.default_rng(seed)
-        length = 4 * lags
-        replicates: list[float] = []
-        for _ in range(int(bootstrap)):
-            starts = rng.integers(0, t.size - length + 1, size=int(math.ceil(t.size / length)))
-            sample = np.concatenate([res[s:s + length] for s in starts])[:t.size]
-            sample = sample - np.mean(sample) + np.mean(res)
-            target = fitted + sample
-            replicate = scipy.optimize.least_squares(
-                lambda y: target - model(y), x, bounds=(lower, upper), x_scale=np.array(scales),
-                diff_step=1e-5, max_nfev=100)
-            replicates.append(replicate.x[0])
-        boot = np.array(replicates)
+        boot = _bootstrap(model, x, fitted, res, 4 * lags, int(bootstrap), seed, lower, upper,
+                          scales)
         boot_interval = (float(np.percentile(boot, 2.5)), float(np.percentile(boot, 97.5)))
         cor_interval, method = boot_interval, "bootstrap"
 
@@ -392,29 +285,9 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
 
     total = float(np.sum((record.values - np.mean(record.values))**2))
     lag1 = float(np.corrcoef(res[:-1], res[1:])[0, 1]) if res.size > 2 else math.nan
-    peaks = periods = None
     release = apparent if apparent > t[0] else None
-    try:
-        peaks = peak_estimate(record, block, offset=float(x[3]), t_release=release, sigma=sigma)
-    except CalibrationError as error:
-        notes.append(f"peak method: {error}")
-    try:
-        periods = period_fit(record, block, offset=float(x[3]), t_release=release, sigma=sigma)
-    except CalibrationError as error:
-        notes.append(f"period fit: {error}")
-    periods_held = None
-    if periods is not None:
-        try:
-            periods_held = period_fit(record, block, offset=float(x[3]), t_release=release,
-                                      sigma=sigma, fit_alpha=False)
-        except CalibrationError:
-            periods_held = None
-    scatter = None
-    if peaks is not None:
-        try:
-            scatter = cor_scatter(peaks)
-        except CalibrationError as error:
-            notes.append(f"scatter model: {error}")
+    peaks, periods, periods_held, scatter = _cross_checks(record, block, float(x[3]), release,
+                                                          sigma, notes)
     warnings = diagnose(rate=record.rate, anti_alias=mode, filter_cutoff=float(cutoff),
                         residual_lag1=lag1, cor=float(x[0]), cor_se=float(se[0]), peaks=peaks,
                         scatter=scatter, periods=periods_held)
@@ -447,3 +320,196 @@ def calibrate(record: FreeRockingRecord, block: Block, *,
                        t_release_apparent=float(apparent),
                        parameters=PARAMETERS + (("filter_u",) if mode == "fit" else ()),
                        jacobian=jacobian)
+
+
+def _check_arguments(record: FreeRockingRecord, block: Block, interval: str,
+                     anti_alias: object, filter_order: object,
+                     bootstrap: int) -> tuple[str, Digitizer | None, tuple[int, ...]]:
+    """:func:`calibrate`'s arguments checked: the filter mode, known filter and orders."""
+    if not isinstance(record, FreeRockingRecord):
+        raise ValueError(f"record must be a shaketable.calibration.record.FreeRockingRecord, got "
+                         f"{type(record).__name__}")
+    if not isinstance(block, Block):
+        raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
+    if interval not in INTERVALS:
+        raise ValueError(f"interval must be one of {sorted(INTERVALS)}, got {interval!r}")
+    mode, digitizer = _filter_mode(anti_alias)
+    orders = _filter_orders(filter_order)
+    if isinstance(bootstrap, bool) or int(bootstrap) != bootstrap or bootstrap < 0:
+        raise ValueError(f"bootstrap must be a non-negative integer, got {bootstrap!r}")
+    return mode, digitizer, orders
+
+
+def _initial_guess(record: FreeRockingRecord, block: Block, theta: np.ndarray, sigma: float,
+                   offset_guess: float, crossings: list[int]) -> tuple:
+    """The starting point of the fit (COR, theta0 [rad], release time [s], offset [record
+    unit]) read from the record, and the bounds, scales and Jacobian steps of each.
+
+    The release angle from the first extreme, the release time from the first zero crossing
+    minus the exact quarter period (Eq. 2-3), the COR from the peaks.
+    """
+    t = record.t
+    first_zero = zero_time(t, theta, crossings[0])
+    first_segment = theta[:crossings[0] + 1]
+    sign = 1.0 if np.median(first_segment) > 0 else -1.0
+    theta0_guess = float(np.median(first_segment[np.abs(first_segment) >= 0.98 * np.max(
+        np.abs(first_segment))])) if first_segment.size else theta[0]
+    theta0_guess = sign * min(max(abs(theta0_guess), 1e-4), 0.98 * block.alpha)
+    t_release_guess = first_zero - exact_period(block, abs(theta0_guess)) / 4.0
+    try:
+        cor_guess = peak_estimate(record, block, offset=offset_guess,
+                                  t_release=t_release_guess if t_release_guess > t[0] else None,
+                                  sigma=sigma).cor
+    except CalibrationError:
+        cor_guess = 0.9
+    cor_guess = float(np.clip(cor_guess, 0.3, 0.999))
+
+    unit_scale = float(np.max(np.abs(record.values - offset_guess)))
+    lower = [0.05, 0.0 if sign > 0 else -0.999 * block.alpha, t[0] - 5.0, -np.inf]
+    upper = [1.0, 0.999 * block.alpha if sign > 0 else 0.0, first_zero, np.inf]
+    scales = [0.01, 0.01 * block.alpha, 0.01, max(sigma, 1e-6 * unit_scale)]
+    if record.quantity == "top displacement":
+        height = record.height if record.height is not None else block.height
+        scales[3] = max(sigma * height, 1e-9)
+    steps = [2e-4, 2e-4 * block.alpha, 2e-3 * record.dt * 5, max(1e-6 * unit_scale, 1e-12)]
+    x0 = np.array([cor_guess, theta0_guess, t_release_guess, offset_guess])
+    return x0, lower, upper, scales, steps
+
+
+def _solve(record: FreeRockingRecord, model: FreeRockingModel, x0: np.ndarray,
+           low: list[float], high: list[float], scale: list[float],
+           **options: Any) -> scipy.optimize.OptimizeResult:
+    """Least squares of ``model`` on the record from ``x0``, inside the bounds."""
+    x0 = np.clip(x0, np.array(low) + 1e-12, np.array(high) - 1e-12)
+    return scipy.optimize.least_squares(lambda x: record.values - model(x), x0,
+                                        bounds=(low, high), x_scale=np.array(scale),
+                                        diff_step=1e-5, **options)
+
+
+def _fit(record: FreeRockingRecord, block: Block, mode: str, digitizer: Digitizer | None,
+         orders: tuple[int, ...], rtol: float, x0: np.ndarray, lower: list[float],
+         upper: list[float], scales: list[float], steps: list[float]) -> tuple:
+    """The least-squares fit, in two stages: the unfiltered model, then the filtered one.
+
+    Returns the final model and its solution, every model made (their engine runs add up
+    to the cost), and the bounds, scales and steps (with the filter's fifth parameter
+    when ``mode`` is "fit").
+    """
+    tight = dict(xtol=1e-10, ftol=1e-12, gtol=1e-10, max_nfev=400)
+    # stage 1: the unfiltered model, cheap (the engine at the samples only)
+    plain = FreeRockingModel(record, block, "none", None, 4, rtol)
+    solution = _solve(record, plain, x0, lower, upper, scales, **tight)
+    x = solution.x
+    models = [plain]
+    model = plain
+    if digitizer is not None:       # mode "known"
+        # the known filter: its delay leaves the release time
+        model = FreeRockingModel(record, block, "known", digitizer, digitizer.filter_order, rtol)
+        models.append(model)
+        x[2] -= butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff_frequency)
+    elif mode == "fit":
+        tau_max = 1.0 / (2.0 * math.pi * 0.05 * record.rate)
+        tau_start = 1.0 / (2.0 * math.pi * 0.4 * record.rate)
+        lower, upper = lower + [0.0], upper + [tau_max**2]
+        scales = scales + [tau_start**2]
+        steps = steps + [0.05 * tau_start**2]
+        # stage 2: the filtered model from the unfiltered optimum, for each candidate order;
+        # the smallest residual sum of squares wins
+        # (chi-square differences between orders are > 1, so a loose tolerance ranks them)
+        loose = dict(xtol=1e-6, ftol=1e-7, gtol=1e-8, max_nfev=200) if len(orders) > 1 else tight
+        best: tuple[FreeRockingModel, scipy.optimize.OptimizeResult] | None = None
+        for order in orders:
+            candidate = FreeRockingModel(record, block, "fit", None, order, rtol)
+            trial = _solve(record, candidate, np.append(x, tau_start**2), lower, upper, scales,
+                           **loose)
+            models.append(candidate)
+            if best is None or trial.cost < best[1].cost:
+                best = (candidate, trial)
+        assert best is not None, "orders is never empty"
+        model, solution = best
+        if len(orders) > 1:
+            solution = _solve(record, model, solution.x, lower, upper, scales, **tight)
+    if mode == "known":
+        # stage 2: the known filter, from the unfiltered optimum
+        solution = _solve(record, model, x, lower, upper, scales, **tight)
+    return model, solution, models, lower, upper, scales, steps
+
+
+def _release_time(model: FreeRockingModel, x: np.ndarray, se: np.ndarray,
+                  covariance: np.ndarray, mode: str, digitizer: Digitizer | None,
+                  upper: list[float], notes: list[str]) -> tuple:
+    """The release time [s] and its standard error, the apparent release time [s] (the
+    fitted one, which holds the filter's delay), the filter's cutoff [Hz] and delay [s].
+
+    Notes on a fitted filter at a bound are appended to ``notes``.
+    """
+    apparent = float(x[2])
+    t_release, t_release_se = apparent, float(se[2])
+    cutoff = model.cutoff(x)
+    delay = 0.0
+    if mode == "fit":
+        tau = math.sqrt(max(float(x[4]), 0.0))
+        delay = model.delay * tau
+        t_release = apparent - delay
+        if tau > TAU_FLOOR:
+            gradient = np.zeros(x.size)
+            gradient[2], gradient[4] = 1.0, -model.delay / (2.0 * tau)
+            t_release_se = float(math.sqrt(max(gradient @ covariance @ gradient, 0.0)))
+        if x[4] <= 1e-12 * upper[4]:
+            notes.append("the fitted anti-alias filter reached no filter at all")
+        elif x[4] >= 0.999 * upper[4]:
+            notes.append(f"the fitted anti-alias filter reached its lowest cutoff "
+                         f"{cutoff:.3g} Hz: the record looks smoothed beyond a plain filter")
+    elif digitizer is not None:     # mode "known"
+        delay = butterworth_delay(digitizer.filter_order) / (2 * math.pi * digitizer.cutoff_frequency)
+        apparent = t_release + delay
+    return t_release, t_release_se, apparent, cutoff, delay
+
+
+def _bootstrap(model: FreeRockingModel, x: np.ndarray, fitted: np.ndarray, res: np.ndarray,
+               length: int, count: int, seed: int | None, lower: list[float],
+               upper: list[float], scales: list[float]) -> np.ndarray:
+    """The COR of ``count`` moving-block bootstrap refits (blocks of ``length`` samples)."""
+    size = res.size
+    rng = np.random.default_rng(seed)
+    replicates: list[float] = []
+    for _ in range(count):
+        starts = rng.integers(0, size - length + 1, size=int(math.ceil(size / length)))
+        sample = np.concatenate([res[s:s + length] for s in starts])[:size]
+        sample = sample - np.mean(sample) + np.mean(res)
+        target = fitted + sample
+        replicate = scipy.optimize.least_squares(
+            lambda y: target - model(y), x, bounds=(lower, upper), x_scale=np.array(scales),
+            diff_step=1e-5, max_nfev=100)
+        replicates.append(replicate.x[0])
+    return np.array(replicates)
+
+
+def _cross_checks(record: FreeRockingRecord, block: Block, offset: float,
+                  release: float | None, sigma: float, notes: list[str]) -> tuple:
+    """The independent estimates beside the fit: the peak method, the period fit (with alpha
+    fitted and held) and the COR's scatter model, each None where it fails (the reason
+    appended to ``notes``)."""
+    peaks = periods = None
+    try:
+        peaks = peak_estimate(record, block, offset=offset, t_release=release, sigma=sigma)
+    except CalibrationError as error:
+        notes.append(f"peak method: {error}")
+    try:
+        periods = period_fit(record, block, offset=offset, t_release=release, sigma=sigma)
+    except CalibrationError as error:
+        notes.append(f"period fit: {error}")
+    periods_held = None
+    if periods is not None:
+        try:
+            periods_held = period_fit(record, block, offset=offset, t_release=release,
+                                      sigma=sigma, fit_alpha=False)
+        except CalibrationError:
+            periods_held = None
+    scatter = None
+    if peaks is not None:
+        try:
+            scatter = cor_scatter(peaks)
+        except CalibrationError as error:
+            notes.append(f"scatter model: {error}")
+    return peaks, periods, periods_held, scatter

@@ -13,6 +13,7 @@ argparse's usage dump::
 from __future__ import annotations
 
 import argparse
+import re
 from typing import Any
 
 from shaketable.core.units import parse
@@ -38,6 +39,51 @@ class Quantity(argparse.Action):
         except ValueError as error:
             parser.exit(_BAD_INPUT, f"{parser.prog}: error: {error}\n")
         setattr(namespace, self.dest, value)
+
+
+#: A command-line word that begins like a negative number: ``-30x6in``, ``-8s``, ``-.5rad``.
+_NEGATIVE = re.compile(r"-\.?\d")
+
+
+def join_negative_values(parser: argparse.ArgumentParser, argv: list[str]) -> list[str]:
+    """``argv`` with each negative value of a one-value option joined to it by ``=``.
+
+    argparse reads a word that begins with ``-`` and is not a plain number as an option,
+    so ``--block -30x6in`` ended in its usage dump ("expected one argument") instead of
+    the option's own answer on the value. Joined (``--block=-30x6in``), the value reaches
+    the option's reader, which accepts it (``--theta0 -3deg``) or refuses it naming the
+    option (``--block -30x6in: the height and the width must be positive``). Only words
+    after an option of the command that takes exactly one value are joined.
+    """
+    options = _one_value_options(parser)
+    for word in argv:   # the subcommand's own options
+        subcommand = _subcommands(parser).get(word)
+        if subcommand is not None:
+            options |= _one_value_options(subcommand)
+            break
+    joined: list[str] = []
+    words = iter(argv)
+    for word in words:
+        following = next(words, None) if word in options else None
+        if following is not None and _NEGATIVE.match(following):
+            joined.append(f"{word}={following}")
+        else:
+            joined += [word] if following is None else [word, following]
+    return joined
+
+
+def _one_value_options(parser: argparse.ArgumentParser) -> set[str]:
+    """The option strings of ``parser`` that take exactly one value."""
+    return {flag for action in parser._actions if action.nargs is None and action.option_strings
+            for flag in action.option_strings if flag.startswith("--")}
+
+
+def _subcommands(parser: argparse.ArgumentParser) -> dict:
+    """The subcommands of ``parser`` by name (none: empty)."""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return dict(action.choices)
+    return {}
 
 
 def block_option(text: str, option: str = "--block"):

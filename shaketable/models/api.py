@@ -113,6 +113,55 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
         ``method="reference"`` only: SciPy's integrator gave up or made no
         progress.
     """
+    other = _other_model(block, motion, cor=cor, theta0=theta0, theta_dot0=theta_dot0,
+                         duration=duration, method=method, rtol=rtol, subdivisions=subdivisions,
+                         output_dt=output_dt, rest_tolerance=rest_tolerance,
+                         max_recorded_impacts=max_recorded_impacts, top_force=top_force,
+                         friction=friction, model=model)
+    if other is not None:
+        return other
+    block, motion = cast(Block, block), cast("Motion | None", motion)   # the rest went above
+    cor = in_range("cor", cast(float, cor), 0.0, 1.0)
+    options = run_options(method, theta0=theta0, theta_dot0=theta_dot0, duration=duration,
+                          rtol=rtol, subdivisions=subdivisions, rest_tolerance=rest_tolerance,
+                          top_force=top_force)
+    motion = run_motion(motion, options.duration, output_dt)
+    method, rtol, subdivisions = options.method, options.rtol, options.subdivisions
+    theta0, theta_dot0, rest = options.theta0, options.theta_dot0, options.rest_tolerance
+
+    parameters = block_parameters(block, options.top_force)
+    t_grid, ug, vg, rg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero,
+                                       motion.rotation_or_zero)
+    n = t_grid.size
+    check_fixed_steps(method, n, subdivisions)
+    # filled up to info[INFO_N_OUTPUT] / the impact count and read only that far
+    theta, omega, acceleration = np.empty(n), np.empty(n), np.empty(n)
+    work = n * (subdivisions if method == "predictor-corrector" else 1)
+    impact_times, impact_velocities = impact_buffers(
+        max(1, whole_number("max_recorded_impacts", max_recorded_impacts, minimum=0)), work)
+    info = np.zeros(engine.N_INFO)
+    if method == "reference":
+        from shaketable.models.rocking.reference import (
+            integrate_reference,  # SciPy: loaded on use
+        )
+
+        integrate_reference(t_grid, ug, vg, rg, parameters, block.alpha, block.p, cor, theta0,
+                            theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
+                            impact_velocities, info)
+    else:
+        call_interruptibly(engine.INTEGRATORS[COMPILED_METHODS[method]], (
+            t_grid, ug, vg, rg, 1.0, parameters, cor, theta0, theta_dot0, rtol, subdivisions,
+            rest, theta, omega, acceleration, impact_times, impact_velocities, info), work)
+    return result_from_info(block, motion, cor, method, t_grid, theta, omega, acceleration,
+                   impact_times, impact_velocities, info)
+
+
+def _other_model(block, motion, *, cor, theta0, theta_dot0, duration, method, rtol,
+                 subdivisions, output_dt, rest_tolerance, max_recorded_impacts, top_force,
+                 friction, model):
+    """:func:`simulate` for what the rocking engine does not run: another model's input (a
+    stack, an asymmetric block), friction (the planar model) or velocity steps (split at
+    the steps, :mod:`shaketable.models.rocking.impulses`); None for a Block the engine runs."""
     if model is not None or not isinstance(block, Block):   # another model, else refused below
         from shaketable.models.registry import model_for, model_named
 
@@ -167,36 +216,4 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
                                   subdivisions=subdivisions, output_dt=output_dt,
                                   rest_tolerance=rest_tolerance,
                                   max_recorded_impacts=max_recorded_impacts, top_force=top_force)
-    cor = in_range("cor", cor, 0.0, 1.0)
-    options = run_options(method, theta0=theta0, theta_dot0=theta_dot0, duration=duration,
-                          rtol=rtol, subdivisions=subdivisions, rest_tolerance=rest_tolerance,
-                          top_force=top_force)
-    motion = run_motion(motion, options.duration, output_dt)
-    method, rtol, subdivisions = options.method, options.rtol, options.subdivisions
-    theta0, theta_dot0, rest = options.theta0, options.theta_dot0, options.rest_tolerance
-
-    parameters = block_parameters(block, options.top_force)
-    t_grid, ug, vg, rg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero,
-                                       motion.rotation_or_zero)
-    n = t_grid.size
-    check_fixed_steps(method, n, subdivisions)
-    # filled up to info[INFO_N_OUTPUT] / the impact count and read only that far
-    theta, omega, acceleration = np.empty(n), np.empty(n), np.empty(n)
-    work = n * (subdivisions if method == "predictor-corrector" else 1)
-    impact_times, impact_velocities = impact_buffers(
-        max(1, whole_number("max_recorded_impacts", max_recorded_impacts, minimum=0)), work)
-    info = np.zeros(engine.N_INFO)
-    if method == "reference":
-        from shaketable.models.rocking.reference import (
-            integrate_reference,  # SciPy: loaded on use
-        )
-
-        integrate_reference(t_grid, ug, vg, rg, parameters, block.alpha, block.p, cor, theta0,
-                            theta_dot0, rtol, rest, theta, omega, acceleration, impact_times,
-                            impact_velocities, info)
-    else:
-        call_interruptibly(engine.INTEGRATORS[COMPILED_METHODS[method]], (
-            t_grid, ug, vg, rg, 1.0, parameters, cor, theta0, theta_dot0, rtol, subdivisions,
-            rest, theta, omega, acceleration, impact_times, impact_velocities, info), work)
-    return result_from_info(block, motion, cor, method, t_grid, theta, omega, acceleration,
-                   impact_times, impact_velocities, info)
+    return None

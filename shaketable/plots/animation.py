@@ -228,16 +228,38 @@ def stage_unit(blocks: Sequence[Block]) -> str:
     return "m"
 
 
+def _default_title(results, theta, ground_run, single) -> str:
+    """The animation's title: the blocks, the COR when all runs share it, and the motion
+    (free rocking: the release angle of a single run, ``theta`` its angles [rad])."""
+    from shaketable.plots.calcomp import describe_block
+
+    blocks = list(dict.fromkeys(describe_block(run.block) for run in results))
+    if all(name.startswith("H × B = ") for name in blocks):
+        blocks = ["H × B = " + ", ".join(name[8:] for name in blocks)]
+    what = "; ".join(blocks)
+    cors = {run.cor for run in results}
+    if len(cors) == 1:  # several CORs: the labels give them
+        what = f"{what}, COR {results[0].cor:g}"
+    if not np.any(ground_run.horizontal) and not np.any(ground_run.vertical_or_zero):
+        title = f"free rocking: {what}"
+        if single:
+            start = theta[0][0] / results[0].block.alpha
+            title += f", released at θ/α = {start:.2f}"
+    elif ground_run.name:
+        title = f"{ground_run.name}: {what}"
+    else:
+        title = what
+    return title
+
+
 class _Stage:
     """The figure and the artists updated frame by frame, for one or several runs."""
 
     def __init__(self, results: Sequence[RockingResult], motions: Sequence[Motion | None],
                  times: np.ndarray, highpass, *, size=DEFAULT_SIZE, dpi=DEFAULT_DPI,
                  layout="side", labels=None, unit=None, title=None):
-        from matplotlib.patches import Polygon, Rectangle
-
         from shaketable.plots.base import pyplot
-        from shaketable.plots.calcomp import describe_block, run_labels
+        from shaketable.plots.calcomp import run_labels
 
         plt = pyplot()
         self.results, self.times = list(results), times
@@ -273,7 +295,29 @@ class _Stage:
         self.history = fig.add_subplot(grid[0, -1] if with_ground else grid[:, -1])
         self.ground = fig.add_subplot(grid[1, -1], sharex=self.history) if with_ground else None
 
-        # one scale for every stage: the union of what any block and table covers
+        self._lay_out_stages(layout, single, lines, faces)
+        self._plot_history(times, lines, single)
+        if self.ground is not None:
+            self._plot_ground(times, lines)
+        self.history.set_xlim(times[0], times[-1])
+        self.clock = fig.text(0.07, 0.905, "", fontsize=12, ha="left", va="top",
+                              family="monospace")
+        if title is None:
+            title = _default_title(self.results, self.theta, ground_run, single)
+        fits = 0.95 * width / (0.55 * 12 * dpi / 72)  # characters of 12 pt on one line
+        if len(title) > fits and ": " in title:
+            title = title.replace(": ", ":\n", 1)  # two lines rather than past the edges
+        fig.suptitle(title, fontsize=12, y=0.99)
+        self.animated = [*self.tables, *self.blocks, *(trace for trace, _, _ in self.traces),
+                         *self.cursors, *self.dots, *self.states, self.clock]
+
+    def _lay_out_stages(self, layout, single, lines, faces):
+        """The stages on one scale (the union of what any block and table covers), their
+        tables and blocks at the first frame."""
+        from matplotlib.patches import Polygon, Rectangle
+
+        factor = LENGTH_UNITS[self.unit]
+        count, stages = len(self.results), len(self.stages)
         tallest = max(run.block.height for run in self.results) / factor
         table_widths = []
         for run in self.results:
@@ -326,6 +370,8 @@ class _Stage:
             self.stages[0].legend(self.blocks, self.labels, loc="upper right", fontsize=9,
                                   framealpha=0.9)
 
+    def _plot_history(self, times, lines, single):
+        """The history of theta/alpha of every run, with a dot and a cursor at the frame."""
         history = self.history
         self.dots = []
         self.traces: list = []   # (line, times, values): drawn up to each frame's time
@@ -348,48 +394,24 @@ class _Stage:
             history.set_xlabel("time [s]")
         history.grid(True, lw=0.3, alpha=0.5)
         self.cursors = [history.axvline(times[0], color="tab:blue", lw=1.2)]
-        if self.ground is not None:
-            seen: list = []
-            for k, run in enumerate(self.results):
-                ground = run.motion
-                if any(np.array_equal(ground.horizontal, other.horizontal)
-                       and np.array_equal(ground.t, other.t) for other in seen):
-                    continue
-                seen.append(ground)
-                shown = ground.t <= times[-1] + 1e-12
-                (trace,) = self.ground.plot(ground.t[shown], ground.horizontal[shown] / G,
-                                            lw=0.7, color="0.3" if len(seen) == 1 else lines[k])
-                self.traces.append((trace, ground.t[shown], ground.horizontal[shown] / G))
-            self.ground.set_ylabel("ü [g]")
-            self.ground.set_xlabel("time [s]")
-            self.ground.grid(True, lw=0.3, alpha=0.5)
-            self.cursors.append(self.ground.axvline(times[0], color="tab:blue", lw=1.2))
-        history.set_xlim(times[0], times[-1])
-        self.clock = fig.text(0.07, 0.905, "", fontsize=12, ha="left", va="top",
-                              family="monospace")
-        if title is None:
-            blocks = list(dict.fromkeys(describe_block(run.block) for run in self.results))
-            if all(name.startswith("H × B = ") for name in blocks):
-                blocks = ["H × B = " + ", ".join(name[8:] for name in blocks)]
-            what = "; ".join(blocks)
-            cors = {run.cor for run in self.results}
-            if len(cors) == 1:  # several CORs: the labels give them
-                what = f"{what}, COR {self.results[0].cor:g}"
-            if not np.any(ground_run.horizontal) and not np.any(ground_run.vertical_or_zero):
-                title = f"free rocking: {what}"
-                if single:
-                    start = self.theta[0][0] / self.results[0].block.alpha
-                    title += f", released at θ/α = {start:.2f}"
-            elif ground_run.name:
-                title = f"{ground_run.name}: {what}"
-            else:
-                title = what
-        fits = 0.95 * width / (0.55 * 12 * dpi / 72)  # characters of 12 pt on one line
-        if len(title) > fits and ": " in title:
-            title = title.replace(": ", ":\n", 1)  # two lines rather than past the edges
-        fig.suptitle(title, fontsize=12, y=0.99)
-        self.animated = [*self.tables, *self.blocks, *(trace for trace, _, _ in self.traces),
-                         *self.cursors, *self.dots, *self.states, self.clock]
+
+    def _plot_ground(self, times, lines):
+        """The table's acceleration (once per distinct motion), with a cursor at the frame."""
+        seen: list = []
+        for k, run in enumerate(self.results):
+            ground = run.motion
+            if any(np.array_equal(ground.horizontal, other.horizontal)
+                   and np.array_equal(ground.t, other.t) for other in seen):
+                continue
+            seen.append(ground)
+            shown = ground.t <= times[-1] + 1e-12
+            (trace,) = self.ground.plot(ground.t[shown], ground.horizontal[shown] / G,
+                                        lw=0.7, color="0.3" if len(seen) == 1 else lines[k])
+            self.traces.append((trace, ground.t[shown], ground.horizontal[shown] / G))
+        self.ground.set_ylabel("ü [g]")
+        self.ground.set_xlabel("time [s]")
+        self.ground.grid(True, lw=0.3, alpha=0.5)
+        self.cursors.append(self.ground.axvline(times[0], color="tab:blue", lw=1.2))
 
     def draw(self, index: int):
         """Move the artists to frame ``index``; return them."""

@@ -297,6 +297,39 @@ class OverturningSpectrum:
         return plot_spectrum(self, ax=ax, **kwargs)
 
 
+def _edges(block: Block, cor: float, shapes: list, brackets: list, tolerance: float,
+           samples_per_cycle: int, threads, method: str) -> tuple[list, int]:
+    """Every bracket of a change of verdict narrowed to ``tolerance`` (relative).
+
+    A bracket is [series index, lo, hi, class lo, class hi] in a/(g tan alpha); each round
+    runs the geometric middles of all unfinished brackets in one batch and keeps the halves
+    whose ends differ (both, when the middle differs from both ends). Returns the narrow
+    brackets and the number of runs made.
+    """
+    edges: list = []
+    runs = 0
+    while brackets:
+        active = [b for b in brackets if b[2] / b[1] - 1 > tolerance]
+        edges += [b for b in brackets if b[2] / b[1] - 1 <= tolerance]
+        if not active:
+            break
+        middles = [math.sqrt(b[1] * b[2]) for b in active]
+        result = overturn_verdicts(block, cor, [shapes[b[0]] for b in active], middles,
+                                   samples_per_cycle=samples_per_cycle, threads=threads,
+                                   method=method)
+        runs += len(active)
+        brackets = []
+        for b, x, c in zip(active, middles, _classes(result)):
+            if c == b[3]:
+                brackets.append([b[0], x, b[2], c, b[4]])
+            elif c == b[4]:
+                brackets.append([b[0], b[1], x, b[3], c])
+            else:
+                brackets.append([b[0], b[1], x, b[3], c])
+                brackets.append([b[0], x, b[2], c, b[4]])
+    return edges, runs
+
+
 def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4, 6, 8, 10), *,
                          cor="housner", ceiling: float | None = None, scan_step: float = 0.005,
                          tolerance: float = 1e-8, samples_per_cycle: int = 8192,
@@ -390,26 +423,9 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
                                 f"from {lo:.6g} to {grid[k + 1]:.6g}: an overturning window "
                                 "narrower than the scan step cannot be excluded there"))
         start += grid.size
-    edges = []
-    while brackets:
-        active = [b for b in brackets if b[2] / b[1] - 1 > tolerance]
-        edges += [b for b in brackets if b[2] / b[1] - 1 <= tolerance]
-        if not active:
-            break
-        middles = [math.sqrt(b[1] * b[2]) for b in active]
-        result = overturn_verdicts(block, cor, [shapes[b[0]] for b in active], middles,
-                                   samples_per_cycle=samples_per_cycle, threads=threads,
-                                   method=method)
-        runs += len(active)
-        brackets = []
-        for b, x, c in zip(active, middles, _classes(result)):
-            if c == b[3]:
-                brackets.append([b[0], x, b[2], c, b[4]])
-            elif c == b[4]:
-                brackets.append([b[0], b[1], x, b[3], c])
-            else:
-                brackets.append([b[0], b[1], x, b[3], c])
-                brackets.append([b[0], x, b[2], c, b[4]])
+    edges, refining_runs = _edges(block, cor, shapes, brackets, tolerance,
+                                  samples_per_cycle, threads, method)
+    runs += refining_runs
     step = math.log1p(scan_step)
     rows = []
     for index, key in enumerate(keys):

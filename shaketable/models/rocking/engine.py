@@ -39,9 +39,10 @@ An impact can hide inside one step: theta dips below 0 and comes back before
 the step ends. With one turning point in the step, theta' changes sign and the
 driver locates the turning point and, when it lies past 0, the impact before
 it. With two (theta' of one sign at both ends, the ground acceleration ramping
-fast), :func:`_dip_on_stepper` searches the cubic Hermite interpolant of theta,
-theta' at the step ends and confirms the dip on the stepper itself; the same
-check makes a step that ends past 0 after three crossings stop at the first.
+fast), :func:`~shaketable.models.rocking.events.dip_on_stepper` searches the cubic
+Hermite interpolant of theta, theta' at the step ends and confirms the dip on
+the stepper itself; the same check makes a step that ends past 0 after three
+crossings stop at the first.
 Steps without such a dip are not changed.
 
 All three share the event logic: start of rocking at the exact crossing of
@@ -56,11 +57,13 @@ calls (:func:`_integrator`), so the default method's first compile types and opt
 only its own code, with no compiled layer that chooses a method's function. numba's first
 compile costs about 1 ms of CPU per float operation, 4 ms per branch, 3.5 ms per call of
 a helper returning a tuple and 25 ms per compiled function (``benchmarks/cold_start.py
---constructs``): hence the events of a step (:func:`_step_events`, which LLVM still
-inlines) and the rest after an impact (:func:`_rest_after_impact`) are compiled apart
-from the driver (splitting further did not pay: each split links and optimises the event
-location once more), an impact is located from one call site, and conditions of several
-comparisons are combined with ``&`` and ``|`` (no short-circuit branches).
+--constructs``): hence the events of a step
+(:func:`~shaketable.models.rocking.events.step_events`, which LLVM still inlines) and the rest
+after an impact (:func:`_rest_after_impact`) are compiled apart from the driver (splitting
+further did not pay: each split links and optimises the event location once more), the
+driver's phases (:data:`_PHASES`) are inlined into it before typing, an impact is located
+from one call site, and conditions of several comparisons are combined with ``&`` and
+``|`` (no short-circuit branches).
 ``--breakdown`` shows where the rest goes.
 """
 
@@ -72,11 +75,11 @@ import types
 from numba import boolean, int64, njit
 
 from shaketable.core.constants import G
+from shaketable.models.rocking import events
+from shaketable.models.rocking.events import bound_per_method, step_events
 from shaketable.models.rocking.layout import (
     EVENT_IMPACT,
     EVENT_OVERTURN,
-    EVENT_PEAK,
-    EVENT_UNSTABLE,
     INFO_CASCADES,
     INFO_EVALUATIONS,
     INFO_MAX_ABS_THETA,
@@ -125,16 +128,8 @@ from shaketable.models.rocking.steppers import (
 _cascade_rest_time = helper(cascade_rest_time.py_func)
 
 
-def _bound_per_method(*arguments):
-    """Stands for the method's function each integrator binds to this name (:func:`_integrator`).
-
-    Not compiled: a helper that calls one of these names without being one of
-    :data:`_METHOD_HELPERS` fails numba's typing instead of calling another method's one.
-    """
-    raise NotImplementedError("bound to the method's function by engine._integrator")
-
-
-model_acceleration = flight_model = advance = _bound_per_method
+# placeholders: each integrator binds the method's functions to these names (_integrator)
+model_acceleration = flight_model = advance = bound_per_method
 
 # Right-hand-side evaluations per trial step (the Nystrom pair reuses its last stage).
 _EVALUATIONS_FAST, _EVALUATIONS_PREDICTOR_CORRECTOR, _EVALUATIONS_LINEAR = 5, 2, 1
@@ -167,255 +162,6 @@ def _first_positive_margin(start, t_end, side, segment, parameters):
         else:
             low = middle
     return high
-
-
-@helper
-def _event(kind, x, v, a, side, sign, alpha):
-    """Event function (positive before the event, <= 0 at and after it) and its rate."""
-    if kind == EVENT_IMPACT:
-        return side * x, side * v
-    if kind == EVENT_OVERTURN:
-        return 0.5 * math.pi - side * x, -side * v
-    if kind == EVENT_PEAK:
-        return sign * v, sign * a
-    if x >= 0.0:
-        return alpha - x, -v
-    return alpha + x, v
-
-
-def _locate(kind, t, theta, omega, acceleration, side, upper, x_upper, v_upper,
-            a_upper, segment, parameters, sign):
-    """First root of an event function on (0, upper], by a safeguarded Newton iteration.
-
-    The event function is positive at 0 (by construction: for an impact from
-    theta = 0 it is positive just after 0) and ``<= 0`` at ``upper``, where the
-    state (``x_upper``, ``v_upper``, ``a_upper``) is known. Each trial is one
-    step of the stepper from ``t`` to ``t + tau``; the event function's rate
-    comes from the same step (theta' for theta events, theta'' for theta'), so
-    Newton converges in a few trials; a trial outside the bracket, or one that
-    does not halve the step, is replaced by bisection.
-
-    Returns tau, theta, theta', theta'' there and the number of trial steps.
-    """
-    alpha = parameters[ALPHA]
-    a = 0.0
-    b = upper
-    c = upper
-    xc, vc, ac = x_upper, v_upper, a_upper
-    xb, vb, ab = x_upper, v_upper, a_upper
-    gc, dgc = _event(kind, xc, vc, ac, side, sign, alpha)
-    if gc > 0.0:
-        return upper, xc, vc, ac, 0
-    tolerance = 2e-16 * (abs(t) + upper) + 1e-300
-    previous = math.inf
-    trials = int64(0)  # not a literal 0: see _drive
-    for _ in range(100):
-        newton = math.inf if dgc == 0.0 else gc / dgc
-        candidate = c - newton
-        if not (a < candidate < b) or abs(2.0 * newton) > previous:
-            candidate = 0.5 * (a + b)
-        change = abs(candidate - c)
-        if abs(newton) <= tolerance:
-            break  # c is the root to within rounding
-        previous = change
-        x, v, acc, _, _ = advance(t, theta, omega, acceleration, side, candidate, segment,
-                                  parameters)
-        trials += 1
-        g, dg = _event(kind, x, v, acc, side, sign, alpha)
-        c, xc, vc, ac, gc, dgc = candidate, x, v, acc, g, dg
-        if g > 0.0:
-            a = candidate
-        else:
-            b, xb, vb, ab = candidate, x, v, acc
-        if b - a <= tolerance:
-            c, xc, vc, ac = b, xb, vb, ab
-            break
-    return c, xc, vc, ac, trials
-
-
-def _dip_on_stepper(t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                    threshold, first_only, segment, parameters):
-    """A time in (0, h) at which the stepper's own solution is at or past theta = 0.
-
-    Called for a step whose ends have theta on the active side and theta' of
-    one sign, which no sign test flags (with ``first_only``: a step that ends
-    past 0, whose theta' kept one sign). First, where the step may hide a dip:
-    the cubic Hermite interpolant of theta, theta' at both ends (exact when
-    theta'' is linear in time, as the ground acceleration is inside an input
-    interval, up to the p^2 theta term) is searched for two interior turning
-    points, and its minimum of side * theta counts when it is at or below
-    ``threshold`` (checked next on the stepper itself, so a generous margin
-    costs only evaluations). With ``first_only`` (the end is already below 0),
-    only a minimum before the maximum counts: a crossing earlier than the one
-    seen. Then, from the interpolant's minimum, Newton's iteration on
-    theta' = 0 (one step of the stepper from ``t`` per trial, as
-    :func:`_locate`) goes towards the stepper's turning point.
-
-    Returns that time (0 when none is found), theta, theta', theta'' there and
-    the number of trials.
-    """
-    x = v = acc = 0.0
-    trials = int64(0)  # not a literal 0: see _drive
-    # where the cubic Hermite interpolant may hide a dip
-    x0 = side * theta
-    x1 = side * theta_new
-    v0 = side * omega * h
-    v1 = side * omega_new * h
-    c2 = 3.0 * (x1 - x0) - 2.0 * v0 - v1
-    c3 = 2.0 * (x0 - x1) + v0 + v1
-    if c3 == 0.0:
-        # H' linear: no two interior roots with ends of one sign
-        return 0.0, x, v, acc, trials
-    discriminant = c2 * c2 - 3.0 * c3 * v0
-    if discriminant <= 0.0:
-        return 0.0, x, v, acc, trials
-    root = math.sqrt(discriminant)
-    s1 = (-c2 - root) / (3.0 * c3)
-    s2 = (-c2 + root) / (3.0 * c3)
-    if not ((0.0 < s1) & (s1 < 1.0) & (0.0 < s2) & (s2 < 1.0)):
-        return 0.0, x, v, acc, trials
-    s = s1 if 2.0 * c2 + 6.0 * c3 * s1 > 0.0 else s2  # the minimum of side * theta
-    # s > min(s1, s2), as numba's min() computes it: min() here would be compiled once more
-    if first_only > 0.0 and s > (s2 if s2 < s1 else s1):
-        # theta_new < 0: only a minimum before the maximum hides a crossing
-        return 0.0, x, v, acc, trials
-    lowest = x0 + s * (v0 + s * (c2 + s * c3))
-    if lowest > threshold:
-        return 0.0, x, v, acc, trials
-    tau = s * h
-    if tau <= 0.0:
-        return 0.0, x, v, acc, trials
-    for _ in range(12):
-        x, v, acc, _, _ = advance(t, theta, omega, acceleration, side, tau, segment,
-                                  parameters)
-        trials += 1
-        if side * x <= 0.0:
-            return tau, x, v, acc, trials
-        if side * acc <= 0.0:
-            break  # not near a minimum of side * theta
-        following = tau - v / acc
-        if not (0.0 < following < h) or abs(following - tau) <= 1e-14 * h:
-            break
-        tau = following
-    return 0.0, x, v, acc, trials
-
-
-def _step_events(t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                 acceleration_new, segment, parameters, info):
-    """The events inside a step of free flight from ``t`` to ``t + h``.
-
-    The step's end (``theta_new``, ``omega_new``, ``acceleration_new``) is known.
-
-    - Terminal events, where the step ends early: an impact where theta reached 0 (also
-      inside the step: a turning point past 0 after touching it, or a dip between two
-      turning points, :func:`_dip_on_stepper`), and an overturn where |theta| reached
-      pi/2.
-    - Non-terminal events, recorded in ``info``: the turning point (theta' changes sign
-      away from 0), which with the step's end updates the largest |theta| so far
-      (``INFO_MAX_ABS_THETA``, ``INFO_T_MAX``, ``INFO_THETA_AT_MAX``), and the first
-      time |theta| passes alpha (``INFO_T_UNSTABLE``, ``INFO_UNSTABLE_DIRECTION``).
-
-    Each is located on the stepper (:func:`_locate`).
-
-    Returns
-    -------
-    tau : float
-        Where the step ends [s after ``t``]: ``h``, or the terminal event.
-    kind : float
-        EVENT_IMPACT, EVENT_OVERTURN, or -1 (no terminal event).
-    theta, omega, acceleration : float
-        The state there [rad, rad/s, rad/s^2]: theta is exactly 0 at an impact and
-        side * pi / 2 at an overturn.
-    located : int
-        Trial steps made to locate the events.
-    """
-    tau = h
-    kind = -1.0
-    located = int64(0)  # trial steps of event location (not a literal 0: see _drive)
-    # an impact is located (once, below) in (0, upper], with the state there x, v, acc
-    impact = False
-    upper, x, v, acc = h, theta_new, omega_new, acceleration_new
-    if (side * omega < 0.0) & (side * omega_new > 0.0) & (side * theta_new > 0.0):
-        # theta turned back away from 0 inside the step: did it touch 0 first?
-        sign = 1.0 if omega > 0.0 else -1.0
-        upper, x, v, acc, trials = _locate(
-            EVENT_PEAK, t, theta, omega, acceleration, side, h, theta_new,
-            omega_new, acceleration_new, segment, parameters, sign)
-        located += trials
-        impact = side * x <= 0.0
-    elif (side * theta_new < 0.0) | ((side * theta_new == 0.0) & (side * omega_new < 0.0)):
-        impact = True
-        if (side * omega < 0.0) & (side * omega_new < 0.0):
-            # theta may have crossed 0 three times (down, up at a turning point
-            # below 0, down again): bracket the first crossing
-            found, xd, vd, ad, trials = _dip_on_stepper(
-                t, theta, omega, acceleration, side, h, theta_new, omega_new,
-                0.5 * side * theta, 1.0, segment, parameters)
-            located += trials
-            if found > 0.0:
-                upper, x, v, acc = found, xd, vd, ad
-    elif (omega * omega_new > 0.0) & (side * theta_new > 0.0):
-        # theta' has the same sign at both ends, but it may have changed sign
-        # twice inside the step (the ground acceleration ramps fast enough):
-        # a dip below 0 between two turning points that no sign test sees
-        lower = side * theta_new if side * theta_new < side * theta else side * theta  # min()
-        found, xd, vd, ad, trials = _dip_on_stepper(
-            t, theta, omega, acceleration, side, h, theta_new, omega_new, 0.5 * lower, 0.0,
-            segment, parameters)
-        located += trials
-        if found > 0.0:
-            impact = True
-            upper, x, v, acc = found, xd, vd, ad
-    if impact:
-        tau, theta_new, omega_new, acceleration_new, trials = _locate(
-            EVENT_IMPACT, t, theta, omega, acceleration, side, upper, x, v, acc, segment,
-            parameters, 0.0)
-        located += trials
-        kind = EVENT_IMPACT
-    if side * theta_new >= 0.5 * math.pi:
-        tau, theta_new, omega_new, acceleration_new, trials = _locate(
-            EVENT_OVERTURN, t, theta, omega, acceleration, side, tau, theta_new,
-            omega_new, acceleration_new, segment, parameters, 0.0)
-        located += trials
-        kind = EVENT_OVERTURN
-    if kind == EVENT_IMPACT:
-        theta_new = 0.0
-    elif kind == EVENT_OVERTURN:
-        theta_new = side * 0.5 * math.pi
-
-    # non-terminal events: the turning point (max |theta|) and the first instability
-    alpha = parameters[ALPHA]
-    tau_peak = tau
-    theta_peak = theta_new
-    v_peak = omega_new
-    acceleration_peak = acceleration_new
-    if (omega * omega_new < 0.0) & (side * omega > 0.0):
-        sign = 1.0 if omega > 0.0 else -1.0
-        tau_peak, theta_peak, v_peak, acceleration_peak, trials = _locate(
-            EVENT_PEAK, t, theta, omega, acceleration, side, tau, theta_new,
-            omega_new, acceleration_new, segment, parameters, sign)
-        located += trials
-        if abs(theta_peak) > info[INFO_MAX_ABS_THETA]:
-            info[INFO_MAX_ABS_THETA] = abs(theta_peak)
-            info[INFO_T_MAX] = t + tau_peak
-            info[INFO_THETA_AT_MAX] = theta_peak
-    if abs(theta_new) > info[INFO_MAX_ABS_THETA]:
-        info[INFO_MAX_ABS_THETA] = abs(theta_new)
-        info[INFO_T_MAX] = t + tau
-        info[INFO_THETA_AT_MAX] = theta_new
-    if math.isnan(info[INFO_T_UNSTABLE]):
-        if (abs(theta_peak) > alpha) | (abs(theta_new) > alpha):
-            if abs(theta_peak) > alpha:
-                upper, x, v, acc = tau_peak, theta_peak, v_peak, acceleration_peak
-            else:
-                upper, x, v, acc = tau, theta_new, omega_new, acceleration_new
-            tau_unstable, x, v, acc, trials = _locate(
-                EVENT_UNSTABLE, t, theta, omega, acceleration, side, upper, x, v,
-                acc, segment, parameters, 0.0)
-            located += trials
-            info[INFO_T_UNSTABLE] = t + tau_unstable
-            info[INFO_UNSTABLE_DIRECTION] = side
-    return tau, kind, theta_new, omega_new, acceleration_new, located
 
 
 def _rest_after_impact(t, omega, side, segment, parameters, cor, rest_tolerance,
@@ -502,19 +248,15 @@ def integrate(method, t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0
 _METHOD = METHOD_FAST  # each integrator's own value: see _integrator
 
 
-def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, subdivisions,
-           rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
-           impact_velocities, info):
-    """:func:`integrate` for the method ``_METHOD`` (a compile-time constant, see
-    :func:`_integrator`)."""
+def _settings(block, rtol, rest_tolerance):
+    """The run's constants for the method ``_METHOD``.
+
+    Returns alpha [rad], p [1/s], the absolute tolerances of theta [rad] and theta'
+    [rad/s], the rest tolerance [s] (1e-6 / p when ``rest_tolerance`` is negative), the
+    impact velocity below which a cascade is summed [rad/s] and the right-hand-side
+    evaluations per trial step.
+    """
     method = _METHOD
-    n = t_grid.shape[0]
-    store = out_theta.shape[0] >= n
-    # The block's parameters as a tuple of floats: every helper below takes them by value
-    # (an array argument costs an atomic reference-count increment and decrement per call,
-    # which were a third of the run time); the arithmetic is the same, bit for bit.
-    block = (parameters[0], parameters[1], parameters[2], parameters[3], parameters[4],
-             parameters[5], parameters[6], parameters[7], parameters[8], parameters[9])
     alpha = block[ALPHA]
     # x * x, not x ** 2: the same number (numba's power by a constant 2 is 1.0 * (x * x)),
     # without compiling numba's integer-power routine on a first run
@@ -529,19 +271,175 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
     velocity_floor = 1e-13 * alpha * p
     if method == METHOD_FAST:
         velocity_floor = max(velocity_floor, 1e3 * atol_omega)
-    hold_down = block[HOLD_DOWN]
-    max_recorded = impact_times.shape[0]
     per_step = _EVALUATIONS_LINEAR
     if method == METHOD_FAST:
         per_step = _EVALUATIONS_FAST
     elif method == METHOD_PREDICTOR_CORRECTOR:
         per_step = _EVALUATIONS_PREDICTOR_CORRECTOR
+    return alpha, p, atol_theta, atol_omega, rest_tolerance, velocity_floor, per_step
 
+
+def _initial_state(info, t_start, theta0, omega0, alpha):
+    """Fills ``info`` for the state at ``t_start`` [s] (NaN for what has not happened yet).
+
+    Returns whether the block rests and the corner it turns about (+1 or -1).
+    """
     for i in range(N_INFO):
         info[i] = math.nan
     info[INFO_MAX_ABS_THETA] = abs(theta0)
-    info[INFO_T_MAX] = t_grid[0]
+    info[INFO_T_MAX] = t_start
     info[INFO_THETA_AT_MAX] = theta0
+    resting = theta0 == 0.0 and omega0 == 0.0
+    side = 1.0
+    if theta0 < 0.0 or (theta0 == 0.0 and omega0 < 0.0):
+        side = -1.0
+    if not resting:
+        info[INFO_T_START] = t_start
+    if abs(theta0) > alpha:
+        info[INFO_T_UNSTABLE] = t_start
+        info[INFO_UNSTABLE_DIRECTION] = side
+    return resting, side
+
+
+def _contact_end(t0, t1, v0, v1, hold_down):
+    """The end of contact in the interval [t0, t1] [s] and whether the block leaves the
+    ground there: the model needs g + vg (+ the rods' hold-down) to stay positive."""
+    support_0 = G + v0 + hold_down
+    support_1 = G + v1 + hold_down
+    if support_0 <= 0.0:
+        return t0, True
+    if support_1 <= 0.0:
+        return t0 + (t1 - t0) * support_0 / (support_0 - support_1), True
+    return t1, False
+
+
+def _start_of_rocking(t, t_end, segment, block):
+    """When a block at rest at ``t`` starts rocking before ``t_end``, and onto which corner.
+
+    The margin s theta''(theta = 0) of Eq. (2-1) is affine in time inside an input interval:
+    the first corner s whose margin turns positive, at the crossing made exact by
+    :func:`_first_positive_margin`. Returns (time [s], s), or (``t_end``, 0) when the block
+    stays at rest.
+    """
+    ua, va, ra = ground(segment, t)
+    ub, vb, rb = ground(segment, t_end)
+    start = math.inf
+    start_side = 0.0
+    for s in (1.0, -1.0):
+        margin_a = s * model_acceleration(0.0, s, ua, va, ra, block)
+        margin_b = s * model_acceleration(0.0, s, ub, vb, rb, block)
+        if margin_a > 0.0:
+            candidate = t
+        elif margin_b > 0.0:
+            candidate = t + (t_end - t) * (-margin_a) / (margin_b - margin_a)
+        else:
+            continue
+        if candidate < start:
+            start = candidate
+            start_side = s
+    if start_side == 0.0:
+        return t_end, 0.0
+    return _first_positive_margin(start, t_end, start_side, segment, block), start_side
+
+
+def _step_length(t, t0, t_end, substep, step_size):
+    """The next trial step from ``t`` [s] for the method ``_METHOD``, never past ``t_end``.
+
+    METHOD_FAST: the controller's ``step_size``; METHOD_PREDICTOR_CORRECTOR: up to the next
+    of the interval's equal steps of ``substep`` from ``t0``; METHOD_LINEAR: the rest of
+    the interval.
+    """
+    method = _METHOD
+    if method == METHOD_FAST:
+        h = min(step_size, t_end - t)
+    elif method == METHOD_PREDICTOR_CORRECTOR:
+        index = math.floor((t - t0) / substep * (1.0 + 1e-12) + 1e-9) + 1.0
+        h = min(t0 + index * substep, t_end) - t
+        if h <= 1e-12 * substep:
+            h = min(substep, t_end - t)
+    else:
+        h = t_end - t
+    return h
+
+
+def _control(h, theta, omega, theta_new, omega_new, error_theta, error_omega, rtol,
+             atol_theta, atol_omega, step_size, previous_error, just_rejected):
+    """Step-size control of METHOD_FAST after a trial step of ``h`` [s].
+
+    The error is mixed absolute/relative; the controller is PI (Gustafsson; Hairer &
+    Wanner's DOPRI5 constants). Returns whether the step is accepted, the next step
+    size [s], the controller's memory (the last accepted error) and whether the step was
+    rejected.
+    """
+    error = max(abs(error_theta) / (atol_theta + rtol * max(abs(theta), abs(theta_new))),
+                abs(error_omega) / (atol_omega + rtol * max(abs(omega), abs(omega_new))))
+    if not error <= 1.0:  # also NaN
+        if error != error:
+            error = 1e10
+        return False, h * max(0.2, 0.9 * error ** -0.2), previous_error, True
+    error = max(error, 1e-10)
+    growth = min(5.0, max(0.2, 0.9 * error ** -0.17 * previous_error ** 0.04))
+    if just_rejected:
+        growth = min(growth, 1.0)
+    if h < step_size:
+        # a step cut short by the end of the interval says nothing against the step
+        # size that was planned
+        step_size = max(step_size, h * growth)
+    else:
+        step_size = h * growth
+    return True, step_size, error, False
+
+
+def _store(out_theta, out_omega, out_acceleration, index, theta, omega, resting, side, u, v,
+           r, block):
+    """Stores theta [rad], theta' [rad/s] and theta'' [rad/s^2] (0 at rest) at sample
+    ``index``, where the ground accelerations are ``u``, ``v``, ``r``."""
+    out_theta[index] = theta
+    out_omega[index] = omega
+    if resting:
+        out_acceleration[index] = 0.0
+    else:
+        out_acceleration[index] = model_acceleration(theta, side, u, v, r, block)
+
+
+def _finish(info, t, theta, omega, steps, evaluations, rejected, cascades, status, n_impacts,
+            filled):
+    """Writes the final state and the run's counts into ``info``."""
+    info[INFO_T_END] = t
+    info[INFO_THETA_END] = theta
+    info[INFO_THETA_DOT_END] = omega
+    info[INFO_STEPS] = steps
+    info[INFO_EVALUATIONS] = evaluations
+    info[INFO_REJECTED] = rejected
+    info[INFO_CASCADES] = cascades
+    info[INFO_STATUS] = status
+    info[INFO_N_IMPACTS] = n_impacts
+    info[INFO_N_OUTPUT] = filled
+
+
+def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, subdivisions,
+           rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
+           impact_velocities, info):
+    """:func:`integrate` for the method ``_METHOD`` (a compile-time constant, see
+    :func:`_integrator`).
+
+    Interval by interval of the record: a block at rest waits for the start of rocking
+    (:func:`_start_of_rocking`); in flight, a step (:func:`_step_length`, ``advance``,
+    :func:`_control`), its events (``step_events``) and at an impact Section 2.7's map
+    and the rest that may follow (:func:`_rest_after_impact`).
+    """
+    method = _METHOD
+    n = t_grid.shape[0]
+    store = out_theta.shape[0] >= n
+    # The block's parameters as a tuple of floats: every helper below takes them by value
+    # (an array argument costs an atomic reference-count increment and decrement per call,
+    # which were a third of the run time); the arithmetic is the same, bit for bit.
+    block = (parameters[0], parameters[1], parameters[2], parameters[3], parameters[4],
+             parameters[5], parameters[6], parameters[7], parameters[8], parameters[9])
+    alpha, p, atol_theta, atol_omega, rest_tolerance, velocity_floor, per_step = _settings(
+        block, rtol, rest_tolerance)
+    hold_down = block[HOLD_DOWN]
+    max_recorded = impact_times.shape[0]
     # Loop-carried counters and flags start as int64(0) and boolean(False), not 0 and False:
     # a literal, widened later in the loop, cost the first compile two more typing passes.
     n_impacts = int64(0)
@@ -551,20 +449,9 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
     cascades = int64(0)
     status = int64(STATUS_COMPLETED)
 
-    theta = theta0
-    omega = omega0
-    resting = theta == 0.0 and omega == 0.0
-    side = 1.0
-    if theta < 0.0 or (theta == 0.0 and omega < 0.0):
-        side = -1.0
-    if not resting:
-        info[INFO_T_START] = t_grid[0]
-    if abs(theta) > alpha:
-        info[INFO_T_UNSTABLE] = t_grid[0]
-        info[INFO_UNSTABLE_DIRECTION] = side
-    rest_until = t_grid[0]
-    t = t_grid[0]
-    last_impact = t
+    theta, omega = theta0, omega0
+    resting, side = _initial_state(info, t_grid[0], theta0, omega0, alpha)
+    t = rest_until = last_impact = t_grid[0]
     step_size = 0.1 / p
     previous_error = 1e-4  # PI controller memory
     acceleration = 0.0     # theta'' of the flight model at (t, theta), when known
@@ -572,14 +459,8 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
     just_rejected = boolean(False)
 
     if store:
-        out_theta[0] = theta
-        out_omega[0] = omega
-        if resting:
-            out_acceleration[0] = 0.0
-        else:
-            out_acceleration[0] = model_acceleration(theta, side, ug[0] * scale,
-                                                     vg[0] * scale, rg[0] * scale,
-                                                     block)
+        _store(out_theta, out_omega, out_acceleration, 0, theta, omega, resting, side,
+               ug[0] * scale, vg[0] * scale, rg[0] * scale, block)
     filled = int64(1)
 
     for k in range(n - 1):
@@ -590,17 +471,7 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
         v0, v1 = vg[k] * scale, vg[k + 1] * scale
         r0, r1 = rg[k] * scale, rg[k + 1] * scale
         segment = (t0, t1 - t0, u0, u1 - u0, v0, v1 - v0, r0, r1 - r0)
-        # The model needs contact: g + vg (+ rods' hold-down) must stay positive.
-        support_0 = G + v0 + hold_down
-        support_1 = G + v1 + hold_down
-        t_end = t1
-        airborne = False
-        if support_0 <= 0.0:
-            t_end = t0
-            airborne = True
-        elif support_1 <= 0.0:
-            t_end = t0 + (t1 - t0) * support_0 / (support_0 - support_1)
-            airborne = True
+        t_end, airborne = _contact_end(t0, t1, v0, v1, hold_down)
         substep = (t1 - t0) / subdivisions
 
         while t < t_end:
@@ -610,26 +481,9 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                     break
                 if rest_until > t:
                     t = rest_until
-                ua, va, ra = ground(segment, t)
-                ub, vb, rb = ground(segment, t_end)
-                start = math.inf
-                start_side = 0.0
-                for s in (1.0, -1.0):
-                    margin_a = s * model_acceleration(0.0, s, ua, va, ra, block)
-                    margin_b = s * model_acceleration(0.0, s, ub, vb, rb, block)
-                    if margin_a > 0.0:
-                        candidate = t
-                    elif margin_b > 0.0:
-                        candidate = t + (t_end - t) * (-margin_a) / (margin_b - margin_a)
-                    else:
-                        continue
-                    if candidate < start:
-                        start = candidate
-                        start_side = s
+                t, start_side = _start_of_rocking(t, t_end, segment, block)
                 if start_side == 0.0:
-                    t = t_end
                     break
-                t = _first_positive_margin(start, t_end, start_side, segment, block)
                 side = start_side
                 theta = 0.0
                 omega = 0.0
@@ -647,44 +501,20 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
                 known = True
 
             # ---- one step of free flight about the active corner
-            if method == METHOD_FAST:
-                h = min(step_size, t_end - t)
-            elif method == METHOD_PREDICTOR_CORRECTOR:
-                index = math.floor((t - t0) / substep * (1.0 + 1e-12) + 1e-9) + 1.0
-                h = min(t0 + index * substep, t_end) - t
-                if h <= 1e-12 * substep:
-                    h = min(substep, t_end - t)
-            else:
-                h = t_end - t
+            h = _step_length(t, t0, t_end, substep, step_size)
             theta_new, omega_new, acceleration_new, error_theta, error_omega = advance(
                 t, theta, omega, acceleration, side, h, segment, block)
             evaluations += per_step
             if method == METHOD_FAST:
-                error = max(abs(error_theta) / (atol_theta + rtol * max(abs(theta), abs(theta_new))),
-                            abs(error_omega) / (atol_omega + rtol * max(abs(omega), abs(omega_new))))
-                if not error <= 1.0:  # also NaN
-                    if error != error:
-                        error = 1e10
-                    step_size = h * max(0.2, 0.9 * error ** -0.2)
+                accepted, step_size, previous_error, just_rejected = _control(
+                    h, theta, omega, theta_new, omega_new, error_theta, error_omega, rtol,
+                    atol_theta, atol_omega, step_size, previous_error, just_rejected)
+                if not accepted:
                     rejected += 1
-                    just_rejected = True
                     continue
-                # PI control (Gustafsson; Hairer & Wanner's DOPRI5 constants)
-                error = max(error, 1e-10)
-                growth = min(5.0, max(0.2, 0.9 * error ** -0.17 * previous_error ** 0.04))
-                previous_error = error
-                if just_rejected:
-                    growth = min(growth, 1.0)
-                    just_rejected = False
-                if h < step_size:
-                    # a step cut short by the end of the interval says nothing against
-                    # the step size that was planned
-                    step_size = max(step_size, h * growth)
-                else:
-                    step_size = h * growth
 
             # ---- events inside the step: impact, overturn (terminal), peak, instability
-            tau, kind, theta_new, omega_new, acceleration_new, located = _step_events(
+            tau, kind, theta_new, omega_new, acceleration_new, located = step_events(
                 t, theta, omega, acceleration, side, h, theta_new, omega_new,
                 acceleration_new, segment, block, info)
             evaluations += located * per_step
@@ -729,35 +559,29 @@ def _drive(t_grid, ug, vg, rg, scale, parameters, cor, theta0, omega0, rtol, sub
             info[INFO_T_AIRBORNE] = t_end
             break
         if store:
-            out_theta[k + 1] = theta
-            out_omega[k + 1] = omega
-            if resting:
-                out_acceleration[k + 1] = 0.0
-            else:
-                out_acceleration[k + 1] = model_acceleration(theta, side, u1, v1, r1,
-                                                             block)
+            _store(out_theta, out_omega, out_acceleration, k + 1, theta, omega, resting, side,
+                   u1, v1, r1, block)
         filled = k + 2
 
-    info[INFO_T_END] = t
-    info[INFO_THETA_END] = theta
-    info[INFO_THETA_DOT_END] = omega
-    info[INFO_STEPS] = steps
-    info[INFO_EVALUATIONS] = evaluations
-    info[INFO_REJECTED] = rejected
-    info[INFO_CASCADES] = cascades
-    info[INFO_STATUS] = status
-    info[INFO_N_IMPACTS] = n_impacts
-    info[INFO_N_OUTPUT] = filled
+    _finish(info, t, theta, omega, steps, evaluations, rejected, cascades, status, n_impacts,
+            filled)
 
 
-# The helpers that call the method's functions: each integrator compiles its own copies.
-_METHOD_HELPERS = ("_first_positive_margin", "_locate", "_dip_on_stepper", "_step_events",
-                   "_rest_after_impact")
+# The helpers that call the method's functions: each integrator compiles its own copies
+# (those of shaketable.models.rocking.events first, in a copy of that module's namespace).
+_METHOD_HELPERS = events.METHOD_HELPERS + (
+    "_first_positive_margin", "_rest_after_impact", "_settings", "_initial_state",
+    "_contact_end", "_start_of_rocking", "_step_length", "_control", "_store", "_finish")
 # Those that LLVM inlines into the driver (forceinline: LLVM's alwaysinline): part of its
 # body, called at every step, compiled apart only to keep numba's first compile short;
 # inlined because a call at every step makes the batch slower (benchmarks/batch_rate.py).
-_INLINED_HELPERS = ("_step_events",)
+_INLINED_HELPERS = ("step_events",)
 _INLINED_HELPER = njit(**{**HELPER_OPTIONS, "forceinline": True})
+# The driver's phases: numba inlines them into the driver before typing (inline="always"),
+# so that the driver compiles and runs as one function, as when they were written in it.
+_PHASES = ("_settings", "_initial_state", "_contact_end", "_start_of_rocking",
+           "_step_length", "_control", "_store", "_finish")
+_PHASE = njit(inline="always", error_model=ERROR_MODEL)
 
 
 def _integrator(method, name):
@@ -766,9 +590,10 @@ def _integrator(method, name):
     The same Python code, in a copy of this module's namespace in which ``_METHOD`` is
     ``method`` and ``model_acceleration``, ``flight_model`` and ``advance`` are the
     method's functions (:data:`~shaketable.models.rocking.steppers.METHOD_FUNCTIONS`); the helpers
-    that call those (:data:`_METHOD_HELPERS`) are compiled from it too, each under a name
-    of its own. numba reads ``method == METHOD_...`` as a comparison of two constants and
-    drops the other methods' branches before typing. The namespace is copied at import:
+    that call those (:data:`_METHOD_HELPERS`) are compiled from it too (those of
+    :mod:`shaketable.models.rocking.events` from a copy of that module's namespace, bound the
+    same way), each under a name of its own. numba reads ``method == METHOD_...`` as a
+    comparison of two constants and drops the other methods' branches before typing. The namespace is copied at import:
     replacing a helper in the module afterwards does not change the integrators.
 
     The integrator allocates no array: it is compiled without numba's reference counting
@@ -776,16 +601,19 @@ def _integrator(method, name):
     models.rocking.run.call_interruptibly), and the batch runs them on several threads.
     """
     namespace = dict(_drive.__globals__, _METHOD=method, **METHOD_FUNCTIONS[method])
+    events_namespace = dict(vars(events), **METHOD_FUNCTIONS[method])
     for helper_name in _METHOD_HELPERS:
-        code = globals()[helper_name]
-        copy = types.FunctionType(code.__code__, namespace, helper_name)
+        own = events_namespace if helper_name in events.METHOD_HELPERS else namespace
+        code = own[helper_name]
+        copy = types.FunctionType(code.__code__, own, helper_name)
         # a name of its own: numba names the compiled symbol after the qualified name and the
         # argument types, and the integrators link their helpers in as weak symbols, so
         # that two integrators loaded from the cache into one process would otherwise share
         # one method's copy
         copy.__qualname__ = f"{name}.{helper_name}"
-        compile_as = _INLINED_HELPER if helper_name in _INLINED_HELPERS else helper
-        namespace[helper_name] = compile_as(copy)
+        compile_as = (_INLINED_HELPER if helper_name in _INLINED_HELPERS
+                      else _PHASE if helper_name in _PHASES else helper)
+        own[helper_name] = namespace[helper_name] = compile_as(copy)
     function = types.FunctionType(_drive.__code__, namespace, name)
     function.__qualname__ = name
     function.__doc__ = f":func:`integrate` with method code {method}."

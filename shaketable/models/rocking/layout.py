@@ -29,8 +29,8 @@ N_INFO = 20
 
 # Event codes. Floats on purpose: numba types an integer constant passed to a compiled
 # function as a literal and compiles a separate copy of the callee for each value (four
-# copies of _locate, each with every stepper inlined, doubled the first-call compile time);
-# floats have no literal type, so _locate is compiled once and branches at run time.
+# copies of events.locate, each with every stepper inlined, doubled the first-call compile time);
+# floats have no literal type, so locate is compiled once and branches at run time.
 EVENT_IMPACT = 0.0
 
 EVENT_OVERTURN = 1.0

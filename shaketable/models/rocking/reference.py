@@ -124,6 +124,125 @@ MAX_STALLED_SEGMENTS = 100
 MAX_SEGMENTS_PER_INTERVAL = 100_000
 
 
+def _start_of_rocking(t, t_end, ground, par):
+    """When a block at rest at ``t`` starts rocking before ``t_end`` [s], and onto which corner.
+
+    The margin s theta''(theta = 0) of Eq. (2-1) is affine in time inside an input interval:
+    the first corner s whose margin turns positive, at the first time it is strictly
+    positive. ``ground(time)`` gives the ground accelerations, ``par(s)`` the parameters
+    of corner s. Returns (time [s], s), or (``t_end``, 0) when the block stays at rest.
+    """
+    start, start_side = math.inf, 0.0
+    for s in (1.0, -1.0):
+        margin_a = s * angular_acceleration(0.0, s, *ground(t), par(s))
+        margin_b = s * angular_acceleration(0.0, s, *ground(t_end), par(s))
+        if margin_a > 0:
+            candidate = t
+        elif margin_b > 0:
+            candidate = t + (t_end - t) * (-margin_a) / (margin_b - margin_a)
+        else:
+            continue
+        if candidate < start:
+            start, start_side = candidate, s
+    if start_side == 0.0:
+        return t_end, 0.0
+    # at the interpolated crossing the margin is zero to rounding: begin where it is
+    # strictly positive (else the flight "impacts" at once and the block rests and
+    # restarts at the same instant forever; engine: same rule)
+    low, high = start, t_end
+    if start_side * angular_acceleration(0.0, start_side, *ground(start),
+                                         par(start_side)) <= 0.0:
+        for _ in range(200):
+            middle = 0.5 * (low + high)
+            if middle <= low or middle >= high:
+                break
+            if start_side * angular_acceleration(0.0, start_side, *ground(middle),
+                                                 par(start_side)) > 0.0:
+                high = middle
+            else:
+                low = middle
+        start = high
+    return start, start_side
+
+
+def _flight(ground, t, t_end, theta, omega, side, active, active_alpha, rtol, atol):
+    """One flight about the corner ``side`` from ``t`` [s] to at most ``t_end`` [s].
+
+    SciPy's DOP853 from theta [rad], theta' [rad/s] with the events impact and overturn
+    (terminal), turning point and instability (``solution.t_events`` in this order);
+    ``active`` are the corner's parameters, ``active_alpha`` its angle [rad].
+    """
+    t_segment = t
+    from_zero = theta == 0.0
+
+    def rhs(time, y):
+        # the active corner's equation continued past theta = 0 (smooth), as in
+        # the engine: Eq. 2-13's switch of corner there is a jump in theta''
+        # that made DOP853 give up at the impact
+        return [y[1], flight_acceleration(y[0], side, *ground(time), active)]
+
+    def impact(time, y):
+        if from_zero:
+            elapsed = time - t_segment
+            return side * y[1] if elapsed <= 0 else side * y[0] / elapsed
+        return side * y[0]
+    impact.terminal, impact.direction = True, -1
+
+    def overturn(time, y):
+        return 0.5 * math.pi - side * y[0]
+    overturn.terminal, overturn.direction = True, -1
+
+    def peak(time, y):
+        return y[1]
+    peak.terminal, peak.direction = False, 0
+
+    def unstable(time, y):
+        return active_alpha - abs(y[0])
+    unstable.terminal, unstable.direction = False, -1
+
+    solution = solve_ivp(rhs, (t, t_end), [theta, omega], method="DOP853", rtol=rtol,
+                         atol=atol, events=[impact, overturn, peak, unstable],
+                         first_step=None, dense_output=True)
+    if solution.status == -1:
+        raise ReferenceSolverError(
+            f"reference solver (DOP853, rtol {rtol:g}) failed at t = {solution.t[-1]!r} s "
+            f"(theta = {solution.y[0, -1]!r} rad): {solution.message}")
+    return solution
+
+
+def _record_peaks(solution, t_impact, side, info):
+    """Updates ``info`` with a flight's turning points up to ``t_impact`` [s] (the largest
+    |theta| so far) and its first instability, if before ``t_impact``."""
+    for time, y in zip(solution.t_events[2], solution.y_events[2]):
+        if time > t_impact:
+            break
+        if abs(y[0]) > info[INFO_MAX_ABS_THETA]:
+            info[INFO_MAX_ABS_THETA], info[INFO_T_MAX], info[INFO_THETA_AT_MAX] = \
+                abs(y[0]), time, y[0]
+    if math.isnan(info[INFO_T_UNSTABLE]) and len(solution.t_events[3]) and (
+            solution.t_events[3][0] <= t_impact):
+        info[INFO_T_UNSTABLE] = solution.t_events[3][0]
+        info[INFO_UNSTABLE_DIRECTION] = side
+
+
+def _rest_after_impact(omega, deceleration, landing, rest_tolerance, velocity_floor):
+    """The time a block takes to rest after an impact [s], else -1 (the engine's rule).
+
+    ``omega`` is theta' just after the impact [rad/s], ``deceleration`` the magnitude of
+    theta'' at theta = 0 on the new corner [rad/s^2], ``landing`` the impact's COR [-]: the
+    cascade of impacts that follows is summed in closed form
+    (:func:`~shaketable.core.dynamics.cascade_rest_time`).
+    """
+    remaining = cascade_rest_time(omega, deceleration, landing)
+    if (remaining == math.inf and landing >= 1.0 and deceleration > 0.0
+            and abs(omega) <= velocity_floor):
+        remaining = 0.0  # COR = 1 bounces at the noise level: at rest (engine)
+    if omega == 0.0 or remaining <= rest_tolerance or (
+            abs(omega) <= velocity_floor and remaining < math.inf):
+        return 0.0 if omega == 0.0 else remaining
+    return -1.0
+
+
 def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, omega0, rtol,
                         rest_tolerance, out_theta, out_omega, out_acceleration, impact_times,
                         impact_velocities, info, sides=None):
@@ -192,81 +311,17 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 if rest_until >= t_end:
                     t = t_end
                     break
-                t = max(t, rest_until)
-                start, start_side = math.inf, 0.0
-                for s in (1.0, -1.0):
-                    margin_a = s * angular_acceleration(0.0, s, *ground(t), par(s))
-                    margin_b = s * angular_acceleration(0.0, s, *ground(t_end), par(s))
-                    if margin_a > 0:
-                        candidate = t
-                    elif margin_b > 0:
-                        candidate = t + (t_end - t) * (-margin_a) / (margin_b - margin_a)
-                    else:
-                        continue
-                    if candidate < start:
-                        start, start_side = candidate, s
+                t, start_side = _start_of_rocking(max(t, rest_until), t_end, ground, par)
                 if start_side == 0.0:
-                    t = t_end
                     break
-                # at the interpolated crossing the margin is zero to rounding: begin where
-                # it is strictly positive (else the flight "impacts" at once and the block
-                # rests and restarts at the same instant forever; engine: same rule)
-                low, high = start, t_end
-                if start_side * angular_acceleration(0.0, start_side, *ground(start),
-                                                     par(start_side)) <= 0.0:
-                    for _ in range(200):
-                        middle = 0.5 * (low + high)
-                        if middle <= low or middle >= high:
-                            break
-                        if start_side * angular_acceleration(0.0, start_side, *ground(middle),
-                                                             par(start_side)) > 0.0:
-                            high = middle
-                        else:
-                            low = middle
-                    start = high
-                t, side, theta, omega, resting = start, start_side, 0.0, 0.0, False
+                side, theta, omega, resting = start_side, 0.0, 0.0, False
                 if math.isnan(info[INFO_T_START]):
                     info[INFO_T_START] = t
                 continue
 
             active_side = side
-            active = par(side)
-            active_alpha = alpha_of(side)
-            t_segment = t
-            from_zero = theta == 0.0
-
-            def rhs(time, y):
-                # the active corner's equation continued past theta = 0 (smooth), as in
-                # the engine: Eq. 2-13's switch of corner there is a jump in theta''
-                # that made DOP853 give up at the impact
-                return [y[1], flight_acceleration(y[0], active_side, *ground(time), active)]
-
-            def impact(time, y):
-                if from_zero:
-                    elapsed = time - t_segment
-                    return active_side * y[1] if elapsed <= 0 else active_side * y[0] / elapsed
-                return active_side * y[0]
-            impact.terminal, impact.direction = True, -1
-
-            def overturn(time, y):
-                return 0.5 * math.pi - active_side * y[0]
-            overturn.terminal, overturn.direction = True, -1
-
-            def peak(time, y):
-                return y[1]
-            peak.terminal, peak.direction = False, 0
-
-            def unstable(time, y):
-                return active_alpha - abs(y[0])
-            unstable.terminal, unstable.direction = False, -1
-
-            solution = solve_ivp(rhs, (t, t_end), [theta, omega], method="DOP853", rtol=rtol,
-                                 atol=atol, events=[impact, overturn, peak, unstable],
-                                 first_step=None, dense_output=True)
-            if solution.status == -1:
-                raise ReferenceSolverError(
-                    f"reference solver (DOP853, rtol {rtol:g}) failed at t = {solution.t[-1]!r} s "
-                    f"(theta = {solution.y[0, -1]!r} rad): {solution.message}")
+            solution = _flight(ground, t, t_end, theta, omega, side, par(side), alpha_of(side),
+                               rtol, atol)
             counts["steps"] += len(solution.t) - 1
             counts["evaluations"] += solution.nfev
             passed = _passed_impact(solution, active_side, t)
@@ -274,16 +329,8 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 # theta dipped past zero and back inside one step: the sign test at step
                 # ends cannot see it, but the turning point on the wrong side can
                 t_impact, omega_impact = passed
-            for time, y in zip(solution.t_events[2], solution.y_events[2]):
-                if passed is not None and time > t_impact:
-                    break
-                if abs(y[0]) > info[INFO_MAX_ABS_THETA]:
-                    info[INFO_MAX_ABS_THETA], info[INFO_T_MAX], info[INFO_THETA_AT_MAX] = \
-                        abs(y[0]), time, y[0]
-            if math.isnan(info[INFO_T_UNSTABLE]) and len(solution.t_events[3]) and (
-                    passed is None or solution.t_events[3][0] <= t_impact):
-                info[INFO_T_UNSTABLE] = solution.t_events[3][0]
-                info[INFO_UNSTABLE_DIRECTION] = active_side
+            _record_peaks(solution, t_impact if passed is not None else math.inf, active_side,
+                          info)
             end_time = t_impact if passed is not None else float(solution.t[-1])
             stalled = stalled + 1 if end_time <= t else 0
             if stalled > MAX_STALLED_SEGMENTS:
@@ -315,17 +362,14 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
                 landing = cor_onto(side)
                 omega *= landing
                 theta = 0.0
-                deceleration = -side * angular_acceleration(0.0, side, *ground(t), par(side))
-                remaining = cascade_rest_time(omega, deceleration, landing)
-                if (remaining == math.inf and landing >= 1.0 and deceleration > 0.0
-                        and abs(omega) <= velocity_floor):
-                    remaining = 0.0  # COR = 1 bounces at the noise level: at rest (engine)
-                if omega == 0.0 or remaining <= rest_tolerance or (
-                        abs(omega) <= velocity_floor and remaining < math.inf):
+                remaining = _rest_after_impact(
+                    omega, -side * angular_acceleration(0.0, side, *ground(t), par(side)),
+                    landing, rest_tolerance, velocity_floor)
+                if remaining >= 0.0:
                     if omega != 0.0:
                         counts["cascades"] += 1
                     resting = True
-                    rest_until = t + (0.0 if omega == 0.0 else remaining)
+                    rest_until = t + remaining
                     info[INFO_T_REST] = rest_until
                     omega = 0.0
         if status != STATUS_COMPLETED:
@@ -339,6 +383,11 @@ def integrate_reference(t_grid, ug, vg, rg, parameters, alpha, p, cor, theta0, o
             theta, side, u1, v1, r1, par(side))
         filled = k + 2
 
+    _finish(info, t, theta, omega, counts, status, filled)
+
+
+def _finish(info, t, theta, omega, counts, status, filled):
+    """Writes the final state [s, rad, rad/s], the run's counts and its status into ``info``."""
     info[INFO_T_END], info[INFO_THETA_END], info[INFO_THETA_DOT_END] = t, theta, omega
     info[INFO_STEPS] = counts["steps"]
     info[INFO_EVALUATIONS] = counts["evaluations"]

@@ -46,7 +46,7 @@ from shaketable.models.rocking.physics import (
 # use numba's reference counting (_nrt=False): they take numbers and tuples (one takes the
 # integrator's info array, which its caller holds) and allocate nothing. forceinline is
 # False so that a helper first compiled by one that LLVM must inline (the engine's
-# _step_events) does not inherit it. (options numba accepts beyond those its type stubs
+# step_events) does not inherit it. (options numba accepts beyond those its type stubs
 # list: typed Any for mypy)
 HELPER_OPTIONS: Any = {"no_cpython_wrapper": True, "no_cfunc_wrapper": True, "_nrt": False,
                        "forceinline": False, "error_model": ERROR_MODEL}

@@ -45,7 +45,8 @@ def test_every_engine_function_has_the_numpy_error_model_explicitly():
     functions = _compiled_functions()
     # the three engines and their helpers are all found (a sanity floor: the rocking
     # integrators, the planar driver, the sliding integrator and the batch loops)
-    for name in ("integrate_fast", "integrate_linear._locate", "integrate_fast._step_events",
+    for name in ("integrate_fast", "integrate_linear.locate", "integrate_fast.step_events",
+                 "integrate_fast._start_of_rocking",
                  "shaketable.models.planar.engine.integrate", "shaketable.models.planar.steps.dop853_step",
                  "shaketable.models.planar.physics.impact",
                  "shaketable.models.sliding.engine.stick_slip_kernel",

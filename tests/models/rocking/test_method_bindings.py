@@ -17,7 +17,7 @@ import sys
 
 import pytest
 
-from shaketable.models.rocking import engine, steppers
+from shaketable.models.rocking import engine, events, steppers
 from shaketable.models.rocking.layout import METHOD_FAST, METHOD_LINEAR, METHOD_PREDICTOR_CORRECTOR
 
 INTEGRATORS = {METHOD_FAST: engine.integrate_fast,
@@ -33,12 +33,23 @@ def test_each_integrator_binds_its_methods_functions_and_helpers_of_its_own():
             assert namespace[name] is function, (method, name)
         for helper_name in engine._METHOD_HELPERS:
             helper = namespace[helper_name]
-            assert helper.py_func.__globals__ is namespace, (method, helper_name)
+            # the engine's helpers read the integrator's namespace, those of
+            # models.rocking.events a copy of their own module's, bound the same way
+            own = helper.py_func.__globals__
+            if helper_name in events.METHOD_HELPERS:
+                assert own is not vars(events), (method, helper_name)
+                assert own[helper_name] is helper, (method, helper_name)
+            else:
+                assert own is namespace, (method, helper_name)
+            for name, function in steppers.METHOD_FUNCTIONS[method].items():
+                assert own[name] is function, (method, helper_name, name)
             qualified_names.add(helper.py_func.__qualname__)
     # one compiled name per method and helper: the symbols numba's cache links by name
     assert len(qualified_names) == len(INTEGRATORS) * len(engine._METHOD_HELPERS)
     with pytest.raises(NotImplementedError):
         engine.advance()
+    with pytest.raises(NotImplementedError):
+        events.advance()
 
 
 # One run of each listed method, printed as JSON (the numbers that differed in review).
