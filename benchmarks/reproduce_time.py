@@ -8,7 +8,7 @@ this process, and from them the wall time on two quiet cores: the busiest worker
 this process's own CPU (imports, scheduling, assembling the report), whatever else a
 shared machine runs. With ``--per-scene``, each scene alone in this process, CPU seconds
 each, and the time two workers need when they take the scenes in the pool's order
-(longest expected first, ``shaketable.reproduce.SCENE_CPU``), each the next one when
+(longest expected first, ``shaketable.scenes.catalog.SCENE_CPU``), each the next one when
 free. Target: <= 30 s wall on 2 cores.
 
     python3 benchmarks/reproduce_time.py [--per-scene] [--keep DIR]
@@ -44,8 +44,8 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     imports = time.process_time()
 
-    from shaketable.reproduce import WORKER_CPU, _expected_cost, _scene_outcome, _worker_count, reproduce
-    from shaketable.scenes.catalog import scene_names
+    from shaketable.reproduce import WORKER_CPU, _scene_outcome, _worker_count, reproduce
+    from shaketable.scenes.catalog import expected_cost, scene_names
 
     names = list(scene_names())
     imports = time.process_time() - imports
@@ -71,7 +71,7 @@ def main(argv=None) -> int:
             workers = [0.0] * 2
             heapq.heapify(workers)
             # the pool's order (longest expected first); each takes the next when free
-            for name in sorted(names, key=_expected_cost, reverse=True):
+            for name in sorted(names, key=expected_cost, reverse=True):
                 heapq.heappush(workers, heapq.heappop(workers) + seconds[name])
             out["CPU of the scenes, one process [s]"] = sum(seconds.values())
             out["two free cores, scenes as the pool schedules them [s]"] = max(workers)

@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from shaketable.core.files import subfolder, write_csv
-from shaketable.scenes.catalog import resolve_scene_path, study_kind, uses_planar
+from shaketable.scenes.catalog import expected_cost, resolve_scene_path, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
 
@@ -157,7 +157,7 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         # written as it completes (the progress bar moves with the work), the report in
         # the catalogue's order. Each result carries its worker's CPU so far (the load
         # balance).
-        order = sorted(names, key=_expected_cost, reverse=True)
+        order = sorted(names, key=expected_cost, reverse=True)
         if compile_planar_first and not uses_planar(order[0]) and any(map(uses_planar, order)):
             # one worker compiles the planar engine while the other starts the longest
             # scene; the planar scenes come after the report tables (an error here is
@@ -208,7 +208,7 @@ class _ProgressBar:
     The scenes differ 50-fold in cost and the longest run first: a bar that moved one
     step per scene would estimate the time left from the slowest scenes (and the first
     compile) and say minutes for a job of seconds. This one's fraction and estimate are
-    of the expected CPU done (:func:`_expected_cost`, in hundredths of a second, at
+    of the expected CPU done (:func:`~shaketable.scenes.catalog.expected_cost`, in hundredths of a second, at
     least 0.1 s a scene); it shows the scenes done as ``12/45 scenes``.
     """
 
@@ -217,7 +217,7 @@ class _ProgressBar:
 
         # whole hundredths of a second: float sums in another order than the total's
         # would end a few ulps past it (tqdm then warns that it clamps the bar)
-        self.costs = {name: max(round(100 * _expected_cost(name)), 10) for name in names}
+        self.costs = {name: max(round(100 * expected_cost(name)), 10) for name in names}
         self.scenes = len(names)
         self.finished = 0
         # the scenes done in the description: tqdm puts ", " before a postfix
@@ -252,37 +252,10 @@ def _worker_count(scenes: int) -> int:
     return max(1, min(2, cores or 1))
 
 
-#: CPU seconds of the slowest scenes in one worker (warm numba cache; measured with
-#: ``benchmarks/reproduce_time.py --per-scene``): the pool starts the longest first
-#: (longest processing time first), so that the two processes end together.
-SCENE_CPU = {"table-4-3": 11.3, "table-4-2": 9.7, "table-4-1": 8.6,
-             "teaching-slide-or-rock": 4.4, "fig-2-6": 4.0, "mode-map-pacoima": 3.5,
-             "spectrum-one-sine": 3.1, "stacks": 7.0, "section-3-7-pitch": 2.1, "fig-3-8": 1.9,
-             "fig-2-3": 1.9, "fig-3-9": 1.8, "fig-3-5": 1.7, "fig-3-7": 1.5,
-             "section-4-3-4": 1.5, "fig-2-4": 1.4, "teaching-lower-cor": 1.3,
-             "table-3-1": 0.3, "table-4-4": 0.2}
-
-#: The estimate for any other scene, by kind: a report-table study, another study, a
-#: single scene (a name that does not load: 0, last).
-KIND_CPU = {"report-table": 8.0, "study": 1.0, "scene": 0.9}
-
 #: CPU seconds [s] each worker process of the last parallel :func:`reproduce` had used
 #: when it handed back its last scene (start-up and imports included), by process id:
 #: what ``benchmarks/reproduce_time.py`` reports as the load balance.
 WORKER_CPU: dict[int, float] = {}
-
-
-def _expected_cost(name: str) -> float:
-    """The CPU seconds a scene is expected to take (:data:`SCENE_CPU`, else :data:`KIND_CPU`)."""
-    if name in SCENE_CPU:
-        return SCENE_CPU[name]
-    try:   # the scene file's [study] kind only: parsing the scene would import its
-        kind = study_kind(name)   # pipeline (SciPy) in the process that only schedules
-    except (ValueError, OSError):
-        return 0.0
-    if kind is not None:
-        return KIND_CPU["report-table" if kind == "report-table" else "study"]
-    return KIND_CPU["scene"]
 
 
 def _one_thread_each() -> None:

@@ -34,9 +34,10 @@ def test_two_processes_write_the_same_report_as_one(tmp_path, monkeypatch):
 
 
 def test_progress_bar_moves_by_expected_cost_and_counts_scenes(capsys, recwarn):
-    # The scenes' expected CPU seconds are reproduce.SCENE_CPU (measured); the longest
+    # The scenes' expected CPU seconds are scenes.catalog.SCENE_CPU (measured); the longest
     # runs first, so a bar counting scenes would extrapolate the time left from it.
-    from shaketable.reproduce import SCENE_CPU, _ProgressBar
+    from shaketable.reproduce import _ProgressBar
+    from shaketable.scenes.catalog import SCENE_CPU
 
     bar = _ProgressBar(["table-4-3", "table-3-1", "no-such-scene"])
     # in hundredths of a second; 0.1 s: the floor (an unknown scene costs 0)
@@ -55,7 +56,8 @@ def test_progress_bar_moves_by_expected_cost_and_counts_scenes(capsys, recwarn):
 
 
 def test_progress_bar_counts_a_repeated_scene_each_time(capsys):
-    from shaketable.reproduce import SCENE_CPU, _ProgressBar
+    from shaketable.reproduce import _ProgressBar
+    from shaketable.scenes.catalog import SCENE_CPU
 
     bar = _ProgressBar(["fig-3-7", "fig-3-7"])
     assert bar.tqdm.total == 2 * round(100 * SCENE_CPU["fig-3-7"])

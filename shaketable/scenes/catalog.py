@@ -164,3 +164,31 @@ def uses_planar(name_or_path: str | SceneSource) -> bool:
     block, study = scene.get("block"), scene.get("study")
     return (isinstance(block, dict) and "static_friction" in block) or (
         isinstance(study, dict) and study.get("kind") == "mode-map")
+
+
+#: CPU seconds of the slowest scenes in one worker (warm numba cache; measured with
+#: ``benchmarks/reproduce_time.py --per-scene``): the pool starts the longest first
+#: (longest processing time first), so that the two processes end together.
+SCENE_CPU = {"table-4-3": 11.3, "table-4-2": 9.7, "table-4-1": 8.6,
+             "teaching-slide-or-rock": 4.4, "fig-2-6": 4.0, "mode-map-pacoima": 3.5,
+             "spectrum-one-sine": 3.1, "stacks": 7.0, "section-3-7-pitch": 2.1, "fig-3-8": 1.9,
+             "fig-2-3": 1.9, "fig-3-9": 1.8, "fig-3-5": 1.7, "fig-3-7": 1.5,
+             "section-4-3-4": 1.5, "fig-2-4": 1.4, "teaching-lower-cor": 1.3,
+             "table-3-1": 0.3, "table-4-4": 0.2}
+
+#: The estimate for any other scene, by kind: a report-table study, another study, a
+#: single scene (a name that does not load: 0, last).
+KIND_CPU = {"report-table": 8.0, "study": 1.0, "scene": 0.9}
+
+
+def expected_cost(name: str) -> float:
+    """The CPU seconds a scene is expected to take (:data:`SCENE_CPU`, else :data:`KIND_CPU`)."""
+    if name in SCENE_CPU:
+        return SCENE_CPU[name]
+    try:   # the scene file's [study] kind only: parsing the scene would import its
+        kind = study_kind(name)   # pipeline (SciPy) in the process that only schedules
+    except (ValueError, OSError):
+        return 0.0
+    if kind is not None:
+        return KIND_CPU["report-table" if kind == "report-table" else "study"]
+    return KIND_CPU["scene"]
