@@ -217,7 +217,7 @@ def _engines_cached() -> bool:
     import hashlib
     from pathlib import Path
 
-    import shaketable   # light: no numba; sets NUMBA_CACHE_DIR unless the user did
+    import shaketable  # light: no numba; sets NUMBA_CACHE_DIR unless the user did
     from shaketable.core.numba_cache import cache_subpath
 
     root = os.environ.get("NUMBA_CACHE_DIR")
