@@ -199,7 +199,7 @@ def pytest_sessionstart(session):
     if sources is not None and getattr(config, "args_source", None) != sources.TESTPATHS:
         return   # a few files named on the command line: compile only what they use
     if _engines_cached():
-        return   # the workers load them: a warm-up would only load them too (~5 s of CPU)
+        return   # the workers load them: a warm-up would only load them too (1.7 s of CPU)
     import subprocess
     import sys
 
