@@ -4,13 +4,14 @@ Runs ``python3 -m pytest -q -n 2`` (the README's command; extra arguments are pa
 from the repository under ``/usr/bin/time -v``, which counts the CPU time of pytest, its
 xdist workers and every subprocess they wait for. ``--cold`` points ``NUMBA_CACHE_DIR``
 at an empty folder, as on a fresh machine (numba then compiles the engines once, about
-20 s of CPU); by default the cache the package uses is kept (a second run). Printed: the
-wall and CPU times, the load average before and after (CPU time is the figure a busy
+20 s of CPU); by default the cache the package uses is kept (a second run), and so is
+Python's bytecode (``PYTHONDONTWRITEBYTECODE`` is removed unless ``--no-bytecode``).
+Printed: the wall and CPU times, the load average before and after (CPU time is the figure a busy
 machine changes least: other work lengthens the wall time, much less the CPU time), the
 number of cores, and pytest's last lines, with the tests that used the most CPU
 (``--cpu-durations``, tests/conftest.py).
 
-    python3 benchmarks/suite_cost.py [--cold] [--top 15] [-- PYTEST ARGUMENTS]
+    python3 benchmarks/suite_cost.py [--cold] [--no-bytecode] [--top 15] [-- PYTEST ARGUMENTS]
 
 Target: at most 300 s of CPU on 2 cores.
 """
@@ -46,6 +47,10 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cold", action="store_true",
                         help="an empty numba cache (a fresh machine: the engines compile)")
+    parser.add_argument("--no-bytecode", action="store_true",
+                        help="keep PYTHONDONTWRITEBYTECODE from the environment (by default "
+                             "it is removed: Python then writes bytecode, and a second run "
+                             "reads it)")
     parser.add_argument("--top", type=int, default=15,
                         help="list the tests that used the most CPU time (default 15)")
     parser.add_argument("pytest_arguments", nargs="*",
@@ -56,6 +61,14 @@ def main(argv=None) -> int:
         print("needs GNU time (/usr/bin/time)", file=sys.stderr)
         return 2
     environment = dict(os.environ)
+    # Python's default: modules' bytecode written to __pycache__ and read back by every later
+    # process, as on a user's machine. With PYTHONDONTWRITEBYTECODE set and no __pycache__
+    # yet (a fresh checkout), every worker and subprocess compiles the package's and the
+    # tests' sources again (and pytest rewrites the tests' asserts again): about 3 s of CPU
+    # per worker and 0.25 s per subprocess importing shaketable.
+    if not args.no_bytecode:
+        environment.pop("PYTHONDONTWRITEBYTECODE", None)
+    bytecode = "not written" if environment.get("PYTHONDONTWRITEBYTECODE") else "kept"
     scratch = tempfile.mkdtemp(prefix="suite-cost-")
     if args.cold:
         environment["NUMBA_CACHE_DIR"] = os.path.join(scratch, "numba")
@@ -75,7 +88,8 @@ def main(argv=None) -> int:
     start = next((i for i, line in enumerate(lines) if "using the most CPU" in line),
                  max(0, len(lines) - 10))
     print("\n".join([line for line in lines[:start] if "random order" in line] + lines[start:]))
-    print(f"\ncommand: {' '.join(command[3:])}  (numba cache: {'empty' if args.cold else 'kept'})")
+    print(f"\ncommand: {' '.join(command[3:])}  (numba cache: {'empty' if args.cold else 'kept'}; "
+          f"bytecode: {bytecode})")
     print(f"cores: {os.cpu_count()}, load average (1 min) before {load_before[0]:.1f}, "
           f"after {load_after[0]:.1f}")
     print(f"wall {wall:.0f} s ({wall / 60:.1f} min); CPU {user + system:.0f} s "

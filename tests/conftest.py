@@ -198,8 +198,38 @@ def pytest_sessionstart(session):
     sources = getattr(pytest.Config, "ArgsSource", None)
     if sources is not None and getattr(config, "args_source", None) != sources.TESTPATHS:
         return   # a few files named on the command line: compile only what they use
+    if _engines_cached():
+        return   # the workers load them: a warm-up would only load them too (1.7 s of CPU)
     import subprocess
     import sys
 
     subprocess.run([sys.executable, "-c", _WARM_UP], cwd=REPOSITORY, check=False,
                    env=dict(os.environ, MPLBACKEND="Agg"), capture_output=True)
+
+
+def _engines_cached() -> bool:
+    """Whether numba's cache folder (the one ``import shaketable`` names) holds the
+    package's compiled functions for today's sources: an index (``.nbi``) for every module
+    that asks numba to cache (``cache=True``), each stamped with its module's SHA-256 (the
+    freshness stamp numba 0.68 writes and checks; an index of other sources, or of an
+    older numba's stamp, means a warm-up). numba checks each function itself when it loads
+    it: this only decides whether the warm-up is worth its CPU."""
+    import hashlib
+    from pathlib import Path
+
+    import shaketable  # light: no numba; sets NUMBA_CACHE_DIR unless the user did
+    from shaketable.core.numba_cache import cache_subpath
+
+    root = os.environ.get("NUMBA_CACHE_DIR")
+    if not root or not os.path.isdir(root):
+        return False
+    for folder in {source.parent for source in Path(shaketable.__file__).parent.rglob("*.py")}:
+        cached = Path(root, cache_subpath(str(folder)))
+        for source in folder.glob("*.py"):
+            indexes = list(cached.glob(f"{source.stem}.*.nbi")) if cached.is_dir() else []
+            if not indexes and "cache=True" in source.read_text(encoding="utf-8"):
+                return False
+            digest = hashlib.sha256(source.read_bytes()).digest() if indexes else b""
+            if any(digest not in index.read_bytes() for index in indexes):
+                return False
+    return True

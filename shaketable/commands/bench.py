@@ -40,7 +40,8 @@ def register(commands) -> None:
     parser.add_argument("--cases", nargs="+", metavar="NAME",
                         help="only these cases (default: all; an unknown name lists them)")
     parser.add_argument("--quick", action="store_true",
-                        help="fewer settings, the long record cut to 20 s, fewer repeats")
+                        help="fewer settings (the SciPy references at their default rtol only), "
+                             "the long record cut to 20 s, fewer repeats")
     parser.add_argument("--repeats", type=_positive_int, default=None,
                         help="timed repetitions of the compiled methods (default 5, quick 3)")
     parser.add_argument("--out", default="bench-out", help="output folder (default bench-out)")

@@ -40,10 +40,12 @@ def browser_missing() -> str:
     """Why the browser test cannot run here ('' when it can)."""
     if not any(Path(path).exists() for path in CHROMIUM) or not Path(CHROMEDRIVER).exists():
         return "no chromium and chromedriver (apt-get install chromium chromium-driver)"
+    import importlib.util
+
+    # found, not imported: this runs when every xdist worker collects the tests, and
+    # importing panel (bokeh) there cost each worker about 1.3 s of CPU for one test
     for module in ("selenium", "panel"):
-        try:
-            __import__(module)
-        except ImportError:
+        if importlib.util.find_spec(module) is None:
             return f"{module} is not installed (pip install 'shaketable[test,classroom]')"
     return ""
 

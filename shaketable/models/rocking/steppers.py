@@ -244,7 +244,7 @@ METHOD_FUNCTIONS = {
 }
 
 
-@njit(error_model=ERROR_MODEL)  # with its Python entry: tests/models/rocking/test_engine.py calls it
+@njit(cache=True, error_model=ERROR_MODEL)  # with its Python entry: tests/models/rocking/test_engine.py calls it
 def nystrom(t, theta, omega, k1, side, h, segment, parameters):
     """One Runge-Kutta-Nystrom 6(4) step (:func:`nystrom_step`) from theta''(t) = ``k1``."""
     return nystrom_step(t, theta, omega, k1, side, h, segment, parameters)
