@@ -41,8 +41,9 @@ def test_from_imports_of_the_old_paths_give_the_new_objects():
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeprecationWarning)
-        from shaketable.models.planar import engine as planar
-        from shaketable.models.sliding.result import Friction
+        from shaketable.core.sliding_result import Friction
+
+        from shaketable.solvers import planar
     assert Friction is NewFriction
     assert planar is engine
 
@@ -50,8 +51,8 @@ def test_from_imports_of_the_old_paths_give_the_new_objects():
 def test_a_moved_module_is_an_attribute_of_its_old_package():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeprecationWarning)
-        assert shaketable.models.rocking.batch is importlib.import_module("shaketable.models.rocking.batch")
-        assert shaketable.models.rocking.physics is importlib.import_module("shaketable.models.rocking.physics")
+        assert shaketable.solvers.batch is importlib.import_module("shaketable.models.rocking.batch")
+        assert shaketable.core.dynamics is importlib.import_module("shaketable.models.rocking.physics")
     with pytest.raises(AttributeError, match="no attribute 'nothing'"):
         shaketable.solvers.nothing  # noqa: B018
 
@@ -62,7 +63,7 @@ def test_a_pickle_written_under_the_old_path_loads():
     friction = Friction(0.3)
     data = pickle.dumps(friction, protocol=0)
     assert b"shaketable.models.sliding.result" in data
-    old = data.replace(b"shaketable.models.sliding.result", b"shaketable.models.sliding.result")
+    old = data.replace(b"shaketable.models.sliding.result", b"shaketable.core.sliding_result")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeprecationWarning)
         assert pickle.loads(old) == friction
