@@ -311,3 +311,21 @@ def planar_frame(result):
         "theta/alpha [-]": result.theta / result.block.alpha,
         "mode": [MODES[int(k)] for k in result.mode],
     })
+
+
+def base_slip(x, theta, block) -> np.ndarray:
+    """How far the base has slid [m] at each sample: the displacement of the bottom corner
+    the block stands or turns on (on theta's side; x when flat),
+    x + h sin(theta) + sign(theta) b (1 - cos(theta)); 0 for a block that rocks without
+    sliding. The quantity whose peak is ``peak_base_slip`` (docs/planar.md, "Using it").
+
+    Parameters
+    ----------
+    x, theta : ndarray
+        Horizontal displacement of the centre of mass [m] and rotation [rad].
+    block : Block
+    """
+    x = np.asarray(x, dtype=float)
+    theta = np.asarray(theta, dtype=float)
+    slip = x + block.h * np.sin(theta)
+    return slip + np.sign(theta) * block.b * (1.0 - np.cos(theta))

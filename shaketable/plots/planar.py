@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.constants import LENGTH_UNITS
+from shaketable.core.planar_result import base_slip
 from shaketable.core.units import display_length_unit, format_length
 from shaketable.plots.calcomp import (
     describe_block,
@@ -61,8 +62,9 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     The Calcomp layout of :func:`shaketable.plots.calcomp.calcomp` (ground panels left
     out when a channel is zero), with the angular velocity alone on its panel (the
     coupled model's theta'' has no single formula across modes), then the slip of the
-    base's midpoint relative to the table (in the unit the block was given in, mm for
-    metres) with its peak marked, and a band coloured by the mode the block is in (slide,
+    base relative to the table (the bottom corner the block stands or turns on:
+    :func:`~shaketable.core.planar_result.base_slip`, whose peak is ``peak_base_slip``;
+    in the unit the block was given in, mm for metres) with its peak marked, and a band coloured by the mode the block is in (slide,
     rock, slide-rock, flight; left blank at rest). A block that never rocks gets the slip
     velocity instead of the two flat rotation panels, and a caption line saying so.
 
@@ -89,7 +91,9 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     frame = result.to_frame()
     t = frame["time [s]"].to_numpy()
     theta = frame["theta [rad]"].to_numpy()
-    slip_values = frame["slip [m]"].to_numpy()
+    # the base's own slide, not its midpoint's motion (which rocking moves too)
+    slip_values = base_slip(frame["x [m]"].to_numpy(), frame["theta [rad]"].to_numpy(), block)
+    peak, t_peak = result.peak_base_slip, result.t_peak_base_slip
     end = t[-1]
     theta_dot = frame["theta_dot [rad/s]"].to_numpy()
     # the slip in the unit the block was given in (mm for a block in metres)
@@ -114,12 +118,11 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
                         borderaxespad=0.0)
     slip.plot(t, slip_values / scale, color="tab:red", lw=0.9, label="slip of the base")
     slip.axhline(0.0, color="0.6", lw=0.5)
-    if result.peak_slip > 0.0 and np.isfinite(result.t_peak_slip):
-        at = int(np.argmin(np.abs(t - result.t_peak_slip)))
+    if peak > 0.0 and np.isfinite(t_peak):
+        at = int(np.argmin(np.abs(t - t_peak)))
         direction = 1.0 if slip_values[at] >= 0 else -1.0
-        slip.plot([result.t_peak_slip], [direction * result.peak_slip / scale], "v",
-                  color="tab:red", ms=5,
-                  label=f"peak {result.peak_slip / scale:.3g} {unit}")
+        slip.plot([t_peak], [direction * peak / scale], "v", color="tab:red", ms=5,
+                  label=f"peak {peak / scale:.3g} {unit}")
     slip.set_ylabel(f"slip [{unit}]")
     slip.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
     shown_modes = set()

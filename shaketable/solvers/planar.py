@@ -203,7 +203,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     scale_abs[3] = rtol * radius * p
     scale_abs[4] = rtol * G * radius
     scale_abs[5] = rtol * G * radius
-    segment = np.empty(8)
+    segment = np.empty(9)   # planar_steps.ground's layout, then the interval's end
     stages = np.empty((16, N_STATE))
     dense = np.empty((7, N_STATE))
     ready = falses(ONE)
@@ -280,6 +280,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         segment[6] = segment[3] / segment[1]
         segment[7] = segment[5] / segment[1]
         t_end = t1
+        segment[8] = t_end
         interval_transitions = 0
         while t < t_end and status == STATUS_COMPLETED:
             previous_mode = mode
@@ -302,7 +303,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                     fresh, ev, info, parameters)
             else:   # ROCK or SLIDE_ROCK: one step, and the event that ends it
                 t, step_size, just_rejected, status, terminal = contact_step(
-                    t, t_end, mode, side, sigma, step_size, just_rejected, rtol, mu_s, mu_d,
+                    t, mode, side, sigma, step_size, just_rejected, rtol, mu_s, mu_d,
                     segment, scale_abs, z, z_new, z_event, z_turn, k1, stages, dense, ready,
                     g_start, g_end, armed, fresh, no_events, q, q_start, q_end, ev, info,
                     parameters)

@@ -17,7 +17,7 @@ import math
 from numba import njit
 
 from shaketable.core.constants import G
-from shaketable.core.dynamics import ALPHA, cascade_rest_time, flight_acceleration
+from shaketable.core.dynamics import ALPHA, ERROR_MODEL, cascade_rest_time, flight_acceleration
 from shaketable.core.planar_dynamics import (
     FLIGHT,
     HELPER,
@@ -108,8 +108,11 @@ from shaketable.solvers.planar_steps import (
 from shaketable.solvers.planar_track import contact_extrema, flight_extrema, record, track
 from shaketable.solvers.sliding import first_up_crossing, first_velocity_zero
 
-#: numba options of the mode functions: compiled apart, inlined into the driver by LLVM.
-INLINED = {**HELPER, "forceinline": True}
+#: numba options of the mode functions: inlined into the driver by numba before it is
+#: typed (as :func:`~shaketable.solvers.planar_track.record`), so that the driver compiles
+#: and runs as the one function it was written as. (numba inlines a call of at most 30
+#: arguments: Python passes more as a tuple, which its inliner refuses.)
+INLINED = {"cache": True, "inline": "always", "error_model": ERROR_MODEL}
 
 
 @njit(**HELPER)
@@ -392,7 +395,7 @@ def contact_entry(t, mode, side, sigma, rest_until, segment, mu_s, mu_d, q, z, k
 
 
 @njit(**INLINED)
-def contact_step(t, t_end, mode, side, sigma, step_size, just_rejected, rtol, mu_s, mu_d,
+def contact_step(t, mode, side, sigma, step_size, just_rejected, rtol, mu_s, mu_d,
                  segment, scale_abs, z, z_new, z_event, z_turn, k1, stages, dense, ready,
                  g_start, g_end, armed, fresh, no_events, q, q_start, q_end, ev, info,
                  parameters):
@@ -402,6 +405,7 @@ def contact_step(t, t_end, mode, side, sigma, step_size, just_rejected, rtol, mu
     Returns (t, step_size, just_rejected, status, terminal): terminal is the event that
     ended the step (E_*), -1 for none and -2 for a rejected step.
     """
+    t_end = segment[8]
     step = min(step_size, t_end - t)
     if step < 1e-14 * (abs(t) + 1.0) and step < t_end - t:
         info[I_FAILED_MODE] = mode

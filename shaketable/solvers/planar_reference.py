@@ -93,7 +93,6 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from shaketable.core.constants import G
-from shaketable.core.dynamics import cascade_rest_time
 from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.motion import Motion
 from shaketable.core.planar_reference_result import PlanarReferenceResult
@@ -101,14 +100,13 @@ from shaketable.core.shenton import FLIGHT, MODE_NAMES, REST, ROCK, SLIDE, SLIDE
 from shaketable.core.sliding_result import Friction
 from shaketable.solvers.planar_contact import (
     PlanarGeometry,
-    impact_map,
     kinetic_energy,
     mode_solution,
     rock_solution,
     slide_rock_effective_mass,
     slide_rock_solution,
-    two_corner_impact,
 )
+from shaketable.solvers.planar_reference_impacts import ImpactTransitions
 
 #: Consecutive segments that may end where they began before the solver gives up.
 MAX_STALLED_SEGMENTS = 100
@@ -224,7 +222,7 @@ class _Stop(Exception):
         self.status, self.message = status, message
 
 
-class _Run:
+class _Run(ImpactTransitions):
     """The event loop of one run (mutable state; see the module docstring)."""
 
     def __init__(self, block, motion, cor, friction, rtol, rest_tolerance):
@@ -579,94 +577,6 @@ class _Run:
         return end, terminal
 
     # ------------------------------------------------------------ transitions
-    def impact(self, t, corner):
-        """A corner impact at t (docs/planar.md, "Impacts"); at theta = 0 an impact that
-        turns the block back onto the other corner, which is on the table, is followed by
-        the two-corner problem."""
-        before = self.mode
-        pre = self.state.copy()
-        energy_before = kinetic_energy(self.geometry, pre)
-        self.impacts.append((t, pre[5]))
-        velocities, _, sigma, capped = impact_map(self.geometry, pre, corner, self.rho,
-                                                   self.mu_s, self.mu_d)
-        self.capped += capped
-        self.state[3:6] = velocities
-        self.side = corner
-        mode = ROCK if sigma == 0 else SLIDE_ROCK
-        if self.state[2] == 0.0 and corner * self.state[5] < 0.0:
-            velocities, mode, side, sigma = two_corner_impact(self.geometry, self.state,
-                                                              self.mu_s, self.mu_d)
-            self.state[3:6] = velocities
-            self.side = side or corner
-        self.enter_after_impact(t, mode, sigma, "impact", before)
-        if self.mode in (REST, SLIDE):
-            self.t_rest = t if self.mode == REST else -math.inf   # -inf: rests when it stops
-        self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
-        if self.state[2] == 0.0 and self.mode in (ROCK, SLIDE_ROCK) and pre[5] != 0.0:
-            sticking = sigma == 0 and self.mode == ROCK and self.side == corner
-            self.cascade(t, self.cascade_cor if sticking else abs(self.state[5] / pre[5]))
-
-    def enter_after_impact(self, t, mode, sigma, kind, before):
-        """Enter the mode an impact left (flat: REST, which records t_rest, or SLIDE)."""
-        if mode in (ROCK, SLIDE_ROCK):
-            if sigma != 0:
-                self.sigma = sigma
-            self.enter_contact(t, mode, self.side, self.sigma, kind, before)
-            return
-        self.state[1:3] = [self.geometry.h, 0.0]
-        if mode == REST:
-            self.t_rest = t
-            self.rest_until = t
-        self.set_mode(t, mode, sigma=sigma if mode == SLIDE else None, kind=kind)
-
-    def cascade(self, t, ratio):
-        """The endless cascade of impacts of a decaying block, summed (as the rocking engine).
-
-        ``ratio``: |theta'+ / theta'-| of each impact of the cascade (the cor of a
-        sticking rock -> rock impact, exactly as the rocking engine; the ratio of
-        this impact for a slipping one, e.g. frictionless). The cascade of a
-        slipping corner ends flat at once, sliding at the corner's slip speed (REST if 0).
-        """
-        omega = self.state[5]
-        deceleration = -self.side * self.solution(t, np.r_[self.state[:2], 0.0, 0.0, 0.0,
-                                                           0.0])[2]
-        if self.mode == SLIDE_ROCK and deceleration <= 0.0:
-            # slide-rock tips away from theta = 0: the slip stops first and the block
-            # returns to the table rocking (the pattern of a slipping cascade), so the
-            # rocking deceleration (agreed with branch planar, 18:40)
-            ug, vg = self.ground(t)
-            deceleration = -self.tipping(self.side, ug, vg)
-        remaining = cascade_rest_time(omega, deceleration, ratio)
-        if (remaining == math.inf and ratio >= 1.0 and deceleration > 0.0
-                and abs(omega) <= max(self.velocity_floor,
-                                      0.5 * deceleration * self.rest_tolerance)):
-            remaining = 0.0   # no decay, and impacts closer than the rest tolerance
-        if omega == 0.0 or remaining <= self.rest_tolerance or (
-                abs(omega) <= self.velocity_floor and remaining < math.inf):
-            # a slipping corner's cascade ends sliding flat at the corner's slip speed
-            x_dot = self.corner_slip_velocity(self.state) if self.mode == SLIDE_ROCK else 0.0
-            self.impact_loss += kinetic_energy(self.geometry, self.state) - 0.5 * x_dot ** 2
-            self.state[3:6] = [x_dot, 0.0, 0.0]
-            if x_dot == 0.0:
-                self.set_mode(t, REST, kind="cascade")
-                self.rest_until = t + remaining
-                self.t_rest = self.rest_until
-            else:
-                self.set_mode(t, SLIDE, sigma=1 if x_dot > 0 else -1, kind="cascade")
-                self.t_rest = -math.inf
-
-    def flat_landing(self, t):
-        """A flat landing (theta = theta' = 0): the two-corner problem."""
-        before = self.mode
-        energy_before = kinetic_energy(self.geometry, self.state)
-        velocities, mode, side, sigma = two_corner_impact(self.geometry, self.state,
-                                                          self.mu_s, self.mu_d)
-        self.state[3:6] = velocities
-        if side:
-            self.side = side
-        self.enter_after_impact(t, mode, sigma, "flat landing", before)
-        self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
-
     def after_event(self, t, terminal):
         """Apply the transition of a terminal event."""
         mode = self.mode
