@@ -64,8 +64,9 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     coupled model's theta'' has no single formula across modes), then the slip of the
     base relative to the table (the bottom corner the block stands or turns on:
     :func:`~shaketable.core.planar_result.base_slip`, whose peak is ``peak_base_slip``;
-    in the unit the block was given in, mm for metres) with its peak marked, and a band coloured by the mode the block is in (slide,
-    rock, slide-rock, flight; left blank at rest). A block that never rocks gets the slip
+    in the unit the block was given in, mm for metres) with its peak marked, and a band
+    coloured by the mode the block is in (slide, rock, slide-rock, flight; left blank at
+    rest). A block that never rocks gets the slip
     velocity instead of the two flat rotation panels, and a caption line saying so.
 
     The traces are the columns of ``result.to_frame()``, which the compiled engine's
