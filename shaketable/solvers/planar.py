@@ -37,7 +37,7 @@ modes), so that E_end - E_0 = W_table + W_friction - losses.
 
 One compiled driver (as the rocking engine) that walks the samples and hands each mode to
 its own function (:mod:`~shaketable.solvers.planar_phases`: ``rest_mode``, ``slide_mode``,
-``flight_mode``, and for the contact modes ``contact_entry``, ``contact_step``,
+``flight_mode``, and for the contact modes ``contact_entry``, ``contact_steps``,
 ``contact_event``, ``corner_impact``), inlined into it; its steppers and event location are
 in :mod:`~shaketable.solvers.planar_steps`, its helpers in
 :mod:`~shaketable.solvers.planar_modes` and :mod:`~shaketable.solvers.planar_track`, the
@@ -139,9 +139,10 @@ from shaketable.solvers.planar_modes import (  # N_OUT: the output layout, re-ex
     z_from_q,
 )
 from shaketable.solvers.planar_phases import (
+    INLINED,
     contact_entry,
     contact_event,
-    contact_step,
+    contact_steps,
     corner_impact,
     flight_mode,
     rest_mode,
@@ -195,71 +196,29 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     if rest_tolerance < 0.0:
         rest_tolerance = 1e-6 / p
     velocity_floor = 1e-8 * alpha * p
-    scale_abs = np.empty(6)   # (np.empty, not np.array or np.zeros: one numpy routine less
-    # to compile on a cold cache; the work arrays below are zeroed by zeros and falses)
-    scale_abs[0] = rtol * alpha
-    scale_abs[1] = rtol * alpha * p
-    scale_abs[2] = rtol * radius
-    scale_abs[3] = rtol * radius * p
-    scale_abs[4] = rtol * G * radius
-    scale_abs[5] = rtol * G * radius
-    segment = np.empty(9)   # planar_steps.ground's layout, then the interval's end
-    stages = np.empty((16, N_STATE))
-    dense = np.empty((7, N_STATE))
-    ready = falses(ONE)
-    z = zeros(STATE)
-    z_new = zeros(STATE)
-    z_event = zeros(STATE)
-    z_turn = zeros(STATE)
-    k1 = zeros(STATE)
-    q = zeros(SIX)
-    q_start = zeros(SIX)
-    q_end = zeros(SIX)
-    g_start = zeros(EVENTS)
-    g_end = zeros(EVENTS)
-    armed = falses(EVENTS)
-    fresh = falses(EVENTS)
-    no_events = falses(EVENTS)
-
-    # the counters, the work of the table and of friction and the impact losses are
-    # accumulated in info from 0 (its I_N_IMPACTS, I_CAPPED, I_CASCADES, I_W_TABLE,
-    # I_W_FRICTION, I_IMPACT_LOSS, I_STEPS, I_REJECTED, I_EVALUATIONS slots)
-    for i in range(N_INFO):
-        info[i] = 0.0
-    for i in (I_T_START, I_T_UNSTABLE, I_T_OVERTURN, I_T_REST):
-        info[i] = math.nan
-    status = STATUS_COMPLETED
+    # np.empty, not np.array or np.zeros: one numpy routine less to compile on a cold cache
+    # (the work arrays below are zeroed by zeros and falses)
+    scale_abs = np.empty(6)
+    scale_abs[0], scale_abs[1], scale_abs[2] = rtol * alpha, rtol * alpha * p, rtol * radius
+    scale_abs[3], scale_abs[4], scale_abs[5] = rtol * radius * p, rtol * G * radius, \
+        rtol * G * radius
+    segment = np.empty(9)   # planar_steps.ground's layout, then the interval's end [s]
+    stages, dense, ready = np.empty((16, N_STATE)), np.empty((7, N_STATE)), falses(ONE)
+    z, z_new, z_event, z_turn, k1 = zeros(STATE), zeros(STATE), zeros(STATE), zeros(STATE), \
+        zeros(STATE)
+    q, q_start, q_end = zeros(SIX), zeros(SIX), zeros(SIX)
+    g_start, g_end = zeros(EVENTS), zeros(EVENTS)
+    armed, fresh, no_events = falses(EVENTS), falses(EVENTS), falses(EVENTS)
     t = t_grid[0]
-    side = 1.0
+    mode, side = start(t, theta0, omega0, q, z, info, parameters)
+    status = STATUS_COMPLETED
     sigma = 0.0
-    if theta0 == 0.0 and omega0 == 0.0:
-        mode = REST
-        q[1] = hh
-    else:
-        mode = ROCK
-        if theta0 < 0.0 or (theta0 == 0.0 and omega0 < 0.0):
-            side = -1.0
-        r_x, r_y = corner_vector(theta0, side, parameters)
-        q[0] = -side * b - r_x
-        q[1] = -r_y
-        q[2] = theta0
-        q[3] = r_y * omega0
-        q[4] = -r_x * omega0
-        q[5] = omega0
-        z_from_q(q, side, z, parameters)
-        info[I_T_START] = t
-        if abs(theta0) > alpha:
-            info[I_T_UNSTABLE] = t
-            info[I_UNSTABLE_DIRECTION] = side
     entered = True
     visited = 1 << mode
     rest_until = t
-    info[I_E0] = kinetic_energy(q[3], q[4], q[5], parameters) + G * q[1]
     step_size = 0.1 / p
     just_rejected = False
-    last_impact = t
-    last_transition = t
-    transitions = 0
+    last_impact, last_transition, transitions = t, t, 0
     track_peaks(t, q, info, parameters)
     slip, _, _ = measures(q, parameters)
     keep_rows = out.shape[0] >= n   # a batch passes 0 rows: scalar results only
@@ -301,8 +260,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
                 mode, sigma, entered, rest_until, status, transition = contact_entry(
                     t, mode, side, sigma, rest_until, segment, mu_s, mu_d, q, z, k1, g_start,
                     fresh, ev, info, parameters)
-            else:   # ROCK or SLIDE_ROCK: one step, and the event that ends it
-                t, step_size, just_rejected, status, terminal = contact_step(
+            else:   # ROCK or SLIDE_ROCK: steps to the interval's end or an event
+                t, step_size, just_rejected, status, terminal = contact_steps(
                     t, mode, side, sigma, step_size, just_rejected, rtol, mu_s, mu_d,
                     segment, scale_abs, z, z_new, z_event, z_turn, k1, stages, dense, ready,
                     g_start, g_end, armed, fresh, no_events, q, q_start, q_end, ev, info,
@@ -330,20 +289,10 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
             if mode != previous_mode:
                 visited |= 1 << mode
             if transition:
-                interval_transitions += 1
-                if interval_transitions > MAX_TRANSITIONS_PER_INTERVAL:
-                    status = STATUS_CHATTER
-                    info[I_FAILED_MODE] = mode
+                status, interval_transitions, transitions, last_transition = counted(
+                    t, mode, interval_transitions, transitions, last_transition, info)
+                if status != STATUS_COMPLETED:
                     break
-                if t == last_transition:
-                    transitions += 1
-                    if transitions > MAX_TRANSITIONS_AT_ONE_TIME:
-                        status = STATUS_CHATTER
-                        info[I_FAILED_MODE] = mode
-                        break
-                else:
-                    transitions = 0
-                    last_transition = t
         if status != STATUS_COMPLETED:
             break
         track_peaks(t, q, info, parameters)
@@ -352,6 +301,67 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
             store(out, k + 1, q, slip, mode)
         filled = k + 2
 
+    finish(t, q, mode, status, filled, visited, final, info, parameters)
+
+
+@njit(**INLINED)
+def start(t, theta0, omega0, q, z, info, parameters):
+    """The start of a run: info cleared (the counters, the work of the table and of friction
+    and the impact losses are accumulated there from 0), the block at rest (REST) or
+    released at theta0, omega0 about its lower corner, which stands at its rest position
+    (ROCK). Returns (mode, side)."""
+    for i in range(N_INFO):
+        info[i] = 0.0
+    for i in (I_T_START, I_T_UNSTABLE, I_T_OVERTURN, I_T_REST):
+        info[i] = math.nan
+    for i in range(6):
+        q[i] = 0.0
+    side = 1.0
+    if theta0 == 0.0 and omega0 == 0.0:
+        q[1] = parameters[HALF_HEIGHT]
+        info[I_E0] = kinetic_energy(q[3], q[4], q[5], parameters) + G * q[1]
+        return REST, side
+    if theta0 < 0.0 or (theta0 == 0.0 and omega0 < 0.0):
+        side = -1.0
+    r_x, r_y = corner_vector(theta0, side, parameters)
+    q[0] = -side * parameters[HALF_WIDTH] - r_x
+    q[1] = -r_y
+    q[2] = theta0
+    q[3] = r_y * omega0
+    q[4] = -r_x * omega0
+    q[5] = omega0
+    z_from_q(q, side, z, parameters)
+    info[I_T_START] = t
+    if abs(theta0) > parameters[ALPHA]:
+        info[I_T_UNSTABLE] = t
+        info[I_UNSTABLE_DIRECTION] = side
+    info[I_E0] = kinetic_energy(q[3], q[4], q[5], parameters) + G * q[1]
+    return ROCK, side
+
+
+@njit(**INLINED)
+def counted(t, mode, interval_transitions, transitions, last_transition, info):
+    """A transition counted against the safeguards (status "chatter" beyond
+    MAX_TRANSITIONS_PER_INTERVAL in one sample interval or MAX_TRANSITIONS_AT_ONE_TIME at
+    one instant). Returns (status, interval_transitions, transitions, last_transition)."""
+    interval_transitions += 1
+    if interval_transitions > MAX_TRANSITIONS_PER_INTERVAL:
+        info[I_FAILED_MODE] = mode
+        return STATUS_CHATTER, interval_transitions, transitions, last_transition
+    if t == last_transition:
+        transitions += 1
+        if transitions > MAX_TRANSITIONS_AT_ONE_TIME:
+            info[I_FAILED_MODE] = mode
+            return STATUS_CHATTER, interval_transitions, transitions, last_transition
+    else:
+        transitions = 0
+        last_transition = t
+    return STATUS_COMPLETED, interval_transitions, transitions, last_transition
+
+
+@njit(**INLINED)
+def finish(t, q, mode, status, filled, visited, final, info, parameters):
+    """The end of a run: the final state and the scalars of info."""
     slip, _, _ = measures(q, parameters)
     final[OUT_X] = q[0]
     final[OUT_Y] = q[1]
