@@ -24,7 +24,8 @@ PACKAGE = os.path.dirname(os.path.abspath(shaketable.__file__))
 COMPILED_MODULES = ["shaketable.core.dynamics", "shaketable.core.planar_dynamics",
                     "shaketable.solvers.engine", "shaketable.solvers.batch",
                     "shaketable.solvers.planar", "shaketable.solvers.planar_modes",
-                    "shaketable.solvers.planar_track", "shaketable.solvers.sliding"]
+                    "shaketable.solvers.planar_track", "shaketable.solvers.planar_phases",
+                    "shaketable.solvers.sliding"]
 
 
 def test_the_cache_subfolder_is_named_from_the_path_inside_the_package():
