@@ -59,7 +59,9 @@ from shaketable.core.planar_dynamics import (
     ROCK,
     SLIDE,
     SLIDE_ROCK,
+    block_angle,
     corner_vector,
+    half_width,
     kinetic_energy,
 )
 from shaketable.solvers.planar_layout import (  # the layout, re-exported: planar.<NAME>
@@ -324,7 +326,7 @@ def start(t, theta0, omega0, q, z, info, parameters):
     if theta0 < 0.0 or (theta0 == 0.0 and omega0 < 0.0):
         side = -1.0
     r_x, r_y = corner_vector(theta0, side, parameters)
-    q[0] = -side * parameters[HALF_WIDTH] - r_x
+    q[0] = -side * half_width(side, parameters) - r_x
     q[1] = -r_y
     q[2] = theta0
     q[3] = r_y * omega0
@@ -332,7 +334,7 @@ def start(t, theta0, omega0, q, z, info, parameters):
     q[5] = omega0
     z_from_q(q, side, z, parameters)
     info[I_T_START] = t
-    if abs(theta0) > parameters[ALPHA]:
+    if abs(theta0) > block_angle(side, parameters):
         info[I_T_UNSTABLE] = t
         info[I_UNSTABLE_DIRECTION] = side
     info[I_E0] = kinetic_energy(q[3], q[4], q[5], parameters) + G * q[1]

@@ -17,7 +17,7 @@ import math
 from numba import njit
 
 from shaketable.core.constants import G
-from shaketable.core.dynamics import ALPHA, ERROR_MODEL, cascade_rest_time, flight_acceleration
+from shaketable.core.dynamics import ASYMMETRIC, COR_MINUS, COR_PLUS, ERROR_MODEL, cascade_rest_time
 from shaketable.core.planar_dynamics import (
     FLIGHT,
     HELPER,
@@ -27,10 +27,12 @@ from shaketable.core.planar_dynamics import (
     ROCK,
     SLIDE,
     SLIDE_ROCK,
+    block_angle,
     corner_height,
     corner_height_rate,
     corner_vector,
     kinetic_energy,
+    pivot_acceleration,
     rock_forces,
     slide_rock_accelerations,
     start_mode,
@@ -326,7 +328,7 @@ def flight_mode(t, t_end, side, sigma, entered, rho, mu_s, mu_d, segment, q, z, 
     xs, ys, ths, xds, yds, oms = flight_state(span, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv)
     info[I_W_TABLE] -= polynomial_work(ua, ka, xd0, -ua, -0.5 * ka, span)
     info[I_W_TABLE] -= polynomial_work(va, kv, yd0, -(G + va), -0.5 * kv, span)
-    alpha = parameters[ALPHA]
+    alpha = block_angle(1.0 if ths > 0.0 else -1.0, parameters)
     if math.isnan(info[I_T_UNSTABLE]) and abs(ths) > alpha:
         info[I_T_UNSTABLE] = t + (math.copysign(alpha, ths) - th0) / om0
         info[I_UNSTABLE_DIRECTION] = 1.0 if ths > 0.0 else -1.0
@@ -421,7 +423,7 @@ def contact_steps(t, mode, side, sigma, step_size, just_rejected, rtol, mu_s, mu
     evaluations = 0
     status = STATUS_COMPLETED
     terminal = -1
-    alpha = parameters[ALPHA]
+    alpha = block_angle(side, parameters)
     while t < t_end:
         step = min(step_size, t_end - t)
         if step < 1e-14 * (abs(t) + 1.0) and step < t_end - t:
@@ -545,9 +547,11 @@ def cascade_end(t, mode, side, sigma, rest_until, sticking, omega, omega_before,
     theta = theta' = 0); a summed cascade settles flat, sliding at the corner's slip
     speed (REST if 0). Returns (settled, mode, sigma, rest_until).
     """
+    if parameters[ASYMMETRIC] != 0.0:   # the ratio of an impact onto this pivot
+        cor_cascade = parameters[COR_PLUS] if side > 0.0 else parameters[COR_MINUS]
     ratio = cor_cascade if (sticking and mode == ROCK) else abs(omega / omega_before)
     if mode == ROCK:
-        deceleration = -side * flight_acceleration(0.0, side, u_now, v_now, 0.0, parameters)
+        deceleration = -side * pivot_acceleration(0.0, side, u_now, v_now, parameters)
     else:
         acceleration, _, _, _, _ = slide_rock_accelerations(0.0, 0.0, side, sigma, mu_d, u_now,
                                                             v_now, parameters)
@@ -556,8 +560,7 @@ def cascade_end(t, mode, side, sigma, rest_until, sticking, omega, omega_before,
             # slide-rock at rest tips away: its slip stops within microseconds and the
             # block falls back rocking (a slender block whose every impact slips); without
             # this the Zeno sequence is never summed
-            deceleration = -side * flight_acceleration(0.0, side, u_now, v_now, 0.0,
-                                                       parameters)
+            deceleration = -side * pivot_acceleration(0.0, side, u_now, v_now, parameters)
     remaining = cascade_rest_time(omega, deceleration, ratio)
     if remaining == math.inf and ratio >= 1.0 and deceleration > 0.0 \
             and abs(omega) <= max(velocity_floor, 0.5 * deceleration * rest_tolerance):

@@ -16,8 +16,8 @@ import math
 
 from numba import njit
 
-from shaketable.core.dynamics import ERROR_MODEL, HALF_HEIGHT, HALF_WIDTH
-from shaketable.core.planar_dynamics import HELPER
+from shaketable.core.dynamics import ERROR_MODEL, HALF_HEIGHT
+from shaketable.core.planar_dynamics import HELPER, half_width
 from shaketable.solvers.planar_modes import hermite_peak, measures, q_from_z, quantity
 from shaketable.solvers.planar_steps import (
     KIND_PEAK,
@@ -100,7 +100,7 @@ def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, re
         track(t + tau_peak, q, info, first, parameters)
     # extrema of the slip and of the corners' X (peak slip, excursion)
     # (cos and sin of theta at both ends once: corner_vector's r_y and the rates)
-    b = parameters[HALF_WIDTH]
+    b = half_width(side, parameters)
     h = parameters[HALF_HEIGHT]
     cos0, sin0 = math.cos(z[0]), math.sin(z[0])
     cos1, sin1 = math.cos(z_new[0]), math.sin(z_new[0])
