@@ -99,7 +99,7 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     theta_dot = frame["theta_dot [rad/s]"].to_numpy()
     # the slip in the unit the block was given in (mm for a block in metres)
     unit = display_length_unit(float(np.max(np.abs(slip_values), initial=0.0)),
-                               block.length_unit)
+                               getattr(block, "length_unit", "m"))
     scale = LENGTH_UNITS[unit]
     rocked = bool(np.any(theta != 0.0) or np.any(theta_dot != 0.0))
     if rocked:
@@ -179,7 +179,8 @@ def planar_caption(result, title: str | None = None) -> list[str]:
     cor = result.cor if isinstance(result.cor, str) else f"{result.cor:g}"
     lines = [] if not title else [title]
     model = "" if hasattr(result, "events") else " (independent SciPy reference)"
-    lines.append(f"{describe_block(block)}, α = {block.alpha:.4g} rad, COR {cor}, "
+    described = block.describe() if hasattr(block, "b_plus") else describe_block(block)
+    lines.append(f"{described}, α = {block.alpha:.4g} rad, COR {cor}, "
                  f"μs = {result.friction.static:g}, μd = {result.friction.dynamic:g}{model}")
     lines.append(describe_motion(motion, free))
     ratio = ("F" if result.overturned else f"{result.max_theta_ratio:.2f}")
@@ -187,7 +188,7 @@ def planar_caption(result, title: str | None = None) -> list[str]:
     if result.overturned:
         side = "+" if result.overturn_direction > 0 else "−"
         verdict = f"overturned ({side}) at {result.t_overturn:.2f} s"
-    unit = block.length_unit
+    unit = getattr(block, "length_unit", "m")
     measures = (f"{verdict}; max |θ|/α = {ratio}, peak slip "
                 f"{format_length(result.peak_slip, unit)}")
     excursion = getattr(result, "peak_excursion", None)  # the reference computes none

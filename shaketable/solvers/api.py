@@ -114,10 +114,7 @@ def simulate(block: Block | AsymmetricBlock, motion: Motion | ImpulsiveMotion | 
                              subdivisions=subdivisions, output_dt=output_dt,
                              rest_tolerance=rest_tolerance, top_force=top_force,
                              friction=friction)
-    if isinstance(block, AsymmetricBlock):
-        if friction is not None:
-            raise ValueError("block: the planar model (friction=...) is symmetric; an "
-                             "AsymmetricBlock rocks without friction only")
+    if isinstance(block, AsymmetricBlock) and friction is None:
         if isinstance(motion, ImpulsiveMotion) or top_force != 0.0:
             raise ValueError("block: impulses and top_force are not offered for an "
                              "AsymmetricBlock")

@@ -168,3 +168,18 @@ def test_a_sticking_rock_to_rock_impact_gives_cor_on_either_pivot():
         # rocking returns to theta = 0 with the rate it left with)
         ratios = impacts[1:, 4] / impacts[:-1, 4]
         np.testing.assert_allclose(ratios, -0.7, rtol=1e-9)
+
+
+def test_the_result_of_an_asymmetric_block_has_its_summary_frame_and_figure():
+    from shaketable.plots.base import pyplot
+
+    motion = harmonic(2.5, horizontal=0.5 * G, duration=1.0, dt=0.005, ramp=0.25)
+    result = simulate(BLOCK, motion, cor=0.9, friction=Friction(0.3, 0.25))
+    summary = result.summary()
+    assert summary["b_plus [m]"] == BLOCK.b_plus and summary["b_minus [m]"] == BLOCK.b_minus
+    assert len(result.to_frame()) == result.t.size
+    fig = result.plot()
+    try:
+        assert "asymmetric" in fig._suptitle.get_text()
+    finally:
+        pyplot().close(fig)
