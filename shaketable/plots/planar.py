@@ -162,10 +162,13 @@ def _rotation_panels(rates, rotation, t, theta, theta_dot, block) -> None:
     rates.plot(t, theta_dot, color="tab:blue", lw=0.9)
     rates.set_ylabel("θ' [rad/s]")
     rotation.plot(t, theta, color="k", lw=0.9, label="θ")
+    # each side's own alpha (an AsymmetricBlock's alpha_plus, alpha_minus)
+    alphas = {sign: block.alpha_of(sign) if hasattr(block, "alpha_of") else block.alpha
+              for sign in (1, -1)}
     for sign in (1, -1):
-        rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
+        rotation.axhline(sign * alphas[sign], color="tab:gray", lw=0.8, ls="--",
                          label="±α (stability limit)" if sign > 0 else None)
-    limit = max(1.3 * block.alpha, 1.1 * float(np.max(np.abs(theta), initial=0.0)))
+    limit = max(1.3 * max(alphas.values()), 1.1 * float(np.max(np.abs(theta), initial=0.0)))
     rotation.set_ylim(-limit, limit)
     rotation.set_ylabel("θ [rad]")
     rotation.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,

@@ -13,6 +13,7 @@ runs the same arithmetic as one function would.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from numba import njit
 
@@ -113,13 +114,13 @@ from shaketable.solvers.sliding import first_up_crossing, first_velocity_zero
 #: numba options of the mode functions: inlined into the driver by numba before it is
 #: typed (as :func:`~shaketable.solvers.planar_track.record`). numba inlines a call of at
 #: most 30 arguments: Python passes more as a tuple, which its inliner refuses.
-INLINED = {"cache": True, "inline": "always", "error_model": ERROR_MODEL}
+INLINED: Any = {"cache": True, "inline": "always", "error_model": ERROR_MODEL}
 
 #: numba options of :func:`contact_steps`, entered in every sample interval of a contact
 #: mode: compiled apart and inlined into the driver by LLVM (numba's ``forceinline``, as
 #: the rocking engine's step helper). Inlined by numba instead, its thirty arrays were
 #: handed over with reference counting at every entry, and the engine ran 8 % slower.
-STEPS = {**HELPER, "forceinline": True}
+STEPS: Any = {**HELPER, "forceinline": True}
 
 
 @njit(**HELPER)
