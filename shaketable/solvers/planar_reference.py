@@ -125,12 +125,10 @@ class PlanarReferenceError(RuntimeError):
 # ----------------------------------------------------------------- the solver
 
 def _check(block, motion, cor, friction, rtol, duration, output_dt):
-    if isinstance(block, AsymmetricBlock):
-        raise ValueError("block: the planar model (friction=...) is symmetric; an AsymmetricBlock "
-                         "rocks without friction only (simulate(..., friction=None))")
-    if not isinstance(block, Block):
-        raise ValueError(f"block must be a shaketable Block, got {type(block).__name__}")
-    if block.rods is not None:
+    if not isinstance(block, (Block, AsymmetricBlock)):
+        raise ValueError(f"block must be a shaketable Block or AsymmetricBlock, got "
+                         f"{type(block).__name__}")
+    if isinstance(block, Block) and block.rods is not None:
         raise ValueError("rods: the planar (sliding) model refuses a block with prestress rods "
                          "(a rod hinged to the ground ties the block to the table)")
     if motion is None:
@@ -148,7 +146,8 @@ def _check(block, motion, cor, friction, rtol, duration, output_dt):
             raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
     elif isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0 <= cor <= 1:
         raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
-    if not isinstance(cor, str) and 1.0 - 1.5 * math.sin(block.alpha) ** 2 == 0.0:
+    if not isinstance(cor, str) and 0.0 in (PlanarGeometry(block).c_plus,
+                                            PlanarGeometry(block).c_minus):
         raise ValueError(f"cor: a numeric cor ({cor!r}) needs Housner's ratio c_H = 1 - 1.5 "
                          "sin^2(alpha) != 0 (rho = cor / c_H); this block has B/H = sqrt(2), "
                          "c_H = 0: use cor='housner'")
@@ -232,7 +231,9 @@ class _Run(ImpactTransitions):
         self.rho = 1.0 if cor == "housner" else cor / geometry.c_housner
         self.cascade_cor = geometry.c_housner if cor == "housner" else float(cor)
         self.rtol = rtol
-        p, alpha, size = block.p, block.alpha, block.R
+        p, alpha = block.p, block.alpha
+        size = max(block.R_of(1.0), block.R_of(-1.0)) if isinstance(block, AsymmetricBlock) \
+            else block.R
         self.atol = 1e-2 * rtol * np.array([alpha * size, alpha * size, alpha,
                                             alpha * size * p, alpha * size * p, alpha * p,
                                             G * size * alpha, G * size * alpha])
@@ -266,7 +267,8 @@ class _Run(ImpactTransitions):
         if abs(slip) > self.peak_slip:
             self.peak_slip, self.t_peak_slip = abs(slip), t
         # the base's own slide: the corner it stands or turns on (x when flat)
-        base = slip + math.copysign(self.geometry.b * (1.0 - math.cos(theta)), theta)
+        b = self.geometry.b_of(1 if theta > 0.0 else -1)
+        base = slip + math.copysign(b * (1.0 - math.cos(theta)), theta)
         if abs(base) > self.peak_base_slip:
             self.peak_base_slip, self.t_peak_base_slip = abs(base), t
 
@@ -340,7 +342,7 @@ class _Run(ImpactTransitions):
             if self.state[2] == 0.0 and self.state[5] == 0.0 and side * thdd <= 0.0:
                 # a flat block at rest on both corners that does not tip onto this one
                 # (a marginal start, e.g. mu_s = B/H): it stays flat, sliding if it slips
-                if mode == SLIDE_ROCK and self.mu_d > self.geometry.b / self.geometry.h:
+                if mode == SLIDE_ROCK and self.mu_d > self.geometry.b_of(-sigma) / self.geometry.h:
                     raise _Stop("inconsistent", f"no consistent mode at t = {t!r} s: "
                                 "slide-rock does not tip and mu_d > B/H forbids a flat slide")
                 mode = SLIDE if mode == SLIDE_ROCK else REST
@@ -371,7 +373,8 @@ class _Run(ImpactTransitions):
                 r_x, r_y = geometry.arm(side, 0.0)
                 if sr_normal > 0.0 and side * thdd > 0.0 and sigma * (xdd - r_y * thdd) > 0.0:
                     return SLIDE_ROCK, side, sigma
-        if abs(ug) > self.mu_s * normal and self.mu_d <= geometry.b / geometry.h:
+        if abs(ug) > self.mu_s * normal \
+                and self.mu_d <= geometry.b_of(1 if ug > 0 else -1) / geometry.h:
             return SLIDE, self.side, (-1 if ug > 0 else 1)
         raise _Stop("inconsistent", f"no consistent mode for the flat block at t = {t!r} s "
                     f"(ug = {ug!r}, vg = {vg!r} m/s^2)")
@@ -498,7 +501,8 @@ class _Run(ImpactTransitions):
                     f"landing{corner:+d}", True, -1, lambda t, z: 1.0)
             add(lambda t, z: 0.5 * math.pi - abs(z[2]), "overturn", True, -1)
         if mode in (ROCK, SLIDE_ROCK, FLIGHT):
-            add(lambda t, z: geometry.alpha - abs(z[2]), "unstable", False, -1)
+            add(lambda t, z: geometry.alpha_of(1 if z[2] > 0.0 else -1) - abs(z[2]), "unstable",
+                False, -1)
         add(lambda t, z: z[3] + geometry.h * math.cos(z[2]) * z[5], "slip turn", False, 0)
         return functions, names
 
@@ -644,7 +648,7 @@ class _Run(ImpactTransitions):
             side = 1 if theta0 > 0 or (theta0 == 0 and theta_dot0 > 0) else -1
             r_x, r_y = geometry.arm(side, theta0)
             # tilted about its corner standing at its rest position X_s = -s b
-            self.pivot = -side * geometry.b
+            self.pivot = -side * geometry.b_of(side)
             self.state[:] = [self.pivot - r_x, -r_y, theta0, r_y * theta_dot0 + x_dot0,
                              -r_x * theta_dot0, theta_dot0]
             self.side = side
@@ -655,7 +659,7 @@ class _Run(ImpactTransitions):
             self.state[3] = x_dot0
             self.mode, self.sigma = SLIDE, (1 if x_dot0 > 0 else -1)
         energy_start = self.energy()
-        if abs(theta0) >= geometry.alpha:
+        if abs(theta0) >= geometry.alpha_of(1 if theta0 > 0 else -1):
             self.t_unstable = t
         self.note(t, self.state)
         out = np.zeros((n, 6))

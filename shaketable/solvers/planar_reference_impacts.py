@@ -21,6 +21,20 @@ from shaketable.solvers.planar_contact import impact_map, kinetic_energy, two_co
 class ImpactTransitions:
     """The reference's transitions at an impact (methods of its event loop)."""
 
+    def rho_of(self, corner):
+        """The couple ratio of an impact of ``corner``: cor / c_H of that pivot (an
+        asymmetric block's own), 1 for Housner's law."""
+        geometry = self.geometry
+        if self.cor == "housner" or geometry.c_plus == geometry.c_minus:
+            return self.rho
+        return self.cor / geometry.c_of(corner)
+
+    def cascade_of(self, corner):
+        """theta'+ / theta'- of a sticking rock-to-rock impact onto ``corner``."""
+        if self.cor == "housner":
+            return self.geometry.c_of(corner)
+        return self.cascade_cor
+
     def impact(self, t, corner):
         """A corner impact at t (docs/planar.md, "Impacts"); at theta = 0 an impact that
         turns the block back onto the other corner, which is on the table, is followed by
@@ -29,7 +43,7 @@ class ImpactTransitions:
         pre = self.state.copy()
         energy_before = kinetic_energy(self.geometry, pre)
         self.impacts.append((t, pre[5]))
-        velocities, _, sigma, capped = impact_map(self.geometry, pre, corner, self.rho,
+        velocities, _, sigma, capped = impact_map(self.geometry, pre, corner, self.rho_of(corner),
                                                    self.mu_s, self.mu_d)
         self.capped += capped
         self.state[3:6] = velocities
@@ -46,7 +60,7 @@ class ImpactTransitions:
         self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
         if self.state[2] == 0.0 and self.mode in (ROCK, SLIDE_ROCK) and pre[5] != 0.0:
             sticking = sigma == 0 and self.mode == ROCK and self.side == corner
-            self.cascade(t, self.cascade_cor if sticking else abs(self.state[5] / pre[5]))
+            self.cascade(t, self.cascade_of(corner) if sticking else abs(self.state[5] / pre[5]))
 
     def enter_after_impact(self, t, mode, sigma, kind, before):
         """Enter the mode an impact left (flat: REST, which records t_rest, or SLIDE)."""

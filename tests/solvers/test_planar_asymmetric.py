@@ -183,3 +183,25 @@ def test_the_result_of_an_asymmetric_block_has_its_summary_frame_and_figure():
         assert "asymmetric" in fig._suptitle.get_text()
     finally:
         pyplot().close(fig)
+
+
+@pytest.mark.parametrize("block, frequency, amplitude", [
+    (BLOCK, 2.5, 0.5), (AsymmetricBlock(0.5, 0.12, 0.3), 3.0, 0.7)])
+def test_the_compiled_engine_agrees_with_the_scipy_reference(block, frequency, amplitude):
+    # the independent Newton-Euler reference (solvers/planar_reference.py) with each
+    # pivot's arm: runs that visit slide, rock and slide-rock with impacts on both pivots
+    from shaketable.solvers.planar_reference import simulate_reference
+
+    motion = harmonic(frequency, horizontal=amplitude * G, duration=2.0, dt=0.005, ramp=0.25)
+    options = dict(cor=0.9, friction=Friction(0.3, 0.25))
+    reference, planar = simulate_reference(block, motion, **options), \
+        simulate_planar(block, motion, **options)
+    assert set(planar.modes_visited) == {"rest", "slide", "rock", "slide-rock"}
+    events = planar.events[planar.events[:, 1] != 4.0]   # |theta| = alpha: not an event there
+    assert len(events) == len(reference.event_times) > 20
+    np.testing.assert_allclose(events[:, 0], reference.event_times, rtol=0, atol=1e-8)
+    np.testing.assert_array_equal(events[:, 3], reference.event_mode_after)
+    for name in ("peak_slip", "residual_slip", "max_abs_theta", "peak_base_slip"):
+        assert getattr(planar, name) == pytest.approx(getattr(reference, name), abs=1e-8)
+    np.testing.assert_allclose(planar.theta, reference.theta, rtol=0, atol=1e-8)
+    np.testing.assert_allclose(planar.x, reference.x, rtol=0, atol=1e-8)
