@@ -176,10 +176,7 @@ def _other_model(block, motion, *, cor, theta0, theta_dot0, duration, method, rt
                               subdivisions=subdivisions, output_dt=output_dt,
                               rest_tolerance=rest_tolerance, top_force=top_force,
                               friction=friction)
-    if isinstance(block, AsymmetricBlock):
-        if friction is not None:
-            raise ValueError("block: the planar model (friction=...) is symmetric; an "
-                             "AsymmetricBlock rocks without friction only")
+    if isinstance(block, AsymmetricBlock) and friction is None:
         if isinstance(motion, ImpulsiveMotion) or top_force != 0.0:
             raise ValueError("block: impulses and top_force are not offered for an "
                              "AsymmetricBlock")

@@ -6,6 +6,7 @@ import numpy as np
 
 from shaketable.core.constants import LENGTH_UNITS
 from shaketable.core.units import display_length_unit, format_length
+from shaketable.models.planar.result import base_slip
 from shaketable.plots.calcomp import (
     describe_block,
     describe_motion,
@@ -61,9 +62,11 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     The Calcomp layout of :func:`shaketable.plots.calcomp.calcomp` (ground panels left
     out when a channel is zero), with the angular velocity alone on its panel (the
     coupled model's theta'' has no single formula across modes), then the slip of the
-    base's midpoint relative to the table (in the unit the block was given in, mm for
-    metres) with its peak marked, and a band coloured by the mode the block is in (slide,
-    rock, slide-rock, flight; left blank at rest). A block that never rocks gets the slip
+    base relative to the table (the bottom corner the block stands or turns on:
+    :func:`~shaketable.models.planar.result.base_slip`, whose peak is ``peak_base_slip``;
+    in the unit the block was given in, mm for metres) with its peak marked, and a band
+    coloured by the mode the block is in (slide, rock, slide-rock, flight; left blank at
+    rest). A block that never rocks gets the slip
     velocity instead of the two flat rotation panels, and a caption line saying so.
 
     The traces are the columns of ``result.to_frame()``, which the compiled engine's
@@ -89,12 +92,14 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
     frame = result.to_frame()
     t = frame["time [s]"].to_numpy()
     theta = frame["theta [rad]"].to_numpy()
-    slip_values = frame["slip [m]"].to_numpy()
+    # the base's own slide, not its midpoint's motion (which rocking moves too)
+    slip_values = base_slip(frame["x [m]"].to_numpy(), frame["theta [rad]"].to_numpy(), block)
+    peak, t_peak = result.peak_base_slip, result.t_peak_base_slip
     end = t[-1]
     theta_dot = frame["theta_dot [rad/s]"].to_numpy()
     # the slip in the unit the block was given in (mm for a block in metres)
     unit = display_length_unit(float(np.max(np.abs(slip_values), initial=0.0)),
-                               block.length_unit)
+                               getattr(block, "length_unit", "m"))
     scale = LENGTH_UNITS[unit]
     rocked = bool(np.any(theta != 0.0) or np.any(theta_dot != 0.0))
     if rocked:
@@ -114,12 +119,11 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
                         borderaxespad=0.0)
     slip.plot(t, slip_values / scale, color="tab:red", lw=0.9, label="slip of the base")
     slip.axhline(0.0, color="0.6", lw=0.5)
-    if result.peak_slip > 0.0 and np.isfinite(result.t_peak_slip):
-        at = int(np.argmin(np.abs(t - result.t_peak_slip)))
+    if peak > 0.0 and np.isfinite(t_peak):
+        at = int(np.argmin(np.abs(t - t_peak)))
         direction = 1.0 if slip_values[at] >= 0 else -1.0
-        slip.plot([result.t_peak_slip], [direction * result.peak_slip / scale], "v",
-                  color="tab:red", ms=5,
-                  label=f"peak {result.peak_slip / scale:.3g} {unit}")
+        slip.plot([t_peak], [direction * peak / scale], "v", color="tab:red", ms=5,
+                  label=f"peak {peak / scale:.3g} {unit}")
     slip.set_ylabel(f"slip [{unit}]")
     slip.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
     shown_modes = set()
@@ -158,10 +162,13 @@ def _rotation_panels(rates, rotation, t, theta, theta_dot, block) -> None:
     rates.plot(t, theta_dot, color="tab:blue", lw=0.9)
     rates.set_ylabel("θ' [rad/s]")
     rotation.plot(t, theta, color="k", lw=0.9, label="θ")
+    # each side's own alpha (an AsymmetricBlock's alpha_plus, alpha_minus)
+    alphas = {sign: block.alpha_of(sign) if hasattr(block, "alpha_of") else block.alpha
+              for sign in (1, -1)}
     for sign in (1, -1):
-        rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
+        rotation.axhline(sign * alphas[sign], color="tab:gray", lw=0.8, ls="--",
                          label="±α (stability limit)" if sign > 0 else None)
-    limit = max(1.3 * block.alpha, 1.1 * float(np.max(np.abs(theta), initial=0.0)))
+    limit = max(1.3 * max(alphas.values()), 1.1 * float(np.max(np.abs(theta), initial=0.0)))
     rotation.set_ylim(-limit, limit)
     rotation.set_ylabel("θ [rad]")
     rotation.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
@@ -175,7 +182,8 @@ def planar_caption(result, title: str | None = None) -> list[str]:
     cor = result.cor if isinstance(result.cor, str) else f"{result.cor:g}"
     lines = [] if not title else [title]
     model = "" if hasattr(result, "events") else " (independent SciPy reference)"
-    lines.append(f"{describe_block(block)}, α = {block.alpha:.4g} rad, COR {cor}, "
+    described = block.describe() if hasattr(block, "b_plus") else describe_block(block)
+    lines.append(f"{described}, α = {block.alpha:.4g} rad, COR {cor}, "
                  f"μs = {result.friction.static:g}, μd = {result.friction.dynamic:g}{model}")
     lines.append(describe_motion(motion, free))
     ratio = ("F" if result.overturned else f"{result.max_theta_ratio:.2f}")
@@ -183,7 +191,7 @@ def planar_caption(result, title: str | None = None) -> list[str]:
     if result.overturned:
         side = "+" if result.overturn_direction > 0 else "−"
         verdict = f"overturned ({side}) at {result.t_overturn:.2f} s"
-    unit = block.length_unit
+    unit = getattr(block, "length_unit", "m")
     measures = (f"{verdict}; max |θ|/α = {ratio}, peak slip "
                 f"{format_length(result.peak_slip, unit)}")
     excursion = getattr(result, "peak_excursion", None)  # the reference computes none

@@ -24,7 +24,8 @@ PACKAGE = os.path.dirname(os.path.abspath(shaketable.__file__))
 COMPILED_MODULES = ["shaketable.models.rocking.physics", "shaketable.models.planar.physics",
                     "shaketable.models.rocking.engine", "shaketable.models.rocking.batch",
                     "shaketable.models.planar.engine", "shaketable.models.planar.modes",
-                    "shaketable.models.planar.track", "shaketable.models.sliding.engine"]
+                    "shaketable.models.planar.track", "shaketable.models.planar.phases",
+                    "shaketable.models.sliding.engine"]
 
 
 def test_the_cache_subfolder_is_named_from_the_path_inside_the_package():

@@ -80,10 +80,15 @@ def test_the_figure_has_the_panels_of_the_compiled_result(runs):
         np.testing.assert_array_equal(rates.get_lines()[0].get_xdata(), reference.t)
         np.testing.assert_array_equal(rates.get_lines()[0].get_ydata(), reference.theta_dot)
         np.testing.assert_array_equal(rotation.get_lines()[0].get_ydata(), reference.theta)
-        np.testing.assert_array_equal(slip.get_lines()[0].get_ydata(), reference.slip / INCH)
-        # the peak-slip marker at the reference's own peak
+        # the base's slip: the corner it stands or turns on (docs/planar.md)
+        block = reference.block
+        corner = reference.x + block.h * np.sin(reference.theta) \
+            + np.sign(reference.theta) * block.b * (1.0 - np.cos(reference.theta))
+        np.testing.assert_allclose(slip.get_lines()[0].get_ydata(), corner / INCH, rtol=0,
+                                   atol=1e-12)
+        # the peak-slip marker at the reference's own peak of the base's slip
         marker = slip.get_lines()[-1]
-        assert abs(marker.get_ydata()[0]) == pytest.approx(reference.peak_slip / INCH)
+        assert abs(marker.get_ydata()[0]) == pytest.approx(reference.peak_base_slip / INCH)
         # the mode band: the same coloured stretches in both figures, from each result's
         # own located events (independent implementations: equal to 1e-8 s)
         shaded = [patch for patch in band.patches]

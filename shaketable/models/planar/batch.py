@@ -86,8 +86,8 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
 
     blocks = _one_or_many(blocks, (Block, AsymmetricBlock), "blocks", "a Block")
     if any(isinstance(block, AsymmetricBlock) for block in blocks):
-        raise ValueError("block: the planar model (friction=...) is symmetric; an AsymmetricBlock "
-                         "rocks without friction only (simulate(..., friction=None))")
+        raise ValueError("block: the planar batch takes Blocks; run an AsymmetricBlock one at a "
+                         "time (simulate(..., friction=...))")
     frictions = _one_or_many(frictions, (Friction,), "frictions", "a Friction")
     cors = _one_or_many(cors, (int, float, str, np.floating, np.integer), "cors",
                         "a COR (a number in [0, 1] or 'housner')")

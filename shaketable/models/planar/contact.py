@@ -15,24 +15,51 @@ import math
 import numpy as np
 
 from shaketable.core.constants import G
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.models.planar.shenton import FLIGHT, REST, ROCK, SLIDE, SLIDE_ROCK
 
 
 class PlanarGeometry:
     """b, h [m], Ic, I0 [m^2] per mass, alpha [rad], Housner's c_H [-]."""
 
-    def __init__(self, block: Block):
+    def __init__(self, block: Block | AsymmetricBlock):
+        if isinstance(block, AsymmetricBlock):
+            # each pivot's b and alpha, the centroidal k^2, Housner's ratio of an impact
+            # onto each pivot (b, alpha, c_housner: the weaker side's, for scales)
+            self.h, self.b_plus, self.b_minus = block.h, block.b_plus, block.b_minus
+            self.Ic = block.k_squared
+            self.alpha_plus, self.alpha_minus = block.alpha_plus, block.alpha_minus
+            self.c_plus, self.c_minus = block.housner_cor(1.0), block.housner_cor(-1.0)
+            self.b, self.alpha = min(self.b_plus, self.b_minus), block.alpha
+            self.c_housner = min(self.c_plus, self.c_minus)
+            self.I0 = self.Ic + self.b ** 2 + self.h ** 2
+            return
         self.b, self.h = block.b, block.h
         self.Ic = (self.b ** 2 + self.h ** 2) / 3.0
         self.I0 = 4.0 * self.Ic
         self.alpha = block.alpha
         self.c_housner = 1.0 - 1.5 * math.sin(self.alpha) ** 2
+        self.b_plus = self.b_minus = self.b
+        self.alpha_plus = self.alpha_minus = self.alpha
+        self.c_plus = self.c_minus = self.c_housner
+
+    def b_of(self, side):
+        """b_s [m]: centre to the bottom corner of ``side`` horizontally."""
+        return self.b_plus if side > 0 else self.b_minus
+
+    def alpha_of(self, side):
+        """alpha_s [rad] of the pivot ``side``."""
+        return self.alpha_plus if side > 0 else self.alpha_minus
+
+    def c_of(self, onto):
+        """Housner's ratio c_H of a rock-to-rock impact onto the pivot ``onto`` [-]."""
+        return self.c_plus if onto > 0 else self.c_minus
 
     def arm(self, side, theta):
         """(r_x, r_y): centre to the bottom corner ``side`` [m]."""
         c, s = math.cos(theta), math.sin(theta)
-        return -side * self.b * c + self.h * s, -side * self.b * s - self.h * c
+        b = self.b_of(side)
+        return -side * b * c + self.h * s, -side * b * s - self.h * c
 
 
 def rock_solution(geometry, side, theta, omega, ug, vg):

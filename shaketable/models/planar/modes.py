@@ -21,14 +21,24 @@ from shaketable.models.planar.physics import (
     SLIDE,
     SLIDE_ROCK,
     corner_vector,
+    half_width,
     impact,
     kinetic_energy,
+    pivot_acceleration,
     rock_forces,
     slide_rock_accelerations,
     two_corner_impact,
 )
 from shaketable.models.planar.steps import ground
-from shaketable.models.rocking.physics import ERROR_MODEL, HALF_HEIGHT, HALF_WIDTH, flight_acceleration
+from shaketable.models.rocking.physics import (
+    ASYMMETRIC,
+    ERROR_MODEL,
+    HALF_HEIGHT,
+    HALF_WIDTH,
+    HALF_WIDTH_MINUS,
+    RHO_MINUS,
+    RHO_PLUS,
+)
 
 #: Columns of the engine's output rows (x, y, theta, x', y', theta', slip, mode).
 OUT_X, OUT_Y, OUT_THETA, OUT_X_DOT, OUT_Y_DOT, OUT_OMEGA, OUT_SLIP, OUT_MODE = range(8)
@@ -65,18 +75,20 @@ def measures(q, parameters):
     the base's slide [m]: the displacement of the bottom corner the block stands or turns
     on (on theta's side; x when flat), x + h sin(theta) + sign(theta) b (1 - cos(theta)),
     0 for a block that rocks without sliding."""
-    b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     cosine = math.cos(q[2])
     sine = math.sin(q[2])
     slip = q[0] + h * sine
     largest = 0.0
-    for u in (-b, b):
+    for u in (-parameters[HALF_WIDTH], parameters[HALF_WIDTH_MINUS]):
         for w in (-h, h):
             excursion = abs(q[0] + u * cosine - w * sine - u)
             if excursion > largest:
                 largest = excursion
-    base = slip if q[2] == 0.0 else slip + math.copysign(b * (1.0 - cosine), q[2])
+    if q[2] == 0.0:
+        return slip, largest, slip
+    b = half_width(1.0 if q[2] > 0.0 else -1.0, parameters)
+    base = slip + math.copysign(b * (1.0 - cosine), q[2])
     return slip, largest, base
 
 
@@ -91,8 +103,8 @@ def rest_margin(condition, ug, vg, mu_s, parameters):
     if condition == 2:
         return -ug - mu_s * (G + vg)
     if condition == 3:
-        return flight_acceleration(0.0, 1.0, ug, vg, 0.0, parameters)
-    return -flight_acceleration(0.0, -1.0, ug, vg, 0.0, parameters)
+        return pivot_acceleration(0.0, 1.0, ug, vg, parameters)
+    return -pivot_acceleration(0.0, -1.0, ug, vg, parameters)
 
 
 @njit(**HELPER)
@@ -168,7 +180,7 @@ def enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
             return FLIGHT, sigma
         if q[2] == 0.0 and q[5] == 0.0 and side * acceleration <= 0.0:
             if mode == SLIDE_ROCK:
-                if mu_d > parameters[HALF_WIDTH] / parameters[HALF_HEIGHT]:
+                if mu_d > half_width(-sigma, parameters) / parameters[HALF_HEIGHT]:
                     return INCONSISTENT, sigma
                 return SLIDE, sigma
             return REST, sigma
@@ -184,11 +196,10 @@ def enter_contact(mode, side, sigma, t, q, segment, mu_s, mu_d, parameters):
 def quantity(which, q, parameters):
     """The slip (``which`` 0) or the excursion X - X_rest of corner ``which`` (1..4, the
     order of :func:`~shaketable.models.planar.steps.horizontal_rate`) [m]."""
-    b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     if which == 0:
         return q[0] + h * math.sin(q[2])
-    u = -b if which == 1 or which == 3 else b
+    u = -parameters[HALF_WIDTH] if which == 1 or which == 3 else parameters[HALF_WIDTH_MINUS]
     w = -h if which <= 2 else h
     return q[0] + u * math.cos(q[2]) - w * math.sin(q[2]) - u
 
@@ -260,6 +271,8 @@ def strike(q, striking, rho, mu_s, mu_d, parameters):
     else:
         _, r_y = corner_vector(q[2], striking, parameters)
         q[1] = -r_y   # the corner on the table (its root is located to the ulp)
+        if parameters[ASYMMETRIC] != 0.0:   # the couple ratio of an impact onto that pivot
+            rho = parameters[RHO_PLUS] if striking > 0.0 else parameters[RHO_MINUS]
         x_dot, y_dot, omega, kind, sigma, _, capped = impact(
             q[2], q[3], q[4], q[5], striking, rho, mu_s, mu_d, parameters)
         if kind != PAINLEVE and q[2] == 0.0 and striking * omega < 0.0:

@@ -62,10 +62,15 @@ from numba import njit
 from shaketable.core.constants import G
 from shaketable.models.rocking.physics import (
     ALPHA,
+    ALPHA_MINUS,
+    ASYMMETRIC,
+    CENTROIDAL,
     ERROR_MODEL,
     HALF_HEIGHT,
     HALF_WIDTH,
+    HALF_WIDTH_MINUS,
     INERTIA,
+    INERTIA_MINUS,
     flight_acceleration,
 )
 
@@ -93,14 +98,44 @@ HELPER: Any = {"cache": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": Tr
 
 @njit(**HELPER)
 def centroidal_inertia(parameters):
-    """Ic = R^2 / 3 per unit mass [m^2] (I0 / 4)."""
-    return 0.25 * parameters[INERTIA]
+    """Ic per unit mass [m^2]: R^2 / 3 = I0 / 4 of a rectangle, k^2 of an asymmetric block."""
+    if parameters[ASYMMETRIC] == 0.0:
+        return 0.25 * parameters[INERTIA]
+    return parameters[CENTROIDAL]
+
+
+@njit(**HELPER)
+def half_width(side, parameters):
+    """b_s [m]: the horizontal distance from the centre of mass to the bottom corner of
+    ``side`` (+1: the corner at -x, the pivot of theta > 0; -1: the corner at +x)."""
+    return parameters[HALF_WIDTH] if side > 0.0 else parameters[HALF_WIDTH_MINUS]
+
+
+@njit(**HELPER)
+def block_angle(side, parameters):
+    """alpha_s = atan(b_s / h) [rad] of the pivot ``side``."""
+    return parameters[ALPHA] if side > 0.0 else parameters[ALPHA_MINUS]
+
+
+@njit(cache=True, error_model=ERROR_MODEL)
+def pivot_acceleration(theta, side, ug, vg, parameters):
+    """theta'' [rad/s^2] of the block turning about its corner ``side`` held fixed: Eq.
+    (2-13) with that pivot's b_s and I0_s (:func:`~shaketable.models.rocking.physics.flight_acceleration`
+    for a symmetric block, exactly)."""
+    if parameters[ASYMMETRIC] == 0.0:
+        return flight_acceleration(theta, side, ug, vg, 0.0, parameters)
+    b = half_width(side, parameters)
+    h = parameters[HALF_HEIGHT]
+    cosine = math.cos(theta)
+    sine = math.sin(theta)
+    moment = ug * (h * cosine + side * b * sine) - (G + vg) * (side * b * cosine - h * sine)
+    return moment / (parameters[INERTIA] if side > 0.0 else parameters[INERTIA_MINUS])
 
 
 @njit(cache=True, error_model=ERROR_MODEL)
 def corner_vector(theta, side, parameters):
     """(r_x, r_y) [m]: from the centre of mass to the bottom corner of ``side``."""
-    b = parameters[HALF_WIDTH]
+    b = half_width(side, parameters)
     h = parameters[HALF_HEIGHT]
     cosine = math.cos(theta)
     sine = math.sin(theta)
@@ -111,7 +146,7 @@ def corner_vector(theta, side, parameters):
 def rock_forces(theta, omega, side, ug, vg, parameters):
     """ROCK about ``side``: theta'' [rad/s^2] (Eq. 2-13), the centre's x'', y'' [m/s^2]
     and the contact force F, N per unit mass [m/s^2] that hold the pivot."""
-    acceleration = flight_acceleration(theta, side, ug, vg, 0.0, parameters)
+    acceleration = pivot_acceleration(theta, side, ug, vg, parameters)
     r_x, r_y = corner_vector(theta, side, parameters)
     omega2 = omega * omega
     x_dd = r_y * acceleration + r_x * omega2
@@ -149,7 +184,8 @@ def rest_margins(ug, vg, mu_s, parameters):
     """
     normal = G + vg
     return (-normal, abs(ug) - mu_s * normal,
-            abs(ug) * parameters[HALF_HEIGHT] - parameters[HALF_WIDTH] * normal)
+            abs(ug) * parameters[HALF_HEIGHT]
+            - half_width(1.0 if ug > 0.0 else -1.0, parameters) * normal)
 
 
 @njit(**HELPER)
@@ -163,11 +199,13 @@ def start_mode(ug, vg, mu_s, mu_d, parameters):
     normal = G + vg
     if normal <= 0.0:
         return FLIGHT, 1.0, 0.0
-    b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     side = 1.0 if ug > 0.0 else -1.0
+    # a flat slide toward -side has its centre of pressure sigma mu_d h from the centre's
+    # foot, within the base if mu_d h <= b_side
+    b = half_width(side, parameters)
     # Eq. (2-1) as the rocking engine tests it: the moment toward ``side`` at theta = 0
-    tipping = side * flight_acceleration(0.0, side, ug, vg, 0.0, parameters) > 0.0
+    tipping = side * pivot_acceleration(0.0, side, ug, vg, parameters) > 0.0
     if tipping:
         _, _, _, friction, normal_rock = rock_forces(0.0, 0.0, side, ug, vg, parameters)
         if normal_rock > 0.0 and abs(friction) <= mu_s * normal_rock:
@@ -212,7 +250,9 @@ def _impact_post(x_dot, y_dot, omega, r_x, r_y, rho, force, mu_s, mu_d, paramete
     H_k' = H_k - r_y u = (Ic + r_y^2) omega - r_x y' (H_k the table frame's).
     """
     inertia = centroidal_inertia(parameters)
-    i0 = parameters[INERTIA]
+    # I0 about the striking corner (of an asymmetric block: Ic + |r|^2, that corner's)
+    i0 = parameters[INERTIA] if parameters[ASYMMETRIC] == 0.0 \
+        else inertia + r_x * r_x + r_y * r_y
     momentum = inertia * omega - r_x * y_dot + r_y * x_dot
     slip = x_dot - r_y * omega
     # a corner that does not slip in (every sticking rock-to-rock impact): the table
@@ -357,6 +397,15 @@ def flat_landing(x_dot, y_dot, mu_s, mu_d):
 
 
 @njit(**HELPER)
+def flat_impulses_push(moment, total, parameters):
+    """Whether both corners push when the base lands flat: with the normal impulses P_+
+    at -b_+ and P_- at +b_- from the centre's foot, their sum ``total`` and the angular
+    impulse they must supply about the centre, -``moment`` (moment = Ic theta'- + h F),
+    P_+ = (b_- total + moment) / (b_+ + b_-) must lie in [0, total]."""
+    return -parameters[HALF_WIDTH_MINUS] * total <= moment <= parameters[HALF_WIDTH] * total
+
+
+@njit(**HELPER)
 def two_corner_impact(x_dot, y_dot, omega, mu_s, mu_d, parameters):
     """Plastic impact of the block at theta = 0 with both bottom corners on the table.
 
@@ -383,15 +432,23 @@ def two_corner_impact(x_dot, y_dot, omega, mu_s, mu_d, parameters):
     total = -y_dot
     if total >= 0.0:
         spin = inertia * omega
-        if abs(x_dot) <= mu_s * total and abs(spin - h * x_dot) <= b * total:
+        if parameters[ASYMMETRIC] == 0.0:
+            holds = abs(spin - h * x_dot) <= b * total
+        else:
+            holds = flat_impulses_push(spin - h * x_dot, total, parameters)
+        if abs(x_dot) <= mu_s * total and holds:
             return 0.0, 0.0, 0.0, REST, 0.0, 0.0
         direction = 1.0 if x_dot > 0.0 else -1.0
         friction = -direction * mu_d * total
-        if abs(x_dot) > mu_d * total and abs(spin + h * friction) <= b * total:
+        if parameters[ASYMMETRIC] == 0.0:
+            holds = abs(spin + h * friction) <= b * total
+        else:
+            holds = flat_impulses_push(spin + h * friction, total, parameters)
+        if abs(x_dot) > mu_d * total and holds:
             return x_dot - math.copysign(mu_d * total, x_dot), 0.0, 0.0, SLIDE, 0.0, \
                 direction
     for side in (1.0, -1.0):
-        if y_dot - side * b * omega >= 0.0:
+        if y_dot - side * half_width(side, parameters) * omega >= 0.0:
             continue   # this corner does not move into the table
         r_x, r_y = corner_vector(0.0, side, parameters)
         xa, ya, wa, kind, sigma, pa = _impact_post(x_dot, y_dot, omega, r_x, r_y, 1.0, 0.0,
@@ -409,7 +466,7 @@ def two_corner_impact(x_dot, y_dot, omega, mu_s, mu_d, parameters):
 @njit(**HELPER)
 def corner_height(y, theta, side, parameters):
     """Height Y_s of the bottom corner of ``side`` above the table [m]."""
-    return (y - side * parameters[HALF_WIDTH] * math.sin(theta)
+    return (y - side * half_width(side, parameters) * math.sin(theta)
             - parameters[HALF_HEIGHT] * math.cos(theta))
 
 

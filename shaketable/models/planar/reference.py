@@ -97,17 +97,15 @@ from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.motion import Motion
 from shaketable.models.planar.contact import (
     PlanarGeometry,
-    impact_map,
     kinetic_energy,
     mode_solution,
     rock_solution,
     slide_rock_effective_mass,
     slide_rock_solution,
-    two_corner_impact,
 )
+from shaketable.models.planar.reference_impacts import ImpactTransitions
 from shaketable.models.planar.reference_result import PlanarReferenceResult
 from shaketable.models.planar.shenton import FLIGHT, MODE_NAMES, REST, ROCK, SLIDE, SLIDE_ROCK
-from shaketable.models.rocking.physics import cascade_rest_time
 from shaketable.models.sliding.result import Friction
 
 #: Consecutive segments that may end where they began before the solver gives up.
@@ -127,12 +125,10 @@ class PlanarReferenceError(RuntimeError):
 # ----------------------------------------------------------------- the solver
 
 def _check(block, motion, cor, friction, rtol, duration, output_dt):
-    if isinstance(block, AsymmetricBlock):
-        raise ValueError("block: the planar model (friction=...) is symmetric; an AsymmetricBlock "
-                         "rocks without friction only (simulate(..., friction=None))")
-    if not isinstance(block, Block):
-        raise ValueError(f"block must be a shaketable Block, got {type(block).__name__}")
-    if block.rods is not None:
+    if not isinstance(block, (Block, AsymmetricBlock)):
+        raise ValueError(f"block must be a shaketable Block or AsymmetricBlock, got "
+                         f"{type(block).__name__}")
+    if isinstance(block, Block) and block.rods is not None:
         raise ValueError("rods: the planar (sliding) model refuses a block with prestress rods "
                          "(a rod hinged to the ground ties the block to the table)")
     if motion is None:
@@ -150,7 +146,8 @@ def _check(block, motion, cor, friction, rtol, duration, output_dt):
             raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
     elif isinstance(cor, bool) or not isinstance(cor, (int, float)) or not 0 <= cor <= 1:
         raise ValueError(f"cor must be a number in [0, 1] or 'housner', got {cor!r}")
-    if not isinstance(cor, str) and 1.0 - 1.5 * math.sin(block.alpha) ** 2 == 0.0:
+    if not isinstance(cor, str) and 0.0 in (PlanarGeometry(block).c_plus,
+                                            PlanarGeometry(block).c_minus):
         raise ValueError(f"cor: a numeric cor ({cor!r}) needs Housner's ratio c_H = 1 - 1.5 "
                          "sin^2(alpha) != 0 (rho = cor / c_H); this block has B/H = sqrt(2), "
                          "c_H = 0: use cor='housner'")
@@ -224,7 +221,7 @@ class _Stop(Exception):
         self.status, self.message = status, message
 
 
-class _Run:
+class _Run(ImpactTransitions):
     """The event loop of one run (mutable state; see the module docstring)."""
 
     def __init__(self, block, motion, cor, friction, rtol, rest_tolerance):
@@ -234,7 +231,9 @@ class _Run:
         self.rho = 1.0 if cor == "housner" else cor / geometry.c_housner
         self.cascade_cor = geometry.c_housner if cor == "housner" else float(cor)
         self.rtol = rtol
-        p, alpha, size = block.p, block.alpha, block.R
+        p, alpha = block.p, block.alpha
+        size = max(block.R_of(1.0), block.R_of(-1.0)) if isinstance(block, AsymmetricBlock) \
+            else block.R
         self.atol = 1e-2 * rtol * np.array([alpha * size, alpha * size, alpha,
                                             alpha * size * p, alpha * size * p, alpha * p,
                                             G * size * alpha, G * size * alpha])
@@ -268,7 +267,8 @@ class _Run:
         if abs(slip) > self.peak_slip:
             self.peak_slip, self.t_peak_slip = abs(slip), t
         # the base's own slide: the corner it stands or turns on (x when flat)
-        base = slip + math.copysign(self.geometry.b * (1.0 - math.cos(theta)), theta)
+        b = self.geometry.b_of(1 if theta > 0.0 else -1)
+        base = slip + math.copysign(b * (1.0 - math.cos(theta)), theta)
         if abs(base) > self.peak_base_slip:
             self.peak_base_slip, self.t_peak_base_slip = abs(base), t
 
@@ -342,7 +342,7 @@ class _Run:
             if self.state[2] == 0.0 and self.state[5] == 0.0 and side * thdd <= 0.0:
                 # a flat block at rest on both corners that does not tip onto this one
                 # (a marginal start, e.g. mu_s = B/H): it stays flat, sliding if it slips
-                if mode == SLIDE_ROCK and self.mu_d > self.geometry.b / self.geometry.h:
+                if mode == SLIDE_ROCK and self.mu_d > self.geometry.b_of(-sigma) / self.geometry.h:
                     raise _Stop("inconsistent", f"no consistent mode at t = {t!r} s: "
                                 "slide-rock does not tip and mu_d > B/H forbids a flat slide")
                 mode = SLIDE if mode == SLIDE_ROCK else REST
@@ -373,7 +373,8 @@ class _Run:
                 r_x, r_y = geometry.arm(side, 0.0)
                 if sr_normal > 0.0 and side * thdd > 0.0 and sigma * (xdd - r_y * thdd) > 0.0:
                     return SLIDE_ROCK, side, sigma
-        if abs(ug) > self.mu_s * normal and self.mu_d <= geometry.b / geometry.h:
+        if abs(ug) > self.mu_s * normal \
+                and self.mu_d <= geometry.b_of(1 if ug > 0 else -1) / geometry.h:
             return SLIDE, self.side, (-1 if ug > 0 else 1)
         raise _Stop("inconsistent", f"no consistent mode for the flat block at t = {t!r} s "
                     f"(ug = {ug!r}, vg = {vg!r} m/s^2)")
@@ -500,7 +501,8 @@ class _Run:
                     f"landing{corner:+d}", True, -1, lambda t, z: 1.0)
             add(lambda t, z: 0.5 * math.pi - abs(z[2]), "overturn", True, -1)
         if mode in (ROCK, SLIDE_ROCK, FLIGHT):
-            add(lambda t, z: geometry.alpha - abs(z[2]), "unstable", False, -1)
+            add(lambda t, z: geometry.alpha_of(1 if z[2] > 0.0 else -1) - abs(z[2]), "unstable",
+                False, -1)
         add(lambda t, z: z[3] + geometry.h * math.cos(z[2]) * z[5], "slip turn", False, 0)
         return functions, names
 
@@ -579,94 +581,6 @@ class _Run:
         return end, terminal
 
     # ------------------------------------------------------------ transitions
-    def impact(self, t, corner):
-        """A corner impact at t (docs/planar.md, "Impacts"); at theta = 0 an impact that
-        turns the block back onto the other corner, which is on the table, is followed by
-        the two-corner problem."""
-        before = self.mode
-        pre = self.state.copy()
-        energy_before = kinetic_energy(self.geometry, pre)
-        self.impacts.append((t, pre[5]))
-        velocities, _, sigma, capped = impact_map(self.geometry, pre, corner, self.rho,
-                                                   self.mu_s, self.mu_d)
-        self.capped += capped
-        self.state[3:6] = velocities
-        self.side = corner
-        mode = ROCK if sigma == 0 else SLIDE_ROCK
-        if self.state[2] == 0.0 and corner * self.state[5] < 0.0:
-            velocities, mode, side, sigma = two_corner_impact(self.geometry, self.state,
-                                                              self.mu_s, self.mu_d)
-            self.state[3:6] = velocities
-            self.side = side or corner
-        self.enter_after_impact(t, mode, sigma, "impact", before)
-        if self.mode in (REST, SLIDE):
-            self.t_rest = t if self.mode == REST else -math.inf   # -inf: rests when it stops
-        self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
-        if self.state[2] == 0.0 and self.mode in (ROCK, SLIDE_ROCK) and pre[5] != 0.0:
-            sticking = sigma == 0 and self.mode == ROCK and self.side == corner
-            self.cascade(t, self.cascade_cor if sticking else abs(self.state[5] / pre[5]))
-
-    def enter_after_impact(self, t, mode, sigma, kind, before):
-        """Enter the mode an impact left (flat: REST, which records t_rest, or SLIDE)."""
-        if mode in (ROCK, SLIDE_ROCK):
-            if sigma != 0:
-                self.sigma = sigma
-            self.enter_contact(t, mode, self.side, self.sigma, kind, before)
-            return
-        self.state[1:3] = [self.geometry.h, 0.0]
-        if mode == REST:
-            self.t_rest = t
-            self.rest_until = t
-        self.set_mode(t, mode, sigma=sigma if mode == SLIDE else None, kind=kind)
-
-    def cascade(self, t, ratio):
-        """The endless cascade of impacts of a decaying block, summed (as the rocking engine).
-
-        ``ratio``: |theta'+ / theta'-| of each impact of the cascade (the cor of a
-        sticking rock -> rock impact, exactly as the rocking engine; the ratio of
-        this impact for a slipping one, e.g. frictionless). The cascade of a
-        slipping corner ends flat at once, sliding at the corner's slip speed (REST if 0).
-        """
-        omega = self.state[5]
-        deceleration = -self.side * self.solution(t, np.r_[self.state[:2], 0.0, 0.0, 0.0,
-                                                           0.0])[2]
-        if self.mode == SLIDE_ROCK and deceleration <= 0.0:
-            # slide-rock tips away from theta = 0: the slip stops first and the block
-            # returns to the table rocking (the pattern of a slipping cascade), so the
-            # rocking deceleration (agreed with branch planar, 18:40)
-            ug, vg = self.ground(t)
-            deceleration = -self.tipping(self.side, ug, vg)
-        remaining = cascade_rest_time(omega, deceleration, ratio)
-        if (remaining == math.inf and ratio >= 1.0 and deceleration > 0.0
-                and abs(omega) <= max(self.velocity_floor,
-                                      0.5 * deceleration * self.rest_tolerance)):
-            remaining = 0.0   # no decay, and impacts closer than the rest tolerance
-        if omega == 0.0 or remaining <= self.rest_tolerance or (
-                abs(omega) <= self.velocity_floor and remaining < math.inf):
-            # a slipping corner's cascade ends sliding flat at the corner's slip speed
-            x_dot = self.corner_slip_velocity(self.state) if self.mode == SLIDE_ROCK else 0.0
-            self.impact_loss += kinetic_energy(self.geometry, self.state) - 0.5 * x_dot ** 2
-            self.state[3:6] = [x_dot, 0.0, 0.0]
-            if x_dot == 0.0:
-                self.set_mode(t, REST, kind="cascade")
-                self.rest_until = t + remaining
-                self.t_rest = self.rest_until
-            else:
-                self.set_mode(t, SLIDE, sigma=1 if x_dot > 0 else -1, kind="cascade")
-                self.t_rest = -math.inf
-
-    def flat_landing(self, t):
-        """A flat landing (theta = theta' = 0): the two-corner problem."""
-        before = self.mode
-        energy_before = kinetic_energy(self.geometry, self.state)
-        velocities, mode, side, sigma = two_corner_impact(self.geometry, self.state,
-                                                          self.mu_s, self.mu_d)
-        self.state[3:6] = velocities
-        if side:
-            self.side = side
-        self.enter_after_impact(t, mode, sigma, "flat landing", before)
-        self.impact_loss += energy_before - kinetic_energy(self.geometry, self.state)
-
     def after_event(self, t, terminal):
         """Apply the transition of a terminal event."""
         mode = self.mode
@@ -734,7 +648,7 @@ class _Run:
             side = 1 if theta0 > 0 or (theta0 == 0 and theta_dot0 > 0) else -1
             r_x, r_y = geometry.arm(side, theta0)
             # tilted about its corner standing at its rest position X_s = -s b
-            self.pivot = -side * geometry.b
+            self.pivot = -side * geometry.b_of(side)
             self.state[:] = [self.pivot - r_x, -r_y, theta0, r_y * theta_dot0 + x_dot0,
                              -r_x * theta_dot0, theta_dot0]
             self.side = side
@@ -745,7 +659,7 @@ class _Run:
             self.state[3] = x_dot0
             self.mode, self.sigma = SLIDE, (1 if x_dot0 > 0 else -1)
         energy_start = self.energy()
-        if abs(theta0) >= geometry.alpha:
+        if abs(theta0) >= geometry.alpha_of(1 if theta0 > 0 else -1):
             self.t_unstable = t
         self.note(t, self.state)
         out = np.zeros((n, 6))

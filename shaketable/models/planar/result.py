@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.motion import Motion
 from shaketable.models.base import ModelResult
 from shaketable.models.sliding.result import Friction
@@ -114,7 +114,7 @@ class PlanarResult(ModelResult):
         corner's slip turns where its slip speed is 0, an event); in a flight, at its ends.
     """
 
-    block: Block
+    block: Block | AsymmetricBlock
     motion: Motion
     cor: float | str
     friction: Friction
@@ -264,8 +264,13 @@ def planar_summary(result, model: str | None = None) -> dict:
     data: dict = {"response mode": "planar (rest, slide, rock, slide-rock, flight)"}
     if model is not None:
         data["model"] = model
+    if isinstance(block, AsymmetricBlock):   # its centre's height and both pivots' distances
+        data.update({"h [m]": block.h, "b_plus [m]": block.b_plus, "b_minus [m]": block.b_minus,
+                     "alpha_plus [rad]": block.alpha_plus,
+                     "alpha_minus [rad]": block.alpha_minus})
+    else:
+        data.update({"block_height [m]": block.height, "block_width [m]": block.width})
     data.update({
-        "block_height [m]": block.height, "block_width [m]": block.width,
         "alpha [rad]": block.alpha, "p [rad/s]": block.p, "cor [-]": result.cor,
         "static friction mu_s [-]": result.friction.static,
         "dynamic friction mu_d [-]": result.friction.dynamic,
@@ -312,3 +317,24 @@ def planar_frame(result):
         "theta/alpha [-]": result.theta / result.block.alpha,
         "mode": [MODES[int(k)] for k in result.mode],
     })
+
+
+def base_slip(x, theta, block) -> np.ndarray:
+    """How far the base has slid [m] at each sample: the displacement of the bottom corner
+    the block stands or turns on (on theta's side; x when flat),
+    x + h sin(theta) + sign(theta) b (1 - cos(theta)); 0 for a block that rocks without
+    sliding. The quantity whose peak is ``peak_base_slip`` (docs/planar.md, "Using it").
+
+    Parameters
+    ----------
+    x, theta : ndarray
+        Horizontal displacement of the centre of mass [m] and rotation [rad].
+    block : Block
+    """
+    x = np.asarray(x, dtype=float)
+    theta = np.asarray(theta, dtype=float)
+    slip = x + block.h * np.sin(theta)
+    # an AsymmetricBlock's pivots are b_plus (theta > 0) and b_minus from the centre
+    b = np.where(theta > 0.0, block.b_plus, block.b_minus) \
+        if isinstance(block, AsymmetricBlock) else block.b
+    return slip + np.sign(theta) * b * (1.0 - np.cos(theta))

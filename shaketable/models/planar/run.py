@@ -16,7 +16,7 @@ from shaketable.core.motion import Motion, whole_number
 from shaketable.core.validation import in_range
 from shaketable.models.planar import engine as planar
 from shaketable.models.planar.result import MODES, PlanarResult
-from shaketable.models.rocking.physics import block_parameters
+from shaketable.models.rocking.physics import COR_PLUS, RHO_PLUS, asymmetric_parameters, block_parameters
 from shaketable.models.rocking.run import call_interruptibly, engine_arrays, run_motion, run_options
 from shaketable.models.sliding.result import Friction
 
@@ -47,12 +47,10 @@ def impact_ratios(block: Block, cor: float | str) -> tuple[float, float]:
 
 def check_planar_inputs(block, friction) -> Friction:
     """The block and friction of the coupled model, checked (errors name the parameter)."""
-    if isinstance(block, AsymmetricBlock):
-        raise ValueError("block: the planar model (friction=...) is symmetric; an AsymmetricBlock "
-                         "rocks without friction only (simulate(..., friction=None))")
-    if not isinstance(block, Block):
-        raise ValueError(f"block must be a shaketable.Block, got {type(block).__name__}")
-    if block.rods is not None:
+    if not isinstance(block, (Block, AsymmetricBlock)):
+        raise ValueError(f"block must be a shaketable.Block or AsymmetricBlock, got "
+                         f"{type(block).__name__}")
+    if isinstance(block, Block) and block.rods is not None:
         raise ValueError("rods: the coupled model (friction=...) refuses prestress rods: a rod "
                          "hinged to the ground ties the block to the table, so it cannot "
                          "slide; run the rocking model (no friction) for a block with rods")
@@ -62,7 +60,23 @@ def check_planar_inputs(block, friction) -> Friction:
     return friction
 
 
-def simulate_planar(block: Block, motion: Motion | None = None, *, cor: float | str,
+def planar_parameters(block: Block | AsymmetricBlock, cor: float | str
+                      ) -> tuple[np.ndarray, float, float]:
+    """The engine's parameter array, rho and the cascade's ratio of a block and COR.
+
+    A :class:`Block`: :func:`~shaketable.models.rocking.physics.block_parameters` and
+    :func:`impact_ratios`. An :class:`AsymmetricBlock`:
+    :func:`~shaketable.models.rocking.physics.asymmetric_parameters` (both pivots, each impact's
+    rho and ratio in the array; the scalars are then not read).
+    """
+    if isinstance(block, AsymmetricBlock):
+        parameters = asymmetric_parameters(block, cor)
+        return parameters, float(parameters[RHO_PLUS]), float(parameters[COR_PLUS])
+    rho, cor_cascade = impact_ratios(block, cor)
+    return block_parameters(block), rho, cor_cascade
+
+
+def simulate_planar(block: Block | AsymmetricBlock, motion: Motion | None = None, *, cor: float | str,
                     friction: Friction, theta0: float = 0.0, theta_dot0: float = 0.0,
                     duration: float | None = None, rtol: float | None = None,
                     output_dt: float = 0.005, rest_tolerance: float | None = None,
@@ -108,7 +122,7 @@ def simulate_planar(block: Block, motion: Motion | None = None, *, cor: float | 
         rotates), and the options checked as in :func:`~shaketable.models.api.simulate`.
     """
     friction = check_planar_inputs(block, friction)
-    rho, cor_cascade = impact_ratios(block, cor)
+    parameters, rho, cor_cascade = planar_parameters(block, cor)
     options = run_options("fast", theta0=theta0, theta_dot0=theta_dot0, duration=duration,
                           rtol=DEFAULT_PLANAR_RTOL if rtol is None else rtol,
                           rest_tolerance=rest_tolerance)
@@ -117,7 +131,6 @@ def simulate_planar(block: Block, motion: Motion | None = None, *, cor: float | 
         raise ValueError("motion: the coupled model (friction=...) has no table rotation "
                          "(pitch); give a motion without rotation")
     capacity = max(1, whole_number("max_recorded_events", max_recorded_events, minimum=0))
-    parameters = block_parameters(block)
     # read-only float64 views whatever the motion (a motion without a vertical gives a
     # fresh writable array of zeros): one compiled signature for every run and the batch
     t_grid, ug, vg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero)

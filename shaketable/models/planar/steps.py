@@ -29,11 +29,13 @@ from shaketable.core.constants import G
 from shaketable.models.planar.physics import (
     HELPER,
     ROCK,
+    block_angle,
     corner_vector,
+    pivot_acceleration,
     rock_forces,
     slide_rock_accelerations,
 )
-from shaketable.models.rocking.physics import ALPHA, HALF_HEIGHT, HALF_WIDTH, flight_acceleration
+from shaketable.models.rocking.physics import HALF_HEIGHT, HALF_WIDTH, HALF_WIDTH_MINUS
 
 # DOP853 tableau (Hairer, Norsett & Wanner; the numbers of SciPy's dop853_coefficients.py)
 _C = np.array([
@@ -223,7 +225,7 @@ def rhs(mode, side, sigma, mu_d, t, z, segment, parameters, out):
     r_x, r_y = corner_vector(theta, side, parameters)
     friction_power = 0.0
     if mode == ROCK:
-        acceleration = flight_acceleration(theta, side, ug, vg, 0.0, parameters)
+        acceleration = pivot_acceleration(theta, side, ug, vg, parameters)
         corner_dd = 0.0
     else:
         acceleration, corner_dd, friction, _, _ = slide_rock_accelerations(
@@ -314,7 +316,7 @@ def event_value(kind, mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, 
     if kind == KIND_PEAK:
         return sign * z[1]
     if kind == KIND_ALPHA:
-        return parameters[ALPHA] - abs(z[0])
+        return block_angle(side, parameters) - abs(z[0])
     if kind >= KIND_RATE:
         _, r_y = corner_vector(z[0], side, parameters)
         return sign * horizontal_rate(int(kind - KIND_RATE), z[0], z[3] + r_y * z[1], z[1],
@@ -521,12 +523,11 @@ def flight_state(tau, x, y, theta, x_dot, y_dot, omega, ua, ka, va, kv):
 @njit(**HELPER)
 def lowest_corner(y, theta, parameters):
     """Height of the lower bottom corner [m] and its side."""
-    b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     sine = math.sin(theta)
     cosine = math.cos(theta)
-    plus = y - b * sine - h * cosine
-    minus = y + b * sine - h * cosine
+    plus = y - parameters[HALF_WIDTH] * sine - h * cosine
+    minus = y + parameters[HALF_WIDTH_MINUS] * sine - h * cosine
     if plus <= minus:
         return plus, 1.0
     return minus, -1.0
@@ -543,11 +544,10 @@ def horizontal_rate(which, theta, x_dot, omega, parameters):
 @njit(**HELPER)
 def horizontal_rate_at(which, cosine, sine, x_dot, omega, parameters):
     """:func:`horizontal_rate` with cos(theta) and sin(theta) given."""
-    b = parameters[HALF_WIDTH]
     h = parameters[HALF_HEIGHT]
     if which == 0:
         return x_dot + h * cosine * omega
-    u = -b if which == 1 or which == 3 else b
+    u = -parameters[HALF_WIDTH] if which == 1 or which == 3 else parameters[HALF_WIDTH_MINUS]
     w = -h if which <= 2 else h
     return x_dot - omega * (u * sine + w * cosine)
 

@@ -17,7 +17,7 @@ import math
 from numba import njit
 
 from shaketable.models.planar.modes import hermite_peak, measures, q_from_z, quantity
-from shaketable.models.planar.physics import HELPER
+from shaketable.models.planar.physics import HELPER, half_width
 from shaketable.models.planar.steps import (
     KIND_PEAK,
     KIND_RATE,
@@ -27,7 +27,7 @@ from shaketable.models.planar.steps import (
     horizontal_rate_at,
     locate,
 )
-from shaketable.models.rocking.physics import ERROR_MODEL, HALF_HEIGHT, HALF_WIDTH
+from shaketable.models.rocking.physics import ERROR_MODEL, HALF_HEIGHT
 
 #: Layout of the peaks (from ``first``): largest |theta| [rad] and its time [s], peak
 #: |slip| [m] and its time [s], peak corner excursion [m].
@@ -100,7 +100,7 @@ def contact_extrema(mode, side, sigma, mu_s, mu_d, t, z, step, stages, dense, re
         track(t + tau_peak, q, info, first, parameters)
     # extrema of the slip and of the corners' X (peak slip, excursion)
     # (cos and sin of theta at both ends once: corner_vector's r_y and the rates)
-    b = parameters[HALF_WIDTH]
+    b = half_width(side, parameters)
     h = parameters[HALF_HEIGHT]
     cos0, sin0 = math.cos(z[0]), math.sin(z[0])
     cos1, sin1 = math.cos(z_new[0]), math.sin(z_new[0])

@@ -56,7 +56,16 @@ register()
 HALF_WIDTH, HALF_HEIGHT, INERTIA, ROD_STIFFNESS, ROD_FORCE, ROD_ARM_1, ROD_ARM_2, ALPHA, \
     HOLD_DOWN, TOP_FORCE = range(10)
 
-N_PARAMETERS = 10
+#: Indices read by the planar model only (:mod:`shaketable.models.planar.physics`): the
+#: pivot of theta < 0 (b, I0 and alpha of that side; HALF_WIDTH, INERTIA and ALPHA are
+#: those of theta > 0), the centroidal inertia per unit mass Ic [m^2], whether the block
+#: is asymmetric (1.0) and, for an asymmetric block, the impact couple ratio rho and the
+#: cascade's theta' ratio of an impact onto each pivot (+, -). A symmetric block has the
+#: same values on both sides and Ic = I0 / 4.
+HALF_WIDTH_MINUS, INERTIA_MINUS, ALPHA_MINUS, CENTROIDAL, ASYMMETRIC, RHO_PLUS, RHO_MINUS, \
+    COR_PLUS, COR_MINUS = range(10, 19)
+
+N_PARAMETERS = 19
 
 #: numba's error model of every compiled function of the engines (rocking, planar, sliding):
 #: with "numpy" a division by zero gives inf or NaN (IEEE 754) instead of raising
@@ -89,12 +98,13 @@ def block_parameters(block: Block, top_force: float = 0.0) -> np.ndarray:
 
     Returns
     -------
-    ndarray, shape (10,)
+    ndarray, shape (N_PARAMETERS,)
         b [m], h [m], I0/M = 4R^2/3 [m^2], per-rod stiffness per mass
         g K/2 [1/s^2], per-rod prestress per mass g F0/2 [m/s^2], rod arms
         S and B - S from the pivot [m], alpha [rad], the hold-down
         acceleration g F0 [m/s^2] (the rods' pull at rest, per unit mass) and
-        the top force per mass [m/s^2].
+        the top force per mass [m/s^2]; then the planar model's slots (b, I0, alpha of
+        the other pivot, Ic = I0/4 [m^2]; 0 for "symmetric").
     """
     parameters = np.zeros(N_PARAMETERS)
     parameters[TOP_FORCE] = top_force
@@ -102,6 +112,10 @@ def block_parameters(block: Block, top_force: float = 0.0) -> np.ndarray:
     parameters[HALF_HEIGHT] = block.h
     parameters[INERTIA] = block.I0_per_mass
     parameters[ALPHA] = block.alpha
+    parameters[HALF_WIDTH_MINUS] = block.b
+    parameters[INERTIA_MINUS] = block.I0_per_mass
+    parameters[ALPHA_MINUS] = block.alpha
+    parameters[CENTROIDAL] = 0.25 * block.I0_per_mass
     rods = block.rods
     if rods is not None:
         parameters[ROD_STIFFNESS] = G * rods.stiffness / 2
@@ -138,6 +152,43 @@ def side_parameters(block: Block | AsymmetricBlock) -> np.ndarray:
         rows[index, INERTIA] = block.I0_of(side)
         rows[index, ALPHA] = block.alpha_of(side)
     return rows
+
+
+def asymmetric_parameters(block: AsymmetricBlock, cor: float | str) -> np.ndarray:
+    """The planar model's parameter array of an asymmetric block (one array, both pivots).
+
+    HALF_WIDTH, INERTIA, ALPHA are b, I0 and alpha of the pivot of theta > 0 (the corner
+    at -x), HALF_WIDTH_MINUS, INERTIA_MINUS, ALPHA_MINUS those of theta < 0; CENTROIDAL
+    is k^2; ASYMMETRIC is 1. The impact onto pivot k has the couple ratio
+    rho_k = cor / c_H,k (c_H,k: :meth:`AsymmetricBlock.housner_cor`, so that a sticking
+    rock-to-rock impact gives theta'+ = cor theta'-, Section 2.7 (5)) or 1 for
+    ``"housner"``, and its cascade ratio is cor or c_H,k.
+
+    Returns
+    -------
+    ndarray, shape (N_PARAMETERS,)
+    """
+    if not isinstance(block, AsymmetricBlock):
+        raise ValueError(f"block must be an AsymmetricBlock, got {type(block).__name__}")
+    parameters = np.zeros(N_PARAMETERS)
+    parameters[HALF_HEIGHT] = block.h
+    parameters[HALF_WIDTH], parameters[HALF_WIDTH_MINUS] = block.b_plus, block.b_minus
+    parameters[INERTIA], parameters[INERTIA_MINUS] = block.I0_of(1.0), block.I0_of(-1.0)
+    parameters[ALPHA], parameters[ALPHA_MINUS] = block.alpha_plus, block.alpha_minus
+    parameters[CENTROIDAL] = block.k_squared
+    parameters[ASYMMETRIC] = 1.0
+    cors = impact_cors(block, cor)
+    for index, onto in ((0, 1.0), (1, -1.0)):
+        c_housner = block.housner_cor(onto)
+        if isinstance(cor, str):
+            parameters[(RHO_PLUS, RHO_MINUS)[index]] = 1.0
+        elif c_housner == 0.0:
+            raise ValueError(f"cor: a numeric cor ({cor!r}) needs Housner's ratio c_H != 0 "
+                             "for the impacts onto both pivots; use cor='housner'")
+        else:
+            parameters[(RHO_PLUS, RHO_MINUS)[index]] = cors[index] / c_housner
+        parameters[(COR_PLUS, COR_MINUS)[index]] = cors[index]
+    return parameters
 
 
 def impact_cors(block: Block | AsymmetricBlock, cor: float | str) -> np.ndarray:

@@ -155,12 +155,16 @@ def test_batch_matches_single_runs():
     assert (info[:, INFO_STATUS] == STATUS_OVERTURNED).any()
 
 
-def test_planar_model_refuses_an_asymmetric_block():
-    with pytest.raises(ValueError, match="planar model .* symmetric"):
-        simulate(BLOCK, None, cor=0.9, duration=1.0, friction=Friction(0.6, 0.6))
+def test_friction_runs_the_planar_model_and_its_batch_refuses_an_asymmetric_block():
+    # the planar model of an asymmetric block: tests/models/planar/test_planar_asymmetric.py
+    from shaketable.models.planar.result import PlanarResult
+
+    result = simulate(BLOCK, None, cor=0.9, duration=1.0, friction=Friction(0.6, 0.6),
+                      theta0=0.03)
+    assert isinstance(result, PlanarResult) and result.block == BLOCK
     from shaketable.models.planar.batch import simulate_many_planar
 
-    with pytest.raises(ValueError, match="symmetric"):
+    with pytest.raises(ValueError, match="batch takes Blocks"):
         simulate_many_planar(BLOCK, Motion.at_rest(1.0, 0.01), frictions=Friction(0.6, 0.6),
                              cors=0.9)
 
