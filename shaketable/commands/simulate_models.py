@@ -5,7 +5,9 @@ and hands the rest to the model's adapter, a :class:`SimulateCommand`:
 
 * :meth:`~SimulateCommand.prepare`: every input read and checked (before the output
   folder is made): the subject (a block, a column of blocks), the motion and the run's
-  options, as a :class:`Setup`;
+  options, as a :class:`Setup` (a one-block model: :func:`one_block_setup`, with the
+  adapter's :meth:`~SimulateCommand.refuse` of the options its model does not take and
+  its :meth:`~SimulateCommand.run_options`);
 * :meth:`~SimulateCommand.ensemble`: the model's ensemble (``--ensemble``, a calibrated
   COR), or None for one run;
 * :meth:`~SimulateCommand.run`: the one run, and the warnings it gave as text;
@@ -75,6 +77,14 @@ class SimulateCommand:
 
     def prepare(self, args) -> Setup:
         raise NotImplementedError
+
+    def refuse(self, args) -> None:
+        """Refuse the options this model does not take (ValueError naming them)."""
+
+    def run_options(self, args) -> dict:
+        """This model's own options of the run (a one-block model: beside ``cor``,
+        ``theta0`` and ``duration``)."""
+        return {}
 
     def compiles(self, args) -> tuple[str, ...]:
         """The compiled engines the run needs (the first-compile notice names them)."""
@@ -182,10 +192,11 @@ def refuse_stack_options(args) -> None:
                              "30x6in,30x6in), or leave out " + option)
 
 
-def one_block_setup(args, model_options) -> Setup:
+def one_block_setup(args, command: SimulateCommand) -> Setup:
     """The inputs of a one-block run (``--block``, ``--cor``, the motion, ``--theta0``),
-    checked in the order the user reads the options; ``model_options(args)`` gives the
-    model's own run options (read after ``--theta0``, before the ``--cor`` range)."""
+    checked in the order the user reads the options; ``command`` refuses the options its
+    model does not take and reads its own run options (after ``--theta0``, before the
+    ``--cor`` range)."""
     from shaketable.commands.checks import check_simulate_options
     from shaketable.commands.common import load_motion, scaled_record
     from shaketable.commands.options import block_option, motion_from_options
@@ -194,13 +205,13 @@ def one_block_setup(args, model_options) -> Setup:
     if args.block is None or args.cor is None:
         raise ValueError("give --block and --cor (one block), or --stack (a column of blocks, "
                          "e.g. --stack 30x6in,30x6in)")
-    check_simulate_options(args)   # options the chosen model would ignore: refused
+    check_simulate_options(args, command.refuse)   # options the model would ignore: refused
     block = block_option(args.block)
     motion = motion_from_options(args) or (load_motion(args) if args.record else None)
     motion, scale_note = scaled_record(motion, args)
     motion = on_floor(args, motion)
     theta0 = resolve_angle(args.theta0, block)
-    own = model_options(args)      # every input checked before the output folder
+    own = command.run_options(args)   # every input checked before the output folder
     if not isinstance(args.cor, str):
         from shaketable.core.validation import in_range
 
@@ -215,8 +226,10 @@ class RockingCommand(SimulateCommand):
     model = "rocking"
 
     def prepare(self, args) -> Setup:
-        return one_block_setup(args, lambda args: {"method": args.method,
-                                                   "subdivisions": args.subdivisions})
+        return one_block_setup(args, self)
+
+    def run_options(self, args) -> dict:
+        return {"method": args.method, "subdivisions": args.subdivisions}
 
     def compiles(self, args) -> tuple[str, ...]:
         return ("engine", "batch") if args.ensemble else ("engine",)
@@ -248,7 +261,20 @@ class PlanarCommand(SimulateCommand):
     selects = ("friction",)
 
     def prepare(self, args) -> Setup:
-        return one_block_setup(args, lambda args: {"friction": friction_option(args.friction)})
+        return one_block_setup(args, self)
+
+    def refuse(self, args) -> None:
+        """No calibration file as ``--cor``, no ``--method`` or ``--subdivisions``."""
+        from shaketable.commands.checks import refuse_ignored_options
+
+        if isinstance(args.cor, str):
+            raise ValueError(f"--friction cannot be used with --cor {args.cor} (a calibration "
+                             "file): the calibrated COR ensemble runs the rocking model; "
+                             "give --cor a number to run the planar block with --friction")
+        refuse_ignored_options(args, "--friction", {"--method": "fast", "--subdivisions": 4})
+
+    def run_options(self, args) -> dict:
+        return {"friction": friction_option(args.friction)}
 
     def compiles(self, args) -> tuple[str, ...]:
         return ("planar",)
