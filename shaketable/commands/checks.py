@@ -95,11 +95,12 @@ _ENSEMBLE_OPTIONS = {"--perturb": 1e-9, "--perturb-amplitude": None, "--perturb-
                      "--horizon-threshold": 1e-3}
 
 
-def check_simulate_options(args) -> None:
+def check_simulate_options(args, refuse=lambda args: None) -> None:
     """Refuse the ``simulate`` options the chosen model or mode would ignore.
 
-    ``--friction`` runs the planar block (no ``--method``, ``--subdivisions``,
-    ``--ensemble`` or calibration file as ``--cor``); ``--subdivisions`` belongs to
+    ``refuse(args)`` refuses those the chosen model does not take (the planar model's
+    :meth:`~shaketable.commands.simulate_models.PlanarCommand.refuse`: no ``--method``,
+    ``--subdivisions`` or calibration file as ``--cor``); ``--subdivisions`` belongs to
     ``--method predictor-corrector``; the perturbation options and ``--seed`` belong to
     ``--ensemble`` (or to a calibration file as ``--cor``, which draws its CORs with
     ``--seed``); an ensemble writes no ``history.csv`` (no ``--history``).
@@ -115,12 +116,7 @@ def check_simulate_options(args) -> None:
     if args.ensemble and not 2 <= args.ensemble <= MAX_MEMBERS:
         raise ValueError(f"--ensemble {args.ensemble}: must be from 2 to {MAX_MEMBERS:,} "
                          "members (each is a run)")
-    if args.friction is not None:
-        if calibrated:
-            raise ValueError(f"--friction cannot be used with --cor {args.cor} (a calibration "
-                             "file): the calibrated COR ensemble runs the rocking model; "
-                             "give --cor a number to run the planar block with --friction")
-        refuse_ignored_options(args, "--friction", {"--method": "fast", "--subdivisions": 4})
+    refuse(args)   # the options the chosen model does not take
     if args.method != "predictor-corrector":
         refuse_ignored_options(args, f"--method {args.method}", {"--subdivisions": 4})
     moving = any(getattr(args, name, None) for name in ("record", "harmonic", "pulse"))

@@ -1,191 +1,90 @@
-"""``shaketable simulate``: one block, one motion (or free rocking)."""
+"""``shaketable simulate``: one block (or a column of blocks), one motion (or free rocking).
+
+The command chooses the model once (:func:`chosen_command`) and hands the run, its
+answer, its files and its ensemble to the model's adapter
+(:mod:`shaketable.commands.simulate_models`); what every model shares (the output
+folder, the order of the files and of the lines, the early-stop warning) is here."""
 
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
-import math
+import sys
 
 from shaketable.commands.calibrate import cor_argument
-from shaketable.commands.common import (
-    add_record_arguments,
-    load_motion,
-    notice_first_compile,
-    scaled_record,
+from shaketable.commands.common import add_record_arguments, notice_first_compile
+from shaketable.commands.options import add_motion_options, add_quantity
+from shaketable.commands.simulate_models import (
+    PlanarCommand,
+    RockingCommand,
+    SimulateCommand,
+    resolve_angle,
 )
-from shaketable.commands.options import (
-    add_motion_options,
-    add_quantity,
-    block_option,
-    motion_from_options,
-)
-from shaketable.core.geometry import Block
+from shaketable.commands.stack import StackCommand
+from shaketable.models.base import Model
+from shaketable.models.registry import MODELS, model_named
 from shaketable.models.rocking.layout import METHODS
 
-
-def resolve_angle(text: str, block: Block) -> float:
-    value = str(text).strip().lower()
-    for suffix, factor in (("alpha", block.alpha), ("deg", math.pi / 180), ("rad", 1.0)):
-        if value.endswith(suffix):
-            try:
-                return float(value[: -len(suffix)]) * factor
-            except ValueError:
-                break
-    raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg or 0.5alpha")
+__all__ = ["SIMULATE_COMMANDS", "chosen_command", "register", "resolve_angle"]
 
 
-def _on_floor(args, motion):
-    """``--floor K --building PERIOD,HEIGHT,STOREYS``: the motion at floor K of the building."""
-    if args.floor is None and args.building is None:
-        return motion
-    if args.floor is None or args.building is None:
-        raise ValueError("--floor and --building go together (e.g. --floor 3 --building "
-                         "0.6s,17.5m,5)")
-    if motion is None:
-        raise ValueError("--floor needs a ground motion (--record, --harmonic or --pulse)")
-    from shaketable.core.units import parse
-    from shaketable.ground.floor import Building, floor_motion
+#: The adapter of each model ``simulate`` runs (:mod:`shaketable.commands.simulate_models`);
+#: the one whose options (``selects``) the user gave, the most of them, runs; the first
+#: on a tie (``--stack`` with ``--friction``: the stack, which refuses ``--friction``).
+SIMULATE_COMMANDS: tuple[SimulateCommand, ...] = (StackCommand(), PlanarCommand(),
+                                                  RockingCommand())
 
-    parts = [part.strip() for part in args.building.split(",")]
-    if len(parts) != 3 or not parts[2].isdigit():
-        raise ValueError(f"--building {args.building!r}: give PERIOD,HEIGHT,STOREYS with the "
-                         f"units, e.g. 0.6s,17.5m,5")
-    where = f"--building {args.building!r}"
-    building = Building(parse(parts[0], "time", where=where),
-                        parse(parts[1], "length", where=where), int(parts[2]))
-    if not 0 <= args.floor <= building.storeys:
-        raise ValueError(f"--floor {args.floor}: the building has floors 0 (the ground) to "
-                         f"{building.storeys} (the roof)")
-    return floor_motion(motion, building, floor=args.floor)
+
+def chosen_command(args) -> tuple[SimulateCommand, Model]:
+    """The adapter for the user's options and its model of :data:`shaketable.models.registry.MODELS`:
+    ``--stack`` the stack model, ``--friction`` the planar model, else the rocking model."""
+    chosen, most = SIMULATE_COMMANDS[-1], -1
+    for command in SIMULATE_COMMANDS:
+        if len(command.selects) > most and all(getattr(args, name, None) is not None
+                                               for name in command.selects):
+            chosen, most = command, len(command.selects)
+    return chosen, MODELS[chosen.model]
 
 
 def _simulate(args) -> int:
-    from shaketable.commands.checks import check_simulate_options, report_early_stops
+    from shaketable.commands.checks import report_early_stops
     from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
-    from shaketable.models.api import simulate
-    from shaketable.models.stops import stop_summary
     from shaketable.plots import base as plots
 
-    if args.stack is not None:   # a column of blocks: the stack model (commands/stack.py)
-        from shaketable.commands.stack import simulate_stack_command
-
-        return simulate_stack_command(args, _on_floor)
-    from shaketable.commands.stack import refuse_stack_options
-
-    refuse_stack_options(args)
-    if args.block is None or args.cor is None:
-        raise ValueError("give --block and --cor (one block), or --stack (a column of blocks, "
-                         "e.g. --stack 30x6in,30x6in)")
-    check_simulate_options(args)   # options the chosen model would ignore: refused
-    block = block_option(args.block)
-    motion = motion_from_options(args) or (load_motion(args) if args.record else None)
-    motion, scale_note = scaled_record(motion, args)
-    motion = _on_floor(args, motion)
-    theta0 = resolve_angle(args.theta0, block)
-    friction = _friction(args.friction)      # every input checked before the output folder
-    if not isinstance(args.cor, str):
-        from shaketable.core.validation import in_range
-
-        in_range("--cor", args.cor, 0.0, 1.0)
-    out = prepare_output_folder(args.out)  # before the run: a bad path loses no work
-    notice_first_compile(args.quiet, which=("planar",) if args.friction is not None else
-                         ("engine", "batch") if args.ensemble else ("engine",))
-    if isinstance(args.cor, str):           # a calibration.json: the calibrated COR's spread
-        from shaketable.commands.calibrate import simulate_calibrated
-
-        status = simulate_calibrated(args, block, motion, theta0, out)
-        if scale_note:
-            print(scale_note)
+    command, model = chosen_command(args)
+    setup = command.prepare(args)              # every input checked before the output folder
+    model_named(model.name, setup.subject)
+    out = prepare_output_folder(args.out)      # before the run: a bad path loses no work
+    notice_first_compile(args.quiet, which=command.compiles(args))
+    status = command.ensemble(args, setup, out)
+    if status is not None:
+        if setup.note:
+            print(setup.note)
         return status
-    if friction is not None and args.ensemble:   # the planar model's ensemble
-        from shaketable.commands.friction_ensemble import friction_ensemble
-
-        status = friction_ensemble(args, block, motion, friction, out)
-        if scale_note:
-            print(scale_note)
-        return status
-    if args.ensemble:
-        status = _ensemble(args, block, motion, out)
-        if scale_note:
-            print(scale_note)
-        return status
-    if friction is not None:   # the planar block (rest, slide, rock, slide-rock, flight)
-        result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
-                          friction=friction)
-    else:
-        result = simulate(block, motion, cor=args.cor, theta0=theta0, duration=args.duration,
-                          method=args.method, subdivisions=args.subdivisions)
-    from shaketable.commands.history import for_figure, history_frame, history_mode
-
-    history = history_mode(args.history, result.t.size)   # --history
-    if friction is not None and history == "peaks":
-        history = "full"   # the planar block's history has no peaks selection: all of it
+    result, warnings = command.run(model, setup)
+    history = command.history(args, result)   # --history
+    written = []
     if history != "none":
-        write_csv(out / "history.csv", history_frame(result, history))
-    write_text(out / "summary.json", json.dumps(json_ready_dict(stop_summary(result)), indent=2))
-    plots.save((result if friction is not None else for_figure(result)).plot(),
-               out / f"calcomp.{args.format}")
-    from shaketable.commands.answers import planar_answer, rocking_answer
-
-    # the answer first, in the block's units; then the files
-    print(f"{block.describe()} block, COR {args.cor}: {result.verdict()}")
-    for line in (planar_answer(result) if friction is not None else rocking_answer(result)):
+        written.append(write_csv(out / "history.csv", command.history_frame(result, history)))
+    events = command.events_frame(result)
+    if events is not None:
+        written.append(write_csv(out / "events.csv", events))
+    written.append(write_text(out / "summary.json", json.dumps(
+        json_ready_dict(command.summary(setup, result, warnings)), indent=2)))
+    written.append(out / f"calcomp.{args.format}")
+    plots.save(command.figure(result), written[-1])
+    # the answer first, in the subject's units; then the files
+    print(command.heading(args, setup, result))
+    for line in command.answer(setup, result):
         print("  " + line)
-    if scale_note:
-        print(scale_note)
+    if setup.note:
+        print(setup.note)
     if args.history == "auto" and history != "full":
         print(f"history.csv: {history} ({result.t.size} samples; --history full writes all)")
-    written = ([out / "history.csv"] if history != "none" else []) + [
-        out / "summary.json", out / f"calcomp.{args.format}"]
+    for line in warnings:
+        print(f"shaketable simulate: warning: {line}", file=sys.stderr)
     print("wrote " + ", ".join(str(path) for path in written))
-    return report_early_stops([result], "simulate", f"{block.describe()} block")
-
-
-def _friction(text: str | None):
-    """``--friction MU_S[,MU_D]``: a :class:`~shaketable.models.sliding.result.Friction` or None."""
-    if text is None:
-        return None
-    from shaketable.models.sliding.result import Friction
-
-    parts = text.split(",")
-    try:
-        values = [float(part) for part in parts]
-    except ValueError:
-        raise ValueError(f"--friction: {text!r} is not MU_S or MU_S,MU_D (numbers, e.g. 0.3 "
-                         "or 0.3,0.25)") from None
-    if len(values) not in (1, 2):
-        raise ValueError(f"--friction: {text!r} is not MU_S or MU_S,MU_D")
-    try:
-        return Friction(*values)
-    except ValueError as error:
-        raise ValueError(f"--friction: {error}") from None
-
-
-def _ensemble(args, block, motion, out) -> int:
-    from shaketable.commands.friction_ensemble import ensemble_perturbation, perturbation_line
-    from shaketable.plots import base as plots
-    from shaketable.studies.predictability import ensemble
-
-    perturbation = ensemble_perturbation(args, motion)
-    result = ensemble(block, motion, cor=args.cor, members=args.ensemble,
-                      perturbation=perturbation, seed=args.seed, duration=args.duration,
-                      method=args.method, threshold=args.horizon_threshold)
-    from shaketable.core.files import json_ready_dict, write_csv, write_text
-
-    write_csv(out / "ensemble.csv", result.to_frame())
-    summary = json_ready_dict(result.summary)
-    summary["perturbation [-]"] = dataclasses.asdict(perturbation)
-    write_text(out / "ensemble.json", json.dumps(summary, indent=2, default=float))
-    plots.save(result.plot().figure, out / f"ensemble.{args.format}")
-    print(f"{block.describe()} block, COR {args.cor}, {args.ensemble} members: "
-          f"{result.describe()}")
-    print(perturbation_line(perturbation))
-    print(f"wrote {out / 'ensemble.csv'}, {out / 'ensemble.json'}, "
-          f"{out / ('ensemble.' + args.format)}")
-    from shaketable.commands.checks import report_stopped_rows
-
-    return report_stopped_rows(result.to_frame(), f"{block.describe()} block", "simulate")
+    return report_early_stops([result], "simulate", setup.label)
 
 
 def register(commands: argparse._SubParsersAction) -> None:

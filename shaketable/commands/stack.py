@@ -4,27 +4,19 @@ The answer first (the verdict: which block overturned and when; each block's pea
 rotation against its own alpha; the top corner's excursion; the friction the contacts
 need against ``--mu``), then the files, as for one block: history.csv, events.csv,
 summary.json and the Calcomp figure (one rotation panel per block and the contact
-patterns; ``docs/stack.md``).
+patterns; ``docs/stack.md``): :class:`StackCommand`, the stack model's adapter of
+``simulate`` (:mod:`shaketable.commands.simulate_models`).
 """
 
 from __future__ import annotations
 
-import json
-import sys
+from shaketable.commands.simulate_models import Setup, SimulateCommand, on_floor
 
 #: ``simulate``'s options that belong to one block, with their defaults: refused with --stack.
 _BLOCK_ONLY = {"--block": None, "--method": "fast", "--subdivisions": 4, "--friction": None,
                "--ensemble": 0, "--perturb": 1e-9, "--perturb-amplitude": None,
                "--perturb-cor": None, "--perturb-size": None, "--perturb-start": None,
                "--seed": 0, "--horizon-threshold": 1e-3}
-
-
-def refuse_stack_options(args) -> None:
-    """``--masses``, ``--densities`` and ``--mu`` without ``--stack``: refused, naming them."""
-    for option in ("--masses", "--densities", "--mu"):
-        if getattr(args, option[2:], None) is not None:
-            raise ValueError(f"{option} is for a column of blocks: give --stack (e.g. --stack "
-                             "30x6in,30x6in), or leave out " + option)
 
 
 def stack_motion(args, on_floor):
@@ -44,64 +36,69 @@ def stack_motion(args, on_floor):
     return motion, note
 
 
-def simulate_stack_command(args, on_floor) -> int:
-    """Run ``simulate --stack``; the exit status (1: a run stopped early).
+class StackCommand(SimulateCommand):
+    """``simulate --stack``: a column of blocks (the stack model)."""
 
-    ``on_floor(args, motion)`` is simulate's reading of ``--floor`` and ``--building``."""
-    from shaketable.commands.checks import refuse_ignored_options, report_early_stops
-    from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
-    from shaketable.core.validation import in_range
-    from shaketable.models.stops import stop_summary
-    from shaketable.plots import base as plots
-    from shaketable.scenes.stack import (
-        describe_law,
-        friction_coefficient,
-        per_block_angles,
-        run_quietly,
-        stack_answer,
-        stack_from_text,
-    )
+    model = "stack"
+    selects = ("stack",)
 
-    refuse_ignored_options(args, "--stack (a column of blocks)", _BLOCK_ONLY)
-    if isinstance(args.cor, str):
-        raise ValueError(f"--cor {args.cor}: a calibration file is for one block; with --stack "
-                         "give a number (the constant-COR law) or leave --cor out (the plastic "
-                         "multi-contact law)")
-    if args.history == "peaks":
-        raise ValueError("--history peaks is for one block; with --stack give full or none")
-    stack = stack_from_text(args.stack, args.masses, args.densities)
-    theta0 = per_block_angles(args.theta0, stack, where="--theta0")
-    mu = friction_coefficient(args.mu, "--mu")
-    options: dict = {"theta0": theta0}
-    if args.cor is not None:
-        options.update(impact="cor", cor=in_range("--cor", args.cor, 0.0, 1.0))
-    motion, note = stack_motion(args, on_floor)
-    if motion is None:
-        options["duration"] = args.duration
-    out = prepare_output_folder(args.out)   # before the run: a bad path loses no work
-    result, said = run_quietly(stack, motion, **options)
-    written = []
-    if args.history != "none":
-        written += [write_csv(out / "history.csv", result.to_frame())]
-    written += [write_csv(out / "events.csv", result.events_frame())]
-    summary = dict(stop_summary(result), stack=stack.describe(), verdict=result.verdict(),
-                   warnings=said)
-    if mu is not None:
-        summary["mu [-]"] = mu
-        summary["t_friction_exceeded(mu) [s]"] = result.t_friction_exceeded(mu)
-    written.append(write_text(out / "summary.json",
-                              json.dumps(json_ready_dict(summary), indent=2)))
-    written.append(out / f"calcomp.{args.format}")
-    plots.save(result.plot(), written[-1])
-    print(f"{stack.describe()}, {describe_law(result)}: {result.verdict()}")
-    for line in stack_answer(result, mu):
-        print("  " + line)
-    if note:
-        print(note)
-    for line in said:
-        print(f"shaketable simulate: warning: {line}", file=sys.stderr)
-    print("wrote " + ", ".join(str(path) for path in written))
-    return report_early_stops([result], "simulate", stack.describe())
+    def prepare(self, args) -> Setup:
+        from shaketable.commands.checks import refuse_ignored_options
+        from shaketable.core.validation import in_range
+        from shaketable.scenes.stack import friction_coefficient, per_block_angles, stack_from_text
+
+        refuse_ignored_options(args, "--stack (a column of blocks)", _BLOCK_ONLY)
+        if isinstance(args.cor, str):
+            raise ValueError(f"--cor {args.cor}: a calibration file is for one block; with "
+                             "--stack give a number (the constant-COR law) or leave --cor out "
+                             "(the plastic multi-contact law)")
+        if args.history == "peaks":
+            raise ValueError("--history peaks is for one block; with --stack give full or none")
+        stack = stack_from_text(args.stack, args.masses, args.densities)
+        theta0 = per_block_angles(args.theta0, stack, where="--theta0")
+        mu = friction_coefficient(args.mu, "--mu")
+        options: dict = {"theta0": theta0}
+        if args.cor is not None:
+            options.update(impact="cor", cor=in_range("--cor", args.cor, 0.0, 1.0))
+        motion, note = stack_motion(args, on_floor)
+        if motion is None:
+            options["duration"] = args.duration
+        return Setup(stack, motion, note, options, stack.describe(), {"mu": mu})
+
+    def run(self, model, setup: Setup):
+        from shaketable.scenes.stack import run_quietly
+
+        return run_quietly(setup.subject, setup.motion, **setup.options)
+
+    def history(self, args, result) -> str:
+        return "none" if args.history == "none" else "full"
+
+    def history_frame(self, result, mode: str):
+        return result.to_frame()
+
+    def events_frame(self, result):
+        return result.events_frame()
+
+    def summary(self, setup: Setup, result, warnings: list[str]) -> dict:
+        from shaketable.models.stops import stop_summary
+
+        summary = dict(stop_summary(result), stack=setup.subject.describe(),
+                       verdict=result.verdict(), warnings=warnings)
+        mu = setup.extra["mu"]
+        if mu is not None:
+            summary["mu [-]"] = mu
+            summary["t_friction_exceeded(mu) [s]"] = result.t_friction_exceeded(mu)
+        return summary
+
+    def heading(self, args, setup: Setup, result) -> str:
+        from shaketable.scenes.stack import describe_law
+
+        return f"{setup.subject.describe()}, {describe_law(result)}: {result.verdict()}"
+
+    def answer(self, setup: Setup, result) -> list[str]:
+        from shaketable.scenes.stack import stack_answer
+
+        return stack_answer(result, setup.extra["mu"])
 
 
 def _animation_options(args, size) -> dict:

@@ -53,7 +53,7 @@ def test_simulate_on_a_floor_from_the_command_line(tmp_path, capsys):
     import argparse
 
     from shaketable.cli import main
-    from shaketable.commands.simulate import _on_floor
+    from shaketable.commands.simulate_models import on_floor as _on_floor
     from shaketable.ground import records
 
     ground = records.load("el-centro-chopra")
