@@ -35,7 +35,8 @@ import os as _os
 
 
 def _compiled_sources_fingerprint() -> str:
-    """A short hash of the source of every module numba compiles (``core`` and ``solvers``).
+    """A short hash of the source of every module numba compiles (``core``, ``solvers`` and
+    the compiled models' folders).
 
     numba's cache checks only the file that defines a cached function, not the helpers it
     inlines from other files (``solvers/steppers.py`` into ``solvers/engine.py``,
@@ -49,7 +50,7 @@ def _compiled_sources_fingerprint() -> str:
     digest = hashlib.sha256()
     here = _os.path.dirname(_os.path.abspath(__file__))
     try:
-        for layer in ("core", "solvers"):
+        for layer in ("core", "solvers", _os.path.join("models", "stack")):
             folder = _os.path.join(here, layer)
             for name in sorted(_os.listdir(folder)):
                 if name.endswith(".py"):

@@ -6,7 +6,7 @@ convenience: a function body may import :mod:`shaketable.plots` (a thin
 delegate, loaded only when a figure is asked for). Third-party libraries with
 one home: matplotlib only in ``plots/``, obspy only in ``ground/readers/``,
 the TOML reader only in ``core/tomlfile.py`` (read by ``scenes/`` and ``sweeps/``), numba
-only in ``core`` and ``solvers``, Panel and Bokeh only in ``classroom/page.py`` (the
+only in ``core``, ``solvers`` and ``models``, Panel and Bokeh only in ``classroom/page.py`` (the
 classroom's model is plain functions). No module imports another module's private (``_``)
 names. No module imports itself through others (no import cycle), except through the
 listed ``.plot()`` and ObsPy delegates. The
@@ -49,7 +49,7 @@ CYCLE_DELEGATES = DELEGATES | {
 
 TOML_HOMES = ("core/tomlfile.py", "scenes", "sweeps")
 HOMES = {"matplotlib": ("plots",), "obspy": ("ground/readers",), "tomllib": TOML_HOMES,
-         "tomli": TOML_HOMES, "numba": ("core", "solvers"),
+         "tomli": TOML_HOMES, "numba": ("core", "solvers", "models"),
          "panel": ("classroom/page.py",), "bokeh": ("classroom/page.py",), "selenium": ()}
 
 

@@ -20,7 +20,6 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as dop853
 
 from shaketable.core.constants import G
 from shaketable.models.stack.compiled_physics import (
@@ -32,44 +31,47 @@ from shaketable.models.stack.compiled_physics import (
     energy,
     fill_candidate,
     first_combination,
-    interface_forces,
+    kernel,
     next_combination,
     open_count,
     plastic_impact,
-    power,
     state_forces,
     table_power,
     workspace,
 )
-
-# SciPy's DOP853 (scipy.integrate._ivp.dop853_coefficients): 12 stages, the 13th is f at
-# the step's end, three more for the continuous extension
-_A = np.ascontiguousarray(dop853.A[:12, :12])
-_B = np.ascontiguousarray(dop853.B)
-_C = np.ascontiguousarray(dop853.C[:12])
-_E3 = np.ascontiguousarray(dop853.E3)
-_E5 = np.ascontiguousarray(dop853.E5)
-_A_EXTRA = np.ascontiguousarray(dop853.A[13:])
-_C_EXTRA = np.ascontiguousarray(dop853.C[13:])
-_D = np.ascontiguousarray(dop853.D)
-#: SciPy's step-size control of its Runge-Kutta methods.
-SAFETY, MIN_FACTOR, MAX_FACTOR, ERROR_EXPONENT = 0.9, 0.2, 10.0, -1.0 / 8.0
-EPS = float(np.finfo(float).eps)
+from shaketable.models.stack.compiled_steps import (
+    EPS,
+    ERROR_EXPONENT,
+    MAX_FACTOR,
+    MIN_FACTOR,
+    SAFETY,
+    dense_output,
+    dense_state,
+    ground,
+    initial_step,
+    rhs,
+    rk_step,
+)
 
 # the engine's constants (as shaketable.models.stack.engine's)
 FLOOR = 1e-10
 MAX_EVENTS_AT_ONE_INSTANT = 200
 
-#: Event kinds (the Python engine's ``kind``) and the reasons of a choice.
+#: Event kinds (the Python engine's ``kind``) and the reasons of a choice. The codes that
+#: compiled functions are called with are int64 values, not Python ints: numba types a
+#: module's int constants (and literal ints and bools in a call) as literals and compiles a
+#: function once for every distinct literal it is called with.
 KINDS = ("uplift", "impact", "rest", "overturn", "airborne")
-UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = 0, 1, 2, 3, 4
+UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = (np.int64(code) for code in range(5))
 REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level landing")
-R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = 0, 1, 2, 3, 4
+R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
+NONE, ZERO, ONE = np.int64(-1), np.int64(0), np.int64(1)
+NO = np.bool_(False)
 #: Statuses and errors of a run.
 STATUSES = ("completed", "overturned", "airborne")
 NO_PATTERN, STALLED, STEP_FAILED = 1, 2, 3
 #: Event functions of a segment.
-EV_LANDING, EV_OVERTURN, EV_LIFT, EV_TURN, EV_SIDE = 0, 1, 2, 3, 4
+EV_LANDING, EV_OVERTURN, EV_LIFT, EV_TURN, EV_SIDE = (np.int64(code) for code in range(5))
 #: What ends a segment.
 ENDS_NONE, ENDS_IMPACT, ENDS_OVERTURN, ENDS_LIFT = -1, 0, 1, 2
 
@@ -81,15 +83,7 @@ I_EVENTS, I_RECORDED, I_STALLED, I_STATUS, I_OVERTURNED, I_STEPS, I_EVALUATIONS,
 P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW = range(8)
 
 
-@compiled
-def ground(seg, time):
-    """u'', v'' [m/s^2] at ``time`` in the input interval ``seg`` = (t0, span, u0, du, v0,
-    dv) (linear)."""
-    x = (time - seg[0]) / seg[1]
-    return seg[2] + seg[3] * x, seg[4] + seg[5] * x
-
-
-@compiled
+@kernel
 def record(run, time, kind, interface, before, after, has_patterns, reals, integers):
     """Count an event and keep it while there is room (``reals``: rate before, rate after,
     energy before, energy after; ``integers``: solutions, cascade, reason; NaN / -1 absent)."""
@@ -137,8 +131,10 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
     ug, vg = ground(seg, time)
     accelerations(chain, phi, phi_dot, pattern, ug, vg, acceleration, ws)
     delta = min(par[P_DELTA], max(end - time, 0.0))
-    ahead = phi + phi_dot * delta + 0.5 * acceleration * delta ** 2
-    ahead_dot = phi_dot + acceleration * delta
+    ahead, ahead_dot = np.empty(n), np.empty(n)
+    for j in range(n):
+        ahead[j] = phi[j] + phi_dot[j] * delta + 0.5 * acceleration[j] * delta ** 2
+        ahead_dot[j] = phi_dot[j] + acceleration[j] * delta
     ug, vg = ground(seg, time + delta)
     candidate = np.empty(n, dtype=np.int64)
     best = np.empty(n, dtype=np.int64)
@@ -176,8 +172,8 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
         same = same and best[j] == pattern[j]
     if same:
         return time
-    record(run, time, UPLIFT, interface, pattern, best, 1,
-           (math.nan, math.nan, math.nan, math.nan), (consistent, -1, reason))
+    record(run, time, UPLIFT, interface, pattern, best, ONE,
+           (math.nan, math.nan, math.nan, math.nan), (consistent, NONE, reason))
     ug0, vg0 = ground(seg, time)
     fs[F_WORK] += delta * table_power(chain, phi, phi_dot, pattern, ug0, vg0, ws)
     pattern[:] = best
@@ -187,6 +183,15 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
 
 
 # ------------------------------------------------------------------------- impact
+@kernel
+def largest(values):
+    """max |values|."""
+    top = 0.0
+    for value in values:
+        top = max(top, abs(value))
+    return top
+
+
 @compiled
 def impact(chain, ws, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
@@ -201,33 +206,34 @@ def impact(chain, ws, run, time, seg, interface, end):
     rates_before = phi_dot.copy()
     phi[interface] = 0.0
     after_dot, after = np.empty(n), np.empty(n, dtype=np.int64)
-    if abs(rate_before) <= FLOOR * alpha_p and np.abs(rates_before).max() > FLOOR * alpha_p:
+    if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
         # a landing at the noise level while the stack moves: the interface closes
         plastic_impact(chain, phi, rates_before, before, interface, interface, ws, after_dot,
                        after)
         phi_dot[:] = after_dot
         pattern[:] = after
-        record(run, time, REST, interface, before, after, 1,
+        record(run, time, REST, interface, before, after, ONE,
                (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws)),
-               (-1, 0, -1))
+               (NONE, ZERO, NONE))
         return choose(chain, ws, run, time, seg, R_NOISE, interface, end)
     if par[P_LAW] == 0.0:
-        solutions = plastic_impact(chain, phi, phi_dot, before, interface, -1, ws, after_dot,
+        solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws, after_dot,
                                    after)
     else:
         cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
-        solutions = 1
+        solutions = ONE
     phi_dot[:] = after_dot
     pattern[:] = after
     energy_after = energy(chain, phi, phi_dot, pattern, ws)
-    record(run, time, IMPACT, interface, before, pattern, 1,
-           (rate_before, phi_dot[interface], energy_before, energy_after), (solutions, -1, -1))
+    record(run, time, IMPACT, interface, before, pattern, ONE,
+           (rate_before, phi_dot[interface], energy_before, energy_after),
+           (solutions, NONE, NONE))
     zeros = np.zeros(n)
     flat = np.zeros(n, dtype=np.int64)
-    if np.abs(phi_dot).max() <= FLOOR * alpha_p and np.abs(phi).max() <= FLOOR * par[P_ALPHA]:
-        record(run, time, REST, interface, pattern, flat, 1,
+    if largest(phi_dot) <= FLOOR * alpha_p and largest(phi) <= FLOOR * par[P_ALPHA]:
+        record(run, time, REST, interface, pattern, flat, ONE,
                (math.nan, math.nan, energy_after, energy(chain, zeros, zeros, flat, ws)),
-               (-1, 1, -1))
+               (NONE, ONE, NONE))
         phi[:] = 0.0
         phi_dot[:] = 0.0
         pattern[:] = 0
@@ -244,9 +250,9 @@ def impact(chain, ws, run, time, seg, interface, end):
         if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * run[6][0]:
             remaining = 0.0
         if remaining <= par[P_REST] and open_count(pattern) == 1:
-            record(run, time + remaining, REST, interface, pattern, flat, 1,
+            record(run, time + remaining, REST, interface, pattern, flat, ONE,
                    (math.nan, math.nan, energy_after, energy(chain, phi, zeros, flat, ws)),
-                   (-1, 1, -1))
+                   (NONE, ONE, NONE))
             phi_dot[:] = 0.0
             pattern[:] = 0
             fs[F_REST_UNTIL] = time + remaining
@@ -256,8 +262,8 @@ def impact(chain, ws, run, time, seg, interface, end):
             plastic_impact(chain, phi, rates_before, before, interface, interface, ws,
                            after_dot, after)
             energy_closed = energy(chain, phi, after_dot, after, ws)
-            record(run, time, REST, interface, pattern, after, 1,
-                   (math.nan, math.nan, energy_after, energy_closed), (-1, 1, -1))
+            record(run, time, REST, interface, pattern, after, ONE,
+                   (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
             phi_dot[:] = after_dot
             pattern[:] = after
     if open_count(pattern) == 0:
@@ -265,123 +271,7 @@ def impact(chain, ws, run, time, seg, interface, end):
     return choose(chain, ws, run, time, seg, R_IMPACT, interface, end)
 
 
-# ------------------------------------------------------------------------- DOP853
-@compiled
-def rhs(chain, ws, pattern, seg, time, y, out, with_forces):
-    """y' = (phi', phi'', the table's power) at (time, y); with ``with_forces`` the contact
-    forces into the workspace (``ws[8]``)."""
-    n = pattern.size
-    ug, vg = ground(seg, time)
-    accelerations(chain, y[:n], y[n:2 * n], pattern, ug, vg, out[n:2 * n], ws)
-    for i in range(n):
-        out[i] = y[n + i]
-    if with_forces:
-        interface_forces(chain, pattern, ug, vg, ws, ws[8])
-    out[2 * n] = power(chain, ug, vg, ws)
-
-
-@compiled
-def rk_step(chain, ws, pattern, seg, t, y, h, stages, y_new, work, atol, rtol, with_forces):
-    """One DOP853 step (SciPy's ``rk_step``): y(t + h) into ``y_new``, the 13 stages into
-    ``stages`` (the last is f at the step's end); returns SciPy's error norm."""
-    size = y.size
-    for s in range(1, 12):
-        for i in range(size):
-            total = 0.0
-            for j in range(s):
-                total += stages[j, i] * _A[s, j]
-            work[i] = y[i] + total * h
-        rhs(chain, ws, pattern, seg, t + _C[s] * h, work, stages[s], with_forces)
-    for i in range(size):
-        total = 0.0
-        for j in range(12):
-            total += stages[j, i] * _B[j]
-        y_new[i] = y[i] + h * total
-    rhs(chain, ws, pattern, seg, t + h, y_new, stages[12], with_forces)
-    err5, err3 = 0.0, 0.0
-    for i in range(size):
-        scale = atol[i] + max(abs(y[i]), abs(y_new[i])) * rtol
-        e5, e3 = 0.0, 0.0
-        for j in range(13):
-            e5 += stages[j, i] * _E5[j]
-            e3 += stages[j, i] * _E3[j]
-        err5 += (e5 / scale) ** 2
-        err3 += (e3 / scale) ** 2
-    if err5 == 0.0 and err3 == 0.0:
-        return 0.0
-    return abs(h) * err5 / math.sqrt((err5 + 0.01 * err3) * size)
-
-
-@compiled
-def initial_step(chain, ws, pattern, seg, t0, y0, f0, t_bound, atol, rtol, work, f1,
-                 with_forces):
-    """SciPy's ``select_initial_step`` for DOP853 (error estimator of order 7)."""
-    size = y0.size
-    length = abs(t_bound - t0)
-    if length == 0.0:
-        return 0.0
-    d0, d1 = 0.0, 0.0
-    for i in range(size):
-        scale = atol[i] + abs(y0[i]) * rtol
-        d0 += (y0[i] / scale) ** 2
-        d1 += (f0[i] / scale) ** 2
-    d0, d1 = math.sqrt(d0 / size), math.sqrt(d1 / size)
-    h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
-    h0 = min(h0, length)
-    for i in range(size):
-        work[i] = y0[i] + h0 * f0[i]
-    rhs(chain, ws, pattern, seg, t0 + h0, work, f1, with_forces)
-    d2 = 0.0
-    for i in range(size):
-        scale = atol[i] + abs(y0[i]) * rtol
-        d2 += ((f1[i] - f0[i]) / scale) ** 2
-    d2 = math.sqrt(d2 / size) / h0
-    if d1 <= 1e-15 and d2 <= 1e-15:
-        h1 = max(1e-6, h0 * 1e-3)
-    else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
-    return min(100.0 * h0, h1, length)
-
-
-@compiled
-def dense_output(chain, ws, pattern, seg, t_old, y_old, y, h, stages, dense, work,
-                 with_forces):
-    """DOP853's continuous extension of order 7 of the step (t_old, y_old) -> y into
-    ``dense`` (7 rows; SciPy's ``_dense_output_impl``)."""
-    size = y.size
-    for s in range(13, 16):
-        for i in range(size):
-            total = 0.0
-            for j in range(s):
-                total += stages[j, i] * _A_EXTRA[s - 13, j]
-            work[i] = y_old[i] + total * h
-        rhs(chain, ws, pattern, seg, t_old + _C_EXTRA[s - 13] * h, work, stages[s],
-            with_forces)
-    for i in range(size):
-        delta = y[i] - y_old[i]
-        dense[0, i] = delta
-        dense[1, i] = h * stages[0, i] - delta
-        dense[2, i] = 2.0 * delta - h * (stages[12, i] + stages[0, i])
-        for row in range(4):
-            total = 0.0
-            for s in range(16):
-                total += _D[row, s] * stages[s, i]
-            dense[3 + row, i] = h * total
-
-
-@compiled
-def dense_state(dense, y_old, t_old, h, time, out):
-    """The state at ``time`` on the continuous extension (SciPy's Dop853DenseOutput)."""
-    x = (time - t_old) / h
-    for i in range(y_old.size):
-        value = 0.0
-        for row in range(6, -1, -1):
-            value += dense[row, i]
-            value *= x if row % 2 == 0 else 1.0 - x
-        out[i] = value + y_old[i]
-
-
-@compiled
+@kernel
 def event_value(chain, ws, run, seg, kind, j, corner, time, y, t_start, from_zero):
     """An event function at (time, y): positive before its event (see the Python engine's
     ``segment``)."""
@@ -399,19 +289,19 @@ def event_value(chain, ws, run, seg, kind, j, corner, time, y, t_start, from_zer
     if kind == EV_SIDE:
         return s * y[j]
     ug, vg = ground(seg, time)
-    phi_ddot, forces = np.empty(n), np.empty((n, 4))
-    state_forces(chain, y[:n], y[n:2 * n], pattern, ug, vg, phi_ddot, forces, ws)
+    forces = ws[8]
+    state_forces(chain, y[:n], y[n:2 * n], pattern, ug, vg, ws[15], forces, ws)
     return forces[j, corner] + run[5][P_TOL_FORCE]
 
 
-@compiled
+@kernel
 def event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, dense, y_old,
              t_old, h, state):
     dense_state(dense, y_old, t_old, h, time, state)
     return event_value(chain, ws, run, seg, kind, j, corner, time, state, t_start, from_zero)
 
 
-@compiled
+@kernel
 def brent(chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old, t_old, h,
           state, xa, xb, xtol, rtol):
     """The zero of an event function on the continuous extension in [xa, xb] (SciPy's
@@ -584,10 +474,10 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
                 settled[j] = True
                 low = max(t_now, earlier[j])
                 if (low <= t and from_zero[j]) or event_at(
-                        chain, ws, run, seg, EV_SIDE, j, 0, low, t, False, dense, y, t_now, h,
+                        chain, ws, run, seg, EV_SIDE, j, ZERO, low, t, NO, dense, y, t_now, h,
                         state) <= 0.0:
                     continue
-                time = brent(chain, ws, run, seg, EV_SIDE, j, 0, t, False, dense, y, t_now,
+                time = brent(chain, ws, run, seg, EV_SIDE, j, ZERO, t, NO, dense, y, t_now,
                              h, state, low, tau, 1e-300, 4.0 * EPS)
                 if time < found:
                     found, found_j = time, j
@@ -650,7 +540,7 @@ def rest_uplift(chain, ws, run, t, t_end, seg):
     return first, first_j
 
 
-@compiled
+@kernel
 def progress(run, t, t_new):
     """Count events in a row without progress; False (the run's error set) past the limit."""
     ist = run[4]
@@ -671,8 +561,8 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
         ist[I_STATUS] = 2
         fs[F_T_AIRBORNE] = t0 if support0 <= 0.0 else \
             t0 + (t1 - t0) * support0 / (support0 - support1)
-        record(run, fs[F_T_AIRBORNE], AIRBORNE, -1, pattern, pattern, 0,
-               (math.nan, math.nan, math.nan, math.nan), (-1, -1, -1))
+        record(run, fs[F_T_AIRBORNE], AIRBORNE, NONE, pattern, pattern, ZERO,
+               (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
         return False
     t = t0
     while t < t1:
@@ -682,7 +572,7 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
             t = fs[F_REST_UNTIL]
         if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
             fs[F_REST_UNTIL] = -math.inf
-            t = choose(chain, ws, run, t, seg, R_REST, -1, t1)
+            t = choose(chain, ws, run, t, seg, R_REST, NONE, t1)
             if ist[I_ERROR]:
                 return False
         if open_count(pattern) == 0:
@@ -707,8 +597,8 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
             ist[I_STATUS] = 1
             fs[F_T_OVERTURN] = t
             ist[I_OVERTURNED] = j
-            record(run, t, OVERTURN, j, pattern, pattern, 1,
-                   (math.nan, math.nan, math.nan, math.nan), (-1, -1, -1))
+            record(run, t, OVERTURN, j, pattern, pattern, ONE,
+                   (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
             return False
         else:
             t = choose(chain, ws, run, t, seg, R_UPLIFT, j, t1)
@@ -717,13 +607,13 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
     return True
 
 
-@compiled
+@kernel
 def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work):
     """theta, theta', theta'' of every block, the pattern, the contact forces and the
     table's work at sample ``k``."""
     phi, phi_dot, pattern = run[0], run[1], run[2]
     n = phi.size
-    phi_ddot = np.empty(n)
+    phi_ddot = ws[15]
     state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces[k], ws)
     a, b, c = 0.0, 0.0, 0.0
     for i in range(n):
@@ -770,7 +660,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     forces = np.zeros((count, n, 4))
     work = np.zeros(count)
     seg = np.array([t[0], t[1] - t[0], ug[0], ug[1] - ug[0], vg[0], vg[1] - vg[0]])
-    choose(chain, ws, run, t[0], seg, R_START, -1, t[0])
+    choose(chain, ws, run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
         sample(chain, ws, run, ug[0], vg[0], 0, theta, rate, acceleration, patterns, forces,

@@ -33,7 +33,12 @@ register()
 #: division by zero gives inf or nan, as NumPy's, instead of raising).
 COMPILED: Any = {"cache": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": True,
                  "error_model": "numpy"}
+KERNEL: Any = {**COMPILED, "_nrt": False}
 compiled = njit(**COMPILED)
+#: The functions that allocate nothing go without numba's reference counting (less code to
+#: generate and compile). Only a function that calls none that allocates may use it:
+#: numba types a callee in its caller's context.
+kernel = njit(**KERNEL)
 
 #: Up to this many blocks every candidate is tried (as the Python engine and impact law).
 FULL_ENUMERATION = 3
@@ -48,22 +53,22 @@ def workspace(n):
     return (np.zeros(n), np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2, n)),
             np.zeros((n, 2)), np.zeros((n, n)), np.zeros((n, n)), np.zeros(n),
             np.zeros((n, 4)), np.zeros((n, 2)), np.zeros(n), np.zeros((n, 2, n)),
-            np.zeros(n), np.zeros((n, 2)), np.zeros(n, dtype=np.int64))
+            np.zeros(n), np.zeros((n, 2)), np.zeros(n, dtype=np.int64), np.zeros(n))
 
 
-@compiled
+@kernel
 def side_of(pattern, j):
     """The pivot side of interface ``j`` (+1 for a flat one) [-]."""
     return 1.0 if pattern[j] == 0 else float(pattern[j])
 
 
-@compiled
+@kernel
 def kinematics(chain, theta, theta_dot, pattern, centroid, jacobian, centripetal):
     """Centroids G (n, 2) [m], Jacobians J (n, 2, n) [m] and velocity-product accelerations
     c (n, 2) [m/s^2] of the chain with the pivots of ``pattern`` (into the arrays given)."""
     b, h = chain[0], chain[1]
     n = b.size
-    base_x, base_y = -side_of(pattern, 0) * b[0], 0.0
+    base_x, base_y = -(1.0 if pattern[0] == 0 else float(pattern[0])) * b[0], 0.0
     spin_x, spin_y = 0.0, 0.0
     jacobian[:] = 0.0
     for i in range(n):
@@ -90,24 +95,24 @@ def kinematics(chain, theta, theta_dot, pattern, centroid, jacobian, centripetal
         spin_y += rdy * w2
 
 
-@compiled
+@kernel
 def mass_matrix(chain, jacobian, out):
     """M = sum_i m_i J_i^T J_i + diag(I_i) [kg m^2] into ``out``."""
     m, inertia = chain[2], chain[3]
     n = m.size
     for k in range(n):
-        for l in range(k, n):
+        for q in range(k, n):
             total = 0.0
-            for i in range(max(k, l), n):
-                total += m[i] * (jacobian[i, 0, k] * jacobian[i, 0, l]
-                                 + jacobian[i, 1, k] * jacobian[i, 1, l])
-            if k == l:
+            for i in range(max(k, q), n):
+                total += m[i] * (jacobian[i, 0, k] * jacobian[i, 0, q]
+                                 + jacobian[i, 1, k] * jacobian[i, 1, q])
+            if k == q:
                 total += inertia[k]
-            out[k, l] = total
-            out[l, k] = total
+            out[k, q] = total
+            out[q, k] = total
 
 
-@compiled
+@kernel
 def solve(matrix, vector, size):
     """Solve the leading ``size`` x ``size`` system in place (Gaussian elimination with
     partial pivoting): the solution replaces ``vector[:size]``."""
@@ -132,7 +137,7 @@ def solve(matrix, vector, size):
         vector[row] = total / matrix[row, row]
 
 
-@compiled
+@kernel
 def reduced_solve(mass, generalized, pattern, columns, reduced, vector, out):
     """theta = T q of the pattern's open interfaces from (T^T M T) q = T^T Q: ``out``
     receives the absolute theta [per ``generalized``'s unit]; returns the number of open
@@ -165,7 +170,7 @@ def reduced_solve(mass, generalized, pattern, columns, reduced, vector, out):
     return size
 
 
-@compiled
+@kernel
 def cumulate(values, out):
     total = 0.0
     for i in range(values.size):
@@ -173,7 +178,7 @@ def cumulate(values, out):
         out[i] = total
 
 
-@compiled
+@kernel
 def accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws):
     """phi'' [rad/s^2] of every interface of ``pattern`` into ``phi_ddot`` (zero at the flat
     ones); the workspace keeps theta, theta', G, J, c and theta'' (``ws[12]``)."""
@@ -205,7 +210,7 @@ def accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws):
         phi_ddot[columns[a]] = ws[10][a]
 
 
-@compiled
+@kernel
 def interface_loads(chain, pattern, theta, centroid, demand, spin, out):
     """What each interface carries for the blocks above it (the columns N, F, N at the -x
     corner, N at the +x corner of :func:`~shaketable.models.stack.physics.interface_loads`)
@@ -241,7 +246,7 @@ def interface_loads(chain, pattern, theta, centroid, demand, spin, out):
         out[j, 2] = -about_right / (2.0 * b[j])
 
 
-@compiled
+@kernel
 def interface_forces(chain, pattern, ug, vg, ws, out):
     """Contact forces [N] into ``out`` (n, 4) from the state :func:`accelerations` left in
     the workspace."""
@@ -260,14 +265,14 @@ def interface_forces(chain, pattern, ug, vg, ws, out):
     interface_loads(chain, pattern, theta, centroid, demand, spin, out)
 
 
-@compiled
+@kernel
 def state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces, ws):
     """phi'' and the contact forces of a state (into ``phi_ddot`` and ``forces``)."""
     accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
     interface_forces(chain, pattern, ug, vg, ws, forces)
 
 
-@compiled
+@kernel
 def power(chain, ug, vg, ws):
     """Power of the table's inertial forces -m u'', -m v'' [W] in the state of the
     workspace (after :func:`kinematics`)."""
@@ -283,7 +288,7 @@ def power(chain, ug, vg, ws):
     return -total
 
 
-@compiled
+@kernel
 def table_power(chain, phi, phi_dot, pattern, ug, vg, ws):
     """Power of the table's inertial forces on a state [W]."""
     cumulate(phi, ws[0])
@@ -292,7 +297,7 @@ def table_power(chain, phi, phi_dot, pattern, ug, vg, ws):
     return power(chain, ug, vg, ws)
 
 
-@compiled
+@kernel
 def energy(chain, phi, phi_dot, pattern, ws):
     """Kinetic energy in the table frame plus potential energy m g y above the table [J]."""
     m = chain[2]
@@ -303,21 +308,21 @@ def energy(chain, phi, phi_dot, pattern, ws):
     mass_matrix(chain, jacobian, mass)
     kinetic = 0.0
     for k in range(m.size):
-        for l in range(m.size):
-            kinetic += theta_dot[k] * mass[k, l] * theta_dot[l]
+        for q in range(m.size):
+            kinetic += theta_dot[k] * mass[k, q] * theta_dot[q]
     potential = 0.0
     for i in range(m.size):
         potential += m[i] * centroid[i, 1]
     return 0.5 * kinetic + G * potential
 
 
-@compiled
+@kernel
 def first_combination(chosen, count):
     for p in range(count):
         chosen[p] = p
 
 
-@compiled
+@kernel
 def next_combination(chosen, count, total):
     """Advance ``chosen[:count]`` to the next combination of range(total) in lexicographic
     order (itertools.combinations'); False after the last."""
@@ -332,7 +337,7 @@ def next_combination(chosen, count, total):
     return True
 
 
-@compiled
+@kernel
 def fill_candidate(base, free, n_free, chosen, count, sides, candidate):
     """``base`` with the free interfaces flat, the chosen ones opened to the sides coded in
     the bits of ``sides`` (+1 for a 0 bit; the first chosen one in the highest bit)."""
@@ -345,7 +350,7 @@ def fill_candidate(base, free, n_free, chosen, count, sides, candidate):
         candidate[free[chosen[p]]] = 1 if bit == 0 else -1
 
 
-@compiled
+@kernel
 def open_count(pattern):
     total = 0
     for j in range(pattern.size):
@@ -354,7 +359,7 @@ def open_count(pattern):
     return total
 
 
-@compiled
+@kernel
 def plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws, impulses,
                       phi_after):
     """Post-impact phi' (into ``phi_after``) and impulses of one active set of the plastic
@@ -406,12 +411,13 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, phi_dot_
         for k in range(i + 1):
             velocity[i, 0] += before_map[i, 0, k] * theta_dot[k]
             velocity[i, 1] += before_map[i, 1, k] * theta_dot[k]
-    fastest, reach = 0.0, 0.0
+    fastest, reach, total_mass = 0.0, 0.0, 0.0
     for i in range(n):
+        total_mass += m[i]
         fastest = max(fastest, abs(theta_dot[i]))
         reach = max(reach, math.hypot(b[i], h[i]))
     landing = abs(phi_dot[interface]) + ROUNDING * fastest + 1e-300
-    impulse_tolerance = IMPACT_TOLERANCE * m.sum() * landing * reach
+    impulse_tolerance = IMPACT_TOLERANCE * total_mass * landing * reach
     rate_tolerance = IMPACT_TOLERANCE * landing
     free = np.empty(n, dtype=np.int64)
     n_free = 0
@@ -475,7 +481,7 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, phi_dot_
     return admissible
 
 
-@compiled
+@kernel
 def cor_impact(phi_dot, pattern, interface, cor, phi_dot_after, pattern_after):
     """The constant-COR law: every absolute rate times ``cor``; the impacting interface onto
     its other corner (flat when its rate after is zero)."""
