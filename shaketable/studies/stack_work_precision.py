@@ -73,11 +73,8 @@ def stack_cases(quick: bool = False) -> list[StackCase]:
     """Two of the report's 30 x 6 in blocks stacked under El Centro 1940 (180 and up) at
     half scale, and three 4 x 1 ft blocks under Pacoima Dam S16E (with its vertical) at
     half scale: rocking with impacts and uplifts of the upper interfaces."""
-    from shaketable.core.constants import INCH
-
     window = QUICK_WINDOW if quick else WINDOW
-    slender = Block(6 * INCH, 30 * INCH)
-    tall = Block(12 * INCH, 48 * INCH)
+    slender, tall = Block.parse("30x6in"), Block.parse("4x1ft")
     return [StackCase("stack 2 x 30x6in el-centro x0.5", (slender, slender),
                       "el-centro-1940-180", 0.5, window),
             StackCase("stack 3 x 4x1ft pacoima x0.5", (tall, tall, tall),

@@ -359,7 +359,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
     ``what`` one of ENDS_*."""
     phi, phi_dot, pattern, fs, ist, par, atol = run[0], run[1], run[2], run[3], run[4], \
         run[5], run[6]
-    stages, y, y_new, work, dense, state, g, g_new, roots = buffers
+    stages, y, y_new, work, dense, state, g, g_new, roots, codes, flags, earlier = buffers
     n = phi.size
     size = 2 * n + 1
     for j in range(n):
@@ -369,9 +369,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
             return t, ENDS_IMPACT, j
     # the event functions: landing and overturn of each open interface, the two corners of
     # each flat one (terminal), then the turning point of each open one
-    kinds = np.empty(3 * n, dtype=np.int64)
-    which = np.empty(3 * n, dtype=np.int64)
-    corners = np.empty(3 * n, dtype=np.int64)
+    kinds, which, corners = codes[0], codes[1], codes[2]
     count = 0
     flat = False
     for j in range(n):
@@ -390,11 +388,11 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
         if pattern[j] != 0:
             kinds[count], which[count], corners[count] = EV_TURN, j, 0
             count += 1
-    from_zero = np.empty(n, dtype=np.bool_)
-    earlier = np.full(n, t)
-    settled = np.zeros(n, dtype=np.bool_)
+    from_zero, settled = flags[0], flags[1]
     for j in range(n):
         from_zero[j] = phi[j] == 0.0
+        settled[j] = False
+        earlier[j] = t
         y[j] = phi[j]
         y[n + j] = phi_dot[j]
     y[2 * n] = fs[F_WORK]
@@ -514,15 +512,13 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
 
 
 # ------------------------------------------------------------------------- run
-@compiled
+@kernel
 def rest_uplift(chain, ws, run, t, t_end, seg):
     """The first time in [t, t_end] a rest corner force reaches -tol, as (time, interface);
     (inf, -1) when none does."""
     pattern, par = run[2], run[5]
     n = pattern.size
-    zero = np.zeros(n)
-    phi_ddot = np.empty(n)
-    start, end = np.empty((n, 4)), np.empty((n, 4))
+    zero, phi_ddot, start, end = ws[16], ws[15], ws[8], ws[17]
     ug, vg = ground(seg, t)
     state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, start, ws)
     ug, vg = ground(seg, t_end)
@@ -652,7 +648,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     size = 2 * n + 1
     buffers = (np.zeros((16, size)), np.zeros(size), np.zeros(size), np.zeros(size),
                np.zeros((7, size)), np.zeros(size), np.zeros(3 * n), np.zeros(3 * n),
-               np.zeros(3 * n))
+               np.zeros(3 * n), np.zeros((3, 3 * n), dtype=np.int64),
+               np.zeros((2, n), dtype=np.bool_), np.zeros(n))
     count = t.size
     theta, rate, acceleration = np.zeros((count, n)), np.zeros((count, n)), \
         np.zeros((count, n))
@@ -667,8 +664,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                work)
         filled = 1
         for k in range(count - 1):
-            seg = np.array([t[k], t[k + 1] - t[k], ug[k], ug[k + 1] - ug[k], vg[k],
-                            vg[k + 1] - vg[k]])
+            seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
+            seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
             if not interval(chain, ws, run, t[k], t[k + 1], vg[k], vg[k + 1], seg, buffers):
                 break
             sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate, acceleration,

@@ -53,7 +53,8 @@ def workspace(n):
     return (np.zeros(n), np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2, n)),
             np.zeros((n, 2)), np.zeros((n, n)), np.zeros((n, n)), np.zeros(n),
             np.zeros((n, 4)), np.zeros((n, 2)), np.zeros(n), np.zeros((n, 2, n)),
-            np.zeros(n), np.zeros((n, 2)), np.zeros(n, dtype=np.int64), np.zeros(n))
+            np.zeros(n), np.zeros((n, 2)), np.zeros(n, dtype=np.int64), np.zeros(n),
+            np.zeros(n), np.zeros((n, 4)))
 
 
 @kernel
