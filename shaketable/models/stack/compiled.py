@@ -44,6 +44,7 @@ from shaketable.models.stack.compiled_steps import (
     ERROR_EXPONENT,
     MAX_FACTOR,
     MIN_FACTOR,
+    NO,
     SAFETY,
     dense_output,
     dense_state,
@@ -66,7 +67,6 @@ UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = (np.int64(code) for code in range(5))
 REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level landing")
 R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
 NONE, ZERO, ONE = np.int64(-1), np.int64(0), np.int64(1)
-NO = np.bool_(False)
 #: Statuses and errors of a run.
 STATUSES = ("completed", "overturned", "airborne")
 NO_PATTERN, STALLED, STEP_FAILED = 1, 2, 3
@@ -402,7 +402,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
         g[e] = event_value(chain, ws, run, seg, kinds[e], which[e], corners[e], t, y, t, from_zero[which[e]]) \
             if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
     h_abs = initial_step(chain, ws, pattern, seg, t, y, stages[0], t_end, atol, rtol, work,
-                         stages[12], flat)
+                         stages[12])
     ist[I_EVALUATIONS] += 2
     t_now = t
     while True:
@@ -445,8 +445,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
                 roots[e] = math.inf
                 active = True
         if active:
-            dense_output(chain, ws, pattern, seg, t_now, y, y_new, h, stages, dense, work,
-                         flat)
+            dense_output(chain, ws, pattern, seg, t_now, y, y_new, h, stages, dense, work)
             ist[I_EVALUATIONS] += 3
             first, first_time = -1, math.inf
             for e in range(count):

@@ -35,6 +35,8 @@ _D = np.ascontiguousarray(dop853.D)
 #: SciPy's step-size control of its Runge-Kutta methods.
 SAFETY, MIN_FACTOR, MAX_FACTOR, ERROR_EXPONENT = 0.9, 0.2, 10.0, -1.0 / 8.0
 EPS = float(np.finfo(float).eps)
+#: False as a numpy bool: a literal False would compile the right-hand side once more.
+NO = np.bool_(False)
 
 
 @kernel
@@ -62,7 +64,9 @@ def rhs(chain, ws, pattern, seg, time, y, out, with_forces):
 @kernel
 def rk_step(chain, ws, pattern, seg, t, y, h, stages, y_new, work, atol, rtol, with_forces):
     """One DOP853 step (SciPy's ``rk_step``): y(t + h) into ``y_new``, the 13 stages into
-    ``stages`` (the last is f at the step's end); returns SciPy's error norm."""
+    ``stages`` (the last is f at the step's end); returns SciPy's error norm. With
+    ``with_forces`` the contact forces at the step's end are left in ``ws[8]`` (the inner
+    stages need none: the forces enter no equation of motion)."""
     size = y.size
     for s in range(1, 12):
         for i in range(size):
@@ -70,7 +74,7 @@ def rk_step(chain, ws, pattern, seg, t, y, h, stages, y_new, work, atol, rtol, w
             for j in range(s):
                 total += stages[j, i] * _A[s, j]
             work[i] = y[i] + total * h
-        rhs(chain, ws, pattern, seg, t + _C[s] * h, work, stages[s], with_forces)
+        rhs(chain, ws, pattern, seg, t + _C[s] * h, work, stages[s], NO)
     for i in range(size):
         total = 0.0
         for j in range(12):
@@ -92,8 +96,7 @@ def rk_step(chain, ws, pattern, seg, t, y, h, stages, y_new, work, atol, rtol, w
 
 
 @kernel
-def initial_step(chain, ws, pattern, seg, t0, y0, f0, t_bound, atol, rtol, work, f1,
-                 with_forces):
+def initial_step(chain, ws, pattern, seg, t0, y0, f0, t_bound, atol, rtol, work, f1):
     """SciPy's ``select_initial_step`` for DOP853 (error estimator of order 7)."""
     size = y0.size
     length = abs(t_bound - t0)
@@ -109,7 +112,7 @@ def initial_step(chain, ws, pattern, seg, t0, y0, f0, t_bound, atol, rtol, work,
     h0 = min(h0, length)
     for i in range(size):
         work[i] = y0[i] + h0 * f0[i]
-    rhs(chain, ws, pattern, seg, t0 + h0, work, f1, with_forces)
+    rhs(chain, ws, pattern, seg, t0 + h0, work, f1, NO)
     d2 = 0.0
     for i in range(size):
         scale = atol[i] + abs(y0[i]) * rtol
@@ -123,8 +126,7 @@ def initial_step(chain, ws, pattern, seg, t0, y0, f0, t_bound, atol, rtol, work,
 
 
 @kernel
-def dense_output(chain, ws, pattern, seg, t_old, y_old, y, h, stages, dense, work,
-                 with_forces):
+def dense_output(chain, ws, pattern, seg, t_old, y_old, y, h, stages, dense, work):
     """DOP853's continuous extension of order 7 of the step (t_old, y_old) -> y into
     ``dense`` (7 rows; SciPy's ``_dense_output_impl``)."""
     size = y.size
@@ -134,8 +136,7 @@ def dense_output(chain, ws, pattern, seg, t_old, y_old, y, h, stages, dense, wor
             for j in range(s):
                 total += stages[j, i] * _A_EXTRA[s - 13, j]
             work[i] = y_old[i] + total * h
-        rhs(chain, ws, pattern, seg, t_old + _C_EXTRA[s - 13] * h, work, stages[s],
-            with_forces)
+        rhs(chain, ws, pattern, seg, t_old + _C_EXTRA[s - 13] * h, work, stages[s], NO)
     for i in range(size):
         delta = y[i] - y_old[i]
         dense[0, i] = delta
