@@ -176,8 +176,7 @@ def stack_markdown(frame: pd.DataFrame) -> list[str]:
              "relative error of the event times, inf when the events part).", "",
              "| case | method | rtol | time [s] | error max θ | error events | events |",
              "|---|---|---|---|---|---|---|"]
-    for row in frame.itertuples(index=False):
-        values = row._asdict()
+    for values in frame.to_dict("records"):
         lines.append(f"| {values['case']} | {values['method']} | {values['rtol']:g} | "
                      f"{values['time [s]']:.3g} | {values['error max_theta [-]']:.2g} | "
                      f"{values['error events [-]']:.2g} | {values['events']} |")
