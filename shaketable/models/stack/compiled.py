@@ -352,6 +352,37 @@ def brent(chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old
     return xcur
 
 
+@kernel
+def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, which, terminal,
+                   count, first_time, earlier, settled, from_zero):
+    """A landing the step (t_now, h) passed without seeing it, as (time, interface), else
+    (inf, -1) (:meth:`shaketable.models.stack.engine.Run.passed_landing`): the zero of
+    s phi before a turning point found on the wrong side of the pivot."""
+    pattern = run[2]
+    found, found_j = math.inf, -1
+    for e in range(terminal, count):
+        tau = roots[e]
+        j = which[e]
+        if math.isnan(tau) or tau > first_time or settled[j]:
+            continue
+        dense_state(dense, y, t_now, h, tau, state)
+        s = pattern[j]
+        if s * state[j] >= 0.0:
+            earlier[j] = tau
+            continue
+        settled[j] = True
+        low = max(t_now, earlier[j])
+        if (low <= t and from_zero[j]) or event_at(
+                chain, ws, run, seg, EV_SIDE, j, ZERO, low, t, NO, dense, y, t_now, h,
+                state) <= 0.0:
+            continue
+        time = brent(chain, ws, run, seg, EV_SIDE, j, ZERO, t, NO, dense, y, t_now, h, state,
+                     low, tau, 1e-300, 4.0 * EPS)
+        if time < found:
+            found, found_j = time, j
+    return found, found_j
+
+
 @compiled
 def segment(chain, ws, run, t, t_end, seg, buffers):
     """Integrate the current (moving) pattern from ``t`` to its first event or ``t_end``
@@ -456,28 +487,9 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
                     if e < terminal and roots[e] < first_time:
                         first, first_time = e, roots[e]
             # a turning point on the wrong side of a landing: the landing before it
-            # (Run.passed_landing)
-            found, found_j = math.inf, -1
-            for e in range(terminal, count):
-                tau = roots[e]
-                j = which[e]
-                if math.isnan(tau) or tau > first_time or settled[j]:
-                    continue
-                dense_state(dense, y, t_now, h, tau, state)
-                s = pattern[j]
-                if s * state[j] >= 0.0:
-                    earlier[j] = tau
-                    continue
-                settled[j] = True
-                low = max(t_now, earlier[j])
-                if (low <= t and from_zero[j]) or event_at(
-                        chain, ws, run, seg, EV_SIDE, j, ZERO, low, t, NO, dense, y, t_now, h,
-                        state) <= 0.0:
-                    continue
-                time = brent(chain, ws, run, seg, EV_SIDE, j, ZERO, t, NO, dense, y, t_now,
-                             h, state, low, tau, 1e-300, 4.0 * EPS)
-                if time < found:
-                    found, found_j = time, j
+            found, found_j = passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state,
+                                            roots, which, terminal, count, first_time,
+                                            earlier, settled, from_zero)
             if found_j >= 0 and found < first_time:
                 dense_state(dense, y, t_now, h, found, state)
                 for i in range(n):
