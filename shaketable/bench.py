@@ -51,9 +51,10 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
         Also measure the coupled planar model (engine and reference).
     stack : bool
         Also measure the stack model: its compiled engine and its SciPy engine on the cases
-        of :func:`shaketable.studies.stack_work_precision.stack_cases` (``quick``: shorter),
+        of :func:`shaketable.studies.stack_work_precision.stack_cases`,
         ``stack_work_precision.csv`` and a panel per case (not with ``cases``: those name
-        the rocking and planar cases).
+        the rocking and planar cases; not with ``quick``: the SciPy engine's runs take
+        seconds each, and a first run in an empty numba cache compiles the engine).
 
     Returns
     -------
@@ -108,7 +109,7 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
                 moreau_cases=planar_work_precision.moreau_case_names(quick),
                 progress=lambda name: progress(f"work-precision (planar): {name}"))
     stack_frame = None
-    if stack and cases is None:
+    if stack and cases is None and not quick:
         stack_frame = stack_work_precision.stack_work_precision(
             stack_work_precision.stack_cases(quick=quick),
             stack_work_precision.method_settings(quick=quick), repeats=repeats,

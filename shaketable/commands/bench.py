@@ -36,15 +36,16 @@ def register(commands) -> None:
                     "extreme ones; the coupled planar model (engine and SciPy reference at "
                     "several rtol) on the rocking-limit case (free-rocking, ample friction) "
                     "and on coupled cases against the planar reference at rtol 1e-13; the "
-                    "stack model (compiled and SciPy engines) on two- and three-block cases "
-                    "against its SciPy engine at rtol 1e-14; writes work_precision.csv, "
+                    "stack model (compiled and SciPy engines; not with --quick) on two- and "
+                    "three-block cases against its SciPy engine at rtol 1e-14; writes work_precision.csv, "
                     "planar_work_precision.csv, stack_work_precision.csv, work_precision.png "
                     "and "
                     "RESULTS.md (with the Pacoima Dam speed and first-call times).")
     parser.add_argument("--cases", nargs="+", metavar="NAME",
                         help="only these cases (default: all; an unknown name lists them)")
     parser.add_argument("--quick", action="store_true",
-                        help="fewer settings, the long record cut to 20 s, fewer repeats")
+                        help="fewer settings, the long record cut to 20 s, fewer repeats, "
+                             "no stack model (its rows are in the full run only)")
     parser.add_argument("--repeats", type=_positive_int, default=None,
                         help="timed repetitions of the compiled methods (default 5, quick 3)")
     parser.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
@@ -53,5 +54,6 @@ def register(commands) -> None:
     parser.add_argument("--no-planar", action="store_true",
                         help="skip the coupled planar model (its rows, CSV and panels)")
     parser.add_argument("--no-stack", action="store_true",
-                        help="skip the stack model (its rows, CSV and panels)")
+                        help="skip the stack model (its rows, CSV and panels; --quick "
+                             "skips it too)")
     parser.set_defaults(handler=_bench)

@@ -31,6 +31,7 @@ from shaketable.models.stack.compiled_physics import (
     energy,
     fill_candidate,
     first_combination,
+    inlined,
     kernel,
     next_combination,
     open_count,
@@ -73,7 +74,7 @@ NO_PATTERN, STALLED, STEP_FAILED = 1, 2, 3
 #: Event functions of a segment.
 EV_LANDING, EV_OVERTURN, EV_LIFT, EV_TURN, EV_SIDE = (np.int64(code) for code in range(5))
 #: What ends a segment.
-ENDS_NONE, ENDS_IMPACT, ENDS_OVERTURN, ENDS_LIFT = -1, 0, 1, 2
+ENDS_NONE, ENDS_IMPACT, ENDS_OVERTURN, ENDS_LIFT = (np.int64(code) for code in range(-1, 3))
 
 # slots of the run's float state ``fs`` and int state ``ist``
 F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME = 0, 1, 2, 3, 4
@@ -120,7 +121,7 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
             pattern[j] = 0
             phi_dot[j] = 0.0
     free = np.empty(n, dtype=np.int64)
-    n_free = 0
+    n_free = ZERO   # not a literal 0: one compile of its callees
     for j in range(n):
         if pattern[j] == 0:
             free[n_free] = j
@@ -140,7 +141,7 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
     best = np.empty(n, dtype=np.int64)
     chosen = np.empty(n, dtype=np.int64)
     phi_ddot, forces = np.empty(n), np.empty((n, 4))
-    consistent = 0
+    consistent = ZERO
     tol = par[P_TOL_FORCE]
     for count in range(n_free + 1):
         first_combination(chosen, count)
@@ -192,7 +193,7 @@ def largest(values):
     return top
 
 
-@compiled
+@inlined
 def impact(chain, ws, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
@@ -294,7 +295,7 @@ def event_value(chain, ws, run, seg, kind, j, corner, time, y, t_start, from_zer
     return forces[j, corner] + run[5][P_TOL_FORCE]
 
 
-@kernel
+@inlined
 def event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, dense, y_old,
              t_old, h, state):
     dense_state(dense, y_old, t_old, h, time, state)
@@ -352,14 +353,14 @@ def brent(chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old
     return xcur
 
 
-@kernel
+@inlined
 def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, which, terminal,
                    count, first_time, earlier, settled, from_zero):
     """A landing the step (t_now, h) passed without seeing it, as (time, interface), else
     (inf, -1) (:meth:`shaketable.models.stack.engine.Run.passed_landing`): the zero of
     s phi before a turning point found on the wrong side of the pivot."""
     pattern = run[2]
-    found, found_j = math.inf, -1
+    found, found_j = math.inf, NONE
     for e in range(terminal, count):
         tau = roots[e]
         j = which[e]
@@ -383,7 +384,7 @@ def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, whi
     return found, found_j
 
 
-@compiled
+@inlined
 def segment(chain, ws, run, t, t_end, seg, buffers):
     """Integrate the current (moving) pattern from ``t`` to its first event or ``t_end``
     (:meth:`shaketable.models.stack.engine.Run.segment`): returns (time, what, interface),
@@ -401,8 +402,8 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
     # the event functions: landing and overturn of each open interface, the two corners of
     # each flat one (terminal), then the turning point of each open one
     kinds, which, corners = codes[0], codes[1], codes[2]
-    count = 0
-    flat = False
+    count = ZERO
+    flat = NO
     for j in range(n):
         if pattern[j] != 0:
             kinds[count], which[count], corners[count] = EV_LANDING, j, 0
@@ -444,7 +445,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
             if h_abs < min_step:
                 ist[I_ERROR] = STEP_FAILED
                 fs[F_ERROR_TIME] = t_now
-                return t_now, ENDS_NONE, -1
+                return t_now, ENDS_NONE, NONE
             t_new = t_now + h_abs
             if t_new > t_end:
                 t_new = t_end
@@ -478,7 +479,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
         if active:
             dense_output(chain, ws, pattern, seg, t_now, y, y_new, h, stages, dense, work)
             ist[I_EVALUATIONS] += 3
-            first, first_time = -1, math.inf
+            first, first_time = NONE, math.inf
             for e in range(count):
                 if roots[e] == math.inf:
                     roots[e] = brent(chain, ws, run, seg, kinds[e], which[e], corners[e], t,
@@ -519,11 +520,11 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
                 phi[i] = y[i]
                 phi_dot[i] = y[n + i]
             fs[F_WORK] = y[2 * n]
-            return t_end, ENDS_NONE, -1
+            return t_end, ENDS_NONE, NONE
 
 
 # ------------------------------------------------------------------------- run
-@kernel
+@inlined
 def rest_uplift(chain, ws, run, t, t_end, seg):
     """The first time in [t, t_end] a rest corner force reaches -tol, as (time, interface);
     (inf, -1) when none does."""
@@ -534,7 +535,7 @@ def rest_uplift(chain, ws, run, t, t_end, seg):
     state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, start, ws)
     ug, vg = ground(seg, t_end)
     state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, end, ws)
-    first, first_j = math.inf, -1
+    first, first_j = math.inf, NONE
     tol = par[P_TOL_FORCE]
     for j in range(n):
         for corner in (2, 3):
@@ -559,7 +560,7 @@ def progress(run, t, t_new):
     return True
 
 
-@compiled
+@inlined
 def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
     """Advance over one input interval; False when the run stops (or failed: its error)."""
     pattern, fs, ist = run[2], run[3], run[4]
@@ -671,7 +672,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     choose(chain, ws, run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
-        sample(chain, ws, run, ug[0], vg[0], 0, theta, rate, acceleration, patterns, forces,
+        sample(chain, ws, run, ug[0], vg[0], ZERO, theta, rate, acceleration, patterns, forces,
                work)
         filled = 1
         for k in range(count - 1):
