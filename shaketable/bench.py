@@ -13,7 +13,7 @@ from pathlib import Path
 
 
 def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=print,
-              figure_path=None, speed=True, markdown_figure=None, planar=True):
+              figure_path=None, speed=True, markdown_figure=None, planar=True, stack=True):
     """Run the study and write ``work_precision.csv``, ``work_precision.png``, ``RESULTS.md``
     (and ``planar_work_precision.csv``).
 
@@ -49,6 +49,12 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
         Figure path written into ``RESULTS.md`` (default: the figure's file name).
     planar : bool
         Also measure the coupled planar model (engine and reference).
+    stack : bool
+        Also measure the stack model: its compiled engine and its SciPy engine on the cases
+        of :func:`shaketable.studies.stack_work_precision.stack_cases`,
+        ``stack_work_precision.csv`` and a panel per case (not with ``cases``: those name
+        the rocking and planar cases; not with ``quick``: the SciPy engine's runs take
+        seconds each, and a first run in an empty numba cache compiles the engine).
 
     Returns
     -------
@@ -59,7 +65,12 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
 
     from shaketable.core.files import prepare_output_folder, write_csv, write_text
     from shaketable.plots.bench import save_work_precision_figure
-    from shaketable.studies import benchmark_cases, planar_work_precision, work_precision
+    from shaketable.studies import (
+        benchmark_cases,
+        planar_work_precision,
+        stack_work_precision,
+        work_precision,
+    )
 
     out = prepare_output_folder(out, "out")
     planar_names = planar_work_precision.planar_case_names()
@@ -97,6 +108,12 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
                 moreau=planar_work_precision.moreau_steps(quick),
                 moreau_cases=planar_work_precision.moreau_case_names(quick),
                 progress=lambda name: progress(f"work-precision (planar): {name}"))
+    stack_frame = None
+    if stack and cases is None and not quick:
+        stack_frame = stack_work_precision.stack_work_precision(
+            stack_work_precision.stack_cases(quick=quick),
+            stack_work_precision.method_settings(quick=quick), repeats=repeats,
+            progress=lambda name: progress(f"work-precision (stack): {name}"))
     csv = out / "work_precision.csv"
     write_csv(csv, frame)
     written.append(csv)
@@ -104,9 +121,13 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
         planar_csv = out / "planar_work_precision.csv"
         write_csv(planar_csv, planar_frame)
         written.append(planar_csv)
+    if stack_frame is not None:
+        stack_csv = out / "stack_work_precision.csv"
+        write_csv(stack_csv, stack_frame)
+        written.append(stack_csv)
     figure = Path(figure_path) if figure_path else out / "work_precision.png"
     figure.parent.mkdir(parents=True, exist_ok=True)
-    save_work_precision_figure(frame, figure, planar=planar_frame)
+    save_work_precision_figure(frame, figure, planar=planar_frame, stack=stack_frame)
     progress("accuracy: fast against reference at their defaults")
     accuracy = work_precision.accuracy_table(selected, cache=cache) if selected else None
     orders = work_precision.convergence_orders(rocking_frame) if selected else None
@@ -125,6 +146,9 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
                                   figure=markdown_figure or figure.name,
                                   command="shaketable bench" + (" --quick" if quick else ""),
                                   planar=planar_frame)
+    if stack_frame is not None:
+        text = text.rstrip("\n") + "\n\n" + "\n".join(
+            stack_work_precision.stack_markdown(stack_frame))
     results = out / "RESULTS.md"
     write_text(results, text)
     return written + [figure, results]

@@ -181,6 +181,8 @@ for method in ("fast", "predictor-corrector", "linear"):
 simulate_many([block], [motion], [0.9], threads=1)
 st.simulate(block, motion, cor=0.9, friction=st.Friction(0.3, 0.25))
 slide(motion, 0.3)
+from shaketable.models.stack import Stack, simulate_stack
+simulate_stack(Stack((block, block)), motion)
 """
 
 

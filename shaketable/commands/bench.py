@@ -8,7 +8,8 @@ from shaketable.bench import run_study
 def _bench(args) -> int:
     written = run_study(cases=args.cases, quick=args.quick,
                         repeats=args.repeats if args.repeats else (3 if args.quick else 5),
-                        out=args.out, speed=not args.no_speed, planar=not args.no_planar)
+                        out=args.out, speed=not args.no_speed, planar=not args.no_planar,
+                        stack=not args.no_stack)
     print("wrote " + ", ".join(str(path) for path in written))
     return 0
 
@@ -34,14 +35,18 @@ def register(commands) -> None:
                     "rtol) against reference at rtol 2.5e-14, on the report's cases and the "
                     "extreme ones; the coupled planar model (engine and SciPy reference at "
                     "several rtol) on the rocking-limit case (free-rocking, ample friction) "
-                    "and on coupled cases against the planar reference at rtol 1e-13; writes "
-                    "work_precision.csv, planar_work_precision.csv, work_precision.png and "
+                    "and on coupled cases against the planar reference at rtol 1e-13; the "
+                    "stack model (compiled and SciPy engines; not with --quick) on two- and "
+                    "three-block cases against its SciPy engine at rtol 1e-14; writes work_precision.csv, "
+                    "planar_work_precision.csv, stack_work_precision.csv, work_precision.png "
+                    "and "
                     "RESULTS.md (with the Pacoima Dam speed and first-call times).")
     parser.add_argument("--cases", nargs="+", metavar="NAME",
                         help="only these cases (default: all; an unknown name lists them)")
     parser.add_argument("--quick", action="store_true",
                         help="fewer settings (the SciPy references at their default rtol only), "
-                             "the long record cut to 20 s, fewer repeats")
+                             "the long record cut to 20 s, fewer repeats, no stack model (its "
+                             "rows are in the full run only)")
     parser.add_argument("--repeats", type=_positive_int, default=None,
                         help="timed repetitions of the compiled methods (default 5, quick 3)")
     parser.add_argument("--out", default="bench-out", help="output folder (default bench-out)")
@@ -49,4 +54,7 @@ def register(commands) -> None:
                         help="skip the Pacoima Dam timing, first-call and batch measurements")
     parser.add_argument("--no-planar", action="store_true",
                         help="skip the coupled planar model (its rows, CSV and panels)")
+    parser.add_argument("--no-stack", action="store_true",
+                        help="skip the stack model (its rows, CSV and panels; --quick "
+                             "skips it too)")
     parser.set_defaults(handler=_bench)

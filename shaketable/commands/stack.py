@@ -42,6 +42,10 @@ class StackCommand(SimulateCommand):
     model = "stack"
     selects = ("stack",)
 
+    def compiles(self, args) -> tuple[str, ...]:
+        """The stack's compiled engine (the first-compile notice names it)."""
+        return ("stack",)
+
     def prepare(self, args) -> Setup:
         from shaketable.commands.checks import refuse_ignored_options
         from shaketable.core.validation import in_range

@@ -41,6 +41,8 @@ STYLE = {
     "planar": ("tab:purple", "P"),
     "planar-reference": ("tab:brown", "v"),
     "moreau-jean": ("tab:gray", "X"),
+    "stack": ("tab:olive", "*"),
+    "stack-reference": ("tab:cyan", "h"),
 }
 
 #: Title of a coupled case's panel: its truth is not the rocking one.
@@ -166,8 +168,10 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
         _annotate_ends(ax, ends)
     ax.axhline(1e-8, color="0.6", linewidth=0.8, linestyle=":")
     coupled = "truth" in rows and (rows["truth"] == "planar-reference").any()
+    stacked = "truth" in rows and (rows["truth"] == "stack-reference").any()
     limit = not coupled and rows["method"].isin(["planar", "planar-reference"]).any()
     title = (f"{case}\n({PLANAR_TRUTH_NOTE})" if coupled
+             else f"{case}\n(vs stack-reference {rows['truth rtol'].iloc[0]:g})" if stacked
              else f"{case}\n({PLANAR_LIMIT_NOTE})" if limit else case)
     ax.set_title(title, fontsize=9)
     # minor ticks unlabelled: on a panel spanning about one decade matplotlib labels
@@ -180,7 +184,8 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     return ax
 
 
-def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=None):
+def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=None,
+                          stack=None):
     """The work-precision grid: one panel per case, shared legend.
 
     Parameters
@@ -197,6 +202,9 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     planar : pandas.DataFrame, optional
         Output of :func:`shaketable.studies.planar_work_precision.planar_work_precision`:
         a panel per coupled case after the rocking ones.
+    stack : pandas.DataFrame, optional
+        Output of :func:`shaketable.studies.stack_work_precision.stack_work_precision`: a
+        panel per stack case, last.
 
     Returns
     -------
@@ -210,6 +218,8 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     panels = [(frame, case) for case in cases]
     if planar is not None and not planar.empty:
         panels += [(planar, case) for case in dict.fromkeys(planar["case"])]
+    if stack is not None and not stack.empty:
+        panels += [(stack, case) for case in dict.fromkeys(stack["case"])]
     if not panels:
         raise ValueError("frame has no cases to draw")
     columns = max(1, min(int(columns), len(panels)))
@@ -228,6 +238,8 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     methods = set(frame["method"]) if "method" in frame else set()
     if planar is not None and not planar.empty:
         methods |= set(planar["method"])
+    if stack is not None and not stack.empty:
+        methods |= set(stack["method"])
     handles = [Line2D([], [], color=color, marker=marker, label=method)
                for method, (color, marker) in STYLE.items() if method in methods]
     handles += [Line2D([], [], color="k", marker="o", label="max |θ| (solid)"),
@@ -250,6 +262,10 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
                                 else name for name in moreau)
             caption += ("\nmoreau-jean (labels: step h): plastic Newton law, against "
                         f"planar-reference with cor = housner on the first {windows}")
+    if stack is not None and not stack.empty:
+        caption += ("\nstack panels (columns of blocks, plastic impacts): the compiled stack "
+                    "engine and its SciPy engine against the SciPy engine at rtol "
+                    f"{stack['truth rtol'].iloc[0]:g} (labels: rtol)")
     handles.append(Line2D([], [], color="0.6", linestyle=":", label="1e-8 target"))
     legend_columns = len(handles) if len(handles) <= 9 else int(math.ceil(len(handles) / 2))
     fig.legend(handles=handles, loc="upper center", ncol=legend_columns, fontsize=8,
@@ -263,10 +279,11 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     return fig
 
 
-def save_work_precision_figure(frame, path, cases=None, dpi: int = 110, planar=None) -> None:
+def save_work_precision_figure(frame, path, cases=None, dpi: int = 110, planar=None,
+                               stack=None) -> None:
     """Draw :func:`work_precision_figure` and write it to ``path`` (PNG, SVG... by suffix)."""
     plt = pyplot()
-    fig = work_precision_figure(frame, cases=cases, planar=planar)
+    fig = work_precision_figure(frame, cases=cases, planar=planar, stack=stack)
     from shaketable.core.files import atomic_write
 
     try:

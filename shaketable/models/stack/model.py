@@ -20,6 +20,9 @@ from shaketable.models.stack.result import PLAUSIBLE_FRICTION, StackResult
 
 #: The impact laws offered.
 IMPACT_LAWS = ("plastic", "cor")
+#: The engines offered: the compiled one (numba; default) and the Python one (SciPy's
+#: DOP853 with events), which runs the same algorithm.
+STACK_METHODS = ("compiled", "reference")
 
 
 class StackTensionWarning(UserWarning):
@@ -50,7 +53,7 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
                    cor: float | None = None, theta0=None, theta_dot0=None,
                    duration: float | None = None, rtol: float = 1e-12,
                    rest_tolerance: float | None = None, output_dt: float = 0.005,
-                   max_recorded_events: int = 100_000) -> StackResult:
+                   max_recorded_events: int = 100_000, method: str = "compiled") -> StackResult:
     """Rocking response of a column of rigid blocks (``docs/stack.md``).
 
     Parameters
@@ -78,8 +81,18 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
         Output interval of free rocking [s].
     max_recorded_events : int
         Events kept in the result (all are counted).
+    method : {"compiled", "reference"}
+        The engine: ``"compiled"`` (numba, default; its first run in a fresh cache
+        compiles it) or ``"reference"`` (the same algorithm in Python on SciPy's
+        ``solve_ivp``, about a hundred times slower). Both take SciPy's DOP853 steps: they
+        agree to the rounding of the arithmetic (``docs/stack.md``, validation).
     """
-    from shaketable.models.stack.engine import integrate  # SciPy on use
+    if method not in STACK_METHODS:
+        raise ValueError(f"method must be one of {STACK_METHODS}, got {method!r}")
+    if method == "compiled":
+        from shaketable.models.stack.compiled import integrate  # numba on use
+    else:
+        from shaketable.models.stack.engine import integrate  # SciPy on use
 
     if not isinstance(stack, Stack):
         raise TypeError(f"stack must be a Stack, got {type(stack).__name__}")
@@ -158,7 +171,12 @@ class StackModel:
             raise ValueError("friction is not offered for a Stack: the stack model does not "
                              "slide (it reports the friction each contact needs: "
                              "StackResult.friction_demand)")
-        for key, default in (("method", "fast"), ("top_force", 0.0), ("subdivisions", 4)):
+        method = options.pop("method", "fast")
+        if method not in ("fast",) + STACK_METHODS:
+            raise ValueError(f"method for a Stack is one of {STACK_METHODS} (default "
+                             f"'compiled'), got {method!r}")
+        options["method"] = "compiled" if method == "fast" else method
+        for key, default in (("top_force", 0.0), ("subdivisions", 4)):
             if key in options and options.pop(key) != default:
                 raise ValueError(f"{key} is not offered for a Stack")
         options.pop("max_recorded_impacts", None)
@@ -184,8 +202,24 @@ class StackModel:
     def run(self, subject: Any, motion: Any, **options: Any) -> StackResult:
         return simulate_stack(subject, motion, **self.validate(subject, options))
 
-    def run_many(self, subject: Any, motions: Iterable[Any], **options: Any) -> list[ModelResult]:
-        return [self.run(subject, motion, **options) for motion in motions]
+    def run_many(self, subject: Any, motions: Iterable[Any], *, threads: int | None = None,
+                 **options: Any) -> list[ModelResult]:
+        """One run of the stack per motion (the compiled engine releases the GIL: the runs
+        share ``threads`` threads, default numba's thread count), in the motions' order."""
+        from concurrent.futures import ThreadPoolExecutor
+
+        import numba
+
+        motions = list(motions)
+        options = self.validate(subject, options)
+        count = numba.get_num_threads() if threads is None else int(threads)
+        if count < 1:
+            raise ValueError(f"threads must be a positive integer, got {threads!r}")
+        if count == 1 or len(motions) < 2:
+            return [simulate_stack(subject, motion, **options) for motion in motions]
+        with ThreadPoolExecutor(max_workers=min(count, len(motions))) as pool:
+            return list(pool.map(lambda motion: simulate_stack(subject, motion, **options),
+                                 motions))
 
 
 STACK_MODEL = StackModel()

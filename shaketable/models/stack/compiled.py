@@ -1,0 +1,772 @@
+"""The stack's compiled event-driven engine (numba): DOP853 between events, events located.
+
+The algorithm of :mod:`shaketable.models.stack.engine` (its docstring and ``docs/stack.md``
+say what it does), compiled whole: each input interval integrated on its own by the explicit
+Runge-Kutta pair DOP853 of Dormand & Prince (order 8, error estimators of orders 5 and 3,
+SciPy's coefficients and step-size control: the same steps as the Python engine's
+``solve_ivp``), events located on the accepted step's continuous extension of order 7 by
+Brent's method (SciPy's ``brentq``), the pattern chosen by the acceleration-level
+complementarity check, the plastic multi-contact law or the constant COR at impacts,
+cascades summed in closed form, a landing passed inside a step found from its turning point.
+The physics is :mod:`shaketable.models.stack.compiled_physics`.
+
+:func:`run_stack` is the one compiled entry; :func:`integrate` (Python) calls it and returns
+what :func:`shaketable.models.stack.engine.integrate` returns.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from shaketable.core.constants import G
+from shaketable.models.stack.compiled_physics import (
+    COMPILED,
+    FULL_ENUMERATION,
+    accelerations,
+    compiled,
+    cor_impact,
+    energy,
+    fill_candidate,
+    first_combination,
+    inlined,
+    kernel,
+    next_combination,
+    open_count,
+    plastic_impact,
+    state_forces,
+    table_power,
+    workspace,
+)
+from shaketable.models.stack.compiled_steps import (
+    EPS,
+    ERROR_EXPONENT,
+    MAX_FACTOR,
+    MIN_FACTOR,
+    NO,
+    SAFETY,
+    dense_output,
+    dense_state,
+    ground,
+    initial_step,
+    rhs,
+    rk_step,
+)
+
+# the engine's constants (as shaketable.models.stack.engine's)
+FLOOR = 1e-10
+MAX_EVENTS_AT_ONE_INSTANT = 200
+
+#: Event kinds (the Python engine's ``kind``) and the reasons of a choice. The codes that
+#: compiled functions are called with are int64 values, not Python ints: numba types a
+#: module's int constants (and literal ints and bools in a call) as literals and compiles a
+#: function once for every distinct literal it is called with.
+KINDS = ("uplift", "impact", "rest", "overturn", "airborne")
+UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = (np.int64(code) for code in range(5))
+REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level landing")
+R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
+NONE, ZERO, ONE = np.int64(-1), np.int64(0), np.int64(1)
+#: Statuses and errors of a run.
+STATUSES = ("completed", "overturned", "airborne")
+NO_PATTERN, STALLED, STEP_FAILED = 1, 2, 3
+#: Event functions of a segment.
+EV_LANDING, EV_OVERTURN, EV_LIFT, EV_TURN, EV_SIDE = (np.int64(code) for code in range(5))
+#: What ends a segment.
+ENDS_NONE, ENDS_IMPACT, ENDS_OVERTURN, ENDS_LIFT = (np.int64(code) for code in range(-1, 3))
+
+# slots of the run's float state ``fs`` and int state ``ist``
+F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME = 0, 1, 2, 3, 4
+I_EVENTS, I_RECORDED, I_STALLED, I_STATUS, I_OVERTURNED, I_STEPS, I_EVALUATIONS, I_ERROR = \
+    0, 1, 2, 3, 4, 5, 6, 7
+# slots of the parameters ``par``
+P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW = range(8)
+
+
+@kernel
+def record(run, time, kind, interface, before, after, has_patterns, reals, integers):
+    """Count an event and keep it while there is room (``reals``: rate before, rate after,
+    energy before, energy after; ``integers``: solutions, cascade, reason; NaN / -1 absent)."""
+    ist, ev_f, ev_i, ev_pb, ev_pa = run[4], run[7], run[8], run[9], run[10]
+    ist[I_EVENTS] += 1
+    k = ist[I_RECORDED]
+    if k >= ev_f.shape[0]:
+        return
+    ist[I_RECORDED] = k + 1
+    ev_f[k, 0] = time
+    for q in range(4):
+        ev_f[k, 1 + q] = reals[q]
+    ev_i[k, 0] = kind
+    ev_i[k, 1] = interface
+    ev_i[k, 2] = integers[0]
+    ev_i[k, 3] = integers[1]
+    ev_i[k, 4] = integers[2]
+    ev_i[k, 5] = has_patterns
+    for j in range(before.size):
+        ev_pb[k, j] = before[j]
+        ev_pa[k, j] = after[j]
+
+
+# ------------------------------------------------------------------------- choice
+@compiled
+def choose(chain, ws, run, time, seg, reason, interface, end):
+    """Choose the pattern at ``time`` (:meth:`shaketable.models.stack.engine.Run.choose`);
+    the time the run goes on from (NaN: no consistent pattern, the run's error set)."""
+    phi, phi_dot, pattern, fs, ist, par = run[0], run[1], run[2], run[3], run[4], run[5]
+    n = phi.size
+    for j in range(n):
+        if pattern[j] != 0 and phi[j] == 0.0 and \
+                pattern[j] * phi_dot[j] <= FLOOR * par[P_ALPHA_P]:
+            pattern[j] = 0
+            phi_dot[j] = 0.0
+    free = np.empty(n, dtype=np.int64)
+    n_free = ZERO   # not a literal 0: one compile of its callees
+    for j in range(n):
+        if pattern[j] == 0:
+            free[n_free] = j
+            n_free += 1
+    if n_free == 0:
+        return time
+    acceleration = np.empty(n)
+    ug, vg = ground(seg, time)
+    accelerations(chain, phi, phi_dot, pattern, ug, vg, acceleration, ws)
+    delta = min(par[P_DELTA], max(end - time, 0.0))
+    ahead, ahead_dot = np.empty(n), np.empty(n)
+    for j in range(n):
+        ahead[j] = phi[j] + phi_dot[j] * delta + 0.5 * acceleration[j] * delta ** 2
+        ahead_dot[j] = phi_dot[j] + acceleration[j] * delta
+    ug, vg = ground(seg, time + delta)
+    candidate = np.empty(n, dtype=np.int64)
+    best = np.empty(n, dtype=np.int64)
+    chosen = np.empty(n, dtype=np.int64)
+    phi_ddot, forces = np.empty(n), np.empty((n, 4))
+    consistent = ZERO
+    tol = par[P_TOL_FORCE]
+    for count in range(n_free + 1):
+        first_combination(chosen, count)
+        going = True
+        while going:
+            for sides in range(1 << count):
+                fill_candidate(pattern, free, n_free, chosen, count, sides, candidate)
+                state_forces(chain, ahead, ahead_dot, candidate, ug, vg, phi_ddot, forces, ws)
+                good = True
+                for p in range(n_free):
+                    j = free[p]
+                    if candidate[j] != 0:
+                        good = good and candidate[j] * phi_ddot[j] > 0.0
+                    else:
+                        good = good and forces[j, 2] >= -tol and forces[j, 3] >= -tol
+                if good:
+                    consistent += 1
+                    if consistent == 1:
+                        best[:] = candidate
+            going = next_combination(chosen, count, n_free)
+        if consistent and n > FULL_ENUMERATION:
+            break   # the fewest open interfaces: the levels above are not searched
+    if consistent == 0:
+        ist[I_ERROR] = NO_PATTERN
+        fs[F_ERROR_TIME] = time
+        return math.nan
+    same = True
+    for j in range(n):
+        same = same and best[j] == pattern[j]
+    if same:
+        return time
+    record(run, time, UPLIFT, interface, pattern, best, ONE,
+           (math.nan, math.nan, math.nan, math.nan), (consistent, NONE, reason))
+    ug0, vg0 = ground(seg, time)
+    fs[F_WORK] += delta * table_power(chain, phi, phi_dot, pattern, ug0, vg0, ws)
+    pattern[:] = best
+    phi[:] = ahead
+    phi_dot[:] = ahead_dot
+    return time + delta
+
+
+# ------------------------------------------------------------------------- impact
+@kernel
+def largest(values):
+    """max |values|."""
+    top = 0.0
+    for value in values:
+        top = max(top, abs(value))
+    return top
+
+
+@inlined
+def impact(chain, ws, run, time, seg, interface, end):
+    """The impact law at a landing of ``interface``, cascades, then the pattern chosen
+    afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
+    from."""
+    phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
+    n = phi.size
+    alpha_p = par[P_ALPHA_P]
+    before = pattern.copy()
+    energy_before = energy(chain, phi, phi_dot, before, ws)
+    rate_before = phi_dot[interface]
+    rates_before = phi_dot.copy()
+    phi[interface] = 0.0
+    after_dot, after = np.empty(n), np.empty(n, dtype=np.int64)
+    if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
+        # a landing at the noise level while the stack moves: the interface closes
+        plastic_impact(chain, phi, rates_before, before, interface, interface, ws, after_dot,
+                       after)
+        phi_dot[:] = after_dot
+        pattern[:] = after
+        record(run, time, REST, interface, before, after, ONE,
+               (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws)),
+               (NONE, ZERO, NONE))
+        return choose(chain, ws, run, time, seg, R_NOISE, interface, end)
+    if par[P_LAW] == 0.0:
+        solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws, after_dot,
+                                   after)
+    else:
+        cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
+        solutions = ONE
+    phi_dot[:] = after_dot
+    pattern[:] = after
+    energy_after = energy(chain, phi, phi_dot, pattern, ws)
+    record(run, time, IMPACT, interface, before, pattern, ONE,
+           (rate_before, phi_dot[interface], energy_before, energy_after),
+           (solutions, NONE, NONE))
+    zeros = np.zeros(n)
+    flat = np.zeros(n, dtype=np.int64)
+    if largest(phi_dot) <= FLOOR * alpha_p and largest(phi) <= FLOOR * par[P_ALPHA]:
+        record(run, time, REST, interface, pattern, flat, ONE,
+               (math.nan, math.nan, energy_after, energy(chain, zeros, zeros, flat, ws)),
+               (NONE, ONE, NONE))
+        phi[:] = 0.0
+        phi_dot[:] = 0.0
+        pattern[:] = 0
+        return choose(chain, ws, run, time, seg, R_REST, interface, end)
+    if pattern[interface] != 0 and rate_before != 0.0:
+        ratio = abs(phi_dot[interface] / rate_before)
+        phi_ddot = np.empty(n)
+        ug, vg = ground(seg, time)
+        accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
+        deceleration = -pattern[interface] * phi_ddot[interface]
+        remaining = math.inf
+        if deceleration > 0.0 and ratio < 1.0:
+            remaining = 2.0 * abs(phi_dot[interface]) / (deceleration * (1.0 - ratio))
+        if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * run[6][0]:
+            remaining = 0.0
+        if remaining <= par[P_REST] and open_count(pattern) == 1:
+            record(run, time + remaining, REST, interface, pattern, flat, ONE,
+                   (math.nan, math.nan, energy_after, energy(chain, phi, zeros, flat, ws)),
+                   (NONE, ONE, NONE))
+            phi_dot[:] = 0.0
+            pattern[:] = 0
+            fs[F_REST_UNTIL] = time + remaining
+            return time
+        if remaining <= par[P_REST]:
+            # the others move on: this interface closes now (a plastic landing held flat)
+            plastic_impact(chain, phi, rates_before, before, interface, interface, ws,
+                           after_dot, after)
+            energy_closed = energy(chain, phi, after_dot, after, ws)
+            record(run, time, REST, interface, pattern, after, ONE,
+                   (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
+            phi_dot[:] = after_dot
+            pattern[:] = after
+    if open_count(pattern) == 0:
+        phi_dot[:] = 0.0
+    return choose(chain, ws, run, time, seg, R_IMPACT, interface, end)
+
+
+@kernel
+def event_value(chain, ws, run, seg, kind, j, corner, time, y, t_start, from_zero):
+    """An event function at (time, y): positive before its event (see the Python engine's
+    ``segment``)."""
+    pattern = run[2]
+    n = pattern.size
+    s = pattern[j]
+    if kind == EV_LANDING:
+        if from_zero:
+            return s * y[n + j] if time <= t_start else s * y[j] / (time - t_start)
+        return s * y[j]
+    if kind == EV_OVERTURN:
+        return 0.5 * math.pi - s * y[j]
+    if kind == EV_TURN:
+        return y[n + j]
+    if kind == EV_SIDE:
+        return s * y[j]
+    ug, vg = ground(seg, time)
+    forces = ws[8]
+    state_forces(chain, y[:n], y[n:2 * n], pattern, ug, vg, ws[15], forces, ws)
+    return forces[j, corner] + run[5][P_TOL_FORCE]
+
+
+@inlined
+def event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, dense, y_old,
+             t_old, h, state):
+    dense_state(dense, y_old, t_old, h, time, state)
+    return event_value(chain, ws, run, seg, kind, j, corner, time, state, t_start, from_zero)
+
+
+@kernel
+def brent(chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old, t_old, h,
+          state, xa, xb, xtol, rtol):
+    """The zero of an event function on the continuous extension in [xa, xb] (SciPy's
+    ``brentq``, Brent's method as in its C code)."""
+    xpre, xcur = xa, xb
+    fpre = event_at(chain, ws, run, seg, kind, j, corner, xpre, t_start, from_zero, dense,
+                    y_old, t_old, h, state)
+    fcur = event_at(chain, ws, run, seg, kind, j, corner, xcur, t_start, from_zero, dense,
+                    y_old, t_old, h, state)
+    if fpre == 0.0:
+        return xpre
+    if fcur == 0.0:
+        return xcur
+    if (fpre < 0.0) == (fcur < 0.0):
+        return xcur   # no sign change left after rounding: the step's end
+    xblk, fblk, spre, scur = 0.0, 0.0, 0.0, 0.0
+    for _ in range(100):
+        if fpre != 0.0 and fcur != 0.0 and (fpre < 0.0) != (fcur < 0.0):
+            xblk, fblk = xpre, fpre
+            spre = scur = xcur - xpre
+        if abs(fblk) < abs(fcur):
+            xpre, xcur, xblk = xcur, xblk, xcur
+            fpre, fcur, fblk = fcur, fblk, fcur
+        delta = (xtol + rtol * abs(xcur)) / 2.0
+        sbis = (xblk - xcur) / 2.0
+        if fcur == 0.0 or abs(sbis) < delta:
+            return xcur
+        if abs(spre) > delta and abs(fcur) < abs(fpre):
+            if xpre == xblk:
+                stry = -fcur * (xcur - xpre) / (fcur - fpre)
+            else:
+                dpre = (fpre - fcur) / (xpre - xcur)
+                dblk = (fblk - fcur) / (xblk - xcur)
+                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
+            if 2.0 * abs(stry) < min(abs(spre), 3.0 * abs(sbis) - delta):
+                spre, scur = scur, stry
+            else:
+                spre, scur = sbis, sbis
+        else:
+            spre, scur = sbis, sbis
+        xpre, fpre = xcur, fcur
+        if abs(scur) > delta:
+            xcur += scur
+        else:
+            xcur += delta if sbis > 0.0 else -delta
+        fcur = event_at(chain, ws, run, seg, kind, j, corner, xcur, t_start, from_zero, dense,
+                        y_old, t_old, h, state)
+    return xcur
+
+
+@inlined
+def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, which, terminal,
+                   count, first_time, earlier, settled, from_zero):
+    """A landing the step (t_now, h) passed without seeing it, as (time, interface), else
+    (inf, -1) (:meth:`shaketable.models.stack.engine.Run.passed_landing`): the zero of
+    s phi before a turning point found on the wrong side of the pivot."""
+    pattern = run[2]
+    found, found_j = math.inf, NONE
+    for e in range(terminal, count):
+        tau = roots[e]
+        j = which[e]
+        if math.isnan(tau) or tau > first_time or settled[j]:
+            continue
+        dense_state(dense, y, t_now, h, tau, state)
+        s = pattern[j]
+        if s * state[j] >= 0.0:
+            earlier[j] = tau
+            continue
+        settled[j] = True
+        low = max(t_now, earlier[j])
+        if (low <= t and from_zero[j]) or event_at(
+                chain, ws, run, seg, EV_SIDE, j, ZERO, low, t, NO, dense, y, t_now, h,
+                state) <= 0.0:
+            continue
+        time = brent(chain, ws, run, seg, EV_SIDE, j, ZERO, t, NO, dense, y, t_now, h, state,
+                     low, tau, 1e-300, 4.0 * EPS)
+        if time < found:
+            found, found_j = time, j
+    return found, found_j
+
+
+@inlined
+def segment(chain, ws, run, t, t_end, seg, buffers):
+    """Integrate the current (moving) pattern from ``t`` to its first event or ``t_end``
+    (:meth:`shaketable.models.stack.engine.Run.segment`): returns (time, what, interface),
+    ``what`` one of ENDS_*."""
+    phi, phi_dot, pattern, fs, ist, par, atol = run[0], run[1], run[2], run[3], run[4], \
+        run[5], run[6]
+    stages, y, y_new, work, dense, state, g, g_new, roots, codes, flags, earlier = buffers
+    n = phi.size
+    size = 2 * n + 1
+    for j in range(n):
+        if pattern[j] != 0 and (pattern[j] * phi[j] < 0.0 or (
+                phi[j] == 0.0 and pattern[j] * phi_dot[j] < 0.0)):
+            phi[j] = 0.0   # on the wrong side of its pivot, or leaving it the wrong way
+            return t, ENDS_IMPACT, j
+    # the event functions: landing and overturn of each open interface, the two corners of
+    # each flat one (terminal), then the turning point of each open one
+    kinds, which, corners = codes[0], codes[1], codes[2]
+    count = ZERO
+    flat = NO
+    for j in range(n):
+        if pattern[j] != 0:
+            kinds[count], which[count], corners[count] = EV_LANDING, j, 0
+            kinds[count + 1], which[count + 1], corners[count + 1] = EV_OVERTURN, j, 0
+            count += 2
+    for j in range(n):
+        if pattern[j] == 0:
+            flat = True
+            kinds[count], which[count], corners[count] = EV_LIFT, j, 2
+            kinds[count + 1], which[count + 1], corners[count + 1] = EV_LIFT, j, 3
+            count += 2
+    terminal = count
+    for j in range(n):
+        if pattern[j] != 0:
+            kinds[count], which[count], corners[count] = EV_TURN, j, 0
+            count += 1
+    from_zero, settled = flags[0], flags[1]
+    for j in range(n):
+        from_zero[j] = phi[j] == 0.0
+        settled[j] = False
+        earlier[j] = t
+        y[j] = phi[j]
+        y[n + j] = phi_dot[j]
+    y[2 * n] = fs[F_WORK]
+    rtol = par[P_RTOL]
+    rhs(chain, ws, pattern, seg, t, y, stages[0], flat)
+    for e in range(count):
+        g[e] = event_value(chain, ws, run, seg, kinds[e], which[e], corners[e], t, y, t, from_zero[which[e]]) \
+            if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
+    h_abs = initial_step(chain, ws, pattern, seg, t, y, stages[0], t_end, atol, rtol, work,
+                         stages[12])
+    ist[I_EVALUATIONS] += 2
+    t_now = t
+    while True:
+        min_step = 10.0 * abs(np.nextafter(t_now, np.inf) - t_now)
+        h_abs = max(h_abs, min_step)
+        rejected = False
+        while True:
+            if h_abs < min_step:
+                ist[I_ERROR] = STEP_FAILED
+                fs[F_ERROR_TIME] = t_now
+                return t_now, ENDS_NONE, NONE
+            t_new = t_now + h_abs
+            if t_new > t_end:
+                t_new = t_end
+            h = t_new - t_now
+            h_abs = abs(h)
+            norm = rk_step(chain, ws, pattern, seg, t_now, y, h, stages, y_new, work, atol,
+                           rtol, flat)
+            ist[I_EVALUATIONS] += 12
+            if norm < 1.0:
+                factor = MAX_FACTOR if norm == 0.0 else min(MAX_FACTOR,
+                                                            SAFETY * norm ** ERROR_EXPONENT)
+                if rejected:
+                    factor = min(1.0, factor)
+                h_abs *= factor
+                break
+            h_abs *= max(MIN_FACTOR, SAFETY * norm ** ERROR_EXPONENT)
+            rejected = True
+        ist[I_STEPS] += 1
+        for e in range(count):
+            g_new[e] = event_value(chain, ws, run, seg, kinds[e], which[e], corners[e], t_new,
+                                   y_new, t, from_zero[which[e]]) \
+                if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
+        active = False
+        for e in range(count):
+            down = g[e] >= 0.0 and g_new[e] <= 0.0
+            up = g[e] <= 0.0 and g_new[e] >= 0.0
+            roots[e] = math.nan
+            if down or (e >= terminal and up):
+                roots[e] = math.inf
+                active = True
+        if active:
+            dense_output(chain, ws, pattern, seg, t_now, y, y_new, h, stages, dense, work)
+            ist[I_EVALUATIONS] += 3
+            first, first_time = NONE, math.inf
+            for e in range(count):
+                if roots[e] == math.inf:
+                    roots[e] = brent(chain, ws, run, seg, kinds[e], which[e], corners[e], t,
+                                     from_zero[which[e]], dense, y, t_now, h, state, t_now,
+                                     t_new, 4.0 * EPS, 4.0 * EPS)
+                    if e < terminal and roots[e] < first_time:
+                        first, first_time = e, roots[e]
+            # a turning point on the wrong side of a landing: the landing before it
+            found, found_j = passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state,
+                                            roots, which, terminal, count, first_time,
+                                            earlier, settled, from_zero)
+            if found_j >= 0 and found < first_time:
+                dense_state(dense, y, t_now, h, found, state)
+                for i in range(n):
+                    phi[i] = state[i]
+                    phi_dot[i] = state[n + i]
+                fs[F_WORK] = state[2 * n]
+                phi[found_j] = 0.0
+                return found, ENDS_IMPACT, found_j
+            if first >= 0:
+                dense_state(dense, y, t_now, h, first_time, state)
+                for i in range(n):
+                    phi[i] = state[i]
+                    phi_dot[i] = state[n + i]
+                fs[F_WORK] = state[2 * n]
+                kind = kinds[first]
+                what = ENDS_IMPACT if kind == EV_LANDING else (
+                    ENDS_OVERTURN if kind == EV_OVERTURN else ENDS_LIFT)
+                return first_time, what, which[first]
+        for e in range(count):
+            g[e] = g_new[e]
+        for i in range(size):
+            y[i] = y_new[i]
+            stages[0, i] = stages[12, i]
+        t_now = t_new
+        if t_now >= t_end:
+            for i in range(n):
+                phi[i] = y[i]
+                phi_dot[i] = y[n + i]
+            fs[F_WORK] = y[2 * n]
+            return t_end, ENDS_NONE, NONE
+
+
+# ------------------------------------------------------------------------- run
+@inlined
+def rest_uplift(chain, ws, run, t, t_end, seg):
+    """The first time in [t, t_end] a rest corner force reaches -tol, as (time, interface);
+    (inf, -1) when none does."""
+    pattern, par = run[2], run[5]
+    n = pattern.size
+    zero, phi_ddot, start, end = ws[16], ws[15], ws[8], ws[17]
+    ug, vg = ground(seg, t)
+    state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, start, ws)
+    ug, vg = ground(seg, t_end)
+    state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, end, ws)
+    first, first_j = math.inf, NONE
+    tol = par[P_TOL_FORCE]
+    for j in range(n):
+        for corner in (2, 3):
+            a, b = start[j, corner] + tol, end[j, corner] + tol
+            if b >= 0.0:
+                continue
+            time = t if a <= 0.0 else t + (t_end - t) * a / (a - b)
+            if time < first:
+                first, first_j = time, j
+    return first, first_j
+
+
+@kernel
+def progress(run, t, t_new):
+    """Count events in a row without progress; False (the run's error set) past the limit."""
+    ist = run[4]
+    ist[I_STALLED] = ist[I_STALLED] + 1 if t_new <= t else 0
+    if ist[I_STALLED] > MAX_EVENTS_AT_ONE_INSTANT:
+        ist[I_ERROR] = STALLED
+        run[3][F_ERROR_TIME] = t
+        return False
+    return True
+
+
+@inlined
+def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
+    """Advance over one input interval; False when the run stops (or failed: its error)."""
+    pattern, fs, ist = run[2], run[3], run[4]
+    support0, support1 = G + v0, G + v1
+    if support0 <= 0.0 or support1 <= 0.0:
+        ist[I_STATUS] = 2
+        fs[F_T_AIRBORNE] = t0 if support0 <= 0.0 else \
+            t0 + (t1 - t0) * support0 / (support0 - support1)
+        record(run, fs[F_T_AIRBORNE], AIRBORNE, NONE, pattern, pattern, ZERO,
+               (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
+        return False
+    t = t0
+    while t < t1:
+        if fs[F_REST_UNTIL] > t:
+            if fs[F_REST_UNTIL] >= t1:
+                return True
+            t = fs[F_REST_UNTIL]
+        if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
+            fs[F_REST_UNTIL] = -math.inf
+            t = choose(chain, ws, run, t, seg, R_REST, NONE, t1)
+            if ist[I_ERROR]:
+                return False
+        if open_count(pattern) == 0:
+            t_new, j = rest_uplift(chain, ws, run, t, t1, seg)
+            if j < 0:
+                return True
+            if not progress(run, t, t_new):
+                return False
+            t = choose(chain, ws, run, t_new, seg, R_UPLIFT, j, t1)
+            if ist[I_ERROR]:
+                return False
+            continue
+        t_new, what, j = segment(chain, ws, run, t, t1, seg, buffers)
+        if ist[I_ERROR] or not progress(run, t, t_new):
+            return False
+        t = t_new
+        if what == ENDS_NONE:
+            continue
+        if what == ENDS_IMPACT:
+            t = impact(chain, ws, run, t, seg, j, t1)
+        elif what == ENDS_OVERTURN:
+            ist[I_STATUS] = 1
+            fs[F_T_OVERTURN] = t
+            ist[I_OVERTURNED] = j
+            record(run, t, OVERTURN, j, pattern, pattern, ONE,
+                   (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
+            return False
+        else:
+            t = choose(chain, ws, run, t, seg, R_UPLIFT, j, t1)
+        if ist[I_ERROR]:
+            return False
+    return True
+
+
+@kernel
+def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work):
+    """theta, theta', theta'' of every block, the pattern, the contact forces and the
+    table's work at sample ``k``."""
+    phi, phi_dot, pattern = run[0], run[1], run[2]
+    n = phi.size
+    phi_ddot = ws[15]
+    state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces[k], ws)
+    a, b, c = 0.0, 0.0, 0.0
+    for i in range(n):
+        a += phi[i]
+        b += phi_dot[i]
+        c += phi_ddot[i]
+        theta[k, i] = a
+        rate[k, i] = b
+        acceleration[k, i] = c
+        patterns[k, i] = pattern[i]
+    work[k] = run[3][F_WORK]
+
+
+@njit(cache=True, nogil=True, error_model=COMPILED["error_model"])
+def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, capacity):
+    """One run of the stack over the samples ``t`` (the compiled engine's entry; its
+    arguments are those :func:`integrate` prepares).
+
+    Returns the histories (theta, theta', theta'' [rad, rad/s, rad/s^2], patterns, forces
+    [N], work [J]), the number of samples filled, the float and int states (``F_*``,
+    ``I_*``) and the recorded events (times and values, kinds and integers, patterns
+    before and after).
+    """
+    n = b.size
+    chain = (b, h, m, inertia)
+    ws = workspace(n)
+    ev_f = np.full((capacity, 5), math.nan)
+    ev_i = np.full((capacity, 6), -1, dtype=np.int64)
+    ev_pb = np.zeros((capacity, n), dtype=np.int64)
+    ev_pa = np.zeros((capacity, n), dtype=np.int64)
+    fs = np.array([0.0, -math.inf, math.nan, math.nan, math.nan])
+    ist = np.zeros(8, dtype=np.int64)
+    ist[I_OVERTURNED] = -1
+    run = (phi0.copy(), phi_dot0.copy(), pattern0.copy(), fs, ist, par, atol, ev_f, ev_i,
+           ev_pb, ev_pa)
+    size = 2 * n + 1
+    buffers = (np.zeros((16, size)), np.zeros(size), np.zeros(size), np.zeros(size),
+               np.zeros((7, size)), np.zeros(size), np.zeros(3 * n), np.zeros(3 * n),
+               np.zeros(3 * n), np.zeros((3, 3 * n), dtype=np.int64),
+               np.zeros((2, n), dtype=np.bool_), np.zeros(n))
+    count = t.size
+    theta, rate, acceleration = np.zeros((count, n)), np.zeros((count, n)), \
+        np.zeros((count, n))
+    patterns = np.zeros((count, n), dtype=np.int8)
+    forces = np.zeros((count, n, 4))
+    work = np.zeros(count)
+    seg = np.array([t[0], t[1] - t[0], ug[0], ug[1] - ug[0], vg[0], vg[1] - vg[0]])
+    choose(chain, ws, run, t[0], seg, R_START, NONE, t[0])
+    filled = 0
+    if ist[I_ERROR] == 0:
+        sample(chain, ws, run, ug[0], vg[0], ZERO, theta, rate, acceleration, patterns, forces,
+               work)
+        filled = 1
+        for k in range(count - 1):
+            seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
+            seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
+            if not interval(chain, ws, run, t[k], t[k + 1], vg[k], vg[k + 1], seg, buffers):
+                break
+            sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate, acceleration,
+                   patterns, forces, work)
+            filled = k + 2
+    return (theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i,
+            ev_pb, ev_pa, run[0], run[2])
+
+
+class CompiledRun:
+    """What :func:`integrate` returns as ``run``: the events (dicts, as the Python engine's),
+    the status and the statistics of one compiled run."""
+
+    def __init__(self, fs, ist, ev_f, ev_i, ev_pb, ev_pa) -> None:
+        self.status = STATUSES[int(ist[I_STATUS])]
+        self.t_overturn = float(fs[F_T_OVERTURN])
+        self.overturned_block = int(ist[I_OVERTURNED])
+        self.t_airborne = float(fs[F_T_AIRBORNE])
+        self.n_events = int(ist[I_EVENTS])
+        self.steps, self.evaluations = int(ist[I_STEPS]), int(ist[I_EVALUATIONS])
+        self.events = [self.event(ev_f[k], ev_i[k], ev_pb[k], ev_pa[k])
+                       for k in range(int(ist[I_RECORDED]))]
+
+    @staticmethod
+    def event(reals, integers, before, after) -> dict:
+        kind = KINDS[int(integers[0])]
+        patterns = integers[5] == 1
+        event = dict(t=float(reals[0]), kind=kind, interface=int(integers[1]),
+                     pattern_before=tuple(int(s) for s in before) if patterns else None,
+                     pattern_after=tuple(int(s) for s in after) if patterns else None)
+        if kind == "uplift":
+            event.update(solutions=int(integers[2]), reason=REASONS[int(integers[4])])
+        elif kind == "impact":
+            event.update(rate_before=float(reals[1]), rate_after=float(reals[2]),
+                         energy_before=float(reals[3]), energy_after=float(reals[4]),
+                         solutions=int(integers[2]))
+        elif kind == "rest":
+            event.update(cascade=bool(integers[3]), energy_before=float(reals[3]),
+                         energy_after=float(reals[4]))
+        return event
+
+
+#: Events kept by a first run; a run that records more runs again with room for all.
+FIRST_CAPACITY = 4096
+
+
+def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: float,
+              rest_tolerance: float, max_recorded_events: int) -> dict:
+    """Run the stack over ``motion`` with the compiled engine: the sampled histories and
+    the events (the dict of :func:`shaketable.models.stack.engine.integrate`)."""
+    from shaketable.models.stack.engine import LOOKAHEAD, StackStalled, pattern_of
+    from shaketable.models.stack.physics import Chain
+
+    chain = Chain.of(stack)
+    scale = stack.alpha_min
+    tol_force = 1e-12 * G * float(stack.m.min())
+    par = np.array([LOOKAHEAD / stack.p_max, tol_force, scale, scale * stack.p_max, rtol,
+                    rest_tolerance, cor, 0.0 if law == "plastic" else 1.0])
+    n = chain.n
+    atol = np.concatenate([np.full(n, rtol * scale), np.full(n, rtol * scale * stack.p_max),
+                           [rtol * stack.weight * float(np.hypot(stack.b, stack.h).max())]])
+    phi = np.diff(np.asarray(theta0, dtype=float), prepend=0.0)
+    phi_dot = np.diff(np.asarray(theta_dot0, dtype=float), prepend=0.0)
+    pattern = np.array(pattern_of(phi, phi_dot), dtype=np.int64)
+    t = np.ascontiguousarray(motion.t, dtype=float)
+    ug = np.ascontiguousarray(motion.horizontal, dtype=float)
+    vg = np.ascontiguousarray(motion.vertical_or_zero, dtype=float)
+    capacity = max(1, min(int(max_recorded_events), FIRST_CAPACITY))
+    while True:
+        out = run_stack(chain.b, chain.h, chain.m, chain.inertia, t, ug, vg, phi, phi_dot,
+                        pattern, par, atol, capacity)
+        ist = out[8]
+        if ist[I_RECORDED] < capacity or capacity >= max_recorded_events:
+            break
+        capacity = int(min(max_recorded_events, max(int(ist[I_EVENTS]), 2 * capacity)))
+    theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i, ev_pb, \
+        ev_pa, phi_end, pattern_end = out
+    error, when = int(ist[I_ERROR]), float(fs[F_ERROR_TIME])
+    if error == NO_PATTERN:
+        raise StackStalled(f"stack model: no consistent contact pattern at t = {when!r} s "
+                           f"(from {tuple(int(s) for s in pattern_end)}); the input is "
+                           "outside the model")
+    if error == STALLED:
+        raise StackStalled(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
+                           f"t = {when!r} s without progress")
+    if error == STEP_FAILED:
+        raise StackStalled(f"stack model: DOP853 failed at t = {when!r} s: the step size "
+                           "fell below the rounding of the time")
+    run = CompiledRun(fs, ist, ev_f, ev_i, ev_pb, ev_pa)
+    return dict(run=run, filled=filled, theta=theta[:filled], rate=rate[:filled],
+                acceleration=acceleration[:filled], patterns=patterns[:filled],
+                forces=forces[:filled], work=work[:filled])

@@ -1,0 +1,507 @@
+"""The stack's equations, contact forces, energies and impact laws, compiled (numba).
+
+The same formulas as :mod:`shaketable.models.stack.physics` and
+:mod:`shaketable.models.stack.impact` (their docstrings and ``docs/stack.md`` state them),
+written as loops over preallocated arrays for the compiled engine
+(:mod:`shaketable.models.stack.compiled`). A *chain* is the tuple ``(b, h, m, inertia)`` of
+the blocks' half widths [m], half heights [m], masses [kg] and centroidal inertias
+m (b^2 + h^2) / 3 [kg m^2]; a *workspace* (:func:`workspace`) holds the arrays the functions
+fill, so that a right-hand side allocates nothing. Patterns are int64 arrays (0 flat, +1 / -1
+the pivot side of each interface).
+
+Candidate patterns are enumerated in the order of :func:`~shaketable.models.stack.physics.
+candidate_levels` (by the number of interfaces opened; the opened ones in lexicographic
+order, their sides +1 before -1 with the first one varying slowest), so that the compiled
+engine and the Python one choose alike.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from numba import njit
+
+from shaketable.core.constants import G
+from shaketable.core.numba_cache import register
+
+register()
+
+#: numba options of the compiled functions (called from compiled code only: no Python entry;
+#: cached with the engine that links them). The error model is the package's ("numpy": a
+#: division by zero gives inf or nan, as NumPy's, instead of raising).
+COMPILED: Any = {"cache": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": True,
+                 "error_model": "numpy"}
+KERNEL: Any = {**COMPILED, "_nrt": False}
+compiled = njit(**COMPILED)
+#: The functions that allocate nothing go without numba's reference counting (less code to
+#: generate and compile). Only a function that calls none that allocates may use it:
+#: numba types a callee in its caller's context.
+kernel = njit(**KERNEL)
+#: The functions called from one place (and small wrappers) are inlined into their caller
+#: in numba's IR, before typing, instead of compiled apart: a separately compiled function
+#: optimizes and emits again the machine code of everything it calls, so that each level of
+#: calls adds the compile of all below it (the engine's first compile: 48 s of CPU with them
+#: apart, 35 s inlined).
+inlined = njit(inline="always", error_model=COMPILED["error_model"])
+
+#: Up to this many blocks every candidate is tried (as the Python engine and impact law).
+FULL_ENUMERATION = 3
+#: The plastic law's tolerances (as :mod:`shaketable.models.stack.impact`).
+ROUNDING = 1e-6
+IMPACT_TOLERANCE = 1e-9
+
+
+@compiled
+def workspace(n):
+    """The arrays the compiled functions fill, for a chain of ``n`` blocks (a tuple)."""
+    return (np.zeros(n), np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2, n)),
+            np.zeros((n, 2)), np.zeros((n, n)), np.zeros((n, n)), np.zeros(n),
+            np.zeros((n, 4)), np.zeros((n, 2)), np.zeros(n), np.zeros((n, 2, n)),
+            np.zeros(n), np.zeros((n, 2)), np.zeros(n, dtype=np.int64), np.zeros(n),
+            np.zeros(n), np.zeros((n, 4)))
+
+
+@kernel
+def side_of(pattern, j):
+    """The pivot side of interface ``j`` (+1 for a flat one) [-]."""
+    return 1.0 if pattern[j] == 0 else float(pattern[j])
+
+
+@kernel
+def kinematics(chain, theta, theta_dot, pattern, centroid, jacobian, centripetal):
+    """Centroids G (n, 2) [m], Jacobians J (n, 2, n) [m] and velocity-product accelerations
+    c (n, 2) [m/s^2] of the chain with the pivots of ``pattern`` (into the arrays given)."""
+    b, h = chain[0], chain[1]
+    n = b.size
+    base_x, base_y = -(1.0 if pattern[0] == 0 else float(pattern[0])) * b[0], 0.0
+    spin_x, spin_y = 0.0, 0.0
+    jacobian[:] = 0.0
+    for i in range(n):
+        sigma = side_of(pattern, i)
+        cosine, sine = math.cos(theta[i]), math.sin(theta[i])
+        cx, cy = sigma * b[i], h[i]
+        rcx, rcy = cosine * cx - sine * cy, sine * cx + cosine * cy
+        w2 = theta_dot[i] * theta_dot[i]
+        centroid[i, 0] = base_x + rcx
+        centroid[i, 1] = base_y + rcy
+        centripetal[i, 0] = -(spin_x + rcx * w2)
+        centripetal[i, 1] = -(spin_y + rcy * w2)
+        jacobian[i, 0, i] = -rcy
+        jacobian[i, 1, i] = rcx
+        above = side_of(pattern, i + 1) * b[i + 1] if i < n - 1 else 0.0
+        dx, dy = sigma * b[i] - above, 2.0 * h[i]
+        rdx, rdy = cosine * dx - sine * dy, sine * dx + cosine * dy
+        for k in range(i + 1, n):
+            jacobian[k, 0, i] = -rdy
+            jacobian[k, 1, i] = rdx
+        base_x += rdx
+        base_y += rdy
+        spin_x += rdx * w2
+        spin_y += rdy * w2
+
+
+@kernel
+def mass_matrix(chain, jacobian, out):
+    """M = sum_i m_i J_i^T J_i + diag(I_i) [kg m^2] into ``out``."""
+    m, inertia = chain[2], chain[3]
+    n = m.size
+    for k in range(n):
+        for q in range(k, n):
+            total = 0.0
+            for i in range(max(k, q), n):
+                total += m[i] * (jacobian[i, 0, k] * jacobian[i, 0, q]
+                                 + jacobian[i, 1, k] * jacobian[i, 1, q])
+            if k == q:
+                total += inertia[k]
+            out[k, q] = total
+            out[q, k] = total
+
+
+@kernel
+def solve(matrix, vector, size):
+    """Solve the leading ``size`` x ``size`` system in place (Gaussian elimination with
+    partial pivoting): the solution replaces ``vector[:size]``."""
+    for col in range(size):
+        pivot = col
+        for row in range(col + 1, size):
+            if abs(matrix[row, col]) > abs(matrix[pivot, col]):
+                pivot = row
+        if pivot != col:
+            for k in range(size):
+                matrix[col, k], matrix[pivot, k] = matrix[pivot, k], matrix[col, k]
+            vector[col], vector[pivot] = vector[pivot], vector[col]
+        for row in range(col + 1, size):
+            factor = matrix[row, col] / matrix[col, col]
+            for k in range(col, size):
+                matrix[row, k] -= factor * matrix[col, k]
+            vector[row] -= factor * vector[col]
+    for row in range(size - 1, -1, -1):
+        total = vector[row]
+        for k in range(row + 1, size):
+            total -= matrix[row, k] * vector[k]
+        vector[row] = total / matrix[row, row]
+
+
+@kernel
+def reduced_solve(mass, generalized, pattern, columns, reduced, vector, out):
+    """theta = T q of the pattern's open interfaces from (T^T M T) q = T^T Q: ``out``
+    receives the absolute theta [per ``generalized``'s unit]; returns the number of open
+    interfaces (``columns`` their indices)."""
+    n = pattern.size
+    size = np.int64(0)
+    for j in range(n):
+        if pattern[j] != 0:
+            columns[size] = j
+            size += 1
+    out[:] = 0.0
+    if size == 0:
+        return 0
+    # T[i, a] = 1 for i >= columns[a]: sums of M over the rows and columns below them
+    for a in range(size):
+        total = 0.0
+        for i in range(columns[a], n):
+            total += generalized[i]
+        vector[a] = total
+        for c in range(size):
+            total = 0.0
+            for i in range(columns[a], n):
+                for k in range(columns[c], n):
+                    total += mass[i, k]
+            reduced[a, c] = total
+    solve(reduced, vector, size)
+    for a in range(size):
+        for i in range(columns[a], n):
+            out[i] += vector[a]
+    return size
+
+
+@kernel
+def cumulate(values, out):
+    total = 0.0
+    for i in range(values.size):
+        total += values[i]
+        out[i] = total
+
+
+@kernel
+def accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws):
+    """phi'' [rad/s^2] of every interface of ``pattern`` into ``phi_ddot`` (zero at the flat
+    ones); the workspace keeps theta, theta', G, J, c and theta'' (``ws[12]``)."""
+    theta, theta_dot, centroid, jacobian, centripetal = ws[0], ws[1], ws[2], ws[3], ws[4]
+    mass, reduced, generalized, theta_ddot, columns = ws[5], ws[6], ws[7], ws[12], ws[14]
+    m = chain[2]
+    n = m.size
+    cumulate(phi, theta)
+    cumulate(phi_dot, theta_dot)
+    kinematics(chain, theta, theta_dot, pattern, centroid, jacobian, centripetal)
+    opened = False
+    for j in range(n):
+        opened = opened or pattern[j] != 0
+    if not opened:
+        phi_ddot[:] = 0.0
+        theta_ddot[:] = 0.0
+        return
+    for k in range(n):
+        total = 0.0
+        for i in range(k, n):
+            fx = m[i] * (-ug - centripetal[i, 0])
+            fy = m[i] * (-(G + vg) - centripetal[i, 1])
+            total += jacobian[i, 0, k] * fx + jacobian[i, 1, k] * fy
+        generalized[k] = total
+    mass_matrix(chain, jacobian, mass)
+    size = reduced_solve(mass, generalized, pattern, columns, reduced, ws[10], theta_ddot)
+    phi_ddot[:] = 0.0
+    for a in range(size):
+        phi_ddot[columns[a]] = ws[10][a]
+
+
+@kernel
+def interface_loads(chain, pattern, theta, centroid, demand, spin, out):
+    """What each interface carries for the blocks above it (the columns N, F, N at the -x
+    corner, N at the +x corner of :func:`~shaketable.models.stack.physics.interface_loads`)
+    into ``out`` (n, 4), from each block's ``demand`` (n, 2) and ``spin`` (n,)."""
+    b, h = chain[0], chain[1]
+    n = b.size
+    rx, ry = 0.0, 0.0
+    for j in range(n - 1, -1, -1):
+        rx += demand[j, 0]
+        ry += demand[j, 1]
+        below = theta[j - 1] if j > 0 else 0.0
+        cb, sb = math.cos(below), math.sin(below)
+        out[j, 0] = -rx * sb + ry * cb
+        out[j, 1] = rx * cb + ry * sb
+        out[j, 2] = 0.0
+        out[j, 3] = 0.0
+        s = pattern[j]
+        if s != 0:
+            out[j, 2 if s > 0 else 3] = out[j, 0]
+            continue
+        cosine, sine = math.cos(theta[j]), math.sin(theta[j])
+        bottom_x = centroid[j, 0] + sine * h[j]
+        bottom_y = centroid[j, 1] - cosine * h[j]
+        left_x, left_y = bottom_x - cosine * b[j], bottom_y - sine * b[j]
+        right_x, right_y = bottom_x + cosine * b[j], bottom_y + sine * b[j]
+        about_left, about_right = 0.0, 0.0
+        for k in range(j, n):
+            about_left += ((centroid[k, 0] - left_x) * demand[k, 1]
+                           - (centroid[k, 1] - left_y) * demand[k, 0]) + spin[k]
+            about_right += ((centroid[k, 0] - right_x) * demand[k, 1]
+                            - (centroid[k, 1] - right_y) * demand[k, 0]) + spin[k]
+        out[j, 3] = about_left / (2.0 * b[j])
+        out[j, 2] = -about_right / (2.0 * b[j])
+
+
+@kernel
+def interface_forces(chain, pattern, ug, vg, ws, out):
+    """Contact forces [N] into ``out`` (n, 4) from the state :func:`accelerations` left in
+    the workspace."""
+    m, inertia = chain[2], chain[3]
+    theta, centroid, jacobian, centripetal = ws[0], ws[2], ws[3], ws[4]
+    demand, spin, theta_ddot = ws[9], ws[10], ws[12]
+    n = m.size
+    for i in range(n):
+        ax, ay = centripetal[i, 0], centripetal[i, 1]
+        for k in range(i + 1):
+            ax += jacobian[i, 0, k] * theta_ddot[k]
+            ay += jacobian[i, 1, k] * theta_ddot[k]
+        demand[i, 0] = m[i] * ax + m[i] * ug
+        demand[i, 1] = m[i] * ay + m[i] * (G + vg)
+        spin[i] = inertia[i] * theta_ddot[i]
+    interface_loads(chain, pattern, theta, centroid, demand, spin, out)
+
+
+@kernel
+def state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces, ws):
+    """phi'' and the contact forces of a state (into ``phi_ddot`` and ``forces``)."""
+    accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
+    interface_forces(chain, pattern, ug, vg, ws, forces)
+
+
+@kernel
+def power(chain, ug, vg, ws):
+    """Power of the table's inertial forces -m u'', -m v'' [W] in the state of the
+    workspace (after :func:`kinematics`)."""
+    m = chain[2]
+    theta_dot, jacobian = ws[1], ws[3]
+    total = 0.0
+    for i in range(m.size):
+        vx, vy = 0.0, 0.0
+        for k in range(i + 1):
+            vx += jacobian[i, 0, k] * theta_dot[k]
+            vy += jacobian[i, 1, k] * theta_dot[k]
+        total += m[i] * (ug * vx + vg * vy)
+    return -total
+
+
+@kernel
+def table_power(chain, phi, phi_dot, pattern, ug, vg, ws):
+    """Power of the table's inertial forces on a state [W]."""
+    cumulate(phi, ws[0])
+    cumulate(phi_dot, ws[1])
+    kinematics(chain, ws[0], ws[1], pattern, ws[2], ws[3], ws[4])
+    return power(chain, ug, vg, ws)
+
+
+@kernel
+def energy(chain, phi, phi_dot, pattern, ws):
+    """Kinetic energy in the table frame plus potential energy m g y above the table [J]."""
+    m = chain[2]
+    theta, theta_dot, centroid, jacobian, mass = ws[0], ws[1], ws[2], ws[3], ws[5]
+    cumulate(phi, theta)
+    cumulate(phi_dot, theta_dot)
+    kinematics(chain, theta, theta_dot, pattern, centroid, jacobian, ws[4])
+    mass_matrix(chain, jacobian, mass)
+    kinetic = 0.0
+    for k in range(m.size):
+        for q in range(m.size):
+            kinetic += theta_dot[k] * mass[k, q] * theta_dot[q]
+    potential = 0.0
+    for i in range(m.size):
+        potential += m[i] * centroid[i, 1]
+    return 0.5 * kinetic + G * potential
+
+
+@kernel
+def first_combination(chosen, count):
+    for p in range(count):
+        chosen[p] = p
+
+
+@kernel
+def next_combination(chosen, count, total):
+    """Advance ``chosen[:count]`` to the next combination of range(total) in lexicographic
+    order (itertools.combinations'); False after the last."""
+    p = count - 1
+    while p >= 0 and chosen[p] == total - count + p:
+        p -= 1
+    if p < 0:
+        return False
+    chosen[p] += 1
+    for q in range(p + 1, count):
+        chosen[q] = chosen[q - 1] + 1
+    return True
+
+
+@kernel
+def fill_candidate(base, free, n_free, chosen, count, sides, candidate):
+    """``base`` with the free interfaces flat, the chosen ones opened to the sides coded in
+    the bits of ``sides`` (+1 for a 0 bit; the first chosen one in the highest bit)."""
+    for j in range(base.size):
+        candidate[j] = base[j]
+    for p in range(n_free):
+        candidate[free[p]] = 0
+    for p in range(count):
+        bit = (sides >> (count - 1 - p)) & 1
+        candidate[free[chosen[p]]] = 1 if bit == 0 else -1
+
+
+@kernel
+def open_count(pattern):
+    total = 0
+    for j in range(pattern.size):
+        if pattern[j] != 0:
+            total += 1
+    return total
+
+
+@kernel
+def plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws, impulses,
+                      phi_after):
+    """Post-impact phi' (into ``phi_after``) and impulses of one active set of the plastic
+    law (see :mod:`shaketable.models.stack.impact`)."""
+    m, inertia = chain[2], chain[3]
+    n = m.size
+    after_map, mass, reduced, vector, solution = ws[11], ws[5], ws[6], ws[7], ws[12]
+    demand, spin, columns, spare = ws[9], ws[10], ws[14], ws[13]
+    kinematics(chain, theta, theta_dot, candidate, spare, after_map, ws[4])
+    for k in range(n):
+        total = 0.0
+        for i in range(k, n):
+            total += m[i] * (after_map[i, 0, k] * velocity[i, 0]
+                             + after_map[i, 1, k] * velocity[i, 1])
+        vector[k] = total + inertia[k] * theta_dot[k]
+    mass_matrix(chain, after_map, mass)
+    reduced_solve(mass, vector, candidate, columns, reduced, ws[10], solution)
+    for i in range(n):
+        vx, vy = 0.0, 0.0
+        for k in range(i + 1):
+            vx += after_map[i, 0, k] * solution[k]
+            vy += after_map[i, 1, k] * solution[k]
+        demand[i, 0] = m[i] * (vx - velocity[i, 0])
+        demand[i, 1] = m[i] * (vy - velocity[i, 1])
+    for i in range(n):
+        spin[i] = inertia[i] * (solution[i] - theta_dot[i])
+    interface_loads(chain, candidate, theta, centroid, demand, spin, impulses)
+    previous = 0.0
+    for i in range(n):
+        phi_after[i] = solution[i] - previous
+        previous = solution[i]
+
+
+@compiled
+def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, phi_dot_after,
+                   pattern_after):
+    """The plastic, no-slip multi-contact law (:func:`~shaketable.models.stack.impact.
+    plastic_impact`): post-impact phi' and pattern into the arrays given; returns the number
+    of admissible active sets. ``closed``: an interface held flat, or -1."""
+    b, h, m = chain[0], chain[1], chain[2]
+    n = m.size
+    theta, theta_dot = np.empty(n), np.empty(n)
+    cumulate(phi, theta)
+    cumulate(phi_dot, theta_dot)
+    centroid, before_map = np.empty((n, 2)), np.empty((n, 2, n))
+    kinematics(chain, theta, theta_dot, pattern, centroid, before_map, ws[4])
+    velocity = np.zeros((n, 2))
+    for i in range(n):
+        for k in range(i + 1):
+            velocity[i, 0] += before_map[i, 0, k] * theta_dot[k]
+            velocity[i, 1] += before_map[i, 1, k] * theta_dot[k]
+    fastest, reach, total_mass = 0.0, 0.0, 0.0
+    for i in range(n):
+        total_mass += m[i]
+        fastest = max(fastest, abs(theta_dot[i]))
+        reach = max(reach, math.hypot(b[i], h[i]))
+    landing = abs(phi_dot[interface]) + ROUNDING * fastest + 1e-300
+    impulse_tolerance = IMPACT_TOLERANCE * total_mass * landing * reach
+    rate_tolerance = IMPACT_TOLERANCE * landing
+    free = np.empty(n, dtype=np.int64)
+    n_free = np.int64(0)   # not a literal 0: one compile of its callees
+    for j in range(n):
+        if phi[j] == 0.0:
+            free[n_free] = j
+            n_free += 1
+    start = pattern.copy()
+    start[interface] = 0
+    candidate = np.empty(n, dtype=np.int64)
+    chosen = np.empty(n, dtype=np.int64)
+    impulses, trial = np.empty((n, 4)), np.empty(n)
+    best_admissible, best_any = np.empty(n), np.empty(n)
+    pattern_admissible = np.empty(n, dtype=np.int64)
+    pattern_any = np.empty(n, dtype=np.int64)
+    admissible, key_count, key_violation, least = 0, 0, math.inf, math.inf
+    lowest_admissible = n + 1
+    for count in range(n_free + 1):
+        if n > FULL_ENUMERATION and lowest_admissible < count:
+            break   # an admissible set with fewer open interfaces is already found
+        first_combination(chosen, count)
+        going = True
+        while going:
+            for sides in range(1 << count):
+                fill_candidate(start, free, n_free, chosen, count, sides, candidate)
+                if closed >= 0 and candidate[closed] != 0:
+                    continue
+                plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws,
+                                  impulses, trial)
+                worst = 0.0
+                for j in range(n):
+                    worst = max(worst, -impulses[j, 2] / impulse_tolerance,
+                                -impulses[j, 3] / impulse_tolerance)
+                for p in range(n_free):
+                    j = free[p]
+                    if candidate[j] != 0:
+                        worst = max(worst, -candidate[j] * trial[j] / rate_tolerance)
+                opened = open_count(candidate)
+                if worst <= 1.0:
+                    admissible += 1
+                    lowest_admissible = min(lowest_admissible, opened)
+                    if admissible == 1 or opened < key_count or (
+                            opened == key_count and worst < key_violation):
+                        key_count, key_violation = opened, worst
+                        best_admissible[:] = trial
+                        pattern_admissible[:] = candidate
+                if worst < least:
+                    least = worst
+                    best_any[:] = trial
+                    pattern_any[:] = candidate
+            going = next_combination(chosen, count, n_free)
+    if admissible:
+        phi_dot_after[:] = best_admissible
+        pattern_after[:] = pattern_admissible
+    else:
+        phi_dot_after[:] = best_any
+        pattern_after[:] = pattern_any
+    for j in range(n):
+        if pattern_after[j] == 0:
+            phi_dot_after[j] = 0.0
+    return admissible
+
+
+@kernel
+def cor_impact(phi_dot, pattern, interface, cor, phi_dot_after, pattern_after):
+    """The constant-COR law: every absolute rate times ``cor``; the impacting interface onto
+    its other corner (flat when its rate after is zero)."""
+    previous_before, previous_after = 0.0, 0.0
+    total = 0.0
+    for i in range(phi_dot.size):
+        total += phi_dot[i]
+        after = cor * total
+        phi_dot_after[i] = after - previous_after
+        previous_after = after
+        previous_before = total
+        pattern_after[i] = pattern[i]
+    pattern_after[interface] = -pattern[interface]
+    if phi_dot_after[interface] == 0.0:
+        pattern_after[interface] = 0
+    return previous_before
