@@ -3,7 +3,7 @@
 Grid: the report's Section 4 records (Pacoima Dam S16E and S74W, El Centro 1940 180 and
 270, each with its vertical), at full scale and at half scale, on three block sizes
 (30 x 6 in, 4 x 1 ft, 16 x 4 ft: 24 runs). The single-block batch
-(``shaketable.solvers.batch.simulate_many``, method "fast", Housner's COR, which is the
+(``shaketable.models.rocking.batch.simulate_many``, method "fast", Housner's COR, which is the
 stack's plastic law for one block) runs each block; the stack batch
 (``StackModel.run_many``: the compiled stack engine, plastic law, a result with histories,
 forces and events per run) runs two of the same block stacked. Both on one thread, each
@@ -26,10 +26,10 @@ import numpy as np
 
 from shaketable import Block
 from shaketable.ground import records
+from shaketable.models.rocking.batch import simulate_many
 from shaketable.models.stack import Stack, simulate_stack
 from shaketable.models.stack.compiled import integrate
 from shaketable.models.stack.model import STACK_MODEL
-from shaketable.solvers.batch import simulate_many
 
 RECORDS = ("pacoima-dam-s16e", "pacoima-dam-s74w", "el-centro-1940-180",
            "el-centro-1940-270")

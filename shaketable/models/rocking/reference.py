@@ -231,7 +231,7 @@ def _rest_after_impact(omega, deceleration, landing, rest_tolerance, velocity_fl
     ``omega`` is theta' just after the impact [rad/s], ``deceleration`` the magnitude of
     theta'' at theta = 0 on the new corner [rad/s^2], ``landing`` the impact's COR [-]: the
     cascade of impacts that follows is summed in closed form
-    (:func:`~shaketable.core.dynamics.cascade_rest_time`).
+    (:func:`~shaketable.models.rocking.physics.cascade_rest_time`).
     """
     remaining = cascade_rest_time(omega, deceleration, landing)
     if (remaining == math.inf and landing >= 1.0 and deceleration > 0.0
