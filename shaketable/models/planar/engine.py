@@ -219,7 +219,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     visited = 1 << mode
     rest_until = t
     step_size = 0.1 / p
-    just_rejected = False
+    just_rejected = np.bool_(False)   # not the literal False: contact_steps compiled once
     last_impact, last_transition, transitions = t, t, 0
     track_peaks(t, q, info, parameters)
     slip, _, _ = measures(q, parameters)
