@@ -96,7 +96,8 @@ def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
         lines.append(f"{result.block_name(result.overturned_block)} overturned at "
                      f"{result.t_overturn:.3f} s")
     else:
-        lines.append(f"{result.status}; peak top-corner excursion "
+        state = "still moving at the end of the run" if result.still_moving else result.status
+        lines.append(f"{state}; peak top-corner excursion "
                      f"{result.peak_excursion * 1000:.1f} mm")
     fig.suptitle("\n".join(lines), fontsize=9.5)
     fig.align_ylabels(axes)

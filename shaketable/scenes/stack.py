@@ -205,6 +205,8 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
                      f"= {theta[k] / block.alpha:.3g} α (α = {block.alpha:.4g} rad)"
                      + (f" at t = {result.t[k]:.2f} s" if theta[k] > 0 else "")
                      + _first_moved(result, i))
+    if result.still_moving:
+        lines.append("came to rest: no, " + result.end_state())
     uplift = next((event for event in result.events if event["kind"] == "uplift"), None)
     impacts = sum(1 for event in result.events if event["kind"] == "impact")
     if uplift is None:
