@@ -10,7 +10,7 @@ with a ``[stack]`` section (instead of ``[block]`` and ``[rocking]``) is a
     [stack]
     blocks = ["1x0.3m", "1x0.3m", "0.8x0.2m"]    # bottom first, each HEIGHTxWIDTH<unit>
     masses = ["1 t", "1 t", "0.5 t"]            # or densities = ["2400 kg/m3", ...]; default:
-                                                # one density (masses in proportion to B H)
+                                                # 2400 kg/m^3 over 1 m of depth (concrete)
     theta0 = ["0 rad", "0 rad", "0.1 rad"]      # per block (or one value for all); "alpha":
                                                 # a multiple of that block's own alpha
     theta_dot0 = ["0 rad/s", ...]                # optional, per block
@@ -92,7 +92,8 @@ def stack_from_text(blocks, masses=None, densities=None, *, where: str = "--stac
         Each block's mass with its unit (``"400kg"``, ``"1t"``, ``"900lb"``).
     densities : str or list of str, optional
         Each block's density with its unit (``"2400kg/m3"``): the masses are in proportion
-        to density times B H (equal depths). Neither: one density for all.
+        to density times B H over 1 m of depth. Neither: 2400 kg/m^3 (concrete) over 1 m
+        of depth for all (``Stack.describe_masses``).
     where, masses_where, densities_where : str
         How an error names the three inputs (an option or a scene key).
 
@@ -207,6 +208,7 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
                      + _first_moved(result, i))
     if result.still_moving:
         lines.append("came to rest: no, " + result.end_state())
+    lines.append(stack.describe_masses())
     uplift = next((event for event in result.events if event["kind"] == "uplift"), None)
     impacts = sum(1 for event in result.events if event["kind"] == "impact")
     if uplift is None:

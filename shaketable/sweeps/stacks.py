@@ -11,7 +11,7 @@ default; ``docs/stack.md``). The stacks take the place of ``[blocks]`` in the gr
     blocks = [2, 3]               # ... and this many blocks: an axis of its own (default 2)
     # columns = [["60x12in", "30x6in"]]   # or explicit columns, bottom first
     mass_ratios = [1.0, 0.5]      # optional: each block's mass over the one below's [-]
-    #                             #   (default: one density, masses as the areas B H)
+    #                             #   (default: 2400 kg/m^3 over 1 m of depth)
 
     [rocking]                     # optional for stacks
     cor = "plastic"               # the default; or numbers [-]: the constant-COR law,

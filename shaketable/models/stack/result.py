@@ -224,8 +224,8 @@ class StackResult(ModelResult):
         chain = Chain.of(self.stack)
         phi = np.diff(self.theta, axis=1, prepend=0.0)
         rate = np.diff(self.theta_dot, axis=1, prepend=0.0)
-        return np.array([sum(energy(chain, phi[k], rate[k], self.patterns[k]))
-                         for k in range(self.t.size)])
+        return self.stack.mass_scale * np.array(
+            [sum(energy(chain, phi[k], rate[k], self.patterns[k])) for k in range(self.t.size)])
 
     def to_frame(self) -> pd.DataFrame:
         columns: dict[str, Any] = {"t [s]": self.t}
@@ -273,6 +273,8 @@ class StackResult(ModelResult):
         finite = np.isfinite(self.friction_demand)
         slip = self.t_friction_exceeded(PLAUSIBLE_FRICTION)
         return {"blocks": int(self.n_blocks), "impact law": str(self.impact),
+                "masses [kg]": [float(mass) for mass in self.stack.mass],
+                "masses": self.stack.describe_masses(),
                 "status": str(self.status),
                 "still moving at the end": self.still_moving,
                 "past alpha at the end": [self.block_name(i) for i in self.past_alpha_at_end],

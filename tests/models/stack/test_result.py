@@ -150,3 +150,30 @@ def test_a_stack_cut_while_falling_is_said_to_be_still_moving():
     # a stack standing still (no motion: nothing moves it) is not
     still = simulate_stack(stack, duration=0.05)
     assert not still.still_moving and still.end_state() == "" and still.verdict() == "stayed at rest"
+
+
+def test_default_masses_are_concrete_per_metre_of_depth():
+    # no masses given: 2400 kg/m^3 (concrete) over 1 m of depth, m_i = 2400 B_i H_i [kg];
+    # at rest on a table accelerating 0.5 m/s^2 up and across, the base carries the whole
+    # weight, N_0 = (m_0 + m_1) (g + v'') [N] (statics), the interface m_1 (g + v'')
+    stack = Stack([st.Block(1.0, 0.3), st.Block(0.8, 0.2)])
+    masses = 2400.0 * np.array([0.3 * 1.0, 0.2 * 0.8])
+    assert np.allclose(stack.mass, masses, rtol=1e-15)
+    assert stack.weight == pytest.approx(G * masses.sum(), rel=1e-15)
+    result = simulate_stack(stack, st.Motion([0.0, 1.0], [0.5, 0.5], [0.5, 0.5]))
+    assert np.allclose(result.forces[:, 0, 0], masses.sum() * (G + 0.5), rtol=1e-12)
+    assert np.allclose(result.forces[:, 1, 0], masses[1] * (G + 0.5), rtol=1e-12)
+    summary = result.summary()
+    assert summary["masses [kg]"] == pytest.approx(list(masses), rel=1e-15)
+    assert summary["masses"].startswith("masses: uniform density, assumed 2400 kg/m^3")
+    assert "1 m of depth" in summary["masses"]
+    # the motion depends on the mass ratios only: the same run with the areas given as
+    # masses moves bit for bit alike, its forces 2400 times smaller
+    t = np.arange(0.0, 0.6, 0.01)
+    motion = st.Motion(t, 4.0 * np.sin(9.0 * t), name="sine")
+    default = simulate_stack(stack, motion)
+    areas = simulate_stack(Stack(stack.blocks, masses=tuple(stack.m)), motion)
+    assert np.array_equal(default.theta, areas.theta)
+    assert np.allclose(default.forces, 2400.0 * areas.forces, rtol=1e-13, atol=0.0)
+    assert np.allclose(default.energy, 2400.0 * areas.energy, rtol=1e-12)
+    assert "(given, bottom first)" in areas.summary()["masses"]
