@@ -212,9 +212,7 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
     uplift = next((event for event in result.events if event["kind"] == "uplift"), None)
     impacts = sum(1 for event in result.events if event["kind"] == "impact")
     if uplift is None:
-        still = not np.any(result.theta)
-        lines.append("uplift: none" + (" (the stack stood on the table)" if still else
-                                       " after the release"))
+        lines.append(_no_uplift_line(result, impacts))
     else:
         from shaketable.models.stack import pattern_name
 
@@ -239,6 +237,24 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
         lines.append(f"a contact pulls from t = {result.t_tension:.2f} s (a block would lift "
                      "off: outside the model)")
     return lines
+
+
+def _no_uplift_line(result: StackResult, impacts: int) -> str:
+    """The uplift line of a run with no uplift event: the stack stood, or only the blocks
+    released tilted rocked, or an impact opened an interface that was flat (a landing's
+    kick: "block 0 (bottom) lifted by the impact at t = 0.265 s")."""
+    if not np.any(result.theta):
+        return "uplift: none (the stack stood on the table)"
+    for event in result.events:
+        before, after = event.get("pattern_before"), event.get("pattern_after")
+        if before is None or after is None:
+            continue
+        opened = [j for j, (was, now) in enumerate(zip(before, after)) if was == 0 and now != 0]
+        if opened:
+            names = " and ".join(result.block_name(j) for j in opened)
+            return (f"no uplift of its own after the release: {names} lifted by the "
+                    f"{event['kind']} at t = {event['t']:.3f} s; {impacts} impact(s)")
+    return f"no uplift after the release (only the blocks released tilted moved); {impacts} impact(s)"
 
 
 def _first_moved(result: StackResult, i: int) -> str:
