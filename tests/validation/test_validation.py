@@ -251,12 +251,15 @@ def test_scan_based_block_scores_as_an_independent_integrator(tmp_path):
 def test_reproduce_validation_section_runs_or_skips(tmp_path):
     from shaketable.reproduce import reproduce
 
-    # absent folder: the section is one line saying why, and the report counts it as rerun
+    # absent folder: the section is one line saying why and how to give it, and the
+    # report counts it as skipped, not as rerun
     report = reproduce([], out=tmp_path / "out", progress=False,
                        extra={"validation": {"data": tmp_path / "absent"}})
     text = report.read_text()
     assert f"Skipped: no folder of measured tests at {tmp_path / 'absent'}" in text
-    assert "1 section, all rerun now." in text
+    assert "--validation-data DIR" in text and "SHAKETABLE_PBR=DIR" in text
+    assert "all rerun now" not in text
+    assert "1 section: 0 rerun now, 1 skipped (validation: its section says why" in text
     # a folder of tests with outcomes (made by a symmetric block of alpha 0.1, COR 0.9, one
     # of the section's candidates): the coarse calibration finds it and cross-validates
     amplitudes = np.linspace(0.04, 0.3, 20)
@@ -271,3 +274,30 @@ def test_reproduce_validation_section_runs_or_skips(tmp_path):
     assert "* a, the most likely block: alpha 0.1 rad" in section
     assert "| a | PGV threshold |" in section and "| b | calibrated |" in section
     assert (tmp_path / "section" / "reliability.png").is_file()
+
+
+def test_an_installed_package_looks_for_no_data_beside_itself(tmp_path, monkeypatch):
+    # pip puts the package in .../lib/python3.11/site-packages/shaketable: nothing beside
+    # it is the project's, so no default folder (the section says how to give one); a
+    # source checkout (pyproject.toml beside the package) has ../shared/data/pbr
+    from shaketable.validation.report import data_folder, reproduce_section
+
+    monkeypatch.delenv("SHAKETABLE_PBR", raising=False)
+    installed = tmp_path / "venv" / "lib" / "python3.11" / "site-packages" / "shaketable"
+    installed.mkdir(parents=True)
+    assert data_folder(package=installed) is None
+    checkout = tmp_path / "work" / "project"
+    (checkout / "shaketable").mkdir(parents=True)
+    (checkout / "pyproject.toml").write_text("[project]\n")
+    assert data_folder(package=checkout / "shaketable") == tmp_path / "work" / "shared" / \
+        "data" / "pbr"
+    monkeypatch.setenv("SHAKETABLE_PBR", str(tmp_path / "pbr"))
+    assert data_folder(package=installed) == tmp_path / "pbr"
+    assert data_folder(tmp_path / "given", package=installed) == tmp_path / "given"
+    monkeypatch.delenv("SHAKETABLE_PBR")
+    import shaketable.validation.report as report
+
+    monkeypatch.setattr(report, "source_checkout", lambda package=None: None)
+    section = reproduce_section(tmp_path / "section")
+    assert "Skipped: no folder of measured tests given" in section
+    assert "`shaketable reproduce --all --validation-data DIR`" in section
