@@ -96,7 +96,7 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
     from shaketable.plots.validation import fragility_figure, reliability_figure
     from shaketable.validation.check import cross_validate, out_of_fold
     from shaketable.validation.fit import BAGS
-    from shaketable.validation.folder import read_folder
+    from shaketable.validation.folder import read_folder, specimen_labels
     from shaketable.validation.workflow import (
         calibrate_folder,
         predict_from_geometry,
@@ -105,8 +105,9 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
 
     out = prepare_output_folder(out, "out")
     folder = read_folder(path)
+    labels = specimen_labels(folder)
     lines = [f"Measured tests read from `{path}` ({len(folder.tests)} tests, specimens "
-             f"{', '.join(folder.specimens)}; GPL-3.0, read in place). A coarse version of "
+             f"{', '.join(labels.values())}; GPL-3.0, read in place). A coarse version of "
              "docs/validation.md: symmetric blocks only (13 block angles, h 0.3 m, COR 0.9).",
              ""]
     geometry = path / "geometry.csv"
@@ -114,10 +115,11 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
         scan = score_folder(predict_from_geometry(folder, pd.read_csv(geometry),
                                                   threads=threads), folder)
         lines.append("* The block of the scans (Housner's COR per pivot, sign +1): accuracy "
-                     + ", ".join(f"{name} {values['accuracy']:.3f}"
+                     + ", ".join(f"{labels.get(name, name)} {values['accuracy']:.3f}"
                                  for name, values in scan["specimens"].items())
                      + " (always 'not overturned': "
-                     + ", ".join(f"{name} {1 - folder.outcomes(name).mean():.3f}"
+                     + ", ".join(f"{labels.get(name, name)} "
+                                 f"{1 - folder.outcomes(name).mean():.3f}"
                                  for name in scan["specimens"]) + ").")
     calibrations, overturned, candidates = calibrate_folder(folder, SECTION_GRID,
                                                             threads=threads)
@@ -126,7 +128,7 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
     held_out = []
     for name, calibration in calibrations.items():
         block = calibration.best.block
-        lines.append(f"* {name}, the most likely block: alpha {block.alpha_weak:g} rad "
+        lines.append(f"* {labels.get(name, name)}, the most likely block: alpha {block.alpha_weak:g} rad "
                      f"(effective half-width h tan(alpha) "
                      f"{1000 * block.effective_half_width():.0f} mm), link sigma "
                      f"{calibration.best.sigma:g}; training accuracy {calibration.accuracy:.3f}.")
@@ -134,7 +136,7 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
         frame = cross_validate(overturned, outcomes, candidates, pgv, k=SECTION_FOLDS,
                                repeats=SECTION_REPEATS, bags=BAGS)
         for model, part in frame.groupby("model"):
-            rows.append(f"| {name} | {model} | {part['accuracy'].mean():.3f} ± "
+            rows.append(f"| {labels.get(name, name)} | {model} | {part['accuracy'].mean():.3f} ± "
                         f"{part['accuracy'].std(ddof=1):.3f} | {part['log_loss'].mean():.3f} |")
         p = out_of_fold(overturned, outcomes, candidates, k=SECTION_FOLDS, bags=BAGS)
         held_out.append(pd.DataFrame({"test": folder.tests, "specimen": name,
