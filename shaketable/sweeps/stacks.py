@@ -315,6 +315,24 @@ def overturned_blocks(table) -> str:
     return ", ".join(parts)
 
 
+def overturn_answer(table) -> str:
+    """How many runs of a stack sweep overturn, the stacks and the blocks alone apart:
+    ``"23 of 40 runs overturn: 14 stacks (the block that fell: block 1 (top) 1, block 0
+    (bottom) 13) and 9 blocks alone"``."""
+    fell = table[table["overturned"].astype(bool)]
+    parts = []
+    stacks = fell[fell["blocks"].astype(int) > 1] if "blocks" in fell else fell
+    if len(stacks):
+        which = overturned_blocks(stacks)
+        parts.append(f"{len(stacks)} stack{'s' if len(stacks) != 1 else ''}"
+                     + (f" (the block that fell: {which})" if which else ""))
+    alone = len(fell) - len(stacks)
+    if alone:
+        parts.append(f"{alone} block{'s' if alone != 1 else ''} alone")
+    return (f"{len(fell)} of {len(table)} runs overturn"
+            + (": " + " and ".join(parts) if parts else ""))
+
+
 def impact_law(cor: float) -> str:
     """The impact law of a row's ``cor [-]``, for labels: ``"plastic impacts"`` (NaN: the
     plastic multi-contact law has no COR) or ``"COR 0.9"``."""
