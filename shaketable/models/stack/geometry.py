@@ -148,7 +148,7 @@ class Stack:
             return f"masses: {values} kg (given, bottom first)"
         return (f"masses: uniform density, assumed {DEFAULT_DENSITY:g} kg/m^3 (concrete) over "
                 f"{DEFAULT_DEPTH:g} m of depth: {values} kg, bottom first (forces and "
-                "energies per metre of depth; give --masses or --densities for yours)")
+                "energies per metre of depth; give masses or densities for yours)")
 
     @property
     def p_max(self) -> float:
