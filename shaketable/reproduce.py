@@ -31,6 +31,9 @@ TIMING_NOTE = ("*Times:* the run lines give the exact block's times (events loca
 #: section's Markdown (a one-line skip when it cannot run).
 EXTRA_SECTIONS = {"validation": "shaketable.validation.report:reproduce_section"}
 
+#: The file beside a section's section.md saying that it was skipped (it could not run).
+SKIPPED_MARKER = "skipped"
+
 
 #: How a section carries its differing comparisons to the report's list (an HTML comment
 #: per comparison, ``<!-- differs: KIND | WHAT -->``, removed from report.md).
@@ -199,6 +202,13 @@ def _extra_sections(out: Path, extra: dict, failures: list | None) -> list[str]:
                 failures.append(name)
         write_text(folder / "section.md", section)
         write_text(folder / "counts.json", "{}")
+        # a section that could not run says so in its first paragraph ("Skipped: ..."):
+        # the report's headline must not count it as rerun
+        marker = folder / SKIPPED_MARKER
+        if section.split("\n\n", 1)[-1].startswith("Skipped:"):
+            write_text(marker, "skipped\n")
+        elif marker.exists():
+            marker.unlink()
     return list(extra)
 
 
@@ -358,6 +368,21 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _scope(order: list, rerun: list, kept: list, skipped: list) -> str:
+    """The report's count of its sections: rerun now, kept from an earlier run, skipped."""
+    sections_word = "section" if len(order) == 1 else "sections"
+    if not kept and not skipped:
+        return f"{len(order)} {sections_word}, all rerun now."
+    parts = [f"{len(rerun)} rerun now" + (f" ({', '.join(rerun)})" if kept else "")]
+    if kept:
+        parts.append(f"{len(kept)} kept from an earlier run into this folder")
+    if skipped:
+        parts.append(f"{len(skipped)} skipped ({', '.join(skipped)}: "
+                     f"{'its section says' if len(skipped) == 1 else 'their sections say'} "
+                     "why and how to give what it needs)")
+    return f"{len(order)} {sections_word}: " + ", ".join(parts) + "."
+
+
 def _assemble(out: Path, rerun) -> Path:
     """``report.md`` from every scene section in ``out``, in the report's order; gallery.md."""
     import json
@@ -378,12 +403,10 @@ def _assemble(out: Path, rerun) -> Path:
             for kind, (agree, differ) in json.loads(counts_path.read_text()).items():
                 if kind in tally.counts:
                     tally.add_many(kind, agree, agree + differ)
-    rerun = [name for name in rerun if name in order]
-    kept = [name for name in order if name not in rerun]
-    sections_word = "section" if len(order) == 1 else "sections"
-    scope = (f"{len(order)} {sections_word}, all rerun now." if not kept else
-             f"{len(order)} sections: {len(rerun)} rerun now ({', '.join(rerun)}), "
-             f"{len(kept)} kept from an earlier run into this folder.")
+    skipped = [name for name in order if (out / name / SKIPPED_MARKER).is_file()]
+    rerun = [name for name in rerun if name in order and name not in skipped]
+    kept = [name for name in order if name not in rerun and name not in skipped]
+    scope = _scope(order, rerun, kept, skipped)
     sections, differing, contents = _contents(order, sections, tally)
     header = ["# shaketable: the report reproduced", "",
               "Aslam, Godden & Scalise, *Rocking and overturning response of rigid bodies to "

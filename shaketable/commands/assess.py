@@ -28,7 +28,7 @@ def object_path(text: str) -> Path:
 def _assess(args: argparse.Namespace) -> int:
     import time
 
-    from shaketable.assessment import assess
+    from shaketable.assessment import FIGURES, assess
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import prepare_output_folder
     from shaketable.scenes.assess import load_assessment
@@ -44,7 +44,10 @@ def _assess(args: argparse.Namespace) -> int:
     print(f"{spec.name} {spec.where}: {result.recommendation['choice']}")
     for reason in result.recommendation["reasons"]:
         print(f"  - {reason}")
-    print(f"wrote {out / 'report.md'} and summary.json ({time.perf_counter() - start:.1f} s)")
+    beside = ["summary.json", "runs.csv"] + ([] if args.no_figures
+                                             else [file for _, file, _ in FIGURES])
+    print(f"wrote {out / 'report.md'} and, beside it, {', '.join(beside)} "
+          f"({time.perf_counter() - start:.1f} s)")
     return 0
 
 

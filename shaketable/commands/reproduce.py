@@ -71,6 +71,7 @@ def register(commands) -> None:
     parser.add_argument("--validation-data", metavar="DIR",
                         help="with every scene: the folder of measured tests of the "
                              "'validation' section (default $SHAKETABLE_PBR, else "
-                             "../shared/data/pbr beside the project; skipped when absent)")
+                             "../shared/data/pbr beside the source checkout when run from "
+                             "one; skipped, saying how to give it, when absent)")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     parser.set_defaults(handler=_reproduce)

@@ -46,15 +46,17 @@ def _sweep(args: argparse.Namespace) -> int:
                         resume=args.resume, progress=not (args.no_progress or args.quiet),
                         max_chunks=args.max_chunks)
     rate = outcome.computed_runs / outcome.seconds if outcome.seconds > 0 else float("nan")
-    print(f"{spec.name}: computed {outcome.computed_runs} runs in {outcome.seconds:.1f} s "
-          f"({rate:.3g} runs/s{', the first compile included' if compiling else ''}); "
-          f"{outcome.skipped_runs} were already on disk")
+    computed = (f"{spec.name}: computed {outcome.computed_runs} runs in {outcome.seconds:.1f} s "
+                f"({rate:.3g} runs/s{', the first compile included' if compiling else ''}); "
+                f"{outcome.skipped_runs} were already on disk")
     if not outcome.complete:
+        print(computed)
         print(f"{spec.name}: stopped before the end; run again with --resume to finish "
               f"(finished chunks are in {out / 'parts'})")
         return 0
     table = outcome.table
     assert table is not None   # complete: the joined table was read
+    # the answer first, then how it was computed
     if spec.friction is not None:
         from shaketable.sweeps.friction import friction_summary, verdict_counts
 
@@ -62,15 +64,14 @@ def _sweep(args: argparse.Namespace) -> int:
         for line in friction_summary(table):
             print(f"    {line}")
     elif spec.model.name == "stack":
-        from shaketable.sweeps.stacks import overturned_blocks
+        from shaketable.sweeps.stacks import overturn_answer
 
-        fell = overturned_blocks(table)
-        print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn"
-              f"{f' (the block that fell: {fell})' if fell else ''}, "
+        print(f"{spec.name}: {overturn_answer(table)}; "
               f"{int(table['airborne'].sum())} stopped where a block would leave its support")
     else:
         print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
               f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")
+    print(computed)
     from shaketable.commands.checks import report_stopped_rows
 
     status = report_stopped_rows(table, spec.name)

@@ -88,8 +88,9 @@ def _calibrate(args) -> int:
         out_of_fold,
     )
     from shaketable.validation.fit import BAGS
-    from shaketable.validation.folder import read_folder
+    from shaketable.validation.folder import read_folder, specimen_labels
     from shaketable.validation.workflow import (
+        axis_with_unit,
         calibrate_folder,
         calibration_json,
         describe_calibration,
@@ -103,8 +104,9 @@ def _calibrate(args) -> int:
     folder = read_folder(args.folder)
     grid = _grid(args)
     out = prepare_output_file(args.out, "--out", suffixes=(".json",))
+    labels = specimen_labels(folder)
     if not args.quiet:
-        print(f"{len(folder.tests)} tests, specimens {', '.join(folder.specimens)}; "
+        print(f"{len(folder.tests)} tests, specimens {', '.join(labels.values())}; "
               f"{len(grid.candidates())} candidate blocks")
     progress = _Progress(args.quiet)
     calibrations, overturned, candidates = calibrate_folder(
@@ -153,7 +155,7 @@ def _calibrate(args) -> int:
                                   "coverage_of_bootstrap_sets": coverage(check, sets)}
         checks[name] = entry
         if not args.quiet:
-            print(describe_calibration(calibration))
+            print(describe_calibration(calibration, labels.get(name, name)))
             for model, values in entry.get("cross_validation", {}).items():
                 if isinstance(values, dict):
                     accuracy = values["accuracy"]
@@ -163,7 +165,8 @@ def _calibrate(args) -> int:
             if "bootstrap" in entry:
                 boot = entry["bootstrap"]
                 for axis, accepted in boot["sets"].items():
-                    print(f"  95 % bootstrap set of {axis}: {format_set(accepted)} (independent "
+                    print(f"  95 % bootstrap set of {axis_with_unit(axis)}: "
+                          f"{format_set(accepted)} (independent "
                           f"refits inside: {boot['coverage_of_bootstrap_sets'][axis]:.1%}; "
                           f"inside the profile set: "
                           f"{boot['coverage_of_profile_sets'][axis]:.1%})")
@@ -224,27 +227,19 @@ def _predict(args) -> int:
 
 def _score(args) -> int:
     from shaketable.core.files import json_ready_dict, prepare_output_folder, write_csv, write_text
-    from shaketable.validation.folder import read_folder
+    from shaketable.validation.folder import read_folder, specimen_labels
     from shaketable.validation.workflow import read_predictions, score_folder
 
     predictions = read_predictions(args.predictions)
     folder = read_folder(args.folder)
     result = score_folder(predictions, folder)
+    labels = specimen_labels(folder)
     figures = prepare_output_folder(args.figures, "--figures") if args.figures else None
     if not args.quiet:
-        for name, values in [*result["specimens"].items(), ("all", result["all"])]:
-            print(_score_line(name, values))
+        for line in _score_lines(result, labels):
+            print(line)
         if result["unmatched"]:
             print(f"{result['unmatched']} prediction rows have no outcome in the folder")
-        for key, what in (("in_sample", "in-sample (tests the calibration was fitted on: "
-                                        "optimistic; the fair figure is the k-fold "
-                                        "cross-validated accuracy of `validate calibrate`)"),
-                          ("out_of_sample", "out-of-sample (tests the calibration never saw)")):
-            if key in result:
-                print(f"{what}:")
-                for name, values in [*result[key]["specimens"].items(),
-                                     ("all", result[key]["all"])]:
-                    print("  " + _score_line(name, values))
         print("reliability (predicted P in bins against the measured fraction):")
         print(result["reliability"].to_string(index=False, float_format=lambda x: f"{x:.3f}"))
     if args.json:
@@ -258,17 +253,61 @@ def _score(args) -> int:
         from shaketable.plots.base import save
         from shaketable.plots.validation import fragility_figure, reliability_figure
 
-        save(reliability_figure(result["reliability"]), figures / "reliability.png")
-        save(fragility_figure(result["fragility_pga"], "PGA [g]", log=True),
-             figures / "fragility_pga.png")
-        save(fragility_figure(result["fragility_pgv_over_pga"], "PGV/PGA [s]", log=True),
-             figures / "fragility_pgv_over_pga.png")
+        kind = _sample_kind(result)
+        pooled = ", ".join(labels.get(name, name) for name in result["specimens"])
+        save(reliability_figure(result["reliability"], title=f"{kind} reliability ({pooled})".strip()),
+             figures / "reliability.png")
+        for key, measure, name in (("fragility_pga", "PGA [g]", "fragility_pga.png"),
+                                   ("fragility_pgv_over_pga", "PGV/PGA [s]",
+                                    "fragility_pgv_over_pga.png")):
+            save(fragility_figure(result[key], measure, log=True,
+                                  title=f"{kind} fragility against {measure.split(' [')[0]} "
+                                        f"({pooled}; tests per bin marked)".strip()),
+                 figures / name)
         write_csv(figures / "fragility_pga.csv", result["fragility_pga"], index=False)
         write_csv(figures / "fragility_pgv_over_pga.csv", result["fragility_pgv_over_pga"],
                   index=False)
         if not args.quiet:
             print(f"wrote the figures to {figures}")
     return 0
+
+
+#: The score blocks of ``validate score``, in the order said: the fair one first.
+_SAMPLES = (("out_of_sample", "out-of-sample (tests the calibration never saw)"),
+            ("in_sample", "in-sample (tests the calibration was fitted on: optimistic; the "
+                          "fair figure is the out-of-sample one, or the k-fold "
+                          "cross-validated accuracy of `validate calibrate`)"))
+
+
+def _score_lines(result: dict, labels: dict) -> list[str]:
+    """The score's console lines. Rows that mix tests the calibration saw and tests it
+    never saw lead with the out-of-sample score, then the in-sample one, then all rows
+    pooled; rows of one kind are scored once, that kind named first."""
+    def block(part: dict) -> list[str]:
+        return ["  " + _score_line(labels.get(name, name), values)
+                for name, values in [*part["specimens"].items(), ("all", part["all"])]]
+
+    present = [(key, what) for key, what in _SAMPLES if key in result]
+    if len(present) == 2 or (present and
+                             result[present[0][0]]["all"]["n"] != result["all"]["n"]):
+        lines = []
+        for key, what in present:
+            lines += [f"{what}:", *block(result[key])]
+        return lines + ["all rows pooled (in-sample and out-of-sample together):",
+                        *block(result)]
+    if present:
+        return [f"{present[0][1]}:", *block(result)]
+    return ["scores (the predictions do not say which tests the calibration was fitted "
+            "on):", *block(result)]
+
+
+def _sample_kind(result: dict) -> str:
+    """``"out-of-sample"``, ``"in-sample"`` or ``"mixed ..."`` (both, or either with rows of
+    unknown kind): what a score's figures show, for their titles ("" when unknown)."""
+    kinds = [key for key, _ in _SAMPLES if key in result]
+    if len(kinds) == 1 and result[kinds[0]]["all"]["n"] == result["all"]["n"]:
+        return kinds[0].replace("_", "-")
+    return "mixed in-/out-of-sample" if kinds else ""
 
 
 def _score_line(name: str, values: dict) -> str:

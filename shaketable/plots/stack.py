@@ -9,6 +9,22 @@ from shaketable.plots.calcomp import describe_motion, ground_panels
 #: Colours of the contact states of an interface in the pattern band.
 STATE_COLOURS = {0: "white", 1: "tab:orange", -1: "tab:blue"}
 
+#: A block's rotation panel is scaled to its own motion, not to +-alpha, when its peak
+#: |theta| is below this fraction of its alpha (a landing's kick of 0.02 alpha would be a
+#: flat line on the +-alpha scale).
+OWN_SCALE_BELOW = 0.25
+
+
+def magnification(peak: float, span: float) -> float:
+    """A 1-2-5 factor that brings a curve of peak ``peak`` to about half of ``span`` on a
+    shared axis (1 when it already reaches a tenth of it, or never moves) [-]."""
+    if not (peak > 0.0) or peak >= 0.1 * span:
+        return 1.0
+    wanted = 0.5 * span / peak
+    decade = 10.0 ** np.floor(np.log10(wanted))
+    return float(max(step for step in (1.0, 2.0, 5.0, 10.0) if step * decade <= wanted)
+                 * decade)
+
 
 def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
     """The report's Calcomp layout (Figs. 2.8, 4.1-4.17) for a stack.
@@ -44,11 +60,19 @@ def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
         i = n - 1 - row
         block = stack.blocks[i]
         axis.plot(result.t, result.theta[:, i], color="k", lw=0.9, label=f"θ{i}")
-        for sign in (1, -1):
-            axis.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
-                         label="±α of the block" if sign > 0 else None)
         peak = float(np.max(np.abs(result.theta[:, i]), initial=0.0))
-        limit = max(1.3 * block.alpha, 1.1 * peak)
+        if 0.0 < peak < OWN_SCALE_BELOW * block.alpha:
+            # the block's own range: its +-alpha lines would be off the scale
+            limit = 1.3 * peak
+            axis.text(0.99, 0.96, f"scaled to this block's motion (peak {peak:.2g} rad = "
+                      f"{peak / block.alpha:.2g} α); ±α = ±{block.alpha:.3g} rad off scale",
+                      transform=axis.transAxes, ha="right", va="top", fontsize=7,
+                      color="tab:gray")
+        else:
+            for sign in (1, -1):
+                axis.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
+                             label="±α of the block" if sign > 0 else None)
+            limit = max(1.3 * block.alpha, 1.1 * peak)
         axis.set_ylim(-limit, limit)
         axis.set_ylabel(f"θ{i} [rad]\n{result.block_name(i)}")
         axis.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7,
@@ -96,7 +120,8 @@ def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
         lines.append(f"{result.block_name(result.overturned_block)} overturned at "
                      f"{result.t_overturn:.3f} s")
     else:
-        lines.append(f"{result.status}; peak top-corner excursion "
+        state = "still moving at the end of the run" if result.still_moving else result.status
+        lines.append(f"{state}; peak top-corner excursion "
                      f"{result.peak_excursion * 1000:.1f} mm")
     fig.suptitle("\n".join(lines), fontsize=9.5)
     fig.align_ylabels(axes)

@@ -32,6 +32,7 @@ from shaketable.plots.animation import (
     stage_unit,
     table_displacement,
 )
+from shaketable.plots.stack import magnification
 
 #: Face and line colours of the blocks, bottom first.
 _FACES = ("#c9b79c", "#9ec5e8", "#f6b98a", "#a6d8a0", "#e9a3a3", "#cdb8e0")
@@ -116,13 +117,19 @@ class _StackStage:
         self.state = stage.text(0.03, 0.97, "", transform=stage.transAxes, va="top",
                                 ha="left", fontsize=10)
         self.traces, self.dots = [], []
-        limit = 1.2
+        ratios = [result.theta[:, i] / block.alpha for i, block in enumerate(stack.blocks)]
+        peaks = [float(np.max(np.abs(ratio), initial=0.0)) for ratio in ratios]
+        limit = max([1.2] + [1.05 * peak for peak in peaks])
         for i, block in enumerate(stack.blocks):
-            ratio = result.theta[:, i] / block.alpha
+            # a block moving far less than the axis shows (a landing's kick) is drawn
+            # magnified, the factor in its label, so that its motion is seen
+            factor = magnification(peaks[i], min(limit, 4.0))
+            ratio = ratios[i] * factor
+            label = (f"θ{i}/α{i}: {result.block_name(i)}" if factor == 1.0 else
+                     f"θ{i}/α{i} × {factor:g}: {result.block_name(i)} (magnified)")
             (trace,) = history.plot(result.t, ratio, color=_LINES[i % len(_LINES)], lw=1.0,
-                                    label=f"θ{i}/α{i}: {result.block_name(i)}")
+                                    label=label)
             self.traces.append((trace, result.t, ratio))
-            limit = max(limit, 1.05 * float(np.max(np.abs(ratio), initial=0.0)))
             (dot,) = history.plot([times[0]], [ratio[self.index[0]]], "o",
                                   color=_LINES[i % len(_LINES)], ms=5)
             self.dots.append((dot, ratio))

@@ -10,7 +10,7 @@ with a ``[stack]`` section (instead of ``[block]`` and ``[rocking]``) is a
     [stack]
     blocks = ["1x0.3m", "1x0.3m", "0.8x0.2m"]    # bottom first, each HEIGHTxWIDTH<unit>
     masses = ["1 t", "1 t", "0.5 t"]            # or densities = ["2400 kg/m3", ...]; default:
-                                                # one density (masses in proportion to B H)
+                                                # 2400 kg/m^3 over 1 m of depth (concrete)
     theta0 = ["0 rad", "0 rad", "0.1 rad"]      # per block (or one value for all); "alpha":
                                                 # a multiple of that block's own alpha
     theta_dot0 = ["0 rad/s", ...]                # optional, per block
@@ -92,7 +92,8 @@ def stack_from_text(blocks, masses=None, densities=None, *, where: str = "--stac
         Each block's mass with its unit (``"400kg"``, ``"1t"``, ``"900lb"``).
     densities : str or list of str, optional
         Each block's density with its unit (``"2400kg/m3"``): the masses are in proportion
-        to density times B H (equal depths). Neither: one density for all.
+        to density times B H over 1 m of depth. Neither: 2400 kg/m^3 (concrete) over 1 m
+        of depth for all (``Stack.describe_masses``).
     where, masses_where, densities_where : str
         How an error names the three inputs (an option or a scene key).
 
@@ -205,12 +206,13 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
                      f"= {theta[k] / block.alpha:.3g} α (α = {block.alpha:.4g} rad)"
                      + (f" at t = {result.t[k]:.2f} s" if theta[k] > 0 else "")
                      + _first_moved(result, i))
+    if result.still_moving:
+        lines.append("came to rest: no, " + result.end_state())
+    lines.append(stack.describe_masses())
     uplift = next((event for event in result.events if event["kind"] == "uplift"), None)
     impacts = sum(1 for event in result.events if event["kind"] == "impact")
     if uplift is None:
-        still = not np.any(result.theta)
-        lines.append("uplift: none" + (" (the stack stood on the table)" if still else
-                                       " after the release"))
+        lines.append(_no_uplift_line(result, impacts))
     else:
         from shaketable.models.stack import pattern_name
 
@@ -235,6 +237,24 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
         lines.append(f"a contact pulls from t = {result.t_tension:.2f} s (a block would lift "
                      "off: outside the model)")
     return lines
+
+
+def _no_uplift_line(result: StackResult, impacts: int) -> str:
+    """The uplift line of a run with no uplift event: the stack stood, or only the blocks
+    released tilted rocked, or an impact opened an interface that was flat (a landing's
+    kick: "block 0 (bottom) lifted by the impact at t = 0.265 s")."""
+    if not np.any(result.theta):
+        return "uplift: none (the stack stood on the table)"
+    for event in result.events:
+        before, after = event.get("pattern_before"), event.get("pattern_after")
+        if before is None or after is None:
+            continue
+        opened = [j for j, (was, now) in enumerate(zip(before, after)) if was == 0 and now != 0]
+        if opened:
+            names = " and ".join(result.block_name(j) for j in opened)
+            return (f"no uplift of its own after the release: {names} lifted by the "
+                    f"{event['kind']} at t = {event['t']:.3f} s; {impacts} impact(s)")
+    return f"no uplift after the release (only the blocks released tilted moved); {impacts} impact(s)"
 
 
 def _first_moved(result: StackResult, i: int) -> str:

@@ -11,7 +11,7 @@ default; ``docs/stack.md``). The stacks take the place of ``[blocks]`` in the gr
     blocks = [2, 3]               # ... and this many blocks: an axis of its own (default 2)
     # columns = [["60x12in", "30x6in"]]   # or explicit columns, bottom first
     mass_ratios = [1.0, 0.5]      # optional: each block's mass over the one below's [-]
-    #                             #   (default: one density, masses as the areas B H)
+    #                             #   (default: 2400 kg/m^3 over 1 m of depth)
 
     [rocking]                     # optional for stacks
     cor = "plastic"               # the default; or numbers [-]: the constant-COR law,
@@ -313,6 +313,24 @@ def overturned_blocks(table) -> str:
             " (bottom)" if index == 0 else " (top)" if index == blocks - 1 else "")
         parts.append(f"{name} {len(rows)}")
     return ", ".join(parts)
+
+
+def overturn_answer(table) -> str:
+    """How many runs of a stack sweep overturn, the stacks and the blocks alone apart:
+    ``"23 of 40 runs overturn: 14 stacks (the block that fell: block 1 (top) 1, block 0
+    (bottom) 13) and 9 blocks alone"``."""
+    fell = table[table["overturned"].astype(bool)]
+    parts = []
+    stacks = fell[fell["blocks"].astype(int) > 1] if "blocks" in fell else fell
+    if len(stacks):
+        which = overturned_blocks(stacks)
+        parts.append(f"{len(stacks)} stack{'s' if len(stacks) != 1 else ''}"
+                     + (f" (the block that fell: {which})" if which else ""))
+    alone = len(fell) - len(stacks)
+    if alone:
+        parts.append(f"{alone} block{'s' if alone != 1 else ''} alone")
+    return (f"{len(fell)} of {len(table)} runs overturn"
+            + (": " + " and ".join(parts) if parts else ""))
 
 
 def impact_law(cor: float) -> str:

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -171,3 +172,17 @@ def read_folder(path) -> TestFolder:
     frame["pga [m/s^2]"] = pga
     frame["pgv [m/s]"] = pgv
     return result
+
+
+def specimen_labels(folder: TestFolder) -> dict[str, str]:
+    """Each specimen's name as the folder spells it for people: the ``specimens`` column's
+    spelling (``SP1`` of ``SP1+SP2``) of the lower-case name of the outcome columns
+    (``sp1_overturned``); the name itself when the column does not give it."""
+    labels = {name: name for name in folder.specimens}
+    metadata: Any = folder.metadata
+    if "specimens" in metadata.columns:
+        for value in metadata["specimens"].astype(str):
+            for part in (part.strip() for part in value.split("+")):
+                if part.lower() in labels and labels[part.lower()] == part.lower():
+                    labels[part.lower()] = part
+    return labels

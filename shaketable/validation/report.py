@@ -2,8 +2,9 @@
 
 A cheap version of ``docs/validation.md``'s calibration, run when the folder of measured
 tests is present (it is GPL-3.0 and never copied into the project) and skipped with one
-line saying why otherwise. The folder is the one named by the caller, else the
-``SHAKETABLE_PBR`` environment variable, else ``../shared/data/pbr`` beside the project.
+line saying why and how to give it otherwise. The folder is the one named by the caller,
+else the ``SHAKETABLE_PBR`` environment variable, else, when the package runs from a source
+checkout (not an installed copy), ``../shared/data/pbr`` beside that checkout.
 
 What it runs: the scan-based block (the rocks' geometry as measured), and a coarse
 calibration (symmetric blocks, :data:`SECTION_GRID`: 13 block angles at one height and one
@@ -29,15 +30,32 @@ SECTION_GRID = CandidateGrid(alphas=(0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.1, 0.
 SECTION_FOLDS, SECTION_REPEATS = 5, 3
 
 
-def data_folder(data: str | os.PathLike[str] | None = None) -> Path:
-    """The folder of measured tests: ``data``, else ``$SHAKETABLE_PBR``, else the shared
-    folder beside the project (``<project>/../shared/data/pbr``)."""
+def source_checkout(package: str | os.PathLike[str] | None = None) -> Path | None:
+    """The source checkout the package runs from (the folder holding ``pyproject.toml``
+    beside the ``shaketable`` package folder ``package``); None for an installed copy
+    (in site-packages nothing beside the package is the project's)."""
+    folder = Path(package) if package is not None else Path(__file__).resolve().parents[1]
+    root = folder.parent
+    return root if (root / "pyproject.toml").is_file() else None
+
+
+def data_folder(data: str | os.PathLike[str] | None = None, *,
+                package: str | os.PathLike[str] | None = None) -> Path | None:
+    """The folder of measured tests: ``data``, else ``$SHAKETABLE_PBR``, else
+    ``<checkout>/../shared/data/pbr`` when the package (folder ``package``, by default
+    this one) runs from a source checkout (:func:`source_checkout`); else None."""
     if data is not None:
         return Path(data)
     if os.environ.get("SHAKETABLE_PBR"):
         return Path(os.environ["SHAKETABLE_PBR"])
-    project = Path(__file__).resolve().parents[2]
-    return project.parent / "shared" / "data" / "pbr"
+    checkout = source_checkout(package)
+    return None if checkout is None else checkout.parent / "shared" / "data" / "pbr"
+
+
+#: How the section is given its folder, said when it is skipped.
+HOW_TO_GIVE = ("give the folder holding metadata.csv with `shaketable reproduce --all "
+               "--validation-data DIR`, or set the environment variable SHAKETABLE_PBR=DIR; "
+               "see docs/validation.md")
 
 
 def reproduce_section(out: str | os.PathLike[str], data: str | os.PathLike[str] | None = None,
@@ -60,9 +78,13 @@ def reproduce_section(out: str | os.PathLike[str], data: str | os.PathLike[str] 
     """
     folder_path = data_folder(data)
     heading = "## Validation against measured shake-table tests — `validation`"
+    if folder_path is None:
+        return (f"{heading}\n\nSkipped: no folder of measured tests given (none was named, "
+                f"SHAKETABLE_PBR is not set, and an installed package has no project folder "
+                f"beside it): {HOW_TO_GIVE}.\n")
     if not (folder_path / "metadata.csv").is_file():
-        return (f"{heading}\n\nSkipped: no folder of measured tests at {folder_path} (give "
-                "`--validation-data DIR` or set SHAKETABLE_PBR; see docs/validation.md).\n")
+        return (f"{heading}\n\nSkipped: no folder of measured tests at {folder_path} (no "
+                f"metadata.csv there): {HOW_TO_GIVE}.\n")
     return heading + "\n\n" + _run(folder_path, Path(out), threads)
 
 
@@ -74,7 +96,7 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
     from shaketable.plots.validation import fragility_figure, reliability_figure
     from shaketable.validation.check import cross_validate, out_of_fold
     from shaketable.validation.fit import BAGS
-    from shaketable.validation.folder import read_folder
+    from shaketable.validation.folder import read_folder, specimen_labels
     from shaketable.validation.workflow import (
         calibrate_folder,
         predict_from_geometry,
@@ -83,8 +105,9 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
 
     out = prepare_output_folder(out, "out")
     folder = read_folder(path)
+    labels = specimen_labels(folder)
     lines = [f"Measured tests read from `{path}` ({len(folder.tests)} tests, specimens "
-             f"{', '.join(folder.specimens)}; GPL-3.0, read in place). A coarse version of "
+             f"{', '.join(labels.values())}; GPL-3.0, read in place). A coarse version of "
              "docs/validation.md: symmetric blocks only (13 block angles, h 0.3 m, COR 0.9).",
              ""]
     geometry = path / "geometry.csv"
@@ -92,10 +115,11 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
         scan = score_folder(predict_from_geometry(folder, pd.read_csv(geometry),
                                                   threads=threads), folder)
         lines.append("* The block of the scans (Housner's COR per pivot, sign +1): accuracy "
-                     + ", ".join(f"{name} {values['accuracy']:.3f}"
+                     + ", ".join(f"{labels.get(name, name)} {values['accuracy']:.3f}"
                                  for name, values in scan["specimens"].items())
                      + " (always 'not overturned': "
-                     + ", ".join(f"{name} {1 - folder.outcomes(name).mean():.3f}"
+                     + ", ".join(f"{labels.get(name, name)} "
+                                 f"{1 - folder.outcomes(name).mean():.3f}"
                                  for name in scan["specimens"]) + ").")
     calibrations, overturned, candidates = calibrate_folder(folder, SECTION_GRID,
                                                             threads=threads)
@@ -104,7 +128,7 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
     held_out = []
     for name, calibration in calibrations.items():
         block = calibration.best.block
-        lines.append(f"* {name}, the most likely block: alpha {block.alpha_weak:g} rad "
+        lines.append(f"* {labels.get(name, name)}, the most likely block: alpha {block.alpha_weak:g} rad "
                      f"(effective half-width h tan(alpha) "
                      f"{1000 * block.effective_half_width():.0f} mm), link sigma "
                      f"{calibration.best.sigma:g}; training accuracy {calibration.accuracy:.3f}.")
@@ -112,7 +136,7 @@ def _run(path: Path, out: Path, threads: int | None) -> str:
         frame = cross_validate(overturned, outcomes, candidates, pgv, k=SECTION_FOLDS,
                                repeats=SECTION_REPEATS, bags=BAGS)
         for model, part in frame.groupby("model"):
-            rows.append(f"| {name} | {model} | {part['accuracy'].mean():.3f} ± "
+            rows.append(f"| {labels.get(name, name)} | {model} | {part['accuracy'].mean():.3f} ± "
                         f"{part['accuracy'].std(ddof=1):.3f} | {part['log_loss'].mean():.3f} |")
         p = out_of_fold(overturned, outcomes, candidates, k=SECTION_FOLDS, bags=BAGS)
         held_out.append(pd.DataFrame({"test": folder.tests, "specimen": name,

@@ -234,16 +234,29 @@ def score_folder(predictions, folder: TestFolder, *, pga_edges=None, ratio_edges
     return result
 
 
-def describe_calibration(calibration: Calibration) -> str:
-    """A few lines: the best block, its training accuracy and the 95 % sets."""
+#: The unit of each axis of a calibration's intervals (:data:`~shaketable.validation.fit.AXES`).
+AXIS_UNITS = {"alpha_weak": "rad", "alpha_strong": "rad", "h": "m", "half_width": "m",
+              "cor": "-", "sign": "-", "sigma": "-"}
+
+
+def axis_with_unit(axis: str) -> str:
+    """``"half_width [m]"``: an interval's axis named with its unit."""
+    unit = AXIS_UNITS.get(axis)
+    return f"{axis} [{unit}]" if unit else axis
+
+
+def describe_calibration(calibration: Calibration, label: str | None = None) -> str:
+    """A few lines: the best block, its training accuracy and the 95 % sets (each axis with
+    its unit); the specimen named ``label`` (by default the calibration's name)."""
     best = calibration.best
-    lines = [f"{calibration.specimen}: {best.block.describe()}",
+    lines = [f"{label or calibration.specimen}: {best.block.describe()}",
              f"  link: sigma {best.sigma:g} (of ln amplitude), epsilon {best.epsilon:g}; "
              f"log likelihood {calibration.log_likelihood:.2f} on {calibration.n} tests",
              f"  training accuracy of the ensemble ({len(calibration.members)} members, "
              f"in-sample) {calibration.accuracy:.3f}"]
     for axis, accepted in calibration.intervals.items():
-        lines.append(f"  95 % profile-likelihood set of {axis}: {format_set(accepted)}")
+        lines.append(f"  95 % profile-likelihood set of {axis_with_unit(axis)}: "
+                     f"{format_set(accepted)}")
     return "\n".join(lines)
 
 

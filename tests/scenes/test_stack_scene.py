@@ -79,4 +79,8 @@ def test_the_kick_comes_when_the_top_block_lands_as_a_block_alone_on_a_fixed_bas
     alone = st.simulate(top, None, cor=0.9, theta0=0.1, duration=0.3, method="reference")
     assert first["t"] == pytest.approx(alone.impact_times[0], abs=1e-9)   # 0.2648 s
     assert first["pattern_after"][0] != 0                      # the bottom block kicked
-    assert "at rest until t = 0.265 s (impact)" in "\n".join(result.lines())
+    lines = "\n".join(result.lines())
+    assert "at rest until t = 0.265 s (impact)" in lines
+    # the uplift line agrees: the landing lifted the bottom block (no "none")
+    assert "block 0 (bottom) lifted by the impact at t = 0.265 s" in lines
+    assert "uplift: none" not in lines

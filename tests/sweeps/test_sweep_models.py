@@ -385,3 +385,19 @@ def test_risk_on_stacks_leads_with_the_answer():
                         "first to fall in its 3 runs that overturned: block 1 (top) 1, "
                         "block 0 (bottom) 2")
     assert lines[2] == f"    1 block: {alone.probability:.2g}" and len(lines) == 3
+
+
+def test_the_stack_sweep_answer_keeps_the_stacks_and_the_blocks_alone_apart():
+    # six rows counted by hand: two-block stacks whose top fell once and bottom twice, a
+    # three-block stack whose middle block fell, a block alone that overturned and one
+    # run that stood
+    from shaketable.sweeps.stacks import overturn_answer
+
+    table = pd.DataFrame({"blocks": [2, 2, 2, 3, 1, 2],
+                          "overturned": [True, True, True, True, True, False],
+                          "overturned block": [1, 0, 0, 1, 0, -1]})
+    answer = overturn_answer(table)
+    assert answer.startswith("5 of 6 runs overturn: 4 stacks (the block that fell: ")
+    assert "block 1 (top) 1" in answer and "block 0 (bottom) 2" in answer
+    assert "block 1 1" in answer and answer.endswith(") and 1 block alone")
+    assert overturn_answer(table[~table["overturned"]]) == "0 of 1 runs overturn"

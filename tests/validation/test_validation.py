@@ -148,7 +148,13 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
                  str(tmp_path / "cv.csv")]) == 0
     assert (tmp_path / "verdicts.npz").is_file()
     # progress on stderr: each stage's last line at least (done/total, elapsed)
-    err = capsys.readouterr().err
+    captured = capsys.readouterr()
+    err = captured.err
+    # the intervals carry their units (alpha in rad, the heights in m, the COR in -)
+    for axis in ("alpha_weak [rad]", "half_width [m]", "h [m]", "cor [-]"):
+        assert f"95 % profile-likelihood set of {axis}: [" in captured.out
+        assert f"95 % bootstrap set of {axis}: [" in captured.out
+    assert "\nA: " in captured.out and "specimens A, B;" in captured.out
     assert f"simulating the candidates: {3 * 16 * len(LOG_SCALES)}/{3 * 16 * len(LOG_SCALES)}" \
         " runs (100 %)" in err
     assert "a cross-validation: 2/2 folds (100 %)" in err and "s elapsed" in err
@@ -184,9 +190,14 @@ def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
     assert main(["validate", "score", str(predictions), str(data), "--figures",
                  str(tmp_path / "figures")]) == 0
     printed = capsys.readouterr().out
-    assert "a: accuracy 1.000 on 16" in printed
-    in_sample, out_of_sample = printed.split("in-sample")[1].split("out-of-sample")
-    assert "  a: accuracy 1.000 on 8" in in_sample and "  a: accuracy 1.000 on 8" in out_of_sample
+    # mixed rows: the out-of-sample score leads, then the in-sample one, then all pooled;
+    # the specimens as the folder's 'specimens' column spells them (A+B), not a, b
+    assert printed.startswith("out-of-sample (tests the calibration never saw):\n"
+                              "  A: accuracy 1.000 on 8"), printed
+    out_of_sample, rest = printed.split("in-sample (tests the calibration was fitted on")
+    in_sample, pooled = rest.split("all rows pooled")
+    assert "  B: accuracy 1.000 on 8" in out_of_sample and "  A: accuracy 1.000 on 8" in in_sample
+    assert "  A: accuracy 1.000 on 16" in pooled and "  a: " not in printed
     # a calibration file that does not record its tests: in-sample or not is unknown
     for name in ("a", "b"):
         del saved["specimens"][name]["tests"]
@@ -251,12 +262,15 @@ def test_scan_based_block_scores_as_an_independent_integrator(tmp_path):
 def test_reproduce_validation_section_runs_or_skips(tmp_path):
     from shaketable.reproduce import reproduce
 
-    # absent folder: the section is one line saying why, and the report counts it as rerun
+    # absent folder: the section is one line saying why and how to give it, and the
+    # report counts it as skipped, not as rerun
     report = reproduce([], out=tmp_path / "out", progress=False,
                        extra={"validation": {"data": tmp_path / "absent"}})
     text = report.read_text()
     assert f"Skipped: no folder of measured tests at {tmp_path / 'absent'}" in text
-    assert "1 section, all rerun now." in text
+    assert "--validation-data DIR" in text and "SHAKETABLE_PBR=DIR" in text
+    assert "all rerun now" not in text
+    assert "1 section: 0 rerun now, 1 skipped (validation: its section says why" in text
     # a folder of tests with outcomes (made by a symmetric block of alpha 0.1, COR 0.9, one
     # of the section's candidates): the coarse calibration finds it and cross-validates
     amplitudes = np.linspace(0.04, 0.3, 20)
@@ -268,6 +282,33 @@ def test_reproduce_validation_section_runs_or_skips(tmp_path):
     from shaketable.validation.report import reproduce_section
 
     section = reproduce_section(tmp_path / "section", data, threads=1)
-    assert "* a, the most likely block: alpha 0.1 rad" in section
-    assert "| a | PGV threshold |" in section and "| b | calibrated |" in section
+    assert "* A, the most likely block: alpha 0.1 rad" in section
+    assert "| A | PGV threshold |" in section and "| B | calibrated |" in section
     assert (tmp_path / "section" / "reliability.png").is_file()
+
+
+def test_an_installed_package_looks_for_no_data_beside_itself(tmp_path, monkeypatch):
+    # pip puts the package in .../lib/python3.11/site-packages/shaketable: nothing beside
+    # it is the project's, so no default folder (the section says how to give one); a
+    # source checkout (pyproject.toml beside the package) has ../shared/data/pbr
+    from shaketable.validation.report import data_folder, reproduce_section
+
+    monkeypatch.delenv("SHAKETABLE_PBR", raising=False)
+    installed = tmp_path / "venv" / "lib" / "python3.11" / "site-packages" / "shaketable"
+    installed.mkdir(parents=True)
+    assert data_folder(package=installed) is None
+    checkout = tmp_path / "work" / "project"
+    (checkout / "shaketable").mkdir(parents=True)
+    (checkout / "pyproject.toml").write_text("[project]\n")
+    assert data_folder(package=checkout / "shaketable") == tmp_path / "work" / "shared" / \
+        "data" / "pbr"
+    monkeypatch.setenv("SHAKETABLE_PBR", str(tmp_path / "pbr"))
+    assert data_folder(package=installed) == tmp_path / "pbr"
+    assert data_folder(tmp_path / "given", package=installed) == tmp_path / "given"
+    monkeypatch.delenv("SHAKETABLE_PBR")
+    import shaketable.validation.report as report
+
+    monkeypatch.setattr(report, "source_checkout", lambda package=None: None)
+    section = reproduce_section(tmp_path / "section")
+    assert "Skipped: no folder of measured tests given" in section
+    assert "`shaketable reproduce --all --validation-data DIR`" in section

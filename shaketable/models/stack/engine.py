@@ -106,7 +106,8 @@ class Run:
         self.work = 0.0   # the table's work on the blocks since the start [J]
         self.atol = np.concatenate([np.full(self.n, rtol * scale),
                                     np.full(self.n, rtol * scale * stack.p_max),
-                                    [rtol * stack.weight * float(np.hypot(stack.b, stack.h).max())]])
+                                    [rtol * float(G * stack.m.sum())
+                                     * float(np.hypot(stack.b, stack.h).max())]])
         self.t = motion.t
         self.ug = motion.horizontal
         self.vg = motion.vertical_or_zero
@@ -123,7 +124,7 @@ class Run:
         self.rest_until = -math.inf
         self.steps = self.evaluations = 0
         self.stalled = 0
-        self.energy_reference = stack.weight * float(np.hypot(stack.b, stack.h).max())
+        self.energy_reference = float(G * stack.m.sum()) * float(np.hypot(stack.b, stack.h).max())
 
     # ----------------------------------------------------------------- records
     def record(self, time, kind, interface=-1, before=None, after=None, **values) -> None:

@@ -12,6 +12,14 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import Block
 from shaketable.core.validation import number
 
+#: The density a stack's blocks are given when no masses are [kg/m^3]: concrete, as the
+#: report's shielding blocks are.
+DEFAULT_DENSITY = 2400.0
+
+#: The out-of-plane depth of every block of a stack given no masses [m]: forces and
+#: energies are then per metre of depth (the planar model's own measure).
+DEFAULT_DEPTH = 1.0
+
 #: Most blocks in one stack (the patterns are enumerated: 3^n candidates at an event).
 MAX_BLOCKS = 10
 
@@ -27,8 +35,9 @@ class Stack:
         be wider than it (an overhanging upper block would pivot on the lower block's top
         corner, which this model does not describe). Prestress rods are not offered.
     masses : sequence of float, optional
-        Mass of each block [kg] (only the ratios enter the motion). By default proportional
-        to the blocks' areas (one density).
+        Mass of each block [kg] (only the ratios enter the motion). By default
+        :data:`DEFAULT_DENSITY` (2400 kg/m^3, concrete) over :data:`DEFAULT_DEPTH` (1 m)
+        times the block's area B H: forces [N] and energies [J] per metre of depth.
 
     Notes
     -----
@@ -110,10 +119,36 @@ class Stack:
 
     @property
     def m(self) -> np.ndarray:
-        """Masses [kg] (the areas B H when none were given)."""
+        """The masses the equations of motion use: the given ones [kg], or the areas B H
+        [m^2] when none were given (only their ratios enter the motion; times
+        :attr:`mass_scale` they are the masses in kg, :attr:`mass`)."""
         if self.masses is None:
             return np.array([block.width * block.height for block in self.blocks])
         return np.array(self.masses, dtype=float)
+
+    @property
+    def mass_scale(self) -> float:
+        """:attr:`mass` over :attr:`m` [kg per unit of m]: 1 for given masses, else
+        :data:`DEFAULT_DENSITY` times :data:`DEFAULT_DEPTH` [kg/m^2] (forces, work and
+        energies of a run are scaled by it; the motion is not)."""
+        return 1.0 if self.masses is not None else DEFAULT_DENSITY * DEFAULT_DEPTH
+
+    @property
+    def mass(self) -> np.ndarray:
+        """Each block's mass [kg], bottom first: the given masses, else
+        :data:`DEFAULT_DENSITY` x :data:`DEFAULT_DEPTH` x B H."""
+        return self.m * self.mass_scale
+
+    def describe_masses(self) -> str:
+        """Which masses the run used, in words: ``"masses: uniform density, assumed 2400
+        kg/m^3 (concrete) over 1 m of depth: 0.279, 0.279 kg (forces and energies per metre
+        of depth)"`` or ``"masses: 400, 200 kg (given)"``."""
+        values = ", ".join(f"{mass:.4g}" for mass in self.mass)
+        if self.masses is not None:
+            return f"masses: {values} kg (given, bottom first)"
+        return (f"masses: uniform density, assumed {DEFAULT_DENSITY:g} kg/m^3 (concrete) over "
+                f"{DEFAULT_DEPTH:g} m of depth: {values} kg, bottom first (forces and "
+                "energies per metre of depth; give masses or densities for yours)")
 
     @property
     def p_max(self) -> float:
@@ -127,8 +162,8 @@ class Stack:
 
     @property
     def weight(self) -> float:
-        """Total weight [N] (g times the sum of the masses)."""
-        return float(G * self.m.sum())
+        """Total weight [N] (g times the sum of the masses, :attr:`mass`)."""
+        return float(G * self.mass.sum())
 
     def describe(self) -> str:
         """``"2 blocks: 30 x 6 in on 30 x 6 in"``-like text, top first."""

@@ -125,12 +125,15 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
                     theta_dot0=theta_dot0, rtol=rtol, rest_tolerance=rest,
                     max_recorded_events=int(max_recorded_events))
     run = out["run"]
+    # the motion uses the masses' ratios only; forces, work and energies are in kg units
+    scale = stack.mass_scale
+    events = tuple(_scaled_energies(event, scale) for event in run.events)
     result = StackResult(
         stack=stack, motion=motion, impact=impact, cor=math.nan if cor is None else cor,
         t=motion.t[:out["filled"]].copy(), theta=out["theta"], theta_dot=out["rate"],
-        theta_ddot=out["acceleration"], patterns=out["patterns"], forces=out["forces"],
-        work=out["work"],
-        events=tuple(run.events), status=run.status, t_overturn=run.t_overturn,
+        theta_ddot=out["acceleration"], patterns=out["patterns"],
+        forces=out["forces"] * scale, work=out["work"] * scale, events=events,
+        status=run.status, t_overturn=run.t_overturn,
         overturned_block=run.overturned_block, t_airborne=run.t_airborne,
         n_events=run.n_events, statistics={"steps": run.steps, "evaluations": run.evaluations})
     if not math.isnan(result.t_tension):
@@ -144,6 +147,14 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
                       "there, the model (no slip) is outside its assumptions",
                       StackFrictionWarning, stacklevel=_user_stacklevel())
     return result
+
+
+def _scaled_energies(event: dict, scale: float) -> dict:
+    """An event with its energies [J] in the stack's masses (:attr:`Stack.mass_scale`)."""
+    if scale == 1.0:
+        return event
+    return {key: value * scale if key in ("energy_before", "energy_after") else value
+            for key, value in event.items()}
 
 
 def _per_block(name: str, values, n: int) -> np.ndarray:

@@ -162,10 +162,43 @@ class StackResult(ModelResult):
         times): the clearance the stack needs."""
         return float(np.abs(self.top_corner_excursion).max()) if self.t.size else 0.0
 
+    @property
+    def still_moving(self) -> bool:
+        """Whether the run ended (``status == "completed"``) with some block not at rest
+        (a rotation or rate not zero at the last output time): as the single block says,
+        "still moving at the end of the run"."""
+        if self.status != "completed" or not self.t.size:
+            return False
+        return bool(np.any(self.theta[-1]) or np.any(self.theta_dot[-1]))
+
+    @property
+    def past_alpha_at_end(self) -> tuple[int, ...]:
+        """The blocks whose |θ| at the end of a completed run exceeds their own alpha (past
+        their static stability: gravity alone no longer pulls them back) [index]."""
+        if self.status != "completed" or not self.t.size:
+            return ()
+        alphas = np.array([block.alpha for block in self.stack.blocks])
+        return tuple(int(i) for i in np.flatnonzero(np.abs(self.theta[-1]) > alphas))
+
+    def end_state(self) -> str:
+        """How the run ends when the stack is still moving, in the single block's words:
+        "still moving at the end of the run (t = 0.60 s); block 0 (bottom), block 1 (top)
+        past α (|θ| > α, beyond static stability)"; "" when it ended at rest, overturned
+        or stopped early."""
+        if not self.still_moving:
+            return ""
+        words = f"still moving at the end of the run (t = {self.t[-1]:.2f} s)"
+        past = self.past_alpha_at_end
+        if past:
+            words += ("; " + ", ".join(self.block_name(i) for i in past)
+                      + " past α (|θ| > α, beyond static stability)")
+        return words
+
     def verdict(self) -> str:
         """The run in words, as the other models' results say it: "block 0 (bottom) overturned
         at 3.99 s" (blocks numbered from 0 at the bottom, :meth:`block_name`), "rocked:
-        max |θ| = 0.012, 0.030 rad (bottom to top)", "stayed at rest", or
+        max |θ| = 0.012, 0.030 rad (bottom to top)" (followed by :meth:`end_state` when
+        the run ends with the stack still moving), "stayed at rest", or
         the time a block would leave its support (outside the model: the run stops there)."""
         if self.status == "overturned":
             return (f"{self.block_name(self.overturned_block)} overturned at "
@@ -176,8 +209,10 @@ class StackResult(ModelResult):
         peaks = np.abs(self.theta).max(axis=0) if self.t.size else np.zeros(self.n_blocks)
         if not peaks.any():
             return "stayed at rest"
-        return ("rocked: max |θ| = " + ", ".join(f"{peak:.3g}" for peak in peaks)
-                + " rad (bottom to top)")
+        words = ("rocked: max |θ| = " + ", ".join(f"{peak:.3g}" for peak in peaks)
+                 + " rad (bottom to top)")
+        end = self.end_state()
+        return words + ("; " + end if end else "")
 
     # ------------------------------------------------------------------ views
     @property
@@ -189,8 +224,8 @@ class StackResult(ModelResult):
         chain = Chain.of(self.stack)
         phi = np.diff(self.theta, axis=1, prepend=0.0)
         rate = np.diff(self.theta_dot, axis=1, prepend=0.0)
-        return np.array([sum(energy(chain, phi[k], rate[k], self.patterns[k]))
-                         for k in range(self.t.size)])
+        return self.stack.mass_scale * np.array(
+            [sum(energy(chain, phi[k], rate[k], self.patterns[k])) for k in range(self.t.size)])
 
     def to_frame(self) -> pd.DataFrame:
         columns: dict[str, Any] = {"t [s]": self.t}
@@ -238,7 +273,11 @@ class StackResult(ModelResult):
         finite = np.isfinite(self.friction_demand)
         slip = self.t_friction_exceeded(PLAUSIBLE_FRICTION)
         return {"blocks": int(self.n_blocks), "impact law": str(self.impact),
+                "masses [kg]": [float(mass) for mass in self.stack.mass],
+                "masses": self.stack.describe_masses(),
                 "status": str(self.status),
+                "still moving at the end": self.still_moving,
+                "past alpha at the end": [self.block_name(i) for i in self.past_alpha_at_end],
                 "t_start [s]": float(first_uplift),
                 "t_overturn [s]": float(self.t_overturn),
                 "overturned block": int(self.overturned_block),

@@ -1,6 +1,7 @@
 """The stack's Calcomp figure: a panel per ground channel, one per block, the pattern band."""
 
 import numpy as np
+import pytest
 
 import shaketable as st
 from shaketable.models.stack import Stack, simulate_stack
@@ -26,3 +27,36 @@ def test_the_docs_number_the_blocks_as_the_figure_and_the_verdict_do():
     text = (Path(__file__).parents[3] / "docs" / "stack.md").read_text(encoding="utf-8")
     assert '"block 0 (bottom)"' in text and '"block 1 (top)"' in text
     assert '"block 0 (bottom) overturned at 3.99 s"' in text
+
+
+def test_a_small_kick_is_drawn_on_its_own_scale():
+    # the top block (0.8 x 0.2 m) released at 0.1 rad lands at 0.265 s and kicks the
+    # bottom one (1 x 0.3 m, alpha = atan(0.15 / 0.5) = 0.2915 rad) by a few mrad: on the
+    # +-1.3 alpha scale that is a flat line, so its panel takes its own range
+    from shaketable.plots.stack import magnification
+    from shaketable.plots.stack_animation import _StackStage
+
+    stack = Stack([st.Block(1.0, 0.3), st.Block(0.8, 0.2)], masses=(1000.0, 1000.0))
+    result = simulate_stack(stack, theta0=(0.0, 0.1), duration=0.5)
+    peak = float(np.abs(result.theta[:, 0]).max())
+    alpha = np.arctan(0.15 / 0.5)
+    assert 0.0 < peak < 0.05 * alpha
+    fig = result.plot()
+    bottom = next(a for a in fig.axes if a.get_ylabel().startswith("θ0 [rad]"))
+    top = next(a for a in fig.axes if a.get_ylabel().startswith("θ1 [rad]"))
+    assert bottom.get_ylim()[1] == pytest.approx(1.3 * peak)     # its own range
+    assert "off scale" in " ".join(text.get_text() for text in bottom.texts)
+    assert top.get_ylim()[1] == pytest.approx(1.3 * np.arctan(0.1 / 0.4))   # +-1.3 alpha
+    pyplot().close(fig)
+    # the animation's shared theta/alpha axis magnifies it by a 1-2-5 factor: on the
+    # +-1.2 axis a peak of 0.02 alpha wants 0.6 / 0.02 = 30, i.e. 20
+    assert magnification(0.02, 1.2) == 20.0 and magnification(0.5, 1.2) == 1.0
+    assert magnification(0.0, 1.2) == 1.0
+    stage = _StackStage(result, np.array([0.0, 0.25, 0.5]), 0.1, size=(1000, 500), dpi=100,
+                        unit=None, title=None)
+    figure = stage.fig
+    labels = [line.get_label() for axis in figure.axes for line in axis.get_lines()]
+    factor = magnification(peak / alpha, 1.2)
+    assert f"θ0/α0 × {factor:g}: block 0 (bottom) (magnified)" in labels
+    assert stage.traces[0][2].max() == pytest.approx(factor * result.theta[:, 0].max() / alpha)
+    pyplot().close(figure)

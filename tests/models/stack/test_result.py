@@ -68,8 +68,8 @@ def test_a_tensile_contact_is_reported_with_a_warning():
 
 def _plain(value) -> bool:
     if isinstance(value, list):
-        return all(type(item) is float for item in value)
-    return type(value) in (int, float, str)
+        return all(type(item) in (float, str) for item in value)
+    return type(value) in (bool, int, float, str)
 
 
 def test_the_summary_holds_plain_python_values_and_the_no_slip_check(rocking):
@@ -119,8 +119,10 @@ def test_the_verdict_says_what_the_run_did(rocking):
     # rocking: the peaks quoted are the run's own max |theta|, bottom block first
     peaks = np.abs(rocking.theta).max(axis=0)
     assert rocking.status == "completed" and peaks.any()
+    # the sine still drives the stack at the run's end: not at rest, said so
+    assert rocking.still_moving
     assert rocking.verdict() == ("rocked: max |θ| = " + ", ".join(f"{p:.3g}" for p in peaks)
-                                 + " rad (bottom to top)")
+                                 + " rad (bottom to top); " + rocking.end_state())
     # overturning: a constant table acceleration of 2 g topples a 4:1 column one way
     slender = Stack([st.Block(1.0, 0.25), st.Block(1.0, 0.25)])
     t = np.arange(0.0, 3.0, 0.01)
@@ -128,3 +130,50 @@ def test_the_verdict_says_what_the_run_did(rocking):
     assert fallen.status == "overturned"
     name = ["block 0 (bottom)", "block 1 (top)"][fallen.overturned_block]
     assert fallen.verdict() == f"{name} overturned at {fallen.t_overturn:.2f} s"
+
+
+def test_a_stack_cut_while_falling_is_said_to_be_still_moving():
+    # released at 1.5 alpha on a table at rest, a block (and a stack moving as one body)
+    # moves outward: theta'' = p^2 (theta - alpha) > 0 for theta > alpha (Eq. 2-3 with the
+    # table at rest), so |theta| only grows: at the end of a short run it is past alpha,
+    # not at rest, and the verdict must say so as the single block's does
+    stack = Stack([st.Block(1.0, 0.1), st.Block(1.0, 0.1)])
+    alpha = stack.blocks[0].alpha
+    result = simulate_stack(stack, theta0=(1.5 * alpha, 1.5 * alpha), duration=0.05)
+    assert result.status == "completed" and result.still_moving
+    assert result.past_alpha_at_end == (0, 1)
+    assert "still moving at the end of the run (t = 0.05 s)" in result.verdict()
+    assert "block 0 (bottom), block 1 (top) past α" in result.verdict()
+    summary = result.summary()
+    assert summary["still moving at the end"] is True
+    assert summary["past alpha at the end"] == ["block 0 (bottom)", "block 1 (top)"]
+    # a stack standing still (no motion: nothing moves it) is not
+    still = simulate_stack(stack, duration=0.05)
+    assert not still.still_moving and still.end_state() == "" and still.verdict() == "stayed at rest"
+
+
+def test_default_masses_are_concrete_per_metre_of_depth():
+    # no masses given: 2400 kg/m^3 (concrete) over 1 m of depth, m_i = 2400 B_i H_i [kg];
+    # at rest on a table accelerating 0.5 m/s^2 up and across, the base carries the whole
+    # weight, N_0 = (m_0 + m_1) (g + v'') [N] (statics), the interface m_1 (g + v'')
+    stack = Stack([st.Block(1.0, 0.3), st.Block(0.8, 0.2)])
+    masses = 2400.0 * np.array([0.3 * 1.0, 0.2 * 0.8])
+    assert np.allclose(stack.mass, masses, rtol=1e-15)
+    assert stack.weight == pytest.approx(G * masses.sum(), rel=1e-15)
+    result = simulate_stack(stack, st.Motion([0.0, 1.0], [0.5, 0.5], [0.5, 0.5]))
+    assert np.allclose(result.forces[:, 0, 0], masses.sum() * (G + 0.5), rtol=1e-12)
+    assert np.allclose(result.forces[:, 1, 0], masses[1] * (G + 0.5), rtol=1e-12)
+    summary = result.summary()
+    assert summary["masses [kg]"] == pytest.approx(list(masses), rel=1e-15)
+    assert summary["masses"].startswith("masses: uniform density, assumed 2400 kg/m^3")
+    assert "1 m of depth" in summary["masses"]
+    # the motion depends on the mass ratios only: the same run with the areas given as
+    # masses moves bit for bit alike, its forces 2400 times smaller
+    t = np.arange(0.0, 0.6, 0.01)
+    motion = st.Motion(t, 4.0 * np.sin(9.0 * t), name="sine")
+    default = simulate_stack(stack, motion)
+    areas = simulate_stack(Stack(stack.blocks, masses=tuple(stack.m)), motion)
+    assert np.array_equal(default.theta, areas.theta)
+    assert np.allclose(default.forces, 2400.0 * areas.forces, rtol=1e-13, atol=0.0)
+    assert np.allclose(default.energy, 2400.0 * areas.energy, rtol=1e-12)
+    assert "(given, bottom first)" in areas.summary()["masses"]
