@@ -738,7 +738,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
                     rest_tolerance, cor, 0.0 if law == "plastic" else 1.0])
     n = chain.n
     atol = np.concatenate([np.full(n, rtol * scale), np.full(n, rtol * scale * stack.p_max),
-                           [rtol * stack.weight * float(np.hypot(stack.b, stack.h).max())]])
+                           [rtol * float(G * stack.m.sum()) * float(np.hypot(stack.b, stack.h).max())]])
     phi = np.diff(np.asarray(theta0, dtype=float), prepend=0.0)
     phi_dot = np.diff(np.asarray(theta_dot0, dtype=float), prepend=0.0)
     pattern = np.array(pattern_of(phi, phi_dot), dtype=np.int64)
