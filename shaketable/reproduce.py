@@ -8,7 +8,7 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from shaketable.core.files import subfolder, write_csv
+from shaketable.core.files import subfolder, write_csv, write_gallery
 from shaketable.scenes.catalog import expected_cost, resolve_scene_path, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
@@ -471,31 +471,6 @@ def _contents(order: list[str], sections: list[str],
                          "version, which do not list them: rerun those sections)")
         lists.append("")
     return cleaned, lists, contents + [""]
-
-
-def write_gallery(out: str | os.PathLike[str]) -> Path:
-    """Write ``out/gallery.md``: every figure (PNG) under ``out``, one heading per scene.
-
-    The page a reader scans to look at every figure of a reproduction at once
-    (``shaketable reproduce --all --out FOLDER`` writes it beside report.md).
-    """
-    out = Path(out)
-    lines = ["# Gallery: every figure of the reproduction", "",
-             "Written by `shaketable reproduce --all --out FOLDER` beside `report.md`; "
-             "each figure is discussed in the report's section of the same scene.", ""]
-    for folder in sorted((path for path in out.iterdir() if path.is_dir()),
-                         key=lambda path: [int(part) if part.isdigit() else part
-                                           for part in path.name.replace("-", " ").split()]):
-        figures = sorted(folder.glob("*.png"))
-        if not figures:
-            continue
-        lines += [f"## `{folder.name}`", ""]
-        lines += [f"![{folder.name}/{figure.name}]({folder.name}/{figure.name})"
-                  for figure in figures]
-        lines.append("")
-    from shaketable.core.files import write_text
-
-    return write_text(out / "gallery.md", "\n".join(lines))
 
 
 def _markdown(frame) -> str:

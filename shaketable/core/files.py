@@ -424,3 +424,26 @@ def folder_lock(folder, what: str = "output folder"):
             fcntl.flock(handle, fcntl.LOCK_UN)
     finally:
         os.close(handle)
+
+
+def write_gallery(out: str | os.PathLike[str]) -> Path:
+    """Write ``out/gallery.md``: every figure (PNG) under ``out``, one heading per scene.
+
+    The page a reader scans to look at every figure of a reproduction at once
+    (``shaketable reproduce --all --out FOLDER`` writes it beside report.md).
+    """
+    out = Path(out)
+    lines = ["# Gallery: every figure of the reproduction", "",
+             "Written by `shaketable reproduce --all --out FOLDER` beside `report.md`; "
+             "each figure is discussed in the report's section of the same scene.", ""]
+    for folder in sorted((path for path in out.iterdir() if path.is_dir()),
+                         key=lambda path: [int(part) if part.isdigit() else part
+                                           for part in path.name.replace("-", " ").split()]):
+        figures = sorted(folder.glob("*.png"))
+        if not figures:
+            continue
+        lines += [f"## `{folder.name}`", ""]
+        lines += [f"![{folder.name}/{figure.name}]({folder.name}/{figure.name})"
+                  for figure in figures]
+        lines.append("")
+    return write_text(out / "gallery.md", "\n".join(lines))
