@@ -74,8 +74,9 @@ def rods(value: object, where: str, key: str, error: type = ValueError) -> Prest
 
 def sized_block(text: object, where: str, key: str, rods: PrestressRods | None = None,
                 error: type = ValueError) -> Block:
-    """The block of a size text ``"30x6in"`` (:meth:`Block.parse`, labelled in its unit);
-    the message names ``key``: ``"WHERE: block.size '0x6in': the height ... positive"``."""
+    """The block of a size text such as ``"30x6in"`` (:meth:`Block.parse`), labelled in its
+    unit; an error message names ``key`` (``"WHERE: block.size '0x6in': the height must be
+    positive"``)."""
     try:
         return Block.parse(text, rods=rods)   # type: ignore[arg-type]
     except (ValueError, TypeError) as problem:

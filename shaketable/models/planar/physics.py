@@ -398,10 +398,12 @@ def flat_landing(x_dot, y_dot, mu_s, mu_d):
 
 @njit(**HELPER)
 def flat_impulses_push(moment, total, parameters):
-    """Whether both corners push when the base lands flat: with the normal impulses P_+
-    at -b_+ and P_- at +b_- from the centre's foot, their sum ``total`` and the angular
-    impulse they must supply about the centre, -``moment`` (moment = Ic theta'- + h F),
-    P_+ = (b_- total + moment) / (b_+ + b_-) must lie in [0, total]."""
+    """Whether both corners push when the base lands flat.
+
+    With the normal impulses ``P+`` at ``-b+`` and ``P-`` at ``+b-`` from the centre's foot,
+    their sum ``total`` and the angular impulse they must supply about the centre,
+    ``-moment`` (``moment = Ic theta'- + h F``), ``P+ = (b- total + moment) / (b+ + b-)``
+    must lie in [0, total]."""
     return -parameters[HALF_WIDTH_MINUS] * total <= moment <= parameters[HALF_WIDTH] * total
 
 

@@ -403,9 +403,10 @@ def plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws
 @compiled
 def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, phi_dot_after,
                    pattern_after):
-    """The plastic, no-slip multi-contact law (:func:`~shaketable.models.stack.impact.
-    plastic_impact`): post-impact phi' and pattern into the arrays given; returns the number
-    of admissible active sets. ``closed``: an interface held flat, or -1."""
+    """The plastic, no-slip multi-contact law, compiled
+    (:func:`~shaketable.models.stack.impact.plastic_impact`): post-impact phi' and pattern
+    into the arrays given; returns the number of admissible active sets. ``closed``: an
+    interface held flat, or -1."""
     b, h, m = chain[0], chain[1], chain[2]
     n = m.size
     theta, theta_dot = np.empty(n), np.empty(n)
