@@ -218,6 +218,26 @@ def ffmpeg_available() -> bool:
     return shutil.which(str(matplotlib.rcParams["animation.ffmpeg_path"])) is not None
 
 
+
+def output_file(out) -> tuple[Path, str]:
+    """The file an animation is written to, and a note when it is not the one asked for.
+
+    ``out`` must end in ``.gif`` or ``.mp4`` (or have no suffix: an MP4); an MP4 becomes a
+    GIF, with the note saying why, when ffmpeg is not found.
+    """
+    out = Path(out)
+    note = ""
+    suffix = out.suffix.lower()
+    if suffix not in (".gif", ".mp4", ""):
+        raise ValueError(f"out must be a .gif or .mp4 file, got {str(out)!r}")
+    if suffix in (".mp4", "") and not ffmpeg_available():
+        if suffix == ".mp4":
+            note = "ffmpeg was not found, so the animation is a GIF instead of an MP4"
+        out = out.with_suffix(".gif")
+    elif suffix == "":
+        out = out.with_suffix(".mp4")
+    return out, note
+
 def stage_unit(blocks: Sequence[Block]) -> str:
     """The length unit the stage is drawn in: the unit of the first block's label
     (``"6 x 2 ft"`` -> ft) when it is one of :data:`STAGE_UNITS`, else metres."""
@@ -598,17 +618,7 @@ def animate(result: RockingResult | Sequence[RockingResult], block: Block | None
                          "layout='overlay' or fewer")
     width, height = _size(size, dpi)
     width, height = width - width % 2, height - height % 2  # even: the MP4 codec needs it
-    out = Path(out)
-    note = ""
-    suffix = out.suffix.lower()
-    if suffix not in (".gif", ".mp4", ""):
-        raise ValueError(f"out must be a .gif or .mp4 file, got {str(out)!r}")
-    if suffix in (".mp4", "") and not ffmpeg_available():
-        if suffix == ".mp4":
-            note = "ffmpeg was not found, so the animation is a GIF instead of an MP4"
-        out = out.with_suffix(".gif")
-    elif suffix == "":
-        out = out.with_suffix(".mp4")
+    out, note = output_file(out)
     t_first = min(float(run.t[0]) for run in results) if start is None else float(start)
     t_last = max(float(run.t[-1]) for run in results)
     t_last = t_last if end is None else min(float(end), t_last)

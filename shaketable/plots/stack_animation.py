@@ -26,8 +26,8 @@ from shaketable.plots.animation import (
     STAGE_UNITS,
     AnimationFile,
     checked_size,
-    ffmpeg_available,
     frame_times,
+    output_file,
     render_frames,
     stage_unit,
     table_displacement,
@@ -217,17 +217,7 @@ def animate_stack(result, *, out: str | os.PathLike[str], fps: float = DEFAULT_F
         raise ValueError(f"unit must be one of {', '.join(STAGE_UNITS)}, got {unit!r}")
     width, height = checked_size(size, dpi)
     width, height = width - width % 2, height - height % 2
-    out = Path(out)
-    note = ""
-    suffix = out.suffix.lower()
-    if suffix not in (".gif", ".mp4", ""):
-        raise ValueError(f"out must be a .gif or .mp4 file, got {str(out)!r}")
-    if suffix in (".mp4", "") and not ffmpeg_available():
-        if suffix == ".mp4":
-            note = "ffmpeg was not found, so the animation is a GIF instead of an MP4"
-        out = out.with_suffix(".gif")
-    elif suffix == "":
-        out = out.with_suffix(".mp4")
+    out, note = output_file(out)
     t_first = float(result.t[0]) if start is None else float(start)
     t_last = float(result.t[-1]) if end is None else min(float(end), float(result.t[-1]))
     times = frame_times(t_first, t_last, fps, speed, max_frames)

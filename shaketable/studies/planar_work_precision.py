@@ -307,13 +307,13 @@ def method_settings(quick: bool = False) -> list[tuple[str, str, dict[str, Any]]
             + [("planar-reference", f"rtol={r:g}", {"rtol": r}) for r in reference])
 
 
-def _timed(run: Callable[[], Any], method: str, repeats: int) -> tuple[Any, float]:
-    """The result of ``run`` and its median wall time [s]; the compiled engine gets an
-    untimed first call (numba cache load) and ``repeats`` timed ones, the SciPy reference
-    one (each call is a tenth of a second or more; the rocking study's ``reference`` too)."""
-    if method == "planar":
+def timed(run: Callable[[], Any], compiled: bool, repeats: int) -> tuple[Any, float]:
+    """The result of ``run`` and its median wall time [s]; a compiled engine gets an
+    untimed first call (numba cache load) and ``repeats`` timed ones, a SciPy engine one
+    (each call is a tenth of a second or more; the rocking study's ``reference`` too)."""
+    if compiled:
         run()
-    count = max(1, repeats) if method == "planar" else 1
+    count = max(1, repeats) if compiled else 1
     times, result = [], None
     for _ in range(count):
         start = time.perf_counter()
@@ -355,7 +355,7 @@ def rocking_limit_rows(case: Case, truth, settings=None, repeats: int = 5,
             return run_planar(method, case.block, case.motion, cor=case.cor,
                               friction=friction, theta0=case.theta0,
                               duration=case.duration, rtol=options.get("rtol"))
-        result, seconds = _timed(run, method, repeats)
+        result, seconds = timed(run, method == "planar", repeats)
         errors = compare(rocking_view(result, case.theta0), truth)
         row = _row(case.name, method, label, options, seconds, errors, result, truth,
                    "reference", truth_rtol)
@@ -422,7 +422,7 @@ def planar_work_precision(cases: Sequence[PlanarCase] | None = None,
         for method, label, options in settings:
             def run(case=case, method=method, options=options):
                 return case.run(method, rtol=options.get("rtol"))
-            result, seconds = _timed(run, method, repeats)
+            result, seconds = timed(run, method == "planar", repeats)
             rows.append(_row(case.name, method, label, options, seconds,
                              compare_planar(result, truth), result, truth,
                              "planar-reference", PLANAR_TRUTH_RTOL))

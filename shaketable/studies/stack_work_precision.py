@@ -16,7 +16,6 @@ Nothing here is a pass/fail test; the functions measure and return pandas frames
 from __future__ import annotations
 
 import math
-import time
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -26,6 +25,7 @@ import numpy as np
 
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.studies.planar_work_precision import timed
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -105,21 +105,6 @@ def method_settings(quick: bool = False) -> list[tuple[str, str, dict[str, Any]]
             + [("stack-reference", f"rtol={r:g}", {"rtol": r}) for r in reference])
 
 
-def _timed(run: Callable[[], Any], method: str, repeats: int) -> tuple[Any, float]:
-    """The result of ``run`` and its median wall time [s]: the compiled engine gets an
-    untimed first call (the numba cache load) and ``repeats`` timed ones, the Python
-    engine one."""
-    if method == "stack":
-        run()
-    count = max(1, repeats) if method == "stack" else 1
-    times, result = [], None
-    for _ in range(count):
-        start = time.perf_counter()
-        result = run()
-        times.append(time.perf_counter() - start)
-    return result, float(np.median(times))
-
-
 def stack_work_precision(cases: Sequence[StackCase] | None = None,
                          settings: Sequence[tuple[str, str, dict[str, Any]]] | None = None,
                          repeats: int = 5,
@@ -154,8 +139,8 @@ def stack_work_precision(cases: Sequence[StackCase] | None = None,
             progress(case.name)
         truth = case.run("stack-reference", STACK_TRUTH_RTOL)
         for method, label, options in settings:
-            result, seconds = _timed(lambda: case.run(method, options["rtol"]), method,
-                                     repeats)
+            result, seconds = timed(lambda: case.run(method, options["rtol"]), method == "stack",
+                                    repeats)
             rows.append({"case": case.name, "method": method, "setting": label,
                          "rtol": options["rtol"], "subdivisions": math.nan,
                          "time [s]": seconds, **compare_stack(result, truth),
