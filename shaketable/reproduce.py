@@ -127,7 +127,9 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
 
     out = prepare_output_folder(out, "out")
     names = list(names)
-    bar = _ProgressBar(names) if progress else None
+    extra = extra or {}
+    # the bar counts the report's sections: the scenes, then the extra sections
+    bar = _ProgressBar(names + list(extra)) if progress else None
 
     def record(name, section, counts, failed):
         if failed and failures is not None:
@@ -143,10 +145,11 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         try:
             for name in names:
                 record(name, *_scene_outcome(name, out))
+            extras = _extra_sections(out, extra, failures, bar)
         finally:
             if bar is not None:
                 bar.close()
-        return _assemble(out, rerun=names + _extra_sections(out, extra or {}, failures))
+        return _assemble(out, rerun=names + extras)
     # Scenes in processes of their own (each a fresh interpreter, numba's cache loaded
     # once per process); a scene's outputs do not depend on the process it runs in, and
     # the report is assembled in the catalogue's order whatever the order of completion.
@@ -176,16 +179,21 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
                 record(name, *outcome)
         except BaseException:  # Ctrl-C or a scene's crash: start no further scene
             pool.shutdown(wait=False, cancel_futures=True)
-            raise
-        finally:
             if bar is not None:
                 bar.close()
+            raise
+    try:
+        extras = _extra_sections(out, extra, failures, bar)
+    finally:
+        if bar is not None:
+            bar.close()
     if failures is not None:   # in the catalogue's order, whatever the order of completion
         failures.sort(key=lambda name: names.index(name) if name in names else len(names))
-    return _assemble(out, rerun=names + _extra_sections(out, extra or {}, failures))
+    return _assemble(out, rerun=names + extras)
 
 
-def _extra_sections(out: Path, extra: dict, failures: list | None) -> list[str]:
+def _extra_sections(out: Path, extra: dict, failures: list | None,
+                    bar: _ProgressBar | None = None) -> list[str]:
     """Run the sections of :data:`EXTRA_SECTIONS` named in ``extra``; their names."""
     import importlib
 
@@ -209,17 +217,20 @@ def _extra_sections(out: Path, extra: dict, failures: list | None) -> list[str]:
             write_text(marker, "skipped\n")
         elif marker.exists():
             marker.unlink()
+        if bar is not None:
+            bar.done(name)
     return list(extra)
 
 
 class _ProgressBar:
-    """A progress bar (tqdm, on stderr) that counts scenes and moves by their expected cost.
+    """A progress bar (tqdm, on stderr) that counts sections and moves by their expected cost.
 
     The scenes differ 50-fold in cost and the longest run first: a bar that moved one
     step per scene would estimate the time left from the slowest scenes (and the first
     compile) and say minutes for a job of seconds. This one's fraction and estimate are
     of the expected CPU done (:func:`~shaketable.scenes.catalog.expected_cost`, in hundredths of a second, at
-    least 0.1 s a scene); it shows the scenes done as ``12/45 scenes``.
+    least 0.1 s a scene); it shows the report's sections done (the scenes, then the
+    :data:`EXTRA_SECTIONS` run) as ``12/49 sections``, the count the report's headline gives.
     """
 
     def __init__(self, names: list[str]) -> None:
@@ -232,14 +243,14 @@ class _ProgressBar:
         self.finished = 0
         # the scenes done in the description: tqdm puts ", " before a postfix
         self.tqdm: Any = tqdm(total=sum(self.costs[name] for name in names),  # repeats too
-                              desc=f"0/{self.scenes} scenes",
+                              desc=f"0/{self.scenes} sections",
                               bar_format="reproducing: {percentage:3.0f}%|{bar}| {desc} "
                                          "[{elapsed}<{remaining}]")
 
     def done(self, name: str) -> None:
         """Count the scene ``name`` as done."""
         self.finished += 1
-        self.tqdm.set_description_str(f"{self.finished}/{self.scenes} scenes", refresh=False)
+        self.tqdm.set_description_str(f"{self.finished}/{self.scenes} sections", refresh=False)
         self.tqdm.update(self.costs.get(name, 10))
 
     def close(self) -> None:
