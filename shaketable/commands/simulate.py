@@ -114,7 +114,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                             "energies per metre of depth)")
     stack.add_argument("--densities", metavar="DENSITY,...",
                        help="each block's density with its unit, bottom first (e.g. "
-                            "2400kg/m3,7800kg/m3; equal depths)")
+                            "2400kg/m3,7800kg/m3; over 1 m of depth each); default: "
+                            "concrete, 2400 kg/m^3 over 1 m of depth")
     stack.add_argument("--mu", type=float,
                        help="the friction coefficient the contacts offer [-]: said beside the "
                             "friction they need (F/N) and when it would be exceeded")
