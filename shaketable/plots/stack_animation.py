@@ -64,8 +64,8 @@ class _StackStage:
     def __init__(self, result, times, highpass, *, size, dpi, unit, title):
         from matplotlib.patches import Polygon, Rectangle
 
-        from shaketable.models.stack import pattern_name
         from shaketable.plots.base import pyplot
+        from shaketable.scenes.stack_patterns import pattern_words
 
         plt = pyplot()
         self.result, self.times = result, times
@@ -79,7 +79,7 @@ class _StackStage:
         self.displacement = table_displacement(result.motion, times, highpass=highpass) / factor
         self.outlines = stack_outlines(result, self.index) / factor
         self.outlines[..., 0] += self.displacement[:, None, None]
-        self.words = [pattern_name(result.patterns[k]) for k in self.index]
+        self.words = [pattern_words(result.patterns[k]) for k in self.index]
         width, height = size
         self.fig = fig = plt.figure(figsize=(width / dpi, height / dpi), dpi=dpi)
         with_ground = bool(np.any(result.motion.horizontal))
