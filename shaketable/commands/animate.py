@@ -41,6 +41,14 @@ def _animate(args) -> int:
     from shaketable.scenes.parse import Study, load_scene
     from shaketable.scenes.run import run_scene
 
+    from shaketable.plots.animation import DEFAULT_FPS
+
+    # neither --fps nor --speed: a short run is slowed (speed None: plots.animation's
+    # default_speed); a frame rate given alone keeps real time
+    if args.fps is None:
+        args.fps = float(DEFAULT_FPS)
+    elif args.speed is None:
+        args.speed = 1.0
     check_animate_options(args)   # before the scene runs: bounds that protect the memory
     size = _size(args.size)
     prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
@@ -166,10 +174,13 @@ def register(commands) -> None:
     parser.add_argument("--out", required=True,
                         help="the file to write: FILE.mp4 (with ffmpeg; otherwise FILE.gif "
                              "is written) or FILE.gif")
-    parser.add_argument("--fps", type=float, default=12.0,
+    parser.add_argument("--fps", type=float, default=None,
                         help="frames per second of the animation (default 12)")
-    parser.add_argument("--speed", type=float, default=1.0,
-                        help="simulated seconds per animation second (default 1: real time)")
+    parser.add_argument("--speed", type=float, default=None,
+                        help="simulated seconds per animation second (1: real time). "
+                             "Default: real time for 4 s or more shown; a shorter span "
+                             "is slowed to last 4 s (speed = span / 4 s: a 1-s run at "
+                             "0.25, 48 frames at 12 fps), unless --fps is given (then 1)")
     parser.add_argument("--run", default="all",
                         help="which of the scene's runs to show, counted from 0: 'all' "
                              "(default), one (1) or several (0,1)")

@@ -18,7 +18,7 @@ def _blocks(first: int, last: int) -> str:
     return f"block {first}" if first == last else f"blocks {first}-{last}"
 
 
-def pattern_words(pattern) -> str:
+def pattern_words(pattern, *, code: bool = True) -> str:
     """A contact pattern in words.
 
     Parameters
@@ -26,6 +26,8 @@ def pattern_words(pattern) -> str:
     pattern : sequence of int
         Each interface's state, bottom first (interface j below block j): 0 flat, +1 or -1
         pivoting on the upper block's -x or +x corner.
+    code : bool
+        Append the results' code in brackets (three blocks or more).
 
     Returns
     -------
@@ -46,4 +48,4 @@ def pattern_words(pattern) -> str:
         sign = "+" if pattern[j] > 0 else "-"
         parts.append(f"{_blocks(j, last)} rocking{' as one' if last > j else ''} on "
                      f"{support} ({sign})")
-    return ", ".join(parts) + f" [{pattern_name(pattern)}]"
+    return ", ".join(parts) + (f" [{pattern_name(pattern)}]" if code else "")
