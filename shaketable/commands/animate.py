@@ -35,13 +35,11 @@ def _size(text: str) -> tuple:
 def _animate(args) -> int:
     from shaketable.commands.checks import check_animate_options
     from shaketable.core.files import prepare_output_file
-    from shaketable.plots.animation import animate
+    from shaketable.plots.animation import DEFAULT_FPS, animate
     from shaketable.plots.calcomp import run_labels
     from shaketable.scenes.catalog import resolve_scene_path
     from shaketable.scenes.parse import Study, load_scene
     from shaketable.scenes.run import run_scene
-
-    from shaketable.plots.animation import DEFAULT_FPS
 
     # neither --fps nor --speed: a short run is slowed (speed None: plots.animation's
     # default_speed); a frame rate given alone keeps real time

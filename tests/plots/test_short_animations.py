@@ -37,8 +37,8 @@ def test_animate_slows_a_short_run_by_default_and_keeps_real_time_with_fps(tmp_p
 def test_stack_curves_moving_together_all_show():
     from shaketable.core.constants import G
     from shaketable.core.motion import Motion
-    from shaketable.plots.stack_animation import _StackStage, trace_width
     from shaketable.plots.base import pyplot
+    from shaketable.plots.stack_animation import _StackStage, trace_width
     from shaketable.scenes.stack import run_quietly, stack_from_text
 
     # a step that tips the column of three as one body: the three θ/α curves coincide
