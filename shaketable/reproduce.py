@@ -321,7 +321,7 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
     """Run one scene into ``out/<name>/``; its Markdown section (counts into ``tally``)."""
     # imported here: the process that only hands scenes to the workers never loads the
     # pipeline (the table stage's SciPy signal tools: ~1 s before the first worker starts)
-    from shaketable.scenes.run import run_scene
+    from shaketable.scenes.run import length_in, run_scene
 
     scene = load_scene(resolve_scene_path(name))
     if isinstance(scene, Study):
@@ -343,19 +343,22 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
         lines.append("")
     for run in result.runs:
         lines.append(run_line(run))
+    unit = result.slip_unit   # one length unit for the section's slips
     for index, run in enumerate(result.slides):
         label = "" if len(result.slides) == 1 else f"-{index + 1}"
         lines.append(f"* sliding, μs {run.friction.static:g}, μd {run.friction.dynamic:g}: peak "
-                     f"slip {run.peak_slip_inches:.2f} in ({run.peak_slip:.3f} m), residual "
-                     f"{run.residual_slip:+.3f} m, {run.slip_episodes} slip episodes "
-                     f"(Section 2.1: {run.mode_choice.get('mode (Section 2.1)', 'n/a')})")
+                     f"slip {length_in(run.peak_slip, unit)}, residual "
+                     f"{length_in(run.residual_slip, unit, signed=True)}, {run.slip_episodes} "
+                     f"slip episodes (Section 2.1: "
+                     f"{run.mode_choice.get('mode (Section 2.1)', 'n/a')})")
         lines.append(f"\n![sliding]({scene.name}/sliding{label}.png)\n")
     for index, run in enumerate(result.planar):
         label = "" if len(result.planar) == 1 else f"-{index + 1}"
         summary = run.summary()
         lines.append(f"* the planar block, μs {run.friction.static:g}, μd "
                      f"{run.friction.dynamic:g}, COR {run.cor:g}: {summary['verdict']}; modes "
-                     f"{summary['modes visited']}; peak slip {summary['peak slip [m]']:.3f} m")
+                     f"{summary['modes visited']}; peak slip "
+                     f"{length_in(summary['peak slip [m]'], unit)}")
         lines.append(f"\n![planar]({scene.name}/planar{label}.png)\n")
     if scene.mode() is not None:
         lines.append(f"* Section 2.1: {scene.mode()}")
