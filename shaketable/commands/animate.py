@@ -52,12 +52,11 @@ def _animate(args) -> int:
     prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
     given = [f"--{name}" for name in ("block", "stack", "cor", "harmonic", "pulse", "record")
              if getattr(args, name) is not None]
-    if args.scene is None:
-        if args.stack is not None:    # a column of blocks on a motion given as simulate's
-            from shaketable.commands.stack import animate_stack_options
+    if args.scene is None:   # the model of the options given (--block, --stack) draws it
+        from shaketable.commands.simulate import chosen_command
 
-            return animate_stack_options(args, size, _wrote)
-        return _animate_options(args, size)
+        command, _ = chosen_command(args)
+        return command.animate(args, size, _wrote)
     if given:
         raise ValueError(f"give a scene or --block with its motion, not both (got the scene "
                          f"{args.scene!r} and {', '.join(given)})")
@@ -96,9 +95,11 @@ def _animate(args) -> int:
     return report_early_stops(runs, "animate", scene.name)
 
 
-def _animate_options(args, size: tuple) -> int:
+def animate_block(args, size: tuple, wrote) -> int:
     """No scene: one block (``--block``, ``--cor``, ``--theta0``) on the motion of
-    ``--harmonic``, ``--pulse`` or ``--record`` (or free rocking), as ``simulate`` reads them."""
+    ``--harmonic``, ``--pulse`` or ``--record`` (or free rocking), as ``simulate`` reads them
+    (the rocking model's ``animate``:
+    :meth:`shaketable.commands.simulate_models.RockingCommand.animate`)."""
     from shaketable.commands.checks import report_early_stops
     from shaketable.commands.common import load_motion, notice_first_compile, scaled_record
     from shaketable.commands.options import block_option, motion_from_options
@@ -124,7 +125,7 @@ def _animate_options(args, size: tuple) -> int:
     if scale_note:
         print(scale_note)
     print(f"{block.describe()} block, COR {cor:g}: {result.verdict()}")
-    _wrote(written)
+    wrote(written)
     return report_early_stops([result], "animate", block.describe())
 
 

@@ -45,16 +45,23 @@ OPTIONS = {"cor": "--cor", "scan_step": "--scan-step", "tolerance": "--tolerance
 
 
 def _spectrum(args) -> int:
+    # the model of the options given (--block or --alpha and --p, --stack) computes it
+    from shaketable.commands.simulate import chosen_command
+
+    command, _ = chosen_command(args)
+    return command.spectrum(args)
+
+
+def block_spectrum(args) -> int:
+    """``spectrum --block`` (or ``--alpha`` and ``--p``): every overturn/safe band of one
+    block (the rocking model's ``spectrum``:
+    :meth:`shaketable.commands.simulate_models.RockingCommand.spectrum`)."""
     from shaketable.commands.checks import with_option_names
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import atomic_write, prepare_output_folder, write_parquet
     from shaketable.plots import base as plots
     from shaketable.studies.overturning_spectrum import overturning_spectrum
 
-    if args.stack is not None:   # a column of blocks (commands/stack.py)
-        from shaketable.commands.stack import stack_spectrum_command
-
-        return stack_spectrum_command(args)
     if args.compare_linear and args.method == "linear":
         raise ValueError("--compare-linear cannot be used with --method linear: the spectrum "
                          "is the linearised one already; leave out --compare-linear")

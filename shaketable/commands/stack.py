@@ -104,6 +104,12 @@ class StackCommand(SimulateCommand):
 
         return stack_answer(result, setup.extra["mu"])
 
+    def animate(self, args, size: tuple, wrote) -> int:
+        return animate_stack_options(args, size, wrote)
+
+    def spectrum(self, args) -> int:
+        return stack_spectrum_command(args)
+
 
 def _animation_options(args, size) -> dict:
     return {"out": args.out, "fps": args.fps, "speed": args.speed, "start": args.start,
