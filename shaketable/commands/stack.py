@@ -56,8 +56,6 @@ class StackCommand(SimulateCommand):
             raise ValueError(f"--cor {args.cor}: a calibration file is for one block; with "
                              "--stack give a number (the constant-COR law) or leave --cor out "
                              "(the plastic multi-contact law)")
-        if args.history == "peaks":
-            raise ValueError("--history peaks is for one block; with --stack give full or none")
         stack = stack_from_text(args.stack, args.masses, args.densities)
         theta0 = per_block_angles(args.theta0, stack, where="--theta0")
         mu = friction_coefficient(args.mu, "--mu")
@@ -74,11 +72,15 @@ class StackCommand(SimulateCommand):
 
         return run_quietly(setup.subject, setup.motion, **setup.options)
 
-    def history(self, args, result) -> str:
-        return "none" if args.history == "none" else "full"
-
     def history_frame(self, result, mode: str):
-        return result.to_frame()
+        """Every sample (``full``), or the samples of
+        :func:`~shaketable.commands.history.stack_peak_rows` (``peaks``)."""
+        frame = result.to_frame()
+        if mode == "full":
+            return frame
+        from shaketable.commands.history import stack_peak_rows
+
+        return frame.iloc[stack_peak_rows(result)].reset_index(drop=True)
 
     def events_frame(self, result):
         return result.events_frame()
