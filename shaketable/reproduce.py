@@ -128,8 +128,7 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
     out = prepare_output_folder(out, "out")
     names = list(names)
     extra = extra or {}
-    # the bar counts the report's sections: the scenes, then the extra sections
-    bar = _ProgressBar(names + list(extra)) if progress else None
+    bar = _ProgressBar(names + list(extra)) if progress else None   # the report's sections
 
     def record(name, section, counts, failed):
         if failed and failures is not None:
@@ -140,29 +139,34 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         if bar is not None:
             bar.done(name)
 
-    workers = _worker_count(len(names))
-    if workers <= 1:
-        try:
+    try:
+        workers = _worker_count(len(names))
+        if workers <= 1:
             for name in names:
                 record(name, *_scene_outcome(name, out))
-            extras = _extra_sections(out, extra, failures, bar)
-        finally:
-            if bar is not None:
-                bar.close()
-        return _assemble(out, rerun=names + extras)
-    # Scenes in processes of their own (each a fresh interpreter, numba's cache loaded
-    # once per process); a scene's outputs do not depend on the process it runs in, and
-    # the report is assembled in the catalogue's order whatever the order of completion.
+        else:
+            _pooled(names, out, workers, compile_planar_first, record)
+        extras = _extra_sections(out, extra, failures, bar)
+    finally:
+        if bar is not None:
+            bar.close()
+    if failures is not None:   # in the catalogue's order, whatever the order of completion
+        failures.sort(key=lambda name: names.index(name) if name in names else len(names))
+    return _assemble(out, rerun=names + extras)
+
+
+def _pooled(names: list, out: Path, workers: int, compile_planar_first: bool, record) -> None:
+    """The scenes in ``workers`` processes of their own (each a fresh interpreter, numba's
+    cache loaded once per process), each outcome handed to ``record`` as it completes; a
+    scene's outputs do not depend on the process it runs in."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
                              initializer=_one_thread_each) as pool:
         # the longest expected first (the report-table studies and their ensembles: half
-        # of the work), so that the processes end together; each scene's section is
-        # written as it completes (the progress bar moves with the work), the report in
-        # the catalogue's order. Each result carries its worker's CPU so far (the load
-        # balance).
+        # of the work), so that the processes end together; each result carries its
+        # worker's CPU so far (the load balance)
         order = sorted(names, key=expected_cost, reverse=True)
         if compile_planar_first and not uses_planar(order[0]) and any(map(uses_planar, order)):
             # one worker compiles the planar engine while the other starts the longest
@@ -179,17 +183,7 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
                 record(name, *outcome)
         except BaseException:  # Ctrl-C or a scene's crash: start no further scene
             pool.shutdown(wait=False, cancel_futures=True)
-            if bar is not None:
-                bar.close()
             raise
-    try:
-        extras = _extra_sections(out, extra, failures, bar)
-    finally:
-        if bar is not None:
-            bar.close()
-    if failures is not None:   # in the catalogue's order, whatever the order of completion
-        failures.sort(key=lambda name: names.index(name) if name in names else len(names))
-    return _assemble(out, rerun=names + extras)
 
 
 def _extra_sections(out: Path, extra: dict, failures: list | None,
@@ -229,8 +223,8 @@ class _ProgressBar:
     step per scene would estimate the time left from the slowest scenes (and the first
     compile) and say minutes for a job of seconds. This one's fraction and estimate are
     of the expected CPU done (:func:`~shaketable.scenes.catalog.expected_cost`, in hundredths of a second, at
-    least 0.1 s a scene); it shows the report's sections done (the scenes, then the
-    :data:`EXTRA_SECTIONS` run) as ``12/49 sections``, the count the report's headline gives.
+    least 0.1 s a scene); it shows the sections done (scenes, then extra ones) as ``12/49
+    sections``, the report's own count.
     """
 
     def __init__(self, names: list[str]) -> None:
@@ -346,19 +340,17 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
     unit = result.slip_unit   # one length unit for the section's slips
     for index, run in enumerate(result.slides):
         label = "" if len(result.slides) == 1 else f"-{index + 1}"
-        lines.append(f"* sliding, μs {run.friction.static:g}, μd {run.friction.dynamic:g}: peak "
-                     f"slip {length_in(run.peak_slip, unit)}, residual "
-                     f"{length_in(run.residual_slip, unit, signed=True)}, {run.slip_episodes} "
-                     f"slip episodes (Section 2.1: "
-                     f"{run.mode_choice.get('mode (Section 2.1)', 'n/a')})")
+        mode = run.mode_choice.get('mode (Section 2.1)', 'n/a')
+        lines.append(f"* sliding, μs {run.friction.static:g}, μd {run.friction.dynamic:g}: peak slip "
+                     f"{length_in(run.peak_slip, unit)}, residual {length_in(run.residual_slip, unit, signed=True)}, "
+                     f"{run.slip_episodes} slip episodes (Section 2.1: {mode})")
         lines.append(f"\n![sliding]({scene.name}/sliding{label}.png)\n")
     for index, run in enumerate(result.planar):
         label = "" if len(result.planar) == 1 else f"-{index + 1}"
         summary = run.summary()
         lines.append(f"* the planar block, μs {run.friction.static:g}, μd "
                      f"{run.friction.dynamic:g}, COR {run.cor:g}: {summary['verdict']}; modes "
-                     f"{summary['modes visited']}; peak slip "
-                     f"{length_in(summary['peak slip [m]'], unit)}")
+                     f"{summary['modes visited']}; peak slip {length_in(summary['peak slip [m]'], unit)}")
         lines.append(f"\n![planar]({scene.name}/planar{label}.png)\n")
     if scene.mode() is not None:
         lines.append(f"* Section 2.1: {scene.mode()}")

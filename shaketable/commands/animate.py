@@ -95,40 +95,6 @@ def _animate(args) -> int:
     return report_early_stops(runs, "animate", scene.name)
 
 
-def animate_block(args, size: tuple, wrote) -> int:
-    """No scene: one block (``--block``, ``--cor``, ``--theta0``) on the motion of
-    ``--harmonic``, ``--pulse`` or ``--record`` (or free rocking), as ``simulate`` reads them
-    (the rocking model's ``animate``:
-    :meth:`shaketable.commands.simulate_models.RockingCommand.animate`)."""
-    from shaketable.commands.checks import report_early_stops
-    from shaketable.commands.common import load_motion, notice_first_compile, scaled_record
-    from shaketable.commands.options import block_option, motion_from_options
-    from shaketable.commands.simulate import resolve_angle
-    from shaketable.core.validation import in_range
-    from shaketable.models.api import simulate
-    from shaketable.plots.animation import animate
-
-    if args.block is None or args.cor is None:
-        raise ValueError("give a scene, or --block and --cor (with --harmonic, --pulse or "
-                         "--record, or --theta0 and --duration for free rocking)")
-    block = block_option(args.block)
-    cor = in_range("--cor", args.cor, 0.0, 1.0)
-    motion = motion_from_options(args) or (load_motion(args) if args.record else None)
-    motion, scale_note = scaled_record(motion, args)
-    if motion is None and args.duration is None:
-        raise ValueError("free rocking (no --harmonic, --pulse or --record) needs --duration")
-    theta0 = resolve_angle(args.theta0, block)
-    notice_first_compile(args.quiet)
-    result = simulate(block, motion, cor=cor, theta0=theta0, duration=args.duration)
-    written = animate(result, out=args.out, fps=args.fps, speed=args.speed, start=args.start,
-                      end=args.end, size=size, dpi=args.dpi, unit=args.unit)
-    if scale_note:
-        print(scale_note)
-    print(f"{block.describe()} block, COR {cor:g}: {result.verdict()}")
-    wrote(written)
-    return report_early_stops([result], "animate", block.describe())
-
-
 def _wrote(written) -> None:
     if written.note:
         print(f"note: {written.note}")

@@ -31,10 +31,9 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 from typing import Any
 
-from shaketable.core.geometry import Block
+from shaketable.commands.block import resolve_angle  # noqa: F401  (its home before)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -142,17 +141,6 @@ class SimulateCommand:
         """``spectrum``: this model's overturning spectrum of pulses, written to ``args.out``."""
         raise ValueError(f"spectrum does not offer the {self.model} model; give --block "
                          "(or --alpha and --p) or --stack")
-
-
-def resolve_angle(text: str, block: Block) -> float:
-    value = str(text).strip().lower()
-    for suffix, factor in (("alpha", block.alpha), ("deg", math.pi / 180), ("rad", 1.0)):
-        if value.endswith(suffix):
-            try:
-                return float(value[: -len(suffix)]) * factor
-            except ValueError:
-                break
-    raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg or 0.5alpha")
 
 
 def on_floor(args, motion):
@@ -270,12 +258,12 @@ class RockingCommand(SimulateCommand):
         return rocking_answer(result)
 
     def animate(self, args, size: tuple, wrote) -> int:
-        from shaketable.commands.animate import animate_block
+        from shaketable.commands.block import animate_block
 
         return animate_block(args, size, wrote)
 
     def spectrum(self, args) -> int:
-        from shaketable.commands.spectrum import block_spectrum
+        from shaketable.commands.block import block_spectrum
 
         return block_spectrum(args)
 
