@@ -166,8 +166,8 @@ def animate_stack_options(args, size, wrote) -> int:
 
 def stack_spectrum_command(args) -> int:
     """``spectrum --stack``: every overturn/safe band of half-sine pulses of a stack and of
-    its bottom block alone over omega/p (:func:`shaketable.studies.stack_spectrum.
-    stack_spectrum_bands`), drawn as the single block's spectrum."""
+    its bottom block alone over omega/p, drawn as the single block's spectrum
+    (:func:`shaketable.studies.stack_spectrum.stack_spectrum_bands`)."""
     import time
 
     import numpy as np
