@@ -52,3 +52,13 @@ def test_the_progress_bar_counts_the_report_sections(tmp_path, capsys, monkeypat
     shown = capsys.readouterr().err.replace("\r", "\n").strip().splitlines()[-1]
     assert "1/1 sections" in shown, shown
     assert "1 section: 0 rerun now, 1 skipped" in report.read_text()
+
+
+def test_a_run_without_comparisons_prints_no_empty_tallies(tmp_path, capsys, monkeypatch):
+    monkeypatch.delenv("SHAKETABLE_PBR", raising=False)
+    out = tmp_path / "rv"
+    assert main(["reproduce", "validation", "--validation-data", str(tmp_path / "absent"),
+                 "--out", str(out)]) == 0
+    # the validation section compares nothing with the report: no "0 agree, 0 differ" lines
+    assert capsys.readouterr().out.splitlines() == [
+        f"wrote {out / 'report.md'} (and gallery.md beside it)"]
