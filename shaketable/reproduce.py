@@ -127,7 +127,8 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
 
     out = prepare_output_folder(out, "out")
     names = list(names)
-    bar = _ProgressBar(names) if progress else None
+    extra = extra or {}
+    bar = _ProgressBar(names + list(extra)) if progress else None   # the report's sections
 
     def record(name, section, counts, failed):
         if failed and failures is not None:
@@ -138,28 +139,34 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         if bar is not None:
             bar.done(name)
 
-    workers = _worker_count(len(names))
-    if workers <= 1:
-        try:
+    try:
+        workers = _worker_count(len(names))
+        if workers <= 1:
             for name in names:
                 record(name, *_scene_outcome(name, out))
-        finally:
-            if bar is not None:
-                bar.close()
-        return _assemble(out, rerun=names + _extra_sections(out, extra or {}, failures))
-    # Scenes in processes of their own (each a fresh interpreter, numba's cache loaded
-    # once per process); a scene's outputs do not depend on the process it runs in, and
-    # the report is assembled in the catalogue's order whatever the order of completion.
+        else:
+            _pooled(names, out, workers, compile_planar_first, record)
+        extras = _extra_sections(out, extra, failures, bar)
+    finally:
+        if bar is not None:
+            bar.close()
+    if failures is not None:   # in the catalogue's order, whatever the order of completion
+        failures.sort(key=lambda name: names.index(name) if name in names else len(names))
+    return _assemble(out, rerun=names + extras)
+
+
+def _pooled(names: list, out: Path, workers: int, compile_planar_first: bool, record) -> None:
+    """The scenes in ``workers`` processes of their own (each a fresh interpreter, numba's
+    cache loaded once per process), each outcome handed to ``record`` as it completes; a
+    scene's outputs do not depend on the process it runs in."""
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
                              initializer=_one_thread_each) as pool:
         # the longest expected first (the report-table studies and their ensembles: half
-        # of the work), so that the processes end together; each scene's section is
-        # written as it completes (the progress bar moves with the work), the report in
-        # the catalogue's order. Each result carries its worker's CPU so far (the load
-        # balance).
+        # of the work), so that the processes end together; each result carries its
+        # worker's CPU so far (the load balance)
         order = sorted(names, key=expected_cost, reverse=True)
         if compile_planar_first and not uses_planar(order[0]) and any(map(uses_planar, order)):
             # one worker compiles the planar engine while the other starts the longest
@@ -177,15 +184,10 @@ def reproduce(names: Iterable[str], out: str | os.PathLike[str] = "reproduce-out
         except BaseException:  # Ctrl-C or a scene's crash: start no further scene
             pool.shutdown(wait=False, cancel_futures=True)
             raise
-        finally:
-            if bar is not None:
-                bar.close()
-    if failures is not None:   # in the catalogue's order, whatever the order of completion
-        failures.sort(key=lambda name: names.index(name) if name in names else len(names))
-    return _assemble(out, rerun=names + _extra_sections(out, extra or {}, failures))
 
 
-def _extra_sections(out: Path, extra: dict, failures: list | None) -> list[str]:
+def _extra_sections(out: Path, extra: dict, failures: list | None,
+                    bar: _ProgressBar | None = None) -> list[str]:
     """Run the sections of :data:`EXTRA_SECTIONS` named in ``extra``; their names."""
     import importlib
 
@@ -209,17 +211,20 @@ def _extra_sections(out: Path, extra: dict, failures: list | None) -> list[str]:
             write_text(marker, "skipped\n")
         elif marker.exists():
             marker.unlink()
+        if bar is not None:
+            bar.done(name)
     return list(extra)
 
 
 class _ProgressBar:
-    """A progress bar (tqdm, on stderr) that counts scenes and moves by their expected cost.
+    """A progress bar (tqdm, on stderr) that counts sections and moves by their expected cost.
 
     The scenes differ 50-fold in cost and the longest run first: a bar that moved one
     step per scene would estimate the time left from the slowest scenes (and the first
     compile) and say minutes for a job of seconds. This one's fraction and estimate are
     of the expected CPU done (:func:`~shaketable.scenes.catalog.expected_cost`, in hundredths of a second, at
-    least 0.1 s a scene); it shows the scenes done as ``12/45 scenes``.
+    least 0.1 s a scene); it shows the sections done (scenes, then extra ones) as ``12/49
+    sections``, the report's own count.
     """
 
     def __init__(self, names: list[str]) -> None:
@@ -232,14 +237,14 @@ class _ProgressBar:
         self.finished = 0
         # the scenes done in the description: tqdm puts ", " before a postfix
         self.tqdm: Any = tqdm(total=sum(self.costs[name] for name in names),  # repeats too
-                              desc=f"0/{self.scenes} scenes",
+                              desc=f"0/{self.scenes} sections",
                               bar_format="reproducing: {percentage:3.0f}%|{bar}| {desc} "
                                          "[{elapsed}<{remaining}]")
 
     def done(self, name: str) -> None:
         """Count the scene ``name`` as done."""
         self.finished += 1
-        self.tqdm.set_description_str(f"{self.finished}/{self.scenes} scenes", refresh=False)
+        self.tqdm.set_description_str(f"{self.finished}/{self.scenes} sections", refresh=False)
         self.tqdm.update(self.costs.get(name, 10))
 
     def close(self) -> None:
@@ -310,7 +315,7 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
     """Run one scene into ``out/<name>/``; its Markdown section (counts into ``tally``)."""
     # imported here: the process that only hands scenes to the workers never loads the
     # pipeline (the table stage's SciPy signal tools: ~1 s before the first worker starts)
-    from shaketable.scenes.run import run_scene
+    from shaketable.scenes.run import length_in, run_scene
 
     scene = load_scene(resolve_scene_path(name))
     if isinstance(scene, Study):
@@ -332,19 +337,20 @@ def _scene_section(name: str, out: Path, tally: ComparisonTally) -> str:
         lines.append("")
     for run in result.runs:
         lines.append(run_line(run))
+    unit = result.slip_unit   # one length unit for the section's slips
     for index, run in enumerate(result.slides):
         label = "" if len(result.slides) == 1 else f"-{index + 1}"
-        lines.append(f"* sliding, μs {run.friction.static:g}, μd {run.friction.dynamic:g}: peak "
-                     f"slip {run.peak_slip_inches:.2f} in ({run.peak_slip:.3f} m), residual "
-                     f"{run.residual_slip:+.3f} m, {run.slip_episodes} slip episodes "
-                     f"(Section 2.1: {run.mode_choice.get('mode (Section 2.1)', 'n/a')})")
+        mode = run.mode_choice.get('mode (Section 2.1)', 'n/a')
+        lines.append(f"* sliding, μs {run.friction.static:g}, μd {run.friction.dynamic:g}: peak slip "
+                     f"{length_in(run.peak_slip, unit)}, residual {length_in(run.residual_slip, unit, signed=True)}, "
+                     f"{run.slip_episodes} slip episodes (Section 2.1: {mode})")
         lines.append(f"\n![sliding]({scene.name}/sliding{label}.png)\n")
     for index, run in enumerate(result.planar):
         label = "" if len(result.planar) == 1 else f"-{index + 1}"
         summary = run.summary()
         lines.append(f"* the planar block, μs {run.friction.static:g}, μd "
                      f"{run.friction.dynamic:g}, COR {run.cor:g}: {summary['verdict']}; modes "
-                     f"{summary['modes visited']}; peak slip {summary['peak slip [m]']:.3f} m")
+                     f"{summary['modes visited']}; peak slip {length_in(summary['peak slip [m]'], unit)}")
         lines.append(f"\n![planar]({scene.name}/planar{label}.png)\n")
     if scene.mode() is not None:
         lines.append(f"* Section 2.1: {scene.mode()}")

@@ -45,13 +45,13 @@ def test_progress_bar_moves_by_expected_cost_and_counts_scenes(capsys, recwarn):
     assert bar.tqdm.total == total
     bar.done("table-4-3")
     assert bar.tqdm.n == round(100 * SCENE_CPU["table-4-3"])
-    assert bar.tqdm.desc == "1/3 scenes"
+    assert bar.tqdm.desc == "1/3 sections"
     bar.done("table-3-1")
     bar.done("no-such-scene")
     bar.close()
     assert bar.tqdm.n == total
     shown = capsys.readouterr().err.replace("\r", "\n").splitlines()[-1]
-    assert shown.startswith("reproducing: 100%") and "3/3 scenes" in shown
+    assert shown.startswith("reproducing: 100%") and "3/3 sections" in shown
     assert not [w for w in recwarn if "clamping" in str(w.message)]   # tqdm's, past 100 %
 
 

@@ -35,23 +35,28 @@ def _size(text: str) -> tuple:
 def _animate(args) -> int:
     from shaketable.commands.checks import check_animate_options
     from shaketable.core.files import prepare_output_file
-    from shaketable.plots.animation import animate
+    from shaketable.plots.animation import DEFAULT_FPS, animate
     from shaketable.plots.calcomp import run_labels
     from shaketable.scenes.catalog import resolve_scene_path
     from shaketable.scenes.parse import Study, load_scene
     from shaketable.scenes.run import run_scene
 
+    # neither --fps nor --speed: a short run is slowed (speed None: plots.animation's
+    # default_speed); a frame rate given alone keeps real time
+    if args.fps is None:
+        args.fps = float(DEFAULT_FPS)
+    elif args.speed is None:
+        args.speed = 1.0
     check_animate_options(args)   # before the scene runs: bounds that protect the memory
     size = _size(args.size)
     prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
     given = [f"--{name}" for name in ("block", "stack", "cor", "harmonic", "pulse", "record")
              if getattr(args, name) is not None]
-    if args.scene is None:
-        if args.stack is not None:    # a column of blocks on a motion given as simulate's
-            from shaketable.commands.stack import animate_stack_options
+    if args.scene is None:   # the model of the options given (--block, --stack) draws it
+        from shaketable.commands.simulate import chosen_command
 
-            return animate_stack_options(args, size, _wrote)
-        return _animate_options(args, size)
+        command, _ = chosen_command(args)
+        return command.animate(args, size, _wrote)
     if given:
         raise ValueError(f"give a scene or --block with its motion, not both (got the scene "
                          f"{args.scene!r} and {', '.join(given)})")
@@ -88,38 +93,6 @@ def _animate(args) -> int:
     from shaketable.commands.checks import report_early_stops
 
     return report_early_stops(runs, "animate", scene.name)
-
-
-def _animate_options(args, size: tuple) -> int:
-    """No scene: one block (``--block``, ``--cor``, ``--theta0``) on the motion of
-    ``--harmonic``, ``--pulse`` or ``--record`` (or free rocking), as ``simulate`` reads them."""
-    from shaketable.commands.checks import report_early_stops
-    from shaketable.commands.common import load_motion, notice_first_compile, scaled_record
-    from shaketable.commands.options import block_option, motion_from_options
-    from shaketable.commands.simulate import resolve_angle
-    from shaketable.core.validation import in_range
-    from shaketable.models.api import simulate
-    from shaketable.plots.animation import animate
-
-    if args.block is None or args.cor is None:
-        raise ValueError("give a scene, or --block and --cor (with --harmonic, --pulse or "
-                         "--record, or --theta0 and --duration for free rocking)")
-    block = block_option(args.block)
-    cor = in_range("--cor", args.cor, 0.0, 1.0)
-    motion = motion_from_options(args) or (load_motion(args) if args.record else None)
-    motion, scale_note = scaled_record(motion, args)
-    if motion is None and args.duration is None:
-        raise ValueError("free rocking (no --harmonic, --pulse or --record) needs --duration")
-    theta0 = resolve_angle(args.theta0, block)
-    notice_first_compile(args.quiet)
-    result = simulate(block, motion, cor=cor, theta0=theta0, duration=args.duration)
-    written = animate(result, out=args.out, fps=args.fps, speed=args.speed, start=args.start,
-                      end=args.end, size=size, dpi=args.dpi, unit=args.unit)
-    if scale_note:
-        print(scale_note)
-    print(f"{block.describe()} block, COR {cor:g}: {result.verdict()}")
-    _wrote(written)
-    return report_early_stops([result], "animate", block.describe())
 
 
 def _wrote(written) -> None:
@@ -166,10 +139,13 @@ def register(commands) -> None:
     parser.add_argument("--out", required=True,
                         help="the file to write: FILE.mp4 (with ffmpeg; otherwise FILE.gif "
                              "is written) or FILE.gif")
-    parser.add_argument("--fps", type=float, default=12.0,
+    parser.add_argument("--fps", type=float, default=None,
                         help="frames per second of the animation (default 12)")
-    parser.add_argument("--speed", type=float, default=1.0,
-                        help="simulated seconds per animation second (default 1: real time)")
+    parser.add_argument("--speed", type=float, default=None,
+                        help="simulated seconds per animation second (1: real time). "
+                             "Default: real time for 4 s or more shown; a shorter span "
+                             "is slowed to last 4 s (speed = span / 4 s: a 1-s run at "
+                             "0.25, 48 frames at 12 fps), unless --fps is given (then 1)")
     parser.add_argument("--run", default="all",
                         help="which of the scene's runs to show, counted from 0: 'all' "
                              "(default), one (1) or several (0,1)")

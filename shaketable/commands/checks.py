@@ -150,7 +150,7 @@ def check_animate_options(args) -> None:
                                               "frames per second")):
         if not (math.isfinite(value) and low <= value <= high):
             raise ValueError(f"{option} {value:g}: must be from {low:g} to {high:g} {unit}")
-    if not (math.isfinite(args.speed) and args.speed > 0):
+    if args.speed is not None and not (math.isfinite(args.speed) and args.speed > 0):
         raise ValueError(f"--speed {args.speed:g}: must be a positive number of simulated "
                          "seconds per second")
 

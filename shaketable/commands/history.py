@@ -7,7 +7,9 @@ than a few thousand). ``--history``:
 * ``full``: every output sample (``history.csv``, as before);
 * ``peaks``: the first and last samples, every impact (theta changes sign) and
   every turning point (theta' changes sign): the extremes of the rocking, a few
-  rows per cycle; a block at rest writes two rows;
+  rows per cycle; a block at rest writes two rows (a stack: :func:`stack_peak_rows`,
+  every change of contact pattern, crossing of an interface and turning point of a
+  block);
 * ``none``: no history file (``summary.json`` and the figure only);
 * ``auto`` (default): ``full`` up to :data:`FULL_HISTORY_ROWS` samples, ``peaks``
   beyond.
@@ -52,6 +54,23 @@ def peak_rows(result) -> np.ndarray:
     impacts, turns = _sign_changes(result.theta), _sign_changes(result.theta_dot)
     rows = np.concatenate([[0, last], impacts - 1, impacts, turns - 1, turns])
     return np.unique(np.clip(rows, 0, last))
+
+
+def stack_peak_rows(result) -> np.ndarray:
+    """The ``peaks`` rows of a stack run, in order: the first and last samples, every change
+    of the contact pattern (an uplift, an impact, a rest) and the samples either side of
+    it, every crossing of an interface (its relative rotation changes sign) and every
+    turning point of a block (its theta' changes sign)."""
+    last = result.t.size - 1
+    relative = np.diff(result.theta, axis=1, prepend=0.0)   # phi_j = theta_j - theta_(j-1)
+    rows = [np.array([0, last])]
+    for values in (*relative.T, *result.theta_dot.T):
+        changes = _sign_changes(values)
+        rows += [changes - 1, changes]
+    patterns = np.asarray(result.patterns)
+    changed = np.flatnonzero(np.any(patterns[1:] != patterns[:-1], axis=1)) + 1
+    rows += [changed - 1, changed]
+    return np.unique(np.clip(np.concatenate(rows), 0, last))
 
 
 def _envelope(curves, size: int, bins: int = ENVELOPE_BINS) -> np.ndarray:

@@ -90,7 +90,7 @@ def _risk(args: argparse.Namespace) -> int:
               for pair in pairs
               for (block, cor), rows in (table if pair is None else friction_rows(
                   table, *pair)).groupby(["block", "cor [-]"], sort=False, dropna=False)]
-    from shaketable.sweeps.stacks import overturned_blocks
+    from shaketable.sweeps.stacks import overturned_line
     # a stack sweep leads with the answer (P(some block overturns) of each stack against
     # the block alone's): its lines are said after that headline, in their order
     stacks = "overturned block" in table
@@ -115,8 +115,8 @@ def _risk(args: argparse.Namespace) -> int:
             headline.append((block, label, result, rows))
         say(f"{block}, {label}: {result.summary()}")
         say(f"    fragility {fit.summary()}")
-        if fell := overturned_blocks(rows):   # a stack sweep: which block fell
-            say(f"    the block that fell: {fell}")
+        if fell := overturned_line(rows):   # a stack sweep: which block fell
+            say(f"    {fell}")
         low, high = float(rows[column].min()), float(rows[column].max())
         outside = share_outside(fit, hazard, low, high)
         if outside > 0.1:   # the lognormal carried beyond the levels run: say how much

@@ -61,13 +61,13 @@ def _run(args) -> int:
               f"{run.verdict()}")
         for answer in planar_answer(run):
             print(f"  {answer}")
-    for run in result.slides:   # in the unit the scene's block was given in
-        from shaketable.core.units import format_length
+    for run in result.slides:   # in the one unit of the scene's slips
+        from shaketable.scenes.run import length_in
 
-        unit = scene.block.length_unit
+        unit = result.slip_unit
         print(f"{scene.name}: sliding with mu_s {run.friction.static:g}, mu_d "
-              f"{run.friction.dynamic:g}: peak slip {format_length(run.peak_slip, unit)}, "
-              f"residual {format_length(run.residual_slip, unit, signed=True)}, "
+              f"{run.friction.dynamic:g}: peak slip {length_in(run.peak_slip, unit)}, "
+              f"residual {length_in(run.residual_slip, unit, signed=True)}, "
               f"{run.slip_episodes} slip episode(s); Section 2.1: "
               f"{run.mode_choice.get('mode (Section 2.1)', 'n/a')}")
     for line in result.comparisons:

@@ -17,6 +17,11 @@ and hands the rest to the model's adapter, a :class:`SimulateCommand`:
   :meth:`~SimulateCommand.figure`: the files (history.csv, events.csv, summary.json,
   the Calcomp figure).
 
+The same adapter serves the model in the other commands that take a subject from the
+command line: :meth:`~SimulateCommand.animate` (``animate`` without a scene) and
+:meth:`~SimulateCommand.spectrum` (``spectrum``); each command chooses the adapter as
+``simulate`` does (:func:`shaketable.commands.simulate.chosen_command`).
+
 Adding a model to ``simulate`` means adding one adapter (a subclass here or beside the
 model's other commands, e.g. :class:`shaketable.commands.stack.StackCommand`) and one entry
 in :data:`shaketable.commands.simulate.SIMULATE_COMMANDS`.
@@ -26,10 +31,9 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 from typing import Any
 
-from shaketable.core.geometry import Block
+from shaketable.commands.block import resolve_angle  # noqa: F401  (its home before)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -127,16 +131,16 @@ class SimulateCommand:
     def answer(self, setup: Setup, result) -> list[str]:
         raise NotImplementedError
 
+    def animate(self, args, size: tuple, wrote) -> int:
+        """``animate`` without a scene: this model's run on the motion given as ``simulate``
+        takes it, drawn to ``args.out`` (``size`` in pixels; ``wrote`` says the file)."""
+        raise ValueError(f"animate does not draw the {self.model} model; give a scene, "
+                         "--block or --stack")
 
-def resolve_angle(text: str, block: Block) -> float:
-    value = str(text).strip().lower()
-    for suffix, factor in (("alpha", block.alpha), ("deg", math.pi / 180), ("rad", 1.0)):
-        if value.endswith(suffix):
-            try:
-                return float(value[: -len(suffix)]) * factor
-            except ValueError:
-                break
-    raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg or 0.5alpha")
+    def spectrum(self, args) -> int:
+        """``spectrum``: this model's overturning spectrum of pulses, written to ``args.out``."""
+        raise ValueError(f"spectrum does not offer the {self.model} model; give --block "
+                         "(or --alpha and --p) or --stack")
 
 
 def on_floor(args, motion):
@@ -252,6 +256,16 @@ class RockingCommand(SimulateCommand):
         from shaketable.commands.answers import rocking_answer
 
         return rocking_answer(result)
+
+    def animate(self, args, size: tuple, wrote) -> int:
+        from shaketable.commands.block import animate_block
+
+        return animate_block(args, size, wrote)
+
+    def spectrum(self, args) -> int:
+        from shaketable.commands.block import block_spectrum
+
+        return block_spectrum(args)
 
 
 class PlanarCommand(SimulateCommand):

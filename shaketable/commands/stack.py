@@ -56,8 +56,6 @@ class StackCommand(SimulateCommand):
             raise ValueError(f"--cor {args.cor}: a calibration file is for one block; with "
                              "--stack give a number (the constant-COR law) or leave --cor out "
                              "(the plastic multi-contact law)")
-        if args.history == "peaks":
-            raise ValueError("--history peaks is for one block; with --stack give full or none")
         stack = stack_from_text(args.stack, args.masses, args.densities)
         theta0 = per_block_angles(args.theta0, stack, where="--theta0")
         mu = friction_coefficient(args.mu, "--mu")
@@ -74,11 +72,15 @@ class StackCommand(SimulateCommand):
 
         return run_quietly(setup.subject, setup.motion, **setup.options)
 
-    def history(self, args, result) -> str:
-        return "none" if args.history == "none" else "full"
-
     def history_frame(self, result, mode: str):
-        return result.to_frame()
+        """Every sample (``full``), or the samples of
+        :func:`~shaketable.commands.history.stack_peak_rows` (``peaks``)."""
+        frame = result.to_frame()
+        if mode == "full":
+            return frame
+        from shaketable.commands.history import stack_peak_rows
+
+        return frame.iloc[stack_peak_rows(result)].reset_index(drop=True)
 
     def events_frame(self, result):
         return result.events_frame()
@@ -103,6 +105,12 @@ class StackCommand(SimulateCommand):
         from shaketable.scenes.stack import stack_answer
 
         return stack_answer(result, setup.extra["mu"])
+
+    def animate(self, args, size: tuple, wrote) -> int:
+        return animate_stack_options(args, size, wrote)
+
+    def spectrum(self, args) -> int:
+        return stack_spectrum_command(args)
 
 
 def _animation_options(args, size) -> dict:
@@ -157,42 +165,67 @@ def animate_stack_options(args, size, wrote) -> int:
 
 
 def stack_spectrum_command(args) -> int:
-    """``spectrum --stack``: the smallest overturning half-sine pulse of a stack and of its
-    bottom block alone over omega/p (:func:`shaketable.studies.stacks.stack_spectrum`)."""
+    """``spectrum --stack``: every overturn/safe band of half-sine pulses of a stack and of
+    its bottom block alone over omega/p, drawn as the single block's spectrum
+    (:func:`shaketable.studies.stack_spectrum.stack_spectrum_bands`)."""
+    import time
+
     import numpy as np
 
     from shaketable.commands.checks import refuse_ignored_options
-    from shaketable.core.files import prepare_output_folder, write_csv
+    from shaketable.core.files import prepare_output_folder, write_csv, write_parquet
     from shaketable.plots import base as plots
-    from shaketable.plots.stack_studies import stack_spectrum_figure
+    from shaketable.plots.stack_spectrum import stack_bands_figure
     from shaketable.scenes.spectrum import parse_ratios
     from shaketable.scenes.stack import stack_from_text
-    from shaketable.studies.stacks import eq_2_8_curves, stack_spectrum
+    from shaketable.studies.stack_spectrum import COLUMNS, lowest_overturning, stack_spectrum_bands
+    from shaketable.studies.stacks import eq_2_8_curves
 
-    refuse_ignored_options(args, "--stack (the smallest overturning half-sine, plastic "
-                           "impacts)", {"--block": None, "--alpha": None, "--p": None,
-                                        "--cor": "housner", "--ceiling": None,
-                                        "--scan-step": 0.005, "--tolerance": 1e-8,
-                                        "--method": "fast", "--compare-linear": False,
-                                        "--parquet": False})
+    refuse_ignored_options(args, "--stack (half-sine pulses, plastic impacts)",
+                           {"--block": None, "--alpha": None, "--p": None, "--cor": "housner",
+                            "--ceiling": None, "--tolerance": 1e-8, "--method": "fast",
+                            "--compare-linear": False})
     if args.pulse and args.pulse != ["half-sine"]:
         raise ValueError(f"--pulse {args.pulse[0]}: with --stack only half-sine pulses are "
                          "offered")
     if not 1 <= args.iterations <= 30:
         raise ValueError(f"--iterations must be from 1 to 30, got {args.iterations}")
+    step = STACK_SCAN_STEP if args.scan_step is None else args.scan_step
+    if not 0 < step < 1:
+        raise ValueError(f"--scan-step must be in (0, 1), got {step!r}")
     stack = stack_from_text(args.stack, args.masses)
     ratios = parse_ratios(args.ratios)
     out = prepare_output_folder(args.out)
-    frame = stack_spectrum(stack, ratios, iterations=args.iterations)
-    written = [write_csv(out / "spectrum.csv", frame), out / f"spectrum.{args.format}"]
+    began = time.perf_counter()
+    frame = stack_spectrum_bands(stack, ratios, scan_step=step, iterations=args.iterations)
+    elapsed = time.perf_counter() - began
+    written = [write_csv(out / "spectrum.csv", frame)]
+    if args.parquet:
+        written.append(write_parquet(out / "spectrum.parquet", frame))
+    written.append(out / f"spectrum.{args.format}")
     curves = eq_2_8_curves(stack, np.linspace(0.0, 1.05 * max(ratios), 200))
-    plots.save(stack_spectrum_figure(frame, curves, f"half-sine pulses: {stack.describe()}"),
-               written[-1])
-    print(f"{stack.describe()}, plastic impacts: smallest overturning half-sine [g] over "
-          f"ω/p (p = {stack.blocks[0].p:.4g} rad/s of the bottom block)")
-    for ratio, rows in frame.groupby("omega/p [-]", sort=False):
-        words = [f"{row['column']} {row['minimum [g]']:.3g} (Eq. 2-8 as one body "
-                 f"{row['Eq. (2-8) as one body [g]']:.3g})" for _, row in rows.iterrows()]
-        print(f"  ω/p = {ratio:g}: " + "; ".join(words))
+    plots.save(stack_bands_figure(frame, curves, f"half-sine pulses: {stack.describe()}, "
+                                                 "plastic impacts"), written[-1])
+    print(f"{stack.describe()}, plastic impacts: overturning half-sine pulses [g] over ω/p "
+          f"(p = {stack.blocks[0].p:.4g} rad/s of the bottom block); "
+          f"{frame.attrs['runs']} runs, {elapsed:.1f} s")
+    for ratio in dict.fromkeys(frame["omega/p [-]"]):
+        for column in COLUMNS:
+            rows = frame[(frame["omega/p [-]"] == ratio) & (frame["column"] == column)]
+            lowest = lowest_overturning(frame, ratio, column)
+            falls = [f"{row['from [g]']:.3g} to {row['to [g]']:.3g}"
+                     + (" (the ceiling)" if row["note"] == "up to the ceiling" else "")
+                     + ("" if row["block that fell"] == "the block"
+                        else f", {row['block that fell']} first")
+                     for _, row in rows.iterrows() if row["verdict"] == "overturns"]
+            print(f"  ω/p = {ratio:g}, {column}: "
+                  + (f"lowest {lowest:.3g} g" if lowest == lowest else "no overturning")
+                  + f" (Eq. 2-8 as one body {rows['Eq. (2-8) as one body [g]'].iloc[0]:.3g} g)"
+                  + (f"; overturns {'; '.join(falls)}" if falls else ""))
     print("wrote " + ", ".join(str(path) for path in written))
     return 0
+
+
+#: ``spectrum --stack``'s default relative scan step (a stack run costs a few single-block
+#: runs; the edges are bisected --iterations times after the scan).
+STACK_SCAN_STEP = 0.02

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -27,17 +28,23 @@ def _sweep(args: argparse.Namespace) -> int:
         (f"{args.workers} local process(es)" if args.workers and args.workers > 1
          else "one local process") if spec.model.processes else
         f"{args.workers} local thread(s)" if args.workers else "all local cores")
-    print(f"{spec.name}: {spec.n_runs} runs in {spec.n_chunks} chunk(s) of {spec.chunk_size}, "
-          f"on {where}")
+    # what is about to run, on stderr beside the progress bar: the console's output leads
+    # with the answer
+    setup = [f"{spec.name}: {spec.n_runs} runs in {spec.n_chunks} chunk(s) of "
+             f"{spec.chunk_size}, on {where}"]
     if spec.ensemble is not None:
-        print(f"{spec.name}: each run is an ensemble of {spec.ensemble['members']} perturbed "
-              f"copies ([ensemble]: {spec.n_runs * spec.ensemble['members']} simulations)")
+        setup.append(f"{spec.name}: each run is an ensemble of {spec.ensemble['members']} "
+                     f"perturbed copies ([ensemble]: {spec.n_runs * spec.ensemble['members']} "
+                     "simulations)")
     if spec.model.describe() is not None:   # the model the spec chose (not the default)
-        print(f"{spec.name}: {spec.model.describe()}")
+        setup.append(f"{spec.name}: {spec.model.describe()}")
     if spec.model.processes and not args.scheduler and (args.workers or 1) > spec.n_chunks:
-        print(f"{spec.name}: note: {args.workers} processes for {spec.n_chunks} chunk(s): "
-              "a process computes whole chunks; a smaller [run] chunk_size gives each "
-              "process one")
+        setup.append(f"{spec.name}: note: {args.workers} processes for {spec.n_chunks} "
+                     "chunk(s): a process computes whole chunks; a smaller [run] chunk_size "
+                     "gives each process one")
+    if not args.quiet:
+        for line in setup:
+            print(line, file=sys.stderr)
     engine = {"rocking": "batch", "planar": "planar"}.get(spec.model.name)
     compiling = engine is not None and not args.scheduler and not compiled_before(engine)
     if engine is not None and not args.scheduler:

@@ -187,7 +187,7 @@ def _calibrate(args) -> int:
 
 def _predict(args) -> int:
     from shaketable.core.files import prepare_output_file, write_csv
-    from shaketable.validation.folder import read_folder
+    from shaketable.validation.folder import read_folder, specimen_labels
     from shaketable.validation.workflow import (
         predict_folder,
         predict_from_geometry,
@@ -204,15 +204,21 @@ def _predict(args) -> int:
 
         geometry = pd.read_csv(args.geometry)
         frame = predict_from_geometry(folder, geometry, sign=args.sign, threads=args.threads)
+        # no calibration: in-sample or out-of-sample does not apply; `score` reads this
+        frame[MODEL_COLUMN] = SCAN_BASED
     else:
         frame = predict_folder(folder, read_calibration(args.calibration), threads=args.threads)
     write_csv(out, frame, index=False)
     if not args.quiet:
+        if args.geometry is not None:
+            print(f"{SCAN_BASED}: each specimen's measured geometry, Housner's COR per pivot")
         for name in frame.attrs.get("missing", []):
             print(f"specimen {name}: not in the calibration, left out")
         counts = frame.groupby("specimen")["predicted_overturned"].agg(["sum", "count"])
+        labels = specimen_labels(folder)
         for name, row in counts.iterrows():
-            print(f"{name}: {int(row['sum'])} of {int(row['count'])} tests predicted to overturn")
+            print(f"{labels.get(name, name)}: {int(row['sum'])} of {int(row['count'])} tests "
+                  "predicted to overturn")
         unknown = sorted(set(frame.loc[frame["in_training"] == -1, "specimen"]))
         if unknown:
             print(f"{', '.join(unknown)}: the calibration does not record the tests it was "
@@ -233,6 +239,7 @@ def _score(args) -> int:
     predictions = read_predictions(args.predictions)
     folder = read_folder(args.folder)
     result = score_folder(predictions, folder)
+    result["scan_based"] = _scan_based(predictions)
     labels = specimen_labels(folder)
     figures = prepare_output_folder(args.figures, "--figures") if args.figures else None
     if not args.quiet:
@@ -272,6 +279,18 @@ def _score(args) -> int:
     return 0
 
 
+#: The column ``validate predict --geometry`` adds to its predictions, and its value: a
+#: prediction from the scanned geometry, which no calibration was fitted for.
+MODEL_COLUMN = "model"
+SCAN_BASED = "scan-based prediction (no calibration)"
+
+
+def _scan_based(predictions) -> bool:
+    """Whether every row of a predictions frame is a scan-based (uncalibrated) prediction."""
+    return bool(MODEL_COLUMN in predictions.columns and len(predictions)
+                and (predictions[MODEL_COLUMN] == SCAN_BASED).all())
+
+
 #: The score blocks of ``validate score``, in the order said: the fair one first.
 _SAMPLES = (("out_of_sample", "out-of-sample (tests the calibration never saw)"),
             ("in_sample", "in-sample (tests the calibration was fitted on: optimistic; the "
@@ -287,6 +306,8 @@ def _score_lines(result: dict, labels: dict) -> list[str]:
         return ["  " + _score_line(labels.get(name, name), values)
                 for name, values in [*part["specimens"].items(), ("all", part["all"])]]
 
+    if result.get("scan_based"):   # no calibration: no in- or out-of-sample split
+        return [f"{SCAN_BASED}; no test was used to fit it:", *block(result)]
     present = [(key, what) for key, what in _SAMPLES if key in result]
     if len(present) == 2 or (present and
                              result[present[0][0]]["all"]["n"] != result["all"]["n"]):
@@ -303,7 +324,10 @@ def _score_lines(result: dict, labels: dict) -> list[str]:
 
 def _sample_kind(result: dict) -> str:
     """``"out-of-sample"``, ``"in-sample"`` or ``"mixed ..."`` (both, or either with rows of
-    unknown kind): what a score's figures show, for their titles ("" when unknown)."""
+    unknown kind), or ``"scan-based (no calibration)"``: what a score's figures show, for
+    their titles ("" when unknown)."""
+    if result.get("scan_based"):
+        return "scan-based (no calibration)"
     kinds = [key for key, _ in _SAMPLES if key in result]
     if len(kinds) == 1 and result[kinds[0]]["all"]["n"] == result["all"]["n"]:
         return kinds[0].replace("_", "-")

@@ -50,13 +50,18 @@ from shaketable.core.motion import Motion
 from shaketable.core.validation import positive
 from shaketable.models.rocking.result import RockingResult
 
-__all__ = ["AnimationFile", "animate", "block_outline", "ffmpeg_available", "frame_times",
-           "snapshot", "table_displacement"]
+__all__ = ["AnimationFile", "animate", "block_outline", "default_speed", "ffmpeg_available",
+           "frame_times", "snapshot", "table_displacement"]
 
 #: Default frames per second of the animation [1/s] and the largest number of frames allowed.
 DEFAULT_FPS = 12
 
 MAX_FRAMES = 1500
+
+#: ``speed=None``: a span shown shorter than this [s] is slowed so that its animation lasts
+#: this long (at 12 frames a second, 48 frames or more: a short event, an impact or a
+#: kick, falls on or near a frame); a longer one plays in real time.
+SHORT_SPAN = 4.0
 
 #: Default frame size [pixels] and resolution [dots per inch]: 10.24 x 5.76 in figures,
 #: whose 11-13 pt labels stay readable on a projector; ``dpi`` scales the fonts.
@@ -143,6 +148,16 @@ def frame_times(t_first: float, t_last: float, fps: float, speed: float,
                          f"{speed:g}: more than {max_frames}; raise speed, lower fps or "
                          "shorten the time span")
     return t_first + step * np.arange(count)
+
+
+def default_speed(span: float) -> float:
+    """The speed of ``speed=None`` for a span shown of ``span`` seconds [-]: 1 (real time)
+    for :data:`SHORT_SPAN` (4 s) or more; a shorter span slowed to last :data:`SHORT_SPAN`
+    seconds of animation, ``span / SHORT_SPAN`` to two significant digits (a 1-s run at 0.25,
+    a 0.6-s run at 0.15)."""
+    if not span > 0:
+        return 1.0
+    return min(1.0, float(f"{span / SHORT_SPAN:.2g}"))
 
 
 def table_displacement(motion: Motion | None, times: ArrayLike, *,
@@ -536,7 +551,7 @@ def _writer(path: Path, size: tuple, fps: float):
 
 def animate(result: RockingResult | Sequence[RockingResult], block: Block | None = None,
             motion: Motion | None = None, *, out: str | os.PathLike[str],
-            fps: float = DEFAULT_FPS, speed: float = 1.0, start: float | None = None,
+            fps: float = DEFAULT_FPS, speed: float | None = 1.0, start: float | None = None,
             end: float | None = None, size: tuple = DEFAULT_SIZE, dpi: float = DEFAULT_DPI,
             layout: str = "side", labels: Sequence[str] | None = None, unit: str | None = None,
             highpass: float | None = 0.1, title: str | None = None,
@@ -559,9 +574,11 @@ def animate(result: RockingResult | Sequence[RockingResult], block: Block | None
         says so). No suffix: MP4 when ffmpeg is found, else GIF. Its folder is created.
     fps : float
         Frames per second of the animation [1/s].
-    speed : float
+    speed : float or None
         Simulated seconds per second of the animation [-]; 1 is real time, 2
-        twice as fast. One frame every ``speed / fps`` simulated seconds.
+        twice as fast. One frame every ``speed / fps`` simulated seconds. None: real
+        time for a span of 4 s or more, a shorter one slowed to last 4 s
+        (:func:`default_speed`).
     start, end : float, optional
         Simulated time span shown [s]; default the whole (longest) result.
     size : (int, int)
@@ -622,6 +639,7 @@ def animate(result: RockingResult | Sequence[RockingResult], block: Block | None
     t_first = min(float(run.t[0]) for run in results) if start is None else float(start)
     t_last = max(float(run.t[-1]) for run in results)
     t_last = t_last if end is None else min(float(end), t_last)
+    speed = default_speed(t_last - t_first) if speed is None else speed
     times = frame_times(t_first, t_last, fps, speed, max_frames)
     from shaketable.core.files import atomic_write, prepare_output_file
     from shaketable.plots.base import pyplot

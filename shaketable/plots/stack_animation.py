@@ -12,6 +12,7 @@ as :func:`shaketable.plots.animation.animate` writes one block (GIF, or MP4 with
 from __future__ import annotations
 
 import os
+import textwrap
 from pathlib import Path
 from typing import Any, cast
 
@@ -26,6 +27,7 @@ from shaketable.plots.animation import (
     STAGE_UNITS,
     AnimationFile,
     checked_size,
+    default_speed,
     frame_times,
     output_file,
     render_frames,
@@ -64,8 +66,8 @@ class _StackStage:
     def __init__(self, result, times, highpass, *, size, dpi, unit, title):
         from matplotlib.patches import Polygon, Rectangle
 
-        from shaketable.models.stack import pattern_name
         from shaketable.plots.base import pyplot
+        from shaketable.scenes.stack_patterns import pattern_words
 
         plt = pyplot()
         self.result, self.times = result, times
@@ -79,7 +81,9 @@ class _StackStage:
         self.displacement = table_displacement(result.motion, times, highpass=highpass) / factor
         self.outlines = stack_outlines(result, self.index) / factor
         self.outlines[..., 0] += self.displacement[:, None, None]
-        self.words = [pattern_name(result.patterns[k]) for k in self.index]
+        # in words on the stage, wrapped to its width (the results' code left out)
+        self.words = ["\n".join(textwrap.wrap(pattern_words(result.patterns[k], code=False),
+                                               44)) for k in self.index]
         width, height = size
         self.fig = fig = plt.figure(figsize=(width / dpi, height / dpi), dpi=dpi)
         with_ground = bool(np.any(result.motion.horizontal))
@@ -127,8 +131,11 @@ class _StackStage:
             ratio = ratios[i] * factor
             label = (f"θ{i}/α{i}: {result.block_name(i)}" if factor == 1.0 else
                      f"θ{i}/α{i} × {factor:g}: {result.block_name(i)} (magnified)")
-            (trace,) = history.plot(result.t, ratio, color=_LINES[i % len(_LINES)], lw=1.0,
-                                    label=label)
+            # blocks moving together draw one curve: each block above is drawn wider and
+            # under the ones below it, so that every curve shows
+            (trace,) = history.plot(result.t, ratio, color=_LINES[i % len(_LINES)],
+                                    lw=trace_width(i, stack.n), label=label,
+                                    zorder=3 + stack.n - i)
             self.traces.append((trace, result.t, ratio))
             (dot,) = history.plot([times[0]], [ratio[self.index[0]]], "o",
                                   color=_LINES[i % len(_LINES)], ms=5)
@@ -161,8 +168,11 @@ class _StackStage:
             what = f"stack, top first: {stack.describe().split(': ', 1)[1]}; {law}"
             title = f"{motion_name(result)}: {what}"
         fig.suptitle(title, fontsize=12, y=0.99)
-        self.animated = [self.table, *self.blocks, *(trace for trace, _, _ in self.traces),
-                         *self.cursors, *(dot for dot, _ in self.dots), self.state, self.clock]
+        # drawn in this order frame by frame: the top block's curve first, the bottom's last
+        curves = [trace for trace, _, _ in self.traces]
+        self.animated = [self.table, *self.blocks, *curves[stack.n - 1::-1],
+                         *curves[stack.n:], *self.cursors,
+                         *(dot for dot, _ in self.dots[::-1]), self.state, self.clock]
 
     def draw(self, index: int):
         """Move the artists to frame ``index``; return them."""
@@ -190,6 +200,13 @@ class _StackStage:
         return self.animated
 
 
+def trace_width(index: int, count: int) -> float:
+    """The line width [pt] of block ``index``'s θ/α curve of ``count``: 1 for the bottom
+    block, 1.25 more for each block above (at most 4 for the top one): where curves
+    coincide, each shows as a band around the one below it."""
+    return 1.0 + min(1.25, 3.0 / max(count - 1, 1)) * index
+
+
 def motion_name(result) -> str:
     motion = result.motion
     if not np.any(motion.horizontal) and not np.any(motion.vertical_or_zero):
@@ -198,7 +215,8 @@ def motion_name(result) -> str:
 
 
 def animate_stack(result, *, out: str | os.PathLike[str], fps: float = DEFAULT_FPS,
-                  speed: float = 1.0, start: float | None = None, end: float | None = None,
+                  speed: float | None = 1.0, start: float | None = None,
+                  end: float | None = None,
                   size: tuple = DEFAULT_SIZE, dpi: float = DEFAULT_DPI, unit: str | None = None,
                   highpass: float | None = 0.1, title: str | None = None,
                   max_frames: int = MAX_FRAMES) -> AnimationFile:
@@ -220,6 +238,7 @@ def animate_stack(result, *, out: str | os.PathLike[str], fps: float = DEFAULT_F
     out, note = output_file(out)
     t_first = float(result.t[0]) if start is None else float(start)
     t_last = float(result.t[-1]) if end is None else min(float(end), float(result.t[-1]))
+    speed = default_speed(t_last - t_first) if speed is None else speed
     times = frame_times(t_first, t_last, fps, speed, max_frames)
     out = prepare_output_file(out, "out")
     stage = _StackStage(result, times, highpass, size=(width, height), dpi=dpi, unit=unit,

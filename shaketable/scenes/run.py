@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 from shaketable.core.equality import fields_equal
 from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion
-from shaketable.core.units import parse
+from shaketable.core.units import display_length_unit, parse
 from shaketable.ground import generators
 from shaketable.lab.stage import TableRun, run_table
 from shaketable.models.api import simulate
@@ -145,6 +145,20 @@ class SceneResult:
         """The first run (the scene's first COR)."""
         return self.runs[0]
 
+    @property
+    def slip_unit(self) -> str:
+        """The one length unit of the scene's slips, in its figures and its lines: the unit
+        the scene's block was given in, or the next smaller one (ft -> in, m -> mm) when a
+        sliding or planar run's peak slip is under one of it
+        (:func:`~shaketable.core.units.display_length_unit`; the smallest of the runs')."""
+        from shaketable.core.constants import LENGTH_UNITS
+
+        unit = self.scene.block.length_unit if self.scene.block is not None else "m"
+        peaks = ([run.peak_slip for run in self.slides]
+                 + [run.summary()["peak slip [m]"] for run in self.planar])
+        units = {display_length_unit(float(peak), unit) for peak in peaks}
+        return min(units, key=LENGTH_UNITS.__getitem__) if units else unit
+
     def to_frame(self) -> pd.DataFrame:
         """Time histories of every run, long format with a ``cor [-]`` column."""
         import pandas as pd
@@ -263,10 +277,24 @@ class SceneResult:
                 written.append(out / f"sliding{label}.png")
                 title = (f"{self.scene.source or self.scene.name}: the same block sliding, "
                          f"μs {run.friction.static:g}, μd {run.friction.dynamic:g}")
-                # lengths in the unit the scene's block was given in
-                save(run.plot(title=title, length_unit=self.scene.block.length_unit),
-                     written[-1])
+                # lengths in the one unit of the scene's slips (the block's own, or the
+                # next smaller one)
+                save(run.plot(title=title, length_unit=self.slip_unit), written[-1])
         return written
+
+
+def length_in(value: float, unit: str, *, signed: bool = False) -> str:
+    """A length [m] in exactly ``unit`` (3 significant digits), with the unit: the lines of
+    one scene keep one unit (:attr:`SceneResult.slip_unit`), where
+    :func:`~shaketable.core.units.format_length` would pick one per value."""
+    import math
+
+    from shaketable.core.constants import LENGTH_UNITS
+
+    if not math.isfinite(value):
+        return "n/a"
+    number = f"{value / LENGTH_UNITS[unit]:{'+' if signed else ''}#.3g}".replace(".e", "e")
+    return f"{number[:-1] if number.endswith('.') else number} {unit}"
 
 
 def run_scene(scene: Scene) -> SceneResult:

@@ -214,10 +214,10 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
     if uplift is None:
         lines.append(_no_uplift_line(result, impacts))
     else:
-        from shaketable.models.stack import pattern_name
+        from shaketable.scenes.stack_patterns import pattern_words
 
         lines.append(f"first uplift at t = {uplift['t']:.3f} s: "
-                     f"{pattern_name(uplift['pattern_after'])}; {impacts} impact(s)")
+                     f"{pattern_words(uplift['pattern_after'])}; {impacts} impact(s)")
     lines.append(f"top corner's peak excursion (the clearance the stack needs) "
                  f"{format_length(result.peak_excursion, unit)}")
     demand = result.friction_demand

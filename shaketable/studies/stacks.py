@@ -49,7 +49,7 @@ def housner_cor(block: Block) -> float:
     return 1.0 - 1.5 * math.sin(block.alpha) ** 2
 
 
-def _stack_run(stack: Stack, motion: Motion | None, **options):
+def quiet_stack_run(stack: Stack, motion: Motion | None, **options):
     """One stack run; its assumption warnings are counted by the study, not shown."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", StackTensionWarning)
@@ -115,7 +115,7 @@ def record_runs(block: Block, motion: Motion, heights=(1, 2, 3), rtol: float = 1
                         "F/N > 1 from [s]": math.nan, "tension from [s]": math.nan})
         else:
             stack = Stack((block,) * count)
-            run = _stack_run(stack, motion, rtol=rtol)
+            run = quiet_stack_run(stack, motion, rtol=rtol)
             ratios = np.abs(run.theta).max(axis=0) / block.alpha
             words = ["F" if run.status == "overturned" and i >= run.overturned_block
                      else f"{ratio:.3g}" for i, ratio in enumerate(ratios)]
@@ -165,7 +165,7 @@ def uplift_thresholds(cases, rate: float = 0.5 * G, duration: float = 0.8) -> pd
     motion = ramp(rate, duration)
     for label, stack in cases:
         a1, a2 = uplift_closed_form(stack)
-        run = _stack_run(stack, motion)
+        run = quiet_stack_run(stack, motion)
         uplift = next((event for event in run.events if event["kind"] == "uplift"), None)
         computed = math.nan if uplift is None else rate * uplift["t"] / G
         expected = "stack as one body (+)" if a1 < a2 else "top alone (+)"
@@ -183,7 +183,7 @@ def uplift_thresholds(cases, rate: float = 0.5 * G, duration: float = 0.8) -> pd
 
 
 # ----------------------------------------------------------------------------- pulses
-def _pulse(amplitude: float, length: float, after: float, samples: int = 40) -> Motion:
+def half_sine_pulse(amplitude: float, length: float, after: float, samples: int = 40) -> Motion:
     """A half sine of ``amplitude`` [m/s^2] lasting ``length`` [s], then the table at rest
     for ``after`` [s] (sampled every 0.05 s: nothing to resolve)."""
     t = np.linspace(0.0, length, samples + 1)
@@ -195,11 +195,11 @@ def _pulse(amplitude: float, length: float, after: float, samples: int = 40) -> 
 
 def _overturns(stack: Stack, amplitude: float, length: float, after: float,
                rtol: float) -> bool:
-    motion = _pulse(amplitude, length, after)
+    motion = half_sine_pulse(amplitude, length, after)
     if stack.n == 1:
         block = stack.blocks[0]
         return bool(simulate(block, motion, cor=housner_cor(block)).overturned)
-    return _stack_run(stack, motion, rtol=rtol).status == "overturned"
+    return quiet_stack_run(stack, motion, rtol=rtol).status == "overturned"
 
 
 def eq_2_8(stack: Stack, omega: float) -> float:
@@ -266,25 +266,6 @@ def pulse_amplitudes(block: Block, ratios=(3.0,), heights=(1, 2), iterations: in
             rows.append({"omega/p [-]": ratio, "blocks high": count,
                          **column_minimum(Stack((block,) * count), ratio * block.p,
                                           iterations, after, rtol)})
-    return pd.DataFrame(rows)
-
-
-def stack_spectrum(stack: Stack, ratios, iterations: int = 5, after: float = 2.5,
-                   rtol: float = 1e-9) -> pd.DataFrame:
-    """The smallest overturning half-sine pulse of ``stack`` and of its bottom block alone
-    over ``omega / p`` (p of the bottom block), with Eq. (2-8) for each as one body.
-
-    Only the lowest overturning amplitude of each pulse frequency is sought (bisected
-    between 0.5 and 2 times Eq. (2-8)): the safe bands above it that a single block has
-    (:mod:`shaketable.studies.overturning_spectrum`) are not searched for a stack.
-    """
-    bottom = Stack((stack.blocks[0],))
-    rows = []
-    for ratio in ratios:
-        omega = float(ratio) * stack.blocks[0].p
-        for label, column in (("stack", stack), ("bottom block alone", bottom)):
-            rows.append({"omega/p [-]": float(ratio), "column": label,
-                         **column_minimum(column, omega, iterations, after, rtol)})
     return pd.DataFrame(rows)
 
 

@@ -315,6 +315,20 @@ def overturned_blocks(table) -> str:
     return ", ".join(parts)
 
 
+def overturned_line(rows) -> str:
+    """How many of one sweep group's runs overturned, and, for a stack, which block fell:
+    ``"overturned in 9 of 14 runs (a block alone)"``, ``"overturned in 14 of 20 runs; the
+    block that fell: block 1 (top) 1, block 0 (bottom) 13"`` ("" for another sweep's
+    rows). A block alone has no "block that fell": its count is said apart."""
+    if "overturned block" not in rows or "blocks" not in rows or not len(rows):
+        return ""
+    count = f"overturned in {int(rows['overturned'].astype(bool).sum())} of {len(rows)} runs"
+    if (rows["blocks"].astype(int) == 1).all():
+        return count + " (a block alone)"
+    which = overturned_blocks(rows[rows["blocks"].astype(int) > 1])
+    return count + (f"; the block that fell: {which}" if which else "")
+
+
 def overturn_answer(table) -> str:
     """How many runs of a stack sweep overturn, the stacks and the blocks alone apart:
     ``"23 of 40 runs overturn: 14 stacks (the block that fell: block 1 (top) 1, block 0

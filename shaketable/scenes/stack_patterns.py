@@ -1,0 +1,51 @@
+"""A stack's contact pattern in words, for any number of blocks (docs/stack.md, "Coordinates,
+interfaces, patterns").
+
+Two blocks keep the names of the results (:func:`shaketable.models.stack.pattern_name`:
+"stack as one body (+)", "top alone (−)", ...). With three or more, the results name a
+pattern by its open (pivoting) interfaces (``open 0+ 2-``); here each group of blocks that
+moves as one body is named, from the bottom up, with the support it pivots on and the sign
+of the pivot, the results' code after it in brackets:
+``"blocks 0-1 rocking as one on the table (+), block 2 rocking on block 1 (-) [open 0+ 2-]"``.
+"""
+
+from __future__ import annotations
+
+from shaketable.models.stack import pattern_name
+
+
+def _blocks(first: int, last: int) -> str:
+    return f"block {first}" if first == last else f"blocks {first}-{last}"
+
+
+def pattern_words(pattern, *, code: bool = True) -> str:
+    """A contact pattern in words.
+
+    Parameters
+    ----------
+    pattern : sequence of int
+        Each interface's state, bottom first (interface j below block j): 0 flat, +1 or -1
+        pivoting on the upper block's -x or +x corner.
+    code : bool
+        Append the results' code in brackets (three blocks or more).
+
+    Returns
+    -------
+    str
+        For one or two blocks the results' name; for more, every group of blocks moving as
+        one body (an open interface and the flat ones above it) with its support and sign,
+        the blocks below the lowest open interface said at rest on the table, and the results'
+        code in brackets (``"rest"`` when no interface is open).
+    """
+    pattern = tuple(int(s) for s in pattern)
+    if len(pattern) <= 2 or not any(pattern):
+        return pattern_name(pattern)
+    opened = [j for j, s in enumerate(pattern) if s != 0]
+    parts = [] if opened[0] == 0 else [f"{_blocks(0, opened[0] - 1)} at rest on the table"]
+    for index, j in enumerate(opened):
+        last = opened[index + 1] - 1 if index + 1 < len(opened) else len(pattern) - 1
+        support = "the table" if j == 0 else f"block {j - 1}"
+        sign = "+" if pattern[j] > 0 else "-"
+        parts.append(f"{_blocks(j, last)} rocking{' as one' if last > j else ''} on "
+                     f"{support} ({sign})")
+    return ", ".join(parts) + (f" [{pattern_name(pattern)}]" if code else "")

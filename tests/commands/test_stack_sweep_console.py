@@ -1,0 +1,98 @@
+"""``risk`` and ``sweep`` on a stack sweep: the block alone's count is said apart from "which
+block of a stack fell", and ``sweep`` leads its console output with the answer."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+
+from shaketable.cli import main
+
+
+def _stack_sweep_folder(path):
+    """A finished stack sweep written by hand: one block alone and its two-block stack,
+    14 runs each on 14 PGV levels (0 the weakest); the block alone overturns at levels 4 to
+    13 but 12 (9 of 14; not separable, so a fragility fits), the stack at levels 3, 6 and 8
+    to 13 (8 of 14), its top block at level 3, its bottom block the 7 other times."""
+    pgv = np.geomspace(0.05, 2.0, 14)
+    alone = np.zeros(14, bool)
+    alone[5:] = True
+    alone[12], alone[4] = False, True       # 9 of 14, not separable
+    stack = np.zeros(14, bool)
+    stack[6:] = True
+    stack[3], stack[7] = True, False        # 8 - 1 + 1 = 8 of 14
+    which = np.where(stack, 0, -1)
+    which[np.flatnonzero(stack)[0]] = 1     # the top block fell once
+    rows = []
+    for blocks, label, fell, block_fell in ((1, "30 x 6 in", alone, np.where(alone, 0, -1)),
+                                            (2, "2 blocks: 30 x 6 in on 30 x 6 in", stack,
+                                             which)):
+        for k in range(14):
+            rows.append({"block": label, "cor [-]": np.nan, "record": f"r{k % 4}",
+                         "pgv [m/s]": pgv[k], "overturned": bool(fell[k]),
+                         "overturned block": int(block_fell[k]), "blocks": blocks,
+                         "R [m]": 0.3, "base width [m]": 0.15, "status": "completed"})
+    path.mkdir()
+    pd.DataFrame(rows).to_csv(path / "results.csv", index=False)
+    (path / "manifest.json").write_text(json.dumps({"format": "csv", "n_chunks": 1,
+                                                   "n_runs": len(rows)}))
+    return path
+
+
+def test_risk_says_the_block_alone_apart_from_the_block_that_fell(tmp_path, capsys):
+    folder = _stack_sweep_folder(tmp_path / "stacks")
+    assert main(["risk", str(folder), "--hazard", "example"]) == 0
+    out = capsys.readouterr().out
+    assert "a block alone 9" not in out, out
+    # counted by hand from the rows above
+    assert "    overturned in 9 of 14 runs (a block alone)" in out.splitlines(), out
+    assert ("    overturned in 8 of 14 runs; the block that fell: block 1 (top) 1, "
+            "block 0 (bottom) 7") in out.splitlines(), out
+
+
+def test_overturned_line_counts_by_hand():
+    from shaketable.sweeps.stacks import overturned_line
+
+    rows = pd.DataFrame({"blocks": [3, 3, 3, 3], "overturned": [True, True, False, True],
+                         "overturned block": [1, 2, -1, 1]})
+    assert overturned_line(rows) == ("overturned in 3 of 4 runs; the block that fell: "
+                                     "block 2 (top) 1, block 1 2")
+    alone = pd.DataFrame({"blocks": [1, 1], "overturned": [False, True],
+                          "overturned block": [-1, 0]})
+    assert overturned_line(alone) == "overturned in 1 of 2 runs (a block alone)"
+    assert overturned_line(pd.DataFrame({"overturned": [True]})) == ""
+
+
+TINY_STACK_SWEEP = """name = "tiny-stacks"
+description = "two PGA levels, a block alone and two high, one 2-s substitute record"
+seed = 1
+
+[stacks]
+sizes = ["30x6in"]
+blocks = [1, 2]
+
+[rocking]
+cor = "plastic"
+
+[[records]]
+preset = "olive-view"
+seeds = 1
+duration = "2 s"
+
+[intensity]
+pga = ["0.1 g", "0.6 g"]
+"""
+
+
+def test_sweep_leads_its_output_with_the_answer(tmp_path, capsys):
+    (tmp_path / "tiny.toml").write_text(TINY_STACK_SWEEP, encoding="utf-8")
+    assert main(["sweep", str(tmp_path / "tiny.toml"), "--out", str(tmp_path / "o"),
+                 "--no-progress"]) == 0
+    printed = capsys.readouterr()
+    lines = printed.out.splitlines()
+    # the answer first; what ran (runs, chunks, the model) beside the progress, on stderr
+    assert lines[0].startswith("tiny-stacks: ") and " of 4 runs overturn" in lines[0], lines
+    assert lines[1].startswith("tiny-stacks: computed 4 runs in "), lines
+    assert "4 runs in 1 chunk(s) of" in printed.err and "the stack model" in printed.err
