@@ -150,7 +150,7 @@ from shaketable.models.planar.physics import (
     half_width,
     kinetic_energy,
 )
-from shaketable.models.planar.steps import E_IMPACT, N_STATE, falses, zeros
+from shaketable.models.planar.steps import E_IMPACT, N_STATE, STAGE_ROWS, falses, zeros
 from shaketable.models.rocking.physics import ALPHA, ERROR_MODEL, HALF_HEIGHT, HALF_WIDTH
 
 
@@ -205,7 +205,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     scale_abs[3], scale_abs[4], scale_abs[5] = rtol * radius * p, rtol * G * radius, \
         rtol * G * radius
     segment = np.empty(9)   # planar_steps.ground's layout, then the interval's end [s]
-    stages, dense, ready = np.empty((16, N_STATE)), np.empty((7, N_STATE)), falses(ONE)
+    stages, dense, ready = np.empty((STAGE_ROWS, N_STATE)), np.empty((7, N_STATE)), \
+        falses(ONE)
     z, z_new, z_event, z_turn, k1 = zeros(STATE), zeros(STATE), zeros(STATE), zeros(STATE), \
         zeros(STATE)
     q, q_start, q_end = zeros(SIX), zeros(SIX), zeros(SIX)
