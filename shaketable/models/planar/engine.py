@@ -47,6 +47,7 @@ layout of its arrays in :mod:`~shaketable.models.planar.layout`.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -153,6 +154,10 @@ from shaketable.models.planar.physics import (
 from shaketable.models.planar.steps import E_IMPACT, N_STATE, STAGE_ROWS, falses, zeros
 from shaketable.models.rocking.physics import ALPHA, ERROR_MODEL, HALF_HEIGHT, HALF_WIDTH
 
+#: numba options of :func:`drive`: no reference counting (it allocates nothing).
+DRIVER: Any = {"cache": True, "nogil": True, "no_cpython_wrapper": True,
+               "no_cfunc_wrapper": True, "error_model": ERROR_MODEL, "_nrt": False}
+
 
 @njit(cache=True, nogil=True, error_model=ERROR_MODEL)
 def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, rest_tolerance,
@@ -189,6 +194,32 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     info : ndarray, shape (N_INFO,)
         Scalar results (I_* layout).
     """
+    # np.empty, not np.array or np.zeros: one numpy routine less to compile on a cold cache
+    # (the work arrays below are zeroed by zeros and falses)
+    scale_abs = np.empty(6)
+    segment = np.empty(9)   # planar_steps.ground's layout, then the interval's end [s]
+    stages, dense, ready = np.empty((STAGE_ROWS, N_STATE)), np.empty((7, N_STATE)), \
+        falses(ONE)
+    z, z_new, z_event, z_turn, k1 = zeros(STATE), zeros(STATE), zeros(STATE), zeros(STATE), \
+        zeros(STATE)
+    q, q_start, q_end = zeros(SIX), zeros(SIX), zeros(SIX)
+    g_start, g_end = zeros(EVENTS), zeros(EVENTS)
+    armed, fresh, no_events = falses(EVENTS), falses(EVENTS), falses(EVENTS)
+    drive(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, rest_tolerance,
+          theta0, omega0, out, ev, final, info, scale_abs, segment, stages, dense, ready, z,
+          z_new, z_event, z_turn, k1, q, q_start, q_end, g_start, g_end, armed, fresh,
+          no_events)
+
+
+@njit(**DRIVER)
+def drive(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, rest_tolerance,
+          theta0, omega0, out, ev, final, info, scale_abs, segment, stages, dense, ready, z,
+          z_new, z_event, z_turn, k1, q, q_start, q_end, g_start, g_end, armed, fresh,
+          no_events):
+    """:func:`integrate`'s walk over the samples, on the work arrays it allocated (the
+    arguments after ``info``; nothing is allocated here, so that the driver is compiled
+    without numba's reference counting and the mode functions are inlined into it with
+    no reference counting of their arrays)."""
     n = t_grid.shape[0]
     b = parameters[HALF_WIDTH]
     hh = parameters[HALF_HEIGHT]
@@ -198,20 +229,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     if rest_tolerance < 0.0:
         rest_tolerance = 1e-6 / p
     velocity_floor = 1e-8 * alpha * p
-    # np.empty, not np.array or np.zeros: one numpy routine less to compile on a cold cache
-    # (the work arrays below are zeroed by zeros and falses)
-    scale_abs = np.empty(6)
     scale_abs[0], scale_abs[1], scale_abs[2] = rtol * alpha, rtol * alpha * p, rtol * radius
     scale_abs[3], scale_abs[4], scale_abs[5] = rtol * radius * p, rtol * G * radius, \
         rtol * G * radius
-    segment = np.empty(9)   # planar_steps.ground's layout, then the interval's end [s]
-    stages, dense, ready = np.empty((STAGE_ROWS, N_STATE)), np.empty((7, N_STATE)), \
-        falses(ONE)
-    z, z_new, z_event, z_turn, k1 = zeros(STATE), zeros(STATE), zeros(STATE), zeros(STATE), \
-        zeros(STATE)
-    q, q_start, q_end = zeros(SIX), zeros(SIX), zeros(SIX)
-    g_start, g_end = zeros(EVENTS), zeros(EVENTS)
-    armed, fresh, no_events = falses(EVENTS), falses(EVENTS), falses(EVENTS)
     t = t_grid[0]
     mode, side = start(t, theta0, omega0, q, z, info, parameters)
     status = STATUS_COMPLETED

@@ -402,7 +402,7 @@ def contact_entry(t, mode, side, sigma, rest_until, segment, mu_s, mu_d, q, z, k
     return mode, sigma, False, rest_until, STATUS_COMPLETED, False
 
 
-@njit(**STEPS)
+@njit(**INLINED)
 def contact_steps(t, mode, side, sigma, step_size, just_rejected, rtol, mu_s, mu_d,
                   segment, scale_abs, z, z_new, z_event, z_turn, k1, stages, dense, ready,
                   g_start, g_end, armed, fresh, no_events, q, q_start, q_end, ev, info,
