@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
@@ -375,21 +374,3 @@ def horizontal_rate_at(which, cosine, sine, x_dot, omega, parameters):
     u = -parameters[HALF_WIDTH] if which == 1 or which == 3 else parameters[HALF_WIDTH_MINUS]
     w = -h if which <= 2 else h
     return x_dot - omega * (u * sine + w * cosine)
-
-
-@njit(**HELPER)
-def zeros(n):
-    """A float array of n zeros (np.empty: compiled once for all the engine's arrays)."""
-    array = np.empty(n)
-    for i in range(n):
-        array[i] = 0.0
-    return array
-
-
-@njit(**HELPER)
-def falses(n):
-    """A bool array of n False."""
-    array = np.empty(n, dtype=np.bool_)
-    for i in range(n):
-        array[i] = False
-    return array
