@@ -162,7 +162,11 @@ ENTRY: Any = {"cache": True, "nogil": True, "error_model": ERROR_MODEL, "_nrt": 
 
 def work_arrays() -> tuple:
     """The work arrays of one run of :func:`integrate` (its arguments after ``info``), to
-    be reused from run to run (integrate clears them)."""
+    be reused from run to run (integrate clears them): scale_abs (the absolute
+    tolerances), segment (:func:`~shaketable.models.planar.steps.ground`'s layout, then the
+    interval's end [s]), stages (STAGE_ROWS rows), dense (the continuous extension), ready,
+    z, z_new, z_event, z_turn, k1 (contact states), q, q_start, q_end (body states),
+    g_start, g_end (event functions), armed, fresh, no_events (event flags)."""
     return (np.empty(6), np.empty(9), np.empty((STAGE_ROWS, N_STATE)),
             np.empty((7, N_STATE)), np.empty(ONE, dtype=np.bool_),
             *(np.empty(STATE) for _ in range(5)), *(np.empty(SIX) for _ in range(3)),
