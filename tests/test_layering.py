@@ -207,6 +207,33 @@ def import_cycles(package: Path) -> list[list[str]]:
     return sorted(cycles)
 
 
+#: What ``numerics`` (shared by the engines, knowing none of them) may import of the package
+#: outside itself: the physical constants.
+NUMERICS_IMPORTS = {"shaketable.core.constants"}
+
+
+def numerics_violations(package: Path) -> list[str]:
+    """The imports of ``numerics/`` from the package beyond its own and NUMERICS_IMPORTS."""
+    found = []
+    for path in sorted((package / "numerics").rglob("*.py")):
+        for module, _, _, _ in _imports(ast.parse(path.read_text())):
+            if (module.split(".")[0] == "shaketable" and module not in NUMERICS_IMPORTS
+                    and not module.startswith("shaketable.numerics")):
+                found.append(f"numerics/{path.name}: imports {module}")
+    return found
+
+
+def test_numerics_imports_only_the_core_constants(tmp_path):
+    assert numerics_violations(REPOSITORY / "shaketable") == []
+    numerics = tmp_path / "shaketable" / "numerics"
+    numerics.mkdir(parents=True)
+    (numerics / "roots.py").write_text("from shaketable.core.constants import G\n"
+                                       "from shaketable.numerics import dop853\n"
+                                       "from shaketable.core.units import parse\n")
+    assert numerics_violations(tmp_path / "shaketable") == [
+        "numerics/roots.py: imports shaketable.core.units"]
+
+
 def test_the_package_respects_its_layers():
     assert violations(REPOSITORY / "shaketable") == []
 

@@ -13,6 +13,7 @@ of its own.
 from __future__ import annotations
 
 import itertools
+import threading
 from collections.abc import Iterable
 
 import numpy as np
@@ -113,13 +114,19 @@ def simulate_many_planar(blocks: Block | Iterable[Block], motion: Motion,
     rtol = DEFAULT_PLANAR_RTOL if rtol is None else in_range("rtol", rtol, MIN_RTOL, 1.0)
     none, no_events = np.empty((0, planar.N_OUT)), np.empty((0, planar.EVENT_COLUMNS))
 
+    per_thread = threading.local()
+
     def run(start: int, stop: int) -> None:
         # the engine's own compiled entry point, with simulate_planar's argument types
-        # (floats, not NumPy scalars): one compiled signature for both
+        # (floats, not NumPy scalars): one compiled signature for both; one set of work
+        # arrays per thread
+        work = getattr(per_thread, "work", None)
+        if work is None:
+            work = per_thread.work = planar.work_arrays()
         for i in range(start, stop):
             planar.integrate(t_grid, ug, vg, parameters[i], float(rho[i]),
                              float(cor_cascade[i]), float(mu_s[i]), float(mu_d[i]), rtol, -1.0,
-                             0.0, 0.0, none, no_events, final[i], info[i])
+                             0.0, 0.0, none, no_events, final[i], info[i], *work)
 
     # one case at a time: run costs differ a lot (a block that overturns early is cheap),
     # and a call costs microseconds against the milliseconds of a run

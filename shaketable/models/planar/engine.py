@@ -38,8 +38,10 @@ modes), so that E_end - E_0 = W_table + W_friction - losses.
 One compiled driver (as the rocking engine) that walks the samples and hands each mode to
 its own function (:mod:`~shaketable.models.planar.phases`: ``rest_mode``, ``slide_mode``,
 ``flight_mode``, and for the contact modes ``contact_entry``, ``contact_steps``,
-``contact_event``, ``corner_impact``), inlined into it; its steppers and event location are
-in :mod:`~shaketable.models.planar.steps`, its helpers in
+``contact_event``, ``corner_impact``), inlined into it by numba; the driver allocates
+nothing (its caller passes the work arrays of :func:`work_arrays`), so that it is compiled
+without reference counting. Its steppers and event location are in
+:mod:`~shaketable.models.planar.steps` (on :mod:`shaketable.numerics.dop853`), its helpers in
 :mod:`~shaketable.models.planar.modes` and :mod:`~shaketable.models.planar.track`, the
 layout of its arrays in :mod:`~shaketable.models.planar.layout`.
 """
@@ -47,6 +49,7 @@ layout of its arrays in :mod:`~shaketable.models.planar.layout`.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -150,14 +153,37 @@ from shaketable.models.planar.physics import (
     half_width,
     kinetic_energy,
 )
-from shaketable.models.planar.steps import E_IMPACT, N_STATE, falses, zeros
+from shaketable.models.planar.steps import E_IMPACT, N_STATE, STAGE_ROWS
 from shaketable.models.rocking.physics import ALPHA, ERROR_MODEL, HALF_HEIGHT, HALF_WIDTH
 
+#: numba options of :func:`integrate`: no reference counting (it allocates nothing).
+ENTRY: Any = {"cache": True, "nogil": True, "error_model": ERROR_MODEL, "_nrt": False}
 
-@njit(cache=True, nogil=True, error_model=ERROR_MODEL)
+
+def work_arrays() -> tuple:
+    """The work arrays of one run of :func:`integrate` (its arguments after ``info``), to
+    be reused from run to run (integrate clears them): scale_abs (the absolute
+    tolerances), segment (:func:`~shaketable.models.planar.steps.ground`'s layout, then the
+    interval's end [s]), stages (STAGE_ROWS rows), dense (the continuous extension), ready,
+    z, z_new, z_event, z_turn, k1 (contact states), q, q_start, q_end (body states),
+    g_start, g_end (event functions), armed, fresh, no_events (event flags)."""
+    return (np.empty(6), np.empty(9), np.empty((STAGE_ROWS, N_STATE)),
+            np.empty((7, N_STATE)), np.empty(ONE, dtype=np.bool_),
+            *(np.empty(STATE) for _ in range(5)), *(np.empty(SIX) for _ in range(3)),
+            np.empty(EVENTS), np.empty(EVENTS),
+            *(np.empty(EVENTS, dtype=np.bool_) for _ in range(3)))
+
+
+@njit(**ENTRY)
 def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, rest_tolerance,
-              theta0, omega0, out, ev, final, info):
+              theta0, omega0, out, ev, final, info, scale_abs, segment, stages, dense, ready,
+              z, z_new, z_event, z_turn, k1, q, q_start, q_end, g_start, g_end, armed, fresh,
+              no_events):
     """Integrate one run of the planar block; fill ``out``, ``ev``, ``final`` and ``info``.
+
+    Compiled without numba's reference counting: it allocates nothing (the work arrays
+    are the caller's, :func:`work_arrays`), and the mode functions inlined into it hand
+    their arrays over at no cost.
 
     Parameters
     ----------
@@ -188,7 +214,11 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         The state where the run ended.
     info : ndarray, shape (N_INFO,)
         Scalar results (I_* layout).
+    scale_abs, ..., no_events : ndarray
+        The work arrays (:func:`work_arrays`), cleared here.
     """
+    clear(ready, z, z_new, z_event, z_turn, k1, q, q_start, q_end, g_start, g_end, armed,
+          fresh, no_events)
     n = t_grid.shape[0]
     b = parameters[HALF_WIDTH]
     hh = parameters[HALF_HEIGHT]
@@ -198,19 +228,9 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     if rest_tolerance < 0.0:
         rest_tolerance = 1e-6 / p
     velocity_floor = 1e-8 * alpha * p
-    # np.empty, not np.array or np.zeros: one numpy routine less to compile on a cold cache
-    # (the work arrays below are zeroed by zeros and falses)
-    scale_abs = np.empty(6)
     scale_abs[0], scale_abs[1], scale_abs[2] = rtol * alpha, rtol * alpha * p, rtol * radius
     scale_abs[3], scale_abs[4], scale_abs[5] = rtol * radius * p, rtol * G * radius, \
         rtol * G * radius
-    segment = np.empty(9)   # planar_steps.ground's layout, then the interval's end [s]
-    stages, dense, ready = np.empty((16, N_STATE)), np.empty((7, N_STATE)), falses(ONE)
-    z, z_new, z_event, z_turn, k1 = zeros(STATE), zeros(STATE), zeros(STATE), zeros(STATE), \
-        zeros(STATE)
-    q, q_start, q_end = zeros(SIX), zeros(SIX), zeros(SIX)
-    g_start, g_end = zeros(EVENTS), zeros(EVENTS)
-    armed, fresh, no_events = falses(EVENTS), falses(EVENTS), falses(EVENTS)
     t = t_grid[0]
     mode, side = start(t, theta0, omega0, q, z, info, parameters)
     status = STATUS_COMPLETED
@@ -304,6 +324,20 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
         filled = k + 2
 
     finish(t, q, mode, status, filled, visited, final, info, parameters)
+
+
+@njit(**INLINED)
+def clear(ready, z, z_new, z_event, z_turn, k1, q, q_start, q_end, g_start, g_end, armed, fresh,
+          no_events):
+    """The work arrays that are read before written: zeros and False."""
+    ready[0] = False
+    for i in range(STATE):
+        z[i], z_new[i], z_event[i], z_turn[i], k1[i] = 0.0, 0.0, 0.0, 0.0, 0.0
+    for i in range(SIX):
+        q[i], q_start[i], q_end[i] = 0.0, 0.0, 0.0
+    for i in range(EVENTS):
+        g_start[i], g_end[i] = 0.0, 0.0
+        armed[i], fresh[i], no_events[i] = False, False, False
 
 
 @njit(**INLINED)

@@ -52,7 +52,7 @@ assert I_PEAK_BASE_SLIP - I_MAX_ABS_THETA == P_PEAK_BASE_SLIP   # planar_track's
 #: its callers give ``first``: a literal would compile it once more).
 PEAKS = np.int64(I_MAX_ABS_THETA)
 
-#: The sizes of the engine's work arrays, as int64 for the same reason (zeros, falses).
+#: The sizes of the engine's work arrays (engine.work_arrays), as int64.
 ONE, SIX, STATE, EVENTS = np.int64(1), np.int64(6), np.int64(N_STATE), np.int64(N_EVENTS)
 
 #: Transitions allowed at one instant before the run stops with status "chatter".

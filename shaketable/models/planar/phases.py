@@ -5,9 +5,9 @@ modes (ROCK, SLIDE_ROCK: entering one, its DOP853 steps, the event that ends the
 Each takes the engine's state (the time, the mode, its pivot ``side`` and slip direction
 ``sigma``, the work arrays) and returns what it changed; the counters, the work of the
 table and of friction and the impact losses are accumulated in the info array
-(:mod:`shaketable.models.planar.layout`). They are compiled apart and inlined into the
-driver by LLVM (numba's ``forceinline``, as the rocking engine's step helper): the driver
-runs the same arithmetic as one function would.
+(:mod:`shaketable.models.planar.layout`). They are inlined into the driver by numba
+(``inline="always"``): the driver, compiled without reference counting, runs the same
+arithmetic as one function would, and hands them its arrays at no cost.
 """
 
 from __future__ import annotations
@@ -115,12 +115,6 @@ from shaketable.models.sliding.engine import first_up_crossing, first_velocity_z
 #: typed (as :func:`~shaketable.models.planar.track.record`). numba inlines a call of at
 #: most 30 arguments: Python passes more as a tuple, which its inliner refuses.
 INLINED: Any = {"cache": True, "inline": "always", "error_model": ERROR_MODEL}
-
-#: numba options of :func:`contact_steps`, entered in every sample interval of a contact
-#: mode: compiled apart and inlined into the driver by LLVM (numba's ``forceinline``, as
-#: the rocking engine's step helper). Inlined by numba instead, its thirty arrays were
-#: handed over with reference counting at every entry, and the engine ran 8 % slower.
-STEPS: Any = {**HELPER, "forceinline": True}
 
 
 @njit(**HELPER)
@@ -402,7 +396,7 @@ def contact_entry(t, mode, side, sigma, rest_until, segment, mu_s, mu_d, q, z, k
     return mode, sigma, False, rest_until, STATUS_COMPLETED, False
 
 
-@njit(**STEPS)
+@njit(**INLINED)
 def contact_steps(t, mode, side, sigma, step_size, just_rejected, rtol, mu_s, mu_d,
                   segment, scale_abs, z, z_new, z_event, z_turn, k1, stages, dense, ready,
                   g_start, g_end, armed, fresh, no_events, q, q_start, q_end, ev, info,

@@ -142,7 +142,7 @@ def simulate_planar(block: Block | AsymmetricBlock, motion: Motion | None = None
     call_interruptibly(planar.integrate, (
         t_grid, ug, vg, parameters, rho, cor_cascade, friction.static, friction.dynamic,
         options.rtol, options.rest_tolerance, options.theta0, options.theta_dot0, out, events,
-        final, info), 20 * n)
+        final, info, *planar.work_arrays()), 20 * n)
     return planar_result(block, motion, cor, friction, t_grid, out, events, final, info)
 
 

@@ -4,8 +4,9 @@
   (X_s the active corner's horizontal position [m], fixed in ROCK; W the work per unit
   mass of the table's inertial force and of friction [m^2/s^2], integrated with the
   motion) advanced by the explicit Runge-Kutta pair DOP853 of Dormand & Prince (order 8,
-  error estimators of orders 5 and 3; Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.10),
-  with the physics of :mod:`shaketable.models.planar.physics`. (The Nystrom pair of the
+  error estimators of orders 5 and 3; Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.10;
+  the shared :mod:`shaketable.numerics.dop853`), with the physics of
+  :mod:`shaketable.models.planar.physics`. (The Nystrom pair of the
   rocking engine needs theta'' = f(t, theta); SLIDE_ROCK has theta'^2 terms.)
 * Events are zeros of event functions of the state, located on the accepted step's
   continuous extension of order 7 (Hairer's contd8: three more stages, built only for a
@@ -22,7 +23,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
@@ -36,156 +36,16 @@ from shaketable.models.planar.physics import (
     slide_rock_accelerations,
 )
 from shaketable.models.rocking.physics import HALF_HEIGHT, HALF_WIDTH, HALF_WIDTH_MINUS
-
-# DOP853 tableau (Hairer, Norsett & Wanner; the numbers of SciPy's dop853_coefficients.py)
-_C = np.array([
-    0.0, 0.05260015195876773, 0.0789002279381516, 0.1183503419072274,
-    0.2816496580927726, 0.3333333333333333, 0.25, 0.3076923076923077,
-    0.6512820512820513, 0.6, 0.8571428571428571, 1.0])
-_B = np.array([
-    0.054293734116568765, 0.0, 0.0, 0.0, 0.0, 4.450312892752409,
-    1.8915178993145003, -5.801203960010585, 0.3111643669578199,
-    -0.1521609496625161, 0.20136540080403034, 0.04471061572777259])
-_E3 = np.array([
-    -0.18980075407240762, 0.0, 0.0, 0.0, 0.0, 4.450312892752409,
-    1.8915178993145003, -5.801203960010585, -0.4226823213237919,
-    -0.1521609496625161, 0.20136540080403034, 0.02265179219836082])
-_E5 = np.array([
-    0.01312004499419488, 0.0, 0.0, 0.0, 0.0, -1.2251564463762044,
-    -0.4957589496572502, 1.6643771824549864, -0.35032884874997366,
-    0.3341791187130175, 0.08192320648511571, -0.022355307863886294])
-_A = np.zeros((12, 12))
-_A[1, 0] = 0.05260015195876773
-_A[2, 0] = 0.0197250569845379
-_A[2, 1] = 0.0591751709536137
-_A[3, 0] = 0.02958758547680685
-_A[3, 2] = 0.08876275643042054
-_A[4, 0] = 0.2413651341592667
-_A[4, 2] = -0.8845494793282861
-_A[4, 3] = 0.924834003261792
-_A[5, 0] = 0.037037037037037035
-_A[5, 3] = 0.17082860872947386
-_A[5, 4] = 0.12546768756682242
-_A[6, 0] = 0.037109375
-_A[6, 3] = 0.17025221101954405
-_A[6, 4] = 0.06021653898045596
-_A[6, 5] = -0.017578125
-_A[7, 0] = 0.03709200011850479
-_A[7, 3] = 0.17038392571223998
-_A[7, 4] = 0.10726203044637328
-_A[7, 5] = -0.015319437748624402
-_A[7, 6] = 0.008273789163814023
-_A[8, 0] = 0.6241109587160757
-_A[8, 3] = -3.3608926294469414
-_A[8, 4] = -0.868219346841726
-_A[8, 5] = 27.59209969944671
-_A[8, 6] = 20.154067550477894
-_A[8, 7] = -43.48988418106996
-_A[9, 0] = 0.47766253643826434
-_A[9, 3] = -2.4881146199716677
-_A[9, 4] = -0.590290826836843
-_A[9, 5] = 21.230051448181193
-_A[9, 6] = 15.279233632882423
-_A[9, 7] = -33.28821096898486
-_A[9, 8] = -0.020331201708508627
-_A[10, 0] = -0.9371424300859873
-_A[10, 3] = 5.186372428844064
-_A[10, 4] = 1.0914373489967295
-_A[10, 5] = -8.149787010746927
-_A[10, 6] = -18.52006565999696
-_A[10, 7] = 22.739487099350505
-_A[10, 8] = 2.4936055526796523
-_A[10, 9] = -3.0467644718982196
-_A[11, 0] = 2.273310147516538
-_A[11, 3] = -10.53449546673725
-_A[11, 4] = -2.0008720582248625
-_A[11, 5] = -17.9589318631188
-_A[11, 6] = 27.94888452941996
-_A[11, 7] = -2.8589982771350235
-_A[11, 8] = -8.87285693353063
-_A[11, 9] = 12.360567175794303
-_A[11, 10] = 0.6433927460157636
-
-# DOP853's continuous extension of order 7 (Hairer's contd8; SciPy's dop853_coefficients.py):
-# stage 13 is z' at the step's end (the A row is _B), stages 14-16 the three extra ones
-_C_EXTRA = np.array([0.1, 0.2, 0.7777777777777778])
-_A_EXTRA = np.zeros((3, 16))
-_A_EXTRA[0, 0] = 0.056167502283047954
-_A_EXTRA[0, 6] = 0.25350021021662483
-_A_EXTRA[0, 7] = -0.2462390374708025
-_A_EXTRA[0, 8] = -0.12419142326381637
-_A_EXTRA[0, 9] = 0.15329179827876568
-_A_EXTRA[0, 10] = 0.00820105229563469
-_A_EXTRA[0, 11] = 0.007567897660545699
-_A_EXTRA[0, 12] = -0.008298
-_A_EXTRA[1, 0] = 0.03183464816350214
-_A_EXTRA[1, 5] = 0.028300909672366776
-_A_EXTRA[1, 6] = 0.053541988307438566
-_A_EXTRA[1, 7] = -0.05492374857139099
-_A_EXTRA[1, 10] = -0.00010834732869724932
-_A_EXTRA[1, 11] = 0.0003825710908356584
-_A_EXTRA[1, 12] = -0.00034046500868740456
-_A_EXTRA[1, 13] = 0.1413124436746325
-_A_EXTRA[2, 0] = -0.42889630158379194
-_A_EXTRA[2, 5] = -4.697621415361164
-_A_EXTRA[2, 6] = 7.683421196062599
-_A_EXTRA[2, 7] = 4.06898981839711
-_A_EXTRA[2, 8] = 0.3567271874552811
-_A_EXTRA[2, 12] = -0.0013990241651590145
-_A_EXTRA[2, 13] = 2.9475147891527724
-_A_EXTRA[2, 14] = -9.15095847217987
-_D = np.zeros((4, 16))
-_D[0, 0] = -8.428938276109013
-_D[0, 5] = 0.5667149535193777
-_D[0, 6] = -3.0689499459498917
-_D[0, 7] = 2.38466765651207
-_D[0, 8] = 2.117034582445028
-_D[0, 9] = -0.871391583777973
-_D[0, 10] = 2.2404374302607883
-_D[0, 11] = 0.6315787787694688
-_D[0, 12] = -0.08899033645133331
-_D[0, 13] = 18.148505520854727
-_D[0, 14] = -9.194632392478356
-_D[0, 15] = -4.436036387594894
-_D[1, 0] = 10.427508642579134
-_D[1, 5] = 242.28349177525817
-_D[1, 6] = 165.20045171727028
-_D[1, 7] = -374.5467547226902
-_D[1, 8] = -22.113666853125306
-_D[1, 9] = 7.733432668472264
-_D[1, 10] = -30.674084731089398
-_D[1, 11] = -9.332130526430229
-_D[1, 12] = 15.697238121770845
-_D[1, 13] = -31.139403219565178
-_D[1, 14] = -9.35292435884448
-_D[1, 15] = 35.81684148639408
-_D[2, 0] = 19.985053242002433
-_D[2, 5] = -387.0373087493518
-_D[2, 6] = -189.17813819516758
-_D[2, 7] = 527.8081592054236
-_D[2, 8] = -11.57390253995963
-_D[2, 9] = 6.8812326946963
-_D[2, 10] = -1.0006050966910838
-_D[2, 11] = 0.7777137798053443
-_D[2, 12] = -2.778205752353508
-_D[2, 13] = -60.19669523126412
-_D[2, 14] = 84.32040550667716
-_D[2, 15] = 11.99229113618279
-_D[3, 0] = -25.69393346270375
-_D[3, 5] = -154.18974869023643
-_D[3, 6] = -231.5293791760455
-_D[3, 7] = 357.6391179106141
-_D[3, 8] = 93.40532418362432
-_D[3, 9] = -37.45832313645163
-_D[3, 10] = 104.0996495089623
-_D[3, 11] = 29.8402934266605
-_D[3, 12] = -43.53345659001114
-_D[3, 13] = 96.32455395918828
-_D[3, 14] = -39.17726167561544
-_D[3, 15] = -149.72683625798564
+from shaketable.numerics import dop853
 
 #: Components of the integrated state.
 N_STATE = 6
+
+#: Rows of the stage array: DOP853's 16 (:data:`shaketable.numerics.dop853.N_STAGES_EXTENDED`),
+#: then the work arrays of :func:`dense_output` and :func:`locate` (no allocation inside
+#: the engine's loop).
+W_DENSE, W_TRIAL, W_VALUES = 16, 17, 18
+STAGE_ROWS = 19
 
 #: Event-function kinds for :func:`locate`; KIND_RATE + j (j = 0..4): the rate of the
 #: slip (j = 0) or of a corner's X (j = 1..4, :func:`horizontal_rate`), for their extrema.
@@ -241,44 +101,29 @@ def rhs(mode, side, sigma, mu_d, t, z, segment, parameters, out):
     out[5] = friction_power
 
 
+@njit(inline="always", error_model=HELPER["error_model"])
+def contact_rhs(t, z, out, args):
+    """:func:`rhs` as :mod:`shaketable.numerics.dop853` calls it: ``args`` = (mode, side,
+    sigma, mu_d, segment, parameters)."""
+    mode, side, sigma, mu_d, segment, parameters = args
+    rhs(mode, side, sigma, mu_d, t, z, segment, parameters, out)
+
+
 @njit(**HELPER)
 def dop853_step(mode, side, sigma, mu_d, t, z, k1, h, segment, parameters, stages, z_new,
                 scale_abs, rtol):
-    """One DOP853 step of size ``h`` from (t, z) with z'(t) = ``k1``; z(t + h) into ``z_new``.
+    """One DOP853 step (:func:`shaketable.numerics.dop853.step`) of size ``h`` from (t, z)
+    with z'(t) = ``k1``; z(t + h) into ``z_new``.
 
-    Returns the error norm (<= 1: accepted) of Hairer's DOP853 estimator on the
-    mixed absolute (``scale_abs``) / relative (``rtol``) scale. ``stages`` (16 rows)
-    receives the 12 stages; its row 15 is the work array (the continuous extension,
-    :func:`dense_output`, fills rows 12-15 after the step).
+    Returns the error norm (<= 1: accepted) on the mixed absolute (``scale_abs``) /
+    relative (``rtol``) scale. ``stages`` (STAGE_ROWS rows) receives the 12 stages; its
+    row 15 is the work array (the continuous extension, :func:`dense_output`, fills rows
+    12-15 after the step).
     """
-    work = stages[15]   # free during a step (the continuous extension's last stage)
     for i in range(N_STATE):
         stages[0, i] = k1[i]
-    for s in range(1, 12):
-        for i in range(N_STATE):
-            total = 0.0
-            for j in range(s):
-                total += _A[s, j] * stages[j, i]
-            work[i] = z[i] + h * total
-        row = stages[s]
-        rhs(mode, side, sigma, mu_d, t + _C[s] * h, work, segment, parameters, row)
-    err5 = 0.0
-    err3 = 0.0
-    for i in range(N_STATE):
-        total = 0.0
-        e5 = 0.0
-        e3 = 0.0
-        for s in range(12):
-            total += _B[s] * stages[s, i]
-            e5 += _E5[s] * stages[s, i]
-            e3 += _E3[s] * stages[s, i]
-        z_new[i] = z[i] + h * total
-        scale = scale_abs[i] + rtol * max(abs(z[i]), abs(z_new[i]))
-        err5 += (e5 / scale) ** 2
-        err3 += (e3 / scale) ** 2
-    if err5 == 0.0 and err3 == 0.0:
-        return 0.0
-    return abs(h) * err5 / math.sqrt((err5 + 0.01 * err3) * N_STATE)
+    return dop853.step(contact_rhs, (mode, side, sigma, mu_d, segment, parameters), t, z, h,
+                       stages, z_new, stages[15], scale_abs, rtol)
 
 
 @njit(**HELPER)
@@ -332,44 +177,23 @@ def event_value(kind, mode, side, sigma, mu_s, mu_d, t, z, segment, parameters, 
 @njit(**HELPER)
 def dense_output(mode, side, sigma, mu_d, t, z, z_end, h, segment, parameters, stages, dense):
     """DOP853's continuous extension of order 7 on the accepted step (t, z) -> (t + h,
-    ``z_end``) into ``dense`` (7, N_STATE), for :func:`dense_state`.
+    ``z_end``) into ``dense`` (7, N_STATE), for :func:`dense_state`
+    (:func:`shaketable.numerics.dop853.dense_output`).
 
-    ``stages`` (16 rows) holds the step's 12 stages (:func:`dop853_step`); the
-    extension adds z'(t + h) and three more stages (Hairer, Norsett & Wanner, Sec. II.6,
-    their code's contd8). Returns the right-hand-side evaluations made (4).
+    ``stages`` (STAGE_ROWS rows) holds the step's 12 stages (:func:`dop853_step`); the
+    extension adds z'(t + h) and three more stages; row W_DENSE is its work array.
+    Returns the right-hand-side evaluations made (4).
     """
-    work = np.empty(N_STATE)
     rhs(mode, side, sigma, mu_d, t + h, z_end, segment, parameters, stages[12])
-    for s in range(13, 16):
-        for i in range(N_STATE):
-            total = 0.0
-            for j in range(s):
-                total += _A_EXTRA[s - 13, j] * stages[j, i]
-            work[i] = z[i] + h * total
-        rhs(mode, side, sigma, mu_d, t + _C_EXTRA[s - 13] * h, work, segment, parameters,
-            stages[s])
-    for i in range(N_STATE):
-        delta = z_end[i] - z[i]
-        dense[0, i] = delta
-        dense[1, i] = h * stages[0, i] - delta
-        dense[2, i] = 2.0 * delta - h * (stages[12, i] + stages[0, i])
-        for row in range(4):
-            total = 0.0
-            for s in range(16):
-                total += _D[row, s] * stages[s, i]
-            dense[3 + row, i] = h * total
+    dop853.dense_output(contact_rhs, (mode, side, sigma, mu_d, segment, parameters), t, z,
+                        z_end, h, stages, dense, stages[W_DENSE])
     return 4
 
 
 @njit(**HELPER)
 def dense_state(dense, z, fraction, out):
     """The state at ``fraction`` (0..1) of the step from z on the continuous extension."""
-    for i in range(N_STATE):
-        value = 0.0
-        for row in range(6, -1, -1):
-            value += dense[row, i]
-            value *= fraction if row % 2 == 0 else 1.0 - fraction
-        out[i] = z[i] + value
+    dop853.dense_state(dense, z, fraction, out)
 
 
 @njit(**HELPER)
@@ -394,8 +218,8 @@ def locate(kind, mode, side, sigma, mu_s, mu_d, t, z, step, z_step, stages, dens
         evaluations = dense_output(mode, side, sigma, mu_d, t, z, z_step, step, segment,
                                    parameters, stages, dense)
         ready[0] = True
-    values = np.empty(N_EVENTS)
-    trial = np.empty(N_STATE)
+    values = stages[W_VALUES]   # N_EVENTS <= N_STATE
+    trial = stages[W_TRIAL]
     for i in range(N_STATE):
         z_out[i] = z_upper[i]
     a = 0.0
@@ -550,21 +374,3 @@ def horizontal_rate_at(which, cosine, sine, x_dot, omega, parameters):
     u = -parameters[HALF_WIDTH] if which == 1 or which == 3 else parameters[HALF_WIDTH_MINUS]
     w = -h if which <= 2 else h
     return x_dot - omega * (u * sine + w * cosine)
-
-
-@njit(**HELPER)
-def zeros(n):
-    """A float array of n zeros (np.empty: compiled once for all the engine's arrays)."""
-    array = np.empty(n)
-    for i in range(n):
-        array[i] = 0.0
-    return array
-
-
-@njit(**HELPER)
-def falses(n):
-    """A bool array of n False."""
-    array = np.empty(n, dtype=np.bool_)
-    for i in range(n):
-        array[i] = False
-    return array

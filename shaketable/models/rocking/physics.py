@@ -47,6 +47,7 @@ from shaketable.core.constants import G
 from shaketable.core.geometry import AsymmetricBlock, Block
 from shaketable.core.numba_cache import register
 from shaketable.core.validation import in_range
+from shaketable.numerics import cascade
 
 # numba's cache of the package's compiled functions in one folder whatever the install
 # (before the first cached function of the package is defined; core/numba_cache.py)
@@ -272,19 +273,5 @@ def angular_acceleration(theta, side, ug, vg, rg, parameters):
     return flight_acceleration(theta, s, ug, vg, rg, parameters)
 
 
-@njit(cache=True, error_model=ERROR_MODEL)
-def cascade_rest_time(theta_dot_after, deceleration, cor):
-    """Time for an endless cascade of impacts to die out [s].
-
-    Near theta = 0 a block pushed back onto its base by a deceleration ``a0``
-    flies for 2|w|/a0 after an impact with velocity w, and each impact
-    multiplies w by ``cor``. The flights form a geometric series whose sum,
-    2|w| / (a0 (1 - cor)), is the finite time at which the block comes to rest
-    (infinitely many impacts in finite time).
-
-    Returns ``inf`` when the series does not converge (``cor >= 1`` or
-    ``deceleration <= 0``).
-    """
-    if deceleration <= 0.0 or cor >= 1.0:
-        return math.inf
-    return 2.0 * abs(theta_dot_after) / (deceleration * (1.0 - cor))
+#: :func:`shaketable.numerics.cascade.cascade_rest_time`, compiled.
+cascade_rest_time = njit(cache=True, error_model=ERROR_MODEL)(cascade.cascade_rest_time)

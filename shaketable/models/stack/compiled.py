@@ -54,6 +54,7 @@ from shaketable.models.stack.compiled_steps import (
     rhs,
     rk_step,
 )
+from shaketable.numerics import roots
 
 # the engine's constants (as shaketable.models.stack.engine's)
 FLOOR = 1e-10
@@ -302,55 +303,23 @@ def event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, den
     return event_value(chain, ws, run, seg, kind, j, corner, time, state, t_start, from_zero)
 
 
+@inlined
+def event_of_time(time, args):
+    """:func:`event_at` as :func:`shaketable.numerics.roots.brent` calls it."""
+    chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old, t_old, h, state = \
+        args
+    return event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, dense,
+                    y_old, t_old, h, state)
+
+
 @kernel
 def brent(chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old, t_old, h,
           state, xa, xb, xtol, rtol):
     """The zero of an event function on the continuous extension in [xa, xb] (SciPy's
-    ``brentq``, Brent's method as in its C code)."""
-    xpre, xcur = xa, xb
-    fpre = event_at(chain, ws, run, seg, kind, j, corner, xpre, t_start, from_zero, dense,
-                    y_old, t_old, h, state)
-    fcur = event_at(chain, ws, run, seg, kind, j, corner, xcur, t_start, from_zero, dense,
-                    y_old, t_old, h, state)
-    if fpre == 0.0:
-        return xpre
-    if fcur == 0.0:
-        return xcur
-    if (fpre < 0.0) == (fcur < 0.0):
-        return xcur   # no sign change left after rounding: the step's end
-    xblk, fblk, spre, scur = 0.0, 0.0, 0.0, 0.0
-    for _ in range(100):
-        if fpre != 0.0 and fcur != 0.0 and (fpre < 0.0) != (fcur < 0.0):
-            xblk, fblk = xpre, fpre
-            spre = scur = xcur - xpre
-        if abs(fblk) < abs(fcur):
-            xpre, xcur, xblk = xcur, xblk, xcur
-            fpre, fcur, fblk = fcur, fblk, fcur
-        delta = (xtol + rtol * abs(xcur)) / 2.0
-        sbis = (xblk - xcur) / 2.0
-        if fcur == 0.0 or abs(sbis) < delta:
-            return xcur
-        if abs(spre) > delta and abs(fcur) < abs(fpre):
-            if xpre == xblk:
-                stry = -fcur * (xcur - xpre) / (fcur - fpre)
-            else:
-                dpre = (fpre - fcur) / (xpre - xcur)
-                dblk = (fblk - fcur) / (xblk - xcur)
-                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
-            if 2.0 * abs(stry) < min(abs(spre), 3.0 * abs(sbis) - delta):
-                spre, scur = scur, stry
-            else:
-                spre, scur = sbis, sbis
-        else:
-            spre, scur = sbis, sbis
-        xpre, fpre = xcur, fcur
-        if abs(scur) > delta:
-            xcur += scur
-        else:
-            xcur += delta if sbis > 0.0 else -delta
-        fcur = event_at(chain, ws, run, seg, kind, j, corner, xcur, t_start, from_zero, dense,
-                        y_old, t_old, h, state)
-    return xcur
+    ``brentq``: :func:`shaketable.numerics.roots.brent`)."""
+    return roots.brent(event_of_time, (chain, ws, run, seg, kind, j, corner, t_start,
+                                       from_zero, dense, y_old, t_old, h, state),
+                       xa, xb, xtol, rtol)
 
 
 @inlined

@@ -39,6 +39,7 @@ from shaketable.models.stack.physics import (
     state_forces,
     table_power,
 )
+from shaketable.numerics.cascade import cascade_rest_time
 
 #: Relative force tolerance of the rest and flat contacts (times the lightest block's weight).
 FORCE_TOLERANCE = 1e-12
@@ -52,16 +53,6 @@ FULL_ENUMERATION = 3
 FLOOR = 1e-10
 #: Events in a row at one instant before the run is declared stalled.
 MAX_EVENTS_AT_ONE_INSTANT = 200
-
-
-def cascade_rest_time(rate_after, deceleration, ratio):
-    """Time for an endless cascade of landings to die out [s]: flights of 2|w| / a0 shrinking
-    by ``ratio`` each, summed, 2|w| / (a0 (1 - ratio)); inf when the series diverges (the
-    single block's rule, :func:`shaketable.models.rocking.physics.cascade_rest_time`, written here so
-    that the stack model does not load numba)."""
-    if deceleration <= 0.0 or ratio >= 1.0:
-        return math.inf
-    return 2.0 * abs(rate_after) / (deceleration * (1.0 - ratio))
 
 
 class StackStalled(RuntimeError):
