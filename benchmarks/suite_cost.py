@@ -8,10 +8,10 @@ at an empty folder, as on a fresh machine (numba then compiles the engines once,
 Python's bytecode (``PYTHONDONTWRITEBYTECODE`` is removed unless ``--no-bytecode``).
 Printed: the wall and CPU times, the load average before and after (CPU time is the figure a busy
 machine changes least: other work lengthens the wall time, much less the CPU time), the
-number of cores, and pytest's last lines, with the tests that used the most CPU
-(``--cpu-durations``, tests/conftest.py).
+number of cores, and pytest's last lines, with the tests and the test files that used the
+most CPU (``--cpu-durations``, tests/conftest.py).
 
-    python3 benchmarks/suite_cost.py [--cold] [--no-bytecode] [--top 15] [-- PYTEST ARGUMENTS]
+    python3 benchmarks/suite_cost.py [--cold] [--no-bytecode] [--top 15] [--list FILE] [-- PYTEST ARGUMENTS]
 
 Target: at most 300 s of CPU on 2 cores.
 """
@@ -53,6 +53,9 @@ def main(argv=None) -> int:
                              "reads it)")
     parser.add_argument("--top", type=int, default=15,
                         help="list the tests that used the most CPU time (default 15)")
+    parser.add_argument("--list", metavar="FILE",
+                        help="write every test's CPU time to FILE (seconds, tab, test id; "
+                             "most first), to compare two runs test by test")
     parser.add_argument("pytest_arguments", nargs="*",
                         help="more pytest arguments (after --), e.g. -p no:randomly")
     args = parser.parse_args(argv)
@@ -72,6 +75,8 @@ def main(argv=None) -> int:
     scratch = tempfile.mkdtemp(prefix="suite-cost-")
     if args.cold:
         environment["NUMBA_CACHE_DIR"] = os.path.join(scratch, "numba")
+    if args.list:
+        environment["SHAKETABLE_CPU_LIST"] = os.path.abspath(args.list)
     log = os.path.join(scratch, "time.txt")
     command = [time, "-v", "-o", log, sys.executable, "-m", "pytest", "-q", "-n", "2",
                "-p", "no:cacheprovider", f"--cpu-durations={args.top}", *args.pytest_arguments]

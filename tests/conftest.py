@@ -70,6 +70,11 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.xdist_group(module))
 
 
+def _most_first(times: dict[str, float]) -> list[tuple[str, float]]:
+    """The (test, CPU time [s]) pairs, the costliest first."""
+    return sorted(times.items(), key=lambda pair: -pair[1])
+
+
 def _cpu_seconds(who: int) -> float:
     usage = resource.getrusage(who)
     return usage.ru_utime + usage.ru_stime
@@ -103,11 +108,22 @@ def pytest_terminal_summary(terminalreporter, config):
     count = config.getoption("cpu_durations")
     if count and _TEST_CPU:
         terminalreporter.write_sep("=", f"{count} tests using the most CPU time")
-        ranked = sorted(_TEST_CPU.items(), key=lambda pair: -pair[1])[:count]
+        ranked = _most_first(_TEST_CPU)[:count]
         for nodeid, seconds in ranked:
             terminalreporter.write_line(f"{seconds:8.2f} s CPU  {nodeid}")
         terminalreporter.write_line(f"{sum(_TEST_CPU.values()):8.1f} s CPU in all "
                                     f"{len(_TEST_CPU)} tests (setup to teardown)")
+        modules: dict[str, list[float]] = {}
+        for nodeid, seconds in _TEST_CPU.items():
+            modules.setdefault(nodeid.split("::")[0], []).append(seconds)
+        terminalreporter.write_sep("=", f"{count} test files using the most CPU time")
+        for module, times in sorted(modules.items(), key=lambda pair: -sum(pair[1]))[:count]:
+            terminalreporter.write_line(f"{sum(times):8.2f} s CPU  {len(times):4d} tests  {module}")
+        listing = os.environ.get("SHAKETABLE_CPU_LIST")
+        if listing:   # every test's CPU time [s], tab-separated, for comparing two runs
+            with open(listing, "w", encoding="utf-8") as handle:
+                handle.writelines(f"{seconds:.4f}\t{nodeid}\n"
+                                  for nodeid, seconds in _most_first(_TEST_CPU))
     for worker, (own, children) in sorted(_WORKER_CPU.items()):
         terminalreporter.write_line(f"worker {worker}: {own + children:.1f} s CPU "
                                     f"({own:.1f} s its own, {children:.1f} s in subprocesses)")

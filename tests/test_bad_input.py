@@ -722,7 +722,8 @@ def _busiest_other_thread_cpu_seconds(pid: int) -> float:
 def test_ctrl_c_stops_a_long_compiled_run_within_a_second(tmp_path):
     """A predictor-corrector run of 1.7e9 steps (about a minute) stops on Ctrl-C: exit 130,
     a one-line message, no traceback (the compiled loop runs in a worker thread), and the
-    process spends under a second of CPU after the signal (the minute's run does not go on).
+    process spends under half a second of CPU after the signal (the minute's run does not
+    go on: the command ends at once, without tearing the interpreter down beside it).
 
     The bound is on the CPU time the process uses after the signal, not on the wall time,
     so that a busy machine (other tests on the other worker, other users) cannot fail it;
@@ -778,6 +779,8 @@ def test_ctrl_c_stops_a_long_compiled_run_within_a_second(tmp_path):
     assert "interrupted" in err and "Traceback" not in err
     assert waited < 10.0, waited
     if at_signal is not None:
-        # all the process's threads, from the signal to its exit
+        # all the process's threads, from the signal to its exit: 0.02-0.04 s measured under
+        # load (the command ends at once); 0.7-0.8 s when Python's own exit tore down every
+        # module while the abandoned run went on using the other core
         after_signal = children_cpu() - cpu_before - at_signal
-        assert after_signal < 1.0, after_signal
+        assert after_signal < 0.5, after_signal

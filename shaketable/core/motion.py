@@ -116,6 +116,13 @@ def _as_float_array(name: str, values) -> np.ndarray:
     return array
 
 
+def _read_only_zeros(like: np.ndarray) -> np.ndarray:
+    """Zeros shaped as ``like``, read-only (as a motion's own arrays)."""
+    zeros = np.zeros_like(like)
+    zeros.setflags(write=False)
+    return zeros
+
+
 @dataclass(frozen=True)
 class Motion:
     """Ground (table) acceleration history, linear between samples.
@@ -395,8 +402,10 @@ class Motion:
     # ------------------------------------------------------------------ queries
     @property
     def vertical_or_zero(self) -> np.ndarray:
-        """Vertical acceleration [m/s^2], zeros when the motion has none."""
-        return self.vertical if self.vertical is not None else np.zeros_like(self.t)
+        """Vertical acceleration [m/s^2], zeros when the motion has none (read-only either
+        way: the compiled engines then see one array type, and numba compiles each once
+        whether or not the motion has a vertical component)."""
+        return self.vertical if self.vertical is not None else _read_only_zeros(self.t)
 
     def at(self, times) -> tuple[np.ndarray, np.ndarray]:
         """Horizontal and vertical acceleration at ``times`` [m/s^2] (linear between samples)."""
@@ -418,8 +427,9 @@ class Motion:
 
     @property
     def rotation_or_zero(self) -> np.ndarray:
-        """Table angular acceleration [rad/s^2], zeros when the table does not rotate."""
-        return self.rotation if self.rotation is not None else np.zeros_like(self.t)
+        """Table angular acceleration [rad/s^2], zeros when the table does not rotate
+        (read-only either way, as :attr:`vertical_or_zero`)."""
+        return self.rotation if self.rotation is not None else _read_only_zeros(self.t)
 
     @property
     def duration(self) -> float:

@@ -20,6 +20,7 @@ Used by ``tests/calibration/test_scatter.py`` and ``benchmarks/calibration_scatt
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -122,7 +123,20 @@ def lab_record(seed: int, *, cor: float = 0.9, sigma: float = 0.0,
                duration: float = 10.0, rate: float = 50.0, cutoff: float = 20.0,
                noise_in: float = 0.005, offset_in: float | None = None) -> LabRecord:
     """One record: COR ``cor`` (+ N(0, sigma^2) per impact, + ``velocity_slope`` x (|omega| -
-    0.4 rad/s)), released from a random angle in ``theta0_ratio`` alpha at a random time."""
+    0.4 rad/s)), released from a random angle in ``theta0_ratio`` alpha at a random time.
+
+    A function of its arguments only (the seed fixes every draw): made once per process for
+    each set of arguments (about 0.3 s of CPU; several tests read the same record), and
+    each caller gets arrays of its own."""
+    made = _lab_record(seed, cor, sigma, velocity_slope, tuple(theta0_ratio), duration, rate,
+                       cutoff, noise_in, offset_in)
+    return LabRecord(made.t.copy(), made.displacement_in.copy(), made.cors.copy(),
+                     made.impact_velocities.copy(), made.theta0, made.t_release)
+
+
+@functools.lru_cache(maxsize=16)
+def _lab_record(seed, cor, sigma, velocity_slope, theta0_ratio, duration, rate, cutoff,
+                noise_in, offset_in) -> LabRecord:
     rng = np.random.default_rng(seed)
     alpha = math.atan2(WIDTH / 2, HEIGHT / 2)
     theta0 = rng.uniform(*theta0_ratio) * alpha

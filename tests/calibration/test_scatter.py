@@ -28,11 +28,23 @@ BLOCK = st.Block.parse("30x6in")
 INCH = 0.0254
 
 
+# The tests that read one record's calibration run on one xdist worker (--dist loadgroup),
+# which then computes it once; a saving only: any test computes what it reads.
+pytestmark = pytest.mark.xdist_group("tests/calibration/test_scatter.py")
+
+_CALIBRATED: dict = {}
+
+
 def _calibrated(seed, **options):
-    lab = lab_record(seed, **options)
-    record = FreeRockingRecord.from_top_displacement(lab.t, lab.displacement_in, units="in",
-                                                     name=f"lab {seed}")
-    return calibrate(record, BLOCK), lab
+    """The calibration of lab record ``seed`` and the record (each made once per process:
+    a function of the arguments only, which the tests read and never change)."""
+    key = (seed, tuple(sorted(options.items())))
+    if key not in _CALIBRATED:
+        lab = lab_record(seed, **options)
+        record = FreeRockingRecord.from_top_displacement(lab.t, lab.displacement_in,
+                                                         units="in", name=f"lab {seed}")
+        _CALIBRATED[key] = (calibrate(record, BLOCK), lab)
+    return _CALIBRATED[key]
 
 
 # ------------------------------------------------------------------ the scatter model

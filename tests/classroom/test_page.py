@@ -7,18 +7,36 @@ drawing reveals the traces up to the time shown only.
 
 from __future__ import annotations
 
+import importlib.util
 import json
 
 import numpy as np
 import pytest
 
-pytest.importorskip("panel")
+from shaketable.classroom.model import LESSONS, Settings, compute
 
-# Panel 1.9 announces renamed widget arguments (name -> label) that older Panels lack
-pytestmark = pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")
+# Panel (with bokeh) is imported by the page's tests, not when the file is collected: about
+# 1 s of CPU that every xdist worker paid at collection. The tests share one xdist group,
+# so that one worker imports it. Panel 1.9 announces renamed widget arguments (name ->
+# label) that older Panels lack.
+pytestmark = [pytest.mark.skipif(importlib.util.find_spec("panel") is None,
+                                 reason="the optional extra 'classroom' (panel) is not installed"),
+              pytest.mark.filterwarnings("ignore::PendingDeprecationWarning"),
+              pytest.mark.xdist_group("tests/classroom/test_page.py")]
 
-from shaketable.classroom.model import LESSONS, Settings, compute  # noqa: E402
-from shaketable.classroom.page import ClassroomPage, free_port  # noqa: E402
+
+def ClassroomPage(*args, **kwargs):
+    """``shaketable.classroom.page.ClassroomPage`` (imports Panel on first use)."""
+    from shaketable.classroom.page import ClassroomPage as page
+
+    return page(*args, **kwargs)
+
+
+def free_port():
+    """``shaketable.classroom.page.free_port`` (imports Panel on first use)."""
+    from shaketable.classroom.page import free_port as port
+
+    return port()
 
 
 def test_a_bad_field_gets_a_message_and_the_page_keeps_its_picture(tmp_path):

@@ -39,3 +39,26 @@ def test_engine_arrays_are_read_only_views_of_the_same_numbers():
     assert np.shares_memory(view, values) and values.flags.writeable
     (converted,) = engine_arrays(np.arange(5))  # integers: converted to float64
     assert converted.dtype == np.float64 and np.array_equal(converted, values)
+
+
+def test_a_motion_without_a_vertical_component_gives_the_engines_the_same_array_types():
+    # The stack, sliding and asymmetric engines take ``Motion.vertical_or_zero`` as it is:
+    # zeros made writable (no vertical component) and a motion's own read-only array were two
+    # numba signatures, the whole stack engine compiled twice (a harmonic, then a record)
+    import numba
+
+    from shaketable.core.constants import G
+    from shaketable.ground.generators import harmonic
+    from shaketable.models.sliding.engine import slide, stick_slip_kernel
+
+    t = np.linspace(0.0, 1.0, 101)
+    horizontal_only = harmonic(2.0, horizontal=0.5 * G, duration=0.5)
+    both = Motion(t, 3.0 * np.sin(8.0 * t), 0.5 * np.cos(5.0 * t), name="two components")
+    for zeros in (horizontal_only.vertical_or_zero, horizontal_only.rotation_or_zero):
+        assert not zeros.flags.writeable and not zeros.any()
+    kinds = {str(numba.typeof(np.ascontiguousarray(motion.vertical_or_zero, dtype=float)))
+             for motion in (horizontal_only, both)}
+    assert kinds == {"readonly array(float64, 1d, C)"}
+    for motion in (horizontal_only, both):
+        slide(motion, 0.3)
+    assert len(stick_slip_kernel.signatures) == 1, stick_slip_kernel.signatures
