@@ -279,10 +279,12 @@ def test_sweep_command_prints_verdicts_and_draws_figures_per_friction(tmp_path, 
     out = tmp_path / "out"
     assert main(["sweep", str(write(tmp_path, text)), "--out", str(out), "--no-progress",
                  "--figures"]) == 0
-    printed = capsys.readouterr().out
+    captured = capsys.readouterr()
+    printed = captured.out
     table = pd.read_parquet(out / "results.parquet")
     counts = table["verdict"].value_counts()
-    assert "[friction]: the coupled planar model" in printed
+    # what runs is said on stderr, the answer on stdout
+    assert "[friction]: the coupled planar model" in captured.err
     assert ", ".join(f"{counts[v]} {v}" for v in ("stayed", "slid", "rocked", "slide-rocked",
                                                   "flew", "overturned") if v in counts) \
         in printed

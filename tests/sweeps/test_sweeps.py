@@ -333,8 +333,9 @@ def test_sweep_command_in_process(tmp_path, capsys):
     spec = write(tmp_path, SPEC.replace("chunk_size = 10", "chunk_size = 48"))
     assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--no-progress",
                  "--workers", "1"]) == 0
-    printed = capsys.readouterr().out
-    assert "48 runs in 1 chunk(s)" in printed and "results.parquet" in printed
+    captured = capsys.readouterr()
+    # the answer on stdout, what ran (runs, chunks) on stderr
+    assert "48 runs in 1 chunk(s)" in captured.err and "results.parquet" in captured.out
     assert len(pd.read_parquet(tmp_path / "out" / "results.parquet")) == 48
     assert main(["sweep", str(write(tmp_path, "name = 'x'", "bad.toml"))]) == 2
     assert "bad.toml: missing [blocks]" in capsys.readouterr().err
