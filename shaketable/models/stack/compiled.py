@@ -55,6 +55,47 @@ from shaketable.models.stack.compiled_steps import (
     rk_step,
 )
 
+from shaketable.models.stack.compiled_one import (
+    one_dof_sample,
+    one_dof_segment,
+    one_dof_state,
+    rigid_workspace,
+)
+from shaketable.models.stack.compiled_rigid import rigid_forces
+from shaketable.models.stack.layout import (
+    F_ERROR_TIME,
+    F_LAST_IMPACT,
+    F_PREVIOUS_ERROR,
+    F_REST_UNTIL,
+    F_STEP,
+    F_T_AIRBORNE,
+    F_T_OVERTURN,
+    F_WORK,
+    I_ERROR,
+    I_EVALUATIONS,
+    I_EVENTS,
+    I_OVERTURNED,
+    I_RECORDED,
+    I_RIGID_J,
+    I_STALLED,
+    I_STATUS,
+    I_STEPS,
+    N_FLOATS,
+    N_INTS,
+    NO_PATTERN,
+    P_ALPHA,
+    P_ALPHA_P,
+    P_COR,
+    P_DELTA,
+    P_DOP853,
+    P_LAW,
+    P_REST,
+    P_RTOL,
+    P_TOL_FORCE,
+    STALLED,
+    STEP_FAILED,
+)
+
 # the engine's constants (as shaketable.models.stack.engine's)
 FLOOR = 1e-10
 MAX_EVENTS_AT_ONE_INSTANT = 200
@@ -68,20 +109,13 @@ UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = (np.int64(code) for code in range(5))
 REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level landing")
 R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
 NONE, ZERO, ONE = np.int64(-1), np.int64(0), np.int64(1)
-#: Statuses and errors of a run.
+#: Statuses of a run.
 STATUSES = ("completed", "overturned", "airborne")
-NO_PATTERN, STALLED, STEP_FAILED = 1, 2, 3
 #: Event functions of a segment.
 EV_LANDING, EV_OVERTURN, EV_LIFT, EV_TURN, EV_SIDE = (np.int64(code) for code in range(5))
 #: What ends a segment.
 ENDS_NONE, ENDS_IMPACT, ENDS_OVERTURN, ENDS_LIFT = (np.int64(code) for code in range(-1, 3))
 
-# slots of the run's float state ``fs`` and int state ``ist``
-F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME = 0, 1, 2, 3, 4
-I_EVENTS, I_RECORDED, I_STALLED, I_STATUS, I_OVERTURNED, I_STEPS, I_EVALUATIONS, I_ERROR = \
-    0, 1, 2, 3, 4, 5, 6, 7
-# slots of the parameters ``par``
-P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW = range(8)
 
 
 @kernel
@@ -525,16 +559,23 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
 
 # ------------------------------------------------------------------------- run
 @inlined
-def rest_uplift(chain, ws, run, t, t_end, seg):
+def rest_uplift(chain, ws, run, t, t_end, seg, rigid):
     """The first time in [t, t_end] a rest corner force reaches -tol, as (time, interface);
     (inf, -1) when none does."""
     pattern, par = run[2], run[5]
     n = pattern.size
     zero, phi_ddot, start, end = ws[16], ws[15], ws[8], ws[17]
-    ug, vg = ground(seg, t)
-    state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, start, ws)
-    ug, vg = ground(seg, t_end)
-    state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, end, ws)
+    if par[P_DOP853] != 0.0:
+        ug, vg = ground(seg, t)
+        state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, start, ws)
+        ug, vg = ground(seg, t_end)
+        state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, end, ws)
+    else:
+        # the closed form of rest (linear in u'', v'')
+        ug, vg = ground(seg, t)
+        one_dof_state(chain, run, rigid, ug, vg, start)
+        ug, vg = ground(seg, t_end)
+        one_dof_state(chain, run, rigid, ug, vg, end)
     first, first_j = math.inf, NONE
     tol = par[P_TOL_FORCE]
     for j in range(n):
@@ -561,9 +602,11 @@ def progress(run, t, t_new):
 
 
 @inlined
-def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
-    """Advance over one input interval; False when the run stops (or failed: its error)."""
-    pattern, fs, ist = run[2], run[3], run[4]
+def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what, j):
+    """Advance over one input interval from ``t_start`` (``t0``, or where a one-DOF
+    segment ended with the event ``what`` of interface ``j``, ENDS_NONE for none); False when
+    the run stops (or failed: its error)."""
+    pattern, fs, ist, par = run[2], run[3], run[4], run[5]
     support0, support1 = G + v0, G + v1
     if support0 <= 0.0 or support1 <= 0.0:
         ist[I_STATUS] = 2
@@ -572,33 +615,37 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
         record(run, fs[F_T_AIRBORNE], AIRBORNE, NONE, pattern, pattern, ZERO,
                (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
         return False
-    t = t0
-    while t < t1:
-        if fs[F_REST_UNTIL] > t:
-            if fs[F_REST_UNTIL] >= t1:
-                return True
-            t = fs[F_REST_UNTIL]
-        if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
-            fs[F_REST_UNTIL] = -math.inf
-            t = choose(chain, ws, run, t, seg, R_REST, NONE, t1)
-            if ist[I_ERROR]:
-                return False
-        if open_count(pattern) == 0:
-            t_new, j = rest_uplift(chain, ws, run, t, t1, seg)
-            if j < 0:
-                return True
-            if not progress(run, t, t_new):
-                return False
-            t = choose(chain, ws, run, t_new, seg, R_UPLIFT, j, t1)
-            if ist[I_ERROR]:
-                return False
-            continue
-        t_new, what, j = segment(chain, ws, run, t, t1, seg, buffers)
-        if ist[I_ERROR] or not progress(run, t, t_new):
-            return False
-        t = t_new
+    t = t_start
+    while t < t1 or what != ENDS_NONE:
         if what == ENDS_NONE:
-            continue
+            if fs[F_REST_UNTIL] > t:
+                if fs[F_REST_UNTIL] >= t1:
+                    return True
+                t = fs[F_REST_UNTIL]
+            if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
+                fs[F_REST_UNTIL] = -math.inf
+                t = choose(chain, ws, run, t, seg, R_REST, NONE, t1)
+                if ist[I_ERROR]:
+                    return False
+            if open_count(pattern) == 0:
+                t_new, j = rest_uplift(chain, ws, run, t, t1, seg, rigid)
+                if j < 0:
+                    return True
+                if not progress(run, t, t_new):
+                    return False
+                t = choose(chain, ws, run, t_new, seg, R_UPLIFT, j, t1)
+                if ist[I_ERROR]:
+                    return False
+                continue
+            if open_count(pattern) == 1 and par[P_DOP853] == 0.0:
+                t_new, what, j = one_dof_segment(chain, run, t, t1, seg, rigid)
+            else:
+                t_new, what, j = segment(chain, ws, run, t, t1, seg, buffers)
+            if ist[I_ERROR] or not progress(run, t, t_new):
+                return False
+            t = t_new
+            if what == ENDS_NONE:
+                continue
         if what == ENDS_IMPACT:
             t = impact(chain, ws, run, t, seg, j, t1)
         elif what == ENDS_OVERTURN:
@@ -610,19 +657,27 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
             return False
         else:
             t = choose(chain, ws, run, t, seg, R_UPLIFT, j, t1)
+        what = ENDS_NONE
         if ist[I_ERROR]:
             return False
     return True
 
 
-@kernel
-def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work):
+@inlined
+def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work,
+           rigid):
     """theta, theta', theta'' of every block, the pattern, the contact forces and the
     table's work at sample ``k``."""
     phi, phi_dot, pattern = run[0], run[1], run[2]
     n = phi.size
     phi_ddot = ws[15]
-    state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces[k], ws)
+    if open_count(pattern) <= 1 and run[5][P_DOP853] == 0.0:
+        # rest or a one-DOF pattern: the closed forms
+        j, _, _, _, a = one_dof_state(chain, run, rigid, ug, vg, forces[k])
+        for i in range(n):
+            phi_ddot[i] = a if i == j else 0.0
+    else:
+        state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces[k], ws)
     a, b, c = 0.0, 0.0, 0.0
     for i in range(n):
         a += phi[i]
@@ -633,6 +688,24 @@ def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, force
         acceleration[k, i] = c
         patterns[k, i] = pattern[i]
     work[k] = run[3][F_WORK]
+
+
+@kernel
+def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
+    """Whether the stack, at rest with the closed forms of rest current, stays at rest over
+    an input interval (no corner force past -tol at its end, as :func:`rest_uplift` finds
+    it, the table pressing on it): then its contact forces at the end are in ``forces``."""
+    if ist[I_RIGID_J] != -1 or fs[F_REST_UNTIL] != -math.inf or G + v0 <= 0.0 or \
+            G + vg1 <= 0.0:
+        return False
+    for j in range(pattern.size):
+        if pattern[j] != 0 or phi[j] != 0.0:
+            return False
+    rigid_forces(coefficients, NONE, ZERO, 0.0, 0.0, 0.0, ug1, vg1, forces)
+    for j in range(pattern.size):
+        if forces[j, 2] + tol < 0.0 or forces[j, 3] + tol < 0.0:
+            return False
+    return True
 
 
 @njit(cache=True, nogil=True, error_model=COMPILED["error_model"])
@@ -652,9 +725,13 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     ev_i = np.full((capacity, 6), -1, dtype=np.int64)
     ev_pb = np.zeros((capacity, n), dtype=np.int64)
     ev_pa = np.zeros((capacity, n), dtype=np.int64)
-    fs = np.array([0.0, -math.inf, math.nan, math.nan, math.nan])
-    ist = np.zeros(8, dtype=np.int64)
+    fs = np.full(N_FLOATS, math.nan)
+    fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
+    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
+        1e-4, t[0]
+    ist = np.zeros(N_INTS, dtype=np.int64)
     ist[I_OVERTURNED] = -1
+    ist[I_RIGID_J] = -2   # no closed forms computed yet
     run = (phi0.copy(), phi_dot0.copy(), pattern0.copy(), fs, ist, par, atol, ev_f, ev_i,
            ev_pb, ev_pa)
     size = 2 * n + 1
@@ -662,6 +739,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                np.zeros((7, size)), np.zeros(size), np.zeros(3 * n), np.zeros(3 * n),
                np.zeros(3 * n), np.zeros((3, 3 * n), dtype=np.int64),
                np.zeros((2, n), dtype=np.bool_), np.zeros(n))
+    rigid = rigid_workspace(n)
     count = t.size
     theta, rate, acceleration = np.zeros((count, n)), np.zeros((count, n)), \
         np.zeros((count, n))
@@ -673,15 +751,36 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     filled = 0
     if ist[I_ERROR] == 0:
         sample(chain, ws, run, ug[0], vg[0], ZERO, theta, rate, acceleration, patterns, forces,
-               work)
+               work, rigid)
         filled = 1
+        fast, coefficients, tol = par[P_DOP853] == 0.0, rigid[0], par[P_TOL_FORCE]
+        phi, pattern = run[0], run[2]
         for k in range(count - 1):
+            if fast and rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
+                               vg[k + 1], forces[k + 1]):
+                # at rest: theta, theta', theta'' and the pattern are zeros
+                work[k + 1] = fs[F_WORK]
+                filled = k + 2
+                continue
             seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
             seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
-            if not interval(chain, ws, run, t[k], t[k + 1], vg[k], vg[k + 1], seg, buffers):
+            start, what, j = t[k], ENDS_NONE, NONE
+            if fast and open_count(pattern) == 1 and fs[F_REST_UNTIL] == -math.inf and \
+                    G + vg[k] > 0.0 and G + vg[k + 1] > 0.0:
+                # a one-DOF pattern: its segment first, the general path for its event
+                start, what, j = one_dof_segment(chain, run, t[k], t[k + 1], seg, rigid)
+                if ist[I_ERROR] or not progress(run, t[k], start):
+                    break
+                if what == ENDS_NONE:
+                    one_dof_sample(chain, run, rigid, ug[k + 1], vg[k + 1], k + 1, theta, rate,
+                                   acceleration, patterns, forces, work)
+                    filled = k + 2
+                    continue
+            if not interval(chain, ws, run, t[k], t[k + 1], vg[k], vg[k + 1], seg, buffers,
+                            rigid, start, what, j):
                 break
             sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate, acceleration,
-                   patterns, forces, work)
+                   patterns, forces, work, rigid)
             filled = k + 2
     return (theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i,
             ev_pb, ev_pa, run[0], run[2])
@@ -725,7 +824,7 @@ FIRST_CAPACITY = 4096
 
 
 def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: float,
-              rest_tolerance: float, max_recorded_events: int) -> dict:
+              rest_tolerance: float, max_recorded_events: int, dop853: bool = False) -> dict:
     """Run the stack over ``motion`` with the compiled engine: the sampled histories and
     the events (the dict of :func:`shaketable.models.stack.engine.integrate`)."""
     from shaketable.models.stack.engine import LOOKAHEAD, StackStalled, pattern_of
@@ -735,7 +834,8 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     scale = stack.alpha_min
     tol_force = 1e-12 * G * float(stack.m.min())
     par = np.array([LOOKAHEAD / stack.p_max, tol_force, scale, scale * stack.p_max, rtol,
-                    rest_tolerance, cor, 0.0 if law == "plastic" else 1.0])
+                    rest_tolerance, cor, 0.0 if law == "plastic" else 1.0,
+                    1.0 if dop853 else 0.0])
     n = chain.n
     atol = np.concatenate([np.full(n, rtol * scale), np.full(n, rtol * scale * stack.p_max),
                            [rtol * float(G * stack.m.sum()) * float(np.hypot(stack.b, stack.h).max())]])
