@@ -23,8 +23,8 @@ import numpy as np
 
 from shaketable.models.rocking import events as rocking_events
 from shaketable.models.rocking.engine import step_size_control
-from shaketable.models.rocking.steppers import flight_acceleration, helper, nystrom_step
 from shaketable.models.rocking.layout import INFO_MAX_ABS_THETA, INFO_T_UNSTABLE, N_INFO
+from shaketable.models.rocking.steppers import flight_acceleration, helper, nystrom_step
 from shaketable.models.stack.compiled_physics import compiled, inlined, kernel
 from shaketable.models.stack.compiled_rigid import (
     B_ALPHA,
@@ -39,6 +39,10 @@ from shaketable.models.stack.compiled_rigid import (
 )
 from shaketable.models.stack.compiled_steps import EPS, ground
 from shaketable.models.stack.layout import (
+    ENDS_IMPACT,
+    ENDS_LIFT,
+    ENDS_NONE,
+    ENDS_OVERTURN,
     F_LAST_IMPACT,
     F_PREVIOUS_ERROR,
     F_STEP,
@@ -48,6 +52,7 @@ from shaketable.models.stack.layout import (
     I_RIGID_J,
     I_RIGID_S,
     I_STEPS,
+    NONE,
     P_RTOL,
     P_TOL_FORCE,
     STEP_FAILED,
@@ -72,9 +77,6 @@ control = inlined(step_size_control)
 
 #: The stepper's evaluations of theta'' per trial step.
 PER_STEP = 5
-#: What ends a segment (as :mod:`shaketable.models.stack.compiled`'s ENDS_*).
-ENDS_NONE, ENDS_IMPACT, ENDS_OVERTURN, ENDS_LIFT = (np.int64(code) for code in range(-1, 3))
-NONE = np.int64(-1)
 # the stepper's event kinds (shaketable.models.rocking.layout)
 _IMPACT, _OVERTURN = float(rocking_events.EVENT_IMPACT), float(rocking_events.EVENT_OVERTURN)
 
@@ -178,7 +180,7 @@ def open_interface(pattern):
     return -1
 
 
-@inlined
+@kernel
 def one_dof_state(chain, run, rigid, ug, vg, forces):
     """The closed forms of the current pattern (rest or one-DOF) made current, and its
     phi'' [rad/s^2] (0 at rest) and contact forces (into ``forces``, (n, 4) [N]) at the
@@ -195,7 +197,7 @@ def one_dof_state(chain, run, rigid, ug, vg, forces):
     return j, s, x, v, a
 
 
-@kernel
+@inlined
 def one_dof_segment(chain, run, t, t_end, seg, rigid):
     """Integrate a one-DOF pattern from ``t`` to its first event or ``t_end`` with the single
     block's stepper (as :func:`shaketable.models.stack.compiled.segment` with DOP853):
