@@ -25,7 +25,6 @@ from numba import njit
 
 from shaketable.core.constants import G
 from shaketable.models.stack.compiled_one import (
-    one_dof_sample,
     one_dof_segment,
     one_dof_state,
     rigid_workspace,
@@ -428,7 +427,7 @@ def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, force
     work[k] = run[3][F_WORK]
 
 
-@kernel
+@inlined
 def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
     """Whether the stack, at rest with the closed forms of rest current, stays at rest over
     an input interval (no corner force past -tol at its end, as :func:`rest_uplift` finds
@@ -465,7 +464,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     ev_i = np.empty((capacity, 6), dtype=np.int64)
     ev_pb = np.empty((capacity, n), dtype=np.int64)
     ev_pa = np.empty((capacity, n), dtype=np.int64)
-    fs = np.full(N_FLOATS, math.nan)
+    fs = np.empty(N_FLOATS)
+    fs[:] = math.nan
     fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
     fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
         1e-4, t[0]
@@ -518,8 +518,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                         break
                     start = t_new
                     if what == ENDS_NONE:
-                        one_dof_sample(chain, run, rigid, ug[k + 1], vg[k + 1], k + 1, theta,
-                                       rate, acceleration, patterns, forces, work)
+                        sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
+                               acceleration, patterns, forces, work, rigid)
                         break
                 code, start = interval(chain, ws, run, t[k], t[k + 1], vg[k], vg[k + 1], seg,
                                        buffers, rigid, start, what, j)

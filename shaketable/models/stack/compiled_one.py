@@ -87,21 +87,22 @@ def rigid_workspace(n):
     rocking body, forces, the seated corners' margins at a step's two ends, and the single
     block engine's run information that its event location fills (with the instability's
     time set, so that it is not located)."""
-    info = np.full(N_INFO, math.nan)
+    info = np.empty(N_INFO)
+    info[:] = math.nan
     info[INFO_T_UNSTABLE] = 0.0
     info[INFO_MAX_ABS_THETA] = 0.0
     return (np.zeros((n, N_COLUMNS)), np.zeros(N_BODY), np.zeros((n, 4)),
             np.zeros((n, 2)), np.zeros((n, 2)), info)
 
 
-@kernel
+@inlined
 def body_parameters(body):
     """The rocking body as the single block's parameters (b, h, I0 / M, no rods, alpha)."""
     return (body[B_HALF_WIDTH], body[B_HEIGHT], body[B_INERTIA_PER_MASS], 0.0, 0.0, 0.0, 0.0,
             body[B_ALPHA], 0.0, 0.0)
 
 
-@kernel
+@inlined
 def table_segment(seg):
     """The stack's input interval as the single block's (no table rotation)."""
     return (seg[0], seg[1], seg[2], seg[3], seg[4], seg[5], 0.0, 0.0)
@@ -117,7 +118,7 @@ def ensure_coefficients(chain, rigid, ist, j, s):
         ist[I_RIGID_S] = s
 
 
-@kernel
+@inlined
 def seated_margin(forces, pattern, tol, g):
     """The seated corners' normal forces plus ``tol`` [N] into ``g`` (n, 2); +inf at the
     open interface."""
@@ -171,7 +172,7 @@ def locate_uplift(rigid, j, s, t, theta, omega, acceleration, side, upper, g_upp
     return high, trials
 
 
-@kernel
+@inlined
 def open_interface(pattern):
     """The one open interface of a one-DOF pattern."""
     for j in range(pattern.size):
@@ -281,23 +282,3 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid):
     fs[F_STEP], fs[F_PREVIOUS_ERROR] = step_size, previous_error
     return t, what, where
 
-
-@kernel
-def one_dof_sample(chain, run, rigid, ug, vg, k, theta, rate, acceleration, patterns, forces,
-                   work):
-    """theta, theta', theta'' of every block, the pattern, the contact forces and the
-    table's work at sample ``k`` of rest or a one-DOF pattern (the closed forms; as
-    :func:`shaketable.models.stack.compiled.sample`)."""
-    phi, phi_dot, pattern = run[0], run[1], run[2]
-    j, _, _, _, a = one_dof_state(chain, run, rigid, ug, vg, forces[k])
-    x, v, c = 0.0, 0.0, 0.0
-    for i in range(phi.size):
-        x += phi[i]
-        v += phi_dot[i]
-        if i == j:
-            c = a
-        theta[k, i] = x
-        rate[k, i] = v
-        acceleration[k, i] = c
-        patterns[k, i] = pattern[i]
-    work[k] = run[3][F_WORK]

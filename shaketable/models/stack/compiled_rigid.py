@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 
 from shaketable.core.constants import G
-from shaketable.models.stack.compiled_physics import kernel
+from shaketable.models.stack.compiled_physics import inlined, kernel
 
 # columns of the coefficients of an interface (rigid_coefficients): the mass above it, the
 # first moment of the rocking body about its pivot (x, y, in its own frame), whether the
@@ -56,16 +56,16 @@ def rigid_coefficients(chain, j, s, coefficients, body):
     b, h, m, inertia = chain[0], chain[1], chain[2], chain[3]
     n = b.size
     # the height of each block's bottom at rest [m] in the last column (none allocated)
-    bottom = coefficients[:, N_COEFFICIENTS]
+    last = N_COEFFICIENTS
     level = 0.0
     for i in range(n):
-        bottom[i] = level
+        coefficients[i, last] = level
         level += 2.0 * h[i]
     px, py, mass, rx, ry, inertia_o = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if j >= 0:
-        px, py = -s * b[j], bottom[j]
+        px, py = -s * b[j], coefficients[j, last]
         for i in range(j, n):
-            x, y = s * b[j], bottom[i] + h[i] - py
+            x, y = s * b[j], coefficients[i, last] + h[i] - py
             mass += m[i]
             rx += m[i] * x
             ry += m[i] * y
@@ -79,48 +79,48 @@ def rigid_coefficients(chain, j, s, coefficients, body):
         body[B_RX] = rx
         body[B_RY] = ry
     for k in range(n):
-        row = coefficients[k]
-        row[:N_COEFFICIENTS] = 0.0
+        for q in range(N_COEFFICIENTS):
+            coefficients[k, q] = 0.0
         above = 0.0
         for i in range(k, n):
             above += m[i]
-        row[C_MASS] = above
-        row[C_WIDTH] = 2.0 * b[k]
+        coefficients[k, C_MASS] = above
+        coefficients[k, C_WIDTH] = 2.0 * b[k]
         turns = j >= 0 and k > j
-        row[C_TURNS] = 1.0 if turns else 0.0
+        coefficients[k, C_TURNS] = 1.0 if turns else 0.0
         if j >= 0 and not turns:
-            row[C_EX], row[C_EY] = rx, ry
+            coefficients[k, C_EX], coefficients[k, C_EY] = rx, ry
         elif turns:
             for i in range(k, n):
-                row[C_EX] += m[i] * s * b[j]
-                row[C_EY] += m[i] * (bottom[i] + h[i] - py)
+                coefficients[k, C_EX] += m[i] * s * b[j]
+                coefficients[k, C_EY] += m[i] * (coefficients[i, last] + h[i] - py)
         if j >= 0 and k == j:
             continue
         for corner in range(2):
             c = C_CORNER + corner * N_CORNER
-            lx, ly = (2.0 * corner - 1.0) * b[k], bottom[k]
+            lx, ly = (2.0 * corner - 1.0) * b[k], coefficients[k, last]
             if turns:
                 # every block above k is in the rocking body: moments in its frame
                 lx, ly = lx - px, ly - py
                 for i in range(k, n):
-                    x, y = s * b[j], bottom[i] + h[i] - py
+                    x, y = s * b[j], coefficients[i, last] + h[i] - py
                     dx, dy = x - lx, y - ly
-                    row[c + 2] += m[i] * dx
-                    row[c + 3] += m[i] * dy
-                    row[c + 4] += m[i] * (dx * x + dy * y) + inertia[i]
-                    row[c + 5] += m[i] * (dx * y - dy * x)
+                    coefficients[k, c + 2] += m[i] * dx
+                    coefficients[k, c + 3] += m[i] * dy
+                    coefficients[k, c + 4] += m[i] * (dx * x + dy * y) + inertia[i]
+                    coefficients[k, c + 5] += m[i] * (dx * y - dy * x)
                 continue
             # the seated blocks k .. j-1 (all above k at rest), then the rocking body
             top = n if j < 0 else j
             for i in range(k, top):
-                row[c] += m[i] * (0.0 - lx)
-                row[c + 1] += m[i] * (bottom[i] + h[i] - ly)
+                coefficients[k, c] += m[i] * (0.0 - lx)
+                coefficients[k, c + 1] += m[i] * (coefficients[i, last] + h[i] - ly)
             if j >= 0:
                 ax, ay = px - lx, py - ly
-                row[c] += mass * ax
-                row[c + 1] += mass * ay
-                row[c + 6] = ax * rx + ay * ry
-                row[c + 7] = ax * ry - ay * rx
+                coefficients[k, c] += mass * ax
+                coefficients[k, c + 1] += mass * ay
+                coefficients[k, c + 6] = ax * rx + ay * ry
+                coefficients[k, c + 7] = ax * ry - ay * rx
 
 
 @kernel
@@ -134,12 +134,11 @@ def rigid_forces(coefficients, j, s, phi, phi_dot, phi_ddot, ug, vg, out):
     gx, gy = ug, G + vg
     w2 = phi_dot * phi_dot
     for k in range(n):
-        row = coefficients[k]
-        ex = cosine * row[C_EX] - sine * row[C_EY]
-        ey = sine * row[C_EX] + cosine * row[C_EY]
-        fx = row[C_MASS] * gx - phi_ddot * ey - w2 * ex
-        fy = row[C_MASS] * gy + phi_ddot * ex - w2 * ey
-        if row[C_TURNS] != 0.0:
+        ex = cosine * coefficients[k, C_EX] - sine * coefficients[k, C_EY]
+        ey = sine * coefficients[k, C_EX] + cosine * coefficients[k, C_EY]
+        fx = coefficients[k, C_MASS] * gx - phi_ddot * ey - w2 * ex
+        fy = coefficients[k, C_MASS] * gy + phi_ddot * ex - w2 * ey
+        if coefficients[k, C_TURNS] != 0.0:
             out[k, 0] = -fx * sine + fy * cosine
             out[k, 1] = fx * cosine + fy * sine
         else:
@@ -152,19 +151,19 @@ def rigid_forces(coefficients, j, s, phi, phi_dot, phi_ddot, ug, vg, out):
             continue
         for corner in range(2):
             c = C_CORNER + corner * N_CORNER
-            mx = row[c] + cosine * row[c + 2] - sine * row[c + 3]
-            my = row[c + 1] + sine * row[c + 2] + cosine * row[c + 3]
-            q1, q2 = row[c + 6], row[c + 7]
-            moment = (mx * gy - my * gx + phi_ddot * (row[c + 4] + cosine * q1 - sine * q2)
-                      - w2 * (row[c + 5] + cosine * q2 + sine * q1))
+            mx = coefficients[k, c] + cosine * coefficients[k, c + 2] - sine * coefficients[k, c + 3]
+            my = coefficients[k, c + 1] + sine * coefficients[k, c + 2] + cosine * coefficients[k, c + 3]
+            q1, q2 = coefficients[k, c + 6], coefficients[k, c + 7]
+            moment = (mx * gy - my * gx + phi_ddot * (coefficients[k, c + 4] + cosine * q1 - sine * q2)
+                      - w2 * (coefficients[k, c + 5] + cosine * q2 + sine * q1))
             # about the left corner: the +x corner's force; about the right: the -x one's
             if corner == 0:
-                out[k, 3] = moment / row[C_WIDTH]
+                out[k, 3] = moment / coefficients[k, C_WIDTH]
             else:
-                out[k, 2] = -moment / row[C_WIDTH]
+                out[k, 2] = -moment / coefficients[k, C_WIDTH]
 
 
-@kernel
+@inlined
 def rigid_energy(body, phi, phi_dot):
     """Kinetic plus potential energy of the rocking body less its value at rest [J]."""
     return (0.5 * body[B_INERTIA] * phi_dot * phi_dot
