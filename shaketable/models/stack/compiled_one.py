@@ -139,7 +139,7 @@ def force_at(rigid, j, s, t, theta, omega, acceleration, side, tau, seg, seg8, p
     return forces[k, 2 + corner] + tol, x, v, a
 
 
-@kernel
+@inlined
 def locate_uplift(rigid, j, s, t, theta, omega, acceleration, side, upper, g_upper, seg,
                   seg8, params, k, corner, tol, g_start):
     """The first zero in (0, ``upper``] of a seated corner's force margin, positive at 0
