@@ -390,6 +390,11 @@ def _control(h, theta, omega, theta_new, omega_new, error_theta, error_omega, rt
     return True, step_size, error, False
 
 
+#: The single block's step-size control under a public name: the stack's one-DOF patterns,
+#: integrated with this engine's stepper, take their steps with it
+#: (:mod:`shaketable.models.stack.compiled_one`).
+step_size_control = _control
+
 def _store(out_theta, out_omega, out_acceleration, index, theta, omega, resting, side, u, v,
            r, block):
     """Stores theta [rad], theta' [rad/s] and theta'' [rad/s^2] (0 at rest) at sample

@@ -1,14 +1,16 @@
-"""The stack's compiled event-driven engine (numba): DOP853 between events, events located.
+"""The stack's compiled event-driven engine (numba): each pattern by its cheapest exact method.
 
 The algorithm of :mod:`shaketable.models.stack.engine` (its docstring and ``docs/stack.md``
-say what it does), compiled whole: each input interval integrated on its own by the explicit
-Runge-Kutta pair DOP853 of Dormand & Prince (order 8, error estimators of orders 5 and 3,
-SciPy's coefficients and step-size control: the same steps as the Python engine's
-``solve_ivp``), events located on the accepted step's continuous extension of order 7 by
-Brent's method (SciPy's ``brentq``), the pattern chosen by the acceleration-level
-complementarity check, the plastic multi-contact law or the constant COR at impacts,
-cascades summed in closed form, a landing passed inside a step found from its turning point.
-The physics is :mod:`shaketable.models.stack.compiled_physics`.
+say what it does), compiled whole: the stack at rest costs one evaluation of its (linear)
+corner forces per input interval; a one-DOF pattern (one open interface: a single rigid body
+rocking on a base that moves with the table) is integrated with the single block's
+Runge-Kutta-Nystrom stepper and event location (:mod:`shaketable.models.stack.compiled_one`);
+the multi-DOF patterns with DOP853, events located on its continuous extension
+(:mod:`shaketable.models.stack.compiled_segment`). At each event the pattern is chosen by the
+acceleration-level complementarity check, the plastic multi-contact law or the constant COR
+applied at impacts, cascades summed in closed form. The physics is
+:mod:`shaketable.models.stack.compiled_physics` (the general N-block equations) and
+:mod:`shaketable.models.stack.compiled_rigid` (the closed forms of rest and one-DOF patterns).
 
 :func:`run_stack` is the one compiled entry; :func:`integrate` (Python) calls it and returns
 what :func:`shaketable.models.stack.engine.integrate` returns.
@@ -22,6 +24,11 @@ import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
+from shaketable.models.stack.compiled_one import (
+    one_dof_segment,
+    one_dof_state,
+    rigid_workspace,
+)
 from shaketable.models.stack.compiled_physics import (
     COMPILED,
     FULL_ENUMERATION,
@@ -40,21 +47,51 @@ from shaketable.models.stack.compiled_physics import (
     table_power,
     workspace,
 )
+from shaketable.models.stack.compiled_rigid import rigid_forces
+from shaketable.models.stack.compiled_segment import segment
 from shaketable.models.stack.compiled_steps import (
-    EPS,
-    ERROR_EXPONENT,
-    MAX_FACTOR,
-    MIN_FACTOR,
-    NO,
-    SAFETY,
-    dense_output,
-    dense_state,
     ground,
-    initial_step,
-    rhs,
-    rk_step,
 )
-from shaketable.numerics import roots
+from shaketable.models.stack.layout import (
+    ENDS_IMPACT,
+    ENDS_NONE,
+    ENDS_OVERTURN,
+    F_DOP_STEP,
+    F_ERROR_TIME,
+    F_LAST_IMPACT,
+    F_PREVIOUS_ERROR,
+    F_REST_UNTIL,
+    F_STEP,
+    F_T_AIRBORNE,
+    F_T_OVERTURN,
+    F_WORK,
+    I_ERROR,
+    I_EVALUATIONS,
+    I_EVENTS,
+    I_OVERTURNED,
+    I_RECORDED,
+    I_RIGID_J,
+    I_STALLED,
+    I_STATUS,
+    I_STEPS,
+    N_FLOATS,
+    N_INTS,
+    NO_PATTERN,
+    NONE,
+    P_ALPHA,
+    P_ALPHA_P,
+    P_COR,
+    P_DELTA,
+    P_LAW,
+    P_REST,
+    P_TOL_FORCE,
+    STALLED,
+    STEP_FAILED,
+    ZERO,
+)
+
+#: What an input interval's general path ends with (:func:`interval`).
+STOPS, DONE, ONE_DOF = (np.int64(code) for code in range(3))
 
 # the engine's constants (as shaketable.models.stack.engine's)
 FLOOR = 1e-10
@@ -68,21 +105,10 @@ KINDS = ("uplift", "impact", "rest", "overturn", "airborne")
 UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = (np.int64(code) for code in range(5))
 REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level landing")
 R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
-NONE, ZERO, ONE = np.int64(-1), np.int64(0), np.int64(1)
-#: Statuses and errors of a run.
+ONE = np.int64(1)
+#: Statuses of a run.
 STATUSES = ("completed", "overturned", "airborne")
-NO_PATTERN, STALLED, STEP_FAILED = 1, 2, 3
-#: Event functions of a segment.
-EV_LANDING, EV_OVERTURN, EV_LIFT, EV_TURN, EV_SIDE = (np.int64(code) for code in range(5))
-#: What ends a segment.
-ENDS_NONE, ENDS_IMPACT, ENDS_OVERTURN, ENDS_LIFT = (np.int64(code) for code in range(-1, 3))
 
-# slots of the run's float state ``fs`` and int state ``ist``
-F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME = 0, 1, 2, 3, 4
-I_EVENTS, I_RECORDED, I_STALLED, I_STATUS, I_OVERTURNED, I_STEPS, I_EVALUATIONS, I_ERROR = \
-    0, 1, 2, 3, 4, 5, 6, 7
-# slots of the parameters ``par``
-P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW = range(8)
 
 
 @kernel
@@ -273,237 +299,19 @@ def impact(chain, ws, run, time, seg, interface, end):
     return choose(chain, ws, run, time, seg, R_IMPACT, interface, end)
 
 
-@kernel
-def event_value(chain, ws, run, seg, kind, j, corner, time, y, t_start, from_zero):
-    """An event function at (time, y): positive before its event (see the Python engine's
-    ``segment``)."""
-    pattern = run[2]
-    n = pattern.size
-    s = pattern[j]
-    if kind == EV_LANDING:
-        if from_zero:
-            return s * y[n + j] if time <= t_start else s * y[j] / (time - t_start)
-        return s * y[j]
-    if kind == EV_OVERTURN:
-        return 0.5 * math.pi - s * y[j]
-    if kind == EV_TURN:
-        return y[n + j]
-    if kind == EV_SIDE:
-        return s * y[j]
-    ug, vg = ground(seg, time)
-    forces = ws[8]
-    state_forces(chain, y[:n], y[n:2 * n], pattern, ug, vg, ws[15], forces, ws)
-    return forces[j, corner] + run[5][P_TOL_FORCE]
-
-
-@inlined
-def event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, dense, y_old,
-             t_old, h, state):
-    dense_state(dense, y_old, t_old, h, time, state)
-    return event_value(chain, ws, run, seg, kind, j, corner, time, state, t_start, from_zero)
-
-
-@inlined
-def event_of_time(time, args):
-    """:func:`event_at` as :func:`shaketable.numerics.roots.brent` calls it."""
-    chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old, t_old, h, state = \
-        args
-    return event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, dense,
-                    y_old, t_old, h, state)
-
-
-@kernel
-def brent(chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old, t_old, h,
-          state, xa, xb, xtol, rtol):
-    """The zero of an event function on the continuous extension in [xa, xb] (SciPy's
-    ``brentq``: :func:`shaketable.numerics.roots.brent`)."""
-    return roots.brent(event_of_time, (chain, ws, run, seg, kind, j, corner, t_start,
-                                       from_zero, dense, y_old, t_old, h, state),
-                       xa, xb, xtol, rtol)
-
-
-@inlined
-def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, which, terminal,
-                   count, first_time, earlier, settled, from_zero):
-    """A landing the step (t_now, h) passed without seeing it, as (time, interface), else
-    (inf, -1) (:meth:`shaketable.models.stack.engine.Run.passed_landing`): the zero of
-    s phi before a turning point found on the wrong side of the pivot."""
-    pattern = run[2]
-    found, found_j = math.inf, NONE
-    for e in range(terminal, count):
-        tau = roots[e]
-        j = which[e]
-        if math.isnan(tau) or tau > first_time or settled[j]:
-            continue
-        dense_state(dense, y, t_now, h, tau, state)
-        s = pattern[j]
-        if s * state[j] >= 0.0:
-            earlier[j] = tau
-            continue
-        settled[j] = True
-        low = max(t_now, earlier[j])
-        if (low <= t and from_zero[j]) or event_at(
-                chain, ws, run, seg, EV_SIDE, j, ZERO, low, t, NO, dense, y, t_now, h,
-                state) <= 0.0:
-            continue
-        time = brent(chain, ws, run, seg, EV_SIDE, j, ZERO, t, NO, dense, y, t_now, h, state,
-                     low, tau, 1e-300, 4.0 * EPS)
-        if time < found:
-            found, found_j = time, j
-    return found, found_j
-
-
-@inlined
-def segment(chain, ws, run, t, t_end, seg, buffers):
-    """Integrate the current (moving) pattern from ``t`` to its first event or ``t_end``
-    (:meth:`shaketable.models.stack.engine.Run.segment`): returns (time, what, interface),
-    ``what`` one of ENDS_*."""
-    phi, phi_dot, pattern, fs, ist, par, atol = run[0], run[1], run[2], run[3], run[4], \
-        run[5], run[6]
-    stages, y, y_new, work, dense, state, g, g_new, roots, codes, flags, earlier = buffers
-    n = phi.size
-    size = 2 * n + 1
-    for j in range(n):
-        if pattern[j] != 0 and (pattern[j] * phi[j] < 0.0 or (
-                phi[j] == 0.0 and pattern[j] * phi_dot[j] < 0.0)):
-            phi[j] = 0.0   # on the wrong side of its pivot, or leaving it the wrong way
-            return t, ENDS_IMPACT, j
-    # the event functions: landing and overturn of each open interface, the two corners of
-    # each flat one (terminal), then the turning point of each open one
-    kinds, which, corners = codes[0], codes[1], codes[2]
-    count = ZERO
-    flat = NO
-    for j in range(n):
-        if pattern[j] != 0:
-            kinds[count], which[count], corners[count] = EV_LANDING, j, 0
-            kinds[count + 1], which[count + 1], corners[count + 1] = EV_OVERTURN, j, 0
-            count += 2
-    for j in range(n):
-        if pattern[j] == 0:
-            flat = True
-            kinds[count], which[count], corners[count] = EV_LIFT, j, 2
-            kinds[count + 1], which[count + 1], corners[count + 1] = EV_LIFT, j, 3
-            count += 2
-    terminal = count
-    for j in range(n):
-        if pattern[j] != 0:
-            kinds[count], which[count], corners[count] = EV_TURN, j, 0
-            count += 1
-    from_zero, settled = flags[0], flags[1]
-    for j in range(n):
-        from_zero[j] = phi[j] == 0.0
-        settled[j] = False
-        earlier[j] = t
-        y[j] = phi[j]
-        y[n + j] = phi_dot[j]
-    y[2 * n] = fs[F_WORK]
-    rtol = par[P_RTOL]
-    rhs(chain, ws, pattern, seg, t, y, stages[0], flat)
-    for e in range(count):
-        g[e] = event_value(chain, ws, run, seg, kinds[e], which[e], corners[e], t, y, t, from_zero[which[e]]) \
-            if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
-    h_abs = initial_step(chain, ws, pattern, seg, t, y, stages[0], t_end, atol, rtol, work,
-                         stages[12])
-    ist[I_EVALUATIONS] += 2
-    t_now = t
-    while True:
-        min_step = 10.0 * abs(np.nextafter(t_now, np.inf) - t_now)
-        h_abs = max(h_abs, min_step)
-        rejected = False
-        while True:
-            if h_abs < min_step:
-                ist[I_ERROR] = STEP_FAILED
-                fs[F_ERROR_TIME] = t_now
-                return t_now, ENDS_NONE, NONE
-            t_new = t_now + h_abs
-            if t_new > t_end:
-                t_new = t_end
-            h = t_new - t_now
-            h_abs = abs(h)
-            norm = rk_step(chain, ws, pattern, seg, t_now, y, h, stages, y_new, work, atol,
-                           rtol, flat)
-            ist[I_EVALUATIONS] += 12
-            if norm < 1.0:
-                factor = MAX_FACTOR if norm == 0.0 else min(MAX_FACTOR,
-                                                            SAFETY * norm ** ERROR_EXPONENT)
-                if rejected:
-                    factor = min(1.0, factor)
-                h_abs *= factor
-                break
-            h_abs *= max(MIN_FACTOR, SAFETY * norm ** ERROR_EXPONENT)
-            rejected = True
-        ist[I_STEPS] += 1
-        for e in range(count):
-            g_new[e] = event_value(chain, ws, run, seg, kinds[e], which[e], corners[e], t_new,
-                                   y_new, t, from_zero[which[e]]) \
-                if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
-        active = False
-        for e in range(count):
-            down = g[e] >= 0.0 and g_new[e] <= 0.0
-            up = g[e] <= 0.0 and g_new[e] >= 0.0
-            roots[e] = math.nan
-            if down or (e >= terminal and up):
-                roots[e] = math.inf
-                active = True
-        if active:
-            dense_output(chain, ws, pattern, seg, t_now, y, y_new, h, stages, dense, work)
-            ist[I_EVALUATIONS] += 3
-            first, first_time = NONE, math.inf
-            for e in range(count):
-                if roots[e] == math.inf:
-                    roots[e] = brent(chain, ws, run, seg, kinds[e], which[e], corners[e], t,
-                                     from_zero[which[e]], dense, y, t_now, h, state, t_now,
-                                     t_new, 4.0 * EPS, 4.0 * EPS)
-                    if e < terminal and roots[e] < first_time:
-                        first, first_time = e, roots[e]
-            # a turning point on the wrong side of a landing: the landing before it
-            found, found_j = passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state,
-                                            roots, which, terminal, count, first_time,
-                                            earlier, settled, from_zero)
-            if found_j >= 0 and found < first_time:
-                dense_state(dense, y, t_now, h, found, state)
-                for i in range(n):
-                    phi[i] = state[i]
-                    phi_dot[i] = state[n + i]
-                fs[F_WORK] = state[2 * n]
-                phi[found_j] = 0.0
-                return found, ENDS_IMPACT, found_j
-            if first >= 0:
-                dense_state(dense, y, t_now, h, first_time, state)
-                for i in range(n):
-                    phi[i] = state[i]
-                    phi_dot[i] = state[n + i]
-                fs[F_WORK] = state[2 * n]
-                kind = kinds[first]
-                what = ENDS_IMPACT if kind == EV_LANDING else (
-                    ENDS_OVERTURN if kind == EV_OVERTURN else ENDS_LIFT)
-                return first_time, what, which[first]
-        for e in range(count):
-            g[e] = g_new[e]
-        for i in range(size):
-            y[i] = y_new[i]
-            stages[0, i] = stages[12, i]
-        t_now = t_new
-        if t_now >= t_end:
-            for i in range(n):
-                phi[i] = y[i]
-                phi_dot[i] = y[n + i]
-            fs[F_WORK] = y[2 * n]
-            return t_end, ENDS_NONE, NONE
-
-
 # ------------------------------------------------------------------------- run
 @inlined
-def rest_uplift(chain, ws, run, t, t_end, seg):
+def rest_uplift(chain, ws, run, t, t_end, seg, rigid):
     """The first time in [t, t_end] a rest corner force reaches -tol, as (time, interface);
     (inf, -1) when none does."""
     pattern, par = run[2], run[5]
     n = pattern.size
-    zero, phi_ddot, start, end = ws[16], ws[15], ws[8], ws[17]
+    start, end = ws[8], ws[17]
+    # the closed form of rest (linear in u'', v'')
     ug, vg = ground(seg, t)
-    state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, start, ws)
+    one_dof_state(chain, run, rigid, ug, vg, start)
     ug, vg = ground(seg, t_end)
-    state_forces(chain, zero, zero, pattern, ug, vg, phi_ddot, end, ws)
+    one_dof_state(chain, run, rigid, ug, vg, end)
     first, first_j = math.inf, NONE
     tol = par[P_TOL_FORCE]
     for j in range(n):
@@ -530,8 +338,12 @@ def progress(run, t, t_new):
 
 
 @inlined
-def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
-    """Advance over one input interval; False when the run stops (or failed: its error)."""
+def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what, j):
+    """Advance over one input interval from ``t_start`` (``t0``, or where a one-DOF
+    segment ended with the event ``what`` of interface ``j``, ENDS_NONE for none); returns
+    (code, time): STOPS (the run stops, or failed: its error), DONE (the interval's end
+    reached) or ONE_DOF (a one-DOF pattern from that time on: the caller integrates it,
+    :func:`~shaketable.models.stack.compiled_one.one_dof_segment`)."""
     pattern, fs, ist = run[2], run[3], run[4]
     support0, support1 = G + v0, G + v1
     if support0 <= 0.0 or support1 <= 0.0:
@@ -540,34 +352,37 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
             t0 + (t1 - t0) * support0 / (support0 - support1)
         record(run, fs[F_T_AIRBORNE], AIRBORNE, NONE, pattern, pattern, ZERO,
                (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
-        return False
-    t = t0
-    while t < t1:
-        if fs[F_REST_UNTIL] > t:
-            if fs[F_REST_UNTIL] >= t1:
-                return True
-            t = fs[F_REST_UNTIL]
-        if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
-            fs[F_REST_UNTIL] = -math.inf
-            t = choose(chain, ws, run, t, seg, R_REST, NONE, t1)
-            if ist[I_ERROR]:
-                return False
-        if open_count(pattern) == 0:
-            t_new, j = rest_uplift(chain, ws, run, t, t1, seg)
-            if j < 0:
-                return True
-            if not progress(run, t, t_new):
-                return False
-            t = choose(chain, ws, run, t_new, seg, R_UPLIFT, j, t1)
-            if ist[I_ERROR]:
-                return False
-            continue
-        t_new, what, j = segment(chain, ws, run, t, t1, seg, buffers)
-        if ist[I_ERROR] or not progress(run, t, t_new):
-            return False
-        t = t_new
+        return STOPS, t_start
+    t = t_start
+    while t < t1 or what != ENDS_NONE:
         if what == ENDS_NONE:
-            continue
+            if fs[F_REST_UNTIL] > t:
+                if fs[F_REST_UNTIL] >= t1:
+                    return DONE, t
+                t = fs[F_REST_UNTIL]
+            if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
+                fs[F_REST_UNTIL] = -math.inf
+                t = choose(chain, ws, run, t, seg, R_REST, NONE, t1)
+                if ist[I_ERROR]:
+                    return STOPS, t
+            if open_count(pattern) == 0:
+                t_new, j = rest_uplift(chain, ws, run, t, t1, seg, rigid)
+                if j < 0:
+                    return DONE, t
+                if not progress(run, t, t_new):
+                    return STOPS, t
+                t = choose(chain, ws, run, t_new, seg, R_UPLIFT, j, t1)
+                if ist[I_ERROR]:
+                    return STOPS, t
+                continue
+            if open_count(pattern) == 1:
+                return ONE_DOF, t
+            t_new, what, j = segment(chain, ws, run, t, t1, seg, buffers)
+            if ist[I_ERROR] or not progress(run, t, t_new):
+                return STOPS, t
+            t = t_new
+            if what == ENDS_NONE:
+                continue
         if what == ENDS_IMPACT:
             t = impact(chain, ws, run, t, seg, j, t1)
         elif what == ENDS_OVERTURN:
@@ -576,22 +391,30 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers):
             ist[I_OVERTURNED] = j
             record(run, t, OVERTURN, j, pattern, pattern, ONE,
                    (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
-            return False
+            return STOPS, t
         else:
             t = choose(chain, ws, run, t, seg, R_UPLIFT, j, t1)
+        what = ENDS_NONE
         if ist[I_ERROR]:
-            return False
-    return True
+            return STOPS, t
+    return DONE, t
 
 
 @kernel
-def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work):
+def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work,
+           rigid):
     """theta, theta', theta'' of every block, the pattern, the contact forces and the
     table's work at sample ``k``."""
     phi, phi_dot, pattern = run[0], run[1], run[2]
     n = phi.size
     phi_ddot = ws[15]
-    state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces[k], ws)
+    if open_count(pattern) <= 1:
+        # rest or a one-DOF pattern: the closed forms
+        j, _, _, _, a = one_dof_state(chain, run, rigid, ug, vg, forces[k])
+        for i in range(n):
+            phi_ddot[i] = a if i == j else 0.0
+    else:
+        state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces[k], ws)
     a, b, c = 0.0, 0.0, 0.0
     for i in range(n):
         a += phi[i]
@@ -602,6 +425,24 @@ def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, force
         acceleration[k, i] = c
         patterns[k, i] = pattern[i]
     work[k] = run[3][F_WORK]
+
+
+@inlined
+def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
+    """Whether the stack, at rest with the closed forms of rest current, stays at rest over
+    an input interval (no corner force past -tol at its end, as :func:`rest_uplift` finds
+    it, the table pressing on it): then its contact forces at the end are in ``forces``."""
+    if ist[I_RIGID_J] != -1 or fs[F_REST_UNTIL] != -math.inf or G + v0 <= 0.0 or \
+            G + vg1 <= 0.0:
+        return False
+    for j in range(pattern.size):
+        if pattern[j] != 0 or phi[j] != 0.0:
+            return False
+    rigid_forces(coefficients, NONE, ZERO, 0.0, 0.0, 0.0, ug1, vg1, forces)
+    for j in range(pattern.size):
+        if forces[j, 2] + tol < 0.0 or forces[j, 3] + tol < 0.0:
+            return False
+    return True
 
 
 @njit(cache=True, nogil=True, error_model=COMPILED["error_model"])
@@ -617,13 +458,21 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     n = b.size
     chain = (b, h, m, inertia)
     ws = workspace(n)
-    ev_f = np.full((capacity, 5), math.nan)
-    ev_i = np.full((capacity, 6), -1, dtype=np.int64)
-    ev_pb = np.zeros((capacity, n), dtype=np.int64)
-    ev_pa = np.zeros((capacity, n), dtype=np.int64)
-    fs = np.array([0.0, -math.inf, math.nan, math.nan, math.nan])
-    ist = np.zeros(8, dtype=np.int64)
+    # every row up to the count of recorded events is written (record): left uninitialised,
+    # the pages of the rows never used are never touched
+    ev_f = np.empty((capacity, 5))
+    ev_i = np.empty((capacity, 6), dtype=np.int64)
+    ev_pb = np.empty((capacity, n), dtype=np.int64)
+    ev_pa = np.empty((capacity, n), dtype=np.int64)
+    fs = np.empty(N_FLOATS)
+    fs[:] = math.nan
+    fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
+    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
+        1e-4, t[0]
+    fs[F_DOP_STEP] = 0.01 / par[P_ALPHA_P] * par[P_ALPHA]
+    ist = np.zeros(N_INTS, dtype=np.int64)
     ist[I_OVERTURNED] = -1
+    ist[I_RIGID_J] = -2   # no closed forms computed yet
     run = (phi0.copy(), phi_dot0.copy(), pattern0.copy(), fs, ist, par, atol, ev_f, ev_i,
            ev_pb, ev_pa)
     size = 2 * n + 1
@@ -631,6 +480,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                np.zeros((7, size)), np.zeros(size), np.zeros(3 * n), np.zeros(3 * n),
                np.zeros(3 * n), np.zeros((3, 3 * n), dtype=np.int64),
                np.zeros((2, n), dtype=np.bool_), np.zeros(n))
+    rigid = rigid_workspace(n)
     count = t.size
     theta, rate, acceleration = np.zeros((count, n)), np.zeros((count, n)), \
         np.zeros((count, n))
@@ -642,15 +492,45 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     filled = 0
     if ist[I_ERROR] == 0:
         sample(chain, ws, run, ug[0], vg[0], ZERO, theta, rate, acceleration, patterns, forces,
-               work)
+               work, rigid)
         filled = 1
+        coefficients, tol = rigid[0], par[P_TOL_FORCE]
+        phi, pattern = run[0], run[2]
         for k in range(count - 1):
+            if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
+                               vg[k + 1], forces[k + 1]):
+                # at rest: theta, theta', theta'' and the pattern are zeros
+                work[k + 1] = fs[F_WORK]
+                filled = k + 2
+                continue
             seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
             seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
-            if not interval(chain, ws, run, t[k], t[k + 1], vg[k], vg[k + 1], seg, buffers):
+            start, what, j = t[k], ENDS_NONE, NONE
+            code = ONE_DOF if open_count(pattern) == 1 and \
+                fs[F_REST_UNTIL] == -math.inf and G + vg[k] > 0.0 and G + vg[k + 1] > 0.0 \
+                else DONE
+            while True:
+                if code == ONE_DOF:
+                    # a one-DOF pattern: its segment here, the general path for its event
+                    t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid)
+                    if ist[I_ERROR] or not progress(run, start, t_new):
+                        code = STOPS
+                        break
+                    start = t_new
+                    if what == ENDS_NONE:
+                        sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
+                               acceleration, patterns, forces, work, rigid)
+                        break
+                code, start = interval(chain, ws, run, t[k], t[k + 1], vg[k], vg[k + 1], seg,
+                                       buffers, rigid, start, what, j)
+                what, j = ENDS_NONE, NONE
+                if code == DONE:
+                    sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
+                           acceleration, patterns, forces, work, rigid)
+                if code != ONE_DOF:
+                    break
+            if code == STOPS:
                 break
-            sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate, acceleration,
-                   patterns, forces, work)
             filled = k + 2
     return (theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i,
             ev_pb, ev_pa, run[0], run[2])
@@ -667,25 +547,30 @@ class CompiledRun:
         self.t_airborne = float(fs[F_T_AIRBORNE])
         self.n_events = int(ist[I_EVENTS])
         self.steps, self.evaluations = int(ist[I_STEPS]), int(ist[I_EVALUATIONS])
-        self.events = [self.event(ev_f[k], ev_i[k], ev_pb[k], ev_pa[k])
-                       for k in range(int(ist[I_RECORDED]))]
+        # as Python lists first: one conversion per array, not one per number
+        count = int(ist[I_RECORDED])
+        self.events = [self.event(*row) for row in zip(
+            ev_f[:count].tolist(), ev_i[:count].tolist(),
+            [tuple(pattern) for pattern in ev_pb[:count].tolist()],
+            [tuple(pattern) for pattern in ev_pa[:count].tolist()])]
 
     @staticmethod
     def event(reals, integers, before, after) -> dict:
-        kind = KINDS[int(integers[0])]
+        """One recorded event as a dict (its numbers as Python floats and ints, its
+        patterns as tuples)."""
+        kind = KINDS[integers[0]]
         patterns = integers[5] == 1
-        event = dict(t=float(reals[0]), kind=kind, interface=int(integers[1]),
-                     pattern_before=tuple(int(s) for s in before) if patterns else None,
-                     pattern_after=tuple(int(s) for s in after) if patterns else None)
+        event = dict(t=reals[0], kind=kind, interface=integers[1],
+                     pattern_before=before if patterns else None,
+                     pattern_after=after if patterns else None)
         if kind == "uplift":
-            event.update(solutions=int(integers[2]), reason=REASONS[int(integers[4])])
+            event.update(solutions=integers[2], reason=REASONS[integers[4]])
         elif kind == "impact":
-            event.update(rate_before=float(reals[1]), rate_after=float(reals[2]),
-                         energy_before=float(reals[3]), energy_after=float(reals[4]),
-                         solutions=int(integers[2]))
+            event.update(rate_before=reals[1], rate_after=reals[2], energy_before=reals[3],
+                         energy_after=reals[4], solutions=integers[2])
         elif kind == "rest":
-            event.update(cascade=bool(integers[3]), energy_before=float(reals[3]),
-                         energy_after=float(reals[4]))
+            event.update(cascade=bool(integers[3]), energy_before=reals[3],
+                         energy_after=reals[4])
         return event
 
 

@@ -73,7 +73,8 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
     duration : float, optional
         Length of free rocking [s] (``motion=None`` only).
     rtol : float
-        DOP853's relative tolerance [-].
+        The integrators' relative tolerance [-] (DOP853's, and in the compiled engine's one-DOF
+        patterns the single block's RKN6(4)'s).
     rest_tolerance : float, optional
         Remaining time of an impact cascade summed in closed form [s] (default
         1e-6 / p of the bottom block, as the single-block engine).
@@ -83,9 +84,10 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
         Events kept in the result (all are counted).
     method : {"compiled", "reference"}
         The engine: ``"compiled"`` (numba, default; its first run in a fresh cache
-        compiles it) or ``"reference"`` (the same algorithm in Python on SciPy's
-        ``solve_ivp``, about a hundred times slower). Both take SciPy's DOP853 steps: they
-        agree to the rounding of the arithmetic (``docs/stack.md``, validation).
+        compiles it: the one-DOF patterns with the single block's RKN6(4) stepper, the others
+        with DOP853) or ``"reference"`` (the same algorithm in Python on SciPy's
+        ``solve_ivp``, DOP853 throughout, about a hundred times slower). They agree to the
+        tolerance's level (``docs/stack.md``, validation).
     """
     if method not in STACK_METHODS:
         raise ValueError(f"method must be one of {STACK_METHODS}, got {method!r}")

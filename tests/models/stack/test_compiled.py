@@ -1,4 +1,11 @@
-"""The compiled stack engine against the Python one (SciPy's solve_ivp), and its batch."""
+"""The compiled stack engine against the Python one (SciPy's solve_ivp), and its batch.
+
+The compiled engine integrates the one-DOF patterns with the single block's RKN6(4) stepper
+and DOP853 elsewhere; the Python engine takes SciPy's DOP853 steps throughout. Both run at
+rtol 1e-12 (``simulate_stack``'s default), and they must agree to the issue's 1e-9 (issue
+38's "Reference" bound: histories, event times, forces relative to the weight, the table's
+work relative to the weight times the stack's height).
+"""
 
 import warnings
 
@@ -40,13 +47,16 @@ def _difference(a, b):
                times)
 
 
-def test_the_compiled_engine_is_the_python_engine_in_every_pattern():
+def test_the_compiled_engine_agrees_with_the_python_engine_in_every_pattern():
     visited = set()
     for stack, motion in RUNS:
         compiled, python = _both(stack, motion)
         assert _difference(compiled, python) < 1e-9
-        # the contact forces and the table's work too (relative to the weight, its energy)
+        # the contact forces and the table's work too (relative to the weight, to the weight
+        # times the stack's height)
         assert np.abs(compiled.forces - python.forces).max() < 1e-9 * stack.weight
+        height = 2.0 * float(stack.h.sum())
+        assert np.abs(compiled.work - python.work).max() < 1e-9 * stack.weight * height
         visited |= {pattern_name(p).split(" (")[0] for p in compiled.patterns}
         if stack.n == 3:
             assert any(sum(s != 0 for s in p) >= 2 for p in compiled.patterns)

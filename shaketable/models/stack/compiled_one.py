@@ -1,0 +1,284 @@
+"""The stack's one-DOF patterns integrated as a single rocking block (numba).
+
+A pattern with one open interface is one rigid body rocking about a corner on a base that
+moves with the table (:mod:`shaketable.models.stack.compiled_rigid`): the single-block
+engine's method integrates it (:mod:`shaketable.models.rocking.engine`: the
+Runge-Kutta-Nystrom pair RKN6(4) of :func:`~shaketable.models.rocking.steppers.nystrom_step`,
+one step per input interval while its error allows, the engine's PI step-size control, and
+its event location on the stepper, :func:`~shaketable.models.rocking.events.step_events`,
+for the landing and the overturn). The stack's own event, the normal force at a seated
+corner reaching zero (the uplift that starts the next pattern), is found at the ends of the
+accepted steps, as the DOP853 path finds it, and located on the stepper by a bracketed
+secant iteration (Illinois). The table's work over a segment is the rocking body's energy
+change (no impact inside a segment: the work of the table's inertial forces is the change of
+kinetic plus potential energy, Eq. (2-13)'s first integral).
+"""
+
+from __future__ import annotations
+
+import math
+import types
+
+import numpy as np
+
+from shaketable.models.rocking import events as rocking_events
+from shaketable.models.rocking.engine import step_size_control
+from shaketable.models.rocking.layout import INFO_MAX_ABS_THETA, INFO_T_UNSTABLE, N_INFO
+from shaketable.models.rocking.steppers import flight_acceleration, helper, nystrom_step
+from shaketable.models.stack.compiled_physics import compiled, inlined, kernel
+from shaketable.models.stack.compiled_rigid import (
+    B_ALPHA,
+    B_HALF_WIDTH,
+    B_HEIGHT,
+    B_INERTIA_PER_MASS,
+    N_BODY,
+    N_COLUMNS,
+    rigid_coefficients,
+    rigid_energy,
+    rigid_forces,
+)
+from shaketable.models.stack.compiled_steps import EPS, ground
+from shaketable.models.stack.layout import (
+    ENDS_IMPACT,
+    ENDS_LIFT,
+    ENDS_NONE,
+    ENDS_OVERTURN,
+    F_LAST_IMPACT,
+    F_PREVIOUS_ERROR,
+    F_STEP,
+    F_WORK,
+    I_ERROR,
+    I_EVALUATIONS,
+    I_RIGID_J,
+    I_RIGID_S,
+    I_STEPS,
+    NONE,
+    P_RTOL,
+    P_TOL_FORCE,
+    STEP_FAILED,
+)
+
+
+def _with_nystrom(name, namespace):
+    """A copy of the rocking engine's event helper ``name`` bound to its RKN6(4) stepper
+    (as :func:`shaketable.models.rocking.engine._integrator` binds each method's), compiled
+    under a name of its own."""
+    function = getattr(rocking_events, name)
+    copy = types.FunctionType(function.__code__, namespace, name)
+    copy.__qualname__ = f"stack_one_dof.{name}"
+    return helper(copy)
+
+
+_NAMESPACE = dict(vars(rocking_events), advance=nystrom_step)
+for _name in rocking_events.METHOD_HELPERS:
+    _NAMESPACE[_name] = _with_nystrom(_name, _NAMESPACE)
+step_events = _NAMESPACE["step_events"]
+control = inlined(step_size_control)
+
+#: The stepper's evaluations of theta'' per trial step.
+PER_STEP = 5
+# the stepper's event kinds (shaketable.models.rocking.layout)
+_IMPACT, _OVERTURN = float(rocking_events.EVENT_IMPACT), float(rocking_events.EVENT_OVERTURN)
+
+
+@compiled
+def rigid_workspace(n):
+    """The arrays of the closed forms for a chain of ``n`` blocks: coefficients, the
+    rocking body, forces, the seated corners' margins at a step's two ends, and the single
+    block engine's run information that its event location fills (with the instability's
+    time set, so that it is not located)."""
+    info = np.empty(N_INFO)
+    info[:] = math.nan
+    info[INFO_T_UNSTABLE] = 0.0
+    info[INFO_MAX_ABS_THETA] = 0.0
+    return (np.zeros((n, N_COLUMNS)), np.zeros(N_BODY), np.zeros((n, 4)),
+            np.zeros((n, 2)), np.zeros((n, 2)), info)
+
+
+@inlined
+def body_parameters(body):
+    """The rocking body as the single block's parameters (b, h, I0 / M, no rods, alpha)."""
+    return (body[B_HALF_WIDTH], body[B_HEIGHT], body[B_INERTIA_PER_MASS], 0.0, 0.0, 0.0, 0.0,
+            body[B_ALPHA], 0.0, 0.0)
+
+
+@inlined
+def table_segment(seg):
+    """The stack's input interval as the single block's (no table rotation)."""
+    return (seg[0], seg[1], seg[2], seg[3], seg[4], seg[5], 0.0, 0.0)
+
+
+@inlined
+def ensure_coefficients(chain, rigid, ist, j, s):
+    """Compute the closed forms of the pattern (``j`` open on ``s``; -1 rest) unless the
+    run's int state says they are current."""
+    if ist[I_RIGID_J] != j or ist[I_RIGID_S] != s:
+        rigid_coefficients(chain, j, s, rigid[0], rigid[1])
+        ist[I_RIGID_J] = j
+        ist[I_RIGID_S] = s
+
+
+@inlined
+def seated_margin(forces, pattern, tol, g):
+    """The seated corners' normal forces plus ``tol`` [N] into ``g`` (n, 2); +inf at the
+    open interface."""
+    for k in range(pattern.size):
+        for corner in range(2):
+            g[k, corner] = math.inf if pattern[k] != 0 else forces[k, 2 + corner] + tol
+
+
+@kernel
+def force_at(rigid, j, s, t, theta, omega, acceleration, side, tau, seg, seg8, params, k,
+             corner, tol):
+    """A seated corner's normal force plus ``tol`` [N] ``tau`` after ``t`` on the stepper,
+    and the state there."""
+    x, v, a, _, _ = nystrom_step(t, theta, omega, acceleration, side, tau, seg8, params)
+    ug, vg = ground(seg, t + tau)
+    forces = rigid[2]
+    rigid_forces(rigid[0], j, s, x, v, a, ug, vg, forces)
+    return forces[k, 2 + corner] + tol, x, v, a
+
+
+@inlined
+def locate_uplift(rigid, j, s, t, theta, omega, acceleration, side, upper, g_upper, seg,
+                  seg8, params, k, corner, tol, g_start):
+    """The first zero in (0, ``upper``] of a seated corner's force margin, positive at 0
+    (``g_start``) and at most 0 at ``upper`` (``g_upper``), by the Illinois method on the
+    stepper's solution; returns it [s after ``t``] and the number of trial steps."""
+    low, high = 0.0, upper
+    g_low, g_high = g_start, g_upper
+    tolerance = 4.0 * EPS * (abs(t) + upper) + 1e-300
+    trials = np.int64(0)
+    side_kept = 0
+    for _ in range(100):
+        if high - low <= tolerance or g_high == 0.0:
+            break
+        trial = high - g_high * (high - low) / (g_high - g_low)
+        if not (low < trial < high):
+            trial = 0.5 * (low + high)
+        g, _, _, _ = force_at(rigid, j, s, t, theta, omega, acceleration, side, trial, seg,
+                              seg8, params, k, corner, tol)
+        trials += 1
+        if g > 0.0:
+            low, g_low = trial, g
+            if side_kept == 1:
+                g_high *= 0.5
+            side_kept = 1
+        else:
+            high, g_high = trial, g
+            if side_kept == -1:
+                g_low *= 0.5
+            side_kept = -1
+    return high, trials
+
+
+@inlined
+def open_interface(pattern):
+    """The one open interface of a one-DOF pattern."""
+    for j in range(pattern.size):
+        if pattern[j] != 0:
+            return j
+    return -1
+
+
+@kernel
+def one_dof_state(chain, run, rigid, ug, vg, forces):
+    """The closed forms of the current pattern (rest or one-DOF) made current, and its
+    phi'' [rad/s^2] (0 at rest) and contact forces (into ``forces``, (n, 4) [N]) at the
+    table's u'', v'' [m/s^2]; returns (interface, side, phi, phi', phi'')."""
+    phi, phi_dot, pattern, ist = run[0], run[1], run[2], run[4]
+    j = open_interface(pattern)
+    s = pattern[j] if j >= 0 else np.int64(0)
+    ensure_coefficients(chain, rigid, ist, j, s)
+    x, v, a = 0.0, 0.0, 0.0
+    if j >= 0:
+        x, v = phi[j], phi_dot[j]
+        a = flight_acceleration(x, float(s), ug, vg, 0.0, body_parameters(rigid[1]))
+    rigid_forces(rigid[0], j, s, x, v, a, ug, vg, forces)
+    return j, s, x, v, a
+
+
+@inlined
+def one_dof_segment(chain, run, t, t_end, seg, rigid):
+    """Integrate a one-DOF pattern from ``t`` to its first event or ``t_end`` with the single
+    block's stepper (as :func:`shaketable.models.stack.compiled.segment` with DOP853):
+    returns (time, what, interface), ``what`` one of ENDS_*."""
+    phi, phi_dot, pattern, fs, ist, par, atol = run[0], run[1], run[2], run[3], run[4], \
+        run[5], run[6]
+    n = pattern.size
+    j = open_interface(pattern)
+    if pattern[j] * phi[j] < 0.0 or (phi[j] == 0.0 and pattern[j] * phi_dot[j] < 0.0):
+        phi[j] = 0.0   # on the wrong side of its pivot, or leaving it the wrong way
+        return t, ENDS_IMPACT, j
+    ug, vg = ground(seg, t)
+    j, s, theta, omega, acceleration = one_dof_state(chain, run, rigid, ug, vg, rigid[2])
+    side = float(s)
+    params = body_parameters(rigid[1])
+    seg8 = table_segment(seg)
+    tol = par[P_TOL_FORCE]
+    g_old, g_new = rigid[3], rigid[4]
+    seated_margin(rigid[2], pattern, tol, g_old)
+    energy_start, work_start = rigid_energy(rigid[1], theta, omega), fs[F_WORK]
+    rtol, atol_theta, atol_omega = par[P_RTOL], atol[j], atol[n + j]
+    step_size, previous_error = fs[F_STEP], fs[F_PREVIOUS_ERROR]
+    just_rejected = False
+    what, where = ENDS_NONE, NONE
+    while t < t_end:
+        h = min(step_size, t_end - t)
+        if h < 10.0 * abs(np.nextafter(t, np.inf) - t) and h < t_end - t:
+            ist[I_ERROR] = STEP_FAILED
+            return t, ENDS_NONE, NONE
+        theta_new, omega_new, acceleration_new, error_theta, error_omega = nystrom_step(
+            t, theta, omega, acceleration, side, h, seg8, params)
+        ist[I_EVALUATIONS] += PER_STEP
+        accepted, step_size, previous_error, just_rejected = control(
+            h, theta, omega, theta_new, omega_new, error_theta, error_omega, rtol,
+            atol_theta, atol_omega, step_size, previous_error, just_rejected)
+        if not accepted:
+            continue
+        ist[I_STEPS] += 1
+        # the landing and the overturn, located on the stepper
+        tau, kind, theta_new, omega_new, acceleration_new, located = step_events(
+            t, theta, omega, acceleration, side, h, theta_new, omega_new, acceleration_new,
+            seg8, params, rigid[5])
+        ist[I_EVALUATIONS] += PER_STEP * located
+        # a seated corner's force reaching zero before that: the earliest one
+        ug, vg = ground(seg, t + tau)
+        rigid_forces(rigid[0], j, s, theta_new, omega_new, acceleration_new, ug, vg, rigid[2])
+        seated_margin(rigid[2], pattern, tol, g_new)
+        first, first_k = math.inf, NONE
+        for k in range(n):
+            for corner in range(2):
+                if g_old[k, corner] >= 0.0 and g_new[k, corner] <= 0.0:
+                    root, trials = locate_uplift(rigid, j, s, t, theta, omega, acceleration,
+                                                 side, tau, g_new[k, corner], seg, seg8,
+                                                 params, k, corner, tol, g_old[k, corner])
+                    ist[I_EVALUATIONS] += PER_STEP * trials
+                    if root < first:
+                        first, first_k = root, k
+        if first_k >= 0:
+            if first < tau:
+                _, theta_new, omega_new, acceleration_new = force_at(
+                    rigid, j, s, t, theta, omega, acceleration, side, first, seg, seg8,
+                    params, first_k, np.int64(0), tol)
+            tau, what, where = first, ENDS_LIFT, first_k
+        elif kind == _IMPACT:
+            what, where = ENDS_IMPACT, j
+        elif kind == _OVERTURN:
+            what, where = ENDS_OVERTURN, j
+        t = t + tau if tau < t_end - t else t_end
+        theta, omega, acceleration = theta_new, omega_new, acceleration_new
+        if what != ENDS_NONE:
+            break
+        for k in range(n):
+            g_old[k, 0], g_old[k, 1] = g_new[k, 0], g_new[k, 1]
+    if what == ENDS_IMPACT:
+        # the next flight is shorter than the last one: no longer step (the rocking engine's
+        # rule)
+        step_size = min(step_size, max(t - fs[F_LAST_IMPACT], 1e-3 * step_size))
+        fs[F_LAST_IMPACT] = t
+    phi[j], phi_dot[j] = theta, omega
+    fs[F_WORK] = work_start + rigid_energy(rigid[1], theta, omega) - energy_start
+    fs[F_STEP], fs[F_PREVIOUS_ERROR] = step_size, previous_error
+    return t, what, where
+

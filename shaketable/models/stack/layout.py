@@ -1,0 +1,35 @@
+"""The compiled stack engine's run state: the slots of its float, int and parameter arrays.
+
+:mod:`shaketable.models.stack.compiled` keeps a run's state in a tuple ``run`` = (phi, phi',
+pattern, fs, ist, par, atol, the event arrays); ``fs`` (floats), ``ist`` (int64) and ``par``
+(the run's parameters) are indexed by these names.
+"""
+
+import numpy as np
+
+#: What ends a segment of one pattern: nothing (the interval's end), a landing, an overturn,
+#: a corner force reaching zero. int64 values, not Python ints: numba types a module's int
+#: constants as literals and compiles a function once for every distinct literal.
+ENDS_NONE, ENDS_IMPACT, ENDS_OVERTURN, ENDS_LIFT = (np.int64(code) for code in range(-1, 3))
+#: No interface; the int64 zero.
+NONE, ZERO = np.int64(-1), np.int64(0)
+
+# slots of the run's float state ``fs``: the table's work [J], rest until [s], overturn and
+# airborne times [s], the time of an error [s], the one-DOF stepper's step size [s], its
+# controller's memory (the last accepted error) [-], the time of the last impact [s] and the
+# step size of DOP853 (multi-DOF patterns) carried from one segment to the next [s]
+F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME, F_STEP, F_PREVIOUS_ERROR, \
+    F_LAST_IMPACT, F_DOP_STEP = range(9)
+N_FLOATS = 9
+# slots of the int state ``ist``: events counted and recorded, events in a row without
+# progress, status, the overturned block, steps, evaluations, the error, the pattern whose
+# closed forms are current (interface, side)
+I_EVENTS, I_RECORDED, I_STALLED, I_STATUS, I_OVERTURNED, I_STEPS, I_EVALUATIONS, I_ERROR, \
+    I_RIGID_J, I_RIGID_S = range(10)
+N_INTS = 10
+# slots of the parameters ``par``: the pattern check's look-ahead [s], the force tolerance
+# [N], the angle and rate scales [rad, rad/s], rtol, the rest tolerance [s], the COR, the
+# law (0 plastic, 1 COR)
+P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW = range(8)
+#: Errors of a run.
+NO_PATTERN, STALLED, STEP_FAILED = 1, 2, 3
