@@ -557,7 +557,7 @@ def stacks_section(folder: Path, lines: list) -> str:
               "stacking lowers the threshold.", "",
               table(uplift.drop(columns=["b1 [m]", "h1 [m]", "b2 [m]", "h2 [m]"])), "",
               "**Pulse overturning amplitudes**: the smallest half-sine pulse (ω/p of the "
-              "block alone; overturned within 2.5 s of the pulse's end) bisected "
+              "block alone; overturned within 10 s of the pulse's end) bisected "
               f"{settings['iterations']} times, beside Housner's half-sine estimate Eq. (2-8) "
               "written for the column as one rigid body, a = g tan α_eq √(1 + (ω/p_eq)²) "
               "(an estimate, linearised: not a bound):", "",
