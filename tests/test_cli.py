@@ -161,8 +161,9 @@ def test_simulate_motion_options_bad_input(motion, message, tmp_path, capsys):
 
 def test_reproduce_ends_with_the_agree_differ_summary(tmp_path, capsys):
     # the console ends with the report's headline, the same counts as report.md's
+    # (Table 4.4 compares values of both kinds: the report's inputs and substitutes)
     out = tmp_path / "rep"
-    assert main(["reproduce", "fig-2-9", "--out", str(out)]) == 0
+    assert main(["reproduce", "table-4-4", "--out", str(out)]) == 0
     printed = capsys.readouterr().out.splitlines()
     report = (out / "report.md").read_text()
     summary = [line for line in printed if line.startswith(("Against", "By construction"))]

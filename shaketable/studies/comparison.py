@@ -98,7 +98,11 @@ class ComparisonTally:
             self.differing.extend((kind, what) for what in differing)
 
     def headline(self) -> list[str]:
-        """The report's headline: one bold line per kind of comparison."""
+        """The report's headline: one bold line per kind of comparison (one line saying so
+        when the sections compare no value with the report's)."""
+        if not any(sum(pair) for pair in self.counts.values()):
+            return ["**These sections compare no value with the report's (figures and studies "
+                    "without a number of the report to check).**"]
         agree, differ = self.counts["report inputs"]
         lines = [f"**Against the report's own inputs (recorded earthquakes, harmonic and free "
                  f"rocking, closed forms): {agree} comparisons agree, {differ} differ.**"]

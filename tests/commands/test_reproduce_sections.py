@@ -59,6 +59,11 @@ def test_a_run_without_comparisons_prints_no_empty_tallies(tmp_path, capsys, mon
     out = tmp_path / "rv"
     assert main(["reproduce", "validation", "--validation-data", str(tmp_path / "absent"),
                  "--out", str(out)]) == 0
-    # the validation section compares nothing with the report: no "0 agree, 0 differ" lines
-    assert capsys.readouterr().out.splitlines() == [
-        f"wrote {out / 'report.md'} (and gallery.md beside it)"]
+    # the validation section compares nothing with the report: no "0 agree, 0 differ" lines,
+    # one line saying so, the same as the report's headline
+    nothing = "These sections compare no value with the report's"
+    printed = capsys.readouterr().out.splitlines()
+    assert len(printed) == 2 and printed[0].startswith(nothing), printed
+    assert printed[1] == f"wrote {out / 'report.md'} (and gallery.md beside it)"
+    assert f"**{printed[0]}**" in (out / "report.md").read_text()
+    assert "0 agree" not in (out / "report.md").read_text()
