@@ -145,7 +145,7 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     text = work_precision.results_markdown(accuracy, orders, frame, pacoima, first_call, batch,
                                   figure=markdown_figure or figure.name,
                                   command="shaketable bench" + (" --quick" if quick else ""),
-                                  planar=planar_frame)
+                                  planar=planar_frame, truth=quick)
     if stack_frame is not None:
         text = text.rstrip("\n") + "\n\n" + "\n".join(
             stack_work_precision.stack_markdown(stack_frame))
