@@ -7,7 +7,7 @@ import math
 import pandas as pd
 import pytest
 
-from shaketable.studies import benchmark_cases, work_precision
+from shaketable.studies import benchmark_cases, planar_work_precision, work_precision
 
 
 def _row(case, method, rtol, theta, events, truth_rtol=2.5e-14):
@@ -63,6 +63,14 @@ def test_quick_runs_the_reports_cases_and_still_every_method():
     assert long.intervals == 4000
     methods = {method for method, *_ in work_precision.method_settings(quick=True)}
     assert methods == {"fast", "predictor-corrector", "linear", "reference"}
+    # the coupled planar model: one case, both of its methods, the Moreau-Jean rows on it
+    coupled = [case.name for case in planar_work_precision.planar_cases(quick=True)]
+    assert coupled == ["slide-rock-3hz"]
+    assert set(planar_work_precision.moreau_case_names(quick=True)) <= set(coupled)
+    assert {method for method, *_ in planar_work_precision.method_settings(quick=True)} == {
+        "planar", "planar-reference"}
+    assert planar_work_precision.ROCKING_LIMIT_CASE in [case.name for case in quick]
+    assert len(planar_work_precision.planar_cases(quick=True, names=["pacoima-16x4ft-mu0.3"])) == 1
 
 
 def test_quick_results_carry_the_truth_check_and_the_full_ones_do_not():
