@@ -34,7 +34,9 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
         Case names (default: all of :func:`shaketable.studies.benchmark_cases.benchmark_cases`
         and, with ``planar``, of :func:`shaketable.studies.planar_work_precision.planar_cases`).
     quick : bool
-        Fewer settings, 20 s instead of 100 s for the long record, fewer repeats.
+        Fewer settings, fewer repeats; without ``cases``, the report's four rocking cases
+        and the 3 Hz coupled case only (a named long record: 20 s instead of 100 s); a
+        truth check in ``RESULTS.md``.
     repeats : int
         Timed repetitions of the compiled methods [-].
     out : str or Path
@@ -101,7 +103,7 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
                     case, work_precision.truth_run(case, cache), planar_settings,
                     repeats=repeats)
                 frame = pd.concat([frame, pd.DataFrame(rows)], ignore_index=True)
-        coupled = planar_work_precision.planar_cases(names=coupled_names)
+        coupled = planar_work_precision.planar_cases(names=coupled_names, quick=quick)
         if coupled:
             planar_frame = planar_work_precision.planar_work_precision(
                 coupled, planar_settings, repeats=repeats,
@@ -145,7 +147,7 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     text = work_precision.results_markdown(accuracy, orders, frame, pacoima, first_call, batch,
                                   figure=markdown_figure or figure.name,
                                   command="shaketable bench" + (" --quick" if quick else ""),
-                                  planar=planar_frame)
+                                  planar=planar_frame, truth=quick)
     if stack_frame is not None:
         text = text.rstrip("\n") + "\n\n" + "\n".join(
             stack_work_precision.stack_markdown(stack_frame))

@@ -45,8 +45,10 @@ def register(commands) -> None:
                         help="only these cases (default: all; an unknown name lists them)")
     parser.add_argument("--quick", action="store_true",
                         help="fewer settings (the SciPy references at their default rtol only), "
-                             "the long record cut to 20 s, fewer repeats, no stack model (its "
-                             "rows are in the full run only)")
+                             "the report's four rocking cases and the 3 Hz coupled case (with "
+                             "--cases: any, the long record cut to 20 s), fewer repeats, a "
+                             "truth check in RESULTS.md, no stack model (its rows are in the "
+                             "full run only)")
     parser.add_argument("--repeats", type=_positive_int, default=None,
                         help="timed repetitions of the compiled methods (default 5, quick 3)")
     parser.add_argument("--out", default="bench-out", help="output folder (default bench-out)")

@@ -227,6 +227,7 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     if fig is None:
         fig = plt.figure(figsize=(3.3 * columns + 0.6, 2.75 * rows + 1.1))
     axes = fig.subplots(rows, columns, squeeze=False)
+    _fixed_layout(fig)
     for ax, (source, case) in zip(axes.flat, panels):
         work_precision_panel(source, case, ax=ax)
     for ax in axes.flat[len(panels):]:
@@ -271,12 +272,33 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     fig.legend(handles=handles, loc="upper center", ncol=legend_columns, fontsize=8,
                frameon=False)
     fig.suptitle(caption, fontsize=8.5, y=0.005, va="bottom")
-    height = 2.75 * rows + 1.1
-    legend_rows = 1 if len(handles) == legend_columns else 2
-    caption_rows = caption.count("\n") + 1
-    fig.tight_layout(rect=(0, 0.03 if caption_rows == 1 else 0.15 * caption_rows / height, 1,
-                           1 - (0.22 if legend_rows == 1 else 0.34) / height))
+    _fixed_layout(fig, legend_rows=1 if len(handles) == legend_columns else 2,
+                  caption_rows=caption.count("\n") + 1)
     return fig
+
+
+def _fixed_layout(fig, legend_rows: int = 2, caption_rows: int = 3) -> None:
+    """Place the grid of panels by fixed margins [inches] around it.
+
+    The room for the tick labels, axis labels and the two-line panel titles is the same
+    on every grid, so it is set once instead of measured (``tight_layout`` drew every
+    text of the figure to measure it: a second of CPU on a few panels, several on the
+    full grid); the shared legend above and the caption below get their rows' height.
+    Called before the panels are drawn (the end labels are placed on the panel as laid
+    out) and again with the legend's and the caption's rows.
+    """
+    width, height = fig.get_size_inches()
+    grid = fig.axes[0].get_subplotspec().get_gridspec() if fig.axes else None
+    rows, columns = (grid.nrows, grid.ncols) if grid is not None else (1, 1)
+    left, right, between_x = 0.62, 0.12, 0.5
+    top = (0.3 if legend_rows == 1 else 0.45) + 0.4
+    bottom = 0.45 + 0.16 * caption_rows
+    between_y = 0.72
+    panel_width = (width - left - right - between_x * (columns - 1)) / columns
+    panel_height = (height - top - bottom - between_y * (rows - 1)) / rows
+    fig.subplots_adjust(left=left / width, right=1 - right / width,
+                        bottom=bottom / height, top=1 - top / height,
+                        wspace=between_x / panel_width, hspace=between_y / panel_height)
 
 
 def save_work_precision_figure(frame, path, cases=None, dpi: int = 110, planar=None,

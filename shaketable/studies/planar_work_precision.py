@@ -82,6 +82,11 @@ MOREAU_WINDOW = {"slide-rock-3hz": 1.2, "pacoima-16x4ft-mu0.3": 3.5}
 #: The cases of :data:`MOREAU_WINDOW` that ``--quick`` runs.
 QUICK_MOREAU_CASES = ("slide-rock-3hz",)
 
+#: The coupled cases ``--quick`` runs (the planar engine and reference still get their
+#: points on both kinds of panel: this case's and the rocking limit's); Pacoima's two
+#: SciPy runs of 40 s cost a second, half the quick study's planar part.
+QUICK_PLANAR_CASES = ("slide-rock-3hz",)
+
 #: Method name of the Moreau-Jean rows.
 MOREAU_METHOD = "moreau-jean"
 
@@ -145,7 +150,7 @@ def run_planar(method: str, block: Block, motion: Motion | None, *, cor, frictio
     raise ValueError(f"method must be one of {PLANAR_METHODS}, got {method!r}")
 
 
-def planar_cases(names: Sequence[str] | None = None) -> list[PlanarCase]:
+def planar_cases(names: Sequence[str] | None = None, quick: bool = False) -> list[PlanarCase]:
     """The coupled cases (each visits rock and slide-rock with impacts).
 
     * ``slide-rock-3hz`` -- the 30 x 6 in block (B/H = 0.2), mu_s 0.25, mu_d 0.22, COR 0.9,
@@ -157,7 +162,8 @@ def planar_cases(names: Sequence[str] | None = None) -> list[PlanarCase]:
       COR 0.95, mu = 0.3: rock, slide-rock, overturn at 9.98 s; the report's block and
       record, where the input's samples bound the steps of both solvers.
 
-    ``names`` keeps only those (an unknown name raises ``ValueError`` listing the known).
+    ``names`` keeps only those (an unknown name raises ``ValueError`` listing the known);
+    ``quick`` without ``names`` keeps :data:`QUICK_PLANAR_CASES`.
     """
     from shaketable.ground import records
     from shaketable.ground.generators import harmonic
@@ -172,6 +178,8 @@ def planar_cases(names: Sequence[str] | None = None) -> list[PlanarCase]:
                    "vertical: rock, slide-rock, overturns", Block.parse("16x4ft"),
                    records.load("pacoima-dam-s16e"), 0.95, Friction(0.3)),
     ]
+    if names is None and quick:
+        names = QUICK_PLANAR_CASES
     if names is None:
         return cases
     known = {case.name: case for case in cases}

@@ -310,6 +310,94 @@ def accuracy_table(cases: Sequence[Case] | None = None, progress: Progress | Non
     return pd.DataFrame(rows)
 
 
+#: A measured error is resolved when it is at least this many times the truth's own error.
+TRUTH_MARGIN = 100.0
+
+#: The methods whose error the truth check reads (the SciPy references and the Moreau-Jean
+#: rows, whose truth is another run, are not checked).
+_CHECKED_METHODS = ("fast", "predictor-corrector", "linear", "planar")
+
+_REFERENCE_METHODS = ("reference", "planar-reference")
+
+
+def truth_check(*frames: pd.DataFrame | None) -> pd.DataFrame:
+    """How far each case's truth can be trusted: its own error and what it resolves.
+
+    The truth's own error is estimated from the case's SciPy reference (``reference``, or
+    ``planar-reference`` on a coupled case) at its tightest tolerance looser than the
+    truth's: the larger of its two errors against the truth (max |theta| and event times),
+    the error of the looser run and so, the tighter run being the more accurate, at least
+    the truth's (floored at the truth's rtol; NaN when the case has no reference row).
+    A compiled method's error is *resolved* when it is at least :data:`TRUTH_MARGIN` times
+    that estimate: the truth is then 100 times more accurate
+    than the error it measures. An unresolved error only says that the method is within
+    ``TRUTH_MARGIN x`` the estimate of the exact solution.
+
+    Parameters
+    ----------
+    *frames : pandas.DataFrame or None
+        Frames of :func:`work_precision` (with planar rows) or of
+        :func:`shaketable.studies.planar_work_precision.planar_work_precision`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per case: truth rtol, reference rtol, truth error estimate [-],
+        resolved below [-] (the margin times the estimate), errors resolved (of the
+        compiled methods' max |theta| and event-time errors: "k of n"), smallest
+        resolved error [-] and largest unresolved error [-].
+    """
+    import pandas as pd
+
+    rows = []
+    for frame in frames:
+        if frame is None or frame.empty or "method" not in frame:
+            continue
+        for case, group in frame.groupby("case", sort=False):
+            # the case's own reference: on the rocking-limit case the planar reference's
+            # rows are errors of another model against the rocking truth
+            method = next((name for name in _REFERENCE_METHODS
+                           if (group["method"] == name).any()), _REFERENCE_METHODS[0])
+            references = group[group["method"] == method]
+            references = references[references["rtol"] > group["truth rtol"].min()]
+            errors = ["error max_theta [-]", "error events [-]"]
+            if references.empty:
+                estimate = math.nan
+                reference_rtol = math.nan
+            else:
+                tightest = references[references["rtol"] == references["rtol"].min()]
+                reference_rtol = float(tightest["rtol"].iloc[0])
+                estimate = max(float(np.nanmax(tightest[errors].to_numpy(dtype=float))),
+                               float(group["truth rtol"].min()))
+            checked = group[group["method"].isin(_CHECKED_METHODS)][errors]
+            measured = checked.to_numpy(dtype=float).ravel()
+            measured = measured[np.isfinite(measured)]
+            resolved = measured >= TRUTH_MARGIN * estimate
+            rows.append({
+                "case": case, "truth rtol": float(group["truth rtol"].min()),
+                "reference rtol": reference_rtol, "truth error estimate [-]": estimate,
+                "resolved below [-]": TRUTH_MARGIN * estimate,
+                "errors resolved": f"{int(resolved.sum())} of {measured.size}",
+                "smallest resolved [-]": (float(measured[resolved].min()) if resolved.any()
+                                          else math.nan),
+                "largest unresolved [-]": (float(measured[~resolved].max())
+                                           if (~resolved).any() else math.nan)})
+    return pd.DataFrame(rows)
+
+
+def _truth_check_markdown(check: pd.DataFrame) -> list[str]:
+    """The section of :func:`truth_check`'s table."""
+    return ["## Truth check", "",
+            "Each case's truth against its own error, estimated by the SciPy reference at "
+            "its tightest rtol against it (the error of the looser run, so at least the "
+            "truth's, the tighter run being the more accurate). An error of a compiled "
+            f"method is resolved when it is at least {TRUTH_MARGIN:g} times that estimate; "
+            "an unresolved one (the fast engine's, mostly) only says the method is as "
+            "accurate as this truth can tell: within "
+            "'resolved below' of the exact solution.", "",
+            markdown_table(check), ""]
+
+
 # --------------------------------------------------------------------------- speed
 def pacoima_timing(repeats: int = 200, reference_repeats: int = 3,
                    cor: float = 0.95) -> dict[str, Any]:
@@ -457,7 +545,7 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
                      first_call: dict[str, dict[str, float]] | None = None,
                      batch: dict[str, Any] | None = None, figure: str = "docs/figures/work_precision.png",
                      command: str = "python3 benchmarks/work_precision.py",
-                     planar: pd.DataFrame | None = None) -> str:
+                     planar: pd.DataFrame | None = None, truth: bool = False) -> str:
     """The README-ready Markdown of the benchmark results.
 
     Every argument is optional; the sections present are written: the figure
@@ -467,7 +555,8 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
     (:func:`pacoima_timing`), the first-call times (:func:`first_call_seconds`),
     the batch throughput (:func:`batch_throughput`) and the coupled planar model's rows
     (``frame``'s planar methods on the rocking-limit case, and ``planar``, the frame of
-    :func:`shaketable.studies.planar_work_precision.planar_work_precision`).
+    :func:`shaketable.studies.planar_work_precision.planar_work_precision`); with ``truth``,
+    the truth check of ``frame`` and ``planar`` (:func:`truth_check`) after the figure.
     """
     lines = ["# Benchmarks: accuracy against run time", "",
              f"Made by `{command}` (shaketable.studies.benchmark_cases); machine: {os.cpu_count()} cores "
@@ -485,6 +574,8 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
                             "rocking truth) and has a panel per coupled case, against the "
                             "planar reference at rtol 1e-13 (dash-dotted: the peak slip's "
                             "relative error)."]
+    if truth and frame is not None:
+        lines += _truth_check_markdown(truth_check(frame, planar))
     if pacoima is not None:
         lines += ["## Speed: Pacoima Dam S16E + vertical, 16 x 4 ft, COR 0.95", "",
                   "| quantity | value |", "|---|---|"]
