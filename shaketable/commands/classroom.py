@@ -30,7 +30,7 @@ def _classroom(args) -> int:
                         friction=True, compare="none"))
     elif not args.quiet:
         print("shaketable classroom: the first run with friction compiles the planar engine "
-              "(~13 s) once", file=sys.stderr)
+              "(~15 s) once", file=sys.stderr)
     def ready(url: str) -> None:   # the address is needed: on stderr when stdout is quiet
         print(f"shaketable classroom: {url}  (Ctrl-C stops it)",
               file=sys.stderr if args.quiet else sys.stdout, flush=True)

@@ -103,8 +103,8 @@ def scaled_record(motion, args):
 #: before, and what their first compilation costs on the 2-core CI machine (measured, README).
 _COMPILED = {"engine": ("engine.integrate_fast-", "the engine", "~3 s", "rocking"),
              "batch": ("batch._run_cases_fast-", "the batch engine", "~1 s", "rocking"),
-             "planar": ("engine.integrate-", "the planar engine", "~13 s", "planar"),
-             "stack": ("compiled.run_stack-", "the stack engine", "~35 s", "stack")}
+             "planar": ("engine.integrate-", "the planar engine", "~15 s", "planar"),
+             "stack": ("compiled.run_stack-", "the stack engine", "~38 s", "stack")}
 
 
 def compiled_before(which: str = "engine") -> bool:
@@ -131,7 +131,8 @@ def notice_first_compile(quiet: bool = False, which=("engine",)) -> None:
     if missing:
         parts = [f"{_COMPILED[name][1]} ({_COMPILED[name][2]})" for name in missing]
         them = "it" if len(missing) == 1 else "them"
-        print(f"shaketable: compiling {' and '.join(parts)} once; later runs load {them} "
+        named = parts[0] if len(parts) == 1 else f"{', '.join(parts[:-1])} and {parts[-1]}"
+        print(f"shaketable: compiling {named} once; later runs load {them} "
               f"from the cache in {os.environ.get('NUMBA_CACHE_DIR')}", file=sys.stderr,
               flush=True)
 

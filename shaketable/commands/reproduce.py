@@ -33,10 +33,12 @@ def _reproduce(args) -> int:
     from shaketable.core.files import prepare_output_folder
 
     out = prepare_output_folder(args.out)
-    from shaketable.scenes.catalog import uses_planar
+    from shaketable.scenes.catalog import uses_planar, uses_stack
 
     planar = any(uses_planar(name) for name in scenes)
-    notice_first_compile(args.no_progress, which=("engine", "planar") if planar else ("engine",))
+    engines = ("engine",) + (("planar",) if planar else ()) + (
+        ("stack",) if any(uses_stack(name) for name in scenes) else ())
+    notice_first_compile(args.no_progress, which=engines)
     failed: list = []
     # each extra section skips itself, saying how to give what it needs, when it cannot run
     options = {"validation": {"data": args.validation_data}}

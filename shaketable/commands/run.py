@@ -8,7 +8,7 @@ from pathlib import Path
 def _run(args) -> int:
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import prepare_output_folder
-    from shaketable.scenes.catalog import is_sweep_spec, read_scene, uses_planar
+    from shaketable.scenes.catalog import is_sweep_spec, read_scene, uses_planar, uses_stack
     from shaketable.scenes.parse import SceneError, Study, load_scene
 
     sweep = ValueError(f"{args.scene!r} is a sweep spec, not a scene: run it with "
@@ -23,8 +23,12 @@ def _run(args) -> int:
         raise sweep
     scene = load_scene(source.path, read=(source.data, source.text))
     out = prepare_output_folder(args.out or Path("shaketable-out") / scene.name)
-    notice_first_compile(args.quiet, which=("engine", "planar")
-                         if uses_planar(source) else ("engine",))
+    if "stack" in source.data:   # a [stack] scene: the stack engine alone
+        engines: tuple = ("stack",)
+    else:
+        engines = ("engine",) + (("planar",) if uses_planar(source) else ()) + (
+            ("stack",) if uses_stack(source) else ())
+    notice_first_compile(args.quiet, which=engines)
     if isinstance(scene, Study):
         return _run_study(scene, out)
     from shaketable.scenes.stack import StackScene

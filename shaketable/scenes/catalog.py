@@ -166,6 +166,20 @@ def uses_planar(name_or_path: str | SceneSource) -> bool:
         isinstance(study, dict) and study.get("kind") == "mode-map")
 
 
+def uses_stack(name_or_path: str | SceneSource) -> bool:
+    """Whether a scene runs the stack model, read from its TOML alone: a ``[stack]`` scene
+    or a ``stacks`` study (the first-compile notice names the stack engine for them). An
+    unreadable file is left to the scene parser to report (``False`` here)."""
+    try:
+        source = name_or_path if isinstance(name_or_path, SceneSource) else \
+            read_scene(name_or_path)
+    except (OSError, SceneError):
+        return False
+    study = source.data.get("study")
+    return "stack" in source.data or (isinstance(study, dict)
+                                      and study.get("kind") == "stacks")
+
+
 #: CPU seconds of the slowest scenes in one worker (warm numba cache; measured with
 #: ``benchmarks/reproduce_time.py --per-scene``): the pool starts the longest first
 #: (longest processing time first), so that the two processes end together.

@@ -218,14 +218,20 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
 
         lines.append(f"first uplift at t = {uplift['t']:.3f} s: "
                      f"{pattern_words(uplift['pattern_after'])}; {impacts} impact(s)")
+    falling = result.t_past_alpha
+    demand_standing, excursion_standing = result.peak_before_past_alpha()
+    standing = (f"; {{}} before a block passed its α (t < {falling:.2f} s: what the column "
+                "needs while it stands)") if not math.isnan(falling) else ""
     lines.append(f"top corner's peak excursion (the clearance the stack needs) "
-                 f"{format_length(result.peak_excursion, unit)}")
+                 f"{format_length(result.peak_excursion, unit)}"
+                 + standing.format(format_length(excursion_standing, unit)))
     demand = result.friction_demand
     finite = np.where(np.isfinite(demand), demand, -1.0)
     if finite.size and finite.max() >= 0:
         k, j = (int(index) for index in np.unravel_index(int(np.argmax(finite)), finite.shape))
         where = "the base" if j == 0 else f"interface {j - 1}|{j}"
         line = f"needed friction: peak F/N {finite[k, j]:.3g} at {where}, t = {result.t[k]:.2f} s"
+        line += standing.format(f"{demand_standing:.3g}")
         limit = PLAUSIBLE_FRICTION if mu is None else mu
         slip = result.t_friction_exceeded(limit)
         label = f"mu {limit:g}" if mu is not None else f"{limit:g} (no real contact offers more)"

@@ -138,17 +138,30 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
         status=run.status, t_overturn=run.t_overturn,
         overturned_block=run.overturned_block, t_airborne=run.t_airborne,
         n_events=run.n_events, statistics={"steps": run.steps, "evaluations": run.evaluations})
+    falling = result.t_past_alpha
     if not math.isnan(result.t_tension):
         warnings.warn(f"a contact of the stack carried a tensile force from t = "
                       f"{result.t_tension:.6g} s: the model (no flight) is outside its "
-                      "assumptions there", StackTensionWarning, stacklevel=_user_stacklevel())
+                      "assumptions there" + _while_falling(result.t_tension, falling),
+                      StackTensionWarning, stacklevel=_user_stacklevel())
     slip = result.t_friction_exceeded(PLAUSIBLE_FRICTION)
     if not math.isnan(slip):
         warnings.warn(f"a contact of the stack needed a friction coefficient F/N above "
                       f"{PLAUSIBLE_FRICTION:g} from t = {slip:.6g} s: real blocks would slide "
-                      "there, the model (no slip) is outside its assumptions",
+                      "there, the model (no slip) is outside its assumptions"
+                      + _while_falling(slip, falling),
                       StackFrictionWarning, stacklevel=_user_stacklevel())
     return result
+
+
+def _while_falling(t_outside: float, t_past_alpha: float) -> str:
+    """What a warning adds when the model leaves its assumptions only after a block passed
+    its alpha: the column was already falling, the fall is the model's answer, the motion
+    of the fall is not."""
+    if math.isnan(t_past_alpha) or t_outside < t_past_alpha:
+        return ""
+    return (f" (after a block passed its alpha at t = {t_past_alpha:.6g} s: the column was "
+            "already falling; the motion of the fall is outside the model, not the fall)")
 
 
 def _scaled_energies(event: dict, scale: float) -> dict:

@@ -180,6 +180,31 @@ class StackResult(ModelResult):
         alphas = np.array([block.alpha for block in self.stack.blocks])
         return tuple(int(i) for i in np.flatnonzero(np.abs(self.theta[-1]) > alphas))
 
+    @property
+    def t_past_alpha(self) -> float:
+        """First output time some block's |θ| exceeds its own alpha [s] (past its static
+        stability: the column is falling or about to), NaN if never. The peak friction
+        demand and excursion before it are the ones a standing column needs
+        (:meth:`peak_before_past_alpha`)."""
+        if not self.t.size:
+            return math.nan
+        alphas = np.array([block.alpha for block in self.stack.blocks])
+        over = np.flatnonzero((np.abs(self.theta) > alphas).any(axis=1))
+        return float(self.t[over[0]]) if over.size else math.nan
+
+    def peak_before_past_alpha(self) -> tuple[float, float]:
+        """(peak F/N over the contacts [-], peak top-corner excursion [m]) over the output
+        times before :attr:`t_past_alpha` (the whole run when no block passes its alpha):
+        what the column needs while it still stands, not while it falls."""
+        end = self.t.size if math.isnan(self.t_past_alpha) else int(
+            np.searchsorted(self.t, self.t_past_alpha))
+        if end == 0:
+            return 0.0, 0.0
+        demand = self.friction_demand[:end]
+        finite = demand[np.isfinite(demand)]
+        excursion = np.abs(self.top_corner_excursion[:end]).max()
+        return (float(finite.max()) if finite.size else math.nan), float(excursion)
+
     def end_state(self) -> str:
         """How the run ends when the stack is still moving, in the single block's words:
         "still moving at the end of the run (t = 0.60 s); block 0 (bottom), block 1 (top)
@@ -266,12 +291,15 @@ class StackResult(ModelResult):
         ``"no-slip assumption"`` says whether some contact needed a friction
         coefficient above :data:`PLAUSIBLE_FRICTION` (no real contact gives more),
         and ``"t_friction_exceeded [s]"`` is the first such time
-        (:meth:`t_friction_exceeded`); NaN if never.
+        (:meth:`t_friction_exceeded`); NaN if never. ``"t_past_alpha [s]"`` is the first
+        time a block passes its alpha, and the two ``"... before past alpha"`` values are the
+        peak F/N and top-corner excursion before it (:meth:`peak_before_past_alpha`).
         """
         kinds = [event["kind"] for event in self.events]
         first_uplift = next((e["t"] for e in self.events if e["kind"] == "uplift"), math.nan)
         finite = np.isfinite(self.friction_demand)
         slip = self.t_friction_exceeded(PLAUSIBLE_FRICTION)
+        standing = self.peak_before_past_alpha()
         return {"blocks": int(self.n_blocks), "impact law": str(self.impact),
                 "masses [kg]": [float(mass) for mass in self.stack.mass],
                 "masses": self.stack.describe_masses(),
@@ -295,7 +323,11 @@ class StackResult(ModelResult):
                                        f"fails from t = {slip:.3f} s (F/N > "
                                        f"{PLAUSIBLE_FRICTION:g}: the blocks would slide)"),
                 "t_friction_exceeded [s]": float(slip),
-                "t_tension [s]": float(self.t_tension)}
+                "t_tension [s]": float(self.t_tension),
+                # what the column needs while it stands (before a block passes its alpha)
+                "t_past_alpha [s]": float(self.t_past_alpha),
+                "max F/N before past alpha [-]": standing[0],
+                "peak top-corner excursion before past alpha [m]": standing[1]}
 
     def _figure(self, **options: Any):
         from shaketable.plots.stack import stack_calcomp  # matplotlib on use

@@ -177,3 +177,37 @@ def test_default_masses_are_concrete_per_metre_of_depth():
     assert np.allclose(default.forces, 2400.0 * areas.forces, rtol=1e-13, atol=0.0)
     assert np.allclose(default.energy, 2400.0 * areas.energy, rtol=1e-12)
     assert "(given, bottom first)" in areas.summary()["masses"]
+
+
+def test_the_demands_of_a_standing_column_are_told_apart_from_those_of_its_fall():
+    # a 4:1 column under a constant 2 g table acceleration topples: the friction it needs
+    # and the top corner's excursion while it falls (F/N grows without bound as a corner
+    # force tends to zero) say nothing of what a standing column needs; the result gives
+    # the peaks before the first block passes its own alpha (beyond static stability:
+    # with the table at rest gravity no longer pulls it back, Eq. 2-3)
+    slender = Stack([st.Block(1.0, 0.25), st.Block(1.0, 0.25)])
+    t = np.arange(0.0, 3.0, 0.01)
+    with pytest.warns(StackFrictionWarning) as caught:
+        fallen = simulate_stack(slender, st.Motion(t, np.full_like(t, 2.0 * G)))
+    assert fallen.status == "overturned"
+    alphas = np.array([block.alpha for block in slender.blocks])
+    falling = fallen.t_past_alpha
+    k = int(np.searchsorted(fallen.t, falling))
+    # the first sample past alpha, and none before it
+    assert np.any(np.abs(fallen.theta[k]) > alphas)
+    assert np.all(np.abs(fallen.theta[:k]) <= alphas)
+    demand, excursion = fallen.peak_before_past_alpha()
+    whole = fallen.friction_demand[np.isfinite(fallen.friction_demand)]
+    assert 0.0 <= demand <= whole.max() and demand < 1.0 < whole.max()
+    assert 0.0 < excursion < fallen.peak_excursion
+    # the warning says the model left its assumptions only while the column fell
+    friction = [str(item.message) for item in caught
+                if issubclass(item.category, StackFrictionWarning)]
+    assert friction and "the column was already falling" in friction[0]
+    summary = fallen.summary()
+    assert summary["t_past_alpha [s]"] == falling
+    assert summary["max F/N before past alpha [-]"] == demand
+    # a column that never passes its alpha: the whole run, and no time
+    stack = Stack([st.Block(1.0, 0.3), st.Block(0.8, 0.2)])
+    still = simulate_stack(stack, st.Motion([0.0, 1.0], [0.0, 0.0]))
+    assert np.isnan(still.t_past_alpha) and still.peak_before_past_alpha() == (0.0, 0.0)
