@@ -65,8 +65,10 @@ def main(argv=None) -> int:
 
     parser = build_parser()
     # a negative value after an option (--block -30x6in) is read as the option's value
-    args = parser.parse_args(join_negative_values(parser, list(sys.argv[1:] if argv is None
-                                                               else argv)))
+    args, unknown = parser.parse_known_args(join_negative_values(
+        parser, list(sys.argv[1:] if argv is None else argv)))
+    if unknown:   # said by the subcommand's parser, with the option meant when it is close
+        _refuse_unknown(parser, args.command, unknown)
     prefix = f"shaketable {args.command}: error:"
     quiet = getattr(args, "quiet", False)
     try:
@@ -104,6 +106,27 @@ def main(argv=None) -> int:
               f"shaketable; please report it with the command you ran (SHAKETABLE_TRACEBACK=1 "
               f"shows the traceback)", file=sys.stderr)
         return EXIT_FAILED
+
+
+def _refuse_unknown(parser: argparse.ArgumentParser, command: str, unknown: list) -> None:
+    """Exit with status 2 naming the subcommand and the arguments it does not know, and
+    for a misspelt option the closest one it has (``--duraton``: did you mean
+    ``--duration``?)."""
+    import difflib
+
+    subparsers = next(action for action in parser._actions
+                      if isinstance(action, argparse._SubParsersAction))
+    subparser = subparsers.choices[command]
+    known = [option for action in subparser._actions for option in action.option_strings
+             if option.startswith("--")]
+    hints = []
+    for word in unknown:
+        if word.startswith("--"):
+            close = difflib.get_close_matches(word.split("=")[0], known, n=1, cutoff=0.75)
+            if close:
+                hints.append(f"{word.split('=')[0]}: did you mean {close[0]}?")
+    subparser.error("unrecognized arguments: " + " ".join(unknown)
+                    + ("; " + "; ".join(hints) if hints else ""))
 
 
 def _compiled_run_still_going() -> bool:

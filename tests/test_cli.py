@@ -190,3 +190,19 @@ def test_examples_copies_the_gallery_scripts_out_of_the_package(tmp_path, capsys
     assert main(["examples", "--out", str(out), "--force"]) == 0
     assert main(["examples", "--list"]) == 0
     assert "plot_tutorial_rock_a_block.py" in capsys.readouterr().out
+
+
+def test_a_misspelt_option_is_refused_by_its_subcommand_with_the_option_meant(capsys):
+    # argparse's top-level parser would say "shaketable: error: unrecognized arguments"
+    # with the top-level usage: the subcommand's own parser names itself and its option
+    assert_exit = pytest.raises(SystemExit)
+    with assert_exit as caught:
+        main(["simulate", "--block", "30x6in", "--cor", "0.9", "--duraton", "5s"])
+    assert caught.value.code == 2
+    error = capsys.readouterr().err
+    assert "shaketable simulate: error: unrecognized arguments: --duraton 5s" in error
+    assert "did you mean --duration?" in error and "usage: shaketable simulate" in error
+    # an argument far from every option gets no guess
+    with pytest.raises(SystemExit):
+        main(["run", "fig-3-7", "--nosuch"])
+    assert "did you mean" not in capsys.readouterr().err
