@@ -424,8 +424,10 @@ class StackSceneResult:
                    "description": self.scene.description,
                    "stack": self.scene.stack.describe(), "verdict": self.run.verdict(),
                    **stop_summary(self.run), "warnings": list(self.warnings)}
-        if self.scene.mu is not None:
+        if self.scene.mu is not None:   # the keys `simulate --stack --mu` writes
             summary["mu [-]"] = self.scene.mu
+            summary["t_friction_exceeded(mu) [s]"] = self.run.t_friction_exceeded(
+                self.scene.mu)
         return json_ready_dict(summary)
 
     def write(self, out: str | os.PathLike[str]) -> list[Path]:

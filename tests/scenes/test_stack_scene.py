@@ -84,3 +84,18 @@ def test_the_kick_comes_when_the_top_block_lands_as_a_block_alone_on_a_fixed_bas
     # the uplift line agrees: the landing lifted the bottom block (no "none")
     assert "block 0 (bottom) lifted by the impact at t = 0.265 s" in lines
     assert "uplift: none" not in lines
+
+
+def test_a_scene_with_mu_writes_the_friction_keys_simulate_writes(tmp_path):
+    # `simulate --stack --mu` writes "mu [-]" and "t_friction_exceeded(mu) [s]"; a scene
+    # with stack.mu must write the same keys, the time tested against the scene's own mu
+    import json
+
+    scene = load_scene(_write(tmp_path, GOOD))
+    result = run_stack_scene(scene)
+    result.write(tmp_path / "out")
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["mu [-]"] == 0.5
+    expected = result.run.t_friction_exceeded(0.5)
+    got = summary["t_friction_exceeded(mu) [s]"]
+    assert (got is None and math.isnan(expected)) or got == expected
