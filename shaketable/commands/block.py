@@ -15,6 +15,8 @@ from shaketable.scenes.spectrum import block_from, parse_ratios
 
 def resolve_angle(text: str, block: Block) -> float:
     value = str(text).strip().lower()
+    if value in ("0", "0.0", "-0", "+0"):   # zero is zero in every unit
+        return 0.0
     for suffix, factor in (("alpha", block.alpha), ("deg", math.pi / 180), ("rad", 1.0)):
         if value.endswith(suffix):
             try:

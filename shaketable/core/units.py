@@ -73,7 +73,8 @@ def parse(value, kind: str, *, where: str = "value") -> float:
 
 
 def parse_angle_or_ratio(value, alpha: float, *, where: str = "value") -> float:
-    """An angle [rad] written in rad, deg or as a multiple of alpha (``"0.5 alpha"``)."""
+    """An angle [rad] written in rad, deg or as a multiple of alpha (``"0.5 alpha"``); a
+    bare zero is zero in every unit and needs none."""
     if isinstance(value, str) and value.strip().lower().endswith("alpha"):
         text = value.strip()[:-5].strip() or "1"
         try:
@@ -81,7 +82,23 @@ def parse_angle_or_ratio(value, alpha: float, *, where: str = "value") -> float:
         except ValueError:
             raise ValueError(f"{where}: {value!r} is not a multiple of alpha such as "
                              "'0.5 alpha'") from None
-    return parse(value, "angle", where=where)
+    if _is_zero(value):
+        return 0.0
+    try:
+        return parse(value, "angle", where=where)
+    except ValueError as error:
+        raise ValueError(f"{error}, or as a multiple of the block's alpha, e.g. "
+                         "'0.5 alpha'") from None
+
+
+def _is_zero(value) -> bool:
+    """Whether ``value`` is a bare zero (``0``, ``0.0``, ``"0"``), not a bool."""
+    if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+        return False
+    try:
+        return float(str(value).strip()) == 0.0
+    except ValueError:
+        return False
 
 
 def _example(kind: str) -> str:
