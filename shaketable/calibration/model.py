@@ -58,6 +58,11 @@ class FreeRockingModel:
         elif mode == "fit":
             self.fine_dt = record.dt / 8.0
         self._filters: dict[float, _FohCoefficients] = {}
+        # the last engine runs by their inputs: a finite-difference column in t_release,
+        # offset or the filter's u (and the first point of each filter order) asks again
+        # for a run it already has (on the fine grid the run depends on cor, theta0 and
+        # the grid's length only); the same inputs give the same run, bit for bit
+        self._runs: dict[tuple, np.ndarray] = {}
 
     @property
     def _known_digitizer(self) -> Digitizer:
@@ -73,6 +78,16 @@ class FreeRockingModel:
 
     def theta(self, cor: float, theta0: float, t_release: float, times: np.ndarray) -> np.ndarray:
         """Rotation [rad] at ``times`` [s] (held at theta0 before the release)."""
+        key = (float(cor), float(theta0), float(t_release), times.size, times.tobytes())
+        if key not in self._runs:
+            if len(self._runs) >= 8:
+                del self._runs[next(iter(self._runs))]
+            self._runs[key] = self._theta(cor, theta0, t_release, times)
+        return self._runs[key].copy()
+
+    def _theta(self, cor: float, theta0: float, t_release: float,
+               times: np.ndarray) -> np.ndarray:
+        """:meth:`theta` computed: one engine run (counted in ``evaluations``)."""
         self.evaluations += 1
         tau = times - t_release
         # a sample within MIN_SAMPLE_INTERVAL (1 ns) after the release is still at theta0

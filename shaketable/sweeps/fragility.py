@@ -204,10 +204,25 @@ def _stripes(im, overturned, what="im"):
 
 def _log_likelihood(mu, beta, log_im, runs, failures):
     """Binomial log-likelihood of the stripes (Baker 2015, Eq. 11, without the constant)."""
+    return _likelihood_of(log_im, runs, failures)(mu, beta)
+
+
+def _likelihood_of(log_im, runs, failures):
+    """:func:`_log_likelihood` of these stripes as a function of ``(mu, beta)``.
+
+    The optimisers and the profile intervals call it some thousand times per fit: the
+    standing counts are subtracted once here, and each call sums with the array's own
+    ``sum`` (the reduction ``np.sum`` makes, without its dispatch): the same numbers.
+    """
     from scipy.special import log_ndtr
 
-    z = (log_im - mu) / beta
-    return float(np.sum(failures * log_ndtr(z) + (runs - failures) * log_ndtr(-z)))
+    standing = runs - failures
+
+    def log_likelihood(mu, beta):
+        z = (log_im - mu) / beta
+        return float((failures * log_ndtr(z) + standing * log_ndtr(-z)).sum())
+
+    return log_likelihood
 
 
 def fragility_fit(im, overturned, *, confidence: float = 0.95, intervals: bool = True,
@@ -255,8 +270,10 @@ def fragility_fit(im, overturned, *, confidence: float = 0.95, intervals: bool =
                          "none below it does, so beta is not identified (add records or "
                          "levels between the two)")
 
+    log_likelihood = _likelihood_of(log_im, runs, failures)
+
     def objective(params):
-        return -_log_likelihood(params[0], math.exp(params[1]), log_im, runs, failures)
+        return -log_likelihood(params[0], math.exp(params[1]))
 
     weights = runs / runs.sum()
     mean = float(np.sum(weights * log_im))
@@ -288,16 +305,15 @@ def _profile_intervals(mu, log_beta, best, log_im, runs, failures, confidence):
     from scipy.stats import chi2
 
     limit = chi2.ppf(confidence, 1) / 2.0
+    log_likelihood = _likelihood_of(log_im, runs, failures)
 
     def drop_mu(value):
-        inner = minimize_scalar(lambda lb: -_log_likelihood(value, math.exp(lb), log_im, runs,
-                                                            failures),
+        inner = minimize_scalar(lambda lb: -log_likelihood(value, math.exp(lb)),
                                 bracket=(log_beta - 0.5, log_beta + 0.5), tol=1e-10)
         return best + inner.fun - limit
 
     def drop_beta(value):
-        inner = minimize_scalar(lambda m: -_log_likelihood(m, math.exp(value), log_im, runs,
-                                                           failures),
+        inner = minimize_scalar(lambda m: -log_likelihood(m, math.exp(value)),
                                 bracket=(mu - 0.5, mu + 0.5), tol=1e-10)
         return best + inner.fun - limit
 
@@ -327,7 +343,8 @@ def region_boundary(fit: FragilityFit, directions: int):
     levels, runs, failures = (np.asarray(part, dtype=float) for part in fit.stripes)
     log_im = np.log(levels)
     mu, log_beta = math.log(fit.median), math.log(fit.beta)
-    best = _log_likelihood(mu, fit.beta, log_im, runs, failures)
+    log_likelihood = _likelihood_of(log_im, runs, failures)
+    best = log_likelihood(mu, fit.beta)
     limit = chi2.ppf(fit.confidence, 1) / 2.0
     scale_mu = 0.5 * (math.log(fit.median_interval[1]) - math.log(fit.median_interval[0]))
     scale_beta = 0.5 * (math.log(fit.beta_interval[1]) - math.log(fit.beta_interval[0]))
@@ -338,8 +355,8 @@ def region_boundary(fit: FragilityFit, directions: int):
         du, db = math.cos(angle) * scale_mu, math.sin(angle) * scale_beta
 
         def drop(radius, du=du, db=db):
-            return best - _log_likelihood(mu + radius * du, math.exp(log_beta + radius * db),
-                                          log_im, runs, failures) - limit
+            return best - log_likelihood(mu + radius * du,
+                                         math.exp(log_beta + radius * db)) - limit
 
         # the search stops where the median or beta would pass a factor e^50 (exp would
         # overflow long before 2^10 on a steep direction): a region still open there is
