@@ -206,3 +206,16 @@ def test_a_misspelt_option_is_refused_by_its_subcommand_with_the_option_meant(ca
     with pytest.raises(SystemExit):
         main(["run", "fig-3-7", "--nosuch"])
     assert "did you mean" not in capsys.readouterr().err
+
+
+def test_sweep_and_assess_help_list_every_bundled_name(capsys):
+    # the README sends a user to `sweep --help` and `assess --help` for the bundled names:
+    # every spec of experiments/sweeps and every object of experiments/assess is listed
+    from shaketable.scenes.catalog import experiments_folder
+
+    for command, folder in (("sweep", "sweeps"), ("assess", "assess")):
+        with pytest.raises(SystemExit):
+            main([command, "--help"])
+        shown = "".join(capsys.readouterr().out.split())   # argparse wraps at hyphens
+        names = sorted(p.stem for p in (experiments_folder() / folder).glob("*.toml"))
+        assert names and all(name in shown for name in names), (command, names)

@@ -61,8 +61,10 @@ def register(subparsers) -> None:
                     "excursion and slip, let it slide, the anchor forces beside ASCE 7-16 "
                     "Fp, the codes' checks and a recommendation, as report.md with figures "
                     "and summary.json.")
+    from shaketable.scenes.catalog import object_names
+
     parser.add_argument("object", help="object file (.toml) or a bundled example: "
-                                       "shielding-block, lab-cabinet, transformer")
+                                       f"{', '.join(object_names())}")
     parser.add_argument("--out", help="output folder (default shaketable-out/NAME)")
     parser.add_argument("--no-figures", action="store_true", help="write no figures")
     parser.set_defaults(handler=_assess)

@@ -125,10 +125,10 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "shaketable.sweeps.spec) and write one row per run to "
                     "OUT/results.parquet. Finished chunks are kept on disk: a killed sweep "
                     "continues with --resume.")
+    from shaketable.scenes.catalog import sweep_names
+
     parser.add_argument("spec", help="path to a sweep spec .toml, or the name of a bundled "
-                                     "one (pacoima-overturning-map, artificial-fragility, "
-                                     "pitch-phase-repeatability, im-fragility-collapse, "
-                                     "pacoima-friction, stacked-blocks-fragility)")
+                                     f"one ({', '.join(sweep_names())})")
     parser.add_argument("--out", help="output folder (default shaketable-out/<sweep name>)")
     parser.add_argument("--workers", type=int, default=None,
                         help="local threads (default all cores); for a stack sweep, local "

@@ -75,6 +75,11 @@ def sweep_names() -> list[str]:
     return sorted(path.stem for path in (experiments_folder() / "sweeps").glob("*.toml"))
 
 
+def object_names() -> list[str]:
+    """Names of the bundled objects of ``shaketable assess`` (``experiments/assess/``)."""
+    return sorted(path.stem for path in (experiments_folder() / "assess").glob("*.toml"))
+
+
 def resolve_sweep_path(name_or_path: str) -> Path:
     """A sweep spec from a path or the name of a bundled spec (``experiments/sweeps``)."""
     candidate = Path(name_or_path)
