@@ -107,6 +107,11 @@ def with_line(message: str, where: str, text: str, sections, *, at_start: bool =
     pattern = re.compile(rf"unknown key '([\w-]+)' in \[((?:{names})(?:\.[\w-]+)*)|"
                          rf"\[((?:{names})(?:\.[\w-]+)*)\]|\b((?:{names})(?:\.[\w-]+)+)")
     rest = message[len(prefix):]
+    top = re.compile(r"unknown key '([\w-]+)' in \[top level")   # a misspelt section
+    match = top.match(rest) if at_start else top.search(rest)
+    if match is not None:
+        line = key_line(text, [match.group(1)])
+        return message if line is None else f"{message} (line {line})"
     match = pattern.match(rest) if at_start else pattern.search(rest)
     if match is None:
         return message

@@ -99,3 +99,11 @@ def test_a_scene_with_mu_writes_the_friction_keys_simulate_writes(tmp_path):
     expected = result.run.t_friction_exceeded(0.5)
     got = summary["t_friction_exceeded(mu) [s]"]
     assert (got is None and math.isnan(expected)) or got == expected
+
+
+def test_a_misspelt_section_is_refused_with_its_line(tmp_path):
+    # "[motoin]" for "[motion]": the refusal names the file, the key and the line it is on
+    text = GOOD.replace("[motion]", "[motoin]")
+    line = text.splitlines().index("[motoin]") + 1
+    with pytest.raises(SceneError, match=rf"unknown key 'motoin' in \[top level.*\(line {line}\)"):
+        load_scene(_write(tmp_path, text))
