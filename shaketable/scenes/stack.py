@@ -219,11 +219,13 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
         lines.append(f"first uplift at t = {uplift['t']:.3f} s: "
                      f"{pattern_words(uplift['pattern_after'])}; {impacts} impact(s)")
     falling = result.t_past_alpha
-    demand_standing, excursion_standing = result.peak_before_past_alpha()
+    excursion = result.top_corner_excursion   # once: it is computed sample by sample
+    demand_standing, excursion_standing = result.peak_before_past_alpha(excursion)
+    peak_excursion = float(np.abs(excursion).max()) if result.t.size else 0.0
     standing = (f"; {{}} before a block passed its α (t < {falling:.2f} s: what the column "
                 "needs while it stands)") if not math.isnan(falling) else ""
     lines.append(f"top corner's peak excursion (the clearance the stack needs) "
-                 f"{format_length(result.peak_excursion, unit)}"
+                 f"{format_length(peak_excursion, unit)}"
                  + standing.format(format_length(excursion_standing, unit)))
     demand = result.friction_demand
     finite = np.where(np.isfinite(demand), demand, -1.0)

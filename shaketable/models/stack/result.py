@@ -192,18 +192,23 @@ class StackResult(ModelResult):
         over = np.flatnonzero((np.abs(self.theta) > alphas).any(axis=1))
         return float(self.t[over[0]]) if over.size else math.nan
 
-    def peak_before_past_alpha(self) -> tuple[float, float]:
+    def peak_before_past_alpha(self, excursion: np.ndarray | None = None
+                               ) -> tuple[float, float]:
         """(peak F/N over the contacts [-], peak top-corner excursion [m]) over the output
         times before :attr:`t_past_alpha` (the whole run when no block passes its alpha):
-        what the column needs while it still stands, not while it falls."""
+        what the column needs while it still stands, not while it falls. ``excursion``:
+        :attr:`top_corner_excursion` when the caller has it already (it is computed sample
+        by sample)."""
         end = self.t.size if math.isnan(self.t_past_alpha) else int(
             np.searchsorted(self.t, self.t_past_alpha))
         if end == 0:
             return 0.0, 0.0
         demand = self.friction_demand[:end]
         finite = demand[np.isfinite(demand)]
-        excursion = np.abs(self.top_corner_excursion[:end]).max()
-        return (float(finite.max()) if finite.size else math.nan), float(excursion)
+        if excursion is None:
+            excursion = self.top_corner_excursion
+        return ((float(finite.max()) if finite.size else math.nan),
+                float(np.abs(excursion[:end]).max()))
 
     def end_state(self) -> str:
         """How the run ends when the stack is still moving, in the single block's words:
@@ -299,7 +304,8 @@ class StackResult(ModelResult):
         first_uplift = next((e["t"] for e in self.events if e["kind"] == "uplift"), math.nan)
         finite = np.isfinite(self.friction_demand)
         slip = self.t_friction_exceeded(PLAUSIBLE_FRICTION)
-        standing = self.peak_before_past_alpha()
+        excursion = self.top_corner_excursion   # once: it is computed sample by sample
+        standing = self.peak_before_past_alpha(excursion)
         return {"blocks": int(self.n_blocks), "impact law": str(self.impact),
                 "masses [kg]": [float(mass) for mass in self.stack.mass],
                 "masses": self.stack.describe_masses(),
@@ -315,7 +321,8 @@ class StackResult(ModelResult):
                 "events not unique": sum(1 for e in self.events
                                          if e.get("solutions") not in (None, 1)),
                 "max |theta| [rad]": [float(x) for x in np.abs(self.theta).max(axis=0)],
-                "peak top-corner excursion [m]": float(self.peak_excursion),
+                "peak top-corner excursion [m]": float(np.abs(excursion).max())
+                if self.t.size else 0.0,
                 "max F/N [-]": float(np.nanmax(np.where(finite, self.friction_demand, np.nan)))
                 if finite.any() else math.nan,
                 "no-slip assumption": (f"holds (F/N <= {PLAUSIBLE_FRICTION:g} throughout)"
