@@ -6,24 +6,21 @@ block's options they share with ``simulate``."""
 
 from __future__ import annotations
 
-import math
 import time
 
 from shaketable.core.geometry import Block
+from shaketable.core.units import parse_angle_or_ratio
 from shaketable.scenes.spectrum import block_from, parse_ratios
 
 
 def resolve_angle(text: str, block: Block) -> float:
-    value = str(text).strip().lower()
-    if value in ("0", "0.0", "-0", "+0"):   # zero is zero in every unit
-        return 0.0
-    for suffix, factor in (("alpha", block.alpha), ("deg", math.pi / 180), ("rad", 1.0)):
-        if value.endswith(suffix):
-            try:
-                return float(value[: -len(suffix)]) * factor
-            except ValueError:
-                break
-    raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg or 0.5alpha")
+    """``--theta0`` [rad]: rad, deg, a multiple of the block's alpha, or a bare zero
+    (:func:`shaketable.core.units.parse_angle_or_ratio`)."""
+    try:
+        return parse_angle_or_ratio(text, block.alpha, where="--theta0")
+    except ValueError:
+        raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg "
+                         "or 0.5alpha") from None
 
 
 def block_of(block: str | None, alpha: float | None, p: float | None) -> Block:

@@ -150,6 +150,16 @@ def study_kind(name_or_path: str) -> str | None:
 _PLANAR_SECTIONS = {"table-4-4"}
 
 
+def _readable(name_or_path: str | SceneSource) -> SceneSource | None:
+    """The scene's source, or None when it cannot be read (left to the parser to say)."""
+    if isinstance(name_or_path, SceneSource):
+        return name_or_path
+    try:
+        return read_scene(name_or_path)
+    except (OSError, SceneError):
+        return None
+
+
 def uses_planar(name_or_path: str | SceneSource) -> bool:
     """Whether a scene runs the planar block, read from its TOML alone.
 
@@ -158,10 +168,8 @@ def uses_planar(name_or_path: str | SceneSource) -> bool:
     first-compile notice names the planar engine for them. An unreadable file is left to
     the scene parser to report (``False`` here).
     """
-    try:
-        source = name_or_path if isinstance(name_or_path, SceneSource) else \
-            read_scene(name_or_path)
-    except (OSError, SceneError):
+    source = _readable(name_or_path)
+    if source is None:
         return False
     path, scene = source.path, source.data
     if path.stem in _PLANAR_SECTIONS:
@@ -175,10 +183,8 @@ def uses_stack(name_or_path: str | SceneSource) -> bool:
     """Whether a scene runs the stack model, read from its TOML alone: a ``[stack]`` scene
     or a ``stacks`` study (the first-compile notice names the stack engine for them). An
     unreadable file is left to the scene parser to report (``False`` here)."""
-    try:
-        source = name_or_path if isinstance(name_or_path, SceneSource) else \
-            read_scene(name_or_path)
-    except (OSError, SceneError):
+    source = _readable(name_or_path)
+    if source is None:
         return False
     study = source.data.get("study")
     return "stack" in source.data or (isinstance(study, dict)
