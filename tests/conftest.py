@@ -41,6 +41,18 @@ def repository():
     return REPOSITORY
 
 
+@pytest.fixture
+def figure_drafts():
+    """The test's PNG figures are drafts (:func:`tests.helpers.draft_figures`: every figure
+    built and drawn by the same code, at a low dpi without the layout solver), for tests
+    that check what a command computes, prints and which files it writes, not how a figure
+    looks (tests/plots checks that at full size)."""
+    from tests.helpers import draft_figures
+
+    with draft_figures():
+        yield
+
+
 @pytest.fixture(scope="session")
 def shared_records():
     """The shared real-records folder; the test is skipped where it is absent."""

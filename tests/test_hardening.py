@@ -536,6 +536,7 @@ def test_a_fault_in_a_long_record_is_reported_on_its_line(tmp_path, fault, messa
             text.read_text(path, units="g")
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_history_choices_of_simulate(tmp_path):
     import numpy as np
     import pandas as pd

@@ -654,6 +654,7 @@ def test_calibrated_cor_and_ensemble_name_the_bad_parameter(call, error, fragmen
              st.Motion.at_rest(0.5))
 
 
+@pytest.mark.usefixtures("figure_drafts")
 @pytest.mark.parametrize("ensemble", [[], ["--ensemble", "3"]])
 def test_a_block_that_leaves_the_ground_exits_1_alone_or_in_an_ensemble(tmp_path, ensemble):
     # a vertical table acceleration of 1.5 g amplitude passes -g: the block leaves the ground

@@ -247,6 +247,7 @@ def test_simulate_with_a_calibration_file_reports_the_spread(tmp_path, capsys):
         plain.max_theta_ratio, rel=1e-6, nan_ok=True)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_scene_takes_a_calibration_file(tmp_path, capsys):
     from shaketable.scenes.parse import SceneError, load_scene
 

@@ -75,6 +75,7 @@ def test_sweep_accepts_a_bundled_name(tmp_path):
     assert "artificial-fragility" in out and "--resume" in out
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_a_bundled_name_wins_over_a_folder_of_that_name(tmp_path):
     """The README's commands in one folder: `simulate --out fig-3-4` leaves a folder named
     fig-3-4, and `reproduce fig-3-4` must still mean the bundled scene (a newcomer trial

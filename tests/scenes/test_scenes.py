@@ -100,6 +100,7 @@ def test_run_command_unknown_scene_is_a_clear_error(capsys):
     assert "no scene 'no-such-scene'" in capsys.readouterr().err
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_reproduce_writes_a_markdown_report(tmp_path):
     out = tmp_path / "reproduced"
     assert main(["reproduce", "fig-3-4", "fig-3-7", "fig-4-1", "--out", str(out),

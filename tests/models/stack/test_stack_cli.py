@@ -24,6 +24,7 @@ def _step(tmp_path, acceleration, *extra):
                             "--out", tmp_path / "out", *extra], cwd=tmp_path)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_the_stack_uplifts_as_one_body_at_the_closed_form_threshold(tmp_path):
     # masses 1 : 3: A1 = 3 (4) / (15 + 3 (45)) = 0.08 < A2 = 0.2
     status, out, err = _step(tmp_path, "0.07992g", "--masses", "1kg,3kg")
