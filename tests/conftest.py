@@ -265,6 +265,19 @@ def _engines_cached() -> bool:
     return True
 
 
+# ------------------------------------------------------- garbage collection of a big heap
+def pytest_collection_finish(session):
+    """Once the tests are collected (numba, pandas, matplotlib, SciPy and the package
+    imported), one garbage collection, then every object left is frozen (``gc.freeze``):
+    the automatic full collections during the run then skip those long-lived objects
+    instead of scanning them all again each time (about 0.15 s of CPU each). The garbage
+    the tests make is collected as before: only objects alive at this point are frozen."""
+    import gc
+
+    gc.collect()
+    gc.freeze()
+
+
 # ------------------------------------------------------------------ a quick exit
 @pytest.hookimpl(trylast=True)
 def pytest_unconfigure(config):
