@@ -29,6 +29,7 @@ def test_simulate_free_rocking_writes_csv_json_and_figure(tmp_path, capsys):
     assert (tmp_path / "calcomp.png").stat().st_size > 10_000
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_simulate_bundled_record(tmp_path):
     status = main(["simulate", "--block", "16x4ft", "--cor", "0.95", "--record",
                    "pacoima-dam-s16e", "--out", str(tmp_path), "--format", "svg"])

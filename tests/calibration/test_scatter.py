@@ -185,6 +185,7 @@ def test_columns_by_name_or_index(tmp_path):
         read_record(bad)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_cli_reads_a_daq_export_and_prints_the_size_with_its_error(tmp_path, capsys):
     path = _lab_file(tmp_path, "Time (ms),WP1 Top Disp (in)", 1e3)
     out = tmp_path / "out"

@@ -260,6 +260,7 @@ def test_scan_based_block_scores_as_an_independent_integrator(tmp_path):
     assert result["specimens"]["sp2"]["accuracy"] == pytest.approx(0.721, abs=0.0021)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_reproduce_validation_section_runs_or_skips(tmp_path):
     from shaketable.reproduce import reproduce
 

@@ -44,6 +44,7 @@ def test_densities_give_masses_in_proportion_to_density_times_area():
     assert stack_from_text(["1x0.5m"], masses=["2 t"]).m == pytest.approx([2000.0])
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_a_release_gives_the_top_corner_excursion_and_writes_the_files(tmp_path):
     status, out, err = run_cli(["simulate", "--stack", "30x6in,30x6in", "--theta0", "0.05rad",
                                 "--duration", "0.1s", "--mu", "0.6", "--out",
