@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 from pathlib import Path
 
@@ -27,3 +28,35 @@ SHARED_PBR = Path(os.environ.get("SHAKETABLE_PBR") or SHARED / "data" / "pbr")
 #: Skip a test cleanly where the measured tests are absent.
 needs_pbr = pytest.mark.skipif(not (SHARED_PBR / "metadata.csv").is_file(),
                                reason="the measured tests folder (shared/data/pbr) is absent")
+
+
+#: Members per cell of the report tables' ensembles in tests that check that a command runs
+#: and writes its report, not the ensembles' statistics (the package's default is 200).
+TEST_MEMBERS = 20
+
+#: Dots per inch of a draft figure (:func:`draft_figures`): the package writes 110.
+DRAFT_DPI = 24
+
+
+@contextlib.contextmanager
+def draft_figures():
+    """While open, every figure the package writes through ``shaketable.plots.base.save``
+    (every command's PNG figures) is a draft: built by the same code, every artist drawn
+    on the same canvas into the same file, but at :data:`DRAFT_DPI` and without
+    matplotlib's constrained-layout solver and tight box (about half a figure's CPU time).
+
+    For tests that check that a command runs and writes its files, not what a figure looks
+    like: an error in the package's figure code (building the axes, text, mathtext, ticks,
+    colour scales, drawing) still fails them, as it would at full size. The layout the
+    package gives its figures is checked by tests/plots (test_layout.py, test_save_tight.py,
+    test_labels.py), at full size.
+    """
+    from shaketable.plots import base
+
+    def draft(fig, target, dpi=None):
+        fig.set_layout_engine("none")
+        fig.savefig(target, dpi=DRAFT_DPI)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(base, "save_tight", draft)
+        yield

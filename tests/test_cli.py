@@ -29,6 +29,7 @@ def test_simulate_free_rocking_writes_csv_json_and_figure(tmp_path, capsys):
     assert (tmp_path / "calcomp.png").stat().st_size > 10_000
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_simulate_bundled_record(tmp_path):
     status = main(["simulate", "--block", "16x4ft", "--cor", "0.95", "--record",
                    "pacoima-dam-s16e", "--out", str(tmp_path), "--format", "svg"])
@@ -110,6 +111,7 @@ def test_run_writes_parquet_and_svg_on_request(tmp_path, capsys):
     capsys.readouterr()
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_simulate_harmonic_and_pulse_from_the_command_line(tmp_path, capsys):
     # table motions without a scene file. The ground column of history.csv is
     # the closed form: 0.15 sin(2 pi 2 t) [g], and a half sine 0.5 sin(pi t / 0.2 s) then 0

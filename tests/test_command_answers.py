@@ -28,6 +28,7 @@ def test_lengths_are_written_in_the_users_unit():
         format_length(1.0, "furlong")
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_simulate_friction_leads_with_the_answer_in_metres(tmp_path, capsys):
     # free rocking of a 2 x 0.5 m block from 0.5 alpha on a base that does not slide (mu 1)
     block = Block.parse("2x0.5m")

@@ -41,6 +41,7 @@ def test_records_lists_every_bundled_record_with_its_measures(tmp_path, capsys):
     assert "PEER NGA-West2 RSN77" in printed
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_pga_target_scales_the_record_and_says_by_how_much(tmp_path, capsys):
     out = tmp_path / "p"
     assert main(["simulate", "--block", "2x0.5m", "--record", "el-centro-chopra", "--pga",

@@ -63,6 +63,7 @@ def test_study_name_cannot_leave_the_output_folder(tmp_path):
     assert status == 2 and "s.toml" in err and "'name'" in err, err
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_plain_names_with_dots_and_spaces_still_run(tmp_path):
     # the refusal is of paths only: a name such as "v1.2 probe" is one folder
     (tmp_path / "s.toml").write_text(_replace(HARMONIC, 'name = "probe"', 'name = "v1.2 probe"'),
@@ -337,6 +338,7 @@ def test_every_public_object_pickles_and_compares_equal(tmp_path):
 
 
 # ----------------------------------------------------------------- the release-instant record
+@pytest.mark.usefixtures("figure_drafts")
 def test_a_clean_record_that_starts_at_the_release_calibrates(tmp_path):
     # A clean free-rocking record of the report's 30x6in test block (Sections 3.2, 3.5),
     # 50 samples/s, t = 0 at the release: made with the reference solver (SciPy's DOP853
@@ -536,6 +538,7 @@ def test_a_fault_in_a_long_record_is_reported_on_its_line(tmp_path, fault, messa
             text.read_text(path, units="g")
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_history_choices_of_simulate(tmp_path):
     import numpy as np
     import pandas as pd
@@ -597,6 +600,7 @@ def _euro(values, header: str = "") -> str:
     return header + "".join(f"{t:.3f};{a:.4f}\n".replace(".", ",") for t, a in values)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 @pytest.mark.parametrize("header", ["", "time [s];acc [g]\n"])
 def test_a_european_csv_is_recognised(tmp_path, header):
     # semicolons between fields and a decimal comma, as a spreadsheet in a European locale
@@ -616,6 +620,7 @@ def test_a_european_csv_is_recognised(tmp_path, header):
     assert status == 0, err
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_several_columns_name_the_cli_option(tmp_path):
     text = "t;a;b\n" + "".join(f"{t:.3f};{a:.4f};{-a:.4f}\n".replace(".", ",")
                                 for t, a in EURO_ROWS)

@@ -163,6 +163,7 @@ def test_a_csv_with_minus_inf_names_its_line(tmp_path):
 
 
 # ----------------------------------------------------------------- 2. early stops
+@pytest.mark.usefixtures("figure_drafts")
 def test_a_run_that_stops_early_says_so_and_exits_1(tmp_path):
     # A vertical harmonic of 1.5 g at 2 Hz reaches -g when sin(4 pi t) = -2/3, at
     # t = (pi + asin(2/3)) / (4 pi) = 0.3081 s: the rocking model stops there (airborne);
@@ -654,6 +655,7 @@ def test_calibrated_cor_and_ensemble_name_the_bad_parameter(call, error, fragmen
              st.Motion.at_rest(0.5))
 
 
+@pytest.mark.usefixtures("figure_drafts")
 @pytest.mark.parametrize("ensemble", [[], ["--ensemble", "3"]])
 def test_a_block_that_leaves_the_ground_exits_1_alone_or_in_an_ensemble(tmp_path, ensemble):
     # a vertical table acceleration of 1.5 g amplitude passes -g: the block leaves the ground

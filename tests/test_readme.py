@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt
 import pytest
 
 from shaketable.scenes.catalog import scene_names
-from tests.helpers import REPOSITORY
+from tests.helpers import REPOSITORY, TEST_MEMBERS, draft_figures
 
 README = (REPOSITORY / "README.md").read_text(encoding="utf-8")
 
@@ -108,14 +108,18 @@ def test_the_risk_line_runs_after_the_sweep_it_reads():
 
 def _run_in_process(argv: list[str], folder) -> subprocess.CompletedProcess:
     """``shaketable ARGV`` run in ``folder`` by the console script's function, its output
-    captured; an exception that escapes it is a traceback on stderr and exit status 1."""
+    captured; an exception that escapes it is a traceback on stderr and exit status 1.
+    Its PNG figures are drafts (:func:`tests.helpers.draft_figures`: every figure built
+    and drawn, at a low dpi without the layout solver): these tests check that the line
+    runs and writes its files, tests/plots how its figures look."""
     from shaketable.cli import main
 
     stdout, stderr = io.StringIO(), io.StringIO()
     here = os.getcwd()
     os.chdir(folder)
     try:
-        with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+        with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr), \
+                draft_figures():
             try:
                 status = main(argv)
             except SystemExit as exit_:
@@ -142,11 +146,18 @@ def test_the_console_entry_point_runs_a_readme_line(tmp_path):
 
 @pytest.fixture(scope="module")
 def shared_table_predictability():
-    """``run table-4-2`` and ``reproduce fig-3-4 table-4-2`` both recompute Table 4.2's
-    ensembles (200 runs per cell, about 7 s of CPU each): computed once per process for the
-    same arguments (the function is deterministic: seeded members, fixed records), each
-    caller getting its own copy of the frame."""
+    """``run table-4-2`` and ``reproduce fig-3-4 table-4-2`` both end with Table 4.2's
+    ensembles (:func:`shaketable.studies.predictability.predictability_markdown`). Here
+    they run with :data:`tests.helpers.TEST_MEMBERS` members per cell instead of the
+    package's 200 (9,600 distinct batch runs, about 7 s of CPU): the same code path (one
+    batch call whatever the size, the nominal member first), as
+    ``tests/scenes/test_every_scene_runs.py`` runs the other report tables; these tests
+    check that the README's lines run and write their files, not the ensembles'
+    statistics (``tests/studies/test_predictability.py`` checks the ensemble machinery). The table is
+    computed once per process for the same arguments (the function is deterministic:
+    seeded members, fixed records), each caller getting its own copy of the frame."""
     import copy
+    import functools
 
     from shaketable.studies import predictability
 
@@ -161,6 +172,8 @@ def shared_table_predictability():
 
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(predictability, "table_predictability", table_predictability)
+        patch.setattr(predictability, "predictability_markdown", functools.partial(
+            predictability.predictability_markdown, members=TEST_MEMBERS))
         yield computed
 
 

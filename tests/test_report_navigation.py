@@ -57,6 +57,7 @@ def test_report_has_contents_and_the_differing_comparisons_first(tmp_path):
     assert "<!-- differs" not in text       # the carriers are not left in the report
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_a_scene_lists_what_differs_as_many_as_the_headline_counts(tmp_path):
     from shaketable.reproduce import reproduce
 

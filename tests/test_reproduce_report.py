@@ -24,6 +24,7 @@ def test_tally_counts_every_line_in_its_kind():
         tally.add("recorded", True)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_headline_separates_the_three_kinds(tmp_path):
     # fig-4-15.toml states three report values (overturned, t_unstable, overturn_direction);
     # its realisation (seed 54) was chosen for the last two: they are by construction, the

@@ -158,6 +158,7 @@ def test_calibration_of_another_block(tmp_path):
         load_assessment(path)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_cli_style_run_writes_the_report(tmp_path):
     path = _write(tmp_path, GOOD)
     result = assess(path, tmp_path / "out")

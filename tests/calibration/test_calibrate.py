@@ -410,6 +410,7 @@ def test_cli_calibrate_smoke(tmp_path, capsys):
     assert "--anti-alias 'often'" in capsys.readouterr().err
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_cli_calibrate_known_filter_and_help(tmp_path, capsys):
     record, _ = _calibrated(0.9, 12)
     path = tmp_path / "free.csv"

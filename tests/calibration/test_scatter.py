@@ -185,6 +185,7 @@ def test_columns_by_name_or_index(tmp_path):
         read_record(bad)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_cli_reads_a_daq_export_and_prints_the_size_with_its_error(tmp_path, capsys):
     path = _lab_file(tmp_path, "Time (ms),WP1 Top Disp (in)", 1e3)
     out = tmp_path / "out"
@@ -247,6 +248,7 @@ def test_simulate_with_a_calibration_file_reports_the_spread(tmp_path, capsys):
         plain.max_theta_ratio, rel=1e-6, nan_ok=True)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_scene_takes_a_calibration_file(tmp_path, capsys):
     from shaketable.scenes.parse import SceneError, load_scene
 

@@ -11,7 +11,9 @@ The report-table scenes (``table-4-1``, ``table-4-3``) end with an ensemble per 
 9,600 batch runs, 7-9 s of CPU each scene). Here they run with :data:`MEMBERS` members, the
 same code path (one batch call whatever the size) at a tenth of the cost: this test checks
 that the command runs and writes its report, not the ensemble's statistics (``reproduce
---all`` writes them with 200; ``tests/test_readme.py`` runs ``table-4-2`` with 200).
+--all`` writes them with 200; ``tests/studies/test_predictability.py`` checks the
+ensembles). Its PNG figures are drafts (:func:`tests.helpers.draft_figures`: every figure
+built and drawn, at a low dpi without the layout solver): tests/plots checks how they look.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from __future__ import annotations
 import pytest
 
 from shaketable.scenes.catalog import scene_names, sweep_names
+from tests.helpers import TEST_MEMBERS, draft_figures
 from tests.scenes.test_spectrum_scene import SCENE as SPECTRUM_SCENE
 from tests.test_bad_input import run_cli
 from tests.test_readme import README_RUN_SCENES
@@ -36,7 +39,7 @@ def test_the_readme_runs_bundled_scenes():
 
 #: Members of each cell's ensemble in the report-table scenes here (the package's default
 #: is 200; see the module docstring).
-MEMBERS = 20
+MEMBERS = TEST_MEMBERS
 
 
 @pytest.mark.slow
@@ -49,7 +52,8 @@ def test_run_succeeds_on_every_bundled_scene(name, tmp_path, monkeypatch):
 
     monkeypatch.setattr(predictability, "predictability_markdown", functools.partial(
         predictability.predictability_markdown, members=MEMBERS))
-    status, out, err = run_cli(["run", name, "--out", tmp_path / name], cwd=tmp_path)
+    with draft_figures():
+        status, out, err = run_cli(["run", name, "--out", tmp_path / name], cwd=tmp_path)
     assert "Traceback" not in err and "internal error" not in err, err
     assert status == 0, err
     assert "wrote" in out
@@ -71,6 +75,7 @@ def test_sweep_accepts_a_bundled_name(tmp_path):
     assert "artificial-fragility" in out and "--resume" in out
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_a_bundled_name_wins_over_a_folder_of_that_name(tmp_path):
     """The README's commands in one folder: `simulate --out fig-3-4` leaves a folder named
     fig-3-4, and `reproduce fig-3-4` must still mean the bundled scene (a newcomer trial

@@ -56,6 +56,7 @@ def test_scene_with_rods_and_friction_is_refused(tmp_path):
         run_scene(load_scene(path))
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_simulate_friction_writes_the_planar_run(tmp_path):
     status, out, err = run_cli(["simulate", "--block", "16x4ft", "--cor", "0.95", "--record",
                                 "pacoima-dam-s16e", "--friction", "0.3,0.25", "--out",

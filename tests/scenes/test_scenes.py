@@ -49,6 +49,7 @@ def test_every_bundled_scene_is_valid():
         assert scene.source, name
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_fig_3_4_scene_reproduces_the_report(tmp_path):
     scene = load_scene(write(tmp_path, GOOD))
     result = run_scene(scene)
@@ -87,6 +88,7 @@ def test_missing_sections_and_bad_toml(tmp_path):
         load_scene(tmp_path / "absent.toml")
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_run_command_writes_outputs(tmp_path, capsys):
     path = write(tmp_path, GOOD)
     assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
@@ -100,6 +102,7 @@ def test_run_command_unknown_scene_is_a_clear_error(capsys):
     assert "no scene 'no-such-scene'" in capsys.readouterr().err
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_reproduce_writes_a_markdown_report(tmp_path):
     out = tmp_path / "reproduced"
     assert main(["reproduce", "fig-3-4", "fig-3-7", "fig-4-1", "--out", str(out),

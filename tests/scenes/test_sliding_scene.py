@@ -21,6 +21,7 @@ BASE = {"name": "probe", "block": {"size": "8x2ft"},
         "motion": {"kind": "record", "name": "pacoima-dam-s16e"}, "rocking": {"cor": 0.95}}
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_the_teaching_scene_runs_both_modes_and_matches_a_direct_call(tmp_path):
     scene = load_scene(resolve_scene_path("teaching-slide-or-rock"))
     assert scene.sliding == ((0.2, 0.15), (0.2, 0.1))

@@ -86,6 +86,7 @@ def test_the_kick_comes_when_the_top_block_lands_as_a_block_alone_on_a_fixed_bas
     assert "uplift: none" not in lines
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_a_scene_with_mu_writes_the_friction_keys_simulate_writes(tmp_path):
     # `simulate --stack --mu` writes "mu [-]" and "t_friction_exceeded(mu) [s]"; a scene
     # with stack.mu must write the same keys, the time tested against the scene's own mu

@@ -111,6 +111,7 @@ def _scene(**sections):
     return scene_from_dict(data, "vt.toml")
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_scene_with_sensors_and_theory(tmp_path):
     scene = _scene(table={"pitch": {"seed": 3}}, sensors={"seed": 3}, theory={"cor": 0.925})
     result = run_scene(scene)

@@ -272,6 +272,7 @@ def test_a_block_where_a_numeric_cor_is_undefined_is_refused(tmp_path):
 
 
 # --------------------------------------------------------------------------- summaries
+@pytest.mark.usefixtures("figure_drafts")
 def test_sweep_command_prints_verdicts_and_draws_figures_per_friction(tmp_path, capsys):
     # one PGA level: a rocking spectrum (max theta/alpha against p) per record and COR
     text = SPEC.replace("chunk_size = 7", "chunk_size = 64").replace(

@@ -147,6 +147,7 @@ def test_a_sweep_folder_of_the_previous_format_is_not_resumed(tmp_path):
                          resume=True, progress=False)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_risk_command_prints_lambda_and_refuses_bad_input(tmp_path, capsys):
     _run(tmp_path, 'measure = "pgv"\nlevels = ["0.1 m/s", "0.2 m/s", "0.4 m/s", "0.8 m/s", '
                    '"1.6 m/s"]')

@@ -383,6 +383,7 @@ def test_sweep_figures_draw_from_a_table(reference_table):
     plt.close("all")
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_sweep_command_draws_the_figures_the_table_supports(tmp_path, capsys):
     # one PGA level: a map and a spectrum per (record, COR), no fragility curve
     one_level = SPEC.replace('pga = ["0.4 g", "0.8 g"]', 'pga = ["0.4 g"]')

@@ -129,6 +129,7 @@ def test_folder_errors_name_the_file(tmp_path):
         folder.outcomes("a")
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_calibration_recovers_a_known_block_and_the_commands(tmp_path, capsys):
     # outcomes made by a symmetric block of alpha 0.1 (uplift at 0.1 g, overturning higher):
     # the calibration must pick alpha 0.1 among 0.05, 0.1, 0.2
@@ -259,6 +260,7 @@ def test_scan_based_block_scores_as_an_independent_integrator(tmp_path):
     assert result["specimens"]["sp2"]["accuracy"] == pytest.approx(0.721, abs=0.0021)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_reproduce_validation_section_runs_or_skips(tmp_path):
     from shaketable.reproduce import reproduce
 

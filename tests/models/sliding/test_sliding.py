@@ -195,6 +195,7 @@ def test_frame_summary_plot(tmp_path):
     assert (tmp_path / "slide.png").stat().st_size > 0
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_cli_slide_in_process(tmp_path, capsys):
     pytest.importorskip("matplotlib")
     from shaketable.cli import main

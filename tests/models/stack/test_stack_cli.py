@@ -24,6 +24,7 @@ def _step(tmp_path, acceleration, *extra):
                             "--out", tmp_path / "out", *extra], cwd=tmp_path)
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_the_stack_uplifts_as_one_body_at_the_closed_form_threshold(tmp_path):
     # masses 1 : 3: A1 = 3 (4) / (15 + 3 (45)) = 0.08 < A2 = 0.2
     status, out, err = _step(tmp_path, "0.07992g", "--masses", "1kg,3kg")
@@ -43,6 +44,7 @@ def test_densities_give_masses_in_proportion_to_density_times_area():
     assert stack_from_text(["1x0.5m"], masses=["2 t"]).m == pytest.approx([2000.0])
 
 
+@pytest.mark.usefixtures("figure_drafts")
 def test_a_release_gives_the_top_corner_excursion_and_writes_the_files(tmp_path):
     status, out, err = run_cli(["simulate", "--stack", "30x6in,30x6in", "--theta0", "0.05rad",
                                 "--duration", "0.1s", "--mu", "0.6", "--out",
