@@ -74,12 +74,14 @@ def main(argv=None) -> int:
     try:
         with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
             status = int(args.handler(args) or 0)
+        if argv is None and _used_worker_processes():
+            _stop_process_helpers()
         sys.stdout.flush()   # a closed pipe shows here, not in Python's flush at exit
         return status
     except KeyboardInterrupt:
         print(f"shaketable {args.command}: interrupted; files already written are complete",
               file=sys.stderr)
-        if argv is None and _compiled_run_still_going():
+        if argv is None and (_compiled_run_still_going() or _used_worker_processes()):
             _end_now(EXIT_INTERRUPTED)
         return EXIT_INTERRUPTED
     except BrokenPipeError:  # `shaketable ... | head -1`: the reader left; end quietly
@@ -139,11 +141,40 @@ def _compiled_run_still_going() -> bool:
     return any(thread.name == "shaketable-engine" for thread in threading.enumerate())
 
 
+def _used_worker_processes() -> bool:
+    """Whether the command ran worker processes (a sweep's ``--workers N``; they are
+    ended by then, ``sweeps.execute._end_workers``)."""
+    return "concurrent.futures.process" in sys.modules
+
+
+def _stop_process_helpers() -> None:
+    """After a command that ran worker processes: run multiprocessing's own exit (its
+    semaphores released, its finished children reaped) and stop its resource-tracker
+    process and wait for it, so that no process of the command outlives it (Python's
+    exit leaves the tracker to end after the command, an orphan)."""
+    if "multiprocessing.resource_tracker" not in sys.modules:
+        return
+    try:
+        import multiprocessing.util
+
+        multiprocessing.util._exit_function()
+        tracker = sys.modules["multiprocessing.resource_tracker"]._resource_tracker
+        stop = getattr(tracker, "_stop", None)   # Python >= 3.11; older: it ends on its own
+        if stop is not None:
+            stop()
+    except Exception:   # ending anyway; the tracker then ends on its own
+        pass
+
+
 def _end_now(status: int) -> None:
     """End the program at once with ``status``, its output flushed. After Ctrl-C with a
     compiled run still going, Python's own exit (tearing down every module, about 0.35 s
     of CPU) would run beside the abandoned run, which goes on using a core until the
-    process ends; every file written is already complete (atomic writes)."""
+    process ends; every file written is already complete (atomic writes). A sweep's
+    worker processes are ended by then; multiprocessing's own exit (its semaphores
+    released) and its resource-tracker process (stopped and waited for, so that it does
+    not outlive the command) are run here, as Python's exit would."""
+    _stop_process_helpers()
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

@@ -648,19 +648,83 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
 
     Each process runs :func:`compute_chunk` as a Dask task does (a chunk's rows do not
     depend on where or in which order it is computed), its batches on one thread.
-    Ctrl-C or a chunk's error starts no further chunk; the finished ones are on disk.
+    The processes ignore Ctrl-C: it stops this process, which then ends them at once
+    (:func:`_end_workers`) and writes the chunks that had already come back; a chunk's
+    error does the same. The chunks finished are on disk, the others run on resume.
     """
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-        futures = {pool.submit(compute_chunk, spec, chunk, 1): chunk for chunk in chunks}
-        try:
-            for future in as_completed(futures):
-                finished(futures[future], future.result())
-        except BaseException:
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
+    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
+                               initializer=_ignore_interrupts)
+    futures: dict = {}
+    written = set()
+    try:
+        with _interrupts_ignored():   # the processes start (at submit) ignoring Ctrl-C
+            futures = {pool.submit(compute_chunk, spec, chunk, 1): chunk for chunk in chunks}
+        for future in as_completed(futures):
+            finished(futures[future], future.result())
+            written.add(future)
+    except BaseException:
+        _end_workers(pool)
+        # the chunks computed but not yet written are kept (an atomic write each)
+        for future, chunk in futures.items():
+            if future not in written and future.done() and not future.cancelled() \
+                    and future.exception() is None:
+                finished(chunk, future.result())
+        raise
+    pool.shutdown(wait=True)
+
+
+def _ignore_interrupts() -> None:
+    """In a sweep's worker process: ignore Ctrl-C (the parent process ends the workers)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+class _interrupts_ignored:
+    """Ignore Ctrl-C while worker processes start, so that they start ignoring it (an
+    ignored signal stays ignored in a new program, and Python keeps it so); a Ctrl-C in
+    these few milliseconds is lost. Outside the main thread (where signals cannot be
+    set) nothing changes and the workers ignore Ctrl-C from their initializer on."""
+
+    def __enter__(self):
+        import signal
+        import threading
+
+        self.previous = None
+        if threading.current_thread() is threading.main_thread():
+            self.previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        return self
+
+    def __exit__(self, *exc_info):
+        import signal
+
+        if self.previous is not None:
+            signal.signal(signal.SIGINT, self.previous)
+        return False
+
+
+#: Seconds a worker process is given to end after SIGTERM before it is killed.
+WORKER_GRACE = 2.0
+
+
+def _end_workers(pool) -> None:
+    """End a process pool's workers now (SIGTERM, then SIGKILL after
+    :data:`WORKER_GRACE` s) and wait for them: a chunk in progress is abandoned (its
+    runs are computed again on resume), no worker outlives the sweep."""
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    for process in processes:
+        if process.is_alive():
+            process.terminate()
+    pool.shutdown(wait=False, cancel_futures=True)
+    deadline = time.monotonic() + WORKER_GRACE
+    for process in processes:
+        process.join(max(0.0, deadline - time.monotonic()))
+        if process.is_alive():
+            process.kill()
+            process.join()
 
 
 def _run_on_dask(spec, chunks, client, threads, finished) -> None:
