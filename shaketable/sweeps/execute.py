@@ -667,11 +667,15 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
             written.add(future)
     except BaseException:
         _end_workers(pool)
-        # the chunks computed but not yet written are kept (an atomic write each)
-        for future, chunk in futures.items():
-            if future not in written and future.done() and not future.cancelled() \
-                    and future.exception() is None:
-                finished(chunk, future.result())
+        # the chunks computed but not yet written are kept (an atomic write each); a write
+        # that fails stops this, the error that stopped the sweep is the one raised
+        try:
+            for future, chunk in futures.items():
+                if future not in written and future.done() and not future.cancelled() \
+                        and future.exception() is None:
+                    finished(chunk, future.result())
+        except Exception:
+            pass
         raise
     pool.shutdown(wait=True)
 
