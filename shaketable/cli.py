@@ -157,7 +157,7 @@ def _stop_process_helpers() -> None:
     try:
         import multiprocessing.util
 
-        multiprocessing.util._exit_function()
+        multiprocessing.util._exit_function()  # type: ignore[attr-defined]  # as at exit
         tracker = sys.modules["multiprocessing.resource_tracker"]._resource_tracker
         stop = getattr(tracker, "_stop", None)   # Python >= 3.11; older: it ends on its own
         if stop is not None:
