@@ -10,6 +10,7 @@ import os
 import time
 import warnings
 from collections.abc import Callable
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -687,27 +688,25 @@ def _ignore_interrupts() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-class _interrupts_ignored:
+@contextmanager
+def _interrupts_ignored():
     """Ignore Ctrl-C while worker processes start, so that they start ignoring it (an
     ignored signal stays ignored in a new program, and Python keeps it so); a Ctrl-C in
     these few milliseconds is lost. Outside the main thread (where signals cannot be
     set) nothing changes and the workers ignore Ctrl-C from their initializer on."""
+    import signal
+    import threading
 
-    def __enter__(self):
-        import signal
-        import threading
-
-        self.previous = None
-        if threading.current_thread() is threading.main_thread():
-            self.previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-        return self
-
-    def __exit__(self, *exc_info):
-        import signal
-
-        if self.previous is not None:
-            signal.signal(signal.SIGINT, self.previous)
-        return False
+    previous = signal.getsignal(signal.SIGINT)
+    # a handler set outside Python (None) could not be put back: left as it is
+    if threading.current_thread() is not threading.main_thread() or previous is None:
+        yield
+        return
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 #: Seconds a worker process is given to end after SIGTERM before it is killed.
