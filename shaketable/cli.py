@@ -148,14 +148,19 @@ def _used_worker_processes() -> bool:
 
 
 def _stop_process_helpers() -> None:
-    """After a command that ran worker processes: run multiprocessing's own exit (its
-    semaphores released, its finished children reaped) and stop its resource-tracker
-    process and wait for it, so that no process of the command outlives it (Python's
-    exit leaves the tracker to end after the command, an orphan)."""
+    """After a command whose worker processes have all ended: run multiprocessing's own
+    exit (its semaphores released) and stop its resource-tracker process and wait for it,
+    so that no process of the command outlives it (Python's exit leaves the tracker to end
+    after the command, an orphan). With a worker still alive nothing is done here."""
     if "multiprocessing.resource_tracker" not in sys.modules:
         return
     try:
         import multiprocessing.util
+
+        if multiprocessing.active_children():
+            # a process still running holds the tracker's pipe (the tracker would not end)
+            # and would be waited for: both left to Python's own exit
+            return
 
         multiprocessing.util._exit_function()  # type: ignore[attr-defined]  # as at exit
         tracker = sys.modules["multiprocessing.resource_tracker"]._resource_tracker
