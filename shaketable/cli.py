@@ -142,9 +142,15 @@ def _compiled_run_still_going() -> bool:
 
 
 def _used_worker_processes() -> bool:
-    """Whether the command ran worker processes (a sweep's ``--workers N``; they are
-    ended by then, ``sweeps.execute._end_workers``)."""
-    return "concurrent.futures.process" in sys.modules
+    """Whether the command ran worker processes and every one of them has ended (a
+    sweep's ``--workers N`` and ``reproduce`` end theirs on Ctrl-C,
+    ``core.workers.end_workers``); a worker still running is left to Python's exit,
+    which waits for it."""
+    if "concurrent.futures.process" not in sys.modules:
+        return False
+    import multiprocessing
+
+    return not multiprocessing.active_children()
 
 
 def _stop_process_helpers() -> None:

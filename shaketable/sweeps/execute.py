@@ -10,7 +10,6 @@ import os
 import time
 import warnings
 from collections.abc import Callable
-from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -650,24 +649,27 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
     Each process runs :func:`compute_chunk` as a Dask task does (a chunk's rows do not
     depend on where or in which order it is computed), its batches on one thread.
     The processes ignore Ctrl-C: it stops this process, which then ends them at once
-    (:func:`_end_workers`) and writes the chunks that had already come back; a chunk's
-    error does the same. The chunks finished are on disk, the others run on resume.
+    (:func:`shaketable.core.workers.end_workers`) and writes the chunks that had already
+    come back; a chunk's error does the same. The chunks finished are on disk, the others
+    run on resume.
     """
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
+    from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored
+
     pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_ignore_interrupts)
+                               initializer=ignore_interrupts)
     futures: dict = {}
     written = set()
     try:
-        with _interrupts_ignored():   # the processes start (at submit) ignoring Ctrl-C
+        with interrupts_ignored():   # the processes start (at submit) ignoring Ctrl-C
             futures = {pool.submit(compute_chunk, spec, chunk, 1): chunk for chunk in chunks}
         for future in as_completed(futures):
             finished(futures[future], future.result())
             written.add(future)
     except BaseException:
-        _end_workers(pool)
+        end_workers(pool)
         # the chunks computed but not yet written are kept (an atomic write each); a write
         # that fails stops this, the error that stopped the sweep is the one raised
         try:
@@ -679,55 +681,6 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
             pass
         raise
     pool.shutdown(wait=True)
-
-
-def _ignore_interrupts() -> None:
-    """In a sweep's worker process: ignore Ctrl-C (the parent process ends the workers)."""
-    import signal
-
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-@contextmanager
-def _interrupts_ignored():
-    """Ignore Ctrl-C while worker processes start, so that they start ignoring it (an
-    ignored signal stays ignored in a new program, and Python keeps it so); a Ctrl-C in
-    these few milliseconds is lost. Outside the main thread (where signals cannot be
-    set) nothing changes and the workers ignore Ctrl-C from their initializer on."""
-    import signal
-    import threading
-
-    previous = signal.getsignal(signal.SIGINT)
-    # a handler set outside Python (None) could not be put back: left as it is
-    if threading.current_thread() is not threading.main_thread() or previous is None:
-        yield
-        return
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-
-
-#: Seconds a worker process is given to end after SIGTERM before it is killed.
-WORKER_GRACE = 2.0
-
-
-def _end_workers(pool) -> None:
-    """End a process pool's workers now (SIGTERM, then SIGKILL after
-    :data:`WORKER_GRACE` s) and wait for them: a chunk in progress is abandoned (its
-    runs are computed again on resume), no worker outlives the sweep."""
-    processes = list((getattr(pool, "_processes", None) or {}).values())
-    for process in processes:
-        if process.is_alive():
-            process.terminate()
-    pool.shutdown(wait=False, cancel_futures=True)
-    deadline = time.monotonic() + WORKER_GRACE
-    for process in processes:
-        process.join(max(0.0, deadline - time.monotonic()))
-        if process.is_alive():
-            process.kill()
-            process.join()
 
 
 def _run_on_dask(spec, chunks, client, threads, finished) -> None:
