@@ -74,12 +74,14 @@ def main(argv=None) -> int:
     try:
         with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
             status = int(args.handler(args) or 0)
+        if argv is None and _used_worker_processes():
+            _stop_process_helpers()
         sys.stdout.flush()   # a closed pipe shows here, not in Python's flush at exit
         return status
     except KeyboardInterrupt:
         print(f"shaketable {args.command}: interrupted; files already written are complete",
               file=sys.stderr)
-        if argv is None and _compiled_run_still_going():
+        if argv is None and (_compiled_run_still_going() or _used_worker_processes()):
             _end_now(EXIT_INTERRUPTED)
         return EXIT_INTERRUPTED
     except BrokenPipeError:  # `shaketable ... | head -1`: the reader left; end quietly
@@ -139,11 +141,51 @@ def _compiled_run_still_going() -> bool:
     return any(thread.name == "shaketable-engine" for thread in threading.enumerate())
 
 
+def _used_worker_processes() -> bool:
+    """Whether the command ran worker processes and every one of them has ended (a
+    sweep's ``--workers N`` and ``reproduce`` end theirs on Ctrl-C,
+    ``core.workers.end_workers``); a worker still running is left to Python's exit,
+    which waits for it."""
+    if "concurrent.futures.process" not in sys.modules:
+        return False
+    import multiprocessing
+
+    return not multiprocessing.active_children()
+
+
+def _stop_process_helpers() -> None:
+    """After a command whose worker processes have all ended: run multiprocessing's own
+    exit (its semaphores released) and stop its resource-tracker process and wait for it,
+    so that no process of the command outlives it (Python's exit leaves the tracker to end
+    after the command, an orphan). With a worker still alive nothing is done here."""
+    if "multiprocessing.resource_tracker" not in sys.modules:
+        return
+    try:
+        import multiprocessing.util
+
+        if multiprocessing.active_children():
+            # a process still running holds the tracker's pipe (the tracker would not end)
+            # and would be waited for: both left to Python's own exit
+            return
+
+        multiprocessing.util._exit_function()  # type: ignore[attr-defined]  # as at exit
+        tracker = sys.modules["multiprocessing.resource_tracker"]._resource_tracker
+        stop = getattr(tracker, "_stop", None)   # Python >= 3.11; older: it ends on its own
+        if stop is not None:
+            stop()
+    except Exception:   # ending anyway; the tracker then ends on its own
+        pass
+
+
 def _end_now(status: int) -> None:
     """End the program at once with ``status``, its output flushed. After Ctrl-C with a
     compiled run still going, Python's own exit (tearing down every module, about 0.35 s
     of CPU) would run beside the abandoned run, which goes on using a core until the
-    process ends; every file written is already complete (atomic writes)."""
+    process ends; every file written is already complete (atomic writes). A sweep's
+    worker processes are ended by then; multiprocessing's own exit (its semaphores
+    released) and its resource-tracker process (stopped and waited for, so that it does
+    not outlive the command) are run here, as Python's exit would."""
+    _stop_process_helpers()
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from shaketable.core.files import subfolder, write_csv, write_gallery
+from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored
 from shaketable.scenes.catalog import expected_cost, resolve_scene_path, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
@@ -162,28 +163,26 @@ def _pooled(names: list, out: Path, workers: int, compile_planar_first: bool, re
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
-                             initializer=_one_thread_each) as pool:
-        # the longest expected first (the report-table studies and their ensembles: half
-        # of the work), so that the processes end together; each result carries its
-        # worker's CPU so far (the load balance)
+    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
+                               initializer=_one_thread_each)
+    try:
+        # the longest expected first (the report-table studies and their ensembles: half of
+        # the work), so that the processes end together; each result carries its worker's CPU
         order = sorted(names, key=expected_cost, reverse=True)
-        if compile_planar_first and not uses_planar(order[0]) and any(map(uses_planar, order)):
-            # one worker compiles the planar engine while the other starts the longest
-            # scene; the planar scenes come after the report tables (an error here is
-            # the planar scene's own to report)
-            pool.submit(_load_the_planar_engine)
-        futures = {pool.submit(_pooled_outcome, name, out): name for name in order}
+        with interrupts_ignored():   # the workers start (at submit) ignoring Ctrl-C
+            if compile_planar_first and not uses_planar(order[0]) and any(map(uses_planar, order)):
+                # one worker compiles the planar engine while another starts the longest
+                pool.submit(_load_the_planar_engine)
+            futures = {pool.submit(_pooled_outcome, name, out): name for name in order}
         WORKER_CPU.clear()
-        try:
-            for future in as_completed(futures):
-                name = futures[future]
-                outcome, worker, cpu = future.result()
-                WORKER_CPU[worker] = max(cpu, WORKER_CPU.get(worker, 0.0))
-                record(name, *outcome)
-        except BaseException:  # Ctrl-C or a scene's crash: start no further scene
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
+        for future in as_completed(futures):
+            outcome, worker, cpu = future.result()
+            WORKER_CPU[worker] = max(cpu, WORKER_CPU.get(worker, 0.0))
+            record(futures[future], *outcome)
+    except BaseException:  # Ctrl-C or a scene's crash: the workers end now, mid-scene
+        end_workers(pool)
+        raise
+    pool.shutdown(wait=True)
 
 
 def _extra_sections(out: Path, extra: dict, failures: list | None,
@@ -274,9 +273,10 @@ WORKER_CPU: dict[int, float] = {}
 
 
 def _one_thread_each() -> None:
-    """A worker's batches on one thread: the workers share the cores already."""
+    """A worker: batches on one thread (the cores are shared), Ctrl-C ignored (end_workers)."""
     from shaketable.models.rocking.batch import set_default_threads
 
+    ignore_interrupts()
     set_default_threads(1)
 
 

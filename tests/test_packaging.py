@@ -128,3 +128,52 @@ def test_the_first_versions_module_path_shaketable_simulate_still_imports(tmp_pa
                             cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert result.stdout.split() == ["True"] * 5
+
+
+def test_a_build_from_a_checkout_writes_nothing_into_it(tmp_path):
+    """The build backend (``buildtools/shaketable_build.py``, pyproject's ``build-backend``)
+    runs setuptools with its scratch folders outside the source folder: a tiny project's
+    sdist built with it leaves the project file for file as it was, and its wheel's build
+    folder (``build/lib``, where ``build_py`` copies the modules) is outside it; setuptools'
+    own backend, run the same way, writes an egg-info there and builds in ``build/``
+    (what ``pip install /path/to/checkout`` did to the checkout)."""
+    import tarfile
+
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert 'build-backend = "shaketable_build"' in pyproject
+    assert 'backend-path = ["buildtools"]' in pyproject
+    assert "include buildtools/shaketable_build.py" in (ROOT / "MANIFEST.in").read_text()
+    found = {}
+    for backend in ("shaketable_build", "setuptools.build_meta"):
+        project = tmp_path / backend / "project"
+        (project / "tiny").mkdir(parents=True)
+        (project / "tiny" / "__init__.py").write_text("VALUE = 1\n")
+        (project / "setup.cfg").write_text("[metadata]\nname = tiny\nversion = 1.0\n"
+                                           "[options]\npackages = tiny\n")
+        before = sorted(path.relative_to(project) for path in project.rglob("*"))
+        dist = tmp_path / backend / "dist"
+        dist.mkdir()
+        code = (f"import contextlib, importlib, os, sys\n"
+                f"sys.path.insert(0, {str(ROOT / 'buildtools')!r})\n"
+                f"backend = importlib.import_module({backend!r})\n"
+                f"print(backend.build_sdist({str(dist)!r}))\n"
+                "from setuptools.dist import Distribution\n"
+                "with getattr(backend, 'outside_the_checkout', contextlib.nullcontext)():\n"
+                "    distribution = Distribution()\n"
+                "    distribution.parse_config_files()\n"
+                "    build = distribution.get_command_obj('build')\n"
+                "    build.ensure_finalized()\n"
+                "    print(os.path.abspath(build.build_lib))\n")
+        result = subprocess.run([sys.executable, "-c", code], cwd=project, capture_output=True,
+                                text=True)
+        assert result.returncode == 0, result.stderr
+        sdist, build_lib = result.stdout.split()[-2:]
+        assert "tiny-1.0/tiny/__init__.py" in tarfile.open(dist / sdist).getnames()
+        after = sorted(path.relative_to(project) for path in project.rglob("*"))
+        found[backend] = (before, after, Path(build_lib))
+    before, after, build_lib = found["shaketable_build"]
+    assert after == before
+    assert not build_lib.is_relative_to(tmp_path / "shaketable_build"), build_lib
+    before, after, build_lib = found["setuptools.build_meta"]   # the same checks can fail
+    assert Path("tiny.egg-info") in after
+    assert build_lib == tmp_path / "setuptools.build_meta" / "project" / "build" / "lib"

@@ -145,7 +145,7 @@ def _risk(args: argparse.Namespace) -> int:
         from shaketable.plots.sweeps import risk_curves
 
         plt = pyplot()
-        figure, axes = plt.subplots(len(results), 1, figsize=(7.5, 3.6 * len(results)),
+        figure, axes = plt.subplots(len(results), 1, figsize=(7.5, 4.4 * len(results)),
                                     squeeze=False)
         for axis, (block, label, fit, result) in zip(axes[:, 0], results):
             risk_curves(fit, hazard, result, ax=axis)

@@ -122,7 +122,8 @@ def _demands(result, fig):
         axis.set_yscale("symlog", linthresh=1.0)
         axis.set_ylim(bottom=0.0)
     axes[1].legend(fontsize=7)
-    fig.suptitle(f"{spec.name} {spec.where}: free-standing demands "
+    # two lines: on one the title ran from edge to edge of the figure
+    fig.suptitle(f"{spec.name} {spec.where}:\nfree-standing demands "
                  f"({len(result.runs['record'].unique())} records; excursion and slip of "
                  f"the records it survives)", fontsize=9)
 

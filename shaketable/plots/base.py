@@ -128,20 +128,24 @@ def plotted_points(axis, spacing: float = 0.004):
     return np.concatenate(pieces) if pieces else np.empty((0, 2))
 
 
-def place_legend(axis, corners=LEGEND_CORNERS, **options):
+def place_legend(axis, corners=LEGEND_CORNERS, outside: str = "right", **options):
     """A legend in the first corner of ``axis`` where it covers no plotted point, else outside.
 
     Each corner of ``corners`` is tried in turn; the legend stays in the first
     one whose box (with a small margin) holds none of :func:`plotted_points`
     (measured on the laid-out axes when the figure has a layout engine; call it
     after ``tight_layout`` otherwise).
-    When every corner covers data the legend goes outside, to the right of the
-    axes. ``options`` go to :meth:`matplotlib.axes.Axes.legend`.
+    When every corner covers data the legend goes outside: to the right of the
+    axes (``outside="right"``), or centred below the x label (``"below"``: for a
+    panel beside another, whose width a legend at its right would take).
+    ``options`` go to :meth:`matplotlib.axes.Axes.legend`.
 
     Returns
     -------
     matplotlib.legend.Legend
     """
+    if outside not in ("right", "below"):
+        raise ValueError(f"outside must be 'right' or 'below', got {outside!r}")
     figure = axis.figure
     engine = figure.get_layout_engine()
     if engine is not None and figure.axes:
@@ -158,6 +162,15 @@ def place_legend(axis, corners=LEGEND_CORNERS, **options):
         if not inside.any():
             return legend
     options.setdefault("frameon", True)
+    if outside == "below":
+        legend = axis.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0), **options)
+        # the gap under the axes in the legend's font sizes (points: it keeps when the
+        # layout resizes the axes): the tick labels and the x label, and half a line more
+        axis.get_legend().remove()
+        below = axis.bbox.y0 - axis.get_tightbbox(renderer).y0
+        size = legend.prop.get_size_in_points()
+        return axis.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                           borderaxespad=below * 72.0 / figure.dpi / size + 0.5, **options)
     return axis.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
                        **options)
 

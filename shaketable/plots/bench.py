@@ -116,6 +116,29 @@ def _annotate_ends(ax, ends):
                     xytext=(-3 if align == "right" else 3, lift), ha=align, fontsize=_FONT,
                     color=color)
 
+#: A max |theta| error below this for every method, the linear model included, means the
+#: case fixes the peak (a different model gets it too): it measures no method [-].
+FIXED_PEAK_ERROR = 1e-12
+
+
+def fixed_peak(rows) -> str | None:
+    """Why the max |theta| of a case's rows carries no information, or None when it does.
+
+    When every method, the linear (closed-form) model included, gets the truth's max
+    |theta| to :data:`FIXED_PEAK_ERROR`, the case fixes it: a block that overturns peaks
+    at alpha before instability (the peak the errors are measured on) whatever the
+    method, and a block released from rest in free rocking peaks at its release angle.
+    """
+    if "linear" not in set(rows["method"]):
+        return None
+    errors = rows["error max_theta [-]"].to_numpy(dtype=float)
+    if not (errors.size and np.all(np.isfinite(errors)) and np.all(errors <= FIXED_PEAK_ERROR)):
+        return None
+    overturns = "status truth" in rows and (rows["status truth"] == "overturned").all()
+    return ("max |θ| = α for every method\n(the block overturns): not drawn" if overturns
+            else "max |θ| = the release angle\nfor every method: not drawn")
+
+
 def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     """Draw one case of a :func:`shaketable.studies.work_precision.work_precision` frame.
 
@@ -138,6 +161,11 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     if ax is None:
         _, ax = plt.subplots(figsize=(5, 4))
     rows = frame[frame["case"] == case]
+    # a max |theta| every method gets exactly (the case fixes it) is not drawn: its line
+    # would sit at the floor and make the linear model look exact; the end labels then go
+    # on the event-time lines
+    fixed = fixed_peak(rows)
+    labelled = "error events [-]" if fixed else "error max_theta [-]"
     # room at both ends of the time axis for the labels written beside the end points
     ax.margins(x=0.12)
     ends = []  # (time, error, text, align, colour) of the labelled end points
@@ -147,7 +175,8 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
             continue
         time = group["time [s]"].to_numpy(dtype=float)
         order = np.argsort(time) if method != "linear" else np.arange(time.size)
-        lines = [("error max_theta [-]", "-", color), ("error events [-]", "--", "none")]
+        lines = [("error max_theta [-]", "-", color)] if not fixed else []
+        lines.append(("error events [-]", "--", "none"))
         if "error peak slip [-]" in group and group["error peak slip [-]"].notna().any():
             lines.append(("error peak slip [-]", "-.", "white"))
         for column, style, face in lines:
@@ -156,7 +185,7 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
             ax.loglog(time[order], error[order], style, color=color, marker=marker,
                       markerfacecolor=face, markersize=4, linewidth=1.2)
         if annotate and method != "linear" and len(group) > 1:
-            error = np.maximum(group["error max_theta [-]"].to_numpy(dtype=float), ERROR_FLOOR)
+            error = np.maximum(group[labelled].to_numpy(dtype=float), ERROR_FLOOR)
             labels = list(group["setting"])
             # the labels at the two ends of the line in time, written away from each other
             # (the first setting is not always the fastest: "1e-81e-12" ran together)
@@ -167,6 +196,9 @@ def work_precision_panel(frame, case: str, ax=None, annotate: bool = True):
     if ends:
         _annotate_ends(ax, ends)
     ax.axhline(1e-8, color="0.6", linewidth=0.8, linestyle=":")
+    if fixed:
+        ax.text(0.97, 0.96, fixed, transform=ax.transAxes, ha="right", va="top", fontsize=6.5,
+                color="0.25")
     coupled = "truth" in rows and (rows["truth"] == "planar-reference").any()
     stacked = "truth" in rows and (rows["truth"] == "stack-reference").any()
     limit = not coupled and rows["method"].isin(["planar", "planar-reference"]).any()
@@ -243,7 +275,8 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
         methods |= set(stack["method"])
     handles = [Line2D([], [], color=color, marker=marker, label=method)
                for method, (color, marker) in STYLE.items() if method in methods]
-    handles += [Line2D([], [], color="k", marker="o", label="max |θ| (solid)"),
+    handles += [Line2D([], [], color="k", marker="o",
+                       label="max |θ| (solid; not drawn where the case fixes it)"),
                 Line2D([], [], color="k", marker="o", markerfacecolor="none", linestyle="--",
                        label="event times (dashed)")]
     caption = ("Work-precision: error against the reference at rtol 2.5e-14 "

@@ -214,7 +214,10 @@ def plot_calibration(calibration: Calibration, fig: Figure | None = None,
         fig.supxlabel(text, fontsize=7.5, color="C3", x=0.01, ha="left")
     for axis in fig.axes:  # the corners again, on the laid-out grid of all four panels
         if axis.get_legend() is not None:
-            place_legend(axis, fontsize=8)
+            # the two lower panels side by side: a legend that cannot stay inside goes
+            # below its panel (at the right it would take half the panel's width)
+            place_legend(axis, fontsize=8, outside="right" if axis in (top, bottom)
+                         else "below")
     return fig
 
 

@@ -60,6 +60,9 @@ def stack_bands_figure(frame, curves: dict, title: str = ""):
     fig, axes = plt.subplots(1, len(columns), figsize=(4.8 * len(columns), 4.8), sharey=True,
                              squeeze=False)
     top = float(frame["to [g]"].max())
+    # headroom above the highest amplitude computed, so that its point is not cut by the
+    # frame; nothing is computed there (grey, as above each ratio's own ceiling)
+    axis_top = 1.06 * top
     ratios = np.array(sorted(set(frame["omega/p [-]"])))
     strips, span, discrete = _strips(ratios)
     for axis, column in zip(axes[0], columns):
@@ -68,9 +71,9 @@ def stack_bands_figure(frame, curves: dict, title: str = ""):
         for k, ratio in enumerate(ratios):
             strip = rows[np.isclose(rows["omega/p [-]"], ratio)]
             ceiling = float(strip["to [g]"].max())
-            if ceiling < top:   # above this ratio's ceiling nothing was computed
+            if ceiling < axis_top:   # above this ratio's ceiling nothing was computed
                 label = "above the scan's ceiling (not computed)"
-                axis.fill_between(strips[k], ceiling, top, color="0.85", hatch="//",
+                axis.fill_between(strips[k], ceiling, axis_top, color="0.85", hatch="//",
                                   edgecolor="0.6", lw=0, label=None if label in labelled
                                   else label)
                 labelled.add(label)
@@ -98,7 +101,7 @@ def stack_bands_figure(frame, curves: dict, title: str = ""):
         axis.set_xlim(*span)
         if discrete:
             axis.set_xticks(ratios)
-        axis.set_ylim(0.0, top)
+        axis.set_ylim(0.0, axis_top)
         axis.set_xlabel("ω / p of the bottom block [-]")
         axis.set_title(f"{column}\n(white: safe"
                        + (f"; computed at ω/p = {', '.join(f'{r:g}' for r in ratios)} only)"

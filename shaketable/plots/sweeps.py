@@ -645,7 +645,9 @@ def risk_curves(fragility, hazard, result=None, *, ax=None):
     other.set_ylabel("P(overturn) [-]")
     handles = ax.get_legend_handles_labels()
     more = other.get_legend_handles_labels()
-    ax.legend(handles[0] + more[0], handles[1] + more[1], fontsize=7, loc="lower left")
+    # below the axes: inside, any corner would cover the integrand or the fitted points
+    ax.legend(handles[0] + more[0], handles[1] + more[1], fontsize=7, ncol=2,
+              loc="upper center", bbox_to_anchor=(0.5, -0.2), frameon=False)
     if result is not None:   # the interval the fit's uncertainty gives, when it is known
         low, high = getattr(result, "rate_interval", (math.nan, math.nan))
         known = math.isfinite(low) and math.isfinite(high)

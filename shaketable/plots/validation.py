@@ -41,13 +41,19 @@ def reliability_figure(table, fig=None, title: str | None = None):
     ax.plot([0, 1], [0, 1], color="0.6", lw=0.8, ls="--", label="perfectly calibrated")
     ax.errorbar(table["predicted"], table["predicted"], yerr=2 * table["binomial_sd"],
                 fmt="none", ecolor="0.5", capsize=3, lw=0.8, label="binomial spread (2 sd)")
-    ax.scatter(table["predicted"], table["measured"], s=12 + 2 * table["n"], color="C0",
+    sizes = 12 + 2 * table["n"]
+    ax.scatter(table["predicted"], table["measured"], s=sizes, color="C0",
                zorder=3, label="measured (area ~ tests)")
-    for _, row in table.iterrows():
+    for size, (_, row) in zip(sizes, table.iterrows()):
+        # beside the marker (its radius in points), towards the middle: never on the frame
+        radius = 0.5 * np.sqrt(size)
         ax.annotate(f"{int(row['n'])}", (row["predicted"], row["measured"]),
-                    textcoords="offset points", xytext=(6, -10), fontsize=8)
-    ax.set_xlim(-0.02, 1.02)
-    ax.set_ylim(-0.02, 1.02)
+                    textcoords="offset points", xytext=(radius + 2, -4 if row["measured"] > 0.5
+                                                        else 4),
+                    va="top" if row["measured"] > 0.5 else "bottom", fontsize=8)
+    # room for the largest marker at 0 or 1 (a full circle, not one cut by the frame)
+    ax.set_xlim(-0.06, 1.06)
+    ax.set_ylim(-0.06, 1.06)
     ax.set_xlabel("predicted P(overturn) [-] (mean in the bin)")
     ax.set_ylabel("measured fraction overturned [-]")
     ax.set_title(title or "reliability")
@@ -69,8 +75,10 @@ def fragility_figure(table, measure: str, log: bool = True, fig=None, title: str
     ax.plot(centre, table["predicted"], "s-", color="C3", ms=4, lw=1.0,
             label="predicted (mean P in the bin)")
     for x, y, n in zip(centre, table["measured"], table["n"]):
-        ax.annotate(f"{int(n)}", (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7,
-                    color="0.4")
+        # above the point, or below it near the top (a count above 1 would touch the frame)
+        ax.annotate(f"{int(n)}", (x, y), textcoords="offset points",
+                    xytext=(4, -4 if y > 0.9 else 4), va="top" if y > 0.9 else "baseline",
+                    fontsize=7, color="0.4")
     if log:
         ax.set_xscale("log")
     ax.set_ylim(-0.03, 1.03)

@@ -65,9 +65,15 @@ def plot_test_vs_theory(result, fig=None, title: str | None = None):
     if falls:
         axis.set_xlim(t[0], min(t[-1], max(falls) + max(0.5, 0.25 * max(falls))))
     metrics = result.metrics()
+    # the RMS difference is taken before either run first exceeds alpha; a run that never
+    # does (free rocking) compares the whole record
+    unstable = [value for value in (metrics["t unstable test [s]"],
+                                    metrics["t unstable theory [s]"]) if value is not None]
+    window = (f"up to {min(unstable):.2f} s, where the first run exceeds α" if unstable
+              else "over the whole record")
     axis.set_title(f"peak ratio virtual test/theory {metrics['peak ratio test/theory']}, RMS "
-                   f"difference {metrics['RMS difference theta/alpha']} α (before "
-                   "instability)", fontsize=8)
+                   f"difference {metrics['RMS difference theta/alpha']} α ({window})",
+                   fontsize=8)
     for panel in axes:
         panel.grid(True, lw=0.3, alpha=0.5)
     fig.align_ylabels(axes)

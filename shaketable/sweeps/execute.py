@@ -648,19 +648,39 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
 
     Each process runs :func:`compute_chunk` as a Dask task does (a chunk's rows do not
     depend on where or in which order it is computed), its batches on one thread.
-    Ctrl-C or a chunk's error starts no further chunk; the finished ones are on disk.
+    The processes ignore Ctrl-C: it stops this process, which then ends them at once
+    (:func:`shaketable.core.workers.end_workers`) and writes the chunks that had already
+    come back; a chunk's error does the same. The chunks finished are on disk, the others
+    run on resume.
     """
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
-    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-        futures = {pool.submit(compute_chunk, spec, chunk, 1): chunk for chunk in chunks}
+    from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored
+
+    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
+                               initializer=ignore_interrupts)
+    futures: dict = {}
+    written = set()
+    try:
+        with interrupts_ignored():   # the processes start (at submit) ignoring Ctrl-C
+            futures = {pool.submit(compute_chunk, spec, chunk, 1): chunk for chunk in chunks}
+        for future in as_completed(futures):
+            finished(futures[future], future.result())
+            written.add(future)
+    except BaseException:
+        end_workers(pool)
+        # the chunks computed but not yet written are kept (an atomic write each); a write
+        # that fails stops this, the error that stopped the sweep is the one raised
         try:
-            for future in as_completed(futures):
-                finished(futures[future], future.result())
-        except BaseException:
-            pool.shutdown(wait=False, cancel_futures=True)
-            raise
+            for future, chunk in futures.items():
+                if future not in written and future.done() and not future.cancelled() \
+                        and future.exception() is None:
+                    finished(chunk, future.result())
+        except Exception:
+            pass
+        raise
+    pool.shutdown(wait=True)
 
 
 def _run_on_dask(spec, chunks, client, threads, finished) -> None:
