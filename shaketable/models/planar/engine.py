@@ -235,7 +235,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     mode, side = start(t, theta0, omega0, q, z, info, parameters)
     status = STATUS_COMPLETED
     sigma = 0.0
-    entered = True
+    entered = np.bool_(True)   # not the literal True: flight_mode compiled once
     visited = 1 << mode
     rest_until = t
     step_size = 0.1 / p

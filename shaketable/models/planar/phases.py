@@ -115,6 +115,9 @@ from shaketable.models.sliding.engine import first_up_crossing, first_velocity_z
 #: typed (as :func:`~shaketable.models.planar.track.record`). numba inlines a call of at
 #: most 30 arguments: Python passes more as a tuple, which its inliner refuses.
 INLINED: Any = {"cache": True, "inline": "always", "error_model": ERROR_MODEL}
+#: numba options of the rare phases (a flight, an impact): compiled apart and called,
+#: without reference counting (they allocate nothing, as the driver).
+APART: Any = {**HELPER, "_nrt": False}
 
 
 @njit(**HELPER)
@@ -294,7 +297,7 @@ def flight_end(length, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, param
     return landing, overturn
 
 
-@njit(**INLINED)
+@njit(**APART)
 def flight_mode(t, t_end, side, sigma, entered, rho, mu_s, mu_d, segment, q, z, ev, info,
                 parameters):
     """FLIGHT: the exact ballistic path to the interval's end, a landing (struck:
@@ -586,7 +589,7 @@ def cascade_end(t, mode, side, sigma, rest_until, sticking, omega, omega_before,
     return True, mode, sigma, rest_until
 
 
-@njit(**INLINED)
+@njit(**APART)
 def corner_impact(t, mode, side, sigma, rest_until, visited, rho, cor_cascade, mu_s, mu_d,
                   rest_tolerance, velocity_floor, segment, q, ev, info, parameters):
     """The other corner strikes at theta = 0: the impact
