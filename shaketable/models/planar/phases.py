@@ -7,7 +7,11 @@ Each takes the engine's state (the time, the mode, its pivot ``side`` and slip d
 table and of friction and the impact losses are accumulated in the info array
 (:mod:`shaketable.models.planar.layout`). They are inlined into the driver by numba
 (``inline="always"``): the driver, compiled without reference counting, runs the same
-arithmetic as one function would, and hands them its arrays at no cost.
+arithmetic as one function would, and hands them its arrays at no cost. The two rare
+phases with the longest code, a flight (:func:`flight_mode`) and an impact
+(:func:`corner_impact`), are compiled apart and called (:data:`APART`): numba copies the
+code of a function each time it inlines it, at a cost in first-compile time that grows
+with the function's size, and these two run once per flight or impact.
 """
 
 from __future__ import annotations
@@ -116,7 +120,8 @@ from shaketable.models.sliding.engine import first_up_crossing, first_velocity_z
 #: most 30 arguments: Python passes more as a tuple, which its inliner refuses.
 INLINED: Any = {"cache": True, "inline": "always", "error_model": ERROR_MODEL}
 #: numba options of the rare phases (a flight, an impact): compiled apart and called,
-#: without reference counting (they allocate nothing, as the driver).
+#: without reference counting (they allocate nothing, as the driver; a call hands them
+#: the driver's arrays at no cost).
 APART: Any = {**HELPER, "_nrt": False}
 
 
