@@ -38,7 +38,10 @@ modes), so that E_end - E_0 = W_table + W_friction - losses.
 One compiled driver (as the rocking engine) that walks the samples and hands each mode to
 its own function (:mod:`~shaketable.models.planar.phases`: ``rest_mode``, ``slide_mode``,
 ``flight_mode``, and for the contact modes ``contact_entry``, ``contact_steps``,
-``contact_event``, ``corner_impact``), inlined into it by numba; the driver allocates
+``contact_event``, ``corner_impact``), inlined into it by numba, except the two rare
+ones with the longest code (``flight_mode``, ``corner_impact``: a flight, an impact),
+which are called (numba copies the code of each function it inlines, and copying those two
+cost more first-compile time than their calls cost at run time); the driver allocates
 nothing (its caller passes the work arrays of :func:`work_arrays`), so that it is compiled
 without reference counting. Its steppers and event location are in
 :mod:`~shaketable.models.planar.steps` (on :mod:`shaketable.numerics.dop853`), its helpers in
@@ -182,8 +185,8 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     """Integrate one run of the planar block; fill ``out``, ``ev``, ``final`` and ``info``.
 
     Compiled without numba's reference counting: it allocates nothing (the work arrays
-    are the caller's, :func:`work_arrays`), and the mode functions inlined into it hand
-    their arrays over at no cost.
+    are the caller's, :func:`work_arrays`), and the mode functions, inlined into it or
+    called (compiled without reference counting too), take its arrays at no cost.
 
     Parameters
     ----------
@@ -235,7 +238,7 @@ def integrate(t_grid, ug, vg, parameters, rho, cor_cascade, mu_s, mu_d, rtol, re
     mode, side = start(t, theta0, omega0, q, z, info, parameters)
     status = STATUS_COMPLETED
     sigma = 0.0
-    entered = True
+    entered = np.bool_(True)   # not the literal True: flight_mode compiled once
     visited = 1 << mode
     rest_until = t
     step_size = 0.1 / p

@@ -7,7 +7,11 @@ Each takes the engine's state (the time, the mode, its pivot ``side`` and slip d
 table and of friction and the impact losses are accumulated in the info array
 (:mod:`shaketable.models.planar.layout`). They are inlined into the driver by numba
 (``inline="always"``): the driver, compiled without reference counting, runs the same
-arithmetic as one function would, and hands them its arrays at no cost.
+arithmetic as one function would, and hands them its arrays at no cost. The two rare
+phases with the longest code, a flight (:func:`flight_mode`) and an impact
+(:func:`corner_impact`), are compiled apart and called (:data:`APART`): numba copies the
+code of a function each time it inlines it, at a cost in first-compile time that grows
+with the function's size, and these two run once per flight or impact.
 """
 
 from __future__ import annotations
@@ -115,6 +119,10 @@ from shaketable.models.sliding.engine import first_up_crossing, first_velocity_z
 #: typed (as :func:`~shaketable.models.planar.track.record`). numba inlines a call of at
 #: most 30 arguments: Python passes more as a tuple, which its inliner refuses.
 INLINED: Any = {"cache": True, "inline": "always", "error_model": ERROR_MODEL}
+#: numba options of the rare phases (a flight, an impact): compiled apart and called,
+#: without reference counting (they allocate nothing, as the driver; a call hands them
+#: the driver's arrays at no cost).
+APART: Any = {**HELPER, "_nrt": False}
 
 
 @njit(**HELPER)
@@ -294,7 +302,7 @@ def flight_end(length, pieces, x0, y0, th0, xd0, yd0, om0, ua, ka, va, kv, param
     return landing, overturn
 
 
-@njit(**INLINED)
+@njit(**APART)
 def flight_mode(t, t_end, side, sigma, entered, rho, mu_s, mu_d, segment, q, z, ev, info,
                 parameters):
     """FLIGHT: the exact ballistic path to the interval's end, a landing (struck:
@@ -586,7 +594,7 @@ def cascade_end(t, mode, side, sigma, rest_until, sticking, omega, omega_before,
     return True, mode, sigma, rest_until
 
 
-@njit(**INLINED)
+@njit(**APART)
 def corner_impact(t, mode, side, sigma, rest_until, visited, rho, cor_cascade, mu_s, mu_d,
                   rest_tolerance, velocity_floor, segment, q, ev, info, parameters):
     """The other corner strikes at theta = 0: the impact

@@ -465,7 +465,7 @@ def two_corner_impact(x_dot, y_dot, omega, mu_s, mu_d, parameters):
     return x_new, 0.0, 0.0, SLIDE if slipped else REST, 0.0, direction if slipped else 0.0
 
 
-@njit(**HELPER)
+@njit(inline="always", error_model=ERROR_MODEL)   # one caller: inlined there
 def corner_height(y, theta, side, parameters):
     """Height Y_s of the bottom corner of ``side`` above the table [m]."""
     return (y - side * half_width(side, parameters) * math.sin(theta)

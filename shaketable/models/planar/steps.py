@@ -22,6 +22,7 @@ the error model :data:`~shaketable.models.rocking.physics.ERROR_MODEL` included.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from numba import njit
 
@@ -52,6 +53,10 @@ STAGE_ROWS = 19
 KIND_TERMINAL, KIND_PEAK, KIND_ALPHA, KIND_RATE = 0.0, 1.0, 2.0, 3.0
 N_RATES = 5
 
+#: numba options of the helpers called from one place only: inlined there by numba (a
+#: function compiled apart costs a first compile of its own).
+ONE_CALLER: Any = {"inline": "always", "error_model": HELPER["error_model"]}
+
 #: Terminal events of the contact modes (indices of :func:`events`).
 E_IMPACT, E_NORMAL, E_FRICTION, E_OVERTURN, E_MASS = 0, 1, 2, 3, 4
 N_EVENTS = 5
@@ -67,7 +72,7 @@ def ground(segment, time):
     return segment[2] + segment[3] * fraction, segment[4] + segment[5] * fraction
 
 
-@njit(**HELPER)
+@njit(**ONE_CALLER)
 def slopes_ground(segment, time):
     """:func:`ground` from the slopes ``segment[6:8]`` [m/s^3] (no division: the
     right-hand side's; the rest and start rules keep :func:`ground`, the rocking engine's)."""
@@ -190,7 +195,7 @@ def dense_output(mode, side, sigma, mu_d, t, z, z_end, h, segment, parameters, s
     return 4
 
 
-@njit(**HELPER)
+@njit(**ONE_CALLER)
 def dense_state(dense, z, fraction, out):
     """The state at ``fraction`` (0..1) of the step from z on the continuous extension."""
     dop853.dense_state(dense, z, fraction, out)
