@@ -17,10 +17,11 @@ NONE, ZERO = np.int64(-1), np.int64(0)
 # slots of the run's float state ``fs``: the table's work [J], rest until [s], overturn and
 # airborne times [s], the time of an error [s], the one-DOF stepper's step size [s], its
 # controller's memory (the last accepted error) [-], the time of the last impact [s] and the
-# step size of DOP853 (multi-DOF patterns) carried from one segment to the next [s]
+# step size of DOP853 (multi-DOF patterns) carried from one segment to the next [s], the
+# energy of the stack at rest [J] (NaN until needed)
 F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME, F_STEP, F_PREVIOUS_ERROR, \
-    F_LAST_IMPACT, F_DOP_STEP = range(9)
-N_FLOATS = 9
+    F_LAST_IMPACT, F_DOP_STEP, F_REST_ENERGY = range(10)
+N_FLOATS = 10
 # slots of the int state ``ist``: events counted and recorded, events in a row without
 # progress, status, the overturned block, steps, evaluations, the error, the pattern whose
 # closed forms are current (interface, side)
