@@ -66,6 +66,7 @@ from shaketable.models.stack.layout import (
     F_PREVIOUS_ERROR,
     F_REST_ENERGY,
     F_REST_UNTIL,
+    F_SAMPLE_ACCELERATION,
     F_STEP,
     F_T_AIRBORNE,
     F_T_OVERTURN,
@@ -76,6 +77,7 @@ from shaketable.models.stack.layout import (
     I_OVERTURNED,
     I_RECORDED,
     I_RIGID_J,
+    I_SAMPLED,
     I_STALLED,
     I_STATUS,
     I_STEPS,
@@ -201,6 +203,10 @@ def choose(chain, ws, scratch, run, time, seg, reason, interface, end):
                     if consistent == 1:
                         best[:] = candidate
             going = next_combination(chosen, count, n_free)
+        if consistent and count == 0:
+            # the first candidate is the pattern itself: consistent, it is kept (the other
+            # candidates would only be counted)
+            return time
         if consistent and n > FULL_ENUMERATION:
             break   # the fewest open interfaces: the levels above are not searched
     if consistent == 0:
@@ -435,6 +441,13 @@ def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, force
         j, _, _, _, a = one_dof_state(chain, run, rigid, ug, vg, forces[k])
         for i in range(n):
             phi_ddot[i] = a if i == j else 0.0
+        if j >= 0:
+            # the state the next interval's one-DOF segment starts from (the same u'', v'')
+            run[4][I_SAMPLED] = 1
+            run[3][F_SAMPLE_ACCELERATION] = a
+            for i in range(n):
+                for c in range(4):
+                    rigid[2][i, c] = forces[k, i, c]
     else:
         state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces[k], ws)
     a, b, c = 0.0, 0.0, 0.0
@@ -520,6 +533,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
         coefficients, tol = rigid[0], par[P_TOL_FORCE]
         phi, pattern = run[0], run[2]
         for k in range(count - 1):
+            fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
+            ist[I_SAMPLED] = 0
             if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
                                vg[k + 1], forces[k + 1]):
                 # at rest: theta, theta', theta'' and the pattern are zeros
@@ -532,10 +547,13 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
             code = ONE_DOF if open_count(pattern) == 1 and \
                 fs[F_REST_UNTIL] == -math.inf and G + vg[k] > 0.0 and G + vg[k + 1] > 0.0 \
                 else DONE
+            fresh = fresh and code == ONE_DOF
             while True:
                 if code == ONE_DOF:
                     # a one-DOF pattern: its segment here, the general path for its event
-                    t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid)
+                    t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid,
+                                                     fresh)
+                    fresh = False
                     if ist[I_ERROR] or not progress(run, start, t_new):
                         code = STOPS
                         break

@@ -45,6 +45,7 @@ from shaketable.models.stack.layout import (
     ENDS_OVERTURN,
     F_LAST_IMPACT,
     F_PREVIOUS_ERROR,
+    F_SAMPLE_ACCELERATION,
     F_STEP,
     F_WORK,
     I_ERROR,
@@ -199,10 +200,11 @@ def one_dof_state(chain, run, rigid, ug, vg, forces):
 
 
 @inlined
-def one_dof_segment(chain, run, t, t_end, seg, rigid):
+def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
     """Integrate a one-DOF pattern from ``t`` to its first event or ``t_end`` with the single
     block's stepper (as :func:`shaketable.models.stack.compiled.segment` with DOP853):
-    returns (time, what, interface), ``what`` one of ENDS_*."""
+    returns (time, what, interface), ``what`` one of ENDS_*. ``fresh``: the state at ``t``
+    is the last sample's (its phi'' and forces kept, ``I_SAMPLED``), not evaluated again."""
     phi, phi_dot, pattern, fs, ist, par, atol = run[0], run[1], run[2], run[3], run[4], \
         run[5], run[6]
     n = pattern.size
@@ -210,8 +212,12 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid):
     if pattern[j] * phi[j] < 0.0 or (phi[j] == 0.0 and pattern[j] * phi_dot[j] < 0.0):
         phi[j] = 0.0   # on the wrong side of its pivot, or leaving it the wrong way
         return t, ENDS_IMPACT, j
-    ug, vg = ground(seg, t)
-    j, s, theta, omega, acceleration = one_dof_state(chain, run, rigid, ug, vg, rigid[2])
+    if fresh:
+        s = pattern[j]
+        theta, omega, acceleration = phi[j], phi_dot[j], fs[F_SAMPLE_ACCELERATION]
+    else:
+        ug, vg = ground(seg, t)
+        j, s, theta, omega, acceleration = one_dof_state(chain, run, rigid, ug, vg, rigid[2])
     side = float(s)
     params = body_parameters(rigid[1])
     seg8 = table_segment(seg)
