@@ -43,6 +43,10 @@ from shaketable.models.stack.layout import (
     ENDS_LIFT,
     ENDS_NONE,
     ENDS_OVERTURN,
+    F_ENERGY,
+    F_ENERGY_OMEGA,
+    F_ENERGY_SIDE,
+    F_ENERGY_THETA,
     F_LAST_IMPACT,
     F_PREVIOUS_ERROR,
     F_SAMPLE_ACCELERATION,
@@ -224,7 +228,12 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
     tol = par[P_TOL_FORCE]
     g_old, g_new = rigid[3], rigid[4]
     seated_margin(rigid[2], pattern, tol, g_old)
-    energy_start, work_start = rigid_energy(rigid[1], theta, omega), fs[F_WORK]
+    work_start = fs[F_WORK]
+    if fs[F_ENERGY_THETA] == theta and fs[F_ENERGY_OMEGA] == omega and \
+            fs[F_ENERGY_SIDE] == 2 * j + s:
+        energy_start = fs[F_ENERGY]   # where the last segment of this pattern ended
+    else:
+        energy_start = rigid_energy(rigid[1], theta, omega)
     rtol, atol_theta, atol_omega = par[P_RTOL], atol[j], atol[n + j]
     step_size, previous_error = fs[F_STEP], fs[F_PREVIOUS_ERROR]
     just_rejected = False
@@ -284,7 +293,10 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
         step_size = min(step_size, max(t - fs[F_LAST_IMPACT], 1e-3 * step_size))
         fs[F_LAST_IMPACT] = t
     phi[j], phi_dot[j] = theta, omega
-    fs[F_WORK] = work_start + rigid_energy(rigid[1], theta, omega) - energy_start
+    energy_end = rigid_energy(rigid[1], theta, omega)
+    fs[F_WORK] = work_start + energy_end - energy_start
+    fs[F_ENERGY], fs[F_ENERGY_THETA], fs[F_ENERGY_OMEGA], fs[F_ENERGY_SIDE] = \
+        energy_end, theta, omega, 2 * j + s
     fs[F_STEP], fs[F_PREVIOUS_ERROR] = step_size, previous_error
     return t, what, where
 

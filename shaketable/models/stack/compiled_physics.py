@@ -414,7 +414,7 @@ FREE_ROWS, FREE_INT_ROWS, FREE_WIDE = 6, 6, 1
 N_ROWS, N_INT_ROWS, N_WIDE = 16, 16, 2
 
 
-@compiled
+@inlined
 def event_workspace(n):
     """The arrays the events fill (the plastic law, the pattern check, the impact) for a
     chain of ``n`` blocks, so that an event allocates nothing: float rows (16, n), int rows
@@ -429,7 +429,7 @@ def event_workspace(n):
             np.zeros((2 * n, count, n)), np.zeros((2 * n, count, n, 4)))
 
 
-@kernel
+@inlined
 def plastic_prepare(chain, phi, phi_dot, pattern, ws, scratch):
     """theta, theta', the centroids and the blocks' velocities [m/s] before the impact into
     the event workspace."""
@@ -449,7 +449,7 @@ def plastic_prepare(chain, phi, phi_dot, pattern, ws, scratch):
         velocity[i, 1] = vy
 
 
-@kernel
+@inlined
 def plastic_tolerances(chain, phi_dot, interface, theta_dot):
     """The plastic law's tolerances of the impulses [N s] and the separating rates
     [rad/s], relative to the landing's approach rate (above the rounding of the momenta of
@@ -464,7 +464,7 @@ def plastic_tolerances(chain, phi_dot, interface, theta_dot):
     return IMPACT_TOLERANCE * total_mass * landing * reach, IMPACT_TOLERANCE * landing
 
 
-@kernel
+@inlined
 def violation(candidate, trial, impulses, free, n_free, impulse_tolerance, rate_tolerance):
     """The worst violation of a candidate's admissibility, relative to the tolerances
     (admissible: at most 1)."""
@@ -479,7 +479,7 @@ def violation(candidate, trial, impulses, free, n_free, impulse_tolerance, rate_
     return worst
 
 
-@kernel
+@inlined
 def consider(scratch, candidate, trial, worst):
     """Keep a candidate of the plastic law if it is the best so far: among the admissible
     ones the fewest open interfaces, then the least violation; else the least violation.
@@ -502,7 +502,7 @@ def consider(scratch, candidate, trial, worst):
             ints[R_PATTERN_ANY, j] = candidate[j]
 
 
-@kernel
+@inlined
 def plastic_choice(scratch, phi_dot_after, pattern_after):
     """The kept candidate into the arrays given (flat interfaces at rate zero); returns the
     number of admissible active sets."""
@@ -517,7 +517,7 @@ def plastic_choice(scratch, phi_dot_after, pattern_after):
     return admissible
 
 
-@kernel
+@inlined
 def plastic_enumerate(chain, phi, phi_dot, pattern, interface, closed, ws, scratch, store):
     """Every active set of the plastic law in the candidates' order, each considered
     (:func:`consider`); with ``store`` >= 0 (a one-DOF landing at a unit rate, all
@@ -567,7 +567,7 @@ def plastic_enumerate(chain, phi, phi_dot, pattern, interface, closed, ws, scrat
             going = next_combination(chosen, count, n_free)
 
 
-@kernel
+@inlined
 def one_dof_landing(phi, phi_dot, pattern, interface):
     """Whether a landing is that of a one-DOF pattern: ``interface`` the only open one, every
     interface at zero gap, the other rates zero (the group above it one rigid body)."""
@@ -579,26 +579,17 @@ def one_dof_landing(phi, phi_dot, pattern, interface):
     return True
 
 
-@kernel
-def landing_candidates(chain, phi, phi_dot, pattern, interface, ws, scratch):
+@inlined
+def landing_candidates(chain, phi_dot, interface, scratch, store):
     """The plastic law at a one-DOF landing (:func:`one_dof_landing`), each candidate from
-    its values per unit rate: the post-impact rates and the impulses are linear in the
-    rate of the landing (the momentum balance and the admissibility are linear in the
-    velocities before; the geometry at zero gap is fixed), so that they are computed once
-    per interface and side (by the general enumeration at a rate of 1 rad/s) and scaled;
-    they agree with the general law's to rounding."""
-    n = phi.size
+    its values per unit rate (``store``'s row of the per-unit-rate landings, filled): the
+    post-impact rates and the impulses are linear in the rate of the landing (the momentum
+    balance and the admissibility are linear in the velocities before; the geometry at zero
+    gap is fixed), so that they are computed once per interface and side (by the general
+    enumeration at a rate of 1 rad/s) and scaled; they agree with the general law's to
+    rounding."""
+    n = phi_dot.size
     floats, ints, wide = scratch[0], scratch[1], scratch[2]
-    store = 2 * interface + (0 if pattern[interface] > 0 else 1)
-    count = 3 ** n
-    if scratch[6][store] == 0:
-        unit = floats[R_UNIT]
-        for j in range(n):
-            unit[j] = 0.0
-        unit[interface] = 1.0
-        plastic_enumerate(chain, phi, unit, pattern, interface, NONE_INTERFACE, ws, scratch,
-                          store)
-        scratch[6][store] = count
     rate = phi_dot[interface]
     theta_dot = floats[R_THETA_DOT]
     cumulate(phi_dot, theta_dot)
@@ -608,7 +599,7 @@ def landing_candidates(chain, phi, phi_dot, pattern, interface, ws, scratch):
     for j in range(n):
         free[j] = j
     book[0], book[1], book[2], book[3], book[4] = 0.0, 0.0, math.inf, math.inf, n + 1
-    for index in range(count):
+    for index in range(scratch[6][store]):
         candidate = scratch[7][index]
         for j in range(n):
             trial[j] = rate * scratch[8][store, index, j]
@@ -625,13 +616,26 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
     (:func:`~shaketable.models.stack.impact.plastic_impact`): post-impact phi' and pattern
     into the arrays given; returns the number of admissible active sets. ``closed``: an
     interface held flat, or -1. A one-DOF landing of up to FULL_ENUMERATION blocks scales
-    its candidates' values per unit rate (:func:`landing_candidates`)."""
-    if closed < 0 and phi.size <= FULL_ENUMERATION and \
+    its candidates' values per unit rate (:func:`landing_candidates`; the first landing of
+    each interface and side computes them)."""
+    n = phi.size
+    store = NONE_INTERFACE
+    rates = phi_dot
+    if closed < 0 and n <= FULL_ENUMERATION and \
             one_dof_landing(phi, phi_dot, pattern, interface):
-        landing_candidates(chain, phi, phi_dot, pattern, interface, ws, scratch)
-    else:
-        plastic_enumerate(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
-                          NONE_INTERFACE)
+        store = 2 * interface + (0 if pattern[interface] > 0 else 1)
+        if scratch[6][store] == 0:
+            rates = scratch[0][R_UNIT]
+            for j in range(n):
+                rates[j] = 0.0
+            rates[interface] = 1.0
+    if store < 0 or scratch[6][store] == 0:
+        # the general enumeration (at a unit rate: the landing's values per unit rate kept)
+        plastic_enumerate(chain, phi, rates, pattern, interface, closed, ws, scratch, store)
+        if store >= 0:
+            scratch[6][store] = 3 ** n
+    if store >= 0:
+        landing_candidates(chain, phi_dot, interface, scratch, store)
     return plastic_choice(scratch, phi_dot_after, pattern_after)
 
 

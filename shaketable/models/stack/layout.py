@@ -19,10 +19,12 @@ NONE, ZERO = np.int64(-1), np.int64(0)
 # controller's memory (the last accepted error) [-], the time of the last impact [s] and the
 # step size of DOP853 (multi-DOF patterns) carried from one segment to the next [s], the
 # energy of the stack at rest [J] (NaN until needed), the last sample's phi'' of a one-DOF
-# pattern [rad/s^2]
+# pattern [rad/s^2], and the rocking body's energy [J] where the last one-DOF segment ended,
+# with its phi [rad], phi' [rad/s] and pattern (2 j + s)
 F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME, F_STEP, F_PREVIOUS_ERROR, \
-    F_LAST_IMPACT, F_DOP_STEP, F_REST_ENERGY, F_SAMPLE_ACCELERATION = range(11)
-N_FLOATS = 11
+    F_LAST_IMPACT, F_DOP_STEP, F_REST_ENERGY, F_SAMPLE_ACCELERATION, F_ENERGY, \
+    F_ENERGY_THETA, F_ENERGY_OMEGA, F_ENERGY_SIDE = range(15)
+N_FLOATS = 15
 # slots of the int state ``ist``: events counted and recorded, events in a row without
 # progress, status, the overturned block, steps, evaluations, the error, the pattern whose
 # closed forms are current (interface, side), whether the last sample's one-DOF state (its
