@@ -33,7 +33,6 @@ from shaketable.models.stack.compiled_physics import (
     COMPILED,
     FREE_INT_ROWS,
     FREE_ROWS,
-    FREE_WIDE,
     FULL_ENUMERATION,
     accelerations,
     compiled,
@@ -119,7 +118,6 @@ C_ACCELERATION, C_AHEAD, C_AHEAD_DOT, C_PHI_DDOT, C_RATES, C_AFTER_DOT, C_ZEROS 
     range(FREE_ROWS, FREE_ROWS + 7)
 C_FREE, C_CANDIDATE, C_BEST, C_CHOSEN, C_BEFORE, C_AFTER, C_FLAT = \
     range(FREE_INT_ROWS, FREE_INT_ROWS + 7)
-C_FORCES = FREE_WIDE
 #: Statuses of a run.
 STATUSES = ("completed", "overturned", "airborne")
 
@@ -151,13 +149,13 @@ def record(run, time, kind, interface, before, after, has_patterns, reals, integ
 
 # ------------------------------------------------------------------------- choice
 @compiled
-def choose(chain, ws, scratch, run, time, seg, reason, interface, end):
+def choose(chain, ws, floats, ints, run, time, seg, reason, interface, end):
     """Choose the pattern at ``time`` (:meth:`shaketable.models.stack.engine.Run.choose`);
     the time the run goes on from (NaN: no consistent pattern, the run's error set).
-    ``scratch``: the event workspace (its rows past the plastic law's)."""
+    ``floats``, ``ints``: the event workspace's rows (those past the plastic law's); the
+    candidates' forces go to ``ws[8]`` (free between events)."""
     phi, phi_dot, pattern, fs, ist, par = run[0], run[1], run[2], run[3], run[4], run[5]
     n = phi.size
-    floats, ints = scratch[0], scratch[1]
     for j in range(n):
         if pattern[j] != 0 and phi[j] == 0.0 and \
                 pattern[j] * phi_dot[j] <= FLOOR * par[P_ALPHA_P]:
@@ -181,7 +179,7 @@ def choose(chain, ws, scratch, run, time, seg, reason, interface, end):
         ahead_dot[j] = phi_dot[j] + acceleration[j] * delta
     ug, vg = ground(seg, time + delta)
     candidate, best, chosen = ints[C_CANDIDATE], ints[C_BEST], ints[C_CHOSEN]
-    phi_ddot, forces = floats[C_PHI_DDOT], scratch[2][C_FORCES]
+    phi_ddot, forces = floats[C_PHI_DDOT], ws[8]
     consistent = ZERO
     tol = par[P_TOL_FORCE]
     for count in range(n_free + 1):
@@ -272,7 +270,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
         record(run, time, REST, interface, before, after, ONE,
                (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws)),
                (NONE, ZERO, NONE))
-        return choose(chain, ws, scratch, run, time, seg, R_NOISE, interface, end)
+        return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_NOISE, interface, end)
     if par[P_LAW] == 0.0:
         solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws, scratch,
                                    after_dot, after)
@@ -292,7 +290,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
         phi[:] = 0.0
         phi_dot[:] = 0.0
         pattern[:] = 0
-        return choose(chain, ws, scratch, run, time, seg, R_REST, interface, end)
+        return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_REST, interface, end)
     if pattern[interface] != 0 and rate_before != 0.0:
         ratio = abs(phi_dot[interface] / rate_before)
         phi_ddot = floats[C_PHI_DDOT]
@@ -323,7 +321,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
             pattern[:] = after
     if open_count(pattern) == 0:
         phi_dot[:] = 0.0
-    return choose(chain, ws, scratch, run, time, seg, R_IMPACT, interface, end)
+    return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_IMPACT, interface, end)
 
 
 # ------------------------------------------------------------------------- run
@@ -390,7 +388,7 @@ def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_sta
                 t = fs[F_REST_UNTIL]
             if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
                 fs[F_REST_UNTIL] = -math.inf
-                t = choose(chain, ws, scratch, run, t, seg, R_REST, NONE, t1)
+                t = choose(chain, ws, scratch[0], scratch[1], run, t, seg, R_REST, NONE, t1)
                 if ist[I_ERROR]:
                     return STOPS, t
             if open_count(pattern) == 0:
@@ -399,7 +397,7 @@ def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_sta
                     return DONE, t
                 if not progress(run, t, t_new):
                     return STOPS, t
-                t = choose(chain, ws, scratch, run, t_new, seg, R_UPLIFT, j, t1)
+                t = choose(chain, ws, scratch[0], scratch[1], run, t_new, seg, R_UPLIFT, j, t1)
                 if ist[I_ERROR]:
                     return STOPS, t
                 continue
@@ -421,7 +419,7 @@ def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_sta
                    (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
             return STOPS, t
         else:
-            t = choose(chain, ws, scratch, run, t, seg, R_UPLIFT, j, t1)
+            t = choose(chain, ws, scratch[0], scratch[1], run, t, seg, R_UPLIFT, j, t1)
         what = ENDS_NONE
         if ist[I_ERROR]:
             return STOPS, t
@@ -524,7 +522,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     forces = np.zeros((count, n, 4))
     work = np.zeros(count)
     seg = np.array([t[0], t[1] - t[0], ug[0], ug[1] - ug[0], vg[0], vg[1] - vg[0]])
-    choose(chain, ws, scratch, run, t[0], seg, R_START, NONE, t[0])
+    choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
         sample(chain, ws, run, ug[0], vg[0], ZERO, theta, rate, acceleration, patterns, forces,
