@@ -414,19 +414,19 @@ FREE_ROWS, FREE_INT_ROWS, FREE_WIDE = 6, 6, 1
 N_ROWS, N_INT_ROWS, N_WIDE = 16, 16, 2
 
 
-@inlined
+@compiled
 def event_workspace(n):
     """The arrays the events fill (the plastic law, the pattern check, the impact) for a
     chain of ``n`` blocks, so that an event allocates nothing: float rows (16, n), int rows
     (16, n), (2, n, 4) and (2, n, 2) arrays, a velocity map (n, 2, n), the choice's
-    bookkeeping (5,) and the per-unit-rate landings of one-DOF patterns (their candidates,
-    post-impact phi' and impulses per rad/s, for each interface and side, computed once:
-    :func:`landing_candidates`)."""
+    bookkeeping (5,) and the per-unit-rate landings of one-DOF patterns (whether computed,
+    and each candidate's post-impact phi' and impulses per rad/s, for each interface and
+    side: :func:`plastic_impact`)."""
     count = 3 ** n if n <= FULL_ENUMERATION else 1
     return (np.zeros((N_ROWS, n)), np.zeros((N_INT_ROWS, n), dtype=np.int64),
             np.zeros((N_WIDE, n, 4)), np.zeros((2, n, 2)), np.zeros((n, 2, n)), np.zeros(5),
-            np.zeros(2 * n, dtype=np.int64), np.zeros((count, n), dtype=np.int64),
-            np.zeros((2 * n, count, n)), np.zeros((2 * n, count, n, 4)))
+            np.zeros(2 * n, dtype=np.int64), np.zeros((2 * n, count, n)),
+            np.zeros((2 * n, count, n, 4)))
 
 
 @inlined
@@ -518,20 +518,57 @@ def plastic_choice(scratch, phi_dot_after, pattern_after):
 
 
 @inlined
-def plastic_enumerate(chain, phi, phi_dot, pattern, interface, closed, ws, scratch, store):
-    """Every active set of the plastic law in the candidates' order, each considered
-    (:func:`consider`); with ``store`` >= 0 (a one-DOF landing at a unit rate, all
-    interfaces at zero gap), each candidate's pattern, phi' and impulses are also kept in
-    the per-unit-rate landings' row ``store``."""
+def one_dof_landing(phi, phi_dot, pattern, interface):
+    """Whether a landing is that of a one-DOF pattern: ``interface`` the only open one, every
+    interface at zero gap, the other rates zero (the group above it one rigid body)."""
+    if pattern[interface] == 0:
+        return False
+    for j in range(phi.size):
+        if phi[j] != 0.0 or (j != interface and (pattern[j] != 0 or phi_dot[j] != 0.0)):
+            return False
+    return True
+
+
+@compiled
+def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
+                   phi_dot_after, pattern_after):
+    """The plastic, no-slip multi-contact law, compiled
+    (:func:`~shaketable.models.stack.impact.plastic_impact`): post-impact phi' and pattern
+    into the arrays given; returns the number of admissible active sets. ``closed``: an
+    interface held flat, or -1.
+
+    Every active set is tried in the candidates' order, each considered (:func:`consider`).
+    At a landing of a one-DOF pattern (:func:`one_dof_landing`) of up to FULL_ENUMERATION
+    blocks, the candidates' post-impact rates and impulses are linear in the landing's
+    rate (the momentum balance and the admissibility are linear in the velocities before;
+    the geometry at zero gap is fixed): they are computed once per interface and side at
+    1 rad/s (kept in the event workspace) and scaled, agreeing with the general law's to
+    rounding."""
     n = phi.size
     floats, ints, wide, pairs, book = scratch[0], scratch[1], scratch[2], scratch[3], scratch[5]
-    plastic_prepare(chain, phi, phi_dot, pattern, ws, scratch)
-    theta, theta_dot = floats[R_THETA], floats[R_THETA_DOT]
+    theta_dot = floats[R_THETA_DOT]
+    cumulate(phi_dot, theta_dot)
     impulse_tolerance, rate_tolerance = plastic_tolerances(chain, phi_dot, interface,
                                                            theta_dot)
+    store = NONE_INTERFACE
+    if closed < 0 and n <= FULL_ENUMERATION and \
+            one_dof_landing(phi, phi_dot, pattern, interface):
+        store = 2 * interface + (0 if pattern[interface] > 0 else 1)
+    cached = store >= 0 and scratch[6][store] != 0
+    rate = phi_dot[interface]
+    if store >= 0 and not cached:
+        unit = floats[R_UNIT]   # the first such landing: its candidates at 1 rad/s
+        for j in range(n):
+            unit[j] = 0.0
+        unit[interface] = 1.0
+        plastic_prepare(chain, phi, unit, pattern, ws, scratch)
+    elif not cached:
+        plastic_prepare(chain, phi, phi_dot, pattern, ws, scratch)
+    theta = floats[R_THETA]
     free, start, candidate, chosen = ints[R_FREE], ints[R_START], ints[R_CANDIDATE], \
         ints[R_CHOSEN]
     trial, impulses = floats[R_TRIAL], wide[W_IMPULSES]
+    unit_trial, unit_impulses = scratch[7], scratch[8]
     n_free = np.int64(0)   # not a literal 0: one compile of its callees
     for j in range(n):
         if phi[j] == 0.0:
@@ -552,90 +589,25 @@ def plastic_enumerate(chain, phi, phi_dot, pattern, interface, closed, ws, scrat
                 fill_candidate(start, free, n_free, chosen, count, sides, candidate)
                 if closed >= 0 and candidate[closed] != 0:
                     continue
-                plastic_candidate(chain, theta, theta_dot, pairs[P_VELOCITY],
-                                  pairs[P_CENTROID], candidate, ws, impulses, trial)
+                if not cached:
+                    plastic_candidate(chain, theta, floats[R_THETA_DOT], pairs[P_VELOCITY],
+                                      pairs[P_CENTROID], candidate, ws, impulses, trial)
                 if store >= 0:
                     for j in range(n):
-                        scratch[7][index, j] = candidate[j]
-                        scratch[8][store, index, j] = trial[j]
+                        if not cached:
+                            unit_trial[store, index, j] = trial[j]
+                        trial[j] = rate * unit_trial[store, index, j]
                         for c in range(4):
-                            scratch[9][store, index, j, c] = impulses[j, c]
+                            if not cached:
+                                unit_impulses[store, index, j, c] = impulses[j, c]
+                            impulses[j, c] = rate * unit_impulses[store, index, j, c]
                     index += 1
                 consider(scratch, candidate, trial, violation(
                     candidate, trial, impulses, free, n_free, impulse_tolerance,
                     rate_tolerance))
             going = next_combination(chosen, count, n_free)
-
-
-@inlined
-def one_dof_landing(phi, phi_dot, pattern, interface):
-    """Whether a landing is that of a one-DOF pattern: ``interface`` the only open one, every
-    interface at zero gap, the other rates zero (the group above it one rigid body)."""
-    if pattern[interface] == 0:
-        return False
-    for j in range(phi.size):
-        if phi[j] != 0.0 or (j != interface and (pattern[j] != 0 or phi_dot[j] != 0.0)):
-            return False
-    return True
-
-
-@inlined
-def landing_candidates(chain, phi_dot, interface, scratch, store):
-    """The plastic law at a one-DOF landing (:func:`one_dof_landing`), each candidate from
-    its values per unit rate (``store``'s row of the per-unit-rate landings, filled): the
-    post-impact rates and the impulses are linear in the rate of the landing (the momentum
-    balance and the admissibility are linear in the velocities before; the geometry at zero
-    gap is fixed), so that they are computed once per interface and side (by the general
-    enumeration at a rate of 1 rad/s) and scaled; they agree with the general law's to
-    rounding."""
-    n = phi_dot.size
-    floats, ints, wide = scratch[0], scratch[1], scratch[2]
-    rate = phi_dot[interface]
-    theta_dot = floats[R_THETA_DOT]
-    cumulate(phi_dot, theta_dot)
-    impulse_tolerance, rate_tolerance = plastic_tolerances(chain, phi_dot, interface,
-                                                           theta_dot)
-    free, trial, impulses, book = ints[R_FREE], floats[R_TRIAL], wide[W_IMPULSES], scratch[5]
-    for j in range(n):
-        free[j] = j
-    book[0], book[1], book[2], book[3], book[4] = 0.0, 0.0, math.inf, math.inf, n + 1
-    for index in range(scratch[6][store]):
-        candidate = scratch[7][index]
-        for j in range(n):
-            trial[j] = rate * scratch[8][store, index, j]
-            for c in range(4):
-                impulses[j, c] = rate * scratch[9][store, index, j, c]
-        consider(scratch, candidate, trial, violation(
-            candidate, trial, impulses, free, n, impulse_tolerance, rate_tolerance))
-
-
-@compiled
-def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
-                   phi_dot_after, pattern_after):
-    """The plastic, no-slip multi-contact law, compiled
-    (:func:`~shaketable.models.stack.impact.plastic_impact`): post-impact phi' and pattern
-    into the arrays given; returns the number of admissible active sets. ``closed``: an
-    interface held flat, or -1. A one-DOF landing of up to FULL_ENUMERATION blocks scales
-    its candidates' values per unit rate (:func:`landing_candidates`; the first landing of
-    each interface and side computes them)."""
-    n = phi.size
-    store = NONE_INTERFACE
-    rates = phi_dot
-    if closed < 0 and n <= FULL_ENUMERATION and \
-            one_dof_landing(phi, phi_dot, pattern, interface):
-        store = 2 * interface + (0 if pattern[interface] > 0 else 1)
-        if scratch[6][store] == 0:
-            rates = scratch[0][R_UNIT]
-            for j in range(n):
-                rates[j] = 0.0
-            rates[interface] = 1.0
-    if store < 0 or scratch[6][store] == 0:
-        # the general enumeration (at a unit rate: the landing's values per unit rate kept)
-        plastic_enumerate(chain, phi, rates, pattern, interface, closed, ws, scratch, store)
-        if store >= 0:
-            scratch[6][store] = 3 ** n
     if store >= 0:
-        landing_candidates(chain, phi_dot, interface, scratch, store)
+        scratch[6][store] = 1
     return plastic_choice(scratch, phi_dot_after, pattern_after)
 
 
