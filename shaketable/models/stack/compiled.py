@@ -253,13 +253,11 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     floats, ints = scratch[0], scratch[1]
     alpha_p = par[P_ALPHA_P]
     before, after, flat = ints[C_BEFORE], ints[C_AFTER], ints[C_FLAT]
-    before[:] = pattern
+    rates_before, after_dot, zeros = floats[C_RATES], floats[C_AFTER_DOT], floats[C_ZEROS]
+    for j in range(phi.size):   # one loop: each slice assignment compiles a loop of its own
+        before[j], rates_before[j], zeros[j], flat[j] = pattern[j], phi_dot[j], 0.0, 0
     energy_before = energy(chain, phi, phi_dot, before, ws)
     rate_before = phi_dot[interface]
-    rates_before, after_dot, zeros = floats[C_RATES], floats[C_AFTER_DOT], floats[C_ZEROS]
-    rates_before[:] = phi_dot
-    zeros[:] = 0.0
-    flat[:] = 0
     phi[interface] = 0.0
     if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
         # a landing at the noise level while the stack moves: the interface closes
