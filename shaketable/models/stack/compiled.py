@@ -35,7 +35,6 @@ from shaketable.models.stack.compiled_physics import (
     FREE_ROWS,
     FULL_ENUMERATION,
     accelerations,
-    compiled,
     cor_impact,
     energy,
     event_workspace,
@@ -148,12 +147,13 @@ def record(run, time, kind, interface, before, after, has_patterns, reals, integ
 
 
 # ------------------------------------------------------------------------- choice
-@compiled
+@kernel
 def choose(chain, ws, floats, ints, run, time, seg, reason, interface, end):
     """Choose the pattern at ``time`` (:meth:`shaketable.models.stack.engine.Run.choose`);
     the time the run goes on from (NaN: no consistent pattern, the run's error set).
     ``floats``, ``ints``: the event workspace's rows (those past the plastic law's); the
-    candidates' forces go to ``ws[8]`` (free between events)."""
+    candidates' forces go to ``ws[8]`` (free between events). It allocates nothing: compiled
+    without reference counting."""
     phi, phi_dot, pattern, fs, ist, par = run[0], run[1], run[2], run[3], run[4], run[5]
     n = phi.size
     for j in range(n):
@@ -199,7 +199,8 @@ def choose(chain, ws, floats, ints, run, time, seg, reason, interface, end):
                 if good:
                     consistent += 1
                     if consistent == 1:
-                        best[:] = candidate
+                        for q in range(n):
+                            best[q] = candidate[q]
             going = next_combination(chosen, count, n_free)
         if consistent and count == 0:
             # the first candidate is the pattern itself: consistent, it is kept (the other
@@ -220,9 +221,8 @@ def choose(chain, ws, floats, ints, run, time, seg, reason, interface, end):
            (math.nan, math.nan, math.nan, math.nan), (consistent, NONE, reason))
     ug0, vg0 = ground(seg, time)
     fs[F_WORK] += delta * table_power(chain, phi, phi_dot, pattern, ug0, vg0, ws)
-    pattern[:] = best
-    phi[:] = ahead
-    phi_dot[:] = ahead_dot
+    for j in range(n):
+        pattern[j], phi[j], phi_dot[j] = best[j], ahead[j], ahead_dot[j]
     return time + delta
 
 

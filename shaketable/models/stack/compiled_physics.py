@@ -529,7 +529,7 @@ def one_dof_landing(phi, phi_dot, pattern, interface):
     return True
 
 
-@compiled
+@kernel
 def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
                    phi_dot_after, pattern_after):
     """The plastic, no-slip multi-contact law, compiled
@@ -543,7 +543,7 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
     rate (the momentum balance and the admissibility are linear in the velocities before;
     the geometry at zero gap is fixed): they are computed once per interface and side at
     1 rad/s (kept in the event workspace) and scaled, agreeing with the general law's to
-    rounding."""
+    rounding. It allocates nothing: compiled without reference counting."""
     n = phi.size
     floats, ints, wide, pairs, book = scratch[0], scratch[1], scratch[2], scratch[3], scratch[5]
     theta_dot = floats[R_THETA_DOT]
