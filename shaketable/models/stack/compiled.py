@@ -112,7 +112,7 @@ REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level
 R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
 ONE = np.int64(1)
 # rows of the event workspace (compiled_physics.event_workspace) past the plastic law's: the
-# pattern check's (float, int, (n, 4)) and the impact's
+# pattern check's (float, int) and the impact's
 C_ACCELERATION, C_AHEAD, C_AHEAD_DOT, C_PHI_DDOT, C_RATES, C_AFTER_DOT, C_ZEROS = \
     range(FREE_ROWS, FREE_ROWS + 7)
 C_FREE, C_CANDIDATE, C_BEST, C_CHOSEN, C_BEFORE, C_AFTER, C_FLAT = \

@@ -403,22 +403,22 @@ def plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws
 
 
 # rows of an event workspace (:func:`event_workspace`): its float rows (n,), int rows (n,),
-# (n, 4) and (n, 2) arrays, the bookkeeping of the plastic law's choice
+# (n, 4) and (n, 2) arrays
 R_THETA, R_THETA_DOT, R_TRIAL, R_BEST, R_BEST_ANY, R_UNIT = range(6)
 R_FREE, R_START, R_CANDIDATE, R_CHOSEN, R_PATTERN, R_PATTERN_ANY = range(6)
 W_IMPULSES = 0
 P_CENTROID, P_VELOCITY = range(2)
 #: Rows of an event workspace's arrays that the plastic law leaves to its callers (the
 #: pattern check and the impact of :mod:`shaketable.models.stack.compiled`).
-FREE_ROWS, FREE_INT_ROWS, FREE_WIDE = 6, 6, 1
-N_ROWS, N_INT_ROWS, N_WIDE = 16, 16, 2
+FREE_ROWS, FREE_INT_ROWS = 6, 6
+N_ROWS, N_INT_ROWS, N_WIDE = 16, 16, 1
 
 
 @compiled
 def event_workspace(n):
     """The arrays the events fill (the plastic law, the pattern check, the impact) for a
     chain of ``n`` blocks, so that an event allocates nothing: float rows (16, n), int rows
-    (16, n), (2, n, 4) and (2, n, 2) arrays, a velocity map (n, 2, n), the choice's
+    (16, n), the impulses (1, n, 4), centroids and velocities (2, n, 2), a velocity map (n, 2, n), the choice's
     bookkeeping (5,) and the per-unit-rate landings of one-DOF patterns (whether computed,
     and each candidate's post-impact phi' and impulses per rad/s, for each interface and
     side: :func:`plastic_impact`)."""
