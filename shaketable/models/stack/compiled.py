@@ -31,11 +31,13 @@ from shaketable.models.stack.compiled_one import (
 )
 from shaketable.models.stack.compiled_physics import (
     COMPILED,
+    FREE_INT_ROWS,
+    FREE_ROWS,
     FULL_ENUMERATION,
     accelerations,
-    compiled,
     cor_impact,
     energy,
+    event_workspace,
     fill_candidate,
     first_combination,
     inlined,
@@ -60,7 +62,9 @@ from shaketable.models.stack.layout import (
     F_ERROR_TIME,
     F_LAST_IMPACT,
     F_PREVIOUS_ERROR,
+    F_REST_ENERGY,
     F_REST_UNTIL,
+    F_SAMPLE_ACCELERATION,
     F_STEP,
     F_T_AIRBORNE,
     F_T_OVERTURN,
@@ -71,6 +75,7 @@ from shaketable.models.stack.layout import (
     I_OVERTURNED,
     I_RECORDED,
     I_RIGID_J,
+    I_SAMPLED,
     I_STALLED,
     I_STATUS,
     I_STEPS,
@@ -106,6 +111,12 @@ UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = (np.int64(code) for code in range(5))
 REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level landing")
 R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
 ONE = np.int64(1)
+# rows of the event workspace (compiled_physics.event_workspace) past the plastic law's: the
+# pattern check's (float, int) and the impact's
+C_ACCELERATION, C_AHEAD, C_AHEAD_DOT, C_PHI_DDOT, C_RATES, C_AFTER_DOT, C_ZEROS = \
+    range(FREE_ROWS, FREE_ROWS + 7)
+C_FREE, C_CANDIDATE, C_BEST, C_CHOSEN, C_BEFORE, C_AFTER, C_FLAT = \
+    range(FREE_INT_ROWS, FREE_INT_ROWS + 7)
 #: Statuses of a run.
 STATUSES = ("completed", "overturned", "airborne")
 
@@ -136,10 +147,13 @@ def record(run, time, kind, interface, before, after, has_patterns, reals, integ
 
 
 # ------------------------------------------------------------------------- choice
-@compiled
-def choose(chain, ws, run, time, seg, reason, interface, end):
+@kernel
+def choose(chain, ws, floats, ints, run, time, seg, reason, interface, end):
     """Choose the pattern at ``time`` (:meth:`shaketable.models.stack.engine.Run.choose`);
-    the time the run goes on from (NaN: no consistent pattern, the run's error set)."""
+    the time the run goes on from (NaN: no consistent pattern, the run's error set).
+    ``floats``, ``ints``: the event workspace's rows (those past the plastic law's); the
+    candidates' forces go to ``ws[8]`` (free between events). It allocates nothing: compiled
+    without reference counting."""
     phi, phi_dot, pattern, fs, ist, par = run[0], run[1], run[2], run[3], run[4], run[5]
     n = phi.size
     for j in range(n):
@@ -147,7 +161,7 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
                 pattern[j] * phi_dot[j] <= FLOOR * par[P_ALPHA_P]:
             pattern[j] = 0
             phi_dot[j] = 0.0
-    free = np.empty(n, dtype=np.int64)
+    free = ints[C_FREE]
     n_free = ZERO   # not a literal 0: one compile of its callees
     for j in range(n):
         if pattern[j] == 0:
@@ -155,19 +169,17 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
             n_free += 1
     if n_free == 0:
         return time
-    acceleration = np.empty(n)
+    acceleration = floats[C_ACCELERATION]
     ug, vg = ground(seg, time)
     accelerations(chain, phi, phi_dot, pattern, ug, vg, acceleration, ws)
     delta = min(par[P_DELTA], max(end - time, 0.0))
-    ahead, ahead_dot = np.empty(n), np.empty(n)
+    ahead, ahead_dot = floats[C_AHEAD], floats[C_AHEAD_DOT]
     for j in range(n):
         ahead[j] = phi[j] + phi_dot[j] * delta + 0.5 * acceleration[j] * delta ** 2
         ahead_dot[j] = phi_dot[j] + acceleration[j] * delta
     ug, vg = ground(seg, time + delta)
-    candidate = np.empty(n, dtype=np.int64)
-    best = np.empty(n, dtype=np.int64)
-    chosen = np.empty(n, dtype=np.int64)
-    phi_ddot, forces = np.empty(n), np.empty((n, 4))
+    candidate, best, chosen = ints[C_CANDIDATE], ints[C_BEST], ints[C_CHOSEN]
+    phi_ddot, forces = floats[C_PHI_DDOT], ws[8]
     consistent = ZERO
     tol = par[P_TOL_FORCE]
     for count in range(n_free + 1):
@@ -187,8 +199,13 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
                 if good:
                     consistent += 1
                     if consistent == 1:
-                        best[:] = candidate
+                        for q in range(n):
+                            best[q] = candidate[q]
             going = next_combination(chosen, count, n_free)
+        if consistent and count == 0:
+            # the first candidate is the pattern itself: consistent, it is kept (the other
+            # candidates would only be counted)
+            return time
         if consistent and n > FULL_ENUMERATION:
             break   # the fewest open interfaces: the levels above are not searched
     if consistent == 0:
@@ -204,9 +221,8 @@ def choose(chain, ws, run, time, seg, reason, interface, end):
            (math.nan, math.nan, math.nan, math.nan), (consistent, NONE, reason))
     ug0, vg0 = ground(seg, time)
     fs[F_WORK] += delta * table_power(chain, phi, phi_dot, pattern, ug0, vg0, ws)
-    pattern[:] = best
-    phi[:] = ahead
-    phi_dot[:] = ahead_dot
+    for j in range(n):
+        pattern[j], phi[j], phi_dot[j] = best[j], ahead[j], ahead_dot[j]
     return time + delta
 
 
@@ -221,32 +237,41 @@ def largest(values):
 
 
 @inlined
-def impact(chain, ws, run, time, seg, interface, end):
+def rest_energy(chain, ws, fs, zeros, flat):
+    """The energy of the stack at rest [J] (:func:`energy` of zeros), evaluated once per run."""
+    if math.isnan(fs[F_REST_ENERGY]):
+        fs[F_REST_ENERGY] = energy(chain, zeros, zeros, flat, ws)
+    return fs[F_REST_ENERGY]
+
+
+@inlined
+def impact(chain, ws, scratch, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
     from."""
     phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
-    n = phi.size
+    floats, ints = scratch[0], scratch[1]
     alpha_p = par[P_ALPHA_P]
-    before = pattern.copy()
+    before, after, flat = ints[C_BEFORE], ints[C_AFTER], ints[C_FLAT]
+    rates_before, after_dot, zeros = floats[C_RATES], floats[C_AFTER_DOT], floats[C_ZEROS]
+    for j in range(phi.size):   # one loop: each slice assignment compiles a loop of its own
+        before[j], rates_before[j], zeros[j], flat[j] = pattern[j], phi_dot[j], 0.0, 0
     energy_before = energy(chain, phi, phi_dot, before, ws)
     rate_before = phi_dot[interface]
-    rates_before = phi_dot.copy()
     phi[interface] = 0.0
-    after_dot, after = np.empty(n), np.empty(n, dtype=np.int64)
     if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
         # a landing at the noise level while the stack moves: the interface closes
-        plastic_impact(chain, phi, rates_before, before, interface, interface, ws, after_dot,
-                       after)
+        plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
+                       after_dot, after)
         phi_dot[:] = after_dot
         pattern[:] = after
         record(run, time, REST, interface, before, after, ONE,
                (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws)),
                (NONE, ZERO, NONE))
-        return choose(chain, ws, run, time, seg, R_NOISE, interface, end)
+        return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_NOISE, interface, end)
     if par[P_LAW] == 0.0:
-        solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws, after_dot,
-                                   after)
+        solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws, scratch,
+                                   after_dot, after)
     else:
         cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
         solutions = ONE
@@ -256,19 +281,17 @@ def impact(chain, ws, run, time, seg, interface, end):
     record(run, time, IMPACT, interface, before, pattern, ONE,
            (rate_before, phi_dot[interface], energy_before, energy_after),
            (solutions, NONE, NONE))
-    zeros = np.zeros(n)
-    flat = np.zeros(n, dtype=np.int64)
     if largest(phi_dot) <= FLOOR * alpha_p and largest(phi) <= FLOOR * par[P_ALPHA]:
         record(run, time, REST, interface, pattern, flat, ONE,
-               (math.nan, math.nan, energy_after, energy(chain, zeros, zeros, flat, ws)),
+               (math.nan, math.nan, energy_after, rest_energy(chain, ws, fs, zeros, flat)),
                (NONE, ONE, NONE))
         phi[:] = 0.0
         phi_dot[:] = 0.0
         pattern[:] = 0
-        return choose(chain, ws, run, time, seg, R_REST, interface, end)
+        return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_REST, interface, end)
     if pattern[interface] != 0 and rate_before != 0.0:
         ratio = abs(phi_dot[interface] / rate_before)
-        phi_ddot = np.empty(n)
+        phi_ddot = floats[C_PHI_DDOT]
         ug, vg = ground(seg, time)
         accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
         deceleration = -pattern[interface] * phi_ddot[interface]
@@ -287,7 +310,7 @@ def impact(chain, ws, run, time, seg, interface, end):
             return time
         if remaining <= par[P_REST]:
             # the others move on: this interface closes now (a plastic landing held flat)
-            plastic_impact(chain, phi, rates_before, before, interface, interface, ws,
+            plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
                            after_dot, after)
             energy_closed = energy(chain, phi, after_dot, after, ws)
             record(run, time, REST, interface, pattern, after, ONE,
@@ -296,7 +319,7 @@ def impact(chain, ws, run, time, seg, interface, end):
             pattern[:] = after
     if open_count(pattern) == 0:
         phi_dot[:] = 0.0
-    return choose(chain, ws, run, time, seg, R_IMPACT, interface, end)
+    return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_IMPACT, interface, end)
 
 
 # ------------------------------------------------------------------------- run
@@ -338,7 +361,8 @@ def progress(run, t, t_new):
 
 
 @inlined
-def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what, j):
+def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what,
+             j):
     """Advance over one input interval from ``t_start`` (``t0``, or where a one-DOF
     segment ended with the event ``what`` of interface ``j``, ENDS_NONE for none); returns
     (code, time): STOPS (the run stops, or failed: its error), DONE (the interval's end
@@ -362,7 +386,7 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what,
                 t = fs[F_REST_UNTIL]
             if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
                 fs[F_REST_UNTIL] = -math.inf
-                t = choose(chain, ws, run, t, seg, R_REST, NONE, t1)
+                t = choose(chain, ws, scratch[0], scratch[1], run, t, seg, R_REST, NONE, t1)
                 if ist[I_ERROR]:
                     return STOPS, t
             if open_count(pattern) == 0:
@@ -371,7 +395,7 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what,
                     return DONE, t
                 if not progress(run, t, t_new):
                     return STOPS, t
-                t = choose(chain, ws, run, t_new, seg, R_UPLIFT, j, t1)
+                t = choose(chain, ws, scratch[0], scratch[1], run, t_new, seg, R_UPLIFT, j, t1)
                 if ist[I_ERROR]:
                     return STOPS, t
                 continue
@@ -384,7 +408,7 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what,
             if what == ENDS_NONE:
                 continue
         if what == ENDS_IMPACT:
-            t = impact(chain, ws, run, t, seg, j, t1)
+            t = impact(chain, ws, scratch, run, t, seg, j, t1)
         elif what == ENDS_OVERTURN:
             ist[I_STATUS] = 1
             fs[F_T_OVERTURN] = t
@@ -393,7 +417,7 @@ def interval(chain, ws, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what,
                    (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
             return STOPS, t
         else:
-            t = choose(chain, ws, run, t, seg, R_UPLIFT, j, t1)
+            t = choose(chain, ws, scratch[0], scratch[1], run, t, seg, R_UPLIFT, j, t1)
         what = ENDS_NONE
         if ist[I_ERROR]:
             return STOPS, t
@@ -413,6 +437,13 @@ def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, force
         j, _, _, _, a = one_dof_state(chain, run, rigid, ug, vg, forces[k])
         for i in range(n):
             phi_ddot[i] = a if i == j else 0.0
+        if j >= 0:
+            # the state the next interval's one-DOF segment starts from (the same u'', v'')
+            run[4][I_SAMPLED] = 1
+            run[3][F_SAMPLE_ACCELERATION] = a
+            for i in range(n):
+                for c in range(4):
+                    rigid[2][i, c] = forces[k, i, c]
     else:
         state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces[k], ws)
     a, b, c = 0.0, 0.0, 0.0
@@ -458,6 +489,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     n = b.size
     chain = (b, h, m, inertia)
     ws = workspace(n)
+    scratch = event_workspace(n)
     # every row up to the count of recorded events is written (record): left uninitialised,
     # the pages of the rows never used are never touched
     ev_f = np.empty((capacity, 5))
@@ -488,7 +520,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     forces = np.zeros((count, n, 4))
     work = np.zeros(count)
     seg = np.array([t[0], t[1] - t[0], ug[0], ug[1] - ug[0], vg[0], vg[1] - vg[0]])
-    choose(chain, ws, run, t[0], seg, R_START, NONE, t[0])
+    choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
         sample(chain, ws, run, ug[0], vg[0], ZERO, theta, rate, acceleration, patterns, forces,
@@ -497,6 +529,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
         coefficients, tol = rigid[0], par[P_TOL_FORCE]
         phi, pattern = run[0], run[2]
         for k in range(count - 1):
+            fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
+            ist[I_SAMPLED] = 0
             if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
                                vg[k + 1], forces[k + 1]):
                 # at rest: theta, theta', theta'' and the pattern are zeros
@@ -509,10 +543,13 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
             code = ONE_DOF if open_count(pattern) == 1 and \
                 fs[F_REST_UNTIL] == -math.inf and G + vg[k] > 0.0 and G + vg[k + 1] > 0.0 \
                 else DONE
+            fresh = fresh and code == ONE_DOF
             while True:
                 if code == ONE_DOF:
                     # a one-DOF pattern: its segment here, the general path for its event
-                    t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid)
+                    t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid,
+                                                     fresh)
+                    fresh = False
                     if ist[I_ERROR] or not progress(run, start, t_new):
                         code = STOPS
                         break
@@ -521,8 +558,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                         sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
                                acceleration, patterns, forces, work, rigid)
                         break
-                code, start = interval(chain, ws, run, t[k], t[k + 1], vg[k], vg[k + 1], seg,
-                                       buffers, rigid, start, what, j)
+                code, start = interval(chain, ws, scratch, run, t[k], t[k + 1], vg[k], vg[k + 1],
+                                       seg, buffers, rigid, start, what, j)
                 what, j = ENDS_NONE, NONE
                 if code == DONE:
                     sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
@@ -547,31 +584,50 @@ class CompiledRun:
         self.t_airborne = float(fs[F_T_AIRBORNE])
         self.n_events = int(ist[I_EVENTS])
         self.steps, self.evaluations = int(ist[I_STEPS]), int(ist[I_EVALUATIONS])
-        # as Python lists first: one conversion per array, not one per number
         count = int(ist[I_RECORDED])
-        self.events = [self.event(*row) for row in zip(
-            ev_f[:count].tolist(), ev_i[:count].tolist(),
-            [tuple(pattern) for pattern in ev_pb[:count].tolist()],
-            [tuple(pattern) for pattern in ev_pa[:count].tolist()])]
+        self._recorded = (ev_f[:count], ev_i[:count], ev_pb[:count], ev_pa[:count])
+
+    @property
+    def events(self) -> list[dict]:
+        """The recorded events as dicts (their numbers as Python floats and ints, their
+        patterns as tuples)."""
+        return self.scaled_events(1.0)
+
+    def scaled_events(self, scale: float) -> list[dict]:
+        """The recorded events with their energies [J] times ``scale`` (the stack's mass
+        scale; 1: as recorded), built column by column: one conversion per column, not one
+        per number."""
+        reals, integers, before, after = self._recorded
+        energies = reals[:, 3:5] * scale if scale != 1.0 else reals[:, 3:5]
+        columns = zip(reals[:, 0].tolist(), integers[:, 0].tolist(),
+                      integers[:, 1].tolist(), map(tuple, before.tolist()),
+                      map(tuple, after.tolist()), integers[:, 5].tolist(),
+                      reals[:, 1].tolist(), reals[:, 2].tolist(), energies[:, 0].tolist(),
+                      energies[:, 1].tolist(), integers[:, 2].tolist(),
+                      integers[:, 3].tolist(), integers[:, 4].tolist())
+        return [self.event(*row) for row in columns]
 
     @staticmethod
-    def event(reals, integers, before, after) -> dict:
-        """One recorded event as a dict (its numbers as Python floats and ints, its
-        patterns as tuples)."""
-        kind = KINDS[integers[0]]
-        patterns = integers[5] == 1
-        event = dict(t=reals[0], kind=kind, interface=integers[1],
-                     pattern_before=before if patterns else None,
-                     pattern_after=after if patterns else None)
-        if kind == "uplift":
-            event.update(solutions=integers[2], reason=REASONS[integers[4]])
-        elif kind == "impact":
-            event.update(rate_before=reals[1], rate_after=reals[2], energy_before=reals[3],
-                         energy_after=reals[4], solutions=integers[2])
-        elif kind == "rest":
-            event.update(cascade=bool(integers[3]), energy_before=reals[3],
-                         energy_after=reals[4])
-        return event
+    def event(t, kind, interface, before, after, patterns, rate_before, rate_after,
+              energy_before, energy_after, solutions, cascade, reason) -> dict:
+        """One recorded event as a dict (the keys of the Python engine's, in its order)."""
+        if patterns != 1:
+            before = after = None
+        if kind == IMPACT:
+            return {"t": t, "kind": "impact", "interface": interface, "pattern_before": before,
+                    "pattern_after": after, "rate_before": rate_before,
+                    "rate_after": rate_after, "energy_before": energy_before,
+                    "energy_after": energy_after, "solutions": solutions}
+        if kind == UPLIFT:
+            return {"t": t, "kind": "uplift", "interface": interface, "pattern_before": before,
+                    "pattern_after": after, "solutions": solutions,
+                    "reason": REASONS[reason]}
+        if kind == REST:
+            return {"t": t, "kind": "rest", "interface": interface, "pattern_before": before,
+                    "pattern_after": after, "cascade": bool(cascade),
+                    "energy_before": energy_before, "energy_after": energy_after}
+        return {"t": t, "kind": KINDS[kind], "interface": interface, "pattern_before": before,
+                "pattern_after": after}
 
 
 #: Events kept by a first run; a run that records more runs again with room for all.

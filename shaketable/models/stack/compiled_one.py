@@ -43,8 +43,13 @@ from shaketable.models.stack.layout import (
     ENDS_LIFT,
     ENDS_NONE,
     ENDS_OVERTURN,
+    F_ENERGY,
+    F_ENERGY_OMEGA,
+    F_ENERGY_SIDE,
+    F_ENERGY_THETA,
     F_LAST_IMPACT,
     F_PREVIOUS_ERROR,
+    F_SAMPLE_ACCELERATION,
     F_STEP,
     F_WORK,
     I_ERROR,
@@ -199,10 +204,11 @@ def one_dof_state(chain, run, rigid, ug, vg, forces):
 
 
 @inlined
-def one_dof_segment(chain, run, t, t_end, seg, rigid):
+def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
     """Integrate a one-DOF pattern from ``t`` to its first event or ``t_end`` with the single
     block's stepper (as :func:`shaketable.models.stack.compiled.segment` with DOP853):
-    returns (time, what, interface), ``what`` one of ENDS_*."""
+    returns (time, what, interface), ``what`` one of ENDS_*. ``fresh``: the state at ``t``
+    is the last sample's (its phi'' and forces kept, ``I_SAMPLED``), not evaluated again."""
     phi, phi_dot, pattern, fs, ist, par, atol = run[0], run[1], run[2], run[3], run[4], \
         run[5], run[6]
     n = pattern.size
@@ -210,15 +216,24 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid):
     if pattern[j] * phi[j] < 0.0 or (phi[j] == 0.0 and pattern[j] * phi_dot[j] < 0.0):
         phi[j] = 0.0   # on the wrong side of its pivot, or leaving it the wrong way
         return t, ENDS_IMPACT, j
-    ug, vg = ground(seg, t)
-    j, s, theta, omega, acceleration = one_dof_state(chain, run, rigid, ug, vg, rigid[2])
+    if fresh:
+        s = pattern[j]
+        theta, omega, acceleration = phi[j], phi_dot[j], fs[F_SAMPLE_ACCELERATION]
+    else:
+        ug, vg = ground(seg, t)
+        j, s, theta, omega, acceleration = one_dof_state(chain, run, rigid, ug, vg, rigid[2])
     side = float(s)
     params = body_parameters(rigid[1])
     seg8 = table_segment(seg)
     tol = par[P_TOL_FORCE]
     g_old, g_new = rigid[3], rigid[4]
     seated_margin(rigid[2], pattern, tol, g_old)
-    energy_start, work_start = rigid_energy(rigid[1], theta, omega), fs[F_WORK]
+    work_start = fs[F_WORK]
+    if fs[F_ENERGY_THETA] == theta and fs[F_ENERGY_OMEGA] == omega and \
+            fs[F_ENERGY_SIDE] == 2 * j + s:
+        energy_start = fs[F_ENERGY]   # where the last segment of this pattern ended
+    else:
+        energy_start = rigid_energy(rigid[1], theta, omega)
     rtol, atol_theta, atol_omega = par[P_RTOL], atol[j], atol[n + j]
     step_size, previous_error = fs[F_STEP], fs[F_PREVIOUS_ERROR]
     just_rejected = False
@@ -278,7 +293,10 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid):
         step_size = min(step_size, max(t - fs[F_LAST_IMPACT], 1e-3 * step_size))
         fs[F_LAST_IMPACT] = t
     phi[j], phi_dot[j] = theta, omega
-    fs[F_WORK] = work_start + rigid_energy(rigid[1], theta, omega) - energy_start
+    energy_end = rigid_energy(rigid[1], theta, omega)
+    fs[F_WORK] = work_start + energy_end - energy_start
+    fs[F_ENERGY], fs[F_ENERGY_THETA], fs[F_ENERGY_OMEGA], fs[F_ENERGY_SIDE] = \
+        energy_end, theta, omega, 2 * j + s
     fs[F_STEP], fs[F_PREVIOUS_ERROR] = step_size, previous_error
     return t, what, where
 

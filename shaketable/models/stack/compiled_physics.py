@@ -51,6 +51,8 @@ FULL_ENUMERATION = 3
 #: The plastic law's tolerances (as :mod:`shaketable.models.stack.impact`).
 ROUNDING = 1e-6
 IMPACT_TOLERANCE = 1e-9
+#: No interface (an int64, not a literal).
+NONE_INTERFACE = np.int64(-1)
 
 
 @compiled
@@ -400,51 +402,185 @@ def plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws
         previous = solution[i]
 
 
+# rows of an event workspace (:func:`event_workspace`): its float rows (n,), int rows (n,),
+# (n, 4) and (n, 2) arrays
+R_THETA, R_THETA_DOT, R_TRIAL, R_BEST, R_BEST_ANY, R_UNIT = range(6)
+R_FREE, R_START, R_CANDIDATE, R_CHOSEN, R_PATTERN, R_PATTERN_ANY = range(6)
+W_IMPULSES = 0
+P_CENTROID, P_VELOCITY = range(2)
+#: Rows of an event workspace's arrays that the plastic law leaves to its callers (the
+#: pattern check and the impact of :mod:`shaketable.models.stack.compiled`).
+FREE_ROWS, FREE_INT_ROWS = 6, 6
+N_ROWS, N_INT_ROWS, N_WIDE = 16, 16, 1
+
+
 @compiled
-def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, phi_dot_after,
-                   pattern_after):
-    """The plastic, no-slip multi-contact law, compiled
-    (:func:`~shaketable.models.stack.impact.plastic_impact`): post-impact phi' and pattern
-    into the arrays given; returns the number of admissible active sets. ``closed``: an
-    interface held flat, or -1."""
-    b, h, m = chain[0], chain[1], chain[2]
-    n = m.size
-    theta, theta_dot = np.empty(n), np.empty(n)
+def event_workspace(n):
+    """The arrays the events fill (the plastic law, the pattern check, the impact) for a
+    chain of ``n`` blocks, so that an event allocates nothing: float rows (16, n), int rows
+    (16, n), the impulses (1, n, 4), centroids and velocities (2, n, 2), a velocity map (n, 2, n), the choice's
+    bookkeeping (5,) and the per-unit-rate landings of one-DOF patterns (whether computed,
+    and each candidate's post-impact phi' and impulses per rad/s, for each interface and
+    side: :func:`plastic_impact`)."""
+    count = 3 ** n if n <= FULL_ENUMERATION else 1
+    return (np.zeros((N_ROWS, n)), np.zeros((N_INT_ROWS, n), dtype=np.int64),
+            np.zeros((N_WIDE, n, 4)), np.zeros((2, n, 2)), np.zeros((n, 2, n)), np.zeros(5),
+            np.zeros(2 * n, dtype=np.int64), np.zeros((2 * n, count, n)),
+            np.zeros((2 * n, count, n, 4)))
+
+
+@inlined
+def plastic_prepare(chain, phi, phi_dot, pattern, ws, scratch):
+    """theta, theta', the centroids and the blocks' velocities [m/s] before the impact into
+    the event workspace."""
+    n = phi.size
+    floats, pairs, before_map = scratch[0], scratch[3], scratch[4]
+    theta, theta_dot = floats[R_THETA], floats[R_THETA_DOT]
+    centroid, velocity = pairs[P_CENTROID], pairs[P_VELOCITY]
     cumulate(phi, theta)
     cumulate(phi_dot, theta_dot)
-    centroid, before_map = np.empty((n, 2)), np.empty((n, 2, n))
     kinematics(chain, theta, theta_dot, pattern, centroid, before_map, ws[4])
-    velocity = np.zeros((n, 2))
     for i in range(n):
+        vx, vy = 0.0, 0.0
         for k in range(i + 1):
-            velocity[i, 0] += before_map[i, 0, k] * theta_dot[k]
-            velocity[i, 1] += before_map[i, 1, k] * theta_dot[k]
+            vx += before_map[i, 0, k] * theta_dot[k]
+            vy += before_map[i, 1, k] * theta_dot[k]
+        velocity[i, 0] = vx
+        velocity[i, 1] = vy
+
+
+@inlined
+def plastic_tolerances(chain, phi_dot, interface, theta_dot):
+    """The plastic law's tolerances of the impulses [N s] and the separating rates
+    [rad/s], relative to the landing's approach rate (above the rounding of the momenta of
+    the whole motion)."""
+    b, h, m = chain[0], chain[1], chain[2]
     fastest, reach, total_mass = 0.0, 0.0, 0.0
-    for i in range(n):
+    for i in range(m.size):
         total_mass += m[i]
         fastest = max(fastest, abs(theta_dot[i]))
         reach = max(reach, math.hypot(b[i], h[i]))
     landing = abs(phi_dot[interface]) + ROUNDING * fastest + 1e-300
-    impulse_tolerance = IMPACT_TOLERANCE * total_mass * landing * reach
-    rate_tolerance = IMPACT_TOLERANCE * landing
-    free = np.empty(n, dtype=np.int64)
+    return IMPACT_TOLERANCE * total_mass * landing * reach, IMPACT_TOLERANCE * landing
+
+
+@inlined
+def violation(candidate, trial, impulses, free, n_free, impulse_tolerance, rate_tolerance):
+    """The worst violation of a candidate's admissibility, relative to the tolerances
+    (admissible: at most 1)."""
+    worst = 0.0
+    for j in range(candidate.size):
+        worst = max(worst, -impulses[j, 2] / impulse_tolerance,
+                    -impulses[j, 3] / impulse_tolerance)
+    for p in range(n_free):
+        j = free[p]
+        if candidate[j] != 0:
+            worst = max(worst, -candidate[j] * trial[j] / rate_tolerance)
+    return worst
+
+
+@inlined
+def consider(scratch, candidate, trial, worst):
+    """Keep a candidate of the plastic law if it is the best so far: among the admissible
+    ones the fewest open interfaces, then the least violation; else the least violation.
+    The bookkeeping (admissible sets, the kept one's open count and violation, the least
+    violation, the fewest open interfaces admissible) is ``scratch[5]``."""
+    floats, ints, book = scratch[0], scratch[1], scratch[5]
+    opened = open_count(candidate)
+    if worst <= 1.0:
+        book[0] += 1.0
+        book[4] = min(book[4], opened)
+        if book[0] == 1.0 or opened < book[1] or (opened == book[1] and worst < book[2]):
+            book[1], book[2] = opened, worst
+            for j in range(trial.size):
+                floats[R_BEST, j] = trial[j]
+                ints[R_PATTERN, j] = candidate[j]
+    if worst < book[3]:
+        book[3] = worst
+        for j in range(trial.size):
+            floats[R_BEST_ANY, j] = trial[j]
+            ints[R_PATTERN_ANY, j] = candidate[j]
+
+
+@inlined
+def plastic_choice(scratch, phi_dot_after, pattern_after):
+    """The kept candidate into the arrays given (flat interfaces at rate zero); returns the
+    number of admissible active sets."""
+    floats, ints, book = scratch[0], scratch[1], scratch[5]
+    admissible = np.int64(book[0])
+    row = R_BEST if admissible else R_BEST_ANY
+    for j in range(phi_dot_after.size):
+        phi_dot_after[j] = floats[row, j]
+        pattern_after[j] = ints[R_PATTERN if admissible else R_PATTERN_ANY, j]
+        if pattern_after[j] == 0:
+            phi_dot_after[j] = 0.0
+    return admissible
+
+
+@inlined
+def one_dof_landing(phi, phi_dot, pattern, interface):
+    """Whether a landing is that of a one-DOF pattern: ``interface`` the only open one, every
+    interface at zero gap, the other rates zero (the group above it one rigid body)."""
+    if pattern[interface] == 0:
+        return False
+    for j in range(phi.size):
+        if phi[j] != 0.0 or (j != interface and (pattern[j] != 0 or phi_dot[j] != 0.0)):
+            return False
+    return True
+
+
+@kernel
+def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
+                   phi_dot_after, pattern_after):
+    """The plastic, no-slip multi-contact law, compiled
+    (:func:`~shaketable.models.stack.impact.plastic_impact`): post-impact phi' and pattern
+    into the arrays given; returns the number of admissible active sets. ``closed``: an
+    interface held flat, or -1.
+
+    Every active set is tried in the candidates' order, each considered (:func:`consider`).
+    At a landing of a one-DOF pattern (:func:`one_dof_landing`) of up to FULL_ENUMERATION
+    blocks, the candidates' post-impact rates and impulses are linear in the landing's
+    rate (the momentum balance and the admissibility are linear in the velocities before;
+    the geometry at zero gap is fixed): they are computed once per interface and side at
+    1 rad/s (kept in the event workspace) and scaled, agreeing with the general law's to
+    rounding. It allocates nothing: compiled without reference counting."""
+    n = phi.size
+    floats, ints, wide, pairs, book = scratch[0], scratch[1], scratch[2], scratch[3], scratch[5]
+    theta_dot = floats[R_THETA_DOT]
+    cumulate(phi_dot, theta_dot)
+    impulse_tolerance, rate_tolerance = plastic_tolerances(chain, phi_dot, interface,
+                                                           theta_dot)
+    store = NONE_INTERFACE
+    if closed < 0 and n <= FULL_ENUMERATION and \
+            one_dof_landing(phi, phi_dot, pattern, interface):
+        store = 2 * interface + (0 if pattern[interface] > 0 else 1)
+    cached = store >= 0 and scratch[6][store] != 0
+    rate = phi_dot[interface]
+    if store >= 0 and not cached:
+        unit = floats[R_UNIT]   # the first such landing: its candidates at 1 rad/s
+        for j in range(n):
+            unit[j] = 0.0
+        unit[interface] = 1.0
+        plastic_prepare(chain, phi, unit, pattern, ws, scratch)
+    elif not cached:
+        plastic_prepare(chain, phi, phi_dot, pattern, ws, scratch)
+    theta = floats[R_THETA]
+    free, start, candidate, chosen = ints[R_FREE], ints[R_START], ints[R_CANDIDATE], \
+        ints[R_CHOSEN]
+    trial, impulses = floats[R_TRIAL], wide[W_IMPULSES]
+    unit_trial, unit_impulses = scratch[7], scratch[8]
     n_free = np.int64(0)   # not a literal 0: one compile of its callees
     for j in range(n):
         if phi[j] == 0.0:
             free[n_free] = j
             n_free += 1
-    start = pattern.copy()
+    for j in range(n):
+        start[j] = pattern[j]
     start[interface] = 0
-    candidate = np.empty(n, dtype=np.int64)
-    chosen = np.empty(n, dtype=np.int64)
-    impulses, trial = np.empty((n, 4)), np.empty(n)
-    best_admissible, best_any = np.empty(n), np.empty(n)
-    pattern_admissible = np.empty(n, dtype=np.int64)
-    pattern_any = np.empty(n, dtype=np.int64)
-    admissible, key_count, key_violation, least = 0, 0, math.inf, math.inf
-    lowest_admissible = n + 1
+    book[0], book[1], book[2], book[3], book[4] = 0.0, 0.0, math.inf, math.inf, n + 1
+    index = 0
     for count in range(n_free + 1):
-        if n > FULL_ENUMERATION and lowest_admissible < count:
+        if n > FULL_ENUMERATION and book[4] < count:
             break   # an admissible set with fewer open interfaces is already found
         first_combination(chosen, count)
         going = True
@@ -453,40 +589,26 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, phi_dot_
                 fill_candidate(start, free, n_free, chosen, count, sides, candidate)
                 if closed >= 0 and candidate[closed] != 0:
                     continue
-                plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws,
-                                  impulses, trial)
-                worst = 0.0
-                for j in range(n):
-                    worst = max(worst, -impulses[j, 2] / impulse_tolerance,
-                                -impulses[j, 3] / impulse_tolerance)
-                for p in range(n_free):
-                    j = free[p]
-                    if candidate[j] != 0:
-                        worst = max(worst, -candidate[j] * trial[j] / rate_tolerance)
-                opened = open_count(candidate)
-                if worst <= 1.0:
-                    admissible += 1
-                    lowest_admissible = min(lowest_admissible, opened)
-                    if admissible == 1 or opened < key_count or (
-                            opened == key_count and worst < key_violation):
-                        key_count, key_violation = opened, worst
-                        best_admissible[:] = trial
-                        pattern_admissible[:] = candidate
-                if worst < least:
-                    least = worst
-                    best_any[:] = trial
-                    pattern_any[:] = candidate
+                if not cached:
+                    plastic_candidate(chain, theta, floats[R_THETA_DOT], pairs[P_VELOCITY],
+                                      pairs[P_CENTROID], candidate, ws, impulses, trial)
+                if store >= 0:
+                    for j in range(n):
+                        if not cached:
+                            unit_trial[store, index, j] = trial[j]
+                        trial[j] = rate * unit_trial[store, index, j]
+                        for c in range(4):
+                            if not cached:
+                                unit_impulses[store, index, j, c] = impulses[j, c]
+                            impulses[j, c] = rate * unit_impulses[store, index, j, c]
+                    index += 1
+                consider(scratch, candidate, trial, violation(
+                    candidate, trial, impulses, free, n_free, impulse_tolerance,
+                    rate_tolerance))
             going = next_combination(chosen, count, n_free)
-    if admissible:
-        phi_dot_after[:] = best_admissible
-        pattern_after[:] = pattern_admissible
-    else:
-        phi_dot_after[:] = best_any
-        pattern_after[:] = pattern_any
-    for j in range(n):
-        if pattern_after[j] == 0:
-            phi_dot_after[j] = 0.0
-    return admissible
+    if store >= 0:
+        scratch[6][store] = 1
+    return plastic_choice(scratch, phi_dot_after, pattern_after)
 
 
 @kernel

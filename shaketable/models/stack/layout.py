@@ -17,16 +17,22 @@ NONE, ZERO = np.int64(-1), np.int64(0)
 # slots of the run's float state ``fs``: the table's work [J], rest until [s], overturn and
 # airborne times [s], the time of an error [s], the one-DOF stepper's step size [s], its
 # controller's memory (the last accepted error) [-], the time of the last impact [s] and the
-# step size of DOP853 (multi-DOF patterns) carried from one segment to the next [s]
+# step size of DOP853 (multi-DOF patterns) carried from one segment to the next [s], the
+# energy of the stack at rest [J] (NaN until needed), the last sample's phi'' of a one-DOF
+# pattern [rad/s^2], and the rocking body's energy [J] where the last one-DOF segment ended,
+# with its phi [rad], phi' [rad/s] and pattern (2 j + s)
 F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME, F_STEP, F_PREVIOUS_ERROR, \
-    F_LAST_IMPACT, F_DOP_STEP = range(9)
-N_FLOATS = 9
+    F_LAST_IMPACT, F_DOP_STEP, F_REST_ENERGY, F_SAMPLE_ACCELERATION, F_ENERGY, \
+    F_ENERGY_THETA, F_ENERGY_OMEGA, F_ENERGY_SIDE = range(15)
+N_FLOATS = 15
 # slots of the int state ``ist``: events counted and recorded, events in a row without
 # progress, status, the overturned block, steps, evaluations, the error, the pattern whose
-# closed forms are current (interface, side)
+# closed forms are current (interface, side), whether the last sample's one-DOF state (its
+# phi'' in F_SAMPLE_ACCELERATION, its forces in the closed forms' workspace) is the state
+# the next input interval starts from (1) or not (0)
 I_EVENTS, I_RECORDED, I_STALLED, I_STATUS, I_OVERTURNED, I_STEPS, I_EVALUATIONS, I_ERROR, \
-    I_RIGID_J, I_RIGID_S = range(10)
-N_INTS = 10
+    I_RIGID_J, I_RIGID_S, I_SAMPLED = range(11)
+N_INTS = 11
 # slots of the parameters ``par``: the pattern check's look-ahead [s], the force tolerance
 # [N], the angle and rate scales [rad, rad/s], rtol, the rest tolerance [s], the COR, the
 # law (0 plastic, 1 COR)

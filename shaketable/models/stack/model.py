@@ -128,28 +128,34 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
                     max_recorded_events=int(max_recorded_events))
     run = out["run"]
     # the motion uses the masses' ratios only; forces, work and energies are in kg units
+    # (the engines' arrays are the run's own: scaled in place)
     scale = stack.mass_scale
-    events = tuple(_scaled_energies(event, scale) for event in run.events)
+    forces, work = out["forces"], out["work"]
+    forces *= scale
+    work *= scale
+    scaled = getattr(run, "scaled_events", None)   # the compiled engine's: column by column
+    events = tuple(scaled(scale) if scaled is not None else
+                   (_scaled_energies(event, scale) for event in run.events))
     result = StackResult(
         stack=stack, motion=motion, impact=impact, cor=math.nan if cor is None else cor,
         t=motion.t[:out["filled"]].copy(), theta=out["theta"], theta_dot=out["rate"],
         theta_ddot=out["acceleration"], patterns=out["patterns"],
-        forces=out["forces"] * scale, work=out["work"] * scale, events=events,
+        forces=forces, work=work, events=events,
         status=run.status, t_overturn=run.t_overturn,
         overturned_block=run.overturned_block, t_airborne=run.t_airborne,
         n_events=run.n_events, statistics={"steps": run.steps, "evaluations": run.evaluations})
-    falling = result.t_past_alpha
-    if not math.isnan(result.t_tension):
+    tension = result.t_tension
+    if not math.isnan(tension):
         warnings.warn(f"a contact of the stack carried a tensile force from t = "
-                      f"{result.t_tension:.6g} s: the model (no flight) is outside its "
-                      "assumptions there" + _while_falling(result.t_tension, falling),
+                      f"{tension:.6g} s: the model (no flight) is outside its "
+                      "assumptions there" + _while_falling(tension, result.t_past_alpha),
                       StackTensionWarning, stacklevel=_user_stacklevel())
     slip = result.t_friction_exceeded(PLAUSIBLE_FRICTION)
     if not math.isnan(slip):
         warnings.warn(f"a contact of the stack needed a friction coefficient F/N above "
                       f"{PLAUSIBLE_FRICTION:g} from t = {slip:.6g} s: real blocks would slide "
                       "there, the model (no slip) is outside its assumptions"
-                      + _while_falling(slip, falling),
+                      + _while_falling(slip, result.t_past_alpha),
                       StackFrictionWarning, stacklevel=_user_stacklevel())
     return result
 

@@ -39,6 +39,16 @@ def pattern_name(pattern) -> str:
     return "open " + " ".join(f"{j}{sign(s)}" for j, s in enumerate(pattern) if s != 0)
 
 
+def _first_row(mask: np.ndarray) -> int:
+    """The first index along the first axis where ``mask`` has a True value (-1: none):
+    one pass over the flattened mask (``any`` along the short trailing axes is slow)."""
+    flat = mask.reshape(-1)
+    if not flat.size:
+        return -1
+    first = int(np.argmax(flat))
+    return first // (flat.size // mask.shape[0]) if flat[first] else -1
+
+
 @dataclass(frozen=True, eq=False)
 class StackResult(ModelResult):
     """Time history, events and scalar results of one stack run.
@@ -128,16 +138,16 @@ class StackResult(ModelResult):
         never): the no-sliding assumption fails there."""
         if not (isinstance(mu, (int, float)) and mu >= 0 and math.isfinite(mu)):
             raise ValueError(f"mu must be a finite friction coefficient >= 0, got {mu!r}")
-        over = np.flatnonzero((self.friction_demand > mu).any(axis=1))
-        return float(self.t[over[0]]) if over.size else math.nan
+        row = _first_row(self.friction_demand > mu)
+        return float(self.t[row]) if row >= 0 else math.nan
 
     @property
     def t_tension(self) -> float:
         """First output time a contact carries a tensile (negative) normal force [s] (the
         no-flight assumption fails there); NaN if never."""
         tolerance = 1e-9 * self.stack.weight
-        over = np.flatnonzero((self.forces[:, :, 2:] < -tolerance).any(axis=(1, 2)))
-        return float(self.t[over[0]]) if over.size else math.nan
+        row = _first_row(self.forces[:, :, 2:] < -tolerance)
+        return float(self.t[row]) if row >= 0 else math.nan
 
     @property
     def top_corner_excursion(self) -> np.ndarray:
@@ -189,8 +199,8 @@ class StackResult(ModelResult):
         if not self.t.size:
             return math.nan
         alphas = np.array([block.alpha for block in self.stack.blocks])
-        over = np.flatnonzero((np.abs(self.theta) > alphas).any(axis=1))
-        return float(self.t[over[0]]) if over.size else math.nan
+        row = _first_row(np.abs(self.theta) > alphas)
+        return float(self.t[row]) if row >= 0 else math.nan
 
     def peak_before_past_alpha(self, excursion: np.ndarray | None = None
                                ) -> tuple[float, float]:

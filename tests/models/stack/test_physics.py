@@ -95,6 +95,33 @@ def test_rigid_stack_plastic_ratio_closed_form():
     assert after[0] / -0.8 == pytest.approx(ratio, rel=1e-12)
 
 
+def test_a_one_dof_landing_is_linear_in_its_rate():
+    # the compiled engine computes the plastic law at a landing of a one-DOF pattern (one
+    # open interface, every interface at zero gap) once per unit rate and scales it: the
+    # momentum balance and the admissibility tests are linear in the velocities before and
+    # the geometry at zero gap is fixed, so the rates after are the rate times a constant
+    # (the rigid stack's 1 - 2 M b_j^2 / I_O among them) and the chosen pattern does not
+    # depend on the rate. Checked on the law itself at rates from 1e-6 to 10 rad/s; the
+    # tolerance is the rounding of the momentum solve (mass ratios up to 1e3)
+    rng = np.random.default_rng(38)
+    for _ in range(20):
+        n = int(rng.integers(2, 4))
+        b = np.sort(rng.uniform(0.05, 0.5, n))[::-1]
+        chain = Chain(b, rng.uniform(0.05, 2.0, n), 10.0 ** rng.uniform(-3, 3, n))
+        landing, side = int(rng.integers(n)), int(rng.choice([-1, 1]))
+        pattern = tuple(side if j == landing else 0 for j in range(n))
+        unit = np.zeros(n)
+        unit[landing] = -side
+        per_unit, chosen, admissible, _ = plastic_impact(chain, np.zeros(n), unit, pattern,
+                                                         landing)
+        for rate in (1e-6, 0.03, 10.0):
+            after, pattern_after, count, _ = plastic_impact(chain, np.zeros(n), rate * unit,
+                                                            pattern, landing)
+            assert pattern_after == chosen and count == admissible
+            assert np.abs(after - rate * per_unit).max() <= 1e-12 * rate * np.abs(
+                per_unit).max()
+
+
 def test_the_constant_cor_law_scales_every_block_and_flips_the_landing_interface():
     chain = Chain([0.3, 0.2], [1.0, 0.8], [2.0, 1.0])
     after, pattern = cor_impact(chain, np.array([0.0, 0.1]), np.array([-0.5, 0.2]), (1, 1), 0,
