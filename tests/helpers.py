@@ -37,6 +37,9 @@ TEST_MEMBERS = 20
 #: Dots per inch of a draft figure (:func:`draft_figures`): the package writes 110.
 DRAFT_DPI = 24
 
+#: Factor on an animation's frame size and dpi in :func:`draft_animations` [-].
+DRAFT_ANIMATION_SCALE = 4
+
 
 @contextlib.contextmanager
 def draft_figures():
@@ -59,4 +62,30 @@ def draft_figures():
 
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(base, "save_tight", draft)
+        yield
+
+
+@contextlib.contextmanager
+def draft_animations():
+    """While open, the frames of every animation :mod:`shaketable.plots.animation` writes
+    are drafts: the same figure in inches (size and dpi both divided by
+    :data:`DRAFT_ANIMATION_SCALE`, so the same layout), every frame built, drawn by blitting
+    and written as asked (GIF or MP4), with a sixteenth of the pixels to draw, quantise
+    and encode. The frame count, the times shown and the file written are those of the
+    full-size run; what the command prints still names the size asked for.
+
+    For tests that check that an ``animate`` line runs and writes its file, not what the
+    frames look like (tests/plots/test_animation.py checks those at full size).
+    """
+    from shaketable.plots import animation
+
+    class DraftStage(animation._Stage):
+        def __init__(self, results, motions, times, highpass, *, size, dpi, **options):
+            width, height = (value // DRAFT_ANIMATION_SCALE for value in size)
+            super().__init__(results, motions, times, highpass,
+                             size=(width - width % 2, height - height % 2),
+                             dpi=dpi / DRAFT_ANIMATION_SCALE, **options)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(animation, "_Stage", DraftStage)
         yield

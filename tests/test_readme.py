@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt
 import pytest
 
 from shaketable.scenes.catalog import scene_names
-from tests.helpers import REPOSITORY, TEST_MEMBERS, draft_figures
+from tests.helpers import REPOSITORY, TEST_MEMBERS, draft_animations, draft_figures
 
 README = (REPOSITORY / "README.md").read_text(encoding="utf-8")
 
@@ -110,8 +110,10 @@ def _run_in_process(argv: list[str], folder) -> subprocess.CompletedProcess:
     """``shaketable ARGV`` run in ``folder`` by the console script's function, its output
     captured; an exception that escapes it is a traceback on stderr and exit status 1.
     Its PNG figures are drafts (:func:`tests.helpers.draft_figures`: every figure built
-    and drawn, at a low dpi without the layout solver): these tests check that the line
-    runs and writes its files, tests/plots how its figures look."""
+    and drawn, at a low dpi without the layout solver), and so are its animations' frames
+    (:func:`tests.helpers.draft_animations`: every frame drawn, with fewer pixels): these
+    tests check that the line runs and writes its files, tests/plots how its figures
+    look."""
     from shaketable.cli import main
 
     stdout, stderr = io.StringIO(), io.StringIO()
@@ -119,7 +121,7 @@ def _run_in_process(argv: list[str], folder) -> subprocess.CompletedProcess:
     os.chdir(folder)
     try:
         with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr), \
-                draft_figures():
+                draft_figures(), draft_animations():
             try:
                 status = main(argv)
             except SystemExit as exit_:

@@ -75,7 +75,13 @@ from shaketable.models.rocking.physics import (
     impact_cors,
     side_parameters,
 )
-from shaketable.models.rocking.run import extended, run_in_chunks, run_motion, thread_count
+from shaketable.models.rocking.run import (
+    engine_arrays,
+    extended,
+    run_in_chunks,
+    run_motion,
+    thread_count,
+)
 
 #: Longest Runge-Kutta step, as a fraction of 1 / p of the quicker side [-]: p h = 0.01
 #: makes the classical scheme's error per step ~1e-12 of the motion.
@@ -400,9 +406,7 @@ def simulate_asymmetric(block: AsymmetricBlock, motion: Motion | None = None, *,
     step = default_step(block) if max_step is None else in_range("max_step", max_step, 0.0,
                                                                   low_open=True)
     rows = side_parameters(block)
-    t = np.ascontiguousarray(motion.t, dtype=float)
-    ug = np.ascontiguousarray(motion.horizontal, dtype=float)
-    vg = np.ascontiguousarray(motion.vertical_or_zero, dtype=float)
+    t, ug, vg = engine_arrays(motion.t, motion.horizontal, motion.vertical_or_zero)
     n = t.size
     theta, omega = np.zeros(n), np.zeros(n)
     info = np.zeros(N_INFO)
@@ -468,9 +472,12 @@ def simulate_many_asymmetric(blocks: Sequence[AsymmetricBlock], motions: Sequenc
     runs = [extended(motion, duration) for motion in motions]
     offsets = np.zeros(len(runs) + 1, dtype=np.int64)
     offsets[1:] = np.cumsum([motion.t.size for motion in runs])
-    t_all = np.concatenate([motion.t for motion in runs])
-    ug_all = np.concatenate([motion.horizontal for motion in runs])
-    vg_all = np.concatenate([motion.vertical_or_zero for motion in runs])
+    # read-only and C-contiguous like simulate_asymmetric's arrays: one compiled signature
+    t_all, ug_all, vg_all = engine_arrays(np.concatenate([motion.t for motion in runs]),
+                                          np.concatenate([motion.horizontal for motion in runs]),
+                                          np.concatenate([motion.vertical_or_zero
+                                                          for motion in runs]))
+    block_index, motion_index = np.ascontiguousarray(cases.T)
     parameters = np.empty((len(blocks), 2, N_PARAMETERS))
     for j, block in enumerate(blocks):
         parameters[j] = side_parameters(block)
@@ -484,8 +491,8 @@ def simulate_many_asymmetric(blocks: Sequence[AsymmetricBlock], motions: Sequenc
     info = np.full((n, N_INFO), np.nan)
 
     def run(first: int, last: int) -> None:
-        _run_cases(t_all, ug_all, vg_all, offsets, parameters, cor_rows, cases[:, 0],
-                   cases[:, 1], scale, steps, rest, info, first, last)
+        _run_cases(t_all, ug_all, vg_all, offsets, parameters, cor_rows, block_index,
+                   motion_index, scale, steps, rest, info, first, last)
 
     run_in_chunks(run, n, thread_count(threads), chunk=16)
     return info

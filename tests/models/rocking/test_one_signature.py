@@ -62,3 +62,25 @@ def test_a_motion_without_a_vertical_component_gives_the_engines_the_same_array_
     for motion in (horizontal_only, both):
         slide(motion, 0.3)
     assert len(stick_slip_kernel.signatures) == 1, stick_slip_kernel.signatures
+
+
+def test_the_asymmetric_engine_is_compiled_for_one_signature():
+    # simulate_asymmetric hands the engine a motion's read-only arrays, the batch its
+    # concatenated records (read-only views too) and each case's block and motion index as
+    # contiguous arrays (a column of the cases table, contiguous only with one case, was a
+    # second signature): writable inputs or a strided index compiled the engine twice
+    from shaketable import AsymmetricBlock
+    from shaketable.models.rocking import asymmetric
+
+    block = AsymmetricBlock.from_angles(0.15, 0.35, 0.5)
+    t = np.linspace(0.0, 1.0, 101)
+    record = Motion(t, 3.0 * np.sin(8.0 * t), 0.5 * np.cos(5.0 * t), name="two components")
+    plain = Motion(np.array(t), np.array(3.0 * np.sin(8.0 * t)), name="writable")
+    for motion in (record, plain):
+        simulate(block, motion, cor=0.9)
+    simulate(block, None, cor=0.9, theta0=0.05, duration=0.5)
+    for cases in ([[0, 0]], [[0, 0], [0, 1]]):
+        asymmetric.simulate_many_asymmetric([block], [record, plain], np.array(cases),
+                                            [0.8] * len(cases), threads=1)
+    for compiled in (asymmetric.integrate_asymmetric, asymmetric._run_cases):
+        assert len(compiled.signatures) == 1, compiled.signatures
