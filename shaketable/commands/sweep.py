@@ -118,12 +118,13 @@ def _sweep(args: argparse.Namespace) -> int:
 def register(commands: argparse._SubParsersAction) -> None:
     """Add the ``sweep`` subcommand."""
     parser = commands.add_parser(
-        "sweep", help="run a parameter sweep (TOML spec) into a Parquet table, resumable",
+        "sweep", help="run a parameter sweep (TOML spec) into a table, resumable",
         description="Run every combination of blocks (or stacks of blocks), COR, records, "
                     "PGA levels, pitch phases and friction coefficients named in a sweep "
                     "spec, with the model it names (see "
                     "shaketable.sweeps.spec) and write one row per run to "
-                    "OUT/results.parquet. Finished chunks are kept on disk: a killed sweep "
+                    "OUT/results.parquet (OUT/results.csv where pyarrow is not "
+                    "installed: pip install pyarrow). Finished chunks are kept on disk: a killed sweep "
                     "continues with --resume.")
     from shaketable.scenes.catalog import sweep_names
 

@@ -228,7 +228,8 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
     cases : list of str, optional
         Cases in panel order (default: as they appear in ``frame``).
     columns : int
-        Panels per row.
+        Panels per row at most (fewer when that leaves fewer empty slots on the last
+        row: 5 panels at 4 per row are drawn 3 + 2).
     fig : matplotlib.figure.Figure, optional
         Figure to draw into (a new one, sized to the grid, otherwise).
     planar : pandas.DataFrame, optional
@@ -256,6 +257,7 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
         raise ValueError("frame has no cases to draw")
     columns = max(1, min(int(columns), len(panels)))
     rows = int(math.ceil(len(panels) / columns))
+    columns = int(math.ceil(len(panels) / rows))   # as few empty slots as the rows allow
     if fig is None:
         fig = plt.figure(figsize=(3.3 * columns + 0.6, 2.75 * rows + 1.1))
     axes = fig.subplots(rows, columns, squeeze=False)
@@ -266,8 +268,9 @@ def work_precision_figure(frame, cases=None, columns: int = 4, fig=None, planar=
         ax.set_visible(False)
     for ax in axes[:, 0]:
         ax.set_ylabel("error vs truth [-]", fontsize=8)
-    for ax in axes[-1, :]:
-        ax.set_xlabel("median run time [s]", fontsize=8)
+    for column in range(columns):   # under the lowest panel drawn in each column
+        drawn = [ax for ax in axes[:, column] if ax.get_visible()]
+        drawn[-1].set_xlabel("median run time [s]", fontsize=8)
     methods = set(frame["method"]) if "method" in frame else set()
     if planar is not None and not planar.empty:
         methods |= set(planar["method"])

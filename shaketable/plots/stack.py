@@ -92,17 +92,25 @@ def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
             j = event["interface"]
             band.plot([event["t"]] * 2, [j + 0.1, j + 0.9], color="k", lw=0.5)
         elif event["kind"] == "overturn":
-            band.plot(event["t"], event["interface"] + 0.5, "x", color="tab:red", ms=8)
+            # at the run's last instant: not clipped by the frame
+            band.plot(event["t"], event["interface"] + 0.5, "x", color="tab:red", ms=8,
+                      clip_on=False)
     band.set_ylim(0, n)
-    band.set_yticks(np.arange(n) + 0.5, ["base" if j == 0 else f"{j - 1}|{j}" for j in range(n)],
-                    fontsize=7)
+    # phi of a contact: the rotation of the block above it relative to the one below
+    band.set_yticks(np.arange(n) + 0.5,
+                    ["base\nφ = θ0" if j == 0 else f"{j - 1}|{j}\nφ = θ{j} − θ{j - 1}"
+                     for j in range(n)], fontsize=7)
     band.set_ylabel("contact")
     band.set_xlabel("time [s]")
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     band.legend(handles=[Patch(facecolor="white", edgecolor="k", label="flat"),
                          Patch(color="tab:orange", label="pivot on -x corner (φ > 0)"),
-                         Patch(color="tab:blue", label="pivot on +x corner (φ < 0)")],
+                         Patch(color="tab:blue", label="pivot on +x corner (φ < 0)"),
+                         Line2D([], [], color="k", lw=0.5, label="impact"),
+                         Line2D([], [], marker="x", ls="", color="tab:red", ms=6,
+                                label="overturn")],
                 loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
     first, last = (motion.t[0], max(end, motion.t[0] + 1e-9)) if time_range is None \
         else time_range

@@ -639,8 +639,10 @@ def risk_curves(fragility, hazard, result=None, *, ax=None):
         other.fill_between(x, lower, upper, color="0.5", alpha=0.2, lw=0,
                            label=f"{fragility.confidence:.0%} band (profile likelihood)")
         levels, runs, failures = _merged_stripes(fragility.stripes)
+        single = bool(np.all(runs <= 1))   # every run at an IM of its own: 0 or 1 each
         other.plot(levels, failures / runs, "s", ms=3.5, mfc="white", mec="k", mew=0.8,
-                   label="fraction overturned at each level (the data fitted)")
+                   label="each run: 1 overturned, 0 standing (the data fitted)" if single
+                   else "fraction overturned at each level (the data fitted)")
     other.set_ylim(-0.02, 1.02)
     other.set_ylabel("P(overturn) [-]")
     handles = ax.get_legend_handles_labels()

@@ -163,7 +163,17 @@ class FragilityFit:
         return (f"{self.measure or 'IM'}: median {self.median:.4g} [{self.median_interval[0]:.4g}, "
                 f"{self.median_interval[1]:.4g}], beta {self.beta:.3f} "
                 f"[{self.beta_interval[0]:.3f}, {self.beta_interval[1]:.3f}] ({level}, "
-                f"{self.method.upper()}, {self.n_overturned} of {self.n_runs} overturned)")
+                f"{self.method_label}, {self.n_overturned} of {self.n_runs} overturned)")
+
+    @property
+    def method_label(self) -> str:
+        """The fit's method in words: ``IDA``, ``MSA`` (maximum likelihood on stripes of
+        several runs at one IM) or, when every run has an IM of its own (a suite scaled in
+        another measure than the fit's), ``ML, one run per IM``: the same likelihood, but
+        no stripe holds more than one run."""
+        if self.method == "msa" and self.stripes and max(self.stripes[1]) <= 1:
+            return "ML, one run per IM"
+        return self.method.upper()
 
     def plot(self, ax=None, **options):
         """The curve with its band (:func:`shaketable.plots.sweeps.fragility_with_band`)."""

@@ -173,6 +173,23 @@ def test_bench_draws_no_max_theta_curve_that_every_method_gets_exactly():
         plt.close(fig)
 
 
+def test_bench_leaves_no_more_empty_slots_than_its_rows_need():
+    """Five panels at four per row left three empty slots on the second row; drawn 3 + 2
+    they leave one, and every column has its x label under its lowest panel."""
+    from matplotlib.figure import Figure
+
+    from shaketable.plots.bench import work_precision_figure
+
+    frame = pd.concat([_bench_rows(f"case {k}", "completed", 3e-2) for k in range(5)])
+    fig = work_precision_figure(frame, fig=Figure(figsize=(12, 7)))
+    drawn = [ax for ax in fig.axes if ax.get_visible() and ax.get_subplotspec() is not None]
+    hidden = [ax for ax in fig.axes if not ax.get_visible()]
+    assert len(drawn) == 5 and len(hidden) == 1
+    columns = {ax.get_subplotspec().colspan.start for ax in drawn}
+    labelled = {ax.get_subplotspec().colspan.start for ax in drawn if ax.get_xlabel()}
+    assert columns == labelled == {0, 1, 2}
+
+
 def test_the_test_vs_theory_caption_says_over_what_the_rms_difference_runs():
     """Fig. 3.4's free rocking never exceeds alpha: its RMS difference is over the whole
     record, not "before instability"; a run that falls says up to when."""

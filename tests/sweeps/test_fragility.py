@@ -138,3 +138,29 @@ def test_bad_inputs_name_the_problem():
         fragility_fit([0.1, 0.2, 0.3], [False, True, False], confidence=1.5)
     with pytest.raises(ValueError, match="capacities"):
         ida_fit([0.3])
+
+
+def test_a_fit_with_one_run_per_im_is_not_called_multiple_stripe():
+    """A suite scaled in another measure than the fit's gives every run an IM of its own:
+    the likelihood is the same, but no stripe holds more than one run, so the summary must
+    not say MSA, and the figure's points are single outcomes (0 or 1), not fractions."""
+    from matplotlib.figure import Figure
+
+    from shaketable.plots.sweeps import risk_curves
+    from shaketable.sweeps.risk import HazardCurve
+
+    fell = np.array([0, 0, 1, 0, 1, 1, 0, 1, 1, 1], dtype=bool)
+    spread = fragility_fit(np.geomspace(0.1, 1.0, fell.size), fell, intervals=False)
+    stripes = fragility_fit(np.repeat([0.1, 0.3, 0.5, 0.7, 1.0], 2), fell, intervals=False)
+    assert "ML, one run per IM" in spread.summary() and "MSA" not in spread.summary()
+    assert "MSA" in stripes.summary()
+    im = np.geomspace(0.02, 5.0, 20)
+    hazard = HazardCurve(im=tuple(im), rate=tuple(1e-3 * (im / 0.1) ** -2.5), measure="pgv",
+                         column="pgv [m/s]")
+    labels = []
+    for fit in (spread, stripes):
+        axis = Figure().add_subplot()
+        risk_curves(fit, hazard, ax=axis)
+        labels.append([text.get_text() for text in axis.get_legend().get_texts()])
+    assert any(label.startswith("each run: 1 overturned") for label in labels[0])
+    assert any(label.startswith("fraction overturned at each level") for label in labels[1])

@@ -18,6 +18,14 @@ def test_the_figure_has_one_rotation_panel_per_block_and_a_pattern_band():
     assert labels[0].startswith("horizontal") and "θ1 [rad]\nblock 1 (top)" in labels
     assert "θ0 [rad]\nblock 0 (bottom)" in labels and labels[-1] == "contact"
     assert "30 × 6 in on 30 × 6 in" in fig._suptitle.get_text()
+    # the band's colours are read by phi (docs/stack.md): each row says what its phi is,
+    # and the legend names every mark drawn on it
+    band = fig.axes[-1]
+    assert [tick.get_text() for tick in band.get_yticklabels()] == \
+        ["base\nφ = θ0", "0|1\nφ = θ1 − θ0"]
+    assert [text.get_text() for text in band.get_legend().get_texts()] == \
+        ["flat", "pivot on -x corner (φ > 0)", "pivot on +x corner (φ < 0)", "impact",
+         "overturn"]
     pyplot().close(fig)
 
 
