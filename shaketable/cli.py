@@ -71,6 +71,7 @@ def main(argv=None) -> int:
         _refuse_unknown(parser, args.command, unknown)
     prefix = f"shaketable {args.command}: error:"
     quiet = getattr(args, "quiet", False)
+    new_folders = _missing_output_folders(args)
     try:
         with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
             status = int(args.handler(args) or 0)
@@ -88,6 +89,7 @@ def main(argv=None) -> int:
         return _closed_pipe()
     except (ValueError, FileNotFoundError, NotADirectoryError, IsADirectoryError) as error:
         print(f"{prefix} {error}", file=sys.stderr)
+        _remove_empty_folders(new_folders)   # a refused input leaves no empty --out behind
         return EXIT_BAD_INPUT
     except RuntimeError as error:  # a run that failed and says why (e.g. cluster chunks)
         print(f"{prefix} {error}", file=sys.stderr)
@@ -108,6 +110,45 @@ def main(argv=None) -> int:
               f"shaketable; please report it with the command you ran (SHAKETABLE_TRACEBACK=1 "
               f"shows the traceback)", file=sys.stderr)
         return EXIT_FAILED
+
+
+#: Where a command writes when its ``--out`` is not given (``run``: shaketable-out/SCENE).
+DEFAULT_OUT = "shaketable-out"
+
+
+def _missing_output_folders(args) -> list:
+    """The output folders of the command (``--out``, ``--figures``, else the default
+    ``shaketable-out``) that do not exist yet, each as its topmost missing folder: what
+    the command creates there, it alone created."""
+    from pathlib import Path
+
+    given = [getattr(args, name, None) for name in ("out", "figures")]
+    missing = []
+    for path in [str(value) for value in given if value] or [DEFAULT_OUT]:
+        if not path.strip():
+            continue
+        try:
+            folder = Path(path).absolute()
+            while not folder.parent.exists() and folder.parent != folder:
+                folder = folder.parent
+            if not folder.exists():
+                missing.append(folder)
+        except (OSError, ValueError):   # an unusable path: the command says why
+            continue
+    return missing
+
+
+def _remove_empty_folders(folders: list) -> None:
+    """Remove each of ``folders`` (made by this command) and the folders in it, if they
+    hold no file: a refusal found after the output folder was made leaves nothing."""
+    for folder in folders:
+        if not folder.is_dir() or folder.is_symlink():
+            continue
+        try:
+            for inner, _, _ in sorted(os.walk(folder), key=lambda walked: -len(walked[0])):
+                os.rmdir(inner)   # deepest first; a folder holding a file stays (OSError)
+        except OSError:
+            pass
 
 
 def _refuse_unknown(parser: argparse.ArgumentParser, command: str, unknown: list) -> None:

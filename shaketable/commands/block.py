@@ -67,6 +67,7 @@ def block_spectrum(args) -> int:
     from shaketable.commands.checks import with_option_names
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import atomic_write, prepare_output_folder, write_parquet
+    from shaketable.ground.pulses import Pulse
     from shaketable.plots import base as plots
     from shaketable.studies.overturning_spectrum import overturning_spectrum
 
@@ -78,6 +79,12 @@ def block_spectrum(args) -> int:
     except ValueError as error:
         raise with_option_names(error, OPTIONS) from None
     cor_of(args.cor)
+    parse_ratios(args.ratios)
+    try:   # the pulse names too, before the output folder
+        for kind in args.pulse or ["half-sine"]:
+            Pulse(kind, 1.0)
+    except ValueError as error:
+        raise with_option_names(error, OPTIONS) from None
     scan_step = BLOCK_SCAN_STEP if args.scan_step is None else args.scan_step
     out = prepare_output_folder(args.out)
     notice_first_compile(args.quiet, which=("batch",))
