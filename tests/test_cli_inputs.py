@@ -56,3 +56,62 @@ def test_a_refusal_keeps_a_folder_that_existed_and_its_files(tmp_path, capsys):
     status = main(["spectrum", "--block", "16x4ft", "--ceiling", "-1", "--out", str(out)])
     assert status == 2, capsys.readouterr().err
     assert (out / "notes.txt").read_text() == "kept" and (out / "empty").is_dir()
+
+
+# ------------------------------------------------------------ slips noted, runs kept
+@pytest.mark.parametrize("text, says", [
+    ("6x30in", "--block 6x30in is 6 in tall and 30 in wide (B/H = 5, alpha = 78.7 deg); "
+               "the order is height x width: did you mean 30x6in?"),
+    ("6in x 30in", "did you mean 30in x 6in?"),
+    ("1x2m", "(B/H = 2, alpha = 63.4 deg)"),
+])
+def test_a_block_wider_than_tall_is_noted_and_kept(text, says, capsys):
+    import math
+
+    from shaketable.commands.options import block_option
+
+    block = block_option(text)
+    # the block as written: B/H = 5 gives alpha = atan(5) = 78.69 deg (Eq. 2-1's tan alpha = B/H)
+    assert block.width > block.height
+    assert math.degrees(block.alpha) == pytest.approx(math.degrees(math.atan(
+        block.width / block.height)), rel=1e-12)
+    err = capsys.readouterr().err
+    assert err.startswith("shaketable: note: ") and says in err and err.count("\n") == 1, err
+
+
+@pytest.mark.parametrize("text", ["30x6in", "16x4ft", "2x2m"])
+def test_a_block_not_wider_than_tall_gets_no_note(text, capsys):
+    from shaketable.commands.options import block_option
+
+    block_option(text)
+    assert capsys.readouterr().err == ""
+
+
+def test_simulate_runs_a_wide_block_after_the_note(tmp_path, capsys):
+    status = main(["simulate", "--block", "6x30in", "--cor", "0.9", "--theta0", "0.5alpha",
+                   "--duration", "0.2s", "--out", str(tmp_path / "wide")])
+    captured = capsys.readouterr()
+    assert status == 0, captured.err
+    assert "did you mean 30x6in?" in captured.err
+    assert (tmp_path / "wide" / "summary.json").exists()
+
+
+@pytest.mark.parametrize("text, noted", [("0.5alpha", False), ("-0.99alpha", False),
+                                          ("2alpha", True), ("-1.5alpha", True),
+                                          ("30deg", True), ("5deg", False)])
+def test_a_release_past_alpha_is_noted(text, noted, capsys):
+    from shaketable.commands.block import resolve_angle
+    from shaketable.commands.options import block_option
+
+    block = block_option("30x6in")   # alpha = atan(6/30) = 11.31 deg
+    assert abs(resolve_angle(text, block)) > 0
+    err = capsys.readouterr().err
+    assert ("past alpha" in err and "falls at once" in err) == noted, err
+
+
+def test_a_release_at_or_past_ninety_degrees_is_refused_naming_the_option():
+    from shaketable.commands.block import resolve_angle
+    from shaketable.commands.options import block_option
+
+    with pytest.raises(ValueError, match=r"--theta0 10alpha: the tilt must be below 90 deg"):
+        resolve_angle("10alpha", block_option("30x6in"))   # 10 x 11.31 deg = 113 deg

@@ -114,11 +114,40 @@ def block_option(text: str, option: str = "--block"):
 
     text = str(text)
     try:
-        return Block.parse(text)
+        block = Block.parse(text)
     except ValueError as error:
         reason, prefix = str(error), f"block size {text!r}"
         reason = reason[len(prefix):].lstrip(":; ") if reason.startswith(prefix) else reason
         raise ValueError(f"{option} {text}: {reason}") from None
+    if block.width > block.height:
+        note(wider_than_tall(text, block, option))
+    return block
+
+
+def note(text: str) -> None:
+    """One line on stderr about an input that is accepted but looks like a slip."""
+    import sys
+
+    print(f"shaketable: note: {text}", file=sys.stderr, flush=True)
+
+
+def wider_than_tall(text: str, block, option: str = "--block") -> str:
+    """What to say of a block given wider than tall (``6x30in``): the order is height x
+    width (as the report writes blocks), so the user may have meant the other order."""
+    import math
+
+    from shaketable.core.geometry import _SIZE
+
+    match = _SIZE.match(text)
+    ratio = f"B/H = {block.width / block.height:.3g}, alpha = {math.degrees(block.alpha):.1f} deg"
+    if match is None:
+        return f"{option} {text} is wider than tall ({ratio}); the order is height x width"
+    height, width = match["height"], match["width"]
+    unit = match["wunit"] or match["hunit"]
+    swapped = (f"{width}{match['wunit'] or unit} x {height}{match['hunit']}" if match["hunit"]
+               else f"{width}x{height}{unit}")
+    return (f"{option} {text} is {height} {match['hunit'] or unit} tall and {width} {unit} "
+            f"wide ({ratio}); the order is height x width: did you mean {swapped}?")
 
 
 def add_quantity(parser, *flags: str, kind: str, example: str, help: str, **kwargs: Any) -> None:
