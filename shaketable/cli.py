@@ -39,11 +39,21 @@ EPILOG = ("exit status: 0 success; 1 a run that failed (e.g. a scene that could 
           "tracebacks of unexpected errors.")
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser whose usage errors are one line and a pointer to the help (not
+    the usage of every option first, which buried the message under it); the
+    subcommands' parsers are of this class too (argparse gives them the top parser's)."""
+
+    def error(self, message: str):   # type: ignore[override]
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n"
+                                  f"see '{self.prog} --help'\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every subcommand registered."""
     from shaketable.version import __version__
 
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="shaketable",
         description="Virtual shaking-table tests of rocking rigid blocks "
                     "(Aslam, Godden & Scalise; BLOKROC).", epilog=EPILOG)

@@ -115,3 +115,39 @@ def test_a_release_at_or_past_ninety_degrees_is_refused_naming_the_option():
 
     with pytest.raises(ValueError, match=r"--theta0 10alpha: the tilt must be below 90 deg"):
         resolve_angle("10alpha", block_option("30x6in"))   # 10 x 11.31 deg = 113 deg
+
+
+# ------------------------------------------------------- short refusals, the hint first
+@pytest.mark.parametrize("argv, says", [
+    (["simulate", "--blok", "30x6in", "--cor", "0.9"],
+     "shaketable simulate: error: unrecognized arguments: --blok 30x6in; "
+     "--blok: did you mean --block?"),
+    (["calibrate", "virtual-fig-3-4"],
+     "shaketable calibrate: error: the following arguments are required: --block"),
+    (["simulate", "--method", "nope"], "shaketable simulate: error: argument --method"),
+])
+def test_a_usage_error_is_one_line_and_a_pointer_to_the_help(argv, says, capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    err = capsys.readouterr().err
+    assert stop.value.code == 2
+    command = argv[0]
+    assert err == f"{err.splitlines()[0]}\nsee 'shaketable {command} --help'\n", err
+    assert err.startswith(says), err
+
+
+def test_a_misspelt_scene_name_leads_with_the_name_meant(capsys):
+    assert main(["run", "fig-3-77"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("shaketable run: error: no scene 'fig-3-77': did you mean fig-3-7? ")
+    assert err.index("did you mean") < err.index("available:")
+    assert main(["run", "zzz"]) == 2   # nothing close: no guess
+    assert "did you mean" not in capsys.readouterr().err
+
+
+def test_reproduce_names_the_scene_meant_for_each_misspelt_one(tmp_path, capsys):
+    assert main(["reproduce", "fig-3-77", "tabel-4-2", "zzz", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert ("no scene 'fig-3-77' (did you mean fig-3-7?), 'tabel-4-2' (did you mean "
+            "table-4-2?), 'zzz'; ") in err, err
+    assert not (tmp_path / "o").exists()
