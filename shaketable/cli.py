@@ -6,7 +6,8 @@ Each subcommand lives in ``shaketable/commands/<name>.py`` and exposes
 Exit status: 0 success, 1 a run that failed (a scene that could not be
 reproduced, a file that could not be written, not enough memory, an internal
 error, 130 interrupted with Ctrl-C, 141 the output pipe closed: quietly), 2 bad usage or bad input (an unknown
-option, a malformed value, a missing or malformed file, an unusable output path).
+option, a malformed value, a missing or malformed file, an unusable output path, a missing
+optional extra).
 """
 
 from __future__ import annotations
@@ -34,9 +35,9 @@ EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 EPILOG = ("exit status: 0 success; 1 a run that failed (e.g. a scene that could not be "
           "reproduced, a file that could not be written, not enough memory); 2 bad usage or "
           "input (unknown option, malformed value, missing or malformed file, unusable output "
-          "path); 130 interrupted (Ctrl-C); 141 the output pipe was closed (e.g. by "
-          "head). Set SHAKETABLE_TRACEBACK=1 to see Python "
-          "tracebacks of unexpected errors.")
+          "path, missing optional extra such as Panel or pyarrow); 130 interrupted (Ctrl-C); "
+          "141 the output pipe was closed (e.g. by head). Set SHAKETABLE_TRACEBACK=1 to see "
+          "Python tracebacks of unexpected errors.")
 
 
 class _Parser(argparse.ArgumentParser):
