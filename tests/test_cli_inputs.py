@@ -62,7 +62,9 @@ def test_a_refusal_keeps_a_folder_that_existed_and_its_files(tmp_path, capsys):
 @pytest.mark.parametrize("text, says", [
     ("6x30in", "--block 6x30in is 6 in tall and 30 in wide (B/H = 5, alpha = 78.7 deg); "
                "the order is height x width: did you mean 30x6in?"),
-    ("6in x 30in", "did you mean 30in x 6in?"),
+    ("6in x 30in", "did you mean 30x6in?"),
+    ("2ft x 30in", "2 ft tall and 30 in wide (B/H = 1.25, alpha = 51.3 deg); the order is "
+                   "height x width: did you mean 30in x 2ft?"),
     ("1x2m", "(B/H = 2, alpha = 63.4 deg)"),
 ])
 def test_a_block_wider_than_tall_is_noted_and_kept(text, says, capsys):

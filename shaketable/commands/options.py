@@ -136,17 +136,16 @@ def wider_than_tall(text: str, block, option: str = "--block") -> str:
     width (as the report writes blocks), so the user may have meant the other order."""
     import math
 
-    from shaketable.core.geometry import _SIZE
-
-    match = _SIZE.match(text)
     ratio = f"B/H = {block.width / block.height:.3g}, alpha = {math.degrees(block.alpha):.1f} deg"
-    if match is None:
+    # the parsed block's label: "6 x 30 in", or "6 ft x 30 in" with a unit each
+    height, _, width = block.describe().partition(" x ")
+    width, _, unit = width.partition(" ")
+    height, _, height_unit = height.partition(" ")
+    if not (height and width and unit):
         return f"{option} {text} is wider than tall ({ratio}); the order is height x width"
-    height, width = match["height"], match["width"]
-    unit = match["wunit"] or match["hunit"]
-    swapped = (f"{width}{match['wunit'] or unit} x {height}{match['hunit']}" if match["hunit"]
+    swapped = (f"{width}{unit} x {height}{height_unit}" if height_unit
                else f"{width}x{height}{unit}")
-    return (f"{option} {text} is {height} {match['hunit'] or unit} tall and {width} {unit} "
+    return (f"{option} {text} is {height} {height_unit or unit} tall and {width} {unit} "
             f"wide ({ratio}); the order is height x width: did you mean {swapped}?")
 
 

@@ -35,6 +35,7 @@ def _slide(args) -> int:
         print(table_4_4_markdown(frame))
         print(f"wrote {out / 'table_4_4.csv'} and {out / 'table_4_4.md'}")
         return 0
+    assert motion is not None   # read above: a run on a record
     if args.sweep:
         frame = peak_slips(motion, args.sweep)
         write_csv(out / "sweep.csv", frame)
