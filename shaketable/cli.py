@@ -6,7 +6,8 @@ Each subcommand lives in ``shaketable/commands/<name>.py`` and exposes
 Exit status: 0 success, 1 a run that failed (a scene that could not be
 reproduced, a file that could not be written, not enough memory, an internal
 error, 130 interrupted with Ctrl-C, 141 the output pipe closed: quietly), 2 bad usage or bad input (an unknown
-option, a malformed value, a missing or malformed file, an unusable output path).
+option, a malformed value, a missing or malformed file, an unusable output path, a missing
+optional extra).
 """
 
 from __future__ import annotations
@@ -34,16 +35,26 @@ EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERRUPTED = 0, 1, 2, 130
 EPILOG = ("exit status: 0 success; 1 a run that failed (e.g. a scene that could not be "
           "reproduced, a file that could not be written, not enough memory); 2 bad usage or "
           "input (unknown option, malformed value, missing or malformed file, unusable output "
-          "path); 130 interrupted (Ctrl-C); 141 the output pipe was closed (e.g. by "
-          "head). Set SHAKETABLE_TRACEBACK=1 to see Python "
-          "tracebacks of unexpected errors.")
+          "path, missing optional extra such as Panel or pyarrow); 130 interrupted (Ctrl-C); "
+          "141 the output pipe was closed (e.g. by head). Set SHAKETABLE_TRACEBACK=1 to see "
+          "Python tracebacks of unexpected errors.")
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser whose usage errors are one line and a pointer to the help (not
+    the usage of every option first, which buried the message under it); the
+    subcommands' parsers are of this class too (argparse gives them the top parser's)."""
+
+    def error(self, message: str):   # type: ignore[override]
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n"
+                                  f"see '{self.prog} --help'\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser with every subcommand registered."""
     from shaketable.version import __version__
 
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="shaketable",
         description="Virtual shaking-table tests of rocking rigid blocks "
                     "(Aslam, Godden & Scalise; BLOKROC).", epilog=EPILOG)
@@ -71,6 +82,7 @@ def main(argv=None) -> int:
         _refuse_unknown(parser, args.command, unknown)
     prefix = f"shaketable {args.command}: error:"
     quiet = getattr(args, "quiet", False)
+    new_folders = _missing_output_folders(args)
     try:
         with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
             status = int(args.handler(args) or 0)
@@ -88,6 +100,7 @@ def main(argv=None) -> int:
         return _closed_pipe()
     except (ValueError, FileNotFoundError, NotADirectoryError, IsADirectoryError) as error:
         print(f"{prefix} {error}", file=sys.stderr)
+        _remove_empty_folders(new_folders)   # a refused input leaves no empty --out behind
         return EXIT_BAD_INPUT
     except RuntimeError as error:  # a run that failed and says why (e.g. cluster chunks)
         print(f"{prefix} {error}", file=sys.stderr)
@@ -108,6 +121,45 @@ def main(argv=None) -> int:
               f"shaketable; please report it with the command you ran (SHAKETABLE_TRACEBACK=1 "
               f"shows the traceback)", file=sys.stderr)
         return EXIT_FAILED
+
+
+#: Where a command writes when its ``--out`` is not given (``run``: shaketable-out/SCENE).
+DEFAULT_OUT = "shaketable-out"
+
+
+def _missing_output_folders(args) -> list:
+    """The output folders of the command (``--out``, ``--figures``, else the default
+    ``shaketable-out``) that do not exist yet, each as its topmost missing folder: what
+    the command creates there, it alone created."""
+    from pathlib import Path
+
+    given = [getattr(args, name, None) for name in ("out", "figures")]
+    missing = []
+    for path in [str(value) for value in given if value] or [DEFAULT_OUT]:
+        if not path.strip():
+            continue
+        try:
+            folder = Path(path).absolute()
+            while not folder.parent.exists() and folder.parent != folder:
+                folder = folder.parent
+            if not folder.exists():
+                missing.append(folder)
+        except (OSError, ValueError):   # an unusable path: the command says why
+            continue
+    return missing
+
+
+def _remove_empty_folders(folders: list) -> None:
+    """Remove each of ``folders`` (made by this command) and the folders in it, if they
+    hold no file: a refusal found after the output folder was made leaves nothing."""
+    for folder in folders:
+        if not folder.is_dir() or folder.is_symlink():
+            continue
+        try:
+            for inner, _, _ in sorted(os.walk(folder), key=lambda walked: -len(walked[0])):
+                os.rmdir(inner)   # deepest first; a folder holding a file stays (OSError)
+        except OSError:
+            pass
 
 
 def _refuse_unknown(parser: argparse.ArgumentParser, command: str, unknown: list) -> None:

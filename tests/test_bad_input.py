@@ -501,9 +501,9 @@ def test_command_line_answers_cleanly(kind, name, argv, status, fragment, corpus
     (["spectrum", "--block", "-16x4ft"], "--block -16x4ft: the height and the width"),
     (["calibrate", "virtual-fig-3-4", "--block", "-30x6in"], "--block -30x6in: the height"),
     (["simulate", "--block", "30x6in", "--cor", "0.9", "--duration", "-8s"],
-     "duration must be in (0.0, inf], got -8.0"),
+     "--duration must be positive, got -8 s"),
     (["calibrate", "virtual-fig-3-4", "--block", "30x6in", "--rate", "-50Hz"],
-     "rate must be a positive number"),
+     "--rate must be positive, got -50 Hz"),
 ], ids=["simulate-block", "spectrum-block", "calibrate-block", "duration", "rate"])
 def test_a_negative_value_given_without_equals_gets_the_options_own_answer(argv, answer,
                                                                           tmp_path):

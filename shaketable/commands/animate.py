@@ -134,7 +134,7 @@ def register(commands) -> None:
                              "0.5alpha (default 0rad)")
     add_record_arguments(parser)
     add_motion_options(parser)
-    add_quantity(parser, "--duration", kind="time", example="8s",
+    add_quantity(parser, "--duration", kind="time", example="8s", positive=True,
                  help="without a scene: length of the run")
     parser.add_argument("--out", required=True,
                         help="the file to write: FILE.mp4 (with ffmpeg; otherwise FILE.gif "

@@ -6,6 +6,7 @@ block's options they share with ``simulate``."""
 
 from __future__ import annotations
 
+import math
 import time
 
 from shaketable.core.geometry import Block
@@ -17,10 +18,20 @@ def resolve_angle(text: str, block: Block) -> float:
     """``--theta0`` [rad]: rad, deg, a multiple of the block's alpha, or a bare zero
     (:func:`shaketable.core.units.parse_angle_or_ratio`)."""
     try:
-        return parse_angle_or_ratio(text, block.alpha, where="--theta0")
+        theta0 = parse_angle_or_ratio(text, block.alpha, where="--theta0")
     except ValueError:
         raise ValueError(f"--theta0 {text!r}: give a number with a unit, e.g. 0.05rad, 3deg "
                          "or 0.5alpha") from None
+    if not abs(theta0) < math.pi / 2:   # on its side or beyond: no release at all
+        raise ValueError(f"--theta0 {text}: the tilt must be below 90 deg (pi/2 rad) either "
+                         f"way, got {math.degrees(theta0):.4g} deg")
+    if abs(theta0) > block.alpha:   # past the tipping angle: the block falls by statics
+        from shaketable.commands.options import note
+
+        note(f"--theta0 {text} is past alpha (theta0/alpha = {theta0 / block.alpha:.3g}, "
+             f"alpha = {block.alpha:.4g} rad): released there the block falls at once, by "
+             "statics (it rocks back only from |theta0| < alpha)")
+    return theta0
 
 
 def block_of(block: str | None, alpha: float | None, p: float | None) -> Block:
@@ -67,6 +78,7 @@ def block_spectrum(args) -> int:
     from shaketable.commands.checks import with_option_names
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import atomic_write, prepare_output_folder, write_parquet
+    from shaketable.ground.pulses import Pulse
     from shaketable.plots import base as plots
     from shaketable.studies.overturning_spectrum import overturning_spectrum
 
@@ -78,6 +90,12 @@ def block_spectrum(args) -> int:
     except ValueError as error:
         raise with_option_names(error, OPTIONS) from None
     cor_of(args.cor)
+    parse_ratios(args.ratios)
+    try:   # the pulse names too, before the output folder
+        for kind in args.pulse or ["half-sine"]:
+            Pulse(kind, 1.0)
+    except ValueError as error:
+        raise with_option_names(error, OPTIONS) from None
     scan_step = BLOCK_SCAN_STEP if args.scan_step is None else args.scan_step
     out = prepare_output_folder(args.out)
     notice_first_compile(args.quiet, which=("batch",))

@@ -197,7 +197,7 @@ def register(commands) -> None:
     parser.add_argument("--units", help="unit of the column: rad, deg, mrad (angle) or m, cm, "
                                         "mm, in, ft (top displacement); default from '[unit]' "
                                         "in its name (a contradicting --units is refused)")
-    add_quantity(parser, "--rate", kind="frequency", example="50Hz",
+    add_quantity(parser, "--rate", kind="frequency", example="50Hz", positive=True,
                  help="sampling rate (samples per second), without a time column")
     parser.add_argument("--height", help="height of the potentiometer wire, e.g. '30 in' "
                                          "(default: the block's height)")

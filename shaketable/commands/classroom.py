@@ -9,9 +9,11 @@ def _classroom(args) -> int:
     import importlib.util
 
     if importlib.util.find_spec("panel") is None:   # the optional extra the page is built with
-        print("shaketable classroom needs Panel: pip install 'shaketable[classroom]'",
-              file=sys.stderr)
-        return 1
+        # a set-up error (exit status 2, as a missing pyarrow for --parquet): said with the
+        # install line for an installed package and for a checkout of the source
+        raise ValueError("the classroom page needs Panel, an optional extra: pip install "
+                         "'shaketable[classroom]' (from a checkout of the source, in its "
+                         "folder: pip install '.[classroom]')")
     from shaketable.commands.common import notice_first_compile
 
     if not 0 <= args.port <= 65535:

@@ -18,7 +18,7 @@ def add_record_arguments(parser) -> None:
                                         "state them)")
     from shaketable.commands.options import add_quantity
 
-    add_quantity(parser, "--dt", kind="time", example="0.02s",
+    add_quantity(parser, "--dt", kind="time", example="0.02s", positive=True,
                  help="sample interval of a one-column record")
     parser.add_argument("--column", help="the acceleration column of a text record with "
                                          "several, by 0-based index or header name")

@@ -133,7 +133,7 @@ def register(commands) -> None:
     parser.add_argument("--aspect-ratios", metavar="LIST|START:STOP:STEP",
                         help="B/H of the map's columns (default 0.15,0.2,0.25,0.3,0.35,0.4,0.5; "
                              "your block's is always added)")
-    add_quantity(parser, "--duration", kind="time", example="10s",
+    add_quantity(parser, "--duration", kind="time", example="10s", positive=True,
                  help="use the record up to this time (default all of it)")
     parser.add_argument("--tolerance", type=float, default=1e-4,
                         help="width of the sliding limit's bisection bracket [-] (default 1e-4)")

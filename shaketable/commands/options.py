@@ -26,19 +26,35 @@ class Quantity(argparse.Action):
     """An option holding a quantity of ``kind`` (a key of :data:`shaketable.core.units.UNITS`).
 
     Use as ``parser.add_argument("--duration", action=Quantity, kind="time")``; the
-    namespace receives the value in SI units [s, m, m/s^2, Hz, rad, rad/s...].
+    namespace receives the value in SI units [s, m, m/s^2, Hz, rad, rad/s...]. With
+    ``positive=True`` a value of zero or below is refused as the command line is read
+    (``--duration must be positive, got -3 s``), before any output folder is made.
     """
 
-    def __init__(self, option_strings, dest, kind: str, **kwargs: Any) -> None:
+    def __init__(self, option_strings, dest, kind: str, positive: bool = False,
+                 **kwargs: Any) -> None:
         self.kind = kind
+        self.positive = positive
         super().__init__(option_strings, dest, **kwargs)
 
     def __call__(self, parser, namespace, values, option_string=None) -> None:
+        option = option_string or self.dest
         try:
-            value = parse(values, self.kind, where=option_string or self.dest)
+            value = parse(values, self.kind, where=option)
         except ValueError as error:
             parser.exit(_BAD_INPUT, f"{parser.prog}: error: {error}\n")
+        if self.positive and not value > 0:
+            parser.exit(_BAD_INPUT, f"{parser.prog}: error: {option} must be positive, got "
+                                    f"{_as_written(values)}\n")
         setattr(namespace, self.dest, value)
+
+
+def _as_written(text: str) -> str:
+    """A quantity as the user wrote it, its number and unit apart: ``-3s`` -> ``-3 s``."""
+    match = re.fullmatch(r"\s*([-+]?[0-9.]+(?:[eE][-+]?[0-9]+)?)\s*(\S.*?)?\s*", str(text))
+    if match is None:
+        return str(text).strip()
+    return " ".join(part for part in match.groups() if part)
 
 
 #: A command-line word that begins like a negative number: ``-30x6in``, ``-8s``, ``-.5rad``.
@@ -98,15 +114,44 @@ def block_option(text: str, option: str = "--block"):
 
     text = str(text)
     try:
-        return Block.parse(text)
+        block = Block.parse(text)
     except ValueError as error:
         reason, prefix = str(error), f"block size {text!r}"
         reason = reason[len(prefix):].lstrip(":; ") if reason.startswith(prefix) else reason
         raise ValueError(f"{option} {text}: {reason}") from None
+    if block.width > block.height:
+        note(wider_than_tall(text, block, option))
+    return block
+
+
+def note(text: str) -> None:
+    """One line on stderr about an input that is accepted but looks like a slip."""
+    import sys
+
+    print(f"shaketable: note: {text}", file=sys.stderr, flush=True)
+
+
+def wider_than_tall(text: str, block, option: str = "--block") -> str:
+    """What to say of a block given wider than tall (``6x30in``): the order is height x
+    width (as the report writes blocks), so the user may have meant the other order."""
+    import math
+
+    ratio = f"B/H = {block.width / block.height:.3g}, alpha = {math.degrees(block.alpha):.1f} deg"
+    # the parsed block's label: "6 x 30 in", or "6 ft x 30 in" with a unit each
+    height, _, width = block.describe().partition(" x ")
+    width, _, unit = width.partition(" ")
+    height, _, height_unit = height.partition(" ")
+    if not (height and width and unit):
+        return f"{option} {text} is wider than tall ({ratio}); the order is height x width"
+    swapped = (f"{width}{unit} x {height}{height_unit}" if height_unit
+               else f"{width}x{height}{unit}")
+    return (f"{option} {text} is {height} {height_unit or unit} tall and {width} {unit} "
+            f"wide ({ratio}); the order is height x width: did you mean {swapped}?")
 
 
 def add_quantity(parser, *flags: str, kind: str, example: str, help: str, **kwargs: Any) -> None:
-    """Add a dimensional option: ``help`` gains the unit rule and an example (``8s``)."""
+    """Add a dimensional option: ``help`` gains the unit rule and an example (``8s``);
+    ``positive=True`` refuses a value of zero or below (:class:`Quantity`)."""
     metavar = kwargs.pop("metavar", None) or kind.upper().replace(" ", "_")
     parser.add_argument(*flags, action=Quantity, kind=kind, metavar=metavar,
                         help=f"{help}, with its unit (e.g. {example})", **kwargs)

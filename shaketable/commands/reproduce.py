@@ -20,7 +20,11 @@ def _reproduce(args) -> int:
     names = available + extras if every else args.names
     unknown = [name for name in names if name not in available and name not in extras]
     if unknown:  # checked before anything is written
-        raise ValueError(f"no scene {', '.join(repr(name) for name in unknown)}; "
+        from shaketable.scenes.catalog import did_you_mean
+
+        said = ", ".join(f"{name!r}" + did_you_mean(name, available + extras).replace(
+            ": ", " (", 1).replace("?", "?)") for name in unknown)
+        raise ValueError(f"no scene {said}; "
                          f"`shaketable reproduce --list` lists the {len(available)} scenes "
                          f"and the {len(extras)} section{'s' if len(extras) != 1 else ''} "
                          f"beyond them ({', '.join(extras)})")

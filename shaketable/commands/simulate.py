@@ -139,7 +139,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                           "first, alpha being each block's own")
     add_record_arguments(sim)
     add_motion_options(sim)
-    add_quantity(sim, "--duration", kind="time", example="8s", help="length of the run")
+    add_quantity(sim, "--duration", kind="time", example="8s", positive=True,
+                 help="length of the run")
     sim.add_argument("--floor", type=int, metavar="K",
                      help="the block stands on floor K of --building (0: the ground): the "
                           "motion is the ground's, filtered by the building's first mode")

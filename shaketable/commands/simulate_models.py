@@ -233,6 +233,9 @@ class RockingCommand(SimulateCommand):
         return one_block_setup(args, self)
 
     def run_options(self, args) -> dict:
+        if isinstance(args.subdivisions, int) and args.subdivisions < 1:
+            raise ValueError(f"--subdivisions must be an integer >= 1 (steps per sample), "
+                             f"got {args.subdivisions}")
         return {"method": args.method, "subdivisions": args.subdivisions}
 
     def compiles(self, args) -> tuple[str, ...]:

@@ -19,6 +19,12 @@ def _slide(args) -> int:
     from shaketable.commands.options import block_option
 
     block = block_option(args.block) if args.block else None   # before the output folder
+    motion = scale_note = None
+    if not args.table_4_4:   # the record and the frictions too: a refusal leaves no folder
+        if not args.record:
+            raise ValueError("--record is required (or give --table-4-4)")
+        _check_frictions(args, Friction)
+        motion, scale_note = scaled_record(load_motion(args), args)
     out = prepare_output_folder(args.out)
     if args.table_4_4:
         from shaketable.studies.sliding import table_4_4, table_4_4_markdown
@@ -29,10 +35,7 @@ def _slide(args) -> int:
         print(table_4_4_markdown(frame))
         print(f"wrote {out / 'table_4_4.csv'} and {out / 'table_4_4.md'}")
         return 0
-    if not args.record:
-        raise ValueError("--record is required (or give --table-4-4)")
-    motion = load_motion(args)
-    motion, scale_note = scaled_record(motion, args)
+    assert motion is not None   # read above: a run on a record
     if args.sweep:
         frame = peak_slips(motion, args.sweep)
         write_csv(out / "sweep.csv", frame)
@@ -67,6 +70,26 @@ def _slide(args) -> int:
     print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}, "
           f"{out / f'sliding.{args.format}'}")
     return 0
+
+
+def _check_frictions(args, friction) -> None:
+    """The coefficients of ``--sweep`` or of ``--static-friction`` and
+    ``--dynamic-friction``, checked as ``friction`` (the run's class) checks them, the
+    option named."""
+    if args.sweep:
+        for mu in args.sweep:
+            try:
+                friction(mu, mu)
+            except ValueError as error:
+                raise ValueError(f"--sweep {mu:g}: {error}") from None
+        return
+    static = args.static_friction
+    dynamic = args.dynamic_friction if args.dynamic_friction is not None else static
+    try:
+        friction(static, dynamic)
+    except ValueError as error:
+        raise ValueError(f"--static-friction {static:g}, --dynamic-friction {dynamic:g}: "
+                         f"{error}") from None
 
 
 def register(commands) -> None:

@@ -42,9 +42,9 @@ def register(commands) -> None:
                       help="with --stack: each block's mass with its unit, bottom first")
     spec.add_argument("--iterations", type=int, default=5,
                       help="with --stack: bisections of each band edge (default 5)")
-    add_quantity(spec, "--alpha", kind="angle", example="0.25rad",
+    add_quantity(spec, "--alpha", kind="angle", example="0.25rad", positive=True,
                  help="block angle alpha (with --p)")
-    add_quantity(spec, "--p", kind="angular frequency", example="2rad/s",
+    add_quantity(spec, "--p", kind="angular frequency", example="2rad/s", positive=True,
                  help="frequency parameter p (with --alpha)")
     spec.add_argument("--cor", default="housner",
                       help="coefficient of restitution [0-1] or 'housner' (1 - 1.5 sin^2 alpha)")

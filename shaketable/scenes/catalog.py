@@ -64,10 +64,19 @@ def resolve_scene_path(name_or_path: str, directory=None) -> Path:
         raise SceneError(f"{name_or_path!r} is a folder; give a scene .toml file or the name "
                          f"of a bundled scene (`shaketable reproduce --list`)")
     if not path.exists():
-        names = ", ".join(sorted(p.stem for p in folder.glob("*.toml")))
-        raise SceneError(f"no scene {name_or_path!r} (not a file, not in {folder}); "
-                         f"available: {names}")
+        names = sorted(p.stem for p in folder.glob("*.toml"))
+        raise SceneError(f"no scene {name_or_path!r}{did_you_mean(str(name_or_path), names)} "
+                         f"(not a file, not in {folder}); available: {', '.join(names)}")
     return path
+
+
+def did_you_mean(name: str, names) -> str:
+    """``": did you mean fig-3-7?"``: the name of ``names`` closest to a misspelt ``name``
+    (``fig-3-77``), to lead a refusal before any list; ``""`` when none is close."""
+    import difflib
+
+    close = difflib.get_close_matches(name, list(names), n=1, cutoff=0.75)
+    return f": did you mean {close[0]}?" if close else ""
 
 
 def sweep_names() -> list[str]:
