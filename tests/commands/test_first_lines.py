@@ -1,0 +1,51 @@
+"""The first line of a command is the answer its user came for (free rocking: when the
+block came to rest; a scene: its agreement with the report; bench: the numbers)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from shaketable.cli import main
+
+
+@pytest.mark.usefixtures("figure_drafts")
+def test_free_rocking_leads_with_the_rest_time(tmp_path, capsys):
+    # Fig. 3.4's specimen, 30 x 6 in, COR 0.925, released at 0.5 alpha on a still table
+    out = tmp_path / "fig-3-4"
+    assert main(["simulate", "--block", "30x6in", "--cor", "0.925", "--theta0", "0.5alpha",
+                 "--duration", "8s", "--out", str(out)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    summary = json.loads((out / "summary.json").read_text())
+    rest, impacts = summary["t_rest [s]"], summary["n_impacts"]
+    # Section 3.7 (1): the specimen "came to rest in approximately 6 seconds"
+    assert 5.0 < rest < 7.0
+    assert lines[0].startswith(f"30 x 6 in block, COR 0.925: came to rest at t = {rest:.2f} s "
+                               f"after {impacts} impacts")
+    assert lines[0].endswith("(released at θ/α = 0.50)")   # the user's 0.5alpha
+    assert lines[1] == f"  came to rest at t = {rest:.2f} s"
+    assert lines[3] == "  max θ/α 0.5 at the release (t = 0.00 s); did not overturn"
+
+
+@pytest.mark.usefixtures("figure_drafts")
+def test_free_rocking_cut_short_says_it_still_rocks(tmp_path, capsys):
+    # the same release cut at 2 s: Housner's first impact alone comes at
+    # arccosh(1 / (1 - 0.5)) / p = 0.30 s, and the block rocks until about 6 s
+    assert main(["simulate", "--block", "30x6in", "--cor", "0.925", "--theta0", "0.5alpha",
+                 "--duration", "2s", "--out", str(tmp_path / "short")]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("30 x 6 in block, COR 0.925: still rocking at the end "
+                            "(t = 2.00 s), last swing θ/α = ")
+    swing = float(first.split("last swing θ/α = ")[1].split(",")[0])
+    assert 0.0 < swing < 0.5        # each impact takes energy: below the release
+    assert first.endswith("(released at θ/α = 0.50)")
+
+
+@pytest.mark.usefixtures("figure_drafts")
+def test_a_table_motion_keeps_its_verdict_first(tmp_path, capsys):
+    # Section 4: the 16 x 4 ft block under Pacoima Dam S16E overturns (Fig. 4.1)
+    assert main(["simulate", "--block", "16x4ft", "--cor", "0.95", "--record",
+                 "pacoima-dam-s16e", "--out", str(tmp_path / "p")]) == 0
+    assert capsys.readouterr().out.splitlines()[0].startswith(
+        "16 x 4 ft block, COR 0.95: overturned (")
