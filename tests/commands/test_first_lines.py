@@ -49,3 +49,42 @@ def test_a_table_motion_keeps_its_verdict_first(tmp_path, capsys):
                  "pacoima-dam-s16e", "--out", str(tmp_path / "p")]) == 0
     assert capsys.readouterr().out.splitlines()[0].startswith(
         "16 x 4 ft block, COR 0.95: overturned (")
+
+
+@pytest.mark.usefixtures("figure_drafts")
+def test_a_study_leads_with_its_comparison_with_the_report(tmp_path, capsys):
+    # Section 4.3 (4): the report's 4.6 g for a 0.1 s pulse, Eq. (2-9), one comparison
+    out = tmp_path / "s"
+    assert main(["run", "section-4-3-4", "--out", str(out)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == (f"section-4-3-4: 1 comparison(s) with the report agree, 0 differ "
+                        f"(see {out / 'report.md'})")
+    assert lines[1].startswith("section-4-3-4: Section 4.3 (4): ")   # the description after
+    assert lines[-1].startswith("wrote ")
+
+
+def test_the_stacks_study_says_its_conclusions():
+    # tables shaped as the stacks study writes them: a 2 x 0.5 m block that stands alone
+    # and falls two high; thresholds against the closed form (Eq. 2-1 for the block alone)
+    import pandas as pd
+
+    from shaketable.studies.stacks import stacks_answer
+
+    records = pd.DataFrame({"record": ["r", "r"], "block": ["2 x 0.5 m"] * 2,
+                            "blocks high": [1, 2], "verdict": ["0.4", "F"],
+                            "t_overturn [s]": [float("nan"), 3.456],
+                            "overturned block": [0, 1], "max theta/alpha": ["0.4", "0.9, F"]})
+    uplift = pd.DataFrame({"pattern entered": ["a", "b"], "pattern of the closed form": ["a", "a"],
+                           "relative difference [-]": [1e-12, -3e-12],
+                           "computed [g]": [0.125, 0.3],
+                           "bottom block alone tan(alpha1) [g]": [0.25, 0.25]})
+    pulses = pd.DataFrame({"omega/p [-]": [3.0, 3.0], "blocks high": [1, 2],
+                           "minimum [g]": [0.5621, 0.3579]})
+    assert stacks_answer(records, uplift, pulses) == [
+        "2 x 0.5 m block under r: alone stands (max θ/α 0.4); two high overturns at 3.46 s "
+        "(block 1)",
+        "uplift thresholds agree with the closed form g min(A1, A2) in 1 of 2 stacks "
+        "(largest relative difference 3.0e-12); stacking lowers the threshold in 1 of 2 "
+        "(0.125-0.3 g against tan α1 = 0.25 g alone)",
+        "smallest half-sine pulse that overturns it at ω/p = 3: 0.562 g alone, 0.358 g two "
+        "high"]
