@@ -13,7 +13,8 @@ from pathlib import Path
 
 
 def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=print,
-              figure_path=None, speed=True, markdown_figure=None, planar=True, stack=True):
+              figure_path=None, speed=True, markdown_figure=None, planar=True, stack=True,
+              measured: dict | None = None):
     """Run the study and write ``work_precision.csv``, ``work_precision.png``, ``RESULTS.md``
     (and ``planar_work_precision.csv``).
 
@@ -57,6 +58,12 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
         ``stack_work_precision.csv`` and a panel per case (not with ``cases``: those name
         the rocking and planar cases; not with ``quick``: the SciPy engine's runs take
         seconds each, and a first run in an empty numba cache compiles the engine).
+
+    measured : dict, optional
+        Filled with what ``RESULTS.md`` reports, for the caller to say: ``"pacoima"``
+        (the speed, :func:`~shaketable.studies.work_precision.pacoima_timing`; None
+        without ``speed``) and ``"accuracy"`` (fast against reference per case,
+        :func:`~shaketable.studies.work_precision.accuracy_table`; None without cases).
 
     Returns
     -------
@@ -153,4 +160,6 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
             stack_work_precision.stack_markdown(stack_frame))
     results = out / "RESULTS.md"
     write_text(results, text)
+    if measured is not None:
+        measured.update(pacoima=pacoima, accuracy=accuracy)
     return written + [figure, results]

@@ -88,3 +88,24 @@ def test_the_stacks_study_says_its_conclusions():
         "(0.125-0.3 g against tan α1 = 0.25 g alone)",
         "smallest half-sine pulse that overturns it at ω/p = 3: 0.562 g alone, 0.358 g two "
         "high"]
+
+
+def test_bench_says_its_numbers():
+    # a measurement shaped as pacoima_timing and accuracy_table give it: 0.25 ms against
+    # 0.125 s is 500 times; the largest errors are the largest of the cases
+    import pandas as pd
+
+    from shaketable.commands.bench import bench_answer
+
+    pacoima = {"fast median [ms]": 0.25, "reference median [s]": 0.125, "speed-up [-]": 500.0,
+               "same as reference": {"same verdict": True, "same impacts": True,
+                                     "impacts": 27, "impacts truth": 27}}
+    accuracy = pd.DataFrame({"error max_theta [-]": [1e-15, 3e-12],
+                             "error events [-]": [2e-13, 1e-14], "meets 1e-8": [True, True]})
+    assert bench_answer(pacoima, accuracy) == [
+        "speed (Pacoima Dam S16E + vertical, 16 x 4 ft, COR 0.95): fast 0.25 ms per run, 500x "
+        "the reference (0.125 s); same verdict and impacts (27)",
+        "accuracy (fast against the reference at their defaults, 2 cases): largest relative "
+        "error of max |θ| 3e-12, of the event times 2e-13; 2 of 2 within 1e-8 (details in "
+        "RESULTS.md)"]
+    assert bench_answer(None, None) == []          # --no-speed and no case: nothing measured
