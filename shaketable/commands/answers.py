@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from shaketable.core.units import format_length
+from shaketable.core.units import format_length, shared_length_unit
 from shaketable.studies.free_rocking import (
     free_rocking_verdict,
     impacts_words,
@@ -70,17 +70,19 @@ def _ratio_line(result) -> str:
 
 def planar_answer(result) -> list[str]:
     """The answer lines of a planar (friction) run, in the block's units."""
-    unit = result.block.length_unit
     # the base's slip on the table (not the midpoint's motion, which rocking moves too)
     base, when = result.peak_base_slip, result.t_peak_base_slip
     if math.isnan(base):
         base, when = result.peak_slip, result.t_peak_slip
+    slid = base > 1e-9 * result.block.height   # below: rounding of a corner that did not slide
+    # one unit for the answer's lengths: the block's, or the smaller one a length needs
+    unit = shared_length_unit((base if slid else 0.0, result.peak_excursion),
+                              result.block.length_unit)
     residual = format_length(result.residual_slip, unit, signed=True)
     lines = [_ratio_line(result),
              f"peak slip of the base {format_length(base, unit)} at t = {_seconds(when)}, "
              f"base midpoint at the end {residual}"
-             # below 1e-9 of the block's height: rounding of a corner that did not slide
-             if base > 1e-9 * result.block.height else "peak slip 0: the base never slid",
+             if slid else "peak slip 0: the base never slid",
              f"corner excursion (the clearance it needs) "
              f"{format_length(result.peak_excursion, unit)}",
              _rest_line(planar_rest_time(result), result)]

@@ -109,3 +109,35 @@ def test_bench_says_its_numbers():
         "error of max |θ| 3e-12, of the event times 2e-13; 2 of 2 within 1e-8 (details in "
         "RESULTS.md)"]
     assert bench_answer(None, None) == []          # --no-speed and no case: nothing measured
+
+
+def test_one_length_unit_per_output():
+    from shaketable.core.units import shared_length_unit
+
+    # a 16 x 4 ft block: a 1.79 in slip (under a foot) puts the 2.53 ft excursion in
+    # inches too; without a slip the excursion keeps the block's feet
+    inch, foot = 0.0254, 0.3048
+    assert shared_length_unit((1.79 * inch, 2.53 * foot), "ft") == "in"
+    assert shared_length_unit((0.0, 2.53 * foot), "ft") == "ft"
+    assert shared_length_unit((float("nan"),), "m") == "m"
+    assert shared_length_unit((0.004, 2.47), "m") == "mm"
+
+
+def test_planar_run_says_its_lengths_in_one_unit_and_one_rounding():
+    # the 16 x 4 ft block of Section 4 on friction 0.3/0.25 under Pacoima Dam S16E
+    import shaketable as st
+    from shaketable.commands.answers import planar_answer
+    from shaketable.ground import records
+    from shaketable.plots.planar import planar_caption
+
+    result = st.simulate(st.Block.parse("16x4ft"), records.load("pacoima-dam-s16e"),
+                         cor=0.95, friction=st.Friction(0.3, 0.25))
+    inch = 0.0254
+    slip, excursion = result.peak_base_slip / inch, result.peak_excursion / inch
+    assert slip < 12.0 < excursion          # under a foot and over one: inches for both
+    answer = planar_answer(result)
+    assert answer[1].startswith(f"peak slip of the base {slip:#.3g} in at t = ")
+    assert answer[2] == f"corner excursion (the clearance it needs) {excursion:#.3g} in"
+    # the caption: the same slip (the base's, not the midpoint's), one rounding, one unit
+    caption = planar_caption(result)[-1]
+    assert caption.endswith(f"peak slip {slip:#.3g} in, corner excursion {excursion:#.3g} in")
