@@ -141,3 +141,20 @@ def test_planar_run_says_its_lengths_in_one_unit_and_one_rounding():
     # the caption: the same slip (the base's, not the midpoint's), one rounding, one unit
     caption = planar_caption(result)[-1]
     assert caption.endswith(f"peak slip {slip:#.3g} in, corner excursion {excursion:#.3g} in")
+
+
+@pytest.mark.usefixtures("figure_drafts")
+def test_spectrum_names_the_block_by_the_users_alpha_and_p(tmp_path, capsys):
+    # Eq. (2-13): p^2 = 3 g / (4 R), so p = 2 rad/s gives R = 3 g / 16 = 1.8387 m, and
+    # H = 2 R cos(0.1) = 144.1 in, B = 2 R sin(0.1) = 14.45 in
+    import math
+
+    radius = 3 * 9.80665 / 16
+    height, width = 2 * radius * math.cos(0.1) / 0.0254, 2 * radius * math.sin(0.1) / 0.0254
+    assert main(["spectrum", "--alpha", "0.1rad", "--p", "2rad/s", "--pulse", "one-sine",
+                 "--ratios", "4", "--method", "linear", "--ceiling", "2",
+                 "--out", str(tmp_path / "s")]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith(f"block of alpha 0.1 rad, p 2 rad/s (H x B = {height:.4g} x "
+                            f"{width:.4g} in), COR ")
+    assert f"{height:.4g} x {width:.4g}" == "144.1 x 14.45"
