@@ -60,10 +60,8 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
         seconds each, and a first run in an empty numba cache compiles the engine).
 
     measured : dict, optional
-        Filled with what ``RESULTS.md`` reports, for the caller to say: ``"pacoima"``
-        (the speed, :func:`~shaketable.studies.work_precision.pacoima_timing`; None
-        without ``speed``) and ``"accuracy"`` (fast against reference per case,
-        :func:`~shaketable.studies.work_precision.accuracy_table`; None without cases).
+        Filled with ``"pacoima"`` (the speed; None without ``speed``) and ``"accuracy"``
+        (fast against reference; None without cases), as ``RESULTS.md`` reports them.
 
     Returns
     -------
@@ -95,7 +93,7 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     except ValueError as error:  # an unknown name: list the planar cases too
         raise ValueError(f"{error}; planar cases: {sorted(planar_names)}") from None
     settings = work_precision.method_settings(quick=quick)
-    cache = {}
+    cache: dict = {}
     frame = work_precision.work_precision(selected, settings, repeats=repeats, cache=cache,
                                  progress=lambda name: progress(f"work-precision: {name}"))
     rocking_frame = frame

@@ -345,7 +345,8 @@ def stacks_answer(records: pd.DataFrame, uplift: pd.DataFrame,
                  f"({computed.min():.3g}-{computed.max():.3g} g against tan α1 = "
                  f"{alone.max():.3g} g alone)")
     for ratio, rows in pulses.groupby("omega/p [-]", sort=False):
-        said = ", ".join(f"{row['minimum [g]']:.3g} g {_heights_words(int(row['blocks high']))}"
-                         for _, row in rows.iterrows())
-        lines.append(f"smallest half-sine pulse that overturns it at ω/p = {ratio:g}: {said}")
+        minima = ", ".join(f"{row['minimum [g]']:.3g} g "
+                           f"{_heights_words(int(row['blocks high']))}"
+                           for _, row in rows.iterrows())
+        lines.append(f"smallest half-sine pulse that overturns it at ω/p = {ratio:g}: {minima}")
     return lines
