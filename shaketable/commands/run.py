@@ -48,11 +48,13 @@ def _run(args) -> int:
     if result.table is not None:
         for line in result.table.warnings():
             print(f"{scene.name}: table limit exceeded: {line}")
+    from shaketable.commands.answers import rocking_heading
+
     for run in result.runs:
         several = any(len(starts) > 1 for starts in scene.theta0s)
         start = f", from θ/α = {run.theta[0] / run.block.alpha:.3g}" if several else ""
         line = (f"{scene.name}: {run.block.describe()} block{start}, COR {run.cor:g}: "
-                f"{run.verdict()}")
+                f"{rocking_heading(run)}")   # free rocking: when it came to rest
         if run.overturned:
             line += (f" (largest |θ|/α before instability "
                      f"{run.max_theta_ratio_before_instability:.3f})")

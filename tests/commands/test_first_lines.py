@@ -158,3 +158,15 @@ def test_spectrum_names_the_block_by_the_users_alpha_and_p(tmp_path, capsys):
     assert first.startswith(f"block of alpha 0.1 rad, p 2 rad/s (H x B = {height:.4g} x "
                             f"{width:.4g} in), COR ")
     assert f"{height:.4g} x {width:.4g}" == "144.1 x 14.45"
+
+
+@pytest.mark.usefixtures("figure_drafts")
+def test_a_free_rocking_scene_leads_with_the_rest_time(tmp_path, capsys):
+    # Fig. 3.4's scene: Section 3.7 (1), "came to rest in approximately 6 seconds"
+    out = tmp_path / "fig-3-4"
+    assert main(["run", "fig-3-4", "--out", str(out)]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    rest = json.loads((out / "summary.json").read_text())["runs"][0]["t_rest [s]"]
+    assert 5.0 < rest < 7.0
+    assert first.startswith(f"fig-3-4: 30 x 6 in block, COR 0.925: came to rest at "
+                            f"t = {rest:.2f} s after ")
