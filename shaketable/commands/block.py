@@ -156,6 +156,8 @@ def animate_block(args, size: tuple, wrote) -> int:
                       end=args.end, size=size, dpi=args.dpi, unit=args.unit)
     if scale_note:
         print(scale_note)
-    print(f"{block.describe()} block, COR {cor:g}: {result.verdict()}")
+    from shaketable.commands.answers import rocking_heading
+
+    print(f"{block.describe()} block, COR {cor:g}: {rocking_heading(result)}")
     wrote(written)
     return report_early_stops([result], "animate", block.describe())
