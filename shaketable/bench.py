@@ -13,7 +13,8 @@ from pathlib import Path
 
 
 def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=print,
-              figure_path=None, speed=True, markdown_figure=None, planar=True, stack=True):
+              figure_path=None, speed=True, markdown_figure=None, planar=True, stack=True,
+              measured: dict | None = None):
     """Run the study and write ``work_precision.csv``, ``work_precision.png``, ``RESULTS.md``
     (and ``planar_work_precision.csv``).
 
@@ -58,6 +59,10 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
         the rocking and planar cases; not with ``quick``: the SciPy engine's runs take
         seconds each, and a first run in an empty numba cache compiles the engine).
 
+    measured : dict, optional
+        Filled with ``"pacoima"`` (the speed; None without ``speed``) and ``"accuracy"``
+        (fast against reference; None without cases), as ``RESULTS.md`` reports them.
+
     Returns
     -------
     list of Path
@@ -88,7 +93,7 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
     except ValueError as error:  # an unknown name: list the planar cases too
         raise ValueError(f"{error}; planar cases: {sorted(planar_names)}") from None
     settings = work_precision.method_settings(quick=quick)
-    cache = {}
+    cache: dict = {}
     frame = work_precision.work_precision(selected, settings, repeats=repeats, cache=cache,
                                  progress=lambda name: progress(f"work-precision: {name}"))
     rocking_frame = frame
@@ -153,4 +158,6 @@ def run_study(cases=None, quick=False, repeats=5, out="bench-out", progress=prin
             stack_work_precision.stack_markdown(stack_frame))
     results = out / "RESULTS.md"
     write_text(results, text)
+    if measured is not None:
+        measured.update(pacoima=pacoima, accuracy=accuracy)
     return written + [figure, results]

@@ -55,8 +55,10 @@ def test_simulate_friction_leads_with_the_answer_in_metres(tmp_path, capsys):
     assert planar[4] == f"  came to rest at t = {rest:.2f} s"
     assert planar[5].startswith("  time in each mode: rest ")
     assert " in" not in "\n".join(planar[:6]).replace(" in each", "")
-    assert rocking[1:3] == ["  max θ/α 0.5 at the release (t = 0.00 s); did not overturn",
-                            f"  came to rest at t = {rest:.2f} s"]
+    # free rocking: when it came to rest first, the impacts, the max said as the release
+    assert rocking[1] == f"  came to rest at t = {rest:.2f} s"
+    assert rocking[2].endswith(" impacts") or " summed cascade" in rocking[2]
+    assert rocking[3] == "  max θ/α 0.5 at the release (t = 0.00 s); did not overturn"
 
 
 def test_a_block_that_only_slid_did_not_rock():

@@ -21,6 +21,7 @@ from shaketable.core.equality import fields_equal
 from shaketable.core.files import json_ready
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
+from shaketable.core.units import format_length
 from shaketable.models.api import simulate
 from shaketable.models.rocking.result import RockingResult
 
@@ -336,7 +337,13 @@ class Calibration:
         """
         low, high = self.cor_interval
         digits = self.digits
-        unit = "rad" if self.record.quantity == "angle" else "m"
+        size_unit = self.block.length_unit     # lengths in the unit the block was given in
+        if self.record.quantity == "angle":
+            rms = f"{self.goodness['rms']:.3g} rad"
+        elif size_unit == "m":
+            rms = f"{self.goodness['rms']:.3g} m"
+        else:
+            rms = format_length(self.goodness["rms"], size_unit)
         lines = [self.headline()]
         if self.mean_cor_leads:
             lines.append(f"least-squares fit (diagnostic; its interval holds for one COR at "
@@ -344,7 +351,7 @@ class Calibration:
                          f"{high:.{digits}f}, {self.interval_method}; {self.filter_text()})")
         lines.append(f"release angle {self.theta0:.5f} rad = "
                      f"{self.theta0 / self.block.alpha:.3f} alpha at t = {self.t_release:.3f} "
-                     f"s; fit rms {self.goodness['rms']:.3g} {unit}, R^2 "
+                     f"s; fit rms {rms}, R^2 "
                      f"{self.goodness['r_squared']:.6f}")
         if self.bootstrap_interval is not None and self.bootstrap_cors is not None:
             lines.append(f"bootstrap ({self.bootstrap_cors.size}): "
@@ -366,21 +373,29 @@ class Calibration:
         if self.periods is not None:
             e = self.periods.block
             height_se, width_se = self.periods.size_se()
-            size_unit = self.block.length_unit     # the size in the unit the block was given in
             scale = length_factor(size_unit)
-            lines.append(f"period fit: R = {self.periods.R:.4f} +- {self.periods.R_se:.4f} m, "
+            lines.append(f"period fit: R = {_radius(self.periods.R, self.periods.R_se, size_unit)}, "
                          f"alpha = {self.periods.alpha:.4f} +- {self.periods.alpha_se:.4f} rad "
                          f"-> {e.height / scale:.4g} +- {height_se / scale:.2g} x "
                          f"{e.width / scale:.4g} +- {width_se / scale:.2g} {size_unit} (standard errors; "
                          f"nominal {self.block.describe()})"
-                         + (f"; at the nominal alpha R = {self.periods_alpha_held.R:.4f} +- "
-                            f"{self.periods_alpha_held.R_se:.4f} m (nominal "
-                            f"{self.block.R:.4f} m)" if self.periods_alpha_held is not None
-                            else ""))
+                         + (f"; at the nominal alpha R = "
+                            f"{_radius(self.periods_alpha_held.R, self.periods_alpha_held.R_se, size_unit)}"
+                            f" (nominal {_radius(self.block.R, None, size_unit)})"
+                            if self.periods_alpha_held is not None else ""))
         lines.extend(note if note.startswith("WARNING: ") else f"note: {note}"
                      for note in self.notes)
         lines.append("(+- is one standard error; intervals are 95 %)")
         return "\n".join(lines)
+
+
+def _radius(value: float, se: float | None, unit: str) -> str:
+    """A fitted length [m] with its standard error [m] (None: none), in the block's ``unit``:
+    ``"0.3800 +- 0.0045 m"``, ``"14.96 +- 0.18 in"``."""
+    if unit == "m":
+        return f"{value:.4f}" + ("" if se is None else f" +- {se:.4f}") + " m"
+    scale = length_factor(unit)
+    return f"{value / scale:#.4g}" + ("" if se is None else f" +- {se / scale:.2g}") + f" {unit}"
 
 
 # ------------------------------------------------------------------ theory run

@@ -13,7 +13,13 @@ import math
 
 import numpy as np
 
-from shaketable.core.units import format_length
+from shaketable.core.units import format_length, shared_length_unit
+from shaketable.studies.free_rocking import (
+    free_rocking_verdict,
+    impacts_words,
+    is_free,
+    rocking_rest_time,
+)
 
 
 def _seconds(value: float) -> str:
@@ -40,26 +46,6 @@ def planar_rest_time(result) -> float:
     return float(result.t[moving[-1] + 1]) if moving.size else 0.0
 
 
-def rocking_rest_time(result) -> float:
-    """When a rocking block (:class:`~shaketable.models.rocking.result.RockingResult`) came to rest
-    for good [s]: NaN when it overturned, left the ground or still rocks at the end, 0
-    when it never rocked."""
-    if result.status != "completed":
-        return math.nan
-    if not math.isfinite(result.t_start):
-        return 0.0
-    moving = np.flatnonzero((result.theta != 0.0) | (result.theta_dot != 0.0))
-    if not moving.size:
-        return 0.0
-    if moving[-1] == result.t.size - 1:
-        return math.nan
-    settled = float(result.t[moving[-1] + 1])
-    # the summed cascade's end lies between the last moving sample and the next
-    if math.isfinite(result.t_rest) and result.t[moving[-1]] <= result.t_rest <= settled:
-        return float(result.t_rest)
-    return settled
-
-
 def _rest_line(rest: float, result) -> str:
     if result.overturned:
         return "came to rest: no, it overturned"
@@ -84,17 +70,19 @@ def _ratio_line(result) -> str:
 
 def planar_answer(result) -> list[str]:
     """The answer lines of a planar (friction) run, in the block's units."""
-    unit = result.block.length_unit
     # the base's slip on the table (not the midpoint's motion, which rocking moves too)
     base, when = result.peak_base_slip, result.t_peak_base_slip
     if math.isnan(base):
         base, when = result.peak_slip, result.t_peak_slip
+    slid = base > 1e-9 * result.block.height   # below: rounding of a corner that did not slide
+    # one unit for the answer's lengths: the block's, or the smaller one a length needs
+    unit = shared_length_unit((base if slid else 0.0, result.peak_excursion),
+                              result.block.length_unit)
     residual = format_length(result.residual_slip, unit, signed=True)
     lines = [_ratio_line(result),
              f"peak slip of the base {format_length(base, unit)} at t = {_seconds(when)}, "
              f"base midpoint at the end {residual}"
-             # below 1e-9 of the block's height: rounding of a corner that did not slide
-             if base > 1e-9 * result.block.height else "peak slip 0: the base never slid",
+             if slid else "peak slip 0: the base never slid",
              f"corner excursion (the clearance it needs) "
              f"{format_length(result.peak_excursion, unit)}",
              _rest_line(planar_rest_time(result), result)]
@@ -109,4 +97,14 @@ def rocking_answer(result) -> list[str]:
     if result.status == "airborne":
         return [f"the block leaves the ground at t = {_seconds(result.t_airborne)}: "
                 "outside the model, the run stops there"]
-    return [_ratio_line(result), _rest_line(rocking_rest_time(result), result)]
+    rest = _rest_line(rocking_rest_time(result), result)
+    if is_free(result) and result.status == "completed" and math.isfinite(result.t_start):
+        # released on a still table: when it came to rest first, its max is the release
+        return [rest, impacts_words(result), _ratio_line(result)]
+    return [_ratio_line(result), rest]
+
+
+def rocking_heading(result) -> str:
+    """What a rocking run's first line says after the block: the verdict, or for free
+    rocking when it came to rest (:func:`~shaketable.studies.free_rocking.free_rocking_verdict`)."""
+    return free_rocking_verdict(result) if is_free(result) else result.verdict()

@@ -5,11 +5,43 @@ from __future__ import annotations
 from shaketable.bench import run_study
 
 
+def bench_answer(pacoima: dict | None, accuracy) -> list[str]:
+    """The numbers a user runs ``bench`` for, as ``RESULTS.md`` gives them: the fast
+    engine's time per run and its speed-up over the reference (``pacoima``, of
+    :func:`~shaketable.studies.work_precision.pacoima_timing`), and its largest errors
+    against the reference (``accuracy``, of
+    :func:`~shaketable.studies.work_precision.accuracy_table`); None: not measured."""
+    lines = []
+    if pacoima is not None:
+        same = pacoima["same as reference"]
+        lines.append(
+            f"speed (Pacoima Dam S16E + vertical, 16 x 4 ft, COR 0.95): fast "
+            f"{pacoima['fast median [ms]']:.3g} ms per run, {pacoima['speed-up [-]']:.0f}x the "
+            f"reference ({pacoima['reference median [s]']:.3g} s); "
+            + ("same verdict" if same["same verdict"] else "verdicts differ")
+            + (f" and impacts ({same['impacts']})" if same["same impacts"]
+               else f", impacts {same['impacts']} against {same['impacts truth']}"))
+    if accuracy is not None and len(accuracy):
+        meets = int(accuracy["meets 1e-8"].sum())
+        theta = accuracy.get("error max_theta [-]")
+        events = accuracy.get("error events [-]")
+        largest = "" if theta is None else (
+            f": largest relative error of max |θ| {theta.max():.2g}, of the event times "
+            f"{events.max():.2g}")
+        lines.append(f"accuracy (fast against the reference at their defaults, "
+                     f"{len(accuracy)} cases){largest}; {meets} of {len(accuracy)} within 1e-8 "
+                     "(details in RESULTS.md)")
+    return lines
+
+
 def _bench(args) -> int:
+    measured: dict = {}
     written = run_study(cases=args.cases, quick=args.quick,
                         repeats=args.repeats if args.repeats else (3 if args.quick else 5),
                         out=args.out, speed=not args.no_speed, planar=not args.no_planar,
-                        stack=not args.no_stack)
+                        stack=not args.no_stack, measured=measured)
+    for line in bench_answer(measured.get("pacoima"), measured.get("accuracy")):
+        print(line)
     print("wrote " + ", ".join(str(path) for path in written))
     return 0
 

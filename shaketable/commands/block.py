@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import time
 
+from shaketable.core.constants import INCH
 from shaketable.core.geometry import Block
 from shaketable.core.units import parse_angle_or_ratio
 from shaketable.scenes.spectrum import block_from, parse_ratios
@@ -125,7 +126,13 @@ def block_spectrum(args) -> int:
     written.append(out / f"spectrum.{args.format}")
     plots.save(ax.figure, written[-1])
     bands = result.to_frame()
-    print(f"{block.describe()} block (alpha {block.alpha:.6g} rad, p {block.p:.6g} rad/s), "
+    # the block as the user gave it: its size, or its alpha and p (the size it implies
+    # to 4 significant digits, in inches as Block.describe gives it)
+    named = (f"{block.describe()} block (alpha {block.alpha:.6g} rad, p {block.p:.6g} rad/s)"
+             if args.block is not None else
+             f"block of alpha {block.alpha:.6g} rad, p {block.p:.6g} rad/s (H x B = "
+             f"{block.height / INCH:.4g} x {block.width / INCH:.4g} in)")
+    print(f"{named}, "
           f"COR {result.cor:.6g}" + ("" if args.method == "fast" else f", method {args.method}")
           + f": {len(bands)} bands, {result.runs} runs, {elapsed:.1f} s")
     for _, row in bands[bands["verdict"] == "overturns"].iterrows():
@@ -167,6 +174,8 @@ def animate_block(args, size: tuple, wrote) -> int:
                       end=args.end, size=size, dpi=args.dpi, unit=args.unit)
     if scale_note:
         print(scale_note)
-    print(f"{block.describe()} block, COR {cor:g}: {result.verdict()}")
+    from shaketable.commands.answers import rocking_heading
+
+    print(f"{block.describe()} block, COR {cor:g}: {rocking_heading(result)}")
     wrote(written)
     return report_early_stops([result], "animate", block.describe())

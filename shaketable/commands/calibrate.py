@@ -142,9 +142,9 @@ def simulate_calibrated(args, block, motion, theta0: float, out: Path) -> int:
         write_csv(out / "history.csv", run.to_frame())
         write_text(out / "summary.json", json.dumps(json_ready_dict(stop_summary(run)),
                                                     indent=2))
-        from shaketable.commands.answers import rocking_answer
+        from shaketable.commands.answers import rocking_answer, rocking_heading
 
-        print(f"free rocking with the mean COR {cor.mean:.4f}: {run.verdict()}")
+        print(f"free rocking with the mean COR {cor.mean:.4f}: {rocking_heading(run)}")
         for line in rocking_answer(run):
             print("  " + line)
         print(f"wrote {out / 'history.csv'}, {out / 'summary.json'}")

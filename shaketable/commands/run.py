@@ -48,11 +48,13 @@ def _run(args) -> int:
     if result.table is not None:
         for line in result.table.warnings():
             print(f"{scene.name}: table limit exceeded: {line}")
+    from shaketable.commands.answers import rocking_heading
+
     for run in result.runs:
         several = any(len(starts) > 1 for starts in scene.theta0s)
         start = f", from θ/α = {run.theta[0] / run.block.alpha:.3g}" if several else ""
         line = (f"{scene.name}: {run.block.describe()} block{start}, COR {run.cor:g}: "
-                f"{run.verdict()}")
+                f"{rocking_heading(run)}")   # free rocking: when it came to rest
         if run.overturned:
             line += (f" (largest |θ|/α before instability "
                      f"{run.max_theta_ratio_before_instability:.3f})")
@@ -118,12 +120,28 @@ def _run_study(study, out: Path) -> int:
     from shaketable.reproduce import run_study
 
     report, (agree, differ) = run_study(study, out)
-    print(f"{study.name}: {study.source or study.kind}: {study.description}")
+    # the answer first: the comparison with the report, or what the study concludes
     if agree or differ:
         print(f"{study.name}: {agree} comparison(s) with the report agree, {differ} differ "
               f"(see {report})")
+    for line in _study_answer(study, out):
+        print(f"{study.name}: {line}")
+    print(f"{study.name}: {study.source or study.kind}: {study.description}")
     print(f"wrote {out}/ ({', '.join(sorted(path.name for path in out.iterdir() if not path.name.startswith('.')))})")
     return 0
+
+
+def _study_answer(study, out: Path) -> list[str]:
+    """What a study without comparisons with the report concludes (its report.md's
+    conclusions), from the tables it wrote into ``out``; [] for the others."""
+    if study.kind != "stacks":
+        return []
+    import pandas as pd
+
+    from shaketable.studies.stacks import stacks_answer
+
+    return stacks_answer(*(pd.read_csv(out / f"{name}.csv")
+                           for name in ("records", "uplift", "pulses")))
 
 
 def _words(value, unit: str) -> str:

@@ -255,6 +255,11 @@ class RockingCommand(SimulateCommand):
 
         return for_figure(result).plot()
 
+    def heading(self, args, setup: Setup, result) -> str:
+        from shaketable.commands.answers import rocking_heading
+
+        return f"{setup.subject.describe()} block, COR {args.cor}: {rocking_heading(result)}"
+
     def answer(self, setup: Setup, result) -> list[str]:
         from shaketable.commands.answers import rocking_answer
 

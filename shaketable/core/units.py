@@ -124,6 +124,16 @@ def display_length_unit(value: float, unit: str) -> str:
     return unit
 
 
+def shared_length_unit(values, unit: str) -> str:
+    """The one unit in which the lengths ``values`` [m] of one output are shown for a user
+    who writes lengths in ``unit``: the smallest :func:`display_length_unit` of the
+    finite, non-zero ones (``unit`` when there is none), so that a slip of 1.79 in and a
+    corner excursion of 30.4 in of a block given in feet read in one unit."""
+    shown = {display_length_unit(float(value), unit) for value in values
+             if math.isfinite(value) and value != 0.0}
+    return min(shown, key=LENGTH_UNITS.__getitem__) if shown else unit
+
+
 def format_length(value: float, unit: str, *, digits: int = 3, signed: bool = False) -> str:
     """A length [m] in the user's length ``unit``, with its unit: ``"225 mm"``.
 

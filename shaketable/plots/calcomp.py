@@ -6,6 +6,7 @@ import numpy as np
 
 from shaketable.core.constants import G, length_factor
 from shaketable.plots.base import pyplot
+from shaketable.studies.free_rocking import free_rocking_verdict
 
 #: Colours of the angular acceleration and velocity traces.
 _ACCELERATION_COLOUR = "tab:red"
@@ -232,5 +233,5 @@ def calcomp_caption(result, title: str | None = None, others=(), details=()) -> 
         verdicts = [f"{label}: {run.verdict()}" for label, run in zip(run_labels(runs), runs)]
         lines.append(("; " if len("; ".join(verdicts)) <= 100 else "\n").join(verdicts))
     else:
-        lines.append(result.verdict())
+        lines.append(free_rocking_verdict(result) if free else result.verdict())
     return lines

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from shaketable.core.constants import G
+from shaketable.core.constants import G, length_factor
 from shaketable.plots.base import place_legend, pyplot
 
 if TYPE_CHECKING:
@@ -161,6 +161,14 @@ def plot_cor_per_impact(peaks: PeakEstimate, ax: Axes | None = None,
     return ax
 
 
+def _fitted_radius(period_fit: PeriodFit) -> str:
+    """The fitted R [m] in the nominal block's unit (metres without a nominal block)."""
+    unit = period_fit.nominal.length_unit if period_fit.nominal is not None else "m"
+    if unit == "m":
+        return f"{period_fit.R:.4f} m"
+    return f"{period_fit.R / length_factor(unit):#.4g} {unit}"
+
+
 def plot_periods(period_fit: PeriodFit, ax: Axes | None = None) -> Axes:
     """Measured periods against amplitude with the fitted and nominal exact curves. Returns the axes."""
     if ax is None:
@@ -173,7 +181,7 @@ def plot_periods(period_fit: PeriodFit, ax: Axes | None = None) -> Axes:
             label=f"record ({how})")
     grid_amplitudes = np.linspace(0.03, 0.9, 60) * period_fit.alpha
     ax.plot(grid_amplitudes * degrees, period_fit.curve(grid_amplitudes), color="C3", lw=1.0,
-            label=f"exact, fitted R = {period_fit.R:.4f} m, α = {period_fit.alpha:.4f}")
+            label=f"exact, fitted R = {_fitted_radius(period_fit)}, α = {period_fit.alpha:.4f}")
     if period_fit.nominal is not None:
         nominal = period_fit.nominal
         amplitudes = np.linspace(0.03, 0.9, 60) * nominal.alpha

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from shaketable.core.constants import LENGTH_UNITS
-from shaketable.core.units import display_length_unit, format_length
+from shaketable.core.units import display_length_unit, format_length, shared_length_unit
 from shaketable.models.planar.result import base_slip
 from shaketable.plots.calcomp import (
     describe_block,
@@ -123,7 +125,7 @@ def planar_figure(result, fig=None, title: str | None = None, time_range=None):
         at = int(np.argmin(np.abs(t - t_peak)))
         direction = 1.0 if slip_values[at] >= 0 else -1.0
         slip.plot([t_peak], [direction * peak / scale], "v", color="tab:red", ms=5,
-                  label=f"peak {peak / scale:.3g} {unit}")
+                  label=f"peak {format_length(peak, unit)}")
     slip.set_ylabel(f"slip [{unit}]")
     slip.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
     shown_modes = set()
@@ -191,10 +193,14 @@ def planar_caption(result, title: str | None = None) -> list[str]:
     if result.overturned:
         side = "+" if result.overturn_direction > 0 else "−"
         verdict = f"overturned ({side}) at {result.t_overturn:.2f} s"
-    unit = getattr(block, "length_unit", "m")
-    measures = (f"{verdict}; max |θ|/α = {ratio}, peak slip "
-                f"{format_length(result.peak_slip, unit)}")
+    # the base's slip on the table, as the console and the slip panel say it
+    slip = getattr(result, "peak_base_slip", math.nan)
+    slip = result.peak_slip if math.isnan(slip) else slip
     excursion = getattr(result, "peak_excursion", None)  # the reference computes none
+    # one unit for the caption's lengths: the block's, or the smaller one a length needs
+    unit = shared_length_unit((slip, math.nan if excursion is None else excursion),
+                              getattr(block, "length_unit", "m"))
+    measures = f"{verdict}; max |θ|/α = {ratio}, peak slip {format_length(slip, unit)}"
     lines.append(measures if excursion is None
                  else f"{measures}, corner excursion {format_length(excursion, unit)}")
     if result.status not in ("completed", "overturned"):

@@ -311,3 +311,42 @@ def stacks_study(block: Block, records: dict, slender_top: Block, window: float,
                        uplift=uplift_thresholds(uplift_cases(block, slender_top)),
                        pulses=pulse_amplitudes(block, ratios=ratios, iterations=iterations),
                        block=block)
+
+
+def _heights_words(count: int) -> str:
+    return {1: "alone", 2: "two high", 3: "three high"}.get(count, f"{count} high")
+
+
+def stacks_answer(records: pd.DataFrame, uplift: pd.DataFrame,
+                  pulses: pd.DataFrame) -> list[str]:
+    """What the study concludes, in a line per part (the tables of
+    :func:`stacks_study`, as its CSVs hold them): which columns overturned under each
+    record, how the uplift thresholds compare with their closed form, and the smallest
+    overturning pulse alone and stacked."""
+    lines = []
+    for (record, block), rows in records.groupby(["record", "block"], sort=False):
+        said = []
+        for _, row in rows.iterrows():
+            high = _heights_words(int(row["blocks high"]))
+            if row["verdict"] == "F":
+                said.append(f"{high} overturns at {float(row['t_overturn [s]']):.2f} s "
+                            f"(block {int(row['overturned block'])})")
+            else:
+                said.append(f"{high} stands (max θ/α {row['max theta/alpha']})")
+        lines.append(f"{block} block under {record}: " + "; ".join(said))
+    agree = int((uplift["pattern entered"] == uplift["pattern of the closed form"]).sum())
+    worst = float(np.nanmax(np.abs(uplift["relative difference [-]"])))
+    computed = uplift["computed [g]"]
+    alone = uplift["bottom block alone tan(alpha1) [g]"]
+    lower = int((computed < alone).sum())
+    lines.append(f"uplift thresholds agree with the closed form g min(A1, A2) in {agree} of "
+                 f"{len(uplift)} stacks (largest relative difference {worst:.1e}); stacking "
+                 f"lowers the threshold in {lower} of {len(uplift)} "
+                 f"({computed.min():.3g}-{computed.max():.3g} g against tan α1 = "
+                 f"{alone.max():.3g} g alone)")
+    for ratio, rows in pulses.groupby("omega/p [-]", sort=False):
+        minima = ", ".join(f"{row['minimum [g]']:.3g} g "
+                           f"{_heights_words(int(row['blocks high']))}"
+                           for _, row in rows.iterrows())
+        lines.append(f"smallest half-sine pulse that overturns it at ω/p = {ratio:g}: {minima}")
+    return lines

@@ -197,6 +197,9 @@ def test_cli_reads_a_daq_export_and_prints_the_size_with_its_error(tmp_path, cap
     assert "block's mean COR (random effects" in printed
     summary = json.loads((out / "calibration.json").read_text())
     assert summary["warnings"] == [] and summary["period_fit_height_se [m]"] > 0
+    # every length in the block's inches: R of 30 x 6 in is sqrt(15^2 + 3^2) = 15.30 in
+    assert "(nominal 15.30 in)" in printed and " m," not in printed and " m " not in printed
+    assert f"; fit rms {summary['fit rms'] / 0.0254:#.3g} in, " in printed   # JSON: SI
     assert summary["cor_mean_interval [-]"][0] <= 0.85 <= summary["cor_mean_interval [-]"][1]
     assert main(["calibrate", str(path), "--block", "30x6in", "--units", "mm",
                  "--out", str(tmp_path / "o2")]) == 2

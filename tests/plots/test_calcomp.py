@@ -33,7 +33,7 @@ def test_free_rocking_caption_and_no_empty_ground_panels():
     assert len(fig.axes) == 2  # no ground panel: free rocking has no ground motion
     text = svg_text(fig)
     for expected in ("Fig. 3.4", "B × H = 6 × 30 in", "COR 0.925", "free rocking",
-                     "max θ/α = 0.50"):
+                     "still rocking at the end (t = 4.00 s)", "(released at θ/α = 0.50)"):
         assert expected in text
 
 
