@@ -1,11 +1,14 @@
 """The package's build backend: setuptools' own, with its scratch files outside the checkout.
 
 setuptools builds a wheel in ``build/`` and writes ``shaketable.egg-info/`` inside the source
-folder, so ``pip install /path/to/checkout`` would write into the checkout (failing on a
-read-only one, and a stale ``build/lib`` can carry a module deleted since into a later
-wheel). Here every hook of :mod:`setuptools.build_meta` runs with an extra distutils
-configuration (``DIST_EXTRA_CONFIG``) that puts the build folder and the egg-info in a
-temporary folder, removed afterwards; the wheels and sdists are the same.
+folder, so ``pip install /path/to/checkout`` would leave them in the checkout (and a stale
+``build/lib`` can carry a module deleted since into a later wheel). Here every hook of
+:mod:`setuptools.build_meta` runs with an extra distutils configuration
+(``DIST_EXTRA_CONFIG``) that puts the build folder and the egg-info in a temporary folder,
+removed afterwards. The wheels are the same; the sdist no longer holds an ``egg-info/``
+folder (its ``PKG-INFO`` stays). Not covered: setuptools makes and removes a temporary
+``shaketable-<version>/`` folder in the checkout while it writes an sdist, and a strict
+editable install writes its link tree under ``build/``.
 """
 
 from __future__ import annotations

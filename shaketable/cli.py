@@ -41,9 +41,9 @@ EPILOG = ("exit status: 0 success; 1 a run that failed (e.g. a scene that could 
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse's parser whose usage errors are one line and a pointer to the help (not
-    the usage of every option first, which buried the message under it); the
-    subcommands' parsers are of this class too (argparse gives them the top parser's)."""
+    """argparse's parser whose usage errors are one line and a pointer to the help, so
+    that the message is not buried under the usage of every option; the subcommands'
+    parsers are of this class too (argparse gives them the top parser's)."""
 
     def error(self, message: str):   # type: ignore[override]
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n"
@@ -133,9 +133,11 @@ def _missing_output_folders(args) -> list:
     the command creates there, it alone created."""
     from pathlib import Path
 
+    # ``sweep --figures`` is a switch, not a folder: only names count
     given = [getattr(args, name, None) for name in ("out", "figures")]
     missing = []
-    for path in [str(value) for value in given if value] or [DEFAULT_OUT]:
+    for path in [os.fspath(value) for value in given
+                 if isinstance(value, (str, os.PathLike)) and value] or [DEFAULT_OUT]:
         if not path.strip():
             continue
         try:

@@ -271,7 +271,8 @@ def pytest_collection_finish(session):
     imported), one garbage collection, then every object left is frozen (``gc.freeze``):
     the automatic full collections during the run then skip those long-lived objects
     instead of scanning them all again each time (about 0.15 s of CPU each). The garbage
-    the tests make is collected as before: only objects alive at this point are frozen."""
+    the tests make is collected as usual: only objects alive at this point are frozen
+    (and stay uncollected: the modules and libraries a test session keeps anyway)."""
     import gc
 
     gc.collect()
@@ -287,7 +288,7 @@ def pytest_unconfigure(config):
     by then), and the interpreter again as it exits, each a full pass over a heap that
     holds numba, pandas and matplotlib: about 1-2 s of CPU per process, per xdist worker.
     The one collection here still runs every finalizer of the garbage the tests left, and
-    pytest reports what they raise as before."""
+    pytest reports what they raise; objects only a later pass would free are left to the exit."""
     import gc
 
     gc.collect()

@@ -36,6 +36,8 @@ def test_a_refused_value_names_its_option_and_leaves_no_output_folder(argv, opti
                                                                      tmp_path, monkeypatch,
                                                                      capsys):
     monkeypatch.chdir(tmp_path)
+    # checked before the folder is made: not left to the CLI's clean-up of a refusal
+    monkeypatch.setattr("shaketable.cli._remove_empty_folders", lambda folders: None)
     out = tmp_path / "results" / "run"
     try:
         status = main(argv + ["--out", str(out)])
@@ -56,6 +58,19 @@ def test_a_refusal_keeps_a_folder_that_existed_and_its_files(tmp_path, capsys):
     status = main(["spectrum", "--block", "16x4ft", "--ceiling", "-1", "--out", str(out)])
     assert status == 2, capsys.readouterr().err
     assert (out / "notes.txt").read_text() == "kept" and (out / "empty").is_dir()
+
+
+def test_a_switch_named_figures_is_not_taken_for_an_output_folder(tmp_path, monkeypatch):
+    """``sweep --figures`` is a switch: the default folder is still the one a refusal
+    clears, and no folder named "True" is looked for."""
+    from argparse import Namespace
+
+    from shaketable.cli import _missing_output_folders
+
+    monkeypatch.chdir(tmp_path)
+    assert _missing_output_folders(Namespace(out=None, figures=True)) == \
+        [tmp_path / "shaketable-out"]
+    assert _missing_output_folders(Namespace(out="a/b", figures=True)) == [tmp_path / "a"]
 
 
 # ------------------------------------------------------------ slips noted, runs kept

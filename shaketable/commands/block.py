@@ -81,7 +81,7 @@ def block_spectrum(args) -> int:
     from shaketable.core.files import atomic_write, prepare_output_folder, write_parquet
     from shaketable.ground.pulses import Pulse
     from shaketable.plots import base as plots
-    from shaketable.studies.overturning_spectrum import overturning_spectrum
+    from shaketable.studies.overturning_spectrum import check_scan, overturning_spectrum
 
     if args.compare_linear and args.method == "linear":
         raise ValueError("--compare-linear cannot be used with --method linear: the spectrum "
@@ -98,6 +98,10 @@ def block_spectrum(args) -> int:
     except ValueError as error:
         raise with_option_names(error, OPTIONS) from None
     scan_step = BLOCK_SCAN_STEP if args.scan_step is None else args.scan_step
+    try:   # the scan's parameters too, before the output folder
+        check_scan(parse_ratios(args.ratios), scan_step, args.tolerance, args.ceiling)
+    except ValueError as error:
+        raise with_option_names(error, OPTIONS) from None
     out = prepare_output_folder(args.out)
     notice_first_compile(args.quiet, which=("batch",))
     start = time.perf_counter()

@@ -330,6 +330,33 @@ def _edges(block: Block, cor: float, shapes: list, brackets: list, tolerance: fl
     return edges, runs
 
 
+def check_scan(ratios, scan_step: float, tolerance: float, ceiling: float | None) -> None:
+    """Refuse a scan that :func:`overturning_spectrum` cannot run (its parameters of the
+    same names), before any work: a command calls it before making its output folder.
+
+    Raises
+    ------
+    ValueError
+        ``scan_step`` outside (0, 1), ``tolerance`` outside (0, scan_step), ``ceiling``
+        not above 1, or more than ``MAX_SCAN_POINTS`` scan points per pulse and omega/p.
+    """
+    if not 0 < scan_step < 1:
+        raise ValueError(f"scan_step must be in (0, 1), got {scan_step!r}")
+    if not 0 < tolerance < scan_step:
+        raise ValueError(f"tolerance must be in (0, scan_step), got {tolerance!r}")
+    if ceiling is not None and (isinstance(ceiling, bool) or not isinstance(ceiling, (int, float))
+                                or not 1.0 < ceiling < math.inf):
+        raise ValueError(f"ceiling must be a number above 1 (the scan starts at a/(g tan alpha) "
+                         f"= 1, where rocking starts), got {ceiling!r}")
+    tallest = max([ceiling] if ceiling is not None else
+                  [2 * math.sqrt(1 + float(ratio) ** 2) + 2 for ratio in ratios] or [2.0])
+    scan_points = math.log(tallest) / math.log1p(scan_step)
+    if scan_points > MAX_SCAN_POINTS:
+        raise ValueError(f"scan_step {scan_step:g} up to a/(g tan alpha) = {tallest:g} makes "
+                         f"{scan_points:.3g} scan points per pulse and omega/p; at most "
+                         f"{MAX_SCAN_POINTS:,}: a larger scan_step or a lower ceiling")
+
+
 def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4, 6, 8, 10), *,
                          cor="housner", ceiling: float | None = None, scan_step: float = 0.005,
                          tolerance: float = 1e-8, samples_per_cycle: int = 8192,
@@ -367,22 +394,8 @@ def overturning_spectrum(block: Block, pulses=("half-sine",), ratios=(1, 2, 3, 4
     method = _method(method)
     if isinstance(pulses, str):
         pulses = [pulses]
-    if not 0 < scan_step < 1:
-        raise ValueError(f"scan_step must be in (0, 1), got {scan_step!r}")
-    if not 0 < tolerance < scan_step:
-        raise ValueError(f"tolerance must be in (0, scan_step), got {tolerance!r}")
-    if ceiling is not None and (isinstance(ceiling, bool) or not isinstance(ceiling, (int, float))
-                                or not 1.0 < ceiling < math.inf):
-        raise ValueError(f"ceiling must be a number above 1 (the scan starts at a/(g tan alpha) "
-                         f"= 1, where rocking starts), got {ceiling!r}")
+    check_scan(ratios, scan_step, tolerance, ceiling)
     cor = _cor(block, cor)
-    tallest = max([ceiling] if ceiling is not None else
-                  [2 * math.sqrt(1 + float(ratio) ** 2) + 2 for ratio in ratios] or [2.0])
-    scan_points = math.log(tallest) / math.log1p(scan_step)
-    if scan_points > MAX_SCAN_POINTS:
-        raise ValueError(f"scan_step {scan_step:g} up to a/(g tan alpha) = {tallest:g} makes "
-                         f"{scan_points:.3g} scan points per pulse and omega/p; at most "
-                         f"{MAX_SCAN_POINTS:,}: a larger scan_step or a lower ceiling")
     keys, shapes, grids, tops = [], [], [], []
     for kind in pulses:
         for ratio in ratios:

@@ -1,4 +1,4 @@
-"""Figure details a newcomer saw: legends off the data, labels and markers inside the frame,
+"""Figure details: legends off the data, labels and markers inside the frame,
 no curve that measures nothing, captions that say what was compared.
 
 Every check measures the drawn figure (display coordinates after a draw), not the code's
@@ -24,7 +24,8 @@ def _overlap(a, b) -> bool:
 
 
 def test_the_risk_figures_legend_lies_outside_the_panel():
-    """The legend covered the integrand's left flank and the fitted points (lower left)."""
+    """The legend goes below the panel: inside, any corner covers the integrand's flank or
+    the fitted points."""
     from shaketable.plots.sweeps import risk_curves
     from shaketable.sweeps.fragility import fragility_fit
     from shaketable.sweeps.risk import HazardCurve
@@ -50,7 +51,7 @@ def test_the_risk_figures_legend_lies_outside_the_panel():
 
 def test_a_legend_that_covers_data_in_every_corner_goes_below_the_x_label():
     """``place_legend(outside="below")``, for a panel beside another (the calibration
-    figure's COR-per-impact panel was squeezed to 40 % of its width by its legend at its
+    figure's COR-per-impact panel would be squeezed to 40 % of its width by a legend at its
     right); the default still puts it at the right."""
     plt = pyplot()
     x = np.linspace(0, 1, 50)
@@ -106,8 +107,8 @@ def test_the_stack_spectrums_highest_point_is_inside_the_frame():
 
 
 def test_validation_counts_and_markers_stay_inside_the_frame():
-    """The bin counts "16" and "2" at P = 1 touched the top frame; the reliability
-    diagram's largest marker (243 tests at 0) was cut by it, its count written on it."""
+    """Bin counts at P = 1 stay below the top frame, and the reliability diagram's
+    largest marker (243 tests at 0) and its count stay inside it."""
     from shaketable.plots.validation import fragility_figure, reliability_figure
 
     fragility = pd.DataFrame({"centre": [0.05, 0.2, 1.0, 3.0], "measured": [0.0, 0.3, 1.0, 1.0],
@@ -151,8 +152,8 @@ def _bench_rows(case: str, status: str, linear_error: float) -> pd.DataFrame:
 
 def test_bench_draws_no_max_theta_curve_that_every_method_gets_exactly():
     """On a case whose block overturns every method's max |theta| is alpha (the peak
-    before instability), the linear model's too: its curves sat at the floor and made
-    the linear model look exact. They are not drawn and the panel says why; a case whose
+    before instability), the linear model's too: drawn, its curves would sit at the floor
+    and make the linear model look exact. They are not drawn and the panel says why; a case whose
     peak the methods get differently keeps them."""
     from shaketable.plots.bench import fixed_peak, work_precision_panel
 
@@ -174,8 +175,8 @@ def test_bench_draws_no_max_theta_curve_that_every_method_gets_exactly():
 
 
 def test_bench_leaves_no_more_empty_slots_than_its_rows_need():
-    """Five panels at four per row left three empty slots on the second row; drawn 3 + 2
-    they leave one, and every column has its x label under its lowest panel."""
+    """Five panels at four per row are drawn 3 + 2 (one empty slot, not 4 + 1 beside
+    three), and every column has its x label under its lowest panel."""
     from matplotlib.figure import Figure
 
     from shaketable.plots.bench import work_precision_figure

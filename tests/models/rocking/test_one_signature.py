@@ -67,8 +67,8 @@ def test_a_motion_without_a_vertical_component_gives_the_engines_the_same_array_
 def test_the_asymmetric_engine_is_compiled_for_one_signature():
     # simulate_asymmetric hands the engine a motion's read-only arrays, the batch its
     # concatenated records (read-only views too) and each case's block and motion index as
-    # contiguous arrays (a column of the cases table, contiguous only with one case, was a
-    # second signature): writable inputs or a strided index compiled the engine twice
+    # contiguous arrays (a column of the cases table is contiguous only with one case):
+    # writable inputs or a strided index would compile the engine a second time
     from shaketable import AsymmetricBlock
     from shaketable.models.rocking import asymmetric
 
