@@ -34,8 +34,12 @@ import os as _os
 # modules' source (below), so that an edit of an inlined helper cannot leave stale code.
 
 
+#: The package folders whose modules numba compiles (the engines and the numerics they share).
+_COMPILED_LAYERS = ("core", "models", "numerics")
+
+
 def _compiled_sources_fingerprint() -> str:
-    """A short hash of the source of every module numba compiles (``core`` and ``models``).
+    """A short hash of the source of every module numba compiles (:data:`_COMPILED_LAYERS`).
 
     numba's cache checks only the file that defines a cached function, not the helpers it
     inlines from other files (``models/rocking/steppers.py`` into ``models/rocking/engine.py``,
@@ -49,7 +53,7 @@ def _compiled_sources_fingerprint() -> str:
     digest = hashlib.sha256()
     here = _os.path.dirname(_os.path.abspath(__file__))
     try:
-        for layer in ("core", "models"):
+        for layer in _COMPILED_LAYERS:
             for folder, folders, names in sorted(_os.walk(_os.path.join(here, layer))):
                 folders.sort()
                 for name in sorted(names):

@@ -8,8 +8,8 @@ although numba's own check of a cached function (the SHA-256 of its file, the by
 the signature, numba's version and the CPU) would accept the first compile. The package's
 functions are located here by their folder *inside the package* instead
 (``rocking_<sha1 of "shaketable/models/rocking">``): the key is then the sources alone (numba's
-check above, and ``NUMBA_CACHE_DIR``'s default folder keyed by the hash of ``core/`` and
-``models/``, ``shaketable/__init__.py``). Functions outside the package keep numba's
+check above, and ``NUMBA_CACHE_DIR``'s default folder keyed by the hash of ``core/``,
+``models/`` and ``numerics/``, ``shaketable/__init__.py``). Functions outside the package keep numba's
 locators. The module imports numba only when :func:`register` is called (by
 ``models/rocking/physics.py``, which every module that compiles imports before its first
 decorator).

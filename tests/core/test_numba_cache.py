@@ -85,3 +85,20 @@ def test_two_copies_of_the_sources_at_different_paths_share_one_compile(tmp_path
     assert first_folder.startswith(str(tmp_path / "cache" / "shaketable" / "numba"))
     assert (first_hits, first_misses) == ("0", "1")   # compiled in the first copy
     assert (hits, misses) == ("1", "0")               # loaded in the second
+
+
+def test_the_cache_folders_key_covers_every_folder_numba_compiles():
+    """numba checks a cached function against its own file only, so the default cache
+    folder is keyed by the sources of every package folder whose modules numba compiles
+    (``shaketable/__init__.py``): a folder missing there (the shared numerics, inlined
+    into the planar and stack engines) would let an upgrade that changes only it run the
+    stale machine code."""
+    from pathlib import Path
+
+    import shaketable
+
+    package = Path(shaketable.__file__).parent
+    compiling = {path.relative_to(package).parts[0] for path in package.rglob("*.py")
+                 if "import numba" in path.read_text(encoding="utf-8")
+                 or "from numba" in path.read_text(encoding="utf-8")}
+    assert compiling and compiling <= set(shaketable._COMPILED_LAYERS), compiling

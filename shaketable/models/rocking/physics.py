@@ -81,7 +81,7 @@ N_PARAMETERS = 19
 #: options, so a helper first compiled for a Python caller would otherwise be linked into
 #: an engine compiled after it. numba's cache does not see a change of this value in a
 #: module that only imports it either; the package's own cache folder is keyed by the
-#: sources of ``core`` and ``models`` (``shaketable/__init__.py``), so such a change
+#: sources of ``core``, ``models`` and ``numerics`` (``shaketable/__init__.py``), so such a change
 #: compiles afresh there, but a cache folder set by hand (``NUMBA_CACHE_DIR``) must be
 #: cleared.
 ERROR_MODEL: Final = "numpy"
