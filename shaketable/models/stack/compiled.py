@@ -469,7 +469,7 @@ def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
     for j in range(pattern.size):
         if pattern[j] != 0 or phi[j] != 0.0:
             return False
-    rigid_forces(coefficients, NONE, ZERO, 0.0, 0.0, 0.0, ug1, vg1, forces)
+    rigid_forces(coefficients, NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug1, vg1, forces)
     for j in range(pattern.size):
         if forces[j, 2] + tol < 0.0 or forces[j, 3] + tol < 0.0:
             return False
