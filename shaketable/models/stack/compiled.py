@@ -353,7 +353,7 @@ def rest_uplift(chain, ws, run, t, t_end, seg, rigid):
     return first, first_j
 
 
-@kernel
+@inlined
 def progress(run, t, t_new):
     """Count events in a row without progress; False (the run's error set) past the limit."""
     ist = run[4]
@@ -429,7 +429,7 @@ def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_sta
     return DONE, t
 
 
-@kernel
+@inlined
 def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work,
            rigid):
     """theta, theta', theta'' of every block, the pattern, the contact forces and the
@@ -494,51 +494,47 @@ def samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg, histories):
     choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
-        sample(chain, ws, run, ug[0], vg[0], ZERO, theta, rate, acceleration, patterns, forces,
-               work, rigid)
-        filled = 1
         coefficients, tol = rigid[0], par[P_TOL_FORCE]
         phi, pattern = run[0], run[2]
-        for k in range(count - 1):
-            fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
-            ist[I_SAMPLED] = 0
-            if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1], vg[k + 1],
-                      forces[k + 1]):
-                # at rest: theta, theta', theta'' and the pattern are zeros
-                work[k + 1] = fs[F_WORK]
-                filled = k + 2
-                continue
-            seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
-            seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
-            start, what, j = t[k], ENDS_NONE, NONE
-            code = ONE_DOF if open_count(pattern) == 1 and \
-                fs[F_REST_UNTIL] == -math.inf and G + vg[k] > 0.0 and G + vg[k + 1] > 0.0 \
-                else DONE
-            fresh = fresh and code == ONE_DOF
-            while True:
-                if code == ONE_DOF:
-                    # a one-DOF pattern: its segment here, the general path for its event
-                    t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid,
-                                                     fresh)
-                    fresh = False
-                    if ist[I_ERROR] or not progress(run, start, t_new):
-                        code = STOPS
+        for k in range(-1, count - 1):
+            if k >= 0:   # the interval from sample k (k = -1: the first sample only)
+                fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
+                ist[I_SAMPLED] = 0
+                if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1], vg[k + 1],
+                          forces[k + 1]):
+                    # at rest: theta, theta', theta'' and the pattern are zeros
+                    work[k + 1] = fs[F_WORK]
+                    filled = k + 2
+                    continue
+                seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
+                seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
+                start, what, j = t[k], ENDS_NONE, NONE
+                code = ONE_DOF if open_count(pattern) == 1 and \
+                    fs[F_REST_UNTIL] == -math.inf and G + vg[k] > 0.0 and G + vg[k + 1] > 0.0 \
+                    else DONE
+                fresh = fresh and code == ONE_DOF
+                while True:
+                    if code == ONE_DOF:
+                        # a one-DOF pattern: its segment here, the general path for its event
+                        t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid,
+                                                         fresh)
+                        fresh = False
+                        if ist[I_ERROR] or not progress(run, start, t_new):
+                            code = STOPS
+                            break
+                        start = t_new
+                        if what == ENDS_NONE:
+                            code = DONE   # the interval's end reached
+                            break
+                    code, start = interval(chain, ws, scratch, run, t[k], t[k + 1], vg[k],
+                                           vg[k + 1], seg, buffers, rigid, start, what, j)
+                    what, j = ENDS_NONE, NONE
+                    if code != ONE_DOF:
                         break
-                    start = t_new
-                    if what == ENDS_NONE:
-                        sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
-                               acceleration, patterns, forces, work, rigid)
-                        break
-                code, start = interval(chain, ws, scratch, run, t[k], t[k + 1], vg[k],
-                                       vg[k + 1], seg, buffers, rigid, start, what, j)
-                what, j = ENDS_NONE, NONE
-                if code == DONE:
-                    sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
-                           acceleration, patterns, forces, work, rigid)
-                if code != ONE_DOF:
+                if code == STOPS:
                     break
-            if code == STOPS:
-                break
+            sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate, acceleration,
+                   patterns, forces, work, rigid)
             filled = k + 2
     return filled
 
