@@ -25,6 +25,7 @@ from numba import njit
 
 from shaketable.core.constants import G
 from shaketable.models.stack.compiled_one import (
+    ensure_coefficients,
     one_dof_segment,
     one_dof_state,
     rigid_workspace,
@@ -335,11 +336,12 @@ def rest_uplift(chain, ws, run, t, t_end, seg, rigid):
     pattern, par = run[2], run[5]
     n = pattern.size
     start, end = ws[8], ws[17]
-    # the closed form of rest (linear in u'', v'')
+    # the closed form of rest (linear in u'', v''; phi = phi' = phi'' = 0)
+    ensure_coefficients(chain, rigid, run[4], NONE, ZERO)
     ug, vg = ground(seg, t)
-    one_dof_state(chain, run, rigid, ug, vg, start)
+    rigid_forces(rigid[0], NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug, vg, start)
     ug, vg = ground(seg, t_end)
-    one_dof_state(chain, run, rigid, ug, vg, end)
+    rigid_forces(rigid[0], NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug, vg, end)
     first, first_j = math.inf, NONE
     tol = par[P_TOL_FORCE]
     for j in range(n):
