@@ -199,7 +199,7 @@ def open_interface(pattern):
     return -1
 
 
-@inlined
+@kernel
 def one_dof_state(chain, run, rigid, ug, vg, forces):
     """The closed forms of the current pattern (rest or one-DOF) made current, and its
     phi'' [rad/s^2] (0 at rest) and contact forces (into ``forces``, (n, 4) [N]) at the
@@ -217,7 +217,7 @@ def one_dof_state(chain, run, rigid, ug, vg, forces):
     return j, s, x, v, a
 
 
-@inlined
+@kernel
 def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
     """Integrate a one-DOF pattern from ``t`` to its first event or ``t_end`` with the single
     block's stepper (as :func:`shaketable.models.stack.compiled.segment` with DOP853):
