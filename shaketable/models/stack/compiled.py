@@ -431,7 +431,7 @@ def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_sta
     return DONE, t
 
 
-@kernel
+@inlined
 def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work,
            rigid):
     """theta, theta', theta'' of every block, the pattern, the contact forces and the

@@ -199,7 +199,7 @@ def open_interface(pattern):
     return -1
 
 
-@kernel
+@inlined
 def one_dof_state(chain, run, rigid, ug, vg, forces):
     """The closed forms of the current pattern (rest or one-DOF) made current, and its
     phi'' [rad/s^2] (0 at rest) and contact forces (into ``forces``, (n, 4) [N]) at the
