@@ -25,6 +25,7 @@ from numba import njit
 
 from shaketable.core.constants import G
 from shaketable.models.stack.compiled_one import (
+    ensure_coefficients,
     one_dof_segment,
     one_dof_state,
     rigid_workspace,
@@ -245,6 +246,14 @@ def rest_energy(chain, ws, fs, zeros, flat):
 
 
 @inlined
+def take(phi_dot, pattern, after_dot, after):
+    """The rates and the pattern after an impact made the run's (one loop: a slice
+    assignment of an array would copy it first, which needs reference counting)."""
+    for j in range(phi_dot.size):
+        phi_dot[j], pattern[j] = after_dot[j], after[j]
+
+
+@inlined
 def impact(chain, ws, scratch, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
@@ -263,8 +272,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
         # a landing at the noise level while the stack moves: the interface closes
         plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
                        after_dot, after)
-        phi_dot[:] = after_dot
-        pattern[:] = after
+        take(phi_dot, pattern, after_dot, after)
         record(run, time, REST, interface, before, after, ONE,
                (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws)),
                (NONE, ZERO, NONE))
@@ -275,8 +283,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     else:
         cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
         solutions = ONE
-    phi_dot[:] = after_dot
-    pattern[:] = after
+    take(phi_dot, pattern, after_dot, after)
     energy_after = energy(chain, phi, phi_dot, pattern, ws)
     record(run, time, IMPACT, interface, before, pattern, ONE,
            (rate_before, phi_dot[interface], energy_before, energy_after),
@@ -315,8 +322,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
             energy_closed = energy(chain, phi, after_dot, after, ws)
             record(run, time, REST, interface, pattern, after, ONE,
                    (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
-            phi_dot[:] = after_dot
-            pattern[:] = after
+            take(phi_dot, pattern, after_dot, after)
     if open_count(pattern) == 0:
         phi_dot[:] = 0.0
     return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_IMPACT, interface, end)
@@ -330,11 +336,12 @@ def rest_uplift(chain, ws, run, t, t_end, seg, rigid):
     pattern, par = run[2], run[5]
     n = pattern.size
     start, end = ws[8], ws[17]
-    # the closed form of rest (linear in u'', v'')
+    # the closed form of rest (linear in u'', v''; phi = phi' = phi'' = 0)
+    ensure_coefficients(chain, rigid, run[4], NONE, ZERO)
     ug, vg = ground(seg, t)
-    one_dof_state(chain, run, rigid, ug, vg, start)
+    rigid_forces(rigid[0], NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug, vg, start)
     ug, vg = ground(seg, t_end)
-    one_dof_state(chain, run, rigid, ug, vg, end)
+    rigid_forces(rigid[0], NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug, vg, end)
     first, first_j = math.inf, NONE
     tol = par[P_TOL_FORCE]
     for j in range(n):
@@ -348,7 +355,7 @@ def rest_uplift(chain, ws, run, t, t_end, seg, rigid):
     return first, first_j
 
 
-@kernel
+@inlined
 def progress(run, t, t_new):
     """Count events in a row without progress; False (the run's error set) past the limit."""
     ist = run[4]
@@ -424,7 +431,7 @@ def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_sta
     return DONE, t
 
 
-@kernel
+@inlined
 def sample(chain, ws, run, ug, vg, k, theta, rate, acceleration, patterns, forces, work,
            rigid):
     """theta, theta', theta'' of every block, the pattern, the contact forces and the
@@ -469,11 +476,69 @@ def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
     for j in range(pattern.size):
         if pattern[j] != 0 or phi[j] != 0.0:
             return False
-    rigid_forces(coefficients, NONE, ZERO, 0.0, 0.0, 0.0, ug1, vg1, forces)
+    rigid_forces(coefficients, NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug1, vg1, forces)
     for j in range(pattern.size):
         if forces[j, 2] + tol < 0.0 or forces[j, 3] + tol < 0.0:
             return False
     return True
+
+
+@kernel
+def samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg, histories):
+    """The run over the samples ``t`` from its start, into ``histories`` (theta, theta',
+    theta'', patterns, forces, work: :func:`run_stack`'s); returns the number of samples
+    filled. It allocates nothing: compiled without reference counting (an array taken from
+    a tuple, or a row of one, is then no counted reference: the loop over the samples and
+    the one-DOF steps pay for none)."""
+    theta, rate, acceleration, patterns, forces, work = histories
+    fs, ist, par = run[3], run[4], run[5]
+    count = t.size
+    choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
+    filled = 0
+    if ist[I_ERROR] == 0:
+        coefficients, tol = rigid[0], par[P_TOL_FORCE]
+        phi, pattern = run[0], run[2]
+        for k in range(-1, count - 1):
+            if k >= 0:   # the interval from sample k (k = -1: the first sample only)
+                fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
+                ist[I_SAMPLED] = 0
+                if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1], vg[k + 1],
+                          forces[k + 1]):
+                    # at rest: theta, theta', theta'' and the pattern are zeros
+                    work[k + 1] = fs[F_WORK]
+                    filled = k + 2
+                    continue
+                seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
+                seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
+                start, what, j = t[k], ENDS_NONE, NONE
+                code = ONE_DOF if open_count(pattern) == 1 and \
+                    fs[F_REST_UNTIL] == -math.inf and G + vg[k] > 0.0 and G + vg[k + 1] > 0.0 \
+                    else DONE
+                fresh = fresh and code == ONE_DOF
+                while True:
+                    if code == ONE_DOF:
+                        # a one-DOF pattern: its segment here, the general path for its event
+                        t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid,
+                                                         fresh)
+                        fresh = False
+                        if ist[I_ERROR] or not progress(run, start, t_new):
+                            code = STOPS
+                            break
+                        start = t_new
+                        if what == ENDS_NONE:
+                            code = DONE   # the interval's end reached
+                            break
+                    code, start = interval(chain, ws, scratch, run, t[k], t[k + 1], vg[k],
+                                           vg[k + 1], seg, buffers, rigid, start, what, j)
+                    what, j = ENDS_NONE, NONE
+                    if code != ONE_DOF:
+                        break
+                if code == STOPS:
+                    break
+            sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate, acceleration,
+                   patterns, forces, work, rigid)
+            filled = k + 2
+    return filled
 
 
 @njit(cache=True, nogil=True, error_model=COMPILED["error_model"])
@@ -520,55 +585,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     forces = np.zeros((count, n, 4))
     work = np.zeros(count)
     seg = np.array([t[0], t[1] - t[0], ug[0], ug[1] - ug[0], vg[0], vg[1] - vg[0]])
-    choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
-    filled = 0
-    if ist[I_ERROR] == 0:
-        sample(chain, ws, run, ug[0], vg[0], ZERO, theta, rate, acceleration, patterns, forces,
-               work, rigid)
-        filled = 1
-        coefficients, tol = rigid[0], par[P_TOL_FORCE]
-        phi, pattern = run[0], run[2]
-        for k in range(count - 1):
-            fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
-            ist[I_SAMPLED] = 0
-            if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
-                               vg[k + 1], forces[k + 1]):
-                # at rest: theta, theta', theta'' and the pattern are zeros
-                work[k + 1] = fs[F_WORK]
-                filled = k + 2
-                continue
-            seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
-            seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
-            start, what, j = t[k], ENDS_NONE, NONE
-            code = ONE_DOF if open_count(pattern) == 1 and \
-                fs[F_REST_UNTIL] == -math.inf and G + vg[k] > 0.0 and G + vg[k + 1] > 0.0 \
-                else DONE
-            fresh = fresh and code == ONE_DOF
-            while True:
-                if code == ONE_DOF:
-                    # a one-DOF pattern: its segment here, the general path for its event
-                    t_new, what, j = one_dof_segment(chain, run, start, t[k + 1], seg, rigid,
-                                                     fresh)
-                    fresh = False
-                    if ist[I_ERROR] or not progress(run, start, t_new):
-                        code = STOPS
-                        break
-                    start = t_new
-                    if what == ENDS_NONE:
-                        sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
-                               acceleration, patterns, forces, work, rigid)
-                        break
-                code, start = interval(chain, ws, scratch, run, t[k], t[k + 1], vg[k], vg[k + 1],
-                                       seg, buffers, rigid, start, what, j)
-                what, j = ENDS_NONE, NONE
-                if code == DONE:
-                    sample(chain, ws, run, ug[k + 1], vg[k + 1], k + 1, theta, rate,
-                           acceleration, patterns, forces, work, rigid)
-                if code != ONE_DOF:
-                    break
-            if code == STOPS:
-                break
-            filled = k + 2
+    filled = samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg,
+                     (theta, rate, acceleration, patterns, forces, work))
     return (theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i,
             ev_pb, ev_pa, run[0], run[2])
 

@@ -24,7 +24,7 @@ import numpy as np
 from shaketable.models.rocking import events as rocking_events
 from shaketable.models.rocking.engine import step_size_control
 from shaketable.models.rocking.layout import INFO_MAX_ABS_THETA, INFO_T_UNSTABLE, N_INFO
-from shaketable.models.rocking.steppers import flight_acceleration, helper, nystrom_step
+from shaketable.models.rocking.steppers import helper, nystrom_step
 from shaketable.models.stack.compiled_physics import compiled, inlined, kernel
 from shaketable.models.stack.compiled_rigid import (
     B_ALPHA,
@@ -33,6 +33,7 @@ from shaketable.models.stack.compiled_rigid import (
     B_INERTIA_PER_MASS,
     N_BODY,
     N_COLUMNS,
+    rigid_acceleration,
     rigid_coefficients,
     rigid_energy,
     rigid_forces,
@@ -91,13 +92,25 @@ def rigid_workspace(n):
     """The arrays of the closed forms for a chain of ``n`` blocks: coefficients, the
     rocking body, forces, the seated corners' margins at a step's two ends, and the single
     block engine's run information that its event location fills (with the instability's
-    time set, so that it is not located)."""
+    time set, so that it is not located) and the last angle's cosine and sine
+    (:func:`trig`)."""
     info = np.empty(N_INFO)
     info[:] = math.nan
     info[INFO_T_UNSTABLE] = 0.0
     info[INFO_MAX_ABS_THETA] = 0.0
+    last = np.empty(3)
+    last[:] = math.nan
     return (np.zeros((n, N_COLUMNS)), np.zeros(N_BODY), np.zeros((n, 4)),
-            np.zeros((n, 2)), np.zeros((n, 2)), info)
+            np.zeros((n, 2)), np.zeros((n, 2)), info, last)
+
+
+@inlined
+def trig(last, x):
+    """cos(x), sin(x), kept in ``last`` (x, cos, sin): a step's end, the segment's energy
+    there and the next sample are at the same angle (zero recomputed: its sign is sin's)."""
+    if last[0] != x or x == 0.0:
+        last[0], last[1], last[2] = x, math.cos(x), math.sin(x)
+    return last[1], last[2]
 
 
 @inlined
@@ -139,9 +152,9 @@ def force_at(rigid, j, s, t, theta, omega, acceleration, side, tau, seg, seg8, p
     and the state there."""
     x, v, a, _, _ = nystrom_step(t, theta, omega, acceleration, side, tau, seg8, params)
     ug, vg = ground(seg, t + tau)
-    forces = rigid[2]
-    rigid_forces(rigid[0], j, s, x, v, a, ug, vg, forces)
-    return forces[k, 2 + corner] + tol, x, v, a
+    cosine, sine = trig(rigid[6], x)
+    rigid_forces(rigid[0], j, s, cosine, sine, v, a, ug, vg, rigid[2])
+    return rigid[2][k, 2 + corner] + tol, x, v, a
 
 
 @inlined
@@ -186,7 +199,7 @@ def open_interface(pattern):
     return -1
 
 
-@kernel
+@inlined
 def one_dof_state(chain, run, rigid, ug, vg, forces):
     """The closed forms of the current pattern (rest or one-DOF) made current, and its
     phi'' [rad/s^2] (0 at rest) and contact forces (into ``forces``, (n, 4) [N]) at the
@@ -195,20 +208,24 @@ def one_dof_state(chain, run, rigid, ug, vg, forces):
     j = open_interface(pattern)
     s = pattern[j] if j >= 0 else np.int64(0)
     ensure_coefficients(chain, rigid, ist, j, s)
-    x, v, a = 0.0, 0.0, 0.0
+    x, v, a, cosine, sine = 0.0, 0.0, 0.0, 1.0, 0.0
     if j >= 0:
         x, v = phi[j], phi_dot[j]
-        a = flight_acceleration(x, float(s), ug, vg, 0.0, body_parameters(rigid[1]))
-    rigid_forces(rigid[0], j, s, x, v, a, ug, vg, forces)
+        cosine, sine = trig(rigid[6], x)
+        a = rigid_acceleration(rigid[1], float(s), cosine, sine, ug, vg)
+    rigid_forces(rigid[0], j, s, cosine, sine, v, a, ug, vg, forces)
     return j, s, x, v, a
 
 
-@inlined
+@kernel
 def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
     """Integrate a one-DOF pattern from ``t`` to its first event or ``t_end`` with the single
     block's stepper (as :func:`shaketable.models.stack.compiled.segment` with DOP853):
     returns (time, what, interface), ``what`` one of ENDS_*. ``fresh``: the state at ``t``
-    is the last sample's (its phi'' and forces kept, ``I_SAMPLED``), not evaluated again."""
+    is the last sample's (its phi'' and forces kept, ``I_SAMPLED``), not evaluated again.
+    Compiled apart (once per interval its call passes the run's arrays by value, 0.1 ms per
+    two-block run): inlined into the loop over the samples it made the engine's first
+    compile about 4 s of CPU longer."""
     phi, phi_dot, pattern, fs, ist, par, atol = run[0], run[1], run[2], run[3], run[4], \
         run[5], run[6]
     n = pattern.size
@@ -233,7 +250,8 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
             fs[F_ENERGY_SIDE] == 2 * j + s:
         energy_start = fs[F_ENERGY]   # where the last segment of this pattern ended
     else:
-        energy_start = rigid_energy(rigid[1], theta, omega)
+        cosine, sine = trig(rigid[6], theta)
+        energy_start = rigid_energy(rigid[1], cosine, sine, omega)
     rtol, atol_theta, atol_omega = par[P_RTOL], atol[j], atol[n + j]
     step_size, previous_error = fs[F_STEP], fs[F_PREVIOUS_ERROR]
     just_rejected = False
@@ -259,7 +277,9 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
         ist[I_EVALUATIONS] += PER_STEP * located
         # a seated corner's force reaching zero before that: the earliest one
         ug, vg = ground(seg, t + tau)
-        rigid_forces(rigid[0], j, s, theta_new, omega_new, acceleration_new, ug, vg, rigid[2])
+        cosine, sine = trig(rigid[6], theta_new)
+        rigid_forces(rigid[0], j, s, cosine, sine, omega_new, acceleration_new, ug, vg,
+                     rigid[2])
         seated_margin(rigid[2], pattern, tol, g_new)
         first, first_k = math.inf, NONE
         for k in range(n):
@@ -293,7 +313,8 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
         step_size = min(step_size, max(t - fs[F_LAST_IMPACT], 1e-3 * step_size))
         fs[F_LAST_IMPACT] = t
     phi[j], phi_dot[j] = theta, omega
-    energy_end = rigid_energy(rigid[1], theta, omega)
+    cosine, sine = trig(rigid[6], theta)
+    energy_end = rigid_energy(rigid[1], cosine, sine, omega)
     fs[F_WORK] = work_start + energy_end - energy_start
     fs[F_ENERGY], fs[F_ENERGY_THETA], fs[F_ENERGY_OMEGA], fs[F_ENERGY_SIDE] = \
         energy_end, theta, omega, 2 * j + s

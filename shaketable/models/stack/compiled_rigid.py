@@ -124,13 +124,12 @@ def rigid_coefficients(chain, j, s, coefficients, body):
 
 
 @kernel
-def rigid_forces(coefficients, j, s, phi, phi_dot, phi_ddot, ug, vg, out):
+def rigid_forces(coefficients, j, s, cosine, sine, phi_dot, phi_ddot, ug, vg, out):
     """The contact forces [N] of a one-DOF state (interface ``j`` open on side ``s`` at
-    phi [rad], phi' [rad/s], phi'' [rad/s^2]) or of rest (``j`` = -1, zeros) under the table's
-    u'', v'' [m/s^2] into ``out`` (n, 4): the columns N, F, N at the -x corner, N at the +x
-    corner of :func:`~shaketable.models.stack.compiled_physics.interface_loads`."""
+    cos(phi), sin(phi), phi' [rad/s], phi'' [rad/s^2]) or of rest (``j`` = -1, zeros) under
+    the table's u'', v'' [m/s^2] into ``out`` (n, 4): the columns N, F, N at the -x corner,
+    N at the +x corner of :func:`~shaketable.models.stack.compiled_physics.interface_loads`."""
     n = coefficients.shape[0]
-    cosine, sine = math.cos(phi), math.sin(phi)
     gx, gy = ug, G + vg
     w2 = phi_dot * phi_dot
     for k in range(n):
@@ -164,7 +163,19 @@ def rigid_forces(coefficients, j, s, phi, phi_dot, phi_ddot, ug, vg, out):
 
 
 @inlined
-def rigid_energy(body, phi, phi_dot):
-    """Kinetic plus potential energy of the rocking body less its value at rest [J]."""
+def rigid_acceleration(body, side, cosine, sine, ug, vg):
+    """phi'' [rad/s^2] of the rocking body on the pivot ``side`` (+1.0 / -1.0) at cos(phi),
+    sin(phi) under the table's u'', v'' [m/s^2]: Eq. (2-13) in the operations of
+    :func:`~shaketable.models.rocking.physics.flight_acceleration` (no rods, no top force,
+    no table rotation), so that both give the same number."""
+    b, h = body[B_HALF_WIDTH], body[B_HEIGHT]
+    moment = ug * (h * cosine + side * b * sine) - (G + vg) * (side * b * cosine - h * sine)
+    return moment / body[B_INERTIA_PER_MASS]
+
+
+@inlined
+def rigid_energy(body, cosine, sine, phi_dot):
+    """Kinetic plus potential energy of the rocking body less its value at rest [J], at
+    cos(phi), sin(phi) and phi' [rad/s]."""
     return (0.5 * body[B_INERTIA] * phi_dot * phi_dot
-            + G * (math.sin(phi) * body[B_RX] + (math.cos(phi) - 1.0) * body[B_RY]))
+            + G * (sine * body[B_RX] + (cosine - 1.0) * body[B_RY]))
