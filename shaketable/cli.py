@@ -82,7 +82,9 @@ def main(argv=None) -> int:
         _refuse_unknown(parser, args.command, unknown)
     prefix = f"shaketable {args.command}: error:"
     quiet = getattr(args, "quiet", False)
-    new_folders = _missing_output_folders(args)
+    from shaketable.core.files import CREATED_FOLDERS
+
+    made_before = len(CREATED_FOLDERS)   # the output folders this command makes come after
     try:
         with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
             status = int(args.handler(args) or 0)
@@ -100,7 +102,8 @@ def main(argv=None) -> int:
         return _closed_pipe()
     except (ValueError, FileNotFoundError, NotADirectoryError, IsADirectoryError) as error:
         print(f"{prefix} {error}", file=sys.stderr)
-        _remove_empty_folders(new_folders)   # a refused input leaves no empty --out behind
+        # a refused input leaves no empty output folder of its own behind
+        _remove_empty_folders(CREATED_FOLDERS[made_before:])
         return EXIT_BAD_INPUT
     except RuntimeError as error:  # a run that failed and says why (e.g. cluster chunks)
         print(f"{prefix} {error}", file=sys.stderr)
@@ -123,37 +126,11 @@ def main(argv=None) -> int:
         return EXIT_FAILED
 
 
-#: Where a command writes when its ``--out`` is not given (``run``: shaketable-out/SCENE).
-DEFAULT_OUT = "shaketable-out"
-
-
-def _missing_output_folders(args) -> list:
-    """The output folders of the command (``--out``, ``--figures``, else the default
-    ``shaketable-out``) that do not exist yet, each as its topmost missing folder: what
-    the command creates there, it alone created."""
-    from pathlib import Path
-
-    # ``sweep --figures`` is a switch, not a folder: only names count
-    given = [getattr(args, name, None) for name in ("out", "figures")]
-    missing = []
-    for path in [os.fspath(value) for value in given
-                 if isinstance(value, (str, os.PathLike)) and value] or [DEFAULT_OUT]:
-        if not path.strip():
-            continue
-        try:
-            folder = Path(path).absolute()
-            while not folder.parent.exists() and folder.parent != folder:
-                folder = folder.parent
-            if not folder.exists():
-                missing.append(folder)
-        except (OSError, ValueError):   # an unusable path: the command says why
-            continue
-    return missing
-
-
 def _remove_empty_folders(folders: list) -> None:
-    """Remove each of ``folders`` (made by this command) and the folders in it, if they
-    hold no file: a refusal found after the output folder was made leaves nothing."""
+    """Remove each of ``folders`` (made by this command: ``core.files.CREATED_FOLDERS``)
+    and the folders in it, if they hold no file: a refusal found after the output folder
+    was made leaves nothing, and a folder that existed before, or that another process
+    made meanwhile, is never touched."""
     for folder in folders:
         if not folder.is_dir() or folder.is_symlink():
             continue

@@ -60,17 +60,25 @@ def test_a_refusal_keeps_a_folder_that_existed_and_its_files(tmp_path, capsys):
     assert (out / "notes.txt").read_text() == "kept" and (out / "empty").is_dir()
 
 
-def test_a_switch_named_figures_is_not_taken_for_an_output_folder(tmp_path, monkeypatch):
-    """``sweep --figures`` is a switch: the default folder is still the one a refusal
-    clears, and no folder named "True" is looked for."""
-    from argparse import Namespace
+def test_a_late_refusal_removes_only_the_folders_its_command_made(tmp_path, monkeypatch,
+                                                                  capsys):
+    """A refusal found after the output folder was made (here the spectrum's own check,
+    as if the command had not checked first) removes that folder, but not one that
+    existed (another process may be writing there: two sweeps started together on one
+    folder)."""
+    from shaketable.studies import overturning_spectrum
 
-    from shaketable.cli import _missing_output_folders
+    def refuse(*args, **kwargs):
+        raise ValueError("scan_step must be in (0, 1), got 2")
 
     monkeypatch.chdir(tmp_path)
-    assert _missing_output_folders(Namespace(out=None, figures=True)) == \
-        [tmp_path / "shaketable-out"]
-    assert _missing_output_folders(Namespace(out="a/b", figures=True)) == [tmp_path / "a"]
+    monkeypatch.setattr(overturning_spectrum, "overturning_spectrum", refuse)
+    argv = ["spectrum", "--block", "16x4ft", "--ratios", "2"]
+    assert main(argv + ["--out", "new/run"]) == 2, capsys.readouterr().err
+    assert not (tmp_path / "new").exists()
+    (tmp_path / "busy").mkdir()   # made by someone else, empty for now
+    assert main(argv + ["--out", "busy"]) == 2, capsys.readouterr().err
+    assert (tmp_path / "busy").is_dir()
 
 
 # ------------------------------------------------------------ slips noted, runs kept

@@ -28,6 +28,12 @@ class OutputPathError(ValueError):
     """An output path that cannot be used; the message names the option and the path."""
 
 
+#: The folders :func:`prepare_output_folder` created in this process, in order (the
+#: command line removes those still empty when it refuses an input late; a folder another
+#: process made at the same time is never among them).
+CREATED_FOLDERS: list[Path] = []
+
+
 def prepare_output_folder(path, option: str = "--out") -> Path:
     """Create the output folder ``path`` (and its parents) or say why it cannot be.
 
@@ -102,7 +108,12 @@ def _prepare_folder(folder: Path, option: str, path) -> Path:
                                       f"no folder can be made under it")
             break
     try:
-        folder.mkdir(parents=True, exist_ok=True)
+        for level in [*reversed(folder.parents), folder]:
+            try:   # one level at a time: the ones this process made are known
+                level.mkdir()
+            except FileExistsError:
+                continue
+            CREATED_FOLDERS.append(level.absolute())
     except OSError as error:
         raise OutputPathError(f"{option} {str(path)!r}: cannot create the folder "
                               f"({error.strerror or error})") from None
