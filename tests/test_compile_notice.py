@@ -1,6 +1,6 @@
 """The one-line notice before a first compile names what will compile.
 
-The planar engine costs ~15 s of CPU to compile and the stack engine ~38 s (measured,
+The planar engine costs ~13 s of CPU to compile and the stack engine ~37 s (measured,
 `commands/common.py`), five and twelve times the rocking engine: a command that will run
 one must say so before the wait.
 """
@@ -49,7 +49,7 @@ def test_an_empty_cache_names_each_engine_that_will_compile(tmp_path, monkeypatc
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
     common.notice_first_compile(which=("engine", "planar"))
     message = capsys.readouterr().err
-    assert "the engine (~3 s)" in message and "the planar engine (~15 s)" in message
+    assert "the engine (~3 s)" in message and "the planar engine (~13 s)" in message
     common.notice_first_compile(quiet=True, which=("planar",))
     assert capsys.readouterr().err == ""
 

@@ -103,8 +103,8 @@ def scaled_record(motion, args):
 #: before, and what their first compilation costs on the 2-core CI machine (measured, README).
 _COMPILED = {"engine": ("engine.integrate_fast-", "the engine", "~3 s", "rocking"),
              "batch": ("batch._run_cases_fast-", "the batch engine", "~1 s", "rocking"),
-             "planar": ("engine.integrate-", "the planar engine", "~15 s", "planar"),
-             "stack": ("compiled.run_stack-", "the stack engine", "~38 s", "stack")}
+             "planar": ("engine.integrate-", "the planar engine", "~13 s", "planar"),
+             "stack": ("compiled.run_stack-", "the stack engine", "~37 s", "stack")}
 
 
 def compiled_before(which: str = "engine") -> bool:

@@ -1,5 +1,5 @@
 """The planar engine is compiled once whatever the entry point (as the rocking
-engine): a cold compile costs ~15 s of CPU, so a free-rocking run (a motion without a
+engine): a cold compile costs ~13 s of CPU, so a free-rocking run (a motion without a
 vertical component: a fresh writable array of zeros), a record with its vertical and the
 batch must hand `models.planar.engine.integrate` arrays of one type."""
 
