@@ -88,14 +88,14 @@ def main(argv=None) -> int:
     try:
         with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
             status = int(args.handler(args) or 0)
-        if argv is None and _used_worker_processes():
+        if argv is None and _worker_processes_all_ended():
             _stop_process_helpers()
         sys.stdout.flush()   # a closed pipe shows here, not in Python's flush at exit
         return status
     except KeyboardInterrupt:
         print(f"shaketable {args.command}: interrupted; files already written are complete",
               file=sys.stderr)
-        if argv is None and (_compiled_run_still_going() or _used_worker_processes()):
+        if argv is None and (_compiled_run_still_going() or _worker_processes_all_ended()):
             _end_now(EXIT_INTERRUPTED)
         return EXIT_INTERRUPTED
     except BrokenPipeError:  # `shaketable ... | head -1`: the reader left; end quietly
@@ -172,7 +172,7 @@ def _compiled_run_still_going() -> bool:
     return any(thread.name == "shaketable-engine" for thread in threading.enumerate())
 
 
-def _used_worker_processes() -> bool:
+def _worker_processes_all_ended() -> bool:
     """Whether the command ran worker processes and every one of them has ended (a
     sweep's ``--workers N`` and ``reproduce`` end theirs on Ctrl-C,
     ``core.workers.end_workers``); a worker still running is left to Python's exit,

@@ -23,11 +23,11 @@ def bench_answer(pacoima: dict | None, accuracy) -> list[str]:
                else f", impacts {same['impacts']} against {same['impacts truth']}"))
     if accuracy is not None and len(accuracy):
         meets = int(accuracy["meets 1e-8"].sum())
-        theta = accuracy.get("error max_theta [-]")
-        events = accuracy.get("error events [-]")
-        largest = "" if theta is None else (
-            f": largest relative error of max |θ| {theta.max():.2g}, of the event times "
-            f"{events.max():.2g}")
+        errors = [f"of {what} {accuracy[column].max():.2g}"
+                  for what, column in (("max |θ|", "error max_theta [-]"),
+                                       ("the event times", "error events [-]"))
+                  if column in accuracy]
+        largest = f": largest relative error {', '.join(errors)}" if errors else ""
         lines.append(f"accuracy (fast against the reference at their defaults, "
                      f"{len(accuracy)} cases){largest}; {meets} of {len(accuracy)} within 1e-8 "
                      "(details in RESULTS.md)")
