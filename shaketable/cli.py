@@ -130,13 +130,20 @@ def _remove_empty_folders(folders: list) -> None:
     """Remove each of ``folders`` (made by this command: ``core.files.CREATED_FOLDERS``)
     and the folders in it, if they hold no file: a refusal found after the output folder
     was made leaves nothing, and a folder that existed before, or that another process
-    made meanwhile, is never touched."""
+    made meanwhile, is never touched.
+
+    A folder holding a file anywhere in it stays whole: another process that found the
+    folder this command made may be writing in it (its lock file comes first), and its
+    empty subfolders are its own."""
     for folder in folders:
         if not folder.is_dir() or folder.is_symlink():
             continue
+        walked = sorted(os.walk(folder), key=lambda level: -len(level[0]))
+        if any(files for _, _, files in walked):
+            continue
         try:
-            for inner, _, _ in sorted(os.walk(folder), key=lambda walked: -len(walked[0])):
-                os.rmdir(inner)   # deepest first; a folder holding a file stays (OSError)
+            for inner, _, _ in walked:
+                os.rmdir(inner)   # deepest first; a file that came meanwhile stops it
         except OSError:
             pass
 

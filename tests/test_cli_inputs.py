@@ -81,6 +81,26 @@ def test_a_late_refusal_removes_only_the_folders_its_command_made(tmp_path, monk
     assert (tmp_path / "busy").is_dir()
 
 
+def test_a_late_refusal_leaves_what_another_process_began_in_its_folder(tmp_path,
+                                                                         monkeypatch, capsys):
+    """Two sweeps started together on one folder: this command made ``out``, the other
+    found it, took its lock and made ``out/parts``; this command's refusal must leave
+    both (removing the empty ``parts`` broke the other's first chunk)."""
+    from shaketable.studies import overturning_spectrum
+
+    def other_process_begins_then_refuse(*args, **kwargs):
+        (tmp_path / "out" / ".shaketable.lock").write_text("")
+        (tmp_path / "out" / "parts").mkdir()
+        raise ValueError("scan_step must be in (0, 1), got 2")
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(overturning_spectrum, "overturning_spectrum",
+                        other_process_begins_then_refuse)
+    argv = ["spectrum", "--block", "16x4ft", "--ratios", "2", "--out", "out"]
+    assert main(argv) == 2, capsys.readouterr().err
+    assert (tmp_path / "out" / "parts").is_dir()
+
+
 # ------------------------------------------------------------ slips noted, runs kept
 @pytest.mark.parametrize("text, says", [
     ("6x30in", "--block 6x30in is 6 in tall and 30 in wide (B/H = 5, alpha = 78.7 deg); "
