@@ -92,7 +92,9 @@ def main(argv=None) -> int:
     lines = done.stdout.splitlines()
     start = next((i for i, line in enumerate(lines) if "using the most CPU" in line),
                  max(0, len(lines) - 10))
-    print("\n".join([line for line in lines[:start] if "random order" in line] + lines[start:]))
+    if done.returncode == 0:   # the progress dots say nothing; the tables do
+        lines = [line for line in lines[:start] if "random order" in line] + lines[start:]
+    print("\n".join(lines))   # a failing run keeps its tracebacks
     print(f"\ncommand: {' '.join(command[3:])}  (numba cache: {'empty' if args.cold else 'kept'}; "
           f"bytecode: {bytecode})")
     print(f"cores: {os.cpu_count()}, load average (1 min) before {load_before[0]:.1f}, "
