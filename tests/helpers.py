@@ -30,6 +30,17 @@ needs_pbr = pytest.mark.skipif(not (SHARED_PBR / "metadata.csv").is_file(),
                                reason="the measured tests folder (shared/data/pbr) is absent")
 
 
+def ctrl_c_restored() -> None:
+    """``preexec_fn`` of a subprocess that a test stops with Ctrl-C (SIGINT): the child
+    starts with SIGINT at its default, so that Python installs its KeyboardInterrupt
+    handler there whatever the test runner inherited (a run started in the background by
+    a non-interactive shell, or under ``nohup``, ignores SIGINT, and an ignored signal
+    stays ignored in every program started below it)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 #: Members per cell of the report tables' ensembles in tests that check that a command runs
 #: and writes its report, not the ensembles' statistics (the package's default is 200).
 TEST_MEMBERS = 20

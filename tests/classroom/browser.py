@@ -15,6 +15,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from tests.helpers import ctrl_c_restored
+
 CHROMIUM = ("/usr/bin/chromium", "/usr/bin/chromium-browser")
 CHROMEDRIVER = "/usr/bin/chromedriver"
 
@@ -66,7 +68,7 @@ class Server:
         self.process = subprocess.Popen(
             [sys.executable, "-m", "shaketable", "classroom", "--no-browser",
              "--out", str(out)], cwd=cwd, stdout=subprocess.PIPE, stderr=self.errors,
-            text=True, env=environment)
+            text=True, env=environment, preexec_fn=ctrl_c_restored)
         assert self.process.stdout is not None
         line = self.process.stdout.readline()
         if "http://" not in line:

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.helpers import REPOSITORY
+from tests.helpers import REPOSITORY, ctrl_c_restored
 
 # A stack sweep whose first chunk is cheap (a 0.5 s record) and whose three others are long
 # (60 s records, ~1.5 s of CPU each): when part 0 is on disk both workers are mid-chunk.
@@ -96,7 +96,7 @@ def test_ctrl_c_ends_a_sweep_and_its_workers_at_once_and_keeps_the_finished_chun
         [sys.executable, "-m", "shaketable", "sweep", "spec.toml", "--out", "out",
          "--workers", "2", "--no-progress"],
         cwd=tmp_path, env=environment, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-        text=True, start_new_session=True)
+        text=True, start_new_session=True, preexec_fn=ctrl_c_restored)
     first = tmp_path / "out" / "parts" / "part-000000.parquet"
     started = time.perf_counter()
     while not first.exists() and process.poll() is None \
