@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from shaketable.core.files import subfolder, write_csv, write_gallery
-from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored
+from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored, process_pool
 from shaketable.scenes.catalog import expected_cost, resolve_scene_path, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
@@ -160,11 +160,9 @@ def _pooled(names: list, out: Path, workers: int, compile_planar_first: bool, re
     """The scenes in ``workers`` processes of their own (each a fresh interpreter, numba's
     cache loaded once per process), each outcome handed to ``record`` as it completes; a
     scene's outputs do not depend on the process it runs in."""
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
-    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_one_thread_each)
+    pool = process_pool(workers, _one_thread_each)
     try:
         # the longest expected first (the report-table studies and their ensembles: half of
         # the work), so that the processes end together; each result carries its worker's CPU

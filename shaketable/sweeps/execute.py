@@ -653,13 +653,16 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
     come back; a chunk's error does the same. The chunks finished are on disk, the others
     run on resume.
     """
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
-    from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored
+    from shaketable.core.workers import (
+        end_workers,
+        ignore_interrupts,
+        interrupts_ignored,
+        process_pool,
+    )
 
-    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=ignore_interrupts)
+    pool = process_pool(workers, ignore_interrupts)
     futures: dict = {}
     written = set()
     try:
@@ -669,7 +672,10 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
             finished(futures[future], future.result())
             written.add(future)
     except BaseException:
-        end_workers(pool)
+        try:
+            end_workers(pool)
+        except KeyboardInterrupt:   # a second Ctrl-C: the workers have ended all the same
+            pass
         # the chunks computed but not yet written are kept (an atomic write each); a write
         # that fails stops this, the error that stopped the sweep is the one raised
         try:
