@@ -358,6 +358,16 @@ def solver_identity() -> dict:
             "default rtol": dict(DEFAULT_RTOL)}
 
 
+def refuse_a_second_sweep(out: Path) -> None:
+    """Raise SweepError if folder ``out`` already holds a sweep (its manifest): a sweep
+    goes on there only with ``resume``."""
+    manifest_path = Path(out) / "manifest.json"
+    if manifest_path.exists():
+        raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
+                         "(resume=True from Python) to continue it, or choose another "
+                         "output folder")
+
+
 def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
     manifest_path = out / "manifest.json"
     manifest = {"sweep": spec.name, "spec": spec.path, "fingerprint": spec.fingerprint(),
@@ -371,9 +381,7 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
     manifest.update(spec.model.manifest())
     if manifest_path.exists():
         if not resume:
-            raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
-                             "(resume=True from Python) to continue it, or choose another "
-                             "output folder")
+            refuse_a_second_sweep(out)
         try:
             old = json.loads(manifest_path.read_text())
         except (OSError, ValueError) as error:
