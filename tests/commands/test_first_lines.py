@@ -208,3 +208,17 @@ def test_a_free_rocking_scene_leads_with_the_rest_time(tmp_path, capsys):
     assert abs(rest - FIG_3_4_REST) <= ABOUT * FIG_3_4_REST
     assert first.startswith(f"fig-3-4: 30 x 6 in block, COR 0.925: came to rest at "
                             f"t = {rest:.2f} s after 21 impacts of swings over 3 % ")
+
+
+def test_the_reproduction_report_says_free_rocking_as_the_console_does():
+    import shaketable as st
+    from shaketable.reproduce import run_line
+
+    # Fig. 3.4's run: report.md's line leads with the rest time and the countable impacts
+    block = st.Block.parse("30x6in")
+    run = st.simulate(block, None, cor=0.925, theta0=0.5 * block.alpha, duration=8.0)
+    line = run_line(run)
+    assert line.startswith("* 30 x 6 in block, from θ0 = 0.5 α, COR 0.925: came to rest at t = ")
+    rest = float(line.split("came to rest at t = ")[1].split(" s")[0])
+    assert abs(rest - FIG_3_4_REST) <= ABOUT * FIG_3_4_REST
+    assert "after 21 impacts of swings over 3 % of the release" in line
