@@ -111,15 +111,18 @@ def free_rocking_verdict(result) -> str:
     :meth:`~shaketable.models.rocking.result.RockingResult.verdict` says it."""
     if result.status != "completed" or not math.isfinite(result.t_start):
         return result.verdict()
-    release = f"released at θ/α = {abs(result.theta[0]) / result.block.alpha:.2f}"
+    ratio = abs(result.theta[0]) / result.block.alpha   # a release below 0.01: as given
+    release = f"released at θ/α = {ratio:.2f}" if round(ratio, 2) >= 0.01 else \
+        f"released at θ/α = {ratio:.2g}"
     rest = rocking_rest_time(result)
     words, smaller = _visible_words(result)
     if math.isnan(rest):
         return (f"still rocking at the end (t = {result.t[-1]:.2f} s), last swing "
                 f"θ/α {_ratio(last_swing_ratio(result))}, after {words}"
                 + (f" and {smaller} smaller" if smaller else "") + f" ({release})")
-    if smaller:
-        words += ", then ever smaller ones accumulating there"
+    if smaller:   # with a summed cascade the impacts' times accumulate at the rest time
+        words += (", then ever smaller ones accumulating there" if result.cascades
+                  else f", then {smaller} smaller")
     return f"came to rest at t = {rest:.2f} s after {words} ({release})"
 
 

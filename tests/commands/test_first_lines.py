@@ -222,3 +222,24 @@ def test_the_reproduction_report_says_free_rocking_as_the_console_does():
     rest = float(line.split("came to rest at t = ")[1].split(" s")[0])
     assert abs(rest - FIG_3_4_REST) <= ABOUT * FIG_3_4_REST
     assert "after 21 impacts of swings over 3 % of the release" in line
+
+
+def test_a_small_release_is_said_as_given_and_a_last_swing_in_two_decimals():
+    import shaketable as st
+    from shaketable.studies.free_rocking import free_rocking_verdict
+
+    # released at 0.001 alpha (below the two decimals of a larger release), and the same
+    # block cut while it still rocks with a swing under 0.01 alpha
+    block = st.Block.parse("36x9in")
+    small = st.simulate(block, None, cor=0.925, theta0=0.001 * block.alpha, duration=3.0)
+    assert free_rocking_verdict(small).endswith("(released at θ/α = 0.001)")
+    late = st.simulate(block, None, cor=0.925, theta0=0.5 * block.alpha, duration=5.0)
+    verdict = free_rocking_verdict(late)
+    assert verdict.startswith("still rocking at the end (t = 5.00 s), last swing θ/α ")
+    swing = verdict.split("last swing θ/α = ")[1].split(",")[0]
+    assert len(swing.split(".")[1]) == 2 and 0 < float(swing) < 0.5, verdict
+    # Fig. 3.4's block just before its rest (5.76 s): its last swing is below 0.01 alpha
+    block = st.Block.parse("30x6in")
+    end = st.simulate(block, None, cor=0.925, theta0=0.5 * block.alpha, duration=5.7)
+    assert "last swing θ/α < 0.01, after 21 impacts of swings over 3 % of the release and " \
+        in free_rocking_verdict(end)
