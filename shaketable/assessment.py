@@ -14,7 +14,14 @@ from pathlib import Path
 
 from shaketable.core.constants import G
 from shaketable.core.files import json_ready, prepare_output_folder, write_csv, write_text
-from shaketable.studies.assess import ASSUMPTIONS, Assessment, AssessmentResult, run_assessment
+from shaketable.studies.assess import (
+    ASSUMPTIONS,
+    Assessment,
+    AssessmentResult,
+    format_slip_mm,
+    run_assessment,
+    same_friction_note,
+)
 
 #: Figures written, in the report's order: (name, file, caption).
 FIGURES = (
@@ -137,8 +144,12 @@ def report_markdown(result: AssessmentResult, figure_files=()) -> str:
             f"{row['overturned']}/{row['records']} = {row['P(overturn) [-]']:.2f} "
             f"[{row['P low [-]']:.2f}, {row['P high [-]']:.2f}] | "
             f"{_mm(row['excursion median [m]'])} / {_mm(row['excursion p84 [m]'])} | "
-            f"{_mm(row['slip median [m]'])} / {_mm(row['slip p84 [m]'])} |")
+            f"{format_slip_mm(row['slip median [m]'])} / {format_slip_mm(row['slip p84 [m]'])} |")
     lines += ["", "Excursion and slip are over the records that did not overturn the object."]
+    for k, name in enumerate(spec.demand.level_names):
+        note = same_friction_note(result.free, k, block.width / block.height)
+        if note:
+            lines += ["", f"At the {name} level low and high friction agree: {note}."]
     if spec.criteria.clearance is not None:
         lines += ["", f"Clearance available: {_mm(spec.criteria.clearance)} mm."]
     lines += ["", "Fragility (lognormal in ground PGA, maximum likelihood):", ""]

@@ -88,8 +88,6 @@ def main(argv=None) -> int:
     try:
         with contextlib.redirect_stdout(io.StringIO()) if quiet else contextlib.nullcontext():
             status = int(args.handler(args) or 0)
-        if argv is None and _worker_processes_all_ended():
-            _stop_process_helpers()
         sys.stdout.flush()   # a closed pipe shows here, not in Python's flush at exit
         return status
     except KeyboardInterrupt:
@@ -124,6 +122,9 @@ def main(argv=None) -> int:
               f"shaketable; please report it with the command you ran (SHAKETABLE_TRACEBACK=1 "
               f"shows the traceback)", file=sys.stderr)
         return EXIT_FAILED
+    finally:   # whatever the outcome (Ctrl-C that ends at once has done it already)
+        if argv is None and _worker_processes_all_ended():
+            _stop_process_helpers()
 
 
 def _remove_empty_folders(folders: list) -> None:
@@ -180,22 +181,29 @@ def _compiled_run_still_going() -> bool:
 
 
 def _worker_processes_all_ended() -> bool:
-    """Whether the command ran worker processes and every one of them has ended (a
-    sweep's ``--workers N`` and ``reproduce`` end theirs on Ctrl-C,
-    ``core.workers.end_workers``); a worker still running is left to Python's exit,
-    which waits for it."""
-    if "concurrent.futures.process" not in sys.modules:
+    """Whether the command started worker processes (a sweep's ``--workers N`` and
+    ``reproduce``: ``core.workers.pool_started``) and every one of them has ended (they
+    end theirs on Ctrl-C, ``core.workers.end_workers``); a worker still running is left to
+    Python's exit, which waits for it."""
+    from shaketable.core.workers import pool_started
+
+    if not pool_started():
         return False
     import multiprocessing
 
     return not multiprocessing.active_children()
 
 
+#: Seconds the command waits for multiprocessing's resource tracker to end once told to.
+TRACKER_WAIT = 1.0
+
+
 def _stop_process_helpers() -> None:
     """After a command whose worker processes have all ended: run multiprocessing's own
-    exit (its semaphores released) and stop its resource-tracker process and wait for it,
-    so that no process of the command outlives it (Python's exit leaves the tracker to end
-    after the command, an orphan). With a worker still alive nothing is done here."""
+    exit (its semaphores released) and stop its resource-tracker process and wait for it
+    (at most :data:`TRACKER_WAIT` s, :func:`_stop_resource_tracker`), so that no process of
+    the command outlives it (Python's exit leaves the tracker to end after the command, an
+    orphan). With a worker still alive nothing is done here."""
     if "multiprocessing.resource_tracker" not in sys.modules:
         return
     try:
@@ -207,12 +215,27 @@ def _stop_process_helpers() -> None:
             return
 
         multiprocessing.util._exit_function()  # type: ignore[attr-defined]  # as at exit
-        tracker = sys.modules["multiprocessing.resource_tracker"]._resource_tracker
-        stop = getattr(tracker, "_stop", None)   # Python >= 3.11; older: it ends on its own
-        if stop is not None:
-            stop()
+        _stop_resource_tracker(TRACKER_WAIT)
     except Exception:   # ending anyway; the tracker then ends on its own
         pass
+
+
+def _stop_resource_tracker(timeout: float) -> bool:
+    """Tell multiprocessing's resource tracker to end (its pipe closed) and wait for it
+    at most ``timeout`` s; whether it ended. The tracker ends when every holder of its
+    pipe has closed it, so a process this one did not start through multiprocessing and
+    that holds the pipe (not among ``active_children``) would keep it, and a plain wait,
+    running: the wait is in a thread of its own and given up after ``timeout``."""
+    import threading
+
+    tracker = sys.modules["multiprocessing.resource_tracker"]._resource_tracker
+    stop = getattr(tracker, "_stop", None)   # Python >= 3.11; older: it ends on its own
+    if stop is None:
+        return False
+    waiting = threading.Thread(target=stop, name="shaketable-tracker-stop", daemon=True)
+    waiting.start()
+    waiting.join(timeout)
+    return not waiting.is_alive()
 
 
 def _end_now(status: int) -> None:

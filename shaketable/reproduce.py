@@ -9,10 +9,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from shaketable.core.files import subfolder, write_csv, write_gallery
-from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored
+from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored, process_pool
 from shaketable.scenes.catalog import expected_cost, resolve_scene_path, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
+from shaketable.studies.free_rocking import free_rocking_verdict, is_free
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -48,8 +49,8 @@ def run_line(run: RockingResult) -> str:
         side = "+" if run.overturn_direction > 0 else "−"
         verdict = (f"**F**: overturns ({side}) at {run.t_overturn:.2f} s; largest rocking "
                    f"before instability {run.max_theta_ratio_before_instability:.3f} α")
-    else:
-        verdict = run.verdict()
+    else:   # free rocking: when it came to rest, after the impacts a reader can count
+        verdict = free_rocking_verdict(run) if is_free(run) else run.verdict()
     unstable = ("never unstable (|θ| stays below α)" if not run.unstable else
                 f"unstable ({'+' if run.unstable_direction > 0 else '−'}) at "
                 f"{run.t_unstable:.3g} s")
@@ -160,11 +161,9 @@ def _pooled(names: list, out: Path, workers: int, compile_planar_first: bool, re
     """The scenes in ``workers`` processes of their own (each a fresh interpreter, numba's
     cache loaded once per process), each outcome handed to ``record`` as it completes; a
     scene's outputs do not depend on the process it runs in."""
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
-    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=_one_thread_each)
+    pool = process_pool(workers, _one_thread_each)
     try:
         # the longest expected first (the report-table studies and their ensembles: half of
         # the work), so that the processes end together; each result carries its worker's CPU

@@ -508,8 +508,8 @@ def test_the_rate_interval_is_the_range_over_the_fits_likelihood_region():
 def test_the_region_search_stays_finite_from_a_point_that_is_not_the_fits_best():
     # the assessment evaluates lambda with the fit's median moved to an end of its interval
     # (beta kept): from there the likelihood region is not centred, and its boundary
-    # search along a steep direction used to overflow exp() (OverflowError) instead of
-    # stopping; every boundary point must be finite and the interval must hold the rate
+    # search along a steep direction must stop without overflowing exp() (OverflowError);
+    # every boundary point must be finite and the interval must hold the rate
     from dataclasses import replace
 
     import numpy as np

@@ -93,8 +93,8 @@ def test_overlay_figure_runs_to_the_end_of_its_longest_run():
     small = st.simulate(st.Block.parse("4x0.8ft"), motion, cor=0.9, duration=10.0)
     large = st.simulate(st.Block.parse("12x2.4ft"), motion, cor=0.9, duration=10.0)
     assert small.overturned and not large.overturned
-    # the figure used to stop where the small block fell (4.28 s): the large block's
-    # response after it (the record's strong part lasts to about 9 s) was off the axis
+    # the figure runs past where the small block fell (4.28 s): the large block's
+    # response after it (the record's strong part lasts to about 9 s) is on the axis
     from shaketable.plots.calcomp import calcomp
 
     figure = calcomp(small, others=[large])

@@ -53,7 +53,8 @@ def register(commands) -> None:
                     "table acceleration and the mode band revealed as time advances; the "
                     "three lessons one click away; a button that saves the figure and a "
                     "scene file that `shaketable run` reproduces. Needs the classroom extra "
-                    "(pip install 'shaketable[classroom]'); no internet. Ctrl-C stops it.")
+                    "(pip install 'shaketable[classroom]'; from a checkout of the source, in "
+                    "its folder: pip install '.[classroom]'); no internet. Ctrl-C stops it.")
     parser.add_argument("--port", type=int, default=0,
                         help="TCP port to listen on (default 0: a free port, printed)")
     parser.add_argument("--address", default="localhost",

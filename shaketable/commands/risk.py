@@ -142,14 +142,15 @@ def _risk(args: argparse.Namespace) -> int:
         return 1
     if args.figure and results:
         from shaketable.plots.base import pyplot, save
-        from shaketable.plots.sweeps import risk_curves
+        from shaketable.plots.sweeps import risk_curves, shared_risk_legend
 
         plt = pyplot()
-        figure, axes = plt.subplots(len(results), 1, figsize=(7.5, 4.4 * len(results)),
+        figure, axes = plt.subplots(len(results), 1, figsize=(7.5, 3.9 * len(results) + 0.8),
                                     squeeze=False)
         for axis, (block, label, fit, result) in zip(axes[:, 0], results):
-            risk_curves(fit, hazard, result, ax=axis)
+            risk_curves(fit, hazard, result, ax=axis, legend=False)
             axis.set_title(f"{block}, {label}: " + axis.get_title(), fontsize=8)
+        shared_risk_legend(list(axes[:, 0]))
         if synthetic:
             figure.suptitle("SYNTHETIC example hazard curve (not a real site)", fontsize=9,
                             color="tab:red")

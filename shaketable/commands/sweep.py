@@ -14,7 +14,7 @@ def _sweep(args: argparse.Namespace) -> int:
     from shaketable.commands.common import compiled_before, notice_first_compile
     from shaketable.core.files import prepare_output_folder
     from shaketable.scenes.catalog import resolve_sweep_path
-    from shaketable.sweeps.execute import run_sweep
+    from shaketable.sweeps.execute import refuse_a_second_sweep, run_sweep
     from shaketable.sweeps.spec import load_spec
 
     if args.workers is not None and args.workers < 1:
@@ -24,6 +24,8 @@ def _sweep(args: argparse.Namespace) -> int:
         raise ValueError(f"--max-chunks must be 0 or more, got {args.max_chunks}")
     spec = load_spec(resolve_sweep_path(args.spec))
     out = prepare_output_folder(args.out or Path("shaketable-out") / spec.name)
+    if not args.resume:   # said first, before what would have run
+        refuse_a_second_sweep(out)
     where = f"Dask cluster {args.scheduler}" if args.scheduler else (
         (f"{args.workers} local process(es)" if args.workers and args.workers > 1
          else "one local process") if spec.model.processes else

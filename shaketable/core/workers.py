@@ -18,6 +18,27 @@ from contextlib import contextmanager
 #: Seconds a worker process is given to end after SIGTERM before it is killed.
 WORKER_GRACE = 2.0
 
+#: Whether this process has started a pool of worker processes (:func:`process_pool`).
+_POOL_STARTED = False
+
+
+def process_pool(workers: int, initializer):
+    """A ``ProcessPoolExecutor`` of ``workers`` fresh ("spawn") processes, each running
+    ``initializer`` first, recorded as started (:func:`pool_started`)."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    global _POOL_STARTED
+    _POOL_STARTED = True
+    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
+                               initializer=initializer)
+
+
+def pool_started() -> bool:
+    """Whether this process has started a pool of worker processes (:func:`process_pool`):
+    only then has it multiprocessing's helpers (its resource tracker) to end."""
+    return _POOL_STARTED
+
 
 def ignore_interrupts() -> None:
     """In a worker process: ignore Ctrl-C (its parent ends it)."""
@@ -50,15 +71,30 @@ def interrupts_ignored():
 def end_workers(pool) -> None:
     """End a process pool's workers now (SIGTERM, then SIGKILL after
     :data:`WORKER_GRACE` s) and wait for them: the work in progress is abandoned, no
-    worker outlives its command."""
+    worker outlives its command.
+
+    A Ctrl-C while waiting (the workers ignore it) ends the grace: the workers still
+    running are killed and waited for, then the KeyboardInterrupt is raised."""
     processes = list((getattr(pool, "_processes", None) or {}).values())
+    interrupted = False
     for process in processes:
-        if process.is_alive():
-            process.terminate()
+        try:
+            if process.is_alive():
+                process.terminate()
+        except KeyboardInterrupt:
+            interrupted = True
     pool.shutdown(wait=False, cancel_futures=True)
     deadline = time.monotonic() + WORKER_GRACE
     for process in processes:
-        process.join(max(0.0, deadline - time.monotonic()))
-        if process.is_alive():
-            process.kill()
-            process.join()
+        while True:   # until this worker has ended, whatever Ctrl-C comes meanwhile
+            try:
+                if not interrupted:
+                    process.join(max(0.0, deadline - time.monotonic()))
+                if process.is_alive():
+                    process.kill()
+                    process.join()
+                break
+            except KeyboardInterrupt:
+                interrupted = True
+    if interrupted:
+        raise KeyboardInterrupt

@@ -606,16 +606,25 @@ def _merged_stripes(stripes, rtol: float = 1e-9):
             np.add.reduceat(runs, starts), np.add.reduceat(failures, starts))
 
 
-def risk_curves(fragility, hazard, result=None, *, ax=None):
+def risk_curves(fragility, hazard, result=None, *, ax=None, legend=True):
     """Hazard curve (annual rate of exceedance, log-log), the fragility on a second axis
     (with its confidence band and the fraction overturned at each level of a
     multiple-stripe fit), and the risk integrand ``P(overturn | im) |d lambda / d ln im|``
-    (shaded: where the rate of overturning comes from).
+    (shaded: where the rate of overturning comes from; a rate [1/yr], drawn on the rate
+    axis, which its legend entry says).
+
+    Parameters
+    ----------
+    legend : bool
+        Draw the legend below the panel. Without it (a figure of several panels with one
+        legend, :func:`shared_risk_legend`), the fragility's median and beta go into the
+        title instead of the legend.
 
     Returns
     -------
     matplotlib.axes.Axes
-        The hazard axis (the fragility's is ``ax.fragility_axis``).
+        The hazard axis (the fragility's is ``ax.fragility_axis``). The rate axis shows the
+        whole hazard curve.
     """
     plt = pyplot()
     if ax is None:
@@ -623,17 +632,23 @@ def risk_curves(fragility, hazard, result=None, *, ax=None):
     x = np.geomspace(hazard.im[0], hazard.im[-1], 400)
     rate = hazard.rate_at(x)
     ax.loglog(hazard.im, hazard.rate, "o", ms=3, color="tab:blue")
-    ax.loglog(x, rate, "-", color="tab:blue", label="hazard: annual rate of exceedance")
+    ax.loglog(x, rate, "-", color="tab:blue",
+              label="hazard: annual rate of exceedance [1/yr] (left axis)")
     density = -np.gradient(rate, np.log(x)) * fragility.probability(x)
     ax.fill_between(x, np.maximum(density, 1e-30), 1e-30, color="tab:red", alpha=0.3,
-                    label="P(overturn | im) |dλ/d ln im| (the integrand)")
-    ax.set_ylim(max(min(hazard.rate) * 0.5, density.max() * 1e-4), max(hazard.rate) * 2)
+                    label="integrand P(overturn | im) |dλ/d ln im| [1/yr]: a rate, "
+                          "on the left axis")
+    # the whole hazard curve (the input) stays in view; the integrand is cut below it
+    ax.set_ylim(min(hazard.rate) * 0.5, max(max(hazard.rate), density.max()) * 2)
     ax.set_xlabel(MEASURE_LABELS.get(hazard.column, hazard.column))
     ax.set_ylabel("annual rate [1/yr]")
     ax.grid(alpha=0.3, which="both")
     other = ax.twinx()
+    unit = hazard.column.partition("[")[2].rstrip("]")
+    median = f"median {fragility.median:.3g}{' ' + unit if unit else ''}, β {fragility.beta:.2f}"
     other.plot(x, fragility.probability(x), "-", color="k", lw=1.2,
-               label=f"fragility: median {fragility.median:.3g}, β {fragility.beta:.2f}")
+               label=f"fragility: {median} (right axis)" if legend
+               else "fragility (right axis; median and β in the title)")
     if getattr(fragility, "stripes", ()):
         lower, upper = fragility.band(x)
         other.fill_between(x, lower, upper, color="0.5", alpha=0.2, lw=0,
@@ -645,22 +660,48 @@ def risk_curves(fragility, hazard, result=None, *, ax=None):
                    else "fraction overturned at each level (the data fitted)")
     other.set_ylim(-0.02, 1.02)
     other.set_ylabel("P(overturn) [-]")
-    handles = ax.get_legend_handles_labels()
-    more = other.get_legend_handles_labels()
-    # below the axes: inside, any corner would cover the integrand or the fitted points
-    ax.legend(handles[0] + more[0], handles[1] + more[1], fontsize=7, ncol=2,
-              loc="upper center", bbox_to_anchor=(0.5, -0.2), frameon=False)
+    ax.fragility_axis = other
+    if legend:   # below the axes: inside, any corner would cover the integrand or the points
+        handles, labels = risk_legend_entries([ax])
+        ax.legend(handles, labels, fontsize=7, ncol=2, loc="upper center",
+                  bbox_to_anchor=(0.5, -0.2), frameon=False)
+    title = "" if legend else f"fragility {median}\n"
     if result is not None:   # the interval the fit's uncertainty gives, when it is known
         low, high = getattr(result, "rate_interval", (math.nan, math.nan))
         known = math.isfinite(low) and math.isfinite(high)
         p_low, p_high = getattr(result, "probability_interval", (math.nan, math.nan))
-        ax.set_title(f"λ = {result.rate:.2g} /yr"
-                     + (f" ({100 * result.confidence:g} %: {low:.2g} to {high:.2g})" if known
-                        else f" (±{result.error:.1g})")
-                     + f", P(overturn in {result.years:g} yr) = {result.probability:.2g}"
-                     + (f" ({p_low:.2g} to {p_high:.2g})" if known else ""), fontsize=9)
-    ax.fragility_axis = other
+        title += (f"λ = {result.rate:.2g} /yr"
+                  + (f" ({100 * result.confidence:g} %: {low:.2g} to {high:.2g})" if known
+                     else f" (±{result.error:.1g})")
+                  + f", P(overturn in {result.years:g} yr) = {result.probability:.2g}"
+                  + (f" ({p_low:.2g} to {p_high:.2g})" if known else ""))
+    if title:
+        ax.set_title(title.rstrip("\n"), fontsize=9)
     return ax
+
+
+def risk_legend_entries(axes) -> tuple:
+    """(handles, labels) of the rate and fragility axes of :func:`risk_curves` panels, each
+    label once, in the order first drawn."""
+    entries: dict = {}
+    for axis in axes:
+        for part in (axis, axis.fragility_axis):
+            for handle, label in zip(*part.get_legend_handles_labels()):
+                entries.setdefault(label, handle)
+    return list(entries.values()), list(entries)
+
+
+def shared_risk_legend(axes) -> None:
+    """One legend for several :func:`risk_curves` panels (drawn with ``legend=False``),
+    below the last, and one range of annual rates on every panel (the hazard curve is the
+    same; the integrands differ)."""
+    low = min(axis.get_ylim()[0] for axis in axes)
+    high = max(axis.get_ylim()[1] for axis in axes)
+    for axis in axes:
+        axis.set_ylim(low, high)
+    handles, labels = risk_legend_entries(axes)
+    axes[-1].legend(handles, labels, fontsize=7, ncol=2, loc="upper center",
+                    bbox_to_anchor=(0.5, -0.2), frameon=False)
 
 
 def measure_figures(table, out) -> list:

@@ -8,8 +8,6 @@ import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from shaketable.core.validation import unknown_keys
 from shaketable.models.rocking.result import RockingResult
 from shaketable.scenes.parse import Scene, SceneError
@@ -272,14 +270,9 @@ def _close(value: float, expected: float, tolerance: float) -> bool:
     return abs(value - expected) <= tolerance * abs(expected)
 
 
-def _visible_cycles(result: RockingResult, visible_fraction: float = 0.03) -> float:
-    """Cycles of free rocking whose amplitude stays above 3 % of the first (half cycles / 2)."""
-    if result.impact_velocities.size == 0:
-        return 0.0
-    velocities = np.abs(result.impact_velocities)
-    # impact velocity scales with amplitude for small amplitudes (Eq. 2-3 energy)
-    from shaketable.core.theory import impact_velocity
+def _visible_cycles(result: RockingResult) -> float:
+    """Cycles of free rocking whose amplitude stays above 3 % of the first (half cycles / 2;
+    :func:`shaketable.studies.free_rocking.visible_impacts`)."""
+    from shaketable.studies.free_rocking import visible_impacts
 
-    first = abs(result.theta[0]) if result.theta[0] != 0 else result.max_abs_theta
-    limit = impact_velocity(result.block, visible_fraction * first)
-    return float(np.sum(velocities > limit)) / 2.0
+    return visible_impacts(result) / 2.0

@@ -214,10 +214,12 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
     if uplift is None:
         lines.append(_no_uplift_line(result, impacts))
     else:
-        from shaketable.scenes.stack_patterns import pattern_words
+        from shaketable.scenes.stack_patterns import pattern_signs, pattern_words
 
         lines.append(f"first uplift at t = {uplift['t']:.3f} s: "
                      f"{pattern_words(uplift['pattern_after'])}; {impacts} impact(s)")
+        if pattern_signs(uplift["pattern_after"]):
+            lines.append(pattern_signs(uplift["pattern_after"]))
     falling = result.t_past_alpha
     excursion = result.top_corner_excursion   # once: it is computed sample by sample
     demand_standing, excursion_standing = result.peak_before_past_alpha(excursion)

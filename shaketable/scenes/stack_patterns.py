@@ -49,3 +49,23 @@ def pattern_words(pattern, *, code: bool = True) -> str:
         parts.append(f"{_blocks(j, last)} rocking{' as one' if last > j else ''} on "
                      f"{support} ({sign})")
     return ", ".join(parts) + (f" [{pattern_name(pattern)}]" if code else "")
+
+
+def pattern_signs(pattern) -> str:
+    """What the signs of a pattern with open interfaces of opposite signs mean, in the
+    figure's terms (θⱼ each block's absolute rotation, φⱼ = θⱼ − θⱼ₋₁ its rotation on the
+    block below, φ₀ = θ₀); "" for any other pattern, whose signs read as they look.
+
+    A block whose pivot's sign is opposite to the one below turns back relative to that
+    block: its φ has the other sign, while its θ (what the figure plots) may still grow
+    the same way as the block's below."""
+    pattern = tuple(int(s) for s in pattern)
+    opened = [(j, s) for j, s in enumerate(pattern) if s != 0]
+    turned = [j for (i, s), (j, t) in zip(opened, opened[1:]) if s != t]
+    if not turned:
+        return ""
+    relative = ", ".join(f"φ{j} = θ{j} − θ{j - 1}" for j in turned)
+    back = ", ".join(f"block {j} turns back on block {j - 1} (φ{j} {'<' if pattern[j] < 0 else '>'}"
+                     f" 0) while θ{j} may still grow the same way as θ{j - 1}" for j in turned)
+    return ("the signs are the pivots': + on the upper block's corner at −x (φ > 0), − at +x "
+            f"(φ < 0), φ a block's rotation on the one below (φ0 = θ0, {relative}): {back}")

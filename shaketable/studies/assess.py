@@ -489,6 +489,42 @@ def _codes(spec: Assessment, anchored: pd.DataFrame, spectra: dict) -> dict:
     return result
 
 
+def same_friction_note(free: pd.DataFrame, level: int, ratio: float) -> str:
+    """Why the low- and high-friction rows of ``level`` in ``free`` (the free-standing
+    statistics) agree, when they do to the printed precision (the same overturn count,
+    corner excursions to the mm): with both frictions above B/H = ``ratio`` the object
+    rocks (Section 2.1), and friction changes a rocking run only where its base slips. ""
+    when they differ or the object slides at either."""
+    rows = free[free["level"] == level].set_index("case")
+    if not {"low", "high"} <= set(rows.index):
+        return ""
+    low, high = rows.loc["low"], rows.loc["high"]
+    if min(low["mu [-]"], high["mu [-]"]) <= ratio or low["overturned"] != high["overturned"]:
+        return ""
+    keys = ("excursion median [m]", "excursion p84 [m]")
+    if any(f"{low[key] * 1000:.0f}" != f"{high[key] * 1000:.0f}" for key in keys):
+        return ""
+    slip = np.nanmax([low["slip max [m]"], high["slip max [m]"]])
+    slipped = ("no base slipped in a run it survives" if not slip > SLIP_NOISE else
+               f"at most {format_slip_mm(slip)} mm in a run it survives")
+    return (f"with mu above B/H = {ratio:.3g} the object rocks at both frictions (Section "
+            f"2.1), and friction changes a rocking run only where its base slips ({slipped})")
+
+
+#: A base slip below this [m] is rounding (a corner that did not slide).
+SLIP_NOISE = 1e-9
+
+
+def format_slip_mm(value: float) -> str:
+    """A slip [m] in mm: whole mm from 1 mm on, two significant digits below (a slip of
+    a few micrometres is a slip, not 0), 0 below :data:`SLIP_NOISE`, "-" for NaN."""
+    if math.isnan(value):
+        return "-"
+    if value < SLIP_NOISE:
+        return "0"
+    return f"{value * 1000:.0f}" if value >= 0.5e-3 else f"{value * 1000:.2g}"
+
+
 def _count(records: int) -> str:
     return f"{records} record" + ("" if records == 1 else "s")
 
@@ -528,6 +564,9 @@ def _recommend(spec: Assessment, free: pd.DataFrame, anchored: pd.DataFrame,
     free_ok_low, text_low = verdict("low")
     free_ok_high, text_high = verdict("high")
     slide_ok, text_slide = verdict("let it slide")
+    note = same_friction_note(free, top, spec.obj.block.width / spec.obj.block.height)
+    if note:
+        text_high += f"; as at low friction: {note}"
     reasons += [text_low, text_high, text_slide]
     for case, entry in risk.items():
         reasons.append(f"with the site hazard, {case} friction: P(overturn in "

@@ -98,18 +98,23 @@ class ComparisonTally:
             self.differing.extend((kind, what) for what in differing)
 
     def headline(self) -> list[str]:
-        """The report's headline: one bold line per kind of comparison (one line saying so
-        when the sections compare no value with the report's)."""
+        """The report's headline: one bold line for the report's own inputs and one for each
+        other kind the sections compared values of (one line saying so when the sections
+        compare no value with the report's)."""
         if not any(sum(pair) for pair in self.counts.values()):
             return ["**These sections compare no value with the report's (figures and studies "
                     "without a number of the report to check).**"]
         agree, differ = self.counts["report inputs"]
         lines = [f"**Against the report's own inputs (recorded earthquakes, harmonic and free "
                  f"rocking, closed forms): {agree} comparisons agree, {differ} differ.**"]
+        # the other kinds only where the sections compared values of theirs
         agree, differ = self.counts["substitute"]
-        lines.append(f"**Against SUBSTITUTE accelerograms (the report's artificial records are "
-                     f"not available; not expected to match): {agree} agree, {differ} differ.**")
+        if agree + differ:
+            lines.append(f"**Against SUBSTITUTE accelerograms (the report's artificial records "
+                         f"are not available; not expected to match): {agree} agree, {differ} "
+                         "differ.**")
         agree, differ = self.counts["by construction"]
-        lines.append(f"**By construction (a substitute realisation chosen among 200 to match, "
-                     f"Fig. 4.15; not evidence): {agree} agree, {differ} differ.**")
+        if agree + differ:
+            lines.append(f"**By construction (a substitute realisation chosen among 200 to "
+                         f"match, Fig. 4.15; not evidence): {agree} agree, {differ} differ.**")
         return lines

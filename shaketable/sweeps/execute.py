@@ -358,6 +358,16 @@ def solver_identity() -> dict:
             "default rtol": dict(DEFAULT_RTOL)}
 
 
+def refuse_a_second_sweep(out: Path) -> None:
+    """Raise SweepError if folder ``out`` already holds a sweep (its manifest): a sweep
+    goes on there only with ``resume``."""
+    manifest_path = Path(out) / "manifest.json"
+    if manifest_path.exists():
+        raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
+                         "(resume=True from Python) to continue it, or choose another "
+                         "output folder")
+
+
 def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
     manifest_path = out / "manifest.json"
     manifest = {"sweep": spec.name, "spec": spec.path, "fingerprint": spec.fingerprint(),
@@ -371,9 +381,7 @@ def _prepare(spec, out: Path, resume: bool, fmt: str) -> set:
     manifest.update(spec.model.manifest())
     if manifest_path.exists():
         if not resume:
-            raise SweepError(f"{out}: already holds a sweep ({manifest_path}); pass --resume "
-                             "(resume=True from Python) to continue it, or choose another "
-                             "output folder")
+            refuse_a_second_sweep(out)
         try:
             old = json.loads(manifest_path.read_text())
         except (OSError, ValueError) as error:
@@ -653,13 +661,16 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
     come back; a chunk's error does the same. The chunks finished are on disk, the others
     run on resume.
     """
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
-    from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored
+    from shaketable.core.workers import (
+        end_workers,
+        ignore_interrupts,
+        interrupts_ignored,
+        process_pool,
+    )
 
-    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=ignore_interrupts)
+    pool = process_pool(workers, ignore_interrupts)
     futures: dict = {}
     written = set()
     try:
@@ -669,7 +680,10 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
             finished(futures[future], future.result())
             written.add(future)
     except BaseException:
-        end_workers(pool)
+        try:
+            end_workers(pool)
+        except KeyboardInterrupt:   # a second Ctrl-C: the workers have ended all the same
+            pass
         # the chunks computed but not yet written are kept (an atomic write each); a write
         # that fails stops this, the error that stopped the sweep is the one raised
         try:

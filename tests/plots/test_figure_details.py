@@ -81,7 +81,8 @@ def test_a_legend_that_covers_data_in_every_corner_goes_below_the_x_label():
 
 
 def test_the_stack_spectrums_highest_point_is_inside_the_frame():
-    """The highest amplitude computed (a point of a band's edge) sat on the frame."""
+    """The highest amplitude computed (a point of a band's edge) is drawn below the top
+    of the frame, not on it."""
     from shaketable.plots.stack_spectrum import stack_bands_figure
 
     rows = []

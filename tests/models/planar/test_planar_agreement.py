@@ -164,7 +164,7 @@ CASES.update({
             1.7758820747473298)),
     # a squat block (B/H 1.2, mu 0.3 < B/H) released on a corner: its slipping impacts at
     # theta = 0 turn it back onto the corner on the table, resolved by the two-corner
-    # problem (it used to strike the two corners in turn until status 'inconsistent')
+    # problem (not by striking the two corners in turn until status 'inconsistent')
     "squat: turned back onto the other corner": dict(
         block=Block(1.0, 1.2), cor=1.0, friction=Friction(0.3), motion=None,
         extra=dict(theta0=0.3 * math.atan(1.2), duration=3.0), modes={REST, SLIDE_ROCK}),
@@ -175,11 +175,10 @@ CASES.update({
         modes={REST, ROCK, FLIGHT}),
 })
 
-#: Disagreements reported to branch planar (DISAGREEMENTS.md) and not yet resolved:
+#: Known disagreements with the reference (DISAGREEMENTS.md) not yet resolved:
 #: (test, case) -> reason, marked xfail(strict=True) (a fix makes these tests fail until
-#: the mark is removed). None is open: the last one, "fuzz8 14" (a flat landing found at
-#: the instant of lift-off, again and again: status 'chatter'), was fixed on branch
-#: planar-chatter (docs/planar.md, "Lift-off from the flat base").
+#: the mark is removed). None is open ("fuzz8 14", a flat landing at the instant of
+#: lift-off: docs/planar.md, "Lift-off from the flat base").
 KNOWN: dict[tuple[str, str], str] = {}
 
 

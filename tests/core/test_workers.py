@@ -1,0 +1,92 @@
+"""Worker processes end with their command: a second Ctrl-C while their pool is ended
+still kills every one; the console command ends multiprocessing's helpers only after a
+pool of its own, and never waits without bound for the resource tracker."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+from shaketable.core import workers
+
+
+class _Process:
+    """A worker that ignores SIGTERM (alive until killed); ``join`` of the first one is
+    interrupted by a Ctrl-C."""
+
+    def __init__(self, interrupts: int = 0):
+        self.alive, self.killed, self.interrupts = True, False, interrupts
+
+    def is_alive(self):
+        return self.alive
+
+    def terminate(self):
+        pass
+
+    def kill(self):
+        self.alive, self.killed = False, True
+
+    def join(self, timeout=None):
+        if self.interrupts:
+            self.interrupts -= 1
+            raise KeyboardInterrupt
+
+
+class _Pool:
+    def __init__(self, processes):
+        self._processes = dict(enumerate(processes))
+
+    def shutdown(self, wait=True, cancel_futures=False):
+        pass
+
+
+def test_a_second_ctrl_c_while_waiting_still_kills_every_worker():
+    processes = [_Process(interrupts=2), _Process(), _Process()]
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        workers.end_workers(_Pool(processes))
+    assert all(process.killed for process in processes)
+    assert time.monotonic() - start < 1.0   # no grace after the second Ctrl-C
+
+
+def test_the_process_helpers_are_ended_only_after_a_pool_of_the_command(monkeypatch):
+    import concurrent.futures.process  # noqa: F401  (imported by dask, say, without a pool)
+    import multiprocessing
+
+    from shaketable import cli
+
+    monkeypatch.setattr(multiprocessing, "active_children", lambda: [])
+    monkeypatch.setattr(workers, "_POOL_STARTED", False)
+    assert not cli._worker_processes_all_ended()
+    monkeypatch.setattr(workers, "_POOL_STARTED", True)
+    assert cli._worker_processes_all_ended()
+
+
+def test_the_wait_for_the_resource_tracker_is_bounded():
+    """A process that holds the tracker's pipe and that multiprocessing did not start
+    keeps the tracker running: the command stops waiting after the time it gives."""
+    from multiprocessing import resource_tracker
+
+    from shaketable import cli
+
+    tracker = resource_tracker._resource_tracker
+    if not hasattr(tracker, "_stop"):
+        pytest.skip("Python < 3.11: the tracker ends on its own, nothing is waited for")
+    tracker.ensure_running()
+    holder = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"],
+                              pass_fds=(tracker._fd,))
+    try:
+        start = time.monotonic()
+        assert cli._stop_resource_tracker(0.3) is False
+        assert time.monotonic() - start < 2.0
+    finally:
+        holder.kill()
+        holder.wait()
+    for thread in threading.enumerate():   # the tracker ends once the holder has gone
+        if thread.name == "shaketable-tracker-stop":
+            thread.join(10)
+            assert not thread.is_alive()
