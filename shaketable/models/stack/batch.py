@@ -466,6 +466,8 @@ _RESULTS = ("status", "overturned", "airborne", "overturned block", "verdict",
             "tension", "t_tension [s]", "t_past_alpha [s]", "max F/N before past alpha [-]",
             "peak top-corner excursion before past alpha [m]", "still moving", "t_end [s]",
             "solver steps", "solver evaluations")
+#: Where the per-block peaks and peak ratios stand in :func:`_row`'s tuple.
+_PEAKS = _RESULTS.index(None)
 #: Integer columns (object arrays of Python ints would not be int64 otherwise).
 _INTEGERS = {"overturned block", "n_impacts", "n_events", "events not unique",
              "solver steps", "solver evaluations"}
@@ -533,19 +535,18 @@ def _frame(cases, motions, motion_index, rows, rtol, mu):
     for name, column in zip(_RESULTS, values):
         if name is not None:
             columns[name] = np.array(column, dtype=np.int64 if name in _INTEGERS else None)
-    peaks, ratios = values[_RESULTS.index(None)], values[_RESULTS.index(None) + 1]
-    for i in range(widest):
-        columns[f"max |theta| block {i} [rad]"] = np.array(
-            [float(p[i]) if i < p.size else math.nan for p in peaks])
-        columns[f"max |theta|/alpha block {i} [-]"] = np.array(
-            [float(r[i]) if i < r.size else math.nan for r in ratios])
+        elif column is values[_PEAKS]:
+            # each block's peaks, after the bottom's and the top's
+            peaks, ratios = column, values[_PEAKS + 1]
+            for i in range(widest):
+                columns[f"max |theta| block {i} [rad]"] = np.array(
+                    [float(p[i]) if i < p.size else math.nan for p in peaks])
+                columns[f"max |theta|/alpha block {i} [-]"] = np.array(
+                    [float(r[i]) if i < r.size else math.nan for r in ratios])
     columns["stack_index"] = np.array(_indices([id(stack) for stack in stacks]),
                                       dtype=np.int64)
     columns["motion_index"] = np.array(motion_index, dtype=np.int64)
-    frame = pd.DataFrame(columns)
-    for name in ("stack", "motion", "status", "verdict", "first pattern", "impact"):
-        frame[name] = frame[name].astype(object)
-    return frame
+    return pd.DataFrame(columns)
 
 
 def _indices(keys: list) -> list[int]:
