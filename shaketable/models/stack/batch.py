@@ -288,12 +288,14 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
             motions[key] = (extended(scaled, duration), len(motions))
         runs.append(motions[key])
     rows: list[Any] = [None] * len(cases)
+    constants = {id(case.stack): _constants(case.stack) for case in cases}
 
     def run(start: int, stop: int) -> None:
         for k in range(start, stop):
             case = cases[k]
             try:
-                rows[k] = _row(case, runs[k][0], rtol, rest, recorded, mu)
+                rows[k] = _row(case, runs[k][0], constants[id(case.stack)], rtol, rest,
+                               recorded, mu)
             except StackStalled as error:
                 raise StackStalled(f"run {k} ({case.stack_label or case.stack.describe()}, "
                                    f"{case.motion_label or case.motion.name}): "
@@ -304,32 +306,29 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
                   rtol, mu)
 
 
-def _row(case: Case, motion: Motion, rtol: float, rest: float | None, recorded: int,
-         mu: float) -> tuple:
-    """One run: the engine, then its results from the engine's arrays (:data:`_RESULTS`)."""
+def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float | None,
+         recorded: int, mu: float) -> tuple:
+    """One run: the engine, then its results from the engine's arrays (:data:`_RESULTS`);
+    ``constants``: the stack's :func:`_constants`."""
     from shaketable.models.stack.compiled import integrate
 
     stack = case.stack
     n = stack.n
+    zeros, b, h, alphas, scale, limit, margin, bottom_rest = constants
     out = integrate(stack, motion, law="plastic" if case.cor is None else "cor",
-                    cor=1.0 if case.cor is None else case.cor, theta0=np.zeros(n),
-                    theta_dot0=np.zeros(n), rtol=rtol,
-                    rest_tolerance=1e-6 / stack.blocks[0].p if rest is None else rest,
+                    cor=1.0 if case.cor is None else case.cor, theta0=zeros,
+                    theta_dot0=zeros, rtol=rtol,
+                    rest_tolerance=bottom_rest if rest is None else rest,
                     max_recorded_events=recorded)
     compiled_run = out["run"]
     theta, patterns = out["theta"], out["patterns"]
     t = motion.t[:out["filled"]]
     status = compiled_run.status
     overturned = status == "overturned"
-    b, h = stack.b, stack.h
-    alphas = np.array([block.alpha for block in stack.blocks])
     peaks, floats, ints = np.zeros(n), np.empty(_N_FLOATS), np.empty(_N_INTS, dtype=np.int64)
     candidates = np.empty(t.size, dtype=np.int64)
-    # the excursion's candidates for its peaks: within far more than its rounding (~1e-15
-    # of the stack's size) of the largest value computed without the matmul
-    margin = 1e-12 * float(2.0 * (b.sum() + h.sum()))
-    _scan(t, theta, patterns, out["forces"], b, h, alphas, stack.mass_scale, mu,
-          -1e-9 * stack.weight, margin, peaks, floats, ints, candidates)
+    _scan(t, theta, patterns, out["forces"], b, h, alphas, scale, mu, limit, margin, peaks,
+          floats, ints, candidates)
     past, end, exceeded, tension = (int(value) for value in ints[:4])
     # the excursion at the candidates, as the result computes it
     chosen = candidates[:ints[_I_CANDIDATES]]
@@ -367,6 +366,19 @@ def _row(case: Case, motion: Motion, rtol: float, rest: float | None, recorded: 
             tension >= 0, float(t[tension]) if tension >= 0 else math.nan,
             float(t[past]) if past >= 0 else math.nan, float(standing[0]), standing[1], still,
             t_end, compiled_run.steps, compiled_run.evaluations)
+
+
+def _constants(stack: Stack) -> tuple:
+    """What every run of ``stack`` uses: zeros (its initial state), b, h [m], the blocks'
+    alphas [rad], its mass scale, the tensile force a contact may carry [N] (as
+    :attr:`StackResult.t_tension`), the excursion's margin [m] and the default rest tolerance
+    [s] (:func:`~shaketable.models.stack.simulate_stack`'s)."""
+    b, h = stack.b, stack.h
+    # the excursion's candidates for its peaks: within far more than its rounding (~1e-15
+    # of the stack's size) of the largest value computed without the matmul
+    margin = 1e-12 * float(2.0 * (b.sum() + h.sum()))
+    return (np.zeros(stack.n), b, h, np.array([block.alpha for block in stack.blocks]),
+            stack.mass_scale, -1e-9 * stack.weight, margin, 1e-6 / stack.blocks[0].p)
 
 
 # slots of _scan's outputs: the largest finite F/N over the run and before the first
