@@ -80,10 +80,6 @@ if TYPE_CHECKING:
 
 __all__ = ["Case", "simulate_cases", "simulate_many"]
 
-#: The event kinds the rows count, as the compiled engine records them (its ``KINDS``).
-_UPLIFT, _IMPACT = 0, 1
-
-
 @dataclass(frozen=True)
 class Case:
     """One run of a stack batch.
@@ -310,7 +306,7 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
          recorded: int, mu: float) -> tuple:
     """One run: the engine, then its results from the engine's arrays (:data:`_RESULTS`);
     ``constants``: the stack's :func:`_constants`."""
-    from shaketable.models.stack.compiled import integrate
+    from shaketable.models.stack.compiled import IMPACT, UPLIFT, integrate
 
     stack = case.stack
     n = stack.n
@@ -339,12 +335,13 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
     ratios = peaks / alphas
     ratio = max(peak / block.alpha for peak, block in zip(peaks, stack.blocks))
 
-    # the recorded events: times, kinds, solutions, patterns after (compiled.record)
+    # the recorded events as the engine's arrays (the result's dicts are built from them):
+    # times, kinds, solutions, patterns after (compiled.record)
     reals, integers, _, after = compiled_run._recorded
     kinds = integers[:, 0]
-    uplifts = np.flatnonzero(kinds == _UPLIFT)
+    uplifts = np.flatnonzero(kinds == UPLIFT)
     first_uplift = int(uplifts[0]) if uplifts.size else -1
-    choices = (kinds == _UPLIFT) | (kinds == _IMPACT)
+    choices = (kinds == UPLIFT) | (kinds == IMPACT)
 
     still = bool(status == "completed" and t.size
                  and (np.any(theta[-1]) or np.any(out["rate"][-1])))
@@ -359,7 +356,7 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
             peaks, ratios,
             float(reals[first_uplift, 0]) if first_uplift >= 0 else math.nan,
             pattern_name(after[first_uplift]) if first_uplift >= 0 else "",
-            int(np.count_nonzero(kinds == _IMPACT)), compiled_run.n_events,
+            int(np.count_nonzero(kinds == IMPACT)), compiled_run.n_events,
             int(np.count_nonzero(integers[choices, 2] != 1)),
             peak_excursion, float(floats[_F_DEMAND]),
             float(t[exceeded]) if exceeded >= 0 else math.nan,
