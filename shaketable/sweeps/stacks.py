@@ -43,16 +43,16 @@ columns carry them.
 What the stack model does not take is refused when the spec is read, naming the key:
 ``[pitch]``, ``[ensemble]``, ``[friction]``, ``rocking.method`` other than ``"fast"``,
 ``rocking.subdivisions`` and ``rocking.theta0`` (every run starts from rest). The runs of
-a chunk are computed one after the other (the stack model is not the compiled batch);
-``--workers N`` (``run_sweep(workers=N)``) computes N chunks at once in processes of their
-own, so give ``[run] chunk_size`` small enough for several chunks. The table is the same
-whatever the number of workers.
+a chunk are computed one after the other by the stack batch
+(:func:`shaketable.models.stack.batch.simulate_cases`: the compiled engine, the rows
+from its arrays, no result objects); ``--workers N`` (``run_sweep(workers=N)``) computes
+N chunks at once in processes of their own, so give ``[run] chunk_size`` small enough for
+several chunks. The table is the same whatever the number of workers.
 """
 
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 from itertools import product
 from typing import TYPE_CHECKING, Any
@@ -184,7 +184,7 @@ class StackSweep(RockingSweep):
     """A column of rigid blocks (:mod:`shaketable.models.stack`) in each cell."""
 
     name: str = "stack"
-    processes = True   # SciPy runs, one after the other: --workers N runs N chunks at once
+    processes = True   # a chunk's runs on one thread: --workers N runs N chunks at once
 
     def manifest(self) -> dict:
         return {"model": {"model": "stack (a column of rigid blocks; no sliding, no flight)",
@@ -234,68 +234,47 @@ class StackSweep(RockingSweep):
 def simulate_stacks(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.DataFrame:
     """The rows of a chunk of a stack sweep (one per case), in order.
 
-    A row equals ``simulate_stack(stack, extended(motion.scaled(scale), duration),
-    impact=..., cor=..., rtol=rtol)`` whatever the chunking (each run is on its own).
+    A row's results are those of ``simulate_stack(stack, extended(motion.scaled(scale),
+    duration), impact=..., cor=..., rtol=rtol)`` whatever the chunking (each run is on its
+    own), taken from the stack batch (:func:`shaketable.models.stack.batch.simulate_cases`,
+    one thread: the engine's arrays, no result objects).
     """
     import pandas as pd
 
-    from shaketable.models.rocking.run import extended
-    from shaketable.models.stack import (
-        PLAUSIBLE_FRICTION,
-        StackFrictionWarning,
-        StackTensionWarning,
-        simulate_stack,
-    )
+    from shaketable.models.stack.batch import Case, simulate_cases
 
     rtol = spec.options.get("rtol", DEFAULT_STACK_RTOL)
-    motions: dict = {}
+    batch = simulate_cases([Case(case.stack, case.motion,
+                                 None if math.isnan(case.cor) else case.cor, case.scale,
+                                 case.block_label, case.motion_label) for case in cases],
+                           threads=1, rtol=rtol, duration=spec.duration)
     rows = []
-    for k, case in enumerate(cases):
-        key = (id(case.motion), case.scale)
-        if key not in motions:
-            scaled = case.motion if case.scale == 1.0 else case.motion.scaled(case.scale)
-            motions[key] = (extended(scaled, spec.duration), len(motions))
-        motion, motion_index = motions[key]
-        plastic = math.isnan(case.cor)
-        with warnings.catch_warnings():   # the rows carry what the warnings say
-            warnings.simplefilter("ignore", (StackTensionWarning, StackFrictionWarning))
-            result = simulate_stack(case.stack, motion, impact="plastic" if plastic else "cor",
-                                    cor=None if plastic else case.cor, rtol=rtol)
+    for k, (case, result) in enumerate(zip(cases, batch.to_dict("records"))):
         stack = case.stack
-        peaks = np.abs(result.theta).max(axis=0) if result.t.size else np.zeros(stack.n)
-        overturned = result.status == "overturned"
-        ratio = max(peak / block.alpha for peak, block in zip(peaks, stack.blocks))
-        demand = result.friction_demand
-        finite = np.isfinite(demand)
-        ratio_of_masses = inputs["block_index"].iloc[k]
         rows.append({
             "block": case.block_label, "blocks": stack.n,
-            "mass ratio [-]": spec.block_inputs[ratio_of_masses]["mass ratio"],
+            "mass ratio [-]": spec.block_inputs[inputs["block_index"].iloc[k]]["mass ratio"],
             "stack height [m]": float(sum(block.height for block in stack.blocks)),
             "base width [m]": float(stack.blocks[0].width),
             "motion": case.motion_label, "scale [-]": float(case.scale),
             "pga [m/s^2]": case.motion.pga * float(case.scale),
             "motion_vertical": case.motion.vertical is not None,
-            "duration [s]": float(motion.duration), "impact": result.impact,
+            "duration [s]": result["duration [s]"], "impact": result["impact"],
             "cor [-]": float(case.cor), "method": "stack", "rtol [-]": float(rtol),
-            "status": result.status, "overturned": overturned,
-            "overturned block": int(result.overturned_block), "verdict": result.verdict(),
-            "t_overturn [s]": float(result.t_overturn),
-            "max_theta_ratio [-]": math.nan if overturned else float(ratio),
-            "max |theta| bottom [rad]": float(peaks[0]),
-            "max |theta| top [rad]": float(peaks[-1]),
-            "t_start [s]": float(next((e["t"] for e in result.events
-                                       if e["kind"] == "uplift"), math.nan)),
-            "n_impacts": sum(1 for e in result.events if e["kind"] == "impact"),
-            "peak top-corner excursion [m]": float(result.peak_excursion),
-            "max F/N [-]": float(demand[finite].max()) if finite.any() else math.nan,
-            "t_friction_exceeded [s]": result.t_friction_exceeded(PLAUSIBLE_FRICTION),
-            "t_tension [s]": result.t_tension, "airborne": result.status == "airborne",
-            "block_index": int(inputs["block_index"].iloc[k]), "motion_index": motion_index,
+            **{name: result[name] for name in _BATCH_COLUMNS},
+            "block_index": int(inputs["block_index"].iloc[k]),
+            "motion_index": result["motion_index"],
         })
     table = pd.DataFrame(rows)
     table["n_impacts"] = table["n_impacts"].astype(np.int64)
     return table.set_index(inputs.index)
+
+
+#: The columns of a stack sweep's rows that the stack batch gives, in the rows' order.
+_BATCH_COLUMNS = ("status", "overturned", "overturned block", "verdict", "t_overturn [s]",
+                  "max_theta_ratio [-]", "max |theta| bottom [rad]", "max |theta| top [rad]",
+                  "t_start [s]", "n_impacts", "peak top-corner excursion [m]", "max F/N [-]",
+                  "t_friction_exceeded [s]", "t_tension [s]", "airborne")
 
 
 def overturned_blocks(table) -> str:

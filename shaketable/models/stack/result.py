@@ -49,6 +49,44 @@ def _first_row(mask: np.ndarray) -> int:
     return first // (flat.size // mask.shape[0]) if flat[first] else -1
 
 
+def block_name(i: int, n: int) -> str:
+    """Block ``i`` of a stack of ``n`` in words: numbered from 0 at the bottom, "block 0
+    (bottom)", "block 1 (top)", "block 1" between (a block alone: "block 0")."""
+    if n > 1 and i == 0:
+        return "block 0 (bottom)"
+    if n > 1 and i == n - 1:
+        return f"block {i} (top)"
+    return f"block {i}"
+
+
+def end_state_text(n: int, t_end: float, past_alpha: tuple[int, ...]) -> str:
+    """:meth:`StackResult.end_state` of a run still moving at ``t_end`` [s] with the blocks
+    ``past_alpha`` beyond their alpha."""
+    words = f"still moving at the end of the run (t = {t_end:.2f} s)"
+    if past_alpha:
+        words += ("; " + ", ".join(block_name(i, n) for i in past_alpha)
+                  + " past α (|θ| > α, beyond static stability)")
+    return words
+
+
+def verdict_text(n: int, status: str, overturned_block: int, t_overturn: float,
+                 t_airborne: float, peaks: np.ndarray, still_moving: bool, t_end: float,
+                 past_alpha: tuple[int, ...]) -> str:
+    """:meth:`StackResult.verdict` from a run's numbers: its status, the overturn or airborne
+    time [s], each block's peak |θ| [rad], whether it was still moving at its last output
+    time ``t_end`` [s], and the blocks past their alpha there."""
+    if status == "overturned":
+        return f"{block_name(overturned_block, n)} overturned at {t_overturn:.2f} s"
+    if status == "airborne":
+        return (f"a block would leave its support at {t_airborne:.2f} s (outside the "
+                "model: the run stops there)")
+    if not peaks.any():
+        return "stayed at rest"
+    words = ("rocked: max |θ| = " + ", ".join(f"{peak:.3g}" for peak in peaks)
+             + " rad (bottom to top)")
+    return words + ("; " + end_state_text(n, t_end, past_alpha) if still_moving else "")
+
+
 @dataclass(frozen=True, eq=False)
 class StackResult(ModelResult):
     """Time history, events and scalar results of one stack run.
@@ -127,11 +165,7 @@ class StackResult(ModelResult):
     def block_name(self, i: int) -> str:
         """How the results, the figure and ``docs/stack.md`` name block ``i``: numbered from 0
         at the bottom, "block 0 (bottom)", "block 1 (top)", "block 1" between."""
-        if self.n_blocks > 1 and i == 0:
-            return "block 0 (bottom)"
-        if self.n_blocks > 1 and i == self.n_blocks - 1:
-            return f"block {i} (top)"
-        return f"block {i}"
+        return block_name(i, self.n_blocks)
 
     def t_friction_exceeded(self, mu: float) -> float:
         """First output time some interface needs more friction than ``mu`` [s] (NaN if
@@ -227,12 +261,7 @@ class StackResult(ModelResult):
         or stopped early."""
         if not self.still_moving:
             return ""
-        words = f"still moving at the end of the run (t = {self.t[-1]:.2f} s)"
-        past = self.past_alpha_at_end
-        if past:
-            words += ("; " + ", ".join(self.block_name(i) for i in past)
-                      + " past α (|θ| > α, beyond static stability)")
-        return words
+        return end_state_text(self.n_blocks, float(self.t[-1]), self.past_alpha_at_end)
 
     def verdict(self) -> str:
         """The run in words, as the other models' results say it: "block 0 (bottom) overturned
@@ -240,19 +269,11 @@ class StackResult(ModelResult):
         max |θ| = 0.012, 0.030 rad (bottom to top)" (followed by :meth:`end_state` when
         the run ends with the stack still moving), "stayed at rest", or
         the time a block would leave its support (outside the model: the run stops there)."""
-        if self.status == "overturned":
-            return (f"{self.block_name(self.overturned_block)} overturned at "
-                    f"{self.t_overturn:.2f} s")
-        if self.status == "airborne":
-            return (f"a block would leave its support at {self.t_airborne:.2f} s (outside the "
-                    "model: the run stops there)")
         peaks = np.abs(self.theta).max(axis=0) if self.t.size else np.zeros(self.n_blocks)
-        if not peaks.any():
-            return "stayed at rest"
-        words = ("rocked: max |θ| = " + ", ".join(f"{peak:.3g}" for peak in peaks)
-                 + " rad (bottom to top)")
-        end = self.end_state()
-        return words + ("; " + end if end else "")
+        return verdict_text(self.n_blocks, self.status, self.overturned_block, self.t_overturn,
+                            self.t_airborne, peaks, self.still_moving,
+                            float(self.t[-1]) if self.t.size else math.nan,
+                            self.past_alpha_at_end)
 
     # ------------------------------------------------------------------ views
     @property
