@@ -12,8 +12,10 @@ The report-table scenes (``table-4-1``, ``table-4-3``) end with an ensemble per 
 same code path (one batch call whatever the size) at a tenth of the cost: this test checks
 that the command runs and writes its report, not the ensemble's statistics (``reproduce
 --all`` writes them with 200; ``tests/studies/test_predictability.py`` checks the
-ensembles). Its PNG figures are drafts (:func:`tests.helpers.draft_figures`: every figure
-built and drawn, at a low dpi without the layout solver): tests/plots checks how they look.
+ensembles). In the same way the report-figure scenes (Figs. 2.3, 2.4, 2.6, Section 4.3 (4))
+compute their curves at fewer points (:data:`REPORT_FIGURE_POINTS`). Its PNG figures are
+drafts (:func:`tests.helpers.draft_figures`: every figure built and drawn, at a low dpi
+without the layout solver): tests/plots checks how they look.
 """
 
 from __future__ import annotations
@@ -41,17 +43,35 @@ def test_the_readme_runs_bundled_scenes():
 #: is 200; see the module docstring).
 MEMBERS = TEST_MEMBERS
 
+#: The points of the report-figure scenes' curves here (``[study] kind = "report-figure"``:
+#: one engine run, or one bisection, per point), fewer than the package's: the smallest
+#: and largest of its own, so each curve still spans its range; the values are checked at
+#: points of their own by ``tests/studies/test_section_2.py`` and
+#: ``tests/studies/test_overturning_spectrum.py``. Section 4.3 (4) keeps its 0.1 s pulse
+#: (the report's 4.6 g, which the scene compares) and its shortest.
+REPORT_FIGURE_POINTS = {
+    ("section2", "figure_2_3"): dict(ratios=[0.05, 0.95]),   # package: 19 amplitudes x 4 blocks
+    ("section2", "figure_2_4"): dict(ratios=[1.1, 4.0]),     # package: 6 accelerations
+    ("section2", "figure_2_6"): dict(frequency_ratios=[1.0, 18.0]),   # package: 6 pulses
+    ("pulses", "section_4_3_4"): dict(pulse_durations=(0.1, 0.01)),   # package: 4 pulses
+}
+
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", [name for name in scene_names()
                                   if name not in README_RUN_SCENES + CHECKED_ELSEWHERE])
 def test_run_succeeds_on_every_bundled_scene(name, tmp_path, monkeypatch):
     import functools
+    import importlib
 
     from shaketable.studies import predictability
 
     monkeypatch.setattr(predictability, "predictability_markdown", functools.partial(
         predictability.predictability_markdown, members=MEMBERS))
+    for (module, function), points in REPORT_FIGURE_POINTS.items():
+        studies = importlib.import_module(f"shaketable.studies.{module}")
+        monkeypatch.setattr(studies, function,
+                            functools.partial(getattr(studies, function), **points))
     with draft_figures():
         status, out, err = run_cli(["run", name, "--out", tmp_path / name], cwd=tmp_path)
     assert "Traceback" not in err and "internal error" not in err, err
