@@ -30,17 +30,6 @@ needs_pbr = pytest.mark.skipif(not (SHARED_PBR / "metadata.csv").is_file(),
                                reason="the measured tests folder (shared/data/pbr) is absent")
 
 
-def ctrl_c_restored() -> None:
-    """``preexec_fn`` of a subprocess that a test stops with Ctrl-C (SIGINT): the child
-    starts with SIGINT at its default, so that Python installs its KeyboardInterrupt
-    handler there whatever the test runner inherited (a run started in the background by
-    a non-interactive shell, or under ``nohup``, ignores SIGINT, and an ignored signal
-    stays ignored in every program started below it)."""
-    import signal
-
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 #: Members per cell of the report tables' ensembles in tests that check that a command runs
 #: and writes its report, not the ensembles' statistics (the package's default is 200).
 TEST_MEMBERS = 20
@@ -100,3 +89,32 @@ def draft_animations():
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr(animation, "_Stage", DraftStage)
         yield
+
+
+@contextlib.contextmanager
+def ctrl_c_reaches_subprocesses():
+    """While open, the subprocesses this process starts get SIGINT (Ctrl-C) at its default
+    disposition, as a command typed in a terminal does, so that Python in them turns it into
+    KeyboardInterrupt.
+
+    For the tests that send SIGINT to a command. A test run started in the background by a
+    non-interactive shell (``pytest ... &``, a script's ``nohup``) inherits SIGINT *ignored*,
+    and so would every subprocess: an ignored signal stays ignored across ``exec``, and
+    Python then installs no handler. The command would go on as if no Ctrl-C came (the
+    compiled run for its whole minute, the sweep to its end), and the test would fail on
+    what its run was started by, not on the package. Here the ignored disposition is
+    replaced, for the moment of the ``Popen``, by Python's own handler, which a child does
+    not inherit (it starts at the default); anything else is left as it is.
+    """
+    import signal
+    import threading
+
+    ignored = (threading.current_thread() is threading.main_thread()
+               and signal.getsignal(signal.SIGINT) == signal.SIG_IGN)
+    if ignored:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        yield
+    finally:
+        if ignored:
+            signal.signal(signal.SIGINT, signal.SIG_IGN)

@@ -24,7 +24,7 @@ import pytest
 import shaketable as st
 from shaketable.cli import main
 from shaketable.core.constants import G
-from tests.helpers import REPOSITORY, ctrl_c_restored
+from tests.helpers import REPOSITORY, ctrl_c_reaches_subprocesses
 
 RECORDS = REPOSITORY / "shaketable" / "data" / "records"
 AT2 = RECORDS / "RSN77_SFERN_PUL164-hor1.AT2"
@@ -745,12 +745,12 @@ def test_ctrl_c_stops_a_long_compiled_run_within_a_second(tmp_path):
                 method="predictor-corrector")
     environment = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(REPOSITORY))
     cpu_before = children_cpu()
-    process = subprocess.Popen(
-        [sys.executable, "-m", "shaketable", "simulate", "--block", "16x4ft", "--cor", "0.9",
-         "--record", "pacoima-dam-s16e", "--method", "predictor-corrector",
-         "--subdivisions", "400000", "--out", "out"],
-        cwd=tmp_path, env=environment, stderr=subprocess.PIPE, text=True,
-        preexec_fn=ctrl_c_restored)
+    with ctrl_c_reaches_subprocesses():   # as from a terminal, however the tests started
+        process = subprocess.Popen(
+            [sys.executable, "-m", "shaketable", "simulate", "--block", "16x4ft", "--cor", "0.9",
+             "--record", "pacoima-dam-s16e", "--method", "predictor-corrector",
+             "--subdivisions", "400000", "--out", "out"],
+            cwd=tmp_path, env=environment, stderr=subprocess.PIPE, text=True)
     # Wait until the run is integrating: the engine runs in a thread of its own while the
     # main thread waits, so wait until a thread other than the main one has used 2 s of CPU
     # (loading the compiled engine from numba's cache takes well under 1 s of it); measured

@@ -19,6 +19,8 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
+import pytest
+
 from tests.helpers import REPOSITORY
 
 #: Layer of each top-level folder or module of the package: a module may import
@@ -95,15 +97,26 @@ def _imports(tree: ast.Module):
                    id(node) in type_only)
 
 
-def violations(package: Path) -> list[str]:
-    """Every breach of the rules above in the package folder ``package``."""
+def facts(text: str) -> tuple[list, list]:
+    """What the checks read of a module's text: its import statements (as :func:`_imports`
+    gives them) and each function's (name, length in lines, from its ``def`` to its last
+    line; methods and nested functions included)."""
+    tree = ast.parse(text)
+    functions = [(node.name, node.end_lineno - node.lineno + 1) for node in ast.walk(tree)
+                 if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))]
+    return list(_imports(tree)), functions
+
+
+def violations(package: Path, read=facts) -> list[str]:
+    """Every breach of the rules above in the package folder ``package`` (each module's
+    text read by ``read``: :func:`facts`, or the memo of it of this file's tests)."""
     found = []
     for path in sorted(package.rglob("*.py")):
         relative = path.relative_to(package)
         layer = _layer(relative)
         own = ".".join((package.name,) + relative.with_suffix("").parts)
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        for module, names, lazy, type_only in _imports(tree):
+        imports, _ = read(path.read_text(encoding="utf-8"))
+        for module, names, lazy, type_only in imports:
             top = module.split(".")[0]
             # a type-only import (``if TYPE_CHECKING:``, e.g. matplotlib's Figure for a
             # .plot() return type) never runs: the third-party homes do not apply to it
@@ -135,7 +148,7 @@ def violations(package: Path) -> list[str]:
     return found
 
 
-def oversized(package: Path) -> dict[str, int]:
+def oversized(package: Path, read=facts) -> dict[str, int]:
     """Every module longer than :data:`MAX_MODULE_LINES` (``"relative/path.py"``) and every
     function longer than :data:`MAX_FUNCTION_LINES` (``"relative/path.py:name"``, methods and
     nested functions included), with its length in lines."""
@@ -145,15 +158,13 @@ def oversized(package: Path) -> dict[str, int]:
         text = path.read_text(encoding="utf-8")
         if len(text.splitlines()) > MAX_MODULE_LINES:
             found[relative] = len(text.splitlines())
-        for node in ast.walk(ast.parse(text)):
-            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
-                length = node.end_lineno - node.lineno + 1
-                if length > MAX_FUNCTION_LINES:
-                    found[f"{relative}:{node.name}"] = length
+        for name, length in read(text)[1]:
+            if length > MAX_FUNCTION_LINES:
+                found[f"{relative}:{name}"] = length
     return found
 
 
-def import_graph(package: Path) -> dict[str, set[str]]:
+def import_graph(package: Path, read=facts) -> dict[str, set[str]]:
     """Module -> the package's modules it imports (at module level or in a function body),
     without ``if TYPE_CHECKING:`` imports and the :data:`CYCLE_DELEGATES`."""
     modules = {}
@@ -164,7 +175,7 @@ def import_graph(package: Path) -> dict[str, set[str]]:
     for name, path in modules.items():
         relative = str(path.relative_to(package))
         graph[name] = set()
-        for module, names, _, type_only in _imports(ast.parse(path.read_text(encoding="utf-8"))):
+        for module, names, _, type_only in read(path.read_text(encoding="utf-8"))[0]:
             if type_only or (relative, module) in CYCLE_DELEGATES:
                 continue
             # `from shaketable.ground import records` imports the module records
@@ -176,10 +187,10 @@ def import_graph(package: Path) -> dict[str, set[str]]:
     return graph
 
 
-def import_cycles(package: Path) -> list[list[str]]:
+def import_cycles(package: Path, read=facts) -> list[list[str]]:
     """The import cycles of the package: each group of modules that import each other,
     directly or through others (strongly connected components, Tarjan's algorithm)."""
-    graph = import_graph(package)
+    graph = import_graph(package, read)
     index: dict[str, int] = {}
     low: dict[str, int] = {}
     stack: list[str] = []
@@ -234,8 +245,23 @@ def test_numerics_imports_only_the_core_constants(tmp_path):
         "numerics/roots.py: imports shaketable.core.units"]
 
 
-def test_the_package_respects_its_layers():
-    assert violations(REPOSITORY / "shaketable") == []
+@pytest.fixture(scope="module")
+def read_once():
+    """:func:`facts` with a memo (by the module's text) for this file's tests: four of them
+    read the whole package, and parsing it costs ~0.6 s of CPU. The memo keeps the facts,
+    not the syntax trees (a third of a million objects the garbage collector would scan)."""
+    memo: dict[str, tuple[list, list]] = {}
+
+    def read(text: str) -> tuple[list, list]:
+        if text not in memo:
+            memo[text] = facts(text)
+        return memo[text]
+
+    return read
+
+
+def test_the_package_respects_its_layers(read_once):
+    assert violations(REPOSITORY / "shaketable", read_once) == []
 
 
 def test_the_check_fails_when_core_imports_plots(tmp_path):
@@ -254,8 +280,8 @@ def test_the_check_fails_when_core_imports_plots(tmp_path):
     assert any("imports private ['_NUMBER_UNIT']" in v for v in found)
 
 
-def test_no_module_imports_itself_through_others():
-    assert import_cycles(REPOSITORY / "shaketable") == []
+def test_no_module_imports_itself_through_others(read_once):
+    assert import_cycles(REPOSITORY / "shaketable", read_once) == []
 
 
 def test_every_listed_cycle_delegate_exists():
@@ -306,13 +332,13 @@ def test_a_type_only_matplotlib_import_is_allowed_but_not_an_upward_one(tmp_path
         "core/geometry.py: imports shaketable.scenes.parse (layer 'scenes' is not below 'core')"]
 
 
-def test_no_module_or_function_is_too_long():
-    found = oversized(REPOSITORY / "shaketable")
+def test_no_module_or_function_is_too_long(read_once):
+    found = oversized(REPOSITORY / "shaketable", read_once)
     assert {name: size for name, size in found.items() if name not in SIZE_ALLOWANCES} == {}
 
 
-def test_every_size_allowance_is_still_needed():
-    assert SIZE_ALLOWANCES <= set(oversized(REPOSITORY / "shaketable"))
+def test_every_size_allowance_is_still_needed(read_once):
+    assert SIZE_ALLOWANCES <= set(oversized(REPOSITORY / "shaketable", read_once))
 
 
 def test_the_size_check_counts_from_def_to_the_last_line(tmp_path):

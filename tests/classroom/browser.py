@@ -15,7 +15,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from tests.helpers import ctrl_c_restored
+from tests.helpers import ctrl_c_reaches_subprocesses
 
 CHROMIUM = ("/usr/bin/chromium", "/usr/bin/chromium-browser")
 CHROMEDRIVER = "/usr/bin/chromedriver"
@@ -65,10 +65,11 @@ class Server:
             [root] + [part for part in environment.get("PYTHONPATH", "").split(os.pathsep) if part])
         # stderr to a file: the server's log must never fill a pipe nobody reads
         self.errors = tempfile.TemporaryFile(mode="w+")
-        self.process = subprocess.Popen(
-            [sys.executable, "-m", "shaketable", "classroom", "--no-browser",
-             "--out", str(out)], cwd=cwd, stdout=subprocess.PIPE, stderr=self.errors,
-            text=True, env=environment, preexec_fn=ctrl_c_restored)
+        with ctrl_c_reaches_subprocesses():   # stopped with Ctrl-C, however the tests started
+            self.process = subprocess.Popen(
+                [sys.executable, "-m", "shaketable", "classroom", "--no-browser",
+                 "--out", str(out)], cwd=cwd, stdout=subprocess.PIPE, stderr=self.errors,
+                text=True, env=environment)
         assert self.process.stdout is not None
         line = self.process.stdout.readline()
         if "http://" not in line:

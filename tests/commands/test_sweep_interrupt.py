@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.helpers import REPOSITORY, ctrl_c_restored
+from tests.helpers import REPOSITORY, ctrl_c_reaches_subprocesses
 
 # A stack sweep whose first chunk is cheap (a 0.5 s record) and whose three others are long
 # (60 s records, ~1.5 s of CPU each): when part 0 is on disk both workers are mid-chunk.
@@ -92,11 +92,12 @@ def test_ctrl_c_ends_a_sweep_and_its_workers_at_once_and_keeps_the_finished_chun
     environment = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=str(REPOSITORY))
     cpu_before = children_cpu()
     # a session of its own, signalled as a whole: what Ctrl-C in a terminal does
-    process = subprocess.Popen(
-        [sys.executable, "-m", "shaketable", "sweep", "spec.toml", "--out", "out",
-         "--workers", "2", "--no-progress"],
-        cwd=tmp_path, env=environment, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-        text=True, start_new_session=True, preexec_fn=ctrl_c_restored)
+    with ctrl_c_reaches_subprocesses():   # as from a terminal, however the tests started
+        process = subprocess.Popen(
+            [sys.executable, "-m", "shaketable", "sweep", "spec.toml", "--out", "out",
+             "--workers", "2", "--no-progress"],
+            cwd=tmp_path, env=environment, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+            text=True, start_new_session=True)
     first = tmp_path / "out" / "parts" / "part-000000.parquet"
     started = time.perf_counter()
     while not first.exists() and process.poll() is None \

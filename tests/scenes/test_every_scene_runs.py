@@ -12,8 +12,11 @@ The report-table scenes (``table-4-1``, ``table-4-3``) end with an ensemble per 
 same code path (one batch call whatever the size) at a tenth of the cost: this test checks
 that the command runs and writes its report, not the ensemble's statistics (``reproduce
 --all`` writes them with 200; ``tests/studies/test_predictability.py`` checks the
-ensembles). Its PNG figures are drafts (:func:`tests.helpers.draft_figures`: every figure
-built and drawn, at a low dpi without the layout solver): tests/plots checks how they look.
+ensembles). In the same way the report-figure scenes (Figs. 2.3, 2.4, 2.6, Section 4.3 (4)),
+the pitch study and the mode map run on smaller grids (:func:`_smaller_studies`: the same
+code, fewer points; tests/studies checks their values). Its PNG figures are drafts
+(:func:`tests.helpers.draft_figures`: every figure built and drawn, at a low dpi without
+the layout solver): tests/plots checks how they look.
 """
 
 from __future__ import annotations
@@ -41,6 +44,49 @@ def test_the_readme_runs_bundled_scenes():
 #: is 200; see the module docstring).
 MEMBERS = TEST_MEMBERS
 
+#: The points of the report-figure scenes' curves here (``[study] kind = "report-figure"``:
+#: one engine run, or one bisection, per point), fewer than the package's: the smallest
+#: and largest of its own, so each curve still spans its range; the values are checked at
+#: points of their own by ``tests/studies/test_section_2.py`` and
+#: ``tests/studies/test_overturning_spectrum.py``. Section 4.3 (4) keeps its 0.1 s pulse
+#: (the report's 4.6 g, which the scene compares) and its shortest.
+REPORT_FIGURE_POINTS = {
+    ("section2", "figure_2_3"): dict(ratios=[0.05, 0.95]),   # package: 19 amplitudes x 4 blocks
+    ("section2", "figure_2_4"): dict(ratios=[1.1, 4.0]),     # package: 6 accelerations
+    ("section2", "figure_2_6"): dict(frequency_ratios=[1.0, 18.0]),   # package: 6 pulses
+    ("pulses", "section_4_3_4"): dict(pulse_durations=(0.1, 0.01)),   # package: 4 pulses
+}
+
+#: Pitch phases of ``section-3-7-pitch`` here (the scene asks for 24): an even number, so
+#: that runs half a pitch cycle apart, which the scene compares, still exist.
+PITCH_PHASES = 4
+
+
+def _smaller_studies(monkeypatch):
+    """The report-figure curves at :data:`REPORT_FIGURE_POINTS`, the pitch study at
+    :data:`PITCH_PHASES`, the mode map on every third B/H and every fifth mu of its grid
+    (both ends kept: 3 x 4 blocks per PGA level, against 7 x 16)."""
+    import functools
+    import importlib
+
+    from shaketable.scenes import studies as scene_studies
+    from shaketable.studies import mode_map
+
+    for (module, function), points in REPORT_FIGURE_POINTS.items():
+        studies = importlib.import_module(f"shaketable.studies.{module}")
+        monkeypatch.setattr(studies, function,
+                            functools.partial(getattr(studies, function), **points))
+    cases = scene_studies.section_3_7_cases
+    monkeypatch.setattr(scene_studies, "section_3_7_cases",
+                        lambda phases: cases(phases=min(phases, PITCH_PHASES)))
+    whole_map = mode_map.mode_map
+
+    def thinned_map(motion=None, *, aspect_ratios, frictions, **options):
+        return whole_map(motion, aspect_ratios=aspect_ratios[::3], frictions=frictions[::5],
+                         **options)
+
+    monkeypatch.setattr(mode_map, "mode_map", thinned_map)
+
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", [name for name in scene_names()
@@ -52,6 +98,7 @@ def test_run_succeeds_on_every_bundled_scene(name, tmp_path, monkeypatch):
 
     monkeypatch.setattr(predictability, "predictability_markdown", functools.partial(
         predictability.predictability_markdown, members=MEMBERS))
+    _smaller_studies(monkeypatch)
     with draft_figures():
         status, out, err = run_cli(["run", name, "--out", tmp_path / name], cwd=tmp_path)
     assert "Traceback" not in err and "internal error" not in err, err

@@ -277,9 +277,12 @@ def test_resume_refuses_parts_of_another_solver(tmp_path, monkeypatch):
 
 def test_dask_cluster_by_address_with_worker_processes(tmp_path, reference_table):
     # `--scheduler ADDRESS` as a user runs it: the CLI connects to a scheduler by address
-    # and the work runs in two separate worker processes (which import shaketable there).
+    # and the work runs in a separate worker process (which imports shaketable there: the
+    # spec and each chunk's table cross a process boundary both ways). One worker process
+    # (each costs ~3 s of CPU to start); chunks finishing out of order on several workers
+    # are checked by test_local_dask_cluster_gives_the_same_table (two threads).
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster:
         assert main(["sweep", str(write(tmp_path, SPEC)), "--out", str(tmp_path / "out"),
                      "--scheduler", cluster.scheduler_address, "--no-progress"]) == 0
