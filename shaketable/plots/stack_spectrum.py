@@ -46,9 +46,11 @@ def stack_bands_figure(frame, curves: dict, title: str = ""):
     ----------
     frame : DataFrame
         :func:`shaketable.studies.stack_spectrum.stack_spectrum_bands` (amplitudes [g]).
-    curves : dict
+    curves : dict or callable
         ``{"stack": (ratios, [g]), "bottom block alone": (ratios, [g])}``: Eq. (2-8) of
-        each as one rigid body (:func:`shaketable.studies.stacks.eq_2_8_curves`).
+        each as one rigid body (:func:`shaketable.studies.stacks.eq_2_8_curves`), or a
+        function of the omega/p values [-] that returns it: then the curves are drawn
+        across the whole omega/p axis, whatever ratios were computed.
     title : str, optional
 
     Returns
@@ -65,6 +67,8 @@ def stack_bands_figure(frame, curves: dict, title: str = ""):
     axis_top = 1.06 * top
     ratios = np.array(sorted(set(frame["omega/p [-]"])))
     strips, span, discrete = _strips(ratios)
+    if callable(curves):   # evaluated across the axis: a dashed line cut short misleads
+        curves = curves(np.linspace(max(0.0, span[0]), span[1], 200))
     for axis, column in zip(axes[0], columns):
         rows = frame[frame["column"] == column]
         labelled: set = set()

@@ -7,6 +7,7 @@ not the code's own placement arithmetic."""
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 
 import shaketable as st
 from shaketable.plots.base import pyplot
@@ -39,4 +40,28 @@ def test_calcomp_of_two_runs_shows_both_and_says_which_one_ends():
     note = _texts(fig)
     assert note.startswith(small.describe()) and "overturned (" in note
     assert "its run ends here" in note and large.describe() not in note
+    pyplot().close(fig)
+
+
+def test_the_stack_spectrums_eq_2_8_line_spans_the_omega_axis():
+    """One ratio computed (omega/p = 3, the axis 2.5 to 3.5): the dashed Eq. (2-8) line
+    runs across the whole axis in both panels, not to 1.05 x the largest ratio."""
+    from shaketable.plots.stack_spectrum import stack_bands_figure
+
+    frame = pd.DataFrame([{"column": column, "omega/p [-]": 3.0, "from [g]": 0.4,
+                           "to [g]": 1.3, "verdict": "overturns", "flagged": False,
+                           "block that fell": "the block"}
+                          for column in ("stack", "bottom block alone")])
+
+    def curves(ratios):
+        ratios = np.asarray(ratios, dtype=float)
+        return {name: (ratios, 0.2 * ratios) for name in ("stack", "bottom block alone")}
+
+    fig = stack_bands_figure(frame, curves)
+    for axis in fig.axes:
+        low, high = axis.get_xlim()
+        dashed = [line for line in axis.get_lines() if line.get_linestyle() == "--"]
+        assert len(dashed) == 1
+        x = dashed[0].get_xdata()
+        assert x.min() <= low + 0.01 * (high - low) and x.max() >= high - 0.01 * (high - low)
     pyplot().close(fig)
