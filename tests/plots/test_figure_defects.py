@@ -65,3 +65,24 @@ def test_the_stack_spectrums_eq_2_8_line_spans_the_omega_axis():
         x = dashed[0].get_xdata()
         assert x.min() <= low + 0.01 * (high - low) and x.max() >= high - 0.01 * (high - low)
     pyplot().close(fig)
+
+
+def test_a_single_level_mode_map_keeps_its_width_and_units():
+    """One PGA level: the map takes most of the figure's width (its legend, below, no
+    longer squeezes it to a quarter) and both axes carry their unit [-]."""
+    from shaketable.studies.mode_map import ModeMap
+
+    rows = [{"pga [g]": 0.5, "B/H [-]": ratio, "mu [-]": mu,
+             "verdict": "slid" if mu < ratio else "overturned", "rule": "slide",
+             "overturned": mu >= ratio, "rocking model overturned": True}
+            for ratio in (0.15, 0.2, 0.25, 0.3) for mu in (0.1, 0.2, 0.3, 0.4)]
+    mode_map = ModeMap(frame=pd.DataFrame(rows), record="a record", height=2.0, cor=0.95)
+    fig = mode_map.plot(block=st.Block(width=0.5, height=2.0))
+    renderer = _drawn(fig)
+    (axis,) = fig.axes
+    panel, legend = axis.get_window_extent(renderer), fig.legends[0].get_window_extent(renderer)
+    assert panel.width >= 0.6 * fig.bbox.width
+    assert not (legend.x0 < panel.x1 and panel.x0 < legend.x1 and legend.y0 < panel.y1
+                and panel.y0 < legend.y1)
+    assert axis.get_ylabel().endswith("[-]") and axis.get_xlabel().endswith("[-]")
+    pyplot().close(fig)
