@@ -86,3 +86,69 @@ def test_a_single_level_mode_map_keeps_its_width_and_units():
                 and panel.y0 < legend.y1)
     assert axis.get_ylabel().endswith("[-]") and axis.get_xlabel().endswith("[-]")
     pyplot().close(fig)
+
+
+def _assessment(c_s=(0.57, 0.56)):
+    """A stand-in for an assessment result: two levels, three frictions; the high
+    friction stays put under one record at the first level (a range from 0)."""
+    from types import SimpleNamespace
+
+    rows = []
+    for case, mu in (("low", 0.3), ("high", 0.5), ("let it slide", 0.15)):
+        for level, low in ((0.4, 0.0 if case == "high" else 15e-3), (0.6, 0.2)):
+            rows.append({"case": case, "ground pga [g]": level, "mu [-]": mu,
+                         "P(overturn) [-]": 0.4, "P low [-]": 0.2, "P high [-]": 0.7,
+                         **{f"{what} {stat} [m]": value for what in ("excursion", "slip")
+                            for stat, value in (("median", 0.2), ("p84", 0.3), ("min", low),
+                                                ("max", 0.5))}})
+    names = ("design", "MCE")
+    frequencies = np.geomspace(0.2, 30.0, 40)
+    spec = SimpleNamespace(name="cabinet", where="on floor 3",
+                           criteria=SimpleNamespace(acceptable=0.1, clearance=0.1),
+                           demand=SimpleNamespace(level_names=names))
+    return SimpleNamespace(
+        free=pd.DataFrame(rows), spec=spec, fragility={},
+        runs=pd.DataFrame({"record": ["a", "b"]}),
+        spectra={k: (frequencies, (1.0 + k) * 9.80665 * np.exp(-np.log(frequencies) ** 2))
+                 for k in range(2)},
+        codes={name: {"ASCE 43-05 A.1 (sliding)": {"c_s [g]": value, "mu_e [-]": value / 2}}
+               for name, value in zip(names, c_s)})
+
+
+def test_the_assessments_demand_ranges_are_bars_on_a_linear_scale():
+    """Excursion and slip on a linear scale (no symlog "0" tick under 10^0), and each range
+    over records a vertical bar at its level: no band is filled between two levels."""
+    from shaketable.plots.assess import assessment_figure
+
+    fig = assessment_figure(_assessment(), "demands")
+    _drawn(fig)
+    for axis in fig.axes[1:]:
+        assert axis.get_yscale() == "linear"
+        bars = 0
+        for collection in axis.collections:
+            for path in collection.get_paths():
+                x = path.vertices[:, 0]
+                assert np.ptp(x) < 0.05, "a range drawn across levels"
+                bars += 1
+        assert bars == 6   # three frictions at two levels
+    pyplot().close(fig)
+
+
+def test_the_assessments_code_lines_say_what_mu_e_is_and_do_not_overlap_apart():
+    """The c_s lines: mu_e defined in the legend; two lines closer than a line's width are
+    one black line with one entry naming both levels; far apart, each in its colour."""
+    from shaketable.plots.assess import assessment_figure
+
+    for c_s, entries in (((0.57, 0.56), 1), ((0.57, 1.2), 2)):
+        fig = assessment_figure(_assessment(c_s), "floor-spectra")
+        (axis,) = fig.axes
+        legend = axis.get_legend()
+        assert "μe = μ (1 − 0.4 A_v/g)" in legend.get_title().get_text()
+        dotted = [line for line in axis.get_lines() if line.get_linestyle() == ":"]
+        labels = [text.get_text() for text in legend.get_texts() if "c_s" in text.get_text()]
+        assert len(labels) == entries and len(dotted) == 2
+        colours = {line.get_color() for line in dotted}
+        assert len(colours) == (1 if entries == 1 else 2)
+        if entries == 1:
+            assert "design 0.57 g" in labels[0] and "MCE 0.56 g" in labels[0]
+        pyplot().close(fig)
