@@ -152,3 +152,31 @@ def test_the_assessments_code_lines_say_what_mu_e_is_and_do_not_overlap_apart():
         if entries == 1:
             assert "design 0.57 g" in labels[0] and "MCE 0.56 g" in labels[0]
         pyplot().close(fig)
+
+
+def test_the_calibrations_block_mean_band_is_tall_enough_to_see():
+    """A 95 % interval of the block's mean a hundredth of the per-impact spread (the
+    bundled virtual test's): its band is drawn at least 3 % of the axis tall, and the
+    label gives the interval itself."""
+    from shaketable.calibration.peaks import PeakEstimate
+    from shaketable.calibration.scatter import CorScatter
+    from shaketable.plots.calibration import plot_cor_per_impact
+
+    velocity = np.linspace(0.2, 0.7, 15)
+    cors = 0.925 + 0.01 * np.sin(7 * velocity)
+    peaks = PeakEstimate(cor=0.9254, cor_interval=(0.9249, 0.9258), peak_times=velocity,
+                         amplitudes=velocity, cor_per_impact=cors,
+                         cor_per_impact_se=np.full(15, 0.01), impact_velocity=velocity,
+                         slope=np.nan, slope_se=np.nan, intercept=np.nan)
+    scatter = CorScatter(mean=0.9253, mean_se=0.00025, mean_interval=(0.9248, 0.9258),
+                         sigma=0.0, sigma_interval=(0.0, 0.0023), impacts=15,
+                         measurement_se=0.01)
+    fig, axis = pyplot().subplots(figsize=(6.0, 4.0))
+    plot_cor_per_impact(peaks, ax=axis, scatter=scatter)
+    renderer = _drawn(fig)
+    (band,) = [patch for patch in axis.patches + axis.collections
+               if "block mean" in str(patch.get_label())]
+    box, panel = band.get_window_extent(renderer), axis.get_window_extent(renderer)
+    assert box.height >= 0.03 * panel.height
+    assert "0.9248 to 0.9258" in band.get_label()
+    pyplot().close(fig)
