@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.constants import G
-from shaketable.plots.base import pyplot
+from shaketable.plots.base import place_legend, pyplot
 from shaketable.plots.mode_map import VERDICT_COLOURS
 from shaketable.studies.mode_map import VERDICT_ORDER
 
@@ -102,9 +102,9 @@ def _demands(result, fig):
             # the range over records as a bar at each level (shifted as on the left): a
             # band between levels drew a range nobody computed (a wedge from a record that
             # stayed at one level to the next level's)
-            axis.vlines(x + (index - 1) * shift, cells[f"{what} min [m]"] * 1000,
+            axis.vlines(x + 2.5 * (index - 1) * shift, cells[f"{what} min [m]"] * 1000,
                         cells[f"{what} max [m]"] * 1000, color=colour, alpha=0.3,
-                        linewidth=5)
+                        linewidth=4)
         fit = result.fragility.get(case, {}).get("fit")
         if fit is not None:
             grid = np.linspace(0.0, x.max() * 1.1, 100)[1:]
@@ -124,7 +124,7 @@ def _demands(result, fig):
         axis.set_xlabel("ground PGA [g]")
     for axis in axes[1:]:   # linear: a record the object rides out without moving is a 0
         axis.set_ylim(bottom=0.0)
-    axes[1].legend(fontsize=7)
+    place_legend(axes[1], outside="below", fontsize=7)
     # two lines: on one the title ran from edge to edge of the figure
     fig.suptitle(f"{spec.name} {spec.where}:\nfree-standing demands "
                  f"({len(result.runs['record'].unique())} records; excursion and slip of "
@@ -176,7 +176,9 @@ def _spectra(result, fig):
     axis.set_xscale("log")
     axis.set_xlabel("frequency [Hz]")
     axis.set_ylabel("spectral acceleration, 10 % damping [g]")
-    axis.legend(fontsize=8, title="ASCE 43-05: μe = μ (1 − 0.4 A_v/g) (Eq. A-1),\n"
-                "A_v the median peak vertical acceleration", title_fontsize=7.5)
+    mu = result.codes[result.spec.demand.level_names[0]]["ASCE 43-05 A.1 (sliding)"]["mu [-]"]
+    axis.legend(fontsize=8, title=f"ASCE 43-05 Eq. A-1: μe = μ (1 − 0.4 A_v/g), μ = {mu:.3g} "
+                "(the low friction),\nA_v the median peak vertical acceleration",
+                title_fontsize=7.5)
     axis.set_title(f"{result.spec.name} {result.spec.where}: where the object stands",
                    fontsize=10)

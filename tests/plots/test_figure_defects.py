@@ -111,7 +111,8 @@ def _assessment(c_s=(0.57, 0.56)):
         runs=pd.DataFrame({"record": ["a", "b"]}),
         spectra={k: (frequencies, (1.0 + k) * 9.80665 * np.exp(-np.log(frequencies) ** 2))
                  for k in range(2)},
-        codes={name: {"ASCE 43-05 A.1 (sliding)": {"c_s [g]": value, "mu_e [-]": value / 2}}
+        codes={name: {"ASCE 43-05 A.1 (sliding)": {"c_s [g]": value, "mu_e [-]": value / 2,
+                                             "mu [-]": 0.3}}
                for name, value in zip(names, c_s)})
 
 
