@@ -181,3 +181,33 @@ def test_the_calibrations_block_mean_band_is_tall_enough_to_see():
     assert box.height >= 0.03 * panel.height
     assert "0.9248 to 0.9258" in band.get_label()
     pyplot().close(fig)
+
+
+def test_the_stack_animations_x_tick_labels_stand_apart():
+    """The stage of a tall two-block column (the stack-kick scene's 0.8 x 0.2 m on
+    1 x 0.3 m) at the default frame size: its x tick labels do not touch."""
+    from types import SimpleNamespace
+
+    from shaketable.core.geometry import Block
+    from shaketable.models.stack import Stack
+    from shaketable.plots.animation import DEFAULT_DPI, DEFAULT_SIZE
+    from shaketable.plots.stack_animation import _StackStage
+
+    t = np.linspace(0.0, 1.0, 11)
+    theta = np.column_stack([np.zeros_like(t), 0.02 * np.cos(3 * t)])
+    result = SimpleNamespace(
+        stack=Stack((Block(1.0, 0.3), Block(0.8, 0.2))), t=t, theta=theta,
+        theta_dot=np.zeros_like(theta), patterns=np.zeros((t.size, 2), dtype=int),
+        motion=SimpleNamespace(t=t, horizontal=np.zeros_like(t),
+                               vertical_or_zero=np.zeros_like(t), name=None),
+        impact="plastic", cor=None, block_name=lambda i: f"block {i}")
+    stage = _StackStage(result, t, None, size=DEFAULT_SIZE, dpi=DEFAULT_DPI, unit="m",
+                        title="a column")
+    renderer = _drawn(stage.fig)
+    axis = stage.fig.axes[0]
+    boxes = sorted((label.get_window_extent(renderer) for label in axis.get_xticklabels()
+                    if label.get_visible() and label.get_text()), key=lambda box: box.x0)
+    assert len(boxes) >= 3
+    for left, right in zip(boxes, boxes[1:]):
+        assert right.x0 - left.x1 >= 4.0   # a gap of a few pixels between labels
+    pyplot().close(stage.fig)
