@@ -211,3 +211,36 @@ def test_the_stack_animations_x_tick_labels_stand_apart():
     for left, right in zip(boxes, boxes[1:]):
         assert right.x0 - left.x1 >= 4.0   # a gap of a few pixels between labels
     pyplot().close(stage.fig)
+
+
+def test_a_stacks_overturn_cross_at_the_right_edge_clears_the_legend():
+    """A three-block column whose middle block overturns at the run's last instant: the
+    cross, drawn on the frame's right edge, does not touch the contact band's legend."""
+    from types import SimpleNamespace
+
+    from shaketable.core.geometry import Block
+    from shaketable.models.stack import Stack
+    from shaketable.plots.stack import stack_calcomp
+
+    t = np.linspace(0.0, 4.85, 50)
+    stack = Stack((Block(8 * 0.3048, 2 * 0.3048), Block(8 * 0.3048, 2 * 0.3048),
+                   Block(4 * 0.3048, 2 * 0.3048)))
+    theta = np.outer(t / t[-1], [0.1, 1.5, 1.0]) ** 2
+    patterns = np.zeros((t.size, 3), dtype=int)
+    patterns[25:] = 1
+    result = SimpleNamespace(
+        stack=stack, t=t, theta=theta, patterns=patterns,
+        events=[{"kind": "overturn", "t": t[-1], "interface": 1}],
+        motion=SimpleNamespace(t=t, horizontal=np.sin(t), vertical_or_zero=np.zeros_like(t),
+                               name="a record"),
+        impact="plastic", cor=None, status="overturned", overturned_block=1,
+        t_overturn=t[-1], block_name=lambda i: f"block {i}")
+    fig = stack_calcomp(result)
+    renderer = _drawn(fig)
+    band = fig.axes[-1]
+    (cross,) = [line for line in band.get_lines() if line.get_marker() == "x"]
+    x, _ = cross.get_transform().transform(cross.get_xydata())[0]
+    half = 0.5 * cross.get_markersize() * fig.dpi / 72.0 + 1.0
+    legend = band.get_legend().get_window_extent(renderer)
+    assert x + half <= legend.x0   # the legend starts right of the cross
+    pyplot().close(fig)
