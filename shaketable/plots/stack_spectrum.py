@@ -5,6 +5,8 @@ with Housner's Eq. (2-8) for each as one rigid body."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from matplotlib.patches import Rectangle
 
@@ -38,7 +40,7 @@ def _strips(ratios: np.ndarray) -> tuple[list, tuple, bool]:
     return list(zip(edges[:-1], edges[1:])), (edges[0], edges[-1]), False
 
 
-def stack_bands_figure(frame, curves: dict, title: str = ""):
+def stack_bands_figure(frame, curves: dict | Callable[[np.ndarray], dict], title: str = ""):
     """Overturn (shaded, by the block that fell) and safe (white) bands of a stack and of its
     bottom block alone under half-sine pulses.
 
