@@ -168,9 +168,8 @@ def stack_spectrum_command(args) -> int:
     """``spectrum --stack``: every overturn/safe band of half-sine pulses of a stack and of
     its bottom block alone over omega/p, drawn as the single block's spectrum
     (:func:`shaketable.studies.stack_spectrum.stack_spectrum_bands`)."""
+    import functools
     import time
-
-    import numpy as np
 
     from shaketable.commands.checks import refuse_ignored_options
     from shaketable.core.files import prepare_output_folder, write_csv, write_parquet
@@ -203,7 +202,7 @@ def stack_spectrum_command(args) -> int:
     if args.parquet:
         written.append(write_parquet(out / "spectrum.parquet", frame))
     written.append(out / f"spectrum.{args.format}")
-    curves = eq_2_8_curves(stack, np.linspace(0.0, 1.05 * max(ratios), 200))
+    curves = functools.partial(eq_2_8_curves, stack)   # drawn across the figure's axis
     plots.save(stack_bands_figure(frame, curves, f"half-sine pulses: {stack.describe()}, "
                                                  "plastic impacts"), written[-1])
     print(f"{stack.describe()}, plastic impacts: overturning half-sine pulses [g] over ω/p "

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from shaketable.core.constants import G
-from shaketable.plots.base import pyplot
+from shaketable.plots.base import place_legend, pyplot
 from shaketable.plots.mode_map import VERDICT_COLOURS
 from shaketable.studies.mode_map import VERDICT_ORDER
 
@@ -99,8 +99,12 @@ def _demands(result, fig):
             axis.plot(x, cells[f"{what} median [m]"] * 1000, "o-", color=colour, label=label)
             axis.plot(x, cells[f"{what} p84 [m]"] * 1000, "s--", color=colour,
                       markerfacecolor="none")
-            axis.fill_between(x, cells[f"{what} min [m]"] * 1000, cells[f"{what} max [m]"]
-                              * 1000, color=colour, alpha=0.1)
+            # the range over records as a bar at each level (shifted as on the left): a
+            # band between levels drew a range nobody computed (a wedge from a record that
+            # stayed at one level to the next level's)
+            axis.vlines(x + 2.5 * (index - 1) * shift, cells[f"{what} min [m]"] * 1000,
+                        cells[f"{what} max [m]"] * 1000, color=colour, alpha=0.3,
+                        linewidth=4)
         fit = result.fragility.get(case, {}).get("fit")
         if fit is not None:
             grid = np.linspace(0.0, x.max() * 1.1, 100)[1:]
@@ -111,17 +115,16 @@ def _demands(result, fig):
     fitted = any(entry.get("fit") is not None for entry in result.fragility.values())
     axes[0].set_ylabel("P(overturn) [-] (Wilson 95 %" + ("; line: lognormal fit)" if fitted
                                                           else ")"))
-    axes[1].set_ylabel("peak corner excursion [mm] (o median, □ 84th)")
-    axes[2].set_ylabel("peak slip [mm] (band: range over records)")
+    axes[1].set_ylabel("peak corner excursion [mm]\n(o median, □ 84th, bar: range over records)")
+    axes[2].set_ylabel("peak slip [mm] (bar: range over records)")
     if spec.criteria.clearance is not None:
         axes[1].axhline(spec.criteria.clearance * 1000, color="black", linestyle=":",
                         label="clearance")
     for axis in axes:
         axis.set_xlabel("ground PGA [g]")
-    for axis in axes[1:]:
-        axis.set_yscale("symlog", linthresh=1.0)
+    for axis in axes[1:]:   # linear: a record the object rides out without moving is a 0
         axis.set_ylim(bottom=0.0)
-    axes[1].legend(fontsize=7)
+    place_legend(axes[1], outside="below", fontsize=7)
     # two lines: on one the title ran from edge to edge of the figure
     fig.suptitle(f"{spec.name} {spec.where}:\nfree-standing demands "
                  f"({len(result.runs['record'].unique())} records; excursion and slip of "
@@ -152,15 +155,30 @@ def _anchored(result, fig):
 def _spectra(result, fig):
     """The median 10 %-damped spectrum where the object stands, and ASCE 43's c_s."""
     axis = fig.subplots()
+    levels = []
     for k, (frequencies, spectrum) in result.spectra.items():
         name = result.spec.demand.level_names[k]
         line, = axis.plot(frequencies, spectrum / G, label=f"{name}: median spectrum")
-        c_s = result.codes[name]["ASCE 43-05 A.1 (sliding)"]["c_s [g]"]
-        axis.axhline(c_s, color=line.get_color(), linestyle=":",
-                     label=f"{name}: c_s = 2 μe g = {c_s:.2f} g")
+        code = result.codes[name]["ASCE 43-05 A.1 (sliding)"]
+        levels.append((name, line.get_color(), code["c_s [g]"], code["mu_e [-]"],
+                       float(np.nanmax(spectrum / G))))
+    values = [c_s for _, _, c_s, _, _ in levels]
+    if max(values) - min(values) <= 0.03 * max(top for *_, top in levels):
+        # lines closer than a line's width: one black line, one entry naming every level
+        for index, c_s in enumerate(values):
+            axis.axhline(c_s, color="black", linestyle=":", label=None if index else
+                         "c_s = 2 μe g: " + ", ".join(f"{name} {c_s:.2f} g (μe {mu_e:.3g})"
+                                                      for name, _, c_s, mu_e, _ in levels))
+    else:
+        for name, colour, c_s, mu_e, _ in levels:
+            axis.axhline(c_s, color=colour, linestyle=":",
+                         label=f"{name}: c_s = 2 μe g = {c_s:.2f} g (μe {mu_e:.3g})")
     axis.set_xscale("log")
     axis.set_xlabel("frequency [Hz]")
     axis.set_ylabel("spectral acceleration, 10 % damping [g]")
-    axis.legend(fontsize=8)
+    mu = result.codes[result.spec.demand.level_names[0]]["ASCE 43-05 A.1 (sliding)"]["mu [-]"]
+    axis.legend(fontsize=8, title=f"ASCE 43-05 Eq. A-1: μe = μ (1 − 0.4 A_v/g), μ = {mu:.3g} "
+                "(the low friction),\nA_v the median peak vertical acceleration",
+                title_fontsize=7.5)
     axis.set_title(f"{result.spec.name} {result.spec.where}: where the object stands",
                    fontsize=10)

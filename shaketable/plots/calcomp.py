@@ -11,6 +11,9 @@ from shaketable.studies.free_rocking import free_rocking_verdict
 #: Colours of the angular acceleration and velocity traces.
 _ACCELERATION_COLOUR = "tab:red"
 _VELOCITY_COLOUR = "tab:blue"
+#: The overlaid runs' colours (neither the acceleration's red nor the velocity's blue).
+_OTHER_COLOURS = ("tab:green", "tab:purple", "tab:orange", "tab:brown", "tab:olive",
+                  "tab:cyan", "tab:pink")
 
 
 def describe_block(block) -> str:
@@ -140,15 +143,22 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
     rates.plot(t_broken, acceleration, color=_ACCELERATION_COLOUR, lw=0.6,
                label=f"θ'' angular acceleration [rad/s²]\n(broken at impacts{which})")
     rates.plot(result.t, result.theta_dot, color=_VELOCITY_COLOUR, lw=0.9,
-               label=f"θ' angular velocity [rad/s]{which}")
+               label=f"θ' angular velocity [rad/s], {labels[0]}" if others
+               else "θ' angular velocity [rad/s]")
+    # every run's velocity, in its colour on the rotation panel: a run that ends early
+    # (its block overturned) must not leave the panel blank for the rest of the others
+    colours = [_OTHER_COLOURS[index % len(_OTHER_COLOURS)] for index in range(len(others))]
+    for other, label, colour in zip(others, labels[1:], colours):
+        rates.plot(other.t, other.theta_dot, color=colour, lw=0.9,
+                   label=f"θ' angular velocity [rad/s], {label}")
     rates.set_ylabel("θ'' [rad/s²]\nθ' [rad/s]")
     rates.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, frameon=True,
                  borderaxespad=0.0)
     rotation.plot(result.t, result.theta, color="k", lw=0.9,
                   label=labels[0] if others else "θ")
     extremes = [float(np.max(np.abs(result.theta), initial=0.0))]
-    for other, label in zip(others, labels[1:]):
-        rotation.plot(other.t, other.theta, lw=0.9, label=label)
+    for other, label, colour in zip(others, labels[1:], colours):
+        rotation.plot(other.t, other.theta, color=colour, lw=0.9, label=label)
         extremes.append(float(np.max(np.abs(other.theta), initial=0.0)))
     for sign in (1, -1):
         rotation.axhline(sign * block.alpha, color="tab:gray", lw=0.8, ls="--",
@@ -164,21 +174,24 @@ def calcomp(result, fig=None, title: str | None = None, time_range=None, others=
     for axis in axes:
         axis.grid(True, lw=0.3, alpha=0.5)
         axis.set_xlim(start, stop)
-    mark_overturn(axes, result, stop)
+    for run, label in zip((result, *others), labels):
+        mark_overturn(axes, run, stop, label if others else None)
     fig.suptitle("\n".join(calcomp_caption(result, title=title, others=others,
                                            details=details)), fontsize=9.5)
     fig.align_ylabels(axes)
     return fig
 
 
-def mark_overturn(axes, run, stop) -> None:
+def mark_overturn(axes, run, stop, name: str | None = None) -> None:
     """Where the run ends because the block overturned, when the time axis goes on past it.
 
     A run stops where its block overturns; on a time axis shared with another
     figure (``time_range``) the panels are blank after that time. A vertical
     line on every panel and the words "overturned (±) at t s: the run ends
-    here" on the rotation panel say why, where the blank begins. Nothing is
-    drawn when the axis ends with the run (the caption gives the time).
+    here" on the rotation panel say why, where the blank begins; with several runs
+    overlaid, ``name`` says which run ends ("4 x 0.8 ft overturned (−) at 4.28 s: its
+    run ends here"). Nothing is drawn when the axis ends with the run (the caption gives
+    the time).
     """
     start = axes[0].get_xlim()[0]
     if not run.overturned or not np.isfinite(run.t_overturn) \
@@ -188,7 +201,9 @@ def mark_overturn(axes, run, stop) -> None:
         axis.axvline(run.t_overturn, color="0.35", lw=0.8, ls="-.")
     side = "+" if run.overturn_direction > 0 else "−"
     # on the side away from the fall: the trace ends at the top (+) or at the bottom (−)
-    axes[-1].annotate(f"overturned ({side}) at {run.t_overturn:.2f} s:\nthe run ends here",
+    words = f"overturned ({side}) at {run.t_overturn:.2f} s:\nthe run ends here" if name is None \
+        else f"{name} overturned ({side})\nat {run.t_overturn:.2f} s: its run ends here"
+    axes[-1].annotate(words,
                       (run.t_overturn, 0.96 if run.overturn_direction < 0 else 0.04),
                       xycoords=axes[-1].get_xaxis_transform(), xytext=(4, 0),
                       textcoords="offset points", fontsize=7, ha="left",

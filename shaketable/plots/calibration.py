@@ -134,6 +134,10 @@ def plot_fit(calibration: Calibration,
     return top, bottom
 
 
+#: The least height of the block mean's band, as a fraction of the axis's height [-].
+_MIN_BAND = 0.04
+
+
 def plot_cor_per_impact(peaks: PeakEstimate, ax: Axes | None = None,
                         scatter: CorScatter | None = None) -> Axes:
     """COR of each impact (from successive peaks) against the impact velocity. Returns the axes.
@@ -147,8 +151,17 @@ def plot_cor_per_impact(peaks: PeakEstimate, ax: Axes | None = None,
                 fmt="o", ms=4, capsize=2, label="per impact (95 %)")
     ax.axhline(peaks.cor, color="C3", lw=1.0, label=f"constant fit {peaks.cor:.4f}")
     if scatter is not None:
-        ax.axhspan(*scatter.mean_interval, color="C2", alpha=0.2, lw=0,
-                   label=f"block mean {scatter.mean:.4f} (95 %), scatter σ {scatter.sigma:.3f}")
+        low, high = scatter.mean_interval
+        label = (f"block mean {scatter.mean:.4f} (95 % {low:.4f} to {high:.4f}), "
+                 f"scatter σ {scatter.sigma:.3f}")
+        # an interval far narrower than the per-impact bars is a hairline under the constant
+        # fit: drawn at least _MIN_BAND of the axis tall around the mean, and said so
+        bottom, top = ax.get_ylim()
+        if high - low < _MIN_BAND * (top - bottom):
+            low = scatter.mean - 0.5 * _MIN_BAND * (top - bottom)
+            high = scatter.mean + 0.5 * _MIN_BAND * (top - bottom)
+            label += f";\nband drawn {_MIN_BAND:.0%} of the axis tall to be seen"
+        ax.axhspan(low, high, color="C2", alpha=0.3, lw=0, label=label)
     if np.isfinite(peaks.slope):
         v = np.linspace(np.min(peaks.impact_velocity), np.max(peaks.impact_velocity), 2)
         ax.plot(v, peaks.intercept + peaks.slope * v, color="C1", ls="--", lw=1.0,

@@ -38,7 +38,9 @@ def mode_map_figure(mode_map, fig=None, block=None):
     frame = mode_map.frame
     levels = sorted(frame["pga [g]"].unique())
     if fig is None:
-        fig = plt.figure(figsize=(3.6 * len(levels) + 1.6, 4.4), layout="constrained")
+        # the legend goes below the panels: at their right it took half the width of a
+        # single-level map and squeezed the panel to a quarter
+        fig = plt.figure(figsize=(max(3.6 * len(levels), 6.4), 6.0), layout="constrained")
     axes = fig.subplots(1, len(levels), sharey=True, squeeze=False)[0]
     cmap = ListedColormap([VERDICT_COLOURS[name] for name in VERDICT_ORDER])
     for axis, level in zip(axes, levels):
@@ -63,8 +65,8 @@ def mode_map_figure(mode_map, fig=None, block=None):
             axis.axvline(ratio, color="tab:blue", linewidth=1.6,
                          label=f"{block.describe()} (B/H {ratio:.3g})")
         axis.set_title(f"PGA {level:.2f} g")
-        axis.set_xlabel("B / H")
-    axes[0].set_ylabel("μs = μd")
+        axis.set_xlabel("B / H [-]")
+    axes[0].set_ylabel("μs = μd [-]")
     handles = [Patch(facecolor=VERDICT_COLOURS[name], edgecolor="grey", label=name)
                for name in VERDICT_ORDER if name in set(frame["verdict"])]
     handles += [plt.Line2D([], [], color="k", linewidth=1.8,
@@ -78,14 +80,16 @@ def mode_map_figure(mode_map, fig=None, block=None):
     if block is not None:
         handles.append(plt.Line2D([], [], color="tab:blue", linewidth=1.6,
                                   label=f"{block.describe()} block"))
-    fig.legend(handles=handles, loc="outside right center", frameon=False)
+    fig.legend(handles=handles, loc="outside lower center", ncol=2, frameon=False,
+               fontsize=8)
     if block is not None:
         from shaketable.core.units import format_length
 
         height = format_length(mode_map.height, block.length_unit)
     else:
         height = f"{mode_map.height:.3g} m"
-    fig.suptitle(f"Planar block under {mode_map.record}: H = {height}, COR {mode_map.cor:g}")
+    fig.suptitle(f"Planar block under {mode_map.record}:\nH = {height}, COR {mode_map.cor:g}",
+                 fontsize=10)
     return fig
 
 

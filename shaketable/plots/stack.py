@@ -111,7 +111,9 @@ def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
                          Line2D([], [], color="k", lw=0.5, label="impact"),
                          Line2D([], [], marker="x", ls="", color="tab:red", ms=6,
                                 label="overturn")],
-                loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=0.0)
+                # a pad of 1.2 font sizes (8.4 pt): clear of an overturn cross (8 pt wide)
+                # drawn unclipped on the frame's right edge at the run's last instant
+                loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=7, borderaxespad=1.2)
     first, last = (motion.t[0], max(end, motion.t[0] + 1e-9)) if time_range is None \
         else time_range
     for axis in axes:

@@ -65,6 +65,7 @@ class _StackStage:
 
     def __init__(self, result, times, highpass, *, size, dpi, unit, title):
         from matplotlib.patches import Polygon, Rectangle
+        from matplotlib.ticker import MaxNLocator
 
         from shaketable.plots.base import pyplot
         from shaketable.scenes.stack_patterns import pattern_words
@@ -103,6 +104,9 @@ class _StackStage:
         stage.set_xlim(x_low - margin, x_high + margin)
         stage.set_ylim(-2.2 * thickness, 1.12 * max(total, self.outlines[..., 1].max()))
         stage.set_aspect("equal")
+        # a narrow stage (equal aspect, a tall column): at most 5 x ticks, or their labels
+        # run together ("-0.75-0.50-0.25")
+        stage.xaxis.set_major_locator(MaxNLocator(nbins=4, steps=[1, 2, 2.5, 5, 10]))
         stage.axhline(-thickness, color="0.3", lw=1.0)
         stage.axvline(0.0, color="0.6", lw=0.6, ls=":")
         stage.set_xlabel(f"x [{self.unit}]")

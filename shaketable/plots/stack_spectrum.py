@@ -5,6 +5,8 @@ with Housner's Eq. (2-8) for each as one rigid body."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from matplotlib.patches import Rectangle
 
@@ -38,7 +40,7 @@ def _strips(ratios: np.ndarray) -> tuple[list, tuple, bool]:
     return list(zip(edges[:-1], edges[1:])), (edges[0], edges[-1]), False
 
 
-def stack_bands_figure(frame, curves: dict, title: str = ""):
+def stack_bands_figure(frame, curves: dict | Callable[[np.ndarray], dict], title: str = ""):
     """Overturn (shaded, by the block that fell) and safe (white) bands of a stack and of its
     bottom block alone under half-sine pulses.
 
@@ -46,9 +48,11 @@ def stack_bands_figure(frame, curves: dict, title: str = ""):
     ----------
     frame : DataFrame
         :func:`shaketable.studies.stack_spectrum.stack_spectrum_bands` (amplitudes [g]).
-    curves : dict
+    curves : dict or callable
         ``{"stack": (ratios, [g]), "bottom block alone": (ratios, [g])}``: Eq. (2-8) of
-        each as one rigid body (:func:`shaketable.studies.stacks.eq_2_8_curves`).
+        each as one rigid body (:func:`shaketable.studies.stacks.eq_2_8_curves`), or a
+        function of the omega/p values [-] that returns it: then the curves are drawn
+        across the whole omega/p axis, whatever ratios were computed.
     title : str, optional
 
     Returns
@@ -65,6 +69,8 @@ def stack_bands_figure(frame, curves: dict, title: str = ""):
     axis_top = 1.06 * top
     ratios = np.array(sorted(set(frame["omega/p [-]"])))
     strips, span, discrete = _strips(ratios)
+    if callable(curves):   # evaluated across the axis: a dashed line cut short misleads
+        curves = curves(np.linspace(max(0.0, span[0]), span[1], 200))
     for axis, column in zip(axes[0], columns):
         rows = frame[frame["column"] == column]
         labelled: set = set()
