@@ -13,7 +13,6 @@ from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_i
 from shaketable.scenes.catalog import expected_cost, resolve_scene_path, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
-from shaketable.studies.free_rocking import free_rocking_verdict, is_free
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -50,7 +49,7 @@ def run_line(run: RockingResult) -> str:
         verdict = (f"**F**: overturns ({side}) at {run.t_overturn:.2f} s; largest rocking "
                    f"before instability {run.max_theta_ratio_before_instability:.3f} α")
     else:   # free rocking: when it came to rest, after the impacts a reader can count
-        verdict = free_rocking_verdict(run) if is_free(run) else run.verdict()
+        verdict = run.verdict()   # free rocking: when it came to rest, after how many cycles
     unstable = ("never unstable (|θ| stays below α)" if not run.unstable else
                 f"unstable ({'+' if run.unstable_direction > 0 else '−'}) at "
                 f"{run.t_unstable:.3g} s")

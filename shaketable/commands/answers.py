@@ -15,7 +15,6 @@ import numpy as np
 
 from shaketable.core.units import format_length, shared_length_unit
 from shaketable.studies.free_rocking import (
-    free_rocking_verdict,
     impacts_words,
     is_free,
     rocking_rest_time,
@@ -105,6 +104,6 @@ def rocking_answer(result) -> list[str]:
 
 
 def rocking_heading(result) -> str:
-    """What a rocking run's first line says after the block: the verdict, or for free
-    rocking when it came to rest (:func:`~shaketable.studies.free_rocking.free_rocking_verdict`)."""
-    return free_rocking_verdict(result) if is_free(result) else result.verdict()
+    """What a rocking run's first line says after the block: its verdict (for free
+    rocking, when it came to rest and after how many cycles)."""
+    return result.verdict()
