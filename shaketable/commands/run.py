@@ -43,6 +43,10 @@ def _run(args) -> int:
         scene = type(scene)(**{**scene.__dict__, "outputs": outputs})
     result = run_scene(scene)
     written = result.write(out)
+    from shaketable.commands.answers import free_periods_line
+
+    if periods := free_periods_line(result.runs):   # releases from several angles: Eq. 2-5
+        print(f"{scene.name}: {periods}")
     if scene.mode() is not None:
         print(f"{scene.name}: {scene.mode()}")
     if result.table is not None:
@@ -134,9 +138,15 @@ def _run_study(study, out: Path) -> int:
 def _study_answer(study, out: Path) -> list[str]:
     """What a study without comparisons with the report concludes (its report.md's
     conclusions), from the tables it wrote into ``out``; [] for the others."""
+    import pandas as pd
+
+    if study.kind == "teaching":   # the lesson's numbers, from the table the run wrote
+        from shaketable.studies.teaching import teaching_answer
+
+        lesson = teaching_answer(study.item, pd.read_csv(out / "numbers.csv"))
+        return [lesson] if lesson else []
     if study.kind != "stacks":
         return []
-    import pandas as pd
 
     from shaketable.studies.stacks import stacks_answer
 

@@ -131,6 +131,15 @@ def free_rocking_verdict(result) -> str:
     return f"came to rest at t = {rest:.2f} s {after} ({words}; {release})"
 
 
+def first_period(result) -> float:
+    """The period of a free-rocking run's first swing [s]: 4 x the time from the release
+    to the first impact (a quarter period, Eq. 2-5's arccosh(1/(1 - θ0/α))/p for a slender
+    block); NaN without an impact."""
+    if not result.impact_times.size:
+        return math.nan
+    return 4.0 * float(result.impact_times[0] - result.t[0])
+
+
 def _ratio(value: float) -> str:
     """``"= 0.05"``: θ/α to two decimals, as the release is said; ``"< 0.01"`` below."""
     return f"= {value:.2f}" if round(value, 2) >= 0.01 else "< 0.01"
