@@ -768,7 +768,7 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
     return "\n".join(lines) + body + "\n" + table_4_4_coupled_markdown(coupled) + "\n"
 
 
-def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[int, int]]:
+def run_study_tally(study: Study, out: str | os.PathLike[str]) -> tuple[Path, ComparisonTally]:
     """Run one ``[study]`` scene into folder ``out``: its CSV, figure and ``report.md``.
 
     What ``reproduce`` writes for the study, on its own: the files go straight into
@@ -777,8 +777,8 @@ def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[in
 
     Returns
     -------
-    (Path, (int, int))
-        The report and the numbers of comparisons that agree and differ.
+    (Path, ComparisonTally)
+        The report and its comparisons counted by kind (own inputs, substitutes).
     """
     import os
     import tempfile
@@ -793,6 +793,12 @@ def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[in
             os.replace(produced, folder / produced.name)
     section = section.replace(f"]({study.name}/", "](")
     report = write_text(folder / "report.md", section)
-    agree = sum(counts[0] for counts in tally.counts.values())
-    differ = sum(counts[1] for counts in tally.counts.values())
-    return report, (agree, differ)
+    return report, tally
+
+
+def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[int, int]]:
+    """:func:`run_study_tally` with the comparisons of every kind added up: the report and
+    the numbers of comparisons that agree and differ."""
+    report, tally = run_study_tally(study, out)
+    return report, (sum(pair[0] for pair in tally.counts.values()),
+                    sum(pair[1] for pair in tally.counts.values()))

@@ -121,13 +121,13 @@ def _run_stack(scene, out: Path, args) -> int:
 
 def _run_study(study, out: Path) -> int:
     """A ``[study]`` scene: the report's table or figure it recomputes, as ``reproduce`` does."""
-    from shaketable.reproduce import run_study
+    from shaketable.reproduce import run_study_tally
 
-    report, (agree, differ) = run_study(study, out)
-    # the answer first: the comparison with the report, or what the study concludes
-    if agree or differ:
-        print(f"{study.name}: {agree} comparison(s) with the report agree, {differ} differ "
-              f"(see {report})")
+    report, tally = run_study_tally(study, out)
+    # the answer first: the comparison with the report (its own inputs apart from the
+    # substitutes, as reproduce counts them), or what the study concludes
+    if counts := tally.console_line():
+        print(f"{study.name}: {counts} (see {report})")
     for line in _study_answer(study, out):
         print(f"{study.name}: {line}")
     print(f"{study.name}: {study.source or study.kind}: {study.description}")

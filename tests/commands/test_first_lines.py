@@ -93,7 +93,7 @@ def test_a_study_leads_with_its_comparison_with_the_report(tmp_path, capsys):
     out = tmp_path / "s"
     assert main(["run", "section-4-3-4", "--out", str(out)]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert lines[0] == (f"section-4-3-4: 1 comparison(s) with the report agree, 0 differ "
+    assert lines[0] == (f"section-4-3-4: against the report's own inputs 1 agrees, 0 differ "
                         f"(see {out / 'report.md'})")
     assert lines[1].startswith("section-4-3-4: Section 4.3 (4): ")   # the description after
     assert lines[-1].startswith("wrote ")
@@ -273,3 +273,35 @@ def test_animate_fig_3_4_leads_with_the_rest_time(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "fig-3-4: 30 x 6 in, COR 0.925: came to rest at t = " in out, out
     assert "after 10.5 cycles (" in out
+
+
+def test_run_of_a_study_counts_the_substitutes_apart(tmp_path, capsys, monkeypatch):
+    import shaketable.reproduce as reproduce
+    from shaketable.commands.run import _run_study
+    from shaketable.scenes.catalog import resolve_scene_path
+    from shaketable.scenes.parse import load_scene
+    from shaketable.studies.comparison import ComparisonTally
+
+    # Table 4.2's counts as reproduce gave them (trial 4): 29 agree and 1 differs on the
+    # report's own inputs, 21 and 3 on the SUBSTITUTES; the run is replaced by that tally
+    tally = ComparisonTally()
+    tally.add_many("report inputs", 29, 30)
+    tally.add_many("substitute", 21, 24)
+    monkeypatch.setattr(reproduce, "run_study_tally",
+                        lambda study, out: (tmp_path / "report.md", tally))
+    assert _run_study(load_scene(resolve_scene_path("table-4-2")), tmp_path) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first == ("table-4-2: against the report's own inputs 29 agree, 1 differs; against "
+                     "SUBSTITUTE accelerograms (not expected to match) 21 agree, 3 differ "
+                     f"(see {tmp_path / 'report.md'})")
+
+
+def test_the_counts_line_says_one_in_the_singular():
+    from shaketable.studies.comparison import ComparisonTally
+
+    tally = ComparisonTally()
+    tally.add_many("report inputs", 29, 30)
+    tally.add_many("substitute", 1, 4)
+    assert tally.console_line() == (
+        "against the report's own inputs 29 agree, 1 differs; against SUBSTITUTE "
+        "accelerograms (not expected to match) 1 agrees, 3 differ")
