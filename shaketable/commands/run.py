@@ -161,7 +161,8 @@ def _words(value, unit: str) -> str:
     elif value is None:
         text = "none"
     else:
-        text = f"{value:g}" if isinstance(value, float) else str(value)
+        text = f"{value:g}" if isinstance(value, float) else \
+            "the same" if value == "same" else str(value)
     return f"{text} {unit}".strip() if unit not in ("", "-") else text
 
 
