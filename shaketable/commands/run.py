@@ -113,7 +113,12 @@ def _run_stack(scene, out: Path, args) -> int:
     result = run_stack_scene(with_outputs(scene, svg=args.svg) if args.svg else scene)
     written = result.write(out)
     print("\n".join(result.lines()))
-    for line in result.warnings:
+    from shaketable.scenes.stack import fall_note
+
+    note, warned = fall_note(result.warnings)   # those after the fall: one note line
+    if note:
+        print(note)   # on the answer's stream: --quiet silences it
+    for line in warned:
         print(f"shaketable run: warning: {scene.name}: {line}", file=sys.stderr)
     print("wrote " + ", ".join(str(path) for path in written))
     return report_early_stops([result.run], "run", scene.name)

@@ -95,6 +95,12 @@ def _simulate(args) -> int:
         print(setup.note)
     if args.history == "auto" and history != "full":
         print(f"history.csv: {history} ({result.t.size} samples; --history full writes all)")
+    if warnings:   # a stack: those after the column began to fall, as one note line
+        from shaketable.scenes.stack import fall_note
+
+        note, warnings = fall_note(warnings)
+        if note:
+            print(note)   # on the answer's stream: --quiet silences it
     for line in warnings:
         print(f"shaketable simulate: warning: {line}", file=sys.stderr)
     print("wrote " + ", ".join(str(path) for path in written))

@@ -296,6 +296,32 @@ def run_quietly(stack: Stack, motion, **options) -> tuple[StackResult, list[str]
     return result, said
 
 
+def fall_note(warned) -> tuple[str, list[str]]:
+    """The assumption warnings of a stack run for the console: those raised only once the
+    column was already falling (a block past its alpha: the fall is the model's answer,
+    its motion is not) as one short note line, and the others, whole.
+
+    Returns
+    -------
+    (str, list of str)
+        ``"note: ..."`` ("" when no warning came after the fall) and the warnings to say
+        as they are.
+    """
+    import re
+
+    after = [line for line in warned if "the column was already falling" in line]
+    before = [line for line in warned if line not in after]
+    if not after:
+        return "", before
+    times = [float(found[1]) for line in after
+             if (found := re.search(r"passed its alpha at t = ([0-9.]+) s", line))]
+    when = f" (t = {min(times):.2f} s)" if times else ""
+    what = " and ".join(word for word, key in (("lift-off", "tensile"), ("sliding", "friction"))
+                        if any(key in line for line in after))
+    return (f"note: the {what or 'assumptions'} came after the column began to fall{when}: "
+            "the fall is the model's answer, not its motion (summary.json: warnings)", before)
+
+
 def describe_law(result: StackResult) -> str:
     return "plastic impacts" if result.impact == "plastic" else f"COR {result.cor:g}"
 
