@@ -89,6 +89,8 @@ def _simulate(args) -> int:
     plots.save(command.figure(result), written[-1])
     # the answer first, in the subject's units; then the files
     print(command.heading(args, setup, result))
+    if getattr(args, "floor", None) is not None and setup.motion is not None:
+        print(f"  motion: {setup.motion.name}")   # the record and the floor it reached
     for line in command.answer(setup, result):
         print("  " + line)
     if setup.note:
