@@ -775,12 +775,8 @@ def run_study_tally(study: Study, out: str | os.PathLike[str]) -> tuple[Path, Co
     ``out`` (not ``out/<name>``), and ``out/report.md`` holds the study's section
     with its comparison with the report.
 
-    Returns
-    -------
-    (Path, ComparisonTally)
-        The report and its comparisons counted by kind (own inputs, substitutes).
+    Returns the report and its comparisons counted by kind (own inputs, substitutes).
     """
-    import os
     import tempfile
 
     from shaketable.core.files import prepare_output_folder, write_text
@@ -797,8 +793,7 @@ def run_study_tally(study: Study, out: str | os.PathLike[str]) -> tuple[Path, Co
 
 
 def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[int, int]]:
-    """:func:`run_study_tally` with the comparisons of every kind added up: the report and
-    the numbers of comparisons that agree and differ."""
+    """:func:`run_study_tally`, the report and its comparisons that agree and differ."""
     report, tally = run_study_tally(study, out)
-    return report, (sum(pair[0] for pair in tally.counts.values()),
-                    sum(pair[1] for pair in tally.counts.values()))
+    agree, differ = (sum(pair[k] for pair in tally.counts.values()) for k in (0, 1))
+    return report, (agree, differ)
