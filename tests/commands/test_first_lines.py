@@ -43,8 +43,8 @@ def test_free_rocking_leads_with_the_rest_time(tmp_path, capsys):
     lines = capsys.readouterr().out.splitlines()
     # the rest time and the cycles a reader counts, both in the first line
     said = re.fullmatch(r"30 x 6 in block, COR 0\.925: came to rest at t = (\d+\.\d\d) s "
-                        r"after (\d+\.?\d*) cycles \((\d+) impacts of swings over 3 % of the "
-                        r"release, then ever smaller ones accumulating there; released at "
+                        r"after (\d+\.?\d*) cycles: (\d+) impacts of swings over 3 % of the "
+                        r"release, then ever smaller ones accumulating there \(released at "
                         r"θ/α = 0\.50\)", lines[0])
     assert said, lines[0]
     rest, visible = float(said[1]), int(said[3])
@@ -72,10 +72,10 @@ def test_free_rocking_cut_short_says_it_still_rocks(tmp_path, capsys):
     first = capsys.readouterr().out.splitlines()[0]
     assert first.startswith("30 x 6 in block, COR 0.925: still rocking at the end "
                             "(t = 2.00 s) after ")
-    swing = first.split("last swing θ/α = ")[1].split(" ")[0]
+    swing = first.split("last swing θ/α = ")[1].split(":")[0]
     assert len(swing.split(".")[1]) == 2       # two decimals, as the release is said
     assert 0.0 < float(swing) < 0.5        # each impact takes energy: below the release
-    assert first.endswith("; released at θ/α = 0.50)")
+    assert first.endswith("(released at θ/α = 0.50)")
 
 
 @pytest.mark.usefixtures("figure_drafts")
@@ -214,7 +214,7 @@ def test_a_free_rocking_scene_leads_with_the_rest_time(tmp_path, capsys):
     rest = json.loads((out / "summary.json").read_text())["runs"][0]["t_rest [s]"]
     assert abs(rest - FIG_3_4_REST) <= ABOUT * FIG_3_4_REST
     assert first.startswith(f"fig-3-4: 30 x 6 in block, COR 0.925: came to rest at "
-                            f"t = {rest:.2f} s after 10.5 cycles (21 impacts of swings over 3 % ")
+                            f"t = {rest:.2f} s after 10.5 cycles: 21 impacts of swings over 3 % ")
     # "about 10 vibrations" (Section 3.7 (1)): the closed form's 21 impacts, two a cycle
     assert _visible_impacts_closed_form(30, 6, 0.925, 0.5) / 2 == 10.5
 
@@ -230,7 +230,7 @@ def test_the_reproduction_report_says_free_rocking_as_the_console_does():
     assert line.startswith("* 30 x 6 in block, from θ0 = 0.5 α, COR 0.925: came to rest at t = ")
     rest = float(line.split("came to rest at t = ")[1].split(" s")[0])
     assert abs(rest - FIG_3_4_REST) <= ABOUT * FIG_3_4_REST
-    assert "after 10.5 cycles (21 impacts of swings over 3 % of the release" in line
+    assert "after 10.5 cycles: 21 impacts of swings over 3 % of the release" in line
 
 
 def test_a_small_release_is_said_as_given_and_a_last_swing_in_two_decimals():
@@ -241,16 +241,16 @@ def test_a_small_release_is_said_as_given_and_a_last_swing_in_two_decimals():
     # block cut while it still rocks with a swing under 0.01 alpha
     block = st.Block.parse("36x9in")
     small = st.simulate(block, None, cor=0.925, theta0=0.001 * block.alpha, duration=3.0)
-    assert free_rocking_verdict(small).endswith("; released at θ/α = 0.001)")
+    assert free_rocking_verdict(small).endswith("(released at θ/α = 0.001)")
     late = st.simulate(block, None, cor=0.925, theta0=0.5 * block.alpha, duration=5.0)
     verdict = free_rocking_verdict(late)
     assert verdict.startswith("still rocking at the end (t = 5.00 s) after ")
-    swing = verdict.split("last swing θ/α = ")[1].split(" ")[0]
+    swing = verdict.split("last swing θ/α = ")[1].split(":")[0]
     assert len(swing.split(".")[1]) == 2 and 0 < float(swing) < 0.5, verdict
     # Fig. 3.4's block just before its rest (5.76 s): its last swing is below 0.01 alpha
     block = st.Block.parse("30x6in")
     end = st.simulate(block, None, cor=0.925, theta0=0.5 * block.alpha, duration=5.7)
-    assert "after 10.5 cycles, last swing θ/α < 0.01 (21 impacts of swings over 3 % of the " \
+    assert "after 10.5 cycles, last swing θ/α < 0.01: 21 impacts of swings over 3 % of the " \
         "release and " \
         in free_rocking_verdict(end)
 
@@ -277,7 +277,7 @@ def test_animate_fig_3_4_leads_with_the_rest_time(tmp_path, capsys):
                  "--out", str(tmp_path / "a.gif")]) == 0
     out = capsys.readouterr().out
     assert "fig-3-4: 30 x 6 in, COR 0.925: came to rest at t = " in out, out
-    assert "after 10.5 cycles (" in out
+    assert "after 10.5 cycles: " in out
 
 
 def test_run_of_a_study_counts_the_substitutes_apart(tmp_path, capsys, monkeypatch):

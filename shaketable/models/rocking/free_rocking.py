@@ -107,9 +107,9 @@ def _cascades(result) -> str:
 
 def free_rocking_verdict(result) -> str:
     """A free-rocking run in words, the answer first: ``"came to rest at t = 5.76 s
-    after 10.5 cycles (21 impacts of swings over 3 % of the release, then ever smaller
-    ones accumulating there; released at θ/α = 0.50)"``, or ``"still rocking at the end
-    (t = 2.00 s) after 2.5 cycles, last swing θ/α = 0.05 (5 impacts; released at θ/α =
+    after 10.5 cycles: 21 impacts of swings over 3 % of the release, then ever smaller
+    ones accumulating there (released at θ/α = 0.50)"``, or ``"still rocking at the end
+    (t = 2.00 s) after 2.5 cycles, last swing θ/α = 0.05: 5 impacts (released at θ/α =
     0.50)"``; an overturned or airborne run, or one that never rocked, as
     :meth:`~shaketable.models.rocking.result.RockingResult.verdict` says it otherwise."""
     if result.status != "completed" or not math.isfinite(result.t_start):
@@ -123,12 +123,12 @@ def free_rocking_verdict(result) -> str:
     after = f"after {cycles:g} cycle{'' if cycles == 1 else 's'}"
     if math.isnan(rest):
         return (f"still rocking at the end (t = {result.t[-1]:.2f} s) {after}, last swing "
-                f"θ/α {_ratio(last_swing_ratio(result))} ({words}"
-                + (f" and {smaller} smaller" if smaller else "") + f"; {release})")
+                f"θ/α {_ratio(last_swing_ratio(result))}: {words}"
+                + (f" and {smaller} smaller" if smaller else "") + f" ({release})")
     if smaller:   # with a summed cascade the impacts' times accumulate at the rest time
         words += (", then ever smaller ones accumulating there" if result.cascades
                   else f", then {smaller} smaller")
-    return f"came to rest at t = {rest:.2f} s {after} ({words}; {release})"
+    return f"came to rest at t = {rest:.2f} s {after}: {words} ({release})"
 
 
 def first_period(result) -> float:
