@@ -13,7 +13,6 @@ from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_i
 from shaketable.scenes.catalog import expected_cost, resolve_scene_path, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
-from shaketable.studies.free_rocking import free_rocking_verdict, is_free
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -50,7 +49,7 @@ def run_line(run: RockingResult) -> str:
         verdict = (f"**F**: overturns ({side}) at {run.t_overturn:.2f} s; largest rocking "
                    f"before instability {run.max_theta_ratio_before_instability:.3f} α")
     else:   # free rocking: when it came to rest, after the impacts a reader can count
-        verdict = free_rocking_verdict(run) if is_free(run) else run.verdict()
+        verdict = run.verdict()   # free rocking: when it came to rest, after how many cycles
     unstable = ("never unstable (|θ| stays below α)" if not run.unstable else
                 f"unstable ({'+' if run.unstable_direction > 0 else '−'}) at "
                 f"{run.t_unstable:.3g} s")
@@ -769,19 +768,15 @@ def _table_4_4_section(study: Study, folder: Path, lines: list, tally: Compariso
     return "\n".join(lines) + body + "\n" + table_4_4_coupled_markdown(coupled) + "\n"
 
 
-def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[int, int]]:
+def run_study_tally(study: Study, out: str | os.PathLike[str]) -> tuple[Path, ComparisonTally]:
     """Run one ``[study]`` scene into folder ``out``: its CSV, figure and ``report.md``.
 
     What ``reproduce`` writes for the study, on its own: the files go straight into
     ``out`` (not ``out/<name>``), and ``out/report.md`` holds the study's section
     with its comparison with the report.
 
-    Returns
-    -------
-    (Path, (int, int))
-        The report and the numbers of comparisons that agree and differ.
+    Returns the report and its comparisons counted by kind (own inputs, substitutes).
     """
-    import os
     import tempfile
 
     from shaketable.core.files import prepare_output_folder, write_text
@@ -794,6 +789,11 @@ def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[in
             os.replace(produced, folder / produced.name)
     section = section.replace(f"]({study.name}/", "](")
     report = write_text(folder / "report.md", section)
-    agree = sum(counts[0] for counts in tally.counts.values())
-    differ = sum(counts[1] for counts in tally.counts.values())
+    return report, tally
+
+
+def run_study(study: Study, out: str | os.PathLike[str]) -> tuple[Path, tuple[int, int]]:
+    """:func:`run_study_tally`, the report and its comparisons that agree and differ."""
+    report, tally = run_study_tally(study, out)
+    agree, differ = (sum(pair[k] for pair in tally.counts.values()) for k in (0, 1))
     return report, (agree, differ)

@@ -81,9 +81,15 @@ def _animate(args) -> int:
                       speed=args.speed, start=args.start, end=args.end, size=size, dpi=args.dpi,
                       layout=args.layout, unit=args.unit,
                       labels=[labels[index] for index in chosen] if len(runs) > 1 else None)
+    from shaketable.commands.answers import free_periods_line
+    from shaketable.models.rocking.free_rocking import is_free
+
+    if periods := free_periods_line(runs):   # releases from several angles: Eq. 2-5
+        print(f"{scene.name}: {periods}")
     for index in chosen:
         run = result.runs[index]
         verdict = (f"overturns at {run.t_overturn:.2f} s" if run.overturned
+                   else run.verdict() if is_free(run)   # the rest time and cycles, as run says
                    else f"max θ/α = {run.max_theta_ratio:.3f}")
         label = labels[index] if len(result.runs) > 1 else f"COR {run.cor:g}"
         if run.block.describe() not in label:

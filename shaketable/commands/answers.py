@@ -15,7 +15,6 @@ import numpy as np
 
 from shaketable.core.units import format_length, shared_length_unit
 from shaketable.studies.free_rocking import (
-    free_rocking_verdict,
     impacts_words,
     is_free,
     rocking_rest_time,
@@ -105,6 +104,23 @@ def rocking_answer(result) -> list[str]:
 
 
 def rocking_heading(result) -> str:
-    """What a rocking run's first line says after the block: the verdict, or for free
-    rocking when it came to rest (:func:`~shaketable.studies.free_rocking.free_rocking_verdict`)."""
-    return free_rocking_verdict(result) if is_free(result) else result.verdict()
+    """What a rocking run's first line says after the block: its verdict (for free
+    rocking, when it came to rest and after how many cycles)."""
+    return result.verdict()
+
+
+def free_periods_line(runs) -> str:
+    """``"the period grows with the amplitude: 0.70 s from θ/α = 0.2, 2.30 s from 0.8
+    (4 x the time to the first impact)"``: runs released from several angles on a still
+    table (Eq. 2-5); "" for any other set of runs."""
+    from shaketable.models.rocking.free_rocking import first_period
+
+    if len(runs) < 2 or not all(is_free(run) and run.theta[0] != 0.0 for run in runs):
+        return ""
+    pairs = sorted((abs(run.theta[0]) / run.block.alpha, first_period(run)) for run in runs)
+    if any(math.isnan(period) for _, period in pairs):
+        return ""
+    grows = all(b[1] > a[1] for a, b in zip(pairs, pairs[1:]))
+    said = ", ".join(f"{period:.2f} s from θ/α = {ratio:.3g}" for ratio, period in pairs)
+    return (f"the period {'grows with' if grows else 'changes with'} the amplitude: {said} "
+            "(4 x the time from the release to the first impact)")

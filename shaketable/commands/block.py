@@ -141,8 +141,9 @@ def block_spectrum(args) -> int:
           + f": {len(bands)} bands, {result.runs} runs, {elapsed:.1f} s")
     for _, row in bands[bands["verdict"] == "overturns"].iterrows():
         print(f"  {row['pulse']:>10} at ω/p = {row['omega/p [-]']:g}: overturns "
-              f"{row['how']} for a/(g tan α) from {row['from a/(g tan alpha) [-]']:.7g} to "
-              f"{row['to a/(g tan alpha) [-]']:.7g}")
+              f"{row['how']} for a/(g tan α) from {row['from a/(g tan alpha) [-]']:#.4g} to "
+              f"{row['to a/(g tan alpha) [-]']:#.4g}"
+              + (" (the ceiling)" if str(row["note"]).endswith("up to the ceiling") else ""))
     if result.flags:
         print(f"  {len(result.flags)} flag(s): windows narrower than the scan cannot be "
               f"excluded there (see {written[0]})")

@@ -76,8 +76,9 @@ def _risk(args: argparse.Namespace) -> int:
     synthetic = args.hazard == "example"
     source = ("the bundled SYNTHETIC example (not a real site)" if synthetic
               else str(hazard.source))
-    print(f"hazard curve {source}: {hazard.column}, {len(hazard.im)} points from "
-          f"{hazard.im[0]:.3g} to {hazard.im[-1]:.3g}; design life {args.years:g} yr")
+    # the answer (P(overturn) per block or stack) first; the hazard curve said after it
+    curve = (f"hazard curve {source}: {hazard.column}, {len(hazard.im)} points from "
+             f"{hazard.im[0]:.3g} to {hazard.im[-1]:.3g}; design life {args.years:g} yr")
     results = []
     headline: list = []
     from shaketable.sweeps.friction import friction_pairs, friction_rows
@@ -135,6 +136,7 @@ def _risk(args: argparse.Namespace) -> int:
         print(line)
     for text, file in said:
         print(text, file=file)
+    print(curve)
     if not results:
         print(f"shaketable risk: error: no rate of overturning can be given: no block and COR "
               f"of {folder} has a fragility against {column} (see above); exit status 1",

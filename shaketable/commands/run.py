@@ -43,6 +43,10 @@ def _run(args) -> int:
         scene = type(scene)(**{**scene.__dict__, "outputs": outputs})
     result = run_scene(scene)
     written = result.write(out)
+    from shaketable.commands.answers import free_periods_line
+
+    if periods := free_periods_line(result.runs):   # releases from several angles: Eq. 2-5
+        print(f"{scene.name}: {periods}")
     if scene.mode() is not None:
         print(f"{scene.name}: {scene.mode()}")
     if result.table is not None:
@@ -109,7 +113,12 @@ def _run_stack(scene, out: Path, args) -> int:
     result = run_stack_scene(with_outputs(scene, svg=args.svg) if args.svg else scene)
     written = result.write(out)
     print("\n".join(result.lines()))
-    for line in result.warnings:
+    from shaketable.scenes.stack import fall_note
+
+    note, warned = fall_note(result.warnings)   # those after the fall: one note line
+    if note:
+        print(note)   # on the answer's stream: --quiet silences it
+    for line in warned:
         print(f"shaketable run: warning: {scene.name}: {line}", file=sys.stderr)
     print("wrote " + ", ".join(str(path) for path in written))
     return report_early_stops([result.run], "run", scene.name)
@@ -117,13 +126,13 @@ def _run_stack(scene, out: Path, args) -> int:
 
 def _run_study(study, out: Path) -> int:
     """A ``[study]`` scene: the report's table or figure it recomputes, as ``reproduce`` does."""
-    from shaketable.reproduce import run_study
+    from shaketable.reproduce import run_study_tally
 
-    report, (agree, differ) = run_study(study, out)
-    # the answer first: the comparison with the report, or what the study concludes
-    if agree or differ:
-        print(f"{study.name}: {agree} comparison(s) with the report agree, {differ} differ "
-              f"(see {report})")
+    report, tally = run_study_tally(study, out)
+    # the answer first: the comparison with the report (its own inputs apart from the
+    # substitutes, as reproduce counts them), or what the study concludes
+    if counts := tally.console_line():
+        print(f"{study.name}: {counts} (see {report})")
     for line in _study_answer(study, out):
         print(f"{study.name}: {line}")
     print(f"{study.name}: {study.source or study.kind}: {study.description}")
@@ -134,9 +143,15 @@ def _run_study(study, out: Path) -> int:
 def _study_answer(study, out: Path) -> list[str]:
     """What a study without comparisons with the report concludes (its report.md's
     conclusions), from the tables it wrote into ``out``; [] for the others."""
+    import pandas as pd
+
+    if study.kind == "teaching":   # the lesson's numbers, from the table the run wrote
+        from shaketable.studies.teaching import teaching_answer
+
+        lesson = teaching_answer(study.item, pd.read_csv(out / "numbers.csv"))
+        return [lesson] if lesson else []
     if study.kind != "stacks":
         return []
-    import pandas as pd
 
     from shaketable.studies.stacks import stacks_answer
 
@@ -151,7 +166,8 @@ def _words(value, unit: str) -> str:
     elif value is None:
         text = "none"
     else:
-        text = f"{value:g}" if isinstance(value, float) else str(value)
+        text = f"{value:g}" if isinstance(value, float) else \
+            "the same" if value == "same" else str(value)
     return f"{text} {unit}".strip() if unit not in ("", "-") else text
 
 

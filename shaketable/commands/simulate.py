@@ -89,12 +89,20 @@ def _simulate(args) -> int:
     plots.save(command.figure(result), written[-1])
     # the answer first, in the subject's units; then the files
     print(command.heading(args, setup, result))
+    if getattr(args, "floor", None) is not None and setup.motion is not None:
+        print(f"  motion: {setup.motion.name}")   # the record and the floor it reached
     for line in command.answer(setup, result):
         print("  " + line)
     if setup.note:
         print(setup.note)
     if args.history == "auto" and history != "full":
         print(f"history.csv: {history} ({result.t.size} samples; --history full writes all)")
+    if warnings:   # a stack: those after the column began to fall, as one note line
+        from shaketable.scenes.stack import fall_note
+
+        note, warnings = fall_note(warnings)
+        if note:
+            print(note)   # on the answer's stream: --quiet silences it
     for line in warnings:
         print(f"shaketable simulate: warning: {line}", file=sys.stderr)
     print("wrote " + ", ".join(str(path) for path in written))

@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 
 from shaketable.commands.common import add_record_arguments, load_motion, scaled_record
-from shaketable.core.constants import INCH
 
 
 def _slide(args) -> int:
@@ -49,19 +48,16 @@ def _slide(args) -> int:
     result = slide(motion, Friction(static, dynamic), block=block)
     write_csv(out / "history.csv", result.to_frame())
     write_text(out / "summary.json", json.dumps(result.summary(), indent=2))
-    save(result.plot(length_unit=block.length_unit if block is not None else "in"),
-         out / f"sliding.{args.format}")
-    if block is not None:    # in the unit the block was given in
-        from shaketable.core.units import format_length
+    from shaketable.core.units import format_length, shared_length_unit
 
-        unit = block.length_unit
-        print(f"{result.status}: peak slip {format_length(result.peak_slip, unit)}, residual "
-              f"{format_length(result.residual_slip, unit, signed=True)}, "
-              f"{result.slip_episodes} slip episodes")
-    else:
-        print(f"{result.status}: peak slip {result.peak_slip_inches:.2f} in, residual "
-              f"{result.residual_slip / INCH:+.2f} in ({result.residual_slip:+.4f} m), "
-              f"{result.slip_episodes} slip episodes")
+    # in the unit the block was given in; SI without a block (no length was typed)
+    unit = shared_length_unit((result.peak_slip, result.residual_slip),
+                              block.length_unit if block is not None else "m")
+    save(result.plot(length_unit=block.length_unit if block is not None else "m"),
+         out / f"sliding.{args.format}")
+    print(f"{result.status}: peak slip {format_length(result.peak_slip, unit)}, residual "
+          f"{format_length(result.residual_slip, unit, signed=True)}, "
+          f"{result.slip_episodes} slip episodes")
     if scale_note:
         print(scale_note)
     if block is not None:

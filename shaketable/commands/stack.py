@@ -65,7 +65,10 @@ class StackCommand(SimulateCommand):
         motion, note = stack_motion(args, on_floor)
         if motion is None:
             options["duration"] = args.duration
-        return Setup(stack, motion, note, options, stack.describe(), {"mu": mu})
+        from shaketable.scenes.stack import typed_mass_unit
+
+        return Setup(stack, motion, note, options, stack.describe(),
+                     {"mu": mu, "mass_unit": typed_mass_unit(args.masses)})
 
     def run(self, model, setup: Setup):
         from shaketable.scenes.stack import run_quietly
@@ -104,7 +107,7 @@ class StackCommand(SimulateCommand):
     def answer(self, setup: Setup, result) -> list[str]:
         from shaketable.scenes.stack import stack_answer
 
-        return stack_answer(result, setup.extra["mu"])
+        return stack_answer(result, setup.extra["mu"], setup.extra.get("mass_unit", "kg"))
 
     def animate(self, args, size: tuple, wrote) -> int:
         return animate_stack_options(args, size, wrote)

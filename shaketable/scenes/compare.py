@@ -242,9 +242,8 @@ def compare_test_with_theory(scene: Scene, test: VirtualTestResult) -> list[Comp
                    f"test {_yes(metrics['overturned test'])}, theory "
                    f"{_yes(metrics['overturned theory'])}", "", same_verdict),
         Comparison("test vs theory: direction of instability", "same",
-                   f"test {_direction(metrics['direction test'])}, theory "
-                   f"{_direction(metrics['direction theory'])}",
-                   "sign of θ", same_direction),
+                   _directions(metrics["direction test"], metrics["direction theory"]),
+                   "", same_direction),
         Comparison("test vs theory: difference of t unstable", f"≤ {window:g} s", delta, "",
                    close_in_time),
         Comparison("test vs theory: peak ratio", f"1 ± {band:g}", ratio, "-", ratio_in_band),
@@ -254,6 +253,16 @@ def compare_test_with_theory(scene: Scene, test: VirtualTestResult) -> list[Comp
 def _direction(sign: int) -> str:
     """A direction of instability in words: "+", "−" or "never unstable"."""
     return "never unstable" if sign == 0 else ("+" if sign > 0 else "−")
+
+
+def _directions(test: int, theory: int) -> str:
+    """Test's and theory's directions of instability (the sign of θ when |θ| first
+    exceeds α) as a phrase: "the same (neither becomes unstable)", "the same (θ + in
+    both)" or "test +, theory never unstable"."""
+    if test != theory:
+        return f"test {_direction(test)}, theory {_direction(theory)}"
+    return ("the same (neither becomes unstable)" if test == 0
+            else f"the same (θ {_direction(test)} in both)")
 
 
 def _yes(flag: bool) -> str:

@@ -70,6 +70,24 @@ def _items(value, where: str) -> list:
                      f"got {value!r}")
 
 
+def typed_mass_unit(masses) -> str:
+    """``"t"`` when every mass was typed in tonnes (``["10 t", "5 t"]``, ``"10t,5t"``),
+    else ``"kg"``: the unit the answer gives the masses in."""
+    if masses is None or not isinstance(masses, (str, list, tuple)):
+        return "kg"
+    items = _items(masses, "masses")
+    typed = [re.fullmatch(r"\s*[-+0-9.eE]+\s*t\s*", str(item)) for item in items]
+    return "t" if items and all(typed) else "kg"
+
+
+def mass_line(stack: Stack, unit: str = "kg") -> str:
+    """:meth:`Stack.describe_masses`, the given masses in tonnes when typed so."""
+    if unit != "t" or stack.masses is None:
+        return stack.describe_masses()
+    return ("masses: " + ", ".join(f"{mass / 1000.0:.4g}" for mass in stack.mass)
+            + " t (given, bottom first)")
+
+
 def _block_words(index: int, count: int) -> str:
     """``block 1 (top)``: how an error names a block of the stack, counted from 0 at the
     bottom as the results name them."""
@@ -186,10 +204,12 @@ def friction_coefficient(value, where: str) -> float | None:
 
 
 # ----------------------------------------------------------------------------- answer
-def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
+def stack_answer(result: StackResult, mu: float | None = None,
+                 mass_unit: str = "kg") -> list[str]:
     """The answer lines of a stack run (after its verdict): each block's peak rotation
     against its own alpha, the first uplift, the top corner's excursion (the clearance the
-    stack needs), the friction the contacts need against ``mu`` and any pulling force."""
+    stack needs), the friction the contacts need against ``mu`` and any pulling force;
+    given masses in ``mass_unit`` (``"t"`` when typed in tonnes, :func:`typed_mass_unit`)."""
     stack = result.stack
     unit = stack.blocks[0].length_unit
     lines = []
@@ -208,7 +228,7 @@ def stack_answer(result: StackResult, mu: float | None = None) -> list[str]:
                      + _first_moved(result, i))
     if result.still_moving:
         lines.append("came to rest: no, " + result.end_state())
-    lines.append(stack.describe_masses())
+    lines.append(mass_line(stack, mass_unit))   # in t when typed in t
     uplift = next((event for event in result.events if event["kind"] == "uplift"), None)
     impacts = sum(1 for event in result.events if event["kind"] == "impact")
     if uplift is None:
@@ -296,6 +316,32 @@ def run_quietly(stack: Stack, motion, **options) -> tuple[StackResult, list[str]
     return result, said
 
 
+def fall_note(warned) -> tuple[str, list[str]]:
+    """The assumption warnings of a stack run for the console: those raised only once the
+    column was already falling (a block past its alpha: the fall is the model's answer,
+    its motion is not) as one short note line, and the others, whole.
+
+    Returns
+    -------
+    (str, list of str)
+        ``"note: ..."`` ("" when no warning came after the fall) and the warnings to say
+        as they are.
+    """
+    import re
+
+    after = [line for line in warned if "the column was already falling" in line]
+    before = [line for line in warned if line not in after]
+    if not after:
+        return "", before
+    times = [float(found[1]) for line in after
+             if (found := re.search(r"passed its alpha at t = ([0-9.]+) s", line))]
+    when = f" (t = {min(times):.2f} s)" if times else ""
+    what = " and ".join(word for word, key in (("lift-off", "tensile"), ("sliding", "friction"))
+                        if any(key in line for line in after))
+    return (f"note: the {what or 'assumptions'} came after the column began to fall{when}: "
+            "the fall is the model's answer, not its motion (summary.json: warnings)", before)
+
+
 def describe_law(result: StackResult) -> str:
     return "plastic impacts" if result.impact == "plastic" else f"COR {result.cor:g}"
 
@@ -337,6 +383,7 @@ class StackScene:
     rtol: float | None = None
     path: str = ""
     outputs: dict = field(default_factory=dict)
+    mass_unit: str = "kg"
 
 
 def stack_scene_from_dict(data: dict, where: str) -> StackScene:
@@ -401,7 +448,8 @@ def stack_scene_from_dict(data: dict, where: str) -> StackScene:
     return StackScene(name=base.name, source=base.source, description=base.description,
                       stack=stack, base=base, theta0=theta0, theta_dot0=theta_dot0,
                       cor=None if cor is None else float(cor), duration=duration, mu=mu,
-                      rtol=rtol, path=where, outputs=base.outputs)
+                      rtol=rtol, path=where, outputs=base.outputs,
+                      mass_unit=typed_mass_unit(spec.get("masses")))
 
 
 @dataclass(frozen=True, eq=False)
@@ -417,7 +465,7 @@ class StackSceneResult:
         scene = self.scene
         lines = [f"{scene.name}: {scene.stack.describe()}, {describe_law(self.run)}: "
                  f"{self.run.verdict()}"]
-        lines += ["  " + line for line in stack_answer(self.run, scene.mu)]
+        lines += ["  " + line for line in stack_answer(self.run, scene.mu, scene.mass_unit)]
         return lines
 
     def summary(self) -> dict:

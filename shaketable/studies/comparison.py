@@ -97,6 +97,20 @@ class ComparisonTally:
                                  "differing comparisons")
             self.differing.extend((kind, what) for what in differing)
 
+    def console_line(self) -> str:
+        """The counts in one line for a command's first line, the report's own inputs
+        first and the other kinds apart: ``"against the report's own inputs 29 comparisons
+        agree, 1 differs; against SUBSTITUTE accelerograms (not expected to match) 15
+        agree, 3 differ"``; "" when nothing was compared."""
+        def counted(agree: int, differ: int) -> str:
+            return f"{agree} agree{'s' if agree == 1 else ''}, {differ} differ{'s' if differ == 1 else ''}"
+        words = {"report inputs": "against the report's own inputs",
+                 "substitute": "against SUBSTITUTE accelerograms (not expected to match)",
+                 "by construction": "by construction (not evidence)"}
+        parts = [f"{words[kind]} {counted(*self.counts[kind])}" for kind in COMPARISON_KINDS
+                 if sum(self.counts[kind]) or kind == "report inputs"]
+        return "; ".join(parts) if any(sum(pair) for pair in self.counts.values()) else ""
+
     def headline(self) -> list[str]:
         """The report's headline: one bold line for the report's own inputs and one for each
         other kind the sections compared values of (one line saying so when the sections

@@ -270,11 +270,26 @@ class OverturningSpectrum:
         header = (f"# overturning spectrum: block {self.block.describe()}, alpha "
                   f"{self.block.alpha:.8g} rad, p {self.block.p:.8g} rad/s, cor "
                   f"{self.cor:.8g}; scan step {self.scan_step:g}, edge tolerance "
-                  f"{self.tolerance:g} relative, ceiling {self.ceiling:g}; "
+                  f"{self.tolerance:g} relative, {self._ceilings()}; "
                   + ("" if self.method == "fast" else f"method {self.method}; ") +
                   "shaketable.studies.overturning_spectrum\n")
-        flags = "".join(f"# flag: {flag}\n" for flag in self.flags)
+        # each flag's why is in its band's note (column note): here only where it is
+        flags = "".join(f"# flag: {key}: {words.split(': ')[0]}\n" for key, _, words
+                        in (flag.partition(": ") for flag in self.flags))
+        if flags:
+            flags = ("# flagged places (column flagged; each band's note says why):\n"
+                     + flags)
         write_text(path, header + flags + self.bands.to_csv(index=False, float_format="%.9g"))
+
+    def _ceilings(self) -> str:
+        """``"ceiling 4.82843 at omega/p = 1, 6.47214 at 2"``: where each omega/p's scan
+        stopped (the top of its last band), or ``"ceiling 10"`` when all share one."""
+        tops = self.bands.groupby("omega/p [-]", sort=False)["to a/(g tan alpha) [-]"].max()
+        if tops.empty or np.ptp(tops.to_numpy()) == 0.0:
+            return f"ceiling {self.ceiling:g}"
+        return "ceiling " + ", ".join(f"{top:g} at omega/p = {ratio:g}" if k == 0
+                                      else f"{top:g} at {ratio:g}"
+                                      for k, (ratio, top) in enumerate(tops.items()))
 
     def edges(self, pulse: str, ratio: float) -> list:
         """Band edges a/(g tan alpha) [-] for one pulse and omega/p, increasing."""

@@ -654,3 +654,53 @@ def run_item(name: str) -> TeachingItem:
     if name not in ITEMS:
         raise ValueError(f"unknown teaching item {name!r}; expected one of {sorted(ITEMS)}")
     return ITEMS[name]()
+
+
+def _list(values, unit: str = "") -> str:
+    """``"2, 3 and 4 ft"``: numbers in a sentence."""
+    words = [f"{value:g}" for value in values]
+    text = words[0] if len(words) == 1 else ", ".join(words[:-1]) + " and " + words[-1]
+    return f"{text}{unit}"
+
+
+def teaching_answer(item: str, frame: pd.DataFrame) -> str:
+    """The lesson of gallery item ``item`` (one of :data:`ITEMS`) in one line, with its
+    numbers read from the table it wrote (``to_frame()``, i.e. numbers.csv): what a class
+    checks first, before the description; "" for an item registered from outside."""
+    if item == "similar-blocks":
+        fell = frame["overturned"].to_numpy(bool)
+        heights = frame["height [ft]"].to_numpy(float)
+        ratio = float(np.median(frame["height [ft]"] / frame["width [ft]"]))
+        parts = []
+        if fell.any():
+            parts.append(f"{_list(heights[fell], ' ft')} overturn")
+        if (~fell).any():
+            peaks = ", ".join(f"{value:.2f}" for value in frame["max theta/alpha [-]"][~fell])
+            parts.append(f"{_list(heights[~fell], ' ft')} survive (max θ/α {peaks})")
+        return f"similar blocks of H/B = {ratio:g}: " + "; ".join(parts)
+    if item == "cor-sweep":
+        cors = frame["cor [-]"].to_numpy(float)
+        score = np.where(frame["overturned"], np.inf, frame["max theta/alpha [-]"])
+        worst = int(np.argmax(score))
+
+        def said(index: int) -> str:
+            return ("F (overturns)" if frame["overturned"].iloc[index]
+                    else f"{frame['max theta/alpha [-]'].iloc[index]:.3f}")
+        top = int(np.argmax(cors))
+        return (f"max θ/α = {said(top)} at COR {cors[top]:g} but {said(worst)} at COR "
+                f"{cors[worst]:g}: a lower COR can raise the peak")
+    if item == "period-amplitude":
+        ratios = frame["theta0/alpha [-]"].to_numpy(float)
+        period = frame["exact period [s]"].to_numpy(float)
+        linear = float(frame["linear oscillator period [s]"].iloc[0])
+        return (f"the rocking period grows from {period[0]:.3f} s at θ0/α = {ratios[0]:g} to "
+                f"{period[-1]:.3f} s at {ratios[-1]:g} ({period[-1] / period[0]:.1f} times); "
+                f"a linear oscillator keeps {linear:.3f} s")
+    if item == "rocking-onset":
+        vertical = frame["vertical [g]"].to_numpy(float)
+        onset = frame["engine onset [g]"].to_numpy(float)
+        rest, low = int(np.argmin(np.abs(vertical))), int(np.argmin(vertical))
+        return (f"rocking starts at {onset[rest]:.3f} g on a table at rest vertically and at "
+                f"{onset[low]:.3f} g while it accelerates downward at {-vertical[low]:g} g "
+                "(Eq. 2-1)")
+    return ""

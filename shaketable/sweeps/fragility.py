@@ -160,8 +160,13 @@ class FragilityFit:
     def summary(self) -> str:
         """One line: median and beta with their intervals."""
         level = f"{100 * self.confidence:g} %"
-        return (f"{self.measure or 'IM'}: median {self.median:.4g} [{self.median_interval[0]:.4g}, "
-                f"{self.median_interval[1]:.4g}], beta {self.beta:.3f} "
+        # the median to 3 significant digits, its interval to as many decimals
+        places = max(0, 2 - math.floor(math.log10(abs(self.median)))) \
+            if math.isfinite(self.median) and self.median != 0 else 3
+        low, high = (f"{value:.{places}f}" if math.isfinite(value) else f"{value:g}"
+                     for value in self.median_interval)
+        return (f"{self.measure or 'IM'}: median {self.median:.{places}f} [{low}, "
+                f"{high}], beta {self.beta:.3f} "
                 f"[{self.beta_interval[0]:.3f}, {self.beta_interval[1]:.3f}] ({level}, "
                 f"{self.method_label}, {self.n_overturned} of {self.n_runs} overturned)")
 

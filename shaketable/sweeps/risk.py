@@ -237,8 +237,9 @@ class RiskResult:
                               "P upper [-]": self.probability_upper}])
 
     def summary(self) -> str:
-        """lambda and the design-life probability with their interval, to two significant
-        digits (what the fit's uncertainty supports), then the integral's own errors."""
+        """The design-life probability (the answer) and lambda with their interval, to two
+        significant digits (what the fit's uncertainty supports), then the integral's own
+        errors."""
         period = 1.0 / self.rate if self.rate > 0 else math.inf
         known = all(math.isfinite(x) for x in self.rate_interval)
         level = f"{100 * self.confidence:g} %" if math.isfinite(self.confidence) else ""
@@ -248,7 +249,7 @@ class RiskResult:
         probability = (f"P(overturn in {self.years:g} yr) = {self.probability:.2g}"
                        + (f" ({self.probability_interval[0]:.2g} to "
                           f"{self.probability_interval[1]:.2g})" if known else ""))
-        return (f"{rate}; return period {period:.2g} yr; {probability}; the hazard curve's "
+        return (f"{probability}; {rate}; return period {period:.2g} yr; the hazard curve's "
                 f"tails add at most {self.upper - self.rate:.1g} /yr, the integration "
                 f"{self.error:.1g} /yr")
 

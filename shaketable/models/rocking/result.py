@@ -173,7 +173,14 @@ class RockingResult(ModelResult):
         return self.fate.will_overturn
 
     def verdict(self) -> str:
-        """The run in words: "overturned (+) at 6.42 s", "max θ/α = 0.78", or the airborne time."""
+        """The run in words: "overturned (+) at 6.42 s", "max θ/α = 0.78", or the airborne
+        time; a block released on a still table that rocked, when it came to rest and after
+        how many cycles (:func:`~shaketable.models.rocking.free_rocking.free_rocking_verdict`)."""
+        if self.status == "completed" and math.isfinite(self.t_start):
+            from shaketable.models.rocking.free_rocking import free_rocking_verdict, is_free
+
+            if is_free(self):
+                return free_rocking_verdict(self)
         if self.overturned:
             side = "+" if self.overturn_direction > 0 else "−"
             return f"overturned ({side}) at {self.t_overturn:.2f} s"
