@@ -29,6 +29,7 @@ from shaketable.models.stack.compiled_one import (
     one_dof_segment,
     one_dof_state,
     rigid_workspace,
+    rigid_workspace_size,
 )
 from shaketable.models.stack.compiled_physics import (
     COMPILED,
@@ -39,6 +40,7 @@ from shaketable.models.stack.compiled_physics import (
     cor_impact,
     energy,
     event_workspace,
+    event_workspace_size,
     fill_candidate,
     first_combination,
     inlined,
@@ -49,6 +51,7 @@ from shaketable.models.stack.compiled_physics import (
     state_forces,
     table_power,
     workspace,
+    workspace_size,
 )
 from shaketable.models.stack.compiled_rigid import rigid_forces
 from shaketable.models.stack.compiled_segment import segment
@@ -483,21 +486,84 @@ def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
     return True
 
 
-@kernel
-def samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg, histories):
-    """The run over the samples ``t`` from its start, into ``histories`` (theta, theta',
-    theta'', patterns, forces, work: :func:`run_stack`'s); returns the number of samples
-    filled. It allocates nothing: compiled without reference counting (an array taken from
-    a tuple, or a row of one, is then no counted reference: the loop over the samples and
-    the one-DOF steps pay for none)."""
+def segment_buffers_size(n):
+    """The float, int64 and bool elements of the DOP853 path's arrays of ``n`` blocks
+    (:func:`segment_buffers`)."""
+    size = 2 * n + 1
+    return 27 * size + 10 * n, 9 * n, 2 * n
+
+
+@inlined
+def segment_buffers(reals, f, integers, i, flags, n):
+    """The arrays of :func:`~shaketable.models.stack.compiled_segment.segment` (stages,
+    states, dense output, event values, roots, codes, flags, times) as views of the zeroed
+    pools (as :func:`~shaketable.models.stack.compiled_physics.workspace`'s)."""
+    size = 2 * n + 1
+    s0, f = reals[f:f + 16 * size].reshape((16, size)), f + 16 * size
+    s1, s2, s3, f = reals[f:f + size], reals[f + size:f + 2 * size], \
+        reals[f + 2 * size:f + 3 * size], f + 3 * size
+    s4, s5, f = reals[f:f + 7 * size].reshape((7, size)), reals[f + 7 * size:f + 8 * size], \
+        f + 8 * size
+    s6, s7, s8, s11 = reals[f:f + 3 * n], reals[f + 3 * n:f + 6 * n], \
+        reals[f + 6 * n:f + 9 * n], reals[f + 9 * n:f + 10 * n]
+    s9, s10 = integers[i:i + 9 * n].reshape((3, 3 * n)), flags[:2 * n].reshape((2, n))
+    return s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11
+
+
+def pool_sizes(n):
+    """The float, int64 and bool elements of the pools a run of ``n`` blocks takes its
+    arrays from (:func:`run_stack`)."""
+    sizes = [(N_FLOATS + 2 * n + 6, N_INTS + n, 0), (*workspace_size(n), 0),
+             (*event_workspace_size(n), 0), (rigid_workspace_size(n), 0, 0),
+             segment_buffers_size(n)]
+    return tuple(sum(size[k] for size in sizes) for k in range(3))
+
+
+@njit(cache=True, nogil=True, error_model=COMPILED["error_model"], _nrt=False)
+def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, reals,
+              integers, flags, histories, events):
+    """One run of the stack over the samples ``t`` (the compiled engine's entry; its
+    arguments are those :func:`integrate` prepares), into ``histories`` (theta, theta',
+    theta'' [rad, rad/s, rad/s^2], patterns, forces [N], work [J]) and ``events`` (the
+    recorded events' times and values, kinds and integers, patterns before and after);
+    returns the number of samples filled.
+
+    Every other array is a view of the zeroed pools ``reals``, ``integers``, ``flags``
+    (:func:`pool_sizes`): the float and int states (``F_*``, ``I_*``) first, then the
+    angles and the pattern. It allocates nothing: compiled without reference counting (an
+    array taken from a tuple, or a row of one, is then no counted reference: the loop over
+    the samples and the one-DOF steps pay for none), and its caller's arrays are passed
+    once, not returned.
+    """
     theta, rate, acceleration, patterns, forces, work = histories
-    fs, ist, par = run[3], run[4], run[5]
+    n = b.size
     count = t.size
+    chain = (b, h, m, inertia)
+    fs, ist = reals[:N_FLOATS], integers[:N_INTS]
+    f, i = N_FLOATS + 2 * n + 6, N_INTS + n
+    phi, phi_dot = reals[N_FLOATS:N_FLOATS + n], reals[N_FLOATS + n:N_FLOATS + 2 * n]
+    pattern, seg = integers[N_INTS:i], reals[N_FLOATS + 2 * n:f]
+    for j in range(n):
+        phi[j], phi_dot[j], pattern[j] = phi0[j], phi_dot0[j], pattern0[j]
+    ws, f, i = workspace(reals, f, integers, i, n)
+    scratch, f, i = event_workspace(reals, f, integers, i, n)
+    rigid, f = rigid_workspace(reals, f, n)
+    buffers = segment_buffers(reals, f, integers, i, flags, n)
+    fs[:] = math.nan
+    fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
+    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
+        1e-4, t[0]
+    fs[F_DOP_STEP] = 0.01 / par[P_ALPHA_P] * par[P_ALPHA]
+    ist[I_OVERTURNED] = -1
+    ist[I_RIGID_J] = -2   # no closed forms computed yet
+    run = (phi, phi_dot, pattern, fs, ist, par, atol, events[0], events[1], events[2],
+           events[3])
+    seg[0], seg[1], seg[2], seg[3], seg[4], seg[5] = t[0], t[1] - t[0], ug[0], \
+        ug[1] - ug[0], vg[0], vg[1] - vg[0]
     choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
         coefficients, tol = rigid[0], par[P_TOL_FORCE]
-        phi, pattern = run[0], run[2]
         for k in range(-1, count - 1):
             if k >= 0:   # the interval from sample k (k = -1: the first sample only)
                 fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
@@ -539,56 +605,6 @@ def samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg, histories):
                    patterns, forces, work, rigid)
             filled = k + 2
     return filled
-
-
-@njit(cache=True, nogil=True, error_model=COMPILED["error_model"])
-def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, capacity):
-    """One run of the stack over the samples ``t`` (the compiled engine's entry; its
-    arguments are those :func:`integrate` prepares).
-
-    Returns the histories (theta, theta', theta'' [rad, rad/s, rad/s^2], patterns, forces
-    [N], work [J]), the number of samples filled, the float and int states (``F_*``,
-    ``I_*``) and the recorded events (times and values, kinds and integers, patterns
-    before and after).
-    """
-    n = b.size
-    chain = (b, h, m, inertia)
-    ws = workspace(n)
-    scratch = event_workspace(n)
-    # every row up to the count of recorded events is written (record): left uninitialised,
-    # the pages of the rows never used are never touched
-    ev_f = np.empty((capacity, 5))
-    ev_i = np.empty((capacity, 6), dtype=np.int64)
-    ev_pb = np.empty((capacity, n), dtype=np.int64)
-    ev_pa = np.empty((capacity, n), dtype=np.int64)
-    fs = np.empty(N_FLOATS)
-    fs[:] = math.nan
-    fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
-    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
-        1e-4, t[0]
-    fs[F_DOP_STEP] = 0.01 / par[P_ALPHA_P] * par[P_ALPHA]
-    ist = np.zeros(N_INTS, dtype=np.int64)
-    ist[I_OVERTURNED] = -1
-    ist[I_RIGID_J] = -2   # no closed forms computed yet
-    run = (phi0.copy(), phi_dot0.copy(), pattern0.copy(), fs, ist, par, atol, ev_f, ev_i,
-           ev_pb, ev_pa)
-    size = 2 * n + 1
-    buffers = (np.zeros((16, size)), np.zeros(size), np.zeros(size), np.zeros(size),
-               np.zeros((7, size)), np.zeros(size), np.zeros(3 * n), np.zeros(3 * n),
-               np.zeros(3 * n), np.zeros((3, 3 * n), dtype=np.int64),
-               np.zeros((2, n), dtype=np.bool_), np.zeros(n))
-    rigid = rigid_workspace(n)
-    count = t.size
-    theta, rate, acceleration = np.zeros((count, n)), np.zeros((count, n)), \
-        np.zeros((count, n))
-    patterns = np.zeros((count, n), dtype=np.int8)
-    forces = np.zeros((count, n, 4))
-    work = np.zeros(count)
-    seg = np.array([t[0], t[1] - t[0], ug[0], ug[1] - ug[0], vg[0], vg[1] - vg[0]])
-    filled = samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg,
-                     (theta, rate, acceleration, patterns, forces, work))
-    return (theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i,
-            ev_pb, ev_pa, run[0], run[2])
 
 
 class CompiledRun:
@@ -674,15 +690,27 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     ug = np.ascontiguousarray(motion.horizontal, dtype=float)
     vg = np.ascontiguousarray(motion.vertical_or_zero, dtype=float)
     capacity = max(1, min(int(max_recorded_events), FIRST_CAPACITY))
+    count = t.size
+    size_reals, size_integers, size_flags = pool_sizes(n)
     while True:
-        out = run_stack(chain.b, chain.h, chain.m, chain.inertia, t, ug, vg, phi, phi_dot,
-                        pattern, par, atol, capacity)
-        ist = out[8]
+        histories = (np.zeros((count, n)), np.zeros((count, n)), np.zeros((count, n)),
+                     np.zeros((count, n), dtype=np.int8), np.zeros((count, n, 4)),
+                     np.zeros(count))
+        # the events' rows up to the count recorded are written: left uninitialised, the
+        # pages of the rows never used are never touched
+        events = (np.empty((capacity, 5)), np.empty((capacity, 6), dtype=np.int64),
+                  np.empty((capacity, n), dtype=np.int64), np.empty((capacity, n), dtype=np.int64))
+        reals, integers = np.zeros(size_reals), np.zeros(size_integers, dtype=np.int64)
+        filled = run_stack(chain.b, chain.h, chain.m, chain.inertia, t, ug, vg, phi, phi_dot,
+                           pattern, par, atol, reals, integers,
+                           np.zeros(size_flags, dtype=np.bool_), histories, events)
+        ist = integers[:N_INTS]
         if ist[I_RECORDED] < capacity or capacity >= max_recorded_events:
             break
         capacity = int(min(max_recorded_events, max(int(ist[I_EVENTS]), 2 * capacity)))
-    theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i, ev_pb, \
-        ev_pa, phi_end, pattern_end = out
+    theta, rate, acceleration, patterns, forces, work = histories
+    fs, (ev_f, ev_i, ev_pb, ev_pa) = reals[:N_FLOATS], events
+    pattern_end = integers[N_INTS:N_INTS + n]
     error, when = int(ist[I_ERROR]), float(fs[F_ERROR_TIME])
     if error == NO_PATTERN:
         raise StackStalled(f"stack model: no consistent contact pattern at t = {when!r} s "

@@ -55,14 +55,34 @@ IMPACT_TOLERANCE = 1e-9
 NONE_INTERFACE = np.int64(-1)
 
 
-@compiled
-def workspace(n):
-    """The arrays the compiled functions fill, for a chain of ``n`` blocks (a tuple)."""
-    return (np.zeros(n), np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2, n)),
-            np.zeros((n, 2)), np.zeros((n, n)), np.zeros((n, n)), np.zeros(n),
-            np.zeros((n, 4)), np.zeros((n, 2)), np.zeros(n), np.zeros((n, 2, n)),
-            np.zeros(n), np.zeros((n, 2)), np.zeros(n, dtype=np.int64), np.zeros(n),
-            np.zeros(n), np.zeros((n, 4)))
+def workspace_size(n):
+    """The float and int64 elements of a workspace of ``n`` blocks (:func:`workspace`)."""
+    return 23 * n + 6 * n * n, n
+
+
+@inlined
+def workspace(reals, f, integers, i, n):
+    """The arrays the compiled functions fill, for a chain of ``n`` blocks (a tuple), as
+    views of the zeroed pools ``reals`` from ``f`` and ``integers`` from ``i`` (the run's
+    arrays are allocated once by its caller, so that the compiled run needs no reference
+    counting); returns them and the offsets past them."""
+    nn = n * n
+    a0, a1, a2, f = reals[f:f + n], reals[f + n:f + 2 * n], \
+        reals[f + 2 * n:f + 4 * n].reshape((n, 2)), f + 4 * n
+    a3, a4, f = reals[f:f + 2 * nn].reshape((n, 2, n)), \
+        reals[f + 2 * nn:f + 2 * nn + 2 * n].reshape((n, 2)), f + 2 * nn + 2 * n
+    a5, a6, a7, f = reals[f:f + nn].reshape((n, n)), reals[f + nn:f + 2 * nn].reshape((n, n)), \
+        reals[f + 2 * nn:f + 2 * nn + n], f + 2 * nn + n
+    a8, a9, a10, f = reals[f:f + 4 * n].reshape((n, 4)), \
+        reals[f + 4 * n:f + 6 * n].reshape((n, 2)), reals[f + 6 * n:f + 7 * n], f + 7 * n
+    a11, a12, f = reals[f:f + 2 * nn].reshape((n, 2, n)), reals[f + 2 * nn:f + 2 * nn + n], \
+        f + 2 * nn + n
+    a13, a15, a16, f = reals[f:f + 2 * n].reshape((n, 2)), reals[f + 2 * n:f + 3 * n], \
+        reals[f + 3 * n:f + 4 * n], f + 4 * n
+    a17, f = reals[f:f + 4 * n].reshape((n, 4)), f + 4 * n
+    a14, i = integers[i:i + n], i + n
+    return (a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12, a13, a14, a15, a16,
+            a17), f, i
 
 
 @kernel
@@ -414,19 +434,35 @@ FREE_ROWS, FREE_INT_ROWS = 6, 6
 N_ROWS, N_INT_ROWS, N_WIDE = 16, 16, 1
 
 
-@compiled
-def event_workspace(n):
+def event_workspace_size(n):
+    """The float and int64 elements of an event workspace of ``n`` blocks
+    (:func:`event_workspace`)."""
+    count = 3 ** n if n <= FULL_ENUMERATION else 1
+    return (N_ROWS * n + N_WIDE * n * 4 + 4 * n + 2 * n * n + 5 + 2 * n * count * n * 5,
+            N_INT_ROWS * n + 2 * n)
+
+
+@inlined
+def event_workspace(reals, f, integers, i, n):
     """The arrays the events fill (the plastic law, the pattern check, the impact) for a
     chain of ``n`` blocks, so that an event allocates nothing: float rows (16, n), int rows
-    (16, n), the impulses (1, n, 4), centroids and velocities (2, n, 2), a velocity map (n, 2, n), the choice's
-    bookkeeping (5,) and the per-unit-rate landings of one-DOF patterns (whether computed,
-    and each candidate's post-impact phi' and impulses per rad/s, for each interface and
-    side: :func:`plastic_impact`)."""
+    (16, n), the impulses (1, n, 4), centroids and velocities (2, n, 2), a velocity map
+    (n, 2, n), the choice's bookkeeping (5,) and the per-unit-rate landings of one-DOF
+    patterns (whether computed, and each candidate's post-impact phi' and impulses per
+    rad/s, for each interface and side: :func:`plastic_impact`); views of the zeroed pools
+    as :func:`workspace`'s."""
     count = 3 ** n if n <= FULL_ENUMERATION else 1
-    return (np.zeros((N_ROWS, n)), np.zeros((N_INT_ROWS, n), dtype=np.int64),
-            np.zeros((N_WIDE, n, 4)), np.zeros((2, n, 2)), np.zeros((n, 2, n)), np.zeros(5),
-            np.zeros(2 * n, dtype=np.int64), np.zeros((2 * n, count, n)),
-            np.zeros((2 * n, count, n, 4)))
+    size = 2 * n * count * n
+    e0, f = reals[f:f + N_ROWS * n].reshape((N_ROWS, n)), f + N_ROWS * n
+    e1, i = integers[i:i + N_INT_ROWS * n].reshape((N_INT_ROWS, n)), i + N_INT_ROWS * n
+    e2, f = reals[f:f + N_WIDE * n * 4].reshape((N_WIDE, n, 4)), f + N_WIDE * n * 4
+    e3, e4, f = reals[f:f + 4 * n].reshape((2, n, 2)), \
+        reals[f + 4 * n:f + 4 * n + 2 * n * n].reshape((n, 2, n)), f + 4 * n + 2 * n * n
+    e5, e6, i = reals[f:f + 5], integers[i:i + 2 * n], i + 2 * n
+    f += 5
+    e7, e8 = reals[f:f + size].reshape((2 * n, count, n)), \
+        reals[f + size:f + 5 * size].reshape((2 * n, count, n, 4))
+    return (e0, e1, e2, e3, e4, e5, e6, e7, e8), f + 5 * size, i
 
 
 @inlined
