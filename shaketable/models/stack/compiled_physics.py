@@ -85,7 +85,7 @@ def workspace(reals, f, integers, i, n):
             a17), f, i
 
 
-@kernel
+@inlined
 def side_of(pattern, j):
     """The pivot side of interface ``j`` (+1 for a flat one) [-]."""
     return 1.0 if pattern[j] == 0 else float(pattern[j])
@@ -141,7 +141,7 @@ def mass_matrix(chain, jacobian, out):
             out[q, k] = total
 
 
-@kernel
+@inlined
 def solve(matrix, vector, size):
     """Solve the leading ``size`` x ``size`` system in place (Gaussian elimination with
     partial pivoting): the solution replaces ``vector[:size]``."""
@@ -294,7 +294,7 @@ def interface_forces(chain, pattern, ug, vg, ws, out):
     interface_loads(chain, pattern, theta, centroid, demand, spin, out)
 
 
-@kernel
+@inlined
 def state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces, ws):
     """phi'' and the contact forces of a state (into ``phi_ddot`` and ``forces``)."""
     accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
@@ -317,7 +317,7 @@ def power(chain, ug, vg, ws):
     return -total
 
 
-@kernel
+@inlined
 def table_power(chain, phi, phi_dot, pattern, ug, vg, ws):
     """Power of the table's inertial forces on a state [W]."""
     cumulate(phi, ws[0])
@@ -345,13 +345,13 @@ def energy(chain, phi, phi_dot, pattern, ws):
     return 0.5 * kinetic + G * potential
 
 
-@kernel
+@inlined
 def first_combination(chosen, count):
     for p in range(count):
         chosen[p] = p
 
 
-@kernel
+@inlined
 def next_combination(chosen, count, total):
     """Advance ``chosen[:count]`` to the next combination of range(total) in lexicographic
     order (itertools.combinations'); False after the last."""
@@ -366,7 +366,7 @@ def next_combination(chosen, count, total):
     return True
 
 
-@kernel
+@inlined
 def fill_candidate(base, free, n_free, chosen, count, sides, candidate):
     """``base`` with the free interfaces flat, the chosen ones opened to the sides coded in
     the bits of ``sides`` (+1 for a 0 bit; the first chosen one in the highest bit)."""
@@ -388,7 +388,7 @@ def open_count(pattern):
     return total
 
 
-@kernel
+@inlined
 def plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws, impulses,
                       phi_after):
     """Post-impact phi' (into ``phi_after``) and impulses of one active set of the plastic
@@ -647,7 +647,7 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
     return plastic_choice(scratch, phi_dot_after, pattern_after)
 
 
-@kernel
+@inlined
 def cor_impact(phi_dot, pattern, interface, cor, phi_dot_after, pattern_after):
     """The constant-COR law: every absolute rate times ``cor``; the impacting interface onto
     its other corner (flat when its rate after is zero)."""

@@ -133,7 +133,7 @@ def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, whi
     return found, found_j
 
 
-@inlined
+@kernel
 def segment(chain, ws, run, t, t_end, seg, buffers):
     """Integrate the current (moving) pattern from ``t`` to its first event or ``t_end``
     (:meth:`shaketable.models.stack.engine.Run.segment`): returns (time, what, interface),
