@@ -175,7 +175,7 @@ def choose(chain, ws, floats, ints, run, time, seg, reason, interface, end):
         return time
     acceleration = floats[C_ACCELERATION]
     ug, vg = ground(seg, time)
-    accelerations(chain, phi, phi_dot, pattern, ug, vg, acceleration, ws)
+    accelerations(chain, phi, phi_dot, pattern, ug, vg, acceleration, ws[:15])
     delta = min(par[P_DELTA], max(end - time, 0.0))
     ahead, ahead_dot = floats[C_AHEAD], floats[C_AHEAD_DOT]
     for j in range(n):
@@ -244,7 +244,7 @@ def largest(values):
 def rest_energy(chain, ws, fs, zeros, flat):
     """The energy of the stack at rest [J] (:func:`energy` of zeros), evaluated once per run."""
     if math.isnan(fs[F_REST_ENERGY]):
-        fs[F_REST_ENERGY] = energy(chain, zeros, zeros, flat, ws)
+        fs[F_REST_ENERGY] = energy(chain, zeros, zeros, flat, ws[:6])
     return fs[F_REST_ENERGY]
 
 
@@ -260,7 +260,8 @@ def take(phi_dot, pattern, after_dot, after):
 def impact(chain, ws, scratch, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
-    from."""
+    from. The choice is made at one call (each call site of a compiled function passes
+    the run's arrays again)."""
     phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
     floats, ints = scratch[0], scratch[1]
     alpha_p = par[P_ALPHA_P]
@@ -268,67 +269,72 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     rates_before, after_dot, zeros = floats[C_RATES], floats[C_AFTER_DOT], floats[C_ZEROS]
     for j in range(phi.size):   # one loop: each slice assignment compiles a loop of its own
         before[j], rates_before[j], zeros[j], flat[j] = pattern[j], phi_dot[j], 0.0, 0
-    energy_before = energy(chain, phi, phi_dot, before, ws)
+    energy_before = energy(chain, phi, phi_dot, before, ws[:6])
     rate_before = phi_dot[interface]
     phi[interface] = 0.0
+    reason = R_IMPACT
     if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
         # a landing at the noise level while the stack moves: the interface closes
         plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
                        after_dot, after)
         take(phi_dot, pattern, after_dot, after)
         record(run, time, REST, interface, before, after, ONE,
-               (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws)),
+               (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws[:6])),
                (NONE, ZERO, NONE))
-        return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_NOISE, interface, end)
-    if par[P_LAW] == 0.0:
-        solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws, scratch,
-                                   after_dot, after)
+        reason = R_NOISE
     else:
-        cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
-        solutions = ONE
-    take(phi_dot, pattern, after_dot, after)
-    energy_after = energy(chain, phi, phi_dot, pattern, ws)
-    record(run, time, IMPACT, interface, before, pattern, ONE,
-           (rate_before, phi_dot[interface], energy_before, energy_after),
-           (solutions, NONE, NONE))
-    if largest(phi_dot) <= FLOOR * alpha_p and largest(phi) <= FLOOR * par[P_ALPHA]:
-        record(run, time, REST, interface, pattern, flat, ONE,
-               (math.nan, math.nan, energy_after, rest_energy(chain, ws, fs, zeros, flat)),
-               (NONE, ONE, NONE))
-        phi[:] = 0.0
-        phi_dot[:] = 0.0
-        pattern[:] = 0
-        return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_REST, interface, end)
-    if pattern[interface] != 0 and rate_before != 0.0:
-        ratio = abs(phi_dot[interface] / rate_before)
-        phi_ddot = floats[C_PHI_DDOT]
-        ug, vg = ground(seg, time)
-        accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
-        deceleration = -pattern[interface] * phi_ddot[interface]
-        remaining = math.inf
-        if deceleration > 0.0 and ratio < 1.0:
-            remaining = 2.0 * abs(phi_dot[interface]) / (deceleration * (1.0 - ratio))
-        if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * run[6][0]:
-            remaining = 0.0
-        if remaining <= par[P_REST] and open_count(pattern) == 1:
-            record(run, time + remaining, REST, interface, pattern, flat, ONE,
-                   (math.nan, math.nan, energy_after, energy(chain, phi, zeros, flat, ws)),
+        if par[P_LAW] == 0.0:
+            solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws,
+                                       scratch, after_dot, after)
+        else:
+            cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
+            solutions = ONE
+        take(phi_dot, pattern, after_dot, after)
+        energy_after = energy(chain, phi, phi_dot, pattern, ws[:6])
+        record(run, time, IMPACT, interface, before, pattern, ONE,
+               (rate_before, phi_dot[interface], energy_before, energy_after),
+               (solutions, NONE, NONE))
+        if largest(phi_dot) <= FLOOR * alpha_p and largest(phi) <= FLOOR * par[P_ALPHA]:
+            record(run, time, REST, interface, pattern, flat, ONE,
+                   (math.nan, math.nan, energy_after, rest_energy(chain, ws, fs, zeros, flat)),
                    (NONE, ONE, NONE))
+            phi[:] = 0.0
             phi_dot[:] = 0.0
             pattern[:] = 0
-            fs[F_REST_UNTIL] = time + remaining
-            return time
-        if remaining <= par[P_REST]:
-            # the others move on: this interface closes now (a plastic landing held flat)
-            plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
-                           after_dot, after)
-            energy_closed = energy(chain, phi, after_dot, after, ws)
-            record(run, time, REST, interface, pattern, after, ONE,
-                   (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
-            take(phi_dot, pattern, after_dot, after)
-    if open_count(pattern) == 0:
-        phi_dot[:] = 0.0
-    return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_IMPACT, interface, end)
+            reason = R_REST
+        else:
+            if pattern[interface] != 0 and rate_before != 0.0:
+                ratio = abs(phi_dot[interface] / rate_before)
+                phi_ddot = floats[C_PHI_DDOT]
+                ug, vg = ground(seg, time)
+                accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws[:15])
+                deceleration = -pattern[interface] * phi_ddot[interface]
+                remaining = math.inf
+                if deceleration > 0.0 and ratio < 1.0:
+                    remaining = 2.0 * abs(phi_dot[interface]) / (deceleration * (1.0 - ratio))
+                if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * run[6][0]:
+                    remaining = 0.0
+                if remaining <= par[P_REST] and open_count(pattern) == 1:
+                    record(run, time + remaining, REST, interface, pattern, flat, ONE,
+                           (math.nan, math.nan, energy_after,
+                            energy(chain, phi, zeros, flat, ws[:6])),
+                           (NONE, ONE, NONE))
+                    phi_dot[:] = 0.0
+                    pattern[:] = 0
+                    fs[F_REST_UNTIL] = time + remaining
+                    return time
+                if remaining <= par[P_REST]:
+                    # the others move on: this interface closes now (a plastic landing held
+                    # flat)
+                    plastic_impact(chain, phi, rates_before, before, interface, interface, ws,
+                                   scratch, after_dot, after)
+                    energy_closed = energy(chain, phi, after_dot, after, ws[:6])
+                    record(run, time, REST, interface, pattern, after, ONE,
+                           (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
+                    take(phi_dot, pattern, after_dot, after)
+            if open_count(pattern) == 0:
+                phi_dot[:] = 0.0
+    return choose(chain, ws, scratch[0], scratch[1], run, time, seg, reason, interface, end)
 
 
 # ------------------------------------------------------------------------- run

@@ -210,7 +210,8 @@ def cumulate(values, out):
 @kernel
 def accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws):
     """phi'' [rad/s^2] of every interface of ``pattern`` into ``phi_ddot`` (zero at the flat
-    ones); the workspace keeps theta, theta', G, J, c and theta'' (``ws[12]``)."""
+    ones); the workspace keeps theta, theta', G, J, c and theta'' (``ws[12]``; its first 15
+    arrays are enough)."""
     theta, theta_dot, centroid, jacobian, centripetal = ws[0], ws[1], ws[2], ws[3], ws[4]
     mass, reduced, generalized, theta_ddot, columns = ws[5], ws[6], ws[7], ws[12], ws[14]
     m = chain[2]
@@ -278,7 +279,7 @@ def interface_loads(chain, pattern, theta, centroid, demand, spin, out):
 @kernel
 def interface_forces(chain, pattern, ug, vg, ws, out):
     """Contact forces [N] into ``out`` (n, 4) from the state :func:`accelerations` left in
-    the workspace."""
+    the workspace (its first 13 arrays are enough)."""
     m, inertia = chain[2], chain[3]
     theta, centroid, jacobian, centripetal = ws[0], ws[2], ws[3], ws[4]
     demand, spin, theta_ddot = ws[9], ws[10], ws[12]
@@ -297,14 +298,15 @@ def interface_forces(chain, pattern, ug, vg, ws, out):
 @inlined
 def state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces, ws):
     """phi'' and the contact forces of a state (into ``phi_ddot`` and ``forces``)."""
-    accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
-    interface_forces(chain, pattern, ug, vg, ws, forces)
+    accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws[:15])
+    interface_forces(chain, pattern, ug, vg, ws[:13], forces)
 
 
 @kernel
 def power(chain, ug, vg, ws):
     """Power of the table's inertial forces -m u'', -m v'' [W] in the state of the
-    workspace (after :func:`kinematics`)."""
+    workspace (after :func:`kinematics`; its first four arrays are enough: each call of a
+    compiled function passes every array it is given)."""
     m = chain[2]
     theta_dot, jacobian = ws[1], ws[3]
     total = 0.0
@@ -323,12 +325,13 @@ def table_power(chain, phi, phi_dot, pattern, ug, vg, ws):
     cumulate(phi, ws[0])
     cumulate(phi_dot, ws[1])
     kinematics(chain, ws[0], ws[1], pattern, ws[2], ws[3], ws[4])
-    return power(chain, ug, vg, ws)
+    return power(chain, ug, vg, ws[:4])
 
 
 @kernel
 def energy(chain, phi, phi_dot, pattern, ws):
-    """Kinetic energy in the table frame plus potential energy m g y above the table [J]."""
+    """Kinetic energy in the table frame plus potential energy m g y above the table [J]
+    (``ws``: the workspace's first six arrays are enough)."""
     m = chain[2]
     theta, theta_dot, centroid, jacobian, mass = ws[0], ws[1], ws[2], ws[3], ws[5]
     cumulate(phi, theta)

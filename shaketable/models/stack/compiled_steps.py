@@ -46,12 +46,12 @@ def rhs(chain, ws, pattern, seg, time, y, out, with_forces):
     forces into the workspace (``ws[8]``)."""
     n = pattern.size
     ug, vg = ground(seg, time)
-    accelerations(chain, y[:n], y[n:2 * n], pattern, ug, vg, out[n:2 * n], ws)
+    accelerations(chain, y[:n], y[n:2 * n], pattern, ug, vg, out[n:2 * n], ws[:15])
     for i in range(n):
         out[i] = y[n + i]
     if with_forces:
-        interface_forces(chain, pattern, ug, vg, ws, ws[8])
-    out[2 * n] = power(chain, ug, vg, ws)
+        interface_forces(chain, pattern, ug, vg, ws[:13], ws[8])
+    out[2 * n] = power(chain, ug, vg, ws[:4])
 
 
 @inlined
