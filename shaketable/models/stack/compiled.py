@@ -13,7 +13,10 @@ applied at impacts, cascades summed in closed form. The physics is
 :mod:`shaketable.models.stack.compiled_rigid` (the closed forms of rest and one-DOF patterns).
 
 :func:`run_stack` is the one compiled entry; :func:`integrate` (Python) calls it and returns
-what :func:`shaketable.models.stack.engine.integrate` returns.
+what :func:`shaketable.models.stack.engine.integrate` returns. :func:`integrate` allocates
+every array of the run (the histories, the events' rows and three zeroed pools that the
+workspaces are views of): the entry then needs no reference counting, and no allocating
+wrapper around it optimizes the whole engine once more when it is first compiled.
 """
 
 from __future__ import annotations

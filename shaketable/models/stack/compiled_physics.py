@@ -34,16 +34,21 @@ register()
 COMPILED: Any = {"cache": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": True,
                  "error_model": "numpy"}
 KERNEL: Any = {**COMPILED, "_nrt": False}
-compiled = njit(**COMPILED)
-#: The functions that allocate nothing go without numba's reference counting (less code to
-#: generate and compile). Only a function that calls none that allocates may use it:
-#: numba types a callee in its caller's context.
+#: The engine allocates nothing (its caller allocates every array), so that its functions
+#: go without numba's reference counting (less code to generate and compile). Only a
+#: function that calls none that allocates may use it: numba types a callee in its
+#: caller's context.
 kernel = njit(**KERNEL)
-#: The functions called from one place (and small wrappers) are inlined into their caller
-#: in numba's IR, before typing, instead of compiled apart: a separately compiled function
-#: optimizes and emits again the machine code of everything it calls, so that each level of
-#: calls adds the compile of all below it (the engine's first compile: 48 s of CPU with them
-#: apart, 35 s inlined).
+#: The functions called from one or two places, and thin wrappers, are inlined into their
+#: caller in numba's IR, before typing, instead of compiled apart: a separately compiled
+#: function is optimized again by LLVM, with all it calls, in every function compiled apart
+#: that calls it (the module passes and the machine code of each such caller cover all it
+#: links), so that each level of calls adds the compile of all below it. A large function
+#: inlined costs numba's inliner (its IR copied block by block, each block with the whole
+#: scope) and its own code at each call site: the large ones with a large subtree of their
+#: own (the impact, the pattern choice, the plastic law) stay inlined or apart as measured
+#: (the engine's first compile: 48 s of CPU with every function apart, 35 s with the small
+#: ones inlined, about 28 s with the DOP853 segment apart and its step inlined).
 inlined = njit(inline="always", error_model=COMPILED["error_model"])
 
 #: Up to this many blocks every candidate is tried (as the Python engine and impact law).
