@@ -63,6 +63,7 @@ from shaketable.models.stack.compiled_steps import (
 )
 from shaketable.models.stack.layout import (
     ENDS_IMPACT,
+    ENDS_LIFT,
     ENDS_NONE,
     ENDS_OVERTURN,
     F_DOP_STEP,
@@ -102,7 +103,7 @@ from shaketable.models.stack.layout import (
     ZERO,
 )
 
-#: What an input interval's general path ends with (:func:`interval`).
+#: What an input interval's general path ends with (:func:`run_stack`).
 STOPS, DONE, ONE_DOF = (np.int64(code) for code in range(3))
 
 # the engine's constants (as shaketable.models.stack.engine's)
@@ -380,67 +381,16 @@ def progress(run, t, t_new):
 
 
 @inlined
-def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what,
-             j):
-    """Advance over one input interval from ``t_start`` (``t0``, or where a one-DOF
-    segment ended with the event ``what`` of interface ``j``, ENDS_NONE for none); returns
-    (code, time): STOPS (the run stops, or failed: its error), DONE (the interval's end
-    reached) or ONE_DOF (a one-DOF pattern from that time on: the caller integrates it,
-    :func:`~shaketable.models.stack.compiled_one.one_dof_segment`)."""
+def airborne(run, t0, t1, v0, v1):
+    """The table's vertical acceleration reaching -g over the input interval (t0, t1): the
+    stack leaves it (the run's status and the time recorded)."""
     pattern, fs, ist = run[2], run[3], run[4]
     support0, support1 = G + v0, G + v1
-    if support0 <= 0.0 or support1 <= 0.0:
-        ist[I_STATUS] = 2
-        fs[F_T_AIRBORNE] = t0 if support0 <= 0.0 else \
-            t0 + (t1 - t0) * support0 / (support0 - support1)
-        record(run, fs[F_T_AIRBORNE], AIRBORNE, NONE, pattern, pattern, ZERO,
-               (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
-        return STOPS, t_start
-    t = t_start
-    while t < t1 or what != ENDS_NONE:
-        if what == ENDS_NONE:
-            if fs[F_REST_UNTIL] > t:
-                if fs[F_REST_UNTIL] >= t1:
-                    return DONE, t
-                t = fs[F_REST_UNTIL]
-            if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
-                fs[F_REST_UNTIL] = -math.inf
-                t = choose(chain, ws, scratch[0], scratch[1], run, t, seg, R_REST, NONE, t1)
-                if ist[I_ERROR]:
-                    return STOPS, t
-            if open_count(pattern) == 0:
-                t_new, j = rest_uplift(chain, ws, run, t, t1, seg, rigid)
-                if j < 0:
-                    return DONE, t
-                if not progress(run, t, t_new):
-                    return STOPS, t
-                t = choose(chain, ws, scratch[0], scratch[1], run, t_new, seg, R_UPLIFT, j, t1)
-                if ist[I_ERROR]:
-                    return STOPS, t
-                continue
-            if open_count(pattern) == 1:
-                return ONE_DOF, t
-            t_new, what, j = segment(chain, ws, run, t, t1, seg, buffers)
-            if ist[I_ERROR] or not progress(run, t, t_new):
-                return STOPS, t
-            t = t_new
-            if what == ENDS_NONE:
-                continue
-        if what == ENDS_IMPACT:
-            t = impact(chain, ws, scratch, run, t, seg, j, t1)
-        elif what == ENDS_OVERTURN:
-            ist[I_STATUS] = 1
-            fs[F_T_OVERTURN] = t
-            ist[I_OVERTURNED] = j
-            record(run, t, OVERTURN, j, pattern, pattern, ONE,
-                   (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
-            return STOPS, t
-        else:
-            t = choose(chain, ws, scratch[0], scratch[1], run, t, seg, R_UPLIFT, j, t1)
-        what = ENDS_NONE
-        if ist[I_ERROR]:
-            return STOPS, t
-    return DONE, t
+    ist[I_STATUS] = 2
+    fs[F_T_AIRBORNE] = t0 if support0 <= 0.0 else \
+        t0 + (t1 - t0) * support0 / (support0 - support1)
+    record(run, fs[F_T_AIRBORNE], AIRBORNE, NONE, pattern, pattern, ZERO,
+           (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
 
 
 @inlined
@@ -603,8 +553,65 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                         if what == ENDS_NONE:
                             code = DONE   # the interval's end reached
                             break
-                    code, start = interval(chain, ws, scratch, run, t[k], t[k + 1], vg[k],
-                                           vg[k + 1], seg, buffers, rigid, start, what, j)
+                    # the general path to the interval's end (rest, uplifts, multi-DOF
+                    # segments, events) from ``start``, or from the one-DOF segment's event
+                    # ``what`` of interface ``j``: it stops the run (STOPS), reaches the end
+                    # (DONE) or enters a one-DOF pattern (ONE_DOF, integrated above)
+                    code, now, t1 = DONE, start, t[k + 1]
+                    if G + vg[k] <= 0.0 or G + vg[k + 1] <= 0.0:
+                        airborne(run, t[k], t1, vg[k], vg[k + 1])
+                        code = STOPS
+                    while code == DONE and (now < t1 or what != ENDS_NONE):
+                        if what == ENDS_NONE:
+                            if fs[F_REST_UNTIL] > now:
+                                if fs[F_REST_UNTIL] >= t1:
+                                    break
+                                now = fs[F_REST_UNTIL]
+                            if fs[F_REST_UNTIL] > -math.inf and now >= fs[F_REST_UNTIL]:
+                                fs[F_REST_UNTIL] = -math.inf
+                                now = choose(chain, ws, scratch[0], scratch[1], run, now, seg,
+                                             R_REST, NONE, t1)
+                                if ist[I_ERROR]:
+                                    code = STOPS
+                                    break
+                            if open_count(pattern) == 0:
+                                t_new, j = rest_uplift(chain, ws, run, now, t1, seg, rigid)
+                                if j < 0:
+                                    break
+                                if not progress(run, now, t_new):
+                                    code = STOPS
+                                    break
+                                # the uplift: the pattern is chosen below, as after a segment
+                                now, what = t_new, ENDS_LIFT
+                                continue
+                            if open_count(pattern) == 1:
+                                code = ONE_DOF
+                                break
+                            t_new, what, j = segment(chain, ws, run, now, t1, seg, buffers)
+                            if ist[I_ERROR] or not progress(run, now, t_new):
+                                code = STOPS
+                                break
+                            now = t_new
+                            if what == ENDS_NONE:
+                                continue
+                        if what == ENDS_IMPACT:
+                            now = impact(chain, ws, scratch, run, now, seg, j, t1)
+                        elif what == ENDS_OVERTURN:
+                            ist[I_STATUS] = 1
+                            fs[F_T_OVERTURN] = now
+                            ist[I_OVERTURNED] = j
+                            record(run, now, OVERTURN, j, pattern, pattern, ONE,
+                                   (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
+                            code = STOPS
+                            break
+                        else:
+                            now = choose(chain, ws, scratch[0], scratch[1], run, now, seg,
+                                         R_UPLIFT, j, t1)
+                        what = ENDS_NONE
+                        if ist[I_ERROR]:
+                            code = STOPS
+                            break
+                    start = now
                     what, j = ENDS_NONE, NONE
                     if code != ONE_DOF:
                         break
