@@ -22,6 +22,7 @@ wrapper around it optimizes the whole engine once more when it is first compiled
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -478,7 +479,12 @@ def pool_sizes(n):
     return tuple(sum(size[k] for size in sizes) for k in range(3))
 
 
-@njit(cache=True, nogil=True, error_model=COMPILED["error_model"], _nrt=False)
+#: numba options of the entry: called from Python (threads: without the GIL), no reference
+#: counting (it allocates nothing).
+ENTRY: Any = {"cache": True, "nogil": True, "error_model": COMPILED["error_model"], "_nrt": False}
+
+
+@njit(**ENTRY)
 def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, reals,
               integers, flags, histories, events):
     """One run of the stack over the samples ``t`` (the compiled engine's entry; its
