@@ -179,7 +179,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
     y[2 * n] = fs[F_WORK]
     rtol = par[P_RTOL]
     lean = run[:6]   # what the event functions read: fewer arrays passed at each call
-    rhs(chain, ws[:15], pattern, seg, t, y, stages[0], flat)
+    rhs(chain, ws, pattern, seg, t, y, stages[0], flat)
     for e in range(count):
         g[e] = event_value(chain, ws, lean, seg, kinds[e], which[e], corners[e], t, y, t, from_zero[which[e]]) \
             if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]

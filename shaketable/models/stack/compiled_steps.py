@@ -40,12 +40,10 @@ def ground(seg, time):
     return seg[2] + seg[3] * x, seg[4] + seg[5] * x
 
 
-@kernel
+@inlined
 def rhs(chain, ws, pattern, seg, time, y, out, with_forces):
     """y' = (phi', phi'', the table's power) at (time, y); with ``with_forces`` the contact
-    forces into the workspace (``ws[8]``; its first 15 arrays are enough). Compiled apart
-    and called at each stage: inlined at its four call sites in the segment (the steps,
-    the dense output, the segment's start) it made the engine's first compile longer."""
+    forces into the workspace (``ws[8]``)."""
     n = pattern.size
     ug, vg = ground(seg, time)
     accelerations(chain, y[:n], y[n:2 * n], pattern, ug, vg, out[n:2 * n], ws[:15])
@@ -61,7 +59,7 @@ def pattern_rhs(time, y, out, args):
     """:func:`rhs` without the forces as :mod:`shaketable.numerics.dop853` calls it:
     ``args`` = (chain, ws, pattern, seg)."""
     chain, ws, pattern, seg = args
-    rhs(chain, ws[:15], pattern, seg, time, y, out, NO)
+    rhs(chain, ws, pattern, seg, time, y, out, NO)
 
 
 @inlined
@@ -73,7 +71,7 @@ def rk_step(chain, ws, pattern, seg, t, y, h, stages, y_new, work, atol, rtol, w
     no equation of motion)."""
     error = dop853.step(pattern_rhs, (chain, ws, pattern, seg), t, y, h, stages, y_new, work,
                         atol, rtol)
-    rhs(chain, ws[:15], pattern, seg, t + h, y_new, stages[12], with_forces)
+    rhs(chain, ws, pattern, seg, t + h, y_new, stages[12], with_forces)
     return error
 
 
