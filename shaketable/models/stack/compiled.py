@@ -160,7 +160,6 @@ def record(run, time, kind, interface, before, after, has_patterns, reals, integ
 def choose(chain, ws, floats, ints, run, time, seg, reason, interface, end):
     """Choose the pattern at ``time`` (:meth:`shaketable.models.stack.engine.Run.choose`);
     the time the run goes on from (NaN: no consistent pattern, the run's error set).
-    ``ws``: the workspace's first 15 arrays are enough.
     ``floats``, ``ints``: the event workspace's rows (those past the plastic law's); the
     candidates' forces go to ``ws[8]`` (free between events). It allocates nothing: compiled
     without reference counting."""
@@ -281,7 +280,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     reason = R_IMPACT
     if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
         # a landing at the noise level while the stack moves: the interface closes
-        plastic_impact(chain, phi, rates_before, before, interface, interface, ws[:15], scratch,
+        plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
                        after_dot, after)
         take(phi_dot, pattern, after_dot, after)
         record(run, time, REST, interface, before, after, ONE,
@@ -290,7 +289,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
         reason = R_NOISE
     else:
         if par[P_LAW] == 0.0:
-            solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws[:15],
+            solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws,
                                        scratch, after_dot, after)
         else:
             cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
@@ -332,7 +331,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
                 if remaining <= par[P_REST]:
                     # the others move on: this interface closes now (a plastic landing held
                     # flat)
-                    plastic_impact(chain, phi, rates_before, before, interface, interface, ws[:15],
+                    plastic_impact(chain, phi, rates_before, before, interface, interface, ws,
                                    scratch, after_dot, after)
                     energy_closed = energy(chain, phi, after_dot, after, ws[:6])
                     record(run, time, REST, interface, pattern, after, ONE,
@@ -340,7 +339,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
                     take(phi_dot, pattern, after_dot, after)
             if open_count(pattern) == 0:
                 phi_dot[:] = 0.0
-    return choose(chain, ws[:15], scratch[0], scratch[1], run, time, seg, reason, interface, end)
+    return choose(chain, ws, scratch[0], scratch[1], run, time, seg, reason, interface, end)
 
 
 # ------------------------------------------------------------------------- run
@@ -526,7 +525,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
            events[3])
     seg[0], seg[1], seg[2], seg[3], seg[4], seg[5] = t[0], t[1] - t[0], ug[0], \
         ug[1] - ug[0], vg[0], vg[1] - vg[0]
-    choose(chain, ws[:15], scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
+    choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
         coefficients, tol = rigid[0], par[P_TOL_FORCE]
@@ -576,7 +575,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                                 now = fs[F_REST_UNTIL]
                             if fs[F_REST_UNTIL] > -math.inf and now >= fs[F_REST_UNTIL]:
                                 fs[F_REST_UNTIL] = -math.inf
-                                now = choose(chain, ws[:15], scratch[0], scratch[1], run, now, seg,
+                                now = choose(chain, ws, scratch[0], scratch[1], run, now, seg,
                                              R_REST, NONE, t1)
                                 if ist[I_ERROR]:
                                     code = STOPS
@@ -612,7 +611,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                             code = STOPS
                             break
                         else:
-                            now = choose(chain, ws[:15], scratch[0], scratch[1], run, now, seg,
+                            now = choose(chain, ws, scratch[0], scratch[1], run, now, seg,
                                          R_UPLIFT, j, t1)
                         what = ENDS_NONE
                         if ist[I_ERROR]:

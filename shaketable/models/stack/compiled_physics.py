@@ -459,10 +459,7 @@ def event_workspace(reals, f, integers, i, n):
     patterns (whether computed, and each candidate's post-impact phi' and impulses per
     rad/s, for each interface and side: :func:`plastic_impact`); views of the zeroed pools
     as :func:`workspace`'s."""
-    count = 1
-    if n <= FULL_ENUMERATION:
-        for _ in range(n):   # 3 ** n without compiling numba's integer power
-            count *= 3
+    count = 3 ** n if n <= FULL_ENUMERATION else 1
     size = 2 * n * count * n
     e0, f = reals[f:f + N_ROWS * n].reshape((N_ROWS, n)), f + N_ROWS * n
     e1, i = integers[i:i + N_INT_ROWS * n].reshape((N_INT_ROWS, n)), i + N_INT_ROWS * n
@@ -582,7 +579,7 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
     """The plastic, no-slip multi-contact law, compiled
     (:func:`~shaketable.models.stack.impact.plastic_impact`): post-impact phi' and pattern
     into the arrays given; returns the number of admissible active sets. ``closed``: an
-    interface held flat, or -1. ``ws``: the workspace's first 15 arrays are enough.
+    interface held flat, or -1.
 
     Every active set is tried in the candidates' order, each considered (:func:`consider`).
     At a landing of a one-DOF pattern (:func:`one_dof_landing`) of up to FULL_ENUMERATION
@@ -603,14 +600,14 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
         store = 2 * interface + (0 if pattern[interface] > 0 else 1)
     cached = store >= 0 and scratch[6][store] != 0
     rate = phi_dot[interface]
-    if not cached:
-        rates = phi_dot
-        if store >= 0:
-            rates = floats[R_UNIT]   # the first such landing: its candidates at 1 rad/s
-            for j in range(n):
-                rates[j] = 0.0
-            rates[interface] = 1.0
-        plastic_prepare(chain, phi, rates, pattern, ws, scratch)   # one inlined copy
+    if store >= 0 and not cached:
+        unit = floats[R_UNIT]   # the first such landing: its candidates at 1 rad/s
+        for j in range(n):
+            unit[j] = 0.0
+        unit[interface] = 1.0
+        plastic_prepare(chain, phi, unit, pattern, ws, scratch)
+    elif not cached:
+        plastic_prepare(chain, phi, phi_dot, pattern, ws, scratch)
     theta = floats[R_THETA]
     free, start, candidate, chosen = ints[R_FREE], ints[R_START], ints[R_CANDIDATE], \
         ints[R_CHOSEN]
