@@ -218,7 +218,7 @@ def pytest_sessionstart(session):
     """On the pytest-xdist controller, before the workers start: compile the engines into
     numba's cache (or load them), so that the workers and the tests' subprocesses load them
     instead of each compiling its own copy at the same time on a fresh machine (the planar
-    engine costs ~13 s of CPU per compile, the stack engine ~37 s). A saving only: any test compiles what it
+    engine costs ~13 s of CPU per compile, the stack engine ~28 s). A saving only: any test compiles what it
     misses. ``import shaketable`` in a subprocess names the cache folder the workers use."""
     config = session.config
     if getattr(config, "workerinput", None) is not None or config.option.collectonly:

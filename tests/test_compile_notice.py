@@ -1,6 +1,6 @@
 """The one-line notice before a first compile names what will compile.
 
-The planar engine costs ~13 s of CPU to compile and the stack engine ~37 s (measured,
+The planar engine costs ~13 s of CPU to compile and the stack engine ~28 s (measured,
 `commands/common.py`), five and twelve times the rocking engine: a command that will run
 one must say so before the wait.
 """

@@ -104,7 +104,7 @@ def scaled_record(motion, args):
 _COMPILED = {"engine": ("engine.integrate_fast-", "the engine", "~3 s", "rocking"),
              "batch": ("batch._run_cases_fast-", "the batch engine", "~1 s", "rocking"),
              "planar": ("engine.integrate-", "the planar engine", "~13 s", "planar"),
-             "stack": ("compiled.run_stack-", "the stack engine", "~37 s", "stack")}
+             "stack": ("compiled.run_stack-", "the stack engine", "~28 s", "stack")}
 
 
 def compiled_before(which: str = "engine") -> bool:

@@ -13,12 +13,16 @@ applied at impacts, cascades summed in closed form. The physics is
 :mod:`shaketable.models.stack.compiled_rigid` (the closed forms of rest and one-DOF patterns).
 
 :func:`run_stack` is the one compiled entry; :func:`integrate` (Python) calls it and returns
-what :func:`shaketable.models.stack.engine.integrate` returns.
+what :func:`shaketable.models.stack.engine.integrate` returns. :func:`integrate` allocates
+every array of the run (the histories, the events' rows and three zeroed pools that the
+workspaces are views of): the entry then needs no reference counting, and no allocating
+wrapper around it optimizes the whole engine once more when it is first compiled.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -29,6 +33,7 @@ from shaketable.models.stack.compiled_one import (
     one_dof_segment,
     one_dof_state,
     rigid_workspace,
+    rigid_workspace_size,
 )
 from shaketable.models.stack.compiled_physics import (
     COMPILED,
@@ -39,6 +44,7 @@ from shaketable.models.stack.compiled_physics import (
     cor_impact,
     energy,
     event_workspace,
+    event_workspace_size,
     fill_candidate,
     first_combination,
     inlined,
@@ -49,6 +55,7 @@ from shaketable.models.stack.compiled_physics import (
     state_forces,
     table_power,
     workspace,
+    workspace_size,
 )
 from shaketable.models.stack.compiled_rigid import rigid_forces
 from shaketable.models.stack.compiled_segment import segment
@@ -57,6 +64,7 @@ from shaketable.models.stack.compiled_steps import (
 )
 from shaketable.models.stack.layout import (
     ENDS_IMPACT,
+    ENDS_LIFT,
     ENDS_NONE,
     ENDS_OVERTURN,
     F_DOP_STEP,
@@ -96,7 +104,7 @@ from shaketable.models.stack.layout import (
     ZERO,
 )
 
-#: What an input interval's general path ends with (:func:`interval`).
+#: What an input interval's general path ends with (:func:`run_stack`).
 STOPS, DONE, ONE_DOF = (np.int64(code) for code in range(3))
 
 # the engine's constants (as shaketable.models.stack.engine's)
@@ -172,7 +180,7 @@ def choose(chain, ws, floats, ints, run, time, seg, reason, interface, end):
         return time
     acceleration = floats[C_ACCELERATION]
     ug, vg = ground(seg, time)
-    accelerations(chain, phi, phi_dot, pattern, ug, vg, acceleration, ws)
+    accelerations(chain, phi, phi_dot, pattern, ug, vg, acceleration, ws[:15])
     delta = min(par[P_DELTA], max(end - time, 0.0))
     ahead, ahead_dot = floats[C_AHEAD], floats[C_AHEAD_DOT]
     for j in range(n):
@@ -241,7 +249,7 @@ def largest(values):
 def rest_energy(chain, ws, fs, zeros, flat):
     """The energy of the stack at rest [J] (:func:`energy` of zeros), evaluated once per run."""
     if math.isnan(fs[F_REST_ENERGY]):
-        fs[F_REST_ENERGY] = energy(chain, zeros, zeros, flat, ws)
+        fs[F_REST_ENERGY] = energy(chain, zeros, zeros, flat, ws[:6])
     return fs[F_REST_ENERGY]
 
 
@@ -257,7 +265,8 @@ def take(phi_dot, pattern, after_dot, after):
 def impact(chain, ws, scratch, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
-    from."""
+    from. The choice is made at one call (each call site of a compiled function passes
+    the run's arrays again)."""
     phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
     floats, ints = scratch[0], scratch[1]
     alpha_p = par[P_ALPHA_P]
@@ -265,67 +274,72 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     rates_before, after_dot, zeros = floats[C_RATES], floats[C_AFTER_DOT], floats[C_ZEROS]
     for j in range(phi.size):   # one loop: each slice assignment compiles a loop of its own
         before[j], rates_before[j], zeros[j], flat[j] = pattern[j], phi_dot[j], 0.0, 0
-    energy_before = energy(chain, phi, phi_dot, before, ws)
+    energy_before = energy(chain, phi, phi_dot, before, ws[:6])
     rate_before = phi_dot[interface]
     phi[interface] = 0.0
+    reason = R_IMPACT
     if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
         # a landing at the noise level while the stack moves: the interface closes
         plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
                        after_dot, after)
         take(phi_dot, pattern, after_dot, after)
         record(run, time, REST, interface, before, after, ONE,
-               (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws)),
+               (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws[:6])),
                (NONE, ZERO, NONE))
-        return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_NOISE, interface, end)
-    if par[P_LAW] == 0.0:
-        solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws, scratch,
-                                   after_dot, after)
+        reason = R_NOISE
     else:
-        cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
-        solutions = ONE
-    take(phi_dot, pattern, after_dot, after)
-    energy_after = energy(chain, phi, phi_dot, pattern, ws)
-    record(run, time, IMPACT, interface, before, pattern, ONE,
-           (rate_before, phi_dot[interface], energy_before, energy_after),
-           (solutions, NONE, NONE))
-    if largest(phi_dot) <= FLOOR * alpha_p and largest(phi) <= FLOOR * par[P_ALPHA]:
-        record(run, time, REST, interface, pattern, flat, ONE,
-               (math.nan, math.nan, energy_after, rest_energy(chain, ws, fs, zeros, flat)),
-               (NONE, ONE, NONE))
-        phi[:] = 0.0
-        phi_dot[:] = 0.0
-        pattern[:] = 0
-        return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_REST, interface, end)
-    if pattern[interface] != 0 and rate_before != 0.0:
-        ratio = abs(phi_dot[interface] / rate_before)
-        phi_ddot = floats[C_PHI_DDOT]
-        ug, vg = ground(seg, time)
-        accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
-        deceleration = -pattern[interface] * phi_ddot[interface]
-        remaining = math.inf
-        if deceleration > 0.0 and ratio < 1.0:
-            remaining = 2.0 * abs(phi_dot[interface]) / (deceleration * (1.0 - ratio))
-        if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * run[6][0]:
-            remaining = 0.0
-        if remaining <= par[P_REST] and open_count(pattern) == 1:
-            record(run, time + remaining, REST, interface, pattern, flat, ONE,
-                   (math.nan, math.nan, energy_after, energy(chain, phi, zeros, flat, ws)),
+        if par[P_LAW] == 0.0:
+            solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws,
+                                       scratch, after_dot, after)
+        else:
+            cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
+            solutions = ONE
+        take(phi_dot, pattern, after_dot, after)
+        energy_after = energy(chain, phi, phi_dot, pattern, ws[:6])
+        record(run, time, IMPACT, interface, before, pattern, ONE,
+               (rate_before, phi_dot[interface], energy_before, energy_after),
+               (solutions, NONE, NONE))
+        if largest(phi_dot) <= FLOOR * alpha_p and largest(phi) <= FLOOR * par[P_ALPHA]:
+            record(run, time, REST, interface, pattern, flat, ONE,
+                   (math.nan, math.nan, energy_after, rest_energy(chain, ws, fs, zeros, flat)),
                    (NONE, ONE, NONE))
+            phi[:] = 0.0
             phi_dot[:] = 0.0
             pattern[:] = 0
-            fs[F_REST_UNTIL] = time + remaining
-            return time
-        if remaining <= par[P_REST]:
-            # the others move on: this interface closes now (a plastic landing held flat)
-            plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
-                           after_dot, after)
-            energy_closed = energy(chain, phi, after_dot, after, ws)
-            record(run, time, REST, interface, pattern, after, ONE,
-                   (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
-            take(phi_dot, pattern, after_dot, after)
-    if open_count(pattern) == 0:
-        phi_dot[:] = 0.0
-    return choose(chain, ws, scratch[0], scratch[1], run, time, seg, R_IMPACT, interface, end)
+            reason = R_REST
+        else:
+            if pattern[interface] != 0 and rate_before != 0.0:
+                ratio = abs(phi_dot[interface] / rate_before)
+                phi_ddot = floats[C_PHI_DDOT]
+                ug, vg = ground(seg, time)
+                accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws[:15])
+                deceleration = -pattern[interface] * phi_ddot[interface]
+                remaining = math.inf
+                if deceleration > 0.0 and ratio < 1.0:
+                    remaining = 2.0 * abs(phi_dot[interface]) / (deceleration * (1.0 - ratio))
+                if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * run[6][0]:
+                    remaining = 0.0
+                if remaining <= par[P_REST] and open_count(pattern) == 1:
+                    record(run, time + remaining, REST, interface, pattern, flat, ONE,
+                           (math.nan, math.nan, energy_after,
+                            energy(chain, phi, zeros, flat, ws[:6])),
+                           (NONE, ONE, NONE))
+                    phi_dot[:] = 0.0
+                    pattern[:] = 0
+                    fs[F_REST_UNTIL] = time + remaining
+                    return time
+                if remaining <= par[P_REST]:
+                    # the others move on: this interface closes now (a plastic landing held
+                    # flat)
+                    plastic_impact(chain, phi, rates_before, before, interface, interface, ws,
+                                   scratch, after_dot, after)
+                    energy_closed = energy(chain, phi, after_dot, after, ws[:6])
+                    record(run, time, REST, interface, pattern, after, ONE,
+                           (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
+                    take(phi_dot, pattern, after_dot, after)
+            if open_count(pattern) == 0:
+                phi_dot[:] = 0.0
+    return choose(chain, ws, scratch[0], scratch[1], run, time, seg, reason, interface, end)
 
 
 # ------------------------------------------------------------------------- run
@@ -368,67 +382,16 @@ def progress(run, t, t_new):
 
 
 @inlined
-def interval(chain, ws, scratch, run, t0, t1, v0, v1, seg, buffers, rigid, t_start, what,
-             j):
-    """Advance over one input interval from ``t_start`` (``t0``, or where a one-DOF
-    segment ended with the event ``what`` of interface ``j``, ENDS_NONE for none); returns
-    (code, time): STOPS (the run stops, or failed: its error), DONE (the interval's end
-    reached) or ONE_DOF (a one-DOF pattern from that time on: the caller integrates it,
-    :func:`~shaketable.models.stack.compiled_one.one_dof_segment`)."""
+def airborne(run, t0, t1, v0, v1):
+    """The table's vertical acceleration reaching -g over the input interval (t0, t1): the
+    stack leaves it (the run's status and the time recorded)."""
     pattern, fs, ist = run[2], run[3], run[4]
     support0, support1 = G + v0, G + v1
-    if support0 <= 0.0 or support1 <= 0.0:
-        ist[I_STATUS] = 2
-        fs[F_T_AIRBORNE] = t0 if support0 <= 0.0 else \
-            t0 + (t1 - t0) * support0 / (support0 - support1)
-        record(run, fs[F_T_AIRBORNE], AIRBORNE, NONE, pattern, pattern, ZERO,
-               (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
-        return STOPS, t_start
-    t = t_start
-    while t < t1 or what != ENDS_NONE:
-        if what == ENDS_NONE:
-            if fs[F_REST_UNTIL] > t:
-                if fs[F_REST_UNTIL] >= t1:
-                    return DONE, t
-                t = fs[F_REST_UNTIL]
-            if fs[F_REST_UNTIL] > -math.inf and t >= fs[F_REST_UNTIL]:
-                fs[F_REST_UNTIL] = -math.inf
-                t = choose(chain, ws, scratch[0], scratch[1], run, t, seg, R_REST, NONE, t1)
-                if ist[I_ERROR]:
-                    return STOPS, t
-            if open_count(pattern) == 0:
-                t_new, j = rest_uplift(chain, ws, run, t, t1, seg, rigid)
-                if j < 0:
-                    return DONE, t
-                if not progress(run, t, t_new):
-                    return STOPS, t
-                t = choose(chain, ws, scratch[0], scratch[1], run, t_new, seg, R_UPLIFT, j, t1)
-                if ist[I_ERROR]:
-                    return STOPS, t
-                continue
-            if open_count(pattern) == 1:
-                return ONE_DOF, t
-            t_new, what, j = segment(chain, ws, run, t, t1, seg, buffers)
-            if ist[I_ERROR] or not progress(run, t, t_new):
-                return STOPS, t
-            t = t_new
-            if what == ENDS_NONE:
-                continue
-        if what == ENDS_IMPACT:
-            t = impact(chain, ws, scratch, run, t, seg, j, t1)
-        elif what == ENDS_OVERTURN:
-            ist[I_STATUS] = 1
-            fs[F_T_OVERTURN] = t
-            ist[I_OVERTURNED] = j
-            record(run, t, OVERTURN, j, pattern, pattern, ONE,
-                   (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
-            return STOPS, t
-        else:
-            t = choose(chain, ws, scratch[0], scratch[1], run, t, seg, R_UPLIFT, j, t1)
-        what = ENDS_NONE
-        if ist[I_ERROR]:
-            return STOPS, t
-    return DONE, t
+    ist[I_STATUS] = 2
+    fs[F_T_AIRBORNE] = t0 if support0 <= 0.0 else \
+        t0 + (t1 - t0) * support0 / (support0 - support1)
+    record(run, fs[F_T_AIRBORNE], AIRBORNE, NONE, pattern, pattern, ZERO,
+           (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
 
 
 @inlined
@@ -483,21 +446,89 @@ def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
     return True
 
 
-@kernel
-def samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg, histories):
-    """The run over the samples ``t`` from its start, into ``histories`` (theta, theta',
-    theta'', patterns, forces, work: :func:`run_stack`'s); returns the number of samples
-    filled. It allocates nothing: compiled without reference counting (an array taken from
-    a tuple, or a row of one, is then no counted reference: the loop over the samples and
-    the one-DOF steps pay for none)."""
+def segment_buffers_size(n):
+    """The float, int64 and bool elements of the DOP853 path's arrays of ``n`` blocks
+    (:func:`segment_buffers`)."""
+    size = 2 * n + 1
+    return 27 * size + 10 * n, 9 * n, 2 * n
+
+
+@inlined
+def segment_buffers(reals, f, integers, i, flags, n):
+    """The arrays of :func:`~shaketable.models.stack.compiled_segment.segment` (stages,
+    states, dense output, event values, roots, codes, flags, times) as views of the zeroed
+    pools (as :func:`~shaketable.models.stack.compiled_physics.workspace`'s)."""
+    size = 2 * n + 1
+    s0, f = reals[f:f + 16 * size].reshape((16, size)), f + 16 * size
+    s1, s2, s3, f = reals[f:f + size], reals[f + size:f + 2 * size], \
+        reals[f + 2 * size:f + 3 * size], f + 3 * size
+    s4, s5, f = reals[f:f + 7 * size].reshape((7, size)), reals[f + 7 * size:f + 8 * size], \
+        f + 8 * size
+    s6, s7, s8, s11 = reals[f:f + 3 * n], reals[f + 3 * n:f + 6 * n], \
+        reals[f + 6 * n:f + 9 * n], reals[f + 9 * n:f + 10 * n]
+    s9, s10 = integers[i:i + 9 * n].reshape((3, 3 * n)), flags[:2 * n].reshape((2, n))
+    return s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11
+
+
+def pool_sizes(n):
+    """The float, int64 and bool elements of the pools a run of ``n`` blocks takes its
+    arrays from (:func:`run_stack`)."""
+    sizes = [(N_FLOATS + 2 * n + 6, N_INTS + n, 0), (*workspace_size(n), 0),
+             (*event_workspace_size(n), 0), (rigid_workspace_size(n), 0, 0),
+             segment_buffers_size(n)]
+    return tuple(sum(size[k] for size in sizes) for k in range(3))
+
+
+#: numba options of the entry: called from Python (threads: without the GIL), no reference
+#: counting (it allocates nothing).
+ENTRY: Any = {"cache": True, "nogil": True, "error_model": COMPILED["error_model"], "_nrt": False}
+
+
+@njit(**ENTRY)
+def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, reals,
+              integers, flags, histories, events):
+    """One run of the stack over the samples ``t`` (the compiled engine's entry; its
+    arguments are those :func:`integrate` prepares), into ``histories`` (theta, theta',
+    theta'' [rad, rad/s, rad/s^2], patterns, forces [N], work [J]) and ``events`` (the
+    recorded events' times and values, kinds and integers, patterns before and after);
+    returns the number of samples filled.
+
+    Every other array is a view of the zeroed pools ``reals``, ``integers``, ``flags``
+    (:func:`pool_sizes`): the float and int states (``F_*``, ``I_*``) first, then the
+    angles and the pattern. It allocates nothing: compiled without reference counting (an
+    array taken from a tuple, or a row of one, is then no counted reference: the loop over
+    the samples and the one-DOF steps pay for none), and its caller's arrays are passed
+    once, not returned.
+    """
     theta, rate, acceleration, patterns, forces, work = histories
-    fs, ist, par = run[3], run[4], run[5]
+    n = b.size
     count = t.size
+    chain = (b, h, m, inertia)
+    fs, ist = reals[:N_FLOATS], integers[:N_INTS]
+    f, i = N_FLOATS + 2 * n + 6, N_INTS + n
+    phi, phi_dot = reals[N_FLOATS:N_FLOATS + n], reals[N_FLOATS + n:N_FLOATS + 2 * n]
+    pattern, seg = integers[N_INTS:i], reals[N_FLOATS + 2 * n:f]
+    for j in range(n):
+        phi[j], phi_dot[j], pattern[j] = phi0[j], phi_dot0[j], pattern0[j]
+    ws, f, i = workspace(reals, f, integers, i, n)
+    scratch, f, i = event_workspace(reals, f, integers, i, n)
+    rigid, f = rigid_workspace(reals, f, n)
+    buffers = segment_buffers(reals, f, integers, i, flags, n)
+    fs[:] = math.nan
+    fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
+    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
+        1e-4, t[0]
+    fs[F_DOP_STEP] = 0.01 / par[P_ALPHA_P] * par[P_ALPHA]
+    ist[I_OVERTURNED] = -1
+    ist[I_RIGID_J] = -2   # no closed forms computed yet
+    run = (phi, phi_dot, pattern, fs, ist, par, atol, events[0], events[1], events[2],
+           events[3])
+    seg[0], seg[1], seg[2], seg[3], seg[4], seg[5] = t[0], t[1] - t[0], ug[0], \
+        ug[1] - ug[0], vg[0], vg[1] - vg[0]
     choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
         coefficients, tol = rigid[0], par[P_TOL_FORCE]
-        phi, pattern = run[0], run[2]
         for k in range(-1, count - 1):
             if k >= 0:   # the interval from sample k (k = -1: the first sample only)
                 fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
@@ -528,8 +559,65 @@ def samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg, histories):
                         if what == ENDS_NONE:
                             code = DONE   # the interval's end reached
                             break
-                    code, start = interval(chain, ws, scratch, run, t[k], t[k + 1], vg[k],
-                                           vg[k + 1], seg, buffers, rigid, start, what, j)
+                    # the general path to the interval's end (rest, uplifts, multi-DOF
+                    # segments, events) from ``start``, or from the one-DOF segment's event
+                    # ``what`` of interface ``j``: it stops the run (STOPS), reaches the end
+                    # (DONE) or enters a one-DOF pattern (ONE_DOF, integrated above)
+                    code, now, t1 = DONE, start, t[k + 1]
+                    if G + vg[k] <= 0.0 or G + vg[k + 1] <= 0.0:
+                        airborne(run, t[k], t1, vg[k], vg[k + 1])
+                        code = STOPS
+                    while code == DONE and (now < t1 or what != ENDS_NONE):
+                        if what == ENDS_NONE:
+                            if fs[F_REST_UNTIL] > now:
+                                if fs[F_REST_UNTIL] >= t1:
+                                    break
+                                now = fs[F_REST_UNTIL]
+                            if fs[F_REST_UNTIL] > -math.inf and now >= fs[F_REST_UNTIL]:
+                                fs[F_REST_UNTIL] = -math.inf
+                                now = choose(chain, ws, scratch[0], scratch[1], run, now, seg,
+                                             R_REST, NONE, t1)
+                                if ist[I_ERROR]:
+                                    code = STOPS
+                                    break
+                            if open_count(pattern) == 0:
+                                t_new, j = rest_uplift(chain, ws, run, now, t1, seg, rigid)
+                                if j < 0:
+                                    break
+                                if not progress(run, now, t_new):
+                                    code = STOPS
+                                    break
+                                # the uplift: the pattern is chosen below, as after a segment
+                                now, what = t_new, ENDS_LIFT
+                                continue
+                            if open_count(pattern) == 1:
+                                code = ONE_DOF
+                                break
+                            t_new, what, j = segment(chain, ws, run, now, t1, seg, buffers)
+                            if ist[I_ERROR] or not progress(run, now, t_new):
+                                code = STOPS
+                                break
+                            now = t_new
+                            if what == ENDS_NONE:
+                                continue
+                        if what == ENDS_IMPACT:
+                            now = impact(chain, ws, scratch, run, now, seg, j, t1)
+                        elif what == ENDS_OVERTURN:
+                            ist[I_STATUS] = 1
+                            fs[F_T_OVERTURN] = now
+                            ist[I_OVERTURNED] = j
+                            record(run, now, OVERTURN, j, pattern, pattern, ONE,
+                                   (math.nan, math.nan, math.nan, math.nan), (NONE, NONE, NONE))
+                            code = STOPS
+                            break
+                        else:
+                            now = choose(chain, ws, scratch[0], scratch[1], run, now, seg,
+                                         R_UPLIFT, j, t1)
+                        what = ENDS_NONE
+                        if ist[I_ERROR]:
+                            code = STOPS
+                            break
+                    start = now
                     what, j = ENDS_NONE, NONE
                     if code != ONE_DOF:
                         break
@@ -539,56 +627,6 @@ def samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg, histories):
                    patterns, forces, work, rigid)
             filled = k + 2
     return filled
-
-
-@njit(cache=True, nogil=True, error_model=COMPILED["error_model"])
-def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, capacity):
-    """One run of the stack over the samples ``t`` (the compiled engine's entry; its
-    arguments are those :func:`integrate` prepares).
-
-    Returns the histories (theta, theta', theta'' [rad, rad/s, rad/s^2], patterns, forces
-    [N], work [J]), the number of samples filled, the float and int states (``F_*``,
-    ``I_*``) and the recorded events (times and values, kinds and integers, patterns
-    before and after).
-    """
-    n = b.size
-    chain = (b, h, m, inertia)
-    ws = workspace(n)
-    scratch = event_workspace(n)
-    # every row up to the count of recorded events is written (record): left uninitialised,
-    # the pages of the rows never used are never touched
-    ev_f = np.empty((capacity, 5))
-    ev_i = np.empty((capacity, 6), dtype=np.int64)
-    ev_pb = np.empty((capacity, n), dtype=np.int64)
-    ev_pa = np.empty((capacity, n), dtype=np.int64)
-    fs = np.empty(N_FLOATS)
-    fs[:] = math.nan
-    fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
-    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
-        1e-4, t[0]
-    fs[F_DOP_STEP] = 0.01 / par[P_ALPHA_P] * par[P_ALPHA]
-    ist = np.zeros(N_INTS, dtype=np.int64)
-    ist[I_OVERTURNED] = -1
-    ist[I_RIGID_J] = -2   # no closed forms computed yet
-    run = (phi0.copy(), phi_dot0.copy(), pattern0.copy(), fs, ist, par, atol, ev_f, ev_i,
-           ev_pb, ev_pa)
-    size = 2 * n + 1
-    buffers = (np.zeros((16, size)), np.zeros(size), np.zeros(size), np.zeros(size),
-               np.zeros((7, size)), np.zeros(size), np.zeros(3 * n), np.zeros(3 * n),
-               np.zeros(3 * n), np.zeros((3, 3 * n), dtype=np.int64),
-               np.zeros((2, n), dtype=np.bool_), np.zeros(n))
-    rigid = rigid_workspace(n)
-    count = t.size
-    theta, rate, acceleration = np.zeros((count, n)), np.zeros((count, n)), \
-        np.zeros((count, n))
-    patterns = np.zeros((count, n), dtype=np.int8)
-    forces = np.zeros((count, n, 4))
-    work = np.zeros(count)
-    seg = np.array([t[0], t[1] - t[0], ug[0], ug[1] - ug[0], vg[0], vg[1] - vg[0]])
-    filled = samples(chain, ws, scratch, run, buffers, rigid, seg, t, ug, vg,
-                     (theta, rate, acceleration, patterns, forces, work))
-    return (theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i,
-            ev_pb, ev_pa, run[0], run[2])
 
 
 class CompiledRun:
@@ -674,15 +712,27 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     ug = np.ascontiguousarray(motion.horizontal, dtype=float)
     vg = np.ascontiguousarray(motion.vertical_or_zero, dtype=float)
     capacity = max(1, min(int(max_recorded_events), FIRST_CAPACITY))
+    count = t.size
+    size_reals, size_integers, size_flags = pool_sizes(n)
     while True:
-        out = run_stack(chain.b, chain.h, chain.m, chain.inertia, t, ug, vg, phi, phi_dot,
-                        pattern, par, atol, capacity)
-        ist = out[8]
+        histories = (np.zeros((count, n)), np.zeros((count, n)), np.zeros((count, n)),
+                     np.zeros((count, n), dtype=np.int8), np.zeros((count, n, 4)),
+                     np.zeros(count))
+        # the events' rows up to the count recorded are written: left uninitialised, the
+        # pages of the rows never used are never touched
+        events = (np.empty((capacity, 5)), np.empty((capacity, 6), dtype=np.int64),
+                  np.empty((capacity, n), dtype=np.int64), np.empty((capacity, n), dtype=np.int64))
+        reals, integers = np.zeros(size_reals), np.zeros(size_integers, dtype=np.int64)
+        filled = run_stack(chain.b, chain.h, chain.m, chain.inertia, t, ug, vg, phi, phi_dot,
+                           pattern, par, atol, reals, integers,
+                           np.zeros(size_flags, dtype=np.bool_), histories, events)
+        ist = integers[:N_INTS]
         if ist[I_RECORDED] < capacity or capacity >= max_recorded_events:
             break
         capacity = int(min(max_recorded_events, max(int(ist[I_EVENTS]), 2 * capacity)))
-    theta, rate, acceleration, patterns, forces, work, filled, fs, ist, ev_f, ev_i, ev_pb, \
-        ev_pa, phi_end, pattern_end = out
+    theta, rate, acceleration, patterns, forces, work = histories
+    fs, (ev_f, ev_i, ev_pb, ev_pa) = reals[:N_FLOATS], events
+    pattern_end = integers[N_INTS:N_INTS + n]
     error, when = int(ist[I_ERROR]), float(fs[F_ERROR_TIME])
     if error == NO_PATTERN:
         raise StackStalled(f"stack model: no consistent contact pattern at t = {when!r} s "

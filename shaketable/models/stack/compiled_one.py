@@ -25,7 +25,7 @@ from shaketable.models.rocking import events as rocking_events
 from shaketable.models.rocking.engine import step_size_control
 from shaketable.models.rocking.layout import INFO_MAX_ABS_THETA, INFO_T_UNSTABLE, N_INFO
 from shaketable.models.rocking.steppers import helper, nystrom_step
-from shaketable.models.stack.compiled_physics import compiled, inlined, kernel
+from shaketable.models.stack.compiled_physics import inlined, kernel
 from shaketable.models.stack.compiled_rigid import (
     B_ALPHA,
     B_HALF_WIDTH,
@@ -87,21 +87,32 @@ PER_STEP = 5
 _IMPACT, _OVERTURN = float(rocking_events.EVENT_IMPACT), float(rocking_events.EVENT_OVERTURN)
 
 
-@compiled
-def rigid_workspace(n):
+def rigid_workspace_size(n):
+    """The float elements of the closed forms' arrays of ``n`` blocks
+    (:func:`rigid_workspace`)."""
+    return n * (N_COLUMNS + 8) + N_BODY + N_INFO + 3
+
+
+@inlined
+def rigid_workspace(reals, f, n):
     """The arrays of the closed forms for a chain of ``n`` blocks: coefficients, the
     rocking body, forces, the seated corners' margins at a step's two ends, and the single
     block engine's run information that its event location fills (with the instability's
     time set, so that it is not located) and the last angle's cosine and sine
-    (:func:`trig`)."""
-    info = np.empty(N_INFO)
+    (:func:`trig`): views of the zeroed pool ``reals`` from ``f`` (as
+    :func:`~shaketable.models.stack.compiled_physics.workspace`'s), and the offset past
+    them."""
+    r0, f = reals[f:f + n * N_COLUMNS].reshape((n, N_COLUMNS)), f + n * N_COLUMNS
+    r1, r2, f = reals[f:f + N_BODY], reals[f + N_BODY:f + N_BODY + 4 * n].reshape((n, 4)), \
+        f + N_BODY + 4 * n
+    r3, r4, f = reals[f:f + 2 * n].reshape((n, 2)), \
+        reals[f + 2 * n:f + 4 * n].reshape((n, 2)), f + 4 * n
+    info, last = reals[f:f + N_INFO], reals[f + N_INFO:f + N_INFO + 3]
     info[:] = math.nan
     info[INFO_T_UNSTABLE] = 0.0
     info[INFO_MAX_ABS_THETA] = 0.0
-    last = np.empty(3)
     last[:] = math.nan
-    return (np.zeros((n, N_COLUMNS)), np.zeros(N_BODY), np.zeros((n, 4)),
-            np.zeros((n, 2)), np.zeros((n, 2)), info, last)
+    return (r0, r1, r2, r3, r4, info, last), f + N_INFO + 3
 
 
 @inlined

@@ -34,16 +34,21 @@ register()
 COMPILED: Any = {"cache": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": True,
                  "error_model": "numpy"}
 KERNEL: Any = {**COMPILED, "_nrt": False}
-compiled = njit(**COMPILED)
-#: The functions that allocate nothing go without numba's reference counting (less code to
-#: generate and compile). Only a function that calls none that allocates may use it:
-#: numba types a callee in its caller's context.
+#: The engine allocates nothing (its caller allocates every array), so that its functions
+#: go without numba's reference counting (less code to generate and compile). Only a
+#: function that calls none that allocates may use it: numba types a callee in its
+#: caller's context.
 kernel = njit(**KERNEL)
-#: The functions called from one place (and small wrappers) are inlined into their caller
-#: in numba's IR, before typing, instead of compiled apart: a separately compiled function
-#: optimizes and emits again the machine code of everything it calls, so that each level of
-#: calls adds the compile of all below it (the engine's first compile: 48 s of CPU with them
-#: apart, 35 s inlined).
+#: The functions called from one or two places, and thin wrappers, are inlined into their
+#: caller in numba's IR, before typing, instead of compiled apart: a separately compiled
+#: function is optimized again by LLVM, with all it calls, in every function compiled apart
+#: that calls it (the module passes and the machine code of each such caller cover all it
+#: links), so that each level of calls adds the compile of all below it. A large function
+#: inlined costs numba's inliner (its IR copied block by block, each block with the whole
+#: scope) and its own code at each call site: the large ones with a large subtree of their
+#: own (the impact, the pattern choice, the plastic law) stay inlined or apart as measured
+#: (the engine's first compile: 48 s of CPU with every function apart, 35 s with the small
+#: ones inlined, about 28 s with the DOP853 segment apart and its step inlined).
 inlined = njit(inline="always", error_model=COMPILED["error_model"])
 
 #: Up to this many blocks every candidate is tried (as the Python engine and impact law).
@@ -55,17 +60,37 @@ IMPACT_TOLERANCE = 1e-9
 NONE_INTERFACE = np.int64(-1)
 
 
-@compiled
-def workspace(n):
-    """The arrays the compiled functions fill, for a chain of ``n`` blocks (a tuple)."""
-    return (np.zeros(n), np.zeros(n), np.zeros((n, 2)), np.zeros((n, 2, n)),
-            np.zeros((n, 2)), np.zeros((n, n)), np.zeros((n, n)), np.zeros(n),
-            np.zeros((n, 4)), np.zeros((n, 2)), np.zeros(n), np.zeros((n, 2, n)),
-            np.zeros(n), np.zeros((n, 2)), np.zeros(n, dtype=np.int64), np.zeros(n),
-            np.zeros(n), np.zeros((n, 4)))
+def workspace_size(n):
+    """The float and int64 elements of a workspace of ``n`` blocks (:func:`workspace`)."""
+    return 23 * n + 6 * n * n, n
 
 
-@kernel
+@inlined
+def workspace(reals, f, integers, i, n):
+    """The arrays the compiled functions fill, for a chain of ``n`` blocks (a tuple), as
+    views of the zeroed pools ``reals`` from ``f`` and ``integers`` from ``i`` (the run's
+    arrays are allocated once by its caller, so that the compiled run needs no reference
+    counting); returns them and the offsets past them."""
+    nn = n * n
+    a0, a1, a2, f = reals[f:f + n], reals[f + n:f + 2 * n], \
+        reals[f + 2 * n:f + 4 * n].reshape((n, 2)), f + 4 * n
+    a3, a4, f = reals[f:f + 2 * nn].reshape((n, 2, n)), \
+        reals[f + 2 * nn:f + 2 * nn + 2 * n].reshape((n, 2)), f + 2 * nn + 2 * n
+    a5, a6, a7, f = reals[f:f + nn].reshape((n, n)), reals[f + nn:f + 2 * nn].reshape((n, n)), \
+        reals[f + 2 * nn:f + 2 * nn + n], f + 2 * nn + n
+    a8, a9, a10, f = reals[f:f + 4 * n].reshape((n, 4)), \
+        reals[f + 4 * n:f + 6 * n].reshape((n, 2)), reals[f + 6 * n:f + 7 * n], f + 7 * n
+    a11, a12, f = reals[f:f + 2 * nn].reshape((n, 2, n)), reals[f + 2 * nn:f + 2 * nn + n], \
+        f + 2 * nn + n
+    a13, a15, a16, f = reals[f:f + 2 * n].reshape((n, 2)), reals[f + 2 * n:f + 3 * n], \
+        reals[f + 3 * n:f + 4 * n], f + 4 * n
+    a17, f = reals[f:f + 4 * n].reshape((n, 4)), f + 4 * n
+    a14, i = integers[i:i + n], i + n
+    return (a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11, a12, a13, a14, a15, a16,
+            a17), f, i
+
+
+@inlined
 def side_of(pattern, j):
     """The pivot side of interface ``j`` (+1 for a flat one) [-]."""
     return 1.0 if pattern[j] == 0 else float(pattern[j])
@@ -121,7 +146,7 @@ def mass_matrix(chain, jacobian, out):
             out[q, k] = total
 
 
-@kernel
+@inlined
 def solve(matrix, vector, size):
     """Solve the leading ``size`` x ``size`` system in place (Gaussian elimination with
     partial pivoting): the solution replaces ``vector[:size]``."""
@@ -190,7 +215,8 @@ def cumulate(values, out):
 @kernel
 def accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws):
     """phi'' [rad/s^2] of every interface of ``pattern`` into ``phi_ddot`` (zero at the flat
-    ones); the workspace keeps theta, theta', G, J, c and theta'' (``ws[12]``)."""
+    ones); the workspace keeps theta, theta', G, J, c and theta'' (``ws[12]``; its first 15
+    arrays are enough)."""
     theta, theta_dot, centroid, jacobian, centripetal = ws[0], ws[1], ws[2], ws[3], ws[4]
     mass, reduced, generalized, theta_ddot, columns = ws[5], ws[6], ws[7], ws[12], ws[14]
     m = chain[2]
@@ -258,7 +284,7 @@ def interface_loads(chain, pattern, theta, centroid, demand, spin, out):
 @kernel
 def interface_forces(chain, pattern, ug, vg, ws, out):
     """Contact forces [N] into ``out`` (n, 4) from the state :func:`accelerations` left in
-    the workspace."""
+    the workspace (its first 13 arrays are enough)."""
     m, inertia = chain[2], chain[3]
     theta, centroid, jacobian, centripetal = ws[0], ws[2], ws[3], ws[4]
     demand, spin, theta_ddot = ws[9], ws[10], ws[12]
@@ -274,17 +300,18 @@ def interface_forces(chain, pattern, ug, vg, ws, out):
     interface_loads(chain, pattern, theta, centroid, demand, spin, out)
 
 
-@kernel
+@inlined
 def state_forces(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, forces, ws):
     """phi'' and the contact forces of a state (into ``phi_ddot`` and ``forces``)."""
-    accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws)
-    interface_forces(chain, pattern, ug, vg, ws, forces)
+    accelerations(chain, phi, phi_dot, pattern, ug, vg, phi_ddot, ws[:15])
+    interface_forces(chain, pattern, ug, vg, ws[:13], forces)
 
 
 @kernel
 def power(chain, ug, vg, ws):
     """Power of the table's inertial forces -m u'', -m v'' [W] in the state of the
-    workspace (after :func:`kinematics`)."""
+    workspace (after :func:`kinematics`; its first four arrays are enough: each call of a
+    compiled function passes every array it is given)."""
     m = chain[2]
     theta_dot, jacobian = ws[1], ws[3]
     total = 0.0
@@ -297,18 +324,19 @@ def power(chain, ug, vg, ws):
     return -total
 
 
-@kernel
+@inlined
 def table_power(chain, phi, phi_dot, pattern, ug, vg, ws):
     """Power of the table's inertial forces on a state [W]."""
     cumulate(phi, ws[0])
     cumulate(phi_dot, ws[1])
     kinematics(chain, ws[0], ws[1], pattern, ws[2], ws[3], ws[4])
-    return power(chain, ug, vg, ws)
+    return power(chain, ug, vg, ws[:4])
 
 
 @kernel
 def energy(chain, phi, phi_dot, pattern, ws):
-    """Kinetic energy in the table frame plus potential energy m g y above the table [J]."""
+    """Kinetic energy in the table frame plus potential energy m g y above the table [J]
+    (``ws``: the workspace's first six arrays are enough)."""
     m = chain[2]
     theta, theta_dot, centroid, jacobian, mass = ws[0], ws[1], ws[2], ws[3], ws[5]
     cumulate(phi, theta)
@@ -325,13 +353,13 @@ def energy(chain, phi, phi_dot, pattern, ws):
     return 0.5 * kinetic + G * potential
 
 
-@kernel
+@inlined
 def first_combination(chosen, count):
     for p in range(count):
         chosen[p] = p
 
 
-@kernel
+@inlined
 def next_combination(chosen, count, total):
     """Advance ``chosen[:count]`` to the next combination of range(total) in lexicographic
     order (itertools.combinations'); False after the last."""
@@ -346,7 +374,7 @@ def next_combination(chosen, count, total):
     return True
 
 
-@kernel
+@inlined
 def fill_candidate(base, free, n_free, chosen, count, sides, candidate):
     """``base`` with the free interfaces flat, the chosen ones opened to the sides coded in
     the bits of ``sides`` (+1 for a 0 bit; the first chosen one in the highest bit)."""
@@ -368,7 +396,7 @@ def open_count(pattern):
     return total
 
 
-@kernel
+@inlined
 def plastic_candidate(chain, theta, theta_dot, velocity, centroid, candidate, ws, impulses,
                       phi_after):
     """Post-impact phi' (into ``phi_after``) and impulses of one active set of the plastic
@@ -414,19 +442,35 @@ FREE_ROWS, FREE_INT_ROWS = 6, 6
 N_ROWS, N_INT_ROWS, N_WIDE = 16, 16, 1
 
 
-@compiled
-def event_workspace(n):
+def event_workspace_size(n):
+    """The float and int64 elements of an event workspace of ``n`` blocks
+    (:func:`event_workspace`)."""
+    count = 3 ** n if n <= FULL_ENUMERATION else 1
+    return (N_ROWS * n + N_WIDE * n * 4 + 4 * n + 2 * n * n + 5 + 2 * n * count * n * 5,
+            N_INT_ROWS * n + 2 * n)
+
+
+@inlined
+def event_workspace(reals, f, integers, i, n):
     """The arrays the events fill (the plastic law, the pattern check, the impact) for a
     chain of ``n`` blocks, so that an event allocates nothing: float rows (16, n), int rows
-    (16, n), the impulses (1, n, 4), centroids and velocities (2, n, 2), a velocity map (n, 2, n), the choice's
-    bookkeeping (5,) and the per-unit-rate landings of one-DOF patterns (whether computed,
-    and each candidate's post-impact phi' and impulses per rad/s, for each interface and
-    side: :func:`plastic_impact`)."""
+    (16, n), the impulses (1, n, 4), centroids and velocities (2, n, 2), a velocity map
+    (n, 2, n), the choice's bookkeeping (5,) and the per-unit-rate landings of one-DOF
+    patterns (whether computed, and each candidate's post-impact phi' and impulses per
+    rad/s, for each interface and side: :func:`plastic_impact`); views of the zeroed pools
+    as :func:`workspace`'s."""
     count = 3 ** n if n <= FULL_ENUMERATION else 1
-    return (np.zeros((N_ROWS, n)), np.zeros((N_INT_ROWS, n), dtype=np.int64),
-            np.zeros((N_WIDE, n, 4)), np.zeros((2, n, 2)), np.zeros((n, 2, n)), np.zeros(5),
-            np.zeros(2 * n, dtype=np.int64), np.zeros((2 * n, count, n)),
-            np.zeros((2 * n, count, n, 4)))
+    size = 2 * n * count * n
+    e0, f = reals[f:f + N_ROWS * n].reshape((N_ROWS, n)), f + N_ROWS * n
+    e1, i = integers[i:i + N_INT_ROWS * n].reshape((N_INT_ROWS, n)), i + N_INT_ROWS * n
+    e2, f = reals[f:f + N_WIDE * n * 4].reshape((N_WIDE, n, 4)), f + N_WIDE * n * 4
+    e3, e4, f = reals[f:f + 4 * n].reshape((2, n, 2)), \
+        reals[f + 4 * n:f + 4 * n + 2 * n * n].reshape((n, 2, n)), f + 4 * n + 2 * n * n
+    e5, e6, i = reals[f:f + 5], integers[i:i + 2 * n], i + 2 * n
+    f += 5
+    e7, e8 = reals[f:f + size].reshape((2 * n, count, n)), \
+        reals[f + size:f + 5 * size].reshape((2 * n, count, n, 4))
+    return (e0, e1, e2, e3, e4, e5, e6, e7, e8), f + 5 * size, i
 
 
 @inlined
@@ -611,7 +655,7 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
     return plastic_choice(scratch, phi_dot_after, pattern_after)
 
 
-@kernel
+@inlined
 def cor_impact(phi_dot, pattern, interface, cor, phi_dot_after, pattern_after):
     """The constant-COR law: every absolute rate times ``cor``; the impacting interface onto
     its other corner (flat when its rate after is zero)."""

@@ -133,7 +133,7 @@ def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, whi
     return found, found_j
 
 
-@inlined
+@kernel
 def segment(chain, ws, run, t, t_end, seg, buffers):
     """Integrate the current (moving) pattern from ``t`` to its first event or ``t_end``
     (:meth:`shaketable.models.stack.engine.Run.segment`): returns (time, what, interface),
@@ -178,9 +178,10 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
         y[n + j] = phi_dot[j]
     y[2 * n] = fs[F_WORK]
     rtol = par[P_RTOL]
+    lean = run[:6]   # what the event functions read: fewer arrays passed at each call
     rhs(chain, ws, pattern, seg, t, y, stages[0], flat)
     for e in range(count):
-        g[e] = event_value(chain, ws, run, seg, kinds[e], which[e], corners[e], t, y, t, from_zero[which[e]]) \
+        g[e] = event_value(chain, ws, lean, seg, kinds[e], which[e], corners[e], t, y, t, from_zero[which[e]]) \
             if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
     # the step size carried from the last DOP853 step (no restart at each input interval)
     h_abs = fs[F_DOP_STEP]
@@ -219,7 +220,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
             rejected = True
         ist[I_STEPS] += 1
         for e in range(count):
-            g_new[e] = event_value(chain, ws, run, seg, kinds[e], which[e], corners[e], t_new,
+            g_new[e] = event_value(chain, ws, lean, seg, kinds[e], which[e], corners[e], t_new,
                                    y_new, t, from_zero[which[e]]) \
                 if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
         active = False
@@ -236,13 +237,13 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
             first, first_time = NONE, math.inf
             for e in range(count):
                 if roots[e] == math.inf:
-                    roots[e] = brent(chain, ws, run, seg, kinds[e], which[e], corners[e], t,
+                    roots[e] = brent(chain, ws, lean, seg, kinds[e], which[e], corners[e], t,
                                      from_zero[which[e]], dense, y, t_now, h, state, t_now,
                                      t_new, 4.0 * EPS, 4.0 * EPS)
                     if e < terminal and roots[e] < first_time:
                         first, first_time = e, roots[e]
             # a turning point on the wrong side of a landing: the landing before it
-            found, found_j = passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state,
+            found, found_j = passed_landing(chain, ws, lean, seg, t, t_now, h, y, dense, state,
                                             roots, which, terminal, count, first_time,
                                             earlier, settled, from_zero)
             if found_j >= 0 and found < first_time:

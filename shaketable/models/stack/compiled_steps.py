@@ -40,18 +40,18 @@ def ground(seg, time):
     return seg[2] + seg[3] * x, seg[4] + seg[5] * x
 
 
-@kernel
+@inlined
 def rhs(chain, ws, pattern, seg, time, y, out, with_forces):
     """y' = (phi', phi'', the table's power) at (time, y); with ``with_forces`` the contact
     forces into the workspace (``ws[8]``)."""
     n = pattern.size
     ug, vg = ground(seg, time)
-    accelerations(chain, y[:n], y[n:2 * n], pattern, ug, vg, out[n:2 * n], ws)
+    accelerations(chain, y[:n], y[n:2 * n], pattern, ug, vg, out[n:2 * n], ws[:15])
     for i in range(n):
         out[i] = y[n + i]
     if with_forces:
-        interface_forces(chain, pattern, ug, vg, ws, ws[8])
-    out[2 * n] = power(chain, ug, vg, ws)
+        interface_forces(chain, pattern, ug, vg, ws[:13], ws[8])
+    out[2 * n] = power(chain, ug, vg, ws[:4])
 
 
 @inlined
@@ -62,7 +62,7 @@ def pattern_rhs(time, y, out, args):
     rhs(chain, ws, pattern, seg, time, y, out, NO)
 
 
-@kernel
+@inlined
 def rk_step(chain, ws, pattern, seg, t, y, h, stages, y_new, work, atol, rtol, with_forces):
     """One DOP853 step (SciPy's ``rk_step``; :func:`shaketable.numerics.dop853.step`):
     y(t + h) into ``y_new``, the 13 stages into ``stages`` (row 0 given; the last is f at
@@ -83,7 +83,7 @@ def initial_step(chain, ws, pattern, seg, t0, y0, f0, t_bound, atol, rtol, work,
                                atol, rtol, work, f1)
 
 
-@kernel
+@inlined
 def dense_output(chain, ws, pattern, seg, t_old, y_old, y, h, stages, dense, work):
     """DOP853's continuous extension of order 7 of the step (t_old, y_old) -> y into
     ``dense`` (7 rows; SciPy's ``_dense_output_impl``;
