@@ -260,7 +260,7 @@ def simulate_stacks(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.Da
             "pga [m/s^2]": case.motion.pga * float(case.scale),
             "motion_vertical": case.motion.vertical is not None,
             "duration [s]": result["duration [s]"], "impact": result["impact"],
-            "cor [-]": float(case.cor), "method": "stack", "rtol [-]": float(rtol),
+            "cor [-]": float(case.cor), "method": "stack", "rtol [-]": result["rtol [-]"],
             **{name: result[name] for name in _BATCH_COLUMNS},
             "block_index": int(inputs["block_index"].iloc[k]),
             "motion_index": result["motion_index"],

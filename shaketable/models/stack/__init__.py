@@ -9,10 +9,12 @@ from shaketable.models.stack.geometry import Stack
 from shaketable.models.stack.model import (
     IMPACT_LAWS,
     StackFrictionWarning,
+    StackRetryWarning,
     StackTensionWarning,
     simulate_stack,
 )
 from shaketable.models.stack.result import PLAUSIBLE_FRICTION, StackResult, pattern_name
 
 __all__ = ["Stack", "StackResult", "simulate_stack", "pattern_name", "IMPACT_LAWS",
-           "StackTensionWarning", "StackFrictionWarning", "PLAUSIBLE_FRICTION"]
+           "StackTensionWarning", "StackFrictionWarning", "StackRetryWarning",
+           "PLAUSIBLE_FRICTION"]

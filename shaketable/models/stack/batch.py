@@ -26,7 +26,8 @@ Inputs: ``stack`` (the label), ``blocks``, ``stack height [m]``, ``base width [m
 ``alpha_min [rad]``, ``motion``, ``scale [-]``, ``pga [m/s^2]`` (the motion's PGA times the
 scale), ``motion_vertical``, ``duration [s]`` (of the run's motion), ``impact``
 (``"plastic"`` or ``"cor"``), ``cor [-]`` (NaN with the plastic law), ``method``
-(``"compiled"``), ``rtol [-]``, ``mu [-]`` (the friction coefficient of
+(``"compiled"``), ``rtol [-]`` (the run's: a tighter one after a chatter stall,
+:func:`~shaketable.models.stack.model.integrate_retrying`), ``mu [-]`` (the friction coefficient of
 ``t_friction_exceeded [s]``).
 
 Results, as :class:`StackResult` names them:
@@ -56,6 +57,7 @@ Results, as :class:`StackResult` names them:
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from itertools import product
@@ -284,14 +286,15 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
             motions[key] = (extended(scaled, duration), len(motions))
         runs.append(motions[key])
     rows: list[Any] = [None] * len(cases)
+    rtols = [rtol] * len(cases)   # each run's, after a chatter stall a tighter one
     constants = {id(case.stack): _constants(case.stack) for case in cases}
 
     def run(start: int, stop: int) -> None:
         for k in range(start, stop):
             case = cases[k]
             try:
-                rows[k] = _row(case, runs[k][0], constants[id(case.stack)], rtol, rest,
-                               recorded, mu)
+                rows[k], rtols[k] = _row(case, runs[k][0], constants[id(case.stack)], rtol,
+                                         rest, recorded, mu)
             except StackStalled as error:
                 raise StackStalled(f"run {k} ({case.stack_label or case.stack.describe()}, "
                                    f"{case.motion_label or case.motion.name}): "
@@ -299,23 +302,29 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
 
     run_in_chunks(run, len(cases), threads, 1)
     return _frame(cases, [motion for motion, _ in runs], [index for _, index in runs], rows,
-                  rtol, mu)
+                  rtols, mu)
 
 
 def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float | None,
-         recorded: int, mu: float) -> tuple:
-    """One run: the engine, then its results from the engine's arrays (:data:`_RESULTS`);
-    ``constants``: the stack's :func:`_constants`."""
+         recorded: int, mu: float) -> tuple[tuple, float]:
+    """One run: the engine, then its results from the engine's arrays (:data:`_RESULTS`),
+    and the tolerance they were computed at (``rtol``, or a tighter one after a chatter
+    stall, as :func:`~shaketable.models.stack.model.simulate_stack`); ``constants``: the
+    stack's :func:`_constants`."""
     from shaketable.models.stack.compiled import IMPACT, UPLIFT, integrate
+    from shaketable.models.stack.model import StackRetryWarning, integrate_retrying
 
     stack = case.stack
     n = stack.n
     zeros, b, h, alphas, scale, limit, margin, bottom_rest = constants
-    out = integrate(stack, motion, law="plastic" if case.cor is None else "cor",
-                    cor=1.0 if case.cor is None else case.cor, theta0=zeros,
-                    theta_dot0=zeros, rtol=rtol,
-                    rest_tolerance=bottom_rest if rest is None else rest,
-                    max_recorded_events=recorded)
+    out, rtol, retried = integrate_retrying(
+        integrate, stack, motion, law="plastic" if case.cor is None else "cor",
+        cor=1.0 if case.cor is None else case.cor, theta0=zeros, theta_dot0=zeros, rtol=rtol,
+        rest_tolerance=bottom_rest if rest is None else rest, max_recorded_events=recorded)
+    if retried:
+        warnings.warn(f"{case.stack_label or stack.describe()}, "
+                      f"{case.motion_label or case.motion.name}: {retried}", StackRetryWarning,
+                      stacklevel=2)
     compiled_run = out["run"]
     theta, patterns = out["theta"], out["patterns"]
     t = motion.t[:out["filled"]]
@@ -362,7 +371,7 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
             float(t[exceeded]) if exceeded >= 0 else math.nan,
             tension >= 0, float(t[tension]) if tension >= 0 else math.nan,
             float(t[past]) if past >= 0 else math.nan, float(standing[0]), standing[1], still,
-            t_end, compiled_run.steps, compiled_run.evaluations)
+            t_end, compiled_run.steps, compiled_run.evaluations), rtol
 
 
 def _constants(stack: Stack) -> tuple:
@@ -519,7 +528,7 @@ def top_corner_excursion(stack: Stack, theta: np.ndarray, patterns: np.ndarray) 
     return out
 
 
-def _frame(cases, motions, motion_index, rows, rtol, mu):
+def _frame(cases, motions, motion_index, rows, rtols, mu):
     import pandas as pd
 
     stacks = [case.stack for case in cases]
@@ -538,7 +547,7 @@ def _frame(cases, motions, motion_index, rows, rtol, mu):
         "duration [s]": np.array([motion.duration for motion in motions]),
         "impact": ["plastic" if case.cor is None else "cor" for case in cases],
         "cor [-]": np.array([math.nan if case.cor is None else case.cor for case in cases]),
-        "method": "compiled", "rtol [-]": float(rtol), "mu [-]": float(mu),
+        "method": "compiled", "rtol [-]": np.array(rtols, dtype=float), "mu [-]": float(mu),
     }
     values = list(zip(*rows))
     for name, column in zip(_RESULTS, values):

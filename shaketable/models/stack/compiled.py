@@ -694,7 +694,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
               rest_tolerance: float, max_recorded_events: int) -> dict:
     """Run the stack over ``motion`` with the compiled engine: the sampled histories and
     the events (the dict of :func:`shaketable.models.stack.engine.integrate`)."""
-    from shaketable.models.stack.engine import LOOKAHEAD, StackStalled, pattern_of
+    from shaketable.models.stack.engine import LOOKAHEAD, StackChatter, StackStalled, pattern_of
     from shaketable.models.stack.physics import Chain
 
     chain = Chain.of(stack)
@@ -739,7 +739,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
                            f"(from {tuple(int(s) for s in pattern_end)}); the input is "
                            "outside the model")
     if error == STALLED:
-        raise StackStalled(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
+        raise StackChatter(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
                            f"t = {when!r} s without progress")
     if error == STEP_FAILED:
         raise StackStalled(f"stack model: DOP853 failed at t = {when!r} s: the step size "

@@ -56,7 +56,16 @@ MAX_EVENTS_AT_ONE_INSTANT = 200
 
 
 class StackStalled(RuntimeError):
-    """The stack's integration made no progress (events without end at one instant)."""
+    """The stack's integration cannot go on (no consistent pattern, no progress, a failed
+    step); the message says which and where."""
+
+
+class StackChatter(StackStalled):
+    """Events without end at one instant: a contact at its uplift threshold (a landing at
+    the noise level, the uplift again, the next landing at the noise level, ...) until time
+    no longer advances. Which run does this depends on the rounding of the tolerance's
+    steps: :func:`shaketable.models.stack.model.integrate_retrying` runs it again at a
+    tighter tolerance."""
 
 
 class Ground:
@@ -446,7 +455,7 @@ class Run:
     def progress(self, t, t_new) -> None:
         self.stalled = self.stalled + 1 if t_new <= t else 0
         if self.stalled > MAX_EVENTS_AT_ONE_INSTANT:
-            raise StackStalled(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
+            raise StackChatter(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
                                f"t = {t!r} s without progress")
 
     def sample(self, k):

@@ -35,6 +35,59 @@ class StackFrictionWarning(UserWarning):
     failed."""
 
 
+class StackRetryWarning(UserWarning):
+    """A run stalled in the chatter of a contact at its uplift threshold
+    (:class:`~shaketable.models.stack.engine.StackChatter`) and was run again at a tighter
+    tolerance (:func:`integrate_retrying`)."""
+
+
+#: The divisors of ``rtol`` of the runs made again after a chatter stall, in turn.
+RETRY_DIVISORS = (10.0, 100.0)
+#: The tightest tolerance a run is made again at [-].
+TIGHTEST_RTOL = 1e-14
+
+
+def integrate_retrying(integrate, stack: Stack, motion: Motion, *, rtol: float,
+                       **options: Any) -> tuple[dict, float, str]:
+    """``integrate(stack, motion, rtol=rtol, **options)``; where it stalls in the chatter of
+    a contact at its uplift threshold, again at ``rtol`` divided by each of
+    :data:`RETRY_DIVISORS` (never below :data:`TIGHTEST_RTOL`).
+
+    The chatter (a landing at the noise level, the uplift chosen again, the next landing
+    ...; :class:`~shaketable.models.stack.engine.StackChatter`) comes from the rounding of
+    the tolerance's own steps, not from the motion: a tighter tolerance, which is also more
+    accurate, takes other steps. A run that completes at the tolerance asked is the same
+    bits as without this function.
+
+    Returns
+    -------
+    (dict, float, str)
+        The engine's output, the tolerance it was computed at [-], and a note saying where
+        the runs before it stalled ("" when the first completed).
+
+    Raises
+    ------
+    StackChatter
+        Every tolerance stalled (the message lists them).
+    """
+    from shaketable.models.stack.engine import StackChatter
+
+    stalls: list[str] = []
+    tolerances = [rtol] + [max(rtol / divisor, TIGHTEST_RTOL) for divisor in RETRY_DIVISORS]
+    for tolerance in dict.fromkeys(tolerances):   # in turn, each once
+        try:
+            out = integrate(stack, motion, rtol=tolerance, **options)
+        except StackChatter as error:
+            stalls.append(f"at rtol {tolerance:g}: {error}")
+            continue
+        note = ("" if not stalls else
+                f"the run stalled ({'; '.join(stalls)}: a contact chattering at its uplift "
+                f"threshold) and was run again at rtol {tolerance:g}")
+        return out, tolerance, note
+    raise StackChatter("; ".join(stalls) + " (a contact chattering at its uplift threshold "
+                       "at every tolerance tried)")
+
+
 def _user_stacklevel() -> int:
     """The ``stacklevel`` of :func:`warnings.warn`, called from the caller of this function,
     that points at the first frame outside the package: the user's call, however many of
@@ -74,7 +127,10 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
         Length of free rocking [s] (``motion=None`` only).
     rtol : float
         The integrators' relative tolerance [-] (DOP853's, and in the compiled engine's one-DOF
-        patterns the single block's RKN6(4)'s).
+        patterns the single block's RKN6(4)'s). A run that stalls in the chatter of a contact
+        at its uplift threshold is made again at rtol/10, then rtol/100
+        (:func:`integrate_retrying`, a :class:`StackRetryWarning`); ``statistics["rtol"]``
+        is the tolerance the result was computed at.
     rest_tolerance : float, optional
         Remaining time of an impact cascade summed in closed form [s] (default
         1e-6 / p of the bottom block, as the single-block engine).
@@ -123,9 +179,10 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
     rtol = in_range("rtol", rtol, 1e-14, 1e-3)
     rest = (1e-6 / stack.blocks[0].p if rest_tolerance is None
             else positive("rest_tolerance", rest_tolerance, " [s]"))
-    out = integrate(stack, motion, law=impact, cor=1.0 if cor is None else cor, theta0=theta0,
-                    theta_dot0=theta_dot0, rtol=rtol, rest_tolerance=rest,
-                    max_recorded_events=int(max_recorded_events))
+    out, rtol, retried = integrate_retrying(
+        integrate, stack, motion, law=impact, cor=1.0 if cor is None else cor, theta0=theta0,
+        theta_dot0=theta_dot0, rtol=rtol, rest_tolerance=rest,
+        max_recorded_events=int(max_recorded_events))
     run = out["run"]
     # the motion uses the masses' ratios only; forces, work and energies are in kg units
     # (the engines' arrays are the run's own: scaled in place)
@@ -143,7 +200,10 @@ def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = 
         forces=forces, work=work, events=events,
         status=run.status, t_overturn=run.t_overturn,
         overturned_block=run.overturned_block, t_airborne=run.t_airborne,
-        n_events=run.n_events, statistics={"steps": run.steps, "evaluations": run.evaluations})
+        n_events=run.n_events, statistics={"steps": run.steps, "evaluations": run.evaluations,
+                                           "rtol": rtol})
+    if retried:
+        warnings.warn(retried, StackRetryWarning, stacklevel=_user_stacklevel())
     tension = result.t_tension
     if not math.isnan(tension):
         warnings.warn(f"a contact of the stack carried a tensile force from t = "

@@ -1,0 +1,85 @@
+"""A run that stalls in the chatter of a contact at its uplift threshold is made again at a
+tighter tolerance, says so, and gives the tighter run's answer (one run, the batch, a sweep).
+
+The case is one of a stack sweep's runs that stopped the whole sweep: a 30 x 6 in block
+(mass ratio 0.5) on a 60 x 12 in one, the "olive-view" substitute record (seed 3, 4 s) at
+0.15 g, the plastic law, rtol 1e-10. The top block sits at its uplift threshold at
+t = 2.088 s; the engine landed it at the noise level, chose the uplift again, landed it
+again, ... until time no longer advanced (200 events in a row). The same run completes at
+rtol 1e-9, 1e-11 and 1e-12.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from shaketable import Block
+from shaketable.ground.artificial import artificial
+from shaketable.models.stack import Stack, StackRetryWarning, simulate_stack
+from shaketable.models.stack.batch import simulate_many
+from shaketable.models.stack.engine import StackChatter
+from shaketable.models.stack.model import integrate_retrying
+
+STALLED_RTOL = 1e-10
+
+
+@pytest.fixture(scope="module")
+def case():
+    stack = Stack([Block.parse("60x12in"), Block.parse("30x6in")], masses=(1.0, 0.5))
+    motion = artificial("olive-view", seed=3, duration=4.0).scaled(0.3)   # pga 0.15 g
+    return stack, motion
+
+
+def test_the_stalled_run_is_made_again_tighter_and_says_so(case):
+    stack, motion = case
+    with pytest.warns(StackRetryWarning, match=r"stalled \(at rtol 1e-10: .*2\.08799.*\) and "
+                                               r"was run again at rtol 1e-11"):
+        result = simulate_stack(stack, motion, rtol=STALLED_RTOL)
+    assert result.status == "completed" and result.t[-1] == motion.t[-1]
+    assert result.statistics["rtol"] == pytest.approx(1e-11, rel=1e-12)
+    # the answer is the tighter run's: against the default tolerance (1e-12, a hundred times
+    # tighter still), the rotations agree to 1e-5 of alpha (the block barely rocks: its peak
+    # theta/alpha is ~2e-4 in both)
+    reference = simulate_stack(stack, motion)
+    alpha = stack.alpha_min
+    assert np.abs(result.theta - reference.theta).max() < 1e-5 * alpha
+    assert np.abs(result.theta).max() == pytest.approx(np.abs(reference.theta).max(), rel=0.05)
+
+
+def test_a_run_that_completes_is_the_same_bits_and_warns_nothing(case):
+    stack, motion = case
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", StackRetryWarning)
+        result = simulate_stack(stack, motion, rtol=1e-9)
+    assert result.statistics["rtol"] == 1e-9
+
+
+def test_the_batch_row_is_the_retried_run_and_carries_its_tolerance(case):
+    stack, motion = case
+    with pytest.warns(StackRetryWarning, match="was run again at rtol 1e-11"):
+        row = simulate_many([stack], [motion], rtol=STALLED_RTOL, threads=1).iloc[0]
+    with pytest.warns(StackRetryWarning):
+        result = simulate_stack(stack, motion, rtol=STALLED_RTOL)
+    assert row["status"] == "completed" and row["rtol [-]"] == pytest.approx(1e-11, rel=1e-12)
+    assert row["max |theta| top [rad]"] == np.abs(result.theta[:, -1]).max()
+    assert row["max |theta| bottom [rad]"] == np.abs(result.theta[:, 0]).max()
+
+
+def test_every_tolerance_stalling_is_an_error_naming_each():
+    calls = []
+
+    def always_chatters(stack, motion, *, rtol):
+        calls.append(rtol)
+        raise StackChatter(f"stack model: 200 events in a row at t = 1.5 s (rtol {rtol:g})")
+
+    with pytest.raises(StackChatter, match=r"at rtol 1e-10: .*; at rtol 1e-11: .*; at rtol "
+                                           r"1e-12: .*every tolerance tried"):
+        integrate_retrying(always_chatters, None, None, rtol=1e-10)
+    assert calls == pytest.approx([1e-10, 1e-11, 1e-12], rel=1e-12)
+    calls.clear()
+    with pytest.raises(StackChatter):   # never below 1e-14, each tolerance once
+        integrate_retrying(always_chatters, None, None, rtol=1e-13)
+    assert calls == pytest.approx([1e-13, 1e-14], rel=1e-12)
