@@ -284,7 +284,10 @@ class OverturningSpectrum:
     def _ceilings(self) -> str:
         """``"ceiling 4.82843 at omega/p = 1, 6.47214 at 2"``: where each omega/p's scan
         stopped (the top of its last band), or ``"ceiling 10"`` when all share one."""
-        tops = self.bands.groupby("omega/p [-]", sort=False)["to a/(g tan alpha) [-]"].max()
+        columns = ("omega/p [-]", "to a/(g tan alpha) [-]")
+        if not set(columns) <= set(self.bands.columns):   # no band table (nothing scanned)
+            return f"ceiling {self.ceiling:g}"
+        tops = self.bands.groupby(columns[0], sort=False)[columns[1]].max()
         if tops.empty or np.ptp(tops.to_numpy()) == 0.0:
             return f"ceiling {self.ceiling:g}"
         return "ceiling " + ", ".join(f"{top:g} at omega/p = {ratio:g}" if k == 0

@@ -17,8 +17,9 @@ import pytest
 
 from tests.helpers import REPOSITORY, ctrl_c_reaches_subprocesses
 
-# A stack sweep whose first chunk is cheap (a 0.5 s record) and whose three others are long
-# (60 s records, ~1.5 s of CPU each): when part 0 is on disk both workers are mid-chunk.
+# A stack sweep whose first chunk is cheap (400 runs of 0.5 s records, ~1 s of CPU) and whose
+# three others are long (400 runs of 60 s records each, ~1.6 s of CPU per chunk: the stack
+# batch takes a few ms per run): when part 0 is on disk both workers are mid-chunk.
 SPEC = """\
 name = "ctrl-c-check"
 description = "a cheap first chunk, then long ones"
@@ -33,20 +34,20 @@ cor = "plastic"
 
 [[records]]
 preset = "olive-view"
-seeds = 1
+seeds = 100
 duration = "0.5 s"
 label = "short"
 
 [[records]]
 preset = "olive-view"
-seeds = 3
+seeds = 300
 duration = "60 s"
 
 [intensity]
 pga = ["0.05 g", "0.08 g", "0.12 g", "0.16 g"]
 
 [run]
-chunk_size = 4
+chunk_size = 400
 """
 
 
@@ -131,4 +132,4 @@ def test_ctrl_c_ends_a_sweep_and_its_workers_at_once_and_keeps_the_finished_chun
         name.startswith("part-") for name in parts), parts   # no half-written part
     outcome = run_sweep(load_spec(tmp_path / "spec.toml"), tmp_path / "out", resume=True,
                         progress=False, max_chunks=0)
-    assert outcome.skipped_runs == 4 * len(parts) and outcome.computed_runs == 0
+    assert outcome.skipped_runs == 400 * len(parts) and outcome.computed_runs == 0
