@@ -63,6 +63,7 @@ from shaketable.models.stack.compiled_steps import (
     ground,
 )
 from shaketable.models.stack.layout import (
+    ENDLESS,
     ENDS_IMPACT,
     ENDS_LIFT,
     ENDS_NONE,
@@ -81,6 +82,7 @@ from shaketable.models.stack.layout import (
     I_ERROR,
     I_EVALUATIONS,
     I_EVENTS,
+    I_INTERVAL_EVENTS,
     I_OVERTURNED,
     I_RECORDED,
     I_RIGID_J,
@@ -110,6 +112,7 @@ STOPS, DONE, ONE_DOF = (np.int64(code) for code in range(3))
 # the engine's constants (as shaketable.models.stack.engine's)
 FLOOR = 1e-10
 MAX_EVENTS_AT_ONE_INSTANT = 200
+MAX_EVENTS_PER_INTERVAL = 100_000
 
 #: Event kinds (the Python engine's ``kind``) and the reasons of a choice. The codes that
 #: compiled functions are called with are int64 values, not Python ints: numba types a
@@ -378,6 +381,10 @@ def progress(run, t, t_new):
         ist[I_ERROR] = STALLED
         run[3][F_ERROR_TIME] = t
         return False
+    if ist[I_EVENTS] - ist[I_INTERVAL_EVENTS] > MAX_EVENTS_PER_INTERVAL:
+        ist[I_ERROR] = ENDLESS
+        run[3][F_ERROR_TIME] = t
+        return False
     return True
 
 
@@ -542,6 +549,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                 seg[0], seg[1], seg[2] = t[k], t[k + 1] - t[k], ug[k]
                 seg[3], seg[4], seg[5] = ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k]
                 start, what, j = t[k], ENDS_NONE, NONE
+                ist[I_INTERVAL_EVENTS] = ist[I_EVENTS]
                 code = ONE_DOF if open_count(pattern) == 1 and \
                     fs[F_REST_UNTIL] == -math.inf and G + vg[k] > 0.0 and G + vg[k + 1] > 0.0 \
                     else DONE
@@ -741,6 +749,11 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     if error == STALLED:
         raise StackChatter(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
                            f"t = {when!r} s without progress")
+    if error == ENDLESS:
+        raise StackChatter(f"stack model: more than {MAX_EVENTS_PER_INTERVAL:,} events in one "
+                           f"input interval, the last at t = {when!r} s: impacts without end "
+                           "(a block chattering on its seat, each flight shorter than the "
+                           "last)")
     if error == STEP_FAILED:
         raise StackStalled(f"stack model: DOP853 failed at t = {when!r} s: the step size "
                            "fell below the rounding of the time")

@@ -53,6 +53,10 @@ FULL_ENUMERATION = 3
 FLOOR = 1e-10
 #: Events in a row at one instant before the run is declared stalled.
 MAX_EVENTS_AT_ONE_INSTANT = 200
+#: Events in one input interval before the run is declared endless (impacts without end:
+#: a block chattering on its seat, each flight shorter than the last, that neither the
+#: cascade's closed form nor the no-progress count catches); a run has hundreds at most.
+MAX_EVENTS_PER_INTERVAL = 100_000
 
 
 class StackStalled(RuntimeError):
@@ -124,6 +128,7 @@ class Run:
         self.rest_until = -math.inf
         self.steps = self.evaluations = 0
         self.stalled = 0
+        self.interval_events = 0
         self.energy_reference = float(G * stack.m.sum()) * float(np.hypot(stack.b, stack.h).max())
 
     # ----------------------------------------------------------------- records
@@ -418,6 +423,7 @@ class Run:
             self.record(self.t_airborne, "airborne")
             return False
         t = t0
+        self.interval_events = self.n_events
         while t < t1:
             if self.rest_until > t:
                 if self.rest_until >= t1:
@@ -457,6 +463,11 @@ class Run:
         if self.stalled > MAX_EVENTS_AT_ONE_INSTANT:
             raise StackChatter(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
                                f"t = {t!r} s without progress")
+        if self.n_events - self.interval_events > MAX_EVENTS_PER_INTERVAL:
+            raise StackChatter(f"stack model: more than {MAX_EVENTS_PER_INTERVAL:,} events in "
+                               f"one input interval, the last at t = {t!r} s: impacts without "
+                               "end (a block chattering on its seat, each flight shorter than "
+                               "the last)")
 
     def sample(self, k):
         """theta, theta', theta'' of every block, the pattern and the contact forces at

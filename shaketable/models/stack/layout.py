@@ -29,13 +29,14 @@ N_FLOATS = 15
 # progress, status, the overturned block, steps, evaluations, the error, the pattern whose
 # closed forms are current (interface, side), whether the last sample's one-DOF state (its
 # phi'' in F_SAMPLE_ACCELERATION, its forces in the closed forms' workspace) is the state
-# the next input interval starts from (1) or not (0)
+# the next input interval starts from (1) or not (0), the events counted when the current
+# input interval began
 I_EVENTS, I_RECORDED, I_STALLED, I_STATUS, I_OVERTURNED, I_STEPS, I_EVALUATIONS, I_ERROR, \
-    I_RIGID_J, I_RIGID_S, I_SAMPLED = range(11)
-N_INTS = 11
+    I_RIGID_J, I_RIGID_S, I_SAMPLED, I_INTERVAL_EVENTS = range(12)
+N_INTS = 12
 # slots of the parameters ``par``: the pattern check's look-ahead [s], the force tolerance
 # [N], the angle and rate scales [rad, rad/s], rtol, the rest tolerance [s], the COR, the
 # law (0 plastic, 1 COR)
 P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW = range(8)
 #: Errors of a run.
-NO_PATTERN, STALLED, STEP_FAILED = 1, 2, 3
+NO_PATTERN, STALLED, STEP_FAILED, ENDLESS = 1, 2, 3, 4

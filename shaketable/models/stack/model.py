@@ -70,7 +70,7 @@ def integrate_retrying(integrate, stack: Stack, motion: Motion, *, rtol: float,
     StackChatter
         Every tolerance stalled (the message lists them).
     """
-    from shaketable.models.stack.engine import StackChatter
+    from shaketable.models.stack.engine import StackChatter, StackStalled
 
     stalls: list[str] = []
     tolerances = [rtol] + [max(rtol / divisor, TIGHTEST_RTOL) for divisor in RETRY_DIVISORS]
@@ -80,6 +80,12 @@ def integrate_retrying(integrate, stack: Stack, motion: Motion, *, rtol: float,
         except StackChatter as error:
             stalls.append(f"at rtol {tolerance:g}: {error}")
             continue
+        except StackStalled as error:
+            if not stalls:
+                raise
+            # a retry that fails otherwise: the stalls before it are said first
+            raise StackStalled(f"{'; '.join(stalls)}; run again at rtol {tolerance:g}: "
+                               f"{error}") from None
         note = ("" if not stalls else
                 f"the run stalled ({'; '.join(stalls)}: a contact chattering at its uplift "
                 f"threshold) and was run again at rtol {tolerance:g}")

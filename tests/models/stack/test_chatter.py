@@ -83,3 +83,21 @@ def test_every_tolerance_stalling_is_an_error_naming_each():
     with pytest.raises(StackChatter):   # never below 1e-14, each tolerance once
         integrate_retrying(always_chatters, None, None, rtol=1e-13)
     assert calls == pytest.approx([1e-13, 1e-14], rel=1e-12)
+
+
+def test_impacts_without_end_stop_the_run_instead_of_running_forever():
+    # three equal-mass blocks (4 x 1 ft, 4 x 1 ft, 30 x 6 in on top), the same record: the
+    # top block lands and flips to its other corner again and again, each flight shorter
+    # than the last, a sequence neither the cascade's closed form nor the no-progress count
+    # catches; the run never ended. It stops now, past MAX_EVENTS_PER_INTERVAL events in one
+    # input interval, with StackChatter (which the retry then tries at tighter tolerances)
+    from shaketable.models.stack.compiled import MAX_EVENTS_PER_INTERVAL, integrate
+
+    stack = Stack([Block.parse("4x1ft"), Block.parse("4x1ft"), Block.parse("30x6in")])
+    motion = artificial("olive-view", seed=3, duration=4.0).scaled(0.3)
+    zeros = np.zeros(3)
+    with pytest.raises(StackChatter, match=f"more than {MAX_EVENTS_PER_INTERVAL:,} events in "
+                                           r"one input interval, the last at t = 2\.31"):
+        integrate(stack, motion, law="plastic", cor=1.0, theta0=zeros, theta_dot0=zeros,
+                  rtol=1e-10, rest_tolerance=1e-6 / stack.blocks[0].p,
+                  max_recorded_events=100_000)
