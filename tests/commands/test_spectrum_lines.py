@@ -17,6 +17,7 @@ def test_a_band_up_to_the_ceiling_says_so(tmp_path, capsys):
     assert main(["spectrum", "--block", "16x4ft", "--pulse", "half-sine", "--ratios", "1,2",
                  "--scan-step", "0.05", "--out", str(out)]) == 0
     lines = [line for line in capsys.readouterr().out.splitlines() if "ω/p = " in line]
+    assert len(lines) == 2, lines   # one band line per ratio
     # the default ceiling of a/(g tan alpha) is 2 sqrt(1 + (ω/p)^2) + 2, past Eq. 2-8's
     # threshold (the docstring of overturning_spectrum): 4.828 at 1, 6.472 at 2
     for line, ratio in zip(lines, (1, 2)):
