@@ -51,6 +51,7 @@ from shaketable.models.rocking.run import (
     check_fixed_steps,
     engine_arrays,
     extended,
+    labelled,
     run_in_chunks,
     run_options,
     thread_count,
@@ -250,8 +251,8 @@ def simulate_many(blocks: Block | Iterable[Block] | Mapping[str, Block],
         :func:`shaketable.models.rocking.run.run_options`, as for
         :func:`shaketable.models.api.simulate`.
     """
-    block_labels, block_list = _labelled("blocks", blocks, Block, Block.describe)
-    motion_labels, motion_list = _labelled("motions", motions, Motion, lambda m: m.name)
+    block_labels, block_list = labelled("blocks", blocks, Block, Block.describe)
+    motion_labels, motion_list = labelled("motions", motions, Motion, lambda m: m.name)
     cor_list = [in_range(f"cors[{k}]", c, 0.0, 1.0) for k, c in
                 enumerate(_as_list(cors))]
     scale_list = [in_range(f"scales[{k}]", s, 0.0, low_open=True) for k, s in
@@ -326,26 +327,6 @@ def _as_list(values):
     if isinstance(values, (int, float, np.integer, np.floating)):
         return [values]
     return list(values)
-
-
-def _labelled(name, values, kind, default_label):
-    """(labels, objects) from one object, a sequence or a label -> object dict."""
-    if isinstance(values, kind):
-        values = [values]
-    if isinstance(values, dict):
-        labels, objects = [str(key) for key in values], list(values.values())
-    else:
-        objects = list(values)
-        labels = None
-    if not objects:
-        raise ValueError(f"{name} must not be empty")
-    for k, item in enumerate(objects):
-        if not isinstance(item, kind):
-            raise ValueError(f"{name}[{k}] must be a shaketable.{kind.__name__}, got "
-                             f"{type(item).__name__}")
-    if labels is None:
-        labels = [default_label(item) for item in objects]
-    return labels, objects
 
 
 def _batch(blocks, block_labels, motions, motion_labels, block_index, motion_index, cors,

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numba
@@ -324,6 +324,33 @@ def check_fixed_steps(method: str, samples: int, subdivisions: int) -> None:
                          f"{steps:.3g} predictor-corrector steps; the limit is "
                          f"{MAX_FIXED_STEPS:.3g} per run (use fewer subdivisions, or "
                          f"method='fast', which chooses its own steps)")
+
+
+def labelled(name: str, values, kind: type, default_label: Callable, *,
+             wrong_type: type[Exception] = ValueError,
+             qualifier: str = "shaketable.") -> tuple[list[str], list]:
+    """(labels, objects) of a batch's inputs given as one object, a sequence, or a
+    label -> object mapping; ``default_label(object)`` labels the unlabelled.
+
+    Raises ValueError when there are none, and ``wrong_type`` naming ``name[k]`` and
+    ``qualifier + kind.__name__`` for an item that is not a ``kind``.
+    """
+    if isinstance(values, kind):
+        values = [values]
+    if isinstance(values, Mapping):
+        labels, objects = [str(key) for key in values], list(values.values())
+    else:
+        objects = list(values)
+        labels = None
+    if not objects:
+        raise ValueError(f"{name} must not be empty")
+    for k, item in enumerate(objects):
+        if not isinstance(item, kind):
+            raise wrong_type(f"{name}[{k}] must be a {qualifier}{kind.__name__}, got "
+                             f"{type(item).__name__}")
+    if labels is None:
+        labels = [default_label(item) for item in objects]
+    return labels, objects
 
 
 def thread_count(threads) -> int:

@@ -69,7 +69,7 @@ from numba import njit
 from shaketable.core.motion import Motion
 from shaketable.core.validation import count, in_range, positive
 from shaketable.models.rocking.physics import ERROR_MODEL
-from shaketable.models.rocking.run import extended, run_in_chunks, thread_count
+from shaketable.models.rocking.run import extended, labelled, run_in_chunks, thread_count
 from shaketable.models.stack.geometry import Stack
 from shaketable.models.stack.result import (
     PLAUSIBLE_FRICTION,
@@ -173,8 +173,10 @@ def simulate_many(stacks: Stack | Iterable[Stack] | Mapping[str, Stack],
     TypeError
         A stack or motion of the wrong type, naming its index.
     """
-    stack_labels, stack_list = _labelled("stacks", stacks, Stack, Stack.describe)
-    motion_labels, motion_list = _labelled("motions", motions, Motion, lambda m: m.name)
+    stack_labels, stack_list = labelled("stacks", stacks, Stack, Stack.describe,
+                                        wrong_type=TypeError, qualifier="")
+    motion_labels, motion_list = labelled("motions", motions, Motion, lambda m: m.name,
+                                          wrong_type=TypeError, qualifier="")
     cor_list = [_law(f"cors[{k}]", cor) for k, cor in enumerate(_as_list(cors))]
     scale_list = [in_range(f"scales[{k}]", s, 0.0, low_open=True)
                   for k, s in enumerate(_as_list(scales))]
@@ -233,26 +235,6 @@ def _as_list(values) -> list:
     if values is None or isinstance(values, (str, int, float, np.integer, np.floating)):
         return [values]
     return list(values)
-
-
-def _labelled(name, values, kind, default_label):
-    """(labels, objects) from one object, a sequence or a label -> object dict."""
-    if isinstance(values, kind):
-        values = [values]
-    if isinstance(values, Mapping):
-        labels, objects = [str(key) for key in values], list(values.values())
-    else:
-        objects = list(values)
-        labels = None
-    if not objects:
-        raise ValueError(f"{name} must not be empty")
-    for k, item in enumerate(objects):
-        if not isinstance(item, kind):
-            raise TypeError(f"{name}[{k}] must be a {kind.__name__}, got "
-                            f"{type(item).__name__}")
-    if labels is None:
-        labels = [default_label(item) for item in objects]
-    return labels, objects
 
 
 def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFrame:
