@@ -57,6 +57,7 @@ Results, as :class:`StackResult` names them:
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
@@ -270,31 +271,60 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
     rows: list[Any] = [None] * len(cases)
     rtols = [rtol] * len(cases)   # each run's, after a chatter stall a tighter one
     constants = {id(case.stack): _constants(case.stack) for case in cases}
+    caller = _user_location()   # where a retry's warning points, from any thread
 
     def run(start: int, stop: int) -> None:
         for k in range(start, stop):
             case = cases[k]
             try:
-                rows[k], rtols[k] = _row(case, runs[k][0], constants[id(case.stack)], rtol,
-                                         rest, recorded, mu)
+                rows[k], rtols[k], retried = _row(case, runs[k][0], constants[id(case.stack)],
+                                                  rtol, rest, recorded, mu)
             except StackStalled as error:
-                raise StackStalled(f"run {k} ({case.stack_label or case.stack.describe()}, "
-                                   f"{case.motion_label or case.motion.name}): "
-                                   f"{error}") from None
+                raise StackStalled(f"{_run_words(k, case)}: {error}") from None
+            if retried:
+                from shaketable.models.stack.model import StackRetryWarning
+
+                filename, lineno, module_globals = caller
+                warnings.warn_explicit(f"{_run_words(k, case)}: {retried}", StackRetryWarning,
+                                       filename, lineno, module_globals=module_globals)
 
     run_in_chunks(run, len(cases), threads, 1)
     return _frame(cases, [motion for motion, _ in runs], [index for _, index in runs], rows,
                   rtols, mu)
 
 
+def _run_words(k: int, case: Case) -> str:
+    """How a message names run ``k``: ``"run 3 (2 blocks: ..., el-centro, scale 0.5,
+    plastic impacts)"`` (runs that share the stack and the motion differ in the scale or
+    the law)."""
+    law = "plastic impacts" if case.cor is None else f"COR {case.cor:g}"
+    return (f"run {k} ({case.stack_label or case.stack.describe()}, "
+            f"{case.motion_label or case.motion.name}, scale {case.scale:g}, {law})")
+
+
+def _user_location() -> tuple[str, int, dict | None]:
+    """The file, line and module globals of the first frame outside the package (the
+    user's call), where :func:`~shaketable.models.stack.simulate_stack`'s warnings point
+    (``_user_stacklevel``); found in the calling thread, so that a warning raised in a
+    batch's worker thread points there too (``("sys", 1, None)`` past the stack's top, as
+    :func:`warnings.warn`)."""
+    from shaketable.models.stack.model import _user_stacklevel
+
+    try:
+        frame = sys._getframe(_user_stacklevel() - 1)
+    except ValueError:
+        return "sys", 1, None
+    return frame.f_code.co_filename, frame.f_lineno, frame.f_globals
+
+
 def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float | None,
-         recorded: int, mu: float) -> tuple[tuple, float]:
+         recorded: int, mu: float) -> tuple[tuple, float, str]:
     """One run: the engine, then its results from the engine's arrays (:data:`_RESULTS`),
-    and the tolerance they were computed at (``rtol``, or a tighter one after a chatter
-    stall, as :func:`~shaketable.models.stack.model.simulate_stack`); ``constants``: the
-    stack's :func:`_constants`."""
+    the tolerance they were computed at (``rtol``, or a tighter one after a chatter stall,
+    as :func:`~shaketable.models.stack.model.simulate_stack`) and the retry's note ("" when
+    none); ``constants``: the stack's :func:`_constants`."""
     from shaketable.models.stack.compiled import IMPACT, UPLIFT, integrate
-    from shaketable.models.stack.model import StackRetryWarning, integrate_retrying
+    from shaketable.models.stack.model import integrate_retrying
 
     stack = case.stack
     n = stack.n
@@ -303,10 +333,6 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
         integrate, stack, motion, law="plastic" if case.cor is None else "cor",
         cor=1.0 if case.cor is None else case.cor, theta0=zeros, theta_dot0=zeros, rtol=rtol,
         rest_tolerance=bottom_rest if rest is None else rest, max_recorded_events=recorded)
-    if retried:
-        warnings.warn(f"{case.stack_label or stack.describe()}, "
-                      f"{case.motion_label or case.motion.name}: {retried}", StackRetryWarning,
-                      stacklevel=2)
     compiled_run = out["run"]
     theta, patterns = out["theta"], out["patterns"]
     t = motion.t[:out["filled"]]
@@ -353,7 +379,7 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
             float(t[exceeded]) if exceeded >= 0 else math.nan,
             tension >= 0, float(t[tension]) if tension >= 0 else math.nan,
             float(t[past]) if past >= 0 else math.nan, float(standing[0]), standing[1], still,
-            t_end, compiled_run.steps, compiled_run.evaluations), rtol
+            t_end, compiled_run.steps, compiled_run.evaluations), rtol, retried
 
 
 def _constants(stack: Stack) -> tuple:
