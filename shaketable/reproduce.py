@@ -178,7 +178,10 @@ def _pooled(names: list, out: Path, workers: int, compile_planar_first: bool, re
             WORKER_CPU[worker] = max(cpu, WORKER_CPU.get(worker, 0.0))
             record(futures[future], *outcome)
     except BaseException:  # Ctrl-C or a scene's crash: the workers end now, mid-scene
-        end_workers(pool)
+        try:
+            end_workers(pool)
+        except KeyboardInterrupt:   # a second Ctrl-C: the workers have ended all the same,
+            pass                    # and the error raised is the one that stopped the run
         raise
     pool.shutdown(wait=True)
 

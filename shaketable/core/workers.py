@@ -83,7 +83,12 @@ def end_workers(pool) -> None:
                 process.terminate()
         except KeyboardInterrupt:
             interrupted = True
-    pool.shutdown(wait=False, cancel_futures=True)
+    while True:   # the pool's queued work cancelled, whatever Ctrl-C comes meanwhile
+        try:
+            pool.shutdown(wait=False, cancel_futures=True)
+            break
+        except KeyboardInterrupt:
+            interrupted = True
     deadline = time.monotonic() + WORKER_GRACE
     for process in processes:
         while True:   # until this worker has ended, whatever Ctrl-C comes meanwhile

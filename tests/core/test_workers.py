@@ -53,6 +53,58 @@ def test_a_second_ctrl_c_while_waiting_still_kills_every_worker():
     assert time.monotonic() - start < 1.0   # no grace after the second Ctrl-C
 
 
+class _InterruptedPool(_Pool):
+    """A pool whose first ``shutdown`` is interrupted by a Ctrl-C."""
+
+    def __init__(self, processes):
+        super().__init__(processes)
+        self.shutdowns = 0
+
+    def shutdown(self, wait=True, cancel_futures=False):
+        self.shutdowns += 1
+        if self.shutdowns == 1:
+            raise KeyboardInterrupt
+
+
+def test_a_ctrl_c_while_the_pool_shuts_down_still_kills_every_worker():
+    processes = [_Process(), _Process()]
+    pool = _InterruptedPool(processes)
+    with pytest.raises(KeyboardInterrupt):
+        workers.end_workers(pool)
+    assert all(process.killed for process in processes)
+    assert pool.shutdowns == 2   # the queued work cancelled all the same
+
+
+def test_a_ctrl_c_while_reproduce_ends_its_workers_keeps_the_error_that_stopped_it(
+        monkeypatch, tmp_path):
+    from shaketable import reproduce
+
+    class _CrashingPool(_Pool):
+        def submit(self, *args, **kwargs):
+            raise RuntimeError("a scene crashed")
+
+    def end_workers(pool):
+        raise KeyboardInterrupt   # a second Ctrl-C while the workers are ended
+
+    monkeypatch.setattr(reproduce, "process_pool", lambda *args: _CrashingPool([]))
+    monkeypatch.setattr(reproduce, "end_workers", end_workers)
+    with pytest.raises(RuntimeError, match="a scene crashed"):
+        reproduce._pooled(["a-scene"], tmp_path, 2, False, lambda *args: None)
+
+
+def test_a_ctrl_c_while_the_command_ends_its_helpers_keeps_its_exit_status(monkeypatch, capsys):
+    from shaketable import cli
+
+    def interrupted():
+        raise KeyboardInterrupt   # Ctrl-C during the wait for the resource tracker
+
+    monkeypatch.setattr(cli, "_worker_processes_all_ended", lambda: True)
+    monkeypatch.setattr(cli, "_stop_process_helpers", interrupted)
+    monkeypatch.setattr(sys, "argv", ["shaketable", "records"])
+    assert cli.main() == 0
+    assert "PGA and PGV" in capsys.readouterr().out
+
+
 def test_the_process_helpers_are_ended_only_after_a_pool_of_the_command(monkeypatch):
     import concurrent.futures.process  # noqa: F401  (imported by dask, say, without a pool)
     import multiprocessing
