@@ -118,16 +118,21 @@ def test_the_process_helpers_are_ended_only_after_a_pool_of_the_command(monkeypa
     assert cli._worker_processes_all_ended()
 
 
-def test_the_wait_for_the_resource_tracker_is_bounded():
+def test_the_wait_for_the_resource_tracker_is_bounded(monkeypatch):
     """A process that holds the tracker's pipe and that multiprocessing did not start
-    keeps the tracker running: the command stops waiting after the time it gives."""
+    keeps the tracker running: the command stops waiting after the time it gives. (A
+    tracker of the test's own: the test process's tracker, which would unlink what other
+    tests registered, is left running.)"""
     from multiprocessing import resource_tracker
 
     from shaketable import cli
 
-    tracker = resource_tracker._resource_tracker
-    if not hasattr(tracker, "_stop"):
+    if not hasattr(resource_tracker.ResourceTracker, "_stop"):
         pytest.skip("Python < 3.11: the tracker ends on its own, nothing is waited for")
+    shared = resource_tracker._resource_tracker
+    shared_fd, shared_pid = shared._fd, shared._pid
+    tracker = resource_tracker.ResourceTracker()
+    monkeypatch.setattr(resource_tracker, "_resource_tracker", tracker)
     tracker.ensure_running()
     holder = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"],
                               pass_fds=(tracker._fd,))
@@ -142,3 +147,5 @@ def test_the_wait_for_the_resource_tracker_is_bounded():
         if thread.name == "shaketable-tracker-stop":
             thread.join(10)
             assert not thread.is_alive()
+    assert tracker._fd is None   # this test's tracker ended; the process's is as it was
+    assert (shared._fd, shared._pid) == (shared_fd, shared_pid)
