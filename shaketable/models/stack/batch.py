@@ -15,10 +15,13 @@ impact=..., cor=..., rtol=rtol, rest_tolerance=...)`` (``extended``:
 and starts it at t = 0; the scale is skipped when it is 1). Every result column holds the
 value that run's :class:`StackResult` gives, bit for bit (``tests/models/stack/test_batch.py``
 checks it against the result object, which computes them by its own path). The model's
-warnings (tensile force, friction above :data:`PLAUSIBLE_FRICTION`) are not raised: the
-``tension``, ``t_tension [s]`` and ``t_friction_exceeded [s]`` columns carry them. A run
-the engine cannot continue (:class:`~shaketable.models.stack.engine.StackStalled`) stops
-the batch, naming the run.
+assumption warnings (tensile force, friction above :data:`PLAUSIBLE_FRICTION`) are not
+raised: the ``tension``, ``t_tension [s]`` and ``t_friction_exceeded [s]`` columns carry
+them. A run made again at a tighter tolerance after a chatter stall raises a
+:class:`~shaketable.models.stack.model.StackRetryWarning` naming the run (``run k``, its
+stack, motion, scale and law; its ``rtol [-]`` says it too). A run the engine cannot
+continue (:class:`~shaketable.models.stack.engine.StackStalled`) stops the batch, naming
+the run.
 
 Columns (units in square brackets; NaN in a time column: never happened)
 -------------------------------------------------------------------------
