@@ -103,3 +103,13 @@ def end_workers(pool) -> None:
                 interrupted = True
     if interrupted:
         raise KeyboardInterrupt
+
+
+def end_workers_after(pool) -> None:
+    """:func:`end_workers` while an error that stopped the work (Ctrl-C, a crash) is being
+    handled: a second Ctrl-C meanwhile is not raised (the workers end all the same), so
+    that the error raised is the one that stopped the work."""
+    try:
+        end_workers(pool)
+    except KeyboardInterrupt:
+        pass

@@ -79,17 +79,15 @@ def test_a_ctrl_c_while_reproduce_ends_its_workers_keeps_the_error_that_stopped_
         monkeypatch, tmp_path):
     from shaketable import reproduce
 
-    class _CrashingPool(_Pool):
+    class _CrashingPool(_InterruptedPool):   # a second Ctrl-C while its workers are ended
         def submit(self, *args, **kwargs):
             raise RuntimeError("a scene crashed")
 
-    def end_workers(pool):
-        raise KeyboardInterrupt   # a second Ctrl-C while the workers are ended
-
-    monkeypatch.setattr(reproduce, "process_pool", lambda *args: _CrashingPool([]))
-    monkeypatch.setattr(reproduce, "end_workers", end_workers)
+    pool = _CrashingPool([_Process()])
+    monkeypatch.setattr(reproduce, "process_pool", lambda *args: pool)
     with pytest.raises(RuntimeError, match="a scene crashed"):
         reproduce._pooled(["a-scene"], tmp_path, 2, False, lambda *args: None)
+    assert pool._processes[0].killed
 
 
 def test_a_ctrl_c_while_the_command_ends_its_helpers_keeps_its_exit_status(monkeypatch, capsys):

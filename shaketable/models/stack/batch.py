@@ -60,7 +60,6 @@ Results, as :class:`StackResult` names them:
 from __future__ import annotations
 
 import math
-import sys
 import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
@@ -245,6 +244,7 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
     """Check, prepare each run's motion, run the cases on ``threads`` threads, build the
     table."""
     from shaketable.models.stack.engine import StackStalled
+    from shaketable.models.stack.model import StackRetryWarning, user_location
 
     if not cases:
         raise ValueError("cases must not be empty")
@@ -274,7 +274,7 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
     rows: list[Any] = [None] * len(cases)
     rtols = [rtol] * len(cases)   # each run's, after a chatter stall a tighter one
     constants = {id(case.stack): _constants(case.stack) for case in cases}
-    caller = _user_location()   # where a retry's warning points, from any thread
+    caller = user_location()   # where a retry's warning points, from any thread
 
     def run(start: int, stop: int) -> None:
         for k in range(start, stop):
@@ -285,8 +285,6 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
             except StackStalled as error:
                 raise StackStalled(f"{_run_words(k, case)}: {error}") from None
             if retried:
-                from shaketable.models.stack.model import StackRetryWarning
-
                 filename, lineno, module_globals = caller
                 warnings.warn_explicit(f"{_run_words(k, case)}: {retried}", StackRetryWarning,
                                        filename, lineno, module_globals=module_globals)
@@ -303,21 +301,6 @@ def _run_words(k: int, case: Case) -> str:
     law = "plastic impacts" if case.cor is None else f"COR {case.cor:g}"
     return (f"run {k} ({case.stack_label or case.stack.describe()}, "
             f"{case.motion_label or case.motion.name}, scale {case.scale:g}, {law})")
-
-
-def _user_location() -> tuple[str, int, dict | None]:
-    """The file, line and module globals of the first frame outside the package (the
-    user's call), where :func:`~shaketable.models.stack.simulate_stack`'s warnings point
-    (``_user_stacklevel``); found in the calling thread, so that a warning raised in a
-    batch's worker thread points there too (``("sys", 1, None)`` past the stack's top, as
-    :func:`warnings.warn`)."""
-    from shaketable.models.stack.model import _user_stacklevel
-
-    try:
-        frame = sys._getframe(_user_stacklevel() - 1)
-    except ValueError:
-        return "sys", 1, None
-    return frame.f_code.co_filename, frame.f_lineno, frame.f_globals
 
 
 def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float | None,
