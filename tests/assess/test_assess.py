@@ -215,11 +215,25 @@ def test_recommendation_says_when_the_suite_is_too_small(shielding):
 def test_a_bundled_name_beside_a_folder_of_that_name(tmp_path, monkeypatch):
     # `shaketable assess transformer --out transformer` run twice: the second time the
     # folder of the first run's report must not be taken for the object file
-    from shaketable.commands.assess import object_path
     from shaketable.scenes.catalog import experiments_folder
+    from shaketable.scenes.catalog import resolve_object_path as object_path
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "transformer").mkdir()
     assert object_path("transformer") == experiments_folder() / "assess" / "transformer.toml"
     with pytest.raises(FileNotFoundError, match="bundled: lab-cabinet"):
         object_path("no-such-object")
+
+
+def test_the_api_takes_the_bundled_names_as_the_cli_does(tmp_path, monkeypatch):
+    # docs/assess.md's example, run from an empty folder after `pip install`
+    import shaketable
+    import shaketable.assessment as assessment
+
+    monkeypatch.chdir(tmp_path)
+    seen = []
+    monkeypatch.setattr(assessment, "run_assessment", lambda spec: seen.append(spec) or spec)
+    shaketable.assess("lab-cabinet")
+    assert seen[0].name == "lab-cabinet"
+    with pytest.raises(FileNotFoundError, match="did you mean lab-cabinet.*bundled: lab-cabinet"):
+        shaketable.assess("experiments/assess/lab-cabinet.toml")
