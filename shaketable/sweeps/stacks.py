@@ -104,7 +104,7 @@ def stacks_grid(table: object, where: str) -> tuple[list, list]:
         ``size`` (the size text, or the column's list), ``blocks`` and ``mass ratio``.
     """
     from shaketable.models.stack import Stack
-    from shaketable.models.stack.geometry import MAX_BLOCKS
+    from shaketable.models.stack.geometry import MAX_BLOCKS, overhang_message
 
     table = sections.table_of(table, where, "stacks", SweepError)
     check_keys(table, STACK_KEYS, where, "[stacks]", SweepError)
@@ -134,9 +134,13 @@ def stacks_grid(table: object, where: str) -> tuple[list, list]:
                 raise SweepError(f"{where}: stacks.columns must be lists of block sizes, "
                                  f"bottom first, such as [\"60x12in\", \"30x6in\"], got "
                                  f"{column!r}")
-            columns.append((list(column), [sections.sized_block(text, where, "stacks.columns",
-                                                                None, SweepError)
-                                           for text in column]))
+            blocks = [sections.sized_block(text, where, "stacks.columns", None, SweepError)
+                      for text in column]
+            overhang = overhang_message(blocks)
+            if overhang is not None:   # in the user's units, as simulate --stack says it
+                raise SweepError(f"{where}: stacks.columns {', '.join(map(str, column))}: "
+                                 f"{overhang}")
+            columns.append((list(column), blocks))
     ratios: list = [None]
     if "mass_ratios" in table:
         ratios = []
