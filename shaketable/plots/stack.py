@@ -17,7 +17,8 @@ OWN_SCALE_BELOW = 0.25
 
 def magnification(peak: float, span: float) -> float:
     """A 1-2-5 factor that brings a curve of peak ``peak`` to about half of ``span`` on a
-    shared axis (1 when it already reaches a tenth of it, or never moves) [-]."""
+    shared axis (1 when it already reaches a tenth of it, or never moves) [-]. The
+    animation gives it the largest peak of the column and draws every block by it."""
     if not (peak > 0.0) or peak >= 0.1 * span:
         return 1.0
     wanted = 0.5 * span / peak
