@@ -16,7 +16,8 @@ default; ``docs/stack.md``). The stacks take the place of ``[blocks]`` in the gr
     [rocking]                     # optional for stacks
     cor = "plastic"               # the default; or numbers [-]: the constant-COR law,
     #                             # or a list mixing both, ["plastic", 0.9]
-    # rtol = 1e-10                # DOP853's tolerance (default 1e-12); duration = "30 s"
+    # rtol = 1e-10                # the stack engine's relative tolerance (default 1e-12);
+    #                             # duration = "30 s"
 
 The grid's order: each size (or column), then the number of blocks, then the mass ratio
 (fastest); in the run order the stacks stand where the blocks stand (record, pitch phase,
@@ -75,7 +76,8 @@ if TYPE_CHECKING:
 #: Keys of ``[stacks]``.
 STACK_KEYS = {"sizes", "blocks", "columns", "mass_ratios"}
 
-#: The stack model's DOP853 tolerance in a sweep without ``rocking.rtol``.
+#: The stack engine's relative tolerance in a sweep without ``rocking.rtol`` (its DOP853
+#: steps of several moving bodies and its RKN6(4) steps of one, :mod:`~shaketable.models.stack`).
 DEFAULT_STACK_RTOL = 1e-12
 
 
@@ -212,7 +214,8 @@ class StackSweep(RockingSweep):
                                  "starts every run from rest")
         if not 1e-14 <= spec.options.get("rtol", DEFAULT_STACK_RTOL) <= 1e-3:
             raise SweepError(f"{where}: rocking.rtol with [stacks] must be in [1e-14, 1e-3] "
-                             f"(the stack model's DOP853), got {spec.options['rtol']!r}")
+                             f"(the stack engine's relative tolerance), got "
+                             f"{spec.options['rtol']!r}")
 
     def describe(self) -> str | None:
         return ("[stacks]: the stack model (a column of rigid blocks; plastic or constant-COR "
