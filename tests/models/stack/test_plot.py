@@ -87,3 +87,19 @@ def test_blocks_rocking_together_are_drawn_at_one_magnification():
     assert not any("magnified" in line.get_label()
                    for axis in stage.fig.axes for line in axis.get_lines())
     pyplot().close(stage.fig)
+
+
+def test_the_title_gives_the_excursion_in_the_unit_family_of_the_blocks():
+    # ft blocks: the console's ft/in, not mm; blocks given in m: m (mm under 1 m)
+    import re
+
+    for sizes, to_unit in ((("8x4ft", "6x4ft"), {"in": 0.0254, "ft": 0.3048}),
+                           (("2x1m", "1.5x1m"), {"mm": 0.001, "m": 1.0})):
+        stack = Stack([st.Block.parse(size) for size in sizes])
+        result = simulate_stack(stack, theta0=(0.05, 0.05), duration=0.1)
+        fig = result.plot()
+        found = re.search(r"peak top-corner excursion ([0-9.]+) (\w+)", fig._suptitle.get_text())
+        pyplot().close(fig)
+        assert found is not None and found[2] in to_unit
+        assert float(found[1]) * to_unit[found[2]] == pytest.approx(result.peak_excursion,
+                                                                    rel=5e-3)
