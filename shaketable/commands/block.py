@@ -156,10 +156,9 @@ def animate_block(args, size: tuple, wrote) -> int:
     ``--harmonic``, ``--pulse`` or ``--record`` (or free rocking), as ``simulate`` reads them
     (the rocking model's ``animate``:
     :meth:`shaketable.commands.simulate_models.RockingCommand.animate`)."""
-    from shaketable.commands.checks import report_early_stops
+    from shaketable.commands.checks import refuse_stack_options, report_early_stops
     from shaketable.commands.common import load_motion, notice_first_compile, scaled_record
     from shaketable.commands.options import block_option, motion_from_options
-    from shaketable.commands.simulate_models import refuse_stack_options
     from shaketable.core.validation import in_range
     from shaketable.models.api import simulate
     from shaketable.plots.animation import animate
