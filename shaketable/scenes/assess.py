@@ -125,6 +125,12 @@ def _section(data: dict, name: str) -> dict:
 def assessment_from_dict(data: dict, folder: Path | None = None) -> Assessment:
     """Validate the parsed TOML (``folder``: where relative file names are read from)."""
     folder = Path(".") if folder is None else folder
+    if "stack" in data or "stacks" in data:   # a column of blocks is the stack model's
+        key = "stack" if "stack" in data else "stacks"
+        raise _Error(key, "assess takes one object, not a stack of blocks: for a column "
+                          "use `shaketable simulate --stack` (one motion) or a sweep with "
+                          "[stacks] and `shaketable risk` (fragility and risk; docs/stack.md, "
+                          "docs/sweeps.md)")
     unknown = unknown_keys(data, TOP)
     if unknown:
         raise _Error(unknown[0], f"unknown key at the top level; expected "

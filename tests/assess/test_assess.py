@@ -149,6 +149,16 @@ def test_counts_are_checked_as_everywhere(tmp_path, old, new, message):
     assert str(raised.value) == f"{path}: {message}"
 
 
+def test_a_stack_in_an_object_file_points_to_the_stack_model(tmp_path):
+    path = _write(tmp_path, GOOD.replace('name = "thing"\n',
+                                         'name = "thing"\n[stack]\nblocks = ["8x4ft", "6x4ft"]\n'))
+    with pytest.raises(SceneError, match=r"stack: assess takes one object, not a stack of "
+                                         r"blocks: for a column use `shaketable simulate "
+                                         r"--stack`.* a sweep with \[stacks\] and `shaketable "
+                                         r"risk`.*\(line 2\)"):
+        load_assessment(path)
+
+
 def test_calibration_of_another_block(tmp_path):
     _write(tmp_path, json.dumps({"cor [-]": 0.9, "cor_se [-]": 0.01, "fit samples": 100,
                                  "block_height [m]": 0.762, "block_width [m]": 0.1524}),
