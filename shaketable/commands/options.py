@@ -175,6 +175,16 @@ def add_motion_options(parser) -> None:
                              "lasts --duration")
 
 
+def friction_argument(text: str) -> float:
+    """A ``--mu`` value: a bare number [-] (the range is checked with the other inputs)."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: give the friction coefficient as a number [-], e.g. 0.6 (not a "
+            "percentage, no unit)") from None
+
+
 def add_mass_options(parser) -> None:
     """``--masses`` and ``--densities``: the masses of a column of blocks (``--stack``), as
     ``simulate`` and ``animate`` take them

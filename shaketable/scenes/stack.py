@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from shaketable.core.constants import MAX_FRICTION
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.units import format_length, parse, parse_angle_or_ratio
@@ -184,13 +185,18 @@ def per_block_angles(values, stack: Stack, *, where: str, rates: bool = False) -
 
 
 def friction_coefficient(value, where: str) -> float | None:
-    """``mu``: the friction coefficient the contacts offer [-] (None: not given)."""
+    """``mu``: the friction coefficient the contacts offer [-] in [0, 1.5] (None: not
+    given; :data:`~shaketable.core.constants.MAX_FRICTION`, assess's bound too)."""
     if value is None:
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
             0 <= value < math.inf):
         raise ValueError(f"{where} must be a friction coefficient >= 0 (a number), "
                          f"got {value!r}")
+    if value > MAX_FRICTION:
+        raise ValueError(f"{where} must be at most {MAX_FRICTION:g} (a friction coefficient "
+                         f"[-], as assess takes it; no real contact offers more than about "
+                         f"1), got {value!r}")
     return float(value)
 
 
