@@ -28,7 +28,7 @@ with ``", mass ratio 0.5"`` when a ratio is given.
 Each row keeps the input columns of a rocking sweep (record, scale, PGA, COR, intensity
 measures, ...; ``R [m]`` and the block-normalised measures ``pga/(g tan a)`` and ``pgv
 p/(g tan a)`` are those of the BOTTOM block) and gains ``blocks``, ``mass ratio [-]``
-(NaN: one density), ``stack height [m]``, ``base width [m]``, ``impact`` (``"plastic"``
+(NaN: one density, or a block alone), ``stack height [m]``, ``base width [m]``, ``impact`` (``"plastic"``
 or ``"cor"``; ``cor [-]`` is NaN with the plastic law), ``status``, ``overturned`` (some
 block fell), ``overturned block`` (the block that fell, numbered from 0 at the bottom;
 -1 if none), ``verdict`` (:meth:`StackResult.verdict`), ``t_overturn [s]``,
@@ -160,8 +160,8 @@ def stacks_grid(table: object, where: str) -> tuple[list, list]:
         except ValueError as error:
             raise SweepError(f"{where}: [stacks] {size!r}: {error}") from None
         stacks.append(stack)
-        inputs.append({"size": size, "blocks": len(blocks),
-                       "mass ratio": math.nan if ratio is None else ratio})
+        inputs.append({"size": size, "blocks": len(blocks),   # one block: no ratio
+                       "mass ratio": math.nan if ratio is None or len(blocks) < 2 else ratio})
     return stacks, inputs
 
 

@@ -301,6 +301,9 @@ def test_the_model_is_chosen_by_the_spec(tmp_path):
         "2 blocks: 30 x 6 in on 60 x 12 in, mass ratio 2",
         "2 blocks: 30 x 6 in on 60 x 12 in, mass ratio 0.5"]
     assert math.isnan(spec.cors[0]) and spec.n_runs == 2 * 3 * 4
+    # a block alone has no mass ratio (one mass): NaN, as for one density
+    assert [row["mass ratio"] for row in spec.block_inputs[:2]] == [2.0, 0.5]
+    assert all(math.isnan(row["mass ratio"]) for row in spec.block_inputs[2:])
 
 
 def test_a_resume_with_another_model_is_refused_by_name(stack_sweep, tmp_path):
