@@ -307,7 +307,7 @@ def test_a_record_scene_scales_to_motion_pga_as_simulate_pga_does(tmp_path, caps
     factor = 0.6 * G / recorded.pga
     np.testing.assert_allclose(motion.vertical[:motion.t.size],
                                factor * recorded.vertical[:motion.t.size], rtol=1e-12)
-    # the line `simulate --pga 0.6g` prints for this record (newcomer trial, main 894ae4a)
+    # the line `simulate --pga 0.6g` prints for this record (its own PGA: 0.2808 g)
     line = "record el-centro-1940-180: own PGA 0.2808 g, scaled by 2.137 to PGA 0.6 g"
     assert main(["run", str(tmp_path / "scene.toml"), "--out", str(tmp_path / "out")]) == 0
     assert line in capsys.readouterr().out.splitlines()
