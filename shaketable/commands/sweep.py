@@ -44,9 +44,10 @@ def _sweep(args: argparse.Namespace) -> int:
         setup.append(f"{spec.name}: note: {args.workers} processes for {spec.n_chunks} "
                      "chunk(s): a process computes whole chunks; a smaller [run] chunk_size "
                      "gives each process one")
-    from shaketable.sweeps import store
+    from shaketable.sweeps import execute
 
-    fmt = "parquet" if store.parquet_available() else "csv"   # run_sweep's own default
+    # run_sweep's own default, from the same check (one answer for the note and the files)
+    fmt = "parquet" if execute.parquet_available() else "csv"
     if fmt == "csv":   # said with the rest, so that --quiet silences it too
         setup.append("shaketable sweep: note: pyarrow is not installed, writing CSV instead "
                      "of Parquet (pip install pyarrow: the 'parquet' extra)")
