@@ -265,6 +265,32 @@ def take(phi_dot, pattern, after_dot, after):
 
 
 @inlined
+def closure(chain, ws, scratch, run, time, seg, rates_before, before, interface):
+    """The landing of ``interface`` held flat, with every interface it would open at zero gap
+    with a flight rising less than the integrator's absolute tolerance held flat too, into
+    the impact's rows C_AFTER_DOT and C_AFTER (:meth:`shaketable.models.stack.engine.Run.closure`:
+    the limit of a cascade of landings over several interfaces)."""
+    phi, atol = run[0], run[6]
+    floats, ints = scratch[0], scratch[1]
+    after_dot, after, phi_ddot = floats[C_AFTER_DOT], ints[C_AFTER], floats[C_PHI_DDOT]
+    ug, vg = ground(seg, time)
+    held = ONE << interface
+    while True:
+        plastic_impact(chain, phi, rates_before, before, interface, held, ws, scratch,
+                       after_dot, after)
+        accelerations(chain, phi, after_dot, after, ug, vg, phi_ddot, ws[:15])
+        noise = ZERO
+        for k in range(phi.size):
+            deceleration = -after[k] * phi_ddot[k]
+            if after[k] != 0 and phi[k] == 0.0 and deceleration > 0.0 and \
+                    after_dot[k] ** 2 <= 2.0 * deceleration * atol[0]:
+                noise |= ONE << k
+        if noise == 0:
+            return
+        held |= noise
+
+
+@inlined
 def impact(chain, ws, scratch, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
@@ -283,8 +309,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     reason = R_IMPACT
     if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
         # a landing at the noise level while the stack moves: the interface closes
-        plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
-                       after_dot, after)
+        closure(chain, ws, scratch, run, time, seg, rates_before, before, interface)
         take(phi_dot, pattern, after_dot, after)
         record(run, time, REST, interface, before, after, ONE,
                (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws[:6])),
@@ -292,7 +317,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
         reason = R_NOISE
     else:
         if par[P_LAW] == 0.0:
-            solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws,
+            solutions = plastic_impact(chain, phi, phi_dot, before, interface, ZERO, ws,
                                        scratch, after_dot, after)
         else:
             cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
@@ -334,8 +359,8 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
                 if remaining <= par[P_REST]:
                     # the others move on: this interface closes now (a plastic landing held
                     # flat)
-                    plastic_impact(chain, phi, rates_before, before, interface, interface, ws,
-                                   scratch, after_dot, after)
+                    closure(chain, ws, scratch, run, time, seg, rates_before, before,
+                            interface)
                     energy_closed = energy(chain, phi, after_dot, after, ws[:6])
                     record(run, time, REST, interface, pattern, after, ONE,
                            (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
@@ -457,7 +482,7 @@ def segment_buffers_size(n):
     """The float, int64 and bool elements of the DOP853 path's arrays of ``n`` blocks
     (:func:`segment_buffers`)."""
     size = 2 * n + 1
-    return 27 * size + 10 * n, 9 * n, 2 * n
+    return 27 * size + 11 * n, 9 * n, 2 * n
 
 
 @inlined
@@ -473,8 +498,9 @@ def segment_buffers(reals, f, integers, i, flags, n):
         f + 8 * size
     s6, s7, s8, s11 = reals[f:f + 3 * n], reals[f + 3 * n:f + 6 * n], \
         reals[f + 6 * n:f + 9 * n], reals[f + 9 * n:f + 10 * n]
+    s12 = reals[f + 10 * n:f + 11 * n]
     s9, s10 = integers[i:i + 9 * n].reshape((3, 3 * n)), flags[:2 * n].reshape((2, n))
-    return s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11
+    return s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11, s12
 
 
 def pool_sizes(n):

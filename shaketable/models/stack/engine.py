@@ -206,8 +206,7 @@ class Run:
                 FLOOR * self.alpha_p:
             # a landing at the noise level while the stack moves: the interface closes (a
             # plastic landing held flat), whatever the law
-            phi_dot, pattern, _, _ = plastic_impact(self.chain, self.phi, rates_before, before,
-                                                    interface, closed=(interface,))
+            phi_dot, pattern = self.closure(time, ground, rates_before, before, interface)
             self.phi_dot, self.pattern = phi_dot, pattern
             self.record(time, "rest", interface, before, pattern, cascade=False,
                         energy_before=energy_before,
@@ -260,8 +259,7 @@ class Run:
             if remaining <= self.rest_tolerance:
                 # the others move on: this interface closes now (a plastic landing held
                 # flat), at most rest_tolerance early
-                phi_dot, closed, _, _ = plastic_impact(self.chain, self.phi, rates_before,
-                                                       before, interface, closed=(interface,))
+                phi_dot, closed = self.closure(time, ground, rates_before, before, interface)
                 energy_closed = sum(energy(self.chain, self.phi, phi_dot, closed))
                 self.record(time, "rest", interface, pattern, closed, cascade=True,
                             energy_before=energy_after, energy_after=energy_closed)
@@ -269,6 +267,30 @@ class Run:
         if all(s == 0 for s in self.pattern):
             self.phi_dot = np.zeros(self.n)
         return self.choose(time, ground, "after impact", interface, end)
+
+    def closure(self, time, ground, rates_before, before, interface):
+        """``(phi', pattern)`` after the landing of ``interface`` held flat (the plastic law
+        with that interface closed, from the rates ``rates_before`` and pattern ``before``
+        of the landing), with every interface it would open at zero gap with a flight
+        rising less than the integrator's absolute tolerance held flat too.
+
+        Such a flight is noise, as the landing interface's own rebound is: left open, it
+        lands at once, its closure opens the first one again at a smaller rate, and so on
+        (a cascade over two or more interfaces whose flights shrink geometrically). The
+        limit of those alternating plastic landings, each an energy projection of the
+        velocities, is the projection with all of them held: the law with them closed.
+        """
+        held = [interface]
+        while True:
+            phi_dot, pattern, _, _ = plastic_impact(self.chain, self.phi, rates_before, before,
+                                                    interface, closed=tuple(held))
+            phi_ddot, _ = accelerations(self.chain, self.phi, phi_dot, pattern, *ground(time))
+            noise = [k for k in range(self.n) if pattern[k] != 0 and self.phi[k] == 0.0
+                     and -pattern[k] * phi_ddot[k] > 0.0
+                     and phi_dot[k] ** 2 <= -2.0 * pattern[k] * phi_ddot[k] * self.atol[0]]
+            if not noise:
+                return phi_dot, pattern
+            held += noise
 
     # ----------------------------------------------------------------- rest
     def rest_uplift(self, t, t_end, ground):
@@ -324,11 +346,20 @@ class Run:
             return np.concatenate([y[n:2 * n], phi_ddot, [power]])
 
         events, meaning = [], []
+        y0 = np.concatenate([self.phi, self.phi_dot, [self.work]])
         for j in open_:
             s = pattern[j]
-            if self.phi[j] == 0.0:
-                # leaving phi = 0: s phi / elapsed (-> s phi' at the start) so that a flight
-                # shorter than a step is not "found" at its start, where s phi is zero
+            if self.phi[j] == 0.0 and self.phi_dot[j] == 0.0:
+                # leaving phi = 0 from rest (an uplift: s phi'' > 0): s phi / elapsed^2
+                # (-> s phi'' / 2 at the start) so that a flight shorter than a step is not
+                # "found" at its start, where s phi and s phi' are zero
+                opening = 0.5 * s * evaluate(t, y0)[0][j]
+                if opening <= 0.0:
+                    return t, ("impact", j)   # it cannot open: it lands now, at rate zero
+                landing = (lambda time, y, j=j, s=s, opening=opening: opening if time <= t
+                           else s * y[j] / (time - t) ** 2)
+            elif self.phi[j] == 0.0:
+                # leaving phi = 0: s phi / elapsed (-> s phi' at the start), likewise
                 landing = (lambda time, y, j=j, s=s: s * y[n + j] if time <= t
                            else s * y[j] / (time - t))
             else:
@@ -350,7 +381,6 @@ class Run:
             peak.terminal, peak.direction = False, 0
             events.append(peak)
             meaning.append(("turn", j))
-        y0 = np.concatenate([self.phi, self.phi_dot, [self.work]])
         solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol, atol=self.atol,
                              events=events)
         if any(pattern[meaning[index][1]] * y[meaning[index][1]] < 0.0
