@@ -123,8 +123,11 @@ def main(argv=None) -> int:
               f"shows the traceback)", file=sys.stderr)
         return EXIT_FAILED
     finally:   # whatever the outcome (Ctrl-C that ends at once has done it already)
-        if argv is None and _worker_processes_all_ended():
-            _stop_process_helpers()
+        try:
+            if argv is None and _worker_processes_all_ended():
+                _stop_process_helpers()
+        except KeyboardInterrupt:   # during the wait for the helpers: the outcome stands
+            pass
 
 
 def _remove_empty_folders(folders: list) -> None:

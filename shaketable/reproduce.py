@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from shaketable.core.files import subfolder, write_csv, write_gallery
-from shaketable.core.workers import end_workers, ignore_interrupts, interrupts_ignored, process_pool
+from shaketable.core.workers import end_workers_after, ignore_interrupts, interrupts_ignored, process_pool
 from shaketable.scenes.catalog import expected_cost, resolve_scene_path, uses_planar
 from shaketable.scenes.parse import Study, load_scene
 from shaketable.studies.comparison import ComparisonTally
@@ -178,7 +178,7 @@ def _pooled(names: list, out: Path, workers: int, compile_planar_first: bool, re
             WORKER_CPU[worker] = max(cpu, WORKER_CPU.get(worker, 0.0))
             record(futures[future], *outcome)
     except BaseException:  # Ctrl-C or a scene's crash: the workers end now, mid-scene
-        end_workers(pool)
+        end_workers_after(pool)   # a second Ctrl-C meanwhile: this error is still raised
         raise
     pool.shutdown(wait=True)
 

@@ -73,10 +73,12 @@ def _sweep(args: argparse.Namespace) -> int:
         for line in friction_summary(table):
             print(f"    {line}")
     elif spec.model.name == "stack":
-        from shaketable.sweeps.stacks import overturn_answer
+        from shaketable.sweeps.stacks import DEFAULT_STACK_RTOL, overturn_answer, retried_line
 
         print(f"{spec.name}: {overturn_answer(table)}; "
               f"{int(table['airborne'].sum())} stopped where a block would leave its support")
+        if retried := retried_line(table, spec.options.get("rtol", DEFAULT_STACK_RTOL)):
+            print(f"{spec.name}: {retried}")
     else:
         print(f"{spec.name}: {int(table['overturned'].sum())} of {len(table)} runs overturn, "
               f"{int(table['airborne'].sum())} airborne (vertical reached -g; stopped there)")

@@ -83,7 +83,12 @@ def end_workers(pool) -> None:
                 process.terminate()
         except KeyboardInterrupt:
             interrupted = True
-    pool.shutdown(wait=False, cancel_futures=True)
+    while True:   # the pool's queued work cancelled, whatever Ctrl-C comes meanwhile
+        try:
+            pool.shutdown(wait=False, cancel_futures=True)
+            break
+        except KeyboardInterrupt:
+            interrupted = True
     deadline = time.monotonic() + WORKER_GRACE
     for process in processes:
         while True:   # until this worker has ended, whatever Ctrl-C comes meanwhile
@@ -98,3 +103,13 @@ def end_workers(pool) -> None:
                 interrupted = True
     if interrupted:
         raise KeyboardInterrupt
+
+
+def end_workers_after(pool) -> None:
+    """:func:`end_workers` while an error that stopped the work (Ctrl-C, a crash) is being
+    handled: a second Ctrl-C meanwhile is not raised (the workers end all the same), so
+    that the error raised is the one that stopped the work."""
+    try:
+        end_workers(pool)
+    except KeyboardInterrupt:
+        pass

@@ -99,9 +99,9 @@ class ComparisonTally:
 
     def console_line(self) -> str:
         """The counts in one line for a command's first line, the report's own inputs
-        first and the other kinds apart: ``"against the report's own inputs 29 comparisons
-        agree, 1 differs; against SUBSTITUTE accelerograms (not expected to match) 15
-        agree, 3 differ"``; "" when nothing was compared."""
+        first and the other kinds apart: ``"against the report's own inputs 29 agree, 1
+        differs; against SUBSTITUTE accelerograms (not expected to match) 15 agree, 3
+        differ"``; "" when nothing was compared."""
         def counted(agree: int, differ: int) -> str:
             return f"{agree} agree{'s' if agree == 1 else ''}, {differ} differ{'s' if differ == 1 else ''}"
         words = {"report inputs": "against the report's own inputs",

@@ -666,7 +666,9 @@ def _list(values, unit: str = "") -> str:
 def teaching_answer(item: str, frame: pd.DataFrame) -> str:
     """The lesson of gallery item ``item`` (one of :data:`ITEMS`) in one line, with its
     numbers read from the table it wrote (``to_frame()``, i.e. numbers.csv): what a class
-    checks first, before the description; "" for an item registered from outside."""
+    checks first, before the description; "" for an item registered from outside. The
+    lesson is stated only where the numbers show it; otherwise the line gives the numbers
+    alone (a table of other inputs need not teach the gallery's lesson)."""
     if item == "similar-blocks":
         fell = frame["overturned"].to_numpy(bool)
         heights = frame["height [ft]"].to_numpy(float)
@@ -679,28 +681,61 @@ def teaching_answer(item: str, frame: pd.DataFrame) -> str:
             parts.append(f"{_list(heights[~fell], ' ft')} survive (max θ/α {peaks})")
         return f"similar blocks of H/B = {ratio:g}: " + "; ".join(parts)
     if item == "cor-sweep":
-        cors = frame["cor [-]"].to_numpy(float)
-        score = np.where(frame["overturned"], np.inf, frame["max theta/alpha [-]"])
-        worst = int(np.argmax(score))
+        return _cor_sweep_answer(frame)
+    if item == "period-amplitude":
+        return _period_answer(frame)
+    if item == "rocking-onset":
+        return _onset_answer(frame)
+    return ""
 
-        def said(index: int) -> str:
-            return ("F (overturns)" if frame["overturned"].iloc[index]
-                    else f"{frame['max theta/alpha [-]'].iloc[index]:.3f}")
-        top = int(np.argmax(cors))
+
+def _cor_sweep_answer(frame: pd.DataFrame) -> str:
+    """``"max θ/α = 0.200 at COR 1 but F (overturns) at COR 0.9: a lower COR can raise the
+    peak"`` when a lower COR than the highest gave a larger peak (or an overturn); else
+    each COR's peak."""
+    cors = frame["cor [-]"].to_numpy(float)
+    fell = frame["overturned"].to_numpy(bool)
+    peaks = frame["max theta/alpha [-]"].to_numpy(float)
+    score = np.where(fell, np.inf, peaks)
+    worst, top = int(np.argmax(score)), int(np.argmax(cors))
+
+    def said(index: int) -> str:
+        return "F (overturns)" if fell[index] else f"{peaks[index]:.3f}"
+    if cors[worst] < cors[top] and score[worst] > score[top]:
         return (f"max θ/α = {said(top)} at COR {cors[top]:g} but {said(worst)} at COR "
                 f"{cors[worst]:g}: a lower COR can raise the peak")
-    if item == "period-amplitude":
-        ratios = frame["theta0/alpha [-]"].to_numpy(float)
-        period = frame["exact period [s]"].to_numpy(float)
-        linear = float(frame["linear oscillator period [s]"].iloc[0])
-        return (f"the rocking period grows from {period[0]:.3f} s at θ0/α = {ratios[0]:g} to "
-                f"{period[-1]:.3f} s at {ratios[-1]:g} ({period[-1] / period[0]:.1f} times); "
-                f"a linear oscillator keeps {linear:.3f} s")
-    if item == "rocking-onset":
-        vertical = frame["vertical [g]"].to_numpy(float)
-        onset = frame["engine onset [g]"].to_numpy(float)
-        rest, low = int(np.argmin(np.abs(vertical))), int(np.argmin(vertical))
-        return (f"rocking starts at {onset[rest]:.3f} g on a table at rest vertically and at "
-                f"{onset[low]:.3f} g while it accelerates downward at {-vertical[low]:g} g "
-                "(Eq. 2-1)")
-    return ""
+    return "max θ/α = " + ", ".join(f"{said(k)} at COR {cors[k]:g}"
+                                    for k in np.argsort(-cors, kind="stable"))
+
+
+def _period_answer(frame: pd.DataFrame) -> str:
+    """``"the rocking period grows from ... to ..."`` when it grows with the amplitude
+    (from each amplitude to the next larger); else the first and last periods."""
+    ratios = frame["theta0/alpha [-]"].to_numpy(float)
+    period = frame["exact period [s]"].to_numpy(float)
+    linear = float(frame["linear oscillator period [s]"].iloc[0])
+    order = np.argsort(ratios, kind="stable")
+    ratios, period = ratios[order], period[order]
+    if ratios.size > 1 and np.all(np.diff(ratios) > 0) and np.all(np.diff(period) > 0):
+        return (f"the rocking period grows from {period[0]:.3f} s at θ0/α = {ratios[0]:g} "
+                f"to {period[-1]:.3f} s at {ratios[-1]:g} ({period[-1] / period[0]:.1f} "
+                f"times); a linear oscillator keeps {linear:.3f} s")
+    return (f"the rocking period is {period[0]:.3f} s at θ0/α = {ratios[0]:g} and "
+            f"{period[-1]:.3f} s at {ratios[-1]:g}; the linear oscillator's {linear:.3f} s")
+
+
+def _onset_answer(frame: pd.DataFrame) -> str:
+    """``"rocking starts at 0.200 g on a table at rest vertically and at 0.140 g while it
+    accelerates downward at 0.3 g (Eq. 2-1)"`` when a table accelerating downward started
+    it at a lower acceleration than one at rest vertically; else the onset at the vertical
+    nearest zero and at the lowest."""
+    vertical = frame["vertical [g]"].to_numpy(float)
+    onset = frame["engine onset [g]"].to_numpy(float)
+    rest, low = int(np.argmin(np.abs(vertical))), int(np.argmin(vertical))
+    if vertical[rest] == 0.0 and vertical[low] < 0.0 and onset[low] < onset[rest]:
+        return (f"rocking starts at {onset[rest]:.3f} g on a table at rest vertically and "
+                f"at {onset[low]:.3f} g while it accelerates downward at {-vertical[low]:g} "
+                "g (Eq. 2-1)")
+    rows = dict.fromkeys((rest, low))
+    return "rocking starts at " + " and ".join(
+        f"{onset[k]:.3f} g at a vertical acceleration of {vertical[k]:+g} g" for k in rows)

@@ -664,7 +664,7 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
     from concurrent.futures import as_completed
 
     from shaketable.core.workers import (
-        end_workers,
+        end_workers_after,
         ignore_interrupts,
         interrupts_ignored,
         process_pool,
@@ -680,10 +680,7 @@ def _run_in_processes(spec, chunks, workers: int, finished) -> None:
             finished(futures[future], future.result())
             written.add(future)
     except BaseException:
-        try:
-            end_workers(pool)
-        except KeyboardInterrupt:   # a second Ctrl-C: the workers have ended all the same
-            pass
+        end_workers_after(pool)   # a second Ctrl-C meanwhile: this error is still raised
         # the chunks computed but not yet written are kept (an atomic write each); a write
         # that fails stops this, the error that stopped the sweep is the one raised
         try:

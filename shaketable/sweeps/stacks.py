@@ -38,7 +38,9 @@ top corner's, read at the record's samples: the stack's output times), ``t_start
 ``t_friction_exceeded [s]`` (the first time a contact needs more friction than
 :data:`~shaketable.models.stack.PLAUSIBLE_FRICTION`: the no-slip assumption fails there),
 ``t_tension [s]`` and ``airborne``. The model's warnings are not raised in a sweep: these
-columns carry them.
+columns carry them, and ``rtol [-]`` the tolerance each run was computed at (tighter than
+``rocking.rtol`` for a run that stalled at it and was made again; ``sweep``'s summary
+counts them: :func:`retried_line`).
 
 What the stack model does not take is refused when the spec is read, naming the key:
 ``[pitch]``, ``[ensemble]``, ``[friction]``, ``rocking.method`` other than ``"fast"``,
@@ -239,15 +241,20 @@ def simulate_stacks(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.Da
     own), taken from the stack batch (:func:`shaketable.models.stack.batch.simulate_cases`,
     one thread: the engine's arrays, no result objects).
     """
+    import warnings
+
     import pandas as pd
 
+    from shaketable.models.stack import StackRetryWarning
     from shaketable.models.stack.batch import Case, simulate_cases
 
     rtol = spec.options.get("rtol", DEFAULT_STACK_RTOL)
-    batch = simulate_cases([Case(case.stack, case.motion,
-                                 None if math.isnan(case.cor) else case.cor, case.scale,
-                                 case.block_label, case.motion_label) for case in cases],
-                           threads=1, rtol=rtol, duration=spec.duration)
+    with warnings.catch_warnings():   # a retried run: its row's rtol [-] says it (summary)
+        warnings.simplefilter("ignore", StackRetryWarning)
+        batch = simulate_cases([Case(case.stack, case.motion,
+                                     None if math.isnan(case.cor) else case.cor, case.scale,
+                                     case.block_label, case.motion_label) for case in cases],
+                               threads=1, rtol=rtol, duration=spec.duration)
     rows = []
     for k, (case, result) in enumerate(zip(cases, batch.to_dict("records"))):
         stack = case.stack
@@ -324,6 +331,23 @@ def overturn_answer(table) -> str:
         parts.append(f"{alone} block{'s' if alone != 1 else ''} alone")
     return (f"{len(fell)} of {len(table)} runs overturn"
             + (": " + " and ".join(parts) if parts else ""))
+
+
+def retried_line(table, rtol: float) -> str:
+    """How many runs of a stack sweep were computed at a tighter tolerance than the spec's
+    ``rtol`` (a stall in the chatter of a contact at its uplift threshold, run again:
+    :func:`~shaketable.models.stack.model.integrate_retrying`), from the rows' ``rtol [-]``:
+    ``"2 of 40 runs stalled at the spec's rtol 1e-10 and were computed again at a tighter
+    one (1e-11; the rtol [-] column)"``; "" when none was."""
+    if "rtol [-]" not in table or not len(table):
+        return ""
+    used = table["rtol [-]"].astype(float)
+    tighter = used[used < rtol]
+    if tighter.empty:
+        return ""
+    values = ", ".join(f"{value:g}" for value in sorted(set(tighter), reverse=True))
+    return (f"{len(tighter)} of {len(table)} runs stalled at the spec's rtol {rtol:g} and "
+            f"were computed again at a tighter one ({values}; the rtol [-] column)")
 
 
 def impact_law(cor: float) -> str:

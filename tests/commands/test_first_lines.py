@@ -255,6 +255,20 @@ def test_a_small_release_is_said_as_given_and_a_last_swing_in_two_decimals():
         in free_rocking_verdict(end)
 
 
+def test_a_block_kicked_from_upright_is_said_by_its_initial_rate():
+    import shaketable as st
+    from shaketable.studies.free_rocking import free_rocking_verdict
+
+    # theta0 = 0, theta_dot0 = 0.3 rad/s: no "released at θ/α = 0"; the swings are counted
+    # against the largest one (there is no release amplitude)
+    block = st.Block.parse("30x6in")
+    kicked = st.simulate(block, None, cor=0.925, theta_dot0=0.3, duration=4.0)
+    verdict = free_rocking_verdict(kicked)
+    assert verdict.endswith("(started from θ = 0 at θ' = 0.3 rad/s)"), verdict
+    assert "released" not in verdict and "of the release" not in verdict, verdict
+    assert "% of the largest swing" in verdict, verdict
+
+
 def test_the_api_verdict_of_free_rocking_is_the_commands_verdict():
     import re
 

@@ -81,6 +81,33 @@ def test_cor_sweep_and_period_amplitude_lessons_read_their_tables():
     assert teaching_answer("an-item-of-my-own", periods) == ""
 
 
+def test_a_lesson_the_numbers_do_not_show_is_not_stated():
+    from shaketable.studies.teaching import teaching_answer
+
+    # the highest COR gives the largest peak: no "a lower COR can raise the peak"
+    sweep = pd.DataFrame({"cor [-]": [0.9, 1.0, 0.95],
+                          "max theta/alpha [-]": [0.2, 0.5, 0.3],
+                          "overturned": [False, False, False]})
+    assert teaching_answer("cor-sweep", sweep) == (
+        "max θ/α = 0.500 at COR 1, 0.300 at COR 0.95, 0.200 at COR 0.9")
+    # a period that shrinks with the amplitude: no "grows"
+    periods = pd.DataFrame({"theta0/alpha [-]": [0.1, 0.9], "exact period [s]": [2.0, 0.5],
+                            "linear oscillator period [s]": [1.25, 1.25]})
+    assert teaching_answer("period-amplitude", periods) == (
+        "the rocking period is 2.000 s at θ0/α = 0.1 and 0.500 s at 0.9; the linear "
+        "oscillator's 1.250 s")
+    # no downward vertical acceleration: no "while it accelerates downward"
+    onsets = pd.DataFrame({"vertical [g]": [0.0, 0.2], "engine onset [g]": [0.2, 0.24]})
+    assert teaching_answer("rocking-onset", onsets) == (
+        "rocking starts at 0.200 g at a vertical acceleration of +0 g")
+    # downward, and the onset falls: the lesson, with Eq. (2-1)'s numbers,
+    # (B/H)(g + v) = 0.2 (1 - 0.3) = 0.14 g
+    onsets = pd.DataFrame({"vertical [g]": [0.0, -0.3], "engine onset [g]": [0.2, 0.14]})
+    assert teaching_answer("rocking-onset", onsets) == (
+        "rocking starts at 0.200 g on a table at rest vertically and at 0.140 g while it "
+        "accelerates downward at 0.3 g (Eq. 2-1)")
+
+
 @pytest.mark.usefixtures("figure_drafts")
 def test_animate_period_grows_says_the_periods_not_the_release(tmp_path, capsys):
     assert main(["animate", "teaching-period-grows", "--end", "0.2s", "--fps", "5",

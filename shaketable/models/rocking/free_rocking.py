@@ -79,8 +79,9 @@ def _visible_words(result) -> tuple[str, int]:
     visible = visible_impacts(result)
     if visible == count:
         return f"{count} impact{'' if count == 1 else 's'}", 0
+    of = "the release" if result.theta[0] != 0 else "the largest swing"   # as counted
     return (f"{visible} impact{'' if visible == 1 else 's'} of swings over "
-            f"{100 * VISIBLE_FRACTION:g} % of the release", count - visible)
+            f"{100 * VISIBLE_FRACTION:g} % of {of}", count - visible)
 
 
 def impacts_words(result) -> str:
@@ -110,13 +111,20 @@ def free_rocking_verdict(result) -> str:
     after 10.5 cycles: 21 impacts of swings over 3 % of the release, then ever smaller
     ones accumulating there (released at θ/α = 0.50)"``, or ``"still rocking at the end
     (t = 2.00 s) after 2.5 cycles, last swing θ/α = 0.05: 5 impacts (released at θ/α =
-    0.50)"``; an overturned or airborne run, or one that never rocked, as
+    0.50)"`` (a block kicked from upright: ``"(started from θ = 0 at θ' = 0.2 rad/s)"``;
+    an initial rate is said after the release); an overturned or airborne run, or one that
+    never rocked, as
     :meth:`~shaketable.models.rocking.result.RockingResult.verdict` says it otherwise."""
     if result.status != "completed" or not math.isfinite(result.t_start):
         return result.verdict()
     ratio = abs(result.theta[0]) / result.block.alpha   # a release below 0.01: as given
-    release = f"released at θ/α = {ratio:.2f}" if round(ratio, 2) >= 0.01 else \
-        f"released at θ/α = {ratio:.2g}"
+    rate = float(result.theta_dot[0])
+    if ratio == 0.0 and rate != 0.0:   # kicked from upright: its initial rate is its start
+        release = f"started from θ = 0 at θ' = {rate:.3g} rad/s"
+    else:
+        release = (f"released at θ/α = {ratio:.2f}" if round(ratio, 2) >= 0.01 else
+                   f"released at θ/α = {ratio:.2g}") + (f" at θ' = {rate:.3g} rad/s"
+                                                        if rate != 0.0 else "")
     rest = rocking_rest_time(result)
     words, smaller = _visible_words(result)
     cycles = visible_impacts(result) / 2   # two impacts a cycle

@@ -378,6 +378,23 @@ def thread_count(threads) -> int:
     return count
 
 
+def _wait_for(done: list[threading.Event]) -> KeyboardInterrupt | None:
+    """Wait until every worker thread has set its ``done``; a Ctrl-C that reaches the
+    calling thread while it waits is held until they have (their warnings and rows land
+    before the batch returns) and returned; a second one is not waited out. (Events, not
+    ``Thread.join``: a join interrupted by Ctrl-C marks the thread ended while it runs.)"""
+    interrupted = None
+    for event in done:
+        while not event.is_set():
+            try:
+                event.wait()
+            except KeyboardInterrupt as error:
+                if interrupted is not None:
+                    raise
+                interrupted = error
+    return interrupted
+
+
 def run_in_chunks(run: Callable[[int, int], None], n_cases: int, threads: int,
                   chunk: int) -> None:
     """``run(start, stop)`` over the cases 0 to ``n_cases - 1`` on ``threads`` threads.
@@ -388,8 +405,9 @@ def run_in_chunks(run: Callable[[int, int], None], n_cases: int, threads: int,
     that releases the GIL (``nogil``), so the threads run in parallel; these are Python
     threads, not numba's threading layer, so batches may run at once in several threads of
     one process (a Dask worker's tasks). On one thread, or one chunk, ``run(0, n_cases)``
-    in the calling thread. An exception in any thread (Ctrl-C in the calling one, too)
-    lets the others finish their chunk and take no other, and is raised here.
+    in the calling thread. An exception in any thread (Ctrl-C in the calling one, too,
+    while it waits for the others) lets the others finish their chunk and take no other,
+    and is raised here once they have.
     """
     if threads <= 1 or n_cases <= chunk:
         run(0, n_cases)
@@ -411,15 +429,23 @@ def run_in_chunks(run: Callable[[int, int], None], n_cases: int, threads: int,
             errors.append(error)
             stop.set()  # the other threads finish their chunk and take no other
 
-    workers = [threading.Thread(target=work, name=f"shaketable-batch-{k}", daemon=True)
-               for k in range(threads - 1)]
-    for worker in workers:
-        worker.start()
+    done = [threading.Event() for _ in range(threads - 1)]
+
+    def worker(k: int) -> None:
+        try:
+            work()
+        finally:
+            done[k].set()
+
+    for k in range(threads - 1):
+        threading.Thread(target=worker, args=(k,), name=f"shaketable-batch-{k}",
+                         daemon=True).start()
     try:
         work()  # the calling thread is one of them
-        for worker in workers:
-            worker.join()
     finally:
-        stop.set()
+        stop.set()   # all chunks are taken, or the others take no other
+        interrupted = _wait_for(done)
+    if interrupted is not None:
+        raise interrupted
     if errors:
         raise errors[0]

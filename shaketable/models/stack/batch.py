@@ -15,10 +15,13 @@ impact=..., cor=..., rtol=rtol, rest_tolerance=...)`` (``extended``:
 and starts it at t = 0; the scale is skipped when it is 1). Every result column holds the
 value that run's :class:`StackResult` gives, bit for bit (``tests/models/stack/test_batch.py``
 checks it against the result object, which computes them by its own path). The model's
-warnings (tensile force, friction above :data:`PLAUSIBLE_FRICTION`) are not raised: the
-``tension``, ``t_tension [s]`` and ``t_friction_exceeded [s]`` columns carry them. A run
-the engine cannot continue (:class:`~shaketable.models.stack.engine.StackStalled`) stops
-the batch, naming the run.
+assumption warnings (tensile force, friction above :data:`PLAUSIBLE_FRICTION`) are not
+raised: the ``tension``, ``t_tension [s]`` and ``t_friction_exceeded [s]`` columns carry
+them. A run made again at a tighter tolerance after a chatter stall raises a
+:class:`~shaketable.models.stack.model.StackRetryWarning` naming the run (``run k``, its
+stack, motion, scale and law; its ``rtol [-]`` says it too). A run the engine cannot
+continue (:class:`~shaketable.models.stack.engine.StackStalled`) stops the batch, naming
+the run.
 
 Columns (units in square brackets; NaN in a time column: never happened)
 -------------------------------------------------------------------------
@@ -241,6 +244,7 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
     """Check, prepare each run's motion, run the cases on ``threads`` threads, build the
     table."""
     from shaketable.models.stack.engine import StackStalled
+    from shaketable.models.stack.model import StackRetryWarning, user_location
 
     if not cases:
         raise ValueError("cases must not be empty")
@@ -270,31 +274,43 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
     rows: list[Any] = [None] * len(cases)
     rtols = [rtol] * len(cases)   # each run's, after a chatter stall a tighter one
     constants = {id(case.stack): _constants(case.stack) for case in cases}
+    caller = user_location()   # where a retry's warning points, from any thread
 
     def run(start: int, stop: int) -> None:
         for k in range(start, stop):
             case = cases[k]
             try:
-                rows[k], rtols[k] = _row(case, runs[k][0], constants[id(case.stack)], rtol,
-                                         rest, recorded, mu)
+                rows[k], rtols[k], retried = _row(case, runs[k][0], constants[id(case.stack)],
+                                                  rtol, rest, recorded, mu)
             except StackStalled as error:
-                raise StackStalled(f"run {k} ({case.stack_label or case.stack.describe()}, "
-                                   f"{case.motion_label or case.motion.name}): "
-                                   f"{error}") from None
+                raise StackStalled(f"{_run_words(k, case)}: {error}") from None
+            if retried:
+                filename, lineno, module_globals = caller
+                warnings.warn_explicit(f"{_run_words(k, case)}: {retried}", StackRetryWarning,
+                                       filename, lineno, module_globals=module_globals)
 
     run_in_chunks(run, len(cases), threads, 1)
     return _frame(cases, [motion for motion, _ in runs], [index for _, index in runs], rows,
                   rtols, mu)
 
 
+def _run_words(k: int, case: Case) -> str:
+    """How a message names run ``k``: ``"run 3 (2 blocks: ..., el-centro, scale 0.5,
+    plastic impacts)"`` (runs that share the stack and the motion differ in the scale or
+    the law)."""
+    law = "plastic impacts" if case.cor is None else f"COR {case.cor:g}"
+    return (f"run {k} ({case.stack_label or case.stack.describe()}, "
+            f"{case.motion_label or case.motion.name}, scale {case.scale:g}, {law})")
+
+
 def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float | None,
-         recorded: int, mu: float) -> tuple[tuple, float]:
+         recorded: int, mu: float) -> tuple[tuple, float, str]:
     """One run: the engine, then its results from the engine's arrays (:data:`_RESULTS`),
-    and the tolerance they were computed at (``rtol``, or a tighter one after a chatter
-    stall, as :func:`~shaketable.models.stack.model.simulate_stack`); ``constants``: the
-    stack's :func:`_constants`."""
+    the tolerance they were computed at (``rtol``, or a tighter one after a chatter stall,
+    as :func:`~shaketable.models.stack.model.simulate_stack`) and the retry's note ("" when
+    none); ``constants``: the stack's :func:`_constants`."""
     from shaketable.models.stack.compiled import IMPACT, UPLIFT, integrate
-    from shaketable.models.stack.model import StackRetryWarning, integrate_retrying
+    from shaketable.models.stack.model import integrate_retrying
 
     stack = case.stack
     n = stack.n
@@ -303,10 +319,6 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
         integrate, stack, motion, law="plastic" if case.cor is None else "cor",
         cor=1.0 if case.cor is None else case.cor, theta0=zeros, theta_dot0=zeros, rtol=rtol,
         rest_tolerance=bottom_rest if rest is None else rest, max_recorded_events=recorded)
-    if retried:
-        warnings.warn(f"{case.stack_label or stack.describe()}, "
-                      f"{case.motion_label or case.motion.name}: {retried}", StackRetryWarning,
-                      stacklevel=2)
     compiled_run = out["run"]
     theta, patterns = out["theta"], out["patterns"]
     t = motion.t[:out["filled"]]
@@ -353,7 +365,7 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
             float(t[exceeded]) if exceeded >= 0 else math.nan,
             tension >= 0, float(t[tension]) if tension >= 0 else math.nan,
             float(t[past]) if past >= 0 else math.nan, float(standing[0]), standing[1], still,
-            t_end, compiled_run.steps, compiled_run.evaluations), rtol
+            t_end, compiled_run.steps, compiled_run.evaluations), rtol, retried
 
 
 def _constants(stack: Stack) -> tuple:

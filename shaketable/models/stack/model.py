@@ -108,6 +108,19 @@ def _user_stacklevel() -> int:
     return level
 
 
+def user_location() -> tuple[str, int, dict | None]:
+    """The file, line and module globals of the first frame outside the package (the
+    user's call), where :func:`simulate_stack`'s warnings point (``_user_stacklevel``);
+    found in the calling thread, so that a warning raised in another thread (a batch's
+    worker, :func:`warnings.warn_explicit`) points there too; ``("sys", 1, None)`` past
+    the stack's top, as :func:`warnings.warn`."""
+    try:
+        frame = sys._getframe(_user_stacklevel() - 1)
+    except ValueError:
+        return "sys", 1, None
+    return frame.f_code.co_filename, frame.f_lineno, frame.f_globals
+
+
 def simulate_stack(stack: Stack, motion: Motion | None = None, *, impact: str = "plastic",
                    cor: float | None = None, theta0=None, theta_dot0=None,
                    duration: float | None = None, rtol: float = 1e-12,

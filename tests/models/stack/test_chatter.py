@@ -57,13 +57,28 @@ def test_a_run_that_completes_warns_nothing_and_keeps_its_tolerance(case):
     assert result.statistics["rtol"] == 1e-9
 
 
-def test_the_batch_row_is_the_retried_run_and_carries_its_tolerance(case):
+@pytest.mark.parametrize("threads", [1, 2])
+def test_the_batch_row_is_the_retried_run_and_carries_its_tolerance(case, threads):
+    # two runs that share the stack and the motion (scale 1 stalls, scale 0.5 does not):
+    # the warning names the run, its scale and its law, and points at this call whichever
+    # thread ran it
     stack, motion = case
-    with pytest.warns(StackRetryWarning, match="was run again at rtol 1e-11"):
-        row = simulate_many([stack], [motion], rtol=STALLED_RTOL, threads=1).iloc[0]
+    with pytest.warns(StackRetryWarning) as caught:
+        table = simulate_many([stack], {"olive-view 3": motion}, scales=(1.0, 0.5),
+                              rtol=STALLED_RTOL, threads=threads)
+    said = [item for item in caught if issubclass(item.category, StackRetryWarning)]
+    assert len(said) == 1, [str(item.message) for item in said]
+    assert str(said[0].message).startswith(
+        f"run 0 ({stack.describe()}, olive-view 3, scale 1, plastic impacts): the run stalled "
+        "(at rtol 1e-10: "), str(said[0].message)
+    assert str(said[0].message).endswith("was run again at rtol 1e-11")
+    assert said[0].filename == __file__
+    row = table.iloc[0]
+    assert list(table["scale [-]"]) == [1.0, 0.5]
+    assert list(table["rtol [-]"]) == pytest.approx([1e-11, STALLED_RTOL], rel=1e-12)
     with pytest.warns(StackRetryWarning):
         result = simulate_stack(stack, motion, rtol=STALLED_RTOL)
-    assert row["status"] == "completed" and row["rtol [-]"] == pytest.approx(1e-11, rel=1e-12)
+    assert row["status"] == "completed"
     assert row["max |theta| top [rad]"] == np.abs(result.theta[:, -1]).max()
     assert row["max |theta| bottom [rad]"] == np.abs(result.theta[:, 0]).max()
 
