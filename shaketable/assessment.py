@@ -42,7 +42,9 @@ def assess(spec: Assessment | str | os.PathLike, out: str | os.PathLike | None =
 
     Parameters
     ----------
-    spec : Assessment, or a path to an object file (``experiments/assess/*.toml``)
+    spec : Assessment, or a path to an object file, or the name of a bundled object
+        (``"lab-cabinet"``: ``experiments/assess/lab-cabinet.toml``), as ``shaketable assess``
+        takes them.
     out : path, optional
         Folder for ``report.md``, ``summary.json``, ``runs.csv`` and the figures; nothing
         is written when omitted.
@@ -55,8 +57,9 @@ def assess(spec: Assessment | str | os.PathLike, out: str | os.PathLike | None =
     """
     if not isinstance(spec, Assessment):
         from shaketable.scenes.assess import load_assessment
+        from shaketable.scenes.catalog import resolve_object_path
 
-        spec = load_assessment(Path(spec))
+        spec = load_assessment(resolve_object_path(spec))
     folder = None if out is None else prepare_output_folder(out)
     result = run_assessment(spec)
     if folder is not None:

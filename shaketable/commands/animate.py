@@ -50,7 +50,8 @@ def _animate(args) -> int:
     check_animate_options(args)   # before the scene runs: bounds that protect the memory
     size = _size(args.size)
     prepare_output_file(args.out, "--out", suffixes=(".gif", ".mp4"))
-    given = [f"--{name}" for name in ("block", "stack", "cor", "harmonic", "pulse", "record")
+    given = [f"--{name}" for name in ("block", "stack", "masses", "densities", "cor",
+                                      "harmonic", "pulse", "record")
              if getattr(args, name) is not None]
     if args.scene is None:   # the model of the options given (--block, --stack) draws it
         from shaketable.commands.simulate import chosen_command
@@ -112,7 +113,7 @@ def _wrote(written) -> None:
 def register(commands) -> None:
     """Add the ``animate`` subcommand."""
     from shaketable.commands.common import add_record_arguments
-    from shaketable.commands.options import add_motion_options, add_quantity
+    from shaketable.commands.options import add_mass_options, add_motion_options, add_quantity
 
     parser = commands.add_parser(
         "animate", help="animation (MP4 or GIF): the blocks rocking on the moving table beside θ/α",
@@ -133,6 +134,7 @@ def register(commands) -> None:
                         help="without a scene: a column of blocks from the bottom up, each "
                              "HEIGHTxWIDTH with unit (e.g. 30x6in,30x6in), as simulate --stack "
                              "(--cor optional: without it plastic impacts)")
+    add_mass_options(parser)
     parser.add_argument("--cor", type=float,
                         help="without a scene: coefficient of restitution [0-1]")
     parser.add_argument("--theta0", default="0rad",

@@ -10,21 +10,6 @@ if TYPE_CHECKING:
     import argparse
 
 
-def object_path(text: str) -> Path:
-    """An object file, or the name of a bundled example (``experiments/assess``)."""
-    path = Path(text)
-    if path.suffix == ".toml" or path.is_file():
-        return path  # a folder of the same name (an earlier --out) is not an object file
-    from shaketable.scenes.catalog import experiments_folder
-
-    bundled = experiments_folder() / "assess" / f"{text}.toml"
-    if bundled.is_file():
-        return bundled
-    names = sorted(p.stem for p in (experiments_folder() / "assess").glob("*.toml"))
-    raise FileNotFoundError(f"OBJECT {text!r}: no such file, nor a bundled example (bundled: "
-                            f"{', '.join(names)})")
-
-
 def _assess(args: argparse.Namespace) -> int:
     import time
 
@@ -32,8 +17,9 @@ def _assess(args: argparse.Namespace) -> int:
     from shaketable.commands.common import notice_first_compile
     from shaketable.core.files import prepare_output_folder
     from shaketable.scenes.assess import load_assessment
+    from shaketable.scenes.catalog import resolve_object_path
 
-    spec = load_assessment(object_path(args.object))
+    spec = load_assessment(resolve_object_path(args.object))
     out = prepare_output_folder(args.out if args.out is not None
                                 else Path("shaketable-out") / spec.name)
     notice_first_compile(args.quiet, which=("engine", "planar"))

@@ -156,13 +156,14 @@ def animate_block(args, size: tuple, wrote) -> int:
     ``--harmonic``, ``--pulse`` or ``--record`` (or free rocking), as ``simulate`` reads them
     (the rocking model's ``animate``:
     :meth:`shaketable.commands.simulate_models.RockingCommand.animate`)."""
-    from shaketable.commands.checks import report_early_stops
+    from shaketable.commands.checks import refuse_stack_options, report_early_stops
     from shaketable.commands.common import load_motion, notice_first_compile, scaled_record
     from shaketable.commands.options import block_option, motion_from_options
     from shaketable.core.validation import in_range
     from shaketable.models.api import simulate
     from shaketable.plots.animation import animate
 
+    refuse_stack_options(args)
     if args.block is None or args.cor is None:
         raise ValueError("give a scene, or --block and --cor (with --harmonic, --pulse or "
                          "--record, or --theta0 and --duration for free rocking)")

@@ -181,3 +181,11 @@ def check_slide_options(args) -> None:
     if args.sweep:
         refuse_ignored_options(args, "--sweep", {"--static-friction": 0.2,
                                                  "--dynamic-friction": None, "--block": None})
+
+
+def refuse_stack_options(args) -> None:
+    """``--masses``, ``--densities`` and ``--mu`` without ``--stack``: refused, naming them."""
+    for option in ("--masses", "--densities", "--mu"):
+        if getattr(args, option[2:], None) is not None:
+            raise ValueError(f"{option} is for a column of blocks: give --stack (e.g. --stack "
+                             "30x6in,30x6in), or leave out " + option)

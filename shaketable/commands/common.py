@@ -78,8 +78,8 @@ def scaled_record(motion, args):
     target_text = getattr(args, "pga", None)
     if target_text is None:
         return (None if motion is None else scaled(motion, args.scale)), None
-    from shaketable.core.constants import G
     from shaketable.core.units import parse
+    from shaketable.ground.records import scaled_to_pga
 
     if args.scale is not None:     # argparse refuses both; a programmatic args may not
         raise ValueError("--pga and --scale both scale the record: give one")
@@ -87,16 +87,7 @@ def scaled_record(motion, args):
         raise ValueError(f"--pga {target_text}: scales a --record (a --harmonic or --pulse "
                          "states its amplitude itself)")
     target = parse(target_text, "acceleration", where="--pga")
-    if target <= 0:
-        raise ValueError(f"--pga {target_text}: must be above 0")
-    own = motion.pga
-    if own == 0.0:
-        raise ValueError(f"--pga {target_text}: the record {args.record!r} has no horizontal "
-                         "acceleration to scale")
-    factor = target / own
-    note = (f"record {args.record}: own PGA {own / G:.4g} g, scaled by {factor:.4g} to "
-            f"PGA {target / G:.4g} g")
-    return motion.scaled(factor), note
+    return scaled_to_pga(motion, target, name=args.record, where=f"--pga {target_text}")
 
 
 #: The compiled functions whose numba cache files tell that the engine was compiled

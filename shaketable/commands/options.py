@@ -175,6 +175,30 @@ def add_motion_options(parser) -> None:
                              "lasts --duration")
 
 
+def friction_argument(text: str) -> float:
+    """A ``--mu`` value: a bare number [-] (the range is checked with the other inputs)."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: give the friction coefficient as a number [-], e.g. 0.6 (not a "
+            "percentage, no unit)") from None
+
+
+def add_mass_options(parser) -> None:
+    """``--masses`` and ``--densities``: the masses of a column of blocks (``--stack``), as
+    ``simulate`` and ``animate`` take them
+    (:func:`shaketable.scenes.stack.stack_from_text` reads them)."""
+    parser.add_argument("--masses", metavar="MASS,MASS[,...]",
+                        help="each block's mass with its unit, bottom first (e.g. 400kg,200kg); "
+                             "default: concrete, 2400 kg/m^3 over 1 m of depth (forces and "
+                             "energies per metre of depth)")
+    parser.add_argument("--densities", metavar="DENSITY,...",
+                        help="each block's density with its unit, bottom first (e.g. "
+                             "2400kg/m3,7800kg/m3; over 1 m of depth each); default: "
+                             "concrete, 2400 kg/m^3 over 1 m of depth")
+
+
 def _values(option: str, text: str, kinds: tuple, example: str) -> list:
     """The comma-separated values of ``option``, each read with its unit."""
     parts = [part.strip() for part in str(text).split(",")]

@@ -89,6 +89,7 @@ def _run(args) -> int:
               f"{result.calibrated.describe()}")
     if scene.report.get("note"):
         print(f"  note: {scene.report['note']}")
+    _print_scaling(scene)
     if scene.ensemble:
         from shaketable.scenes.ensemble import run_ensembles
 
@@ -99,6 +100,16 @@ def _run(args) -> int:
     from shaketable.commands.checks import report_early_stops
 
     return report_early_stops([*result.runs, *result.planar], "run", scene.name)
+
+
+def _print_scaling(scene) -> None:
+    """The record's own PGA and the factor that scaled it to ``motion.pga``, as
+    ``simulate --pga`` says them."""
+    from shaketable.scenes.run import record_scaling_note
+
+    note = record_scaling_note(scene)
+    if note:
+        print(note)
 
 
 def _run_stack(scene, out: Path, args) -> int:
@@ -113,6 +124,7 @@ def _run_stack(scene, out: Path, args) -> int:
     result = run_stack_scene(with_outputs(scene, svg=args.svg) if args.svg else scene)
     written = result.write(out)
     print("\n".join(result.lines()))
+    _print_scaling(scene.base)
     from shaketable.scenes.stack import fall_note
 
     note, warned = fall_note(result.warnings)   # those after the fall: one note line

@@ -13,7 +13,12 @@ import sys
 
 from shaketable.commands.calibrate import cor_argument
 from shaketable.commands.common import add_record_arguments, notice_first_compile
-from shaketable.commands.options import add_motion_options, add_quantity
+from shaketable.commands.options import (
+    add_mass_options,
+    add_motion_options,
+    add_quantity,
+    friction_argument,
+)
 from shaketable.commands.simulate_models import (
     PlanarCommand,
     RockingCommand,
@@ -130,17 +135,11 @@ def register(commands: argparse._SubParsersAction) -> None:
     stack.add_argument("--stack", metavar="SIZE,SIZE[,...]",
                        help="the blocks from the bottom up, each HEIGHTxWIDTH with unit, e.g. "
                             "30x6in,30x6in; each centred on the one below, none wider than it")
-    stack.add_argument("--masses", metavar="MASS,MASS[,...]",
-                       help="each block's mass with its unit, bottom first (e.g. 400kg,200kg); "
-                            "default: concrete, 2400 kg/m^3 over 1 m of depth (forces and "
-                            "energies per metre of depth)")
-    stack.add_argument("--densities", metavar="DENSITY,...",
-                       help="each block's density with its unit, bottom first (e.g. "
-                            "2400kg/m3,7800kg/m3; over 1 m of depth each); default: "
-                            "concrete, 2400 kg/m^3 over 1 m of depth")
-    stack.add_argument("--mu", type=float,
-                       help="the friction coefficient the contacts offer [-]: said beside the "
-                            "friction they need (F/N) and when it would be exceeded")
+    add_mass_options(stack)
+    stack.add_argument("--mu", type=friction_argument,
+                       help="the friction coefficient the contacts offer [-], 0 to 1.5: said "
+                            "beside the friction they need (F/N) and when it would be "
+                            "exceeded")
     sim.add_argument("--theta0", default="0rad",
                      help="initial tilt with unit: 0.05rad, 3deg or 0.5alpha (default 0rad); "
                           "with --stack one value (every block's) or one per block, bottom "

@@ -188,20 +188,12 @@ def friction_option(text: str | None):
         raise ValueError(f"--friction: {error}") from None
 
 
-def refuse_stack_options(args) -> None:
-    """``--masses``, ``--densities`` and ``--mu`` without ``--stack``: refused, naming them."""
-    for option in ("--masses", "--densities", "--mu"):
-        if getattr(args, option[2:], None) is not None:
-            raise ValueError(f"{option} is for a column of blocks: give --stack (e.g. --stack "
-                             "30x6in,30x6in), or leave out " + option)
-
-
 def one_block_setup(args, command: SimulateCommand) -> Setup:
     """The inputs of a one-block run (``--block``, ``--cor``, the motion, ``--theta0``),
     checked in the order the user reads the options; ``command`` refuses the options its
     model does not take and reads its own run options (after ``--theta0``, before the
     ``--cor`` range)."""
-    from shaketable.commands.checks import check_simulate_options
+    from shaketable.commands.checks import check_simulate_options, refuse_stack_options
     from shaketable.commands.common import load_motion, scaled_record
     from shaketable.commands.options import block_option, motion_from_options
 

@@ -151,7 +151,7 @@ def animate_stack_options(args, size, wrote) -> int:
     _refuse_runs_and_layout(args, "--stack (one run)")
     if args.block is not None:
         raise ValueError("give --block or --stack, not both")
-    stack = stack_from_text(args.stack)
+    stack = stack_from_text(args.stack, args.masses, args.densities)
     options: dict = {"theta0": per_block_angles(args.theta0, stack, where="--theta0")}
     if args.cor is not None:
         options.update(impact="cor", cor=in_range("--cor", args.cor, 0.0, 1.0))

@@ -44,6 +44,12 @@ def _sweep(args: argparse.Namespace) -> int:
         setup.append(f"{spec.name}: note: {args.workers} processes for {spec.n_chunks} "
                      "chunk(s): a process computes whole chunks; a smaller [run] chunk_size "
                      "gives each process one")
+    from shaketable.sweeps import store
+
+    fmt = "parquet" if store.parquet_available() else "csv"   # run_sweep's own default
+    if fmt == "csv":   # said with the rest, so that --quiet silences it too
+        setup.append("shaketable sweep: note: pyarrow is not installed, writing CSV instead "
+                     "of Parquet (pip install pyarrow: the 'parquet' extra)")
     if not args.quiet:
         for line in setup:
             print(line, file=sys.stderr)
@@ -53,7 +59,7 @@ def _sweep(args: argparse.Namespace) -> int:
         notice_first_compile(args.quiet, which=(engine,))
     outcome = run_sweep(spec, out, workers=args.workers, scheduler=args.scheduler,
                         resume=args.resume, progress=not (args.no_progress or args.quiet),
-                        max_chunks=args.max_chunks)
+                        max_chunks=args.max_chunks, fmt=fmt)
     rate = outcome.computed_runs / outcome.seconds if outcome.seconds > 0 else float("nan")
     computed = (f"{spec.name}: computed {outcome.computed_runs} runs in {outcome.seconds:.1f} s "
                 f"({rate:.3g} runs/s{', the first compile included' if compiling else ''}); "

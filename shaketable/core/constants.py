@@ -10,6 +10,10 @@ from __future__ import annotations
 #: Standard acceleration of gravity [m/s^2].
 G = 9.80665
 
+#: The largest friction coefficient an input takes [-] (assess's object.friction, a
+#: stack's mu): measured coefficients of dry contacts stay below about 1.
+MAX_FRICTION = 1.5
+
 #: One inch [m].
 INCH = 0.0254
 

@@ -427,6 +427,44 @@ def load(name: str, *, vertical: bool = True, pacoima_vertical_sign: str = "up")
                             "vertical_sign_source": source})
 
 
+def scaled_to_pga(motion: Motion, target: float, *, name: str,
+                  where: str) -> tuple[Motion, str]:
+    """A record scaled to a PGA, and the line that says so.
+
+    Parameters
+    ----------
+    motion : Motion
+        The record as recorded [m/s^2].
+    target : float
+        The PGA wanted [m/s^2], above 0.
+    name : str
+        The record's name, for the note.
+    where : str
+        How an error names the input (``"--pga 0.6g"``, ``"scene.toml: motion.pga"``).
+
+    Returns
+    -------
+    motion : Motion
+        ``motion`` times ``target / motion.pga``, both components
+        (:func:`shaketable.ground.signals.scale_to_pga`).
+    note : str
+        ``"record NAME: own PGA 0.2808 g, scaled by 2.137 to PGA 0.6 g"``.
+    """
+    from shaketable.core.constants import G
+
+    if not (target > 0 and math.isfinite(target)):
+        raise ValueError(f"{where}: must be above 0")
+    own = motion.pga
+    if own == 0.0:
+        raise ValueError(f"{where}: the record {name!r} has no horizontal acceleration to "
+                         "scale")
+    from shaketable.ground.signals import scale_to_pga
+
+    note = (f"record {name}: own PGA {own / G:.4g} g, scaled by {target / own:.4g} to "
+            f"PGA {target / G:.4g} g")
+    return scale_to_pga(motion, pga=target), note
+
+
 def _vertical_only_motion(vertical: Record, vertical_positive: str | None, title: str) -> Motion:
     """A motion with zero horizontal and the given vertical, positive up."""
     down = vertical_is_positive_down(vertical, vertical_positive)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from shaketable.core.units import format_length
 from shaketable.plots.calcomp import describe_motion, ground_panels
 
 #: Colours of the contact states of an interface in the pattern band.
@@ -17,7 +18,8 @@ OWN_SCALE_BELOW = 0.25
 
 def magnification(peak: float, span: float) -> float:
     """A 1-2-5 factor that brings a curve of peak ``peak`` to about half of ``span`` on a
-    shared axis (1 when it already reaches a tenth of it, or never moves) [-]."""
+    shared axis (1 when it already reaches a tenth of it, or never moves) [-]. The
+    animation gives it the largest peak of the column and draws every block by it."""
     if not (peak > 0.0) or peak >= 0.1 * span:
         return 1.0
     wanted = 0.5 * span / peak
@@ -131,8 +133,10 @@ def stack_calcomp(result, fig=None, title: str | None = None, time_range=None):
                      f"{result.t_overturn:.3f} s")
     else:
         state = "still moving at the end of the run" if result.still_moving else result.status
+        # in the unit family of the blocks' sizes, as the console says it (ft -> in)
+        unit = stack.blocks[0].length_unit if stack.blocks[0].label else "m"
         lines.append(f"{state}; peak top-corner excursion "
-                     f"{result.peak_excursion * 1000:.1f} mm")
+                     f"{format_length(result.peak_excursion, unit)}")
     fig.suptitle("\n".join(lines), fontsize=9.5)
     fig.align_ylabels(axes)
     return fig

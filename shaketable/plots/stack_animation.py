@@ -128,10 +128,11 @@ class _StackStage:
         ratios = [result.theta[:, i] / block.alpha for i, block in enumerate(stack.blocks)]
         peaks = [float(np.max(np.abs(ratio), initial=0.0)) for ratio in ratios]
         limit = max([1.2] + [1.05 * peak for peak in peaks])
+        # a column moving far less than the axis shows is drawn magnified, every block by
+        # one factor (in the labels): blocks rocking together must look as they rock, the
+        # one that rocks less drawn smaller, never the other way round
+        factor = magnification(max(peaks), min(limit, 4.0))
         for i, block in enumerate(stack.blocks):
-            # a block moving far less than the axis shows (a landing's kick) is drawn
-            # magnified, the factor in its label, so that its motion is seen
-            factor = magnification(peaks[i], min(limit, 4.0))
             ratio = ratios[i] * factor
             label = (f"θ{i}/α{i}: {result.block_name(i)}" if factor == 1.0 else
                      f"θ{i}/α{i} × {factor:g}: {result.block_name(i)} (magnified)")
@@ -144,10 +145,11 @@ class _StackStage:
             (dot,) = history.plot([times[0]], [ratio[self.index[0]]], "o",
                                   color=_LINES[i % len(_LINES)], ms=5)
             self.dots.append((dot, ratio))
-        for sign in (1, -1):
-            history.axhline(sign, color="tab:red", ls="--", lw=0.9)
+        for sign in (1, -1):   # theta/alpha = +-1, off the axis of a magnified column
+            history.axhline(sign * factor, color="tab:red", ls="--", lw=0.9)
         history.set_ylim(-min(limit, 4.0), min(limit, 4.0))
-        history.set_ylabel("θ/α of each block [-]")
+        history.set_ylabel("θ/α of each block [-]" if factor == 1.0 else
+                           f"θ/α of each block × {factor:g} [-]")
         history.legend(loc="upper left", fontsize=8)
         history.grid(True, lw=0.3, alpha=0.5)
         history.set_xlim(times[0], times[-1])

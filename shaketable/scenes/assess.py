@@ -29,7 +29,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from shaketable.core.constants import G
+from shaketable.core.constants import MAX_FRICTION, G
 from shaketable.core.geometry import Block
 from shaketable.core.tomlfile import key_line, read_toml
 from shaketable.core.units import parse
@@ -125,6 +125,12 @@ def _section(data: dict, name: str) -> dict:
 def assessment_from_dict(data: dict, folder: Path | None = None) -> Assessment:
     """Validate the parsed TOML (``folder``: where relative file names are read from)."""
     folder = Path(".") if folder is None else folder
+    if "stack" in data or "stacks" in data:   # a column of blocks is the stack model's
+        key = "stack" if "stack" in data else "stacks"
+        raise _Error(key, "assess takes one object, not a stack of blocks: for a column "
+                          "use `shaketable simulate --stack` (one motion) or a sweep with "
+                          "[stacks] and `shaketable risk` (fragility and risk; docs/stack.md, "
+                          "docs/sweeps.md)")
     unknown = unknown_keys(data, TOP)
     if unknown:
         raise _Error(unknown[0], f"unknown key at the top level; expected "
@@ -171,7 +177,7 @@ def _object(table: dict, folder: Path) -> AssessedObject:
     values = friction if isinstance(friction, list) else [friction, friction]
     if len(values) != 2:
         raise _Error("object.friction", f"must be one number or [low, high], got {friction!r}")
-    low, high = (_number(v, "object.friction", 0.0, 1.5, low_open=True) for v in values)
+    low, high = (_number(v, "object.friction", 0.0, MAX_FRICTION, low_open=True) for v in values)
     if low > high:
         raise _Error("object.friction", f"low ({low}) must not exceed high ({high})")
     cor, source = _cor(table.get("cor"), block, folder)
@@ -291,7 +297,7 @@ def _criteria(table: dict, code: dict, folder: Path) -> Criteria:
     acceptable = _number(table.get("acceptable", 0.05), "criteria.acceptable", 0.0, 1.0)
     slide = table.get("slide_friction")
     if slide is not None:
-        slide = _number(slide, "criteria.slide_friction", 0.0, 1.5, low_open=True)
+        slide = _number(slide, "criteria.slide_friction", 0.0, MAX_FRICTION, low_open=True)
     hazard = None
     if "hazard" in table:
         from shaketable.sweeps.risk import read_hazard_curve

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -87,6 +88,25 @@ def sweep_names() -> list[str]:
 def object_names() -> list[str]:
     """Names of the bundled objects of ``shaketable assess`` (``experiments/assess/``)."""
     return sorted(path.stem for path in (experiments_folder() / "assess").glob("*.toml"))
+
+
+def resolve_object_path(name_or_path: str | os.PathLike) -> Path:
+    """An object file of ``assess``, or the name of a bundled object (``experiments/assess``).
+
+    Raises
+    ------
+    FileNotFoundError
+        Neither a file nor a bundled name; the message lists the bundled names.
+    """
+    path = Path(name_or_path)
+    if path.is_file():
+        return path  # a folder of the same name (an earlier --out) is not an object file
+    bundled = experiments_folder() / "assess" / f"{name_or_path}.toml"
+    if path.suffix != ".toml" and bundled.is_file():
+        return bundled
+    raise FileNotFoundError(f"{str(name_or_path)!r}: no such object file, nor a bundled "
+                            f"example{did_you_mean(path.stem, object_names())} (bundled: "
+                            f"{', '.join(object_names())})")
 
 
 def resolve_sweep_path(name_or_path: str) -> Path:

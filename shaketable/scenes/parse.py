@@ -56,7 +56,7 @@ MOTION_KEYS = {
     "free": set(),
     "harmonic": {"frequency", "horizontal", "vertical", "phase", "duration", "dt", "ramp",
                  "start"},
-    "record": {"name", "file", "units", "dt", "column", "vertical", "scale",
+    "record": {"name", "file", "units", "dt", "column", "vertical", "scale", "pga",
                "pacoima_vertical_sign", "duration"},
     "artificial": {"preset", "seed", "pga", "duration", "dt", "vertical_pga"},
     "half-sine": {"amplitude", "pulse_duration", "duration", "dt", "sign"},
@@ -670,6 +670,12 @@ def _motion(table, where) -> dict:
             except ValueError as error:
                 raise SceneError(str(error)) from None
         converted[key] = value
+    if kind == "record" and "pga" in converted:   # as simulate --pga: scaled to it
+        if "scale" in converted:
+            raise SceneError(f"{where}: motion.pga and motion.scale both scale the record: "
+                             "give one")
+        if not (converted["pga"] > 0 and math.isfinite(converted["pga"])):
+            raise SceneError(f"{where}: motion.pga must be above 0, got {table['pga']!r}")
     if kind == "record" and ("name" in converted) == ("file" in converted):
         raise SceneError(f"{where}: a record motion needs exactly one of motion.name "
                          "(a bundled record) or motion.file")

@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from shaketable.core.constants import G
 from shaketable.core.equality import fields_equal
 from shaketable.core.impulses import ImpulsiveMotion
 from shaketable.core.motion import Motion
@@ -96,6 +97,34 @@ def _ground_motion(scene: Scene) -> Motion | ImpulsiveMotion | None:
 
 
 def _record_motion(spec: dict, scene: Scene) -> Motion:
+    motion = _recorded(spec, scene)
+    if "pga" in spec:
+        return _scaled_to_pga(spec, scene, motion)[0]
+    scale = spec.get("scale", 1.0)
+    if scale != 1.0:
+        motion = motion.scaled(float(scale))
+    return motion
+
+
+def _scaled_to_pga(spec: dict, scene: Scene, motion: Motion) -> tuple[Motion, str]:
+    """The record of ``motion.pga`` scaled as ``simulate --pga`` scales it, and its note."""
+    from shaketable.ground.records import scaled_to_pga
+
+    name = spec["name"] if "name" in spec else Path(spec["file"]).stem
+    return scaled_to_pga(motion, spec["pga"], name=name, where=f"{scene.path}: motion.pga")
+
+
+def record_scaling_note(scene: Scene) -> str | None:
+    """``"record NAME: own PGA 0.2808 g, scaled by 2.137 to PGA 0.6 g"`` for a record
+    scene with ``motion.pga`` (the line ``simulate --pga`` prints); None otherwise."""
+    spec = dict(scene.motion)
+    if spec.get("kind") != "record" or "pga" not in spec:
+        return None
+    return _scaled_to_pga(spec, scene, _recorded(spec, scene))[1]
+
+
+def _recorded(spec: dict, scene: Scene) -> Motion:
+    """The record of a scene's ``[motion]`` as recorded (unscaled)."""
     from shaketable.ground import records
 
     with_vertical = bool(spec.get("vertical", True))
@@ -113,9 +142,6 @@ def _record_motion(spec: dict, scene: Scene) -> Motion:
             options["value_column"] = spec["column"]
         record = records.read(path, **options)
         motion = records.combine(record, name=path.stem)
-    scale = spec.get("scale", 1.0)
-    if scale != 1.0:
-        motion = motion.scaled(float(scale))
     return motion
 
 
@@ -220,6 +246,8 @@ class SceneResult:
         details = []
         if spec.get("kind") == "record" and float(spec.get("scale", 1.0)) != 1.0:
             details.append(f"record scaled by {float(spec['scale']):g}")
+        if spec.get("kind") == "record" and "pga" in spec:
+            details.append(f"record scaled to PGA {spec['pga'] / G:.4g} g")
         if spec.get("kind") == "artificial":
             details.append("SUBSTITUTE accelerogram (the report's artificial record is not "
                            "available): compare trends, not values")

@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from shaketable.core.constants import MAX_FRICTION
 from shaketable.core.geometry import Block
 from shaketable.core.motion import Motion
 from shaketable.core.units import format_length, parse, parse_angle_or_ratio
@@ -50,6 +51,8 @@ from shaketable.models.stack import (
     StackTensionWarning,
     simulate_stack,
 )
+from shaketable.models.stack.geometry import block_words as _block_words
+from shaketable.models.stack.geometry import overhang_message
 from shaketable.scenes.parse import Scene, SceneError, scene_from_dict
 
 #: Keys of a scene's ``[stack]`` section.
@@ -89,14 +92,6 @@ def mass_line(stack: Stack, unit: str = "kg") -> str:
             + " t (given, bottom first)")
 
 
-def _block_words(index: int, count: int) -> str:
-    """``block 1 (top)``: how an error names a block of the stack, counted from 0 at the
-    bottom as the results name them."""
-    where = " (bottom)" if index == 0 and count > 1 else (
-        " (top)" if index == count - 1 and count > 1 else "")
-    return f"block {index}{where}"
-
-
 def stack_from_text(blocks, masses=None, densities=None, *, where: str = "--stack",
                     masses_where: str = "--masses",
                     densities_where: str = "--densities") -> Stack:
@@ -133,13 +128,9 @@ def stack_from_text(blocks, masses=None, densities=None, *, where: str = "--stac
             parsed.append(Block.parse(str(size)))
         except ValueError as error:
             raise ValueError(f"{where}: {_block_words(index, count)}: {error}") from None
-    for index in range(1, count):
-        if parsed[index].width > parsed[index - 1].width:
-            raise ValueError(f"{where}: {_block_words(index, count)} "
-                             f"({parsed[index].describe()}) is wider than "
-                             f"{_block_words(index - 1, count)} ({parsed[index - 1].describe()})"
-                             " below it: an overhanging block is not offered by the stack "
-                             "model (docs/stack.md)")
+    overhang = overhang_message(parsed)
+    if overhang is not None:
+        raise ValueError(f"{where}: {overhang}")
     if masses is not None and densities is not None:
         raise ValueError(f"give {masses_where} or {densities_where}, not both")
     values = None
@@ -194,13 +185,18 @@ def per_block_angles(values, stack: Stack, *, where: str, rates: bool = False) -
 
 
 def friction_coefficient(value, where: str) -> float | None:
-    """``mu``: the friction coefficient the contacts offer [-] (None: not given)."""
+    """``mu``: the friction coefficient the contacts offer [-] in [0, 1.5] (None: not
+    given; :data:`~shaketable.core.constants.MAX_FRICTION`, assess's bound too)."""
     if value is None:
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not (
             0 <= value < math.inf):
         raise ValueError(f"{where} must be a friction coefficient >= 0 (a number), "
                          f"got {value!r}")
+    if value > MAX_FRICTION:
+        raise ValueError(f"{where} must be at most {MAX_FRICTION:g} (a friction coefficient "
+                         f"[-], as assess takes it; no real contact offers more than about "
+                         f"1), got {value!r}")
     return float(value)
 
 

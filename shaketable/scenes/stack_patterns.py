@@ -5,13 +5,19 @@ Two blocks keep the names of the results (:func:`shaketable.models.stack.pattern
 "stack as one body (+)", "top alone (−)", ...). With three or more, the results name a
 pattern by its open (pivoting) interfaces (``open 0+ 2-``); here each group of blocks that
 moves as one body is named, from the bottom up, with the support it pivots on and the sign
-of the pivot, the results' code after it in brackets:
-``"blocks 0-1 rocking as one on the table (+), block 2 rocking on block 1 (-) [open 0+ 2-]"``.
+of the pivot, the results' code after it in brackets, said once:
+``"blocks 0-1 rocking as one on the table (+), block 2 rocking on block 1 (-) ["open 0+ 2-" in
+the CSV files: the open (pivoting) interfaces, from 0 at the base, with their signs]"``.
 """
 
 from __future__ import annotations
 
 from shaketable.models.stack import pattern_name
+
+#: The results' code of a pattern of three blocks or more, said where the console prints it
+#: (once: the first uplift): the CSV files name the pattern so.
+CODE_WORDS = ("\"{}\" in the CSV files: the open (pivoting) interfaces, from 0 at the base, "
+              "with their signs")
 
 
 def _blocks(first: int, last: int) -> str:
@@ -27,7 +33,8 @@ def pattern_words(pattern, *, code: bool = True) -> str:
         Each interface's state, bottom first (interface j below block j): 0 flat, +1 or -1
         pivoting on the upper block's -x or +x corner.
     code : bool
-        Append the results' code in brackets (three blocks or more).
+        Append the results' code in brackets (three blocks or more), with what it means
+        (:data:`CODE_WORDS`).
 
     Returns
     -------
@@ -48,7 +55,8 @@ def pattern_words(pattern, *, code: bool = True) -> str:
         sign = "+" if pattern[j] > 0 else "-"
         parts.append(f"{_blocks(j, last)} rocking{' as one' if last > j else ''} on "
                      f"{support} ({sign})")
-    return ", ".join(parts) + (f" [{pattern_name(pattern)}]" if code else "")
+    return ", ".join(parts) + (f" [{CODE_WORDS.format(pattern_name(pattern))}]" if code
+                               else "")
 
 
 def pattern_signs(pattern) -> str:

@@ -16,7 +16,8 @@ default; ``docs/stack.md``). The stacks take the place of ``[blocks]`` in the gr
     [rocking]                     # optional for stacks
     cor = "plastic"               # the default; or numbers [-]: the constant-COR law,
     #                             # or a list mixing both, ["plastic", 0.9]
-    # rtol = 1e-10                # DOP853's tolerance (default 1e-12); duration = "30 s"
+    # rtol = 1e-10                # the stack engine's relative tolerance (default 1e-12);
+    #                             # duration = "30 s"
 
 The grid's order: each size (or column), then the number of blocks, then the mass ratio
 (fastest); in the run order the stacks stand where the blocks stand (record, pitch phase,
@@ -27,7 +28,7 @@ with ``", mass ratio 0.5"`` when a ratio is given.
 Each row keeps the input columns of a rocking sweep (record, scale, PGA, COR, intensity
 measures, ...; ``R [m]`` and the block-normalised measures ``pga/(g tan a)`` and ``pgv
 p/(g tan a)`` are those of the BOTTOM block) and gains ``blocks``, ``mass ratio [-]``
-(NaN: one density), ``stack height [m]``, ``base width [m]``, ``impact`` (``"plastic"``
+(NaN: one density, or a block alone), ``stack height [m]``, ``base width [m]``, ``impact`` (``"plastic"``
 or ``"cor"``; ``cor [-]`` is NaN with the plastic law), ``status``, ``overturned`` (some
 block fell), ``overturned block`` (the block that fell, numbered from 0 at the bottom;
 -1 if none), ``verdict`` (:meth:`StackResult.verdict`), ``t_overturn [s]``,
@@ -75,7 +76,8 @@ if TYPE_CHECKING:
 #: Keys of ``[stacks]``.
 STACK_KEYS = {"sizes", "blocks", "columns", "mass_ratios"}
 
-#: The stack model's DOP853 tolerance in a sweep without ``rocking.rtol``.
+#: The stack engine's relative tolerance in a sweep without ``rocking.rtol`` (its DOP853
+#: steps of several moving bodies and its RKN6(4) steps of one, :mod:`~shaketable.models.stack`).
 DEFAULT_STACK_RTOL = 1e-12
 
 
@@ -104,7 +106,7 @@ def stacks_grid(table: object, where: str) -> tuple[list, list]:
         ``size`` (the size text, or the column's list), ``blocks`` and ``mass ratio``.
     """
     from shaketable.models.stack import Stack
-    from shaketable.models.stack.geometry import MAX_BLOCKS
+    from shaketable.models.stack.geometry import MAX_BLOCKS, overhang_message
 
     table = sections.table_of(table, where, "stacks", SweepError)
     check_keys(table, STACK_KEYS, where, "[stacks]", SweepError)
@@ -134,9 +136,13 @@ def stacks_grid(table: object, where: str) -> tuple[list, list]:
                 raise SweepError(f"{where}: stacks.columns must be lists of block sizes, "
                                  f"bottom first, such as [\"60x12in\", \"30x6in\"], got "
                                  f"{column!r}")
-            columns.append((list(column), [sections.sized_block(text, where, "stacks.columns",
-                                                                None, SweepError)
-                                           for text in column]))
+            blocks = [sections.sized_block(text, where, "stacks.columns", None, SweepError)
+                      for text in column]
+            overhang = overhang_message(blocks)
+            if overhang is not None:   # in the user's units, as simulate --stack says it
+                raise SweepError(f"{where}: stacks.columns {', '.join(map(str, column))}: "
+                                 f"{overhang}")
+            columns.append((list(column), blocks))
     ratios: list = [None]
     if "mass_ratios" in table:
         ratios = []
@@ -154,8 +160,8 @@ def stacks_grid(table: object, where: str) -> tuple[list, list]:
         except ValueError as error:
             raise SweepError(f"{where}: [stacks] {size!r}: {error}") from None
         stacks.append(stack)
-        inputs.append({"size": size, "blocks": len(blocks),
-                       "mass ratio": math.nan if ratio is None else ratio})
+        inputs.append({"size": size, "blocks": len(blocks),   # one block: no ratio
+                       "mass ratio": math.nan if ratio is None or len(blocks) < 2 else ratio})
     return stacks, inputs
 
 
@@ -208,7 +214,8 @@ class StackSweep(RockingSweep):
                                  "starts every run from rest")
         if not 1e-14 <= spec.options.get("rtol", DEFAULT_STACK_RTOL) <= 1e-3:
             raise SweepError(f"{where}: rocking.rtol with [stacks] must be in [1e-14, 1e-3] "
-                             f"(the stack model's DOP853), got {spec.options['rtol']!r}")
+                             f"(the stack engine's relative tolerance), got "
+                             f"{spec.options['rtol']!r}")
 
     def describe(self) -> str | None:
         return ("[stacks]: the stack model (a column of rigid blocks; plastic or constant-COR "

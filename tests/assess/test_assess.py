@@ -149,6 +149,16 @@ def test_counts_are_checked_as_everywhere(tmp_path, old, new, message):
     assert str(raised.value) == f"{path}: {message}"
 
 
+def test_a_stack_in_an_object_file_points_to_the_stack_model(tmp_path):
+    path = _write(tmp_path, GOOD.replace('name = "thing"\n',
+                                         'name = "thing"\n[stack]\nblocks = ["8x4ft", "6x4ft"]\n'))
+    with pytest.raises(SceneError, match=r"stack: assess takes one object, not a stack of "
+                                         r"blocks: for a column use `shaketable simulate "
+                                         r"--stack`.* a sweep with \[stacks\] and `shaketable "
+                                         r"risk`.*\(line 2\)"):
+        load_assessment(path)
+
+
 def test_calibration_of_another_block(tmp_path):
     _write(tmp_path, json.dumps({"cor [-]": 0.9, "cor_se [-]": 0.01, "fit samples": 100,
                                  "block_height [m]": 0.762, "block_width [m]": 0.1524}),
@@ -215,11 +225,25 @@ def test_recommendation_says_when_the_suite_is_too_small(shielding):
 def test_a_bundled_name_beside_a_folder_of_that_name(tmp_path, monkeypatch):
     # `shaketable assess transformer --out transformer` run twice: the second time the
     # folder of the first run's report must not be taken for the object file
-    from shaketable.commands.assess import object_path
     from shaketable.scenes.catalog import experiments_folder
+    from shaketable.scenes.catalog import resolve_object_path as object_path
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "transformer").mkdir()
     assert object_path("transformer") == experiments_folder() / "assess" / "transformer.toml"
     with pytest.raises(FileNotFoundError, match="bundled: lab-cabinet"):
         object_path("no-such-object")
+
+
+def test_the_api_takes_the_bundled_names_as_the_cli_does(tmp_path, monkeypatch):
+    # docs/assess.md's example, run from an empty folder after `pip install`
+    import shaketable
+    import shaketable.assessment as assessment
+
+    monkeypatch.chdir(tmp_path)
+    seen = []
+    monkeypatch.setattr(assessment, "run_assessment", lambda spec: seen.append(spec) or spec)
+    shaketable.assess("lab-cabinet")
+    assert seen[0].name == "lab-cabinet"
+    with pytest.raises(FileNotFoundError, match="did you mean lab-cabinet.*bundled: lab-cabinet"):
+        shaketable.assess("experiments/assess/lab-cabinet.toml")

@@ -54,3 +54,33 @@ def test_animate_writes_a_stack_scene_and_refuses_what_it_would_ignore(tmp_path)
     status, _, err = run_cli(["animate", "--stack", "30x6in,30x8in", "--duration", "1s",
                               "--out", tmp_path / "s.gif"], cwd=tmp_path)
     assert status == 2 and "block 1 (top) (30 x 8 in) is wider than block 0" in err
+
+
+def test_animate_stack_takes_the_masses_and_densities_simulate_takes(tmp_path, monkeypatch):
+    import shaketable.scenes.stack as stack_scenes
+
+    given = []
+
+    def stop(stack, motion, **options):   # the run is simulate's; only its input is checked
+        given.append(stack)
+        raise ValueError("stopped before the run")
+
+    monkeypatch.setattr(stack_scenes, "run_quietly", stop)
+    base = ["animate", "--stack", "8x4ft,6x4ft", "--theta0", "0.1alpha", "--duration", "1s",
+            "--out", tmp_path / "s.gif"]
+    status, _, err = run_cli(base + ["--masses", "6.5t,4.9t"], cwd=tmp_path)
+    assert status == 2 and "stopped before the run" in err
+    assert given[-1].masses == (6500.0, 4900.0)
+    status, _, err = run_cli(base + ["--densities", "2400kg/m3,7800kg/m3"], cwd=tmp_path)
+    assert status == 2 and "stopped before the run" in err
+    foot = 0.3048                                     # density x B x H over 1 m of depth
+    assert given[-1].masses == pytest.approx((2400 * 32 * foot ** 2, 7800 * 24 * foot ** 2),
+                                             rel=1e-12)
+    status, _, err = run_cli(base + ["--masses", "6.5t"], cwd=tmp_path)
+    assert status == 2 and "--masses: 1 value(s) for 2 block(s)" in err
+    status, _, err = run_cli(["animate", "--block", "30x6in", "--cor", "0.9", "--masses",
+                              "1t", "--out", tmp_path / "b.gif"], cwd=tmp_path)
+    assert status == 2 and "--masses is for a column of blocks: give --stack" in err
+    status, _, err = run_cli(["animate", "stack-kick", "--masses", "1t,1t,1t", "--out",
+                              tmp_path / "k.gif"], cwd=tmp_path)
+    assert status == 2 and "not both (got the scene 'stack-kick' and --masses)" in err

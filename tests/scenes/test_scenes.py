@@ -277,3 +277,47 @@ def test_a_single_block_and_theta0_scene_keeps_its_outputs(tmp_path):
     result = run_scene(load_scene(write(tmp_path, GOOD)))
     assert result.scene.blocks == () and result.scene.theta0s == ()
     assert list(result.to_frame().columns)[0] == "cor [-]"
+
+
+RECORD_PGA = """
+name = "to-pga"
+
+[block]
+size = "30x6in"
+
+[motion]
+kind = "record"
+name = "el-centro-1940-180"
+pga = "0.6 g"
+duration = "0.3 s"
+
+[rocking]
+cor = 0.9
+"""
+
+
+def test_a_record_scene_scales_to_motion_pga_as_simulate_pga_does(tmp_path, capsys):
+    from shaketable.core.constants import G
+    from shaketable.ground import records
+
+    scene = load_scene(write(tmp_path, RECORD_PGA))
+    motion = build_motion(scene)
+    assert motion.pga == pytest.approx(0.6 * G, rel=1e-12)   # the PGA asked for
+    recorded = records.load("el-centro-1940-180")
+    factor = 0.6 * G / recorded.pga
+    np.testing.assert_allclose(motion.vertical[:motion.t.size],
+                               factor * recorded.vertical[:motion.t.size], rtol=1e-12)
+    # the line `simulate --pga 0.6g` prints for this record (its own PGA: 0.2808 g)
+    line = "record el-centro-1940-180: own PGA 0.2808 g, scaled by 2.137 to PGA 0.6 g"
+    assert main(["run", str(tmp_path / "scene.toml"), "--out", str(tmp_path / "out")]) == 0
+    assert line in capsys.readouterr().out.splitlines()
+
+
+@pytest.mark.parametrize("new, message", [
+    ('pga = "0.6 g"\nscale = 2.0',
+     r"motion.pga and motion.scale both scale the record: give one \(line 10\)"),
+    ('pga = "-0.6 g"', r"motion.pga must be above 0, got '-0.6 g' \(line 10\)"),
+])
+def test_a_bad_motion_pga_is_refused_with_its_line(tmp_path, new, message):
+    with pytest.raises(SceneError, match=message):
+        load_scene(write(tmp_path, RECORD_PGA.replace('pga = "0.6 g"', new)))

@@ -50,6 +50,7 @@ def test_a_stack_scene_is_read_bottom_first_in_si(tmp_path):
     ('theta0 = "0.5 alpha"', 'theta0 = ["1 deg", "2 deg", "3 deg"]',
      "stack.theta0: 3 values for 2 blocks"),
     ('mu = 0.5', 'mu = "high"', "stack.mu must be a friction coefficient >= 0"),
+    ('mu = 0.5', 'mu = 2', "stack.mu must be at most 1.5 (a friction coefficient [-]"),
     ('mu = 0.5', 'cor = 1.5', "stack.cor must be a number in [0, 1]"),
     ('mu = 0.5', 'colour = "red"', "unknown key 'colour' in [stack]"),
     ('duration = "0.05 s"\n', '', "stack.duration is needed for free rocking"),

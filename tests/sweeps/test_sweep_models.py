@@ -252,7 +252,9 @@ def test_a_format_2_folder_resumes(tmp_path):
     ({"blocks": {"sizes": ["30x6in"]}}, r"\[blocks\] with \[stacks\]"),
     ({"stacks": {"sizes": ["30x6in"], "blocks": 11}}, "stacks.blocks must be at most 10"),
     ({"stacks": {"sizes": ["30x6in"], "blocks": 0}}, "stacks.blocks must be a positive integer"),
-    ({"stacks": {"columns": [["30x6in", "60x12in"]]}}, r"wider than the block below"),
+    ({"stacks": {"columns": [["30x6in", "60x12in"]]}},
+     r"stacks.columns 30x6in, 60x12in: block 1 \(top\) \(60 x 12 in\) is wider than block 0 "
+     r"\(bottom\) \(30 x 6 in\) below it"),
     ({"stacks": {"sizes": ["30x6in"], "colour": 1}},
      r"unknown key 'colour' in \[stacks\]; expected one of blocks, columns, mass_ratios, sizes"),
     ({"stacks": {"sizes": ["0x6in"]}}, r"stacks.sizes '0x6in': the height"),
@@ -264,6 +266,21 @@ def test_a_format_2_folder_resumes(tmp_path):
 def test_stack_spec_errors_name_the_key(tmp_path, change, message):
     with pytest.raises(SweepError, match=message):
         spec_from_dict(_stack_spec(tmp_path, **change), where="spec.toml")
+
+
+def test_an_overhang_in_a_spec_file_names_the_key_its_line_and_the_users_units(tmp_path):
+    # as `simulate --stack 8x3ft,6x4ft` and a scene say it: ft, not 1.2192 m and float noise
+    from shaketable.sweeps.spec import load_spec
+
+    path = tmp_path / "overhang.toml"
+    path.write_text('name = "overhang"\n[stacks]\n\ncolumns = [["8x3ft", "6x4ft"]]\n'
+                    '[[records]]\nname = "el-centro-1940-180"\n')
+    with pytest.raises(SweepError) as raised:
+        load_spec(path)
+    assert str(raised.value) == (
+        f"{path}: stacks.columns 8x3ft, 6x4ft: block 1 (top) (6 x 4 ft) is wider than block 0 "
+        "(bottom) (8 x 3 ft) below it: an overhanging block is not offered by the stack model "
+        "(docs/stack.md) (line 4)")
 
 
 def test_the_model_is_chosen_by_the_spec(tmp_path):
@@ -284,6 +301,9 @@ def test_the_model_is_chosen_by_the_spec(tmp_path):
         "2 blocks: 30 x 6 in on 60 x 12 in, mass ratio 2",
         "2 blocks: 30 x 6 in on 60 x 12 in, mass ratio 0.5"]
     assert math.isnan(spec.cors[0]) and spec.n_runs == 2 * 3 * 4
+    # a block alone has no mass ratio (one mass): NaN, as for one density
+    assert [row["mass ratio"] for row in spec.block_inputs[:2]] == [2.0, 0.5]
+    assert all(math.isnan(row["mass ratio"]) for row in spec.block_inputs[2:])
 
 
 def test_a_resume_with_another_model_is_refused_by_name(stack_sweep, tmp_path):

@@ -453,3 +453,23 @@ phases = 4
     assert counts == expected
     assert "4 pitch phases" in ax.get_title()
     pyplot().close("all")
+
+
+def test_sweep_quiet_prints_nothing_but_errors_without_pyarrow(tmp_path, capsys, monkeypatch):
+    from shaketable.sweeps import store
+
+    monkeypatch.setattr(store, "parquet_available", lambda: False)
+    spec = write(tmp_path, """name = "one"
+[blocks]
+sizes = ["30x6in"]
+[rocking]
+cor = 0.9
+duration = "1 s"
+[[records]]
+name = "el-centro-1940-180"
+""")
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "quiet"), "-q"]) == 0
+    assert capsys.readouterr() == ("", "")
+    assert (tmp_path / "quiet" / "results.csv").is_file()
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "said"), "--no-progress"]) == 0
+    assert "note: pyarrow is not installed, writing CSV" in capsys.readouterr().err

@@ -352,7 +352,7 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
                    if status == "completed" and t.size else ())
     t_end = float(t[-1]) if t.size else math.nan
     verdict = verdict_text(n, status, compiled_run.overturned_block, compiled_run.t_overturn,
-                           compiled_run.t_airborne, peaks, still, t_end, past_at_end)
+                           compiled_run.t_airborne, peaks, alphas, still, t_end, past_at_end)
     return (status, overturned, status == "airborne", compiled_run.overturned_block, verdict,
             compiled_run.t_overturn, compiled_run.t_airborne,
             math.nan if overturned else float(ratio), float(peaks[0]), float(peaks[-1]),

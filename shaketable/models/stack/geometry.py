@@ -24,6 +24,28 @@ DEFAULT_DEPTH = 1.0
 MAX_BLOCKS = 10
 
 
+def block_words(index: int, count: int) -> str:
+    """``"block 1 (top)"``: a block of a column of ``count`` named as the messages name it
+    (counted from 0 at the bottom)."""
+    where = " (bottom)" if index == 0 and count > 1 else (
+        " (top)" if index == count - 1 and count > 1 else "")
+    return f"block {index}{where}"
+
+
+def overhang_message(blocks) -> str | None:
+    """What to say of the first block of ``blocks`` (bottom first) wider than the one below
+    it, in the user's units (:meth:`Block.describe`: ``"block 1 (top) (6 x 4 ft) is wider
+    than block 0 (bottom) (6 x 2 ft) below it: ..."``); None when no block overhangs."""
+    count = len(blocks)
+    for index in range(1, count):
+        if blocks[index].width > blocks[index - 1].width:
+            return (f"{block_words(index, count)} ({blocks[index].describe()}) is wider than "
+                    f"{block_words(index - 1, count)} ({blocks[index - 1].describe()}) below "
+                    "it: an overhanging block is not offered by the stack model "
+                    "(docs/stack.md)")
+    return None
+
+
 @dataclass(frozen=True)
 class Stack:
     """A planar column of rigid blocks on the table, block 0 at the bottom.

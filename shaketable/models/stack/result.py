@@ -69,12 +69,18 @@ def end_state_text(n: int, t_end: float, past_alpha: tuple[int, ...]) -> str:
     return words
 
 
+#: A column whose every block's peak |θ| stays below this share of its own alpha [-] only
+#: touched its uplift threshold (a contact opened by a rotation of rounding size, as an
+#: unscaled record just reaching the threshold gives): the verdict says so, not "rocked".
+TOUCHED_BELOW = 1e-6
+
+
 def verdict_text(n: int, status: str, overturned_block: int, t_overturn: float,
-                 t_airborne: float, peaks: np.ndarray, still_moving: bool, t_end: float,
-                 past_alpha: tuple[int, ...]) -> str:
+                 t_airborne: float, peaks: np.ndarray, alphas: np.ndarray, still_moving: bool,
+                 t_end: float, past_alpha: tuple[int, ...]) -> str:
     """:meth:`StackResult.verdict` from a run's numbers: its status, the overturn or airborne
-    time [s], each block's peak |θ| [rad], whether it was still moving at its last output
-    time ``t_end`` [s], and the blocks past their alpha there."""
+    time [s], each block's peak |θ| [rad] and alpha [rad], whether it was still moving at
+    its last output time ``t_end`` [s], and the blocks past their alpha there."""
     if status == "overturned":
         return f"{block_name(overturned_block, n)} overturned at {t_overturn:.2f} s"
     if status == "airborne":
@@ -82,8 +88,12 @@ def verdict_text(n: int, status: str, overturned_block: int, t_overturn: float,
                 "model: the run stops there)")
     if not peaks.any():
         return "stayed at rest"
-    words = ("rocked: max |θ| = " + ", ".join(f"{peak:.3g}" for peak in peaks)
-             + " rad (bottom to top)")
+    values = ", ".join(f"{peak:.3g}" for peak in peaks)
+    if np.all(np.asarray(peaks) < TOUCHED_BELOW * np.asarray(alphas)):
+        words = (f"touched its uplift threshold (max |θ| {values} rad, bottom to top: under "
+                 f"{TOUCHED_BELOW:g} α, no rocking to speak of)")
+    else:
+        words = f"rocked: max |θ| = {values} rad (bottom to top)"
     return words + ("; " + end_state_text(n, t_end, past_alpha) if still_moving else "")
 
 
@@ -267,11 +277,14 @@ class StackResult(ModelResult):
         """The run in words, as the other models' results say it: "block 0 (bottom) overturned
         at 3.99 s" (blocks numbered from 0 at the bottom, :meth:`block_name`), "rocked:
         max |θ| = 0.012, 0.030 rad (bottom to top)" (followed by :meth:`end_state` when
-        the run ends with the stack still moving), "stayed at rest", or
+        the run ends with the stack still moving; "touched its uplift threshold" when every
+        block stayed under :data:`TOUCHED_BELOW` of its alpha), "stayed at rest", or
         the time a block would leave its support (outside the model: the run stops there)."""
         peaks = np.abs(self.theta).max(axis=0) if self.t.size else np.zeros(self.n_blocks)
         return verdict_text(self.n_blocks, self.status, self.overturned_block, self.t_overturn,
-                            self.t_airborne, peaks, self.still_moving,
+                            self.t_airborne, peaks,
+                            np.array([block.alpha for block in self.stack.blocks]),
+                            self.still_moving,
                             float(self.t[-1]) if self.t.size else math.nan,
                             self.past_alpha_at_end)
 

@@ -163,6 +163,10 @@ def test_table_4_4_pacoima_cells_within_ten_percent():
     frame = table_4_4(columns=["pacoima S16E", "pacoima S74W"])
     assert len(frame) == 6
     assert np.all(np.abs(frame["ratio [-]"] - 1.0) <= 0.10), frame
+    # nothing that changes from one reproduction to the next (reproduce's table.csv)
+    assert list(frame.columns) == ["mu_d [-]", "column", "substitute motion", "report [in]",
+                                   "reproduced [in]", "ratio [-]", "residual [in]",
+                                   "slip episodes"]
 
 
 def test_peak_slips_batch_matches_single_runs():

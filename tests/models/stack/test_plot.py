@@ -56,15 +56,50 @@ def test_a_small_kick_is_drawn_on_its_own_scale():
     assert "off scale" in " ".join(text.get_text() for text in bottom.texts)
     assert top.get_ylim()[1] == pytest.approx(1.3 * np.arctan(0.1 / 0.4))   # +-1.3 alpha
     pyplot().close(fig)
-    # the animation's shared theta/alpha axis magnifies it by a 1-2-5 factor: on the
-    # +-1.2 axis a peak of 0.02 alpha wants 0.6 / 0.02 = 30, i.e. 20
+    # the animation's shared theta/alpha axis: a 1-2-5 factor, on the +-1.2 axis a peak of
+    # 0.02 alpha wants 0.6 / 0.02 = 30, i.e. 20; one factor for the column, from its
+    # largest peak (the top block's 0.1 rad / alpha1 = 0.41: none)
     assert magnification(0.02, 1.2) == 20.0 and magnification(0.5, 1.2) == 1.0
     assert magnification(0.0, 1.2) == 1.0
     stage = _StackStage(result, np.array([0.0, 0.25, 0.5]), 0.1, size=(1000, 500), dpi=100,
                         unit=None, title=None)
-    figure = stage.fig
-    labels = [line.get_label() for axis in figure.axes for line in axis.get_lines()]
-    factor = magnification(peak / alpha, 1.2)
-    assert f"θ0/α0 × {factor:g}: block 0 (bottom) (magnified)" in labels
-    assert stage.traces[0][2].max() == pytest.approx(factor * result.theta[:, 0].max() / alpha)
-    pyplot().close(figure)
+    labels = [line.get_label() for axis in stage.fig.axes for line in axis.get_lines()]
+    assert "θ0/α0: block 0 (bottom)" in labels and "θ1/α1: block 1 (top)" in labels
+    assert stage.traces[0][2].max() == pytest.approx(result.theta[:, 0].max() / alpha)
+    pyplot().close(stage.fig)
+
+
+def test_blocks_rocking_together_are_drawn_at_one_magnification():
+    # an 8 x 4 ft block under a 6 x 4 ft one, released together from 0.06 rad: one body,
+    # theta/alpha 0.06 / atan(1/2) = 0.129 (bottom) and 0.06 / atan(2/3) = 0.102 (top),
+    # either side of a tenth of the +-1.2 axis; the top block must not be drawn magnified
+    # (x 5) beside the bottom one unmagnified, as if it rocked 4 times more
+    from shaketable.plots.stack_animation import _StackStage
+
+    stack = Stack([st.Block.parse("8x4ft"), st.Block.parse("6x4ft")])
+    result = simulate_stack(stack, theta0=(0.06, 0.06), duration=0.2)
+    peaks = np.abs(result.theta).max(axis=0) / [np.arctan(0.5), np.arctan(2.0 / 3.0)]
+    assert peaks[0] > 0.12 > peaks[1] > 0.1
+    stage = _StackStage(result, np.array([0.0, 0.1, 0.2]), 0.1, size=(800, 450), dpi=100,
+                        unit=None, title=None)
+    drawn = [trace[2] for trace in stage.traces[:2]]
+    assert [np.abs(ratio).max() for ratio in drawn] == pytest.approx(peaks, rel=1e-12)
+    assert not any("magnified" in line.get_label()
+                   for axis in stage.fig.axes for line in axis.get_lines())
+    pyplot().close(stage.fig)
+
+
+def test_the_title_gives_the_excursion_in_the_unit_family_of_the_blocks():
+    # ft blocks: the console's ft/in, not mm; blocks given in m: m (mm under 1 m)
+    import re
+
+    for sizes, to_unit in ((("8x4ft", "6x4ft"), {"in": 0.0254, "ft": 0.3048}),
+                           (("2x1m", "1.5x1m"), {"mm": 0.001, "m": 1.0})):
+        stack = Stack([st.Block.parse(size) for size in sizes])
+        result = simulate_stack(stack, theta0=(0.05, 0.05), duration=0.1)
+        fig = result.plot()
+        found = re.search(r"peak top-corner excursion ([0-9.]+) (\w+)", fig._suptitle.get_text())
+        pyplot().close(fig)
+        assert found is not None and found[2] in to_unit
+        assert float(found[1]) * to_unit[found[2]] == pytest.approx(result.peak_excursion,
+                                                                    rel=5e-3)

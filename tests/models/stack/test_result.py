@@ -211,3 +211,26 @@ def test_the_demands_of_a_standing_column_are_told_apart_from_those_of_its_fall(
     stack = Stack([st.Block(1.0, 0.3), st.Block(0.8, 0.2)])
     still = simulate_stack(stack, st.Motion([0.0, 1.0], [0.0, 0.0]))
     assert np.isnan(still.t_past_alpha) and still.peak_before_past_alpha() == (0.0, 0.0)
+
+
+def test_a_column_that_barely_reaches_its_uplift_threshold_is_not_said_to_rock():
+    # two equal 1 x 0.2 m blocks tip as one body at A1 = g b (m1 + m2) / (m1 h + m2 3 h)
+    # = 0.1 g (docs/stack.md, uplift thresholds); a table acceleration that passes it by
+    # 1e-6 of itself for 0.02 s turns the column by about 1e-9 rad, under 1e-6 alpha
+    stack = Stack([st.Block(1.0, 0.2), st.Block(1.0, 0.2)])
+    t = np.arange(0.0, 0.2, 0.01)
+    u = np.where((t > 0.05) & (t < 0.07), (1.0 + 1e-6) * 0.1 * G, 0.09 * G)
+    result = simulate_stack(stack, st.Motion(t, u))
+    peaks = np.abs(result.theta).max(axis=0)
+    alpha = math.atan(0.2)
+    assert 0.0 < peaks.max() < 1e-6 * alpha
+    assert result.verdict().startswith(
+        "touched its uplift threshold (max |θ| " + ", ".join(f"{p:.3g}" for p in peaks)
+        + " rad, bottom to top: under 1e-06 α, no rocking to speak of)")
+    # a block past 1e-6 of its alpha rocked, whatever the other's peak
+    from shaketable.models.stack.result import verdict_text
+
+    alphas = np.array([alpha, alpha])
+    for peaks, word in (((1e-9, 2e-6 * alpha), "rocked"), ((1e-9, 0.5e-6 * alpha), "touched")):
+        assert verdict_text(2, "completed", -1, math.nan, math.nan, np.array(peaks), alphas,
+                            False, 1.0, ()).startswith(word)

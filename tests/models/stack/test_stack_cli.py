@@ -81,6 +81,11 @@ def test_a_release_gives_the_top_corner_excursion_and_writes_the_files(tmp_path)
     (["--stack", "30x6in,30x6in", "--friction", "0.5"], "--friction '0.5' cannot be used with"),
     (["--stack", "30x6in,30x6in", "--cor", "1.5"], "--cor must be in [0.0, 1.0]"),
     (["--stack", "30x6in,30x6in", "--mu", "-1"], "--mu must be a friction coefficient >= 0"),
+    # assess's upper bound (object.friction in (0, 1.5]); a percentage is not a coefficient
+    (["--stack", "30x6in,30x6in", "--mu", "6"], "--mu must be at most 1.5 (a friction "
+                                               "coefficient [-], as assess takes it"),
+    (["--stack", "30x6in,30x6in", "--mu", "60%"], "argument --mu: '60%': give the friction "
+                                                 "coefficient as a number [-], e.g. 0.6"),
     (["--block", "30x6in", "--cor", "0.9", "--mu", "0.5"], "--mu is for a column of blocks"),
     (["--block", "30x6in"], "give --block and --cor (one block), or --stack"),
 ])
