@@ -139,6 +139,21 @@ def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, whi
     return found, found_j
 
 
+@inlined
+def openings(pattern, phi_dot, from_zero, derivative, opening):
+    """The start of the landing event of each interface leaving phi = 0 from rest (an
+    uplift): s phi'' / 2 into ``opening`` (0 for the others; ``derivative`` the right-hand
+    side at the start); the first interface that cannot open (s phi'' <= 0), else -1."""
+    n = pattern.size
+    for j in range(n):
+        opening[j] = 0.0
+        if pattern[j] != 0 and from_zero[j] and phi_dot[j] == 0.0:
+            opening[j] = 0.5 * pattern[j] * derivative[n + j]
+            if not opening[j] > 0.0:
+                return j
+    return NONE
+
+
 @kernel
 def segment(chain, ws, run, t, t_end, seg, buffers):
     """Integrate the current (moving) pattern from ``t`` to its first event or ``t_end``
@@ -187,14 +202,9 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
     rtol = par[P_RTOL]
     lean = run[:6]   # what the event functions read: fewer arrays passed at each call
     rhs(chain, ws, pattern, seg, t, y, stages[0], flat)
-    for j in range(n):
-        opening[j] = 0.0
-        if pattern[j] != 0 and from_zero[j] and phi_dot[j] == 0.0:
-            # leaving phi = 0 from rest (an uplift): s phi'' / 2, the start of its landing's
-            # event function; an interface that cannot open lands now, at rate zero
-            opening[j] = 0.5 * pattern[j] * stages[0, n + j]
-            if not opening[j] > 0.0:
-                return t, ENDS_IMPACT, j
+    j = openings(pattern, phi_dot, from_zero, stages[0], opening)
+    if j >= 0:
+        return t, ENDS_IMPACT, j   # it cannot open: it lands now, at rate zero
     for e in range(count):
         g[e] = event_value(chain, ws, lean, seg, kinds[e], which[e], corners[e], t, y, t,
                            from_zero[which[e]], opening[which[e]]) \

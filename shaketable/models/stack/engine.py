@@ -215,6 +215,12 @@ class Run:
         if self.law == "plastic":
             phi_dot, pattern, solutions, _ = plastic_impact(self.chain, self.phi, self.phi_dot,
                                                             before, interface)
+            noise = self.noise_flights(time, ground, phi_dot, pattern, interface)
+            if noise:
+                # the impact opens other interfaces with flights below the resolution: they
+                # are held flat (the landing's own rebound is the cascade's, below)
+                phi_dot, pattern = self.closure(time, ground, rates_before, before, interface,
+                                                held=noise, skip=interface)
         else:
             phi_dot, pattern = cor_impact(self.chain, self.phi, self.phi_dot, before, interface,
                                           self.cor)
@@ -268,11 +274,26 @@ class Run:
             self.phi_dot = np.zeros(self.n)
         return self.choose(time, ground, "after impact", interface, end)
 
-    def closure(self, time, ground, rates_before, before, interface):
+    def noise_flights(self, time, ground, phi_dot, pattern, skip: int = -1) -> list:
+        """The interfaces other than ``skip`` open at zero gap whose flight would rise less
+        than the integrator's absolute tolerance (rtol alpha_min): noise, below what the
+        integration resolves."""
+        candidates = [k for k in range(self.n) if k != skip and pattern[k] != 0
+                      and self.phi[k] == 0.0]
+        if not candidates:
+            return []
+        phi_ddot, _ = accelerations(self.chain, self.phi, phi_dot, pattern, *ground(time))
+        return [k for k in candidates if -pattern[k] * phi_ddot[k] > 0.0
+                and phi_dot[k] ** 2 <= -2.0 * pattern[k] * phi_ddot[k] * self.atol[0]]
+
+    def closure(self, time, ground, rates_before, before, interface, held=None,
+                skip: int = -1):
         """``(phi', pattern)`` after the landing of ``interface`` held flat (the plastic law
         with that interface closed, from the rates ``rates_before`` and pattern ``before``
         of the landing), with every interface it would open at zero gap with a flight
-        rising less than the integrator's absolute tolerance held flat too.
+        rising less than the integrator's absolute tolerance held flat too (``held``: the
+        interfaces held from the start, by default ``interface``; ``skip``: one never
+        held).
 
         Such a flight is noise, as the landing interface's own rebound is: left open, it
         lands at once, its closure opens the first one again at a smaller rate, and so on
@@ -280,14 +301,12 @@ class Run:
         limit of those alternating plastic landings, each an energy projection of the
         velocities, is the projection with all of them held: the law with them closed.
         """
-        held = [interface]
+        held = [interface] if held is None else list(held)
         while True:
             phi_dot, pattern, _, _ = plastic_impact(self.chain, self.phi, rates_before, before,
                                                     interface, closed=tuple(held))
-            phi_ddot, _ = accelerations(self.chain, self.phi, phi_dot, pattern, *ground(time))
-            noise = [k for k in range(self.n) if pattern[k] != 0 and self.phi[k] == 0.0
-                     and -pattern[k] * phi_ddot[k] > 0.0
-                     and phi_dot[k] ** 2 <= -2.0 * pattern[k] * phi_ddot[k] * self.atol[0]]
+            noise = [k for k in self.noise_flights(time, ground, phi_dot, pattern, skip)
+                     if k not in held]
             if not noise:
                 return phi_dot, pattern
             held += noise
