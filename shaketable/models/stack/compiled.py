@@ -745,8 +745,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     if error == ENDLESS:
         raise StackChatter(f"stack model: more than {MAX_EVENTS_PER_INTERVAL:,} events in one "
                            f"input interval, the last at t = {when!r} s: impacts without end "
-                           "(a block chattering on its seat, each flight shorter than the "
-                           "last)")
+                           "(contacts chattering, each flight shorter than the last)")
     if error == STEP_FAILED:
         raise StackStalled(f"stack model: DOP853 failed at t = {when!r} s: the step size "
                            "fell below the rounding of the time")

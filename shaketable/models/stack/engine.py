@@ -54,8 +54,8 @@ FLOOR = 1e-10
 #: Events in a row at one instant before the run is declared stalled.
 MAX_EVENTS_AT_ONE_INSTANT = 200
 #: Events in one input interval before the run is declared endless (impacts without end:
-#: a block chattering on its seat, each flight shorter than the last, that neither the
-#: cascade's closed form nor the no-progress count catches); a run has hundreds at most.
+#: contacts chattering, each flight shorter than the last, that neither the cascades'
+#: closed forms nor the no-progress count catches); a run has thousands at most.
 MAX_EVENTS_PER_INTERVAL = 100_000
 
 
@@ -65,9 +65,9 @@ class StackStalled(RuntimeError):
 
 
 class StackChatter(StackStalled):
-    """Events without end at one instant: a contact at its uplift threshold (a landing at
-    the noise level, the uplift again, the next landing at the noise level, ...) until time
-    no longer advances. Which run does this depends on the rounding of the tolerance's
+    """Events without end: :data:`MAX_EVENTS_AT_ONE_INSTANT` in a row without progress, or
+    more than :data:`MAX_EVENTS_PER_INTERVAL` in one input interval (contacts chattering in
+    a way the engines do not resolve). Which run does this depends on the tolerance's
     steps: :func:`shaketable.models.stack.model.integrate_retrying` runs it again at a
     tighter tolerance."""
 
@@ -515,8 +515,8 @@ class Run:
         if self.n_events - self.interval_events > MAX_EVENTS_PER_INTERVAL:
             raise StackChatter(f"stack model: more than {MAX_EVENTS_PER_INTERVAL:,} events in "
                                f"one input interval, the last at t = {t!r} s: impacts without "
-                               "end (a block chattering on its seat, each flight shorter than "
-                               "the last)")
+                               "end (contacts chattering, each flight shorter than the "
+                               "last)")
 
     def sample(self, k):
         """theta, theta', theta'' of every block, the pattern and the contact forces at
