@@ -183,7 +183,7 @@ class Run:
             if consistent and self.n > FULL_ENUMERATION:
                 break   # the fewest open interfaces: the levels above are not searched
         if not consistent:
-            raise StackStalled(f"stack model: no consistent contact pattern at t = {time!r} s "
+            raise StackStalled(f"stack model: no consistent contact pattern at t = {float(time)!r} s "
                                f"(from {self.pattern}); the input is outside the model")
         best = min(consistent, key=lambda c: sum(s != 0 for s in c))
         if best == self.pattern:
@@ -409,7 +409,7 @@ class Run:
             solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol,
                                  atol=self.atol, events=events, dense_output=True)
         if solution.status == -1:
-            raise StackStalled(f"stack model: DOP853 failed at t = {solution.t[-1]!r} s: "
+            raise StackStalled(f"stack model: DOP853 failed at t = {float(solution.t[-1])!r} s: "
                                f"{solution.message}")
         self.steps += len(solution.t) - 1
         self.evaluations += solution.nfev
@@ -511,12 +511,12 @@ class Run:
         self.stalled = self.stalled + 1 if t_new <= t else 0
         if self.stalled > MAX_EVENTS_AT_ONE_INSTANT:
             raise StackChatter(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
-                               f"t = {t!r} s without progress")
+                               f"t = {float(t)!r} s without progress")
         if self.n_events - self.interval_events > MAX_EVENTS_PER_INTERVAL:
             raise StackChatter(f"stack model: more than {MAX_EVENTS_PER_INTERVAL:,} events in "
-                               f"one input interval, the last at t = {t!r} s: impacts without "
-                               "end (contacts chattering, each flight shorter than the "
-                               "last)")
+                               f"one input interval, the last at t = {float(t)!r} s: impacts "
+                               "without end (contacts chattering, each flight shorter than "
+                               "the last)")
 
     def sample(self, k):
         """theta, theta', theta'' of every block, the pattern and the contact forces at
