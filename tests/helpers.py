@@ -118,3 +118,29 @@ def ctrl_c_reaches_subprocesses():
     finally:
         if ignored:
             signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+#: The message of the stall :func:`stack_engine_stalling` makes the engine raise.
+INJECTED_STALL = "stack model: 200 events in a row at t = 2.08799 s without progress"
+
+
+def stack_engine_stalling(monkeypatch, rtol: float, *, above_pga: float = 0.0) -> None:
+    """Make the compiled stack engine stop with ``StackChatter`` (:data:`INJECTED_STALL`) on
+    every run at ``rtol`` whose motion's peak horizontal acceleration exceeds ``above_pga``
+    [m/s^2], and run as usual otherwise: the retry's paths (warning, rows, reports) are
+    tested on real runs without depending on which real runs stall (a stall is a defect
+    the engines remove where they find one)."""
+    import numpy as np
+
+    from shaketable.models.stack import compiled
+    from shaketable.models.stack.engine import StackChatter
+
+    real = compiled.integrate
+
+    def integrate(stack, motion, *, rtol: float, **options):
+        if rtol == stalled and np.abs(motion.horizontal).max() > above_pga:
+            raise StackChatter(INJECTED_STALL)
+        return real(stack, motion, rtol=rtol, **options)
+
+    stalled = rtol
+    monkeypatch.setattr(compiled, "integrate", integrate)

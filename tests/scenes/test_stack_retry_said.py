@@ -3,9 +3,10 @@
 printed raw by Python; a study's quiet run keeps it out of sight and its rows carry the
 tolerance; a stack sweep's summary counts the rows computed tighter than its spec's rtol.
 
-The case is the one of ``tests/models/stack/test_chatter.py``: a 30 x 6 in block (mass
+The case is the one of ``tests/models/stack/test_retry.py``: a 30 x 6 in block (mass
 ratio 0.5) on a 60 x 12 in one, the "olive-view" substitute record (seed 3, 4 s) at
-0.15 g; at rtol 1e-10 it stalls at t = 2.088 s and completes at 1e-11.
+0.15 g, with a stall at rtol 1e-10 injected (``tests.helpers.stack_engine_stalling``); the
+runs at 1e-11 are real.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import pytest
 from shaketable import Block
 from shaketable.ground.artificial import artificial
 from shaketable.models.stack import Stack, StackRetryWarning
+from tests.helpers import stack_engine_stalling
 
 STALLED_RTOL = 1e-10
 
@@ -28,11 +30,12 @@ def _case():
     return stack, artificial("olive-view", seed=3, duration=4.0).scaled(0.3)   # 0.15 g
 
 
-def test_a_retry_is_said_with_the_runs_warnings_and_not_raised():
+def test_a_retry_is_said_with_the_runs_warnings_and_not_raised(monkeypatch):
     from shaketable.scenes.stack import run_quietly
     from shaketable.studies.stacks import quiet_stack_run
 
     stack, motion = _case()
+    stack_engine_stalling(monkeypatch, STALLED_RTOL)
     with warnings.catch_warnings():
         warnings.simplefilter("error", StackRetryWarning)   # raw: the test fails
         result, said = run_quietly(stack, motion, rtol=STALLED_RTOL)
@@ -65,7 +68,7 @@ def test_the_sweep_summary_counts_the_rows_computed_tighter():
 
 
 CHATTER_SWEEP = """name = "chatter"
-description = "the stack that stalls at rtol 1e-10 and completes at 1e-11"
+description = "a stack whose run at rtol 1e-10 stalls (injected); 1e-11 completes"
 seed = 3
 
 [stacks]
@@ -84,9 +87,11 @@ scale = [0.3]
 """
 
 
-def test_a_stack_sweep_says_its_retried_run_in_the_summary_not_raw(tmp_path, capsys):
+def test_a_stack_sweep_says_its_retried_run_in_the_summary_not_raw(tmp_path, capsys,
+                                                                    monkeypatch):
     from shaketable.cli import main
 
+    stack_engine_stalling(monkeypatch, STALLED_RTOL)   # one chunk: computed in this process
     (tmp_path / "chatter.toml").write_text(CHATTER_SWEEP, encoding="utf-8")
     with warnings.catch_warnings():
         warnings.simplefilter("error", StackRetryWarning)   # raw: the sweep stops

@@ -28,6 +28,7 @@ import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
+from shaketable.models.stack.compiled_events import CompiledRun
 from shaketable.models.stack.compiled_one import (
     ensure_coefficients,
     one_dof_segment,
@@ -63,6 +64,7 @@ from shaketable.models.stack.compiled_steps import (
     ground,
 )
 from shaketable.models.stack.layout import (
+    AIRBORNE,
     ENDLESS,
     ENDS_IMPACT,
     ENDS_LIFT,
@@ -80,7 +82,6 @@ from shaketable.models.stack.layout import (
     F_T_OVERTURN,
     F_WORK,
     I_ERROR,
-    I_EVALUATIONS,
     I_EVENTS,
     I_INTERVAL_EVENTS,
     I_OVERTURNED,
@@ -89,11 +90,12 @@ from shaketable.models.stack.layout import (
     I_SAMPLED,
     I_STALLED,
     I_STATUS,
-    I_STEPS,
+    IMPACT,
     N_FLOATS,
     N_INTS,
     NO_PATTERN,
     NONE,
+    OVERTURN,
     P_ALPHA,
     P_ALPHA_P,
     P_COR,
@@ -101,8 +103,15 @@ from shaketable.models.stack.layout import (
     P_LAW,
     P_REST,
     P_TOL_FORCE,
+    R_IMPACT,
+    R_NOISE,
+    R_REST,
+    R_START,
+    R_UPLIFT,
+    REST,
     STALLED,
     STEP_FAILED,
+    UPLIFT,
     ZERO,
 )
 
@@ -114,14 +123,6 @@ FLOOR = 1e-10
 MAX_EVENTS_AT_ONE_INSTANT = 200
 MAX_EVENTS_PER_INTERVAL = 100_000
 
-#: Event kinds (the Python engine's ``kind``) and the reasons of a choice. The codes that
-#: compiled functions are called with are int64 values, not Python ints: numba types a
-#: module's int constants (and literal ints and bools in a call) as literals and compiles a
-#: function once for every distinct literal it is called with.
-KINDS = ("uplift", "impact", "rest", "overturn", "airborne")
-UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = (np.int64(code) for code in range(5))
-REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level landing")
-R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
 ONE = np.int64(1)
 # rows of the event workspace (compiled_physics.event_workspace) past the plastic law's: the
 # pattern check's (float, int) and the impact's
@@ -129,8 +130,6 @@ C_ACCELERATION, C_AHEAD, C_AHEAD_DOT, C_PHI_DDOT, C_RATES, C_AFTER_DOT, C_ZEROS 
     range(FREE_ROWS, FREE_ROWS + 7)
 C_FREE, C_CANDIDATE, C_BEST, C_CHOSEN, C_BEFORE, C_AFTER, C_FLAT = \
     range(FREE_INT_ROWS, FREE_INT_ROWS + 7)
-#: Statuses of a run.
-STATUSES = ("completed", "overturned", "airborne")
 
 
 
@@ -265,6 +264,50 @@ def take(phi_dot, pattern, after_dot, after):
 
 
 @inlined
+def noise_flights(chain, ws, scratch, run, time, seg, skip):
+    """The interfaces other than ``skip`` open at zero gap in the impact's rows C_AFTER_DOT
+    and C_AFTER whose flight would rise less than the integrator's absolute tolerance, as
+    the bits of an int64 (:meth:`shaketable.models.stack.engine.Run.noise_flights`)."""
+    phi, atol = run[0], run[6]
+    floats, ints = scratch[0], scratch[1]
+    after_dot, after, phi_ddot = floats[C_AFTER_DOT], ints[C_AFTER], floats[C_PHI_DDOT]
+    noise = ZERO
+    for k in range(phi.size):
+        if k != skip and after[k] != 0 and phi[k] == 0.0:
+            noise = ONE   # one to check: the accelerations are needed
+    if noise == 0:
+        return noise
+    ug, vg = ground(seg, time)
+    accelerations(chain, phi, after_dot, after, ug, vg, phi_ddot, ws[:15])
+    noise = ZERO
+    for k in range(phi.size):
+        deceleration = -after[k] * phi_ddot[k]
+        if k != skip and after[k] != 0 and phi[k] == 0.0 and deceleration > 0.0 and \
+                after_dot[k] ** 2 <= 2.0 * deceleration * atol[0]:
+            noise |= ONE << k
+    return noise
+
+
+@inlined
+def closure(chain, ws, scratch, run, time, seg, rates_before, before, interface, held, skip):
+    """The landing of ``interface`` with the interfaces of the bits ``held`` held flat, and
+    every interface but ``skip`` it would open at zero gap with a flight rising less than
+    the integrator's absolute tolerance held flat too, into the impact's rows C_AFTER_DOT
+    and C_AFTER (:meth:`shaketable.models.stack.engine.Run.closure`: the limit of a cascade
+    of landings over several interfaces)."""
+    phi = run[0]
+    floats, ints = scratch[0], scratch[1]
+    after_dot, after = floats[C_AFTER_DOT], ints[C_AFTER]
+    while True:
+        plastic_impact(chain, phi, rates_before, before, interface, held, ws, scratch,
+                       after_dot, after)
+        noise = noise_flights(chain, ws, scratch, run, time, seg, skip)
+        if noise & ~held == 0:
+            return
+        held |= noise
+
+
+@inlined
 def impact(chain, ws, scratch, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
@@ -283,8 +326,8 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     reason = R_IMPACT
     if abs(rate_before) <= FLOOR * alpha_p and largest(rates_before) > FLOOR * alpha_p:
         # a landing at the noise level while the stack moves: the interface closes
-        plastic_impact(chain, phi, rates_before, before, interface, interface, ws, scratch,
-                       after_dot, after)
+        closure(chain, ws, scratch, run, time, seg, rates_before, before, interface,
+                ONE << interface, NONE)
         take(phi_dot, pattern, after_dot, after)
         record(run, time, REST, interface, before, after, ONE,
                (math.nan, math.nan, energy_before, energy(chain, phi, phi_dot, pattern, ws[:6])),
@@ -292,8 +335,14 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
         reason = R_NOISE
     else:
         if par[P_LAW] == 0.0:
-            solutions = plastic_impact(chain, phi, phi_dot, before, interface, NONE, ws,
+            solutions = plastic_impact(chain, phi, phi_dot, before, interface, ZERO, ws,
                                        scratch, after_dot, after)
+            noise = noise_flights(chain, ws, scratch, run, time, seg, interface)
+            if noise != 0:
+                # the impact opens other interfaces with flights below the resolution: they
+                # are held flat (the landing's own rebound is the cascade's, below)
+                closure(chain, ws, scratch, run, time, seg, rates_before, before, interface,
+                        noise, interface)
         else:
             cor_impact(phi_dot, before, interface, par[P_COR], after_dot, after)
             solutions = ONE
@@ -334,8 +383,8 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
                 if remaining <= par[P_REST]:
                     # the others move on: this interface closes now (a plastic landing held
                     # flat)
-                    plastic_impact(chain, phi, rates_before, before, interface, interface, ws,
-                                   scratch, after_dot, after)
+                    closure(chain, ws, scratch, run, time, seg, rates_before, before,
+                            interface, ONE << interface, NONE)
                     energy_closed = energy(chain, phi, after_dot, after, ws[:6])
                     record(run, time, REST, interface, pattern, after, ONE,
                            (math.nan, math.nan, energy_after, energy_closed), (NONE, ONE, NONE))
@@ -457,7 +506,7 @@ def segment_buffers_size(n):
     """The float, int64 and bool elements of the DOP853 path's arrays of ``n`` blocks
     (:func:`segment_buffers`)."""
     size = 2 * n + 1
-    return 27 * size + 10 * n, 9 * n, 2 * n
+    return 27 * size + 11 * n, 9 * n, 2 * n
 
 
 @inlined
@@ -473,8 +522,9 @@ def segment_buffers(reals, f, integers, i, flags, n):
         f + 8 * size
     s6, s7, s8, s11 = reals[f:f + 3 * n], reals[f + 3 * n:f + 6 * n], \
         reals[f + 6 * n:f + 9 * n], reals[f + 9 * n:f + 10 * n]
+    s12 = reals[f + 10 * n:f + 11 * n]
     s9, s10 = integers[i:i + 9 * n].reshape((3, 3 * n)), flags[:2 * n].reshape((2, n))
-    return s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11
+    return s0, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11, s12
 
 
 def pool_sizes(n):
@@ -637,63 +687,6 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     return filled
 
 
-class CompiledRun:
-    """What :func:`integrate` returns as ``run``: the events (dicts, as the Python engine's),
-    the status and the statistics of one compiled run."""
-
-    def __init__(self, fs, ist, ev_f, ev_i, ev_pb, ev_pa) -> None:
-        self.status = STATUSES[int(ist[I_STATUS])]
-        self.t_overturn = float(fs[F_T_OVERTURN])
-        self.overturned_block = int(ist[I_OVERTURNED])
-        self.t_airborne = float(fs[F_T_AIRBORNE])
-        self.n_events = int(ist[I_EVENTS])
-        self.steps, self.evaluations = int(ist[I_STEPS]), int(ist[I_EVALUATIONS])
-        count = int(ist[I_RECORDED])
-        self._recorded = (ev_f[:count], ev_i[:count], ev_pb[:count], ev_pa[:count])
-
-    @property
-    def events(self) -> list[dict]:
-        """The recorded events as dicts (their numbers as Python floats and ints, their
-        patterns as tuples)."""
-        return self.scaled_events(1.0)
-
-    def scaled_events(self, scale: float) -> list[dict]:
-        """The recorded events with their energies [J] times ``scale`` (the stack's mass
-        scale; 1: as recorded), built column by column: one conversion per column, not one
-        per number."""
-        reals, integers, before, after = self._recorded
-        energies = reals[:, 3:5] * scale if scale != 1.0 else reals[:, 3:5]
-        columns = zip(reals[:, 0].tolist(), integers[:, 0].tolist(),
-                      integers[:, 1].tolist(), map(tuple, before.tolist()),
-                      map(tuple, after.tolist()), integers[:, 5].tolist(),
-                      reals[:, 1].tolist(), reals[:, 2].tolist(), energies[:, 0].tolist(),
-                      energies[:, 1].tolist(), integers[:, 2].tolist(),
-                      integers[:, 3].tolist(), integers[:, 4].tolist())
-        return [self.event(*row) for row in columns]
-
-    @staticmethod
-    def event(t, kind, interface, before, after, patterns, rate_before, rate_after,
-              energy_before, energy_after, solutions, cascade, reason) -> dict:
-        """One recorded event as a dict (the keys of the Python engine's, in its order)."""
-        if patterns != 1:
-            before = after = None
-        if kind == IMPACT:
-            return {"t": t, "kind": "impact", "interface": interface, "pattern_before": before,
-                    "pattern_after": after, "rate_before": rate_before,
-                    "rate_after": rate_after, "energy_before": energy_before,
-                    "energy_after": energy_after, "solutions": solutions}
-        if kind == UPLIFT:
-            return {"t": t, "kind": "uplift", "interface": interface, "pattern_before": before,
-                    "pattern_after": after, "solutions": solutions,
-                    "reason": REASONS[reason]}
-        if kind == REST:
-            return {"t": t, "kind": "rest", "interface": interface, "pattern_before": before,
-                    "pattern_after": after, "cascade": bool(cascade),
-                    "energy_before": energy_before, "energy_after": energy_after}
-        return {"t": t, "kind": KINDS[kind], "interface": interface, "pattern_before": before,
-                "pattern_after": after}
-
-
 #: Events kept by a first run; a run that records more runs again with room for all.
 FIRST_CAPACITY = 4096
 
@@ -752,8 +745,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     if error == ENDLESS:
         raise StackChatter(f"stack model: more than {MAX_EVENTS_PER_INTERVAL:,} events in one "
                            f"input interval, the last at t = {when!r} s: impacts without end "
-                           "(a block chattering on its seat, each flight shorter than the "
-                           "last)")
+                           "(contacts chattering, each flight shorter than the last)")
     if error == STEP_FAILED:
         raise StackStalled(f"stack model: DOP853 failed at t = {when!r} s: the step size "
                            "fell below the rounding of the time")

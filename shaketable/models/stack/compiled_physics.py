@@ -574,12 +574,12 @@ def one_dof_landing(phi, phi_dot, pattern, interface):
 
 
 @kernel
-def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
+def plastic_impact(chain, phi, phi_dot, pattern, interface, held, ws, scratch,
                    phi_dot_after, pattern_after):
     """The plastic, no-slip multi-contact law, compiled
     (:func:`~shaketable.models.stack.impact.plastic_impact`): post-impact phi' and pattern
-    into the arrays given; returns the number of admissible active sets. ``closed``: an
-    interface held flat, or -1.
+    into the arrays given; returns the number of admissible active sets. ``held``: the
+    interfaces held flat, as the bits of an int64 (bit j: interface j; 0: none).
 
     Every active set is tried in the candidates' order, each considered (:func:`consider`).
     At a landing of a one-DOF pattern (:func:`one_dof_landing`) of up to FULL_ENUMERATION
@@ -595,7 +595,7 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
     impulse_tolerance, rate_tolerance = plastic_tolerances(chain, phi_dot, interface,
                                                            theta_dot)
     store = NONE_INTERFACE
-    if closed < 0 and n <= FULL_ENUMERATION and \
+    if held == 0 and n <= FULL_ENUMERATION and \
             one_dof_landing(phi, phi_dot, pattern, interface):
         store = 2 * interface + (0 if pattern[interface] > 0 else 1)
     cached = store >= 0 and scratch[6][store] != 0
@@ -631,7 +631,7 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
         while going:
             for sides in range(1 << count):
                 fill_candidate(start, free, n_free, chosen, count, sides, candidate)
-                if closed >= 0 and candidate[closed] != 0:
+                if held != 0 and opens_held(candidate, held):
                     continue
                 if not cached:
                     plastic_candidate(chain, theta, floats[R_THETA_DOT], pairs[P_VELOCITY],
@@ -653,6 +653,15 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, closed, ws, scratch,
     if store >= 0:
         scratch[6][store] = 1
     return plastic_choice(scratch, phi_dot_after, pattern_after)
+
+
+@inlined
+def opens_held(candidate, held):
+    """Whether ``candidate`` opens an interface of the bits ``held``."""
+    for j in range(candidate.size):
+        if (held >> j) & 1 and candidate[j] != 0:
+            return True
+    return False
 
 
 @inlined

@@ -54,14 +54,18 @@ EV_LANDING, EV_OVERTURN, EV_LIFT, EV_TURN, EV_SIDE = (np.int64(code) for code in
 
 
 @kernel
-def event_value(chain, ws, run, seg, kind, j, corner, time, y, t_start, from_zero):
+def event_value(chain, ws, run, seg, kind, j, corner, time, y, t_start, from_zero, opening):
     """An event function at (time, y): positive before its event (see the Python engine's
-    ``segment``)."""
+    ``segment``). A landing leaving phi = 0 (``from_zero``) is s phi / elapsed (-> s phi'
+    at the start) or, leaving it from rest, s phi / elapsed^2 (-> ``opening``, s phi'' / 2
+    at the start)."""
     pattern = run[2]
     n = pattern.size
     s = pattern[j]
     if kind == EV_LANDING:
         if from_zero:
+            if opening > 0.0:
+                return opening if time <= t_start else s * y[j] / (time - t_start) ** 2
             return s * y[n + j] if time <= t_start else s * y[j] / (time - t_start)
         return s * y[j]
     if kind == EV_OVERTURN:
@@ -77,28 +81,30 @@ def event_value(chain, ws, run, seg, kind, j, corner, time, y, t_start, from_zer
 
 
 @inlined
-def event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, dense, y_old,
-             t_old, h, state):
+def event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, opening, dense,
+             y_old, t_old, h, state):
     dense_state(dense, y_old, t_old, h, time, state)
-    return event_value(chain, ws, run, seg, kind, j, corner, time, state, t_start, from_zero)
+    return event_value(chain, ws, run, seg, kind, j, corner, time, state, t_start, from_zero,
+                       opening)
 
 
 @inlined
 def event_of_time(time, args):
     """:func:`event_at` as :func:`shaketable.numerics.roots.brent` calls it."""
-    chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old, t_old, h, state = \
-        args
-    return event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, dense,
-                    y_old, t_old, h, state)
+    chain, ws, run, seg, kind, j, corner, t_start, from_zero, opening, dense, y_old, t_old, h, \
+        state = args
+    return event_at(chain, ws, run, seg, kind, j, corner, time, t_start, from_zero, opening,
+                    dense, y_old, t_old, h, state)
 
 
 @kernel
-def brent(chain, ws, run, seg, kind, j, corner, t_start, from_zero, dense, y_old, t_old, h,
-          state, xa, xb, xtol, rtol):
+def brent(chain, ws, run, seg, kind, j, corner, t_start, from_zero, opening, dense, y_old,
+          t_old, h, state, xa, xb, xtol, rtol):
     """The zero of an event function on the continuous extension in [xa, xb] (SciPy's
     ``brentq``: :func:`shaketable.numerics.roots.brent`)."""
     return root_finding.brent(event_of_time, (chain, ws, run, seg, kind, j, corner, t_start,
-                                              from_zero, dense, y_old, t_old, h, state),
+                                              from_zero, opening, dense, y_old, t_old, h,
+                                              state),
                               xa, xb, xtol, rtol)
 
 
@@ -123,14 +129,29 @@ def passed_landing(chain, ws, run, seg, t, t_now, h, y, dense, state, roots, whi
         settled[j] = True
         low = max(t_now, earlier[j])
         if (low <= t and from_zero[j]) or event_at(
-                chain, ws, run, seg, EV_SIDE, j, ZERO, low, t, NO, dense, y, t_now, h,
+                chain, ws, run, seg, EV_SIDE, j, ZERO, low, t, NO, 0.0, dense, y, t_now, h,
                 state) <= 0.0:
             continue
-        time = brent(chain, ws, run, seg, EV_SIDE, j, ZERO, t, NO, dense, y, t_now, h, state,
-                     low, tau, 1e-300, 4.0 * EPS)
+        time = brent(chain, ws, run, seg, EV_SIDE, j, ZERO, t, NO, 0.0, dense, y, t_now, h,
+                     state, low, tau, 1e-300, 4.0 * EPS)
         if time < found:
             found, found_j = time, j
     return found, found_j
+
+
+@inlined
+def openings(pattern, phi_dot, from_zero, derivative, opening):
+    """The start of the landing event of each interface leaving phi = 0 from rest (an
+    uplift): s phi'' / 2 into ``opening`` (0 for the others; ``derivative`` the right-hand
+    side at the start); the first interface that cannot open (s phi'' <= 0), else -1."""
+    n = pattern.size
+    for j in range(n):
+        opening[j] = 0.0
+        if pattern[j] != 0 and from_zero[j] and phi_dot[j] == 0.0:
+            opening[j] = 0.5 * pattern[j] * derivative[n + j]
+            if not opening[j] > 0.0:
+                return j
+    return NONE
 
 
 @kernel
@@ -140,7 +161,8 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
     ``what`` one of ENDS_*."""
     phi, phi_dot, pattern, fs, ist, par, atol = run[0], run[1], run[2], run[3], run[4], \
         run[5], run[6]
-    stages, y, y_new, work, dense, state, g, g_new, roots, codes, flags, earlier = buffers
+    stages, y, y_new, work, dense, state, g, g_new, roots, codes, flags, earlier, opening = \
+        buffers
     n = phi.size
     size = 2 * n + 1
     for j in range(n):
@@ -180,8 +202,12 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
     rtol = par[P_RTOL]
     lean = run[:6]   # what the event functions read: fewer arrays passed at each call
     rhs(chain, ws, pattern, seg, t, y, stages[0], flat)
+    j = openings(pattern, phi_dot, from_zero, stages[0], opening)
+    if j >= 0:
+        return t, ENDS_IMPACT, j   # it cannot open: it lands now, at rate zero
     for e in range(count):
-        g[e] = event_value(chain, ws, lean, seg, kinds[e], which[e], corners[e], t, y, t, from_zero[which[e]]) \
+        g[e] = event_value(chain, ws, lean, seg, kinds[e], which[e], corners[e], t, y, t,
+                           from_zero[which[e]], opening[which[e]]) \
             if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
     # the step size carried from the last DOP853 step (no restart at each input interval)
     h_abs = fs[F_DOP_STEP]
@@ -221,7 +247,7 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
         ist[I_STEPS] += 1
         for e in range(count):
             g_new[e] = event_value(chain, ws, lean, seg, kinds[e], which[e], corners[e], t_new,
-                                   y_new, t, from_zero[which[e]]) \
+                                   y_new, t, from_zero[which[e]], opening[which[e]]) \
                 if kinds[e] != EV_LIFT else ws[8][which[e], corners[e]] + par[P_TOL_FORCE]
         active = False
         for e in range(count):
@@ -238,8 +264,8 @@ def segment(chain, ws, run, t, t_end, seg, buffers):
             for e in range(count):
                 if roots[e] == math.inf:
                     roots[e] = brent(chain, ws, lean, seg, kinds[e], which[e], corners[e], t,
-                                     from_zero[which[e]], dense, y, t_now, h, state, t_now,
-                                     t_new, 4.0 * EPS, 4.0 * EPS)
+                                     from_zero[which[e]], opening[which[e]], dense, y, t_now,
+                                     h, state, t_now, t_new, 4.0 * EPS, 4.0 * EPS)
                     if e < terminal and roots[e] < first_time:
                         first, first_time = e, roots[e]
             # a turning point on the wrong side of a landing: the landing before it

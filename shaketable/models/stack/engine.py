@@ -54,8 +54,8 @@ FLOOR = 1e-10
 #: Events in a row at one instant before the run is declared stalled.
 MAX_EVENTS_AT_ONE_INSTANT = 200
 #: Events in one input interval before the run is declared endless (impacts without end:
-#: a block chattering on its seat, each flight shorter than the last, that neither the
-#: cascade's closed form nor the no-progress count catches); a run has hundreds at most.
+#: contacts chattering, each flight shorter than the last, that neither the cascades'
+#: closed forms nor the no-progress count catches); a run has thousands at most.
 MAX_EVENTS_PER_INTERVAL = 100_000
 
 
@@ -65,9 +65,9 @@ class StackStalled(RuntimeError):
 
 
 class StackChatter(StackStalled):
-    """Events without end at one instant: a contact at its uplift threshold (a landing at
-    the noise level, the uplift again, the next landing at the noise level, ...) until time
-    no longer advances. Which run does this depends on the rounding of the tolerance's
+    """Events without end: :data:`MAX_EVENTS_AT_ONE_INSTANT` in a row without progress, or
+    more than :data:`MAX_EVENTS_PER_INTERVAL` in one input interval (contacts chattering in
+    a way the engines do not resolve). Which run does this depends on the tolerance's
     steps: :func:`shaketable.models.stack.model.integrate_retrying` runs it again at a
     tighter tolerance."""
 
@@ -183,7 +183,7 @@ class Run:
             if consistent and self.n > FULL_ENUMERATION:
                 break   # the fewest open interfaces: the levels above are not searched
         if not consistent:
-            raise StackStalled(f"stack model: no consistent contact pattern at t = {time!r} s "
+            raise StackStalled(f"stack model: no consistent contact pattern at t = {float(time)!r} s "
                                f"(from {self.pattern}); the input is outside the model")
         best = min(consistent, key=lambda c: sum(s != 0 for s in c))
         if best == self.pattern:
@@ -206,8 +206,7 @@ class Run:
                 FLOOR * self.alpha_p:
             # a landing at the noise level while the stack moves: the interface closes (a
             # plastic landing held flat), whatever the law
-            phi_dot, pattern, _, _ = plastic_impact(self.chain, self.phi, rates_before, before,
-                                                    interface, closed=(interface,))
+            phi_dot, pattern = self.closure(time, ground, rates_before, before, interface)
             self.phi_dot, self.pattern = phi_dot, pattern
             self.record(time, "rest", interface, before, pattern, cascade=False,
                         energy_before=energy_before,
@@ -216,6 +215,12 @@ class Run:
         if self.law == "plastic":
             phi_dot, pattern, solutions, _ = plastic_impact(self.chain, self.phi, self.phi_dot,
                                                             before, interface)
+            noise = self.noise_flights(time, ground, phi_dot, pattern, interface)
+            if noise:
+                # the impact opens other interfaces with flights below the resolution: they
+                # are held flat (the landing's own rebound is the cascade's, below)
+                phi_dot, pattern = self.closure(time, ground, rates_before, before, interface,
+                                                held=noise, skip=interface)
         else:
             phi_dot, pattern = cor_impact(self.chain, self.phi, self.phi_dot, before, interface,
                                           self.cor)
@@ -260,8 +265,7 @@ class Run:
             if remaining <= self.rest_tolerance:
                 # the others move on: this interface closes now (a plastic landing held
                 # flat), at most rest_tolerance early
-                phi_dot, closed, _, _ = plastic_impact(self.chain, self.phi, rates_before,
-                                                       before, interface, closed=(interface,))
+                phi_dot, closed = self.closure(time, ground, rates_before, before, interface)
                 energy_closed = sum(energy(self.chain, self.phi, phi_dot, closed))
                 self.record(time, "rest", interface, pattern, closed, cascade=True,
                             energy_before=energy_after, energy_after=energy_closed)
@@ -269,6 +273,43 @@ class Run:
         if all(s == 0 for s in self.pattern):
             self.phi_dot = np.zeros(self.n)
         return self.choose(time, ground, "after impact", interface, end)
+
+    def noise_flights(self, time, ground, phi_dot, pattern, skip: int = -1) -> list:
+        """The interfaces other than ``skip`` open at zero gap whose flight would rise less
+        than the integrator's absolute tolerance (rtol alpha_min): noise, below what the
+        integration resolves."""
+        candidates = [k for k in range(self.n) if k != skip and pattern[k] != 0
+                      and self.phi[k] == 0.0]
+        if not candidates:
+            return []
+        phi_ddot, _ = accelerations(self.chain, self.phi, phi_dot, pattern, *ground(time))
+        return [k for k in candidates if -pattern[k] * phi_ddot[k] > 0.0
+                and phi_dot[k] ** 2 <= -2.0 * pattern[k] * phi_ddot[k] * self.atol[0]]
+
+    def closure(self, time, ground, rates_before, before, interface, held=None,
+                skip: int = -1):
+        """``(phi', pattern)`` after the landing of ``interface`` held flat (the plastic law
+        with that interface closed, from the rates ``rates_before`` and pattern ``before``
+        of the landing), with every interface it would open at zero gap with a flight
+        rising less than the integrator's absolute tolerance held flat too (``held``: the
+        interfaces held from the start, by default ``interface``; ``skip``: one never
+        held).
+
+        Such a flight is noise, as the landing interface's own rebound is: left open, it
+        lands at once, its closure opens the first one again at a smaller rate, and so on
+        (a cascade over two or more interfaces whose flights shrink geometrically). The
+        limit of those alternating plastic landings, each an energy projection of the
+        velocities, is the projection with all of them held: the law with them closed.
+        """
+        held = [interface] if held is None else list(held)
+        while True:
+            phi_dot, pattern, _, _ = plastic_impact(self.chain, self.phi, rates_before, before,
+                                                    interface, closed=tuple(held))
+            noise = [k for k in self.noise_flights(time, ground, phi_dot, pattern, skip)
+                     if k not in held]
+            if not noise:
+                return phi_dot, pattern
+            held += noise
 
     # ----------------------------------------------------------------- rest
     def rest_uplift(self, t, t_end, ground):
@@ -324,11 +365,20 @@ class Run:
             return np.concatenate([y[n:2 * n], phi_ddot, [power]])
 
         events, meaning = [], []
+        y0 = np.concatenate([self.phi, self.phi_dot, [self.work]])
         for j in open_:
             s = pattern[j]
-            if self.phi[j] == 0.0:
-                # leaving phi = 0: s phi / elapsed (-> s phi' at the start) so that a flight
-                # shorter than a step is not "found" at its start, where s phi is zero
+            if self.phi[j] == 0.0 and self.phi_dot[j] == 0.0:
+                # leaving phi = 0 from rest (an uplift: s phi'' > 0): s phi / elapsed^2
+                # (-> s phi'' / 2 at the start) so that a flight shorter than a step is not
+                # "found" at its start, where s phi and s phi' are zero
+                opening = 0.5 * s * evaluate(t, y0)[0][j]
+                if opening <= 0.0:
+                    return t, ("impact", j)   # it cannot open: it lands now, at rate zero
+                landing = (lambda time, y, j=j, s=s, opening=opening: opening if time <= t
+                           else s * y[j] / (time - t) ** 2)
+            elif self.phi[j] == 0.0:
+                # leaving phi = 0: s phi / elapsed (-> s phi' at the start), likewise
                 landing = (lambda time, y, j=j, s=s: s * y[n + j] if time <= t
                            else s * y[j] / (time - t))
             else:
@@ -350,7 +400,6 @@ class Run:
             peak.terminal, peak.direction = False, 0
             events.append(peak)
             meaning.append(("turn", j))
-        y0 = np.concatenate([self.phi, self.phi_dot, [self.work]])
         solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol, atol=self.atol,
                              events=events)
         if any(pattern[meaning[index][1]] * y[meaning[index][1]] < 0.0
@@ -360,7 +409,7 @@ class Run:
             solution = solve_ivp(rhs, (t, t_end), y0, method="DOP853", rtol=self.rtol,
                                  atol=self.atol, events=events, dense_output=True)
         if solution.status == -1:
-            raise StackStalled(f"stack model: DOP853 failed at t = {solution.t[-1]!r} s: "
+            raise StackStalled(f"stack model: DOP853 failed at t = {float(solution.t[-1])!r} s: "
                                f"{solution.message}")
         self.steps += len(solution.t) - 1
         self.evaluations += solution.nfev
@@ -462,11 +511,11 @@ class Run:
         self.stalled = self.stalled + 1 if t_new <= t else 0
         if self.stalled > MAX_EVENTS_AT_ONE_INSTANT:
             raise StackChatter(f"stack model: {MAX_EVENTS_AT_ONE_INSTANT} events in a row at "
-                               f"t = {t!r} s without progress")
+                               f"t = {float(t)!r} s without progress")
         if self.n_events - self.interval_events > MAX_EVENTS_PER_INTERVAL:
             raise StackChatter(f"stack model: more than {MAX_EVENTS_PER_INTERVAL:,} events in "
-                               f"one input interval, the last at t = {t!r} s: impacts without "
-                               "end (a block chattering on its seat, each flight shorter than "
+                               f"one input interval, the last at t = {float(t)!r} s: impacts "
+                               "without end (contacts chattering, each flight shorter than "
                                "the last)")
 
     def sample(self, k):

@@ -40,3 +40,13 @@ N_INTS = 12
 P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW = range(8)
 #: Errors of a run.
 NO_PATTERN, STALLED, STEP_FAILED, ENDLESS = 1, 2, 3, 4
+#: Event kinds (the Python engine's ``kind``) and the reasons of a choice. The codes that
+#: compiled functions are called with are int64 values, not Python ints: numba types a
+#: module's int constants (and literal ints and bools in a call) as literals and compiles a
+#: function once for every distinct literal it is called with.
+KINDS = ("uplift", "impact", "rest", "overturn", "airborne")
+UPLIFT, IMPACT, REST, OVERTURN, AIRBORNE = (np.int64(code) for code in range(5))
+REASONS = ("start", "uplift", "after impact", "after rest", "after a noise-level landing")
+R_START, R_UPLIFT, R_IMPACT, R_REST, R_NOISE = (np.int64(code) for code in range(5))
+#: Statuses of a run.
+STATUSES = ("completed", "overturned", "airborne")

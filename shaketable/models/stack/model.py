@@ -36,7 +36,7 @@ class StackFrictionWarning(UserWarning):
 
 
 class StackRetryWarning(UserWarning):
-    """A run stalled in the chatter of a contact at its uplift threshold
+    """A run stopped with events without end
     (:class:`~shaketable.models.stack.engine.StackChatter`) and was run again at a tighter
     tolerance (:func:`integrate_retrying`)."""
 
@@ -87,11 +87,11 @@ def integrate_retrying(integrate, stack: Stack, motion: Motion, *, rtol: float,
             raise StackStalled(f"{'; '.join(stalls)}; run again at rtol {tolerance:g}: "
                                f"{error}") from None
         note = ("" if not stalls else
-                f"the run stalled ({'; '.join(stalls)}: a contact chattering at its uplift "
-                f"threshold) and was run again at rtol {tolerance:g}")
+                f"the run stalled ({'; '.join(stalls)}) and was run again at rtol "
+                f"{tolerance:g}")
         return out, tolerance, note
-    raise StackChatter("; ".join(stalls) + " (a contact chattering at its uplift threshold "
-                       "at every tolerance tried)")
+    raise StackChatter("; ".join(stalls) + " (events without end at every tolerance "
+                       "tried)")
 
 
 def _user_stacklevel() -> int:
