@@ -322,18 +322,25 @@ def stalled_line(rows) -> str:
 def overturned_blocks(table) -> str:
     """Which block fell in the overturned runs of a stack sweep's rows, top first:
     ``"block 1 (top) 5, block 0 (bottom) 2"`` (``"a block alone 3"``: the columns of one
-    block; "" for another sweep's table)."""
+    block; "" for another sweep's table). Rows of columns of several heights name each
+    column: ``"2 high: block 0 (bottom) 4; 3 high: block 2 (top) 1, block 0 (bottom) 4"``."""
     if "overturned block" not in table or "blocks" not in table:
         return ""
     fell = table[table["overturned"].astype(bool)]
-    parts = []
+    heights = {int(blocks) for blocks in fell["blocks"] if int(blocks) > 1}
+    named = len(heights) > 1
+    parts: dict = {}
     for (blocks, index), rows in sorted(fell.groupby(["blocks", "overturned block"]),
-                                        key=lambda item: (-item[0][1], item[0][0])):
+                                        key=lambda item: ((item[0][0], -item[0][1]) if named
+                                                          else (-item[0][1], item[0][0]))):
         blocks, index = int(blocks), int(index)
         name = "a block alone" if blocks == 1 else f"block {index}" + (
             " (bottom)" if index == 0 else " (top)" if index == blocks - 1 else "")
-        parts.append(f"{name} {len(rows)}")
-    return ", ".join(parts)
+        parts.setdefault(blocks if named else 0, []).append(f"{name} {len(rows)}")
+    if not named:
+        return ", ".join(parts.get(0, []))
+    return "; ".join(", ".join(words) if blocks == 1 else f"{blocks} high: {', '.join(words)}"
+                     for blocks, words in parts.items())
 
 
 def overturned_line(rows) -> str:

@@ -136,3 +136,14 @@ def test_risk_leaves_a_stalled_run_out_of_the_fit(tmp_path, capsys):
     assert fragility == [line for line in after if line.startswith("    fragility")]
     assert ("    overturned in 8 of 14 runs; the block that fell: block 1 (top) 1, "
             "block 0 (bottom) 7; 1 of 15 runs stalled (excluded)") in after, after
+
+
+def test_columns_of_several_heights_are_named():
+    from shaketable.sweeps.stacks import overturned_blocks
+
+    rows = pd.DataFrame({"blocks": [3, 2, 2, 3, 3, 1], "overturned": [True] * 5 + [True],
+                         "overturned block": [0, 0, 0, 2, 0, 0]})
+    assert overturned_blocks(rows) == ("a block alone 1; 2 high: block 0 (bottom) 2; "
+                                       "3 high: block 2 (top) 1, block 0 (bottom) 2")
+    two = rows[rows["blocks"] == 2]
+    assert overturned_blocks(two) == "block 0 (bottom) 2"
