@@ -82,7 +82,9 @@ def column_bands(stack: Stack, omega: float, *, scan_step: float = 0.02, iterati
     -------
     list of dict, int
         The bands, from half the uplift threshold to the ceiling ([g], the block that fell,
-        a note for a band narrower than the scan), and the number of runs made.
+        a note for a band narrower than the scan; ``bracket [g]``: the last bracket of the
+        bisection of its lower edge, whose middle is ``from [g]``; NaN, NaN for the first),
+        and the number of runs made.
     """
     length = math.pi / omega
     low = 0.5 * uplift_threshold(stack)
@@ -110,6 +112,7 @@ def column_bands(stack: Stack, omega: float, *, scan_step: float = 0.02, iterati
         brackets = narrowed
     edges = sorted(brackets)
     points = [low] + [0.5 * (lo + hi) for lo, hi, _, _ in edges] + [top]
+    ends = [(math.nan, math.nan)] + [(lo, hi) for lo, hi, _, _ in edges]
     classes = [verdicts[0]] + [above for _, _, _, above in edges]
     bands = []
     for k, verdict in enumerate(classes):
@@ -119,6 +122,7 @@ def column_bands(stack: Stack, omega: float, *, scan_step: float = 0.02, iterati
                       "verdict": "overturns" if verdict >= 0 else "safe",
                       "block that fell": block_words(verdict, stack.n) if verdict >= 0 else "",
                       "Eq. (2-8) as one body [g]": estimate, "flagged": narrow,
+                      "bracket [g]": ends[k],
                       "note": (f"band narrower than the scan step ({scan_step:g} relative): "
                                "one as narrow between scan points of the same verdict "
                                "would not be seen" if narrow else

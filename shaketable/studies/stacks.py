@@ -125,7 +125,10 @@ def record_runs(block: Block, motion: Motion, heights=(1, 2, 3), rtol: float = 1
             words = ["F" if run.status == "overturned" and i >= run.overturned_block
                      else f"{ratio:.3g}" for i, ratio in enumerate(ratios)]
             summary = run.summary()
-            row.update({"verdict": "F" if run.status == "overturned" else run.status,
+            verdict = ("F" if run.status == "overturned" else run.status
+                       if run.status != "completed" else "rocked"
+                       if math.isfinite(summary["t_start [s]"]) else "at rest")
+            row.update({"verdict": verdict,
                         "t_overturn [s]": run.t_overturn,
                         "overturned block": run.overturned_block,
                         "t_uplift [s]": summary["t_start [s]"],
@@ -199,15 +202,6 @@ def half_sine_pulse(amplitude: float, length: float, after: float, samples: int 
                                   np.zeros(tail.size)]), name="half-sine pulse")
 
 
-def _overturns(stack: Stack, amplitude: float, length: float, after: float,
-               rtol: float) -> bool:
-    motion = half_sine_pulse(amplitude, length, after)
-    if stack.n == 1:
-        block = stack.blocks[0]
-        return bool(simulate(block, motion, cor=housner_cor(block)).overturned)
-    return quiet_stack_run(stack, motion, rtol=rtol).status == "overturned"
-
-
 def eq_2_8(stack: Stack, omega: float) -> float:
     """Housner's half-sine estimate Eq. (2-8) for the column as one rigid body [g]:
     tan(alpha_eq) sqrt(1 + (omega / p_eq)^2) (one block: the report's own)."""
@@ -216,34 +210,34 @@ def eq_2_8(stack: Stack, omega: float) -> float:
 
 
 def column_minimum(stack: Stack, omega: float, iterations: int = 5, after: float = 10.0,
-                   rtol: float = 1e-9) -> dict:
+                   rtol: float = 1e-9, scan_step: float = 0.02) -> dict:
     """The smallest half-sine pulse of angular frequency ``omega`` [rad/s] (lasting
     pi / omega) that overturns ``stack`` (one block: the single-block engine at Housner's
-    COR), bisected ``iterations`` times between 0.5 and 2 times :func:`eq_2_8`; a run
-    overturns when the column falls within ``after`` seconds of the pulse's end (near
-    the minimum a column falls late: 2.5 s put the two-high minimum 13 % high; 10 s gives
-    the answer of 20 s and 40 s, as in :mod:`shaketable.studies.stack_spectrum`).
+    COR): the lowest overturning edge of its overturning spectrum
+    (:func:`shaketable.studies.stack_spectrum.column_bands`, what ``spectrum --stack``
+    gives: a geometric scan of relative step ``scan_step`` from half the uplift threshold,
+    each change of verdict bisected ``iterations`` times, so that the bracket is
+    ``scan_step / 2**iterations`` relative wide: 0.06 % by default). A run overturns when
+    the column falls within ``after`` seconds of the pulse's end (near the minimum a column
+    falls late: 2.5 s put the two-high minimum 13 % high; 10 s gives the answer of 20 s and
+    40 s).
 
     Returns
     -------
     dict
-        ``stands [g]`` and ``falls [g]`` (the bracket), ``minimum [g]`` (its middle; NaN
-        when the bracket does not hold the switch) and ``Eq. (2-8) as one body [g]``.
+        ``stands [g]`` and ``falls [g]`` (the bracket), ``minimum [g]`` (its middle, the
+        spectrum's edge; NaN when nothing overturns up to the spectrum's ceiling) and
+        ``Eq. (2-8) as one body [g]``.
     """
-    length = math.pi / omega
-    estimate = eq_2_8(stack, omega)
-    low, high = 0.5 * estimate, 2.0 * estimate
-    row = {"stands [g]": math.nan, "falls [g]": math.nan, "minimum [g]": math.nan,
-           "Eq. (2-8) as one body [g]": estimate}
-    if _overturns(stack, low * G, length, after, rtol) or not _overturns(
-            stack, high * G, length, after, rtol):
-        return row
-    for _ in range(iterations):
-        middle = 0.5 * (low + high)
-        low, high = ((low, middle) if _overturns(stack, middle * G, length, after, rtol)
-                     else (middle, high))
-    row.update({"stands [g]": low, "falls [g]": high, "minimum [g]": 0.5 * (low + high)})
-    return row
+    from shaketable.studies.stack_spectrum import column_bands
+
+    bands, _ = column_bands(stack, omega, scan_step=scan_step, iterations=iterations,
+                            after=after, rtol=rtol)
+    edge = next((band for band in bands if band["verdict"] == "overturns"), None)
+    stands, falls = (math.nan, math.nan) if edge is None else edge["bracket [g]"]
+    return {"stands [g]": stands, "falls [g]": falls,
+            "minimum [g]": math.nan if edge is None else edge["from [g]"],
+            "Eq. (2-8) as one body [g]": eq_2_8(stack, omega)}
 
 
 def eq_2_8_curves(stack: Stack, ratios) -> dict:
@@ -306,12 +300,14 @@ def uplift_cases(block: Block, slender_top: Block, mass_ratios=(0.25, 1.0, 4.0))
 
 def stacks_study(block: Block, records: dict, slender_top: Block, window: float,
                  heights=(1, 2, 3), ratios=(3.0,), iterations: int = 5,
-                 rtol: float = 1e-10) -> StacksStudy:
+                 rtol: float = 1e-10, rest: float = 0.0) -> StacksStudy:
     """The three parts for ``block`` under ``records`` (name -> Motion), each cut to
-    ``window`` seconds [s]."""
+    ``window`` seconds [s] and followed by ``rest`` seconds of the table at rest [s] (a
+    column still falling when the record is cut falls within it)."""
     from shaketable.models.rocking.run import extended
 
-    frames = [record_runs(block, extended(motion, window), heights, rtol=rtol, record=name)
+    frames = [record_runs(block, extended(extended(motion, window), window + rest), heights,
+                          rtol=rtol, record=name)
               for name, motion in records.items()]
     return StacksStudy(records=pd.concat(frames, ignore_index=True),
                        uplift=uplift_thresholds(uplift_cases(block, slender_top)),
