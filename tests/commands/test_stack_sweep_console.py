@@ -118,6 +118,7 @@ def test_a_stalled_run_is_a_row_and_no_survivor(tmp_path, capsys, monkeypatch):
     lines = printed.out.splitlines()
     assert " of 2 runs overturn" in lines[0] and "2 of 4 runs stalled (excluded)" in lines[0], \
         lines
+    assert "a stack run that stalled has none and is left out of the fits" in printed.err
 
 
 def test_risk_leaves_a_stalled_run_out_of_the_fit(tmp_path, capsys):
