@@ -14,7 +14,9 @@ blocks beside the block alone:
   stack about a base corner), ``A2 = b2 / h2`` (the top block alone), and the bottom block
   alone ``tan(alpha1)`` (Eq. 2-1);
 * :func:`pulse_amplitudes`: the smallest half-sine pulse that overturns a block alone and
-  the same block two high, against the half-sine estimate of Eq. (2-8),
+  the same block two high (the lowest edge of :func:`column_bands`, the scan of every
+  overturn/safe band that ``spectrum --stack`` draws,
+  :mod:`shaketable.studies.stack_spectrum`), against the half-sine estimate of Eq. (2-8),
   ``a / (g alpha) = sqrt(1 + (omega / p)^2)``, written for the stack rocking as one rigid
   body with its own ``alpha_eq = atan(b1 / y_c)`` and ``p_eq^2 = M g R_c / I_O``.
 """
@@ -209,12 +211,101 @@ def eq_2_8(stack: Stack, omega: float) -> float:
     return math.tan(rigid["alpha_eq"]) * math.sqrt(1.0 + (omega / rigid["p_eq"]) ** 2)
 
 
+def block_words(index: int, count: int) -> str:
+    """``"block 1 (top)"``; ``"the block"`` for a column of one."""
+    if count == 1:
+        return "the block"
+    return f"block {index}" + (" (bottom)" if index == 0 else
+                               " (top)" if index == count - 1 else "")
+
+
+def uplift_threshold(stack: Stack) -> float:
+    """The lowest table acceleration [g] (over g + v'') at which a part of ``stack`` tips as
+    one rigid body about a corner of the block below it (the table for j = 0):
+    min over j of ``b_j M_j / sum_k>=j m_k (y_k - z_j)``, M_j the mass from block j up, y_k
+    a centroid's height and z_j the bottom of block j (``A1``, ``A2`` of two blocks; tan(alpha)
+    of one)."""
+    b, h, m = stack.b, stack.h, stack.m
+    bottoms = 2.0 * np.concatenate([[0.0], np.cumsum(h)[:-1]])
+    centroids = bottoms + h
+    return float(min(b[j] * m[j:].sum() / np.sum(m[j:] * (centroids[j:] - bottoms[j]))
+                     for j in range(stack.n)))
+
+
+def _fallen(stack: Stack, amplitude: float, length: float, after: float, rtol: float) -> int:
+    """The block that fell under a half-sine of ``amplitude`` [m/s^2] lasting ``length``
+    [s] and ``after`` seconds of rest (-1: none fell)."""
+    motion = half_sine_pulse(amplitude, length, after)
+    if stack.n == 1:
+        block = stack.blocks[0]
+        return 0 if simulate(block, motion, cor=housner_cor(block)).overturned else -1
+    run = quiet_stack_run(stack, motion, rtol=rtol)
+    return int(run.overturned_block) if run.status == "overturned" else -1
+
+
+def column_bands(stack: Stack, omega: float, *, scan_step: float = 0.02, iterations: int = 5,
+                 after: float = 10.0, rtol: float = 1e-9) -> tuple[list, int]:
+    """Every overturn/safe band of ``stack`` under half-sines of angular frequency ``omega``
+    [rad/s] (lasting pi / omega).
+
+    Returns
+    -------
+    list of dict, int
+        The bands, from half the uplift threshold to the ceiling ([g], the block that fell,
+        a note for a band narrower than the scan; ``bracket [g]``: the last bracket of the
+        bisection of its lower edge, whose middle is ``from [g]``; NaN, NaN for the first),
+        and the number of runs made.
+    """
+    length = math.pi / omega
+    low = 0.5 * uplift_threshold(stack)
+    estimate = eq_2_8(stack, omega)
+    top = 2.0 * estimate + 2.0 * math.tan(rigid_stack(stack)["alpha_eq"])
+    count = int(math.ceil(math.log(top / low) / math.log1p(scan_step)))
+    grid = np.exp(np.linspace(math.log(low), math.log(top), count + 1))
+    verdicts = [_fallen(stack, a * G, length, after, rtol) for a in grid]
+    runs = grid.size
+    edges = []     # (low amplitude, high amplitude, verdict above) of each change, bisected
+    brackets = [[grid[k], grid[k + 1], verdicts[k], verdicts[k + 1]]
+                for k in range(grid.size - 1) if verdicts[k] != verdicts[k + 1]]
+    for _ in range(iterations):
+        narrowed = []
+        for lo, hi, below, above in brackets:
+            middle = math.sqrt(lo * hi)
+            verdict = _fallen(stack, middle * G, length, after, rtol)
+            runs += 1
+            if verdict == below:
+                narrowed.append([middle, hi, below, above])
+            elif verdict == above:
+                narrowed.append([lo, middle, below, above])
+            else:   # a third verdict inside: both halves hold a change
+                narrowed += [[lo, middle, below, verdict], [middle, hi, verdict, above]]
+        brackets = narrowed
+    edges = sorted(brackets)
+    points = [low] + [0.5 * (lo + hi) for lo, hi, _, _ in edges] + [top]
+    ends = [(math.nan, math.nan)] + [(lo, hi) for lo, hi, _, _ in edges]
+    classes = [verdicts[0]] + [above for _, _, _, above in edges]
+    bands = []
+    for k, verdict in enumerate(classes):
+        narrow = (0 < k < len(classes) - 1
+                  and math.log(points[k + 1] / points[k]) < math.log1p(scan_step))
+        bands.append({"from [g]": points[k], "to [g]": points[k + 1],
+                      "verdict": "overturns" if verdict >= 0 else "safe",
+                      "block that fell": block_words(verdict, stack.n) if verdict >= 0 else "",
+                      "Eq. (2-8) as one body [g]": estimate, "flagged": narrow,
+                      "bracket [g]": ends[k],
+                      "note": (f"band narrower than the scan step ({scan_step:g} relative): "
+                               "one as narrow between scan points of the same verdict "
+                               "would not be seen" if narrow else
+                               "up to the ceiling" if k == len(classes) - 1 else "")})
+    return bands, runs
+
+
 def column_minimum(stack: Stack, omega: float, iterations: int = 5, after: float = 10.0,
                    rtol: float = 1e-9, scan_step: float = 0.02) -> dict:
     """The smallest half-sine pulse of angular frequency ``omega`` [rad/s] (lasting
     pi / omega) that overturns ``stack`` (one block: the single-block engine at Housner's
     COR): the lowest overturning edge of its overturning spectrum
-    (:func:`shaketable.studies.stack_spectrum.column_bands`, what ``spectrum --stack``
+    (:func:`column_bands`, what ``spectrum --stack``
     gives: a geometric scan of relative step ``scan_step`` from half the uplift threshold,
     each change of verdict bisected ``iterations`` times, so that the bracket is
     ``scan_step / 2**iterations`` relative wide: 0.06 % by default). A run overturns when
@@ -229,8 +320,6 @@ def column_minimum(stack: Stack, omega: float, iterations: int = 5, after: float
         spectrum's edge; NaN when nothing overturns up to the spectrum's ceiling) and
         ``Eq. (2-8) as one body [g]``.
     """
-    from shaketable.studies.stack_spectrum import column_bands
-
     bands, _ = column_bands(stack, omega, scan_step=scan_step, iterations=iterations,
                             after=after, rtol=rtol)
     edge = next((band for band in bands if band["verdict"] == "overturns"), None)
