@@ -1,11 +1,11 @@
 """The stack model's compiled batch against the single-block batch on the same record grid.
 
-Grid: the report's Section 4 records (Pacoima Dam S16E and S74W, El Centro 1940 180 and
-270, each with its vertical), at full scale and at half scale, on three block sizes
-(30 x 6 in, 4 x 1 ft, 16 x 4 ft: 24 runs). The single-block batch
-(``shaketable.models.rocking.batch.simulate_many``, method "fast", Housner's COR, which is the
-stack's plastic law for one block: one summary row per run) runs each block; two of the
-same block stacked run three ways:
+Grid: the report's two Section 4 records (Pacoima Dam S16E and S74W) and El Centro 1940
+(180 and 270; not a record of the report), each with its vertical, at full scale and at
+half scale, on three block sizes (30 x 6 in, 4 x 1 ft, 16 x 4 ft: 24 runs). The
+single-block batch (``shaketable.models.rocking.batch.simulate_many``, method "fast",
+Housner's COR, which is the stack's plastic law for one block: one summary row per run)
+runs each block; two of the same block stacked run three ways:
 
 - **rows** (``shaketable.models.stack.batch.simulate_many``: the compiled stack engine, one
   summary row per run from its arrays, no result object): like for like with the

@@ -124,12 +124,14 @@ def ctrl_c_reaches_subprocesses():
 INJECTED_STALL = "stack model: 200 events in a row at t = 2.08799 s without progress"
 
 
-def stack_engine_stalling(monkeypatch, rtol: float, *, above_pga: float = 0.0) -> None:
+def stack_engine_stalling(monkeypatch, rtol: float | None, *, above_pga: float = 0.0,
+                          blocks: int | None = None) -> None:
     """Make the compiled stack engine stop with ``StackChatter`` (:data:`INJECTED_STALL`) on
-    every run at ``rtol`` whose motion's peak horizontal acceleration exceeds ``above_pga``
-    [m/s^2], and run as usual otherwise: the retry's paths (warning, rows, reports) are
-    tested on real runs without depending on which real runs stall (a stall is a defect
-    the engines remove where they find one)."""
+    every run at ``rtol`` (None: at every tolerance, a stall no retry removes) whose motion's
+    peak horizontal acceleration exceeds ``above_pga`` [m/s^2] and, with ``blocks``, whose
+    stack has that many blocks; and run as usual otherwise: the retry's paths (warning,
+    rows, reports) are tested on real runs without depending on which real runs stall (a
+    stall is a defect the engines remove where they find one)."""
     import numpy as np
 
     from shaketable.models.stack import compiled
@@ -138,7 +140,8 @@ def stack_engine_stalling(monkeypatch, rtol: float, *, above_pga: float = 0.0) -
     real = compiled.integrate
 
     def integrate(stack, motion, *, rtol: float, **options):
-        if rtol == stalled and np.abs(motion.horizontal).max() > above_pga:
+        if ((stalled is None or rtol == stalled) and (blocks is None or stack.n == blocks)
+                and np.abs(motion.horizontal).max() > above_pga):
             raise StackChatter(INJECTED_STALL)
         return real(stack, motion, rtol=rtol, **options)
 

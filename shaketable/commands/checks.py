@@ -58,7 +58,9 @@ def report_stopped_rows(table, name: str, command: str = "sweep") -> int:
           f"{', '.join(sorted(map(str, stopped['status'].unique())))}; runs "
           f"{', '.join(str(run) for run in stopped[run_column].head(5))}"
           f"{' ...' if len(stopped) > 5 else ''}; see the 'status' column and "
-          "docs/planar.md); their results cover the run up to the stop only; exit status 1",
+          "docs/planar.md); their results cover the run up to the stop only"
+          + ("; a stack run that stalled has none and is left out of the fits (docs/stack.md)"
+             if (stopped["status"] == "stalled").any() else "") + "; exit status 1",
           file=sys.stderr)
     return 1
 

@@ -91,7 +91,7 @@ def _risk(args: argparse.Namespace) -> int:
               for pair in pairs
               for (block, cor), rows in (table if pair is None else friction_rows(
                   table, *pair)).groupby(["block", "cor [-]"], sort=False, dropna=False)]
-    from shaketable.sweeps.stacks import overturned_line
+    from shaketable.sweeps.stacks import finished_runs, overturned_line
     # a stack sweep leads with the answer (P(some block overturns) of each stack against
     # the block alone's): its lines are said after that headline, in their order
     stacks = "overturned block" in table
@@ -103,7 +103,10 @@ def _risk(args: argparse.Namespace) -> int:
         else:
             print(text, file=file)
 
-    for block, label, rows in groups:
+    for block, label, every in groups:
+        # a stack run that stalled is neither a fall nor a survival: left out, and said
+        # (overturned_line)
+        rows = finished_runs(every) if stacks else every
         try:
             fit = fragility_fit(rows[column], rows["overturned"], measure=column)
         except ValueError as error:
@@ -116,7 +119,7 @@ def _risk(args: argparse.Namespace) -> int:
             headline.append((block, label, result, rows))
         say(f"{block}, {label}: {result.summary()}")
         say(f"    fragility {fit.summary()}")
-        if fell := overturned_line(rows):   # a stack sweep: which block fell
+        if fell := overturned_line(every):   # a stack sweep: which block fell
             say(f"    {fell}")
         low, high = float(rows[column].min()), float(rows[column].max())
         outside = share_outside(fit, hazard, low, high)

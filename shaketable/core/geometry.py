@@ -261,6 +261,20 @@ class Block:
         return f"{self.height / inch:g} x {self.width / inch:g} in"
 
 
+def size_words(block) -> str:
+    """A block's size in a message, height first, in the units it was given in as far as
+    they are known: the user's text for a block parsed from it (:attr:`Block.label`),
+    :meth:`Block.describe` (the report's feet or inches) when both dimensions are whole
+    inches, else metres (``"1 x 0.4 m"`` for ``Block(1.0, 0.4)``, whose inches
+    ``39.3701 x 15.748 in`` no one typed)."""
+    inch = length_factor("in")
+    if getattr(block, "label", "") or all(
+            abs(value / inch - round(value / inch)) < 1e-9 for value in (block.height,
+                                                                          block.width)):
+        return block.describe()
+    return f"{block.height:g} x {block.width:g} m"
+
+
 @dataclass(frozen=True)
 class AsymmetricBlock:
     """A rigid block whose centre of mass is not over the middle of its base.

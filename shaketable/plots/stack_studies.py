@@ -1,6 +1,6 @@
 """The figure of the stacks study (:mod:`shaketable.studies.stacks`): uplift thresholds and
 pulse overturning amplitudes of stacks beside their closed forms, and the report's blocks
-stacked under a Section 4 record."""
+stacked under the Section 4 records."""
 
 from __future__ import annotations
 
@@ -44,7 +44,7 @@ def _pulse_panel(axis, frame, block) -> None:
         if math.isfinite(row["minimum [g]"]):
             axis.plot([x, x], [row["stands [g]"], row["falls [g]"]], color="k", lw=3)
             axis.plot(x, row["minimum [g]"], "o", color="k",
-                      label="computed (bisected: stands below, falls above)" if k == 0 else None)
+                      label="computed: the lowest overturning edge (spectrum --stack)" if k == 0 else None)
         axis.plot(x, row["Eq. (2-8) as one body [g]"], "s", mfc="none", color="tab:red", ms=9,
                   label="Eq. (2-8) for the column as one body" if k == 0 else None)
         axis.annotate(label, (x, 0), xytext=(0, 4), textcoords="offset points", ha="center",
@@ -60,30 +60,36 @@ def _pulse_panel(axis, frame, block) -> None:
 
 
 def _record_panel(axis, frame) -> None:
-    """Overturn time (or peak theta/alpha) of the block alone and stacked, per record."""
-    markers = ("o", "s", "^", "D")
-    top = float(np.nanmax(frame[["t_overturn [s]", "t_uplift [s]"]].to_numpy()))
-    axis.set_ylim(0.0, 1.35 * top)
-    for (record, rows), marker in zip(frame.groupby("record", sort=False), markers):
-        fell = rows[rows["verdict"] == "F"]
-        axis.plot(fell["blocks high"], fell["t_overturn [s]"], marker, ms=9, color="tab:red",
-                  label=f"{record}: overturned at (the lowest block that fell)")
-        for _, row in rows.iterrows():
-            text = (f"block {int(row['overturned block'])}" if row["verdict"] == "F"
-                    else f"stands\n{row['max theta/alpha']}")
-            y = row["t_overturn [s]"] if row["verdict"] == "F" else axis.get_ylim()[0]
-            axis.annotate(text, (row["blocks high"], y), xytext=(8, 0),
-                          textcoords="offset points", fontsize=7, va="center")
-        uplift = rows["t_uplift [s]"]
-        axis.plot(rows["blocks high"], uplift, marker, mfc="none", ms=7, color="tab:blue",
-                  label=f"{record}: first uplift at")
-    axis.set_xticks(sorted(frame["blocks high"].unique()))
-    axis.set_xlim(0.5, frame["blocks high"].max() + 0.8)
-    axis.set_xlabel("blocks high (1: the block alone, COR 1 − 1.5 sin²α)")
-    axis.set_ylabel("time [s]")
+    """Each record (a row) against the number of blocks high (a column): the cell red when
+    the column fell (when, and the lowest block that fell), else the largest theta/alpha."""
+    records = list(dict.fromkeys(frame["record"]))
+    heights = sorted(int(count) for count in frame["blocks high"].unique())
+    for _, row in frame.iterrows():
+        x = heights.index(int(row["blocks high"]))
+        y = records.index(row["record"])
+        fell = row["verdict"] == "F"
+        if fell:
+            text = f"falls at {float(row['t_overturn [s]']):.2f} s\nblock {int(row['overturned block'])}"
+        else:
+            peak = max(float(value) for value in str(row["max theta/alpha"]).split(", "))
+            text = f"{row['verdict']}\nmax θ/α {peak:.2f}"
+        axis.add_patch(_cell((x - 0.5, y - 0.5), "#f4b6b0" if fell else "#cfe8cf"))
+        axis.text(x, y, text, ha="center", va="center", fontsize=7.5)
+    axis.set_xlim(-0.5, len(heights) - 0.5)
+    axis.set_ylim(len(records) - 0.5, -0.5)
+    axis.set_xticks(range(len(heights)),
+                    [("alone" if count == 1 else f"{count} high") for count in heights])
+    axis.set_yticks(range(len(records)), records)
+    axis.set_xlabel("blocks high (alone: the single-block engine, COR 1 − 1.5 sin²α)")
     block = frame["block"].iloc[0]
-    axis.set_title(f"(c) {block} blocks stacked under a Section 4 record", fontsize=10)
-    axis.legend(fontsize=7, loc="upper left")
+    axis.set_title(f"(c) {block} blocks stacked under the Section 4 records", fontsize=10)
+
+
+def _cell(corner, colour):
+    """A unit cell of :func:`_record_panel`."""
+    from matplotlib.patches import Rectangle
+
+    return Rectangle(corner, 1.0, 1.0, facecolor=colour, edgecolor="white", lw=2)
 
 
 def stacks_study_figure(study):
@@ -102,7 +108,7 @@ def stacks_study_figure(study):
     _uplift_panel(axes[0], study.uplift)
     _pulse_panel(axes[1], study.pulses, study.block)
     _record_panel(axes[2], study.records)
-    for axis in axes:
+    for axis in axes[:2]:
         axis.grid(True, lw=0.3, alpha=0.5)
     fig.suptitle("Stacks beside single blocks (plastic impacts; shaketable.studies.stacks, "
                  "docs/stack.md)", fontsize=11)

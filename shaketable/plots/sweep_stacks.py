@@ -193,42 +193,49 @@ def stack_sweep_figures(table, out) -> list:
     levels), ``stacks-first-to-fall-<law>.png`` (:func:`first_to_fall`, with a stack of
     two blocks or more) and ``stacks-fragility-<law>.csv`` (each stack's runs, how many
     fell, which block, and its PGA and PGV medians against the block alone's). ``<law>``
-    is ``plastic`` or ``cor0.9``. Their paths."""
+    is ``plastic`` or ``cor0.9``. Their paths. The runs that stalled (no results) are
+    left out of the figures and counted apart in the CSV."""
+    from shaketable.sweeps.stacks import finished_runs
+
     out = Path(out)
     out = subfolder(out.parent if str(out.parent) else ".", out.name, "figures folder")
     written: list = []
-    for cor, rows in table.groupby("cor [-]", sort=False, dropna=False):
+    for cor, every in table.groupby("cor [-]", sort=False, dropna=False):
         token = law_token(cor)
-        if rows["pga [g]"].round(6).nunique() >= 2:
+        rows = finished_runs(every)
+        if len(rows) and rows["pga [g]"].round(6).nunique() >= 2:
             written.append(out / f"stacks-fragility-{token}.png")
             save(stack_fragility(rows), written[-1])
-        figure = first_to_fall(rows)
+        figure = first_to_fall(rows) if len(rows) else None
         if figure is not None:
             written.append(out / f"stacks-first-to-fall-{token}.png")
             save(figure, written[-1])
         written.append(out / f"stacks-fragility-{token}.csv")
-        write_csv(written[-1], stack_summary(rows))
+        write_csv(written[-1], stack_summary(every))
     return written
 
 
 def stack_summary(rows):
-    """One line per stack of one impact law: runs, how many fell (and which block), and
-    the PGA [g] and PGV [m/s] medians and betas, with the median as a share of the block
-    alone's (NaN where there is no fit or no block alone)."""
+    """One line per stack of one impact law: runs, how many stalled (left out of the rest),
+    how many fell (and which block), and the PGA [g] and PGV [m/s] medians and betas, with
+    the median as a share of the block alone's (NaN where there is no fit or no block
+    alone)."""
     import pandas as pd
 
-    from shaketable.sweeps.stacks import overturned_blocks
+    from shaketable.sweeps.stacks import finished_runs, overturned_blocks
 
     lines = []
     fits = {column: stack_medians(rows, column) for column, _, _ in STACK_MEASURES}
-    for name, part in _stacks(rows):
-        line = {"stack": name, "blocks": int(part["blocks"].iloc[0]),
-                "stack height [m]": float(part["stack height [m]"].iloc[0]),
-                "impact law": impact_law(part["cor [-]"].iloc[0]), "runs": len(part),
+    for name, every in _stacks(rows):
+        part = finished_runs(every)
+        line = {"stack": name, "blocks": int(every["blocks"].iloc[0]),
+                "stack height [m]": float(every["stack height [m]"].iloc[0]),
+                "impact law": impact_law(every["cor [-]"].iloc[0]), "runs": len(every),
+                "stalled (excluded)": len(every) - len(part),
                 "overturned": int(part["overturned"].astype(bool).sum()),
                 "the block that fell": overturned_blocks(part)}
         for column, label, _ in STACK_MEASURES:
-            entry = fits[column][name]
+            entry = fits[column].get(name, {"fit": None, "share of alone": math.nan})
             fit = entry["fit"]
             short = label.split(" ")[0]
             unit = label.split(" ")[1]

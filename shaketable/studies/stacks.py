@@ -14,7 +14,9 @@ blocks beside the block alone:
   stack about a base corner), ``A2 = b2 / h2`` (the top block alone), and the bottom block
   alone ``tan(alpha1)`` (Eq. 2-1);
 * :func:`pulse_amplitudes`: the smallest half-sine pulse that overturns a block alone and
-  the same block two high, against the half-sine estimate of Eq. (2-8),
+  the same block two high (the lowest edge of :func:`column_bands`, the scan of every
+  overturn/safe band that ``spectrum --stack`` draws,
+  :mod:`shaketable.studies.stack_spectrum`), against the half-sine estimate of Eq. (2-8),
   ``a / (g alpha) = sqrt(1 + (omega / p)^2)``, written for the stack rocking as one rigid
   body with its own ``alpha_eq = atan(b1 / y_c)`` and ``p_eq^2 = M g R_c / I_O``.
 """
@@ -125,7 +127,10 @@ def record_runs(block: Block, motion: Motion, heights=(1, 2, 3), rtol: float = 1
             words = ["F" if run.status == "overturned" and i >= run.overturned_block
                      else f"{ratio:.3g}" for i, ratio in enumerate(ratios)]
             summary = run.summary()
-            row.update({"verdict": "F" if run.status == "overturned" else run.status,
+            verdict = ("F" if run.status == "overturned" else run.status
+                       if run.status != "completed" else "rocked"
+                       if math.isfinite(summary["t_start [s]"]) else "at rest")
+            row.update({"verdict": verdict,
                         "t_overturn [s]": run.t_overturn,
                         "overturned block": run.overturned_block,
                         "t_uplift [s]": summary["t_start [s]"],
@@ -199,15 +204,6 @@ def half_sine_pulse(amplitude: float, length: float, after: float, samples: int 
                                   np.zeros(tail.size)]), name="half-sine pulse")
 
 
-def _overturns(stack: Stack, amplitude: float, length: float, after: float,
-               rtol: float) -> bool:
-    motion = half_sine_pulse(amplitude, length, after)
-    if stack.n == 1:
-        block = stack.blocks[0]
-        return bool(simulate(block, motion, cor=housner_cor(block)).overturned)
-    return quiet_stack_run(stack, motion, rtol=rtol).status == "overturned"
-
-
 def eq_2_8(stack: Stack, omega: float) -> float:
     """Housner's half-sine estimate Eq. (2-8) for the column as one rigid body [g]:
     tan(alpha_eq) sqrt(1 + (omega / p_eq)^2) (one block: the report's own)."""
@@ -215,35 +211,122 @@ def eq_2_8(stack: Stack, omega: float) -> float:
     return math.tan(rigid["alpha_eq"]) * math.sqrt(1.0 + (omega / rigid["p_eq"]) ** 2)
 
 
+def block_words(index: int, count: int) -> str:
+    """``"block 1 (top)"``; ``"the block"`` for a column of one."""
+    if count == 1:
+        return "the block"
+    return f"block {index}" + (" (bottom)" if index == 0 else
+                               " (top)" if index == count - 1 else "")
+
+
+def uplift_threshold(stack: Stack) -> float:
+    """The lowest table acceleration [g] (over g + v'') at which a part of ``stack`` tips as
+    one rigid body about a corner of the block below it (the table for j = 0):
+    min over j of ``b_j M_j / sum_k>=j m_k (y_k - z_j)``, M_j the mass from block j up, y_k
+    a centroid's height and z_j the bottom of block j (``A1``, ``A2`` of two blocks; tan(alpha)
+    of one)."""
+    b, h, m = stack.b, stack.h, stack.m
+    bottoms = 2.0 * np.concatenate([[0.0], np.cumsum(h)[:-1]])
+    centroids = bottoms + h
+    return float(min(b[j] * m[j:].sum() / np.sum(m[j:] * (centroids[j:] - bottoms[j]))
+                     for j in range(stack.n)))
+
+
+def _fallen(stack: Stack, amplitude: float, length: float, after: float, rtol: float) -> int:
+    """The block that fell under a half-sine of ``amplitude`` [m/s^2] lasting ``length``
+    [s] and ``after`` seconds of rest (-1: none fell)."""
+    motion = half_sine_pulse(amplitude, length, after)
+    if stack.n == 1:
+        block = stack.blocks[0]
+        return 0 if simulate(block, motion, cor=housner_cor(block)).overturned else -1
+    run = quiet_stack_run(stack, motion, rtol=rtol)
+    return int(run.overturned_block) if run.status == "overturned" else -1
+
+
+def column_bands(stack: Stack, omega: float, *, scan_step: float = 0.02, iterations: int = 5,
+                 after: float = 10.0, rtol: float = 1e-9) -> tuple[list, int]:
+    """Every overturn/safe band of ``stack`` under half-sines of angular frequency ``omega``
+    [rad/s] (lasting pi / omega).
+
+    Returns
+    -------
+    list of dict, int
+        The bands, from half the uplift threshold to the ceiling ([g], the block that fell,
+        a note for a band narrower than the scan; ``bracket [g]``: the last bracket of the
+        bisection of its lower edge, whose middle is ``from [g]``; NaN, NaN for the first),
+        and the number of runs made.
+    """
+    length = math.pi / omega
+    low = 0.5 * uplift_threshold(stack)
+    estimate = eq_2_8(stack, omega)
+    top = 2.0 * estimate + 2.0 * math.tan(rigid_stack(stack)["alpha_eq"])
+    count = int(math.ceil(math.log(top / low) / math.log1p(scan_step)))
+    grid = np.exp(np.linspace(math.log(low), math.log(top), count + 1))
+    verdicts = [_fallen(stack, a * G, length, after, rtol) for a in grid]
+    runs = grid.size
+    edges = []     # (low amplitude, high amplitude, verdict above) of each change, bisected
+    brackets = [[grid[k], grid[k + 1], verdicts[k], verdicts[k + 1]]
+                for k in range(grid.size - 1) if verdicts[k] != verdicts[k + 1]]
+    for _ in range(iterations):
+        narrowed = []
+        for lo, hi, below, above in brackets:
+            middle = math.sqrt(lo * hi)
+            verdict = _fallen(stack, middle * G, length, after, rtol)
+            runs += 1
+            if verdict == below:
+                narrowed.append([middle, hi, below, above])
+            elif verdict == above:
+                narrowed.append([lo, middle, below, above])
+            else:   # a third verdict inside: both halves hold a change
+                narrowed += [[lo, middle, below, verdict], [middle, hi, verdict, above]]
+        brackets = narrowed
+    edges = sorted(brackets)
+    points = [low] + [0.5 * (lo + hi) for lo, hi, _, _ in edges] + [top]
+    ends = [(math.nan, math.nan)] + [(lo, hi) for lo, hi, _, _ in edges]
+    classes = [verdicts[0]] + [above for _, _, _, above in edges]
+    bands = []
+    for k, verdict in enumerate(classes):
+        narrow = (0 < k < len(classes) - 1
+                  and math.log(points[k + 1] / points[k]) < math.log1p(scan_step))
+        bands.append({"from [g]": points[k], "to [g]": points[k + 1],
+                      "verdict": "overturns" if verdict >= 0 else "safe",
+                      "block that fell": block_words(verdict, stack.n) if verdict >= 0 else "",
+                      "Eq. (2-8) as one body [g]": estimate, "flagged": narrow,
+                      "bracket [g]": ends[k],
+                      "note": (f"band narrower than the scan step ({scan_step:g} relative): "
+                               "one as narrow between scan points of the same verdict "
+                               "would not be seen" if narrow else
+                               "up to the ceiling" if k == len(classes) - 1 else "")})
+    return bands, runs
+
+
 def column_minimum(stack: Stack, omega: float, iterations: int = 5, after: float = 10.0,
-                   rtol: float = 1e-9) -> dict:
+                   rtol: float = 1e-9, scan_step: float = 0.02) -> dict:
     """The smallest half-sine pulse of angular frequency ``omega`` [rad/s] (lasting
     pi / omega) that overturns ``stack`` (one block: the single-block engine at Housner's
-    COR), bisected ``iterations`` times between 0.5 and 2 times :func:`eq_2_8`; a run
-    overturns when the column falls within ``after`` seconds of the pulse's end (near
-    the minimum a column falls late: 2.5 s put the two-high minimum 13 % high; 10 s gives
-    the answer of 20 s and 40 s, as in :mod:`shaketable.studies.stack_spectrum`).
+    COR): the lowest overturning edge of its overturning spectrum
+    (:func:`column_bands`, what ``spectrum --stack``
+    gives: a geometric scan of relative step ``scan_step`` from half the uplift threshold,
+    each change of verdict bisected ``iterations`` times, so that the bracket is
+    ``scan_step / 2**iterations`` relative wide: 0.06 % by default). A run overturns when
+    the column falls within ``after`` seconds of the pulse's end (near the minimum a column
+    falls late: 2.5 s put the two-high minimum 13 % high; 10 s gives the answer of 20 s and
+    40 s).
 
     Returns
     -------
     dict
-        ``stands [g]`` and ``falls [g]`` (the bracket), ``minimum [g]`` (its middle; NaN
-        when the bracket does not hold the switch) and ``Eq. (2-8) as one body [g]``.
+        ``stands [g]`` and ``falls [g]`` (the bracket), ``minimum [g]`` (its middle, the
+        spectrum's edge; NaN when nothing overturns up to the spectrum's ceiling) and
+        ``Eq. (2-8) as one body [g]``.
     """
-    length = math.pi / omega
-    estimate = eq_2_8(stack, omega)
-    low, high = 0.5 * estimate, 2.0 * estimate
-    row = {"stands [g]": math.nan, "falls [g]": math.nan, "minimum [g]": math.nan,
-           "Eq. (2-8) as one body [g]": estimate}
-    if _overturns(stack, low * G, length, after, rtol) or not _overturns(
-            stack, high * G, length, after, rtol):
-        return row
-    for _ in range(iterations):
-        middle = 0.5 * (low + high)
-        low, high = ((low, middle) if _overturns(stack, middle * G, length, after, rtol)
-                     else (middle, high))
-    row.update({"stands [g]": low, "falls [g]": high, "minimum [g]": 0.5 * (low + high)})
-    return row
+    bands, _ = column_bands(stack, omega, scan_step=scan_step, iterations=iterations,
+                            after=after, rtol=rtol)
+    edge = next((band for band in bands if band["verdict"] == "overturns"), None)
+    stands, falls = (math.nan, math.nan) if edge is None else edge["bracket [g]"]
+    return {"stands [g]": stands, "falls [g]": falls,
+            "minimum [g]": math.nan if edge is None else edge["from [g]"],
+            "Eq. (2-8) as one body [g]": eq_2_8(stack, omega)}
 
 
 def eq_2_8_curves(stack: Stack, ratios) -> dict:
@@ -306,12 +389,14 @@ def uplift_cases(block: Block, slender_top: Block, mass_ratios=(0.25, 1.0, 4.0))
 
 def stacks_study(block: Block, records: dict, slender_top: Block, window: float,
                  heights=(1, 2, 3), ratios=(3.0,), iterations: int = 5,
-                 rtol: float = 1e-10) -> StacksStudy:
+                 rtol: float = 1e-10, rest: float = 0.0) -> StacksStudy:
     """The three parts for ``block`` under ``records`` (name -> Motion), each cut to
-    ``window`` seconds [s]."""
+    ``window`` seconds [s] and followed by ``rest`` seconds of the table at rest [s] (a
+    column still falling when the record is cut falls within it)."""
     from shaketable.models.rocking.run import extended
 
-    frames = [record_runs(block, extended(motion, window), heights, rtol=rtol, record=name)
+    frames = [record_runs(block, extended(extended(motion, window), window + rest), heights,
+                          rtol=rtol, record=name)
               for name, motion in records.items()]
     return StacksStudy(records=pd.concat(frames, ignore_index=True),
                        uplift=uplift_thresholds(uplift_cases(block, slender_top)),

@@ -613,6 +613,10 @@ def results_markdown(accuracy: pd.DataFrame | None = None, orders: pd.DataFrame 
             lines += ["| quantity | value |", "|---|---|"]
             lines += [f"| {key} | {_fmt(value)} |" for key, value in batch.items()]
             lines.append("")
+        lines += ["The stack model's cost against the single block's (a two-block run about 5 "
+                  "times a single-block run on the Pacoima Dam and El Centro record grid, "
+                  "because the stack moves longer) is measured by "
+                  "`benchmarks/stack_speed.py`: `benchmarks/STACK.md`.", ""]
     if accuracy is not None:
         lines += [f"## Acceptance: fast (default rtol {DEFAULT_RTOL['fast']:g}) against reference "
                   f"(default rtol {DEFAULT_RTOL['reference']:g})", "",

@@ -41,7 +41,11 @@ top corner's, read at the record's samples: the stack's output times), ``t_start
 ``t_tension [s]`` and ``airborne``. The model's warnings are not raised in a sweep: these
 columns carry them, and ``rtol [-]`` the tolerance each run was computed at (tighter than
 ``rocking.rtol`` for a run that stalled at it and was made again; ``sweep``'s summary
-counts them: :func:`retried_line`).
+counts them: :func:`retried_line`). A run that stalled at every tolerance tried does not
+stop the sweep: its row has the status ``"stalled"``, the engine's message in ``verdict``
+and NaN results (:mod:`shaketable.models.stack.batch`); it is neither a fall nor a
+survival, so the fragility fits, ``risk`` and the summaries leave it out and say how many
+they left out (:func:`finished_runs`, :func:`stalled_line`).
 
 What the stack model does not take is refused when the spec is read, naming the key:
 ``[pitch]``, ``[ensemble]``, ``[friction]``, ``rocking.method`` other than ``"fast"``,
@@ -252,12 +256,13 @@ def simulate_stacks(spec: SweepSpec, inputs: pd.DataFrame, cases: list) -> pd.Da
 
     import pandas as pd
 
-    from shaketable.models.stack import StackRetryWarning
+    from shaketable.models.stack import StackRetryWarning, StackStalledWarning
     from shaketable.models.stack.batch import Case, simulate_cases
 
     rtol = spec.options.get("rtol", DEFAULT_STACK_RTOL)
-    with warnings.catch_warnings():   # a retried run: its row's rtol [-] says it (summary)
+    with warnings.catch_warnings():   # a retried or stalled run: its row says it (summary)
         warnings.simplefilter("ignore", StackRetryWarning)
+        warnings.simplefilter("ignore", StackStalledWarning)
         batch = simulate_cases([Case(case.stack, case.motion,
                                      None if math.isnan(case.cor) else case.cor, case.scale,
                                      case.block_label, case.motion_label) for case in cases],
@@ -291,41 +296,79 @@ _BATCH_COLUMNS = ("status", "overturned", "overturned block", "verdict", "t_over
                   "t_friction_exceeded [s]", "t_tension [s]", "airborne")
 
 
+#: The status of a stack run that stalled at every tolerance tried (no results).
+STALLED = "stalled"
+
+
+def finished_runs(rows):
+    """The rows of a stack sweep without the runs that stalled (:data:`STALLED`: neither a
+    fall nor a survival, so no fragility counts them); the rows themselves when none did or
+    the table has no ``status``."""
+    if "status" not in rows:
+        return rows
+    stalled = (rows["status"] == STALLED).to_numpy()
+    return rows[~stalled] if stalled.any() else rows
+
+
+def stalled_line(rows) -> str:
+    """``"1 of 40 runs stalled (excluded)"``: how many runs of a stack sweep's rows stalled
+    and were left out of the counts and fits; "" when none did."""
+    if "status" not in rows or not len(rows):
+        return ""
+    stalled = int((rows["status"] == STALLED).sum())
+    return f"{stalled} of {len(rows)} runs stalled (excluded)" if stalled else ""
+
+
 def overturned_blocks(table) -> str:
     """Which block fell in the overturned runs of a stack sweep's rows, top first:
     ``"block 1 (top) 5, block 0 (bottom) 2"`` (``"a block alone 3"``: the columns of one
-    block; "" for another sweep's table)."""
+    block; "" for another sweep's table). Rows of columns of several heights name each
+    column: ``"2 high: block 0 (bottom) 4; 3 high: block 2 (top) 1, block 0 (bottom) 4"``."""
     if "overturned block" not in table or "blocks" not in table:
         return ""
     fell = table[table["overturned"].astype(bool)]
-    parts = []
+    heights = {int(blocks) for blocks in fell["blocks"] if int(blocks) > 1}
+    named = len(heights) > 1
+    parts: dict = {}
     for (blocks, index), rows in sorted(fell.groupby(["blocks", "overturned block"]),
-                                        key=lambda item: (-item[0][1], item[0][0])):
+                                        key=lambda item: ((item[0][0], -item[0][1]) if named
+                                                          else (-item[0][1], item[0][0]))):
         blocks, index = int(blocks), int(index)
         name = "a block alone" if blocks == 1 else f"block {index}" + (
             " (bottom)" if index == 0 else " (top)" if index == blocks - 1 else "")
-        parts.append(f"{name} {len(rows)}")
-    return ", ".join(parts)
+        parts.setdefault(blocks if named else 0, []).append(f"{name} {len(rows)}")
+    if not named:
+        return ", ".join(parts.get(0, []))
+    return "; ".join(", ".join(words) if blocks == 1 else f"{blocks} high: {', '.join(words)}"
+                     for blocks, words in parts.items())
 
 
 def overturned_line(rows) -> str:
     """How many of one sweep group's runs overturned, and, for a stack, which block fell:
     ``"overturned in 9 of 14 runs (a block alone)"``, ``"overturned in 14 of 20 runs; the
     block that fell: block 1 (top) 1, block 0 (bottom) 13"`` ("" for another sweep's
-    rows). A block alone has no "block that fell": its count is said apart."""
+    rows). A block alone has no "block that fell": its count is said apart. Runs that
+    stalled are not counted: ``"...; 1 of 15 runs stalled (excluded)"``."""
     if "overturned block" not in rows or "blocks" not in rows or not len(rows):
         return ""
-    count = f"overturned in {int(rows['overturned'].astype(bool).sum())} of {len(rows)} runs"
+    stalled = stalled_line(rows)
+    finished = finished_runs(rows)
+    count = (f"overturned in {int(finished['overturned'].astype(bool).sum())} of "
+             f"{len(finished)} runs")
     if (rows["blocks"].astype(int) == 1).all():
-        return count + " (a block alone)"
-    which = overturned_blocks(rows[rows["blocks"].astype(int) > 1])
-    return count + (f"; the block that fell: {which}" if which else "")
+        return count + " (a block alone)" + (f"; {stalled}" if stalled else "")
+    which = overturned_blocks(finished[finished["blocks"].astype(int) > 1])
+    return (count + (f"; the block that fell: {which}" if which else "")
+            + (f"; {stalled}" if stalled else ""))
 
 
 def overturn_answer(table) -> str:
     """How many runs of a stack sweep overturn, the stacks and the blocks alone apart:
     ``"23 of 40 runs overturn: 14 stacks (the block that fell: block 1 (top) 1, block 0
-    (bottom) 13) and 9 blocks alone"``."""
+    (bottom) 13) and 9 blocks alone"``; the runs that stalled are left out and said:
+    ``"..., 1 of 41 runs stalled (excluded)"``."""
+    stalled = stalled_line(table)
+    table = finished_runs(table)
     fell = table[table["overturned"].astype(bool)]
     parts = []
     stacks = fell[fell["blocks"].astype(int) > 1] if "blocks" in fell else fell
@@ -337,7 +380,8 @@ def overturn_answer(table) -> str:
     if alone:
         parts.append(f"{alone} block{'s' if alone != 1 else ''} alone")
     return (f"{len(fell)} of {len(table)} runs overturn"
-            + (": " + " and ".join(parts) if parts else ""))
+            + (": " + " and ".join(parts) if parts else "")
+            + (f"; {stalled}" if stalled else ""))
 
 
 def retried_line(table, rtol: float) -> str:
@@ -375,7 +419,8 @@ def stack_medians(rows, measure: str) -> dict:
     Parameters
     ----------
     rows : pandas.DataFrame
-        Rows of a stack sweep's table with one impact law.
+        Rows of a stack sweep's table with one impact law (the runs that stalled are left
+        out: :func:`finished_runs`; a stack whose runs all stalled has no entry).
     measure : str
         The intensity measure (:func:`shaketable.sweeps.fragility.measure_column`).
 
@@ -391,7 +436,7 @@ def stack_medians(rows, measure: str) -> dict:
 
     column = measure_column(rows, measure)
     found: dict = {}
-    for name, part in rows.groupby("block", sort=False):
+    for name, part in finished_runs(rows).groupby("block", sort=False):
         try:
             fit, why = fragility_fit(part[column], part["overturned"].astype(bool).to_numpy(),
                                      measure=column, intervals=False), ""
@@ -431,7 +476,8 @@ def first_to_fall_fits(rows, measure: str, *, intervals: bool = True) -> dict:
     Parameters
     ----------
     rows : pandas.DataFrame
-        Rows of a stack sweep's table for one stack.
+        Rows of a stack sweep's table for one stack (the runs that stalled are left out:
+        :func:`finished_runs`).
     measure : str
         The intensity measure (:func:`shaketable.sweeps.fragility.measure_column`).
     intervals : bool
@@ -447,6 +493,7 @@ def first_to_fall_fits(rows, measure: str, *, intervals: bool = True) -> dict:
     """
     from shaketable.sweeps.fragility import fragility_fit, measure_column
 
+    rows = finished_runs(rows)
     column = measure_column(rows, measure)
     blocks = rows["blocks"].unique()
     if len(blocks) != 1:

@@ -96,3 +96,55 @@ def test_sweep_leads_its_output_with_the_answer(tmp_path, capsys):
     assert lines[0].startswith("tiny-stacks: ") and " of 4 runs overturn" in lines[0], lines
     assert lines[1].startswith("tiny-stacks: computed 4 runs in "), lines
     assert "4 runs in 1 chunk(s) of" in printed.err and "the stack model" in printed.err
+
+
+def test_a_stalled_run_is_a_row_and_no_survivor(tmp_path, capsys, monkeypatch):
+    # the two-block runs stall at every tolerance: the sweep still writes all four rows,
+    # counts the falls over the two finished runs and says what it left out
+    from tests.helpers import stack_engine_stalling
+
+    stack_engine_stalling(monkeypatch, None, blocks=2)
+    (tmp_path / "tiny.toml").write_text(TINY_STACK_SWEEP, encoding="utf-8")
+    status = main(["sweep", str(tmp_path / "tiny.toml"), "--out", str(tmp_path / "o"),
+                   "--no-progress"])
+    printed = capsys.readouterr()
+    assert status == 1   # runs without results: said on stderr, as stopped runs are
+    table = pd.read_csv(tmp_path / "o" / "results.csv") if (
+        tmp_path / "o" / "results.csv").exists() else pd.read_parquet(
+        tmp_path / "o" / "results.parquet")
+    assert len(table) == 4
+    assert sorted(table["status"][table["blocks"] == 2]) == ["stalled", "stalled"]
+    assert table["verdict"][table["blocks"] == 2].str.startswith("stalled: ").all()
+    lines = printed.out.splitlines()
+    assert " of 2 runs overturn" in lines[0] and "2 of 4 runs stalled (excluded)" in lines[0], \
+        lines
+    assert "a stack run that stalled has none and is left out of the fits" in printed.err
+
+
+def test_risk_leaves_a_stalled_run_out_of_the_fit(tmp_path, capsys):
+    # the hand-made sweep with one more run of the stack, stalled at the highest level: its
+    # overturned is False, and counting it as a survival would change the fit
+    folder = _stack_sweep_folder(tmp_path / "stacks")
+    assert main(["risk", str(folder), "--hazard", "example"]) == 0
+    before = capsys.readouterr().out.splitlines()
+    table = pd.read_csv(folder / "results.csv")
+    extra = table[table["blocks"] == 2].iloc[[-1]].assign(
+        overturned=False, status="stalled", **{"overturned block": -1})
+    pd.concat([table, extra]).to_csv(folder / "results.csv", index=False)
+    assert main(["risk", str(folder), "--hazard", "example"]) == 0
+    after = capsys.readouterr().out.splitlines()
+    fragility = [line for line in before if line.startswith("    fragility")]
+    assert fragility == [line for line in after if line.startswith("    fragility")]
+    assert ("    overturned in 8 of 14 runs; the block that fell: block 1 (top) 1, "
+            "block 0 (bottom) 7; 1 of 15 runs stalled (excluded)") in after, after
+
+
+def test_columns_of_several_heights_are_named():
+    from shaketable.sweeps.stacks import overturned_blocks
+
+    rows = pd.DataFrame({"blocks": [3, 2, 2, 3, 3, 1], "overturned": [True] * 5 + [True],
+                         "overturned block": [0, 0, 0, 2, 0, 0]})
+    assert overturned_blocks(rows) == ("a block alone 1; 2 high: block 0 (bottom) 2; "
+                                       "3 high: block 2 (top) 1, block 0 (bottom) 2")
+    two = rows[rows["blocks"] == 2]
+    assert overturned_blocks(two) == "block 0 (bottom) 2"

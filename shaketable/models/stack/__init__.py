@@ -10,6 +10,7 @@ from shaketable.models.stack.model import (
     IMPACT_LAWS,
     StackFrictionWarning,
     StackRetryWarning,
+    StackStalledWarning,
     StackTensionWarning,
     simulate_stack,
 )
@@ -17,4 +18,4 @@ from shaketable.models.stack.result import PLAUSIBLE_FRICTION, StackResult, patt
 
 __all__ = ["Stack", "StackResult", "simulate_stack", "pattern_name", "IMPACT_LAWS",
            "StackTensionWarning", "StackFrictionWarning", "StackRetryWarning",
-           "PLAUSIBLE_FRICTION"]
+           "StackStalledWarning",            "PLAUSIBLE_FRICTION"]

@@ -20,8 +20,11 @@ raised: the ``tension``, ``t_tension [s]`` and ``t_friction_exceeded [s]`` colum
 them. A run made again at a tighter tolerance after a chatter stall raises a
 :class:`~shaketable.models.stack.model.StackRetryWarning` naming the run (``run k``, its
 stack, motion, scale and law; its ``rtol [-]`` says it too). A run the engine cannot
-continue (:class:`~shaketable.models.stack.engine.StackStalled`) stops the batch, naming
-the run.
+continue at any tolerance tried (:class:`~shaketable.models.stack.engine.StackStalled`)
+does not stop the batch: its row has the status ``"stalled"``, the engine's message in
+``verdict`` (``"stalled: ..."``), the last tolerance tried in ``rtol [-]``, NaN in every
+result column (False in the flags, -1 in the counts and in ``overturned block``), and a
+:class:`~shaketable.models.stack.model.StackStalledWarning` names the run.
 
 Columns (units in square brackets; NaN in a time column: never happened)
 -------------------------------------------------------------------------
@@ -35,7 +38,7 @@ scale), ``motion_vertical``, ``duration [s]`` (of the run's motion), ``impact``
 
 Results, as :class:`StackResult` names them:
 
-- ``status`` (``"completed"``, ``"overturned"``, ``"airborne"``), ``overturned``,
+- ``status`` (``"completed"``, ``"overturned"``, ``"airborne"``, ``"stalled"``), ``overturned``,
   ``airborne``, ``overturned block`` (numbered from 0 at the bottom; -1 if none),
   ``verdict`` (:meth:`StackResult.verdict`), ``t_overturn [s]``, ``t_airborne [s]``;
 - ``max_theta_ratio [-]``: the largest max |theta_i| / alpha_i over the blocks (NaN when
@@ -244,7 +247,11 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
     """Check, prepare each run's motion, run the cases on ``threads`` threads, build the
     table."""
     from shaketable.models.stack.engine import StackStalled
-    from shaketable.models.stack.model import StackRetryWarning, user_location
+    from shaketable.models.stack.model import (
+        StackRetryWarning,
+        StackStalledWarning,
+        user_location,
+    )
 
     if not cases:
         raise ValueError("cases must not be empty")
@@ -279,13 +286,19 @@ def _batch(cases: list, *, threads, rtol, duration, mu, **options) -> pd.DataFra
     def run(start: int, stop: int) -> None:
         for k in range(start, stop):
             case = cases[k]
+            filename, lineno, module_globals = caller
             try:
                 rows[k], rtols[k], retried = _row(case, runs[k][0], constants[id(case.stack)],
                                                   rtol, rest, recorded, mu)
             except StackStalled as error:
-                raise StackStalled(f"{_run_words(k, case)}: {error}") from None
+                # a row of its own; the other runs go on
+                rows[k], rtols[k] = _stalled_row(case.stack.n, str(error)), getattr(
+                    error, "rtol", rtol)
+                warnings.warn_explicit(f"{_run_words(k, case)}: stalled, no results (the "
+                                       f"row's status): {error}", StackStalledWarning,
+                                       filename, lineno, module_globals=module_globals)
+                continue
             if retried:
-                filename, lineno, module_globals = caller
                 warnings.warn_explicit(f"{_run_words(k, case)}: {retried}", StackRetryWarning,
                                        filename, lineno, module_globals=module_globals)
 
@@ -366,6 +379,15 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
             tension >= 0, float(t[tension]) if tension >= 0 else math.nan,
             float(t[past]) if past >= 0 else math.nan, float(standing[0]), standing[1], still,
             t_end, compiled_run.steps, compiled_run.evaluations), rtol, retried
+
+
+def _stalled_row(n: int, message: str) -> tuple:
+    """The results (:data:`_RESULTS`) of a run of ``n`` blocks that stalled: its status,
+    the message in the verdict, NaN (False in the flags, -1 in the counts)."""
+    nan, none = math.nan, np.full(n, math.nan)
+    return ("stalled", False, False, -1, f"stalled: {message}", nan, nan, nan, nan, nan,
+            none, none, nan, "", -1, -1, -1, nan, nan, nan, False, nan, nan, nan, nan, False,
+            nan, -1, -1)
 
 
 def _constants(stack: Stack) -> tuple:

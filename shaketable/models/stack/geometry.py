@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from shaketable.core.constants import G
-from shaketable.core.geometry import Block
+from shaketable.core.geometry import Block, size_words
 from shaketable.core.validation import number
 
 #: The density a stack's blocks are given when no masses are [kg/m^3]: concrete, as the
@@ -189,6 +189,5 @@ class Stack:
 
     def describe(self) -> str:
         """``"2 blocks: 30 x 6 in on 30 x 6 in"``-like text, top first."""
-        sizes = [block.describe() if hasattr(block, "describe") else
-                 f"{block.height:g} x {block.width:g} m" for block in reversed(self.blocks)]
+        sizes = [size_words(block) for block in reversed(self.blocks)]
         return f"{self.n} block{'s' if self.n > 1 else ''}: " + " on ".join(sizes)

@@ -41,6 +41,12 @@ class StackRetryWarning(UserWarning):
     tolerance (:func:`integrate_retrying`)."""
 
 
+class StackStalledWarning(UserWarning):
+    """A run of a stack batch could not be continued at any tolerance tried
+    (:class:`~shaketable.models.stack.engine.StackStalled`): its row says "stalled" and
+    holds no results; the other runs go on."""
+
+
 #: The divisors of ``rtol`` of the runs made again after a chatter stall, in turn.
 RETRY_DIVISORS = (10.0, 100.0)
 #: The tightest tolerance a run is made again at [-].
@@ -69,6 +75,9 @@ def integrate_retrying(integrate, stack: Stack, motion: Motion, *, rtol: float,
     ------
     StackChatter
         Every tolerance stalled (the message lists them).
+    StackStalled
+        A run that cannot go on otherwise. Both carry the last tolerance tried as their
+        ``rtol`` attribute [-].
     """
     from shaketable.models.stack.engine import StackChatter, StackStalled
 
@@ -82,16 +91,21 @@ def integrate_retrying(integrate, stack: Stack, motion: Motion, *, rtol: float,
             continue
         except StackStalled as error:
             if not stalls:
+                error.rtol = tolerance  # type: ignore[attr-defined]
                 raise
             # a retry that fails otherwise: the stalls before it are said first
-            raise StackStalled(f"{'; '.join(stalls)}; run again at rtol {tolerance:g}: "
-                               f"{error}") from None
+            failed = StackStalled(f"{'; '.join(stalls)}; run again at rtol {tolerance:g}: "
+                                  f"{error}")
+            failed.rtol = tolerance  # type: ignore[attr-defined]
+            raise failed from None
         note = ("" if not stalls else
                 f"the run stalled ({'; '.join(stalls)}) and was run again at rtol "
                 f"{tolerance:g}")
         return out, tolerance, note
-    raise StackChatter("; ".join(stalls) + " (events without end at every tolerance "
-                       "tried)")
+    chatter = StackChatter("; ".join(stalls) + " (events without end at every tolerance "
+                           "tried)")
+    chatter.rtol = tolerance  # type: ignore[attr-defined]  # the last tried
+    raise chatter
 
 
 def _user_stacklevel() -> int:

@@ -14,11 +14,17 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from shaketable import Block
 from shaketable.ground.artificial import artificial
-from shaketable.models.stack import Stack, StackRetryWarning, simulate_stack
+from shaketable.models.stack import (
+    Stack,
+    StackRetryWarning,
+    StackStalledWarning,
+    simulate_stack,
+)
 from shaketable.models.stack.batch import simulate_many
 from shaketable.models.stack.engine import StackChatter
 from shaketable.models.stack.model import integrate_retrying
@@ -104,3 +110,31 @@ def test_every_tolerance_stalling_is_an_error_naming_each():
     with pytest.raises(StackChatter):   # never below 1e-14, each tolerance once
         integrate_retrying(always_chatters, None, None, rtol=1e-13)
     assert calls == pytest.approx([1e-13, 1e-14], rel=1e-12)
+
+
+def test_a_run_stalled_at_every_tolerance_is_a_row_and_the_others_are_kept(case, monkeypatch):
+    # the three-block run stalls at every tolerance tried: its row says so and holds no
+    # results; the two-block run beside it is the row it is alone
+    stack, motion = case
+    tall = Stack([Block.parse("60x12in")] * 3)
+    alone = simulate_many([stack], {"olive-view 3": motion}, rtol=STALLED_RTOL)
+    stack_engine_stalling(monkeypatch, None, blocks=3)
+    with pytest.warns(StackStalledWarning) as caught:
+        table = simulate_many([stack, tall], {"olive-view 3": motion}, rtol=STALLED_RTOL)
+    said = [str(item.message) for item in caught if item.category is StackStalledWarning]
+    assert len(said) == 1 and said[0].startswith(
+        f"run 1 ({tall.describe()}, olive-view 3, scale 1, plastic impacts): stalled"), said
+    assert "every tolerance tried" in said[0]
+    assert caught[0].filename == __file__
+    assert list(table["status"]) == ["completed", "stalled"]
+    stalled = table.iloc[1]
+    assert stalled["verdict"].startswith("stalled: at rtol 1e-10: ")
+    assert "2.08799" in stalled["verdict"] and "at rtol 1e-12" in stalled["verdict"]
+    assert stalled["rtol [-]"] == pytest.approx(1e-12, rel=1e-12)   # the last tried
+    assert not stalled["overturned"] and stalled["overturned block"] == -1
+    for column in ("max_theta_ratio [-]", "max |theta| top [rad]", "t_start [s]",
+                   "max |theta| block 2 [rad]", "t_end [s]"):
+        assert np.isnan(stalled[column]), column
+    # the good row is the one computed alone, column by column
+    pd.testing.assert_frame_equal(table.iloc[[0]].drop(columns=[
+        name for name in table if "block 2" in name]), alone, check_dtype=False)
