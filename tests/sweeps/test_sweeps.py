@@ -456,9 +456,9 @@ phases = 4
 
 
 def test_sweep_quiet_prints_nothing_but_errors_without_pyarrow(tmp_path, capsys, monkeypatch):
-    from shaketable.sweeps import store
+    from shaketable.sweeps import execute
 
-    monkeypatch.setattr(store, "parquet_available", lambda: False)
+    monkeypatch.setattr(execute, "parquet_available", lambda: False)   # what run_sweep asks
     spec = write(tmp_path, """name = "one"
 [blocks]
 sizes = ["30x6in"]
