@@ -8,7 +8,9 @@ corner, which moves with the table: Eq. (2-13) of a single block with that body'
     I_O phi'' = M [ u'' (y_c cos(phi) + s b_j sin(phi)) - (g + v'') (s b_j cos(phi) - y_c sin(phi)) ],
 
 M the mass above the interface, y_c the height of its centre of mass above the pivot, b_j the
-interface's half width (the lever arm of the centre of mass) and I_O = sum (I_i + m_i |r_i|^2)
+lever arm of the centre of mass from the pivot at rest, on the pivot's side (the interface's
+half width for a centred column; with offsets, b_j + s d, d the horizontal distance of the
+centre of mass of the blocks from j up from block j's centre) and I_O = sum (I_i + m_i |r_i|^2)
 its inertia about the pivot. That is the single-block engine's
 :func:`~shaketable.models.rocking.physics.flight_acceleration` with b = b_j, h = y_c and
 I0 / M = I_O / M (:func:`rigid_parameters`), so the one-DOF patterns are integrated with the
@@ -39,8 +41,9 @@ C_MASS, C_EX, C_EY, C_TURNS, C_WIDTH = 0, 1, 2, 3, 4
 C_CORNER = 5
 N_CORNER = 8
 N_COEFFICIENTS = C_CORNER + 2 * N_CORNER
-#: Columns of the coefficients' array: one more, for the blocks' heights.
-N_COLUMNS = N_COEFFICIENTS + 1
+#: Columns of the coefficients' array: two more, for the blocks' bottoms' heights and their
+#: centres' horizontal positions at rest.
+N_COLUMNS = N_COEFFICIENTS + 2
 # slots of a rigid body's numbers (rigid_coefficients' ``body``)
 B_HALF_WIDTH, B_HEIGHT, B_INERTIA_PER_MASS, B_ALPHA, B_INERTIA, B_MASS, B_RX, B_RY = range(8)
 N_BODY = 8
@@ -51,29 +54,37 @@ def rigid_coefficients(chain, j, s, coefficients, body):
     """The coefficients of :func:`rigid_forces` for the pattern with interface ``j`` open on
     side ``s`` (+1 / -1) and every other interface flat, or rest (``j`` = -1), into
     ``coefficients`` (n, N_COLUMNS); the rocking body's numbers into ``body``
-    (b_j [m], y_c [m], I_O / M [m^2], alpha_eq = atan(b_j / y_c) [rad], I_O [kg m^2],
-    M [kg], its first moment about the pivot at phi = 0, M (s b_j, y_c) [kg m])."""
-    b, h, m, inertia = chain[0], chain[1], chain[2], chain[3]
+    (the lever arm b_j + s d [m], y_c [m], I_O / M [m^2], alpha_eq = atan(lever arm / y_c)
+    [rad], I_O [kg m^2], M [kg], its first moment about the pivot at phi = 0,
+    M (s b_j + d, y_c) [kg m]); d is the horizontal distance of the body's centre of mass
+    from block j's centre (0 for a centred column)."""
+    b, h, m, inertia, e = chain[0], chain[1], chain[2], chain[3], chain[4]
     n = b.size
-    # the height of each block's bottom at rest [m] in the last column (none allocated)
-    last = N_COEFFICIENTS
-    level = 0.0
+    # the height of each block's bottom and its centre's x at rest [m] in the last two
+    # columns (none allocated)
+    last, across = N_COEFFICIENTS, N_COEFFICIENTS + 1
+    level, centre = 0.0, 0.0
     for i in range(n):
+        centre += e[i]
         coefficients[i, last] = level
+        coefficients[i, across] = centre
         level += 2.0 * h[i]
-    px, py, mass, rx, ry, inertia_o = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    px, py, mass, rx, ry, inertia_o, shift = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if j >= 0:
-        px, py = -s * b[j], coefficients[j, last]
+        px, py = -s * b[j] + coefficients[j, across], coefficients[j, last]
         for i in range(j, n):
-            x, y = s * b[j], coefficients[i, last] + h[i] - py
+            dx = coefficients[i, across] - coefficients[j, across]
+            x, y = s * b[j] + dx, coefficients[i, last] + h[i] - py
             mass += m[i]
             rx += m[i] * x
             ry += m[i] * y
+            shift += m[i] * dx
             inertia_o += inertia[i] + m[i] * (x * x + y * y)
-        body[B_HALF_WIDTH] = b[j]
+        arm = b[j] + s * (shift / mass)
+        body[B_HALF_WIDTH] = arm
         body[B_HEIGHT] = ry / mass
         body[B_INERTIA_PER_MASS] = inertia_o / mass
-        body[B_ALPHA] = math.atan(b[j] / (ry / mass))
+        body[B_ALPHA] = math.atan(arm / (ry / mass))
         body[B_INERTIA] = inertia_o
         body[B_MASS] = mass
         body[B_RX] = rx
@@ -92,18 +103,21 @@ def rigid_coefficients(chain, j, s, coefficients, body):
             coefficients[k, C_EX], coefficients[k, C_EY] = rx, ry
         elif turns:
             for i in range(k, n):
-                coefficients[k, C_EX] += m[i] * s * b[j]
+                coefficients[k, C_EX] += m[i] * (s * b[j] + (coefficients[i, across]
+                                                             - coefficients[j, across]))
                 coefficients[k, C_EY] += m[i] * (coefficients[i, last] + h[i] - py)
         if j >= 0 and k == j:
             continue
         for corner in range(2):
             c = C_CORNER + corner * N_CORNER
-            lx, ly = (2.0 * corner - 1.0) * b[k], coefficients[k, last]
+            lx = (2.0 * corner - 1.0) * b[k] + coefficients[k, across]
+            ly = coefficients[k, last]
             if turns:
                 # every block above k is in the rocking body: moments in its frame
                 lx, ly = lx - px, ly - py
                 for i in range(k, n):
-                    x, y = s * b[j], coefficients[i, last] + h[i] - py
+                    x = s * b[j] + (coefficients[i, across] - coefficients[j, across])
+                    y = coefficients[i, last] + h[i] - py
                     dx, dy = x - lx, y - ly
                     coefficients[k, c + 2] += m[i] * dx
                     coefficients[k, c + 3] += m[i] * dy
@@ -113,7 +127,7 @@ def rigid_coefficients(chain, j, s, coefficients, body):
             # the seated blocks k .. j-1 (all above k at rest), then the rocking body
             top = n if j < 0 else j
             for i in range(k, top):
-                coefficients[k, c] += m[i] * (0.0 - lx)
+                coefficients[k, c] += m[i] * (coefficients[i, across] - lx)
                 coefficients[k, c + 1] += m[i] * (coefficients[i, last] + h[i] - ly)
             if j >= 0:
                 ax, ay = px - lx, py - ly
