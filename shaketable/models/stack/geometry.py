@@ -129,9 +129,11 @@ class Stack:
             self._check_offsets()
 
     def _check_masses(self) -> None:
+        """Validate and store :attr:`masses` (see the class's docstring)."""
         blocks = self.blocks
         try:
-            masses = [number(f"Stack.masses[{i}]", m) for i, m in enumerate(self.masses)]
+            masses = [number(f"Stack.masses[{i}]", m)
+                      for i, m in enumerate(self.masses)]   # type: ignore[arg-type]
         except TypeError:
             raise TypeError(f"Stack.masses must be a sequence of numbers [kg], got "
                             f"{self.masses!r}")
