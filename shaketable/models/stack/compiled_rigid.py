@@ -58,14 +58,15 @@ def rigid_coefficients(chain, j, s, coefficients, body):
     [rad], I_O [kg m^2], M [kg], its first moment about the pivot at phi = 0,
     M (s b_j + d, y_c) [kg m]); d is the horizontal distance of the body's centre of mass
     from block j's centre (0 for a centred column)."""
-    b, h, m, inertia, e = chain[0], chain[1], chain[2], chain[3], chain[4]
+    b, h, m, inertia = chain[0], chain[1], chain[2], chain[3]
     n = b.size
     # the height of each block's bottom and its centre's x at rest [m] in the last two
     # columns (none allocated)
     last, across = N_COEFFICIENTS, N_COEFFICIENTS + 1
     level, centre = 0.0, 0.0
     for i in range(n):
-        centre += e[i]
+        if h.size > n:   # the offsets follow the half heights (compiled_physics' chain)
+            centre += h[n + i]
         coefficients[i, last] = level
         coefficients[i, across] = centre
         level += 2.0 * h[i]
