@@ -41,12 +41,23 @@ C_MASS, C_EX, C_EY, C_TURNS, C_WIDTH = 0, 1, 2, 3, 4
 C_CORNER = 5
 N_CORNER = 8
 N_COEFFICIENTS = C_CORNER + 2 * N_CORNER
-#: Columns of the coefficients' array: two more, for the blocks' bottoms' heights and their
-#: centres' horizontal positions at rest.
-N_COLUMNS = N_COEFFICIENTS + 2
+#: Columns of the coefficients' array: one more, for the blocks' heights.
+N_COLUMNS = N_COEFFICIENTS + 1
 # slots of a rigid body's numbers (rigid_coefficients' ``body``)
 B_HALF_WIDTH, B_HEIGHT, B_INERTIA_PER_MASS, B_ALPHA, B_INERTIA, B_MASS, B_RX, B_RY = range(8)
 N_BODY = 8
+
+
+@inlined
+def centre_of(h, n, i):
+    """Block ``i``'s centre at rest from the bottom block's, horizontally [m]: the running
+    sum of the offsets, which follow the ``n`` half heights in ``h`` (compiled_physics'
+    chain; 0 for a centred column, whose ``h`` has n values)."""
+    x = 0.0
+    if h.size > n:
+        for k in range(i + 1):
+            x += h[n + k]
+    return x
 
 
 @kernel
@@ -60,21 +71,17 @@ def rigid_coefficients(chain, j, s, coefficients, body):
     from block j's centre (0 for a centred column)."""
     b, h, m, inertia = chain[0], chain[1], chain[2], chain[3]
     n = b.size
-    # the height of each block's bottom and its centre's x at rest [m] in the last two
-    # columns (none allocated)
-    last, across = N_COEFFICIENTS, N_COEFFICIENTS + 1
-    level, centre = 0.0, 0.0
+    # the height of each block's bottom at rest [m] in the last column (none allocated)
+    last = N_COEFFICIENTS
+    level = 0.0
     for i in range(n):
-        if h.size > n:   # the offsets follow the half heights (compiled_physics' chain)
-            centre += h[n + i]
         coefficients[i, last] = level
-        coefficients[i, across] = centre
         level += 2.0 * h[i]
     px, py, mass, rx, ry, inertia_o, shift = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if j >= 0:
-        px, py = -s * b[j] + coefficients[j, across], coefficients[j, last]
+        px, py = -s * b[j] + centre_of(h, n, j), coefficients[j, last]
         for i in range(j, n):
-            dx = coefficients[i, across] - coefficients[j, across]
+            dx = centre_of(h, n, i) - centre_of(h, n, j)
             x, y = s * b[j] + dx, coefficients[i, last] + h[i] - py
             mass += m[i]
             rx += m[i] * x
@@ -104,20 +111,20 @@ def rigid_coefficients(chain, j, s, coefficients, body):
             coefficients[k, C_EX], coefficients[k, C_EY] = rx, ry
         elif turns:
             for i in range(k, n):
-                coefficients[k, C_EX] += m[i] * (s * b[j] + (coefficients[i, across]
-                                                             - coefficients[j, across]))
+                coefficients[k, C_EX] += m[i] * (s * b[j] + (centre_of(h, n, i)
+                                                             - centre_of(h, n, j)))
                 coefficients[k, C_EY] += m[i] * (coefficients[i, last] + h[i] - py)
         if j >= 0 and k == j:
             continue
         for corner in range(2):
             c = C_CORNER + corner * N_CORNER
-            lx = (2.0 * corner - 1.0) * b[k] + coefficients[k, across]
+            lx = (2.0 * corner - 1.0) * b[k] + centre_of(h, n, k)
             ly = coefficients[k, last]
             if turns:
                 # every block above k is in the rocking body: moments in its frame
                 lx, ly = lx - px, ly - py
                 for i in range(k, n):
-                    x = s * b[j] + (coefficients[i, across] - coefficients[j, across])
+                    x = s * b[j] + (centre_of(h, n, i) - centre_of(h, n, j))
                     y = coefficients[i, last] + h[i] - py
                     dx, dy = x - lx, y - ly
                     coefficients[k, c + 2] += m[i] * dx
@@ -128,7 +135,7 @@ def rigid_coefficients(chain, j, s, coefficients, body):
             # the seated blocks k .. j-1 (all above k at rest), then the rocking body
             top = n if j < 0 else j
             for i in range(k, top):
-                coefficients[k, c] += m[i] * (coefficients[i, across] - lx)
+                coefficients[k, c] += m[i] * (centre_of(h, n, i) - lx)
                 coefficients[k, c + 1] += m[i] * (coefficients[i, last] + h[i] - ly)
             if j >= 0:
                 ax, ay = px - lx, py - ly
