@@ -31,7 +31,13 @@ from shaketable.core.constants import G
 from shaketable.models.api import simulate
 from shaketable.models.stack import Stack
 from shaketable.studies.overturning_spectrum import housner_cor
-from shaketable.studies.stacks import eq_2_8, half_sine_pulse, quiet_stack_run, rigid_stack
+from shaketable.studies.stacks import (
+    centred_only,
+    eq_2_8,
+    half_sine_pulse,
+    quiet_stack_run,
+    rigid_stack,
+)
 
 #: The columns of :func:`stack_spectrum_bands`' table.
 BAND_COLUMNS = ["omega/p [-]", "column", "from [g]", "to [g]", "verdict", "block that fell",
@@ -55,6 +61,7 @@ def uplift_threshold(stack: Stack) -> float:
     min over j of ``b_j M_j / sum_k>=j m_k (y_k - z_j)``, M_j the mass from block j up, y_k
     a centroid's height and z_j the bottom of block j (``A1``, ``A2`` of two blocks; tan(alpha)
     of one)."""
+    centred_only(stack, "uplift_threshold")
     b, h, m = stack.b, stack.h, stack.m
     bottoms = 2.0 * np.concatenate([[0.0], np.cumsum(h)[:-1]])
     centroids = bottoms + h

@@ -190,3 +190,16 @@ def test_a_base_flush_with_the_edge_below_is_accepted():
     edge = Stack([(1.0, 0.6), (0.4, 0.2)], offsets=[0.2])
     assert edge.offsets == (0.2,) and edge.centres[-1] == 0.2
     assert Stack([(1.0, 0.6), (0.4, 0.2)], offsets=[-0.2]).offsets == (-0.2,)
+
+
+def test_the_closed_forms_of_centred_columns_refuse_offsets():
+    # the studies' closed forms (rigid_stack, the uplift thresholds) are the centred
+    # column's: with an offset they would give a centred column's numbers
+    from shaketable.studies.stack_spectrum import uplift_threshold
+    from shaketable.studies.stacks import rigid_stack, uplift_closed_form
+
+    stack = Stack([(1.0, 0.6), (0.4, 0.2)], offsets=[0.1])
+    for function in (rigid_stack, uplift_closed_form, uplift_threshold):
+        with pytest.raises(ValueError, match="closed form of a centred column; Stack.offsets"):
+            function(stack)
+    assert uplift_closed_form(Stack([(1.0, 0.6), (0.4, 0.2)], offsets=[0.0]))[1] == 0.5
