@@ -9,8 +9,8 @@ m (b^2 + h^2) / 3 [kg m^2]; for a column with offsets, ``h`` holds 2 n values: t
 heights, then each block's offset from the centre of the block below [m] (0 for the bottom
 block). A centred column's ``h`` has n values and its kinematics add no offset: the same
 types, operations and bits as a chain that knows no offsets (a fifth array in the tuple,
-passed by value to every function apart, measured a few per cent slower on the centred
-columns of ``benchmarks/stack_speed.py``); a *workspace* (:func:`workspace`) holds the arrays the functions
+passed by value to every function compiled apart, made the centred two-block runs of
+``benchmarks/stack_speed.py`` about 3 % slower, medians of 7 repeats on a shared machine); a *workspace* (:func:`workspace`) holds the arrays the functions
 fill, so that a right-hand side allocates nothing. Patterns are int64 arrays (0 flat, +1 / -1
 the pivot side of each interface).
 
