@@ -10,9 +10,10 @@ heights, then each block's offset from the centre of the block below [m] (0 for 
 block). A centred column's ``h`` has n values and its kinematics add no offset: the same
 types, operations and bits as a chain that knows no offsets (a fifth array in the tuple,
 passed by value to every function compiled apart, made the centred two-block runs of
-``benchmarks/stack_speed.py`` about 3 % slower, medians of 7 repeats on a shared machine); a *workspace* (:func:`workspace`) holds the arrays the functions
-fill, so that a right-hand side allocates nothing. Patterns are int64 arrays (0 flat, +1 / -1
-the pivot side of each interface).
+``benchmarks/stack_speed.py`` about 3 % slower, medians of 7 repeats on a shared machine).
+A *workspace* (:func:`workspace`) holds the arrays the functions fill, so that a right-hand
+side allocates nothing. Patterns are int64 arrays (0 flat, +1 / -1 the pivot side of each
+interface).
 
 Candidate patterns are enumerated in the order of :func:`~shaketable.models.stack.physics.
 candidate_levels` (by the number of interfaces opened; the opened ones in lexicographic

@@ -18,8 +18,8 @@ interface; a flat interface may use either corner, the positions do not depend o
 
 (the flat interfaces' ``s`` taken as +1; ``e_{k+1}`` the offset of block k + 1's centre from
 block k's, :attr:`~shaketable.models.stack.geometry.Stack.offsets`, zero for a centred
-column; the origin is the bottom block's base centre at rest). Lagrange's equations with the rotations as
-coordinates give ``M(theta) theta'' = Q(theta, theta', t)`` with
+column; the origin is the bottom block's base centre at rest). Lagrange's equations with
+the rotations as coordinates give ``M(theta) theta'' = Q(theta, theta', t)`` with
 
     M = sum_i m_i J_i^T J_i + diag(m_i (b_i^2 + h_i^2) / 3),   J_i = dG_i/dtheta
     Q = sum_i J_i^T m_i (f - c_i),   f = (-u'', -(g + v'')),
@@ -54,6 +54,11 @@ class Chain:
         self.m = np.asarray(m, dtype=float)
         self.n = self.b.size
         self.e = np.zeros(self.n) if e is None else np.asarray(e, dtype=float)
+        # e_{k+1} at k (0 at the top), or None for a centred column (nothing added)
+        self.offsets_above = None
+        if np.any(self.e):
+            self.offsets_above = np.zeros(self.n)
+            self.offsets_above[:-1] = self.e[1:]
         self.inertia = self.m * (self.b ** 2 + self.h ** 2) / 3.0
         self.lower = np.tril(np.ones((self.n, self.n)))
         self.strictly_lower = np.tril(np.ones((self.n, self.n), dtype=bool), -1)
@@ -80,10 +85,11 @@ def arms(chain: Chain, theta, pattern):
     """The rotated chain vectors ``R(theta_k) D_k`` and ``R(theta_i) C_i`` [m], shape (n, 2)
     each, and the pivot on the table ``P_0``."""
     sigma = pivots(pattern)
-    above, offset = np.zeros(chain.n), np.zeros(chain.n)
+    above = np.zeros(chain.n)
     above[:-1] = sigma[1:] * chain.b[1:]
-    offset[:-1] = chain.e[1:]
-    dx, dy = sigma * chain.b - above + offset, 2.0 * chain.h
+    dx, dy = sigma * chain.b - above, 2.0 * chain.h
+    if chain.offsets_above is not None:
+        dx = dx + chain.offsets_above
     cx, cy = sigma * chain.b, chain.h
     cosine, sine = np.cos(theta), np.sin(theta)
     rd = np.stack([cosine * dx - sine * dy, sine * dx + cosine * dy], axis=1)
