@@ -11,6 +11,8 @@ with a ``[stack]`` section (instead of ``[block]`` and ``[rocking]``) is a
     blocks = ["1x0.3m", "1x0.3m", "0.8x0.2m"]    # bottom first, each HEIGHTxWIDTH<unit>
     masses = ["1 t", "1 t", "0.5 t"]            # or densities = ["2400 kg/m3", ...]; default:
                                                 # 2400 kg/m^3 over 1 m of depth (concrete)
+    offsets = ["2 in", "-1 in"]                  # optional: blocks 1.. from the centre of the
+                                                # one below (+x positive); default centred
     theta0 = ["0 rad", "0 rad", "0.1 rad"]      # per block (or one value for all); "alpha":
                                                 # a multiple of that block's own alpha
     theta_dot0 = ["0 rad/s", ...]                # optional, per block
@@ -56,8 +58,8 @@ from shaketable.models.stack.geometry import overhang_message
 from shaketable.scenes.parse import Scene, SceneError, scene_from_dict
 
 #: Keys of a scene's ``[stack]`` section.
-STACK_KEYS = {"blocks", "masses", "densities", "theta0", "theta_dot0", "cor", "duration",
-              "mu", "rtol"}
+STACK_KEYS = {"blocks", "masses", "densities", "offsets", "theta0", "theta_dot0", "cor",
+              "duration", "mu", "rtol"}
 
 #: Top-level keys of a stack scene.
 STACK_SCENE_KEYS = {"name", "source", "description", "stack", "motion", "outputs"}
@@ -153,6 +155,36 @@ def stack_from_text(blocks, masses=None, densities=None, *, where: str = "--stac
         return Stack(tuple(parsed), masses=None if values is None else tuple(values))
     except ValueError as error:
         raise ValueError(f"{where}: " + _named_blocks(str(error), count)) from None
+
+
+def with_offsets(stack: Stack, offsets, where: str) -> Stack:
+    """``stack`` with the offsets given as lengths with their units (``["2 in", "-1 in"]``,
+    or text separated by commas): one per block above the bottom one, each from the centre
+    of the block below [m] (:class:`Stack`'s ``offsets``); errors name ``where`` and the
+    block."""
+    items = _items(offsets, where)
+    count = stack.n
+    if len(items) != count - 1:
+        raise ValueError(f"{where}: {len(items)} value(s) for {count} block(s); give {count - 1}, "
+                         "one per block above the bottom one (each from the centre of the "
+                         "block below), bottom first")
+    values = [parse(item, "length", where=f"{where}: {_block_words(index + 1, count)}")
+              for index, item in enumerate(items)]
+    unit = stack.blocks[0].length_unit
+    for index, value in enumerate(values, start=1):
+        lower, upper = stack.blocks[index - 1], stack.blocks[index]
+        if abs(value) + upper.b > lower.b * (1.0 + 1e-12):   # Stack's own check, in words
+            raise ValueError(
+                f"{where}: {_block_words(index, count)} ({upper.describe()}) offset "
+                f"{format_length(value, unit)} would overhang {_block_words(index - 1, count)} "
+                f"({lower.describe()}): its offset may be at most "
+                f"{format_length(lower.b - upper.b, unit)} either way (an overhanging block "
+                "is not offered by the stack model)")
+    try:
+        return Stack(stack.blocks, masses=stack.masses, offsets=tuple(values))
+    except ValueError as error:
+        message = re.sub(r"Stack\.offsets\[\d+\] ", "", str(error))
+        raise ValueError(f"{where}: {message}") from None
 
 
 def _named_blocks(message: str, count: int) -> str:
@@ -416,6 +448,8 @@ def stack_scene_from_dict(data: dict, where: str) -> StackScene:
                                 where=f"{where}: stack.blocks",
                                 masses_where=f"{where}: stack.masses",
                                 densities_where=f"{where}: stack.densities")
+        if "offsets" in spec:
+            stack = with_offsets(stack, spec["offsets"], f"{where}: stack.offsets")
         theta0 = per_block_angles(spec.get("theta0", "0 rad"), stack,
                                   where=f"{where}: stack.theta0")
         theta_dot0 = per_block_angles(spec.get("theta_dot0", "0 rad/s"), stack,

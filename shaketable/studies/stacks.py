@@ -62,6 +62,15 @@ def quiet_stack_run(stack: Stack, motion: Motion | None, **options):
 
 
 # ----------------------------------------------------------------------------- closed forms
+def centred_only(stack: Stack, what: str) -> None:
+    """Refuse a stack with offsets in the closed forms of centred columns (``what`` names
+    the function): a ValueError naming ``Stack.offsets``."""
+    if stack.offsets is not None and any(stack.offsets):
+        raise ValueError(f"{what} is the closed form of a centred column; Stack.offsets = "
+                         f"{stack.offsets!r} is not zero (docs/stack.md, Offsets, gives the "
+                         "thresholds with offsets)")
+
+
 def rigid_stack(stack: Stack) -> dict:
     """The stack as one rigid body rocking on a base corner (check 2 of ``docs/stack.md``).
 
@@ -72,6 +81,7 @@ def rigid_stack(stack: Stack) -> dict:
         mass), ``R_c`` [m], ``alpha_eq`` = atan(b1 / y_c) [rad], ``p_eq`` =
         sqrt(M g R_c / I_O) [rad/s].
     """
+    centred_only(stack, "rigid_stack")
     b, h, m = stack.b, stack.h, stack.m
     y = 2.0 * np.concatenate([[0.0], np.cumsum(h)[:-1]]) + h   # centroid heights
     inertia = float(np.sum(m * ((b ** 2 + h ** 2) / 3.0 + b[0] ** 2 + y ** 2)))
@@ -84,6 +94,7 @@ def rigid_stack(stack: Stack) -> dict:
 def uplift_closed_form(stack: Stack) -> tuple[float, float]:
     """``(A1, A2)`` of a two-block stack [-]: the whole stack about a base corner and the
     top block alone (the uplift thresholds over g + v'')."""
+    centred_only(stack, "uplift_closed_form")
     (b1, b2), (h1, h2), (m1, m2) = stack.b, stack.h, stack.m
     return b1 * (m1 + m2) / (m1 * h1 + m2 * (2.0 * h1 + h2)), b2 / h2
 
@@ -225,6 +236,7 @@ def uplift_threshold(stack: Stack) -> float:
     min over j of ``b_j M_j / sum_k>=j m_k (y_k - z_j)``, M_j the mass from block j up, y_k
     a centroid's height and z_j the bottom of block j (``A1``, ``A2`` of two blocks; tan(alpha)
     of one)."""
+    centred_only(stack, "uplift_threshold")
     b, h, m = stack.b, stack.h, stack.m
     bottoms = 2.0 * np.concatenate([[0.0], np.cumsum(h)[:-1]])
     centroids = bottoms + h

@@ -109,3 +109,24 @@ def test_a_misspelt_section_is_refused_with_its_line(tmp_path):
     line = text.splitlines().index("[motoin]") + 1
     with pytest.raises(SceneError, match=rf"unknown key 'motoin' in \[top level.*\(line {line}\)"):
         load_scene(_write(tmp_path, text))
+
+
+OFFSET = GOOD.replace('"30x6in", "30x6in"', '"30x6in", "20x2in"').replace(
+    'masses = ["100 kg", "50 kg"]', 'masses = ["100 kg", "50 kg"]\noffsets = ["1.5 in"]')
+
+
+def test_offsets_in_a_stack_scene_are_lengths_with_units(tmp_path):
+    # 1.5 in = 0.0381 m (1 in = 0.0254 m exactly); the top block (2 in wide) may sit up to
+    # 3 - 1 = 2 in off the bottom one's (6 in wide) centre
+    scene = load_scene(_write(tmp_path, OFFSET))
+    assert scene.stack.offsets == (1.5 * 0.0254,)
+    for new, message in (('["-2.5 in"]', "stack.offsets: block 1 (top) (20 x 2 in) offset "
+                                         "-2.50 in would overhang block 0 (bottom) (30 x 6 in): "
+                                         "its offset may be at most 2.00 in either way"),
+                         ('["1 in", "1 in"]', "stack.offsets: 2 value(s) for 2 block(s); give 1"),
+                         ('["1.5"]', "stack.offsets: block 1 (top)")):
+        path = _write(tmp_path, OFFSET.replace('["1.5 in"]', new))
+        with pytest.raises(SceneError) as error:
+            load_scene(path)
+        assert str(error.value).startswith(str(path)) and message in str(error.value), \
+            error.value

@@ -339,8 +339,8 @@ def _row(case: Case, motion: Motion, constants: tuple, rtol: float, rest: float 
     overturned = status == "overturned"
     peaks, floats, ints = np.zeros(n), np.empty(_N_FLOATS), np.empty(_N_INTS, dtype=np.int64)
     candidates = np.empty(t.size, dtype=np.int64)
-    _scan(t, theta, patterns, out["forces"], b, h, alphas, scale, mu, limit, margin, peaks,
-          floats, ints, candidates)
+    _scan(t, theta, patterns, out["forces"], b, h, stack.e, alphas, scale, mu, limit, margin,
+          peaks, floats, ints, candidates)
     past, end, exceeded, tension = (int(value) for value in ints[:4])
     # the excursion at the candidates, as the result computes it
     chosen = candidates[:ints[_I_CANDIDATES]]
@@ -414,8 +414,8 @@ _N_INTS = 5
 
 
 @njit(cache=True, nogil=True, error_model=ERROR_MODEL)
-def _scan(t, theta, patterns, forces, b, h, alphas, scale, mu, tension_limit, margin, peaks,
-          floats, ints, candidates):
+def _scan(t, theta, patterns, forces, b, h, e, alphas, scale, mu, tension_limit, margin,
+          peaks, floats, ints, candidates):
     """One pass over a run's samples for the values of :class:`StackResult` that read its
     histories (the same operations on the same numbers: equal bit for bit): each block's
     peak |theta| (``peaks``), the first sample past alpha, the friction demand |F| / N
@@ -431,6 +431,9 @@ def _scan(t, theta, patterns, forces, b, h, alphas, scale, mu, tension_limit, ma
     """
     k, n = theta.shape
     top = n - 1
+    rest = 0.0   # the top block's centre at rest [m] (Stack.centres[top])
+    for j in range(n):
+        rest += e[j]
     past = -1
     for i in range(k):
         for j in range(n):
@@ -463,13 +466,15 @@ def _scan(t, theta, patterns, forces, b, h, alphas, scale, mu, tension_limit, ma
         for j in range(top):
             lower = (1.0 if patterns[i, j] == 0 else float(patterns[i, j])) * b[j]
             upper = (1.0 if patterns[i, j + 1] == 0 else float(patterns[i, j + 1])) * b[j + 1]
-            x += math.cos(theta[i, j]) * (lower - upper) - math.sin(theta[i, j]) * (2.0 * h[j])
+            x += math.cos(theta[i, j]) * (lower - upper + e[j + 1]) \
+                - math.sin(theta[i, j]) * (2.0 * h[j])
         cosine, sine = math.cos(theta[i, top]), math.sin(theta[i, top])
         reach = (1.0 if patterns[i, top] == 0 else float(patterns[i, top])) * b[top]
         x += cosine * reach - sine * h[top]
         value = 0.0
         for side in (-1.0, 1.0):
-            value = max(value, abs(x + cosine * side * b[top] - sine * h[top] - side * b[top]))
+            value = max(value, abs(x + cosine * side * b[top] - sine * h[top] - side * b[top]
+                                   - rest))
         approximate[i] = value
         high = max(high, value)
         if i < end:
@@ -514,17 +519,19 @@ def top_corner_excursion(stack: Stack, theta: np.ndarray, patterns: np.ndarray) 
 
     The centroid of the top block is ``G = P_0 + sum_{k<top} R(theta_k) D_k + R(theta_top)
     C_top`` (:func:`shaketable.models.stack.physics.kinematics`, its x component with the
-    pivots of each sample's pattern), its corner ``G + R(theta_top) (+-b, h)``; the sums are
-    taken in the same order as there.
+    pivots of each sample's pattern), its corner ``G + R(theta_top) (+-b, h)``, less its
+    place at rest ``(X_top +- b, .)`` (``X_top`` the top block's centre, the sum of the
+    offsets, :attr:`Stack.centres`); the sums are taken in the same order as there.
     """
-    b, h = stack.b, stack.h
+    b, h, e = stack.b, stack.h, stack.e
+    rest = float(stack.centres[-1])
     top = stack.n - 1
     sigma = np.where(patterns == 0, 1.0, patterns.astype(float))   # physics.pivots
     cosine, sine = np.cos(theta), np.sin(theta)
     reach = sigma * b
     x = -sigma[:, 0] * b[0]                                          # P_0
     if top > 0:
-        dx = reach[:, :top] - reach[:, 1:top + 1]                   # D_k, k < top
+        dx = reach[:, :top] - reach[:, 1:top + 1] + e[1:top + 1]   # D_k, k < top
         rotated = cosine[:, :top] * dx - sine[:, :top] * (2.0 * h[:top])
         x = x + np.cumsum(rotated, axis=1)[:, -1]
     else:
@@ -540,7 +547,7 @@ def top_corner_excursion(stack: Stack, theta: np.ndarray, patterns: np.ndarray) 
     out = np.empty((theta.shape[0], 2))
     for c, side in enumerate((-1.0, 1.0)):
         corner = x + np.matmul(rotations, np.array([side * b[top], h[top]]))[:, 0]
-        out[:, c] = corner - side * b[top]
+        out[:, c] = corner - side * b[top] - rest
     return out
 
 

@@ -699,6 +699,9 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     from shaketable.models.stack.physics import Chain
 
     chain = Chain.of(stack)
+    # the half heights, then the offsets if any (compiled_physics' chain): a centred
+    # column's chain is the one without offsets
+    heights = np.concatenate([chain.h, chain.e]) if np.any(chain.e) else chain.h
     scale = stack.alpha_min
     tol_force = 1e-12 * G * float(stack.m.min())
     par = np.array([LOOKAHEAD / stack.p_max, tol_force, scale, scale * stack.p_max, rtol,
@@ -724,7 +727,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
         events = (np.empty((capacity, 5)), np.empty((capacity, 6), dtype=np.int64),
                   np.empty((capacity, n), dtype=np.int64), np.empty((capacity, n), dtype=np.int64))
         reals, integers = np.zeros(size_reals), np.zeros(size_integers, dtype=np.int64)
-        filled = run_stack(chain.b, chain.h, chain.m, chain.inertia, t, ug, vg, phi, phi_dot,
+        filled = run_stack(chain.b, heights, chain.m, chain.inertia, t, ug, vg, phi, phi_dot,
                            pattern, par, atol, reals, integers,
                            np.zeros(size_flags, dtype=np.bool_), histories, events)
         ist = integers[:N_INTS]

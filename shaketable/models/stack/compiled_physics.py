@@ -5,9 +5,15 @@ The same formulas as :mod:`shaketable.models.stack.physics` and
 written as loops over preallocated arrays for the compiled engine
 (:mod:`shaketable.models.stack.compiled`). A *chain* is the tuple ``(b, h, m, inertia)`` of
 the blocks' half widths [m], half heights [m], masses [kg] and centroidal inertias
-m (b^2 + h^2) / 3 [kg m^2]; a *workspace* (:func:`workspace`) holds the arrays the functions
-fill, so that a right-hand side allocates nothing. Patterns are int64 arrays (0 flat, +1 / -1
-the pivot side of each interface).
+m (b^2 + h^2) / 3 [kg m^2]; for a column with offsets, ``h`` holds 2 n values: the half
+heights, then each block's offset from the centre of the block below [m] (0 for the bottom
+block). A centred column's ``h`` has n values and its kinematics add no offset: the same
+types, operations and bits as a chain that knows no offsets (a fifth array in the tuple,
+passed by value to every function compiled apart, made the centred two-block runs of
+``benchmarks/stack_speed.py`` about 3 % slower, medians of 7 repeats on a shared machine).
+A *workspace* (:func:`workspace`) holds the arrays the functions fill, so that a right-hand
+side allocates nothing. Patterns are int64 arrays (0 flat, +1 / -1 the pivot side of each
+interface).
 
 Candidate patterns are enumerated in the order of :func:`~shaketable.models.stack.physics.
 candidate_levels` (by the number of interfaces opened; the opened ones in lexicographic
@@ -102,6 +108,7 @@ def kinematics(chain, theta, theta_dot, pattern, centroid, jacobian, centripetal
     c (n, 2) [m/s^2] of the chain with the pivots of ``pattern`` (into the arrays given)."""
     b, h = chain[0], chain[1]
     n = b.size
+    shifted = h.size > n   # the offsets e_i follow the half heights (module docstring)
     base_x, base_y = -(1.0 if pattern[0] == 0 else float(pattern[0])) * b[0], 0.0
     spin_x, spin_y = 0.0, 0.0
     jacobian[:] = 0.0
@@ -119,6 +126,8 @@ def kinematics(chain, theta, theta_dot, pattern, centroid, jacobian, centripetal
         jacobian[i, 1, i] = rcx
         above = side_of(pattern, i + 1) * b[i + 1] if i < n - 1 else 0.0
         dx, dy = sigma * b[i] - above, 2.0 * h[i]
+        if shifted and i < n - 1:
+            dx = dx + h[n + i + 1]
         rdx, rdy = cosine * dx - sine * dy, sine * dx + cosine * dy
         for k in range(i + 1, n):
             jacobian[k, 0, i] = -rdy

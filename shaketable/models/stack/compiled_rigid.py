@@ -8,7 +8,9 @@ corner, which moves with the table: Eq. (2-13) of a single block with that body'
     I_O phi'' = M [ u'' (y_c cos(phi) + s b_j sin(phi)) - (g + v'') (s b_j cos(phi) - y_c sin(phi)) ],
 
 M the mass above the interface, y_c the height of its centre of mass above the pivot, b_j the
-interface's half width (the lever arm of the centre of mass) and I_O = sum (I_i + m_i |r_i|^2)
+lever arm of the centre of mass from the pivot at rest, on the pivot's side (the interface's
+half width for a centred column; with offsets, b_j + s d, d the horizontal distance of the
+centre of mass of the blocks from j up from block j's centre) and I_O = sum (I_i + m_i |r_i|^2)
 its inertia about the pivot. That is the single-block engine's
 :func:`~shaketable.models.rocking.physics.flight_acceleration` with b = b_j, h = y_c and
 I0 / M = I_O / M (:func:`rigid_parameters`), so the one-DOF patterns are integrated with the
@@ -46,13 +48,27 @@ B_HALF_WIDTH, B_HEIGHT, B_INERTIA_PER_MASS, B_ALPHA, B_INERTIA, B_MASS, B_RX, B_
 N_BODY = 8
 
 
+@inlined
+def centre_of(h, n, i):
+    """Block ``i``'s centre at rest from the bottom block's, horizontally [m]: the running
+    sum of the offsets, which follow the ``n`` half heights in ``h`` (compiled_physics'
+    chain; 0 for a centred column, whose ``h`` has n values)."""
+    x = 0.0
+    if h.size > n:
+        for k in range(i + 1):
+            x += h[n + k]
+    return x
+
+
 @kernel
 def rigid_coefficients(chain, j, s, coefficients, body):
     """The coefficients of :func:`rigid_forces` for the pattern with interface ``j`` open on
     side ``s`` (+1 / -1) and every other interface flat, or rest (``j`` = -1), into
     ``coefficients`` (n, N_COLUMNS); the rocking body's numbers into ``body``
-    (b_j [m], y_c [m], I_O / M [m^2], alpha_eq = atan(b_j / y_c) [rad], I_O [kg m^2],
-    M [kg], its first moment about the pivot at phi = 0, M (s b_j, y_c) [kg m])."""
+    (the lever arm b_j + s d [m], y_c [m], I_O / M [m^2], alpha_eq = atan(lever arm / y_c)
+    [rad], I_O [kg m^2], M [kg], its first moment about the pivot at phi = 0,
+    M (s b_j + d, y_c) [kg m]); d is the horizontal distance of the body's centre of mass
+    from block j's centre (0 for a centred column)."""
     b, h, m, inertia = chain[0], chain[1], chain[2], chain[3]
     n = b.size
     # the height of each block's bottom at rest [m] in the last column (none allocated)
@@ -61,19 +77,22 @@ def rigid_coefficients(chain, j, s, coefficients, body):
     for i in range(n):
         coefficients[i, last] = level
         level += 2.0 * h[i]
-    px, py, mass, rx, ry, inertia_o = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    px, py, mass, rx, ry, inertia_o, shift = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if j >= 0:
-        px, py = -s * b[j], coefficients[j, last]
+        px, py = -s * b[j] + centre_of(h, n, j), coefficients[j, last]
         for i in range(j, n):
-            x, y = s * b[j], coefficients[i, last] + h[i] - py
+            dx = centre_of(h, n, i) - centre_of(h, n, j)
+            x, y = s * b[j] + dx, coefficients[i, last] + h[i] - py
             mass += m[i]
             rx += m[i] * x
             ry += m[i] * y
+            shift += m[i] * dx
             inertia_o += inertia[i] + m[i] * (x * x + y * y)
-        body[B_HALF_WIDTH] = b[j]
+        arm = b[j] + s * (shift / mass)
+        body[B_HALF_WIDTH] = arm
         body[B_HEIGHT] = ry / mass
         body[B_INERTIA_PER_MASS] = inertia_o / mass
-        body[B_ALPHA] = math.atan(b[j] / (ry / mass))
+        body[B_ALPHA] = math.atan(arm / (ry / mass))
         body[B_INERTIA] = inertia_o
         body[B_MASS] = mass
         body[B_RX] = rx
@@ -92,18 +111,21 @@ def rigid_coefficients(chain, j, s, coefficients, body):
             coefficients[k, C_EX], coefficients[k, C_EY] = rx, ry
         elif turns:
             for i in range(k, n):
-                coefficients[k, C_EX] += m[i] * s * b[j]
+                coefficients[k, C_EX] += m[i] * (s * b[j] + (centre_of(h, n, i)
+                                                             - centre_of(h, n, j)))
                 coefficients[k, C_EY] += m[i] * (coefficients[i, last] + h[i] - py)
         if j >= 0 and k == j:
             continue
         for corner in range(2):
             c = C_CORNER + corner * N_CORNER
-            lx, ly = (2.0 * corner - 1.0) * b[k], coefficients[k, last]
+            lx = (2.0 * corner - 1.0) * b[k] + centre_of(h, n, k)
+            ly = coefficients[k, last]
             if turns:
                 # every block above k is in the rocking body: moments in its frame
                 lx, ly = lx - px, ly - py
                 for i in range(k, n):
-                    x, y = s * b[j], coefficients[i, last] + h[i] - py
+                    x = s * b[j] + (centre_of(h, n, i) - centre_of(h, n, j))
+                    y = coefficients[i, last] + h[i] - py
                     dx, dy = x - lx, y - ly
                     coefficients[k, c + 2] += m[i] * dx
                     coefficients[k, c + 3] += m[i] * dy
@@ -113,7 +135,7 @@ def rigid_coefficients(chain, j, s, coefficients, body):
             # the seated blocks k .. j-1 (all above k at rest), then the rocking body
             top = n if j < 0 else j
             for i in range(k, top):
-                coefficients[k, c] += m[i] * (0.0 - lx)
+                coefficients[k, c] += m[i] * (centre_of(h, n, i) - lx)
                 coefficients[k, c + 1] += m[i] * (coefficients[i, last] + h[i] - ly)
             if j >= 0:
                 ax, ay = px - lx, py - ly

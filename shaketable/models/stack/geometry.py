@@ -1,5 +1,5 @@
-"""A column of rigid rectangular blocks, each centred on the one below (input of the stack
-model)."""
+"""A column of rigid rectangular blocks, each centred on the one below or offset from it
+(input of the stack model)."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ import numpy as np
 
 from shaketable.core.constants import G
 from shaketable.core.geometry import Block, size_words
+from shaketable.core.units import format_length
 from shaketable.core.validation import number
 
 #: The density a stack's blocks are given when no masses are [kg/m^3]: concrete, as the
@@ -53,24 +54,37 @@ class Stack:
     Parameters
     ----------
     blocks : sequence of Block or (height, width) pairs
-        The blocks from the bottom up [m]. Each rests centred on the one below and may not
-        be wider than it (an overhanging upper block would pivot on the lower block's top
-        corner, which this model does not describe). Prestress rods are not offered.
+        The blocks from the bottom up [m]. Each rests centred on the one below (or offset
+        from it by ``offsets``) and its base must lie on the lower block's top (an
+        overhanging upper block would pivot on the lower block's top corner, which this
+        model does not describe). Prestress rods are not offered.
     masses : sequence of float, optional
         Mass of each block [kg] (only the ratios enter the motion). By default
         :data:`DEFAULT_DENSITY` (2400 kg/m^3, concrete) over :data:`DEFAULT_DEPTH` (1 m)
         times the block's area B H: forces [N] and energies [J] per metre of depth.
+    offsets : sequence of float, optional
+        ``n - 1`` values [m], one per block above the bottom one: ``offsets[i - 1]`` is
+        ``e_i``, the horizontal distance from the centre of block i - 1 to the centre of
+        block i (positive toward +x), at rest. The bottom block's place on the table does
+        not enter the model, so it has no offset. Each upper block's base must lie on the
+        lower block's top, ``|e_i| + b_i <= b_{i-1}`` (to rounding, 1e-12 of ``b_{i-1}``),
+        so that every block above block j lies within ``b_j - b_i`` of its centre and the
+        centre of mass of the blocks on each interface lies within its base: the column
+        stands at rest. None (the default) or zeros: every block centred on the one below.
 
     Notes
     -----
     Half sizes ``b_i = B_i / 2``, ``h_i = H_i / 2``; the moment of inertia of block i about
-    its centroid is ``m_i (b_i^2 + h_i^2) / 3``. The stack model assumes no sliding and no
+    its centroid is ``m_i (b_i^2 + h_i^2) / 3``. The chain vector from the pivot of block k
+    to that of block k + 1 is ``D_k = (s_k b_k - s_{k+1} b_{k+1} + e_{k+1}, 2 h_k)`` in
+    block k's frame (``docs/stack.md``). The stack model assumes no sliding and no
     flight (as the report's Section 2.7 does for one block); the result reports the
     friction each contact needs and any tensile contact force.
     """
 
     blocks: tuple[Block, ...]
     masses: tuple[float, ...] | None = None
+    offsets: tuple[float, ...] | None = None
 
     def __post_init__(self) -> None:
         try:
@@ -102,17 +116,24 @@ class Stack:
                                 f"got {item!r}")
             if block.rods is not None:
                 raise ValueError(f"{name}.rods: prestress rods are not offered in a stack")
-            if blocks and block.width > blocks[-1].width:
+            if blocks and block.width > blocks[-1].width and self.offsets is None:
                 raise ValueError(
                     f"{name}.width ({block.width!r} m) is wider than the block below "
                     f"(Stack.blocks[{index - 1}].width = {blocks[-1].width!r} m): an "
                     "overhanging block is not offered by the stack model")
             blocks.append(block)
         object.__setattr__(self, "blocks", tuple(blocks))
-        if self.masses is None:
-            return
+        if self.masses is not None:
+            self._check_masses()
+        if self.offsets is not None:
+            self._check_offsets()
+
+    def _check_masses(self) -> None:
+        """Validate and store :attr:`masses` (see the class's docstring)."""
+        blocks = self.blocks
         try:
-            masses = [number(f"Stack.masses[{i}]", m) for i, m in enumerate(self.masses)]
+            masses = [number(f"Stack.masses[{i}]", m)
+                      for i, m in enumerate(self.masses)]   # type: ignore[arg-type]
         except TypeError:
             raise TypeError(f"Stack.masses must be a sequence of numbers [kg], got "
                             f"{self.masses!r}")
@@ -123,6 +144,46 @@ class Stack:
                 raise ValueError(f"Stack.masses[{index}] must be a positive finite mass [kg], "
                                  f"got {mass!r}")
         object.__setattr__(self, "masses", tuple(masses))
+
+    def _check_offsets(self) -> None:
+        """Validate and store :attr:`offsets` (see the class's docstring)."""
+        blocks, count = self.blocks, len(self.blocks)
+        try:
+            given = list(self.offsets)   # type: ignore[arg-type]
+        except TypeError:
+            raise TypeError(f"Stack.offsets must be a sequence of numbers [m], got "
+                            f"{self.offsets!r}") from None
+        if len(given) != count - 1:
+            raise ValueError(f"Stack.offsets has {len(given)} values for {count} blocks: give "
+                             f"{count - 1}, one per block above the bottom one (offsets[i - 1] "
+                             "is block i's offset from the centre of block i - 1) [m]")
+        offsets = []
+        for index, value in enumerate(given):
+            name = f"Stack.offsets[{index}] ({block_words(index + 1, count)})"
+            offset = number(name, value)   # a finite real, else a ValueError naming it
+            lower, upper = blocks[index].b, blocks[index + 1].b
+            if abs(offset) + upper > lower * (1.0 + 1e-12):
+                raise ValueError(
+                    f"{name} = {offset!r} m puts the base of {block_words(index + 1, count)} "
+                    f"(half width {upper!r} m) past the top of {block_words(index, count)} "
+                    f"(half width {lower!r} m): |offset| + b_{index + 1} must be at most "
+                    f"b_{index}, an overhanging block is not offered by the stack model")
+            offsets.append(offset)
+        object.__setattr__(self, "offsets", tuple(offsets))
+
+    @property
+    def e(self) -> np.ndarray:
+        """Each block's offset from the centre of the block below [m], bottom first (0 for
+        the bottom block; zeros without :attr:`offsets`)."""
+        if self.offsets is None:
+            return np.zeros(self.n)
+        return np.concatenate([[0.0], np.array(self.offsets, dtype=float)])
+
+    @property
+    def centres(self) -> np.ndarray:
+        """Each block's centre at rest from the bottom block's centre, horizontally [m]
+        (the running sums of :attr:`e`)."""
+        return np.cumsum(self.e)
 
     @property
     def n(self) -> int:
@@ -188,6 +249,13 @@ class Stack:
         return float(G * self.mass.sum())
 
     def describe(self) -> str:
-        """``"2 blocks: 30 x 6 in on 30 x 6 in"``-like text, top first."""
-        sizes = [size_words(block) for block in reversed(self.blocks)]
-        return f"{self.n} block{'s' if self.n > 1 else ''}: " + " on ".join(sizes)
+        """``"2 blocks: 30 x 6 in on 30 x 6 in"``-like text, top first; with non-zero
+        offsets, ``"2 blocks: 30 x 6 in offset +2.00 in on 30 x 6 in"`` (each block's
+        offset from the centre of the one below, in the bottom block's length unit)."""
+        sizes = [size_words(block) for block in self.blocks]
+        if self.offsets is not None and any(self.offsets):
+            unit = self.blocks[0].length_unit
+            for index, offset in enumerate(self.offsets, start=1):
+                if offset:
+                    sizes[index] += f" offset {format_length(offset, unit, signed=True)}"
+        return f"{self.n} block{'s' if self.n > 1 else ''}: " + " on ".join(reversed(sizes))

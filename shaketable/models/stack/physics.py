@@ -14,10 +14,12 @@ The block positions follow from the rotations through the chain of pivots (one p
 interface; a flat interface may use either corner, the positions do not depend on it)::
 
     G_i = P_0 + sum_{k<i} R(theta_k) D_k + R(theta_i) C_i
-    P_0 = (-s_0 b_0, 0),  D_k = (s_k b_k - s_{k+1} b_{k+1}, 2 h_k),  C_i = (s_i b_i, h_i)
+    P_0 = (-s_0 b_0, 0),  D_k = (s_k b_k - s_{k+1} b_{k+1} + e_{k+1}, 2 h_k),  C_i = (s_i b_i, h_i)
 
-(the flat interfaces' ``s`` taken as +1). Lagrange's equations with the rotations as
-coordinates give ``M(theta) theta'' = Q(theta, theta', t)`` with
+(the flat interfaces' ``s`` taken as +1; ``e_{k+1}`` the offset of block k + 1's centre from
+block k's, :attr:`~shaketable.models.stack.geometry.Stack.offsets`, zero for a centred
+column; the origin is the bottom block's base centre at rest). Lagrange's equations with
+the rotations as coordinates give ``M(theta) theta'' = Q(theta, theta', t)`` with
 
     M = sum_i m_i J_i^T J_i + diag(m_i (b_i^2 + h_i^2) / 3),   J_i = dG_i/dtheta
     Q = sum_i J_i^T m_i (f - c_i),   f = (-u'', -(g + v'')),
@@ -43,13 +45,20 @@ QUARTER = np.array([[0.0, -1.0], [1.0, 0.0]])
 
 
 class Chain:
-    """The geometry of a stack as arrays (half sizes, masses, centroidal inertias)."""
+    """The geometry of a stack as arrays (half sizes, masses, centroidal inertias, each
+    block's offset from the centre of the one below, 0 for the bottom one)."""
 
-    def __init__(self, b, h, m) -> None:
+    def __init__(self, b, h, m, e=None) -> None:
         self.b = np.asarray(b, dtype=float)
         self.h = np.asarray(h, dtype=float)
         self.m = np.asarray(m, dtype=float)
         self.n = self.b.size
+        self.e = np.zeros(self.n) if e is None else np.asarray(e, dtype=float)
+        # e_{k+1} at k (0 at the top), or None for a centred column (nothing added)
+        self.offsets_above = None
+        if np.any(self.e):
+            self.offsets_above = np.zeros(self.n)
+            self.offsets_above[:-1] = self.e[1:]
         self.inertia = self.m * (self.b ** 2 + self.h ** 2) / 3.0
         self.lower = np.tril(np.ones((self.n, self.n)))
         self.strictly_lower = np.tril(np.ones((self.n, self.n), dtype=bool), -1)
@@ -58,7 +67,7 @@ class Chain:
 
     @classmethod
     def of(cls, stack) -> "Chain":
-        return cls(stack.b, stack.h, stack.m)
+        return cls(stack.b, stack.h, stack.m, stack.e)
 
 
 def pivots(pattern) -> np.ndarray:
@@ -79,6 +88,8 @@ def arms(chain: Chain, theta, pattern):
     above = np.zeros(chain.n)
     above[:-1] = sigma[1:] * chain.b[1:]
     dx, dy = sigma * chain.b - above, 2.0 * chain.h
+    if chain.offsets_above is not None:
+        dx = dx + chain.offsets_above
     cx, cy = sigma * chain.b, chain.h
     cosine, sine = np.cos(theta), np.sin(theta)
     rd = np.stack([cosine * dx - sine * dy, sine * dx + cosine * dy], axis=1)

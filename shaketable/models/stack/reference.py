@@ -25,16 +25,19 @@ def _point_terms(r, omega):
     return np.array([-r[1], r[0]]), -omega ** 2 * np.asarray(r)
 
 
-def newton_euler(b, h, m, theta, theta_dot, pattern, ug, vg):
+def newton_euler(b, h, m, theta, theta_dot, pattern, ug, vg, e=None):
     """theta'' [rad/s^2] of each block and each interface's ``(N, F, N_-x, N_+x)`` [N].
 
     Geometry rebuilt from scratch: block i's bottom centre follows from the pivots, the
-    upper block's corner at ``-s_j b_j`` sitting on the lower block's top face.
+    upper block's corner at ``e_j - s_j b_j`` from the lower block's top centre (``e``:
+    each block's offset from the centre of the one below [m], zeros by default) sitting on
+    the lower block's top face.
     """
     b, h, m = (np.asarray(x, dtype=float) for x in (b, h, m))
     n = b.size
     inertia = m * (b ** 2 + h ** 2) / 3.0
     sides = [1.0 if s == 0 else float(s) for s in pattern]
+    offsets = np.zeros(n) if e is None else np.asarray(e, dtype=float)
 
     def frame(angle):
         return np.array([math.cos(angle), math.sin(angle)]), np.array([-math.sin(angle),
@@ -47,7 +50,8 @@ def newton_euler(b, h, m, theta, theta_dot, pattern, ug, vg):
             pivot = np.array([-sides[0] * b[0], 0.0])
         else:
             lower_along, lower_up = frame(theta[i - 1])
-            pivot = bottoms[i - 1] + lower_along * (-sides[i] * b[i]) + lower_up * (2 * h[i - 1])
+            pivot = bottoms[i - 1] + lower_along * (offsets[i] - sides[i] * b[i]) \
+                + lower_up * (2 * h[i - 1])
         bottom = pivot - along * (-sides[i] * b[i])
         pivots.append(pivot)
         bottoms.append(bottom)

@@ -196,18 +196,21 @@ class StackResult(ModelResult):
     @property
     def top_corner_excursion(self) -> np.ndarray:
         """Horizontal displacement of the top block's two top corners from rest [m],
-        shape (k, 2) (-x corner, +x corner), at the output times."""
+        shape (k, 2) (-x corner, +x corner), at the output times (from the corner's place
+        at rest, ``X_top +- b_top``, ``X_top`` the top block's centre,
+        :attr:`Stack.centres`)."""
         from shaketable.models.stack.physics import Chain, kinematics, rotation
 
         chain = Chain.of(self.stack)
         top = self.stack.n - 1
+        rest = float(self.stack.centres[-1])
         out = np.empty((self.t.size, 2))
         for k in range(self.t.size):
             centroid, _, _ = kinematics(chain, self.theta[k], self.theta_dot[k], self.patterns[k])
             r = rotation(self.theta[k, top])
             for c, side in enumerate((-1.0, 1.0)):
                 corner = centroid[top] + r @ np.array([side * chain.b[top], chain.h[top]])
-                out[k, c] = corner[0] - side * chain.b[top]
+                out[k, c] = corner[0] - side * chain.b[top] - rest
         return out
 
     @property
