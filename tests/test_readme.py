@@ -180,7 +180,22 @@ def shared_table_predictability():
 
 
 @pytest.fixture(scope="module")
-def run_line(tmp_path_factory, shared_table_predictability):
+def coarse_spectrum_scan():
+    """The ``spectrum`` lines scan omega/p with a relative step of 0.05 instead of the
+    command's 0.005 (``BLOCK_SCAN_STEP``; 2.8 s of CPU for the README's first line): the
+    same code runs (scan, edge bisection to the same tolerance, CSV, figure) on a tenth of
+    the grid points. These tests check that the lines run and write their files;
+    tests/studies/test_overturning_spectrum.py checks the bands against an independent
+    solver and the closed forms."""
+    from shaketable.commands import block
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(block, "BLOCK_SCAN_STEP", 0.05)
+        yield
+
+
+@pytest.fixture(scope="module")
+def run_line(tmp_path_factory, shared_table_predictability, coarse_spectrum_scan):
     """Run a README line in a fresh folder holding the outputs of its prerequisites; each
     line runs once per process (its folder, the files before it ran, and its process)."""
     done: dict = {}
