@@ -195,7 +195,32 @@ def coarse_spectrum_scan():
 
 
 @pytest.fixture(scope="module")
-def run_line(tmp_path_factory, shared_table_predictability, coarse_spectrum_scan):
+def first_call_in_process():
+    """``bench``'s first-call timing (:func:`shaketable.studies.work_precision.first_call_seconds`)
+    runs its script (import, two ``simulate`` calls, the printed times) in the test's process
+    instead of a fresh interpreter (1.0 s of CPU in imports): its own code still builds the
+    environment and parses the script's output. These tests check that the README's lines
+    run and write their files; a fresh interpreter running a README line is
+    :func:`test_the_console_entry_point_runs_a_readme_line`'s subject."""
+    import types
+
+    from shaketable.studies import work_precision
+
+    def run(argv, **options):
+        assert argv[1] == "-c", argv
+        stdout = io.StringIO()
+        with contextlib.redirect_stdout(stdout):
+            exec(compile(argv[2], "<first call>", "exec"), {"__name__": "__main__"})
+        return subprocess.CompletedProcess(argv, 0, stdout.getvalue(), "")
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(work_precision, "subprocess", types.SimpleNamespace(run=run))
+        yield
+
+
+@pytest.fixture(scope="module")
+def run_line(tmp_path_factory, shared_table_predictability, coarse_spectrum_scan,
+             first_call_in_process):
     """Run a README line in a fresh folder holding the outputs of its prerequisites; each
     line runs once per process (its folder, the files before it ran, and its process)."""
     done: dict = {}
