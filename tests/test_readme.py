@@ -180,7 +180,49 @@ def shared_table_predictability():
 
 
 @pytest.fixture(scope="module")
-def run_line(tmp_path_factory, shared_table_predictability):
+def coarse_spectrum_scan():
+    """The ``spectrum`` lines scan omega/p with a relative step of 0.05 instead of the
+    command's 0.005 (``BLOCK_SCAN_STEP``; 2.8 s of CPU for the README's first line): the
+    same code runs (scan, edge bisection to the same tolerance, flags, CSV, figure) on a
+    tenth of the grid points. The first line then finds 18 bands instead of 20 (one-sine,
+    omega/p = 1 loses a band 0.7 % wide, and a narrow band is still flagged): these tests
+    check that the lines run and write their files;
+    tests/studies/test_overturning_spectrum.py checks the bands against an independent
+    solver and the closed forms."""
+    from shaketable.commands import block
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(block, "BLOCK_SCAN_STEP", 0.05)
+        yield
+
+
+@pytest.fixture(scope="module")
+def first_call_in_process():
+    """``bench``'s first-call timing (:func:`shaketable.studies.work_precision.first_call_seconds`)
+    runs its script (import, two ``simulate`` calls, the printed times) in the test's process
+    instead of a fresh interpreter (1.0 s of CPU in imports): its own code still builds the
+    environment and parses the script's output. These tests check that the README's lines
+    run and write their files; a fresh interpreter running a README line is
+    :func:`test_the_console_entry_point_runs_a_readme_line`'s subject."""
+    import types
+
+    from shaketable.studies import work_precision
+
+    def run(argv, **options):
+        assert argv[1] == "-c", argv
+        stdout = io.StringIO()
+        with contextlib.redirect_stdout(stdout):
+            exec(compile(argv[2], "<first call>", "exec"), {"__name__": "__main__"})
+        return subprocess.CompletedProcess(argv, 0, stdout.getvalue(), "")
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(work_precision, "subprocess", types.SimpleNamespace(run=run))
+        yield
+
+
+@pytest.fixture(scope="module")
+def run_line(tmp_path_factory, shared_table_predictability, coarse_spectrum_scan,
+             first_call_in_process):
     """Run a README line in a fresh folder holding the outputs of its prerequisites; each
     line runs once per process (its folder, the files before it ran, and its process)."""
     done: dict = {}
