@@ -5,11 +5,11 @@ import warnings
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
 
 import shaketable as st
 from shaketable.core.constants import G
 from shaketable.models.stack import Stack, StackTensionWarning, simulate_stack
+from tests.models.stack.one_body import first_base_impact
 
 
 def test_a_stack_of_one_block_is_the_rocking_engine():
@@ -48,13 +48,8 @@ def test_a_rigid_release_falls_as_one_body_to_its_first_base_impact():
     radius, alpha = math.hypot(b1, y_c), math.atan(b1 / y_c)
     inertia = 4 / 3 * m1 * (b1 ** 2 + h1 ** 2) + m2 * ((b2 ** 2 + h2 ** 2) / 3 + b1 ** 2
                                                        + (2 * h1 + h2) ** 2)
-    k = 2 * mass * G * radius / inertia
     theta0 = 0.6 * alpha
-    # theta = theta0 - s^2 removes the integrable singularity at the start
-    integrand = lambda s: 2 * s / math.sqrt(k * (math.cos(alpha - theta0)  # noqa: E731
-                                                 - math.cos(alpha - theta0 + s * s)))
-    fall, _ = quad(integrand, 0.0, math.sqrt(theta0), epsabs=0, epsrel=1e-13, limit=200)
-    rate = -math.sqrt(k * (math.cos(alpha - theta0) - math.cos(alpha)))
+    fall, rate = first_base_impact(mass, radius, alpha, inertia, theta0)
     result = simulate_stack(stack, None, theta0=[theta0, theta0], duration=0.6, output_dt=0.01)
     impact = next(e for e in result.events if e["kind"] == "impact")
     assert impact["pattern_before"] == (1, 0) and impact["pattern_after"] == (-1, 0)

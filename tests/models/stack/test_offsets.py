@@ -2,13 +2,11 @@
 from statics and rigid-body dynamics, their mirror image, the centred column and the Python
 engine."""
 
-import itertools
 import math
 import warnings
 
 import numpy as np
 import pytest
-from scipy.integrate import quad
 
 import shaketable as st
 from shaketable.core.constants import G
@@ -19,8 +17,7 @@ from shaketable.models.stack import (
     StackTensionWarning,
     simulate_stack,
 )
-from shaketable.models.stack.physics import Chain, state_forces
-from shaketable.models.stack.reference import newton_euler
+from tests.models.stack.one_body import assert_every_pattern_is_newton_euler, first_base_impact
 
 
 def _quiet(stack, motion, **options):
@@ -79,13 +76,8 @@ def test_a_rigid_release_of_an_offset_stack_falls_as_one_body():
     radius, alpha = math.hypot(x_c, y_c), math.atan(x_c / y_c)
     inertia = 4 / 3 * m0 * (b0 ** 2 + h0 ** 2) + m1 * ((b1 ** 2 + h1 ** 2) / 3 + (b0 + e) ** 2
                                                        + (2 * h0 + h1) ** 2)
-    k = 2 * mass * G * radius / inertia
     theta0 = 0.5 * alpha
-    # theta = theta0 - s^2 removes the integrable singularity at the start
-    integrand = lambda s: 2 * s / math.sqrt(k * (math.cos(alpha - theta0)  # noqa: E731
-                                                 - math.cos(alpha - theta0 + s * s)))
-    fall, _ = quad(integrand, 0.0, math.sqrt(theta0), epsabs=0, epsrel=1e-13, limit=200)
-    rate = -math.sqrt(k * (math.cos(alpha - theta0) - math.cos(alpha)))
+    fall, rate = first_base_impact(mass, radius, alpha, inertia, theta0)
     result = simulate_stack(stack, None, theta0=[theta0, theta0], duration=0.6, output_dt=0.01)
     impact = next(event for event in result.events if event["kind"] == "impact")
     assert impact["pattern_before"] == (1, 0) and impact["pattern_after"] == (-1, 0)
@@ -156,16 +148,7 @@ def test_reduced_equations_with_offsets_equal_newton_euler_in_every_pattern(n):
     h, m = rng.uniform(0.2, 1.5, n), rng.uniform(0.5, 3.0, n)
     e = np.concatenate([[0.0], [(-1) ** i * rng.uniform(0.3, 1.0) * (b[i - 1] - b[i])
                                 for i in range(1, n)]])
-    chain = Chain(b, h, m, e)
-    for pattern in itertools.product((0, 1, -1), repeat=n):
-        phi = np.array([s * rng.uniform(0.01, 0.3) for s in pattern])
-        rate = np.array([rng.normal() if s else 0.0 for s in pattern])
-        ug, vg = 3.0 * rng.normal(), rng.normal()
-        phi_ddot, forces = state_forces(chain, phi, rate, pattern, ug, vg)
-        theta_ddot, reference = newton_euler(b, h, m, np.cumsum(phi), np.cumsum(rate), pattern,
-                                             ug, vg, e)
-        assert np.abs(np.cumsum(phi_ddot) - theta_ddot).max() < 1e-11
-        assert np.abs(forces - reference).max() < 1e-11 * G * m.sum()
+    assert_every_pattern_is_newton_euler(rng, b, h, m, e)
 
 
 @pytest.mark.parametrize("offsets, masses, error, match", [

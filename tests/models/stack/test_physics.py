@@ -1,15 +1,13 @@
 """The stack's equations, contact forces and impact law against independent statements."""
 
-import itertools
 import math
 
 import numpy as np
 import pytest
 
-from shaketable.core.constants import G
 from shaketable.models.stack.impact import cor_impact, plastic_impact
-from shaketable.models.stack.physics import Chain, energy, state_forces
-from shaketable.models.stack.reference import newton_euler
+from shaketable.models.stack.physics import Chain, energy
+from tests.models.stack.one_body import assert_every_pattern_is_newton_euler
 
 
 @pytest.mark.parametrize("n", [1, 2, 3])
@@ -20,16 +18,7 @@ def test_reduced_lagrange_equations_equal_newton_euler_in_every_pattern(n):
     rng = np.random.default_rng(n)
     b = np.sort(rng.uniform(0.1, 0.5, n))[::-1]
     h, m = rng.uniform(0.2, 1.5, n), rng.uniform(0.5, 3.0, n)
-    chain = Chain(b, h, m)
-    for pattern in itertools.product((0, 1, -1), repeat=n):
-        phi = np.array([s * rng.uniform(0.01, 0.3) for s in pattern])
-        rate = np.array([rng.normal() if s else 0.0 for s in pattern])
-        ug, vg = 3.0 * rng.normal(), rng.normal()
-        phi_ddot, forces = state_forces(chain, phi, rate, pattern, ug, vg)
-        theta_ddot, reference = newton_euler(b, h, m, np.cumsum(phi), np.cumsum(rate), pattern,
-                                             ug, vg)
-        assert np.abs(np.cumsum(phi_ddot) - theta_ddot).max() < 1e-11
-        assert np.abs(forces - reference).max() < 1e-11 * G * m.sum()
+    assert_every_pattern_is_newton_euler(rng, b, h, m)
 
 
 @pytest.mark.parametrize("b, h", [(0.1, 1.0), (0.25, 0.75), (0.5, 1.2)])
