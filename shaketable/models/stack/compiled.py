@@ -31,10 +31,15 @@ from shaketable.core.constants import G
 from shaketable.models.stack.compiled_events import CompiledRun
 from shaketable.models.stack.compiled_one import (
     ensure_coefficients,
+    one_block_parameters,
+    one_block_settings,
     one_dof_segment,
     one_dof_state,
+    rest_after_impact,
     rigid_workspace,
     rigid_workspace_size,
+    start_of_rocking,
+    table_segment,
 )
 from shaketable.models.stack.compiled_physics import (
     COMPILED,
@@ -91,6 +96,7 @@ from shaketable.models.stack.layout import (
     I_STALLED,
     I_STATUS,
     IMPACT,
+    N_BLOCK,
     N_FLOATS,
     N_INTS,
     NO_PATTERN,
@@ -100,6 +106,7 @@ from shaketable.models.stack.layout import (
     P_ALPHA_P,
     P_COR,
     P_DELTA,
+    P_HOUSNER,
     P_LAW,
     P_REST,
     P_TOL_FORCE,
@@ -308,12 +315,62 @@ def closure(chain, ws, scratch, run, time, seg, rates_before, before, interface,
 
 
 @inlined
+def one_block_impact(chain, ws, scratch, run, time, seg):
+    """A stack of one block lands: the single-block engine's impact (theta' times the
+    ratio it is given, Section 2.7 (5): Housner's 1 - 1.5 sin^2(alpha) for the plastic law,
+    as :func:`shaketable.models.rocking.physics.impact_cors` computes it, or the constant
+    COR) and its rest after it (the cascade summed, ``_rest_after_impact``); the time the
+    run goes on from."""
+    phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
+    floats, ints = scratch[0], scratch[1]
+    before, flat, zeros = ints[C_BEFORE], ints[C_FLAT], floats[C_ZEROS]
+    before[0], flat[0], zeros[0] = pattern[0], 0, 0.0
+    energy_before = energy(chain, phi, phi_dot, before, ws[:6])
+    cor = par[P_HOUSNER] if par[P_LAW] == 0.0 else par[P_COR]
+    rate_before = phi_dot[0]
+    phi[0], phi_dot[0], pattern[0] = 0.0, cor * rate_before, -pattern[0]
+    energy_after = energy(chain, phi, phi_dot, pattern, ws[:6])
+    record(run, time, IMPACT, ZERO, before, pattern, ONE,
+           (rate_before, phi_dot[0], energy_before, energy_after), (ONE, NONE, NONE))
+    _, _, _, _, rest_tolerance, velocity_floor, _ = one_block_settings(par)
+    remaining = rest_after_impact(time, phi_dot[0], float(pattern[0]), table_segment(seg),
+                                  one_block_parameters(par), cor, rest_tolerance,
+                                  velocity_floor)
+    if remaining >= 0.0:
+        record(run, time + remaining, REST, ZERO, pattern, flat, ONE,
+               (math.nan, math.nan, energy_after, energy(chain, phi, zeros, flat, ws[:6])),
+               (NONE, ONE if phi_dot[0] != 0.0 else ZERO, NONE))
+        phi_dot[0], pattern[0] = 0.0, 0
+        fs[F_REST_UNTIL] = time + remaining
+    return time
+
+
+@inlined
+def one_block_uplift(run, scratch, t, t_end, seg):
+    """A stack of one block at rest at ``t``: when it starts rocking before ``t_end``, as
+    the single-block engine finds it (Eq. 2-1's margin crossed, ``_start_of_rocking``), the
+    uplift recorded and its pattern set; inf when it stays at rest."""
+    phi, phi_dot, pattern, par = run[0], run[1], run[2], run[5]
+    time, side = start_of_rocking(t, t_end, table_segment(seg), one_block_parameters(par))
+    if side == 0.0:
+        return math.inf
+    after = scratch[1][C_AFTER]
+    after[0] = 1 if side > 0.0 else -1
+    record(run, time, UPLIFT, ZERO, pattern, after, ONE,
+           (math.nan, math.nan, math.nan, math.nan), (ONE, NONE, R_UPLIFT))
+    phi[0], phi_dot[0], pattern[0] = 0.0, 0.0, after[0]
+    return time
+
+
+@inlined
 def impact(chain, ws, scratch, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
     from. The choice is made at one call (each call site of a compiled function passes
     the run's arrays again)."""
     phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
+    if phi.size == 1 and (par[P_LAW] != 0.0 or par[P_HOUSNER] >= 0.0):
+        return one_block_impact(chain, ws, scratch, run, time, seg)
     floats, ints = scratch[0], scratch[1]
     alpha_p = par[P_ALPHA_P]
     before, after, flat = ints[C_BEFORE], ints[C_AFTER], ints[C_FLAT]
@@ -576,13 +633,16 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
         1e-4, t[0]
     fs[F_DOP_STEP] = 0.01 / par[P_ALPHA_P] * par[P_ALPHA]
+    if n == 1:
+        fs[F_STEP] = 0.1 / one_block_settings(par)[1]   # the single-block engine's 0.1 / p
     ist[I_OVERTURNED] = -1
     ist[I_RIGID_J] = -2   # no closed forms computed yet
     run = (phi, phi_dot, pattern, fs, ist, par, atol, events[0], events[1], events[2],
            events[3])
     seg[0], seg[1], seg[2], seg[3], seg[4], seg[5] = t[0], t[1] - t[0], ug[0], \
         ug[1] - ug[0], vg[0], vg[1] - vg[0]
-    choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
+    if n > 1:   # one block starts as the single-block engine (one_block_uplift)
+        choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
         coefficients, tol = rigid[0], par[P_TOL_FORCE]
@@ -590,8 +650,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
             if k >= 0:   # the interval from sample k (k = -1: the first sample only)
                 fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
                 ist[I_SAMPLED] = 0
-                if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1], vg[k + 1],
-                          forces[k + 1]):
+                if n > 1 and rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
+                                    vg[k + 1], forces[k + 1]):
                     # at rest: theta, theta', theta'' and the pattern are zeros
                     work[k + 1] = fs[F_WORK]
                     filled = k + 2
@@ -633,11 +693,21 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                                 now = fs[F_REST_UNTIL]
                             if fs[F_REST_UNTIL] > -math.inf and now >= fs[F_REST_UNTIL]:
                                 fs[F_REST_UNTIL] = -math.inf
-                                now = choose(chain, ws, scratch[0], scratch[1], run, now, seg,
-                                             R_REST, NONE, t1)
+                                if n > 1:   # one block: one_block_uplift below
+                                    now = choose(chain, ws, scratch[0], scratch[1], run, now,
+                                                 seg, R_REST, NONE, t1)
                                 if ist[I_ERROR]:
                                     code = STOPS
                                     break
+                            if open_count(pattern) == 0 and n == 1:
+                                t_new = one_block_uplift(run, scratch, now, t1, seg)
+                                if t_new == math.inf:
+                                    break
+                                if not progress(run, now, t_new):
+                                    code = STOPS
+                                    break
+                                now = t_new
+                                continue   # one DOF: integrated above
                             if open_count(pattern) == 0:
                                 t_new, j = rest_uplift(chain, ws, run, now, t1, seg, rigid)
                                 if j < 0:
@@ -695,6 +765,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
               rest_tolerance: float, max_recorded_events: int) -> dict:
     """Run the stack over ``motion`` with the compiled engine: the sampled histories and
     the events (the dict of :func:`shaketable.models.stack.engine.integrate`)."""
+    from shaketable.models.rocking.physics import block_parameters, impact_cors
     from shaketable.models.stack.engine import LOOKAHEAD, StackChatter, StackStalled, pattern_of
     from shaketable.models.stack.physics import Chain
 
@@ -704,8 +775,13 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     heights = np.concatenate([chain.h, chain.e]) if np.any(chain.e) else chain.h
     scale = stack.alpha_min
     tol_force = 1e-12 * G * float(stack.m.min())
-    par = np.array([LOOKAHEAD / stack.p_max, tol_force, scale, scale * stack.p_max, rtol,
-                    rest_tolerance, cor, 0.0 if law == "plastic" else 1.0])
+    # then, read for a stack of one block only: Housner's ratio and the block's parameters
+    # as the single-block engine is given them (its run, bit for bit: compiled_one)
+    bottom = stack.blocks[0]
+    par = np.concatenate([[LOOKAHEAD / stack.p_max, tol_force, scale, scale * stack.p_max, rtol,
+                           rest_tolerance, cor, 0.0 if law == "plastic" else 1.0,
+                           impact_cors(bottom, "housner")[0]],
+                          block_parameters(bottom)[:N_BLOCK]])
     n = chain.n
     atol = np.concatenate([np.full(n, rtol * scale), np.full(n, rtol * scale * stack.p_max),
                            [rtol * float(G * stack.m.sum()) * float(np.hypot(stack.b, stack.h).max())]])

@@ -21,10 +21,22 @@ import types
 
 import numpy as np
 
+from shaketable.models.rocking import engine as rocking_engine
 from shaketable.models.rocking import events as rocking_events
 from shaketable.models.rocking.engine import step_size_control
-from shaketable.models.rocking.layout import INFO_MAX_ABS_THETA, INFO_T_UNSTABLE, N_INFO
-from shaketable.models.rocking.steppers import helper, nystrom_step
+from shaketable.models.rocking.layout import (
+    INFO_MAX_ABS_THETA,
+    INFO_T_UNSTABLE,
+    METHOD_FAST,
+    N_INFO,
+)
+from shaketable.models.rocking.steppers import (
+    METHOD_FUNCTIONS,
+    flight_acceleration,
+    helper,
+    nystrom_step,
+)
+from shaketable.models.rocking.steppers import ground as table_ground
 from shaketable.models.stack.compiled_physics import inlined, kernel
 from shaketable.models.stack.compiled_rigid import (
     B_ALPHA,
@@ -49,6 +61,7 @@ from shaketable.models.stack.layout import (
     F_ENERGY_SIDE,
     F_ENERGY_THETA,
     F_LAST_IMPACT,
+    F_ONE_ACCELERATION,
     F_PREVIOUS_ERROR,
     F_SAMPLE_ACCELERATION,
     F_STEP,
@@ -59,6 +72,8 @@ from shaketable.models.stack.layout import (
     I_RIGID_S,
     I_STEPS,
     NONE,
+    P_BLOCK,
+    P_REST,
     P_RTOL,
     P_TOL_FORCE,
     STEP_FAILED,
@@ -80,6 +95,23 @@ for _name in rocking_events.METHOD_HELPERS:
     _NAMESPACE[_name] = _with_nystrom(_name, _NAMESPACE)
 step_events = _NAMESPACE["step_events"]
 control = inlined(step_size_control)
+
+# A stack of one block is the single-block engine's run (its default method, "fast"): its
+# own settings (tolerances, first step, rest tolerance, velocity floor), start of rocking
+# (Eq. 2-1's margin crossed, made exact) and rest after an impact (the cascade summed),
+# compiled from that engine's code with its RKN6(4) functions bound, as its integrator
+# binds them (shaketable.models.rocking.engine._integrator).
+_ENGINE_NAMESPACE = dict(vars(rocking_engine), _METHOD=METHOD_FAST,
+                         **METHOD_FUNCTIONS[METHOD_FAST])
+for _name in ("_settings", "_first_positive_margin", "_start_of_rocking",
+              "_rest_after_impact"):
+    _copy = types.FunctionType(getattr(rocking_engine, _name).__code__, _ENGINE_NAMESPACE,
+                               _name)
+    _copy.__qualname__ = f"stack_one_block.{_name}"
+    _ENGINE_NAMESPACE[_name] = helper(_copy)
+one_block_settings_of = _ENGINE_NAMESPACE["_settings"]
+start_of_rocking = _ENGINE_NAMESPACE["_start_of_rocking"]
+rest_after_impact = _ENGINE_NAMESPACE["_rest_after_impact"]
 
 #: The stepper's evaluations of theta'' per trial step.
 PER_STEP = 5
@@ -129,6 +161,38 @@ def body_parameters(body):
     """The rocking body as the single block's parameters (b, h, I0 / M, no rods, alpha)."""
     return (body[B_HALF_WIDTH], body[B_HEIGHT], body[B_INERTIA_PER_MASS], 0.0, 0.0, 0.0, 0.0,
             body[B_ALPHA], 0.0, 0.0)
+
+
+@inlined
+def one_block_parameters(par):
+    """A stack of one block: the block's parameters as the single-block engine takes them
+    (a tuple, from ``par[P_BLOCK:]``)."""
+    return (par[P_BLOCK], par[P_BLOCK + 1], par[P_BLOCK + 2], par[P_BLOCK + 3],
+            par[P_BLOCK + 4], par[P_BLOCK + 5], par[P_BLOCK + 6], par[P_BLOCK + 7],
+            par[P_BLOCK + 8], par[P_BLOCK + 9])
+
+
+@inlined
+def one_block_settings(par):
+    """A stack of one block: the single-block engine's settings of its run
+    (:func:`shaketable.models.rocking.engine._settings`: alpha [rad], p [1/s], the absolute
+    tolerances [rad, rad/s], the rest tolerance [s], the velocity floor [rad/s], evaluations
+    per step) at the stack's rtol and rest tolerance."""
+    return one_block_settings_of(one_block_parameters(par), par[P_RTOL], par[P_REST])
+
+
+@inlined
+def one_block_start(fs, params, seg8, t, theta, omega, side, code):
+    """A stack of one block: theta'' [rad/s^2] at the start of a segment, as the
+    single-block engine has it: the stepper's own where the last segment reached the end of
+    its input interval in this state (``code`` = 2 j + s), else Eq. (2-13) evaluated
+    there."""
+    carried = fs[F_ONE_ACCELERATION]
+    if carried == carried and fs[F_ENERGY_THETA] == theta and fs[F_ENERGY_OMEGA] == omega \
+            and fs[F_ENERGY_SIDE] == code:
+        return carried
+    ug, vg, rg = table_ground(seg8, t)
+    return flight_acceleration(theta, side, ug, vg, rg, params)
 
 
 @inlined
@@ -264,6 +328,12 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
         cosine, sine = trig(rigid[6], theta)
         energy_start = rigid_energy(rigid[1], cosine, sine, omega)
     rtol, atol_theta, atol_omega = par[P_RTOL], atol[j], atol[n + j]
+    if n == 1:
+        # one block: the single-block engine's run, bit for bit (its parameters, tolerances
+        # and theta'' at the start)
+        params = one_block_parameters(par)
+        _, _, atol_theta, atol_omega, _, _, _ = one_block_settings(par)
+        acceleration = one_block_start(fs, params, seg8, t, theta, omega, side, 2 * j + s)
     step_size, previous_error = fs[F_STEP], fs[F_PREVIOUS_ERROR]
     just_rejected = False
     what, where = ENDS_NONE, NONE
@@ -312,7 +382,8 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
             what, where = ENDS_IMPACT, j
         elif kind == _OVERTURN:
             what, where = ENDS_OVERTURN, j
-        t = t + tau if tau < t_end - t else t_end
+        # (one block: the single-block engine's t + tau, whatever it rounds to)
+        t = t + tau if (tau < t_end - t) | (n == 1) else t_end
         theta, omega, acceleration = theta_new, omega_new, acceleration_new
         if what != ENDS_NONE:
             break
@@ -330,5 +401,7 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
     fs[F_ENERGY], fs[F_ENERGY_THETA], fs[F_ENERGY_OMEGA], fs[F_ENERGY_SIDE] = \
         energy_end, theta, omega, 2 * j + s
     fs[F_STEP], fs[F_PREVIOUS_ERROR] = step_size, previous_error
+    if n == 1:
+        fs[F_ONE_ACCELERATION] = acceleration if what == ENDS_NONE else math.nan
     return t, what, where
 
