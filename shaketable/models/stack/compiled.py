@@ -559,6 +559,23 @@ def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
     return True
 
 
+@inlined
+def one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k, forces):
+    """:func:`rested` for a stack of one block over the input interval from sample ``k``,
+    decided as the single-block engine decides it (no start of rocking in it,
+    ``_start_of_rocking``)."""
+    if ist[I_RIGID_J] != -1 or fs[F_REST_UNTIL] != -math.inf or G + vg[k] <= 0.0 or \
+            G + vg[k + 1] <= 0.0 or pattern[0] != 0 or phi[0] != 0.0:
+        return False
+    segment = (t[k], t[k + 1] - t[k], ug[k], ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k], 0.0,
+               0.0)
+    _, side = start_of_rocking(t[k], t[k + 1], segment, one_block_parameters(par))
+    if side != 0.0:
+        return False
+    rigid_forces(coefficients, NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug[k + 1], vg[k + 1], forces)
+    return True
+
+
 def segment_buffers_size(n):
     """The float, int64 and bool elements of the DOP853 path's arrays of ``n`` blocks
     (:func:`segment_buffers`)."""
@@ -650,8 +667,13 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
             if k >= 0:   # the interval from sample k (k = -1: the first sample only)
                 fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
                 ist[I_SAMPLED] = 0
-                if n > 1 and rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
-                                    vg[k + 1], forces[k + 1]):
+                if n > 1:
+                    still = rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
+                                   vg[k + 1], forces[k + 1])
+                else:
+                    still = one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg,
+                                             k, forces[k + 1])
+                if still:
                     # at rest: theta, theta', theta'' and the pattern are zeros
                     work[k + 1] = fs[F_WORK]
                     filled = k + 2
