@@ -28,18 +28,17 @@ import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
-from shaketable.models.stack.compiled_events import CompiledRun
+from shaketable.models.stack.compiled_events import CompiledRun, record
 from shaketable.models.stack.compiled_one import (
     ensure_coefficients,
-    one_block_parameters,
+    one_block_impact,
+    one_block_rested,
     one_block_settings,
+    one_block_uplift,
     one_dof_segment,
     one_dof_state,
-    rest_after_impact,
     rigid_workspace,
     rigid_workspace_size,
-    start_of_rocking,
-    table_segment,
 )
 from shaketable.models.stack.compiled_physics import (
     COMPILED,
@@ -138,30 +137,6 @@ C_ACCELERATION, C_AHEAD, C_AHEAD_DOT, C_PHI_DDOT, C_RATES, C_AFTER_DOT, C_ZEROS 
 C_FREE, C_CANDIDATE, C_BEST, C_CHOSEN, C_BEFORE, C_AFTER, C_FLAT = \
     range(FREE_INT_ROWS, FREE_INT_ROWS + 7)
 
-
-
-@kernel
-def record(run, time, kind, interface, before, after, has_patterns, reals, integers):
-    """Count an event and keep it while there is room (``reals``: rate before, rate after,
-    energy before, energy after; ``integers``: solutions, cascade, reason; NaN / -1 absent)."""
-    ist, ev_f, ev_i, ev_pb, ev_pa = run[4], run[7], run[8], run[9], run[10]
-    ist[I_EVENTS] += 1
-    k = ist[I_RECORDED]
-    if k >= ev_f.shape[0]:
-        return
-    ist[I_RECORDED] = k + 1
-    ev_f[k, 0] = time
-    for q in range(4):
-        ev_f[k, 1 + q] = reals[q]
-    ev_i[k, 0] = kind
-    ev_i[k, 1] = interface
-    ev_i[k, 2] = integers[0]
-    ev_i[k, 3] = integers[1]
-    ev_i[k, 4] = integers[2]
-    ev_i[k, 5] = has_patterns
-    for j in range(before.size):
-        ev_pb[k, j] = before[j]
-        ev_pa[k, j] = after[j]
 
 
 # ------------------------------------------------------------------------- choice
@@ -315,54 +290,6 @@ def closure(chain, ws, scratch, run, time, seg, rates_before, before, interface,
 
 
 @inlined
-def one_block_impact(chain, ws, scratch, run, time, seg):
-    """A stack of one block lands: the single-block engine's impact (theta' times the
-    ratio it is given, Section 2.7 (5): Housner's 1 - 1.5 sin^2(alpha) for the plastic law,
-    as :func:`shaketable.models.rocking.physics.impact_cors` computes it, or the constant
-    COR) and its rest after it (the cascade summed, ``_rest_after_impact``); the time the
-    run goes on from."""
-    phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
-    floats, ints = scratch[0], scratch[1]
-    before, flat, zeros = ints[C_BEFORE], ints[C_FLAT], floats[C_ZEROS]
-    before[0], flat[0], zeros[0] = pattern[0], 0, 0.0
-    energy_before = energy(chain, phi, phi_dot, before, ws[:6])
-    cor = par[P_HOUSNER] if par[P_LAW] == 0.0 else par[P_COR]
-    rate_before = phi_dot[0]
-    phi[0], phi_dot[0], pattern[0] = 0.0, cor * rate_before, -pattern[0]
-    energy_after = energy(chain, phi, phi_dot, pattern, ws[:6])
-    record(run, time, IMPACT, ZERO, before, pattern, ONE,
-           (rate_before, phi_dot[0], energy_before, energy_after), (ONE, NONE, NONE))
-    _, _, _, _, rest_tolerance, velocity_floor, _ = one_block_settings(par)
-    remaining = rest_after_impact(time, phi_dot[0], float(pattern[0]), table_segment(seg),
-                                  one_block_parameters(par), cor, rest_tolerance,
-                                  velocity_floor)
-    if remaining >= 0.0:
-        record(run, time + remaining, REST, ZERO, pattern, flat, ONE,
-               (math.nan, math.nan, energy_after, energy(chain, phi, zeros, flat, ws[:6])),
-               (NONE, ONE if phi_dot[0] != 0.0 else ZERO, NONE))
-        phi_dot[0], pattern[0] = 0.0, 0
-        fs[F_REST_UNTIL] = time + remaining
-    return time
-
-
-@inlined
-def one_block_uplift(run, scratch, t, t_end, seg):
-    """A stack of one block at rest at ``t``: when it starts rocking before ``t_end``, as
-    the single-block engine finds it (Eq. 2-1's margin crossed, ``_start_of_rocking``), the
-    uplift recorded and its pattern set; inf when it stays at rest."""
-    phi, phi_dot, pattern, par = run[0], run[1], run[2], run[5]
-    time, side = start_of_rocking(t, t_end, table_segment(seg), one_block_parameters(par))
-    if side == 0.0:
-        return math.inf
-    after = scratch[1][C_AFTER]
-    after[0] = 1 if side > 0.0 else -1
-    record(run, time, UPLIFT, ZERO, pattern, after, ONE,
-           (math.nan, math.nan, math.nan, math.nan), (ONE, NONE, R_UPLIFT))
-    phi[0], phi_dot[0], pattern[0] = 0.0, 0.0, after[0]
-    return time
-
-
-@inlined
 def impact(chain, ws, scratch, run, time, seg, interface, end):
     """The impact law at a landing of ``interface``, cascades, then the pattern chosen
     afresh (:meth:`shaketable.models.stack.engine.Run.impact`); the time the run goes on
@@ -370,7 +297,8 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     the run's arrays again)."""
     phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
     if phi.size == 1 and (par[P_LAW] != 0.0 or par[P_HOUSNER] >= 0.0):
-        return one_block_impact(chain, ws, scratch, run, time, seg)
+        return one_block_impact(chain, ws, run, time, seg, scratch[1][C_BEFORE],
+                                scratch[1][C_FLAT], scratch[0][C_ZEROS])
     floats, ints = scratch[0], scratch[1]
     alpha_p = par[P_ALPHA_P]
     before, after, flat = ints[C_BEFORE], ints[C_AFTER], ints[C_FLAT]
@@ -559,23 +487,6 @@ def rested(coefficients, phi, pattern, fs, ist, tol, v0, ug1, vg1, forces):
     return True
 
 
-@inlined
-def one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k, forces):
-    """:func:`rested` for a stack of one block over the input interval from sample ``k``,
-    decided as the single-block engine decides it (no start of rocking in it,
-    ``_start_of_rocking``)."""
-    if ist[I_RIGID_J] != -1 or fs[F_REST_UNTIL] != -math.inf or G + vg[k] <= 0.0 or \
-            G + vg[k + 1] <= 0.0 or pattern[0] != 0 or phi[0] != 0.0:
-        return False
-    segment = (t[k], t[k + 1] - t[k], ug[k], ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k], 0.0,
-               0.0)
-    _, side = start_of_rocking(t[k], t[k + 1], segment, one_block_parameters(par))
-    if side != 0.0:
-        return False
-    rigid_forces(coefficients, NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug[k + 1], vg[k + 1], forces)
-    return True
-
-
 def segment_buffers_size(n):
     """The float, int64 and bool elements of the DOP853 path's arrays of ``n`` blocks
     (:func:`segment_buffers`)."""
@@ -722,7 +633,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                                     code = STOPS
                                     break
                             if open_count(pattern) == 0 and n == 1:
-                                t_new = one_block_uplift(run, scratch, now, t1, seg)
+                                t_new = one_block_uplift(run, now, t1, seg, scratch[1][C_AFTER])
                                 if t_new == math.inf:
                                     break
                                 if not progress(run, now, t_new):

@@ -21,6 +21,7 @@ import types
 
 import numpy as np
 
+from shaketable.core.constants import G
 from shaketable.models.rocking import engine as rocking_engine
 from shaketable.models.rocking import events as rocking_events
 from shaketable.models.rocking.engine import step_size_control
@@ -37,7 +38,8 @@ from shaketable.models.rocking.steppers import (
     nystrom_step,
 )
 from shaketable.models.rocking.steppers import ground as table_ground
-from shaketable.models.stack.compiled_physics import inlined, kernel
+from shaketable.models.stack.compiled_events import record
+from shaketable.models.stack.compiled_physics import energy, inlined, kernel
 from shaketable.models.stack.compiled_rigid import (
     B_ALPHA,
     B_HALF_WIDTH,
@@ -63,6 +65,7 @@ from shaketable.models.stack.layout import (
     F_LAST_IMPACT,
     F_ONE_ACCELERATION,
     F_PREVIOUS_ERROR,
+    F_REST_UNTIL,
     F_SAMPLE_ACCELERATION,
     F_STEP,
     F_WORK,
@@ -71,12 +74,20 @@ from shaketable.models.stack.layout import (
     I_RIGID_J,
     I_RIGID_S,
     I_STEPS,
+    IMPACT,
     NONE,
     P_BLOCK,
+    P_COR,
+    P_HOUSNER,
+    P_LAW,
     P_REST,
     P_RTOL,
     P_TOL_FORCE,
+    R_UPLIFT,
+    REST,
     STEP_FAILED,
+    UPLIFT,
+    ZERO,
 )
 
 
@@ -112,6 +123,8 @@ for _name in ("_settings", "_first_positive_margin", "_start_of_rocking",
 one_block_settings_of = _ENGINE_NAMESPACE["_settings"]
 start_of_rocking = _ENGINE_NAMESPACE["_start_of_rocking"]
 rest_after_impact = _ENGINE_NAMESPACE["_rest_after_impact"]
+
+ONE = np.int64(1)
 
 #: The stepper's evaluations of theta'' per trial step.
 PER_STEP = 5
@@ -405,3 +418,65 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
         fs[F_ONE_ACCELERATION] = acceleration if what == ENDS_NONE else math.nan
     return t, what, where
 
+
+@inlined
+def one_block_impact(chain, ws, run, time, seg, before, flat, zeros):
+    """A stack of one block lands: the single-block engine's impact (theta' times the
+    ratio it is given, Section 2.7 (5): Housner's 1 - 1.5 sin^2(alpha) for the plastic law,
+    as :func:`shaketable.models.rocking.physics.impact_cors` computes it, or the constant
+    COR) and its rest after it (the cascade summed, ``_rest_after_impact``); the time the
+    run goes on from. ``before``, ``flat``, ``zeros``: rows of the event workspace."""
+    phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
+    before[0], flat[0], zeros[0] = pattern[0], 0, 0.0
+    energy_before = energy(chain, phi, phi_dot, before, ws[:6])
+    cor = par[P_HOUSNER] if par[P_LAW] == 0.0 else par[P_COR]
+    rate_before = phi_dot[0]
+    phi[0], phi_dot[0], pattern[0] = 0.0, cor * rate_before, -pattern[0]
+    energy_after = energy(chain, phi, phi_dot, pattern, ws[:6])
+    record(run, time, IMPACT, ZERO, before, pattern, ONE,
+           (rate_before, phi_dot[0], energy_before, energy_after), (ONE, NONE, NONE))
+    _, _, _, _, rest_tolerance, velocity_floor, _ = one_block_settings(par)
+    remaining = rest_after_impact(time, phi_dot[0], float(pattern[0]), table_segment(seg),
+                                  one_block_parameters(par), cor, rest_tolerance,
+                                  velocity_floor)
+    if remaining >= 0.0:
+        record(run, time + remaining, REST, ZERO, pattern, flat, ONE,
+               (math.nan, math.nan, energy_after, energy(chain, phi, zeros, flat, ws[:6])),
+               (NONE, ONE if phi_dot[0] != 0.0 else ZERO, NONE))
+        phi_dot[0], pattern[0] = 0.0, 0
+        fs[F_REST_UNTIL] = time + remaining
+    return time
+
+
+@inlined
+def one_block_uplift(run, t, t_end, seg, after):
+    """A stack of one block at rest at ``t``: when it starts rocking before ``t_end``, as
+    the single-block engine finds it (Eq. 2-1's margin crossed, ``_start_of_rocking``), the
+    uplift recorded and its pattern set (``after``: a row of the event workspace); inf
+    when it stays at rest."""
+    phi, phi_dot, pattern, par = run[0], run[1], run[2], run[5]
+    time, side = start_of_rocking(t, t_end, table_segment(seg), one_block_parameters(par))
+    if side == 0.0:
+        return math.inf
+    after[0] = 1 if side > 0.0 else -1
+    record(run, time, UPLIFT, ZERO, pattern, after, ONE,
+           (math.nan, math.nan, math.nan, math.nan), (ONE, NONE, R_UPLIFT))
+    phi[0], phi_dot[0], pattern[0] = 0.0, 0.0, after[0]
+    return time
+
+
+@inlined
+def one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k, forces):
+    """:func:`rested` for a stack of one block over the input interval from sample ``k``,
+    decided as the single-block engine decides it (no start of rocking in it,
+    ``_start_of_rocking``)."""
+    if ist[I_RIGID_J] != -1 or fs[F_REST_UNTIL] != -math.inf or G + vg[k] <= 0.0 or \
+            G + vg[k + 1] <= 0.0 or pattern[0] != 0 or phi[0] != 0.0:
+        return False
+    segment = (t[k], t[k + 1] - t[k], ug[k], ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k], 0.0,
+               0.0)
+    _, side = start_of_rocking(t[k], t[k + 1], segment, one_block_parameters(par))
+    if side != 0.0:
+        return False
+    rigid_forces(coefficients, NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug[k + 1], vg[k + 1], forces)
+    return True
