@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import shaketable as st
+from shaketable.core.constants import G
 from shaketable.ground import records
 from shaketable.models.stack import Stack, simulate_stack
 
@@ -47,3 +48,25 @@ def test_a_stack_of_one_block_is_the_rocking_engine_bit_for_bit(size, law):
     assert stack.events[0]["kind"] == "uplift" and stack.events[0]["t"] == engine.t_start
     if engine.status == "overturned":
         assert stack.t_overturn == engine.t_overturn
+
+
+def test_a_one_block_stack_rests_and_starts_again_as_the_rocking_engine():
+    # two 1 s bursts 3 s apart (0.4 g at 2 Hz, 0.1 g vertical at 3 Hz): the 1 x 0.25 m block
+    # rocks, comes to rest through a cascade summed in closed form, starts again with the
+    # second burst and rests again; every sample, impact, start and rest time equals the
+    # single-block engine's (measured: equal; 356 impacts, rests at 3.681 s and 7.681 s)
+    t = np.arange(0.0, 8.0, 0.01)
+    bursts = (t < 1.0) | ((t >= 4.0) & (t < 5.0))
+    motion = st.Motion(t, np.where(bursts, 0.4 * G * np.sin(4.0 * np.pi * t), 0.0),
+                       np.where(bursts, 0.1 * G * np.sin(6.0 * np.pi * t), 0.0))
+    block = st.Block(1.0, 0.25)
+    stack = simulate_stack(Stack([block]), motion, rtol=1e-12)
+    engine = st.simulate(block, motion, cor=1.0 - 1.5 * math.sin(block.alpha) ** 2, rtol=1e-12)
+    np.testing.assert_array_equal(stack.theta[:, 0], engine.theta)
+    np.testing.assert_array_equal(stack.theta_dot[:, 0], engine.theta_dot)
+    impacts = [e["t"] for e in stack.events if e["kind"] == "impact"]
+    np.testing.assert_array_equal(impacts, engine.impact_times)
+    starts = [e["t"] for e in stack.events if e["kind"] == "uplift"]
+    rests = [e["t"] for e in stack.events if e["kind"] == "rest"]
+    assert len(starts) == 2 and starts[0] == engine.t_start
+    assert len(rests) == 2 and rests[-1] == engine.t_rest
