@@ -1,4 +1,4 @@
-"""A stack of one block against the single-block engine (issue's check 1): bit for bit."""
+"""A stack of one block against the single-block engine: bit for bit."""
 
 import math
 import warnings
