@@ -583,7 +583,7 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                                    vg[k + 1], forces[k + 1])
                 else:
                     still = one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg,
-                                             k, forces[k + 1])
+                                             k, forces)
                 if still:
                     # at rest: theta, theta', theta'' and the pattern are zeros
                     work[k + 1] = fs[F_WORK]

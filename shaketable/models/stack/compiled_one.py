@@ -466,17 +466,31 @@ def one_block_uplift(run, t, t_end, seg, after):
 
 
 @inlined
+def far_from_uplift(forces, arm):
+    """Whether both corner forces of a block at rest (``forces``, one row of (N, F, N at the
+    -x corner, N at the +x corner) [N]) exceed 10^-12 of the scale of their terms, N/2 and
+    F h / (2 b) (``arm`` = h / b): far beyond the rounding of Eq. (2-1)'s margin, whose sign
+    they give."""
+    scale = 1e-12 * (abs(forces[0]) + abs(forces[1]) * arm)
+    return forces[2] > scale and forces[3] > scale
+
+
+@inlined
 def one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k, forces):
-    """:func:`rested` for a stack of one block over the input interval from sample ``k``,
-    decided as the single-block engine decides it (no start of rocking in it,
-    ``_start_of_rocking``)."""
+    """:func:`rested` for a stack of one block over the input interval from sample ``k``
+    (``forces``: the run's history, (samples, 1, 4) [N]), decided as the single-block engine
+    decides it (no start of rocking in it, ``_start_of_rocking``): at once when the corner
+    forces at both ends are far from zero (affine in time in between, they stay positive:
+    no margin crosses zero), else by that engine's test."""
     if ist[I_RIGID_J] != -1 or fs[F_REST_UNTIL] != -math.inf or G + vg[k] <= 0.0 or \
             G + vg[k + 1] <= 0.0 or pattern[0] != 0 or phi[0] != 0.0:
         return False
+    rigid_forces(coefficients, NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug[k + 1], vg[k + 1],
+                 forces[k + 1])
+    arm = par[P_BLOCK + 1] / par[P_BLOCK]
+    if far_from_uplift(forces[k, 0], arm) and far_from_uplift(forces[k + 1, 0], arm):
+        return True
     segment = (t[k], t[k + 1] - t[k], ug[k], ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k], 0.0,
                0.0)
     _, side = start_of_rocking(t[k], t[k + 1], segment, one_block_parameters(par))
-    if side != 0.0:
-        return False
-    rigid_forces(coefficients, NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug[k + 1], vg[k + 1], forces)
-    return True
+    return side == 0.0
