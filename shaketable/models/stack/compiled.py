@@ -558,11 +558,9 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     buffers = segment_buffers(reals, f, integers, i, flags, n)
     fs[:] = math.nan
     fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
-    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
-        1e-4, t[0]
+    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA] \
+        if n > 1 else 0.1 / one_block_settings(par)[1], 1e-4, t[0]   # one block: 0.1 / p
     fs[F_DOP_STEP] = 0.01 / par[P_ALPHA_P] * par[P_ALPHA]
-    if n == 1:
-        fs[F_STEP] = 0.1 / one_block_settings(par)[1]   # the single-block engine's 0.1 / p
     ist[I_OVERTURNED] = -1
     ist[I_RIGID_J] = -2   # no closed forms computed yet
     run = (phi, phi_dot, pattern, fs, ist, par, atol, events[0], events[1], events[2],
@@ -578,13 +576,10 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
             if k >= 0:   # the interval from sample k (k = -1: the first sample only)
                 fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
                 ist[I_SAMPLED] = 0
-                if n > 1:
-                    still = rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1],
-                                   vg[k + 1], forces[k + 1])
-                else:
-                    still = one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg,
-                                             k, forces)
-                if still:
+                if (rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1], vg[k + 1],
+                           forces[k + 1]) if n > 1 else
+                        one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k,
+                                         forces)):
                     # at rest: theta, theta', theta'' and the pattern are zeros
                     work[k + 1] = fs[F_WORK]
                     filled = k + 2
@@ -632,24 +627,18 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                                 if ist[I_ERROR]:
                                     code = STOPS
                                     break
-                            if open_count(pattern) == 0 and n == 1:
-                                t_new = one_block_uplift(run, now, t1, seg, scratch[1][C_AFTER])
-                                if t_new == math.inf:
-                                    break
-                                if not progress(run, now, t_new):
-                                    code = STOPS
-                                    break
-                                now = t_new
-                                continue   # one DOF: integrated above
                             if open_count(pattern) == 0:
-                                t_new, j = rest_uplift(chain, ws, run, now, t1, seg, rigid)
+                                t_new, j = rest_uplift(chain, ws, run, now, t1, seg, rigid) \
+                                    if n > 1 else \
+                                    one_block_uplift(run, now, t1, seg, scratch[1][C_AFTER])
                                 if j < 0:
                                     break
                                 if not progress(run, now, t_new):
                                     code = STOPS
                                     break
                                 # the uplift: the pattern is chosen below, as after a segment
-                                now, what = t_new, ENDS_LIFT
+                                # (one block: already set, as the single-block engine starts)
+                                now, what = t_new, ENDS_LIFT if n > 1 else ENDS_NONE
                                 continue
                             if open_count(pattern) == 1:
                                 code = ONE_DOF

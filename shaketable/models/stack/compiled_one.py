@@ -452,17 +452,17 @@ def one_block_impact(chain, ws, run, time, seg, before, flat, zeros):
 def one_block_uplift(run, t, t_end, seg, after):
     """A stack of one block at rest at ``t``: when it starts rocking before ``t_end``, as
     the single-block engine finds it (Eq. 2-1's margin crossed, ``_start_of_rocking``), the
-    uplift recorded and its pattern set (``after``: a row of the event workspace); inf
-    when it stays at rest."""
+    uplift recorded and its pattern set (``after``: a row of the event workspace), as
+    (time, 0); (inf, -1) when it stays at rest."""
     phi, phi_dot, pattern, par = run[0], run[1], run[2], run[5]
     time, side = start_of_rocking(t, t_end, table_segment(seg), one_block_parameters(par))
     if side == 0.0:
-        return math.inf
+        return math.inf, NONE
     after[0] = 1 if side > 0.0 else -1
     record(run, time, UPLIFT, ZERO, pattern, after, ONE,
            (math.nan, math.nan, math.nan, math.nan), (ONE, NONE, R_UPLIFT))
     phi[0], phi_dot[0], pattern[0] = 0.0, 0.0, after[0]
-    return time
+    return time, ZERO
 
 
 @inlined
