@@ -27,7 +27,7 @@ def test_a_stack_of_one_block_is_the_rocking_engine_bit_for_bit(size, law):
     # law of one block) or the constant COR. The one-block stack runs that engine's own
     # start of rocking, stepper, step-size control, event location, impact and rest, so
     # every sample and every event is the same number (measured: equal, 8 x 2 ft: 32
-    # impacts and 15 s completed; 30 x 6 in: overturns at 4.9 s; 4 x 1 ft, COR 0.8: 210
+    # impacts and 15 s completed; 30 x 6 in: overturns at 4.96 s; 4 x 1 ft, COR 0.8: 210
     # impacts)
     block = st.Block.parse(size)
     motion = _el_centro_15s()
