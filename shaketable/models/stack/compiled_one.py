@@ -419,7 +419,7 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
     return t, what, where
 
 
-@inlined
+@kernel
 def one_block_impact(chain, ws, run, time, seg, before, flat, zeros):
     """A stack of one block lands: the single-block engine's impact (theta' times the
     ratio it is given, Section 2.7 (5): Housner's 1 - 1.5 sin^2(alpha) for the plastic law,
@@ -448,7 +448,7 @@ def one_block_impact(chain, ws, run, time, seg, before, flat, zeros):
     return time
 
 
-@inlined
+@kernel
 def one_block_uplift(run, t, t_end, seg, after):
     """A stack of one block at rest at ``t``: when it starts rocking before ``t_end``, as
     the single-block engine finds it (Eq. 2-1's margin crossed, ``_start_of_rocking``), the
@@ -475,7 +475,7 @@ def far_from_uplift(forces, arm):
     return forces[2] > scale and forces[3] > scale
 
 
-@inlined
+@kernel
 def one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k, forces):
     """:func:`rested` for a stack of one block over the input interval from sample ``k``
     (``forces``: the run's history, (samples, 1, 4) [N]), decided as the single-block engine
