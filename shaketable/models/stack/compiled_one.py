@@ -475,7 +475,7 @@ def far_from_uplift(forces, arm):
     return forces[2] > scale and forces[3] > scale
 
 
-@kernel
+@inlined
 def one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k, forces):
     """:func:`rested` for a stack of one block over the input interval from sample ``k``
     (``forces``: the run's history, (samples, 1, 4) [N]), decided as the single-block engine
