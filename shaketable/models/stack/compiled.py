@@ -28,9 +28,13 @@ import numpy as np
 from numba import njit
 
 from shaketable.core.constants import G
-from shaketable.models.stack.compiled_events import CompiledRun
+from shaketable.models.stack.compiled_events import CompiledRun, record
 from shaketable.models.stack.compiled_one import (
     ensure_coefficients,
+    one_block_impact,
+    one_block_rested,
+    one_block_settings,
+    one_block_uplift,
     one_dof_segment,
     one_dof_state,
     rigid_workspace,
@@ -91,6 +95,7 @@ from shaketable.models.stack.layout import (
     I_STALLED,
     I_STATUS,
     IMPACT,
+    N_BLOCK,
     N_FLOATS,
     N_INTS,
     NO_PATTERN,
@@ -100,6 +105,7 @@ from shaketable.models.stack.layout import (
     P_ALPHA_P,
     P_COR,
     P_DELTA,
+    P_HOUSNER,
     P_LAW,
     P_REST,
     P_TOL_FORCE,
@@ -131,30 +137,6 @@ C_ACCELERATION, C_AHEAD, C_AHEAD_DOT, C_PHI_DDOT, C_RATES, C_AFTER_DOT, C_ZEROS 
 C_FREE, C_CANDIDATE, C_BEST, C_CHOSEN, C_BEFORE, C_AFTER, C_FLAT = \
     range(FREE_INT_ROWS, FREE_INT_ROWS + 7)
 
-
-
-@kernel
-def record(run, time, kind, interface, before, after, has_patterns, reals, integers):
-    """Count an event and keep it while there is room (``reals``: rate before, rate after,
-    energy before, energy after; ``integers``: solutions, cascade, reason; NaN / -1 absent)."""
-    ist, ev_f, ev_i, ev_pb, ev_pa = run[4], run[7], run[8], run[9], run[10]
-    ist[I_EVENTS] += 1
-    k = ist[I_RECORDED]
-    if k >= ev_f.shape[0]:
-        return
-    ist[I_RECORDED] = k + 1
-    ev_f[k, 0] = time
-    for q in range(4):
-        ev_f[k, 1 + q] = reals[q]
-    ev_i[k, 0] = kind
-    ev_i[k, 1] = interface
-    ev_i[k, 2] = integers[0]
-    ev_i[k, 3] = integers[1]
-    ev_i[k, 4] = integers[2]
-    ev_i[k, 5] = has_patterns
-    for j in range(before.size):
-        ev_pb[k, j] = before[j]
-        ev_pa[k, j] = after[j]
 
 
 # ------------------------------------------------------------------------- choice
@@ -314,6 +296,9 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
     from. The choice is made at one call (each call site of a compiled function passes
     the run's arrays again)."""
     phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
+    if phi.size == 1 and (par[P_LAW] != 0.0 or par[P_HOUSNER] >= 0.0):
+        return one_block_impact(chain, ws, run, time, seg, scratch[1][C_BEFORE],
+                                scratch[1][C_FLAT], scratch[0][C_ZEROS])
     floats, ints = scratch[0], scratch[1]
     alpha_p = par[P_ALPHA_P]
     before, after, flat = ints[C_BEFORE], ints[C_AFTER], ints[C_FLAT]
@@ -573,8 +558,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
     buffers = segment_buffers(reals, f, integers, i, flags, n)
     fs[:] = math.nan
     fs[F_WORK], fs[F_REST_UNTIL] = 0.0, -math.inf
-    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA], \
-        1e-4, t[0]
+    fs[F_STEP], fs[F_PREVIOUS_ERROR], fs[F_LAST_IMPACT] = 0.1 / par[P_ALPHA_P] * par[P_ALPHA] \
+        if n > 1 else 0.1 / one_block_settings(par)[1], 1e-4, t[0]   # one block: 0.1 / p
     fs[F_DOP_STEP] = 0.01 / par[P_ALPHA_P] * par[P_ALPHA]
     ist[I_OVERTURNED] = -1
     ist[I_RIGID_J] = -2   # no closed forms computed yet
@@ -582,7 +567,8 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
            events[3])
     seg[0], seg[1], seg[2], seg[3], seg[4], seg[5] = t[0], t[1] - t[0], ug[0], \
         ug[1] - ug[0], vg[0], vg[1] - vg[0]
-    choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
+    if n > 1:   # one block starts as the single-block engine (one_block_uplift)
+        choose(chain, ws, scratch[0], scratch[1], run, t[0], seg, R_START, NONE, t[0])
     filled = 0
     if ist[I_ERROR] == 0:
         coefficients, tol = rigid[0], par[P_TOL_FORCE]
@@ -590,8 +576,10 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
             if k >= 0:   # the interval from sample k (k = -1: the first sample only)
                 fresh = ist[I_SAMPLED] == 1   # sample k's one-DOF state: the segment's start
                 ist[I_SAMPLED] = 0
-                if rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1], vg[k + 1],
-                          forces[k + 1]):
+                if (rested(coefficients, phi, pattern, fs, ist, tol, vg[k], ug[k + 1], vg[k + 1],
+                           forces[k + 1]) if n > 1 else
+                        one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k,
+                                         forces)):
                     # at rest: theta, theta', theta'' and the pattern are zeros
                     work[k + 1] = fs[F_WORK]
                     filled = k + 2
@@ -633,20 +621,24 @@ def run_stack(b, h, m, inertia, t, ug, vg, phi0, phi_dot0, pattern0, par, atol, 
                                 now = fs[F_REST_UNTIL]
                             if fs[F_REST_UNTIL] > -math.inf and now >= fs[F_REST_UNTIL]:
                                 fs[F_REST_UNTIL] = -math.inf
-                                now = choose(chain, ws, scratch[0], scratch[1], run, now, seg,
-                                             R_REST, NONE, t1)
+                                if n > 1:   # one block: one_block_uplift below
+                                    now = choose(chain, ws, scratch[0], scratch[1], run, now,
+                                                 seg, R_REST, NONE, t1)
                                 if ist[I_ERROR]:
                                     code = STOPS
                                     break
                             if open_count(pattern) == 0:
-                                t_new, j = rest_uplift(chain, ws, run, now, t1, seg, rigid)
+                                t_new, j = rest_uplift(chain, ws, run, now, t1, seg, rigid) \
+                                    if n > 1 else \
+                                    one_block_uplift(run, now, t1, seg, scratch[1][C_AFTER])
                                 if j < 0:
                                     break
                                 if not progress(run, now, t_new):
                                     code = STOPS
                                     break
                                 # the uplift: the pattern is chosen below, as after a segment
-                                now, what = t_new, ENDS_LIFT
+                                # (one block: already set, as the single-block engine starts)
+                                now, what = t_new, ENDS_LIFT if n > 1 else ENDS_NONE
                                 continue
                             if open_count(pattern) == 1:
                                 code = ONE_DOF
@@ -695,6 +687,7 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
               rest_tolerance: float, max_recorded_events: int) -> dict:
     """Run the stack over ``motion`` with the compiled engine: the sampled histories and
     the events (the dict of :func:`shaketable.models.stack.engine.integrate`)."""
+    from shaketable.models.rocking.physics import block_parameters, impact_cors
     from shaketable.models.stack.engine import LOOKAHEAD, StackChatter, StackStalled, pattern_of
     from shaketable.models.stack.physics import Chain
 
@@ -704,8 +697,13 @@ def integrate(stack, motion, *, law: str, cor: float, theta0, theta_dot0, rtol: 
     heights = np.concatenate([chain.h, chain.e]) if np.any(chain.e) else chain.h
     scale = stack.alpha_min
     tol_force = 1e-12 * G * float(stack.m.min())
-    par = np.array([LOOKAHEAD / stack.p_max, tol_force, scale, scale * stack.p_max, rtol,
-                    rest_tolerance, cor, 0.0 if law == "plastic" else 1.0])
+    # then, read for a stack of one block only: Housner's ratio and the block's parameters
+    # as the single-block engine is given them (its run, bit for bit: compiled_one)
+    bottom = stack.blocks[0]
+    par = np.concatenate([[LOOKAHEAD / stack.p_max, tol_force, scale, scale * stack.p_max, rtol,
+                           rest_tolerance, cor, 0.0 if law == "plastic" else 1.0,
+                           impact_cors(bottom, "housner")[0]],
+                          block_parameters(bottom)[:N_BLOCK]])
     n = chain.n
     atol = np.concatenate([np.full(n, rtol * scale), np.full(n, rtol * scale * stack.p_max),
                            [rtol * float(G * stack.m.sum()) * float(np.hypot(stack.b, stack.h).max())]])

@@ -1,8 +1,10 @@
-"""A compiled stack run read back into Python: its status, statistics and recorded events
-(as the Python engine's dicts)."""
+"""A compiled stack run's events: written by the engine (:func:`record`, compiled) and read
+back into Python (:class:`CompiledRun`: its status, statistics and recorded events, as the
+Python engine's dicts)."""
 
 from __future__ import annotations
 
+from shaketable.models.stack.compiled_physics import kernel
 from shaketable.models.stack.layout import (
     F_T_AIRBORNE,
     F_T_OVERTURN,
@@ -19,6 +21,30 @@ from shaketable.models.stack.layout import (
     STATUSES,
     UPLIFT,
 )
+
+
+@kernel
+def record(run, time, kind, interface, before, after, has_patterns, reals, integers):
+    """Count an event and keep it while there is room (``reals``: rate before, rate after,
+    energy before, energy after; ``integers``: solutions, cascade, reason; NaN / -1 absent)."""
+    ist, ev_f, ev_i, ev_pb, ev_pa = run[4], run[7], run[8], run[9], run[10]
+    ist[I_EVENTS] += 1
+    k = ist[I_RECORDED]
+    if k >= ev_f.shape[0]:
+        return
+    ist[I_RECORDED] = k + 1
+    ev_f[k, 0] = time
+    for q in range(4):
+        ev_f[k, 1 + q] = reals[q]
+    ev_i[k, 0] = kind
+    ev_i[k, 1] = interface
+    ev_i[k, 2] = integers[0]
+    ev_i[k, 3] = integers[1]
+    ev_i[k, 4] = integers[2]
+    ev_i[k, 5] = has_patterns
+    for j in range(before.size):
+        ev_pb[k, j] = before[j]
+        ev_pa[k, j] = after[j]
 
 
 class CompiledRun:

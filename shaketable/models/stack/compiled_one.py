@@ -21,11 +21,25 @@ import types
 
 import numpy as np
 
+from shaketable.core.constants import G
+from shaketable.models.rocking import engine as rocking_engine
 from shaketable.models.rocking import events as rocking_events
 from shaketable.models.rocking.engine import step_size_control
-from shaketable.models.rocking.layout import INFO_MAX_ABS_THETA, INFO_T_UNSTABLE, N_INFO
-from shaketable.models.rocking.steppers import helper, nystrom_step
-from shaketable.models.stack.compiled_physics import inlined, kernel
+from shaketable.models.rocking.layout import (
+    INFO_MAX_ABS_THETA,
+    INFO_T_UNSTABLE,
+    METHOD_FAST,
+    N_INFO,
+)
+from shaketable.models.rocking.steppers import (
+    METHOD_FUNCTIONS,
+    flight_acceleration,
+    helper,
+    nystrom_step,
+)
+from shaketable.models.rocking.steppers import ground as table_ground
+from shaketable.models.stack.compiled_events import record
+from shaketable.models.stack.compiled_physics import energy, inlined, kernel
 from shaketable.models.stack.compiled_rigid import (
     B_ALPHA,
     B_HALF_WIDTH,
@@ -49,7 +63,9 @@ from shaketable.models.stack.layout import (
     F_ENERGY_SIDE,
     F_ENERGY_THETA,
     F_LAST_IMPACT,
+    F_ONE_ACCELERATION,
     F_PREVIOUS_ERROR,
+    F_REST_UNTIL,
     F_SAMPLE_ACCELERATION,
     F_STEP,
     F_WORK,
@@ -58,10 +74,20 @@ from shaketable.models.stack.layout import (
     I_RIGID_J,
     I_RIGID_S,
     I_STEPS,
+    IMPACT,
     NONE,
+    P_BLOCK,
+    P_COR,
+    P_HOUSNER,
+    P_LAW,
+    P_REST,
     P_RTOL,
     P_TOL_FORCE,
+    R_UPLIFT,
+    REST,
     STEP_FAILED,
+    UPLIFT,
+    ZERO,
 )
 
 
@@ -80,6 +106,25 @@ for _name in rocking_events.METHOD_HELPERS:
     _NAMESPACE[_name] = _with_nystrom(_name, _NAMESPACE)
 step_events = _NAMESPACE["step_events"]
 control = inlined(step_size_control)
+
+# A stack of one block is the single-block engine's run (its default method, "fast"): its
+# own settings (tolerances, first step, rest tolerance, velocity floor), start of rocking
+# (Eq. 2-1's margin crossed, made exact) and rest after an impact (the cascade summed),
+# compiled from that engine's code with its RKN6(4) functions bound, as its integrator
+# binds them (shaketable.models.rocking.engine._integrator).
+_ENGINE_NAMESPACE = dict(vars(rocking_engine), _METHOD=METHOD_FAST,
+                         **METHOD_FUNCTIONS[METHOD_FAST])
+for _name in ("_settings", "_first_positive_margin", "_start_of_rocking",
+              "_rest_after_impact"):
+    _copy = types.FunctionType(getattr(rocking_engine, _name).__code__, _ENGINE_NAMESPACE,
+                               _name)
+    _copy.__qualname__ = f"stack_one_block.{_name}"
+    _ENGINE_NAMESPACE[_name] = helper(_copy)
+one_block_settings_of = _ENGINE_NAMESPACE["_settings"]
+start_of_rocking = _ENGINE_NAMESPACE["_start_of_rocking"]
+rest_after_impact = _ENGINE_NAMESPACE["_rest_after_impact"]
+
+ONE = np.int64(1)
 
 #: The stepper's evaluations of theta'' per trial step.
 PER_STEP = 5
@@ -129,6 +174,38 @@ def body_parameters(body):
     """The rocking body as the single block's parameters (b, h, I0 / M, no rods, alpha)."""
     return (body[B_HALF_WIDTH], body[B_HEIGHT], body[B_INERTIA_PER_MASS], 0.0, 0.0, 0.0, 0.0,
             body[B_ALPHA], 0.0, 0.0)
+
+
+@inlined
+def one_block_parameters(par):
+    """A stack of one block: the block's parameters as the single-block engine takes them
+    (a tuple, from ``par[P_BLOCK:]``)."""
+    return (par[P_BLOCK], par[P_BLOCK + 1], par[P_BLOCK + 2], par[P_BLOCK + 3],
+            par[P_BLOCK + 4], par[P_BLOCK + 5], par[P_BLOCK + 6], par[P_BLOCK + 7],
+            par[P_BLOCK + 8], par[P_BLOCK + 9])
+
+
+@inlined
+def one_block_settings(par):
+    """A stack of one block: the single-block engine's settings of its run
+    (:func:`shaketable.models.rocking.engine._settings`: alpha [rad], p [1/s], the absolute
+    tolerances [rad, rad/s], the rest tolerance [s], the velocity floor [rad/s], evaluations
+    per step) at the stack's rtol and rest tolerance."""
+    return one_block_settings_of(one_block_parameters(par), par[P_RTOL], par[P_REST])
+
+
+@inlined
+def one_block_start(fs, params, seg8, t, theta, omega, side, code):
+    """A stack of one block: theta'' [rad/s^2] at the start of a segment, as the
+    single-block engine has it: the stepper's own where the last segment reached the end of
+    its input interval in this state (``code`` = 2 j + s), else Eq. (2-13) evaluated
+    there."""
+    carried = fs[F_ONE_ACCELERATION]
+    if carried == carried and fs[F_ENERGY_THETA] == theta and fs[F_ENERGY_OMEGA] == omega \
+            and fs[F_ENERGY_SIDE] == code:
+        return carried
+    ug, vg, rg = table_ground(seg8, t)
+    return flight_acceleration(theta, side, ug, vg, rg, params)
 
 
 @inlined
@@ -264,6 +341,12 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
         cosine, sine = trig(rigid[6], theta)
         energy_start = rigid_energy(rigid[1], cosine, sine, omega)
     rtol, atol_theta, atol_omega = par[P_RTOL], atol[j], atol[n + j]
+    if n == 1:
+        # one block: the single-block engine's run, bit for bit (its parameters, tolerances
+        # and theta'' at the start)
+        params = one_block_parameters(par)
+        _, _, atol_theta, atol_omega, _, _, _ = one_block_settings(par)
+        acceleration = one_block_start(fs, params, seg8, t, theta, omega, side, 2 * j + s)
     step_size, previous_error = fs[F_STEP], fs[F_PREVIOUS_ERROR]
     just_rejected = False
     what, where = ENDS_NONE, NONE
@@ -312,7 +395,8 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
             what, where = ENDS_IMPACT, j
         elif kind == _OVERTURN:
             what, where = ENDS_OVERTURN, j
-        t = t + tau if tau < t_end - t else t_end
+        # (one block: the single-block engine's t + tau, whatever it rounds to)
+        t = t + tau if (tau < t_end - t) | (n == 1) else t_end
         theta, omega, acceleration = theta_new, omega_new, acceleration_new
         if what != ENDS_NONE:
             break
@@ -330,5 +414,83 @@ def one_dof_segment(chain, run, t, t_end, seg, rigid, fresh):
     fs[F_ENERGY], fs[F_ENERGY_THETA], fs[F_ENERGY_OMEGA], fs[F_ENERGY_SIDE] = \
         energy_end, theta, omega, 2 * j + s
     fs[F_STEP], fs[F_PREVIOUS_ERROR] = step_size, previous_error
+    if n == 1:
+        fs[F_ONE_ACCELERATION] = acceleration if what == ENDS_NONE else math.nan
     return t, what, where
 
+
+@kernel
+def one_block_impact(chain, ws, run, time, seg, before, flat, zeros):
+    """A stack of one block lands: the single-block engine's impact (theta' times the
+    ratio it is given, Section 2.7 (5): Housner's 1 - 1.5 sin^2(alpha) for the plastic law,
+    as :func:`shaketable.models.rocking.physics.impact_cors` computes it, or the constant
+    COR) and its rest after it (the cascade summed, ``_rest_after_impact``); the time the
+    run goes on from. ``before``, ``flat``, ``zeros``: rows of the event workspace."""
+    phi, phi_dot, pattern, fs, par = run[0], run[1], run[2], run[3], run[5]
+    before[0], flat[0], zeros[0] = pattern[0], 0, 0.0
+    energy_before = energy(chain, phi, phi_dot, before, ws[:6])
+    cor = par[P_HOUSNER] if par[P_LAW] == 0.0 else par[P_COR]
+    rate_before = phi_dot[0]
+    phi[0], phi_dot[0], pattern[0] = 0.0, cor * rate_before, -pattern[0]
+    energy_after = energy(chain, phi, phi_dot, pattern, ws[:6])
+    record(run, time, IMPACT, ZERO, before, pattern, ONE,
+           (rate_before, phi_dot[0], energy_before, energy_after), (ONE, NONE, NONE))
+    _, _, _, _, rest_tolerance, velocity_floor, _ = one_block_settings(par)
+    remaining = rest_after_impact(time, phi_dot[0], float(pattern[0]), table_segment(seg),
+                                  one_block_parameters(par), cor, rest_tolerance,
+                                  velocity_floor)
+    if remaining >= 0.0:
+        record(run, time + remaining, REST, ZERO, pattern, flat, ONE,
+               (math.nan, math.nan, energy_after, energy(chain, phi, zeros, flat, ws[:6])),
+               (NONE, ONE if phi_dot[0] != 0.0 else ZERO, NONE))
+        phi_dot[0], pattern[0] = 0.0, 0
+        fs[F_REST_UNTIL] = time + remaining
+    return time
+
+
+@kernel
+def one_block_uplift(run, t, t_end, seg, after):
+    """A stack of one block at rest at ``t``: when it starts rocking before ``t_end``, as
+    the single-block engine finds it (Eq. 2-1's margin crossed, ``_start_of_rocking``), the
+    uplift recorded and its pattern set (``after``: a row of the event workspace), as
+    (time, 0); (inf, -1) when it stays at rest."""
+    phi, phi_dot, pattern, par = run[0], run[1], run[2], run[5]
+    time, side = start_of_rocking(t, t_end, table_segment(seg), one_block_parameters(par))
+    if side == 0.0:
+        return math.inf, NONE
+    after[0] = 1 if side > 0.0 else -1
+    record(run, time, UPLIFT, ZERO, pattern, after, ONE,
+           (math.nan, math.nan, math.nan, math.nan), (ONE, NONE, R_UPLIFT))
+    phi[0], phi_dot[0], pattern[0] = 0.0, 0.0, after[0]
+    return time, ZERO
+
+
+@inlined
+def far_from_uplift(forces, arm):
+    """Whether both corner forces of a block at rest (``forces``, one row of (N, F, N at the
+    -x corner, N at the +x corner) [N]) exceed 10^-12 of the scale of their terms, N/2 and
+    F h / (2 b) (``arm`` = h / b): far beyond the rounding of Eq. (2-1)'s margin, whose sign
+    they give."""
+    scale = 1e-12 * (abs(forces[0]) + abs(forces[1]) * arm)
+    return forces[2] > scale and forces[3] > scale
+
+
+@inlined
+def one_block_rested(coefficients, phi, pattern, fs, ist, par, t, ug, vg, k, forces):
+    """:func:`rested` for a stack of one block over the input interval from sample ``k``
+    (``forces``: the run's history, (samples, 1, 4) [N]), decided as the single-block engine
+    decides it (no start of rocking in it, ``_start_of_rocking``): at once when the corner
+    forces at both ends are far from zero (affine in time in between, they stay positive:
+    no margin crosses zero), else by that engine's test."""
+    if ist[I_RIGID_J] != -1 or fs[F_REST_UNTIL] != -math.inf or G + vg[k] <= 0.0 or \
+            G + vg[k + 1] <= 0.0 or pattern[0] != 0 or phi[0] != 0.0:
+        return False
+    rigid_forces(coefficients, NONE, ZERO, 1.0, 0.0, 0.0, 0.0, ug[k + 1], vg[k + 1],
+                 forces[k + 1])
+    arm = par[P_BLOCK + 1] / par[P_BLOCK]
+    if far_from_uplift(forces[k, 0], arm) and far_from_uplift(forces[k + 1, 0], arm):
+        return True
+    segment = (t[k], t[k + 1] - t[k], ug[k], ug[k + 1] - ug[k], vg[k], vg[k + 1] - vg[k], 0.0,
+               0.0)
+    _, side = start_of_rocking(t[k], t[k + 1], segment, one_block_parameters(par))
+    return side == 0.0

@@ -20,11 +20,13 @@ NONE, ZERO = np.int64(-1), np.int64(0)
 # step size of DOP853 (multi-DOF patterns) carried from one segment to the next [s], the
 # energy of the stack at rest [J] (NaN until needed), the last sample's phi'' of a one-DOF
 # pattern [rad/s^2], and the rocking body's energy [J] where the last one-DOF segment ended,
-# with its phi [rad], phi' [rad/s] and pattern (2 j + s)
+# with its phi [rad], phi' [rad/s] and pattern (2 j + s); a stack of one block: the
+# stepper's theta'' [rad/s^2] where its last segment reached the end of an input interval
+# (NaN after an event), carried into the next interval as the single-block engine carries it
 F_WORK, F_REST_UNTIL, F_T_OVERTURN, F_T_AIRBORNE, F_ERROR_TIME, F_STEP, F_PREVIOUS_ERROR, \
     F_LAST_IMPACT, F_DOP_STEP, F_REST_ENERGY, F_SAMPLE_ACCELERATION, F_ENERGY, \
-    F_ENERGY_THETA, F_ENERGY_OMEGA, F_ENERGY_SIDE = range(15)
-N_FLOATS = 15
+    F_ENERGY_THETA, F_ENERGY_OMEGA, F_ENERGY_SIDE, F_ONE_ACCELERATION = range(16)
+N_FLOATS = 16
 # slots of the int state ``ist``: events counted and recorded, events in a row without
 # progress, status, the overturned block, steps, evaluations, the error, the pattern whose
 # closed forms are current (interface, side), whether the last sample's one-DOF state (its
@@ -36,8 +38,12 @@ I_EVENTS, I_RECORDED, I_STALLED, I_STATUS, I_OVERTURNED, I_STEPS, I_EVALUATIONS,
 N_INTS = 12
 # slots of the parameters ``par``: the pattern check's look-ahead [s], the force tolerance
 # [N], the angle and rate scales [rad, rad/s], rtol, the rest tolerance [s], the COR, the
-# law (0 plastic, 1 COR)
-P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW = range(8)
+# law (0 plastic, 1 COR); a stack of one block: Housner's ratio 1 - 1.5 sin^2(alpha) as the
+# single-block engine is given it [-], then from P_BLOCK the block's parameters as that
+# engine packs them (shaketable.models.rocking.physics.block_parameters, N_BLOCK of them)
+P_DELTA, P_TOL_FORCE, P_ALPHA, P_ALPHA_P, P_RTOL, P_REST, P_COR, P_LAW, P_HOUSNER, \
+    P_BLOCK = range(10)
+N_BLOCK = 10
 #: Errors of a run.
 NO_PATTERN, STALLED, STEP_FAILED, ENDLESS = 1, 2, 3, 4
 #: Event kinds (the Python engine's ``kind``) and the reasons of a choice. The codes that
