@@ -220,12 +220,14 @@ def lcp_solve(chain, theta, theta_dot, velocity, centroid, phi, start, held, lcp
 
 
 @kernel
-def lcp_candidate(phi, lcp, rows, start, closing, candidate):
+def lcp_candidate(phi, lcp, rows, start, rate_tolerance, impulse_tolerance, candidate):
     """The candidate of the LCP's solution (:func:`lcp_solve`) into ``candidate``: a corner
-    is closed where its impulse is basic, or, with ``closing`` > 0, where it separates at
-    most at ``closing`` [m/s] (the fewest interfaces open within the law's tolerance);
-    returns False when there is none (both corners of an interface lift: a flight)."""
-    vectors, codes = lcp[3], lcp[4]
+    is closed where its impulse is basic, or where it separates so slowly that closing it
+    would take an impulse within the law's tolerance: at most ``rate_tolerance`` [m/s], or
+    ``impulse_tolerance`` [N s] times its diagonal of W (the fewest interfaces open within
+    the tolerance, as the enumeration's order; negative tolerances: as solved). Returns
+    False when there is none (both corners of an interface lift: a flight)."""
+    delassus, vectors, codes = lcp[1], lcp[3], lcp[4]
     n = phi.size
     for j in range(n):
         candidate[j] = start[j] if phi[j] != 0.0 else 0   # held flat: stays 0
@@ -233,8 +235,10 @@ def lcp_candidate(phi, lcp, rows, start, closing, candidate):
         j = codes[0, r]
         if phi[j] != 0.0 or codes[1, r] != PAIR or codes[2, r] != LEFT:
             continue
-        left = codes[3, r] == 1 or vectors[2, r] <= closing
-        right = codes[3, r + 1] == 1 or vectors[2, r + 1] <= closing
+        left = codes[3, r] == 1 or vectors[2, r] <= max(
+            rate_tolerance, impulse_tolerance * delassus[r, r])
+        right = codes[3, r + 1] == 1 or vectors[2, r + 1] <= max(
+            rate_tolerance, impulse_tolerance * delassus[r + 1, r + 1])
         if left and right:
             candidate[j] = 0
         elif left:

@@ -607,8 +607,9 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, held, ws, scratch,
         # the complementarity pivot's solution, the one admissible set when there is one:
         # first with the corners that separate within the tolerance closed (the fewest
         # interfaces open, as the enumeration's order), then as solved
-        closing = rate_tolerance * widest if attempt == 0 else -1.0
-        if lcp_candidate(phi, scratch[9], rows, start, closing, candidate):
+        closing = 1.0 if attempt == 0 else -1.0
+        if lcp_candidate(phi, scratch[9], rows, start, closing * rate_tolerance * widest,
+                         closing * impulse_tolerance, candidate):
             plastic_candidate(chain, theta, floats[R_THETA_DOT], pairs[P_VELOCITY],
                               pairs[P_CENTROID], candidate, ws, impulses, trial)
             consider(scratch, candidate, trial, violation(
