@@ -553,10 +553,12 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, held, ws, scratch,
     into the arrays given; returns the number of admissible active sets. ``held``: the
     interfaces held flat, as the bits of an int64 (bit j: interface j; 0: none).
 
-    Above FULL_ENUMERATION blocks the complementarity pivot's solution is tried first
+    Above FULL_ENUMERATION blocks the complementarity pivot's solution is taken
     (:func:`~shaketable.models.stack.compiled_lcp.lcp_candidate`): admissible, it is the
-    one admissible set, kept at once. Else every active set is tried in the candidates'
-    order, each considered (:func:`consider`).
+    one admissible set; not admissible (a pivot pulls), it is kept all the same (the
+    pivots held, as the model holds them between impacts). Up to FULL_ENUMERATION blocks,
+    and where the pivot finds none (a flight, or no convergence), every active set is tried
+    in the candidates' order, each considered (:func:`consider`).
     At a landing of a one-DOF pattern (:func:`one_dof_landing`) of up to FULL_ENUMERATION
     blocks, the candidates' post-impact rates and impulses are linear in the landing's
     rate (the momentum balance and the admissibility are linear in the velocities before;
@@ -616,6 +618,10 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, held, ws, scratch,
                 candidate, trial, impulses, free, n_free, impulse_tolerance, rate_tolerance))
             if book[0] > 0.0:
                 return plastic_choice(scratch, phi_dot_after, pattern_after)
+    if book[3] < math.inf:
+        # none admissible: a pivot would pull (the impact throws a block into flight, outside
+        # the model): the pivot's solution, the pivots held (the least violating of its two)
+        return plastic_choice(scratch, phi_dot_after, pattern_after)
     index = 0
     for count in range(n_free + 1):
         if n > FULL_ENUMERATION and book[4] < count:
