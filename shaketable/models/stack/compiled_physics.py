@@ -24,38 +24,23 @@ engine and the Python one choose alike.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
-from numba import njit
 
 from shaketable.core.constants import G
-from shaketable.core.numba_cache import register
-
-register()
-
-#: numba options of the compiled functions (called from compiled code only: no Python entry;
-#: cached with the engine that links them). The error model is the package's ("numpy": a
-#: division by zero gives inf or nan, as NumPy's, instead of raising).
-COMPILED: Any = {"cache": True, "no_cpython_wrapper": True, "no_cfunc_wrapper": True,
-                 "error_model": "numpy"}
-KERNEL: Any = {**COMPILED, "_nrt": False}
-#: The engine allocates nothing (its caller allocates every array), so that its functions
-#: go without numba's reference counting (less code to generate and compile). Only a
-#: function that calls none that allocates may use it: numba types a callee in its
-#: caller's context.
-kernel = njit(**KERNEL)
-#: The functions called from one or two places, and thin wrappers, are inlined into their
-#: caller in numba's IR, before typing, instead of compiled apart: a separately compiled
-#: function is optimized again by LLVM, with all it calls, in every function compiled apart
-#: that calls it (the module passes and the machine code of each such caller cover all it
-#: links), so that each level of calls adds the compile of all below it. A large function
-#: inlined costs numba's inliner (its IR copied block by block, each block with the whole
-#: scope) and its own code at each call site: the large ones with a large subtree of their
-#: own (the impact, the pattern choice, the plastic law) stay inlined or apart as measured
-#: (the engine's first compile: 48 s of CPU with every function apart, 35 s with the small
-#: ones inlined, about 28 s with the DOP853 segment apart and its step inlined).
-inlined = njit(inline="always", error_model=COMPILED["error_model"])
+from shaketable.models.stack.compiled_base import (  # noqa: F401  (re-exported)
+    COMPILED,
+    KERNEL,
+    inlined,
+    kernel,
+    solve,
+)
+from shaketable.models.stack.compiled_lcp import (
+    lcp_candidate,
+    lcp_solve,
+    lcp_workspace,
+    lcp_workspace_size,
+)
 
 #: Up to this many blocks every candidate is tried (as the Python engine and impact law).
 FULL_ENUMERATION = 3
@@ -153,31 +138,6 @@ def mass_matrix(chain, jacobian, out):
                 total += inertia[k]
             out[k, q] = total
             out[q, k] = total
-
-
-@inlined
-def solve(matrix, vector, size):
-    """Solve the leading ``size`` x ``size`` system in place (Gaussian elimination with
-    partial pivoting): the solution replaces ``vector[:size]``."""
-    for col in range(size):
-        pivot = col
-        for row in range(col + 1, size):
-            if abs(matrix[row, col]) > abs(matrix[pivot, col]):
-                pivot = row
-        if pivot != col:
-            for k in range(size):
-                matrix[col, k], matrix[pivot, k] = matrix[pivot, k], matrix[col, k]
-            vector[col], vector[pivot] = vector[pivot], vector[col]
-        for row in range(col + 1, size):
-            factor = matrix[row, col] / matrix[col, col]
-            for k in range(col, size):
-                matrix[row, k] -= factor * matrix[col, k]
-            vector[row] -= factor * vector[col]
-    for row in range(size - 1, -1, -1):
-        total = vector[row]
-        for k in range(row + 1, size):
-            total -= matrix[row, k] * vector[k]
-        vector[row] = total / matrix[row, row]
 
 
 @kernel
@@ -455,8 +415,9 @@ def event_workspace_size(n):
     """The float and int64 elements of an event workspace of ``n`` blocks
     (:func:`event_workspace`)."""
     count = 3 ** n if n <= FULL_ENUMERATION else 1
-    return (N_ROWS * n + N_WIDE * n * 4 + 4 * n + 2 * n * n + 5 + 2 * n * count * n * 5,
-            N_INT_ROWS * n + 2 * n)
+    lcp_reals, lcp_integers = lcp_workspace_size(n)
+    return (N_ROWS * n + N_WIDE * n * 4 + 4 * n + 2 * n * n + 5 + 2 * n * count * n * 5
+            + lcp_reals, N_INT_ROWS * n + 2 * n + lcp_integers)
 
 
 @inlined
@@ -464,10 +425,11 @@ def event_workspace(reals, f, integers, i, n):
     """The arrays the events fill (the plastic law, the pattern check, the impact) for a
     chain of ``n`` blocks, so that an event allocates nothing: float rows (16, n), int rows
     (16, n), the impulses (1, n, 4), centroids and velocities (2, n, 2), a velocity map
-    (n, 2, n), the choice's bookkeeping (5,) and the per-unit-rate landings of one-DOF
+    (n, 2, n), the choice's bookkeeping (5,), the per-unit-rate landings of one-DOF
     patterns (whether computed, and each candidate's post-impact phi' and impulses per
-    rad/s, for each interface and side: :func:`plastic_impact`); views of the zeroed pools
-    as :func:`workspace`'s."""
+    rad/s, for each interface and side: :func:`plastic_impact`) and the complementarity
+    pivot's arrays (:func:`~shaketable.models.stack.compiled_lcp.lcp_workspace`); views of
+    the zeroed pools as :func:`workspace`'s."""
     count = 3 ** n if n <= FULL_ENUMERATION else 1
     size = 2 * n * count * n
     e0, f = reals[f:f + N_ROWS * n].reshape((N_ROWS, n)), f + N_ROWS * n
@@ -479,7 +441,8 @@ def event_workspace(reals, f, integers, i, n):
     f += 5
     e7, e8 = reals[f:f + size].reshape((2 * n, count, n)), \
         reals[f + size:f + 5 * size].reshape((2 * n, count, n, 4))
-    return (e0, e1, e2, e3, e4, e5, e6, e7, e8), f + 5 * size, i
+    e9, f, i = lcp_workspace(reals, f + 5 * size, integers, i, n)
+    return (e0, e1, e2, e3, e4, e5, e6, e7, e8, e9), f, i
 
 
 @inlined
@@ -590,7 +553,12 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, held, ws, scratch,
     into the arrays given; returns the number of admissible active sets. ``held``: the
     interfaces held flat, as the bits of an int64 (bit j: interface j; 0: none).
 
-    Every active set is tried in the candidates' order, each considered (:func:`consider`).
+    Above FULL_ENUMERATION blocks the complementarity pivot's solution is taken
+    (:func:`~shaketable.models.stack.compiled_lcp.lcp_candidate`): admissible, it is the
+    one admissible set; not admissible (a pivot pulls), it is kept all the same (the
+    pivots held, as the model holds them between impacts). Up to FULL_ENUMERATION blocks,
+    and where the pivot finds none (a flight, or no convergence), every active set is tried
+    in the candidates' order, each considered (:func:`consider`).
     At a landing of a one-DOF pattern (:func:`one_dof_landing`) of up to FULL_ENUMERATION
     blocks, the candidates' post-impact rates and impulses are linear in the landing's
     rate (the momentum balance and the admissibility are linear in the velocities before;
@@ -631,6 +599,29 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, held, ws, scratch,
         start[j] = pattern[j]
     start[interface] = 0
     book[0], book[1], book[2], book[3], book[4] = 0.0, 0.0, math.inf, math.inf, n + 1
+    rows = -1 if n <= FULL_ENUMERATION else lcp_solve(
+        chain, theta, floats[R_THETA_DOT], pairs[P_VELOCITY], pairs[P_CENTROID], phi, start,
+        held, scratch[9])
+    widest = 0.0
+    for j in range(n):
+        widest = max(widest, 2.0 * chain[0][j])
+    for attempt in range(2 if rows > 0 else 0):
+        # the complementarity pivot's solution, the one admissible set when there is one:
+        # first with the corners that separate within the tolerance closed (the fewest
+        # interfaces open, as the enumeration's order), then as solved
+        closing = 1.0 if attempt == 0 else -1.0
+        if lcp_candidate(phi, scratch[9], rows, start, closing * rate_tolerance * widest,
+                         closing * impulse_tolerance, candidate):
+            plastic_candidate(chain, theta, floats[R_THETA_DOT], pairs[P_VELOCITY],
+                              pairs[P_CENTROID], candidate, ws, impulses, trial)
+            consider(scratch, candidate, trial, violation(
+                candidate, trial, impulses, free, n_free, impulse_tolerance, rate_tolerance))
+            if book[0] > 0.0:
+                return plastic_choice(scratch, phi_dot_after, pattern_after)
+    if book[3] < math.inf:
+        # none admissible: a pivot would pull (the impact throws a block into flight, outside
+        # the model): the pivot's solution, the pivots held (the least violating of its two)
+        return plastic_choice(scratch, phi_dot_after, pattern_after)
     index = 0
     for count in range(n_free + 1):
         if n > FULL_ENUMERATION and book[4] < count:

@@ -249,10 +249,14 @@ class Run:
             deceleration = -pattern[interface] * phi_ddot[interface]
             remaining = cascade_rest_time(phi_dot[interface], deceleration, ratio)
             # a rebound pushed back whose flight would rise less than the integrator's
-            # absolute tolerance (rtol alpha_min) is noise: it ends here too
-            if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * self.atol[0]:
+            # absolute tolerance (rtol alpha_min) is noise: its cascade ends too, at the
+            # series' end (now if the flights do not shrink)
+            noise = deceleration > 0.0 and \
+                phi_dot[interface] ** 2 <= 2.0 * deceleration * self.atol[0]
+            if noise and not math.isfinite(remaining):
                 remaining = 0.0
-            if remaining <= self.rest_tolerance and sum(s != 0 for s in pattern) == 1:
+            ends = remaining <= self.rest_tolerance or noise
+            if ends and sum(s != 0 for s in pattern) == 1:
                 # the only moving interface: the stack rests at the cascade's end
                 self.record(time + remaining, "rest", interface, pattern, (0,) * self.n,
                             cascade=True, energy_before=energy_after,
@@ -262,9 +266,10 @@ class Run:
                 self.pattern = (0,) * self.n
                 self.rest_until = time + remaining
                 return time
-            if remaining <= self.rest_tolerance:
+            if ends:
                 # the others move on: this interface closes now (a plastic landing held
-                # flat), at most rest_tolerance early
+                # flat), early by the series' length (at most rest_tolerance, or the
+                # length of flights rising below the tolerance)
                 phi_dot, closed = self.closure(time, ground, rates_before, before, interface)
                 energy_closed = sum(energy(self.chain, self.phi, phi_dot, closed))
                 self.record(time, "rest", interface, pattern, closed, cascade=True,

@@ -39,6 +39,7 @@ from shaketable.models.stack.physics import (
     kinematics,
     mass_matrix,
 )
+from shaketable.models.stack.pivot import pivot_candidate, solve_impact_lcp
 
 #: Relative rounding of the impulses computed from the whole motion's momenta.
 ROUNDING = 1e-6
@@ -55,10 +56,15 @@ def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int, closed=(
     ``phi[interface]`` is zero (the landing); ``pattern`` the pattern before. Returns
     ``(phi_dot_after, pattern_after, admissible, impulses)``: ``admissible`` is the number
     of admissible active sets (1: unique), ``impulses`` the (n, 4) impulses [N s] of the
-    chosen one (see :func:`~shaketable.models.stack.physics.interface_loads`). With more
-    than one admissible set the one with the fewest open interfaces is kept; with none, the
-    one whose worst violation is least. ``closed``: interfaces held flat (the end of a
-    cascade summed in closed form).
+    chosen one (see :func:`~shaketable.models.stack.physics.interface_loads`). Up to
+    FULL_ENUMERATION blocks every active set is tried: with more than one admissible the
+    one with the fewest open interfaces is kept; with none, the one whose worst violation is
+    least. Above, the complementarity pivot's solution (:mod:`~shaketable.models.stack.
+    pivot`) is kept: the one admissible set, or, with none (a pivot pulls: the impact throws
+    a block into flight, outside the model), the solution with the pivots held; only where
+    the pivot finds none (a flight) are the sets enumerated, by increasing number of open
+    interfaces. ``closed``: interfaces held flat (the end of a cascade summed in closed
+    form).
     """
     theta, theta_dot = np.cumsum(phi), np.cumsum(phi_dot)
     centroid, before_map, _ = kinematics(chain, theta, theta_dot, pattern)
@@ -73,13 +79,9 @@ def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int, closed=(
     free = [j for j in range(chain.n) if phi[j] == 0.0]
     start = list(pattern)
     start[interface] = 0
-    found: list[tuple] = []
-    for candidate in (c for level in candidate_levels(tuple(start), free) for c in level):
-        if any(candidate[j] != 0 for j in closed):
-            continue
-        if chain.n > FULL_ENUMERATION and any(item[0] <= 1.0 and item[1] < sum(
-                s != 0 for s in candidate) for item in found):
-            break   # an admissible set with fewer open interfaces is already found
+
+    def evaluate(candidate):
+        """(worst violation, open interfaces, candidate, phi' after, impulses)."""
         _, after_map, _ = kinematics(chain, theta, theta_dot, candidate)
         columns = [j for j, s in enumerate(candidate) if s != 0]
         theta_after = np.zeros(chain.n)
@@ -98,15 +100,55 @@ def plastic_impact(chain: Chain, phi, phi_dot, pattern, interface: int, closed=(
         for j in free:
             if candidate[j] != 0:
                 violation = max(violation, -candidate[j] * phi_after[j] / rate_tolerance)
-        found.append((violation, sum(s != 0 for s in candidate), candidate, phi_after,
-                      impulses))
+        return violation, sum(s != 0 for s in candidate), candidate, phi_after, impulses
+
+    if chain.n > FULL_ENUMERATION:
+        chosen = _pivot_choice(chain, theta, theta_dot, velocity, centroid, phi, start, closed,
+                               (rate_tolerance * 2.0 * float(chain.b.max()), impulse_tolerance),
+                               evaluate)
+        if chosen is not None:
+            return chosen
+    found: list[tuple] = []
+    for candidate in (c for level in candidate_levels(tuple(start), free) for c in level):
+        if any(candidate[j] != 0 for j in closed):
+            continue
+        if chain.n > FULL_ENUMERATION and any(item[0] <= 1.0 and item[1] < sum(
+                s != 0 for s in candidate) for item in found):
+            break   # an admissible set with fewer open interfaces is already found
+        found.append(evaluate(candidate))
     admissible = [item for item in found if item[0] <= 1.0]
     pool = admissible if admissible else found
     best = min(pool, key=lambda item: (item[1], item[0]) if admissible else item[0])
-    phi_after = best[3].copy()
-    pattern_after = list(best[2])
+    return _result(best, len(admissible))
+
+
+def _result(item, admissible: int):
+    """What :func:`plastic_impact` returns for the chosen ``item`` of its evaluation."""
+    phi_after = item[3].copy()
+    pattern_after = list(item[2])
     phi_after[[j for j, s in enumerate(pattern_after) if s == 0]] = 0.0
-    return phi_after, tuple(pattern_after), len(admissible), best[4]
+    return phi_after, tuple(pattern_after), admissible, item[4]
+
+
+def _pivot_choice(chain, theta, theta_dot, velocity, centroid, phi, start, closed,
+                  tolerances, evaluate):
+    """The complementarity pivot's choice (:func:`plastic_impact`), or None (a flight, or
+    no convergence): first with the corners that separate within the tolerances closed (the
+    fewest interfaces open, as the enumeration's order), then as solved."""
+    solution = solve_impact_lcp(chain, theta, theta_dot, velocity, centroid, phi, start,
+                                closed)
+    if solution is None:
+        return None
+    tried = []
+    for rate_tolerance, impulse_tolerance in (tolerances, (-1.0, -1.0)):
+        candidate = pivot_candidate(solution, phi, start, rate_tolerance, impulse_tolerance)
+        if candidate is None:
+            continue
+        item = evaluate(candidate)
+        if item[0] <= 1.0:
+            return _result(item, 1)
+        tried.append(item)
+    return _result(min(tried, key=lambda item: item[0]), 0) if tried else None
 
 
 def cor_impact(chain: Chain, phi, phi_dot, pattern, interface: int, cor: float):
