@@ -30,6 +30,12 @@ def test_a_ctrl_c_in_the_wait_still_waits_for_the_other_threads_chunk():
         time.sleep(0.2)
         ended.append(start)
 
-    with pytest.raises(KeyboardInterrupt):
-        run_in_chunks(run, 2, 2, 1)
+    # Python's own Ctrl-C handler for the test's duration: a test run started in the
+    # background by a non-interactive shell inherits SIGINT ignored (tests/helpers.py)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            run_in_chunks(run, 2, 2, 1)
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert len(ended) == 1   # the other thread's chunk ended before the call returned
