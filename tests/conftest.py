@@ -247,6 +247,7 @@ def _write_compiles(terminalreporter) -> None:
 
 # ------------------------------------------------- one compile for the whole run
 _WARM_UP = r"""
+import numpy as np
 import shaketable as st
 from shaketable.ground.generators import harmonic
 from shaketable.models.rocking.batch import simulate_many
@@ -261,6 +262,14 @@ st.simulate(block, motion, cor=0.9, friction=st.Friction(0.3, 0.25))
 slide(motion, 0.3)
 from shaketable.models.stack import Stack, simulate_stack
 simulate_stack(Stack((block, block)), motion)
+# the entries the suite compiles besides (each in one test or a few, on either worker)
+for method in ("predictor-corrector", "linear"):
+    simulate_many([block], [motion], [0.9], threads=1, method=method)
+from shaketable.models.rocking.asymmetric import simulate_many_asymmetric
+simulate_many_asymmetric([st.AsymmetricBlock.from_angles(0.15, 0.35, 0.5)], [motion],
+                         np.array([[0, 0]]), [0.9], threads=1)
+from shaketable.models.stack.batch import simulate_many as simulate_stacks
+simulate_stacks([Stack((block, block))], [motion], threads=1)
 """
 
 
