@@ -276,9 +276,12 @@ simulate_stacks([Stack((block, block))], [motion], threads=1)
 def pytest_sessionstart(session):
     """On the pytest-xdist controller, before the workers start: compile the engines into
     numba's cache (or load them), so that the workers and the tests' subprocesses load them
-    instead of each compiling its own copy at the same time on a fresh machine (the planar
-    engine costs ~13 s of CPU per compile, the stack engine ~28 s). A saving only: any test compiles what it
-    misses. ``import shaketable`` in a subprocess names the cache folder the workers use."""
+    instead of each compiling its own copy at the same time on a fresh machine. About 60 s
+    of CPU, most of a cold run's extra cost (measured on 2 shared cores: the stack engine
+    ~37 s, the planar engine ~14 s, the three rocking integrators ~7 s, the rest ~6 s;
+    ``benchmarks/suite_cost.py --cold --compiles FILE`` lists what the tests still compile).
+    A saving only: any test compiles what it misses. ``import shaketable`` in a subprocess
+    names the cache folder the workers use."""
     config = session.config
     if getattr(config, "workerinput", None) is not None or config.option.collectonly:
         return
