@@ -11,7 +11,12 @@ machine changes least: other work lengthens the wall time, much less the CPU tim
 number of cores, and pytest's last lines, with the tests and the test files that used the
 most CPU (``--cpu-durations``, tests/conftest.py).
 
-    python3 benchmarks/suite_cost.py [--cold] [--no-bytecode] [--top 15] [--list FILE] [-- PYTEST ARGUMENTS]
+    python3 benchmarks/suite_cost.py [--cold] [--no-bytecode] [--top 15] [--list FILE]
+                                     [--compiles FILE] [-- PYTEST ARGUMENTS]
+
+``--compiles FILE`` lists every numba compile in the test processes (tests/conftest.py: the
+test that asked for it, its CPU time and argument types; a function numba loads from its
+cache is no compile): in a cold run, what the engines' warm-up leaves to the tests.
 
 Target: at most 300 s of CPU on 2 cores.
 """
@@ -56,6 +61,9 @@ def main(argv=None) -> int:
     parser.add_argument("--list", metavar="FILE",
                         help="write every test's CPU time to FILE (seconds, tab, test id; "
                              "most first), to compare two runs test by test")
+    parser.add_argument("--compiles", metavar="FILE",
+                        help="write every numba compile in the test processes to FILE (CPU "
+                             "seconds, depth, function, argument types, test; most first)")
     parser.add_argument("pytest_arguments", nargs="*",
                         help="more pytest arguments (after --), e.g. -p no:randomly")
     args = parser.parse_args(argv)
@@ -77,6 +85,8 @@ def main(argv=None) -> int:
         environment["NUMBA_CACHE_DIR"] = os.path.join(scratch, "numba")
     if args.list:
         environment["SHAKETABLE_CPU_LIST"] = os.path.abspath(args.list)
+    if args.compiles:
+        environment["SHAKETABLE_COMPILE_LIST"] = os.path.abspath(args.compiles)
     log = os.path.join(scratch, "time.txt")
     command = [time, "-v", "-o", log, sys.executable, "-m", "pytest", "-q", "-n", "2",
                "-p", "no:cacheprovider", f"--cpu-durations={args.top}", *args.pytest_arguments]

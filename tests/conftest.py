@@ -98,6 +98,8 @@ def pytest_sessionfinish(session):
     if workeroutput is not None and resource is not None:
         workeroutput["cpu_self"] = _cpu_seconds(resource.RUSAGE_SELF)
         workeroutput["cpu_children"] = _cpu_seconds(resource.RUSAGE_CHILDREN)
+    if workeroutput is not None and _COMPILES:
+        workeroutput["compiles"] = _COMPILES
 
 
 _WORKER_CPU: dict[str, tuple[float, float]] = {}
@@ -109,6 +111,7 @@ def pytest_testnodedown(node, error):
     output = getattr(node, "workeroutput", {})
     if "cpu_self" in output:
         _WORKER_CPU[node.gateway.id] = (output["cpu_self"], output["cpu_children"])
+    _COMPILES.extend(tuple(row) for row in output.get("compiles", ()))
 
 
 def pytest_terminal_summary(terminalreporter, config):
@@ -136,6 +139,7 @@ def pytest_terminal_summary(terminalreporter, config):
             with open(listing, "w", encoding="utf-8") as handle:
                 handle.writelines(f"{seconds:.4f}\t{nodeid}\n"
                                   for nodeid, seconds in _most_first(_TEST_CPU))
+    _write_compiles(terminalreporter)
     for worker, (own, children) in sorted(_WORKER_CPU.items()):
         terminalreporter.write_line(f"worker {worker}: {own + children:.1f} s CPU "
                                     f"({own:.1f} s its own, {children:.1f} s in subprocesses)")
@@ -175,6 +179,7 @@ def _cpu_now() -> float:
 
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_protocol(item, nextitem):
+    _CURRENT_TEST[0] = item.nodeid
     if resource is not None:
         item.stash[_CPU_START] = _cpu_now()
     yield
@@ -195,8 +200,54 @@ def pytest_runtest_logreport(report):
                 _TEST_CPU[report.nodeid] = value
 
 
+# ------------------------------------------------ what numba compiles during the run
+# ``SHAKETABLE_COMPILE_LIST=FILE`` (benchmarks/suite_cost.py --compiles FILE): every numba
+# compile in the test processes (a function loaded from numba's cache is no compile), with
+# the test that asked for it, its CPU time [s] (its callees' compiles included), its depth
+# (0: called from Python) and its argument types; a cold run shows what the warm-up below
+# leaves to the tests. The tests' own subprocesses are not listed.
+_COMPILES: list[tuple] = []
+_CURRENT_TEST = ["(before the first test)"]
+
+
+def pytest_configure(config):
+    if os.environ.get("SHAKETABLE_COMPILE_LIST"):
+        import time
+
+        from numba.core import event
+
+        starts: list[float] = []
+
+        class _Compiles(event.Listener):
+            def on_start(self, event):
+                starts.append(time.process_time())
+
+            def on_end(self, event):
+                seconds = time.process_time() - starts.pop()
+                function = event.data["dispatcher"].py_func
+                _COMPILES.append((round(seconds, 3), len(starts),
+                                  f"{function.__module__}.{function.__qualname__}",
+                                  str(event.data["args"]), _CURRENT_TEST[0]))
+
+        event.register("numba:compile", _Compiles())
+
+
+def _write_compiles(terminalreporter) -> None:
+    listing = os.environ.get("SHAKETABLE_COMPILE_LIST")
+    if not listing:
+        return
+    outermost = [row for row in _COMPILES if row[1] == 0]
+    with open(listing, "w", encoding="utf-8") as handle:   # CPU [s], depth, function, types, test
+        handle.writelines("\t".join(str(value) for value in row) + "\n"
+                          for row in sorted(_COMPILES, key=lambda row: -row[0]))
+    terminalreporter.write_line(f"numba compiles in the tests: {len(outermost)} called from "
+                                f"Python, {sum(row[0] for row in outermost):.1f} s CPU "
+                                f"(listed in {listing})")
+
+
 # ------------------------------------------------- one compile for the whole run
 _WARM_UP = r"""
+import numpy as np
 import shaketable as st
 from shaketable.ground.generators import harmonic
 from shaketable.models.rocking.batch import simulate_many
@@ -211,15 +262,26 @@ st.simulate(block, motion, cor=0.9, friction=st.Friction(0.3, 0.25))
 slide(motion, 0.3)
 from shaketable.models.stack import Stack, simulate_stack
 simulate_stack(Stack((block, block)), motion)
+# the entries the suite compiles besides (each in one test or a few, on either worker)
+for method in ("predictor-corrector", "linear"):
+    simulate_many([block], [motion], [0.9], threads=1, method=method)
+from shaketable.models.rocking.asymmetric import simulate_many_asymmetric
+simulate_many_asymmetric([st.AsymmetricBlock.from_angles(0.15, 0.35, 0.5)], [motion],
+                         np.array([[0, 0]]), [0.9], threads=1)
+from shaketable.models.stack.batch import simulate_many as simulate_stacks
+simulate_stacks([Stack((block, block))], [motion], threads=1)
 """
 
 
 def pytest_sessionstart(session):
     """On the pytest-xdist controller, before the workers start: compile the engines into
     numba's cache (or load them), so that the workers and the tests' subprocesses load them
-    instead of each compiling its own copy at the same time on a fresh machine (the planar
-    engine costs ~13 s of CPU per compile, the stack engine ~28 s). A saving only: any test compiles what it
-    misses. ``import shaketable`` in a subprocess names the cache folder the workers use."""
+    instead of each compiling its own copy at the same time on a fresh machine. About 60 s
+    of CPU, most of a cold run's extra cost (measured on 2 shared cores: the stack engine
+    ~37 s, the planar engine ~14 s, the three rocking integrators ~7 s, the rest ~6 s;
+    ``benchmarks/suite_cost.py --cold --compiles FILE`` lists what the tests still compile).
+    A saving only: any test compiles what it misses. ``import shaketable`` in a subprocess
+    names the cache folder the workers use."""
     config = session.config
     if getattr(config, "workerinput", None) is not None or config.option.collectonly:
         return
