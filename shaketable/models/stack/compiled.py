@@ -354,14 +354,11 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
                 remaining = math.inf
                 if deceleration > 0.0 and ratio < 1.0:
                     remaining = 2.0 * abs(phi_dot[interface]) / (deceleration * (1.0 - ratio))
-                # a rebound rising less than the absolute tolerance: the cascade ends too,
-                # at the series' end (now if the flights do not shrink)
-                noise = deceleration > 0.0 and \
-                    phi_dot[interface] ** 2 <= 2.0 * deceleration * run[6][0]
-                if noise and remaining == math.inf:
+                # a rebound rising less than the absolute tolerance is noise: it ends here
+                # too (early by the series' length: docs/stack.md, Cascades)
+                if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * run[6][0]:
                     remaining = 0.0
-                ends = remaining <= par[P_REST] or noise
-                if ends and open_count(pattern) == 1:
+                if remaining <= par[P_REST] and open_count(pattern) == 1:
                     record(run, time + remaining, REST, interface, pattern, flat, ONE,
                            (math.nan, math.nan, energy_after,
                             energy(chain, phi, zeros, flat, ws[:6])),
@@ -370,7 +367,7 @@ def impact(chain, ws, scratch, run, time, seg, interface, end):
                     pattern[:] = 0
                     fs[F_REST_UNTIL] = time + remaining
                     return time
-                if ends:
+                if remaining <= par[P_REST]:
                     # the others move on: this interface closes now (a plastic landing held
                     # flat)
                     closure(chain, ws, scratch, run, time, seg, rates_before, before,

@@ -249,14 +249,11 @@ class Run:
             deceleration = -pattern[interface] * phi_ddot[interface]
             remaining = cascade_rest_time(phi_dot[interface], deceleration, ratio)
             # a rebound pushed back whose flight would rise less than the integrator's
-            # absolute tolerance (rtol alpha_min) is noise: its cascade ends too, at the
-            # series' end (now if the flights do not shrink)
-            noise = deceleration > 0.0 and \
-                phi_dot[interface] ** 2 <= 2.0 * deceleration * self.atol[0]
-            if noise and not math.isfinite(remaining):
+            # absolute tolerance (rtol alpha_min) is noise: it ends here too (early by the
+            # series' length, which can exceed rest_tolerance: docs/stack.md, Cascades)
+            if deceleration > 0.0 and phi_dot[interface] ** 2 <= 2.0 * deceleration * self.atol[0]:
                 remaining = 0.0
-            ends = remaining <= self.rest_tolerance or noise
-            if ends and sum(s != 0 for s in pattern) == 1:
+            if remaining <= self.rest_tolerance and sum(s != 0 for s in pattern) == 1:
                 # the only moving interface: the stack rests at the cascade's end
                 self.record(time + remaining, "rest", interface, pattern, (0,) * self.n,
                             cascade=True, energy_before=energy_after,
@@ -266,10 +263,9 @@ class Run:
                 self.pattern = (0,) * self.n
                 self.rest_until = time + remaining
                 return time
-            if ends:
+            if remaining <= self.rest_tolerance:
                 # the others move on: this interface closes now (a plastic landing held
-                # flat), early by the series' length (at most rest_tolerance, or the
-                # length of flights rising below the tolerance)
+                # flat), at most rest_tolerance early (or the series' length: above)
                 phi_dot, closed = self.closure(time, ground, rates_before, before, interface)
                 energy_closed = sum(energy(self.chain, self.phi, phi_dot, closed))
                 self.record(time, "rest", interface, pattern, closed, cascade=True,
