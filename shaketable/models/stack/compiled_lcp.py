@@ -224,8 +224,8 @@ def lcp_candidate(phi, lcp, rows, start, rate_tolerance, impulse_tolerance, cand
     """The candidate of the LCP's solution (:func:`lcp_solve`) into ``candidate``: a corner
     is closed where its impulse is basic, or where it separates so slowly that closing it
     would take an impulse within the law's tolerance: at most ``rate_tolerance`` [m/s], or
-    ``impulse_tolerance`` [N s] times its diagonal of W (the fewest interfaces open within
-    the tolerance, as the enumeration's order; negative tolerances: as solved). Returns
+    ``impulse_tolerance`` [N s] times its diagonal of W (to open as few interfaces as the
+    tolerance allows; negative tolerances: as solved). Returns
     False when there is none (both corners of an interface lift: a flight)."""
     delassus, vectors, codes = lcp[1], lcp[3], lcp[4]
     n = phi.size

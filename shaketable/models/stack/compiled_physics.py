@@ -607,8 +607,8 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, held, ws, scratch,
         widest = max(widest, 2.0 * chain[0][j])
     for attempt in range(2 if rows > 0 else 0):
         # the complementarity pivot's solution, the one admissible set when there is one:
-        # first with the corners that separate within the tolerance closed (the fewest
-        # interfaces open, as the enumeration's order), then as solved
+        # first with the corners that separate within the tolerance closed (as few
+        # interfaces open as the tolerance allows), then as solved
         closing = 1.0 if attempt == 0 else -1.0
         if lcp_candidate(phi, scratch[9], rows, start, closing * rate_tolerance * widest,
                          closing * impulse_tolerance, candidate):

@@ -133,8 +133,8 @@ def _result(item, admissible: int):
 def _pivot_choice(chain, theta, theta_dot, velocity, centroid, phi, start, closed,
                   tolerances, evaluate):
     """The complementarity pivot's choice (:func:`plastic_impact`), or None (a flight, or
-    no convergence): first with the corners that separate within the tolerances closed (the
-    fewest interfaces open, as the enumeration's order), then as solved."""
+    no convergence): first with the corners that separate within the tolerances closed (as few
+    interfaces open as the tolerances allow), then as solved."""
     solution = solve_impact_lcp(chain, theta, theta_dot, velocity, centroid, phi, start,
                                 closed)
     if solution is None:
