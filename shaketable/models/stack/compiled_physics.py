@@ -602,8 +602,8 @@ def plastic_impact(chain, phi, phi_dot, pattern, interface, held, ws, scratch,
     rows = -1 if n <= FULL_ENUMERATION else lcp_solve(
         chain, theta, floats[R_THETA_DOT], pairs[P_VELOCITY], pairs[P_CENTROID], phi, start,
         held, scratch[9])
-    widest = 0.0
-    for j in range(n):
+    widest = 0.0   # the widest block's width [m]: the rate tolerance's lever (past 3 blocks)
+    for j in range(n if rows > 0 else 0):
         widest = max(widest, 2.0 * chain[0][j])
     for attempt in range(2 if rows > 0 else 0):
         # the complementarity pivot's solution, the one admissible set when there is one:

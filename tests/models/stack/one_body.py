@@ -1,5 +1,5 @@
-"""Independent statements shared by the stack tests: the first base impact of a column
-rocking as one rigid body, and every pattern of a chain against the full-coordinate
+"""Independent statements shared by the stack tests: a two-block stack as one rigid body and
+the first base impact of a column rocking as one rigid body, and every pattern of a chain against the full-coordinate
 Newton-Euler equations."""
 
 from __future__ import annotations
@@ -13,6 +13,20 @@ from scipy.integrate import quad
 from shaketable.core.constants import G
 from shaketable.models.stack.physics import Chain, state_forces
 from shaketable.models.stack.reference import newton_euler
+
+
+def rigid_pair(b1, h1, b2, h2, m1, m2, e=0.0):
+    """A two-block stack (half sizes, masses, the top's offset ``e`` [m]) rocking as one
+    rigid body about the bottom block's base corner: its mass M, the centre of mass
+    (x_c, y_c) from that corner, R = |(x_c, y_c)|, alpha = atan(x_c / y_c) and
+    I_O = (4/3) m1 (b1^2 + h1^2) + m2 [(b2^2 + h2^2)/3 + (b1 + e)^2 + (2 h1 + h2)^2]
+    (the issue's check 2; e = 0 for a centred stack)."""
+    mass = m1 + m2
+    x_c = b1 + m2 * e / mass
+    y_c = (m1 * h1 + m2 * (2 * h1 + h2)) / mass
+    inertia = 4 / 3 * m1 * (b1 ** 2 + h1 ** 2) + m2 * ((b2 ** 2 + h2 ** 2) / 3 + (b1 + e) ** 2
+                                                       + (2 * h1 + h2) ** 2)
+    return mass, x_c, y_c, math.hypot(x_c, y_c), math.atan(x_c / y_c), inertia
 
 
 def first_base_impact(mass, radius, alpha, inertia, theta0):

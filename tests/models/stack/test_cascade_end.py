@@ -7,7 +7,7 @@ from scipy.integrate import quad
 import shaketable as st
 from shaketable.core.constants import G
 from shaketable.models.stack import Stack, simulate_stack
-from tests.models.stack.one_body import first_base_impact
+from tests.models.stack.one_body import first_base_impact, rigid_pair
 
 
 def test_a_decaying_stack_rests_within_the_documented_bound_of_its_flights_sum():
@@ -30,10 +30,7 @@ def test_a_decaying_stack_rests_within_the_documented_bound_of_its_flights_sum()
     rest = [e["t"] for e in result.events if e["kind"] == "rest"]
 
     b, h = block.width / 2, block.height / 2
-    mass = 2.0
-    inertia = (4 / 3) * (b ** 2 + h ** 2) + (b ** 2 + h ** 2) / 3 + b ** 2 + (3 * h) ** 2
-    height = 2.0 * h   # the pair's centre of mass above the base
-    radius, alpha = math.hypot(b, height), math.atan(b / height)
+    mass, _, _, radius, alpha, inertia = rigid_pair(b, h, b, h, 1.0, 1.0)
     ratio = 1.0 - 2.0 * mass * b ** 2 / inertia
     t1, w1 = first_base_impact(mass, radius, alpha, inertia, 0.05)
     k = 2.0 * mass * G * radius / inertia   # theta'^2 = w^2 - k (cos(alpha - theta) - cos alpha)

@@ -9,7 +9,7 @@ import pytest
 import shaketable as st
 from shaketable.core.constants import G
 from shaketable.models.stack import Stack, StackTensionWarning, simulate_stack
-from tests.models.stack.one_body import first_base_impact
+from tests.models.stack.one_body import first_base_impact, rigid_pair
 
 
 def test_a_stack_of_one_block_is_the_rocking_engine():
@@ -43,11 +43,7 @@ def test_a_rigid_release_falls_as_one_body_to_its_first_base_impact():
     # the rate there its closed form; the plastic ratio r = 1 - 2 M b1^2 / I_O
     b1, h1, b2, h2, m1, m2 = 0.15, 0.5, 0.15, 0.1, 2.0, 0.6
     stack = Stack([st.Block(2 * h1, 2 * b1), st.Block(2 * h2, 2 * b2)], masses=(m1, m2))
-    mass = m1 + m2
-    y_c = (m1 * h1 + m2 * (2 * h1 + h2)) / mass
-    radius, alpha = math.hypot(b1, y_c), math.atan(b1 / y_c)
-    inertia = 4 / 3 * m1 * (b1 ** 2 + h1 ** 2) + m2 * ((b2 ** 2 + h2 ** 2) / 3 + b1 ** 2
-                                                       + (2 * h1 + h2) ** 2)
+    mass, _, y_c, radius, alpha, inertia = rigid_pair(b1, h1, b2, h2, m1, m2)
     theta0 = 0.6 * alpha
     fall, rate = first_base_impact(mass, radius, alpha, inertia, theta0)
     result = simulate_stack(stack, None, theta0=[theta0, theta0], duration=0.6, output_dt=0.01)
@@ -191,10 +187,7 @@ def test_a_strong_step_starts_the_blocks_opposite_ways_above_a_closed_form(b1, h
     # The -x interface corner unloads (N = -M_R / 2 b2 = 0) at
     # u* = g (m2 b2 + K M b1 / I_O) / (K M y_c / I_O - m2 h2), K = m2 (h2 (2h1 + h2) - b1 b2) + I2:
     # below it the stack rocks as one body, above it the top starts the other way
-    mass = m1 + m2
-    y_c = (m1 * h1 + m2 * (2 * h1 + h2)) / mass
-    inertia = 4 / 3 * m1 * (b1 ** 2 + h1 ** 2) + m2 * ((b2 ** 2 + h2 ** 2) / 3 + b1 ** 2
-                                                       + (2 * h1 + h2) ** 2)
+    mass, _, y_c, _, _, inertia = rigid_pair(b1, h1, b2, h2, m1, m2)
     k = m2 * (h2 * (2 * h1 + h2) - b1 * b2) + m2 * (b2 ** 2 + h2 ** 2) / 3
     step = G * (m2 * b2 + k * mass * b1 / inertia) / (k * mass * y_c / inertia - m2 * h2)
     stack = Stack([st.Block(2 * h1, 2 * b1), st.Block(2 * h2, 2 * b2)], masses=(m1, m2))

@@ -17,7 +17,11 @@ from shaketable.models.stack import (
     StackTensionWarning,
     simulate_stack,
 )
-from tests.models.stack.one_body import assert_every_pattern_is_newton_euler, first_base_impact
+from tests.models.stack.one_body import (
+    assert_every_pattern_is_newton_euler,
+    first_base_impact,
+    rigid_pair,
+)
 
 
 def _quiet(stack, motion, **options):
@@ -70,12 +74,7 @@ def test_a_rigid_release_of_an_offset_stack_falls_as_one_body():
     b0, h0, b1, h1, m0, m1, e = 0.15, 0.5, 0.08, 0.1, 2.0, 0.6, 0.05
     stack = Stack([st.Block(2 * h0, 2 * b0), st.Block(2 * h1, 2 * b1)], masses=(m0, m1),
                   offsets=[e])
-    mass = m0 + m1
-    x_c = (m0 * b0 + m1 * (b0 + e)) / mass
-    y_c = (m0 * h0 + m1 * (2 * h0 + h1)) / mass
-    radius, alpha = math.hypot(x_c, y_c), math.atan(x_c / y_c)
-    inertia = 4 / 3 * m0 * (b0 ** 2 + h0 ** 2) + m1 * ((b1 ** 2 + h1 ** 2) / 3 + (b0 + e) ** 2
-                                                       + (2 * h0 + h1) ** 2)
+    mass, x_c, _, radius, alpha, inertia = rigid_pair(b0, h0, b1, h1, m0, m1, e)
     theta0 = 0.5 * alpha
     fall, rate = first_base_impact(mass, radius, alpha, inertia, theta0)
     result = simulate_stack(stack, None, theta0=[theta0, theta0], duration=0.6, output_dt=0.01)

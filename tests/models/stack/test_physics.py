@@ -7,7 +7,7 @@ import pytest
 
 from shaketable.models.stack.impact import cor_impact, plastic_impact
 from shaketable.models.stack.physics import Chain, energy
-from tests.models.stack.one_body import assert_every_pattern_is_newton_euler
+from tests.models.stack.one_body import assert_every_pattern_is_newton_euler, rigid_pair
 
 
 @pytest.mark.parametrize("n", [1, 2, 3])
@@ -74,9 +74,8 @@ def test_rigid_stack_plastic_ratio_closed_form():
     # r = 1 - 2 M b1^2 / I_O  (one block: 1 - 1.5 sin^2(alpha), Housner),
     # I_O = (4/3) m1 (b1^2 + h1^2) + m2 [(b2^2 + h2^2)/3 + b1^2 + (2 h1 + h2)^2]
     b1, h1, b2, h2, m1, m2 = 0.15, 0.5, 0.15, 0.1, 2.0, 0.6
-    inertia = 4 / 3 * m1 * (b1 ** 2 + h1 ** 2) + m2 * ((b2 ** 2 + h2 ** 2) / 3 + b1 ** 2
-                                                       + (2 * h1 + h2) ** 2)
-    ratio = 1.0 - 2.0 * (m1 + m2) * b1 ** 2 / inertia
+    mass, _, _, _, _, inertia = rigid_pair(b1, h1, b2, h2, m1, m2)
+    ratio = 1.0 - 2.0 * mass * b1 ** 2 / inertia
     chain = Chain([b1, b2], [h1, h2], [m1, m2])
     after, pattern, admissible, _ = plastic_impact(chain, np.zeros(2), np.array([-0.8, 0.0]),
                                                    (1, 0), 0)
